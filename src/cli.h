@@ -1,0 +1,15 @@
+/*
+ * cli.h - the sub-commands of the `sph` program. Each takes the argument
+ * vector starting at its own name and returns the process exit status.
+ * They use the library's public API only.
+ *
+ * Exit statuses: 0 success, 1 bad input or I/O error, 2 usage error,
+ * 3 numerical blow-up, 4 interrupted (a final snapshot was written).
+ */
+#ifndef SPH_CLI_H
+#define SPH_CLI_H
+
+int sph_cli_run(int argc, char **argv);
+int sph_cli_info(int argc, char **argv);
+
+#endif

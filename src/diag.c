@@ -1,0 +1,50 @@
+/*
+ * diag.c - front tracking and conserved sums over the fluid (see diag.h).
+ */
+#include "config.h"
+
+#include "diag.h"
+
+#include <math.h>
+
+double sph_diag_front(const sph_particles *p, double floor_y, double band) {
+  double front = -INFINITY;
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_FLUID && p->y[i] < floor_y + band && p->x[i] > front)
+      front = p->x[i];
+  return front;
+}
+
+void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[2],
+                      sph_diag_row *row) {
+  size_t n = 0;
+  double mass = 0.0, mx = 0.0, my = 0.0, ke = 0.0, pe = 0.0;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->kind[i] != SPH_KIND_FLUID) continue;
+    const double m = p->mass[i];
+    n++;
+    mass += m;
+    mx += m * p->vx[i];
+    my += m * p->vy[i];
+    ke += 0.5 * m * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);
+    pe -= m * (g[0] * p->x[i] + g[1] * p->y[i]);
+  }
+  row->n_fluid = n;
+  row->front_x = sph_diag_front(p, floor_y, band);
+  row->mass = mass;
+  row->momentum_x = mx;
+  row->momentum_y = my;
+  row->kinetic = ke;
+  row->potential = pe;
+}
+
+int sph_diag_write_header(FILE *f) {
+  return fprintf(f, "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential\n") <
+         0;
+}
+
+int sph_diag_write_row(FILE *f, const sph_diag_row *r) {
+  return fprintf(f, "%.17g,%ld,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", r->time, r->step,
+                 r->dt, r->n_fluid, r->front_x, r->mass, r->momentum_x, r->momentum_y, r->kinetic,
+                 r->potential) < 0;
+}

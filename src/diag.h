@@ -1,0 +1,37 @@
+/*
+ * diag.h - diagnostics: the surge front and the conserved quantities of the
+ * fluid, one CSV row per output time (diagnostics.csv).
+ *
+ * Columns: time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential
+ *   front_x    largest x of fluid particles within `band` (2 dx) of the floor
+ *   mass       sum of fluid masses (exact: masses never change)
+ *   momentum   sum of m v over fluid particles
+ *   kinetic    sum of m |v|^2 / 2 over fluid particles
+ *   potential  sum of -m g.r over fluid particles (zero at the origin)
+ * Numbers are printed with %.17g: a row reads back to the same bits. Sums
+ * run serially over the store in its (deterministic) sorted order.
+ */
+#ifndef SPH_DIAG_H
+#define SPH_DIAG_H
+
+#include <stdio.h>
+
+#include "particles.h"
+
+typedef struct sph_diag_row {
+  double time, dt;
+  long step;
+  size_t n_fluid;
+  double front_x, mass, momentum_x, momentum_y, kinetic, potential;
+} sph_diag_row;
+
+/* Largest x of fluid particles with y < floor_y + band; -inf if none. */
+double sph_diag_front(const sph_particles *p, double floor_y, double band);
+/* Fills every column but time, step and dt. */
+void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[2],
+                      sph_diag_row *row);
+/* CSV header line and rows. Return non-zero on a write error. */
+int sph_diag_write_header(FILE *f);
+int sph_diag_write_row(FILE *f, const sph_diag_row *row);
+
+#endif

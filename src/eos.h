@@ -1,0 +1,37 @@
+/*
+ * eos.h - the Tait equation of state (paper A eq. (9)-(10); paper B eq. (5)):
+ *   p = B [(rho/rho0)^gamma - 1],  B = rho0 c0^2 / gamma,  gamma = 7,
+ * and the local sound speed c = c0 (rho/rho0)^((gamma-1)/2) = c0 (rho/rho0)^3.
+ * gamma = 7 is written as multiplications, never pow().
+ */
+#ifndef SPH_EOS_H
+#define SPH_EOS_H
+
+#include <math.h>
+
+typedef struct sph_eos {
+  double rho0, c0, B; /* B = rho0 c0^2 / 7 */
+} sph_eos;
+
+static inline sph_eos sph_eos_tait(double rho0, double c0) {
+  sph_eos e = {rho0, c0, rho0 * c0 * c0 / 7.0};
+  return e;
+}
+
+static inline double sph_eos_pressure(const sph_eos *e, double rho) {
+  const double r = rho / e->rho0;
+  const double r2 = r * r;
+  const double r3 = r2 * r;
+  return e->B * (r3 * r3 * r - 1.0);
+}
+
+static inline double sph_eos_sound_speed(const sph_eos *e, double rho) {
+  const double r = rho / e->rho0;
+  return e->c0 * r * r * r;
+}
+
+/* The density whose pressure is p (inverse of the Tait law), for a
+ * hydrostatic start: rho = rho0 (1 + p/B)^(1/7). */
+double sph_eos_density(const sph_eos *e, double p);
+
+#endif

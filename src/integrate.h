@@ -1,0 +1,31 @@
+/*
+ * integrate.h - time integration: the predictor-corrector of paper B
+ * (eq. 7-8) and the time-step rules.
+ *
+ *   X^{n+1/2} = X^n + dt/2 F(X^n)          (predictor)
+ *   X^{n+1/2} = X^n + dt/2 F(X^{n+1/2})    (corrector)
+ *   X^{n+1}   = 2 X^{n+1/2} - X^n
+ * with X = (r, v, rho) for fluid particles (dr/dt = v + XSPH correction)
+ * and X = rho for fixed wall particles; the pressure follows from the EOS
+ * after each stage.
+ */
+#ifndef SPH_INTEGRATE_H
+#define SPH_INTEGRATE_H
+
+#include "eos.h"
+#include "forces.h"
+#include "particles.h"
+
+/* X0 <- X for every particle. */
+void sph_pc_save(sph_particles *p);
+/* X <- X0 + dt/2 F (both the predictor and the corrector half step). */
+void sph_pc_half(sph_particles *p, double dt, int xsph);
+/* X <- 2 (X0 + dt/2 F) - X0: the corrector half step and the final update. */
+void sph_pc_finish(sph_particles *p, double dt, int xsph);
+
+/* Paper B §2.6: dt = min_a factor h / (c_a + sigma_a). */
+double sph_dt_paper_b(const sph_particles *p, const sph_force_work *w, double h, double factor);
+/* Paper A eq. (20): dt = factor min h / max_a (c_a + |v_a|). */
+double sph_dt_cfl(const sph_particles *p, const sph_eos *eos, double h, double factor);
+
+#endif

@@ -1,0 +1,46 @@
+/*
+ * kernel.h - smoothing kernels W and their radial derivative dW/dr.
+ *
+ * The cubic spline of Monaghan (paper A eq. (8); paper B §2.1), 2-D
+ * normalisation sigma = 10/(7 pi h^2), smoothing radius (GOST R 57700.6
+ * 3.4.2) 2h:
+ *   W(q) = sigma [1 - 3/2 q^2 + 3/4 q^3]  0 <= q < 1
+ *        = sigma [(2 - q)^3 / 4]          1 <= q < 2
+ *        = 0                              q >= 2,      q = r / h
+ * (Paper A writes the same function as 15/(7 pi h^2) [2/3 - q^2 + q^3/2] ...)
+ * One evaluator returns W and dW/dr together; powers are multiplications.
+ */
+#ifndef SPH_KERNEL_H
+#define SPH_KERNEL_H
+
+#define SPH_PI 3.14159265358979323846
+
+/* Support radius of the cubic spline in units of h. */
+#define SPH_CUBIC_SUPPORT 2.0
+
+/* W(r, h) and dW/dr for the 2-D cubic spline. r >= 0. */
+static inline void sph_cubic_w_dw(double r, double h, double *w, double *dwdr) {
+  const double inv_h = 1.0 / h;
+  const double q = r * inv_h;
+  const double sigma = 10.0 / (7.0 * SPH_PI) * inv_h * inv_h;
+  if (q < 1.0) {
+    *w = sigma * (1.0 - 1.5 * q * q + 0.75 * q * q * q);
+    *dwdr = sigma * inv_h * (-3.0 * q + 2.25 * q * q);
+  } else if (q < 2.0) {
+    const double t = 2.0 - q;
+    *w = sigma * 0.25 * t * t * t;
+    *dwdr = sigma * inv_h * (-0.75 * t * t);
+  } else {
+    *w = 0.0;
+    *dwdr = 0.0;
+  }
+}
+
+/* W alone (tests, filters). */
+double sph_cubic_w(double r, double h);
+/* The gradient of W_ij with respect to x_i: (dW/dr) (x_i - x_j)/r; zero at
+ * r = 0. Antisymmetric in the pair by construction: swapping i and j negates
+ * dx and dy exactly. */
+void sph_cubic_grad(double dx, double dy, double h, double *gx, double *gy);
+
+#endif

@@ -1,0 +1,97 @@
+/*
+ * particles.c - the particle store (structure of arrays).
+ *
+ * All arrays are allocated together with the same capacity and grown by
+ * doubling. Storage order is free to change (the grid sorts by cell); the id
+ * array keeps each particle's creation index so output can be written in id
+ * order. Permutation goes through one scratch buffer, field by field, so it
+ * costs one extra array of memory, not a copy of the whole store.
+ */
+#include "config.h"
+
+#include "particles.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* Every array of the store, with its element size, for allocation and
+ * permutation written once. */
+#define SPH_PARTICLE_DOUBLES(X)                                                              \
+  X(x) X(y) X(vx) X(vy) X(rho) X(p) X(mass) X(h) X(u) X(x0) X(y0) X(vx0) X(vy0) X(rho0)    \
+  X(u0) X(ax) X(ay) X(drho) X(du) X(xsx) X(xsy)
+
+static int grow(sph_particles *p, size_t cap, sph_error *err) {
+  void *np;
+#define GROW(field)                                                                          \
+  np = realloc(p->field, cap * sizeof *p->field);                                            \
+  if (!np) return sph_error_set(err, "out of memory for %zu particles", cap);                \
+  p->field = np;                                                                             \
+  memset(p->field + p->cap, 0, (cap - p->cap) * sizeof *p->field);
+  SPH_PARTICLE_DOUBLES(GROW)
+  GROW(kind)
+  GROW(id)
+  GROW(flags)
+#undef GROW
+  p->cap = cap;
+  return 0;
+}
+
+int sph_particles_init(sph_particles *p, size_t cap, sph_error *err) {
+  memset(p, 0, sizeof *p);
+  if (cap < 16) cap = 16;
+  if (grow(p, cap, err)) {
+    sph_particles_free(p);
+    return -1;
+  }
+  return 0;
+}
+
+long sph_particles_add(sph_particles *p, double x, double y, double vx, double vy, double rho,
+                       double mass, double h, int32_t kind, sph_error *err) {
+  if (p->n == p->cap && grow(p, p->cap ? 2 * p->cap : 16, err)) return -1;
+  size_t i = p->n++;
+  p->x[i] = x;
+  p->y[i] = y;
+  p->vx[i] = vx;
+  p->vy[i] = vy;
+  p->rho[i] = rho;
+  p->p[i] = 0.0;
+  p->mass[i] = mass;
+  p->h[i] = h;
+  p->u[i] = 0.0;
+  p->kind[i] = kind;
+  p->id[i] = (int64_t)i;
+  p->flags[i] = 0;
+  return (long)i;
+}
+
+void sph_particles_free(sph_particles *p) {
+#define FREE(field) free(p->field);
+  SPH_PARTICLE_DOUBLES(FREE)
+  FREE(kind)
+  FREE(id)
+  FREE(flags)
+#undef FREE
+  memset(p, 0, sizeof *p);
+}
+
+size_t sph_particles_count_kind(const sph_particles *p, int32_t kind) {
+  size_t c = 0;
+  for (size_t i = 0; i < p->n; i++) c += p->kind[i] == kind;
+  return c;
+}
+
+void sph_particles_permute(sph_particles *p, const size_t *perm, void *work) {
+  size_t n = p->n;
+#define PERMUTE(field)                                                                       \
+  {                                                                                          \
+    __typeof__(p->field) tmp = work;                                                         \
+    for (size_t i = 0; i < n; i++) tmp[i] = p->field[perm[i]];                               \
+    memcpy(p->field, tmp, n * sizeof *tmp);                                                  \
+  }
+  SPH_PARTICLE_DOUBLES(PERMUTE)
+  PERMUTE(kind)
+  PERMUTE(id)
+  PERMUTE(flags)
+#undef PERMUTE
+}

@@ -1,0 +1,322 @@
+/*
+ * sim.c - the simulation object (see sim.h).
+ *
+ * Set-up: fluid blocks are filled on the lattice x0 + (i + 1/2) dx; walls
+ * come from boundary.c. With a hydrostatic start the density of a fluid
+ * particle is the Tait density of p = rho0 |g| (surface - y), and a wall
+ * particle within 2h of a block's x-range gets the same law for that
+ * block's surface, so walls hold the column up from the first step. Every
+ * particle has mass rho0 dx^2 and smoothing length h = h_factor dx.
+ *
+ * One step is paper B's predictor-corrector (integrate.h) with the grid
+ * rebuilt before each of the two interaction passes, so neighbour search is
+ * exact at both stages. The time step comes from the first pass (the state
+ * at t^n). After the step every particle is checked: finite state, density
+ * within density_limit of rho0, inside the domain. The first offender in id
+ * order is reported, so the message is the same for any thread count.
+ */
+#include "config.h"
+
+#include "sim.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "boundary.h"
+#include "eos.h"
+#include "forces.h"
+#include "grid.h"
+#include "integrate.h"
+#include "kernel.h"
+#include "snapshot.h"
+
+struct sph_sim {
+  const sph_case *c;
+  sph_particles p;
+  sph_grid grid;
+  sph_force_work work;
+  sph_force_params fp;
+  double t, last_dt;
+  double t_saved; /* time of the state saved at the start of the last step */
+  long steps;
+  double floor_y;
+  double domain[4];
+  double view[4];
+  char *parameters; /* sph_case_describe */
+};
+
+/* Cells of the grid are a hair larger than the support, so rounding in the
+ * cell index can never separate a pair closer than 2h by a whole cell. */
+#define SPH_CELL_MARGIN (1.0 + 1e-9)
+
+static int add_fluid(sph_sim *s, sph_error *err) {
+  const sph_case *c = s->c;
+  const double dx = c->dx, mass = c->rho0 * dx * dx;
+  const double gmag = -c->gravity[1] > 0.0 ? -c->gravity[1] : 0.0;
+  for (size_t b = 0; b < c->n_fluid; b++) {
+    const sph_fluid_block *fb = &c->fluid[b];
+    const long nx = (long)floor((fb->x1 - fb->x0) / dx + 1e-9);
+    const long ny = (long)floor((fb->y1 - fb->y0) / dx + 1e-9);
+    for (long j = 0; j < ny; j++)
+      for (long i = 0; i < nx; i++) {
+        const double x = fb->x0 + ((double)i + 0.5) * dx;
+        const double y = fb->y0 + ((double)j + 0.5) * dx;
+        double rho = c->rho0;
+        if (fb->hydrostatic) rho = sph_eos_density(&s->fp.eos, c->rho0 * gmag * (fb->surface - y));
+        if (sph_particles_add(&s->p, x, y, fb->vx, fb->vy, rho, mass, c->h, SPH_KIND_FLUID, err) <
+            0)
+          return -1;
+      }
+  }
+  return 0;
+}
+
+/* Hydrostatic density of the wall particles beside or under a block. */
+static void init_wall_density(sph_sim *s) {
+  const sph_case *c = s->c;
+  const double gmag = -c->gravity[1] > 0.0 ? -c->gravity[1] : 0.0;
+  const double reach = SPH_CUBIC_SUPPORT * c->h;
+  for (size_t i = 0; i < s->p.n; i++) {
+    if (s->p.kind[i] != SPH_KIND_WALL) continue;
+    double depth = 0.0;
+    for (size_t b = 0; b < c->n_fluid; b++) {
+      const sph_fluid_block *fb = &c->fluid[b];
+      if (!fb->hydrostatic || s->p.x[i] < fb->x0 - reach || s->p.x[i] > fb->x1 + reach) continue;
+      const double d = fb->surface - s->p.y[i];
+      if (d > depth) depth = d;
+    }
+    if (depth > 0.0) s->p.rho[i] = sph_eos_density(&s->fp.eos, c->rho0 * gmag * depth);
+  }
+}
+
+static void bounding_box(const sph_particles *p, double box[4]) {
+  box[0] = box[2] = INFINITY;
+  box[1] = box[3] = -INFINITY;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->x[i] < box[0]) box[0] = p->x[i];
+    if (p->x[i] > box[1]) box[1] = p->x[i];
+    if (p->y[i] < box[2]) box[2] = p->y[i];
+    if (p->y[i] > box[3]) box[3] = p->y[i];
+  }
+}
+
+static void set_boxes(sph_sim *s) {
+  const sph_case *c = s->c;
+  double bb[4];
+  bounding_box(&s->p, bb);
+  if (c->tank.present) {
+    const double wall = 0.5 * c->dx * (double)(c->tank.layers + 1);
+    s->view[0] = c->tank.x0 - wall;
+    s->view[1] = c->tank.x1 + wall;
+    s->view[2] = c->tank.y0 - wall;
+    s->view[3] = c->tank.y1;
+    s->floor_y = c->tank.y0;
+  } else {
+    memcpy(s->view, bb, sizeof bb);
+    s->floor_y = INFINITY;
+    for (size_t b = 0; b < c->n_fluid; b++)
+      if (c->fluid[b].y0 < s->floor_y) s->floor_y = c->fluid[b].y0;
+  }
+  if (c->domain_set) {
+    memcpy(s->domain, c->domain, sizeof s->domain);
+  } else {
+    /* the particles' box, widened by half its size sideways and below, and
+     * by twice its height above (splashes rise, nothing should fall far) */
+    const double w = bb[1] - bb[0], hgt = bb[3] - bb[2];
+    const double m = 0.5 * (w > hgt ? w : hgt) + 4.0 * c->h;
+    s->domain[0] = bb[0] - m;
+    s->domain[1] = bb[1] + m;
+    s->domain[2] = bb[2] - m;
+    s->domain[3] = bb[3] + 2.0 * hgt + m;
+  }
+}
+
+int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
+  *out = NULL;
+  sph_sim *s = calloc(1, sizeof *s);
+  if (!s) return sph_error_set(err, "out of memory");
+  s->c = c;
+  sph_grid_init(&s->grid);
+  s->fp.eos = sph_eos_tait(c->rho0, c->sound_speed);
+  s->fp.h = c->h;
+  s->fp.alpha = c->alpha;
+  s->fp.beta = c->beta;
+  s->fp.eta = c->eta;
+  s->fp.xsph = c->xsph;
+  s->fp.gx = c->gravity[0];
+  s->fp.gy = c->gravity[1];
+  if (sph_particles_init(&s->p, 1024, err)) goto fail;
+  if (add_fluid(s, err)) goto fail;
+  const double wall_mass = c->rho0 * c->dx * c->dx;
+  if (c->tank.present &&
+      sph_boundary_add_tank(&s->p, &c->tank, c->dx, c->rho0, wall_mass, c->h, err))
+    goto fail;
+  for (size_t w = 0; w < c->n_walls; w++) {
+    const sph_wall_segment *ws = &c->walls[w];
+    if (sph_boundary_add_segment(&s->p, ws->x0, ws->y0, ws->x1, ws->y1, ws->layers, c->dx, c->rho0,
+                                 wall_mass, c->h, err))
+      goto fail;
+  }
+  if (s->p.n == 0) {
+    sph_error_set(err, "case %s: no particles", c->name);
+    goto fail;
+  }
+  init_wall_density(s);
+  sph_forces_pressure(&s->p, &s->fp.eos);
+  set_boxes(s);
+  s->parameters = sph_case_describe(c);
+  if (!s->parameters) {
+    sph_error_set(err, "out of memory");
+    goto fail;
+  }
+  *out = s;
+  return 0;
+fail:
+  sph_sim_free(s);
+  return -1;
+}
+
+void sph_sim_free(sph_sim *s) {
+  if (!s) return;
+  sph_particles_free(&s->p);
+  sph_grid_free(&s->grid);
+  sph_force_work_free(&s->work);
+  free(s->parameters);
+  free(s);
+}
+
+/* Grid build and one interaction pass on the current state. */
+static int pass(sph_sim *s, sph_error *err) {
+  /* at most ~64 cells per particle: far more than any sane domain needs */
+  const size_t max_cells = 64 * s->p.n + 1024 * 1024;
+  if (sph_grid_build(&s->grid, &s->p, SPH_CUBIC_SUPPORT * s->c->h * SPH_CELL_MARGIN, max_cells,
+                     err))
+    return -1;
+  return sph_forces_evaluate(&s->p, &s->grid, &s->fp, &s->work, err);
+}
+
+/* The blow-up check; the first offender in id order is named. */
+static int check_state(sph_sim *s, sph_error *err) {
+  const sph_particles *p = &s->p;
+  const double lim = s->c->density_limit, rho0 = s->c->rho0;
+  const double *d = s->domain;
+  long worst = -1;
+  const char *why = NULL;
+  for (size_t i = 0; i < p->n; i++) {
+    const char *w = NULL;
+    if (!isfinite(p->x[i]) || !isfinite(p->y[i]) || !isfinite(p->vx[i]) || !isfinite(p->vy[i]) ||
+        !isfinite(p->rho[i]) || !isfinite(p->p[i]))
+      w = "state is not finite (NaN or Inf)";
+    else if (fabs(p->rho[i] / rho0 - 1.0) > lim)
+      w = "density outside the allowed band";
+    else if (p->x[i] < d[0] || p->x[i] > d[1] || p->y[i] < d[2] || p->y[i] > d[3])
+      w = "particle left the domain";
+    if (w && (worst < 0 || p->id[i] < p->id[worst])) {
+      worst = (long)i;
+      why = w;
+    }
+  }
+  if (worst < 0) return 0;
+  const size_t i = (size_t)worst;
+  sph_error_set(err,
+                "blow-up at step %ld, t = %.9g s: %s particle %lld: %s "
+                "(x = %.6g, y = %.6g, vx = %.6g, vy = %.6g, rho = %.6g; allowed rho in "
+                "[%.6g, %.6g], domain x [%.6g, %.6g] y [%.6g, %.6g])",
+                s->steps, s->t, p->kind[i] == SPH_KIND_FLUID ? "fluid" : "wall",
+                (long long)p->id[i], why, p->x[i], p->y[i], p->vx[i], p->vy[i], p->rho[i],
+                rho0 * (1.0 - lim), rho0 * (1.0 + lim), d[0], d[1], d[2], d[3]);
+  return SPH_BLOWUP;
+}
+
+int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
+  const sph_case *c = s->c;
+  const int xsph = c->xsph != 0.0;
+  if (pass(s, err)) return -1;
+  double dt;
+  switch (c->dt_rule) {
+  case SPH_DT_FIXED:
+    dt = c->dt_fixed;
+    break;
+  case SPH_DT_CFL:
+    dt = sph_dt_cfl(&s->p, &s->fp.eos, c->h, c->dt_factor);
+    break;
+  case SPH_DT_PAPER_B:
+  default:
+    dt = sph_dt_paper_b(&s->p, &s->work, c->h, c->dt_factor);
+    break;
+  }
+  if (!(dt > 0.0) || !isfinite(dt))
+    return sph_error_set(err, "blow-up at step %ld, t = %.9g s: time step is %g", s->steps, s->t,
+                         dt),
+           SPH_BLOWUP;
+  int land = 0;
+  if (s->t + dt >= t_target) {
+    dt = t_target - s->t;
+    land = 1;
+  }
+  sph_pc_save(&s->p);
+  s->t_saved = s->t;
+  sph_pc_half(&s->p, dt, xsph);
+  sph_forces_pressure(&s->p, &s->fp.eos);
+  if (pass(s, err)) return -1;
+  sph_pc_finish(&s->p, dt, xsph);
+  sph_forces_pressure(&s->p, &s->fp.eos);
+  s->t = land ? t_target : s->t + dt;
+  s->last_dt = dt;
+  s->steps++;
+  return check_state(s, err);
+}
+
+double sph_sim_time(const sph_sim *s) { return s->t; }
+long sph_sim_steps(const sph_sim *s) { return s->steps; }
+double sph_sim_last_dt(const sph_sim *s) { return s->last_dt; }
+const sph_case *sph_sim_case(const sph_sim *s) { return s->c; }
+sph_particles *sph_sim_particles(sph_sim *s) { return &s->p; }
+double sph_sim_floor(const sph_sim *s) { return s->floor_y; }
+void sph_sim_domain(const sph_sim *s, double box[4]) { memcpy(box, s->domain, 4 * sizeof *box); }
+void sph_sim_view(const sph_sim *s, double box[4]) { memcpy(box, s->view, 4 * sizeof *box); }
+
+void sph_sim_diag(const sph_sim *s, sph_diag_row *row) {
+  sph_diag_compute(&s->p, s->floor_y, 2.0 * s->c->dx, s->c->gravity, row);
+  row->time = s->t;
+  row->step = s->steps;
+  row->dt = s->last_dt;
+}
+
+static void fill_meta(const sph_sim *s, sph_snapshot_meta *m, double t, long step) {
+  memset(m, 0, sizeof *m);
+  m->time = t;
+  m->dt = s->last_dt;
+  m->step = step;
+  m->case_name = s->c->name;
+  m->case_text = s->c->text;
+  m->overrides = s->c->overrides;
+  m->parameters = s->parameters;
+  m->dx = s->c->dx;
+  m->h = s->c->h;
+  m->rho0 = s->c->rho0;
+  memcpy(m->view, s->view, sizeof m->view);
+}
+
+int sph_sim_write_snapshot(const sph_sim *s, const char *path, sph_error *err) {
+  sph_snapshot_meta m;
+  fill_meta(s, &m, s->t, s->steps);
+  return sph_snapshot_write(path, &m, &s->p, err);
+}
+
+int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err) {
+  /* a view of the store whose state arrays are the saved ones */
+  sph_particles v = s->p;
+  v.x = s->p.x0;
+  v.y = s->p.y0;
+  v.vx = s->p.vx0;
+  v.vy = s->p.vy0;
+  v.rho = s->p.rho0;
+  v.u = s->p.u0;
+  v.p = s->work.prho2; /* scratch: pressure of the saved state */
+  for (size_t i = 0; i < v.n; i++) v.p[i] = sph_eos_pressure(&s->fp.eos, v.rho[i]);
+  sph_snapshot_meta m;
+  fill_meta(s, &m, s->t_saved, s->steps - 1);
+  return sph_snapshot_write(path, &m, &v, err);
+}

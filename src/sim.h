@@ -1,0 +1,56 @@
+/*
+ * sim.h - the simulation object: the particles of a case and one time step.
+ *
+ * sph_sim_create builds the particles of a case (fluid blocks on a lattice,
+ * tank and wall segments of dynamic particles, hydrostatic start), and
+ * sph_sim_step advances them by one step of the case's integrator:
+ *   grid build (sort by cell) -> interaction pass -> time step -> predictor
+ *   -> grid build -> interaction pass -> corrector -> blow-up check
+ * The library never prints or exits: failures come back as a status and an
+ * sph_error message.
+ */
+#ifndef SPH_SIM_H
+#define SPH_SIM_H
+
+#include "case.h"
+#include "diag.h"
+#include "error.h"
+#include "particles.h"
+
+typedef struct sph_sim sph_sim;
+
+/* Status of sph_sim_step and friends: 0 = fine, SPH_BLOWUP = the new state
+ * failed the blow-up check (err names step, time, particle and reason; the
+ * state before the step is still held as the saved state), -1 = other error. */
+#define SPH_BLOWUP 1
+
+/* Builds the initial particles of a case. The case must outlive the sim. */
+int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err);
+void sph_sim_free(sph_sim *s);
+
+/* Advances one step; the step is shortened so as not to pass t_target, and
+ * when it reaches t_target the time is set to t_target exactly. */
+int sph_sim_step(sph_sim *s, double t_target, sph_error *err);
+
+double sph_sim_time(const sph_sim *s);
+long sph_sim_steps(const sph_sim *s);
+double sph_sim_last_dt(const sph_sim *s);
+const sph_case *sph_sim_case(const sph_sim *s);
+/* The particles (storage order changes at every step; use id for identity). */
+sph_particles *sph_sim_particles(sph_sim *s);
+/* The y of the floor used for the front (tank floor, or the lowest fluid
+ * block bottom) and the band height (2 dx). */
+double sph_sim_floor(const sph_sim *s);
+/* The domain box x0, x1, y0, y1: a particle leaving it is a blow-up. */
+void sph_sim_domain(const sph_sim *s, double box[4]);
+/* The view box (the tank with its walls, or the particles' initial box). */
+void sph_sim_view(const sph_sim *s, double box[4]);
+/* Diagnostics of the current state. */
+void sph_sim_diag(const sph_sim *s, sph_diag_row *row);
+/* Writes the current state as a snapshot (atomically). */
+int sph_sim_write_snapshot(const sph_sim *s, const char *path, sph_error *err);
+/* Writes the state saved at the start of the last step (the last state that
+ * passed the blow-up check) as a snapshot: used after a blow-up. */
+int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err);
+
+#endif

@@ -1,0 +1,22 @@
+/*
+ * sph.h - the public API of libsph in one include.
+ */
+#ifndef SPH_H
+#define SPH_H
+
+#include "error.h"
+#include "particles.h"
+#include "kernel.h"
+#include "eos.h"
+#include "grid.h"
+#include "forces.h"
+#include "boundary.h"
+#include "integrate.h"
+#include "diag.h"
+#include "case.h"
+#include "snapshot.h"
+#include "sim.h"
+#include "run.h"
+#include "version.h"
+
+#endif

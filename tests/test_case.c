@@ -1,0 +1,739 @@
+/*
+ * test_case.c - the strict YAML case reader (case.h).
+ *
+ * Most tests parse inline text with sph_case_parse under the origin
+ * "t.yaml" and compare the whole error message, so the file, the 1-based
+ * line, the dotted key and the expectation are all checked at once. The
+ * texts below are built from numbered lines (see MINIMAL) so that the
+ * expected line numbers can be read off. A few fixture files under
+ * tests/data/cases_bad/ go through sph_case_load, and a valid file is
+ * written to a temporary directory to check path and text.
+ */
+#include "config.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "case.h"
+#include "testutil.h"
+
+/* The smallest valid case: every optional key left to its default. */
+static const char MINIMAL[] = "name: mini\n"              /* 1 */
+                              "physics:\n"                /* 2 */
+                              "  sound_speed: 20\n"       /* 3 */
+                              "numerics:\n"               /* 4 */
+                              "  dx: 0.01\n"              /* 5 */
+                              "time:\n"                   /* 6 */
+                              "  end: 1\n"                /* 7 */
+                              "  output_interval: 0.1\n"  /* 8 */
+                              "geometry:\n"               /* 9 */
+                              "  fluid:\n"                /* 10 */
+                              "    - x: [0, 1]\n"         /* 11 */
+                              "      y: [0, 0.5]\n";      /* 12 */
+
+/* Every key of the schema given. */
+static const char FULL[] = "# a complete case\n"                           /* 1 */
+                           "name: martin_moyce\n"                          /* 2 */
+                           "description: \"Dam break\"\n"                  /* 3 */
+                           "physics:\n"                                    /* 4 */
+                           "  rho0: 998.0\n"                               /* 5 */
+                           "  gravity: [0.0, -9.81]\n"                     /* 6 */
+                           "  sound_speed: {factor: 10, height: 0.1143}\n" /* 7 */
+                           "  artificial_viscosity:\n"                     /* 8 */
+                           "    alpha: 0.3\n"                              /* 9 */
+                           "    beta: 0.1\n"                               /* 10 */
+                           "    eta: 0.2\n"                                /* 11 */
+                           "  xsph: 0.5\n"                                 /* 12 */
+                           "numerics:\n"                                   /* 13 */
+                           "  dx: 0.001143\n"                              /* 14 */
+                           "  h_factor: 1.5\n"                             /* 15 */
+                           "  kernel: cubic_spline\n"                      /* 16 */
+                           "  integrator: predictor_corrector\n"           /* 17 */
+                           "  time_step:\n"                                /* 18 */
+                           "    rule: cfl\n"                               /* 19 */
+                           "    factor: 0.25\n"                            /* 20 */
+                           "  density_limit: 0.2\n"                        /* 21 */
+                           "time:\n"                                       /* 22 */
+                           "  end: 0.5\n"                                  /* 23 */
+                           "  output_interval: 0.01\n"                     /* 24 */
+                           "  stop: front_at_wall\n"                       /* 25 */
+                           "geometry:\n"                                   /* 26 */
+                           "  tank:\n"                                     /* 27 */
+                           "    x: [0.0, 0.2286]\n"                        /* 28 */
+                           "    y: [0.0, 0.2]\n"                           /* 29 */
+                           "    layers: 3\n"                               /* 30 */
+                           "    boundary: dynamic\n"                       /* 31 */
+                           "  fluid:\n"                                    /* 32 */
+                           "    - x: [0.0, 0.05715]\n"                     /* 33 */
+                           "      y: [0.0, 0.1143]\n"                      /* 34 */
+                           "      velocity: [0.5, -0.25]\n"                /* 35 */
+                           "      hydrostatic: false\n"                    /* 36 */
+                           "      surface: 0.12\n"                         /* 37 */
+                           "    - x: [0.1, 0.2]\n"                         /* 38 */
+                           "      y: [0.0, 0.01]\n"                        /* 39 */
+                           "  walls:\n"                                    /* 40 */
+                           "    - from: [0.1, 0.0]\n"                      /* 41 */
+                           "      to: [0.1, 0.05]\n"                       /* 42 */
+                           "      layers: 1\n"                             /* 43 */
+                           "      boundary: dynamic\n"                     /* 44 */
+                           "  domain:\n"                                   /* 45 */
+                           "    x: [-0.01, 0.24]\n"                        /* 46 */
+                           "    y: [-0.01, 0.5]\n"                         /* 47 */
+                           "output:\n"                                     /* 48 */
+                           "  snapshots: false\n";                         /* 49 */
+
+static const char *const TOP_KEYS =
+    "name, description, physics, numerics, time, geometry, output";
+static const char *const PHYSICS_KEYS = "rho0, gravity, sound_speed, artificial_viscosity, xsph";
+
+/* MINIMAL with line `line` (1-based) replaced by `repl` (which may hold
+ * several lines, or be "" to delete it). Returns one of two static buffers. */
+static const char *edit(const char *base, int line, const char *repl) {
+  static char bufs[2][8192];
+  static int which;
+  char *buf = bufs[which ^= 1]; /* two buffers, so that edits can nest */
+  const char *p = base;
+  size_t n = 0;
+  for (int l = 1; *p; l++) {
+    const char *eol = strchr(p, '\n');
+    size_t len = eol ? (size_t)(eol - p) + 1 : strlen(p);
+    if (l == line) {
+      size_t k = strlen(repl);
+      memcpy(buf + n, repl, k);
+      n += k;
+    } else {
+      memcpy(buf + n, p, len);
+      n += len;
+    }
+    p += len;
+  }
+  buf[n] = '\0';
+  return buf;
+}
+
+static int parse(const char *text, const char *const *set, size_t n, sph_case *c, sph_error *e) {
+  return sph_case_parse(text, strlen(text), "t.yaml", set, n, c, e);
+}
+
+static int is_empty(const sph_case *c) {
+  static const sph_case zero;
+  return memcmp(c, &zero, sizeof zero) == 0;
+}
+
+/* The parse must fail with exactly `want`, leaving the case empty. */
+static void expect_err_set(const char *text, const char *const *set, size_t n, const char *want) {
+  sph_case c;
+  sph_error e = {{0}};
+  int rc = parse(text, set, n, &c, &e);
+  CU_ASSERT(rc != 0);
+  CU_ASSERT_STRING_EQUAL(e.msg, want);
+  if (rc == 0 || strcmp(e.msg, want) != 0)
+    fprintf(stderr, "\n  want: %s\n  got:  %s\n", want, rc ? e.msg : "(success)");
+  CU_ASSERT(is_empty(&c));
+  sph_case_free(&c);
+}
+
+static void expect_err(const char *text, const char *want) { expect_err_set(text, NULL, 0, want); }
+
+static void expect_ok(const char *text, const char *const *set, size_t n, sph_case *c) {
+  sph_error e = {{0}};
+  int rc = parse(text, set, n, c, &e);
+  CU_ASSERT_EQUAL(rc, 0);
+  if (rc) fprintf(stderr, "\n  unexpected error: %s\n", e.msg);
+}
+
+/* ---- valid cases ---------------------------------------------------------- */
+
+static void test_minimal_defaults(void) {
+  sph_case c;
+  expect_ok(MINIMAL, NULL, 0, &c);
+  CU_ASSERT_STRING_EQUAL(c.name, "mini");
+  CU_ASSERT_STRING_EQUAL(c.description, "");
+  CU_ASSERT_STRING_EQUAL(c.path, "t.yaml");
+  CU_ASSERT_STRING_EQUAL(c.text, MINIMAL);
+  CU_ASSERT_STRING_EQUAL(c.overrides, "");
+  CU_ASSERT_EQUAL(c.rho0, 1000.0);
+  CU_ASSERT_EQUAL(c.gravity[0], 0.0);
+  CU_ASSERT_EQUAL(c.gravity[1], -9.81);
+  CU_ASSERT_EQUAL(c.sound_speed, 20.0);
+  CU_ASSERT_EQUAL(c.alpha, 0.0);
+  CU_ASSERT_EQUAL(c.beta, 0.0);
+  CU_ASSERT_EQUAL(c.eta, 0.1);
+  CU_ASSERT_EQUAL(c.xsph, 0.0);
+  CU_ASSERT_EQUAL(c.dx, 0.01);
+  CU_ASSERT_EQUAL(c.h_factor, 1.3);
+  CU_ASSERT_EQUAL(c.h, 1.3 * 0.01);
+  CU_ASSERT_EQUAL(c.kernel, SPH_KERNEL_CUBIC_SPLINE);
+  CU_ASSERT_EQUAL(c.integrator, SPH_INTEGRATOR_PREDICTOR_CORRECTOR);
+  CU_ASSERT_EQUAL(c.dt_rule, SPH_DT_PAPER_B);
+  CU_ASSERT_EQUAL(c.dt_factor, 0.3);
+  CU_ASSERT_EQUAL(c.dt_fixed, 0.0);
+  CU_ASSERT_EQUAL(c.density_limit, 0.3);
+  CU_ASSERT_EQUAL(c.t_end, 1.0);
+  CU_ASSERT_EQUAL(c.output_interval, 0.1);
+  CU_ASSERT_EQUAL(c.stop, SPH_STOP_NONE);
+  CU_ASSERT_EQUAL(c.tank.present, 0);
+  CU_ASSERT_EQUAL_FATAL(c.n_fluid, 1);
+  CU_ASSERT_EQUAL(c.fluid[0].x0, 0.0);
+  CU_ASSERT_EQUAL(c.fluid[0].x1, 1.0);
+  CU_ASSERT_EQUAL(c.fluid[0].y0, 0.0);
+  CU_ASSERT_EQUAL(c.fluid[0].y1, 0.5);
+  CU_ASSERT_EQUAL(c.fluid[0].vx, 0.0);
+  CU_ASSERT_EQUAL(c.fluid[0].vy, 0.0);
+  CU_ASSERT_EQUAL(c.fluid[0].hydrostatic, 1);
+  CU_ASSERT_EQUAL(c.fluid[0].surface, 0.5);
+  CU_ASSERT_EQUAL(c.n_walls, 0);
+  CU_ASSERT_PTR_NULL(c.walls);
+  CU_ASSERT_EQUAL(c.domain_set, 0);
+  CU_ASSERT_EQUAL(c.snapshots, 1);
+  sph_case_free(&c);
+  CU_ASSERT(is_empty(&c));
+}
+
+static void test_full_case(void) {
+  sph_case c;
+  expect_ok(FULL, NULL, 0, &c);
+  CU_ASSERT_STRING_EQUAL(c.name, "martin_moyce");
+  CU_ASSERT_STRING_EQUAL(c.description, "Dam break");
+  CU_ASSERT_EQUAL(c.rho0, 998.0);
+  CU_ASSERT_EQUAL(c.sound_speed, 10.0 * sqrt(2.0 * 9.81 * 0.1143));
+  CU_ASSERT_EQUAL(c.alpha, 0.3);
+  CU_ASSERT_EQUAL(c.beta, 0.1);
+  CU_ASSERT_EQUAL(c.eta, 0.2);
+  CU_ASSERT_EQUAL(c.xsph, 0.5);
+  CU_ASSERT_EQUAL(c.dx, 0.001143);
+  CU_ASSERT_EQUAL(c.h_factor, 1.5);
+  CU_ASSERT_EQUAL(c.h, 1.5 * 0.001143);
+  CU_ASSERT_EQUAL(c.dt_rule, SPH_DT_CFL);
+  CU_ASSERT_EQUAL(c.dt_factor, 0.25);
+  CU_ASSERT_EQUAL(c.density_limit, 0.2);
+  CU_ASSERT_EQUAL(c.t_end, 0.5);
+  CU_ASSERT_EQUAL(c.output_interval, 0.01);
+  CU_ASSERT_EQUAL(c.stop, SPH_STOP_FRONT_AT_WALL);
+  CU_ASSERT_EQUAL(c.tank.present, 1);
+  CU_ASSERT_EQUAL(c.tank.x0, 0.0);
+  CU_ASSERT_EQUAL(c.tank.x1, 0.2286);
+  CU_ASSERT_EQUAL(c.tank.y0, 0.0);
+  CU_ASSERT_EQUAL(c.tank.y1, 0.2);
+  CU_ASSERT_EQUAL(c.tank.layers, 3);
+  CU_ASSERT_EQUAL(c.tank.boundary, SPH_BOUNDARY_DYNAMIC);
+  CU_ASSERT_EQUAL_FATAL(c.n_fluid, 2);
+  CU_ASSERT_EQUAL(c.fluid[0].x1, 0.05715);
+  CU_ASSERT_EQUAL(c.fluid[0].y1, 0.1143);
+  CU_ASSERT_EQUAL(c.fluid[0].vx, 0.5);
+  CU_ASSERT_EQUAL(c.fluid[0].vy, -0.25);
+  CU_ASSERT_EQUAL(c.fluid[0].hydrostatic, 0);
+  CU_ASSERT_EQUAL(c.fluid[0].surface, 0.12);
+  CU_ASSERT_EQUAL(c.fluid[1].x0, 0.1);
+  CU_ASSERT_EQUAL(c.fluid[1].hydrostatic, 1);
+  CU_ASSERT_EQUAL(c.fluid[1].surface, 0.01);
+  CU_ASSERT_EQUAL_FATAL(c.n_walls, 1);
+  CU_ASSERT_EQUAL(c.walls[0].x0, 0.1);
+  CU_ASSERT_EQUAL(c.walls[0].y0, 0.0);
+  CU_ASSERT_EQUAL(c.walls[0].x1, 0.1);
+  CU_ASSERT_EQUAL(c.walls[0].y1, 0.05);
+  CU_ASSERT_EQUAL(c.walls[0].layers, 1);
+  CU_ASSERT_EQUAL(c.domain_set, 1);
+  CU_ASSERT_EQUAL(c.domain[0], -0.01);
+  CU_ASSERT_EQUAL(c.domain[1], 0.24);
+  CU_ASSERT_EQUAL(c.domain[2], -0.01);
+  CU_ASSERT_EQUAL(c.domain[3], 0.5);
+  CU_ASSERT_EQUAL(c.snapshots, 0);
+  sph_case_free(&c);
+}
+
+static void test_sound_speed(void) {
+  sph_case c;
+  /* factor and height: c0 = factor sqrt(2 |g| height), with |g| the length of g */
+  expect_ok(edit(MINIMAL, 3, "  sound_speed: {factor: 10, height: 0.1143}\n"), NULL, 0, &c);
+  CU_ASSERT_DOUBLE_EQUAL(c.sound_speed, 14.97519949783642, 1e-12);
+  sph_case_free(&c);
+  expect_ok(edit(MINIMAL, 3,
+                 "  gravity: [3, -4]\n  sound_speed:\n    factor: 2\n    height: 0.4\n"),
+            NULL, 0, &c);
+  CU_ASSERT_DOUBLE_EQUAL(c.sound_speed, 4.0, 1e-15); /* 2 sqrt(2 * 5 * 0.4) */
+  sph_case_free(&c);
+  expect_ok(edit(MINIMAL, 3, "  sound_speed: {factor: 10, speed: 1.5}\n"), NULL, 0, &c);
+  CU_ASSERT_EQUAL(c.sound_speed, 15.0);
+  sph_case_free(&c);
+
+  expect_err(edit(MINIMAL, 3, "  sound_speed: {factor: 10, height: 1, speed: 1}\n"),
+             "t.yaml:3: physics.sound_speed: give either 'height' or 'speed', not both");
+  expect_err(edit(MINIMAL, 3, "  sound_speed: {factor: 10}\n"),
+             "t.yaml:3: physics.sound_speed: expected 'height' (c0 = factor*sqrt(2|g|*height)) "
+             "or 'speed' (c0 = factor*speed) next to 'factor'");
+  expect_err(edit(MINIMAL, 3, "  sound_speed: {height: 0.1}\n"),
+             "t.yaml:3: physics.sound_speed.factor: required key is missing");
+  expect_err(edit(MINIMAL, 3, "  sound_speed: {factor: 0, speed: 1}\n"),
+             "t.yaml:3: physics.sound_speed.factor: expected a positive number, got '0'");
+  expect_err(edit(MINIMAL, 3, "  gravity: [0, 0]\n  sound_speed: {factor: 10, height: 0.1}\n"),
+             "t.yaml:4: physics.sound_speed.height: c0 = factor*sqrt(2|g|*height) needs a "
+             "non-zero physics.gravity");
+  expect_err(edit(MINIMAL, 3, "  sound_speed: {factor: 1, velocity: 1}\n"),
+             "t.yaml:3: physics.sound_speed.velocity: unknown key (valid keys in "
+             "'physics.sound_speed': factor, height, speed)");
+  expect_err(edit(MINIMAL, 3, "  sound_speed: fast\n"),
+             "t.yaml:3: physics.sound_speed: expected a positive number or a mapping "
+             "{factor, height} or {factor, speed}, got 'fast'");
+  expect_err(edit(MINIMAL, 3, "  rho0: 1000\n"),
+             "t.yaml:3: physics.sound_speed: required key is missing");
+}
+
+static void test_time_step_rules(void) {
+  sph_case c;
+  expect_ok(edit(MINIMAL, 5, "  dx: 0.01\n  time_step: {rule: fixed, dt: 1.0e-4}\n"), NULL, 0, &c);
+  CU_ASSERT_EQUAL(c.dt_rule, SPH_DT_FIXED);
+  CU_ASSERT_EQUAL(c.dt_fixed, 1.0e-4);
+  CU_ASSERT_EQUAL(c.dt_factor, 0.3);
+  sph_case_free(&c);
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  time_step:\n    rule: fixed\n"),
+             "t.yaml:7: numerics.time_step.dt: required key is missing (rule 'fixed' needs it)");
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  time_step:\n    dt: 0.001\n"),
+             "t.yaml:7: numerics.time_step.dt: only allowed with rule: fixed (the rule is "
+             "'paper_b')");
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  time_step: {rule: cfl, factor: 0}\n"),
+             "t.yaml:6: numerics.time_step.factor: expected a number in (0, 1], got '0'");
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  time_step: {rule: adaptive}\n"),
+             "t.yaml:6: numerics.time_step.rule: unknown choice 'adaptive' (valid: paper_b, cfl, "
+             "fixed)");
+}
+
+static void test_load_file(void) {
+  char *dir = sph_test_tmpdir();
+  char path[4200];
+  snprintf(path, sizeof path, "%s/ok.yaml", dir);
+  FILE *f = fopen(path, "wb");
+  CU_ASSERT_PTR_NOT_NULL_FATAL(f);
+  fputs(FULL, f);
+  fclose(f);
+  sph_case c;
+  sph_error e = {{0}};
+  const char *set[] = {"numerics.dx=0.002", "time.end=2"};
+  CU_ASSERT_EQUAL(sph_case_load(path, set, 2, &c, &e), 0);
+  CU_ASSERT_STRING_EQUAL(c.path, path);
+  CU_ASSERT_STRING_EQUAL(c.text, FULL);
+  CU_ASSERT_STRING_EQUAL(c.overrides, "numerics.dx=0.002\ntime.end=2");
+  CU_ASSERT_EQUAL(c.dx, 0.002);
+  CU_ASSERT_EQUAL(c.t_end, 2.0);
+  sph_case_free(&c);
+  sph_test_rmtree(dir);
+  free(dir);
+}
+
+/* ---- errors --------------------------------------------------------------- */
+
+static void test_unknown_key(void) {
+  char want[512];
+  snprintf(want, sizeof want,
+           "t.yaml:4: physics.viscosty: unknown key (valid keys in 'physics': %s)", PHYSICS_KEYS);
+  expect_err(edit(MINIMAL, 3, "  sound_speed: 20\n  viscosty: 0.1\n"), want);
+  snprintf(want, sizeof want, "t.yaml:13: foo: unknown key (valid top-level keys: %s)", TOP_KEYS);
+  expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\nfoo: 1\n"), want);
+  expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\n      colour: blue\n"),
+             "t.yaml:13: geometry.fluid[0].colour: unknown key (valid keys in "
+             "'geometry.fluid[0]': x, y, velocity, hydrostatic, surface)");
+}
+
+static void test_wrong_type(void) {
+  expect_err(edit(MINIMAL, 5, "  dx: {a: 1}\n"),
+             "t.yaml:5: numerics.dx: expected a positive number, got a mapping");
+  expect_err(edit(MINIMAL, 5, "  dx: abc\n"),
+             "t.yaml:5: numerics.dx: expected a positive number, got 'abc'");
+  expect_err(edit(MINIMAL, 5, "  dx: \"0.01\"\n"),
+             "t.yaml:5: numerics.dx: expected a positive number, got the string '0.01'");
+  expect_err(edit(MINIMAL, 5, "  dx: [0.01]\n"),
+             "t.yaml:5: numerics.dx: expected a positive number, got a list of 1 item");
+  expect_err(edit(MINIMAL, 5, "  dx:\n"),
+             "t.yaml:5: numerics.dx: expected a positive number, got nothing");
+  expect_err(edit(edit(MINIMAL, 5, ""), 4, "numerics: 3\n"),
+             "t.yaml:4: numerics: expected a mapping, got '3'");
+  expect_err(edit(edit(edit(MINIMAL, 12, ""), 11, ""), 10, "  fluid: {x: 1}\n"),
+             "t.yaml:10: geometry.fluid: expected a non-empty list of mappings, got a mapping");
+  expect_err(edit(edit(edit(MINIMAL, 12, ""), 11, ""), 10, "  fluid: []\n"),
+             "t.yaml:10: geometry.fluid: expected a non-empty list of mappings, got an empty "
+             "list");
+  expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\n    - 7\n"),
+             "t.yaml:13: geometry.fluid[1]: expected a mapping, got '7'");
+  expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\n      hydrostatic: yes\n"),
+             "t.yaml:13: geometry.fluid[0].hydrostatic: expected true or false, got 'yes'");
+  expect_err(edit(MINIMAL, 1, "name: two words\n"),
+             "t.yaml:1: name: expected a name of 1 to 64 characters from [A-Za-z0-9_.-], got "
+             "'two words'");
+  expect_err(edit(MINIMAL, 1, "name: [a]\n"),
+             "t.yaml:1: name: expected a name of 1 to 64 characters from [A-Za-z0-9_.-], got a "
+             "list of 1 item");
+  expect_err(edit(MINIMAL, 1, "name: mini\ndescription: {a: b}\n"),
+             "t.yaml:2: description: expected a string, got a mapping");
+  expect_err("- 1\n- 2\n", "t.yaml:1: expected a mapping of case keys at the top level, got a "
+                           "list of 2 items");
+  expect_err("", "t.yaml:1: expected a mapping of case keys at the top level, got nothing");
+}
+
+static void test_bad_lists(void) {
+  expect_err(edit(MINIMAL, 3, "  gravity: [0, -9.81, 1]\n  sound_speed: 20\n"),
+             "t.yaml:3: physics.gravity: expected a list of 2 numbers, got a list of 3 items");
+  expect_err(edit(MINIMAL, 3, "  gravity: -9.81\n  sound_speed: 20\n"),
+             "t.yaml:3: physics.gravity: expected a list of 2 numbers, got '-9.81'");
+  expect_err(edit(MINIMAL, 3, "  gravity:\n    - 0\n    - down\n  sound_speed: 20\n"),
+             "t.yaml:5: physics.gravity[1]: expected a number, got 'down'");
+  expect_err(edit(MINIMAL, 11, "    - x: [1, 0]\n"),
+             "t.yaml:11: geometry.fluid[0].x: expected [x0, x1] with x0 < x1, got [1, 0]");
+  expect_err(edit(MINIMAL, 12, "      y: [0.5, 0.5]\n"),
+             "t.yaml:12: geometry.fluid[0].y: expected [y0, y1] with y0 < y1, got [0.5, 0.5]");
+  expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\n  walls:\n    - {from: [1, 2], to: [1, 2]}\n"),
+             "t.yaml:14: geometry.walls[0].to: expected a point different from 'from', got "
+             "[1, 2]");
+  expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\n  walls: {from: [1, 2]}\n"),
+             "t.yaml:13: geometry.walls: expected a list of mappings, got a mapping");
+}
+
+static void test_missing_key(void) {
+  expect_err(edit(MINIMAL, 5, "  h_factor: 1.3\n"),
+             "t.yaml:5: numerics.dx: required key is missing");
+  expect_err(edit(edit(edit(MINIMAL, 8, ""), 7, ""), 6, ""),
+             "t.yaml:1: time: required key is missing");
+  expect_err(edit(MINIMAL, 1, "description: no name\n"), "t.yaml:1: name: required key is missing");
+  expect_err(edit(MINIMAL, 11, "    - velocity: [0, 0]\n"),
+             "t.yaml:11: geometry.fluid[0].x: required key is missing");
+  expect_err(edit(MINIMAL, 5, ""), "t.yaml:4: numerics: expected a mapping, got nothing");
+  expect_err(edit(MINIMAL, 10, "  tank: {x: [0, 1]}\n  fluid:\n"),
+             "t.yaml:10: geometry.tank.y: required key is missing");
+}
+
+static void test_out_of_range(void) {
+  expect_err(edit(MINIMAL, 5, "  dx: -1\n"),
+             "t.yaml:5: numerics.dx: expected a positive number, got '-1'");
+  expect_err(edit(MINIMAL, 5, "  dx: 0\n"),
+             "t.yaml:5: numerics.dx: expected a positive number, got '0'");
+  expect_err(edit(MINIMAL, 5, "  dx: nan\n"),
+             "t.yaml:5: numerics.dx: expected a positive number, got 'nan'");
+  expect_err(edit(MINIMAL, 5, "  dx: .inf\n"),
+             "t.yaml:5: numerics.dx: expected a positive number, got '.inf'");
+  expect_err(edit(MINIMAL, 5, "  dx: 1e999\n"),
+             "t.yaml:5: numerics.dx: expected a positive number, got '1e999'");
+  expect_err(edit(MINIMAL, 5, "  dx: 0x10\n"),
+             "t.yaml:5: numerics.dx: expected a positive number, got '0x10'");
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01m\n"),
+             "t.yaml:5: numerics.dx: expected a positive number, got '0.01m'");
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  h_factor: 5\n"),
+             "t.yaml:6: numerics.h_factor: expected a number in [0.5, 4], got '5'");
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  density_limit: 1\n"),
+             "t.yaml:6: numerics.density_limit: expected a number in (0, 1), got '1'");
+  expect_err(edit(MINIMAL, 3, "  sound_speed: 20\n  xsph: 1.5\n"),
+             "t.yaml:4: physics.xsph: expected a number in [0, 1], got '1.5'");
+  expect_err(edit(MINIMAL, 3, "  sound_speed: 20\n  artificial_viscosity: {alpha: -0.1}\n"),
+             "t.yaml:4: physics.artificial_viscosity.alpha: expected a number >= 0, got '-0.1'");
+  expect_err(edit(MINIMAL, 8, "  output_interval: 2\n"),
+             "t.yaml:8: time.output_interval: expected a positive number <= time.end (1), got "
+             "'2'");
+  expect_err(edit(MINIMAL, 10, "  tank: {x: [0, 1], y: [0, 1], layers: 9}\n  fluid:\n"),
+             "t.yaml:10: geometry.tank.layers: expected an integer in 1..8, got '9'");
+  expect_err(edit(MINIMAL, 10, "  tank: {x: [0, 1], y: [0, 1], layers: 2.0}\n  fluid:\n"),
+             "t.yaml:10: geometry.tank.layers: expected an integer in 1..8, got '2.0'");
+  expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\n      surface: 0.4\n"),
+             "t.yaml:13: geometry.fluid[0].surface: expected a number >= the block's y1 (0.5), "
+             "got '0.4'");
+}
+
+static void test_unknown_choice(void) {
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  kernel: wendland\n"),
+             "t.yaml:6: numerics.kernel: unknown choice 'wendland' (valid: cubic_spline)");
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  kernel: [cubic_spline]\n"),
+             "t.yaml:6: numerics.kernel: expected one of: cubic_spline, got a list of 1 item");
+  expect_err(edit(MINIMAL, 8, "  output_interval: 0.1\n  stop: never\n"),
+             "t.yaml:9: time.stop: unknown choice 'never' (valid: none, front_at_wall)");
+  sph_case c;
+  expect_ok(edit(MINIMAL, 5, "  dx: 0.01\n  kernel: \"cubic_spline\"\n"), NULL, 0, &c);
+  CU_ASSERT_EQUAL(c.kernel, SPH_KERNEL_CUBIC_SPLINE);
+  sph_case_free(&c);
+}
+
+static void test_cross_checks(void) {
+  expect_err(edit(MINIMAL, 5, "  dx: 0.5\n"),
+             "t.yaml:5: numerics.dx: expected a positive number smaller than the width (1) and "
+             "height (0.5) of geometry.fluid[0], got '0.5'");
+  expect_err(edit(MINIMAL, 8, "  output_interval: 0.1\n  stop: front_at_wall\n"),
+             "t.yaml:9: time.stop: 'front_at_wall' needs a geometry.tank");
+  expect_err(edit(MINIMAL, 10, "  tank: {x: [0, 0.8], y: [0, 1]}\n  fluid:\n"),
+             "t.yaml:12: geometry.fluid[0].x: expected a range inside the tank's inner box [0, "
+             "0.8], got [0, 1]");
+}
+
+static void test_duplicate_key(void) {
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  dx: 0.02\n"),
+             "t.yaml:6: numerics.dx: duplicate key (first given at line 5)");
+  expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\nphysics: {}\n"),
+             "t.yaml:13: physics: duplicate key (first given at line 2)");
+}
+
+static void test_yaml_syntax(void) {
+  expect_err(edit(MINIMAL, 5, "  dx: [0.01\n"),
+             "t.yaml:6:5: YAML syntax error: did not find expected ',' or ']' (while parsing a "
+             "flow sequence at line 5, column 7)");
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n   bad: 1\n"),
+             "t.yaml:6:7: YAML syntax error: mapping values are not allowed in this context");
+  expect_err(edit(MINIMAL, 5, "  dx: *a\n"),
+             "t.yaml:5:7: YAML syntax error: found undefined alias");
+  expect_err(edit(MINIMAL, 5, "  dx: &a 0.01\n  h_factor: *a\n"),
+             "t.yaml:6: numerics.h_factor: aliases (*name) are not supported");
+  expect_err(edit(MINIMAL, 5, "  dx: !!float 0.01\n"),
+             "t.yaml:5: numerics.dx: tags such as 'tag:yaml.org,2002:float' are not supported");
+  expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\n---\nname: again\n"),
+             "t.yaml:14: only one YAML document is allowed");
+  expect_err("name: \xff\n", "t.yaml:1:7: YAML syntax error: invalid leading UTF-8 octet");
+}
+
+static void test_missing_file(void) {
+  sph_case c;
+  sph_error e = {{0}};
+  CU_ASSERT(sph_case_load("/nonexistent/dir/x.yaml", NULL, 0, &c, &e) != 0);
+  CU_ASSERT_STRING_EQUAL(e.msg,
+                         "/nonexistent/dir/x.yaml: cannot open the case file: No such file or "
+                         "directory");
+  CU_ASSERT(is_empty(&c));
+  sph_case_free(&c);
+  const char *dir = sph_test_src("tests/data");
+  char want[4200];
+  snprintf(want, sizeof want, "%s: cannot read the case file: Is a directory", dir);
+  CU_ASSERT(sph_case_load(dir, NULL, 0, &c, &e) != 0);
+  CU_ASSERT_STRING_EQUAL(e.msg, want);
+  sph_case_free(&c);
+}
+
+/* The fixture's path followed by `tail`. */
+static void expect_fixture(const char *rel, const char *tail) {
+  sph_case c;
+  sph_error e = {{0}};
+  char want[4200];
+  const char *path = sph_test_src(rel);
+  snprintf(want, sizeof want, "%s%s", path, tail);
+  CU_ASSERT(sph_case_load(path, NULL, 0, &c, &e) != 0);
+  CU_ASSERT_STRING_EQUAL(e.msg, want);
+  if (strcmp(e.msg, want) != 0) fprintf(stderr, "\n  want: %s\n  got:  %s\n", want, e.msg);
+  CU_ASSERT(is_empty(&c));
+  sph_case_free(&c);
+}
+
+static void test_fixture_files(void) {
+  char tail[512];
+  snprintf(tail, sizeof tail, ":5: physics.viscosty: unknown key (valid keys in 'physics': %s)",
+           PHYSICS_KEYS);
+  expect_fixture("tests/data/cases_bad/unknown_key.yaml", tail);
+  expect_fixture("tests/data/cases_bad/syntax_error.yaml",
+                 ":6:9: YAML syntax error: did not find expected ',' or ']' (while parsing a flow "
+                 "sequence at line 5, column 12)");
+  expect_fixture("tests/data/cases_bad/dx_too_large.yaml",
+                 ":6: numerics.dx: expected a positive number smaller than the width (1) and "
+                 "height (0.5) of geometry.fluid[0], got '0.6'");
+  expect_fixture("tests/data/cases_bad/fluid_outside_tank.yaml",
+                 ":18: geometry.fluid[1].x: expected a range inside the tank's inner box [0, 2], "
+                 "got [1.5, 2.5]");
+}
+
+/* ---- overrides ------------------------------------------------------------ */
+
+static void test_set_overrides(void) {
+  sph_case c;
+  const char *s1[] = {"numerics.dx=0.005", "numerics.dx=0.002"}; /* the last one wins */
+  expect_ok(MINIMAL, s1, 2, &c);
+  CU_ASSERT_EQUAL(c.dx, 0.002);
+  CU_ASSERT_EQUAL(c.h, 1.3 * 0.002);
+  CU_ASSERT_STRING_EQUAL(c.overrides, "numerics.dx=0.005\nnumerics.dx=0.002");
+  CU_ASSERT_STRING_EQUAL(c.text, MINIMAL); /* the file text is kept as written */
+  sph_case_free(&c);
+
+  const char *s2[] = {"physics.gravity=[0,-1]", "time.stop=none", "physics.xsph=0.25",
+                      "output.snapshots=false", "numerics.time_step.rule=cfl",
+                      "description=from the command line"};
+  expect_ok(MINIMAL, s2, 6, &c);
+  CU_ASSERT_EQUAL(c.gravity[0], 0.0);
+  CU_ASSERT_EQUAL(c.gravity[1], -1.0);
+  CU_ASSERT_EQUAL(c.stop, SPH_STOP_NONE);
+  CU_ASSERT_EQUAL(c.xsph, 0.25);  /* added to an existing mapping */
+  CU_ASSERT_EQUAL(c.snapshots, 0); /* added with a new intermediate mapping */
+  CU_ASSERT_EQUAL(c.dt_rule, SPH_DT_CFL);
+  CU_ASSERT_STRING_EQUAL(c.description, "from the command line");
+  sph_case_free(&c);
+
+  const char *s3[] = {"physics.sound_speed={factor: 10, speed: 2}"};
+  expect_ok(MINIMAL, s3, 1, &c);
+  CU_ASSERT_EQUAL(c.sound_speed, 20.0);
+  sph_case_free(&c);
+}
+
+static void test_set_errors(void) {
+  char want[512];
+  const char *s1[] = {"numerics.dx=abc"};
+  expect_err_set(MINIMAL, s1, 1,
+                 "--set numerics.dx=abc: numerics.dx: expected a positive number, got 'abc'");
+  const char *s2[] = {"physics.viscosty=1"};
+  snprintf(want, sizeof want,
+           "--set physics.viscosty=1: physics.viscosty: unknown key (valid keys in 'physics': %s)",
+           PHYSICS_KEYS);
+  expect_err_set(MINIMAL, s2, 1, want);
+  const char *s3[] = {"nosuch.key=1"};
+  snprintf(want, sizeof want,
+           "--set nosuch.key=1: nosuch: unknown key (valid top-level keys: %s)", TOP_KEYS);
+  expect_err_set(MINIMAL, s3, 1, want);
+  const char *s4[] = {"numerics.dx"};
+  expect_err_set(MINIMAL, s4, 1,
+                 "--set numerics.dx: expected dotted.key=value (a key such as numerics.dx, then "
+                 "'=', then a YAML value)");
+  const char *s5[] = {"physics.gravity=[0,"};
+  expect_err_set(MINIMAL, s5, 1,
+                 "--set physics.gravity=[0,: physics.gravity: YAML syntax error in the value at "
+                 "its end: did not find expected node content (while parsing a flow node)");
+  const char *s6[] = {"physics.sound_speed.factor=10"};
+  expect_err_set(MINIMAL, s6, 1,
+                 "--set physics.sound_speed.factor=10: physics.sound_speed: is '20' (line 3), not "
+                 "a mapping, so 'factor' cannot be set in it");
+  const char *s7[] = {"numerics.time_step.rule=fixed"};
+  expect_err_set(MINIMAL, s7, 1,
+                 "--set numerics.time_step.rule=fixed: numerics.time_step.dt: required key is "
+                 "missing (rule 'fixed' needs it)");
+  const char *s8[] = {"physics.gravity=[0, -1, 2]"};
+  expect_err_set(MINIMAL, s8, 1,
+                 "--set physics.gravity=[0, -1, 2]: physics.gravity: expected a list of 2 "
+                 "numbers, got a list of 3 items");
+  const char *s9[] = {"numerics..dx=1"};
+  expect_err_set(MINIMAL, s9, 1,
+                 "--set numerics..dx=1: expected dotted.key=value (a key such as numerics.dx, "
+                 "then '=', then a YAML value)");
+  /* an override is validated even when the file itself is fine */
+  const char *s10[] = {"numerics.dx=1"};
+  expect_err_set(MINIMAL, s10, 1,
+                 "--set numerics.dx=1: numerics.dx: expected a positive number smaller than the "
+                 "width (1) and height (0.5) of geometry.fluid[0], got '1'");
+}
+
+/* ---- lifecycle and description -------------------------------------------- */
+
+static void test_free_after_failure(void) {
+  sph_case c;
+  sph_error e;
+  memset(&c, 0x5a, sizeof c); /* garbage in: the parser must not free it */
+  CU_ASSERT(parse(edit(FULL, 47, "    y: [0.5, -0.01]\n"), NULL, 0, &c, &e) != 0);
+  CU_ASSERT(is_empty(&c));
+  sph_case_free(&c);
+  sph_case_free(&c);
+  sph_case_free(NULL);
+  CU_ASSERT(is_empty(&c));
+  /* and a NULL error is allowed */
+  CU_ASSERT(parse("name: [", NULL, 0, &c, NULL) != 0);
+  sph_case_free(&c);
+}
+
+static const char MINIMAL_DESCRIPTION[] =
+    "name: mini\n"
+    "description: \"\"\n"
+    "physics.rho0: 1000\n"
+    "physics.gravity: [0, -9.8100000000000005]\n"
+    "physics.sound_speed: 20\n"
+    "physics.artificial_viscosity.alpha: 0\n"
+    "physics.artificial_viscosity.beta: 0\n"
+    "physics.artificial_viscosity.eta: 0.10000000000000001\n"
+    "physics.xsph: 0\n"
+    "numerics.dx: 0.01\n"
+    "numerics.h_factor: 1.3\n"
+    "numerics.h: 0.013000000000000001\n"
+    "numerics.kernel: cubic_spline\n"
+    "numerics.integrator: predictor_corrector\n"
+    "numerics.time_step.rule: paper_b\n"
+    "numerics.time_step.factor: 0.29999999999999999\n"
+    "numerics.density_limit: 0.29999999999999999\n"
+    "time.end: 1\n"
+    "time.output_interval: 0.10000000000000001\n"
+    "time.stop: none\n"
+    "geometry.tank: none\n"
+    "geometry.fluid[0].x: [0, 1]\n"
+    "geometry.fluid[0].y: [0, 0.5]\n"
+    "geometry.fluid[0].velocity: [0, 0]\n"
+    "geometry.fluid[0].hydrostatic: true\n"
+    "geometry.fluid[0].surface: 0.5\n"
+    "geometry.walls: []\n"
+    "geometry.domain: none\n"
+    "output.snapshots: true\n";
+
+static void test_describe(void) {
+  sph_case a, b;
+  expect_ok(MINIMAL, NULL, 0, &a);
+  char *d = sph_case_describe(&a);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(d);
+  CU_ASSERT_STRING_EQUAL(d, MINIMAL_DESCRIPTION);
+  if (strcmp(d, MINIMAL_DESCRIPTION) != 0) fprintf(stderr, "\n%s", d);
+  free(d);
+  sph_case_free(&a);
+
+  /* the same input twice gives the same bytes */
+  expect_ok(FULL, NULL, 0, &a);
+  expect_ok(FULL, NULL, 0, &b);
+  char *d1 = sph_case_describe(&a), *d2 = sph_case_describe(&b);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(d1);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(d2);
+  CU_ASSERT_STRING_EQUAL(d1, d2);
+  char c0[128];
+  snprintf(c0, sizeof c0, "\nphysics.sound_speed: %.17g\n", 10.0 * sqrt(2.0 * 9.81 * 0.1143));
+  CU_ASSERT_PTR_NOT_NULL(strstr(d1, c0));
+  CU_ASSERT_PTR_NOT_NULL(strstr(d1, "\nnumerics.h: 0.0017144999999999999\n"));
+  CU_ASSERT_PTR_NOT_NULL(strstr(d1, "\ngeometry.fluid[0].x: [0, 0.057149999999999999]\n"));
+  CU_ASSERT_PTR_NOT_NULL(strstr(d1, "\ngeometry.fluid[1].hydrostatic: true\n"));
+  CU_ASSERT_PTR_NOT_NULL(strstr(d1, "\ngeometry.tank.layers: 3\n"));
+  CU_ASSERT_PTR_NOT_NULL(strstr(d1, "\ngeometry.walls[0].to: [0.10000000000000001, "
+                                    "0.050000000000000003]\n"));
+  CU_ASSERT_PTR_NOT_NULL(strstr(d1, "\ngeometry.domain.y: [-0.01, 0.5]\n"));
+  CU_ASSERT_PTR_NOT_NULL(strstr(d1, "\ntime.stop: front_at_wall\n"));
+  CU_ASSERT_PTR_NOT_NULL(strstr(d1, "\noutput.snapshots: false\n"));
+  free(d1);
+  free(d2);
+  sph_case_free(&a);
+  sph_case_free(&b);
+
+  /* a multi-line description stays on one line */
+  expect_ok(edit(MINIMAL, 1, "name: mini\ndescription: |\n  two \"lines\"\n  here\n"), NULL, 0,
+            &a);
+  d = sph_case_describe(&a);
+  CU_ASSERT_PTR_NOT_NULL(strstr(d, "\ndescription: \"two \\\"lines\\\"\\nhere\\n\"\n"));
+  free(d);
+  sph_case_free(&a);
+}
+
+static void test_names(void) {
+  CU_ASSERT_STRING_EQUAL(sph_kernel_name(SPH_KERNEL_CUBIC_SPLINE), "cubic_spline");
+  CU_ASSERT_STRING_EQUAL(sph_integrator_name(SPH_INTEGRATOR_PREDICTOR_CORRECTOR),
+                         "predictor_corrector");
+  CU_ASSERT_STRING_EQUAL(sph_dt_rule_name(SPH_DT_PAPER_B), "paper_b");
+  CU_ASSERT_STRING_EQUAL(sph_dt_rule_name(SPH_DT_CFL), "cfl");
+  CU_ASSERT_STRING_EQUAL(sph_dt_rule_name(SPH_DT_FIXED), "fixed");
+  CU_ASSERT_STRING_EQUAL(sph_boundary_name(SPH_BOUNDARY_DYNAMIC), "dynamic");
+  CU_ASSERT_STRING_EQUAL(sph_stop_name(SPH_STOP_NONE), "none");
+  CU_ASSERT_STRING_EQUAL(sph_stop_name(SPH_STOP_FRONT_AT_WALL), "front_at_wall");
+  CU_ASSERT_STRING_EQUAL(sph_stop_name((sph_stop_kind)7), "unknown");
+}
+
+int main(void) {
+  CU_TestInfo tests[] = {{"minimal case: every default", test_minimal_defaults},
+                         {"complete case: every value", test_full_case},
+                         {"sound speed: value, factor*height, factor*speed", test_sound_speed},
+                         {"time step rules", test_time_step_rules},
+                         {"load from a file with overrides", test_load_file},
+                         {"unknown key", test_unknown_key},
+                         {"wrong type", test_wrong_type},
+                         {"bad lists", test_bad_lists},
+                         {"missing required key", test_missing_key},
+                         {"out of range", test_out_of_range},
+                         {"unknown choice", test_unknown_choice},
+                         {"cross-checks", test_cross_checks},
+                         {"duplicate key", test_duplicate_key},
+                         {"YAML syntax errors", test_yaml_syntax},
+                         {"missing file", test_missing_file},
+                         {"fixture files", test_fixture_files},
+                         {"--set overrides", test_set_overrides},
+                         {"--set errors", test_set_errors},
+                         {"free after failure", test_free_after_failure},
+                         {"describe", test_describe},
+                         {"choice names", test_names},
+                         CU_TEST_INFO_NULL};
+  return sph_test_main("case", tests);
+}

@@ -1,0 +1,160 @@
+/*
+ * test_cli.c - the `sph` program as a user meets it: help and version, and
+ * bad input (missing case file, unknown key, wrong type, bad option, bad
+ * --set) gives a non-zero exit status and a message naming the file, line
+ * and key. Also a short good run followed by `sph info` on its snapshot.
+ */
+#include "config.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "testutil.h"
+
+static char *tmp;
+
+/* Runs `sph ARGS`, capturing stdout+stderr into out; returns the status. */
+static int sph(const char *args, char *out, size_t len) {
+  char cmd[8192], log[4096];
+  snprintf(log, sizeof log, "%s/out.txt", tmp);
+  snprintf(cmd, sizeof cmd, "'%s' %s >'%s' 2>&1", sph_test_build("src/sph"), args, log);
+  int st = sph_test_system(cmd);
+  out[0] = 0;
+  FILE *f = fopen(log, "r");
+  if (f) {
+    size_t n = fread(out, 1, len - 1, f);
+    out[n] = 0;
+    fclose(f);
+  }
+  return st;
+}
+
+static void write_file(const char *name, const char *text) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s/%s", tmp, name);
+  FILE *f = fopen(path, "w");
+  CU_ASSERT_FATAL(f != NULL);
+  fputs(text, f);
+  fclose(f);
+}
+
+static const char *GOOD =
+    "name: tiny\n"
+    "physics:\n"
+    "  sound_speed: 10\n"
+    "  artificial_viscosity: {alpha: 0.1}\n"
+    "numerics:\n"
+    "  dx: 0.01\n"
+    "time:\n"
+    "  end: 0.002\n"
+    "  output_interval: 0.001\n"
+    "geometry:\n"
+    "  tank: {x: [0, 0.1], y: [0, 0.1]}\n"
+    "  fluid:\n"
+    "    - {x: [0, 0.05], y: [0, 0.05]}\n";
+
+static void test_help_and_version(void) {
+  char out[65536];
+  CU_ASSERT_EQUAL(sph("--help", out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "run CASE") != NULL && strstr(out, "info SNAPSHOT") != NULL);
+  CU_ASSERT_EQUAL(sph("run --help", out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "--threads") != NULL && strstr(out, "--set") != NULL);
+  CU_ASSERT_EQUAL(sph("--version", out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "sph ") != NULL);
+  CU_ASSERT_EQUAL(sph("", out, sizeof out), 2);
+  CU_ASSERT_EQUAL(sph("frobnicate", out, sizeof out), 2);
+  CU_ASSERT(strstr(out, "unknown command") != NULL);
+}
+
+static void test_bad_input(void) {
+  char out[65536], args[8192];
+  /* missing file */
+  snprintf(args, sizeof args, "run '%s/nope.yaml' -o '%s/o1'", tmp, tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  CU_ASSERT(strstr(out, "nope.yaml") != NULL);
+  /* unknown key, on line 3 */
+  write_file("badkey.yaml", "name: x\nphysics:\n  sound_sped: 10\n");
+  snprintf(args, sizeof args, "run '%s/badkey.yaml' -o '%s/o2'", tmp, tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  CU_ASSERT(strstr(out, "badkey.yaml:3") != NULL);
+  CU_ASSERT(strstr(out, "sound_sped") != NULL);
+  /* wrong type */
+  write_file("good.yaml", GOOD);
+  snprintf(args, sizeof args, "run '%s/good.yaml' -o '%s/o3' --set numerics.dx=abc", tmp, tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  CU_ASSERT(strstr(out, "numerics.dx") != NULL);
+  /* bad options */
+  snprintf(args, sizeof args, "run '%s/good.yaml' --threads 0", tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 2);
+  snprintf(args, sizeof args, "run '%s/good.yaml' --bogus", tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 2);
+  snprintf(args, sizeof args, "run '%s/good.yaml' --set novalue", tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 2);
+  CU_ASSERT_EQUAL(sph("run", out, sizeof out), 2);
+  /* info on a missing snapshot */
+  snprintf(args, sizeof args, "info '%s/missing.h5'", tmp);
+  CU_ASSERT_NOT_EQUAL(sph(args, out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "missing.h5") != NULL);
+}
+
+static void test_good_run_and_info(void) {
+  char out[65536], args[8192];
+  write_file("good.yaml", GOOD);
+  snprintf(args, sizeof args, "run '%s/good.yaml' -o '%s/run' --set time.end=0.003", tmp, tmp);
+  int st = sph(args, out, sizeof out);
+  if (st) printf("\n%s\n", out);
+  CU_ASSERT_EQUAL_FATAL(st, 0);
+  CU_ASSERT(strstr(out, "particles") != NULL);
+  snprintf(args, sizeof args, "info '%s/run/snap_0003.h5'", tmp);
+  st = sph(args, out, sizeof out);
+  if (st) printf("\n%s\n", out);
+  CU_ASSERT_EQUAL(st, 0);
+  CU_ASSERT(strstr(out, "tiny") != NULL);
+  CU_ASSERT(strstr(out, "rho") != NULL);
+  /* diagnostics: a header and one row per output time (0, 1, 2, 3 ms) */
+  char path[4096];
+  snprintf(path, sizeof path, "%s/run/diagnostics.csv", tmp);
+  FILE *f = fopen(path, "r");
+  CU_ASSERT_FATAL(f != NULL);
+  char line[4096];
+  int lines = 0;
+  CU_ASSERT(fgets(line, sizeof line, f) != NULL);
+  CU_ASSERT_STRING_EQUAL(line, "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,"
+                               "potential\n");
+  while (fgets(line, sizeof line, f)) lines++;
+  fclose(f);
+  CU_ASSERT_EQUAL(lines, 4);
+}
+
+/* A case that must blow up: fluid dropped onto the floor with a sound
+ * speed far too low for the impact, and a strict density limit. */
+static void test_blowup_stops_cleanly(void) {
+  char out[65536], args[8192];
+  write_file("good.yaml", GOOD);
+  snprintf(args, sizeof args,
+           "run '%s/good.yaml' -o '%s/boom' --set time.end=1 --set numerics.density_limit=0.01 "
+           "--set 'geometry.fluid=[{x: [0, 0.05], y: [0.02, 0.07], velocity: [0, -3]}]'",
+           tmp, tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 3);
+  CU_ASSERT(strstr(out, "blow-up at step") != NULL);
+  CU_ASSERT(strstr(out, "particle") != NULL);
+  snprintf(args, sizeof args, "test -s '%s/boom/snap_0000.h5' && test -s '%s/boom/last_good.h5'",
+           tmp, tmp);
+  CU_ASSERT_EQUAL(sph_test_system(args), 0);
+  snprintf(args, sizeof args, "ls '%s/boom' | grep -c '\\.tmp$' >/dev/null", tmp);
+  CU_ASSERT_NOT_EQUAL(sph_test_system(args), 0); /* no temporary file left */
+}
+
+int main(void) {
+  tmp = sph_test_tmpdir();
+  CU_TestInfo tests[] = {{"help, version, unknown command", test_help_and_version},
+                         {"bad input gives a clear error and non-zero exit", test_bad_input},
+                         {"a short run, diagnostics rows, sph info", test_good_run_and_info},
+                         {"a blow-up stops with a message and keeps snapshots",
+                          test_blowup_stops_cleanly},
+                         CU_TEST_INFO_NULL};
+  int rc = sph_test_main("cli", tests);
+  sph_test_rmtree(tmp);
+  return rc;
+}

@@ -1,0 +1,167 @@
+/*
+ * test_dam_break.c - the coarse Martin & Moyce dam break
+ * (cases/martin_moyce_coarse.yaml, dx = a/20) run through the `sph` program:
+ *
+ * 1. determinism: the run with 1 thread and with 2 threads gives
+ *    byte-identical output directories (every snapshot, the XDMF index and
+ *    diagnostics.csv);
+ * 2. validation: the surge front Z = front_x / a against the Martin & Moyce
+ *    (1952) table (tests/data/martin_moyce_1952_front_n2_2.csv) at the
+ *    experimental times T = t sqrt(2g/a), over the points with Z < 3.9
+ *    (past the end of the run, when its front stands at the right wall, the
+ *    front of the last output is used):
+ *    RMS relative error below 5 % and maximum below 10 %;
+ * 3. golden: front_x at every output time matches
+ *    golden/martin_moyce_coarse_front.csv within 0.05 dx (a change that
+ *    moves the front by a twentieth of a particle spacing is caught;
+ *    regenerate with `make golden`).
+ */
+#include "config.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "testutil.h"
+
+#define A 0.05715
+#define DX (A / 20)
+#define G 9.81
+
+static char *dir1, *dir2;
+static int runs_ok;
+
+typedef struct series {
+  size_t n;
+  double t[4096], x[4096];
+} series;
+
+/* Reads columns `time` and `front_x` of a CSV with a header (lines
+ * starting with '#' skipped). */
+static int read_front(const char *path, series *s) {
+  FILE *f = fopen(path, "r");
+  if (!f) return -1;
+  char line[4096];
+  int ct = -1, cx = -1;
+  s->n = 0;
+  while (fgets(line, sizeof line, f)) {
+    if (line[0] == '#') continue;
+    if (ct < 0) { /* header */
+      int col = 0;
+      for (char *tok = strtok(line, ",\n"); tok; tok = strtok(NULL, ",\n"), col++) {
+        if (!strcmp(tok, "time")) ct = col;
+        if (!strcmp(tok, "front_x")) cx = col;
+      }
+      if (ct < 0 || cx < 0) break;
+      continue;
+    }
+    int col = 0;
+    double t = NAN, x = NAN;
+    for (char *tok = strtok(line, ",\n"); tok; tok = strtok(NULL, ",\n"), col++) {
+      if (col == ct) t = strtod(tok, NULL);
+      if (col == cx) x = strtod(tok, NULL);
+    }
+    if (s->n < 4096) {
+      s->t[s->n] = t;
+      s->x[s->n] = x;
+      s->n++;
+    }
+  }
+  fclose(f);
+  return (ct < 0 || cx < 0 || s->n == 0) ? -1 : 0;
+}
+
+static double interp(const series *s, double t) {
+  if (t <= s->t[0]) return s->x[0];
+  for (size_t i = 1; i < s->n; i++)
+    if (t <= s->t[i])
+      return s->x[i - 1] + (s->x[i] - s->x[i - 1]) * (t - s->t[i - 1]) / (s->t[i] - s->t[i - 1]);
+  /* after the run stopped: its front had reached the right wall, where it
+   * stays (the run stops when the front is within dx of the wall) */
+  return s->x[s->n - 1];
+}
+
+static int run(const char *dir, int threads) {
+  char cmd[8192];
+  snprintf(cmd, sizeof cmd, "'%s' run --quiet --threads %d '%s' -o '%s'", sph_test_build("src/sph"),
+           threads, sph_test_src("cases/martin_moyce_coarse.yaml"), dir);
+  return sph_test_system(cmd);
+}
+
+static void test_determinism(void) {
+  CU_ASSERT_FATAL(run(dir1, 1) == 0);
+  CU_ASSERT_FATAL(run(dir2, 2) == 0);
+  runs_ok = 1;
+  char cmd[8192];
+  snprintf(cmd, sizeof cmd, "diff -r '%s' '%s' >/dev/null", dir1, dir2);
+  CU_ASSERT(sph_test_system(cmd) == 0);
+  snprintf(cmd, sizeof cmd, "test -s '%s/snap_0010.h5' && test -s '%s/snapshots.xmf'", dir1, dir1);
+  CU_ASSERT(sph_test_system(cmd) == 0);
+}
+
+static void test_front_against_experiment(void) {
+  CU_ASSERT_FATAL(runs_ok);
+  static series sim;
+  char path[4096];
+  snprintf(path, sizeof path, "%s/diagnostics.csv", dir1);
+  CU_ASSERT_FATAL(read_front(path, &sim) == 0);
+  FILE *f = fopen(sph_test_src("tests/data/martin_moyce_1952_front_n2_2.csv"), "r");
+  CU_ASSERT_FATAL(f != NULL);
+  char line[1024];
+  double sum2 = 0.0, emax = 0.0;
+  int n = 0;
+  printf("\n     T     Z_exp   Z_sph   rel.err\n");
+  while (fgets(line, sizeof line, f)) {
+    double T, Z;
+    if (line[0] == '#' || sscanf(line, "%lf,%lf", &T, &Z) != 2 || Z >= 3.9) continue;
+    const double t = T / sqrt(2 * G / A);
+    const double zs = interp(&sim, t) / A;
+    const double e = (zs - Z) / Z;
+    printf("  %5.2f  %6.3f  %6.3f  %+7.2f %%\n", T, Z, zs, 100 * e);
+    CU_ASSERT(isfinite(zs));
+    sum2 += e * e;
+    if (fabs(e) > emax) emax = fabs(e);
+    n++;
+  }
+  fclose(f);
+  const double rms = sqrt(sum2 / n);
+  printf("  front vs Martin & Moyce (%d points, Z < 3.9): RMS %.2f %%, max %.2f %%\n", n,
+         100 * rms, 100 * emax);
+  CU_ASSERT(n >= 13);
+  CU_ASSERT(rms < 0.05);
+  CU_ASSERT(emax < 0.10);
+}
+
+static void test_golden_front(void) {
+  CU_ASSERT_FATAL(runs_ok);
+  static series sim, gold;
+  char path[4096];
+  snprintf(path, sizeof path, "%s/diagnostics.csv", dir1);
+  CU_ASSERT_FATAL(read_front(path, &sim) == 0);
+  CU_ASSERT_FATAL(read_front(sph_test_src("golden/martin_moyce_coarse_front.csv"), &gold) == 0);
+  CU_ASSERT_EQUAL(sim.n, gold.n);
+  const size_t n = sim.n < gold.n ? sim.n : gold.n;
+  double worst = 0.0;
+  for (size_t i = 0; i < n; i++) {
+    CU_ASSERT_DOUBLE_EQUAL(sim.t[i], gold.t[i], 1e-12);
+    const double d = fabs(sim.x[i] - gold.x[i]);
+    if (d > worst) worst = d;
+  }
+  printf("\n  largest front difference from golden: %.3e m (tolerance %.3e m)\n", worst,
+         0.05 * DX);
+  CU_ASSERT(worst <= 0.05 * DX);
+}
+
+int main(void) {
+  dir1 = sph_test_tmpdir();
+  dir2 = sph_test_tmpdir();
+  CU_TestInfo tests[] = {{"1 and 2 threads give byte-identical output", test_determinism},
+                         {"front against Martin & Moyce (1952)", test_front_against_experiment},
+                         {"front against the golden file", test_golden_front},
+                         CU_TEST_INFO_NULL};
+  int rc = sph_test_main("dam_break", tests);
+  sph_test_rmtree(dir1);
+  sph_test_rmtree(dir2);
+  return rc;
+}

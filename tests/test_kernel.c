@@ -1,0 +1,141 @@
+/*
+ * test_kernel.c - properties of the 2-D cubic spline kernel (kernel.h):
+ * normalisation, positivity, compact support, exact antisymmetry of the
+ * gradient, the moment properties of GOST R 57700.6 (A.18-A.20), and the
+ * derivative against a finite difference.
+ *
+ * Integrals over the plane are lattice (midpoint) sums with spacing h/100:
+ * the kernel is C2 with compact support, so such sums converge far below
+ * the 1e-6 tolerance used here.
+ */
+#include "config.h"
+
+#include <math.h>
+#include <stdio.h>
+
+#include "kernel.h"
+#include "testutil.h"
+
+static const double H = 0.013; /* any smoothing length */
+
+/* sum over a lattice covering the support around (cx, cy) of f(x', y') W(|c - x'|) dA */
+typedef double (*weight_fn)(double x, double y);
+static double one(double x, double y) {
+  (void)x;
+  (void)y;
+  return 1.0;
+}
+static double fx(double x, double y) {
+  (void)y;
+  return x;
+}
+static double fy(double x, double y) {
+  (void)x;
+  return y;
+}
+
+static double lattice_integral(double cx, double cy, weight_fn f) {
+  const int n = 100; /* points per h */
+  const double d = H / n;
+  double sum = 0.0;
+  for (int i = -2 * n; i < 2 * n; i++)
+    for (int j = -2 * n; j < 2 * n; j++) {
+      const double x = cx + (i + 0.5) * d, y = cy + (j + 0.5) * d;
+      const double r = sqrt((x - cx) * (x - cx) + (y - cy) * (y - cy));
+      sum += f(x, y) * sph_cubic_w(r, H) * d * d;
+    }
+  return sum;
+}
+
+static void test_normalisation(void) {
+  const double s = lattice_integral(0.0, 0.0, one);
+  printf("\n  integral of W = %.12f\n", s);
+  CU_ASSERT_DOUBLE_EQUAL(s, 1.0, 1e-6);
+  /* and by radial Simpson quadrature, 2 pi int_0^2h W(r) r dr */
+  const int m = 2000;
+  const double dr = 2.0 * H / m;
+  double acc = 0.0;
+  for (int k = 0; k <= m; k++) {
+    const double r = k * dr;
+    const double wgt = (k == 0 || k == m) ? 1.0 : (k % 2 ? 4.0 : 2.0);
+    acc += wgt * sph_cubic_w(r, H) * r;
+  }
+  CU_ASSERT_DOUBLE_EQUAL(2.0 * SPH_PI * acc * dr / 3.0, 1.0, 1e-9);
+}
+
+static void test_positive_and_compact(void) {
+  for (int k = 0; k <= 4000; k++) {
+    const double r = k * (3.0 * H / 4000);
+    double w, dw;
+    sph_cubic_w_dw(r, H, &w, &dw);
+    CU_ASSERT(w >= 0.0);
+    CU_ASSERT(dw <= 0.0); /* W decreases with r */
+    if (r >= 2.0 * H) {
+      CU_ASSERT_EQUAL(w, 0.0);
+      CU_ASSERT_EQUAL(dw, 0.0);
+    } else {
+      CU_ASSERT(w > 0.0);
+    }
+  }
+  /* continuity of W and dW/dr at q = 1 */
+  double w1, d1, w2, d2;
+  sph_cubic_w_dw(H * (1 - 1e-12), H, &w1, &d1);
+  sph_cubic_w_dw(H * (1 + 1e-12), H, &w2, &d2);
+  CU_ASSERT_DOUBLE_EQUAL(w1, w2, 1e-8 * w1);
+  CU_ASSERT_DOUBLE_EQUAL(d1, d2, 1e-8 * fabs(d1));
+}
+
+static void test_gradient_antisymmetric(void) {
+  unsigned long long s = 12345;
+  for (int k = 0; k < 10000; k++) {
+    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+    const double dx = ((double)(s >> 11) / 9007199254740992.0 - 0.5) * 4.4 * H;
+    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+    const double dy = ((double)(s >> 11) / 9007199254740992.0 - 0.5) * 4.4 * H;
+    double gx, gy, hx, hy;
+    sph_cubic_grad(dx, dy, H, &gx, &gy);
+    sph_cubic_grad(-dx, -dy, H, &hx, &hy);
+    CU_ASSERT(gx == -hx && gy == -hy); /* bitwise */
+    /* the gradient points from j to i with a negative radial slope */
+    CU_ASSERT(gx * dx + gy * dy <= 0.0);
+  }
+  double gx, gy;
+  sph_cubic_grad(0.0, 0.0, H, &gx, &gy);
+  CU_ASSERT(gx == 0.0 && gy == 0.0);
+}
+
+static void test_derivative_matches_difference(void) {
+  for (int k = 1; k < 200; k++) {
+    const double r = k * (2.0 * H / 200);
+    const double e = 1e-6 * H;
+    const double fd = (sph_cubic_w(r + e, H) - sph_cubic_w(r - e, H)) / (2 * e);
+    double w, dw;
+    sph_cubic_w_dw(r, H, &w, &dw);
+    CU_ASSERT_DOUBLE_EQUAL(dw, fd, 1e-6 * sph_cubic_w(0, H) / H);
+  }
+}
+
+/* A.18-A.20: int W = 1, int r' W(r - r') dr' = r, int (r - r') W dr' = 0,
+ * at a point off the origin. */
+static void test_moments(void) {
+  const double cx = 0.3 * H + 1.7, cy = -0.7 * H + 0.2;
+  const double m0 = lattice_integral(cx, cy, one);
+  const double mx = lattice_integral(cx, cy, fx);
+  const double my = lattice_integral(cx, cy, fy);
+  printf("\n  moments: %.12f %.12g %.12g\n", m0, mx - cx, my - cy);
+  CU_ASSERT_DOUBLE_EQUAL(m0, 1.0, 1e-6);
+  CU_ASSERT_DOUBLE_EQUAL(mx, cx, 1e-6 * H + 1e-6 * fabs(cx));
+  CU_ASSERT_DOUBLE_EQUAL(my, cy, 1e-6 * H + 1e-6 * fabs(cy));
+  CU_ASSERT_DOUBLE_EQUAL(cx * m0 - mx, 0.0, 1e-6 * fabs(cx));
+}
+
+int main(void) {
+  CU_TestInfo tests[] = {
+      {"normalisation (lattice sum and radial quadrature)", test_normalisation},
+      {"W >= 0, decreasing, zero beyond 2h, continuous", test_positive_and_compact},
+      {"grad W antisymmetric in the pair (bitwise)", test_gradient_antisymmetric},
+      {"dW/dr matches a finite difference", test_derivative_matches_difference},
+      {"moment properties A.18-A.20", test_moments},
+      CU_TEST_INFO_NULL};
+  return sph_test_main("kernel", tests);
+}

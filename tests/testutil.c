@@ -1,0 +1,72 @@
+/*
+ * testutil.c - CUnit runner and file helpers shared by the test programs.
+ */
+#include "config.h"
+
+#include "testutil.h"
+
+#include <CUnit/Basic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+int sph_test_main(const char *suite, CU_TestInfo *tests) {
+  CU_SuiteInfo suites[] = {{suite, NULL, NULL, NULL, NULL, tests}, CU_SUITE_INFO_NULL};
+  if (CU_initialize_registry() != CUE_SUCCESS) return 2;
+  if (CU_register_suites(suites) != CUE_SUCCESS) {
+    fprintf(stderr, "%s: cannot register suite: %s\n", suite, CU_get_error_msg());
+    CU_cleanup_registry();
+    return 2;
+  }
+  CU_basic_set_mode(CU_BRM_VERBOSE);
+  CU_basic_run_tests();
+  unsigned failed = CU_get_number_of_failures();
+  unsigned tests_failed = CU_get_number_of_tests_failed();
+  unsigned ran = CU_get_number_of_tests_run();
+  CU_cleanup_registry();
+  printf("%s: %u passed, %u failed\n", suite, ran - tests_failed, tests_failed);
+  if (ran == 0) return 1; /* a suite that runs nothing is a failure */
+  return failed ? 1 : 0;
+}
+
+/* A ring of buffers, so that a few results can be used in one call. */
+static const char *join(const char *env, const char *rel) {
+  static char ring[8][4096];
+  static unsigned next;
+  char *buf = ring[next++ % 8];
+  const char *root = getenv(env);
+  if (!root || !*root) root = ".";
+  snprintf(buf, sizeof ring[0], "%s/%s", root, rel);
+  return buf;
+}
+
+const char *sph_test_src(const char *rel) { return join("SPH_SRCDIR", rel); }
+const char *sph_test_build(const char *rel) { return join("SPH_BUILDDIR", rel); }
+
+char *sph_test_tmpdir(void) {
+  const char *base = getenv("TMPDIR");
+  if (!base || !*base) base = "/tmp";
+  char tmpl[4096];
+  snprintf(tmpl, sizeof tmpl, "%s/sphtest.XXXXXX", base);
+  char *d = mkdtemp(tmpl);
+  if (!d) {
+    perror("mkdtemp");
+    abort();
+  }
+  return strdup(d);
+}
+
+void sph_test_rmtree(const char *dir) {
+  char cmd[4200];
+  if (!dir || strncmp(dir, "/", 1) != 0 || strstr(dir, "sphtest.") == NULL) return;
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  if (system(cmd) != 0) fprintf(stderr, "warning: could not remove %s\n", dir);
+}
+
+int sph_test_system(const char *cmd) {
+  int st = system(cmd);
+  if (st == -1) return -1;
+  if (WIFEXITED(st)) return WEXITSTATUS(st);
+  return -1;
+}

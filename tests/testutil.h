@@ -1,0 +1,33 @@
+/*
+ * testutil.h - shared helpers of the CUnit test programs.
+ *
+ * Each test program registers one suite and ends with
+ *   return sph_test_main("suite name", tests);
+ * which runs it and returns the number of failed assertions as the exit
+ * status (CUnit's basic runner itself returns 0 even on failure).
+ */
+#ifndef SPH_TESTUTIL_H
+#define SPH_TESTUTIL_H
+
+#include <CUnit/CUnit.h>
+#include <stddef.h>
+
+/* Runs the suite; returns 0 if every assertion passed, 1 otherwise. */
+int sph_test_main(const char *suite, CU_TestInfo *tests);
+
+/* Absolute path of a file in the source tree (SPH_SRCDIR, or "." when
+ * unset), e.g. sph_test_src("cases/martin_moyce_coarse.yaml"). The result
+ * is one of 8 static buffers used in turn: copy it if it must outlive 7
+ * more calls of these two functions. */
+const char *sph_test_src(const char *rel);
+/* Same for the build tree (SPH_BUILDDIR), e.g. "src/sph". */
+const char *sph_test_build(const char *rel);
+/* Creates a fresh empty temporary directory and returns its path (static
+ * buffer per call index is not kept: copy it). Aborts the test on failure. */
+char *sph_test_tmpdir(void);
+/* Removes a directory tree made by sph_test_tmpdir. */
+void sph_test_rmtree(const char *dir);
+/* Runs a shell command, returns its exit status (or -1). */
+int sph_test_system(const char *cmd);
+
+#endif
