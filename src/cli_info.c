@@ -26,8 +26,6 @@
 #include "cli.h"
 #include "snapshot.h"
 
-int sph_cli_info(int argc, char **argv);
-
 static const char USAGE[] =
     "usage: sph info [--help] SNAPSHOT...\n"
     "Prints the header of each HDF5 snapshot (case, time, step, dt, particle\n"

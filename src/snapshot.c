@@ -40,34 +40,7 @@
 /* ------------------------------------------------------------------------ */
 /* The fields of a snapshot and where they live in the particle store.      */
 
-typedef enum { FT_F64, FT_I32, FT_I64, FT_U8 } field_type;
-
-typedef struct field_spec {
-  const char *name;
-  field_type type;
-  size_t member; /* offset of the array pointer in sph_particles */
-  const char *units;
-  const char *description;
-} field_spec;
-
-/* In writing order; free_surface (last) only when asked for. */
-static const field_spec FIELDS[] = {
-    {"x", FT_F64, offsetof(sph_particles, x), "m", "position, x coordinate"},
-    {"y", FT_F64, offsetof(sph_particles, y), "m", "position, y coordinate (up)"},
-    {"vx", FT_F64, offsetof(sph_particles, vx), "m/s", "velocity, x component"},
-    {"vy", FT_F64, offsetof(sph_particles, vy), "m/s", "velocity, y component"},
-    {"rho", FT_F64, offsetof(sph_particles, rho), "kg/m^3", "density"},
-    {"p", FT_F64, offsetof(sph_particles, p), "Pa", "pressure from the equation of state"},
-    {"mass", FT_F64, offsetof(sph_particles, mass), "kg", "particle mass"},
-    {"h", FT_F64, offsetof(sph_particles, h), "m", "smoothing length"},
-    {"u", FT_F64, offsetof(sph_particles, u), "J/kg", "thermal energy per unit mass"},
-    {"kind", FT_I32, offsetof(sph_particles, kind), "1", "particle kind: 0 fluid, 1 wall"},
-    {"id", FT_I64, offsetof(sph_particles, id), "1", "particle id, 0..n-1 (the row index)"},
-    {"free_surface", FT_U8, offsetof(sph_particles, flags), "1",
-     "1 if the particle is on the free surface (flags bit 0), else 0"},
-};
-#define N_FIELDS (sizeof FIELDS / sizeof FIELDS[0])
-#define FREE_SURFACE_FIELD (N_FIELDS - 1)
+#include "snapshot_fields.h"
 
 /* The string attributes of "/" the reader keeps (snapshot.h). */
 static const char *const TEXTS[] = {"case_name", "case_text",      "overrides", "parameters",

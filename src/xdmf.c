@@ -28,20 +28,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct xdmf_field {
-  const char *name;
-  const char *number_type; /* XDMF NumberType */
-  int precision;           /* bytes */
-} xdmf_field;
-
-/* As written by snapshot.c; free_surface (last) only when asked for. */
-static const xdmf_field XFIELDS[] = {
-    {"x", "Float", 8},    {"y", "Float", 8},    {"vx", "Float", 8},   {"vy", "Float", 8},
-    {"rho", "Float", 8},  {"p", "Float", 8},    {"mass", "Float", 8}, {"h", "Float", 8},
-    {"u", "Float", 8},    {"kind", "Int", 4},   {"id", "Int", 8},     {"free_surface", "UChar", 1},
-};
-#define N_XFIELDS (sizeof XFIELDS / sizeof XFIELDS[0])
-#define ID_FIELD 10
+#include "snapshot_fields.h"
 
 /* Writes s with the five XML special characters escaped. */
 static void put_escaped(FILE *f, const char *s) {
@@ -58,10 +45,10 @@ static void put_escaped(FILE *f, const char *s) {
 }
 
 /* A DataItem referencing /particles/<field> of snapshot h5. */
-static void put_item(FILE *f, const char *indent, const char *h5, const xdmf_field *x,
+static void put_item(FILE *f, const char *indent, const char *h5, const field_spec *x,
                      size_t n) {
   fprintf(f, "%s<DataItem Dimensions=\"%zu\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">",
-          indent, n, x->number_type, x->precision);
+          indent, n, field_xdmf_type(x->type), field_bytes(x->type));
   put_escaped(f, h5);
   fprintf(f, ":/particles/%s</DataItem>\n", x->name);
 }
@@ -84,17 +71,17 @@ static void put_grid(FILE *f, const char *h5, double time, size_t n, int free_su
           "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%zu\" "
           "NodesPerElement=\"1\">\n",
           n);
-  put_item(f, "          ", h5, &XFIELDS[ID_FIELD], n); /* vertex i is point id[i] = i */
+  put_item(f, "          ", h5, &FIELDS[ID_FIELD], n); /* vertex i is point id[i] = i */
   fputs("        </Topology>\n", f);
   fputs("        <Geometry GeometryType=\"X_Y\">\n", f);
-  put_item(f, "          ", h5, &XFIELDS[0], n);
-  put_item(f, "          ", h5, &XFIELDS[1], n);
+  put_item(f, "          ", h5, &FIELDS[0], n);
+  put_item(f, "          ", h5, &FIELDS[1], n);
   fputs("        </Geometry>\n", f);
-  for (size_t i = 0; i < N_XFIELDS; i++) {
-    if (i == N_XFIELDS - 1 && !free_surface) continue;
+  for (size_t i = 0; i < N_FIELDS; i++) {
+    if (i == N_FIELDS - 1 && !free_surface) continue;
     fprintf(f, "        <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n",
-            XFIELDS[i].name);
-    put_item(f, "          ", h5, &XFIELDS[i], n);
+            FIELDS[i].name);
+    put_item(f, "          ", h5, &FIELDS[i], n);
     fputs("        </Attribute>\n", f);
   }
   fputs("      </Grid>\n", f);
