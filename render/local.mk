@@ -1,0 +1,63 @@
+# render/local.mk - the off-screen renderer sph-render, its test, and the
+# `frames` and `golden-render` targets. Included by the top-level Makefile.am.
+#
+# The renderer links the snapshot reader (src/libsphio.la), never the solver.
+# It links OSMesa and EGL but no libGL/libOpenGL: OpenGL entry points are
+# loaded through each back end's proc-address function (render/gl_api.c).
+# Without pkg-config egl, EGL_LIBS is empty and the egl back end is a stub.
+
+# Everything but main(), so the test can call the layout and colour code.
+noinst_LTLIBRARIES += render/libsphrender.la
+render_libsphrender_la_SOURCES = \
+	render/canvas.c render/canvas.h \
+	render/cli.c render/cli.h render/options.h \
+	render/colormap.c render/colormap.h \
+	render/csv.c render/csv.h \
+	render/figure.c render/figure.h \
+	render/font.c render/font.h \
+	render/gl_api.c render/gl_api.h \
+	render/gl_context.c render/gl_context.h \
+	render/gl_context_egl.c \
+	render/gl_context_osmesa.c \
+	render/inputs.c render/inputs.h \
+	render/jobs.c render/jobs.h \
+	render/layout.c render/layout.h \
+	render/marks.c render/marks.h \
+	render/plot.c render/plot.h \
+	render/png_out.c render/png_out.h \
+	render/sequence.c render/sequence.h \
+	render/snapdata.c render/snapdata.h \
+	render/ticks.c render/ticks.h
+RENDER_CFLAGS = $(AM_CFLAGS) $(OSMESA_CFLAGS) $(EGL_CFLAGS) $(PNG_CFLAGS) $(HDF5_CFLAGS)
+RENDER_LIBS = src/libsphio.la $(OSMESA_LIBS) $(EGL_LIBS) $(PNG_LIBS) $(HDF5_LIBS) -lm
+render_libsphrender_la_CFLAGS = $(RENDER_CFLAGS)
+
+bin_PROGRAMS += render/sph-render
+render_sph_render_SOURCES = render/main.c
+render_sph_render_CFLAGS = $(RENDER_CFLAGS)
+render_sph_render_LDADD = render/libsphrender.la $(RENDER_LIBS)
+
+check_PROGRAMS += tests/test_render
+TESTS += tests/test_render
+tests_test_render_SOURCES = tests/test_render.c
+tests_test_render_CFLAGS = $(RENDER_CFLAGS) $(CUNIT_CFLAGS) -I$(top_srcdir)/render
+tests_test_render_LDADD = tests/libtestutil.la render/libsphrender.la $(RENDER_LIBS) $(CUNIT_LIBS)
+
+# `make frames`: the frames of a run (by default the Martin & Moyce run of
+# the README's main command) into frames/, one PNG per snapshot.
+# Override e.g.: make frames FRAMES_RUN=out/other FRAMES_FLAGS='--field pressure'
+FRAMES_RUN = out/martin_moyce
+FRAMES_DIR = frames
+FRAMES_FLAGS = --field speed --cmap viridis
+frames: render/sph-render$(EXEEXT)
+	@test -d '$(FRAMES_RUN)' || { echo "no run in $(FRAMES_RUN): first run" \
+	  "sph run cases/martin_moyce.yaml -o $(FRAMES_RUN)" >&2; exit 1; }
+	render/sph-render$(EXEEXT) $(FRAMES_FLAGS) '$(FRAMES_RUN)' -o '$(FRAMES_DIR)'
+
+# Rewrites golden/render/*.png from the current build (a deliberate act:
+# commit the new images with the reason they changed).
+golden-render: render/sph-render$(EXEEXT) tests/test_render$(EXEEXT)
+	SPH_SRCDIR='$(abs_top_srcdir)' SPH_BUILDDIR='$(abs_top_builddir)' SPH_RENDER_REGEN=1 \
+	  tests/test_render$(EXEEXT)
+
+.PHONY: frames golden-render

@@ -1,0 +1,464 @@
+/*
+ * cli.c - parses the sph-render command line into roptions.
+ *
+ * Options take "--name value" or "--name=value". Modifiers (--overlay-x,
+ * ... in the snapshot modes; --x, --y, --label, ... in the plot mode)
+ * apply to the overlay or series named just before them; given before any
+ * series, --x and --y are the defaults for all. Every value is checked
+ * here, and an error names the option, the value and what was expected,
+ * so the renderer never starts on a half-understood command. Choices are
+ * names (backends, colour maps, wall styles, legend corners), never codes.
+ */
+#include "config.h"
+
+#include "cli.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "figure.h"
+#include "gl_context.h"
+#include "marks.h"
+#include "version.h"
+
+void rcli_usage(FILE *fp) {
+  fputs("usage: sph-render [OPTIONS] SNAPSHOT|RUN_DIR... -o OUT\n"
+        "       sph-render --panels CxR [OPTIONS] SNAPSHOT|RUN_DIR... -o FIGURE.png\n"
+        "       sph-render --compare [OPTIONS] RUN_DIR RUN_DIR... -o OUT\n"
+        "       sph-render plot [OPTIONS] FILE.csv [--points FILE.csv]... -o PLOT.png\n"
+        "\n"
+        "Renders SPH snapshots (HDF5, as written by `sph run`) to PNG images off screen.\n"
+        "A directory stands for its snap_*.h5 files. OUT is a directory (one\n"
+        "frame_NNNN.png per snapshot, numbered like the input) or, for one image, a .png.\n"
+        "\n"
+        "Snapshot options:\n"
+        "  -o, --output PATH       output directory or .png file (required)\n"
+        "  --field NAME            colour by speed (default), pressure, density, vx, vy,\n"
+        "                          free_surface, kind, or any field of the file\n"
+        "  --cmap NAME             viridis (default), coolwarm (default for vx, vy), gray\n"
+        "  --range MIN:MAX         fixed colour range (default: over all inputs, fluid only)\n"
+        "  --size W[xH]            image size in pixels (frames: 1280x720; figures: 640 per\n"
+        "                          panel column, height from the view's aspect)\n"
+        "  --view X0:X1:Y0:Y1      world window in metres (default: the case's tank)\n"
+        "  --background RRGGBB     background colour (default ffffff; also white, black)\n"
+        "  --disc-scale F          particle disc diameter = F * dx (default 1)\n"
+        "  --disc-size METRES      disc diameter when the snapshot has no dx\n"
+        "  --walls grey|field|none how to draw wall particles (default grey)\n"
+        "  --bare                  particles only: no axes, labels or colour bar\n"
+        "  --no-colorbar           no colour bar\n"
+        "  --title TEXT            a title line above the figure\n"
+        "  --font-scale N          text size multiplier (default: from the image size)\n"
+        "  --compression N         PNG zlib level 0-9 (default 3)\n"
+        "  --jobs N                worker processes (default: one per processor)\n"
+        "  --backend NAME          osmesa (default) or egl (surfaceless)\n"
+        "  --panels CxR            one figure of C columns and R rows of snapshots\n"
+        "  --times T1,T2,...       use the snapshots nearest these times (s)\n"
+        "  --compare               inputs are runs: one image per matching time\n"
+        "  --names A,B,...         run names for --compare panels (default: directory names)\n"
+        "  --match-tol SECONDS     --compare: how far times may differ (default: half the\n"
+        "                          first run's output interval)\n"
+        "  --overlay FILE.csv      reference points in metres (first two columns: x, y)\n"
+        "    --overlay-x COL, --overlay-y COL   columns to use (sums with '+')\n"
+        "    --overlay-scale SX:SY  multiply x and y (e.g. to turn x/a into metres)\n"
+        "    --overlay-time COL     show a point only at frames within --overlay-tol of it\n"
+        "    --overlay-style points|line,  --overlay-label TEXT\n"
+        "  --overlay-tol SECONDS   default 0.0005\n"
+        "  -v, --verbose           list every file written\n"
+        "\n"
+        "Plot options (after `plot`):\n"
+        "  FILE.csv | --line FILE.csv   a series drawn as a line\n"
+        "  --points FILE.csv            a series drawn as markers\n"
+        "    --x COL, --y COL           columns (names or sums with '+'; before any series:\n"
+        "                               the default for all; else columns 1 and 2)\n"
+        "    --x-scale F, --y-scale F   multiply the values\n"
+        "    --relative                 plot (y - y0) / |y0|\n"
+        "    --label TEXT               legend text (default: the file's name)\n"
+        "  --xlabel TEXT, --ylabel TEXT, --title TEXT\n"
+        "  --xrange MIN:MAX, --yrange MIN:MAX   axis ranges (default: from the data)\n"
+        "  --legend top-left|top-right|bottom-left|bottom-right|none\n"
+        "  --size W[xH] (default 960x640), --background, --font-scale, --compression, --backend\n"
+        "\n"
+        "  -h, --help, --version\n",
+        fp);
+}
+
+static int parse_double(const char *opt, const char *s, double *out, sph_error *err) {
+  char *end;
+  errno = 0;
+  double v = strtod(s, &end);
+  if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v))
+    return sph_error_set(err, "%s: '%s' is not a number", opt, s);
+  *out = v;
+  return 0;
+}
+
+static int parse_int(const char *opt, const char *s, int lo, int hi, int *out, sph_error *err) {
+  char *end;
+  errno = 0;
+  long v = strtol(s, &end, 10);
+  if (end == s || *end != '\0' || errno == ERANGE || v < lo || v > hi)
+    return sph_error_set(err, "%s: '%s' is not a whole number from %d to %d", opt, s, lo, hi);
+  *out = (int)v;
+  return 0;
+}
+
+/* n numbers separated by sep (':' or ','); exactly n unless n_out is given. */
+static int parse_numbers(const char *opt, const char *s, char sep, double *v, int n, int *n_out,
+                         const char *form, sph_error *err) {
+  char buf[1024];
+  if (snprintf(buf, sizeof buf, "%s", s) >= (int)sizeof buf)
+    return sph_error_set(err, "%s: value too long", opt);
+  int k = 0;
+  char *p = buf;
+  for (;;) {
+    char *q = strchr(p, sep);
+    if (q) *q = '\0';
+    if (k == n) return sph_error_set(err, "%s: '%s': expected %s", opt, s, form);
+    if (parse_double(opt, p, &v[k], err) != 0)
+      return sph_error_set(err, "%s: '%s': expected %s", opt, s, form);
+    k++;
+    if (!q) break;
+    p = q + 1;
+  }
+  if (n_out)
+    *n_out = k;
+  else if (k != n)
+    return sph_error_set(err, "%s: '%s': expected %s", opt, s, form);
+  return 0;
+}
+
+static int parse_range(const char *opt, const char *s, double r[2], sph_error *err) {
+  if (parse_numbers(opt, s, ':', r, 2, NULL, "MIN:MAX", err) != 0) return -1;
+  if (!(r[1] > r[0])) return sph_error_set(err, "%s: '%s': need MIN < MAX", opt, s);
+  return 0;
+}
+
+/* "WxH" or "W" (height automatic). */
+static int parse_size(const char *opt, const char *s, int *w, int *h, sph_error *err) {
+  char buf[64];
+  snprintf(buf, sizeof buf, "%s", s);
+  char *x = strchr(buf, 'x');
+  if (x) *x = '\0';
+  if (parse_int(opt, buf, 16, 16384, w, err) != 0)
+    return sph_error_set(err, "%s: '%s': expected W or WxH, 16 to 16384 pixels", opt, s);
+  *h = 0;
+  if (x && parse_int(opt, x + 1, 16, 16384, h, err) != 0)
+    return sph_error_set(err, "%s: '%s': expected W or WxH, 16 to 16384 pixels", opt, s);
+  return 0;
+}
+
+static int parse_grid(const char *opt, const char *s, int *cols, int *rows, sph_error *err) {
+  char buf[64];
+  snprintf(buf, sizeof buf, "%s", s);
+  char *x = strchr(buf, 'x');
+  if (!x) return sph_error_set(err, "%s: '%s': expected CxR (columns x rows), e.g. 3x2", opt, s);
+  *x = '\0';
+  if (parse_int(opt, buf, 1, 64, cols, err) != 0 || parse_int(opt, x + 1, 1, 64, rows, err) != 0 ||
+      *cols * *rows > 64)
+    return sph_error_set(err, "%s: '%s': expected CxR with at most 64 panels", opt, s);
+  return 0;
+}
+
+static int parse_color(const char *opt, const char *s, rcolor *c, sph_error *err) {
+  if (strcmp(s, "white") == 0) s = "ffffff";
+  if (strcmp(s, "black") == 0) s = "000000";
+  if (*s == '#') s++;
+  if (strlen(s) != 6 || strspn(s, "0123456789abcdefABCDEF") != 6)
+    return sph_error_set(err, "%s: '%s': expected a colour RRGGBB (hex), white or black", opt, s);
+  unsigned long v = strtoul(s, NULL, 16);
+  *c = (rcolor){(uint8_t)(v >> 16), (uint8_t)(v >> 8), (uint8_t)v, 255};
+  return 0;
+}
+
+/* Splits a comma list into o->names (copies kept in a static buffer: the
+ * options live for the whole run). */
+static int parse_names(const char *opt, const char *s, roptions *o, sph_error *err) {
+  static char buf[4096];
+  if (snprintf(buf, sizeof buf, "%s", s) >= (int)sizeof buf)
+    return sph_error_set(err, "%s: value too long", opt);
+  o->n_names = 0;
+  for (char *p = buf; p && o->n_names < ROPT_MAX_LIST;) {
+    char *q = strchr(p, ',');
+    if (q) *q++ = '\0';
+    o->names[o->n_names++] = p;
+    p = q;
+  }
+  return 0;
+}
+
+static void defaults(roptions *o) {
+  memset(o, 0, sizeof *o);
+  o->mode = RMODE_FRAMES;
+  o->backend = "osmesa";
+  o->compression = 3;
+  o->bg = (rcolor){255, 255, 255, 255};
+  o->field = "speed";
+  o->disc_scale = 1.0;
+  o->walls = RWALLS_GREY;
+  o->colorbar = 1;
+  o->match_tol = NAN;
+  o->overlay_tol = 0.0005;
+  o->legend = RLEGEND_TOP_LEFT;
+}
+
+typedef struct args {
+  int argc, i;
+  char **argv;
+  const char *name; /* the option being parsed, without "=value" */
+  const char *inline_value;
+  char namebuf[64];
+} args;
+
+/* The option's value: after '=' or the next argument. */
+static const char *value(args *a, sph_error *err) {
+  if (a->inline_value) return a->inline_value;
+  if (a->i + 1 >= a->argc) {
+    sph_error_set(err, "%s needs a value", a->name);
+    return NULL;
+  }
+  return a->argv[++a->i];
+}
+
+#define VALUE()                                                                                    \
+  const char *v = value(&a, err);                                                                  \
+  if (!v) return -1
+
+static int is(const args *a, const char *name) { return strcmp(a->name, name) == 0; }
+
+static int check(const roptions *o, sph_error *err) {
+  if (!o->output) return sph_error_set(err, "no output: give -o PATH (see --help)");
+  if (!rgl_backend_valid(o->backend))
+    return sph_error_set(err, "--backend: unknown '%s' (valid: %s)", o->backend,
+                         rgl_backend_names());
+  if (o->mode == RMODE_PLOT) return 0;
+  if (o->n_inputs == 0) return sph_error_set(err, "no snapshots given (see --help)");
+  if (o->mode == RMODE_COMPARE && o->n_inputs > ROPT_MAX_LIST)
+    return sph_error_set(err, "--compare: too many runs");
+  return 0;
+}
+
+int rcli_parse(int argc, char **argv, roptions *o, sph_error *err) {
+  defaults(o);
+  args a = {argc, 1, argv, NULL, NULL, ""};
+  if (argc > 1 && strcmp(argv[1], "plot") == 0) {
+    o->mode = RMODE_PLOT;
+    a.i = 2;
+  }
+  int plot = o->mode == RMODE_PLOT;
+  int compare = 0, panels = 0;
+  roverlay_opt *ov = NULL;
+  rseries_opt *se = NULL;
+  for (; a.i < argc; a.i++) {
+    const char *arg = argv[a.i];
+    if (arg[0] != '-' || arg[1] == '\0') {
+      /* a positional argument: a snapshot, a run, or a plot series */
+      if (plot) {
+        if (o->n_series == ROPT_MAX_LIST) return sph_error_set(err, "too many series");
+        se = &o->series[o->n_series++];
+        *se = (rseries_opt){arg, NULL, NULL, 1.0, 1.0, 0, 0, NULL};
+      } else {
+        if (o->n_inputs == (int)(sizeof o->inputs / sizeof o->inputs[0]))
+          return sph_error_set(err, "too many inputs: give directories instead of files");
+        o->inputs[o->n_inputs++] = arg;
+      }
+      continue;
+    }
+    a.inline_value = NULL;
+    const char *eq = strchr(arg, '=');
+    if (eq && strncmp(arg, "--", 2) == 0 && (size_t)(eq - arg) < sizeof a.namebuf) {
+      memcpy(a.namebuf, arg, (size_t)(eq - arg));
+      a.namebuf[eq - arg] = '\0';
+      a.name = a.namebuf;
+      a.inline_value = eq + 1;
+    } else {
+      a.name = arg;
+    }
+    if (is(&a, "-h") || is(&a, "--help")) {
+      rcli_usage(stdout);
+      return 1;
+    } else if (is(&a, "--version")) {
+      printf("sph-render (%s)\n", sph_version());
+      return 1;
+    } else if (is(&a, "-o") || is(&a, "--output")) {
+      VALUE();
+      o->output = v;
+    } else if (is(&a, "-v") || is(&a, "--verbose")) {
+      o->verbose = 1;
+    } else if (is(&a, "--backend")) {
+      VALUE();
+      o->backend = v;
+    } else if (is(&a, "--jobs")) {
+      VALUE();
+      if (parse_int(a.name, v, 1, 256, &o->jobs, err) != 0) return -1;
+    } else if (is(&a, "--size")) {
+      VALUE();
+      if (parse_size(a.name, v, &o->width, &o->height, err) != 0) return -1;
+    } else if (is(&a, "--font-scale")) {
+      VALUE();
+      if (parse_int(a.name, v, 1, 16, &o->font_scale, err) != 0) return -1;
+    } else if (is(&a, "--compression")) {
+      VALUE();
+      if (parse_int(a.name, v, 0, 9, &o->compression, err) != 0) return -1;
+    } else if (is(&a, "--background")) {
+      VALUE();
+      if (parse_color(a.name, v, &o->bg, err) != 0) return -1;
+    } else if (is(&a, "--title")) {
+      VALUE();
+      o->title = v;
+    } else if (plot && (is(&a, "--line") || is(&a, "--points"))) {
+      VALUE();
+      if (o->n_series == ROPT_MAX_LIST) return sph_error_set(err, "too many series");
+      se = &o->series[o->n_series++];
+      *se = (rseries_opt){v, NULL, NULL, 1.0, 1.0, is(&a, "--points"), 0, NULL};
+    } else if (plot && (is(&a, "--x") || is(&a, "--y"))) {
+      VALUE();
+      if (se && is(&a, "--x"))
+        se->xcol = v;
+      else if (se)
+        se->ycol = v;
+      else if (is(&a, "--x"))
+        o->xcol = v;
+      else
+        o->ycol = v;
+    } else if (plot && (is(&a, "--x-scale") || is(&a, "--y-scale"))) {
+      VALUE();
+      if (!se)
+        return sph_error_set(err, "%s applies to the series before it: give a CSV first", a.name);
+      if (parse_double(a.name, v, is(&a, "--x-scale") ? &se->xscale : &se->yscale, err) != 0)
+        return -1;
+    } else if (plot && is(&a, "--relative")) {
+      if (!se) return sph_error_set(err, "--relative applies to the series before it");
+      se->relative = 1;
+    } else if (plot && is(&a, "--label")) {
+      VALUE();
+      if (!se) return sph_error_set(err, "--label applies to the series before it");
+      se->label = v;
+    } else if (plot && (is(&a, "--xlabel") || is(&a, "--ylabel"))) {
+      VALUE();
+      if (is(&a, "--xlabel"))
+        o->xlabel = v;
+      else
+        o->ylabel = v;
+    } else if (plot && is(&a, "--xrange")) {
+      VALUE();
+      if (parse_range(a.name, v, o->xrange, err) != 0) return -1;
+      o->have_xrange = 1;
+    } else if (plot && is(&a, "--yrange")) {
+      VALUE();
+      if (parse_range(a.name, v, o->yrange, err) != 0) return -1;
+      o->have_yrange = 1;
+    } else if (plot && is(&a, "--legend")) {
+      VALUE();
+      o->legend = rlegend_corner(v);
+      if (o->legend < 0)
+        return sph_error_set(err,
+                             "--legend: unknown '%s' (valid: top-left, top-right, "
+                             "bottom-left, bottom-right, none)",
+                             v);
+    } else if (!plot && is(&a, "--field")) {
+      VALUE();
+      o->field = v;
+    } else if (!plot && is(&a, "--cmap")) {
+      VALUE();
+      o->cmap = v;
+    } else if (!plot && is(&a, "--range")) {
+      VALUE();
+      if (parse_range(a.name, v, o->range, err) != 0) return -1;
+      o->have_range = 1;
+    } else if (!plot && is(&a, "--view")) {
+      VALUE();
+      if (parse_numbers(a.name, v, ':', o->view, 4, NULL, "X0:X1:Y0:Y1", err) != 0) return -1;
+      if (!(o->view[1] > o->view[0]) || !(o->view[3] > o->view[2]))
+        return sph_error_set(err, "--view: '%s': need X0 < X1 and Y0 < Y1", v);
+      o->have_view = 1;
+    } else if (!plot && is(&a, "--disc-scale")) {
+      VALUE();
+      if (parse_double(a.name, v, &o->disc_scale, err) != 0) return -1;
+      if (!(o->disc_scale > 0.0)) return sph_error_set(err, "--disc-scale: must be positive");
+    } else if (!plot && is(&a, "--disc-size")) {
+      VALUE();
+      if (parse_double(a.name, v, &o->disc_size, err) != 0) return -1;
+      if (!(o->disc_size > 0.0)) return sph_error_set(err, "--disc-size: must be positive");
+    } else if (!plot && is(&a, "--walls")) {
+      VALUE();
+      if (strcmp(v, "grey") == 0 || strcmp(v, "gray") == 0)
+        o->walls = RWALLS_GREY;
+      else if (strcmp(v, "field") == 0)
+        o->walls = RWALLS_FIELD;
+      else if (strcmp(v, "none") == 0)
+        o->walls = RWALLS_NONE;
+      else
+        return sph_error_set(err, "--walls: unknown '%s' (valid: grey, field, none)", v);
+    } else if (!plot && is(&a, "--bare")) {
+      o->bare = 1;
+    } else if (!plot && is(&a, "--no-colorbar")) {
+      o->colorbar = 0;
+    } else if (!plot && is(&a, "--panels")) {
+      VALUE();
+      if (parse_grid(a.name, v, &o->cols, &o->rows, err) != 0) return -1;
+      panels = 1;
+    } else if (!plot && is(&a, "--compare")) {
+      compare = 1;
+    } else if (!plot && is(&a, "--times")) {
+      VALUE();
+      if (parse_numbers(a.name, v, ',', o->times, ROPT_MAX_LIST, &o->n_times,
+                        "times T1,T2,... in seconds", err) != 0)
+        return -1;
+    } else if (!plot && is(&a, "--names")) {
+      VALUE();
+      if (parse_names(a.name, v, o, err) != 0) return -1;
+    } else if (!plot && is(&a, "--match-tol")) {
+      VALUE();
+      if (parse_double(a.name, v, &o->match_tol, err) != 0) return -1;
+      if (o->match_tol < 0.0) return sph_error_set(err, "--match-tol: must not be negative");
+    } else if (!plot && is(&a, "--overlay")) {
+      VALUE();
+      if (o->n_overlays == 16) return sph_error_set(err, "at most 16 overlays");
+      ov = &o->overlay[o->n_overlays++];
+      *ov = (roverlay_opt){v, NULL, NULL, NULL, 1.0, 1.0, 0, NULL};
+    } else if (!plot && (is(&a, "--overlay-x") || is(&a, "--overlay-y") ||
+                         is(&a, "--overlay-time") || is(&a, "--overlay-label") ||
+                         is(&a, "--overlay-style") || is(&a, "--overlay-scale"))) {
+      VALUE();
+      if (!ov) return sph_error_set(err, "%s applies to the --overlay before it", a.name);
+      if (is(&a, "--overlay-x"))
+        ov->xcol = v;
+      else if (is(&a, "--overlay-y"))
+        ov->ycol = v;
+      else if (is(&a, "--overlay-time"))
+        ov->tcol = v;
+      else if (is(&a, "--overlay-label"))
+        ov->label = v;
+      else if (is(&a, "--overlay-style")) {
+        if (strcmp(v, "points") == 0)
+          ov->line = 0;
+        else if (strcmp(v, "line") == 0)
+          ov->line = 1;
+        else
+          return sph_error_set(err, "--overlay-style: unknown '%s' (valid: points, line)", v);
+      } else { /* --overlay-scale */
+        double sc[2];
+        if (parse_numbers(a.name, v, ':', sc, 2, NULL, "SX:SY", err) != 0) return -1;
+        ov->xscale = sc[0];
+        ov->yscale = sc[1];
+      }
+    } else if (!plot && is(&a, "--overlay-tol")) {
+      VALUE();
+      if (parse_double(a.name, v, &o->overlay_tol, err) != 0) return -1;
+    } else {
+      return sph_error_set(err, "unknown option %s%s (see --help)", a.name,
+                           plot ? " in plot mode" : "");
+    }
+  }
+  if (compare && panels && o->cols * o->rows < o->n_inputs)
+    return sph_error_set(err, "--panels %dx%d is too small for %d runs", o->cols, o->rows,
+                         o->n_inputs);
+  if (compare)
+    o->mode = RMODE_COMPARE;
+  else if (panels)
+    o->mode = RMODE_PANELS;
+  return check(o, err);
+}

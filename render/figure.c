@@ -1,0 +1,202 @@
+/*
+ * figure.c - draws the snapshot panels of figure.h into a layout.
+ *
+ * Particles: each is a disc of diameter dx * disc_scale (dx, the initial
+ * particle spacing, is stored on every snapshot) centred on its position.
+ * Walls are drawn first and fluid on top, each in file (id) order, so the
+ * picture is a pure function of the snapshot; particles outside the plot
+ * box are skipped and the rest are clipped to it. A value v maps to the
+ * colour table at t = (v - lo) / (hi - lo), the same entries the colour bar
+ * shows: the bar's row i (top = 0) shows t = 1 - i / (rows - 1) and its
+ * ticks sit on the centres of the rows whose t they label.
+ * Text, ticks and frames use the foreground colour; their sizes scale with
+ * the layout's font scale.
+ */
+#include "config.h"
+
+#include "figure.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "font.h"
+#include "marks.h"
+
+void rfigure_time_label(double t, char *buf, size_t size) {
+  if (t != 0.0 && fabs(t) < 0.01)
+    snprintf(buf, size, "t = %.3g s", t);
+  else
+    snprintf(buf, size, "t = %.3f s", t);
+}
+
+int rfigure_disc_size(const rfigure_style *st, const rsnap *s, double *out, sph_error *err) {
+  double d = st->disc_size > 0.0 ? st->disc_size : s->dx;
+  if (!(d > 0.0) || !isfinite(d))
+    return sph_error_set(err, "%s: no particle spacing (attribute 'dx'); give --disc-size",
+                         s->path);
+  *out = d * st->disc_scale;
+  return 0;
+}
+
+void rfigure_color(const rfigure_style *st, double v, uint8_t rgb[3]) {
+  double t = st->hi > st->lo ? (v - st->lo) / (st->hi - st->lo) : 0.5;
+  rcolormap_map(st->cmap, isnan(v) ? NAN : t, rgb);
+}
+
+static rcolor opaque(const uint8_t rgb[3]) { return (rcolor){rgb[0], rgb[1], rgb[2], 255}; }
+
+static void draw_particles(rcanvas *c, const rlayout *L, int k, const rfigure_style *st,
+                           const rsnap *s, double diameter) {
+  const rrect *box = &L->panel[k].plot;
+  double r = 0.5 * diameter * L->px_per_m;
+  if (r < 0.5) r = 0.5;                  /* keep sub-pixel particles visible */
+  for (int pass = 0; pass < 2; pass++) { /* walls, then fluid */
+    for (size_t i = 0; i < s->n; i++) {
+      if (s->wall[i] != (pass == 0)) continue;
+      if (s->wall[i] && st->walls == RWALLS_NONE) continue;
+      double px, py;
+      rlayout_to_px(L, k, s->x[i], s->y[i], &px, &py);
+      if (px + r + 1 < box->x0 || px - r - 1 > box->x1 || py + r + 1 < box->y0 ||
+          py - r - 1 > box->y1)
+        continue;
+      rcolor col = st->wall;
+      if (!s->wall[i] || st->walls == RWALLS_FIELD) {
+        uint8_t rgb[3];
+        rfigure_color(st, s->val[i], rgb);
+        col = opaque(rgb);
+      }
+      rcanvas_disc(c, px, py, r, col);
+    }
+  }
+}
+
+static void draw_overlays(rcanvas *c, const rlayout *L, int k, const rfigure_style *st,
+                          double time) {
+  int s = L->scale;
+  for (int o = 0; o < st->n_overlays; o++) {
+    const roverlay *ov = &st->overlays[o];
+    rcolor col = rmark_palette(o + 1); /* vermillion first: stands out on viridis */
+    int have_prev = 0;
+    double qx = 0.0, qy = 0.0;
+    for (size_t i = 0; i < ov->n; i++) {
+      int shown = isfinite(ov->x[i]) && isfinite(ov->y[i]) &&
+                  (!ov->t || fabs(ov->t[i] - time) <= st->overlay_tol);
+      if (!shown) {
+        have_prev = 0;
+        continue;
+      }
+      double px, py;
+      rlayout_to_px(L, k, ov->x[i], ov->y[i], &px, &py);
+      if (ov->line) {
+        if (have_prev) rcanvas_line(c, qx, qy, px, py, s > 1 ? s : 1.5, col);
+        have_prev = 1;
+        qx = px;
+        qy = py;
+      } else {
+        rmark_draw(c, o % RMARK_COUNT, px, py, 2.5 * s, col, st->fg, 1.0);
+      }
+    }
+  }
+}
+
+static void draw_legend(rcanvas *c, const rlayout *L, const rfigure_style *st) {
+  rlegend_entry e[16];
+  int n = 0;
+  for (int o = 0; o < st->n_overlays && n < 16; o++) {
+    if (!st->overlays[o].label) continue;
+    e[n++] = (rlegend_entry){st->overlays[o].label, rmark_palette(o + 1), st->overlays[o].line,
+                             st->overlays[o].line ? -1 : o % RMARK_COUNT};
+  }
+  rlegend_draw(c, L->panel[0].plot, RLEGEND_TOP_RIGHT, e, n, L->scale, st->bg, st->fg);
+}
+
+static void draw_axes(rcanvas *c, const rlayout *L, int k, const rfigure_style *st) {
+  const rrect *b = &L->panel[k].plot;
+  int s = L->scale, lw = rlayout_line_width(L), tick = rlayout_tick_len(L);
+  char buf[64];
+  rcanvas_border(c, *b, lw, st->fg);
+  for (int i = 0; i < L->xt.n; i++) {
+    double px, py;
+    rlayout_to_px(L, k, L->xt.v[i], L->view[2], &px, &py);
+    px = floor(px);
+    rcanvas_rect(c, (rrect){px, b->y1 + lw, px + lw, b->y1 + lw + tick}, st->fg);
+    rticks_label(&L->xt, L->xt.v[i], buf, sizeof buf);
+    rcanvas_text(c, px + 0.5 * lw, b->y1 + lw + tick + 2 * s, buf, s, st->fg, RALIGN_CENTER,
+                 RALIGN_TOP, 0);
+  }
+  for (int i = 0; i < L->yt.n; i++) {
+    double px, py;
+    rlayout_to_px(L, k, L->view[0], L->yt.v[i], &px, &py);
+    py = floor(py);
+    rcanvas_rect(c, (rrect){b->x0 - lw - tick, py, b->x0 - lw, py + lw}, st->fg);
+    rticks_label(&L->yt, L->yt.v[i], buf, sizeof buf);
+    rcanvas_text(c, b->x0 - lw - tick - 2 * s, py + 0.5 * lw, buf, s, st->fg, RALIGN_RIGHT,
+                 RALIGN_MIDDLE, 0);
+  }
+  rcanvas_text(c, 0.5 * (b->x0 + b->x1), b->y1 + lw + tick + 2 * s + 9 * s + 4 * s, "x (m)", s,
+               st->fg, RALIGN_CENTER, RALIGN_TOP, 0);
+  rcanvas_text(c, L->panel[k].cell.x0 + 3 * s, 0.5 * (b->y0 + b->y1), "y (m)", s, st->fg,
+               RALIGN_CENTER, RALIGN_TOP, 1);
+}
+
+static void draw_colorbar(rcanvas *c, const rlayout *L, const rfigure_style *st) {
+  const rrect *b = &L->bar;
+  int s = L->scale, lw = rlayout_line_width(L), tick = rlayout_tick_len(L);
+  int rows = (int)(b->y1 - b->y0);
+  if (rows < 1 || b->x1 <= b->x0) return;
+  for (int i = 0; i < rows; i++) {
+    double t = rows > 1 ? 1.0 - (double)i / (rows - 1) : 1.0;
+    uint8_t rgb[3];
+    rcolormap_map(st->cmap, t, rgb);
+    rcanvas_rect(c, (rrect){b->x0, b->y0 + i, b->x1, b->y0 + i + 1}, opaque(rgb));
+  }
+  rcanvas_border(c, *b, lw, st->fg);
+  double label_w = 0;
+  char buf[64];
+  for (int i = 0; i < L->bt.n; i++) {
+    double v = L->bt.v[i];
+    double t = st->hi > st->lo ? (v - st->lo) / (st->hi - st->lo) : 0.5;
+    if (t < -1e-9 || t > 1.0 + 1e-9) continue;
+    double y = floor(b->y0 + 0.5 + (1.0 - t) * (rows - 1) - 0.5 * lw + 0.5);
+    rcanvas_rect(c, (rrect){b->x1 + lw, y, b->x1 + lw + tick, y + lw}, st->fg);
+    rticks_label(&L->bt, v, buf, sizeof buf);
+    rcanvas_text(c, b->x1 + lw + tick + 2 * s, y + 0.5 * lw, buf, s, st->fg, RALIGN_LEFT,
+                 RALIGN_MIDDLE, 0);
+    double w = rfont_width(buf, s);
+    if (w > label_w) label_w = w;
+  }
+  if (st->bar_label)
+    rcanvas_text(c, b->x1 + lw + tick + 2 * s + label_w + 4 * s, 0.5 * (b->y0 + b->y1),
+                 st->bar_label, s, st->fg, RALIGN_CENTER, RALIGN_TOP, 1);
+}
+
+int rfigure_draw(rcanvas *c, const rlayout *L, const rfigure_style *st, const rpanel *p, int n,
+                 sph_error *err) {
+  if (n > L->panels) return sph_error_set(err, "%d snapshots for %d panels", n, L->panels);
+  rcanvas_clear(c, st->bg);
+  int s = L->scale;
+  for (int k = 0; k < n; k++) {
+    double diameter;
+    if (rfigure_disc_size(st, p[k].snap, &diameter, err) != 0) return -1;
+    rcanvas_clip(c, &L->panel[k].plot);
+    draw_particles(c, L, k, st, p[k].snap, diameter);
+    draw_overlays(c, L, k, st, p[k].snap->time);
+    rcanvas_clip(c, NULL);
+    if (L->bare) continue;
+    draw_axes(c, L, k, st);
+    const rrect *b = &L->panel[k].plot;
+    rcanvas_text(c, b->x0, L->panel[k].label_y, p[k].label, s, st->fg, RALIGN_LEFT, RALIGN_TOP, 0);
+    if (p[k].note[0])
+      rcanvas_text(c, b->x1, L->panel[k].label_y, p[k].note, s, st->fg, RALIGN_RIGHT, RALIGN_TOP,
+                   0);
+  }
+  if (!L->bare) {
+    draw_legend(c, L, st);
+    draw_colorbar(c, L, st);
+    if (st->title && L->title.y1 > L->title.y0)
+      rcanvas_text(c, 0.5 * L->width, 0.5 * (L->title.y0 + L->title.y1), st->title, s, st->fg,
+                   RALIGN_CENTER, RALIGN_MIDDLE, 0);
+  }
+  return 0;
+}

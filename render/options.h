@@ -1,0 +1,77 @@
+/*
+ * options.h - the settings of one sph-render invocation, as parsed from the
+ * command line by cli.c. Strings point into argv.
+ */
+#ifndef SPH_RENDER_OPTIONS_H
+#define SPH_RENDER_OPTIONS_H
+
+#include "canvas.h"
+
+enum { ROPT_MAX_LIST = 64 };
+
+enum { RMODE_FRAMES, RMODE_PANELS, RMODE_COMPARE, RMODE_PLOT };
+
+/* An --overlay and its modifiers. */
+typedef struct roverlay_opt {
+  const char *path;
+  const char *xcol, *ycol, *tcol; /* NULL: first two columns; no time filter */
+  double xscale, yscale;
+  int line;
+  const char *label;
+} roverlay_opt;
+
+/* A plot series (a positional CSV, --line or --points) and its modifiers. */
+typedef struct rseries_opt {
+  const char *path;
+  const char *xcol, *ycol; /* NULL: the global --x/--y, else columns 1 and 2 */
+  double xscale, yscale;
+  int points;   /* markers instead of a line */
+  int relative; /* plot (y - y0) / |y0| */
+  const char *label;
+} rseries_opt;
+
+typedef struct roptions {
+  int mode;
+  const char *output;
+  const char *backend;
+  int jobs;          /* 0: one per processor */
+  int width, height; /* 0: the mode's default; height 0 with width: automatic */
+  int font_scale;    /* 0: automatic */
+  int compression;
+  rcolor bg;
+  const char *title;
+  int verbose;
+
+  /* snapshot modes */
+  const char *inputs[ROPT_MAX_LIST * 4];
+  int n_inputs;
+  const char *field;
+  const char *cmap; /* NULL: viridis, or coolwarm for signed fields */
+  int have_range;
+  double range[2];
+  int have_view;
+  double view[4];
+  double disc_scale, disc_size;
+  int walls;
+  int bare, colorbar;
+  int cols, rows; /* --panels */
+  double times[ROPT_MAX_LIST];
+  int n_times;
+  const char *names[ROPT_MAX_LIST]; /* --names for --compare */
+  int n_names;
+  double match_tol; /* NaN: half the first run's output interval */
+  roverlay_opt overlay[16];
+  int n_overlays;
+  double overlay_tol;
+
+  /* plot mode */
+  rseries_opt series[ROPT_MAX_LIST];
+  int n_series;
+  const char *xcol, *ycol;
+  const char *xlabel, *ylabel;
+  int have_xrange, have_yrange;
+  double xrange[2], yrange[2];
+  int legend;
+} roptions;
+
+#endif

@@ -1,0 +1,272 @@
+/*
+ * plot.c - renders the plot mode of plot.h.
+ *
+ * Each series is a CSV file with two column expressions (csv.h: a name or
+ * a sum of names), scaled by its factors, e.g. Z = front_x / a against
+ * T = t sqrt(2 g / a) for the dam-break front of Martin & Moyce (1952); with
+ * `relative` y becomes (y - y0) / |y0|, y0 its first finite value (the
+ * relative energy deviation of paper A, eq. 28-30). Axis ranges default to
+ * the data widened to nice tick multiples (ticks.c). Lines are drawn in the
+ * order given, then points on top, so measurements stay visible over the
+ * curves. The margins follow the same font-scale rules as the snapshot
+ * figures (layout.c); everything else is fixed by the inputs, so the PNG is
+ * deterministic.
+ */
+#include "config.h"
+
+#include "plot.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "canvas.h"
+#include "csv.h"
+#include "font.h"
+#include "gl_context.h"
+#include "inputs.h"
+#include "layout.h"
+#include "marks.h"
+#include "png_out.h"
+#include "ticks.h"
+
+typedef struct series {
+  size_t n;
+  double *x, *y;
+  char label[128];
+  int points;
+} series;
+
+static int load_series(const roptions *o, const rseries_opt *so, series *s, sph_error *err) {
+  rcsv t;
+  if (rcsv_read(so->path, &t, err) != 0) return -1;
+  const char *xc = so->xcol ? so->xcol : o->xcol;
+  const char *yc = so->ycol ? so->ycol : o->ycol;
+  int rc = 0;
+  if ((!xc || !yc) && t.ncol < 2)
+    rc = sph_error_set(err, "%s: a series needs two columns (or --x and --y)", so->path);
+  if (!xc && !rc) xc = t.names[0];
+  if (!yc && !rc) yc = t.names[1];
+  s->n = t.nrow;
+  s->x = malloc((t.nrow + 1) * sizeof *s->x);
+  s->y = malloc((t.nrow + 1) * sizeof *s->y);
+  if (!rc && (!s->x || !s->y)) rc = sph_error_set(err, "out of memory");
+  if (!rc) rc = rcsv_eval(&t, xc, s->x, err);
+  if (!rc) rc = rcsv_eval(&t, yc, s->y, err);
+  double y0 = NAN;
+  for (size_t i = 0; !rc && i < s->n; i++) {
+    s->x[i] *= so->xscale;
+    s->y[i] *= so->yscale;
+    if (isnan(y0) && isfinite(s->y[i])) y0 = s->y[i];
+  }
+  if (!rc && so->relative) {
+    if (!(fabs(y0) > 0.0))
+      rc = sph_error_set(err, "%s: --relative needs a non-zero first value of '%s'", so->path, yc);
+    for (size_t i = 0; !rc && i < s->n; i++)
+      s->y[i] = (s->y[i] - y0) / fabs(y0);
+  }
+  s->points = so->points;
+  if (so->label) {
+    snprintf(s->label, sizeof s->label, "%s", so->label);
+  } else {
+    /* the file's name, or its directory's for the solver's diagnostics.csv */
+    char stem[128];
+    rinputs_stem(so->path, stem, sizeof stem);
+    if (strcmp(stem, "diagnostics") == 0) {
+      char dir[1024];
+      snprintf(dir, sizeof dir, "%s", so->path);
+      char *slash = strrchr(dir, '/');
+      if (slash) {
+        *slash = '\0';
+        rinputs_stem(dir, stem, sizeof stem);
+      }
+    }
+    snprintf(s->label, sizeof s->label, "%s", stem);
+  }
+  rcsv_free(&t);
+  return rc;
+}
+
+static void data_range(const series *s, int n, int axis, double *lo, double *hi) {
+  int any = 0;
+  for (int k = 0; k < n; k++)
+    for (size_t i = 0; i < s[k].n; i++) {
+      double v = axis ? s[k].y[i] : s[k].x[i];
+      if (!isfinite(v)) continue;
+      if (!any || v < *lo) *lo = v;
+      if (!any || v > *hi) *hi = v;
+      any = 1;
+    }
+  if (!any) {
+    *lo = 0.0;
+    *hi = 1.0;
+  }
+}
+
+static int label_width(const rticks *t, int s) {
+  char buf[64];
+  int w = 0;
+  for (int i = 0; i < t->n; i++) {
+    rticks_label(t, t->v[i], buf, sizeof buf);
+    int lw = rfont_width(buf, s);
+    if (lw > w) w = lw;
+  }
+  return w;
+}
+
+typedef struct frame {
+  rrect box;
+  double x0, x1, y0, y1;
+} frame;
+
+static double map_x(const frame *f, double x) {
+  return f->box.x0 + (x - f->x0) / (f->x1 - f->x0) * (f->box.x1 - f->box.x0);
+}
+static double map_y(const frame *f, double y) {
+  return f->box.y1 - (y - f->y0) / (f->y1 - f->y0) * (f->box.y1 - f->box.y0);
+}
+
+static void draw(rcanvas *c, const roptions *o, const series *s, int n, const char *xlabel,
+                 const char *ylabel, int W, int H, int sc) {
+  rcolor bg = o->bg;
+  rcolor fg = rmark_ink(bg);
+  rcolor grid = {(uint8_t)((bg.r * 7 + fg.r) / 8), (uint8_t)((bg.g * 7 + fg.g) / 8),
+                 (uint8_t)((bg.b * 7 + fg.b) / 8), 255};
+  frame f;
+  if (o->have_xrange) {
+    f.x0 = o->xrange[0];
+    f.x1 = o->xrange[1];
+  } else {
+    data_range(s, n, 0, &f.x0, &f.x1);
+    rticks_expand(&f.x0, &f.x1, 6);
+  }
+  if (o->have_yrange) {
+    f.y0 = o->yrange[0];
+    f.y1 = o->yrange[1];
+  } else {
+    data_range(s, n, 1, &f.y0, &f.y1);
+    rticks_expand(&f.y0, &f.y1, 6);
+  }
+  int tick = 3 * sc, lw = sc > 2 ? sc / 2 : 1;
+  double top = o->title ? 16 * sc : 10 * sc;
+  double bottom = tick + 2 * sc + 9 * sc + 4 * sc + 9 * sc + 3 * sc;
+  rticks xt, yt;
+  /* two passes: the y labels' width sets the left margin (as in layout.c) */
+  double left = 3 * sc + 9 * sc + 4 * sc + rfont_width("-0.00", sc) + 2 * sc + tick, right = 8 * sc;
+  for (int pass = 0; pass < 2; pass++) {
+    f.box = (rrect){floor(left), floor(top), floor(W - right), floor(H - bottom)};
+    int tx = (int)((f.box.x1 - f.box.x0) / (60.0 * sc)) + 1;
+    int ty = (int)((f.box.y1 - f.box.y0) / (40.0 * sc)) + 1;
+    rticks_make(f.x0, f.x1, tx < 2 ? 2 : tx, &xt);
+    rticks_make(f.y0, f.y1, ty < 2 ? 2 : ty, &yt);
+    left = 3 * sc + 9 * sc + 4 * sc + label_width(&yt, sc) + 2 * sc + tick;
+    double half = 0.5 * label_width(&xt, sc);
+    right = half > 8 * sc ? half : 8 * sc;
+  }
+  const rrect *b = &f.box;
+  rcanvas_clear(c, bg);
+  char buf[64];
+  for (int i = 0; i < xt.n; i++) {
+    double px = floor(map_x(&f, xt.v[i]));
+    rcanvas_rect(c, (rrect){px, b->y0, px + lw, b->y1}, grid);
+    rcanvas_rect(c, (rrect){px, b->y1 + lw, px + lw, b->y1 + lw + tick}, fg);
+    rticks_label(&xt, xt.v[i], buf, sizeof buf);
+    rcanvas_text(c, px + 0.5 * lw, b->y1 + lw + tick + 2 * sc, buf, sc, fg, RALIGN_CENTER,
+                 RALIGN_TOP, 0);
+  }
+  for (int i = 0; i < yt.n; i++) {
+    double py = floor(map_y(&f, yt.v[i]));
+    rcanvas_rect(c, (rrect){b->x0, py, b->x1, py + lw}, grid);
+    rcanvas_rect(c, (rrect){b->x0 - lw - tick, py, b->x0 - lw, py + lw}, fg);
+    rticks_label(&yt, yt.v[i], buf, sizeof buf);
+    rcanvas_text(c, b->x0 - lw - tick - 2 * sc, py + 0.5 * lw, buf, sc, fg, RALIGN_RIGHT,
+                 RALIGN_MIDDLE, 0);
+  }
+  rcanvas_clip(c, b);
+  double width = sc > 1 ? sc : 1.5;
+  for (int pass = 0; pass < 2; pass++) { /* lines, then points */
+    for (int k = 0; k < n; k++) {
+      if (s[k].points != pass) continue;
+      int have = 0;
+      double qx = 0.0, qy = 0.0;
+      for (size_t i = 0; i < s[k].n; i++) {
+        if (!isfinite(s[k].x[i]) || !isfinite(s[k].y[i])) {
+          have = 0;
+          continue;
+        }
+        double px = map_x(&f, s[k].x[i]), py = map_y(&f, s[k].y[i]);
+        if (s[k].points) {
+          rmark_draw(c, k % RMARK_COUNT, px, py, 2.5 * sc, rmark_palette(k), fg, 1.0);
+        } else {
+          if (have) rcanvas_line(c, qx, qy, px, py, width, rmark_palette(k));
+          have = 1;
+          qx = px;
+          qy = py;
+        }
+      }
+    }
+  }
+  rcanvas_clip(c, NULL);
+  rcanvas_border(c, *b, lw, fg);
+  rcanvas_text(c, 0.5 * (b->x0 + b->x1), b->y1 + lw + tick + 2 * sc + 9 * sc + 4 * sc, xlabel, sc,
+               fg, RALIGN_CENTER, RALIGN_TOP, 0);
+  rcanvas_text(c, 3 * sc, 0.5 * (b->y0 + b->y1), ylabel, sc, fg, RALIGN_CENTER, RALIGN_TOP, 1);
+  if (o->title) rcanvas_text(c, 0.5 * W, 8 * sc, o->title, sc, fg, RALIGN_CENTER, RALIGN_MIDDLE, 0);
+  rlegend_entry e[ROPT_MAX_LIST];
+  for (int k = 0; k < n; k++)
+    e[k] = (rlegend_entry){s[k].label, rmark_palette(k), !s[k].points,
+                           s[k].points ? k % RMARK_COUNT : -1};
+  rlegend_draw(c, *b, o->legend, e, n, sc, bg, fg);
+}
+
+int rplot_run(const roptions *o, sph_error *err) {
+  if (o->n_series == 0) return sph_error_set(err, "plot: no CSV file given");
+  if (!rinputs_is_png(o->output))
+    return sph_error_set(err, "plot: -o must name a .png file, not '%s'", o->output);
+  if ((o->have_xrange && !(o->xrange[1] > o->xrange[0])) ||
+      (o->have_yrange && !(o->yrange[1] > o->yrange[0])))
+    return sph_error_set(err, "plot: a range needs min < max");
+  series s[ROPT_MAX_LIST];
+  memset(s, 0, sizeof s);
+  int rc = 0, n = o->n_series;
+  for (int k = 0; k < n && rc == 0; k++)
+    rc = load_series(o, &o->series[k], &s[k], err);
+  const rseries_opt *first = &o->series[0];
+  char xlabel[128], ylabel[128];
+  snprintf(xlabel, sizeof xlabel, "%s",
+           o->xlabel     ? o->xlabel
+           : first->xcol ? first->xcol
+           : o->xcol     ? o->xcol
+                         : "x");
+  snprintf(ylabel, sizeof ylabel, "%s",
+           o->ylabel     ? o->ylabel
+           : first->ycol ? first->ycol
+           : o->ycol     ? o->ycol
+                         : "y");
+  int W = o->width > 0 ? o->width : 960;
+  int H = o->width > 0 && o->height > 0 ? o->height : o->width > 0 ? (W * 2 / 3) & ~1 : 640;
+  int sc = o->font_scale;
+  if (sc <= 0) sc = rlayout_auto_scale(W, H);
+  if (rc == 0 && (W < 64 || H < 64 || W > 16384 || H > 16384))
+    rc = sph_error_set(err, "plot: image size %dx%d: each side must be 64 to 16384", W, H);
+  rgl_context *gl = NULL;
+  rcanvas *c = NULL;
+  uint8_t *rgb = NULL;
+  if (rc == 0) rc = rgl_context_create(o->backend, &gl, err);
+  if (rc == 0) rc = rcanvas_create(&gl->gl, W, H, &c, err);
+  if (rc == 0 && !(rgb = malloc((size_t)W * H * 3))) rc = sph_error_set(err, "out of memory");
+  if (rc == 0) {
+    draw(c, o, s, n, xlabel, ylabel, W, H, sc);
+    rc = rcanvas_read_rgb(c, rgb, err);
+  }
+  if (rc == 0) rc = rpng_write(o->output, rgb, W, H, o->compression, err);
+  free(rgb);
+  rcanvas_destroy(c);
+  rgl_context_destroy(gl);
+  for (int k = 0; k < n; k++) {
+    free(s[k].x);
+    free(s[k].y);
+  }
+  return rc;
+}

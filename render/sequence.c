@@ -1,0 +1,487 @@
+/*
+ * sequence.c - plans and renders the images of the snapshot modes.
+ *
+ * Planning happens once, in the main process, before any image is drawn:
+ * the inputs are expanded, matched by time if needed, and turned into tasks
+ * (one output PNG each, holding one or more panels); the colour range is
+ * taken over every snapshot of every task, unless --range fixes it, so the
+ * frames of a run share one scale and a missing field or unreadable file
+ * stops everything before the first PNG; the layout is computed from the
+ * view and the range. Then the tasks run on worker processes (jobs.c), each
+ * of which loads its snapshots again, draws and writes its PNG atomically.
+ * Everything a task draws is fixed by the plan, so the same inputs give the
+ * same bytes for any number of workers.
+ */
+#include "config.h"
+
+#include "sequence.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "colormap.h"
+#include "csv.h"
+#include "figure.h"
+#include "gl_context.h"
+#include "inputs.h"
+#include "jobs.h"
+#include "layout.h"
+#include "marks.h"
+#include "png_out.h"
+#include "snapdata.h"
+
+typedef struct rtask {
+  char *output;
+  int n;
+  const char *path[RLAYOUT_MAX_PANELS];
+  char label[RLAYOUT_MAX_PANELS][96]; /* run name or panel letter prefix */
+} rtask;
+
+typedef struct plan {
+  const roptions *o;
+  rtask *task;
+  size_t n_task;
+  rcolormap cmap;
+  rlayout layout;
+  rfigure_style style;
+  roverlay overlay[16];
+  char bar_label[96];
+  const char *outdir; /* made only once the plan is complete; NULL: one file */
+} plan;
+
+typedef struct worker {
+  rgl_context *gl;
+  rcanvas *canvas;
+  uint8_t *rgb;
+} worker;
+
+static void panel_letter(int k, char *buf, size_t size) {
+  if (k < 26)
+    snprintf(buf, size, "%c)", 'a' + k);
+  else
+    snprintf(buf, size, "%c%d)", 'a' + k % 26, k / 26);
+}
+
+static rtask *add_task(plan *p, sph_error *err) {
+  rtask *t = realloc(p->task, (p->n_task + 1) * sizeof *t);
+  if (!t) {
+    sph_error_set(err, "out of memory");
+    return NULL;
+  }
+  p->task = t;
+  memset(&t[p->n_task], 0, sizeof *t);
+  return &t[p->n_task++];
+}
+
+/* dir/prefix_NUMBER.png, NUMBER from the snapshot's name (or its stem). */
+static char *output_in_dir(const char *dir, const char *prefix, const char *snap) {
+  char num[256], stem[256];
+  rinputs_number(snap, num, sizeof num);
+  rinputs_stem(snap, stem, sizeof stem);
+  size_t len = strlen(dir) + strlen(prefix) + strlen(stem) + 16;
+  char *out = malloc(len);
+  if (!out) return NULL;
+  if (num[0])
+    snprintf(out, len, "%s/%s_%s.png", dir, prefix, num);
+  else
+    snprintf(out, len, "%s/%s.png", dir, stem);
+  return out;
+}
+
+static int check_unique_outputs(const plan *p, sph_error *err) {
+  for (size_t i = 0; i < p->n_task; i++)
+    for (size_t j = i + 1; j < p->n_task; j++)
+      if (strcmp(p->task[i].output, p->task[j].output) == 0)
+        return sph_error_set(err, "%s and %s would both be written to %s", p->task[i].path[0],
+                             p->task[j].path[0], p->task[i].output);
+  return 0;
+}
+
+static int plan_frames(plan *p, rinputs *in, sph_error *err) {
+  const roptions *o = p->o;
+  int single = rinputs_is_png(o->output);
+  /* --times: the nearest snapshot to each time, each at most once */
+  size_t n = o->n_times > 0 ? (size_t)o->n_times : in->n;
+  if (o->n_times > 0 && rinputs_times(in, err) != 0) return -1;
+  if (single && n != 1)
+    return sph_error_set(err, "-o %s names one PNG but there are %zu snapshots: give a directory",
+                         o->output, n);
+  p->outdir = single ? NULL : o->output;
+  for (size_t i = 0; i < n; i++) {
+    const char *path = in->v[o->n_times > 0 ? rinputs_nearest(in, o->times[i]) : i].path;
+    int dup = 0;
+    for (size_t j = 0; j < p->n_task; j++)
+      dup |= p->task[j].path[0] == path;
+    if (dup) continue;
+    rtask *t = add_task(p, err);
+    if (!t) return -1;
+    t->n = 1;
+    t->path[0] = path;
+    t->output = single ? strdup(o->output) : output_in_dir(o->output, "frame", path);
+    if (!t->output) return sph_error_set(err, "out of memory");
+  }
+  return check_unique_outputs(p, err);
+}
+
+static int plan_panels(plan *p, rinputs *in, sph_error *err) {
+  const roptions *o = p->o;
+  if (!rinputs_is_png(o->output))
+    return sph_error_set(err, "--panels writes one figure: -o must name a .png file, not '%s'",
+                         o->output);
+  int max = o->cols * o->rows;
+  rtask *t = add_task(p, err);
+  if (!t) return -1;
+  t->output = strdup(o->output);
+  if (!t->output) return sph_error_set(err, "out of memory");
+  if (o->n_times > 0) {
+    if (o->n_times > max)
+      return sph_error_set(err, "%d times for %dx%d panels", o->n_times, o->cols, o->rows);
+    if (rinputs_times(in, err) != 0) return -1;
+    for (int k = 0; k < o->n_times; k++)
+      t->path[t->n++] = in->v[rinputs_nearest(in, o->times[k])].path;
+  } else {
+    if ((int)in->n > max)
+      return sph_error_set(err, "%zu snapshots do not fit %dx%d panels (pick some with --times)",
+                           in->n, o->cols, o->rows);
+    for (size_t i = 0; i < in->n; i++)
+      t->path[t->n++] = in->v[i].path;
+  }
+  for (int k = 0; k < t->n; k++)
+    panel_letter(k, t->label[k], sizeof t->label[k]);
+  return 0;
+}
+
+static int plan_compare(plan *p, rinputs *runs, int n_runs, sph_error *err) {
+  const roptions *o = p->o;
+  for (int r = 0; r < n_runs; r++)
+    if (rinputs_times(&runs[r], err) != 0) return -1;
+  /* the times to show: the requested ones, or every snapshot of the first run */
+  rinputs *first = &runs[0];
+  double tol = o->match_tol;
+  if (isnan(tol)) {
+    double sp = rinputs_min_spacing(first);
+    tol = isfinite(sp) ? 0.5 * sp : INFINITY;
+  }
+  size_t n_times = o->n_times > 0 ? (size_t)o->n_times : first->n;
+  int single = rinputs_is_png(o->output);
+  p->outdir = single ? NULL : o->output;
+  for (size_t i = 0; i < n_times; i++) {
+    size_t i0 = o->n_times > 0 ? rinputs_nearest(first, o->times[i]) : i;
+    double t0 = o->n_times > 0 ? o->times[i] : first->v[i0].time;
+    const char *paths[RLAYOUT_MAX_PANELS];
+    int ok = 1;
+    for (int r = 0; r < n_runs; r++) {
+      size_t j = rinputs_nearest(&runs[r], t0);
+      if (o->n_times == 0 && fabs(runs[r].v[j].time - t0) > tol) ok = 0;
+      paths[r] = runs[r].v[j].path;
+    }
+    if (!ok) {
+      if (o->verbose)
+        fprintf(stderr, "note: t = %g s of %s has no match in every run; skipped\n", t0,
+                first->v[i0].path);
+      continue;
+    }
+    rtask *t = add_task(p, err);
+    if (!t) return -1;
+    t->n = n_runs;
+    for (int r = 0; r < n_runs; r++) {
+      char letter[16], name[64];
+      panel_letter(r, letter, sizeof letter);
+      if (r < o->n_names)
+        snprintf(name, sizeof name, "%s", o->names[r]);
+      else
+        rinputs_stem(o->inputs[r], name, sizeof name);
+      t->path[r] = paths[r];
+      snprintf(t->label[r], sizeof t->label[r], "%s %s", letter, name);
+    }
+    t->output = single ? strdup(o->output) : output_in_dir(o->output, "compare", first->v[i0].path);
+    if (!t->output) return sph_error_set(err, "out of memory");
+  }
+  if (p->n_task == 0)
+    return sph_error_set(err, "no time of %s matches a snapshot of every run (within %g s)",
+                         o->inputs[0], tol);
+  if (single && p->n_task != 1)
+    return sph_error_set(err,
+                         "-o %s names one PNG but %zu times match: give a directory or "
+                         "one --times value",
+                         o->output, p->n_task);
+  return check_unique_outputs(p, err);
+}
+
+/* The colour range over every snapshot the plan draws, and the view. */
+static int plan_range_and_view(plan *p, double view[4], sph_error *err) {
+  const roptions *o = p->o;
+  double lo = 0.0, hi = 0.0;
+  size_t count = 0;
+  int need_range = !o->have_range;
+  view[0] = view[1] = view[2] = view[3] = NAN;
+  for (size_t i = 0; i < p->n_task; i++) {
+    for (int k = 0; k < p->task[i].n; k++) {
+      const char *path = p->task[i].path[k];
+      if (!need_range) {
+        double t;
+        if (isnan(view[0]) && !o->have_view && rsnap_peek(path, &t, view, err) != 0) return -1;
+        continue;
+      }
+      rsnap s;
+      if (rsnap_load(path, o->field, &s, err) != 0) return -1;
+      if (isnan(view[0])) memcpy(view, s.view, 4 * sizeof *view);
+      double a = 0.0, b = 0.0;
+      if (rsnap_fluid_range(&s, &a, &b) > 0) {
+        if (count == 0 || a < lo) lo = a;
+        if (count == 0 || b > hi) hi = b;
+        count++;
+      }
+      rsnap_free(&s);
+    }
+  }
+  if (o->have_view) memcpy(view, o->view, 4 * sizeof *view);
+  if (isnan(view[0]))
+    return sph_error_set(err, "%s: no view window (attribute 'view'); give --view x0:x1:y0:y1",
+                         p->task[0].path[0]);
+  if (o->have_range) {
+    lo = o->range[0];
+    hi = o->range[1];
+  } else {
+    if (count == 0) lo = hi = 0.0;
+    /* a non-negative range that nearly reaches zero starts at zero (speed) */
+    if (lo > 0.0 && lo < 0.1 * hi) lo = 0.0;
+    if (p->cmap.diverging) {
+      double m = fmax(fabs(lo), fabs(hi));
+      lo = -m;
+      hi = m;
+    }
+    if (!(hi > lo)) {
+      double pad = fabs(lo) > 0.0 ? 0.5 * fabs(lo) : 0.5;
+      lo -= pad;
+      hi += pad;
+    }
+  }
+  p->style.lo = lo;
+  p->style.hi = hi;
+  return 0;
+}
+
+static int load_overlays(plan *p, sph_error *err) {
+  const roptions *o = p->o;
+  for (int i = 0; i < o->n_overlays; i++) {
+    const roverlay_opt *ov = &o->overlay[i];
+    roverlay *dst = &p->overlay[i];
+    rcsv t;
+    if (rcsv_read(ov->path, &t, err) != 0) return -1;
+    int rc = 0;
+    if (t.ncol < 2 && (!ov->xcol || !ov->ycol))
+      rc = sph_error_set(err, "%s: an overlay needs two columns (x, y)", ov->path);
+    dst->n = t.nrow;
+    dst->x = malloc((t.nrow + 1) * sizeof *dst->x);
+    dst->y = malloc((t.nrow + 1) * sizeof *dst->y);
+    if (ov->tcol) dst->t = malloc((t.nrow + 1) * sizeof *dst->t);
+    if (!rc && (!dst->x || !dst->y || (ov->tcol && !dst->t)))
+      rc = sph_error_set(err, "out of memory");
+    if (!rc) rc = rcsv_eval(&t, ov->xcol ? ov->xcol : t.names[0], dst->x, err);
+    if (!rc) rc = rcsv_eval(&t, ov->ycol ? ov->ycol : t.names[1], dst->y, err);
+    if (!rc && ov->tcol) rc = rcsv_eval(&t, ov->tcol, dst->t, err);
+    for (size_t r = 0; !rc && r < t.nrow; r++) {
+      dst->x[r] *= ov->xscale;
+      dst->y[r] *= ov->yscale;
+    }
+    dst->line = ov->line;
+    dst->label = ov->label;
+    rcsv_free(&t);
+    if (rc) return -1;
+  }
+  p->style.overlays = p->overlay;
+  p->style.n_overlays = o->n_overlays;
+  return 0;
+}
+
+static void *worker_init(void *ctx, sph_error *err) {
+  plan *p = ctx;
+  worker *w = calloc(1, sizeof *w);
+  if (!w) {
+    sph_error_set(err, "out of memory");
+    return NULL;
+  }
+  if (rgl_context_create(p->o->backend, &w->gl, err) != 0 ||
+      rcanvas_create(&w->gl->gl, p->layout.width, p->layout.height, &w->canvas, err) != 0) {
+    rgl_context_destroy(w->gl);
+    free(w);
+    return NULL;
+  }
+  w->rgb = malloc((size_t)p->layout.width * (size_t)p->layout.height * 3);
+  if (!w->rgb) {
+    sph_error_set(err, "out of memory for a %dx%d image", p->layout.width, p->layout.height);
+    rcanvas_destroy(w->canvas);
+    rgl_context_destroy(w->gl);
+    free(w);
+    return NULL;
+  }
+  return w;
+}
+
+static void worker_fini(void *wp) {
+  worker *w = wp;
+  if (!w) return;
+  free(w->rgb);
+  rcanvas_destroy(w->canvas);
+  rgl_context_destroy(w->gl);
+  free(w);
+}
+
+static int run_task(void *ctx, void *wp, size_t i, sph_error *err) {
+  plan *p = ctx;
+  worker *w = wp;
+  const rtask *t = &p->task[i];
+  rsnap snaps[RLAYOUT_MAX_PANELS];
+  rpanel panels[RLAYOUT_MAX_PANELS];
+  memset(panels, 0, sizeof panels);
+  int loaded = 0, rc = 0;
+  for (int k = 0; k < t->n; k++) {
+    if (rsnap_load(t->path[k], p->o->field, &snaps[k], err) != 0) {
+      rc = -1;
+      break;
+    }
+    loaded++;
+    rpanel *pa = &panels[k];
+    char when[64];
+    rfigure_time_label(snaps[k].time, when, sizeof when);
+    pa->snap = &snaps[k];
+    pa->note[0] = '\0';
+    if (p->o->mode == RMODE_FRAMES) {
+      snprintf(pa->label, sizeof pa->label, "%s", when);
+      snprintf(pa->note, sizeof pa->note, "%s", snaps[k].case_name);
+    } else if (p->o->mode == RMODE_PANELS) {
+      snprintf(pa->label, sizeof pa->label, "%s %s", t->label[k], when);
+    } else {
+      snprintf(pa->label, sizeof pa->label, "%s", t->label[k]);
+      snprintf(pa->note, sizeof pa->note, "%s", when);
+    }
+  }
+  if (rc == 0) rc = rfigure_draw(w->canvas, &p->layout, &p->style, panels, t->n, err);
+  if (rc == 0) rc = rcanvas_read_rgb(w->canvas, w->rgb, err);
+  if (rc == 0)
+    rc = rpng_write(t->output, w->rgb, p->layout.width, p->layout.height, p->o->compression, err);
+  if (rc == 0 && p->o->verbose) fprintf(stderr, "wrote %s\n", t->output);
+  for (int k = 0; k < loaded; k++)
+    rsnap_free(&snaps[k]);
+  return rc;
+}
+
+static void free_plan(plan *p) {
+  for (size_t i = 0; i < p->n_task; i++)
+    free(p->task[i].output);
+  free(p->task);
+  for (int i = 0; i < 16; i++) {
+    free(p->overlay[i].x);
+    free(p->overlay[i].y);
+    free(p->overlay[i].t);
+  }
+}
+
+static void default_size(const roptions *o, int cols, int *w, int *h) {
+  *w = o->width;
+  *h = o->height;
+  if (*w > 0) return;
+  if (o->mode == RMODE_FRAMES) {
+    *w = 1280;
+    *h = 720;
+  } else {
+    *w = (cols * 640 > 1280 ? cols * 640 : 1280) + 120;
+    *h = 0;
+  }
+}
+
+int rsequence_run(const roptions *o, const char *prog, sph_error *err) {
+  plan p;
+  memset(&p, 0, sizeof p);
+  p.o = o;
+  int rc = -1;
+  int n_lists = o->mode == RMODE_COMPARE ? o->n_inputs : 1;
+  rinputs *lists = calloc((size_t)n_lists, sizeof *lists);
+  if (!lists) return sph_error_set(err, "out of memory");
+  const char *cmap = o->cmap ? o->cmap : rsnap_signed(o->field) ? "coolwarm" : "viridis";
+  if (rcolormap_get(cmap, &p.cmap, err) != 0) goto done;
+  for (int i = 0; i < o->n_inputs; i++)
+    if (rinputs_add(&lists[o->mode == RMODE_COMPARE ? i : 0], o->inputs[i], err) != 0) goto done;
+  int cols = 1, rows = 1;
+  if (o->mode == RMODE_FRAMES) {
+    if (plan_frames(&p, &lists[0], err) != 0) goto done;
+  } else if (o->mode == RMODE_PANELS) {
+    cols = o->cols;
+    rows = o->rows;
+    if (plan_panels(&p, &lists[0], err) != 0) goto done;
+  } else {
+    if (n_lists < 2) {
+      sph_error_set(err, "--compare needs two or more run directories");
+      goto done;
+    }
+    if (n_lists > RLAYOUT_MAX_PANELS) {
+      sph_error_set(err, "--compare takes at most %d runs", RLAYOUT_MAX_PANELS);
+      goto done;
+    }
+    if (plan_compare(&p, lists, n_lists, err) != 0) goto done;
+  }
+
+  p.style.cmap = &p.cmap;
+  p.style.bg = o->bg;
+  p.style.fg = rmark_ink(o->bg);
+  p.style.wall = (rcolor){150, 150, 150, 255};
+  p.style.disc_size = o->disc_size;
+  p.style.disc_scale = o->disc_scale;
+  p.style.walls = o->walls;
+  p.style.overlay_tol = o->overlay_tol;
+  p.style.title = o->title;
+  const char *units = rsnap_units(o->field);
+  if (units[0])
+    snprintf(p.bar_label, sizeof p.bar_label, "%s (%s)", o->field, units);
+  else
+    snprintf(p.bar_label, sizeof p.bar_label, "%s", o->field);
+  p.style.bar_label = p.bar_label;
+
+  double view[4];
+  if (plan_range_and_view(&p, view, err) != 0) goto done;
+  if (o->mode == RMODE_COMPARE) {
+    /* side by side, or stacked when the view is wide */
+    int stack = (view[1] - view[0]) > 1.6 * (view[3] - view[2]);
+    cols = o->cols > 0 ? o->cols : stack ? 1 : n_lists;
+    rows = o->cols > 0 ? o->rows : stack ? n_lists : 1;
+  }
+  if (load_overlays(&p, err) != 0) goto done;
+  rlayout_in li;
+  memset(&li, 0, sizeof li);
+  default_size(o, cols, &li.width, &li.height);
+  li.rows = rows;
+  li.cols = cols;
+  memcpy(li.view, view, sizeof li.view);
+  li.scale = o->font_scale;
+  li.bare = o->bare;
+  li.colorbar = o->colorbar;
+  li.title = o->title != NULL;
+  li.lo = p.style.lo;
+  li.hi = p.style.hi;
+  if (rlayout_figure(&li, &p.layout, err) != 0) goto done;
+
+  if (p.outdir && rinputs_mkdirs(p.outdir, err) != 0) goto done;
+  int jobs = o->jobs > 0 ? o->jobs : rjobs_cpus();
+  const rjobs_ops ops = {worker_init, run_task, worker_fini};
+  size_t failed = rjobs_run(p.n_task, jobs, &ops, &p, prog);
+  if (failed) {
+    sph_error_set(err, "%zu of %zu images failed", failed, p.n_task);
+    rc = 1;
+  } else {
+    rc = 0;
+    if (o->verbose || p.n_task > 1)
+      fprintf(stderr, "%s: wrote %zu image%s (%s, %dx%d, %s %g:%g%s%s)\n", prog, p.n_task,
+              p.n_task == 1 ? "" : "s", p.n_task == 1 ? p.task[0].output : o->output,
+              p.layout.width, p.layout.height, o->field, p.style.lo, p.style.hi,
+              units[0] ? " " : "", units);
+  }
+done:
+  free_plan(&p);
+  for (int i = 0; i < n_lists; i++)
+    rinputs_free(&lists[i]);
+  free(lists);
+  return rc;
+}

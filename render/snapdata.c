@@ -1,0 +1,155 @@
+/*
+ * snapdata.c - loads the parts of a snapshot the renderer draws
+ * (see snapdata.h), through the reader of src/snapshot.h only.
+ *
+ * Every failure leaves *s empty and names the file and the field or
+ * attribute, because the user's fix is in one of those: a missing field
+ * lists the fields the file does have. Values are read as doubles in id
+ * order (the file's order), which is also the drawing order, so a frame
+ * does not depend on how the solver stored particles in memory.
+ */
+#include "config.h"
+
+#include "snapdata.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "snapshot.h"
+
+typedef struct field_info {
+  const char *name, *dataset, *units;
+  int is_signed;
+} field_info;
+
+static const field_info fields[] = {
+    {"speed", "speed", "m/s", 0}, {"vx", "vx", "m/s", 1}, {"vy", "vy", "m/s", 1},
+    {"pressure", "p", "Pa", 0},   {"p", "p", "Pa", 0},    {"density", "rho", "kg/m^3", 0},
+    {"rho", "rho", "kg/m^3", 0},  {"x", "x", "m", 0},     {"y", "y", "m", 0},
+    {"mass", "mass", "kg", 0},    {"h", "h", "m", 0},     {"u", "u", "J/kg", 0},
+};
+
+static const field_info *info(const char *field) {
+  for (size_t i = 0; i < sizeof fields / sizeof fields[0]; i++)
+    if (strcmp(fields[i].name, field) == 0) return &fields[i];
+  return NULL;
+}
+
+const char *rsnap_canonical(const char *field) {
+  const field_info *f = info(field);
+  return f ? f->dataset : field;
+}
+
+const char *rsnap_units(const char *field) {
+  const field_info *f = info(field);
+  return f ? f->units : "";
+}
+
+int rsnap_signed(const char *field) {
+  const field_info *f = info(field);
+  return f ? f->is_signed : 0;
+}
+
+/* "FILE: no field 'NAME' (fields: a, b, c)" */
+static int missing_field(const sph_snapshot *ss, const char *path, const char *name,
+                         const char *why, sph_error *err) {
+  char list[600] = "";
+  size_t used = 0, n = sph_snapshot_field_count(ss);
+  for (size_t i = 0; i < n && used + 4 < sizeof list; i++) {
+    int w = snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "",
+                     sph_snapshot_field_name(ss, i));
+    if (w < 0) break;
+    used += (size_t)w;
+  }
+  return sph_error_set(err, "%s: no field '%s'%s (fields: %s)", path, name, why, list);
+}
+
+static int read_into(const sph_snapshot *ss, const char *path, const char *name, double *out,
+                     const char *why, sph_error *err) {
+  if (!sph_snapshot_has_field(ss, name)) return missing_field(ss, path, name, why, err);
+  return sph_snapshot_read_field(ss, name, out, err);
+}
+
+int rsnap_peek(const char *path, double *time, double view[4], sph_error *err) {
+  sph_snapshot *ss = NULL;
+  if (sph_snapshot_open(path, &ss, err) != 0) return -1;
+  *time = sph_snapshot_time(ss);
+  if (view && sph_snapshot_number(ss, "view", view, 4, NULL) != 0)
+    view[0] = view[1] = view[2] = view[3] = NAN;
+  sph_snapshot_close(ss);
+  return 0;
+}
+
+int rsnap_load(const char *path, const char *field, rsnap *s, sph_error *err) {
+  memset(s, 0, sizeof *s);
+  sph_snapshot *ss = NULL;
+  if (sph_snapshot_open(path, &ss, err) != 0) return -1;
+  int rc = 0;
+  s->path = strdup(path);
+  s->time = sph_snapshot_time(ss);
+  s->n = sph_snapshot_count(ss);
+  if (sph_snapshot_number(ss, "dx", &s->dx, 1, NULL) != 0) s->dx = NAN;
+  if (sph_snapshot_number(ss, "view", s->view, 4, NULL) != 0)
+    s->view[0] = s->view[1] = s->view[2] = s->view[3] = NAN;
+  const char *cn = sph_snapshot_text(ss, "case_name");
+  snprintf(s->case_name, sizeof s->case_name, "%s", cn ? cn : "");
+  size_t n = s->n ? s->n : 1;
+  s->x = malloc(n * sizeof *s->x);
+  s->y = malloc(n * sizeof *s->y);
+  s->wall = malloc(n);
+  double *tmp = malloc(n * sizeof *tmp);
+  if (field) s->val = malloc(n * sizeof *s->val);
+  if (!s->path || !s->x || !s->y || !s->wall || !tmp || (field && !s->val)) {
+    rc = sph_error_set(err, "%s: out of memory for %zu particles", path, s->n);
+    goto done;
+  }
+  if ((rc = read_into(ss, path, "x", s->x, "", err)) != 0) goto done;
+  if ((rc = read_into(ss, path, "y", s->y, "", err)) != 0) goto done;
+  if ((rc = read_into(ss, path, "kind", tmp, "", err)) != 0) goto done;
+  for (size_t i = 0; i < s->n; i++)
+    s->wall[i] = tmp[i] != 0.0;
+  if (field) {
+    if (strcmp(field, "speed") == 0) {
+      const char *why = " (speed is computed from vx and vy)";
+      if ((rc = read_into(ss, path, "vx", s->val, why, err)) != 0) goto done;
+      if ((rc = read_into(ss, path, "vy", tmp, why, err)) != 0) goto done;
+      for (size_t i = 0; i < s->n; i++)
+        s->val[i] = sqrt(s->val[i] * s->val[i] + tmp[i] * tmp[i]);
+    } else {
+      const char *ds = rsnap_canonical(field);
+      char why[64] = "";
+      if (strcmp(ds, field) != 0) snprintf(why, sizeof why, " (read for '%s')", field);
+      if ((rc = read_into(ss, path, ds, s->val, why, err)) != 0) goto done;
+    }
+  }
+done:
+  free(tmp);
+  sph_snapshot_close(ss);
+  if (rc) rsnap_free(s);
+  return rc;
+}
+
+void rsnap_free(rsnap *s) {
+  if (!s) return;
+  free(s->path);
+  free(s->x);
+  free(s->y);
+  free(s->val);
+  free(s->wall);
+  memset(s, 0, sizeof *s);
+}
+
+size_t rsnap_fluid_range(const rsnap *s, double *lo, double *hi) {
+  size_t count = 0;
+  if (!s->val) return 0;
+  for (size_t i = 0; i < s->n; i++) {
+    double v = s->val[i];
+    if (s->wall[i] || !isfinite(v)) continue;
+    if (count == 0 || v < *lo) *lo = v;
+    if (count == 0 || v > *hi) *hi = v;
+    count++;
+  }
+  return count;
+}

@@ -1,0 +1,47 @@
+/*
+ * snapdata.h - what the renderer needs from one snapshot: positions, one
+ * field, which particles are walls, the time, the particle spacing and the
+ * default view. Read only through src/snapshot.h.
+ *
+ * Field names are the snapshot's dataset names (x y vx vy rho p mass h u
+ * kind id free_surface ...) plus "speed" = |v| (derived from vx, vy) and the
+ * aliases "pressure" (p) and "density" (rho).
+ */
+#ifndef SPH_RENDER_SNAPDATA_H
+#define SPH_RENDER_SNAPDATA_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "error.h"
+
+typedef struct rsnap {
+  char *path;
+  double time;
+  size_t n;            /* particles */
+  double *x, *y;       /* positions (m) */
+  double *val;         /* the field, or NULL if none was asked for */
+  uint8_t *wall;       /* 1 for wall particles (kind != 0) */
+  double dx;           /* particle spacing (attribute dx), NaN if absent */
+  double view[4];      /* x0, x1, y0, y1 (attribute view), NaN if absent */
+  char case_name[128]; /* "" if absent */
+} rsnap;
+
+/* The dataset a field name reads ("pressure" -> "p"); "speed" stays. */
+const char *rsnap_canonical(const char *field);
+/* Units of a field for labels ("m/s"), "" if none or unknown. */
+const char *rsnap_units(const char *field);
+/* Non-zero for fields whose values are signed around zero (vx, vy). */
+int rsnap_signed(const char *field);
+
+/* Loads path and, if field is not NULL, that field. Errors name the file
+ * and the field (listing the fields the file has). */
+int rsnap_load(const char *path, const char *field, rsnap *s, sph_error *err);
+/* Reads only the time (and the view, NaN if absent) of a snapshot. */
+int rsnap_peek(const char *path, double *time, double view[4], sph_error *err);
+void rsnap_free(rsnap *s);
+/* Minimum and maximum of the field over fluid particles with finite values;
+ * returns how many values there were (0: lo, hi untouched). */
+size_t rsnap_fluid_range(const rsnap *s, double *lo, double *hi);
+
+#endif

@@ -1,0 +1,30 @@
+/*
+ * ticks.h - axis ticks at "nice" numbers (1, 2 or 5 times a power of ten)
+ * and their labels.
+ */
+#ifndef SPH_RENDER_TICKS_H
+#define SPH_RENDER_TICKS_H
+
+#include <stddef.h>
+
+enum { RTICKS_MAX = 64 };
+
+typedef struct rticks {
+  int n;                /* number of ticks */
+  double v[RTICKS_MAX]; /* ascending, all inside [lo, hi] (up to round-off) */
+  double step;          /* spacing */
+  int decimals;         /* digits after the point in fixed notation */
+  int exponent;         /* 0: fixed notation; else labels are m e<exponent> */
+} rticks;
+
+/* About `target` ticks inside [lo, hi]. lo == hi gives one tick. */
+void rticks_make(double lo, double hi, int target, rticks *t);
+/* The label of value v, formatted for the ticks t (same decimals for all). */
+void rticks_label(const rticks *t, double v, char *buf, size_t size);
+/* Widens [lo, hi] outward to multiples of the step rticks_make would use,
+ * so an automatic plot range starts and ends on a tick. */
+void rticks_expand(double *lo, double *hi, int target);
+/* The nice number nearest x (round) or not below x (!round): 1, 2, 5 x 10^k. */
+double rticks_nice(double x, int round);
+
+#endif
