@@ -14,6 +14,8 @@
 #include "error.h"
 #include "particles.h"
 
+#include <stdint.h>
+
 /* Adds `layers` staggered layers of wall particles along the segment A->B:
  * layer 0 on the segment (spacing len/round(len/dx)), layer k offset by
  * k dx/2 to the left of the direction A->B; odd layers sit half a spacing
@@ -21,13 +23,38 @@
  * rho, mass and smoothing length h. */
 int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, double by,
                              int layers, double dx, double rho, double mass, double h,
-                             sph_error *err);
+                             uint8_t flags, sph_error *err);
 
 /* Adds the walls of a rectangular tank whose inner faces are x0, x1 (sides)
  * and y0 (floor), side walls up to y1. The first wall layer lies dx/2
  * outside each inner face, so it is dx from the first fluid layer of a
  * block filled against that face. */
 int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double rho,
-                          double mass, double h, sph_error *err);
+                          double mass, double h, uint8_t flags, sph_error *err);
+
+/* A straight mirror wall (GOST R 57700.6 3.4.5): the line through (px, py)
+ * with unit normal (nx, ny) pointing into the fluid, used for particles
+ * whose position along the line, (r - P).t with t = (ny, -nx), lies in
+ * [t0, t1]. */
+typedef struct sph_mirror_line {
+  double px, py, nx, ny, t0, t1;
+} sph_mirror_line;
+
+/* The mirror lines of a tank (floor and both side walls, faces as given). */
+size_t sph_mirror_tank_lines(const sph_tank *t, double reach, sph_mirror_line out[3]);
+/* The mirror line of a wall segment (normal on its left, A -> B). */
+sph_mirror_line sph_mirror_segment_line(double ax, double ay, double bx, double by);
+
+/* Appends a mirror particle for every fluid particle closer than `reach` to
+ * a line in front of it: reflected position, the same density, pressure,
+ * mass and smoothing length, the opposite velocity (no slip). A particle
+ * near two perpendicular lines (a tank corner) also gets the image through
+ * both. Mirror particles have kind SPH_KIND_MIRROR and ids from n up, in the
+ * storage order of their sources. Returns the number added, or -1. */
+long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lines, double reach,
+                    sph_error *err);
+/* Removes every mirror particle, keeping the others in order. perm needs
+ * n entries, work n doubles. */
+void sph_mirror_remove(sph_particles *p, size_t *perm, void *work);
 
 #endif

@@ -44,9 +44,11 @@
 /* ---- choices -------------------------------------------------------------- */
 
 static const char *const kernel_names[] = {"cubic_spline", NULL};
-static const char *const integrator_names[] = {"predictor_corrector", NULL};
+static const char *const integrator_names[] = {"predictor_corrector", "leapfrog", NULL};
 static const char *const dt_rule_names[] = {"paper_b", "cfl", "fixed", NULL};
-static const char *const boundary_names[] = {"dynamic", NULL};
+static const char *const boundary_names[] = {"dynamic", "fixed_layers", "repulsive", "mirror",
+                                               NULL};
+static const char *const viscosity_names[] = {"none", "stress_tensor", "morris", NULL};
 static const char *const stop_names[] = {"none", "front_at_wall", NULL};
 
 static const char *choice_name(const char *const *names, int k) {
@@ -62,6 +64,13 @@ const char *sph_integrator_name(sph_integrator_kind k) {
 const char *sph_dt_rule_name(sph_dt_rule r) { return choice_name(dt_rule_names, (int)r); }
 const char *sph_boundary_name(sph_boundary_kind b) { return choice_name(boundary_names, (int)b); }
 const char *sph_stop_name(sph_stop_kind s) { return choice_name(stop_names, (int)s); }
+const char *sph_viscosity_name(sph_viscosity_kind v) {
+  return choice_name(viscosity_names, (int)v);
+}
+
+int sph_case_needs_free_surface(const sph_case *c) {
+  return c->output_free_surface || c->fs_h_factor > 0.0;
+}
 
 /* ---- the tree ------------------------------------------------------------- */
 
@@ -725,22 +734,27 @@ static int get_string(const ctx *x, const node *m, const char *key, int required
 
 /* ---- the schema ----------------------------------------------------------- */
 
-static const char *const top_keys[] = {"name",     "description", "physics", "numerics",
-                                       "time",     "geometry",    "output",  NULL};
-static const char *const physics_keys[] = {"rho0", "gravity", "sound_speed",
-                                           "artificial_viscosity", "xsph", NULL};
+static const char *const top_keys[] = {"name",     "description", "physics",      "numerics",
+                                       "time",     "geometry",    "free_surface", "output",
+                                       NULL};
+static const char *const fs_keys[] = {"radius_factor", "h_factor", NULL};
+static const char *const laminar_keys[] = {"model", "mu", NULL};
+static const char *const physics_keys[] = {"rho0",      "gravity",   "body_force",
+                                           "sound_speed", "artificial_viscosity", "viscosity",
+                                           "repulsion", "xsph",      NULL};
 static const char *const c0_keys[] = {"factor", "height", "speed", NULL};
 static const char *const visc_keys[] = {"alpha", "beta", "eta", NULL};
 static const char *const numerics_keys[] = {"dx",         "h_factor",  "kernel", "integrator",
-                                            "time_step", "density_limit", NULL};
+                                            "time_step", "density_filter", "density_limit", NULL};
 static const char *const dt_keys[] = {"rule", "factor", "dt", NULL};
+static const char *const filter_keys[] = {"kind", "every", NULL};
 static const char *const time_keys[] = {"end", "output_interval", "stop", NULL};
-static const char *const geometry_keys[] = {"tank", "fluid", "walls", "domain", NULL};
+static const char *const geometry_keys[] = {"tank", "fluid", "walls", "periodic_x", "domain", NULL};
 static const char *const tank_keys[] = {"x", "y", "layers", "boundary", NULL};
 static const char *const fluid_keys[] = {"x", "y", "velocity", "hydrostatic", "surface", NULL};
 static const char *const wall_keys[] = {"from", "to", "layers", "boundary", NULL};
 static const char *const domain_keys[] = {"x", "y", NULL};
-static const char *const output_keys[] = {"snapshots", NULL};
+static const char *const output_keys[] = {"snapshots", "free_surface", NULL};
 
 static void set_defaults(sph_case *c) {
   c->rho0 = 1000.0;
@@ -759,6 +773,10 @@ static void set_defaults(sph_case *c) {
   c->density_limit = 0.3;
   c->stop = SPH_STOP_NONE;
   c->snapshots = 1;
+  c->viscosity = SPH_VISCOSITY_NONE;
+  c->fs_radius_factor = 1.0;
+  c->density_filter = SPH_FILTER_NONE;
+  c->filter_every = 30;
 }
 
 static int read_name(const ctx *x, const node *root, sph_case *c) {
@@ -815,9 +833,28 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
   const char *p = "physics";
   const node *v;
   if (get_number(x, m, p, "rho0", 0, &R_POS, &c->rho0) < 0) return -1;
-  if (get_pair(x, m, p, "gravity", 0, 0, c->gravity) < 0) return -1;
+  int has_g = get_pair(x, m, p, "gravity", 0, 0, c->gravity);
+  if (has_g < 0) return -1;
+  const node *bf;
+  char kp[KEYLEN];
+  if (lookup(x, m, p, "body_force", 0, &bf, kp) > 0) {
+    if (has_g)
+      return fail_at(x, bf, kp, "give either physics.gravity or physics.body_force, not both");
+    if (read_pair(x, bf, kp, 0, c->gravity)) return -1;
+  }
   if (read_sound_speed(x, m, c)) return -1;
-  int rc = get_section(x, m, p, "artificial_viscosity", 0, visc_keys, &v);
+  int rc = get_section(x, m, p, "viscosity", 0, laminar_keys, &v);
+  if (rc < 0) return -1;
+  if (rc > 0) {
+    const char *vp = "physics.viscosity";
+    int model = (int)SPH_VISCOSITY_NONE;
+    if (get_choice(x, v, vp, "model", viscosity_names, &model) < 0) return -1;
+    c->viscosity = (sph_viscosity_kind)model;
+    int has_mu = get_number(x, v, vp, "mu", c->viscosity != SPH_VISCOSITY_NONE, &R_POS, &c->mu);
+    if (has_mu < 0) return -1;
+  }
+  if (get_number(x, m, p, "repulsion", 0, &R_POS, &c->repulsion) < 0) return -1;
+  rc = get_section(x, m, p, "artificial_viscosity", 0, visc_keys, &v);
   if (rc < 0) return -1;
   if (rc > 0) {
     const char *vp = "physics.artificial_viscosity";
@@ -868,6 +905,16 @@ static int read_numerics(ctx *x, const node *m, sph_case *c) {
   if (get_choice(x, m, p, "integrator", integrator_names, &in) < 0) return -1;
   c->integrator = (sph_integrator_kind)in;
   if (read_time_step(x, m, c)) return -1;
+  const node *f;
+  int rc = get_section(x, m, p, "density_filter", 0, filter_keys, &f);
+  if (rc < 0) return -1;
+  if (rc > 0) {
+    int kind = (int)c->density_filter;
+    if (get_choice(x, f, "numerics.density_filter", "kind", sph_filter_kind_names, &kind) < 0 ||
+        get_int(x, f, "numerics.density_filter", "every", 1, 1000000, &c->filter_every) < 0)
+      return -1;
+    c->density_filter = (sph_filter_kind)kind;
+  }
   return get_number(x, m, p, "density_limit", 0, &limit, &c->density_limit) < 0 ? -1 : 0;
 }
 
@@ -889,6 +936,24 @@ static int read_time(ctx *x, const node *m, sph_case *c) {
   return 0;
 }
 
+/* Repulsive walls are one layer (paper A §6 a) and mirror walls have no
+ * particles: `layers` is fixed for them and an error if given otherwise. */
+static int check_layers(const ctx *x, const node *m, const char *p, sph_boundary_kind b,
+                        int *layers) {
+  const node *t;
+  char kp[KEYLEN];
+  int given = lookup(x, m, p, "layers", 0, &t, kp);
+  if (b == SPH_BOUNDARY_REPULSIVE) {
+    if (given && *layers != 1)
+      return fail_at(x, t, kp, "repulsive walls have exactly 1 layer, got %d", *layers);
+    *layers = 1;
+  } else if (b == SPH_BOUNDARY_MIRROR) {
+    if (given) return fail_at(x, t, kp, "mirror walls have no particle layers: remove the key");
+    *layers = 0;
+  }
+  return 0;
+}
+
 static int read_tank(const ctx *x, const node *m, sph_case *c) {
   const char *p = "geometry.tank";
   const node *t;
@@ -907,7 +972,7 @@ static int read_tank(const ctx *x, const node *m, sph_case *c) {
   if (get_int(x, t, p, "layers", 1, 8, &c->tank.layers) < 0) return -1;
   if (get_choice(x, t, p, "boundary", boundary_names, &b) < 0) return -1;
   c->tank.boundary = (sph_boundary_kind)b;
-  return 0;
+  return check_layers(x, t, p, c->tank.boundary, &c->tank.layers);
 }
 
 /* The block must be wider and taller than dx, and inside the tank if any. */
@@ -1000,7 +1065,7 @@ static int read_wall(const ctx *x, const node *m, const char *p, sph_wall_segmen
   if (get_int(x, m, p, "layers", 1, 8, &w->layers) < 0) return -1;
   if (get_choice(x, m, p, "boundary", boundary_names, &bnd) < 0) return -1;
   w->boundary = (sph_boundary_kind)bnd;
-  return 0;
+  return check_layers(x, m, p, w->boundary, &w->layers);
 }
 
 static int read_walls(const ctx *x, const node *m, sph_case *c) {
@@ -1023,6 +1088,16 @@ static int read_walls(const ctx *x, const node *m, sph_case *c) {
 static int read_geometry(const ctx *x, const node *m, sph_case *c) {
   const node *d;
   if (read_tank(x, m, c) || read_fluid(x, m, c) || read_walls(x, m, c)) return -1;
+  int pr = get_pair(x, m, "geometry", "periodic_x", 0, 'x', c->periodic_x);
+  if (pr < 0) return -1;
+  c->periodic = pr > 0;
+  if (c->periodic && c->tank.present)
+    return fail_at(x, find(m, "periodic_x")->val, "geometry.periodic_x",
+                   "a periodic domain cannot have a tank (use geometry.walls for the bed)");
+  if (c->periodic && !(c->periodic_x[1] - c->periodic_x[0] >= 6.0 * c->h))
+    return fail_at(x, find(m, "periodic_x")->val, "geometry.periodic_x",
+                   "expected a period of at least 6 h = %g m, got %g", 6.0 * c->h,
+                   c->periodic_x[1] - c->periodic_x[0]);
   int rc = get_section(x, m, "geometry", "domain", 0, domain_keys, &d);
   if (rc <= 0) return rc;
   c->domain_set = 1;
@@ -1042,10 +1117,26 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
   if (get_section(x, root, "", "time", 1, time_keys, &s) < 0 || read_time(x, s, c)) return -1;
   if (get_section(x, root, "", "geometry", 1, geometry_keys, &s) < 0 || read_geometry(x, s, c))
     return -1;
+  if (c->repulsion == 0.0) { /* D = 5 |g| H, paper A eq. (22), H the deepest block */
+    double H = 0.0;
+    for (size_t i = 0; i < c->n_fluid; i++)
+      if (c->fluid[i].surface - c->fluid[i].y0 > H) H = c->fluid[i].surface - c->fluid[i].y0;
+    c->repulsion = 5.0 * sqrt(c->gravity[0] * c->gravity[0] + c->gravity[1] * c->gravity[1]) * H;
+  }
   if (c->stop == SPH_STOP_FRONT_AT_WALL && !c->tank.present)
     return fail_at(x, x->stop_node, "time.stop", "'front_at_wall' needs a geometry.tank");
-  int rc = get_section(x, root, "", "output", 0, output_keys, &s);
+  int rc = get_section(x, root, "", "free_surface", 0, fs_keys, &s);
+  if (rc < 0) return -1;
+  if (rc > 0) {
+    static const range rf = {0.5, 1.0, '[', ']', NULL};
+    static const range hf = {1.0, 4.0, '[', ']', NULL};
+    if (get_number(x, s, "free_surface", "radius_factor", 0, &rf, &c->fs_radius_factor) < 0 ||
+        get_number(x, s, "free_surface", "h_factor", 0, &hf, &c->fs_h_factor) < 0)
+      return -1;
+  }
+  rc = get_section(x, root, "", "output", 0, output_keys, &s);
   if (rc > 0) rc = get_bool(x, s, "output", "snapshots", &c->snapshots);
+  if (rc >= 0 && s) rc = get_bool(x, s, "output", "free_surface", &c->output_free_surface);
   return rc < 0 ? -1 : 0;
 }
 
@@ -1241,6 +1332,7 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
     sb_add(b, "%s.layers: %d\n", k, w->layers);
     sb_add(b, "%s.boundary: %s\n", k, sph_boundary_name(w->boundary));
   }
+  if (c->periodic) sb_pair(b, "geometry.periodic_x", c->periodic_x[0], c->periodic_x[1]);
   if (c->domain_set) {
     sb_pair(b, "geometry.domain.x", c->domain[0], c->domain[1]);
     sb_pair(b, "geometry.domain.y", c->domain[2], c->domain[3]);
@@ -1262,6 +1354,9 @@ char *sph_case_describe(const sph_case *c) {
   sb_add(&b, "physics.artificial_viscosity.beta: %.17g\n", c->beta);
   sb_add(&b, "physics.artificial_viscosity.eta: %.17g\n", c->eta);
   sb_add(&b, "physics.xsph: %.17g\n", c->xsph);
+  sb_add(&b, "physics.viscosity.model: %s\n", sph_viscosity_name(c->viscosity));
+  if (c->viscosity != SPH_VISCOSITY_NONE) sb_add(&b, "physics.viscosity.mu: %.17g\n", c->mu);
+  sb_add(&b, "physics.repulsion: %.17g\n", c->repulsion);
   sb_add(&b, "numerics.dx: %.17g\n", c->dx);
   sb_add(&b, "numerics.h_factor: %.17g\n", c->h_factor);
   sb_add(&b, "numerics.h: %.17g\n", c->h);
@@ -1270,12 +1365,17 @@ char *sph_case_describe(const sph_case *c) {
   sb_add(&b, "numerics.time_step.rule: %s\n", sph_dt_rule_name(c->dt_rule));
   sb_add(&b, "numerics.time_step.factor: %.17g\n", c->dt_factor);
   if (c->dt_rule == SPH_DT_FIXED) sb_add(&b, "numerics.time_step.dt: %.17g\n", c->dt_fixed);
+  sb_add(&b, "numerics.density_filter.kind: %s\n", sph_filter_name(c->density_filter));
+  sb_add(&b, "numerics.density_filter.every: %d\n", c->filter_every);
   sb_add(&b, "numerics.density_limit: %.17g\n", c->density_limit);
   sb_add(&b, "time.end: %.17g\n", c->t_end);
   sb_add(&b, "time.output_interval: %.17g\n", c->output_interval);
   sb_add(&b, "time.stop: %s\n", sph_stop_name(c->stop));
   describe_geometry(&b, c);
+  sb_add(&b, "free_surface.radius_factor: %.17g\n", c->fs_radius_factor);
+  sb_add(&b, "free_surface.h_factor: %.17g\n", c->fs_h_factor);
   sb_add(&b, "output.snapshots: %s\n", c->snapshots ? "true" : "false");
+  sb_add(&b, "output.free_surface: %s\n", c->output_free_surface ? "true" : "false");
   if (b.failed) {
     free(b.s);
     return NULL;

@@ -17,15 +17,29 @@
 #include <stddef.h>
 
 #include "error.h"
+#include "filter.h"
 
 typedef enum { SPH_KERNEL_CUBIC_SPLINE = 0 } sph_kernel_kind;
-typedef enum { SPH_INTEGRATOR_PREDICTOR_CORRECTOR = 0 } sph_integrator_kind;
+typedef enum {
+  SPH_INTEGRATOR_PREDICTOR_CORRECTOR = 0, /* paper B eq. (7)-(8) */
+  SPH_INTEGRATOR_LEAPFROG = 1             /* paper A eq. (17)-(19) */
+} sph_integrator_kind;
 typedef enum {
   SPH_DT_PAPER_B = 0, /* paper B §2.6: min 0.3 h/(c + max |h v.r/r^2|) */
   SPH_DT_CFL = 1,     /* paper A eq. (20): C min h / max(c + |v|) */
   SPH_DT_FIXED = 2    /* a constant step from the case */
 } sph_dt_rule;
-typedef enum { SPH_BOUNDARY_DYNAMIC = 0 } sph_boundary_kind;
+typedef enum {
+  SPH_BOUNDARY_DYNAMIC = 0,      /* dynamic particles, GOST R 57700.6 3.4.7; paper B §2.7 */
+  SPH_BOUNDARY_FIXED_LAYERS = 1, /* Morris' fixed layers (paper A §6 b): the same particles */
+  SPH_BOUNDARY_REPULSIVE = 2,    /* one layer + Lennard-Jones force, paper A eq. (21)-(22) */
+  SPH_BOUNDARY_MIRROR = 3        /* mirror particles, GOST R 57700.6 3.4.5 */
+} sph_boundary_kind;
+typedef enum {
+  SPH_VISCOSITY_NONE = 0,
+  SPH_VISCOSITY_STRESS_TENSOR = 1, /* paper A eq. (11), (13), (14) */
+  SPH_VISCOSITY_MORRIS = 2         /* paper B eq. (4), laminar term */
+} sph_viscosity_kind;
 typedef enum { SPH_STOP_NONE = 0, SPH_STOP_FRONT_AT_WALL = 1 } sph_stop_kind;
 
 /* Names of the choices, for messages and snapshots ("cubic_spline", ...). */
@@ -34,6 +48,7 @@ const char *sph_integrator_name(sph_integrator_kind k);
 const char *sph_dt_rule_name(sph_dt_rule r);
 const char *sph_boundary_name(sph_boundary_kind b);
 const char *sph_stop_name(sph_stop_kind s);
+const char *sph_viscosity_name(sph_viscosity_kind v);
 
 /* A rectangle of fluid filled on the lattice of spacing dx: particle centres
  * at (x0 + (i + 1/2) dx, y0 + (j + 1/2) dx) inside [x0,x1] x [y0,y1]. */
@@ -75,6 +90,10 @@ typedef struct sph_case {
   double alpha, beta;   /* artificial viscosity, paper A eq. (15)-(16); defaults 0, 0 */
   double eta;           /* eta = eta * h_ij, default 0.1 (eta^2 = 0.01 h^2) */
   double xsph;          /* XSPH epsilon, paper B eq. (6); default 0 = off */
+  sph_viscosity_kind viscosity; /* laminar viscosity model, default none */
+  double mu;            /* dynamic viscosity (Pa s), required unless viscosity is none */
+  double repulsion;     /* D of the Lennard-Jones wall force (m^2/s^2), paper A eq. (22);
+                           default 5 |g| H, H the deepest fluid block */
 
   /* numerics */
   double dx;            /* initial particle spacing (required) */
@@ -86,6 +105,8 @@ typedef struct sph_case {
   double dt_factor;     /* CFL coefficient, default 0.3 */
   double dt_fixed;      /* required when dt_rule == SPH_DT_FIXED */
   double density_limit; /* blow-up when |rho/rho0 - 1| exceeds it; default 0.3 */
+  sph_filter_kind density_filter; /* paper B §2.8, default none */
+  int filter_every;     /* steps between filter applications, default 30 */
 
   /* time */
   double t_end;           /* required */
@@ -98,11 +119,18 @@ typedef struct sph_case {
   sph_fluid_block *fluid;   /* at least one block */
   size_t n_walls;
   sph_wall_segment *walls;
+  int periodic;             /* 1 if geometry.periodic_x was given */
+  double periodic_x[2];     /* x0, x1: particles leaving one side re-enter at the other */
   int domain_set;           /* 1 if geometry.domain was given */
   double domain[4];         /* x0, x1, y0, y1: leaving it stops the run */
 
+  /* free surface (paper A §7) */
+  double fs_radius_factor;  /* circle radius = factor * h, default 1 */
+  double fs_h_factor;       /* h* = k h on surface particles; 0 = off (default) */
+
   /* output */
   int snapshots;            /* write HDF5 snapshots, default 1 */
+  int output_free_surface;  /* write the free_surface field, default 0 */
 } sph_case;
 
 /* Reads and validates a case file, applying n_set overrides of the form
@@ -120,5 +148,9 @@ void sph_case_free(sph_case *c);
  * the start-of-run listing and the snapshots' "parameters" attribute.
  * Numbers printed with %.17g so they read back exactly. malloc'ed; free it. */
 char *sph_case_describe(const sph_case *c);
+/* Whether the case needs free-surface detection (the field is asked for
+ * in the output, or h* is set). */
+int sph_case_needs_free_surface(const sph_case *c);
+
 
 #endif

@@ -36,15 +36,19 @@ void sph_diag_compute(const sph_particles *p, double floor_y, double band, const
   row->momentum_y = my;
   row->kinetic = ke;
   row->potential = pe;
+  row->n_surface = -1;
 }
 
-int sph_diag_write_header(FILE *f) {
-  return fprintf(f, "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential\n") <
-         0;
+int sph_diag_write_header(FILE *f, int free_surface) {
+  return fprintf(f, "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential%s\n",
+                 free_surface ? ",n_free_surface" : "") < 0;
 }
 
 int sph_diag_write_row(FILE *f, const sph_diag_row *r) {
-  return fprintf(f, "%.17g,%ld,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", r->time, r->step,
-                 r->dt, r->n_fluid, r->front_x, r->mass, r->momentum_x, r->momentum_y, r->kinetic,
-                 r->potential) < 0;
+  if (fprintf(f, "%.17g,%ld,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", r->time, r->step,
+              r->dt, r->n_fluid, r->front_x, r->mass, r->momentum_x, r->momentum_y, r->kinetic,
+              r->potential) < 0)
+    return 1;
+  if (r->n_surface >= 0 && fprintf(f, ",%ld", r->n_surface) < 0) return 1;
+  return fputc('\n', f) == EOF;
 }

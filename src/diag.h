@@ -8,6 +8,8 @@
  *   momentum   sum of m v over fluid particles
  *   kinetic    sum of m |v|^2 / 2 over fluid particles
  *   potential  sum of -m g.r over fluid particles (zero at the origin)
+ *   n_free_surface  fluid particles flagged on the free surface (a column
+ *              only when the case runs free-surface detection)
  * Numbers are printed with %.17g: a row reads back to the same bits. Sums
  * run serially over the store in its (deterministic) sorted order.
  */
@@ -23,6 +25,7 @@ typedef struct sph_diag_row {
   long step;
   size_t n_fluid;
   double front_x, mass, momentum_x, momentum_y, kinetic, potential;
+  long n_surface; /* fluid particles on the free surface; -1: detection is off */
 } sph_diag_row;
 
 /* Largest x of fluid particles with y < floor_y + band; -inf if none. */
@@ -31,7 +34,7 @@ double sph_diag_front(const sph_particles *p, double floor_y, double band);
 void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[2],
                       sph_diag_row *row);
 /* CSV header line and rows. Return non-zero on a write error. */
-int sph_diag_write_header(FILE *f);
+int sph_diag_write_header(FILE *f, int free_surface);
 int sph_diag_write_row(FILE *f, const sph_diag_row *row);
 
 #endif

@@ -1,44 +1,63 @@
 /*
- * forces.h - the interaction pass: rates of change of every particle from
+ * forces.h - the interaction passes: rates of change of every particle from
  * its neighbours (gather form: each particle sums over its own neighbours
  * into its own accumulators, so no two threads write the same memory and
  * the summation order is fixed by the sorted store).
  *
- * Terms (paper B = breaking-wave paper, paper A = dam-break paper):
+ * Terms (paper A = dam-break paper, paper B = breaking-wave paper):
  *   continuity       drho_i/dt = sum_j m_j (v_i - v_j) . grad_i W_ij      (B eq. 2, A eq. 12)
  *   momentum         dv_i/dt = -sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) grad_i W_ij + g
- *                                                                         (A eq. 11 without tau, B eq. 3)
+ *                                                                         (A eq. 11, B eq. 3)
  *   art. viscosity   Pi_ij = (-alpha c_ij mu_ij + beta mu_ij^2)/rho_ij if v_ij.r_ij < 0, else 0
- *                    mu_ij = h v_ij.r_ij / (r_ij^2 + eta^2), eta = eta_f h   (A eq. 15-16)
+ *                    mu_ij = h_ij v_ij.r_ij / (r_ij^2 + eta^2), eta = eta_f h_ij (A eq. 15-16)
+ *   viscous stress   + sum_j m_j sum_d (tau_i^ad/rho_i^2 + tau_j^ad/rho_j^2) dW_ij/dx_i^d,
+ *                    tau = mu eps, eps from the strain-rate pass          (A eq. 11, 13, 14)
+ *   Morris viscosity + sum_j m_j 4 nu0 r_ij.grad_i W_ij / ((rho_i + rho_j)(r_ij^2 + eta^2)) v_ij
+ *                    nu0 = mu / rho0                                       (B eq. 4, laminar)
  *   XSPH             dr_i/dt = v_i + eps sum_j (m_j/rho_ij) (v_j - v_i) W_ij  (B eq. 6),
  *                    over fluid neighbours only (a wall at rest would drag
  *                    the fluid otherwise)
+ *   Lennard-Jones    + D [(r0/r)^12 - (r0/r)^4] r_ij / r^2 from repulsive wall particles
+ *                    closer than r0                                        (A eq. 21-22)
  *   time-step data   sigma_i = max_j |h v_ij.r_ij / r_ij^2|                 (B §2.6)
- * Wall particles (dynamic particles, GOST R 57700.6 3.4.7) get only drho/dt;
- * they act on fluid through their pressure and the artificial viscosity.
+ * Dynamic wall particles (GOST R 57700.6 3.4.7) get only drho/dt; repulsive
+ * wall particles and mirror particles get no rates. Walls and mirrors act on
+ * fluid through their pressure and the viscous terms.
+ *
+ * Each term a case does not use is compiled out of the loop it runs (the
+ * loop is instantiated for every combination of terms, DESIGN rule 4).
  */
 #ifndef SPH_FORCES_H
 #define SPH_FORCES_H
 
+#include "case.h"
 #include "eos.h"
 #include "grid.h"
 #include "particles.h"
 
 typedef struct sph_force_params {
   sph_eos eos;
-  double h;            /* smoothing length (uniform) */
+  double h;            /* smoothing length when uniform */
+  int var_h;           /* per-particle h (pair mean h_ij); the grid must fit 2 max h */
   double alpha, beta;  /* artificial viscosity; both 0 = off */
-  double eta;          /* eta = eta_f * h */
+  double eta;          /* eta = eta_f * h_ij */
   double xsph;         /* XSPH epsilon; 0 = off */
   double gx, gy;       /* body force per unit mass */
+  sph_viscosity_kind viscosity;
+  double mu;           /* dynamic viscosity (Pa s) */
+  int periodic;        /* minimum image in x */
+  double period;       /* length of the period */
+  int repulsive;       /* repulsive wall particles present */
+  double lj_d, lj_r0;  /* Lennard-Jones strength D and range r0 */
 } sph_force_params;
 
-/* Per-particle quantities computed once per pass (storage order). */
+/* Per-particle quantities of a pass (storage order). */
 typedef struct sph_force_work {
   size_t cap;
-  double *prho2; /* p / rho^2 */
-  double *cs;    /* sound speed */
-  double *sigma; /* max_j |h v_ij.r_ij / r_ij^2| */
+  double *prho2;         /* p / rho^2 */
+  double *cs;            /* sound speed */
+  double *sigma;         /* max_j |h v_ij.r_ij / r_ij^2| */
+  double *sxx, *sxy, *syy; /* tau / rho^2 (stress-tensor viscosity only) */
 } sph_force_work;
 
 void sph_force_work_free(sph_force_work *w);
@@ -47,9 +66,14 @@ void sph_force_work_free(sph_force_work *w);
 void sph_forces_pressure(sph_particles *p, const sph_eos *eos);
 
 /* One interaction pass over the grid g (built on p's current positions):
- * fills p->drho for all particles, p->ax, p->ay (and p->xsx, p->xsy when
- * XSPH is on) for fluid particles, and w->sigma. Needs p->p current. */
+ * fills p->drho, p->ax, p->ay (and p->xsx, p->xsy when XSPH is on) and
+ * w->sigma. Needs p->p current. */
 int sph_forces_evaluate(sph_particles *p, const sph_grid *g, const sph_force_params *fp,
                         sph_force_work *w, sph_error *err);
+
+/* The strain-rate tensor of paper A eq. (13)-(14) at every particle, for
+ * tests and output: eps_xx, eps_xy, eps_yy (each n values). */
+int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_force_params *fp,
+                           double *exx, double *exy, double *eyy, sph_error *err);
 
 #endif

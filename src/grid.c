@@ -56,8 +56,10 @@ static int reserve(sph_grid *g, size_t n, size_t cells, sph_error *err) {
   return 0;
 }
 
-int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells,
-                   sph_error *err) {
+/* The shared build: bounding box in y (and in x unless periodic), keys,
+ * stable counting sort, permutation. */
+static int build(sph_grid *g, sph_particles *p, double cell, int periodic, double px0,
+                 double px1, size_t max_cells, sph_error *err) {
   const size_t n = p->n;
   if (!(cell > 0.0)) return sph_error_set(err, "grid: cell size must be positive");
   double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
@@ -70,7 +72,22 @@ int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells,
   if (n == 0) xmin = xmax = ymin = ymax = 0.0;
   if (!isfinite(xmin) || !isfinite(xmax) || !isfinite(ymin) || !isfinite(ymax))
     return sph_error_set(err, "grid: particle position is not finite");
-  const double fx = floor((xmax - xmin) / cell) + 1.0;
+  double cellx = cell;
+  if (periodic) {
+    /* between the two stages of a step particles may stand up to one step's
+     * travel outside the period; further is an error */
+    if (xmin < px0 - (px1 - px0) || xmax >= px1 + (px1 - px0))
+      return sph_error_set(err, "grid: a particle is more than a period outside [%g, %g)", px0,
+                           px1);
+    const double ncol = floor((px1 - px0) / cell);
+    if (ncol < 3)
+      return sph_error_set(err, "grid: the period %g holds fewer than 3 cells of %g", px1 - px0,
+                           cell);
+    xmin = px0;
+    xmax = px1;
+    cellx = (px1 - px0) / ncol;
+  }
+  const double fx = periodic ? floor((px1 - px0) / cell) : floor((xmax - xmin) / cell) + 1.0;
   const double fy = floor((ymax - ymin) / cell) + 1.0;
   if (fx * fy > (double)max_cells)
     return sph_error_set(err, "grid: particles spread over %.0f x %.0f cells (limit %zu)", fx, fy,
@@ -78,15 +95,18 @@ int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells,
   g->x0 = xmin;
   g->y0 = ymin;
   g->cell = cell;
+  g->cellx = cellx;
+  g->periodic = periodic;
   g->nx = (long)fx;
   g->ny = (long)fy;
   const size_t cells = (size_t)g->nx * (size_t)g->ny;
   if (reserve(g, n, cells, err)) return -1;
 
-  const double inv = 1.0 / cell;
+  const double inv = 1.0 / cell, invx = 1.0 / cellx;
   for (size_t i = 0; i < n; i++) {
-    long cx = (long)((p->x[i] - xmin) * inv);
+    long cx = (long)floor((p->x[i] - xmin) * invx);
     long cy = (long)((p->y[i] - ymin) * inv);
+    if (periodic) cx = ((cx % g->nx) + g->nx) % g->nx;
     if (cx >= g->nx) cx = g->nx - 1;
     if (cy >= g->ny) cy = g->ny - 1;
     g->key[i] = (size_t)cy * (size_t)g->nx + (size_t)cx;
@@ -104,4 +124,14 @@ int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells,
       g->cy[i] = (long)(c / (size_t)g->nx);
     }
   return 0;
+}
+
+int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells,
+                   sph_error *err) {
+  return build(g, p, cell, 0, 0.0, 0.0, max_cells, err);
+}
+
+int sph_grid_build_periodic(sph_grid *g, sph_particles *p, double cell, double px0, double px1,
+                            size_t max_cells, sph_error *err) {
+  return build(g, p, cell, 1, px0, px1, max_cells, err);
 }

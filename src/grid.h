@@ -20,7 +20,9 @@
 
 typedef struct sph_grid {
   double x0, y0; /* lower-left corner of cell (0, 0) */
-  double cell;   /* cell side */
+  double cell;   /* cell side (rows); columns are cellx wide */
+  double cellx;  /* column width: = cell, or period/nx when periodic in x */
+  int periodic;  /* columns wrap around (periodic in x) */
   long nx, ny;   /* cells per row, rows */
   size_t *start; /* nx*ny + 1 offsets into the sorted store */
   long *cx, *cy; /* cell coordinates of each particle (sorted order) */
@@ -37,10 +39,16 @@ void sph_grid_free(sph_grid *g);
  * apart: the caller's domain check should have caught it). */
 int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells,
                    sph_error *err);
+/* The same for a domain periodic in x over [px0, px1): columns are
+ * (px1 - px0)/nx >= cell wide (nx >= 3); a particle outside [px0, px1)
+ * (by less than a period) is binned in the column of its periodic image. */
+int sph_grid_build_periodic(sph_grid *g, sph_particles *p, double cell, double px0, double px1,
+                            size_t max_cells, sph_error *err);
 
 /* The three contiguous index ranges [lo[k], hi[k]) holding the neighbour
  * candidates of the particle stored at index i (rows below, same, above,
- * each spanning three cells). Rows outside the grid give empty ranges. */
+ * each spanning three cells) in a grid that is not periodic. Rows outside
+ * the grid give empty ranges. */
 static inline void sph_grid_ranges(const sph_grid *g, size_t i, size_t lo[3], size_t hi[3]) {
   const long cx = g->cx[i], cy = g->cy[i];
   const long xa = cx > 0 ? cx - 1 : 0;
@@ -53,6 +61,41 @@ static inline void sph_grid_ranges(const sph_grid *g, size_t i, size_t lo[3], si
     }
     lo[k] = g->start[y * g->nx + xa];
     hi[k] = g->start[y * g->nx + xb + 1];
+  }
+}
+
+/* Any grid, periodic or not: up to SPH_GRID_RANGES contiguous index ranges [lo[k], hi[k]) holding the
+ * neighbour candidates of the particle stored at index i: per row (below,
+ * same, above) one range of three cells, or two when the row wraps around
+ * a periodic seam. Unused and out-of-grid ranges are empty. */
+#define SPH_GRID_RANGES 6
+static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SPH_GRID_RANGES],
+                                   size_t hi[SPH_GRID_RANGES]) {
+  const long cx = g->cx[i], cy = g->cy[i], nx = g->nx;
+  for (int k = 0; k < SPH_GRID_RANGES; k++) lo[k] = hi[k] = 0;
+  for (int r = 0; r < 3; r++) {
+    const long y = cy - 1 + r;
+    if (y < 0 || y >= g->ny) continue;
+    const size_t *row = g->start + y * nx;
+    if (!g->periodic || nx <= 3) { /* nx <= 3 periodic: the whole row, once */
+      const long xa = g->periodic ? 0 : (cx > 0 ? cx - 1 : 0);
+      const long xb = g->periodic ? nx - 1 : (cx + 1 < nx ? cx + 1 : nx - 1);
+      lo[2 * r] = row[xa];
+      hi[2 * r] = row[xb + 1];
+    } else if (cx == 0) { /* columns nx-1 | 0, 1 */
+      lo[2 * r] = row[nx - 1];
+      hi[2 * r] = row[nx];
+      lo[2 * r + 1] = row[0];
+      hi[2 * r + 1] = row[2];
+    } else if (cx == nx - 1) { /* columns nx-2, nx-1 | 0 */
+      lo[2 * r] = row[nx - 2];
+      hi[2 * r] = row[nx];
+      lo[2 * r + 1] = row[0];
+      hi[2 * r + 1] = row[1];
+    } else {
+      lo[2 * r] = row[cx - 1];
+      hi[2 * r] = row[cx + 2];
+    }
   }
 }
 

@@ -6,13 +6,15 @@
  */
 #include "config.h"
 
+#include "parallel.h"
+
 #include "integrate.h"
 
 #include <math.h>
 
 void sph_pc_save(sph_particles *p) {
   const long n = (long)p->n;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
   for (long i = 0; i < n; i++) {
     p->x0[i] = p->x[i];
     p->y0[i] = p->y[i];
@@ -29,7 +31,7 @@ static inline __attribute__((always_inline)) void stage(sph_particles *p, double
                                                          const int finish) {
   const long n = (long)p->n;
   const double hdt = 0.5 * dt;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
   for (long i = 0; i < n; i++) {
     double rho = p->rho0[i] + hdt * p->drho[i];
     if (finish) rho = 2.0 * rho - p->rho0[i];
@@ -58,10 +60,35 @@ static inline __attribute__((always_inline)) void stage(sph_particles *p, double
 void sph_pc_half(sph_particles *p, double dt, int xsph) { stage(p, dt, xsph, 0); }
 void sph_pc_finish(sph_particles *p, double dt, int xsph) { stage(p, dt, xsph, 1); }
 
+void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph) {
+  const long n = (long)p->n;
+  const double kick = first ? 0.5 * dt : dt, hdt = 0.5 * dt;
+#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
+  for (long i = 0; i < n; i++) {
+    const double rh = (first ? p->rho[i] : p->rhoh[i]) + kick * p->drho[i];
+    p->rhoh[i] = rh;
+    p->rho[i] = rh + hdt * p->drho[i];
+    if (p->kind[i] != SPH_KIND_FLUID) continue;
+    const double vxh = (first ? p->vx[i] : p->vxh[i]) + kick * p->ax[i];
+    const double vyh = (first ? p->vy[i] : p->vyh[i]) + kick * p->ay[i];
+    double ux = vxh, uy = vyh;
+    if (xsph) {
+      ux += p->xsx[i];
+      uy += p->xsy[i];
+    }
+    p->x[i] += dt * ux;
+    p->y[i] += dt * uy;
+    p->vxh[i] = vxh;
+    p->vyh[i] = vyh;
+    p->vx[i] = vxh + hdt * p->ax[i];
+    p->vy[i] = vyh + hdt * p->ay[i];
+  }
+}
+
 double sph_dt_paper_b(const sph_particles *p, const sph_force_work *w, double h, double factor) {
   const long n = (long)p->n;
   double dt = INFINITY;
-#pragma omp parallel for schedule(static) reduction(min : dt)
+#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(min : dt)
   for (long i = 0; i < n; i++) {
     const double d = factor * h / (w->cs[i] + w->sigma[i]);
     if (d < dt) dt = d;
@@ -72,7 +99,7 @@ double sph_dt_paper_b(const sph_particles *p, const sph_force_work *w, double h,
 double sph_dt_cfl(const sph_particles *p, const sph_eos *eos, double h, double factor) {
   const long n = (long)p->n;
   double vmax = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : vmax)
+#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : vmax)
   for (long i = 0; i < n; i++) {
     const double v = sph_eos_sound_speed(eos, p->rho[i]) +
                      sqrt(p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);

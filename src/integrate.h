@@ -23,6 +23,17 @@ void sph_pc_half(sph_particles *p, double dt, int xsph);
 /* X <- 2 (X0 + dt/2 F) - X0: the corrector half step and the final update. */
 void sph_pc_finish(sph_particles *p, double dt, int xsph);
 
+/* The leap-frog of paper A eq. (17)-(19), one force evaluation per step.
+ * Between steps the store holds x^n, the half-step values (vxh, vyh, rhoh)
+ * = (v, rho)^{n-1/2}, and the values at t^n predicted from them,
+ * (v, rho)^n = (v, rho)^{n-1/2} + dt/2 (dv, drho)/dt^{n-1}, at which the
+ * rates are evaluated. After the rates at t^n are known:
+ *   (v, rho)^{n+1/2} = (v, rho)^{n-1/2} + dt (dv, drho)/dt^n   (first step:
+ *                      (v, rho)^0 + dt/2 (dv, drho)/dt^0)
+ *   x^{n+1} = x^n + dt (v^{n+1/2} + XSPH correction)
+ *   (v, rho)^{n+1} predicted = (v, rho)^{n+1/2} + dt/2 (dv, drho)/dt^n. */
+void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph);
+
 /* Paper B §2.6: dt = min_a factor h / (c_a + sigma_a). */
 double sph_dt_paper_b(const sph_particles *p, const sph_force_work *w, double h, double factor);
 /* Paper A eq. (20): dt = factor min h / max_a (c_a + |v_a|). */

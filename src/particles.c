@@ -18,7 +18,7 @@
  * permutation written once. */
 #define SPH_PARTICLE_DOUBLES(X)                                                              \
   X(x) X(y) X(vx) X(vy) X(rho) X(p) X(mass) X(h) X(u) X(x0) X(y0) X(vx0) X(vy0) X(rho0)    \
-  X(u0) X(ax) X(ay) X(drho) X(du) X(xsx) X(xsy)
+  X(u0) X(ax) X(ay) X(drho) X(du) X(xsx) X(xsy) X(vxh) X(vyh) X(rhoh)
 
 static int grow(sph_particles *p, size_t cap, sph_error *err) {
   void *np;
@@ -83,6 +83,7 @@ size_t sph_particles_count_kind(const sph_particles *p, int32_t kind) {
 
 void sph_particles_permute(sph_particles *p, const size_t *perm, void *work) {
   size_t n = p->n;
+  if (n == 0) return;
 #define PERMUTE(field)                                                                       \
   {                                                                                          \
     __typeof__(p->field) tmp = work;                                                         \

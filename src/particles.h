@@ -17,8 +17,16 @@
 
 #include "error.h"
 
-/* Particle kinds, stored as the integer dataset `kind` in snapshots. */
-enum { SPH_KIND_FLUID = 0, SPH_KIND_WALL = 1 };
+/* Particle kinds, stored as the integer dataset `kind` in snapshots.
+ * Mirror particles (GOST R 57700.6 3.4.5) exist only during a force
+ * evaluation and are never written. */
+enum { SPH_KIND_FLUID = 0, SPH_KIND_WALL = 1, SPH_KIND_MIRROR = 2 };
+
+/* Bits of `flags`. */
+enum {
+  SPH_FLAG_FREE_SURFACE = 1, /* on the free surface (paper A §7) */
+  SPH_FLAG_REPULSIVE = 2     /* a wall particle of a repulsive wall (paper A eq. 21-22) */
+};
 
 typedef struct sph_particles {
   size_t n;   /* particles in use */
@@ -37,6 +45,7 @@ typedef struct sph_particles {
   /* state at the start of the step (predictor-corrector), and rates */
   double *x0, *y0, *vx0, *vy0, *rho0, *u0;
   double *ax, *ay, *drho, *du;   /* dv/dt, drho/dt, du/dt */
+  double *vxh, *vyh, *rhoh;      /* leap-frog: velocity and density at the half step */
   double *xsx, *xsy;             /* XSPH velocity correction */
 } sph_particles;
 

@@ -60,7 +60,8 @@ static int write_output(sph_sim *s, outputs *o, sph_run_result *r, sph_error *er
   snprintf(r->last_snapshot, sizeof r->last_snapshot, "%s", path);
   snprintf(path, sizeof path, "%s/snapshots.xmf", o->dir);
   return sph_xdmf_write(path, o->n, (const char *const *)o->names, o->times,
-                        sph_sim_particles(s)->n, 0, err);
+                        sph_sim_particles(s)->n, sph_case_needs_free_surface(sph_sim_case(s)),
+                        err);
 }
 
 static int stop_condition(sph_sim *s) {
@@ -87,7 +88,7 @@ int sph_run(sph_sim *s, const sph_run_options *o, sph_run_result *r, sph_error *
       r->status = SPH_RUN_ERROR;
       return -1;
     }
-    if (sph_diag_write_header(out.diag)) {
+    if (sph_diag_write_header(out.diag, sph_case_needs_free_surface(c))) {
       sph_error_set(err, "%s: write failed", path);
       r->status = SPH_RUN_ERROR;
       outputs_free(&out);

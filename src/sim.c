@@ -20,10 +20,13 @@
 #include "sim.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "boundary.h"
+#include "filter.h"
+#include "freesurface.h"
 #include "eos.h"
 #include "forces.h"
 #include "grid.h"
@@ -33,6 +36,12 @@
 
 struct sph_sim {
   const sph_case *c;
+  sph_mirror_line mirror[64]; /* mirror walls */
+  size_t n_mirror;
+  double mirror_reach;
+  int first_step;             /* leap-frog: the special first half step */
+  int detect;                 /* free-surface detection runs at every pass */
+  size_t n_surface;           /* particles flagged at the last pass */
   sph_particles p;
   sph_grid grid;
   sph_force_work work;
@@ -72,13 +81,49 @@ static int add_fluid(sph_sim *s, sph_error *err) {
   return 0;
 }
 
+static int pass(sph_sim *s, sph_error *err);
+
+static uint8_t wall_flags(sph_boundary_kind b) {
+  return b == SPH_BOUNDARY_REPULSIVE ? SPH_FLAG_REPULSIVE : 0;
+}
+
+/* Wall particles of the tank and segments; mirror walls become lines. */
+static int add_walls(sph_sim *s, sph_error *err) {
+  const sph_case *c = s->c;
+  const double wall_mass = c->rho0 * c->dx * c->dx;
+  s->mirror_reach = SPH_CUBIC_SUPPORT * c->h * (c->fs_h_factor > 1.0 ? c->fs_h_factor : 1.0);
+  if (c->tank.present) {
+    if (c->tank.boundary == SPH_BOUNDARY_MIRROR) {
+      s->n_mirror += sph_mirror_tank_lines(&c->tank, s->mirror_reach, s->mirror);
+    } else if (sph_boundary_add_tank(&s->p, &c->tank, c->dx, c->rho0, wall_mass, c->h,
+                                     wall_flags(c->tank.boundary), err)) {
+      return -1;
+    }
+    if (c->tank.boundary == SPH_BOUNDARY_REPULSIVE) s->fp.repulsive = 1;
+  }
+  for (size_t w = 0; w < c->n_walls; w++) {
+    const sph_wall_segment *ws = &c->walls[w];
+    if (ws->boundary == SPH_BOUNDARY_MIRROR) {
+      if (s->n_mirror == sizeof s->mirror / sizeof s->mirror[0])
+        return sph_error_set(err, "case %s: more than %zu mirror walls", c->name, s->n_mirror);
+      s->mirror[s->n_mirror++] = sph_mirror_segment_line(ws->x0, ws->y0, ws->x1, ws->y1);
+      continue;
+    }
+    if (ws->boundary == SPH_BOUNDARY_REPULSIVE) s->fp.repulsive = 1;
+    if (sph_boundary_add_segment(&s->p, ws->x0, ws->y0, ws->x1, ws->y1, ws->layers, c->dx, c->rho0,
+                                 wall_mass, c->h, wall_flags(ws->boundary), err))
+      return -1;
+  }
+  return 0;
+}
+
 /* Hydrostatic density of the wall particles beside or under a block. */
 static void init_wall_density(sph_sim *s) {
   const sph_case *c = s->c;
   const double gmag = -c->gravity[1] > 0.0 ? -c->gravity[1] : 0.0;
   const double reach = SPH_CUBIC_SUPPORT * c->h;
   for (size_t i = 0; i < s->p.n; i++) {
-    if (s->p.kind[i] != SPH_KIND_WALL) continue;
+    if (s->p.kind[i] != SPH_KIND_WALL || (s->p.flags[i] & SPH_FLAG_REPULSIVE)) continue;
     double depth = 0.0;
     for (size_t b = 0; b < c->n_fluid; b++) {
       const sph_fluid_block *fb = &c->fluid[b];
@@ -105,6 +150,12 @@ static void set_boxes(sph_sim *s) {
   const sph_case *c = s->c;
   double bb[4];
   bounding_box(&s->p, bb);
+  if (c->periodic) {
+    s->view[0] = c->periodic_x[0];
+    s->view[1] = c->periodic_x[1];
+    s->view[2] = bb[2];
+    s->view[3] = bb[3];
+  }
   if (c->tank.present) {
     const double wall = 0.5 * c->dx * (double)(c->tank.layers + 1);
     s->view[0] = c->tank.x0 - wall;
@@ -120,6 +171,12 @@ static void set_boxes(sph_sim *s) {
   }
   if (c->domain_set) {
     memcpy(s->domain, c->domain, sizeof s->domain);
+  } else if (c->periodic) { /* x wraps: only a runaway beyond a period is an error */
+    const double L = c->periodic_x[1] - c->periodic_x[0], hgt = bb[3] - bb[2];
+    s->domain[0] = c->periodic_x[0] - L;
+    s->domain[1] = c->periodic_x[1] + L;
+    s->domain[2] = bb[2] - hgt - 4.0 * c->h;
+    s->domain[3] = bb[3] + 2.0 * hgt + 4.0 * c->h;
   } else {
     /* the particles' box, widened by half its size sideways and below, and
      * by twice its height above (splashes rise, nothing should fall far) */
@@ -146,18 +203,18 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.xsph = c->xsph;
   s->fp.gx = c->gravity[0];
   s->fp.gy = c->gravity[1];
+  s->fp.viscosity = c->viscosity;
+  s->fp.mu = c->mu;
+  s->fp.periodic = c->periodic;
+  s->fp.period = c->periodic ? c->periodic_x[1] - c->periodic_x[0] : 0.0;
+  s->fp.var_h = c->fs_h_factor > 0.0;
+  s->fp.lj_d = c->repulsion;
+  s->fp.lj_r0 = c->dx;
+  s->first_step = 1;
+  s->detect = sph_case_needs_free_surface(c);
   if (sph_particles_init(&s->p, 1024, err)) goto fail;
   if (add_fluid(s, err)) goto fail;
-  const double wall_mass = c->rho0 * c->dx * c->dx;
-  if (c->tank.present &&
-      sph_boundary_add_tank(&s->p, &c->tank, c->dx, c->rho0, wall_mass, c->h, err))
-    goto fail;
-  for (size_t w = 0; w < c->n_walls; w++) {
-    const sph_wall_segment *ws = &c->walls[w];
-    if (sph_boundary_add_segment(&s->p, ws->x0, ws->y0, ws->x1, ws->y1, ws->layers, c->dx, c->rho0,
-                                 wall_mass, c->h, err))
-      goto fail;
-  }
+  if (add_walls(s, err)) goto fail;
   if (s->p.n == 0) {
     sph_error_set(err, "case %s: no particles", c->name);
     goto fail;
@@ -170,6 +227,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
     sph_error_set(err, "out of memory");
     goto fail;
   }
+  if (pass(s, err)) goto fail; /* rates and flags of the initial state */
   *out = s;
   return 0;
 fail:
@@ -186,14 +244,72 @@ void sph_sim_free(sph_sim *s) {
   free(s);
 }
 
-/* Grid build and one interaction pass on the current state. */
+/* The largest smoothing length: k h with h* = k h on the free surface. */
+static double h_max(const sph_sim *s) {
+  return s->fp.var_h ? s->c->fs_h_factor * s->c->h : s->c->h;
+}
+
+/* Paper A §7: flag the free surface (circles of radius factor * h0), then
+ * with h* = k h give surface particles the smoothing length k h0. */
+static int free_surface(sph_sim *s, sph_error *err) {
+  const sph_case *c = s->c;
+  sph_freesurface_params fp = {c->fs_radius_factor,
+                               c->periodic ? c->periodic_x[1] - c->periodic_x[0] : 0.0};
+  if (s->fp.var_h) sph_freesurface_apply_h(&s->p, c->h, 1.0);
+  if (sph_freesurface_detect(&s->p, &s->grid, &fp, &s->n_surface, err)) return -1;
+  if (s->fp.var_h) sph_freesurface_apply_h(&s->p, c->h, c->fs_h_factor);
+  return 0;
+}
+
+/* Mirror particles, grid build, free-surface flags and one interaction
+ * pass on the current state; the mirror particles are gone again when it
+ * returns. */
 static int pass(sph_sim *s, sph_error *err) {
+  const sph_case *c = s->c;
+  if (s->n_mirror && sph_mirror_add(&s->p, s->mirror, s->n_mirror, s->mirror_reach, err) < 0)
+    return -1;
   /* at most ~64 cells per particle: far more than any sane domain needs */
   const size_t max_cells = 64 * s->p.n + 1024 * 1024;
-  if (sph_grid_build(&s->grid, &s->p, SPH_CUBIC_SUPPORT * s->c->h * SPH_CELL_MARGIN, max_cells,
-                     err))
+  const double cell = SPH_CUBIC_SUPPORT * h_max(s) * SPH_CELL_MARGIN;
+  int rc = c->periodic ? sph_grid_build_periodic(&s->grid, &s->p, cell, c->periodic_x[0],
+                                                 c->periodic_x[1], max_cells, err)
+                       : sph_grid_build(&s->grid, &s->p, cell, max_cells, err);
+  if (rc == 0 && s->detect) rc = free_surface(s, err);
+  if (rc == 0) rc = sph_forces_evaluate(&s->p, &s->grid, &s->fp, &s->work, err);
+  if (s->n_mirror) sph_mirror_remove(&s->p, s->grid.perm, s->grid.work);
+  return rc;
+}
+
+/* Density re-initialisation (paper B §2.8) on a grid of the new positions;
+ * with the leap-frog the half-step density is reset to the filtered one. */
+static int apply_filter(sph_sim *s, sph_error *err) {
+  const sph_case *c = s->c;
+  const size_t max_cells = 64 * s->p.n + 1024 * 1024;
+  const double cell = SPH_CUBIC_SUPPORT * h_max(s) * SPH_CELL_MARGIN;
+  int rc = c->periodic ? sph_grid_build_periodic(&s->grid, &s->p, cell, c->periodic_x[0],
+                                                 c->periodic_x[1], max_cells, err)
+                       : sph_grid_build(&s->grid, &s->p, cell, max_cells, err);
+  if (rc) return -1;
+  sph_filter_params fp;
+  sph_filter_params_default(&fp, s->fp.var_h ? 0.0 : c->h);
+  if (sph_filter_apply(c->density_filter, &s->p, &s->grid, &fp, s->work.sigma, NULL, err))
     return -1;
-  return sph_forces_evaluate(&s->p, &s->grid, &s->fp, &s->work, err);
+  if (c->integrator == SPH_INTEGRATOR_LEAPFROG)
+    for (size_t i = 0; i < s->p.n; i++) s->p.rhoh[i] = s->p.rho[i];
+  sph_forces_pressure(&s->p, &s->fp.eos);
+  return 0;
+}
+
+/* Periodic in x: particles that crossed a side re-enter at the other. */
+static void wrap_periodic(sph_sim *s) {
+  if (!s->c->periodic) return;
+  const double x0 = s->c->periodic_x[0], x1 = s->c->periodic_x[1], L = x1 - x0;
+  for (size_t i = 0; i < s->p.n; i++) {
+    if (s->p.x[i] >= x1)
+      s->p.x[i] -= L;
+    else if (s->p.x[i] < x0)
+      s->p.x[i] += L;
+  }
 }
 
 /* The blow-up check; the first offender in id order is named. */
@@ -232,8 +348,7 @@ static int check_state(sph_sim *s, sph_error *err) {
 int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   const sph_case *c = s->c;
   const int xsph = c->xsph != 0.0;
-  if (pass(s, err)) return -1;
-  double dt;
+  double dt; /* from the rates of the current state, computed by the last pass */
   switch (c->dt_rule) {
   case SPH_DT_FIXED:
     dt = c->dt_fixed;
@@ -257,15 +372,29 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   }
   sph_pc_save(&s->p);
   s->t_saved = s->t;
-  sph_pc_half(&s->p, dt, xsph);
-  sph_forces_pressure(&s->p, &s->fp.eos);
-  if (pass(s, err)) return -1;
-  sph_pc_finish(&s->p, dt, xsph);
-  sph_forces_pressure(&s->p, &s->fp.eos);
+  if (c->integrator == SPH_INTEGRATOR_LEAPFROG) {
+    sph_leapfrog_step(&s->p, dt, s->first_step, xsph);
+    s->first_step = 0;
+    sph_forces_pressure(&s->p, &s->fp.eos);
+  } else {
+    sph_pc_half(&s->p, dt, xsph);
+    sph_forces_pressure(&s->p, &s->fp.eos);
+    if (pass(s, err)) return -1;
+    sph_pc_finish(&s->p, dt, xsph);
+    sph_forces_pressure(&s->p, &s->fp.eos);
+  }
+  wrap_periodic(s);
   s->t = land ? t_target : s->t + dt;
   s->last_dt = dt;
   s->steps++;
-  return check_state(s, err);
+  if (c->density_filter != SPH_FILTER_NONE && s->steps % c->filter_every == 0 &&
+      apply_filter(s, err))
+    return -1;
+  const int st = check_state(s, err);
+  if (st) return st;
+  /* rates (and flags) of the new state: the next step starts from them,
+   * and a snapshot of this state carries flags that belong to it */
+  return pass(s, err);
 }
 
 double sph_sim_time(const sph_sim *s) { return s->t; }
@@ -279,6 +408,7 @@ void sph_sim_view(const sph_sim *s, double box[4]) { memcpy(box, s->view, 4 * si
 
 void sph_sim_diag(const sph_sim *s, sph_diag_row *row) {
   sph_diag_compute(&s->p, s->floor_y, 2.0 * s->c->dx, s->c->gravity, row);
+  row->n_surface = s->detect ? (long)s->n_surface : -1;
   row->time = s->t;
   row->step = s->steps;
   row->dt = s->last_dt;
@@ -297,6 +427,7 @@ static void fill_meta(const sph_sim *s, sph_snapshot_meta *m, double t, long ste
   m->h = s->c->h;
   m->rho0 = s->c->rho0;
   memcpy(m->view, s->view, sizeof m->view);
+  m->free_surface = s->detect;
 }
 
 int sph_sim_write_snapshot(const sph_sim *s, const char *path, sph_error *err) {

@@ -18,5 +18,9 @@
 #include "sim.h"
 #include "run.h"
 #include "version.h"
+#include "filter.h"
+#include "wavemaker.h"
+#include "parallel.h"
+#include "freesurface.h"
 
 #endif

@@ -85,8 +85,9 @@ static const char FULL[] = "# a complete case\n"                           /* 1 
                            "  snapshots: false\n";                         /* 49 */
 
 static const char *const TOP_KEYS =
-    "name, description, physics, numerics, time, geometry, output";
-static const char *const PHYSICS_KEYS = "rho0, gravity, sound_speed, artificial_viscosity, xsph";
+    "name, description, physics, numerics, time, geometry, free_surface, output";
+static const char *const PHYSICS_KEYS =
+    "rho0, gravity, body_force, sound_speed, artificial_viscosity, viscosity, repulsion, xsph";
 
 /* MINIMAL with line `line` (1-based) replaced by `repl` (which may hold
  * several lines, or be "" to delete it). Returns one of two static buffers. */
@@ -635,6 +636,8 @@ static const char MINIMAL_DESCRIPTION[] =
     "physics.artificial_viscosity.beta: 0\n"
     "physics.artificial_viscosity.eta: 0.10000000000000001\n"
     "physics.xsph: 0\n"
+    "physics.viscosity.model: none\n"
+    "physics.repulsion: 24.525000000000002\n"
     "numerics.dx: 0.01\n"
     "numerics.h_factor: 1.3\n"
     "numerics.h: 0.013000000000000001\n"
@@ -642,6 +645,8 @@ static const char MINIMAL_DESCRIPTION[] =
     "numerics.integrator: predictor_corrector\n"
     "numerics.time_step.rule: paper_b\n"
     "numerics.time_step.factor: 0.29999999999999999\n"
+    "numerics.density_filter.kind: none\n"
+    "numerics.density_filter.every: 30\n"
     "numerics.density_limit: 0.29999999999999999\n"
     "time.end: 1\n"
     "time.output_interval: 0.10000000000000001\n"
@@ -654,7 +659,10 @@ static const char MINIMAL_DESCRIPTION[] =
     "geometry.fluid[0].surface: 0.5\n"
     "geometry.walls: []\n"
     "geometry.domain: none\n"
-    "output.snapshots: true\n";
+    "free_surface.radius_factor: 1\n"
+    "free_surface.h_factor: 0\n"
+    "output.snapshots: true\n"
+    "output.free_surface: false\n";
 
 static void test_describe(void) {
   sph_case a, b;
