@@ -69,8 +69,10 @@ size_t sph_mirror_tank_lines(const sph_tank *t, double reach, sph_mirror_line ou
 
 sph_mirror_line sph_mirror_segment_line(double ax, double ay, double bx, double by) {
   const double lx = bx - ax, ly = by - ay, len = sqrt(lx * lx + ly * ly);
-  /* left normal (-ly, lx)/len; tangent (lx, ly)/len: s = 0 at A, len at B */
-  return (sph_mirror_line){ax, ay, -ly / len, lx / len, 0.0, len};
+  /* the fluid is on the right of A -> B, as for particle walls (whose layers
+   * go to the left): normal (ly, -lx)/len; tangent (-lx, -ly)/len, so
+   * s = 0 at A and -len at B */
+  return (sph_mirror_line){ax, ay, ly / len, -lx / len, -len, 0.0};
 }
 
 static long add_image(sph_particles *p, size_t i, double x, double y, sph_error *err) {
@@ -86,8 +88,8 @@ long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lin
   long added = 0;
   for (size_t i = 0; i < n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
-    int near[8], nn = 0;
-    for (size_t l = 0; l < n_lines && l < 8; l++) {
+    int near[SPH_MIRROR_MAX_LINES], nn = 0;
+    for (size_t l = 0; l < n_lines && l < SPH_MIRROR_MAX_LINES; l++) {
       const sph_mirror_line *L = &lines[l];
       const double rx = p->x[i] - L->px, ry = p->y[i] - L->py;
       const double d = rx * L->nx + ry * L->ny;

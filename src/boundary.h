@@ -36,13 +36,16 @@ int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double
  * with unit normal (nx, ny) pointing into the fluid, used for particles
  * whose position along the line, (r - P).t with t = (ny, -nx), lies in
  * [t0, t1]. */
+#define SPH_MIRROR_MAX_LINES 64
+
 typedef struct sph_mirror_line {
   double px, py, nx, ny, t0, t1;
 } sph_mirror_line;
 
 /* The mirror lines of a tank (floor and both side walls, faces as given). */
 size_t sph_mirror_tank_lines(const sph_tank *t, double reach, sph_mirror_line out[3]);
-/* The mirror line of a wall segment (normal on its left, A -> B). */
+/* The mirror line of a wall segment: the fluid is on the right of A -> B,
+ * as for a segment of wall particles. */
 sph_mirror_line sph_mirror_segment_line(double ax, double ay, double bx, double by);
 
 /* Appends a mirror particle for every fluid particle closer than `reach` to

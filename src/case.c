@@ -68,6 +68,19 @@ const char *sph_viscosity_name(sph_viscosity_kind v) {
   return choice_name(viscosity_names, (int)v);
 }
 
+void sph_motion_at(const sph_motion *m, double t, double *dx, double *dy, double *vx,
+                   double *vy) {
+  *dx = *dy = *vx = *vy = 0.0;
+  if (m->kind != SPH_MOTION_TRANSLATE || t <= m->start) return;
+  const double te = t < m->stop ? t : m->stop;
+  *dx = m->vx * (te - m->start);
+  *dy = m->vy * (te - m->start);
+  if (t < m->stop) {
+    *vx = m->vx;
+    *vy = m->vy;
+  }
+}
+
 int sph_case_needs_free_surface(const sph_case *c) {
   return c->output_free_surface || c->fs_h_factor > 0.0;
 }
@@ -748,13 +761,15 @@ static const char *const numerics_keys[] = {"dx",         "h_factor",  "kernel",
                                             "time_step", "density_filter", "density_limit", NULL};
 static const char *const dt_keys[] = {"rule", "factor", "dt", NULL};
 static const char *const filter_keys[] = {"kind", "every", NULL};
-static const char *const time_keys[] = {"end", "output_interval", "stop", NULL};
+static const char *const time_keys[] = {"end", "output_interval", "output_times", "stop", NULL};
 static const char *const geometry_keys[] = {"tank", "fluid", "walls", "periodic_x", "domain", NULL};
 static const char *const tank_keys[] = {"x", "y", "layers", "boundary", NULL};
 static const char *const fluid_keys[] = {"x", "y", "velocity", "hydrostatic", "surface", NULL};
-static const char *const wall_keys[] = {"from", "to", "layers", "boundary", NULL};
+static const char *const wall_keys[] = {"from", "to", "layers", "boundary", "motion", NULL};
+static const char *const motion_keys[] = {"type", "velocity", "start", "stop", NULL};
+static const char *const motion_names[] = {"none", "translate", NULL};
 static const char *const domain_keys[] = {"x", "y", NULL};
-static const char *const output_keys[] = {"snapshots", "free_surface", NULL};
+static const char *const output_keys[] = {"snapshots", "free_surface", "energy", NULL};
 
 static void set_defaults(sph_case *c) {
   c->rho0 = 1000.0;
@@ -852,6 +867,9 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
     c->viscosity = (sph_viscosity_kind)model;
     int has_mu = get_number(x, v, vp, "mu", c->viscosity != SPH_VISCOSITY_NONE, &R_POS, &c->mu);
     if (has_mu < 0) return -1;
+    if (has_mu && c->viscosity == SPH_VISCOSITY_NONE)
+      return fail_at(x, find(v, "mu")->val, "physics.viscosity.mu",
+                     "only used with a viscosity model (model is 'none')");
   }
   if (get_number(x, m, p, "repulsion", 0, &R_POS, &c->repulsion) < 0) return -1;
   rc = get_section(x, m, p, "artificial_viscosity", 0, visc_keys, &v);
@@ -926,7 +944,28 @@ static int read_time(ctx *x, const node *m, sph_case *c) {
   if (get_number(x, m, p, "end", 1, &R_POS, &c->t_end) < 0) return -1;
   bprintf(what, sizeof what, "a positive number <= time.end (%g)", c->t_end);
   range interval = {0, c->t_end, '(', ']', what};
-  if (get_number(x, m, p, "output_interval", 1, &interval, &c->output_interval) < 0) return -1;
+  const node *ot;
+  int has_times = lookup(x, m, p, "output_times", 0, &ot, kp);
+  if (get_number(x, m, p, "output_interval", !has_times, &interval, &c->output_interval) < 0)
+    return -1;
+  if (has_times) {
+    char b[96];
+    if (ot->kind != NODE_LIST || ot->n == 0)
+      return fail_at(x, ot, kp, "expected a non-empty list of increasing times, got %s",
+                     got(ot, b, sizeof b));
+    if (!(c->output_times = calloc(ot->n, sizeof *c->output_times))) return oom(x);
+    c->n_output_times = ot->n;
+    for (size_t i = 0; i < ot->n; i++) {
+      char ik[KEYLEN];
+      bprintf(ik, sizeof ik, "time.output_times[%zu]", i);
+      const double lo = i ? c->output_times[i - 1] : 0.0;
+      char w2[96];
+      bprintf(w2, sizeof w2, "a time > %g (increasing; times after time.end are not reached)",
+              lo);
+      range r = {lo, 0, '(', 0, w2};
+      if (read_number(x, ot->items[i], ik, &r, &c->output_times[i])) return -1;
+    }
+  }
   int rc = lookup(x, m, p, "stop", 0, &t, kp);
   if (rc > 0) {
     if (read_choice(x, t, kp, stop_names, &stop)) return -1;
@@ -1042,6 +1081,34 @@ static int read_fluid(const ctx *x, const node *m, sph_case *c) {
   return 0;
 }
 
+/* walls[i].motion: {type: translate, velocity: [vx, vy], start: 0, stop: t} */
+static int read_motion(const ctx *x, const node *m, const char *p, sph_wall_segment *w) {
+  const node *t;
+  char kp[KEYLEN];
+  join(kp, sizeof kp, p, "motion");
+  w->motion = (sph_motion){SPH_MOTION_NONE, 0.0, 0.0, 0.0, INFINITY};
+  int rc = get_section(x, m, p, "motion", 0, motion_keys, &t);
+  if (rc <= 0) return rc;
+  int kind = 0;
+  const node *tt;
+  char tk[KEYLEN];
+  if (lookup(x, t, kp, "type", 1, &tt, tk) < 0 || read_choice(x, tt, tk, motion_names, &kind))
+    return -1;
+  w->motion.kind = (sph_motion_kind)kind;
+  if (w->motion.kind == SPH_MOTION_NONE) return 0;
+  if (w->boundary == SPH_BOUNDARY_MIRROR)
+    return fail_at(x, t, kp, "a mirror wall cannot move (use dynamic or fixed_layers)");
+  double v[2];
+  if (get_pair(x, t, kp, "velocity", 1, 0, v) < 0) return -1;
+  w->motion.vx = v[0];
+  w->motion.vy = v[1];
+  if (get_number(x, t, kp, "start", 0, &R_NONNEG, &w->motion.start) < 0) return -1;
+  char what[96];
+  bprintf(what, sizeof what, "a number > start (%g)", w->motion.start);
+  range after = {w->motion.start, 0, '(', 0, what};
+  return get_number(x, t, kp, "stop", 0, &after, &w->motion.stop) < 0 ? -1 : 0;
+}
+
 static int read_wall(const ctx *x, const node *m, const char *p, sph_wall_segment *w) {
   char b[96];
   double from[2], to[2];
@@ -1065,7 +1132,8 @@ static int read_wall(const ctx *x, const node *m, const char *p, sph_wall_segmen
   if (get_int(x, m, p, "layers", 1, 8, &w->layers) < 0) return -1;
   if (get_choice(x, m, p, "boundary", boundary_names, &bnd) < 0) return -1;
   w->boundary = (sph_boundary_kind)bnd;
-  return check_layers(x, m, p, w->boundary, &w->layers);
+  if (check_layers(x, m, p, w->boundary, &w->layers)) return -1;
+  return read_motion(x, m, p, w);
 }
 
 static int read_walls(const ctx *x, const node *m, sph_case *c) {
@@ -1134,9 +1202,16 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
         get_number(x, s, "free_surface", "h_factor", 0, &hf, &c->fs_h_factor) < 0)
       return -1;
   }
+  if (c->periodic && c->fs_h_factor > 1.0 &&
+      !(c->periodic_x[1] - c->periodic_x[0] >= 6.0 * c->fs_h_factor * c->h))
+    return fail(x, FROM_FILE, 0, "geometry.periodic_x",
+                "expected a period of at least 6 k h = %g m with free_surface.h_factor k = %g, "
+                "got %g",
+                6.0 * c->fs_h_factor * c->h, c->fs_h_factor, c->periodic_x[1] - c->periodic_x[0]);
   rc = get_section(x, root, "", "output", 0, output_keys, &s);
   if (rc > 0) rc = get_bool(x, s, "output", "snapshots", &c->snapshots);
   if (rc >= 0 && s) rc = get_bool(x, s, "output", "free_surface", &c->output_free_surface);
+  if (rc >= 0 && s) rc = get_bool(x, s, "output", "energy", &c->energy);
   return rc < 0 ? -1 : 0;
 }
 
@@ -1242,6 +1317,7 @@ void sph_case_free(sph_case *c) {
   free(c->overrides);
   free(c->fluid);
   free(c->walls);
+  free(c->output_times);
   memset(c, 0, sizeof *c);
 }
 
@@ -1331,6 +1407,12 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
     sb_add(b, "%s.to: [%.17g, %.17g]\n", k, w->x1, w->y1);
     sb_add(b, "%s.layers: %d\n", k, w->layers);
     sb_add(b, "%s.boundary: %s\n", k, sph_boundary_name(w->boundary));
+    if (w->motion.kind == SPH_MOTION_TRANSLATE) {
+      sb_add(b, "%s.motion.type: translate\n", k);
+      sb_add(b, "%s.motion.velocity: [%.17g, %.17g]\n", k, w->motion.vx, w->motion.vy);
+      sb_add(b, "%s.motion.start: %.17g\n", k, w->motion.start);
+      sb_add(b, "%s.motion.stop: %.17g\n", k, w->motion.stop);
+    }
   }
   if (c->periodic) sb_pair(b, "geometry.periodic_x", c->periodic_x[0], c->periodic_x[1]);
   if (c->domain_set) {
@@ -1370,12 +1452,15 @@ char *sph_case_describe(const sph_case *c) {
   sb_add(&b, "numerics.density_limit: %.17g\n", c->density_limit);
   sb_add(&b, "time.end: %.17g\n", c->t_end);
   sb_add(&b, "time.output_interval: %.17g\n", c->output_interval);
+  for (size_t i = 0; i < c->n_output_times; i++)
+    sb_add(&b, "time.output_times[%zu]: %.17g\n", i, c->output_times[i]);
   sb_add(&b, "time.stop: %s\n", sph_stop_name(c->stop));
   describe_geometry(&b, c);
   sb_add(&b, "free_surface.radius_factor: %.17g\n", c->fs_radius_factor);
   sb_add(&b, "free_surface.h_factor: %.17g\n", c->fs_h_factor);
   sb_add(&b, "output.snapshots: %s\n", c->snapshots ? "true" : "false");
   sb_add(&b, "output.free_surface: %s\n", c->output_free_surface ? "true" : "false");
+  sb_add(&b, "output.energy: %s\n", c->energy ? "true" : "false");
   if (b.failed) {
     free(b.s);
     return NULL;

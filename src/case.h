@@ -68,12 +68,25 @@ typedef struct sph_tank {
   sph_boundary_kind boundary; /* default dynamic */
 } sph_tank;
 
+/* Prescribed motion of a wall (a gate): translation at a constant velocity
+ * from `start` to `stop`, at rest before and after. */
+typedef enum { SPH_MOTION_NONE = 0, SPH_MOTION_TRANSLATE = 1 } sph_motion_kind;
+typedef struct sph_motion {
+  sph_motion_kind kind;
+  double vx, vy;     /* velocity while moving (m/s) */
+  double start, stop; /* time interval of the motion (s); stop may be INFINITY */
+} sph_motion;
+
+/* Displacement and velocity of a wall with this motion at time t. */
+void sph_motion_at(const sph_motion *m, double t, double *dx, double *dy, double *vx, double *vy);
+
 /* An extra straight wall from (x0,y0) to (x1,y1): particles spaced dx along
  * it, `layers` staggered layers on its left side (seen from start to end). */
 typedef struct sph_wall_segment {
   double x0, y0, x1, y1;
   int layers;
   sph_boundary_kind boundary;
+  sph_motion motion; /* default none (fixed) */
 } sph_wall_segment;
 
 typedef struct sph_case {
@@ -110,7 +123,9 @@ typedef struct sph_case {
 
   /* time */
   double t_end;           /* required */
-  double output_interval; /* required */
+  double output_interval; /* required unless output_times is given */
+  size_t n_output_times;  /* time.output_times: extra output times, increasing */
+  double *output_times;
   sph_stop_kind stop;     /* default none */
 
   /* geometry */
@@ -131,6 +146,7 @@ typedef struct sph_case {
   /* output */
   int snapshots;            /* write HDF5 snapshots, default 1 */
   int output_free_surface;  /* write the free_surface field, default 0 */
+  int energy;               /* energy ledger (output.energy), default 0 */
 } sph_case;
 
 /* Reads and validates a case file, applying n_set overrides of the form

@@ -11,5 +11,6 @@
 
 int sph_cli_run(int argc, char **argv);
 int sph_cli_info(int argc, char **argv);
+int sph_cli_audit(int argc, char **argv);
 
 #endif

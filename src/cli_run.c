@@ -175,13 +175,29 @@ int sph_cli_run(int argc, char **argv) {
     printf("%s: case %s (%s)\n", sph_version(), c.name, case_path);
     printf("  particles %zu (fluid %zu, wall %zu), dx = %g m, h = %g m, c0 = %g m/s\n", p->n, nf,
            p->n - nf, c.dx, c.h, c.sound_speed);
-    printf("  kernel %s, integrator %s, time step %s (factor %g), boundary %s\n",
-           sph_kernel_name(c.kernel), sph_integrator_name(c.integrator),
-           sph_dt_rule_name(c.dt_rule), c.dt_factor,
-           sph_boundary_name(c.tank.present ? c.tank.boundary : SPH_BOUNDARY_DYNAMIC));
-    printf("  artificial viscosity alpha %g beta %g, XSPH %g, end %g s, output every %g s, "
-           "stop %s\n",
-           c.alpha, c.beta, c.xsph, c.t_end, c.output_interval, sph_stop_name(c.stop));
+    printf("  kernel %s, integrator %s, time step %s", sph_kernel_name(c.kernel),
+           sph_integrator_name(c.integrator), sph_dt_rule_name(c.dt_rule));
+    if (c.dt_rule == SPH_DT_FIXED)
+      printf(" (dt %g s)\n", c.dt_fixed);
+    else
+      printf(" (factor %g)\n", c.dt_factor);
+    printf("  walls:");
+    if (c.tank.present) printf(" tank %s", sph_boundary_name(c.tank.boundary));
+    for (size_t w = 0; w < c.n_walls; w++)
+      printf("%s wall %zu %s%s", c.tank.present || w ? "," : "", w,
+             sph_boundary_name(c.walls[w].boundary),
+             c.walls[w].motion.kind != SPH_MOTION_NONE ? " (moving)" : "");
+    if (!c.tank.present && c.n_walls == 0) printf(" none");
+    if (c.periodic) printf("; periodic in x over [%g, %g]", c.periodic_x[0], c.periodic_x[1]);
+    printf("\n  artificial viscosity alpha %g beta %g, laminar viscosity %s", c.alpha, c.beta,
+           sph_viscosity_name(c.viscosity));
+    if (c.viscosity != SPH_VISCOSITY_NONE) printf(" (mu %g Pa s)", c.mu);
+    printf(", XSPH %g, density filter %s", c.xsph, sph_filter_name(c.density_filter));
+    if (c.density_filter != SPH_FILTER_NONE) printf(" every %d steps", c.filter_every);
+    printf("\n  free surface %s, energy ledger %s; end %g s, output every %g s%s, stop %s\n",
+           sph_case_needs_free_surface(&c) ? "detected" : "off", c.energy ? "on" : "off",
+           c.t_end, c.output_interval, c.n_output_times ? " and at listed times" : "",
+           sph_stop_name(c.stop));
     printf("  threads %d, output %s\n", nthreads, outdir);
     fflush(stdout);
   }

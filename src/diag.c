@@ -27,7 +27,7 @@ void sph_diag_compute(const sph_particles *p, double floor_y, double band, const
     mx += m * p->vx[i];
     my += m * p->vy[i];
     ke += 0.5 * m * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);
-    pe -= m * (g[0] * p->x[i] + g[1] * p->y[i]);
+    pe -= m * (g[0] * p->x[i] + g[1] * (p->y[i] - floor_y));
   }
   row->n_fluid = n;
   row->front_x = sph_diag_front(p, floor_y, band);
@@ -37,11 +37,15 @@ void sph_diag_compute(const sph_particles *p, double floor_y, double band, const
   row->kinetic = ke;
   row->potential = pe;
   row->n_surface = -1;
+  row->ledger = 0;
 }
 
-int sph_diag_write_header(FILE *f, int free_surface) {
-  return fprintf(f, "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential%s\n",
-                 free_surface ? ",n_free_surface" : "") < 0;
+int sph_diag_write_header(FILE *f, int free_surface, int ledger) {
+  return fprintf(f, "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential%s%s\n",
+                 free_surface ? ",n_free_surface" : "",
+                 ledger ? ",internal,boundary_work,xsph_drift,total_energy,energy_deviation,"
+                          "fluid_energy_deviation"
+                        : "") < 0;
 }
 
 int sph_diag_write_row(FILE *f, const sph_diag_row *r) {
@@ -50,5 +54,8 @@ int sph_diag_write_row(FILE *f, const sph_diag_row *r) {
               r->potential) < 0)
     return 1;
   if (r->n_surface >= 0 && fprintf(f, ",%ld", r->n_surface) < 0) return 1;
+  if (r->ledger && fprintf(f, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", r->internal, r->boundary_work,
+                           r->xsph_drift, r->total, r->deviation, r->fluid_deviation) < 0)
+    return 1;
   return fputc('\n', f) == EOF;
 }

@@ -2,7 +2,7 @@
  * forces.c - the interaction passes (see forces.h for the equations).
  *
  * Loops are written once as always-inline functions taking a bit set F of
- * the terms in use; every call site passes a constant F, so each of the 64
+ * the terms in use; every call site passes a constant F, so each of the 128
  * combinations compiles to a loop without the terms it does not use
  * (DESIGN rule 4: a case pays only for what it switches on). Particles are
  * processed in parallel, each writing only its own rates; each sum runs
@@ -31,7 +31,8 @@ enum {
   F_STRESS = 4,    /* viscous stress tensor, paper A */
   F_MORRIS = 8,    /* Morris laminar viscosity, paper B */
   F_PERIODIC = 16, /* minimum image in x */
-  F_VARH = 32      /* per-particle smoothing length */
+  F_VARH = 32,     /* per-particle smoothing length */
+  F_LEDGER = 64    /* energy ledger: du/dt and the power of moving walls */
 };
 
 void sph_force_work_free(sph_force_work *w) {
@@ -41,13 +42,14 @@ void sph_force_work_free(sph_force_work *w) {
   free(w->sxx);
   free(w->sxy);
   free(w->syy);
+  free(w->wpow);
   *w = (sph_force_work){0};
 }
 
 static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
   if (n <= w->cap) return 0;
   const size_t cap = n + n / 4 + 16;
-  double **arrays[] = {&w->prho2, &w->cs, &w->sigma, &w->sxx, &w->sxy, &w->syy};
+  double **arrays[] = {&w->prho2, &w->cs, &w->sigma, &w->sxx, &w->sxy, &w->syy, &w->wpow};
   for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++) {
     double *a = realloc(*arrays[k], cap * sizeof *a);
     if (!a) return sph_error_set(err, "forces: out of memory for %zu particles", n);
@@ -170,12 +172,14 @@ interact_one(sph_particles *restrict p, const sph_grid *restrict g,
   if (kind[i] == SPH_KIND_MIRROR || (p->flags[i] & SPH_FLAG_REPULSIVE)) {
     p->drho[i] = p->ax[i] = p->ay[i] = 0.0;
     w->sigma[i] = 0.0;
+    if (F & F_LEDGER) p->du[i] = w->wpow[i] = 0.0;
     return;
   }
   const double xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
   const double rhoi = rho[i], pri = prho2[i], ci = cs[i];
   const int fluid = kind[i] == SPH_KIND_FLUID;
   double drho = 0.0, ax = 0.0, ay = 0.0, xs = 0.0, ys = 0.0, sig = 0.0;
+  double du = 0.0, wpow = 0.0; /* energy ledger */
   RANGES(F, g, i, lo, hi, nr)
   for (int k = 0; k < nr; k++) {
     for (size_t j = lo[k]; j < hi[k]; j++) {
@@ -193,7 +197,8 @@ interact_one(sph_particles *restrict p, const sph_grid *restrict g,
       const double vdotr = dvx * dx + dvy * dy;
       const double s = fabs(hij * vdotr / r2);
       if (s > sig) sig = s;
-      if (!fluid) continue;
+      /* a wall particle needs the pair terms only for its share of the heat */
+      if (!fluid && !((F & F_LEDGER) && kind[j] == SPH_KIND_FLUID)) continue;
       double pij = pri + prho2[j];
       if ((F & F_AV) && vdotr < 0.0) {
         const double eta = fp->eta * hij;
@@ -202,18 +207,30 @@ interact_one(sph_particles *restrict p, const sph_grid *restrict g,
         const double rhobar = 0.5 * (rhoi + rho[j]);
         pij += (-fp->alpha * cbar * mu + fp->beta * mu * mu) / rhobar;
       }
-      ax -= m[j] * pij * gx;
-      ay -= m[j] * pij * gy;
+      /* the pair's acceleration of i (momentum, paper A eq. 11) */
+      double pax = -m[j] * pij * gx, pay = -m[j] * pij * gy;
+      if (F & F_LEDGER) du += 0.5 * m[j] * pij * (dvx * gx + dvy * gy); /* A eq. 28 */
       if (F & F_STRESS) {
-        ax += m[j] * ((sxx[i] + sxx[j]) * gx + (sxy[i] + sxy[j]) * gy);
-        ay += m[j] * ((sxy[i] + sxy[j]) * gx + (syy[i] + syy[j]) * gy);
+        const double txx = sxx[i] + sxx[j], txy = sxy[i] + sxy[j], tyy = syy[i] + syy[j];
+        pax += m[j] * (txx * gx + txy * gy);
+        pay += m[j] * (txy * gx + tyy * gy);
+        /* viscous dissipation, the discrete form of A eq. 29 that balances
+         * the pair's work exactly */
+        if (F & F_LEDGER)
+          du -= 0.5 * m[j] * (txx * dvx * gx + txy * (dvx * gy + dvy * gx) + tyy * dvy * gy);
       }
       if (F & F_MORRIS) {
         const double eta = fp->eta * hij;
         const double c = m[j] * nu4 * (f * r2) / ((rhoi + rho[j]) * (r2 + eta * eta));
-        ax += c * dvx;
-        ay += c * dvy;
+        pax += c * dvx;
+        pay += c * dvy;
+        if (F & F_LEDGER) du -= 0.5 * c * (dvx * dvx + dvy * dvy);
       }
+      if (!fluid) continue;
+      ax += pax;
+      ay += pay;
+      /* power of a (moving) wall particle's force on i, per unit mass of i */
+      if ((F & F_LEDGER) && kind[j] == SPH_KIND_WALL) wpow += pax * vx[j] + pay * vy[j];
       if ((F & F_XSPH) && kind[j] == SPH_KIND_FLUID) {
         const double c = m[j] / (0.5 * (rhoi + rho[j])) * wij;
         xs -= c * dvx;
@@ -223,6 +240,10 @@ interact_one(sph_particles *restrict p, const sph_grid *restrict g,
   }
   p->drho[i] = drho;
   w->sigma[i] = sig;
+  if (F & F_LEDGER) {
+    p->du[i] = du;
+    w->wpow[i] = wpow;
+  }
   if (fluid) {
     p->ax[i] = ax + fp->gx;
     p->ay[i] = ay + fp->gy;
@@ -254,17 +275,29 @@ VARIANTS8(32, 33, 34, 35, 36, 37, 38, 39)
 VARIANTS8(40, 41, 42, 43, 44, 45, 46, 47)
 VARIANTS8(48, 49, 50, 51, 52, 53, 54, 55)
 VARIANTS8(56, 57, 58, 59, 60, 61, 62, 63)
+VARIANTS8(64, 65, 66, 67, 68, 69, 70, 71)
+VARIANTS8(72, 73, 74, 75, 76, 77, 78, 79)
+VARIANTS8(80, 81, 82, 83, 84, 85, 86, 87)
+VARIANTS8(88, 89, 90, 91, 92, 93, 94, 95)
+VARIANTS8(96, 97, 98, 99, 100, 101, 102, 103)
+VARIANTS8(104, 105, 106, 107, 108, 109, 110, 111)
+VARIANTS8(112, 113, 114, 115, 116, 117, 118, 119)
+VARIANTS8(120, 121, 122, 123, 124, 125, 126, 127)
 
 typedef void (*interact_fn)(sph_particles *, const sph_grid *, const sph_force_params *,
                             sph_force_work *);
 #define FN8(a, b, c, d, e, f, g, h)                                                          \
   interact_all_##a, interact_all_##b, interact_all_##c, interact_all_##d, interact_all_##e,   \
       interact_all_##f, interact_all_##g, interact_all_##h
-static const interact_fn VARIANT_TABLE[64] = {
+static const interact_fn VARIANT_TABLE[128] = {
     FN8(0, 1, 2, 3, 4, 5, 6, 7),         FN8(8, 9, 10, 11, 12, 13, 14, 15),
     FN8(16, 17, 18, 19, 20, 21, 22, 23), FN8(24, 25, 26, 27, 28, 29, 30, 31),
     FN8(32, 33, 34, 35, 36, 37, 38, 39), FN8(40, 41, 42, 43, 44, 45, 46, 47),
-    FN8(48, 49, 50, 51, 52, 53, 54, 55), FN8(56, 57, 58, 59, 60, 61, 62, 63)};
+    FN8(48, 49, 50, 51, 52, 53, 54, 55), FN8(56, 57, 58, 59, 60, 61, 62, 63),
+    FN8(64, 65, 66, 67, 68, 69, 70, 71), FN8(72, 73, 74, 75, 76, 77, 78, 79),
+    FN8(80, 81, 82, 83, 84, 85, 86, 87), FN8(88, 89, 90, 91, 92, 93, 94, 95),
+    FN8(96, 97, 98, 99, 100, 101, 102, 103), FN8(104, 105, 106, 107, 108, 109, 110, 111),
+    FN8(112, 113, 114, 115, 116, 117, 118, 119), FN8(120, 121, 122, 123, 124, 125, 126, 127)};
 
 /* ---- repulsive walls (paper A eq. 21-22) ------------------------------------------- */
 
@@ -319,6 +352,7 @@ int sph_forces_evaluate(sph_particles *p, const sph_grid *g, const sph_force_par
   if (fp->viscosity == SPH_VISCOSITY_MORRIS) F |= F_MORRIS;
   if (fp->periodic) F |= F_PERIODIC;
   if (fp->var_h) F |= F_VARH;
+  if (fp->ledger) F |= F_LEDGER;
   if (F & F_STRESS) {
     if (sph_forces_strain_rate(p, g, fp, w->sxx, w->sxy, w->syy, err)) return -1;
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)

@@ -20,6 +20,12 @@
  *   Lennard-Jones    + D [(r0/r)^12 - (r0/r)^4] r_ij / r^2 from repulsive wall particles
  *                    closer than r0                                        (A eq. 21-22)
  *   time-step data   sigma_i = max_j |h v_ij.r_ij / r_ij^2|                 (B §2.6)
+ *   energy ledger    du_i/dt = 1/2 sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) v_ij.grad_i W_ij
+ *                    (A eq. 28-29, with the artificial-viscosity share) plus the
+ *                    viscous dissipation in the pairwise form that balances
+ *                    the viscous force's work exactly, for fluid and dynamic
+ *                    wall particles (each takes half of a pair's heat); and
+ *                    the power sum_j a_ij . v_j of wall particles j on fluid i
  * Dynamic wall particles (GOST R 57700.6 3.4.7) get only drho/dt; repulsive
  * wall particles and mirror particles get no rates. Walls and mirrors act on
  * fluid through their pressure and the viscous terms.
@@ -49,6 +55,7 @@ typedef struct sph_force_params {
   double period;       /* length of the period */
   int repulsive;       /* repulsive wall particles present */
   double lj_d, lj_r0;  /* Lennard-Jones strength D and range r0 */
+  int ledger;          /* energy ledger: du/dt and the power of wall particles on fluid */
 } sph_force_params;
 
 /* Per-particle quantities of a pass (storage order). */
@@ -58,6 +65,7 @@ typedef struct sph_force_work {
   double *cs;            /* sound speed */
   double *sigma;         /* max_j |h v_ij.r_ij / r_ij^2| */
   double *sxx, *sxy, *syy; /* tau / rho^2 (stress-tensor viscosity only) */
+  double *wpow;          /* ledger: sum over wall neighbours j of a_ij . v_j (fluid i) */
 } sph_force_work;
 
 void sph_force_work_free(sph_force_work *w);

@@ -34,8 +34,13 @@ static inline __attribute__((always_inline)) void stage(sph_particles *p, double
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
   for (long i = 0; i < n; i++) {
     double rho = p->rho0[i] + hdt * p->drho[i];
-    if (finish) rho = 2.0 * rho - p->rho0[i];
+    double u = p->u0[i] + hdt * p->du[i];
+    if (finish) {
+      rho = 2.0 * rho - p->rho0[i];
+      u = 2.0 * u - p->u0[i];
+    }
     p->rho[i] = rho;
+    p->u[i] = u;
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     double ux = p->vx[i], uy = p->vy[i]; /* dr/dt uses the velocity of the evaluated state */
     if (xsph) {
@@ -68,6 +73,9 @@ void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph) {
     const double rh = (first ? p->rho[i] : p->rhoh[i]) + kick * p->drho[i];
     p->rhoh[i] = rh;
     p->rho[i] = rh + hdt * p->drho[i];
+    const double uh = (first ? p->u[i] : p->uh[i]) + kick * p->du[i];
+    p->uh[i] = uh;
+    p->u[i] = uh + hdt * p->du[i];
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     const double vxh = (first ? p->vx[i] : p->vxh[i]) + kick * p->ax[i];
     const double vyh = (first ? p->vy[i] : p->vyh[i]) + kick * p->ay[i];

@@ -5,8 +5,9 @@
  *   X^{n+1/2} = X^n + dt/2 F(X^n)          (predictor)
  *   X^{n+1/2} = X^n + dt/2 F(X^{n+1/2})    (corrector)
  *   X^{n+1}   = 2 X^{n+1/2} - X^n
- * with X = (r, v, rho) for fluid particles (dr/dt = v + XSPH correction)
- * and X = rho for fixed wall particles; the pressure follows from the EOS
+ * with X = (r, v, rho, u) for fluid particles (dr/dt = v + XSPH correction)
+ * and X = (rho, u) for wall particles (u: thermal energy per unit mass,
+ * integrated like the density, paper A §9); the pressure follows from the EOS
  * after each stage.
  */
 #ifndef SPH_INTEGRATE_H

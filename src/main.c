@@ -21,6 +21,10 @@ static void usage(FILE *f) {
           "                 and diagnostics.csv into DIR (default out/<case name>)\n"
           "  info SNAPSHOT...\n"
           "                 print a snapshot's header and the range of every field\n"
+          "  audit CASE --particles N1,N2,... [--times t1,t2,...] [-o DIR]\n"
+          "                 energy deviation against particle count and time (paper A\n"
+          "                 Table 4), running the case once per count\n"
+
           "\n"
           "options:\n"
           "  -h, --help     show this help (also: sph COMMAND --help)\n"
@@ -47,6 +51,7 @@ int main(int argc, char **argv) {
   }
   if (!strcmp(cmd, "run")) return sph_cli_run(argc - 1, argv + 1);
   if (!strcmp(cmd, "info")) return sph_cli_info(argc - 1, argv + 1);
-  fprintf(stderr, "sph: unknown command '%s' (valid: run, info; see sph --help)\n", cmd);
+  if (!strcmp(cmd, "audit")) return sph_cli_audit(argc - 1, argv + 1);
+  fprintf(stderr, "sph: unknown command '%s' (valid: run, info, audit; see sph --help)\n", cmd);
   return 2;
 }

@@ -18,7 +18,7 @@
  * permutation written once. */
 #define SPH_PARTICLE_DOUBLES(X)                                                              \
   X(x) X(y) X(vx) X(vy) X(rho) X(p) X(mass) X(h) X(u) X(x0) X(y0) X(vx0) X(vy0) X(rho0)    \
-  X(u0) X(ax) X(ay) X(drho) X(du) X(xsx) X(xsy) X(vxh) X(vyh) X(rhoh)
+  X(u0) X(ax) X(ay) X(drho) X(du) X(xsx) X(xsy) X(vxh) X(vyh) X(rhoh) X(uh) X(xr) X(yr)
 
 static int grow(sph_particles *p, size_t cap, sph_error *err) {
   void *np;
@@ -29,6 +29,7 @@ static int grow(sph_particles *p, size_t cap, sph_error *err) {
   memset(p->field + p->cap, 0, (cap - p->cap) * sizeof *p->field);
   SPH_PARTICLE_DOUBLES(GROW)
   GROW(kind)
+  GROW(body)
   GROW(id)
   GROW(flags)
 #undef GROW
@@ -60,6 +61,9 @@ long sph_particles_add(sph_particles *p, double x, double y, double vx, double v
   p->h[i] = h;
   p->u[i] = 0.0;
   p->kind[i] = kind;
+  p->body[i] = -1;
+  p->xr[i] = x;
+  p->yr[i] = y;
   p->id[i] = (int64_t)i;
   p->flags[i] = 0;
   return (long)i;
@@ -69,6 +73,7 @@ void sph_particles_free(sph_particles *p) {
 #define FREE(field) free(p->field);
   SPH_PARTICLE_DOUBLES(FREE)
   FREE(kind)
+  FREE(body)
   FREE(id)
   FREE(flags)
 #undef FREE
@@ -92,6 +97,7 @@ void sph_particles_permute(sph_particles *p, const size_t *perm, void *work) {
   }
   SPH_PARTICLE_DOUBLES(PERMUTE)
   PERMUTE(kind)
+  PERMUTE(body)
   PERMUTE(id)
   PERMUTE(flags)
 #undef PERMUTE

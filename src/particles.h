@@ -45,7 +45,9 @@ typedef struct sph_particles {
   /* state at the start of the step (predictor-corrector), and rates */
   double *x0, *y0, *vx0, *vy0, *rho0, *u0;
   double *ax, *ay, *drho, *du;   /* dv/dt, drho/dt, du/dt */
-  double *vxh, *vyh, *rhoh;      /* leap-frog: velocity and density at the half step */
+  double *vxh, *vyh, *rhoh, *uh; /* leap-frog: velocity, density, energy at the half step */
+  double *xr, *yr;               /* rest position of a wall particle (moving walls) */
+  int32_t *body;                 /* index of the moving wall a particle belongs to, or -1 */
   double *xsx, *xsy;             /* XSPH velocity correction */
 } sph_particles;
 

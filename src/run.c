@@ -88,7 +88,7 @@ int sph_run(sph_sim *s, const sph_run_options *o, sph_run_result *r, sph_error *
       r->status = SPH_RUN_ERROR;
       return -1;
     }
-    if (sph_diag_write_header(out.diag, sph_case_needs_free_surface(c))) {
+    if (sph_diag_write_header(out.diag, sph_case_needs_free_surface(c), c->energy)) {
       sph_error_set(err, "%s: write failed", path);
       r->status = SPH_RUN_ERROR;
       outputs_free(&out);
@@ -97,15 +97,18 @@ int sph_run(sph_sim *s, const sph_run_options *o, sph_run_result *r, sph_error *
   }
   if (o->progress) o->progress(o->progress_ctx, s);
   if (write_output(s, &out, r, err)) goto io_error;
-  long k = 1;
+  long k = 1;    /* next multiple of output_interval */
+  size_t j = 0;  /* next of time.output_times */
   for (;;) {
     const double t = sph_sim_time(s);
     if (t >= c->t_end) {
       r->status = SPH_RUN_END;
       break;
     }
-    double next = (double)k * c->output_interval;
-    if (next > c->t_end) next = c->t_end;
+    double next = c->t_end;
+    if (c->output_interval > 0.0 && (double)k * c->output_interval < next)
+      next = (double)k * c->output_interval;
+    if (j < c->n_output_times && c->output_times[j] < next) next = c->output_times[j];
     int st = sph_sim_step(s, next, err);
     if (o->progress) o->progress(o->progress_ctx, s);
     if (st == SPH_BLOWUP) {
@@ -125,7 +128,8 @@ int sph_run(sph_sim *s, const sph_run_options *o, sph_run_result *r, sph_error *
     if (st) goto io_error;
     const int at_output = sph_sim_time(s) == next;
     if (at_output) {
-      k++;
+      if (c->output_interval > 0.0 && next == (double)k * c->output_interval) k++;
+      if (j < c->n_output_times && next == c->output_times[j]) j++;
       if (write_output(s, &out, r, err)) goto io_error;
     }
     if (stop_condition(s)) {

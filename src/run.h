@@ -3,8 +3,9 @@
  * XDMF index, diagnostics.csv), the stop condition, interruption and
  * blow-up handling.
  *
- * Output times are k * output_interval (k = 0, 1, ...) and the end time;
- * steps are shortened to land on them exactly. Snapshot k is
+ * Output times are k * output_interval (k = 0, 1, ...), the listed
+ * time.output_times, and the end time; steps are shortened to land on them
+ * exactly. Snapshot k is
  * <outdir>/snap_NNNN.h5 (N = k), indexed by <outdir>/snapshots.xmf; one
  * diagnostics row per output time. After a blow-up the snapshots already
  * written stay as they are, and the last state that passed the check is

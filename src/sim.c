@@ -36,12 +36,18 @@
 
 struct sph_sim {
   const sph_case *c;
-  sph_mirror_line mirror[64]; /* mirror walls */
+  sph_mirror_line mirror[SPH_MIRROR_MAX_LINES]; /* mirror walls */
   size_t n_mirror;
   double mirror_reach;
   int first_step;             /* leap-frog: the special first half step */
   int detect;                 /* free-surface detection runs at every pass */
   size_t n_surface;           /* particles flagged at the last pass */
+  int moving;                 /* some walls have a prescribed motion */
+  /* energy ledger (output.energy) */
+  double power_wall, power_xsph; /* at the last pass: sum_i m_i wpow_i, -sum_i m_i g.xs_i */
+  double work_wall, drift_xsph;  /* their time integrals */
+  double dt_paper_b;             /* paper B §2.6 step from the last pass */
+  double e0, e0_fluid;           /* initial totals */
   sph_particles p;
   sph_grid grid;
   sph_force_work work;
@@ -82,6 +88,7 @@ static int add_fluid(sph_sim *s, sph_error *err) {
 }
 
 static int pass(sph_sim *s, sph_error *err);
+static double fluid_internal(const sph_sim *s);
 
 static uint8_t wall_flags(sph_boundary_kind b) {
   return b == SPH_BOUNDARY_REPULSIVE ? SPH_FLAG_REPULSIVE : 0;
@@ -110,11 +117,69 @@ static int add_walls(sph_sim *s, sph_error *err) {
       continue;
     }
     if (ws->boundary == SPH_BOUNDARY_REPULSIVE) s->fp.repulsive = 1;
+    const size_t first = s->p.n;
     if (sph_boundary_add_segment(&s->p, ws->x0, ws->y0, ws->x1, ws->y1, ws->layers, c->dx, c->rho0,
                                  wall_mass, c->h, wall_flags(ws->boundary), err))
       return -1;
+    if (ws->motion.kind != SPH_MOTION_NONE) {
+      s->moving = 1;
+      for (size_t i = first; i < s->p.n; i++) s->p.body[i] = (int32_t)w;
+    }
   }
   return 0;
+}
+
+/* Periodic in x: wall particles are wrapped into [x0, x1), and a wall
+ * particle that then coincides with an earlier one (a staggered layer that
+ * reaches both ends of a period) is dropped. Ids are renumbered in order. */
+static void dedupe_periodic(sph_sim *s) {
+  sph_particles *p = &s->p;
+  const double x0 = s->c->periodic_x[0], x1 = s->c->periodic_x[1], L = x1 - x0;
+  const double tol = 1e-9 * L;
+  size_t kept = 0;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->x[i] >= x1) p->x[i] -= L;
+    if (p->x[i] < x0) p->x[i] += L;
+    int dup = 0;
+    for (size_t j = 0; j < kept && !dup && p->kind[i] == SPH_KIND_WALL; j++)
+      dup = p->kind[j] == SPH_KIND_WALL && fabs(p->y[j] - p->y[i]) < tol &&
+            (fabs(p->x[j] - p->x[i]) < tol || fabs(fabs(p->x[j] - p->x[i]) - L) < tol);
+    if (dup) continue;
+    if (kept != i) {
+      p->x[kept] = p->x[i];
+      p->y[kept] = p->y[i];
+      p->vx[kept] = p->vx[i];
+      p->vy[kept] = p->vy[i];
+      p->rho[kept] = p->rho[i];
+      p->mass[kept] = p->mass[i];
+      p->h[kept] = p->h[i];
+      p->kind[kept] = p->kind[i];
+      p->flags[kept] = p->flags[i];
+      p->body[kept] = p->body[i];
+      p->xr[kept] = p->x[i];
+      p->yr[kept] = p->yr[i];
+    }
+    p->id[kept] = (int64_t)kept;
+    kept++;
+  }
+  p->n = kept;
+}
+
+/* Positions and velocities of the moving wall particles at time t: rest
+ * position plus the prescribed displacement (never accumulated, so a wall
+ * is exactly where its law puts it). */
+static void move_walls(sph_sim *s, double t) {
+  if (!s->moving) return;
+  sph_particles *p = &s->p;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->body[i] < 0) continue;
+    double dx, dy, vx, vy;
+    sph_motion_at(&s->c->walls[p->body[i]].motion, t, &dx, &dy, &vx, &vy);
+    p->x[i] = p->xr[i] + dx;
+    p->y[i] = p->yr[i] + dy;
+    p->vx[i] = vx;
+    p->vy[i] = vy;
+  }
 }
 
 /* Hydrostatic density of the wall particles beside or under a block. */
@@ -150,6 +215,12 @@ static void set_boxes(sph_sim *s) {
   const sph_case *c = s->c;
   double bb[4];
   bounding_box(&s->p, bb);
+  if (c->tank.present) { /* a mirror tank has no wall particles: take its faces */
+    if (c->tank.x0 < bb[0]) bb[0] = c->tank.x0;
+    if (c->tank.x1 > bb[1]) bb[1] = c->tank.x1;
+    if (c->tank.y0 < bb[2]) bb[2] = c->tank.y0;
+    if (c->tank.y1 > bb[3]) bb[3] = c->tank.y1;
+  }
   if (c->periodic) {
     s->view[0] = c->periodic_x[0];
     s->view[1] = c->periodic_x[1];
@@ -212,9 +283,11 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.lj_r0 = c->dx;
   s->first_step = 1;
   s->detect = sph_case_needs_free_surface(c);
+  s->fp.ledger = c->energy;
   if (sph_particles_init(&s->p, 1024, err)) goto fail;
   if (add_fluid(s, err)) goto fail;
   if (add_walls(s, err)) goto fail;
+  if (c->periodic) dedupe_periodic(s);
   if (s->p.n == 0) {
     sph_error_set(err, "case %s: no particles", c->name);
     goto fail;
@@ -227,7 +300,14 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
     sph_error_set(err, "out of memory");
     goto fail;
   }
+  move_walls(s, 0.0);
   if (pass(s, err)) goto fail; /* rates and flags of the initial state */
+  if (c->energy) {
+    sph_diag_row row;
+    sph_sim_diag(s, &row);
+    s->e0 = row.total;
+    s->e0_fluid = row.kinetic + row.potential + fluid_internal(s);
+  }
   *out = s;
   return 0;
 fail:
@@ -247,6 +327,31 @@ void sph_sim_free(sph_sim *s) {
 /* The largest smoothing length: k h with h* = k h on the free surface. */
 static double h_max(const sph_sim *s) {
   return s->fp.var_h ? s->c->fs_h_factor * s->c->h : s->c->h;
+}
+
+/* The ledger's rates at the state of the last pass, summed serially in
+ * storage order: the power of the walls on the fluid, and the rate at which
+ * the XSPH correction (a displacement no force pays for) changes the
+ * potential energy. */
+static void ledger_powers(sph_sim *s) {
+  const sph_particles *p = &s->p;
+  const double *g = s->c->gravity;
+  const int xsph = s->c->xsph != 0.0;
+  double pw = 0.0, px = 0.0;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->kind[i] != SPH_KIND_FLUID) continue;
+    pw += p->mass[i] * s->work.wpow[i];
+    if (xsph) px -= p->mass[i] * (g[0] * p->xsx[i] + g[1] * p->xsy[i]);
+  }
+  s->power_wall = pw;
+  s->power_xsph = px;
+}
+
+static double fluid_internal(const sph_sim *s) {
+  double u = 0.0;
+  for (size_t i = 0; i < s->p.n; i++)
+    if (s->p.kind[i] == SPH_KIND_FLUID) u += s->p.mass[i] * s->p.u[i];
+  return u;
 }
 
 /* Paper A §7: flag the free surface (circles of radius factor * h0), then
@@ -276,6 +381,12 @@ static int pass(sph_sim *s, sph_error *err) {
                        : sph_grid_build(&s->grid, &s->p, cell, max_cells, err);
   if (rc == 0 && s->detect) rc = free_surface(s, err);
   if (rc == 0) rc = sph_forces_evaluate(&s->p, &s->grid, &s->fp, &s->work, err);
+  /* everything that reads the pass's per-particle work arrays, before
+   * removing the mirror particles reorders the store under them */
+  if (rc == 0) {
+    s->dt_paper_b = sph_dt_paper_b(&s->p, &s->work, c->h, c->dt_factor);
+    if (s->fp.ledger) ledger_powers(s);
+  }
   if (s->n_mirror) sph_mirror_remove(&s->p, s->grid.perm, s->grid.work);
   return rc;
 }
@@ -326,7 +437,8 @@ static int check_state(sph_sim *s, sph_error *err) {
       w = "state is not finite (NaN or Inf)";
     else if (fabs(p->rho[i] / rho0 - 1.0) > lim)
       w = "density outside the allowed band";
-    else if (p->x[i] < d[0] || p->x[i] > d[1] || p->y[i] < d[2] || p->y[i] > d[3])
+    else if (p->kind[i] == SPH_KIND_FLUID &&
+             (p->x[i] < d[0] || p->x[i] > d[1] || p->y[i] < d[2] || p->y[i] > d[3]))
       w = "particle left the domain";
     if (w && (worst < 0 || p->id[i] < p->id[worst])) {
       worst = (long)i;
@@ -358,7 +470,7 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
     break;
   case SPH_DT_PAPER_B:
   default:
-    dt = sph_dt_paper_b(&s->p, &s->work, c->h, c->dt_factor);
+    dt = s->dt_paper_b;
     break;
   }
   if (!(dt > 0.0) || !isfinite(dt))
@@ -372,19 +484,29 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   }
   sph_pc_save(&s->p);
   s->t_saved = s->t;
+  const double t_new = land ? t_target : s->t + dt;
   if (c->integrator == SPH_INTEGRATOR_LEAPFROG) {
+    /* the rates of t^n drive the whole step: so do the ledger's powers */
+    s->work_wall += dt * s->power_wall;
+    s->drift_xsph += dt * s->power_xsph;
     sph_leapfrog_step(&s->p, dt, s->first_step, xsph);
     s->first_step = 0;
+    move_walls(s, t_new);
     sph_forces_pressure(&s->p, &s->fp.eos);
   } else {
     sph_pc_half(&s->p, dt, xsph);
+    move_walls(s, s->t + 0.5 * dt);
     sph_forces_pressure(&s->p, &s->fp.eos);
     if (pass(s, err)) return -1;
+    /* X^{n+1} = X^n + dt F(X^{n+1/2}): the mid-step powers drive the step */
+    s->work_wall += dt * s->power_wall;
+    s->drift_xsph += dt * s->power_xsph;
     sph_pc_finish(&s->p, dt, xsph);
+    move_walls(s, t_new);
     sph_forces_pressure(&s->p, &s->fp.eos);
   }
   wrap_periodic(s);
-  s->t = land ? t_target : s->t + dt;
+  s->t = t_new;
   s->last_dt = dt;
   s->steps++;
   if (c->density_filter != SPH_FILTER_NONE && s->steps % c->filter_every == 0 &&
@@ -409,6 +531,18 @@ void sph_sim_view(const sph_sim *s, double box[4]) { memcpy(box, s->view, 4 * si
 void sph_sim_diag(const sph_sim *s, sph_diag_row *row) {
   sph_diag_compute(&s->p, s->floor_y, 2.0 * s->c->dx, s->c->gravity, row);
   row->n_surface = s->detect ? (long)s->n_surface : -1;
+  if (s->c->energy) {
+    double u = 0.0;
+    for (size_t i = 0; i < s->p.n; i++) u += s->p.mass[i] * s->p.u[i];
+    row->ledger = 1;
+    row->internal = u;
+    row->boundary_work = s->work_wall;
+    row->xsph_drift = s->drift_xsph;
+    row->total = row->kinetic + row->potential + u - s->work_wall - s->drift_xsph;
+    row->deviation = s->e0 != 0.0 ? (row->total - s->e0) / s->e0 : 0.0;
+    const double ef = row->kinetic + row->potential + fluid_internal(s);
+    row->fluid_deviation = s->e0_fluid != 0.0 ? (ef - s->e0_fluid) / s->e0_fluid : 0.0;
+  }
   row->time = s->t;
   row->step = s->steps;
   row->dt = s->last_dt;

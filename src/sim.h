@@ -2,10 +2,15 @@
  * sim.h - the simulation object: the particles of a case and one time step.
  *
  * sph_sim_create builds the particles of a case (fluid blocks on a lattice,
- * tank and wall segments of dynamic particles, hydrostatic start), and
- * sph_sim_step advances them by one step of the case's integrator:
- *   grid build (sort by cell) -> interaction pass -> time step -> predictor
- *   -> grid build -> interaction pass -> corrector -> blow-up check
+ * tank and wall segments of wall particles or mirror lines, hydrostatic
+ * start) and runs the interaction pass on that state. sph_sim_step then
+ * advances them by one step of the case's integrator, predictor-corrector:
+ *   time step (from the last pass) -> predictor -> pass -> corrector
+ *   -> moving walls -> density filter (every N steps) -> blow-up check
+ *   -> pass on the new state
+ * or leap-frog (one pass per step). A pass is: mirror particles -> grid
+ * build (sort by cell) -> free-surface flags -> interaction terms. So the
+ * rates and flags held with a state always belong to it.
  * The library never prints or exits: failures come back as a status and an
  * sph_error message.
  */

@@ -21,3 +21,17 @@ out="$src/golden/martin_moyce_coarse_front.csv"
 } > "$out.tmp"
 mv "$out.tmp" "$out"
 echo "wrote $out"
+
+# 2. The energy audit of the wet-bed dam break at CI-sized counts
+#    (tests/test_energy.c).
+"$sph" audit --quiet "$src/cases/wet_bed_dam_break.yaml" --particles 500,1000,2000 \
+  --times 0.156,0.281,0.343,0.406,0.468,0.531 -o "$tmp/audit" > /dev/null
+out="$src/golden/energy_drift.csv"
+{
+  echo "# golden: sph audit cases/wet_bed_dam_break.yaml --particles 500,1000,2000 (closed energy balance)"
+  echo "# made by: make golden ($("$sph" --version | head -n 1)); compared within 1e-5 + 5 % by tests/test_energy.c"
+  cat "$tmp/audit/audit.csv"
+} > "$out.tmp"
+mv "$out.tmp" "$out"
+echo "wrote $out"
+

@@ -662,7 +662,8 @@ static const char MINIMAL_DESCRIPTION[] =
     "free_surface.radius_factor: 1\n"
     "free_surface.h_factor: 0\n"
     "output.snapshots: true\n"
-    "output.free_surface: false\n";
+    "output.free_surface: false\n"
+    "output.energy: false\n";
 
 static void test_describe(void) {
   sph_case a, b;
