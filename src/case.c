@@ -68,13 +68,19 @@ const char *sph_viscosity_name(sph_viscosity_kind v) {
   return choice_name(viscosity_names, (int)v);
 }
 
-void sph_motion_at(const sph_motion *m, double t, double *dx, double *dy, double *vx,
-                   double *vy) {
-  *dx = *dy = *vx = *vy = 0.0;
+void sph_motion_point(const sph_motion *m, double t, double xr, double yr, double *x, double *y,
+                      double *vx, double *vy) {
+  *x = xr;
+  *y = yr;
+  *vx = *vy = 0.0;
+  if (m->kind == SPH_MOTION_PISTON || m->kind == SPH_MOTION_FLAP) {
+    sph_paddle_point(&m->paddle, t, xr, yr, x, y, vx, vy);
+    return;
+  }
   if (m->kind != SPH_MOTION_TRANSLATE || t <= m->start) return;
   const double te = t < m->stop ? t : m->stop;
-  *dx = m->vx * (te - m->start);
-  *dy = m->vy * (te - m->start);
+  *x = xr + m->vx * (te - m->start);
+  *y = yr + m->vy * (te - m->start);
   if (t < m->stop) {
     *vx = m->vx;
     *vy = m->vy;
@@ -754,11 +760,12 @@ static const char *const fs_keys[] = {"radius_factor", "h_factor", NULL};
 static const char *const laminar_keys[] = {"model", "mu", NULL};
 static const char *const physics_keys[] = {"rho0",      "gravity",   "body_force",
                                            "sound_speed", "artificial_viscosity", "viscosity",
-                                           "repulsion", "xsph",      NULL};
+                                           "turbulence", "repulsion", "xsph",   NULL};
 static const char *const c0_keys[] = {"factor", "height", "speed", NULL};
 static const char *const visc_keys[] = {"alpha", "beta", "eta", NULL};
 static const char *const numerics_keys[] = {"dx",         "h_factor",  "kernel", "integrator",
-                                            "time_step", "density_filter", "density_limit", NULL};
+                                            "smoothing_length", "time_step", "density_filter",
+                                            "density_limit", NULL};
 static const char *const dt_keys[] = {"rule", "factor", "dt", NULL};
 static const char *const filter_keys[] = {"kind", "every", NULL};
 static const char *const time_keys[] = {"end", "output_interval", "output_times", "stop", NULL};
@@ -766,10 +773,15 @@ static const char *const geometry_keys[] = {"tank", "fluid", "walls", "periodic_
 static const char *const tank_keys[] = {"x", "y", "layers", "boundary", NULL};
 static const char *const fluid_keys[] = {"x", "y", "velocity", "hydrostatic", "surface", NULL};
 static const char *const wall_keys[] = {"from", "to", "layers", "boundary", "motion", NULL};
-static const char *const motion_keys[] = {"type", "velocity", "start", "stop", NULL};
-static const char *const motion_names[] = {"none", "translate", NULL};
+static const char *const motion_keys[] = {"type",  "velocity",    "start", "stop",  "period",
+                                          "stroke", "wave_height", "depth", "ramp", "hinge",
+                                          NULL};
+static const char *const motion_names[] = {"none", "translate", "piston", "flap", NULL};
+static const char *const turbulence_keys[] = {"model", "cs", "ci", NULL};
+static const char *const turbulence_names[] = {"none", "sps", NULL};
+static const char *const h_names[] = {"constant", "variable", NULL};
 static const char *const domain_keys[] = {"x", "y", NULL};
-static const char *const output_keys[] = {"snapshots", "free_surface", "energy", NULL};
+static const char *const output_keys[] = {"snapshots", "free_surface", "energy", "gauges", NULL};
 
 static void set_defaults(sph_case *c) {
   c->rho0 = 1000.0;
@@ -792,6 +804,8 @@ static void set_defaults(sph_case *c) {
   c->fs_radius_factor = 1.0;
   c->density_filter = SPH_FILTER_NONE;
   c->filter_every = 30;
+  c->sps_cs = 0.12;
+  c->sps_ci = 0.00066;
 }
 
 static int read_name(const ctx *x, const node *root, sph_case *c) {
@@ -871,6 +885,15 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
       return fail_at(x, find(v, "mu")->val, "physics.viscosity.mu",
                      "only used with a viscosity model (model is 'none')");
   }
+  rc = get_section(x, m, p, "turbulence", 0, turbulence_keys, &v);
+  if (rc < 0) return -1;
+  if (rc > 0) {
+    const char *tp = "physics.turbulence";
+    if (get_choice(x, v, tp, "model", turbulence_names, &c->sps) < 0 ||
+        get_number(x, v, tp, "cs", 0, &R_POS, &c->sps_cs) < 0 ||
+        get_number(x, v, tp, "ci", 0, &R_NONNEG, &c->sps_ci) < 0)
+      return -1;
+  }
   if (get_number(x, m, p, "repulsion", 0, &R_POS, &c->repulsion) < 0) return -1;
   rc = get_section(x, m, p, "artificial_viscosity", 0, visc_keys, &v);
   if (rc < 0) return -1;
@@ -918,6 +941,7 @@ static int read_numerics(ctx *x, const node *m, sph_case *c) {
   if (get_number(x, m, p, "h_factor", 0, &h_factor, &c->h_factor) < 0) return -1;
   c->h = c->h_factor * c->dx;
   if (!isfinite(c->h)) return fail_at(x, t, kp, "h = h_factor*dx overflows");
+  if (get_choice(x, m, p, "smoothing_length", h_names, &c->variable_h) < 0) return -1;
   if (get_choice(x, m, p, "kernel", kernel_names, &k) < 0) return -1;
   c->kernel = (sph_kernel_kind)k;
   if (get_choice(x, m, p, "integrator", integrator_names, &in) < 0) return -1;
@@ -1081,12 +1105,48 @@ static int read_fluid(const ctx *x, const node *m, sph_case *c) {
   return 0;
 }
 
+/* A paddle: {type: piston|flap, period, stroke | wave_height, depth, ramp,
+ * hinge}. With wave_height the stroke comes from the linear transfer
+ * function (needs depth); the flap's hinge defaults to the wall's lower end
+ * and its depth is required; the ramp defaults to one period. */
+static int read_paddle(const ctx *x, const node *t, const char *kp, sph_wall_segment *w) {
+  sph_paddle *pd = &w->motion.paddle;
+  pd->kind = w->motion.kind == SPH_MOTION_FLAP ? SPH_PADDLE_FLAP : SPH_PADDLE_PISTON;
+  if (get_number(x, t, kp, "period", 1, &R_POS, &pd->period) < 0) return -1;
+  int has_d = get_number(x, t, kp, "depth", pd->kind == SPH_PADDLE_FLAP, &R_POS, &pd->depth);
+  if (has_d < 0) return -1;
+  int has_s = get_number(x, t, kp, "stroke", 0, &R_POS, &pd->stroke);
+  if (has_s < 0) return -1;
+  double H = 0.0;
+  int has_h = get_number(x, t, kp, "wave_height", 0, &R_POS, &H);
+  if (has_h < 0) return -1;
+  if (has_s == has_h) return fail_at(x, t, kp, "expected exactly one of 'stroke' or 'wave_height'");
+  if (has_h) {
+    if (!has_d) return fail_at(x, t, kp, "'wave_height' needs 'depth' (for the transfer function)");
+    sph_error e;
+    if (sph_paddle_stroke(pd->kind, H, pd->period, pd->depth, 9.81, &pd->stroke, &e))
+      return fail_at(x, t, kp, "%s", e.msg);
+  }
+  pd->ramp = pd->period;
+  if (get_number(x, t, kp, "ramp", 0, &R_NONNEG, &pd->ramp) < 0) return -1;
+  double hinge[2] = {w->y0 < w->y1 ? w->x0 : w->x1, w->y0 < w->y1 ? w->y0 : w->y1};
+  if (get_pair(x, t, kp, "hinge", 0, 0, hinge) < 0) return -1;
+  pd->hinge_x = hinge[0];
+  pd->hinge_y = hinge[1];
+  w->motion.start = 0.0;
+  w->motion.stop = INFINITY;
+  sph_error e;
+  if (sph_paddle_check(pd, &e)) return fail_at(x, t, kp, "%s", e.msg);
+  return 0;
+}
+
 /* walls[i].motion: {type: translate, velocity: [vx, vy], start: 0, stop: t} */
 static int read_motion(const ctx *x, const node *m, const char *p, sph_wall_segment *w) {
   const node *t;
   char kp[KEYLEN];
   join(kp, sizeof kp, p, "motion");
-  w->motion = (sph_motion){SPH_MOTION_NONE, 0.0, 0.0, 0.0, INFINITY};
+  memset(&w->motion, 0, sizeof w->motion);
+  w->motion.stop = INFINITY;
   int rc = get_section(x, m, p, "motion", 0, motion_keys, &t);
   if (rc <= 0) return rc;
   int kind = 0;
@@ -1095,9 +1155,14 @@ static int read_motion(const ctx *x, const node *m, const char *p, sph_wall_segm
   if (lookup(x, t, kp, "type", 1, &tt, tk) < 0 || read_choice(x, tt, tk, motion_names, &kind))
     return -1;
   w->motion.kind = (sph_motion_kind)kind;
-  if (w->motion.kind == SPH_MOTION_NONE) return 0;
+  if (w->motion.kind == SPH_MOTION_NONE) {
+    if (t->n > 1) return fail_at(x, t, kp, "type 'none' takes no other keys");
+    return 0;
+  }
   if (w->boundary == SPH_BOUNDARY_MIRROR)
-    return fail_at(x, t, kp, "a mirror wall cannot move (use dynamic or fixed_layers)");
+    return fail_at(x, t, kp, "a mirror wall has no particles to move");
+  if (w->motion.kind == SPH_MOTION_PISTON || w->motion.kind == SPH_MOTION_FLAP)
+    return read_paddle(x, t, kp, w);
   double v[2];
   if (get_pair(x, t, kp, "velocity", 1, 0, v) < 0) return -1;
   w->motion.vx = v[0];
@@ -1202,6 +1267,9 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
         get_number(x, s, "free_surface", "h_factor", 0, &hf, &c->fs_h_factor) < 0)
       return -1;
   }
+  if (c->variable_h && c->fs_h_factor > 0.0)
+    return fail(x, FROM_FILE, 0, "free_surface.h_factor",
+                "cannot be combined with numerics.smoothing_length: variable");
   if (c->periodic && c->fs_h_factor > 1.0 &&
       !(c->periodic_x[1] - c->periodic_x[0] >= 6.0 * c->fs_h_factor * c->h))
     return fail(x, FROM_FILE, 0, "geometry.periodic_x",
@@ -1212,6 +1280,21 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
   if (rc > 0) rc = get_bool(x, s, "output", "snapshots", &c->snapshots);
   if (rc >= 0 && s) rc = get_bool(x, s, "output", "free_surface", &c->output_free_surface);
   if (rc >= 0 && s) rc = get_bool(x, s, "output", "energy", &c->energy);
+  const node *gl;
+  char gk[KEYLEN];
+  if (rc >= 0 && s && lookup(x, s, "output", "gauges", 0, &gl, gk) > 0) {
+    char b[96];
+    if (gl->kind != NODE_LIST || gl->n == 0)
+      return fail_at(x, gl, gk, "expected a non-empty list of x positions, got %s",
+                     got(gl, b, sizeof b));
+    if (!(c->gauges = calloc(gl->n, sizeof *c->gauges))) return oom(x);
+    c->n_gauges = gl->n;
+    for (size_t i = 0; i < gl->n; i++) {
+      char ik[KEYLEN];
+      bprintf(ik, sizeof ik, "output.gauges[%zu]", i);
+      if (read_number(x, gl->items[i], ik, &R_ANY, &c->gauges[i])) return -1;
+    }
+  }
   return rc < 0 ? -1 : 0;
 }
 
@@ -1318,6 +1401,7 @@ void sph_case_free(sph_case *c) {
   free(c->fluid);
   free(c->walls);
   free(c->output_times);
+  free(c->gauges);
   memset(c, 0, sizeof *c);
 }
 
@@ -1407,6 +1491,15 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
     sb_add(b, "%s.to: [%.17g, %.17g]\n", k, w->x1, w->y1);
     sb_add(b, "%s.layers: %d\n", k, w->layers);
     sb_add(b, "%s.boundary: %s\n", k, sph_boundary_name(w->boundary));
+    if (w->motion.kind == SPH_MOTION_PISTON || w->motion.kind == SPH_MOTION_FLAP) {
+      const sph_paddle *pd = &w->motion.paddle;
+      sb_add(b, "%s.motion.type: %s\n", k, motion_names[w->motion.kind]);
+      sb_add(b, "%s.motion.period: %.17g\n", k, pd->period);
+      sb_add(b, "%s.motion.stroke: %.17g\n", k, pd->stroke);
+      sb_add(b, "%s.motion.depth: %.17g\n", k, pd->depth);
+      sb_add(b, "%s.motion.ramp: %.17g\n", k, pd->ramp);
+      sb_add(b, "%s.motion.hinge: [%.17g, %.17g]\n", k, pd->hinge_x, pd->hinge_y);
+    }
     if (w->motion.kind == SPH_MOTION_TRANSLATE) {
       sb_add(b, "%s.motion.type: translate\n", k);
       sb_add(b, "%s.motion.velocity: [%.17g, %.17g]\n", k, w->motion.vx, w->motion.vy);
@@ -1438,10 +1531,16 @@ char *sph_case_describe(const sph_case *c) {
   sb_add(&b, "physics.xsph: %.17g\n", c->xsph);
   sb_add(&b, "physics.viscosity.model: %s\n", sph_viscosity_name(c->viscosity));
   if (c->viscosity != SPH_VISCOSITY_NONE) sb_add(&b, "physics.viscosity.mu: %.17g\n", c->mu);
+  sb_add(&b, "physics.turbulence.model: %s\n", c->sps ? "sps" : "none");
+  if (c->sps) {
+    sb_add(&b, "physics.turbulence.cs: %.17g\n", c->sps_cs);
+    sb_add(&b, "physics.turbulence.ci: %.17g\n", c->sps_ci);
+  }
   sb_add(&b, "physics.repulsion: %.17g\n", c->repulsion);
   sb_add(&b, "numerics.dx: %.17g\n", c->dx);
   sb_add(&b, "numerics.h_factor: %.17g\n", c->h_factor);
   sb_add(&b, "numerics.h: %.17g\n", c->h);
+  sb_add(&b, "numerics.smoothing_length: %s\n", h_names[c->variable_h]);
   sb_add(&b, "numerics.kernel: %s\n", sph_kernel_name(c->kernel));
   sb_add(&b, "numerics.integrator: %s\n", sph_integrator_name(c->integrator));
   sb_add(&b, "numerics.time_step.rule: %s\n", sph_dt_rule_name(c->dt_rule));
@@ -1461,6 +1560,8 @@ char *sph_case_describe(const sph_case *c) {
   sb_add(&b, "output.snapshots: %s\n", c->snapshots ? "true" : "false");
   sb_add(&b, "output.free_surface: %s\n", c->output_free_surface ? "true" : "false");
   sb_add(&b, "output.energy: %s\n", c->energy ? "true" : "false");
+  for (size_t i = 0; i < c->n_gauges; i++)
+    sb_add(&b, "output.gauges[%zu]: %.17g\n", i, c->gauges[i]);
   if (b.failed) {
     free(b.s);
     return NULL;

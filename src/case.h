@@ -18,6 +18,7 @@
 
 #include "error.h"
 #include "filter.h"
+#include "wavemaker.h"
 
 typedef enum { SPH_KERNEL_CUBIC_SPLINE = 0 } sph_kernel_kind;
 typedef enum {
@@ -70,15 +71,23 @@ typedef struct sph_tank {
 
 /* Prescribed motion of a wall (a gate): translation at a constant velocity
  * from `start` to `stop`, at rest before and after. */
-typedef enum { SPH_MOTION_NONE = 0, SPH_MOTION_TRANSLATE = 1 } sph_motion_kind;
+typedef enum {
+  SPH_MOTION_NONE = 0,
+  SPH_MOTION_TRANSLATE = 1, /* constant velocity from start to stop (a gate) */
+  SPH_MOTION_PISTON = 2,    /* wavemaker piston, X(t) = (S/2) sin(omega t), paper B §4.2 */
+  SPH_MOTION_FLAP = 3       /* bottom-hinged flap with the same displacement at the still-water level */
+} sph_motion_kind;
 typedef struct sph_motion {
   sph_motion_kind kind;
-  double vx, vy;     /* velocity while moving (m/s) */
-  double start, stop; /* time interval of the motion (s); stop may be INFINITY */
+  double vx, vy;      /* translate: velocity while moving (m/s) */
+  double start, stop; /* translate: time interval of the motion (s); stop may be INFINITY */
+  sph_paddle paddle;  /* piston and flap (src/wavemaker.h) */
 } sph_motion;
 
-/* Displacement and velocity of a wall with this motion at time t. */
-void sph_motion_at(const sph_motion *m, double t, double *dx, double *dy, double *vx, double *vy);
+/* Where a wall point at rest position (xr, yr) is at time t, and its
+ * velocity, under the motion m. */
+void sph_motion_point(const sph_motion *m, double t, double xr, double yr, double *x, double *y,
+                      double *vx, double *vy);
 
 /* An extra straight wall from (x0,y0) to (x1,y1): particles spaced dx along
  * it, `layers` staggered layers on its left side (seen from start to end). */
@@ -103,6 +112,8 @@ typedef struct sph_case {
   double alpha, beta;   /* artificial viscosity, paper A eq. (15)-(16); defaults 0, 0 */
   double eta;           /* eta = eta * h_ij, default 0.1 (eta^2 = 0.01 h^2) */
   double xsph;          /* XSPH epsilon, paper B eq. (6); default 0 = off */
+  int sps;              /* SPS turbulence (paper B eq. 4), default off */
+  double sps_cs, sps_ci; /* Smagorinsky C_s = 0.12 and C_I = 0.00066; Delta = dx */
   sph_viscosity_kind viscosity; /* laminar viscosity model, default none */
   double mu;            /* dynamic viscosity (Pa s), required unless viscosity is none */
   double repulsion;     /* D of the Lennard-Jones wall force (m^2/s^2), paper A eq. (22);
@@ -111,7 +122,8 @@ typedef struct sph_case {
   /* numerics */
   double dx;            /* initial particle spacing (required) */
   double h_factor;      /* h = h_factor * dx, default 1.3 */
-  double h;             /* derived: h_factor * dx */
+  double h;             /* derived: h_factor * dx (h0 when variable) */
+  int variable_h;       /* h = h0 (rho0/rho)^(1/2), paper B §2.1; default constant */
   sph_kernel_kind kernel;
   sph_integrator_kind integrator;
   sph_dt_rule dt_rule;  /* default paper_b */
@@ -147,6 +159,8 @@ typedef struct sph_case {
   int snapshots;            /* write HDF5 snapshots, default 1 */
   int output_free_surface;  /* write the free_surface field, default 0 */
   int energy;               /* energy ledger (output.energy), default 0 */
+  size_t n_gauges;          /* output.gauges: wave gauges at these x (gauges.csv) */
+  double *gauges;
 } sph_case;
 
 /* Reads and validates a case file, applying n_set overrides of the form

@@ -11,6 +11,7 @@
 
 int sph_cli_run(int argc, char **argv);
 int sph_cli_info(int argc, char **argv);
+int sph_cli_profile(int argc, char **argv);
 int sph_cli_audit(int argc, char **argv);
 
 #endif

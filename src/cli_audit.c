@@ -365,7 +365,7 @@ int sph_cli_audit(int argc, char **argv) {
       sph_sim_free(s);
       sph_case_free(&c);
       sph_case_free(&base);
-      status = rc == SPH_RUN_BLOWUP ? 3 : 1;
+      status = res.status == SPH_RUN_BLOWUP ? 3 : 1;
       goto done;
     }
     if (!quiet)

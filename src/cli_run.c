@@ -194,10 +194,13 @@ int sph_cli_run(int argc, char **argv) {
     if (c.viscosity != SPH_VISCOSITY_NONE) printf(" (mu %g Pa s)", c.mu);
     printf(", XSPH %g, density filter %s", c.xsph, sph_filter_name(c.density_filter));
     if (c.density_filter != SPH_FILTER_NONE) printf(" every %d steps", c.filter_every);
-    printf("\n  free surface %s, energy ledger %s; end %g s, output every %g s%s, stop %s\n",
+    printf("\n  free surface %s, energy ledger %s; end %g s, output", 
            sph_case_needs_free_surface(&c) ? "detected" : "off", c.energy ? "on" : "off",
-           c.t_end, c.output_interval, c.n_output_times ? " and at listed times" : "",
-           sph_stop_name(c.stop));
+           c.t_end);
+    if (c.output_interval > 0.0) printf(" every %g s", c.output_interval);
+    if (c.n_output_times) printf("%s at %zu listed times", c.output_interval > 0.0 ? " and" : "",
+                                 c.n_output_times);
+    printf(", stop %s\n", sph_stop_name(c.stop));
     printf("  threads %d, output %s\n", nthreads, outdir);
     fflush(stdout);
   }

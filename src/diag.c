@@ -15,6 +15,13 @@ double sph_diag_front(const sph_particles *p, double floor_y, double band) {
   return front;
 }
 
+double sph_diag_surface_at(const sph_particles *p, double x, double half, double dx) {
+  double top = -INFINITY;
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_FLUID && fabs(p->x[i] - x) < half && p->y[i] > top) top = p->y[i];
+  return top + 0.5 * dx;
+}
+
 void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[2],
                       sph_diag_row *row) {
   size_t n = 0;

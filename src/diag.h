@@ -41,6 +41,10 @@ typedef struct sph_diag_row {
 
 /* Largest x of fluid particles with y < floor_y + band; -inf if none. */
 double sph_diag_front(const sph_particles *p, double floor_y, double band);
+/* Wave gauge: the highest fluid particle centre with |x_i - x| < half,
+ * plus dx/2 (the top of its lattice cell): the free-surface level at x,
+ * read as a gauge would. -inf if no fluid particle is there. */
+double sph_diag_surface_at(const sph_particles *p, double x, double half, double dx);
 /* Fills every column but time, step and dt. */
 void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[2],
                       sph_diag_row *row);

@@ -23,6 +23,7 @@
 #include <stdlib.h>
 
 #include "kernel.h"
+#include "turbulence.h"
 
 /* The terms, as bits of F. */
 enum {
@@ -348,7 +349,7 @@ int sph_forces_evaluate(sph_particles *p, const sph_grid *g, const sph_force_par
   unsigned F = 0;
   if (fp->alpha != 0.0 || fp->beta != 0.0) F |= F_AV;
   if (fp->xsph != 0.0) F |= F_XSPH;
-  if (fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR) F |= F_STRESS;
+  if (fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps) F |= F_STRESS;
   if (fp->viscosity == SPH_VISCOSITY_MORRIS) F |= F_MORRIS;
   if (fp->periodic) F |= F_PERIODIC;
   if (fp->var_h) F |= F_VARH;
@@ -356,11 +357,23 @@ int sph_forces_evaluate(sph_particles *p, const sph_grid *g, const sph_force_par
   if (F & F_STRESS) {
     if (sph_forces_strain_rate(p, g, fp, w->sxx, w->sxy, w->syy, err)) return -1;
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
-    for (long i = 0; i < n; i++) { /* tau / rho^2 = mu eps / rho^2 */
-      const double c = fp->mu / (p->rho[i] * p->rho[i]);
-      w->sxx[i] *= c;
-      w->sxy[i] *= c;
-      w->syy[i] *= c;
+    for (long i = 0; i < n; i++) { /* tau / rho^2: laminar mu eps, plus the SPS stress */
+      const double rho = p->rho[i];
+      const double exx = w->sxx[i], exy = w->sxy[i], eyy = w->syy[i];
+      const double lam = fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR ? fp->mu / (rho * rho) : 0.0;
+      double txx = lam * exx, txy = lam * exy, tyy = lam * eyy;
+      if (fp->sps) {
+        /* S from eps (eps_xx = 2 S_xx - (2/3) div, div = S_xx + S_yy) */
+        double a, b, c;
+        sph_sps_stress(0.5 * (2.0 * exx + eyy), 0.5 * exy, 0.5 * (2.0 * eyy + exx), fp->sps_cs,
+                       fp->sps_ci, fp->sps_delta, &a, &b, &c);
+        txx += a / rho;
+        txy += b / rho;
+        tyy += c / rho;
+      }
+      w->sxx[i] = txx;
+      w->sxy[i] = txy;
+      w->syy[i] = tyy;
     }
   }
   VARIANT_TABLE[F](p, g, fp, w);

@@ -17,6 +17,8 @@
  *   XSPH             dr_i/dt = v_i + eps sum_j (m_j/rho_ij) (v_j - v_i) W_ij  (B eq. 6),
  *                    over fluid neighbours only (a wall at rest would drag
  *                    the fluid otherwise)
+ *   SPS turbulence   + sum_j m_j (tau*_i/rho_i^2 + tau*_j/rho_j^2) . grad_i W_ij, tau* the
+ *                    Smagorinsky SPS stress of src/turbulence.h       (B eq. 4)
  *   Lennard-Jones    + D [(r0/r)^12 - (r0/r)^4] r_ij / r^2 from repulsive wall particles
  *                    closer than r0                                        (A eq. 21-22)
  *   time-step data   sigma_i = max_j |h v_ij.r_ij / r_ij^2|                 (B §2.6)
@@ -26,8 +28,8 @@
  *                    the viscous force's work exactly, for fluid and dynamic
  *                    wall particles (each takes half of a pair's heat); and
  *                    the power sum_j a_ij . v_j of wall particles j on fluid i
- * Dynamic wall particles (GOST R 57700.6 3.4.7) get only drho/dt; repulsive
- * wall particles and mirror particles get no rates. Walls and mirrors act on
+ * Dynamic wall particles (GOST R 57700.6 3.4.7) get drho/dt (and du/dt with
+ * the ledger); repulsive wall particles and mirror particles get no rates. Walls and mirrors act on
  * fluid through their pressure and the viscous terms.
  *
  * Each term a case does not use is compiled out of the loop it runs (the
@@ -56,6 +58,8 @@ typedef struct sph_force_params {
   int repulsive;       /* repulsive wall particles present */
   double lj_d, lj_r0;  /* Lennard-Jones strength D and range r0 */
   int ledger;          /* energy ledger: du/dt and the power of wall particles on fluid */
+  int sps;             /* SPS turbulence stress (src/turbulence.h) */
+  double sps_cs, sps_ci, sps_delta;
 } sph_force_params;
 
 /* Per-particle quantities of a pass (storage order). */

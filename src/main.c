@@ -24,7 +24,8 @@ static void usage(FILE *f) {
           "  audit CASE --particles N1,N2,... [--times t1,t2,...] [-o DIR]\n"
           "                 energy deviation against particle count and time (paper A\n"
           "                 Table 4), running the case once per count\n"
-
+          "  profile SNAPSHOT...\n"
+          "                 film-flow error against paper A eq. (26) (inclined plane)\n"
           "\n"
           "options:\n"
           "  -h, --help     show this help (also: sph COMMAND --help)\n"
@@ -51,7 +52,9 @@ int main(int argc, char **argv) {
   }
   if (!strcmp(cmd, "run")) return sph_cli_run(argc - 1, argv + 1);
   if (!strcmp(cmd, "info")) return sph_cli_info(argc - 1, argv + 1);
+  if (!strcmp(cmd, "profile")) return sph_cli_profile(argc - 1, argv + 1);
   if (!strcmp(cmd, "audit")) return sph_cli_audit(argc - 1, argv + 1);
-  fprintf(stderr, "sph: unknown command '%s' (valid: run, info, audit; see sph --help)\n", cmd);
+  fprintf(stderr,
+          "sph: unknown command '%s' (valid: run, info, audit, profile; see sph --help)\n", cmd);
   return 2;
 }

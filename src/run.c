@@ -20,6 +20,8 @@
 typedef struct outputs {
   const char *dir;
   FILE *diag;
+  FILE *gauges;      /* gauges.csv, when the case has wave gauges */
+  double *still;     /* each gauge's level at t = 0 */
   size_t n, cap;
   char **names;
   double *times;
@@ -27,9 +29,29 @@ typedef struct outputs {
 
 static void outputs_free(outputs *o) {
   if (o->diag) fclose(o->diag);
+  if (o->gauges) fclose(o->gauges);
+  free(o->still);
   for (size_t i = 0; i < o->n; i++) free(o->names[i]);
   free(o->names);
   free(o->times);
+}
+
+/* One row of gauges.csv: time, then each gauge's elevation above its level
+ * at t = 0 (the highest fluid particle within dx of the gauge, diag.h). */
+static int write_gauges(sph_sim *s, outputs *o, sph_error *err) {
+  const sph_case *c = sph_sim_case(s);
+  const sph_particles *p = sph_sim_particles(s);
+  if (!o->gauges) return 0;
+  if (fprintf(o->gauges, "%.17g", sph_sim_time(s)) < 0) goto fail;
+  for (size_t g = 0; g < c->n_gauges; g++) {
+    const double level = sph_diag_surface_at(p, c->gauges[g], c->dx, c->dx);
+    if (sph_sim_time(s) == 0.0) o->still[g] = level;
+    if (fprintf(o->gauges, ",%.17g", level - o->still[g]) < 0) goto fail;
+  }
+  if (fputc('\n', o->gauges) == EOF || fflush(o->gauges)) goto fail;
+  return 0;
+fail:
+  return sph_error_set(err, "%s/gauges.csv: write failed: %s", o->dir, strerror(errno));
 }
 
 static int write_output(sph_sim *s, outputs *o, sph_run_result *r, sph_error *err) {
@@ -39,6 +61,7 @@ static int write_output(sph_sim *s, outputs *o, sph_run_result *r, sph_error *er
   if (!o->dir) return 0;
   if (sph_diag_write_row(o->diag, &row) || fflush(o->diag))
     return sph_error_set(err, "%s/diagnostics.csv: write failed: %s", o->dir, strerror(errno));
+  if (write_gauges(s, o, err)) return -1;
   if (!sph_sim_case(s)->snapshots) return 0;
   if (o->n == o->cap) {
     size_t cap = o->cap ? 2 * o->cap : 64;
@@ -87,6 +110,20 @@ int sph_run(sph_sim *s, const sph_run_options *o, sph_run_result *r, sph_error *
       sph_error_set(err, "%s: cannot create: %s", path, strerror(errno));
       r->status = SPH_RUN_ERROR;
       return -1;
+    }
+    if (c->n_gauges) {
+      snprintf(path, sizeof path, "%s/gauges.csv", out.dir);
+      out.gauges = fopen(path, "w");
+      out.still = calloc(c->n_gauges, sizeof *out.still);
+      int bad = !out.gauges || !out.still || fprintf(out.gauges, "time") < 0;
+      for (size_t g = 0; !bad && g < c->n_gauges; g++)
+        bad = fprintf(out.gauges, ",eta_%.6g", c->gauges[g]) < 0;
+      if (bad || fputc('\n', out.gauges) == EOF) {
+        sph_error_set(err, "%s: cannot create: %s", path, strerror(errno));
+        r->status = SPH_RUN_ERROR;
+        outputs_free(&out);
+        return -1;
+      }
     }
     if (sph_diag_write_header(out.diag, sph_case_needs_free_surface(c), c->energy)) {
       sph_error_set(err, "%s: write failed", path);

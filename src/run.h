@@ -7,7 +7,9 @@
  * time.output_times, and the end time; steps are shortened to land on them
  * exactly. Snapshot k is
  * <outdir>/snap_NNNN.h5 (N = k), indexed by <outdir>/snapshots.xmf; one
- * diagnostics row per output time. After a blow-up the snapshots already
+ * diagnostics row per output time, and with wave gauges (output.gauges) a
+ * row of <outdir>/gauges.csv: each gauge's surface elevation above its level
+ * at t = 0. After a blow-up the snapshots already
  * written stay as they are, and the last state that passed the check is
  * written to <outdir>/last_good.h5.
  */

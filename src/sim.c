@@ -156,9 +156,9 @@ static void dedupe_periodic(sph_sim *s) {
       p->kind[kept] = p->kind[i];
       p->flags[kept] = p->flags[i];
       p->body[kept] = p->body[i];
-      p->xr[kept] = p->x[i];
       p->yr[kept] = p->yr[i];
     }
+    p->xr[kept] = p->x[kept]; /* the rest position is the wrapped one */
     p->id[kept] = (int64_t)kept;
     kept++;
   }
@@ -173,12 +173,8 @@ static void move_walls(sph_sim *s, double t) {
   sph_particles *p = &s->p;
   for (size_t i = 0; i < p->n; i++) {
     if (p->body[i] < 0) continue;
-    double dx, dy, vx, vy;
-    sph_motion_at(&s->c->walls[p->body[i]].motion, t, &dx, &dy, &vx, &vy);
-    p->x[i] = p->xr[i] + dx;
-    p->y[i] = p->yr[i] + dy;
-    p->vx[i] = vx;
-    p->vy[i] = vy;
+    sph_motion_point(&s->c->walls[p->body[i]].motion, t, p->xr[i], p->yr[i], &p->x[i], &p->y[i],
+                     &p->vx[i], &p->vy[i]);
   }
 }
 
@@ -284,6 +280,11 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->first_step = 1;
   s->detect = sph_case_needs_free_surface(c);
   s->fp.ledger = c->energy;
+  s->fp.sps = c->sps;
+  s->fp.sps_cs = c->sps_cs;
+  s->fp.sps_ci = c->sps_ci;
+  s->fp.sps_delta = c->dx;
+  if (c->variable_h) s->fp.var_h = 1;
   if (sph_particles_init(&s->p, 1024, err)) goto fail;
   if (add_fluid(s, err)) goto fail;
   if (add_walls(s, err)) goto fail;
@@ -326,7 +327,18 @@ void sph_sim_free(sph_sim *s) {
 
 /* The largest smoothing length: k h with h* = k h on the free surface. */
 static double h_max(const sph_sim *s) {
-  return s->fp.var_h ? s->c->fs_h_factor * s->c->h : s->c->h;
+  if (!s->c->variable_h) return s->fp.var_h ? s->c->fs_h_factor * s->c->h : s->c->h;
+  double h = 0.0;
+  for (size_t i = 0; i < s->p.n; i++)
+    if (s->p.h[i] > h) h = s->p.h[i];
+  return h;
+}
+
+/* Paper B §2.1: h = h0 (rho0/rho)^(1/d), d = 2, at every particle. */
+static void update_h(sph_sim *s) {
+  if (!s->c->variable_h) return;
+  const double h0 = s->c->h, rho0 = s->c->rho0;
+  for (size_t i = 0; i < s->p.n; i++) s->p.h[i] = h0 * sqrt(rho0 / s->p.rho[i]);
 }
 
 /* The ledger's rates at the state of the last pass, summed serially in
@@ -371,6 +383,7 @@ static int free_surface(sph_sim *s, sph_error *err) {
  * returns. */
 static int pass(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
+  update_h(s);
   if (s->n_mirror && sph_mirror_add(&s->p, s->mirror, s->n_mirror, s->mirror_reach, err) < 0)
     return -1;
   /* at most ~64 cells per particle: far more than any sane domain needs */

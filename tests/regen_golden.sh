@@ -35,3 +35,34 @@ out="$src/golden/energy_drift.csv"
 mv "$out.tmp" "$out"
 echo "wrote $out"
 
+# 2. Free-surface flags of the coarse dam break at t = 0.1 s
+# (tests/test_freesurface_run.c): the test program itself runs `sph` with
+# one thread and writes golden/freesurface/dam_break_coarse_t0.1.csv, so the
+# extraction and the comparison share one reader. It is a check program,
+# not built by `make all`: build it first.
+${MAKE:-make} -s -C "$build" tests/test_freesurface_run
+SPH_SRCDIR="$src" SPH_BUILDDIR="$build" "$build/tests/test_freesurface_run" --regen
+
+# 3. The coarse SPS dam-break front (tests/test_turbulence.c).
+"$sph" run --quiet "$src/cases/sps_dam_break_coarse.yaml" -o "$tmp/sps" --set output.snapshots=false
+out="$src/golden/sps_dam_break_coarse_front.csv"
+{
+  echo "# golden: surge front of cases/sps_dam_break_coarse.yaml at every output time"
+  echo "# made by: make golden ($("$sph" --version | head -n 1)); compared within 0.05 dx by tests/test_turbulence.c"
+  awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i == "time") t = i; if ($i == "front_x") f = i }
+                     print "time,front_x"; next }
+           { print $t "," $f }' "$tmp/sps/diagnostics.csv"
+} > "$out.tmp"
+mv "$out.tmp" "$out"
+echo "wrote $out"
+
+# 4. The coarse wave-gauge record of the flap wavemaker (tests/test_waves.c).
+"$sph" run --quiet "$src/cases/linear_wave_coarse.yaml" -o "$tmp/wave"
+out="$src/golden/linear_wave_coarse_gauge.csv"
+{
+  echo "# golden: gauges.csv of cases/linear_wave_coarse.yaml (surface elevation at x = 27.3 m)"
+  echo "# made by: make golden ($("$sph" --version | head -n 1)); compared within 0.02 m by tests/test_waves.c"
+  cat "$tmp/wave/gauges.csv"
+} > "$out.tmp"
+mv "$out.tmp" "$out"
+echo "wrote $out"

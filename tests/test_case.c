@@ -87,7 +87,8 @@ static const char FULL[] = "# a complete case\n"                           /* 1 
 static const char *const TOP_KEYS =
     "name, description, physics, numerics, time, geometry, free_surface, output";
 static const char *const PHYSICS_KEYS =
-    "rho0, gravity, body_force, sound_speed, artificial_viscosity, viscosity, repulsion, xsph";
+    "rho0, gravity, body_force, sound_speed, artificial_viscosity, viscosity, turbulence, "
+    "repulsion, xsph";
 
 /* MINIMAL with line `line` (1-based) replaced by `repl` (which may hold
  * several lines, or be "" to delete it). Returns one of two static buffers. */
@@ -637,10 +638,12 @@ static const char MINIMAL_DESCRIPTION[] =
     "physics.artificial_viscosity.eta: 0.10000000000000001\n"
     "physics.xsph: 0\n"
     "physics.viscosity.model: none\n"
+    "physics.turbulence.model: none\n"
     "physics.repulsion: 24.525000000000002\n"
     "numerics.dx: 0.01\n"
     "numerics.h_factor: 1.3\n"
     "numerics.h: 0.013000000000000001\n"
+    "numerics.smoothing_length: constant\n"
     "numerics.kernel: cubic_spline\n"
     "numerics.integrator: predictor_corrector\n"
     "numerics.time_step.rule: paper_b\n"

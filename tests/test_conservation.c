@@ -2,7 +2,10 @@
  * test_conservation.c - mass is exact and total momentum of an isolated
  * fluid patch (no walls, no gravity, random velocities, artificial
  * viscosity and XSPH on) changes only by round-off over 100 steps: every
- * pair term of the momentum equation is antisymmetric (forces.h).
+ * pair term of the momentum equation is antisymmetric (forces.h). The same
+ * with paper A's leap-frog (eq. 17-19, numerics.integrator=leapfrog): its
+ * kicks add dt sum_i m_i a_i = 0 to the momentum, so it is conserved to
+ * round-off as well.
  */
 #include "config.h"
 
@@ -30,12 +33,15 @@ static void totals(sph_particles *p, double *mass, double *mx, double *my, doubl
   }
 }
 
-static void test_isolated_patch(void) {
+/* Runs tests/data/isolated_patch.yaml with the given overrides, which must
+ * select the integrator `want`. */
+static void isolated_patch(const char *const *set, size_t n_set, sph_integrator_kind want) {
   sph_case c;
   sph_error err;
-  int rc = sph_case_load(sph_test_src("tests/data/isolated_patch.yaml"), NULL, 0, &c, &err);
+  int rc = sph_case_load(sph_test_src("tests/data/isolated_patch.yaml"), set, n_set, &c, &err);
   if (rc) printf("\n%s\n", err.msg);
   CU_ASSERT_FATAL(rc == 0);
+  CU_ASSERT_FATAL(c.integrator == want);
   sph_sim *s;
   CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
   sph_particles *p = sph_sim_particles(s);
@@ -71,9 +77,20 @@ static void test_isolated_patch(void) {
   sph_case_free(&c);
 }
 
+static void test_isolated_patch(void) {
+  isolated_patch(NULL, 0, SPH_INTEGRATOR_PREDICTOR_CORRECTOR);
+}
+
+static void test_isolated_patch_leapfrog(void) {
+  const char *set[] = {"numerics.integrator=leapfrog"};
+  isolated_patch(set, 1, SPH_INTEGRATOR_LEAPFROG);
+}
+
 int main(void) {
   CU_TestInfo tests[] = {{"isolated patch: exact mass, momentum to round-off over 100 steps",
                           test_isolated_patch},
+                         {"isolated patch with the leap-frog (paper A eq. 17-19): the same",
+                          test_isolated_patch_leapfrog},
                          CU_TEST_INFO_NULL};
   return sph_test_main("conservation", tests);
 }

@@ -5,11 +5,17 @@
  * and at exactly the support distance), the neighbours found through the
  * grid's three index ranges equal the pairs found by testing every pair;
  * the sort is stable (ids keep their order within a cell) and a permutation
- * of the store carries every field along.
+ * of the store carries every field along. On a grid periodic in x
+ * (sph_grid_build_periodic + sph_grid_ranges_all) the neighbours at
+ * minimum-image distance below the support equal brute force with the
+ * minimum image, for a period of exactly 3 cells (whole rows) and longer
+ * ones, with particles exactly at px0, within a cell of either side, and a
+ * little outside the period (as between the two stages of a step).
  */
 #include "config.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -130,6 +136,159 @@ static void test_cell_edges(void) {
   sph_particles_free(&p);
 }
 
+/* x_i - x_j reduced to the minimum image, |d| <= period/2: by remainder,
+ * not by the solver's single correction, so it holds however far apart. */
+static double min_image(double d, double period) {
+  d = fmod(d, period);
+  if (d > 0.5 * period) d -= period;
+  if (d < -0.5 * period) d += period;
+  return d;
+}
+
+/* Neighbours of every particle through the periodic grid's ranges against
+ * brute force with the minimum image; also checks that no candidate is
+ * listed twice (the ranges of a row never overlap). Returns the number of
+ * neighbour pairs found. */
+static size_t check_periodic(sph_particles *p, double support, double cell, double px0,
+                             double px1) {
+  sph_grid g;
+  sph_grid_init(&g);
+  sph_error err;
+  const int rc = sph_grid_build_periodic(&g, p, cell, px0, px1, 1u << 24, &err);
+  if (rc) printf("\n%s\n", err.msg);
+  CU_ASSERT_FATAL(rc == 0);
+  CU_ASSERT(g.periodic);
+  CU_ASSERT(g.nx >= 3 && g.cellx >= cell);
+  const double period = px1 - px0, s2 = support * support;
+  int64_t *a = malloc(p->n * sizeof *a), *b = malloc(p->n * sizeof *b);
+  unsigned char *seen = calloc(p->n, 1);
+  CU_ASSERT_FATAL(a && b && seen);
+  size_t mismatches = 0, duplicates = 0, pairs = 0;
+  for (size_t i = 0; i < p->n; i++) {
+    size_t na = 0, nb = 0;
+    size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES];
+    sph_grid_ranges_all(&g, i, lo, hi);
+    for (int k = 0; k < SPH_GRID_RANGES; k++)
+      for (size_t j = lo[k]; j < hi[k]; j++) {
+        if (seen[j]) duplicates++;
+        seen[j] = 1;
+        const double dx = min_image(p->x[i] - p->x[j], period), dy = p->y[i] - p->y[j];
+        if (j != i && dx * dx + dy * dy < s2) a[na++] = p->id[j];
+      }
+    for (int k = 0; k < SPH_GRID_RANGES; k++)
+      for (size_t j = lo[k]; j < hi[k]; j++) seen[j] = 0;
+    for (size_t j = 0; j < p->n; j++) {
+      const double dx = min_image(p->x[i] - p->x[j], period), dy = p->y[i] - p->y[j];
+      if (j != i && dx * dx + dy * dy < s2) b[nb++] = p->id[j];
+    }
+    qsort(a, na, sizeof *a, cmp_i64);
+    qsort(b, nb, sizeof *b, cmp_i64);
+    pairs += nb;
+    if (na != nb || memcmp(a, b, na * sizeof *a)) mismatches++;
+  }
+  CU_ASSERT_EQUAL(mismatches, 0);
+  CU_ASSERT_EQUAL(duplicates, 0);
+  /* cell order with the columns of the period */
+  for (size_t i = 0; i < p->n; i++) CU_ASSERT(g.cx[i] >= 0 && g.cx[i] < g.nx);
+  for (size_t i = 1; i < p->n; i++)
+    CU_ASSERT(g.cy[i - 1] * g.nx + g.cx[i - 1] <= g.cy[i] * g.nx + g.cx[i]);
+  free(a);
+  free(b);
+  free(seen);
+  sph_grid_free(&g);
+  return pairs;
+}
+
+/* n random particles over [px0, px1) x [y0, y0 + height), then particles
+ * exactly at px0, within one cell of either side (inside and, by less than
+ * a cell, outside the period), and pairs exactly `support` apart across
+ * the seam (not neighbours). */
+static void periodic_set(sph_particles *p, size_t n, double px0, double px1, double y0,
+                         double height, double cell, double support) {
+  sph_error err;
+  const double period = px1 - px0;
+  for (size_t i = 0; i < n; i++)
+    sph_particles_add(p, px0 + period * uniform(), y0 + height * uniform(), 0, 0, 1000, 1, 0.1,
+                      SPH_KIND_FLUID, &err);
+  for (int k = 0; k < 20; k++) {
+    const double y = y0 + height * uniform();
+    sph_particles_add(p, px0, y, 0, 0, 1000, 1, 0.1, SPH_KIND_FLUID, &err);
+    sph_particles_add(p, px0 + cell * uniform(), y0 + height * uniform(), 0, 0, 1000, 1, 0.1,
+                      SPH_KIND_FLUID, &err);
+    sph_particles_add(p, px1 - cell * uniform(), y0 + height * uniform(), 0, 0, 1000, 1, 0.1,
+                      SPH_KIND_FLUID, &err);
+    /* between the stages of a step a particle may stand just outside */
+    if (k % 4 == 0) {
+      sph_particles_add(p, px1 + 0.5 * cell * uniform(), y0 + height * uniform(), 0, 0, 1000, 1,
+                        0.1, SPH_KIND_FLUID, &err);
+      sph_particles_add(p, px0 - 0.5 * cell * uniform(), y0 + height * uniform(), 0, 0, 1000, 1,
+                        0.1, SPH_KIND_FLUID, &err);
+    }
+  }
+  /* exactly `support` apart through the seam: px0 + s/4 and px1 - 3s/4 */
+  sph_particles_add(p, px0 + 0.25 * support, y0 + 0.5 * height, 0, 0, 1000, 1, 0.1,
+                    SPH_KIND_FLUID, &err);
+  sph_particles_add(p, px1 - 0.75 * support, y0 + 0.5 * height, 0, 0, 1000, 1, 0.1,
+                    SPH_KIND_FLUID, &err);
+}
+
+/* A period of exactly 3 cells: every row is one whole range, and each pair
+ * is counted once although it lies in neighbouring columns both ways. */
+static void test_periodic_three_cells(void) {
+  for (int trial = 0; trial < 4; trial++) {
+    sph_particles p;
+    sph_error err;
+    CU_ASSERT_FATAL(sph_particles_init(&p, 16, &err) == 0);
+    const double support = 0.25, cell = 0.25; /* binary fractions: the period is 3 cells exactly */
+    const double px0 = -0.5 + 0.25 * trial, px1 = px0 + 3 * cell;
+    periodic_set(&p, 300 + 100 * (size_t)trial, px0, px1, 1.0, 1.5, cell, support);
+    sph_grid g;
+    sph_grid_init(&g);
+    CU_ASSERT_FATAL(sph_grid_build_periodic(&g, &p, cell, px0, px1, 1u << 20, &err) == 0);
+    CU_ASSERT_EQUAL(g.nx, 3);
+    CU_ASSERT_EQUAL(g.cellx, cell);
+    sph_grid_free(&g);
+    CU_ASSERT(check_periodic(&p, support, cell, px0, px1) > 0);
+    sph_particles_free(&p);
+  }
+}
+
+/* Longer periods (not a whole number of cells: columns are widened to
+ * period/nx), with the support equal to the cell or a little below. */
+static void test_periodic_long(void) {
+  for (int trial = 0; trial < 4; trial++) {
+    sph_particles p;
+    sph_error err;
+    CU_ASSERT_FATAL(sph_particles_init(&p, 16, &err) == 0);
+    const double support = 0.02 + 0.005 * trial;
+    const double cell = support * (1.0 + 1e-9);
+    const double px0 = 0.3 - 0.1 * trial, px1 = px0 + (10.37 + 3.1 * trial) * cell;
+    periodic_set(&p, 800 + 300 * (size_t)trial, px0, px1, -0.2, 8 * cell, cell, support);
+    sph_grid g;
+    sph_grid_init(&g);
+    CU_ASSERT_FATAL(sph_grid_build_periodic(&g, &p, cell, px0, px1, 1u << 20, &err) == 0);
+    CU_ASSERT(g.nx > 3);
+    sph_grid_free(&g);
+    CU_ASSERT(check_periodic(&p, support, cell, px0, px1) > 0);
+    sph_particles_free(&p);
+  }
+}
+
+/* A period shorter than 3 cells is refused with a message. */
+static void test_periodic_too_short(void) {
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 16, &err) == 0);
+  sph_particles_add(&p, 0.1, 0.1, 0, 0, 1000, 1, 0.1, SPH_KIND_FLUID, &err);
+  sph_grid g;
+  sph_grid_init(&g);
+  err.msg[0] = 0;
+  CU_ASSERT(sph_grid_build_periodic(&g, &p, 0.25, 0.0, 0.7, 1u << 20, &err) != 0);
+  CU_ASSERT(strstr(err.msg, "fewer than 3 cells") != NULL);
+  sph_grid_free(&g);
+  sph_particles_free(&p);
+}
+
 static void test_permute_carries_fields(void) {
   sph_particles p;
   sph_error err;
@@ -157,6 +316,11 @@ int main(void) {
   CU_TestInfo tests[] = {{"grid neighbours equal brute force (random sets)", test_random_sets},
                          {"particles on cell edges and at exactly 2h", test_cell_edges},
                          {"permutation carries every field", test_permute_carries_fields},
+                         {"periodic grid, period of exactly 3 cells, against brute force",
+                          test_periodic_three_cells},
+                         {"periodic grid, longer periods, against brute force",
+                          test_periodic_long},
+                         {"periodic grid refuses a period under 3 cells", test_periodic_too_short},
                          CU_TEST_INFO_NULL};
   return sph_test_main("grid", tests);
 }

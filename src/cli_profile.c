@@ -1,0 +1,191 @@
+/*
+ * cli_profile.c - `sph profile [--help] SNAPSHOT...`: the error of a film
+ * flow down an inclined plane against its steady profile, paper A eq. (26).
+ *
+ * Prototype (declared in src/cli.h):
+ *   int sph_cli_profile(int argc, char **argv);
+ * argv[0] is "profile". Each snapshot carries the text of the case it was
+ * run from and the --set overrides of the run (one per line); they are
+ * parsed again with sph_case_parse, so the physics is exactly the run's:
+ *   g  = the body force along x (physics.body_force[0], g sin(alpha)),
+ *   nu = mu / rho0 (physics.viscosity.mu, physics.rho0),
+ *   L  = the height of the (single) fluid block, y0 = its bottom (the bed).
+ * Then, over the fluid particles of the snapshot (analytic.h),
+ *   max  = 100 max_i |vx_i - v(y_i - y0)| / v_max,
+ *   L2   = 100 sqrt(mean_i (vx_i - v(y_i - y0))^2) / v_max,
+ * with v(y) = (g/nu)(L - y/2) y and v_max = g L^2/(2 nu), and one line
+ * "time max L2" is printed per file (%.9g), in the order given, after a
+ * header line starting with '#'.
+ *
+ * Invariants: uses only the public reading API (snapshot.h, case.h), like
+ * any other reader. A file that fails (unreadable, no case text, a case
+ * without laminar viscosity, without a positive body force along x, or with
+ * other than one fluid block) is reported on stderr as
+ * "sph profile: <message>" (the message names the file) and the others are still processed; the
+ * exit status is 0 if every file was measured, 1 if any failed, 2 for a
+ * usage error.
+ */
+#include "config.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analytic.h"
+#include "case.h"
+#include "cli.h"
+#include "particles.h"
+#include "snapshot.h"
+
+static const char USAGE[] =
+    "usage: sph profile [--help] SNAPSHOT...\n"
+    "Measures the velocity of a film flow down an inclined plane (paper A §7)\n"
+    "against the steady profile of paper A eq. (26),\n"
+    "  v(y) = (g/nu) (L - y/2) y,  v_max = g L^2 / (2 nu),\n"
+    "with g the body force along x, nu = mu/rho0 and L the height of the fluid\n"
+    "block above its bottom y0 (the bed), all read from the case stored in the\n"
+    "snapshot (with its --set overrides). For each file prints one line\n"
+    "  time max_rel_error_pct l2_rel_error_pct\n"
+    "over the N fluid particles i (y_i measured from the bed):\n"
+    "  max = 100 max_i |vx_i - v(y_i)| / v_max\n"
+    "  L2  = 100 sqrt( sum_i (vx_i - v(y_i))^2 / N ) / v_max\n"
+    "Exit status: 0 all measured, 1 a file failed, 2 usage error.\n";
+
+/* Splits the stored overrides ("k=v" lines) into a NULL-terminated array
+ * of pointers into a private copy; *n gets the count. NULL on no memory. */
+static char **split_overrides(const char *text, size_t *n, char **copy) {
+  *n = 0;
+  *copy = strdup(text ? text : "");
+  if (!*copy) return NULL;
+  size_t lines = 1;
+  for (const char *q = *copy; *q; q++)
+    lines += *q == '\n';
+  char **v = calloc(lines + 1, sizeof *v);
+  if (!v) {
+    free(*copy);
+    *copy = NULL;
+    return NULL;
+  }
+  char *s = *copy;
+  while (*s) {
+    char *nl = strchr(s, '\n');
+    if (nl) *nl = '\0';
+    if (*s) v[(*n)++] = s;
+    if (!nl) break;
+    s = nl + 1;
+  }
+  return v;
+}
+
+/* g, nu, L and y0 of the case stored in s; 0, or -1 with err. */
+static int film_parameters(const sph_snapshot *s, double *g, double *nu, double *L, double *y0,
+                           sph_error *err) {
+  const char *text = sph_snapshot_text(s, "case_text");
+  if (!text || !*text)
+    return sph_error_set(err, "%s: no case_text attribute (not written by sph run?)",
+                         sph_snapshot_path(s));
+  size_t n_set;
+  char *copy;
+  char **set = split_overrides(sph_snapshot_text(s, "overrides"), &n_set, &copy);
+  if (!set) return sph_error_set(err, "%s: out of memory", sph_snapshot_path(s));
+  char origin[4200];
+  snprintf(origin, sizeof origin, "%s (case_text)", sph_snapshot_path(s));
+  sph_case c;
+  int rc = sph_case_parse(text, strlen(text), origin, (const char *const *)set, n_set, &c, err);
+  free(set);
+  free(copy);
+  if (rc) {
+    sph_case_free(&c);
+    return -1;
+  }
+  if (c.viscosity == SPH_VISCOSITY_NONE || !(c.mu > 0.0))
+    rc = sph_error_set(err,
+                       "%s: the case has no laminar viscosity (physics.viscosity): no film flow",
+                       sph_snapshot_path(s));
+  else if (!(c.gravity[0] > 0.0))
+    rc = sph_error_set(err, "%s: the case's body force along x is %g, not positive: no film flow",
+                       sph_snapshot_path(s), c.gravity[0]);
+  else if (c.n_fluid != 1)
+    rc = sph_error_set(err, "%s: the case has %zu fluid blocks; the film is one block",
+                       sph_snapshot_path(s), c.n_fluid);
+  if (rc == 0) {
+    *g = c.gravity[0];
+    *nu = c.mu / c.rho0;
+    *y0 = c.fluid[0].y0;
+    *L = c.fluid[0].y1 - c.fluid[0].y0;
+  }
+  sph_case_free(&c);
+  return rc;
+}
+
+/* Measures one file and prints its line; 0, or -1 with err. */
+static int measure(const char *path, sph_error *err) {
+  sph_snapshot *s;
+  if (sph_snapshot_open(path, &s, err)) return -1;
+  double g = 0.0, nu = 0.0, L = 0.0, y0 = 0.0;
+  if (film_parameters(s, &g, &nu, &L, &y0, err)) {
+    sph_snapshot_close(s);
+    return -1;
+  }
+  sph_particles p;
+  if (sph_snapshot_read_particles(s, &p, err)) {
+    sph_snapshot_close(s);
+    return -1;
+  }
+  double emax, el2;
+  const long nf = sph_film_error(&p, g, nu, L, y0, &emax, &el2);
+  const double t = sph_snapshot_time(s);
+  sph_particles_free(&p);
+  sph_snapshot_close(s);
+  if (nf < 0) return sph_error_set(err, "%s: no fluid particles", path);
+  printf("%.9g %.9g %.9g\n", t, 100.0 * emax, 100.0 * el2);
+  return 0;
+}
+
+/* Options (anywhere before "--"): 0 to go on, -1 after --help, else the
+ * exit status; *n_files counts the snapshot arguments. */
+static int parse_options(int argc, char **argv, int *n_files) {
+  int dashdash = 0;
+  *n_files = 0;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (dashdash || a[0] != '-' || a[1] == '\0') {
+      (*n_files)++;
+    } else if (!strcmp(a, "--")) {
+      dashdash = 1;
+    } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      fputs(USAGE, stdout);
+      return -1;
+    } else {
+      fprintf(stderr, "sph profile: unknown option '%s'\n%s", a, USAGE);
+      return 2;
+    }
+  }
+  if (*n_files == 0) {
+    fprintf(stderr, "sph profile: no snapshot given\n%s", USAGE);
+    return 2;
+  }
+  return 0;
+}
+
+int sph_cli_profile(int argc, char **argv) {
+  int n_files;
+  const int rc = parse_options(argc, argv, &n_files);
+  if (rc != 0) return rc < 0 ? 0 : rc;
+  printf("# time max_rel_error_pct l2_rel_error_pct (paper A eq. 26; see sph profile --help)\n");
+  int status = 0, dashdash = 0;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (!dashdash && !strcmp(a, "--")) {
+      dashdash = 1;
+      continue;
+    }
+    sph_error err;
+    if (measure(a, &err)) {
+      fflush(stdout); /* keep stdout and stderr in order on a terminal */
+      fprintf(stderr, "sph profile: %s\n", err.msg);
+      status = 1;
+    }
+  }
+  return status;
+}
