@@ -36,12 +36,16 @@ bin_PROGRAMS += render/sph-render
 render_sph_render_SOURCES = render/main.c
 render_sph_render_CFLAGS = $(RENDER_CFLAGS)
 render_sph_render_LDADD = render/libsphrender.la $(RENDER_LIBS)
+# spelled out: automake cannot see the libraries inside RENDER_LIBS, and a
+# parallel build would otherwise link before src/libsphio.la exists
+render_sph_render_DEPENDENCIES = render/libsphrender.la src/libsphio.la
 
 check_PROGRAMS += tests/test_render
 TESTS += tests/test_render
 tests_test_render_SOURCES = tests/test_render.c
 tests_test_render_CFLAGS = $(RENDER_CFLAGS) $(CUNIT_CFLAGS) -I$(top_srcdir)/render
 tests_test_render_LDADD = tests/libtestutil.la render/libsphrender.la $(RENDER_LIBS) $(CUNIT_LIBS)
+tests_test_render_DEPENDENCIES = tests/libtestutil.la render/libsphrender.la src/libsphio.la
 
 # `make frames`: the frames of a run (by default the Martin & Moyce run of
 # the README's main command) into frames/, one PNG per snapshot.

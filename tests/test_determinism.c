@@ -1,0 +1,79 @@
+/*
+ * test_determinism.c - same case, same build: byte-identical output on 1
+ * and on 2 threads, for every kind of loop the solver has (DESIGN rule 1).
+ * test_dam_break covers the plain scheme; here short runs switch on the
+ * other terms, each run with SPH_OMP_MIN=0 so that even these small cases
+ * take the parallel paths:
+ *   - wet-bed dam break: stress-tensor viscosity, artificial viscosity,
+ *     XSPH, the energy ledger, a moving gate, output_times;
+ *   - coarse SPS dam break: SPS turbulence with Morris viscosity;
+ *   - hydrostatic tank with mirror walls, MLS filter every 5 steps;
+ *   - inclined plane: periodic x, leap-frog, free surface with h* = 2h;
+ *   - coarse flap wavemaker: paddle motion, wave gauges, variable h,
+ *     Shepard filter.
+ * Every file of the two output directories (snapshots, XDMF index,
+ * diagnostics.csv, gauges.csv) must be identical.
+ */
+#include "config.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "testutil.h"
+
+static void same_on_1_and_2_threads(const char *case_rel, const char *sets) {
+  char *d1 = sph_test_tmpdir(), *d2 = sph_test_tmpdir(), cmd[8192];
+  for (int t = 1; t <= 2; t++) {
+    snprintf(cmd, sizeof cmd, "SPH_OMP_MIN=0 '%s' run --quiet --threads %d '%s' -o '%s' %s",
+             sph_test_build("src/sph"), t, sph_test_src(case_rel), t == 1 ? d1 : d2, sets);
+    const int rc = sph_test_system(cmd);
+    if (rc) printf("\n  %s: exit %d", case_rel, rc);
+    CU_ASSERT_FATAL(rc == 0);
+  }
+  snprintf(cmd, sizeof cmd, "diff -r '%s' '%s' >/dev/null", d1, d2);
+  const int same = sph_test_system(cmd) == 0;
+  printf("\n  %s: %s", case_rel, same ? "identical" : "DIFFERENT");
+  CU_ASSERT(same);
+  sph_test_rmtree(d1);
+  sph_test_rmtree(d2);
+  free(d1);
+  free(d2);
+}
+
+static void test_wet_bed(void) {
+  same_on_1_and_2_threads("cases/wet_bed_dam_break.yaml",
+                          "--set numerics.dx=0.012 --set time.end=0.16");
+}
+
+static void test_sps(void) {
+  same_on_1_and_2_threads("cases/sps_dam_break_coarse.yaml", "--set time.end=0.2");
+}
+
+static void test_mirror_filter(void) {
+  same_on_1_and_2_threads("cases/hydrostatic_tank.yaml",
+                          "--set time.end=0.05 --set time.output_interval=0.01 "
+                          "--set 'geometry.tank={x: [0.0, 0.2], y: [0.0, 0.15], boundary: mirror}' "
+                          "--set 'numerics.density_filter={kind: mls, every: 5}'");
+}
+
+static void test_periodic_free_surface(void) {
+  same_on_1_and_2_threads("cases/inclined_plane.yaml",
+                          "--set time.end=0.05 --set time.output_interval=0.01 "
+                          "--set 'free_surface={h_factor: 2}' --set output.free_surface=true");
+}
+
+static void test_paddle(void) {
+  same_on_1_and_2_threads("cases/linear_wave_coarse.yaml",
+                          "--set time.end=1.0 --set numerics.smoothing_length=variable "
+                          "--set 'numerics.density_filter={kind: shepard, every: 10}'");
+}
+
+int main(void) {
+  CU_TestInfo tests[] = {{"wet bed: viscosity, ledger, moving gate", test_wet_bed},
+                         {"SPS turbulence", test_sps},
+                         {"mirror walls and the MLS filter", test_mirror_filter},
+                         {"periodic x, leap-frog, free surface with h*", test_periodic_free_surface},
+                         {"paddle, gauges, variable h, Shepard filter", test_paddle},
+                         CU_TEST_INFO_NULL};
+  return sph_test_main("determinism", tests);
+}
