@@ -14,4 +14,10 @@ int sph_cli_info(int argc, char **argv);
 int sph_cli_profile(int argc, char **argv);
 int sph_cli_audit(int argc, char **argv);
 
+/* Shared by the commands that take snapshot files: checks the options
+ * (only --help / -h, and "--"), counts the files. Returns 0 to go on, -1
+ * after printing the usage for --help, else the exit status (2). */
+int sph_cli_snapshot_args(const char *cmd, const char *usage, int argc, char **argv,
+                          int *n_files);
+
 #endif

@@ -128,35 +128,10 @@ static int show(const char *path, int *printed, sph_error *err) {
   return rc;
 }
 
-/* Options (anywhere before "--"): 0 to go on, else the exit status;
- * *n_files counts the snapshot arguments. */
-static int parse_options(int argc, char **argv, int *n_files) {
-  int dashdash = 0;
-  *n_files = 0;
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    if (dashdash || a[0] != '-' || a[1] == '\0') {
-      (*n_files)++;
-    } else if (strcmp(a, "--") == 0) {
-      dashdash = 1;
-    } else if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-      fputs(USAGE, stdout);
-      return -1;
-    } else {
-      fprintf(stderr, "sph info: unknown option '%s'\n%s", a, USAGE);
-      return 2;
-    }
-  }
-  if (*n_files == 0) {
-    fprintf(stderr, "sph info: no snapshot given\n%s", USAGE);
-    return 2;
-  }
-  return 0;
-}
 
 int sph_cli_info(int argc, char **argv) {
   int n_files;
-  int rc = parse_options(argc, argv, &n_files);
+  int rc = sph_cli_snapshot_args("info", USAGE, argc, argv, &n_files);
   if (rc != 0) return rc < 0 ? 0 : rc;
   int status = 0, printed = 0, dashdash = 0;
   for (int i = 1; i < argc; i++) {

@@ -142,35 +142,10 @@ static int measure(const char *path, sph_error *err) {
   return 0;
 }
 
-/* Options (anywhere before "--"): 0 to go on, -1 after --help, else the
- * exit status; *n_files counts the snapshot arguments. */
-static int parse_options(int argc, char **argv, int *n_files) {
-  int dashdash = 0;
-  *n_files = 0;
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    if (dashdash || a[0] != '-' || a[1] == '\0') {
-      (*n_files)++;
-    } else if (!strcmp(a, "--")) {
-      dashdash = 1;
-    } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-      fputs(USAGE, stdout);
-      return -1;
-    } else {
-      fprintf(stderr, "sph profile: unknown option '%s'\n%s", a, USAGE);
-      return 2;
-    }
-  }
-  if (*n_files == 0) {
-    fprintf(stderr, "sph profile: no snapshot given\n%s", USAGE);
-    return 2;
-  }
-  return 0;
-}
 
 int sph_cli_profile(int argc, char **argv) {
   int n_files;
-  const int rc = parse_options(argc, argv, &n_files);
+  const int rc = sph_cli_snapshot_args("profile", USAGE, argc, argv, &n_files);
   if (rc != 0) return rc < 0 ? 0 : rc;
   printf("# time max_rel_error_pct l2_rel_error_pct (paper A eq. 26; see sph profile --help)\n");
   int status = 0, dashdash = 0;

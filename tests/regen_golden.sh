@@ -9,18 +9,23 @@ sph="$build/src/sph"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sphgolden.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 
+# The surge front (time, front_x) of a run's diagnostics.csv as a golden
+# file: front_golden RUN_DIR CASE_NAME TEST OUT
+front_golden() {
+  {
+    echo "# golden: surge front of cases/$2.yaml at every output time"
+    echo "# made by: make golden ($("$sph" --version | head -n 1)); compared within 0.05 dx by tests/$3.c"
+    awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i == "time") t = i; if ($i == "front_x") f = i }
+                       print "time,front_x"; next }
+             { print $t "," $f }' "$1/diagnostics.csv"
+  } > "$4.tmp"
+  mv "$4.tmp" "$4"
+  echo "wrote $4"
+}
+
 # 1. The coarse Martin & Moyce front (tests/test_dam_break.c).
 "$sph" run --quiet --threads 1 "$src/cases/martin_moyce_coarse.yaml" -o "$tmp/mm"
-out="$src/golden/martin_moyce_coarse_front.csv"
-{
-  echo "# golden: surge front of cases/martin_moyce_coarse.yaml at every output time"
-  echo "# made by: make golden ($("$sph" --version | head -n 1)); compared within 0.05 dx by tests/test_dam_break.c"
-  awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i == "time") t = i; if ($i == "front_x") f = i }
-                     print "time,front_x"; next }
-           { print $t "," $f }' "$tmp/mm/diagnostics.csv"
-} > "$out.tmp"
-mv "$out.tmp" "$out"
-echo "wrote $out"
+front_golden "$tmp/mm" martin_moyce_coarse test_dam_break "$src/golden/martin_moyce_coarse_front.csv"
 
 # 2. The energy audit of the wet-bed dam break at CI-sized counts
 #    (tests/test_energy.c).
@@ -35,7 +40,7 @@ out="$src/golden/energy_drift.csv"
 mv "$out.tmp" "$out"
 echo "wrote $out"
 
-# 2. Free-surface flags of the coarse dam break at t = 0.1 s
+# 3. Free-surface flags of the coarse dam break at t = 0.1 s
 # (tests/test_freesurface_run.c): the test program itself runs `sph` with
 # one thread and writes golden/freesurface/dam_break_coarse_t0.1.csv, so the
 # extraction and the comparison share one reader. It is a check program,
@@ -43,20 +48,11 @@ echo "wrote $out"
 ${MAKE:-make} -s -C "$build" tests/test_freesurface_run
 SPH_SRCDIR="$src" SPH_BUILDDIR="$build" "$build/tests/test_freesurface_run" --regen
 
-# 3. The coarse SPS dam-break front (tests/test_turbulence.c).
+# 4. The coarse SPS dam-break front (tests/test_turbulence.c).
 "$sph" run --quiet "$src/cases/sps_dam_break_coarse.yaml" -o "$tmp/sps" --set output.snapshots=false
-out="$src/golden/sps_dam_break_coarse_front.csv"
-{
-  echo "# golden: surge front of cases/sps_dam_break_coarse.yaml at every output time"
-  echo "# made by: make golden ($("$sph" --version | head -n 1)); compared within 0.05 dx by tests/test_turbulence.c"
-  awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i == "time") t = i; if ($i == "front_x") f = i }
-                     print "time,front_x"; next }
-           { print $t "," $f }' "$tmp/sps/diagnostics.csv"
-} > "$out.tmp"
-mv "$out.tmp" "$out"
-echo "wrote $out"
+front_golden "$tmp/sps" sps_dam_break_coarse test_turbulence "$src/golden/sps_dam_break_coarse_front.csv"
 
-# 4. The coarse wave-gauge record of the flap wavemaker (tests/test_waves.c).
+# 5. The coarse wave-gauge record of the flap wavemaker (tests/test_waves.c).
 "$sph" run --quiet "$src/cases/linear_wave_coarse.yaml" -o "$tmp/wave"
 out="$src/golden/linear_wave_coarse_gauge.csv"
 {
