@@ -13,7 +13,9 @@
  * diagnostics column energy_deviation) and the paper-style deviation of the
  * fluid's own kinetic + potential + internal energy (fluid_energy_deviation),
  * which moving walls and the heat taken by the walls also change. Plus the
- * mass drift (exactly zero: masses never change) at the last time.
+ * mass drift (exactly zero: masses never change) and the momentum drift,
+ * |P - P0 - impulse of the walls and gravity on the fluid| / (M |g| t), at
+ * the last time (the momentum balance of the ledger).
  * Output: a table on stdout, DIR/audit.csv and DIR/audit.md, and each run's
  * diagnostics in DIR/n<count>/. A progress line per run goes to stderr.
  */
@@ -121,18 +123,20 @@ typedef struct audit_row {
   double dx;
   double dev[MAX_TIMES], fdev[MAX_TIMES];
   double mass_drift;
+  double momentum_drift; /* |P - P0 - impulse| / (M |g| t) at the last time */
   long steps;
   double wall;
 } audit_row;
 
 /* Reads the rows of DIR/diagnostics.csv at the given times. */
-static int read_diag(const char *dir, const double *times, int nt, audit_row *row) {
+static int read_diag(const char *dir, const double *times, int nt, double gmag, audit_row *row) {
   char path[4096], line[8192];
   if (path_join(path, sizeof path, dir, "diagnostics.csv")) return -1;
   FILE *f = fopen(path, "r");
   if (!f) return -1;
-  int c_time = -1, c_dev = -1, c_fdev = -1, c_mass = -1, c_step = -1, found = 0;
-  double mass0 = NAN, mass_last = NAN;
+  int c_time = -1, c_dev = -1, c_fdev = -1, c_mass = -1, c_step = -1, c_rx = -1, c_ry = -1;
+  int found = 0;
+  double mass0 = NAN, mass_last = NAN, res_last = NAN, t_last = NAN;
   for (int i = 0; i < nt; i++) row->dev[i] = row->fdev[i] = NAN;
   while (fgets(line, sizeof line, f)) {
     double v[32];
@@ -144,14 +148,20 @@ static int read_diag(const char *dir, const double *times, int nt, audit_row *ro
         if (!strcmp(tok, "fluid_energy_deviation")) c_fdev = col;
         if (!strcmp(tok, "mass")) c_mass = col;
         if (!strcmp(tok, "step")) c_step = col;
+        if (!strcmp(tok, "momentum_residual_x")) c_rx = col;
+        if (!strcmp(tok, "momentum_residual_y")) c_ry = col;
       }
-      if (c_time < 0 || c_dev < 0 || c_fdev < 0 || c_mass < 0 || c_step < 0) break;
+      if (c_time < 0 || c_dev < 0 || c_fdev < 0 || c_mass < 0 || c_step < 0 || c_rx < 0 ||
+          c_ry < 0)
+        break;
       continue;
     }
     for (char *tok = strtok(line, ",\n"); tok && n < 32; tok = strtok(NULL, ",\n")) v[n++] = strtod(tok, NULL);
-    if (n <= c_fdev) continue;
+    if (n <= c_fdev || n <= c_ry || n <= c_rx) continue;
     if (isnan(mass0)) mass0 = v[c_mass];
     mass_last = v[c_mass];
+    res_last = hypot(v[c_rx], v[c_ry]);
+    t_last = v[c_time];
     row->steps = (long)v[c_step];
     for (int i = 0; i < nt; i++)
       if (fabs(v[c_time] - times[i]) <= 1e-12 * (1.0 + times[i])) {
@@ -162,6 +172,7 @@ static int read_diag(const char *dir, const double *times, int nt, audit_row *ro
   }
   fclose(f);
   row->mass_drift = (mass_last - mass0) / mass0;
+  row->momentum_drift = res_last / (mass_last * gmag * t_last);
   return found == nt ? 0 : -1;
 }
 
@@ -359,7 +370,8 @@ int sph_cli_audit(int argc, char **argv) {
     sph_progress_done(&bar);
     rows[r].particles = got;
     rows[r].dx = dx;
-    if (rc || read_diag(dir, times, ntimes, &rows[r])) {
+    const double gmag = hypot(c.gravity[0], c.gravity[1]);
+    if (rc || read_diag(dir, times, ntimes, gmag > 0.0 ? gmag : 1.0, &rows[r])) {
       fprintf(stderr, "sph audit: run %d (%ld particles): %s\n", r + 1, got,
               rc ? err.msg : "diagnostics lack the audit times");
       sph_sim_free(s);
@@ -387,16 +399,22 @@ int sph_cli_audit(int argc, char **argv) {
   print_table(stdout, 0, rows, ncounts, times, ntimes, 1);
   printf("\nMass drift at t = %g s:", times[ntimes - 1]);
   for (int r = 0; r < ncounts; r++) printf(" %ld: %.3g", rows[r].particles, rows[r].mass_drift);
+  printf("\nMomentum drift |P - P0 - impulse of walls and gravity| / (M |g| t) at t = %g s:",
+         times[ntimes - 1]);
+  for (int r = 0; r < ncounts; r++)
+    printf(" %ld: %.3g", rows[r].particles, rows[r].momentum_drift);
   printf("\n");
 
   char path[4096];
   FILE *f = path_join(path, sizeof path, outdir, "audit.csv") ? NULL : fopen(path, "w");
   if (f) {
-    fprintf(f, "particles,dx,time,energy_deviation,fluid_energy_deviation,mass_drift\n");
+    fprintf(f, "particles,dx,time,energy_deviation,fluid_energy_deviation,mass_drift,"
+               "momentum_drift\n");
     for (int r = 0; r < ncounts; r++)
       for (int k = 0; k < ntimes; k++)
-        fprintf(f, "%ld,%.17g,%.17g,%.17g,%.17g,%.17g\n", rows[r].particles, rows[r].dx, times[k],
-                rows[r].dev[k], rows[r].fdev[k], rows[r].mass_drift);
+        fprintf(f, "%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", rows[r].particles, rows[r].dx,
+                times[k], rows[r].dev[k], rows[r].fdev[k], rows[r].mass_drift,
+                rows[r].momentum_drift);
     fclose(f);
   }
   FILE *m = path_join(path, sizeof path, outdir, "audit.md") ? NULL : fopen(path, "w");
@@ -405,6 +423,11 @@ int sph_cli_audit(int argc, char **argv) {
     print_table(m, 1, rows, ncounts, times, ntimes, 0);
     fprintf(m, "\nThe fluid's own kinetic + potential + internal energy (paper A, Table 4):\n\n");
     print_table(m, 1, rows, ncounts, times, ntimes, 1);
+    fprintf(m, "\n| particles | mass drift | momentum drift (t = %g s) |\n|---|---|---|\n",
+            times[ntimes - 1]);
+    for (int r = 0; r < ncounts; r++)
+      fprintf(m, "| %ld | %.3g | %.3g |\n", rows[r].particles, rows[r].mass_drift,
+              rows[r].momentum_drift);
     fclose(m);
   }
   if (!f || !m) {

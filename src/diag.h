@@ -12,7 +12,9 @@
  *   n_free_surface  fluid particles flagged on the free surface (a column
  *              only when the case runs free-surface detection)
  *   internal,boundary_work,xsph_drift,total_energy,energy_deviation,
- *   fluid_energy_deviation   the energy ledger (columns only with output.energy)
+ *   fluid_energy_deviation,momentum_residual_x,momentum_residual_y
+ *              the energy ledger and the momentum balance (columns only
+ *              with output.energy)
  * Numbers are printed with %.17g: a row reads back to the same bits. Sums
  * run serially over the store in its (deterministic) sorted order.
  */
@@ -37,6 +39,10 @@ typedef struct sph_diag_row {
   double total;           /* kinetic + potential + internal - boundary_work - xsph_drift */
   double deviation;       /* (total - E0) / E0, E0 the initial total */
   double fluid_deviation; /* the fluid's own kinetic + potential + internal against its start */
+  /* momentum balance: P - P0 - integral of the external force (walls,
+   * mirror particles, body force) on the fluid; zero but for round-off and
+   * time integration if momentum is conserved */
+  double momentum_residual_x, momentum_residual_y;
 } sph_diag_row;
 
 /* Largest x of fluid particles with y < floor_y + band; -inf if none. */

@@ -44,13 +44,16 @@ void sph_force_work_free(sph_force_work *w) {
   free(w->sxy);
   free(w->syy);
   free(w->wpow);
+  free(w->wfx);
+  free(w->wfy);
   *w = (sph_force_work){0};
 }
 
 static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
   if (n <= w->cap) return 0;
   const size_t cap = n + n / 4 + 16;
-  double **arrays[] = {&w->prho2, &w->cs, &w->sigma, &w->sxx, &w->sxy, &w->syy, &w->wpow};
+  double **arrays[] = {&w->prho2, &w->cs,   &w->sigma, &w->sxx, &w->sxy,
+                       &w->syy,   &w->wpow, &w->wfx,   &w->wfy};
   for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++) {
     double *a = realloc(*arrays[k], cap * sizeof *a);
     if (!a) return sph_error_set(err, "forces: out of memory for %zu particles", n);
@@ -173,14 +176,14 @@ interact_one(sph_particles *restrict p, const sph_grid *restrict g,
   if (kind[i] == SPH_KIND_MIRROR || (p->flags[i] & SPH_FLAG_REPULSIVE)) {
     p->drho[i] = p->ax[i] = p->ay[i] = 0.0;
     w->sigma[i] = 0.0;
-    if (F & F_LEDGER) p->du[i] = w->wpow[i] = 0.0;
+    if (F & F_LEDGER) p->du[i] = w->wpow[i] = w->wfx[i] = w->wfy[i] = 0.0;
     return;
   }
   const double xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
   const double rhoi = rho[i], pri = prho2[i], ci = cs[i];
   const int fluid = kind[i] == SPH_KIND_FLUID;
   double drho = 0.0, ax = 0.0, ay = 0.0, xs = 0.0, ys = 0.0, sig = 0.0;
-  double du = 0.0, wpow = 0.0; /* energy ledger */
+  double du = 0.0, wpow = 0.0, wfx = 0.0, wfy = 0.0; /* energy and momentum ledger */
   RANGES(F, g, i, lo, hi, nr)
   for (int k = 0; k < nr; k++) {
     for (size_t j = lo[k]; j < hi[k]; j++) {
@@ -232,6 +235,11 @@ interact_one(sph_particles *restrict p, const sph_grid *restrict g,
       ay += pay;
       /* power of a (moving) wall particle's force on i, per unit mass of i */
       if ((F & F_LEDGER) && kind[j] == SPH_KIND_WALL) wpow += pax * vx[j] + pay * vy[j];
+      /* force of walls and mirror particles on i: external to the fluid */
+      if ((F & F_LEDGER) && kind[j] != SPH_KIND_FLUID) {
+        wfx += pax;
+        wfy += pay;
+      }
       if ((F & F_XSPH) && kind[j] == SPH_KIND_FLUID) {
         const double c = m[j] / (0.5 * (rhoi + rho[j])) * wij;
         xs -= c * dvx;
@@ -244,6 +252,8 @@ interact_one(sph_particles *restrict p, const sph_grid *restrict g,
   if (F & F_LEDGER) {
     p->du[i] = du;
     w->wpow[i] = wpow;
+    w->wfx[i] = wfx;
+    w->wfy[i] = wfy;
   }
   if (fluid) {
     p->ax[i] = ax + fp->gx;

@@ -70,6 +70,7 @@ typedef struct sph_force_work {
   double *sigma;         /* max_j |h v_ij.r_ij / r_ij^2| */
   double *sxx, *sxy, *syy; /* tau / rho^2 (stress-tensor viscosity only) */
   double *wpow;          /* ledger: sum over wall neighbours j of a_ij . v_j (fluid i) */
+  double *wfx, *wfy;     /* ledger: sum over wall and mirror neighbours j of a_ij (fluid i) */
 } sph_force_work;
 
 void sph_force_work_free(sph_force_work *w);

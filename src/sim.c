@@ -46,6 +46,10 @@ struct sph_sim {
   /* energy ledger (output.energy) */
   double power_wall, power_xsph; /* at the last pass: sum_i m_i wpow_i, -sum_i m_i g.xs_i */
   double work_wall, drift_xsph;  /* their time integrals */
+  double force_x, force_y;       /* at the last pass: external force on the fluid
+                                    (walls, mirror particles, body force) */
+  double impulse_x, impulse_y;   /* its time integral */
+  double p0x, p0y;               /* initial fluid momentum */
   double dt_paper_b;             /* paper B §2.6 step from the last pass */
   double e0, e0_fluid;           /* initial totals */
   sph_particles p;
@@ -308,6 +312,8 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
     sph_sim_diag(s, &row);
     s->e0 = row.total;
     s->e0_fluid = row.kinetic + row.potential + fluid_internal(s);
+    s->p0x = row.momentum_x;
+    s->p0y = row.momentum_y;
   }
   *out = s;
   return 0;
@@ -349,14 +355,19 @@ static void ledger_powers(sph_sim *s) {
   const sph_particles *p = &s->p;
   const double *g = s->c->gravity;
   const int xsph = s->c->xsph != 0.0;
-  double pw = 0.0, px = 0.0;
+  double pw = 0.0, px = 0.0, fx = 0.0, fy = 0.0;
   for (size_t i = 0; i < p->n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
-    pw += p->mass[i] * s->work.wpow[i];
-    if (xsph) px -= p->mass[i] * (g[0] * p->xsx[i] + g[1] * p->xsy[i]);
+    const double m = p->mass[i];
+    pw += m * s->work.wpow[i];
+    if (xsph) px -= m * (g[0] * p->xsx[i] + g[1] * p->xsy[i]);
+    fx += m * (s->work.wfx[i] + g[0]);
+    fy += m * (s->work.wfy[i] + g[1]);
   }
   s->power_wall = pw;
   s->power_xsph = px;
+  s->force_x = fx;
+  s->force_y = fy;
 }
 
 static double fluid_internal(const sph_sim *s) {
@@ -502,6 +513,8 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
     /* the rates of t^n drive the whole step: so do the ledger's powers */
     s->work_wall += dt * s->power_wall;
     s->drift_xsph += dt * s->power_xsph;
+    s->impulse_x += dt * s->force_x;
+    s->impulse_y += dt * s->force_y;
     sph_leapfrog_step(&s->p, dt, s->first_step, xsph);
     s->first_step = 0;
     move_walls(s, t_new);
@@ -514,6 +527,8 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
     /* X^{n+1} = X^n + dt F(X^{n+1/2}): the mid-step powers drive the step */
     s->work_wall += dt * s->power_wall;
     s->drift_xsph += dt * s->power_xsph;
+    s->impulse_x += dt * s->force_x;
+    s->impulse_y += dt * s->force_y;
     sph_pc_finish(&s->p, dt, xsph);
     move_walls(s, t_new);
     sph_forces_pressure(&s->p, &s->fp.eos);
@@ -555,6 +570,8 @@ void sph_sim_diag(const sph_sim *s, sph_diag_row *row) {
     row->deviation = s->e0 != 0.0 ? (row->total - s->e0) / s->e0 : 0.0;
     const double ef = row->kinetic + row->potential + fluid_internal(s);
     row->fluid_deviation = s->e0_fluid != 0.0 ? (ef - s->e0_fluid) / s->e0_fluid : 0.0;
+    row->momentum_residual_x = row->momentum_x - s->p0x - s->impulse_x;
+    row->momentum_residual_y = row->momentum_y - s->p0y - s->impulse_y;
   }
   row->time = s->t;
   row->step = s->steps;
