@@ -22,5 +22,7 @@
 #include "wavemaker.h"
 #include "parallel.h"
 #include "freesurface.h"
+#include "turbulence.h"
+#include "analytic.h"
 
 #endif
