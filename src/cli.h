@@ -20,4 +20,7 @@ int sph_cli_audit(int argc, char **argv);
 int sph_cli_snapshot_args(const char *cmd, const char *usage, int argc, char **argv,
                           int *n_files);
 
+/* mkdir -p: creates path and its parents; 0, or -1 with errno set. */
+int sph_cli_make_dirs(const char *path);
+
 #endif

@@ -2,12 +2,15 @@
  * cli_args.c - the argument check shared by the sub-commands that take a
  * list of snapshot files (sph info, sph profile): options may stand
  * anywhere before "--", --help prints the usage, anything else starting
- * with '-' is an error, and at least one file is required.
+ * with '-' is an error, and at least one file is required; and mkdir -p
+ * for the commands that write a directory (sph run, sph audit).
  */
 #include "config.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli.h"
 
@@ -32,6 +35,24 @@ int sph_cli_snapshot_args(const char *cmd, const char *usage, int argc, char **a
   if (*n_files == 0) {
     fprintf(stderr, "sph %s: no snapshot given\n%s", cmd, usage);
     return 2;
+  }
+  return 0;
+}
+
+int sph_cli_make_dirs(const char *path) {
+  char buf[4096];
+  if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf) return -1;
+  for (char *q = buf + 1; *q; q++) {
+    if (*q != '/') continue;
+    *q = 0;
+    if (mkdir(buf, 0777) && errno != EEXIST) return -1;
+    *q = '/';
+  }
+  if (mkdir(buf, 0777) && errno != EEXIST) return -1;
+  struct stat st;
+  if (stat(buf, &st) || !S_ISDIR(st.st_mode)) {
+    errno = ENOTDIR;
+    return -1;
   }
   return 0;
 }

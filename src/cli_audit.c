@@ -176,18 +176,6 @@ static int read_diag(const char *dir, const double *times, int nt, double gmag, 
   return found == nt ? 0 : -1;
 }
 
-static int make_dir(const char *d) {
-  char buf[4096];
-  snprintf(buf, sizeof buf, "%s", d);
-  for (char *q = buf + 1; *q; q++)
-    if (*q == '/') {
-      *q = 0;
-      if (mkdir(buf, 0777) && errno != EEXIST) return -1;
-      *q = '/';
-    }
-  return mkdir(buf, 0777) && errno != EEXIST ? -1 : 0;
-}
-
 static void print_table(FILE *f, int md, const audit_row *rows, int nr, const double *times, int nt,
                         int fluid) {
   if (md) {
@@ -313,7 +301,7 @@ int sph_cli_audit(int argc, char **argv) {
     snprintf(defdir, sizeof defdir, "out/%s_audit", base.name);
     outdir = defdir;
   }
-  if (make_dir(outdir)) {
+  if (sph_cli_make_dirs(outdir)) {
     fprintf(stderr, "sph audit: cannot create %s: %s\n", outdir, strerror(errno));
     sph_case_free(&base);
     goto done;
@@ -354,8 +342,10 @@ int sph_cli_audit(int argc, char **argv) {
       goto done;
     }
     sph_sim *s = NULL;
-    if (make_dir(dir) || sph_sim_create(&c, &s, &err)) {
-      fprintf(stderr, "sph audit: %s\n", make_dir(dir) ? strerror(errno) : err.msg);
+    const int no_dir = sph_cli_make_dirs(dir) != 0;
+    if (no_dir) sph_error_set(&err, "cannot create %s: %s", dir, strerror(errno));
+    if (no_dir || sph_sim_create(&c, &s, &err)) {
+      fprintf(stderr, "sph audit: %s\n", err.msg);
       sph_case_free(&c);
       sph_case_free(&base);
       goto done;

@@ -48,25 +48,6 @@ static void run_usage(FILE *f) {
           "  -h, --help         this help\n");
 }
 
-/* mkdir -p */
-static int make_dirs(const char *path) {
-  char buf[4096];
-  if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf) return -1;
-  for (char *q = buf + 1; *q; q++) {
-    if (*q != '/') continue;
-    *q = 0;
-    if (mkdir(buf, 0777) && errno != EEXIST) return -1;
-    *q = '/';
-  }
-  if (mkdir(buf, 0777) && errno != EEXIST) return -1;
-  struct stat st;
-  if (stat(buf, &st) || !S_ISDIR(st.st_mode)) {
-    errno = ENOTDIR;
-    return -1;
-  }
-  return 0;
-}
-
 typedef struct progress_ctx {
   sph_progress bar;
 } progress_ctx;
@@ -158,7 +139,7 @@ int sph_cli_run(int argc, char **argv) {
     snprintf(defdir, sizeof defdir, "out/%s", c.name);
     outdir = defdir;
   }
-  if (make_dirs(outdir)) {
+  if (sph_cli_make_dirs(outdir)) {
     fprintf(stderr, "sph run: cannot create output directory %s: %s\n", outdir, strerror(errno));
     sph_case_free(&c);
     return 1;

@@ -389,6 +389,18 @@ static int free_surface(sph_sim *s, sph_error *err) {
   return 0;
 }
 
+/* The cell list of the current positions (periodic in x when the case
+ * is), cells fitting the largest smoothing length. At most ~64 cells per
+ * particle: far more than any sane domain needs. */
+static int build_grid(sph_sim *s, sph_error *err) {
+  const sph_case *c = s->c;
+  const size_t max_cells = 64 * s->p.n + 1024 * 1024;
+  const double cell = SPH_CUBIC_SUPPORT * h_max(s) * SPH_CELL_MARGIN;
+  return c->periodic ? sph_grid_build_periodic(&s->grid, &s->p, cell, c->periodic_x[0],
+                                               c->periodic_x[1], max_cells, err)
+                     : sph_grid_build(&s->grid, &s->p, cell, max_cells, err);
+}
+
 /* Mirror particles, grid build, free-surface flags and one interaction
  * pass on the current state; the mirror particles are gone again when it
  * returns. */
@@ -397,12 +409,7 @@ static int pass(sph_sim *s, sph_error *err) {
   update_h(s);
   if (s->n_mirror && sph_mirror_add(&s->p, s->mirror, s->n_mirror, s->mirror_reach, err) < 0)
     return -1;
-  /* at most ~64 cells per particle: far more than any sane domain needs */
-  const size_t max_cells = 64 * s->p.n + 1024 * 1024;
-  const double cell = SPH_CUBIC_SUPPORT * h_max(s) * SPH_CELL_MARGIN;
-  int rc = c->periodic ? sph_grid_build_periodic(&s->grid, &s->p, cell, c->periodic_x[0],
-                                                 c->periodic_x[1], max_cells, err)
-                       : sph_grid_build(&s->grid, &s->p, cell, max_cells, err);
+  int rc = build_grid(s, err);
   if (rc == 0 && s->detect) rc = free_surface(s, err);
   if (rc == 0) rc = sph_forces_evaluate(&s->p, &s->grid, &s->fp, &s->work, err);
   /* everything that reads the pass's per-particle work arrays, before
@@ -419,12 +426,7 @@ static int pass(sph_sim *s, sph_error *err) {
  * with the leap-frog the half-step density is reset to the filtered one. */
 static int apply_filter(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
-  const size_t max_cells = 64 * s->p.n + 1024 * 1024;
-  const double cell = SPH_CUBIC_SUPPORT * h_max(s) * SPH_CELL_MARGIN;
-  int rc = c->periodic ? sph_grid_build_periodic(&s->grid, &s->p, cell, c->periodic_x[0],
-                                                 c->periodic_x[1], max_cells, err)
-                       : sph_grid_build(&s->grid, &s->p, cell, max_cells, err);
-  if (rc) return -1;
+  if (build_grid(s, err)) return -1;
   sph_filter_params fp;
   sph_filter_params_default(&fp, s->fp.var_h ? 0.0 : c->h);
   if (sph_filter_apply(c->density_filter, &s->p, &s->grid, &fp, s->work.sigma, NULL, err))
