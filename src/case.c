@@ -32,6 +32,7 @@
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -85,6 +86,29 @@ void sph_motion_point(const sph_motion *m, double t, double xr, double yr, doubl
     *vx = m->vx;
     *vy = m->vy;
   }
+}
+
+/* A counter-based generator (the splitmix64 finaliser applied to the
+ * seed, block and lattice indices in turn): each particle's draw depends
+ * on its own indices only, never on the order particles are made in. */
+static uint64_t mix64(uint64_t z) {
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+void sph_fluid_jitter(const sph_fluid_block *fb, size_t block, long i, long j, double dx,
+                      double *x, double *y) {
+  if (!(fb->jitter > 0.0)) return;
+  uint64_t h = mix64((uint64_t)(uint32_t)fb->seed);
+  h = mix64(h ^ (uint64_t)block);
+  h = mix64(h ^ (uint64_t)j);
+  h = mix64(h ^ (uint64_t)i);
+  const uint64_t h2 = mix64(h);
+  const double u1 = (double)(h >> 11) * 0x1.0p-53, u2 = (double)(h2 >> 11) * 0x1.0p-53;
+  *x += fb->jitter * dx * (2.0 * u1 - 1.0);
+  *y += fb->jitter * dx * (2.0 * u2 - 1.0);
 }
 
 int sph_case_needs_free_surface(const sph_case *c) {
@@ -771,7 +795,8 @@ static const char *const filter_keys[] = {"kind", "every", NULL};
 static const char *const time_keys[] = {"end", "output_interval", "output_times", "stop", NULL};
 static const char *const geometry_keys[] = {"tank", "fluid", "walls", "periodic_x", "domain", NULL};
 static const char *const tank_keys[] = {"x", "y", "layers", "boundary", NULL};
-static const char *const fluid_keys[] = {"x", "y", "velocity", "hydrostatic", "surface", NULL};
+static const char *const fluid_keys[] = {"x",       "y",      "velocity", "hydrostatic",
+                                          "surface", "jitter", "seed",     NULL};
 static const char *const wall_keys[] = {"from", "to", "layers", "boundary", "motion", NULL};
 static const char *const motion_keys[] = {"type",  "velocity",    "start", "stop",  "period",
                                           "stroke", "wave_height", "depth", "ramp", "hinge",
@@ -1087,6 +1112,18 @@ static int read_block(const ctx *x, const node *m, const char *p, const sph_case
   bprintf(what, sizeof what, "a number >= the block's y1 (%g)", f->y1);
   range surface = {f->y1, 0, '[', 0, what};
   if (get_number(x, m, p, "surface", 0, &surface, &f->surface) < 0) return -1;
+  static const range jitter = {0, 0.5, '[', ')', NULL};
+  const int has_jitter = get_number(x, m, p, "jitter", 0, &jitter, &f->jitter);
+  if (has_jitter < 0) return -1;
+  f->seed = 1;
+  const int has_seed = get_int(x, m, p, "seed", 0, 2147483647L, &f->seed);
+  if (has_seed < 0) return -1;
+  if (has_seed && !has_jitter) {
+    char kp[KEYLEN];
+    join(kp, sizeof kp, p, "seed");
+    return fail_at(x, find(m, "seed")->val, kp, "expected no seed without %s.jitter, got %s", p,
+                   got(find(m, "seed")->val, b, sizeof b));
+  }
   return check_block(x, m, p, c, f);
 }
 
@@ -1482,6 +1519,8 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
     sb_add(b, "%s.velocity: [%.17g, %.17g]\n", k, f->vx, f->vy);
     sb_add(b, "%s.hydrostatic: %s\n", k, f->hydrostatic ? "true" : "false");
     sb_add(b, "%s.surface: %.17g\n", k, f->surface);
+    sb_add(b, "%s.jitter: %.17g\n", k, f->jitter);
+    sb_add(b, "%s.seed: %d\n", k, f->seed);
   }
   if (c->n_walls == 0) sb_add(b, "geometry.walls: []\n");
   for (size_t i = 0; i < c->n_walls; i++) {

@@ -58,7 +58,17 @@ typedef struct sph_fluid_block {
   double vx, vy;    /* initial velocity, default 0 */
   int hydrostatic;  /* initial density from rho0 g (surface - y), default 1 */
   double surface;   /* free-surface height for the hydrostatic start, default y1 */
+  double jitter;    /* perturbed start: each particle moved by up to jitter*dx in x and in y
+                       (uniform, seeded), in [0, 0.5); default 0 = on the lattice */
+  int seed;         /* seed of the jitter, default 1 */
 } sph_fluid_block;
+
+/* Adds the block's seeded jitter (if any) to the lattice position (x, y) of
+ * its particle (i, j); block is the block's index in the case. The draw
+ * depends only on (seed, block, i, j), so it is the same on every run and
+ * platform and for any creation order. */
+void sph_fluid_jitter(const sph_fluid_block *fb, size_t block, long i, long j, double dx,
+                      double *x, double *y);
 
 /* A rectangular tank: inner faces at x0 (left), x1 (right), y0 (floor); the
  * side walls rise to y1. Wall particles sit outside the inner faces. */

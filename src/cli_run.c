@@ -1,11 +1,16 @@
 /*
- * cli_run.c - `sph run CASE [-o DIR] [--threads N] [--set key=value]...`
+ * cli_run.c - `sph run CASE [-o DIR] [--threads N] [--set key=value]...
+ *             [--restart SNAPSHOT]`
  *
  * Loads and validates the case (with overrides), prints the choices in
  * force, creates the output directory, and runs the case with a progress
- * bar on a terminal. SIGINT/SIGTERM end the run after the current step with
- * a final snapshot. Messages go to stderr; the start-up listing and the
- * summary to stdout.
+ * bar on a terminal. With --restart the run continues from a snapshot of an
+ * earlier run of the same case (sim.h, sph_sim_restore), bitwise as if it
+ * had not stopped. SIGINT/SIGTERM end the run after the current step with
+ * a final snapshot (exit status 4); a second signal of the same kind
+ * during that wind-down ends the program at once, with the default
+ * action. Messages go to stderr; the start-up listing and the summary to
+ * stdout.
  */
 #include "config.h"
 
@@ -29,23 +34,39 @@
 
 static volatile sig_atomic_t interrupted = 0;
 static void on_signal(int sig) {
-  (void)sig;
-  interrupted = 1;
+  if (interrupted) { /* asked twice: stop now (a snapshot being written stays a .tmp) */
+    signal(sig, SIG_DFL);
+    raise(sig);
+    return;
+  }
+  interrupted = sig;
 }
 
 static void run_usage(FILE *f) {
   fprintf(f,
           "usage: sph run CASE [-o DIR] [--threads N] [--set key=value]... [--quiet]\n"
+          "               [--restart SNAPSHOT]\n"
           "\n"
           "Runs the case file CASE (YAML; see README.md for every key).\n"
           "\n"
           "  -o, --output DIR   output directory (default out/<case name>); created if needed\n"
+          "  -r, --restart SNAPSHOT\n"
+          "                     continue from SNAPSHOT (a snap_NNNN.h5 of an earlier run of\n"
+          "                     CASE with the same --set overrides; only time.end may\n"
+          "                     differ): writes snap_NNNN+1... bitwise equal to those of\n"
+          "                     the uninterrupted run; diagnostics.csv and gauges.csv in\n"
+          "                     DIR keep their rows up to the snapshot's time, then grow\n"
           "  -t, --threads N    OpenMP threads (default: all cores); results are bitwise\n"
           "                     identical for any N\n"
           "  -s, --set K=V      override a case key, e.g. --set numerics.dx=0.001\n"
           "                     (V is YAML: --set physics.gravity=[0,-9.81]); repeatable\n"
           "  -q, --quiet        no start-up listing and no progress bar\n"
-          "  -h, --help         this help\n");
+          "  -h, --help         this help\n"
+          "\n"
+          "SIGINT or SIGTERM (Ctrl-C) ends the run after the current step: a final snapshot\n"
+          "is written (restartable with --restart) and the exit status is 4; a second\n"
+          "signal ends it at once. Exit status: 0 done, 1 bad input or I/O error, 2 usage\n"
+          "error, 3 numerical blow-up (last good state in DIR/last_good.h5), 4 interrupted.\n");
 }
 
 typedef struct progress_ctx {
@@ -58,7 +79,7 @@ static void on_progress(void *ctx, const sph_sim *s) {
 }
 
 int sph_cli_run(int argc, char **argv) {
-  const char *case_path = NULL, *outdir = NULL;
+  const char *case_path = NULL, *outdir = NULL, *restart = NULL;
   int threads = 0, quiet = 0;
   const char **sets = calloc((size_t)argc, sizeof *sets);
   size_t n_set = 0;
@@ -73,7 +94,8 @@ int sph_cli_run(int argc, char **argv) {
     } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
       quiet = 1;
     } else if (!strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "-t") ||
-               !strcmp(a, "--threads") || !strcmp(a, "-s") || !strcmp(a, "--set")) {
+               !strcmp(a, "--threads") || !strcmp(a, "-s") || !strcmp(a, "--set") ||
+               !strcmp(a, "-r") || !strcmp(a, "--restart")) {
       if (i + 1 >= argc) {
         fprintf(stderr, "sph run: option %s needs a value\n", a);
         free(sets);
@@ -82,6 +104,8 @@ int sph_cli_run(int argc, char **argv) {
       val = argv[++i];
       if (a[1] == 'o' || !strcmp(a, "--output")) {
         outdir = val;
+      } else if (a[1] == 'r' || !strcmp(a, "--restart")) {
+        restart = val;
       } else if (a[1] == 't' || !strcmp(a, "--threads")) {
         char *end;
         long t = strtol(val, &end, 10);
@@ -150,6 +174,13 @@ int sph_cli_run(int argc, char **argv) {
     sph_case_free(&c);
     return 1;
   }
+  sph_snapshot_restart_data rd;
+  if (restart && sph_sim_restore(s, restart, &rd, &err)) {
+    fprintf(stderr, "sph run: --restart: %s\n", err.msg);
+    sph_sim_free(s);
+    sph_case_free(&c);
+    return 1;
+  }
   const sph_particles *p = sph_sim_particles(s);
   const size_t nf = sph_particles_count_kind(p, SPH_KIND_FLUID);
   if (!quiet) {
@@ -183,6 +214,9 @@ int sph_cli_run(int argc, char **argv) {
                                  c.n_output_times);
     printf(", stop %s\n", sph_stop_name(c.stop));
     printf("  threads %d, output %s\n", nthreads, outdir);
+    if (restart)
+      printf("  restarting from %s at t = %.9g s, step %ld\n", restart, sph_sim_time(s),
+             sph_sim_steps(s));
     fflush(stdout);
   }
 
@@ -198,7 +232,8 @@ int sph_cli_run(int argc, char **argv) {
   sph_run_options opt = {outdir, on_progress, &pc, &interrupted};
   sph_run_result r;
   const double w0 = sph_wall_seconds();
-  int rc = sph_run(s, &opt, &r, &err);
+  int rc = sph_run_resume(s, &opt, restart ? &rd : NULL, &r, &err);
+  if (restart) sph_snapshot_restart_free(&rd);
   const double wall = sph_wall_seconds() - w0;
   sph_progress_done(&pc.bar);
   int status = 0;
@@ -208,8 +243,13 @@ int sph_cli_run(int argc, char **argv) {
     status = 0;
     break;
   case SPH_RUN_INTERRUPTED:
-    fprintf(stderr, "sph run: interrupted at t = %.9g s (step %ld); final snapshot %s\n",
-            sph_sim_time(s), r.steps, r.last_snapshot[0] ? r.last_snapshot : "(none)");
+    fprintf(stderr,
+            "sph run: interrupted by %s at t = %.9g s (step %ld); final snapshot %s\n"
+            "sph run: continue with: sph run --restart %s %s -o %s%s\n",
+            interrupted == SIGTERM ? "SIGTERM" : "SIGINT", sph_sim_time(s), r.steps,
+            r.last_snapshot[0] ? r.last_snapshot : "(none)",
+            r.last_snapshot[0] ? r.last_snapshot : "SNAPSHOT", case_path, outdir,
+            n_set ? " and the same --set options" : "");
     status = 4;
     break;
   case SPH_RUN_BLOWUP:

@@ -62,15 +62,29 @@ typedef struct sph_force_params {
   double sps_cs, sps_ci, sps_delta;
 } sph_force_params;
 
+/* The fields a neighbour reads, packed in one cache line per particle
+ * (storage order), so that walking a neighbour row touches one line per
+ * neighbour instead of one per field. */
+typedef struct sph_force_hot {
+  double x, y, vx, vy, rho;
+  double prho2; /* p / rho^2 */
+  double cs;    /* sound speed */
+  double m;     /* mass */
+} sph_force_hot;
+
 /* Per-particle quantities of a pass (storage order). */
 typedef struct sph_force_work {
   size_t cap;
-  double *prho2;         /* p / rho^2 */
+  sph_force_hot *hot;    /* packed copy of the state read from neighbours */
+  double *prho2;         /* scratch of n doubles (p / rho^2 lives in hot) */
   double *cs;            /* sound speed */
   double *sigma;         /* max_j |h v_ij.r_ij / r_ij^2| */
   double *sxx, *sxy, *syy; /* tau / rho^2 (stress-tensor viscosity only) */
   double *wpow;          /* ledger: sum over wall neighbours j of a_ij . v_j (fluid i) */
   double *wfx, *wfy;     /* ledger: sum over wall and mirror neighbours j of a_ij (fluid i) */
+  double cs_sigma_max;   /* max over the particles of cs + sigma (the step rule) */
+  uint32_t *rows;        /* per thread: a neighbour row cut to the support */
+  size_t rows_stride, rows_cap;
 } sph_force_work;
 
 void sph_force_work_free(sph_force_work *w);
@@ -78,10 +92,12 @@ void sph_force_work_free(sph_force_work *w);
 /* Sets p->p from the equation of state for every particle. */
 void sph_forces_pressure(sph_particles *p, const sph_eos *eos);
 
-/* One interaction pass over the grid g (built on p's current positions):
- * fills p->drho, p->ax, p->ay (and p->xsx, p->xsy when XSPH is on) and
- * w->sigma. Needs p->p current. */
-int sph_forces_evaluate(sph_particles *p, const sph_grid *g, const sph_force_params *fp,
+/* One interaction pass over the neighbour list l (complete for the
+ * support 2 h, 2 max h with var_h, and for the Lennard-Jones range r0 on
+ * p's current positions: see sph_nlist_fresh): fills p->drho, p->ax, p->ay
+ * (and p->xsx, p->xsy when XSPH is on), w->sigma, w->cs and
+ * w->cs_sigma_max. Needs p->p current. */
+int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                         sph_force_work *w, sph_error *err);
 
 /* The strain-rate tensor of paper A eq. (13)-(14) at every particle, for

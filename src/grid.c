@@ -9,6 +9,8 @@
  */
 #include "config.h"
 
+#include "parallel.h"
+
 #include "grid.h"
 
 #include <math.h>
@@ -57,17 +59,19 @@ static int reserve(sph_grid *g, size_t n, size_t cells, sph_error *err) {
 }
 
 /* The shared build: bounding box in y (and in x unless periodic), keys,
- * stable counting sort, permutation. */
-static int build(sph_grid *g, sph_particles *p, double cell, int periodic, double px0,
-                 double px1, size_t max_cells, sph_error *err) {
-  const size_t n = p->n;
+ * stable counting sort, and the permutation of the store (p != NULL) or
+ * only the cell lists in g->perm (p == NULL, the store read through q). */
+static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double cell,
+                 int periodic, double px0, double px1, size_t max_cells, sph_error *err) {
+  if (p) q = p;
+  const size_t n = q->n;
   if (!(cell > 0.0)) return sph_error_set(err, "grid: cell size must be positive");
   double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
   for (size_t i = 0; i < n; i++) {
-    if (p->x[i] < xmin) xmin = p->x[i];
-    if (p->x[i] > xmax) xmax = p->x[i];
-    if (p->y[i] < ymin) ymin = p->y[i];
-    if (p->y[i] > ymax) ymax = p->y[i];
+    if (q->x[i] < xmin) xmin = q->x[i];
+    if (q->x[i] > xmax) xmax = q->x[i];
+    if (q->y[i] < ymin) ymin = q->y[i];
+    if (q->y[i] > ymax) ymax = q->y[i];
   }
   if (n == 0) xmin = xmax = ymin = ymax = 0.0;
   if (!isfinite(xmin) || !isfinite(xmax) || !isfinite(ymin) || !isfinite(ymax))
@@ -104,8 +108,8 @@ static int build(sph_grid *g, sph_particles *p, double cell, int periodic, doubl
 
   const double inv = 1.0 / cell, invx = 1.0 / cellx;
   for (size_t i = 0; i < n; i++) {
-    long cx = (long)floor((p->x[i] - xmin) * invx);
-    long cy = (long)((p->y[i] - ymin) * inv);
+    long cx = (long)floor((q->x[i] - xmin) * invx);
+    long cy = (long)((q->y[i] - ymin) * inv);
     if (periodic) cx = ((cx % g->nx) + g->nx) % g->nx;
     if (cx >= g->nx) cx = g->nx - 1;
     if (cy >= g->ny) cy = g->ny - 1;
@@ -117,21 +121,191 @@ static int build(sph_grid *g, sph_particles *p, double cell, int periodic, doubl
   for (size_t c = 0; c < cells; c++) g->count[c + 1] += g->count[c];
   memcpy(g->start, g->count, (cells + 1) * sizeof *g->start);
   for (size_t i = 0; i < n; i++) g->perm[g->count[g->key[i]]++] = i;
+  if (!p) { /* binned only: cells by storage index */
+    for (size_t i = 0; i < n; i++) {
+      g->cx[i] = (long)(g->key[i] % (size_t)g->nx);
+      g->cy[i] = (long)(g->key[i] / (size_t)g->nx);
+    }
+    g->sorted = 0;
+    return 0;
+  }
   sph_particles_permute(p, g->perm, g->work);
   for (size_t c = 0; c < cells; c++)
     for (size_t i = g->start[c]; i < g->start[c + 1]; i++) {
       g->cx[i] = (long)(c % (size_t)g->nx);
       g->cy[i] = (long)(c / (size_t)g->nx);
     }
+  g->sorted = 1;
   return 0;
 }
 
 int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells,
                    sph_error *err) {
-  return build(g, p, cell, 0, 0.0, 0.0, max_cells, err);
+  return build(g, p, NULL, cell, 0, 0.0, 0.0, max_cells, err);
 }
 
 int sph_grid_build_periodic(sph_grid *g, sph_particles *p, double cell, double px0, double px1,
                             size_t max_cells, sph_error *err) {
-  return build(g, p, cell, 1, px0, px1, max_cells, err);
+  return build(g, p, NULL, cell, 1, px0, px1, max_cells, err);
+}
+
+int sph_grid_bin(sph_grid *g, const sph_particles *p, double cell, int periodic, double px0,
+                 double px1, size_t max_cells, sph_error *err) {
+  return build(g, NULL, p, cell, periodic, px0, px1, max_cells, err);
+}
+
+/* ---- the neighbour list ------------------------------------------------------------- */
+
+void sph_nlist_init(sph_nlist *l) { memset(l, 0, sizeof *l); }
+
+void sph_nlist_free(sph_nlist *l) {
+  free(l->start);
+  free(l->count);
+  free(l->nb);
+  free(l->xref);
+  free(l->yref);
+  free(l->idref);
+  memset(l, 0, sizeof *l);
+}
+
+/* x_i - x_j, with the minimum image when period > 0. */
+static inline double min_image(double d, double period) {
+  if (period > 0.0) {
+    if (d > 0.5 * period)
+      d -= period;
+    else if (d < -0.5 * period)
+      d += period;
+  }
+  return d;
+}
+
+/* The candidates of particle i within sqrt(r2max), in the grid's walk
+ * order (positions, or storage indices through perm when the grid is only
+ * binned), into row; returns how many. */
+static inline __attribute__((always_inline)) uint32_t
+fill_row(const sph_grid *g, const double *restrict x, const double *restrict y, size_t i,
+         double r2max, double period, uint32_t *restrict row, const int sorted) {
+  size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES];
+  sph_grid_ranges_all(g, i, lo, hi);
+  const size_t *restrict perm = g->perm;
+  const double xi = x[i], yi = y[i];
+  uint32_t c = 0;
+  for (int k = 0; k < SPH_GRID_RANGES; k++)
+    for (size_t pos = lo[k]; pos < hi[k]; pos++) {
+      const size_t j = sorted ? pos : perm[pos];
+      const double dx = min_image(xi - x[j], period), dy = yi - y[j];
+      row[c] = (uint32_t)j; /* kept only if the next line counts it: no branch */
+      c += (uint32_t)((dx * dx + dy * dy < r2max) & (j != i));
+    }
+  return c;
+}
+
+int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, double support,
+                    double skin, double period, sph_error *err) {
+  const size_t n = p->n;
+  l->valid = 0;
+  if (n > UINT32_MAX) return sph_error_set(err, "grid: %zu particles is too many for a list", n);
+  if (n + 1 > l->cap_n) {
+    const size_t cap = n + 1 + n / 4 + 16;
+    void *a = realloc(l->start, cap * sizeof *l->start);
+    if (a) l->start = a;
+    void *b = realloc(l->count, cap * sizeof *l->count);
+    if (b) l->count = b;
+    void *c = realloc(l->xref, cap * sizeof *l->xref);
+    if (c) l->xref = c;
+    void *d = realloc(l->yref, cap * sizeof *l->yref);
+    if (d) l->yref = d;
+    void *e = realloc(l->idref, cap * sizeof *l->idref);
+    if (e) l->idref = e;
+    if (!a || !b || !c || !d || !e)
+      return sph_error_set(err, "grid: out of memory for the neighbour list of %zu particles", n);
+    l->cap_n = cap;
+  }
+  /* a row's capacity is its candidate count: the rows are filled in
+   * parallel without a counting pass, each into its own slice */
+  const long ln = (long)n;
+  l->start[0] = 0;
+#pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN)
+  for (long li = 0; li < ln; li++) {
+    size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES];
+    sph_grid_ranges_all(g, (size_t)li, lo, hi);
+    size_t c = 0;
+    for (int k = 0; k < SPH_GRID_RANGES; k++) c += hi[k] - lo[k];
+    l->start[li + 1] = c;
+  }
+  for (size_t i = 0; i < n; i++) l->start[i + 1] += l->start[i]; /* exact: integers */
+  const size_t total = l->start[n];
+  if (total > l->cap_nb) {
+    const size_t cap = total + total / 4 + 64;
+    void *a = realloc(l->nb, cap * sizeof *l->nb);
+    if (!a) return sph_error_set(err, "grid: out of memory for %zu neighbour candidates", total);
+    l->nb = a;
+    l->cap_nb = cap;
+  }
+  const double radius = support + skin, r2max = radius * radius;
+  const double *restrict x = p->x, *restrict y = p->y;
+  const int sorted = g->sorted;
+  uint32_t mc = 0;
+#pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN) reduction(max : mc)
+  for (long li = 0; li < ln; li++) {
+    const size_t i = (size_t)li;
+    uint32_t *restrict row = l->nb + l->start[i];
+    const double xi = x[i], yi = y[i];
+    /* the four kinds of grid each with a loop of its own, free of tests
+     * that do not change along it */
+    uint32_t c;
+    if (sorted && period <= 0.0)
+      c = fill_row(g, x, y, i, r2max, 0.0, row, 1);
+    else if (sorted)
+      c = fill_row(g, x, y, i, r2max, period, row, 1);
+    else if (period <= 0.0)
+      c = fill_row(g, x, y, i, r2max, 0.0, row, 0);
+    else
+      c = fill_row(g, x, y, i, r2max, period, row, 0);
+    /* increasing storage index: already so on a sorted grid that is not
+     * periodic (rows below, same, above in key order); otherwise an
+     * insertion sort, linear on nearly sorted rows */
+    if (!sorted || period > 0.0)
+      for (uint32_t a = 1; a < c; a++) {
+        const uint32_t v = row[a];
+        uint32_t b = a;
+        for (; b > 0 && row[b - 1] > v; b--) row[b] = row[b - 1];
+        row[b] = v;
+      }
+    l->count[i] = c;
+    l->xref[i] = xi;
+    l->yref[i] = yi;
+    l->idref[i] = p->id[i];
+    if (c > mc) mc = c;
+  }
+  l->maxcount = mc;
+  l->n = n;
+  l->radius = radius;
+  l->skin = skin;
+  l->period = period;
+  l->builds++;
+  l->valid = 1;
+  return 0;
+}
+
+int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p) {
+  if (!l->valid || l->n != p->n) return 0;
+  const long n = (long)p->n;
+  const double *restrict x = p->x, *restrict y = p->y;
+  const double *restrict xr = l->xref, *restrict yr = l->yref;
+  const int64_t *restrict id = p->id, *restrict idr = l->idref;
+  const double period = l->period;
+  double d2 = 0.0;
+  int moved = 0;
+#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : d2) reduction(| : moved)
+  for (long i = 0; i < n; i++) {
+    const double dx = min_image(x[i] - xr[i], period), dy = y[i] - yr[i];
+    const double d = dx * dx + dy * dy;
+    if (d > d2) d2 = d;
+    moved |= id[i] != idr[i];
+  }
+  if (moved) return 0;
+  /* max displacement < skin/2, with a relative margin for rounding */
+  const double half = 0.5 * l->skin * (1.0 - 1e-6);
+  return d2 < half * half;
 }

@@ -14,6 +14,7 @@
 #define SPH_GRID_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "error.h"
 #include "particles.h"
@@ -23,9 +24,11 @@ typedef struct sph_grid {
   double cell;   /* cell side (rows); columns are cellx wide */
   double cellx;  /* column width: = cell, or period/nx when periodic in x */
   int periodic;  /* columns wrap around (periodic in x) */
+  int sorted;    /* the store is in cell order (sph_grid_build*); 0 after
+                    sph_grid_bin: cell c holds perm[start[c]] .. perm[start[c+1]-1] */
   long nx, ny;   /* cells per row, rows */
   size_t *start; /* nx*ny + 1 offsets into the sorted store */
-  long *cx, *cy; /* cell coordinates of each particle (sorted order) */
+  long *cx, *cy; /* cell coordinates of the particle at each storage index */
   size_t cap_cells, cap_particles;
   size_t *key, *perm, *count; /* scratch */
   void *work;                 /* scratch for permutation (8 bytes per particle) */
@@ -44,6 +47,13 @@ int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells,
  * (by less than a period) is binned in the column of its periodic image. */
 int sph_grid_build_periodic(sph_grid *g, sph_particles *p, double cell, double px0, double px1,
                             size_t max_cells, sph_error *err);
+
+/* Bins p by cell like sph_grid_build_periodic (periodic != 0) or
+ * sph_grid_build, without reordering the store: the cell lists are
+ * positions into g->perm (the storage indices in cell order, stable), and
+ * g->sorted = 0. Only sph_nlist_build reads such a grid. */
+int sph_grid_bin(sph_grid *g, const sph_particles *p, double cell, int periodic, double px0,
+                 double px1, size_t max_cells, sph_error *err);
 
 /* The three contiguous index ranges [lo[k], hi[k]) holding the neighbour
  * candidates of the particle stored at index i (rows below, same, above,
@@ -98,5 +108,60 @@ static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SP
     }
   }
 }
+
+/* ---- the neighbour list (Verlet list) ------------------------------------------------
+ *
+ * For every particle i, the particles j != i that stood closer than
+ * `radius` to it when the list was built, in increasing storage index (on
+ * a sorted grid that is the grid's walk order, rows below, same, above, so
+ * a sum over a row runs in the same order as over the grid's ranges). The
+ * row of i is nb[start[i]], ..., nb[start[i] + count[i] - 1].
+ * Because a row is in storage order, the pairs of a row inside the support
+ * come in the same order whatever the skin and whenever the list was built:
+ * a sum over them depends on the state and the storage order only.
+ *
+ * With radius = support + skin the list stays complete for the support
+ * (every pair closer than `support` is in it) as long as no particle has
+ * moved more than skin/2 since the build: |r_ij(now)| <= |r_ij(build)| + 2
+ * max displacement. sph_nlist_fresh checks exactly that (a max over the
+ * particles, exact in any order), so a list is reused across the stages and
+ * steps of a run only while it is provably complete, and rebuilt (grid
+ * sort + list) otherwise. Interaction loops still test r < support for
+ * every listed pair, so which pairs interact never depends on the skin;
+ * only the summation order does (the storage order of the last sort).
+ */
+typedef struct sph_nlist {
+  int valid;          /* built, and the store not reordered since */
+  size_t n;           /* particles at the build */
+  double radius;      /* list radius: support + skin */
+  double skin;        /* radius - support */
+  double period;      /* > 0: minimum image in x with this period */
+  size_t *start;      /* n + 1 offsets into nb (a row's capacity: its candidates) */
+  uint32_t *count;    /* neighbours of each particle */
+  uint32_t maxcount;  /* the longest row */
+  uint32_t *nb;       /* neighbour storage indices */
+  double *xref, *yref; /* positions at the build */
+  int64_t *idref;     /* ids at the build (a reordered store is detected) */
+  size_t cap_n, cap_nb;
+  long builds;        /* number of builds (statistics) */
+} sph_nlist;
+
+void sph_nlist_init(sph_nlist *l);
+void sph_nlist_free(sph_nlist *l);
+
+/* Builds the list of p from g (built or binned on p's current positions
+ * with cells of side >= radius) for pairs closer than radius = support +
+ * skin; periodic grids take the minimum image in x with period = the
+ * grid's period (px1 - px0). */
+int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, double support,
+                    double skin, double period, sph_error *err);
+
+/* 1 if the list built earlier on p is still complete for its support:
+ * the same particles in the same storage order (ids compared), every one
+ * within skin/2 (less a rounding margin) of where it stood at the build. */
+int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p);
+
+/* Forgets the list (after the store was reordered). */
+static inline void sph_nlist_invalidate(sph_nlist *l) { l->valid = 0; }
 
 #endif

@@ -12,27 +12,25 @@
 
 #include <math.h>
 
-void sph_pc_save(sph_particles *p) {
-  const long n = (long)p->n;
-#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
-  for (long i = 0; i < n; i++) {
-    p->x0[i] = p->x[i];
-    p->y0[i] = p->y[i];
-    p->vx0[i] = p->vx[i];
-    p->vy0[i] = p->vy[i];
-    p->rho0[i] = p->rho[i];
-    p->u0[i] = p->u[i];
-  }
-}
-
 /* The shared update: X <- X0 + dt/2 F, then doubled-and-shifted when
- * `finish`: X <- 2 X - X0. */
+ * `finish`: X <- 2 X - X0; the predictor first saves X0 <- X (`save`).
+ * The pressure follows from the new density in the same loop, so a stage
+ * is one pass over the store (and one parallel region). */
 static inline __attribute__((always_inline)) void stage(sph_particles *p, double dt, int xsph,
+                                                         const sph_eos *eos, const int save,
                                                          const int finish) {
   const long n = (long)p->n;
   const double hdt = 0.5 * dt;
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
   for (long i = 0; i < n; i++) {
+    if (save) {
+      p->x0[i] = p->x[i];
+      p->y0[i] = p->y[i];
+      p->vx0[i] = p->vx[i];
+      p->vy0[i] = p->vy[i];
+      p->rho0[i] = p->rho[i];
+      p->u0[i] = p->u[i];
+    }
     double rho = p->rho0[i] + hdt * p->drho[i];
     double u = p->u0[i] + hdt * p->du[i];
     if (finish) {
@@ -41,6 +39,7 @@ static inline __attribute__((always_inline)) void stage(sph_particles *p, double
     }
     p->rho[i] = rho;
     p->u[i] = u;
+    p->p[i] = sph_eos_pressure(eos, rho);
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     double ux = p->vx[i], uy = p->vy[i]; /* dr/dt uses the velocity of the evaluated state */
     if (xsph) {
@@ -62,17 +61,28 @@ static inline __attribute__((always_inline)) void stage(sph_particles *p, double
   }
 }
 
-void sph_pc_half(sph_particles *p, double dt, int xsph) { stage(p, dt, xsph, 0); }
-void sph_pc_finish(sph_particles *p, double dt, int xsph) { stage(p, dt, xsph, 1); }
+void sph_pc_half(sph_particles *p, double dt, int xsph, const sph_eos *eos) {
+  stage(p, dt, xsph, eos, 1, 0);
+}
+void sph_pc_finish(sph_particles *p, double dt, int xsph, const sph_eos *eos) {
+  stage(p, dt, xsph, eos, 0, 1);
+}
 
-void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph) {
+void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const sph_eos *eos) {
   const long n = (long)p->n;
   const double kick = first ? 0.5 * dt : dt, hdt = 0.5 * dt;
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
   for (long i = 0; i < n; i++) {
+    p->x0[i] = p->x[i]; /* the saved state (last good state after a blow-up) */
+    p->y0[i] = p->y[i];
+    p->vx0[i] = p->vx[i];
+    p->vy0[i] = p->vy[i];
+    p->rho0[i] = p->rho[i];
+    p->u0[i] = p->u[i];
     const double rh = (first ? p->rho[i] : p->rhoh[i]) + kick * p->drho[i];
     p->rhoh[i] = rh;
     p->rho[i] = rh + hdt * p->drho[i];
+    p->p[i] = sph_eos_pressure(eos, p->rho[i]);
     const double uh = (first ? p->u[i] : p->uh[i]) + kick * p->du[i];
     p->uh[i] = uh;
     p->u[i] = uh + hdt * p->du[i];
@@ -93,15 +103,10 @@ void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph) {
   }
 }
 
-double sph_dt_paper_b(const sph_particles *p, const sph_force_work *w, double h, double factor) {
-  const long n = (long)p->n;
-  double dt = INFINITY;
-#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(min : dt)
-  for (long i = 0; i < n; i++) {
-    const double d = factor * h / (w->cs[i] + w->sigma[i]);
-    if (d < dt) dt = d;
-  }
-  return dt;
+double sph_dt_paper_b(const sph_force_work *w, double h, double factor) {
+  /* min_a (factor h) / x_a = (factor h) / max_a x_a exactly: a correctly
+   * rounded division is monotone in its divisor */
+  return factor * h / w->cs_sigma_max;
 }
 
 double sph_dt_cfl(const sph_particles *p, const sph_eos *eos, double h, double factor) {

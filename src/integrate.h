@@ -8,7 +8,8 @@
  * with X = (r, v, rho, u) for fluid particles (dr/dt = v + XSPH correction)
  * and X = (rho, u) for wall particles (u: thermal energy per unit mass,
  * integrated like the density, paper A §9); the pressure follows from the EOS
- * after each stage.
+ * in each stage's loop. The state before the step is saved in X0 (x0, y0,
+ * vx0, vy0, rho0, u0) by the predictor (and by the leap-frog).
  */
 #ifndef SPH_INTEGRATE_H
 #define SPH_INTEGRATE_H
@@ -17,12 +18,11 @@
 #include "forces.h"
 #include "particles.h"
 
-/* X0 <- X for every particle. */
-void sph_pc_save(sph_particles *p);
-/* X <- X0 + dt/2 F (both the predictor and the corrector half step). */
-void sph_pc_half(sph_particles *p, double dt, int xsph);
-/* X <- 2 (X0 + dt/2 F) - X0: the corrector half step and the final update. */
-void sph_pc_finish(sph_particles *p, double dt, int xsph);
+/* X0 <- X, then X <- X0 + dt/2 F (the predictor), and the pressure. */
+void sph_pc_half(sph_particles *p, double dt, int xsph, const sph_eos *eos);
+/* X <- 2 (X0 + dt/2 F) - X0: the corrector half step and the final
+ * update, and the pressure. */
+void sph_pc_finish(sph_particles *p, double dt, int xsph, const sph_eos *eos);
 
 /* The leap-frog of paper A eq. (17)-(19), one force evaluation per step.
  * Between steps the store holds x^n, the half-step values (vxh, vyh, rhoh)
@@ -33,10 +33,11 @@ void sph_pc_finish(sph_particles *p, double dt, int xsph);
  *                      (v, rho)^0 + dt/2 (dv, drho)/dt^0)
  *   x^{n+1} = x^n + dt (v^{n+1/2} + XSPH correction)
  *   (v, rho)^{n+1} predicted = (v, rho)^{n+1/2} + dt/2 (dv, drho)/dt^n. */
-void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph);
+void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const sph_eos *eos);
 
-/* Paper B §2.6: dt = min_a factor h / (c_a + sigma_a). */
-double sph_dt_paper_b(const sph_particles *p, const sph_force_work *w, double h, double factor);
+/* Paper B §2.6: dt = min_a factor h / (c_a + sigma_a), from the maximum of
+ * c_a + sigma_a that the last interaction pass found (w->cs_sigma_max). */
+double sph_dt_paper_b(const sph_force_work *w, double h, double factor);
 /* Paper A eq. (20): dt = factor min h / max_a (c_a + |v_a|). */
 double sph_dt_cfl(const sph_particles *p, const sph_eos *eos, double h, double factor);
 

@@ -36,6 +36,20 @@ static inline void sph_cubic_w_dw(double r, double h, double *w, double *dwdr) {
   }
 }
 
+/* W and F = (1/r) dW/dr together, for 0 < r < 2h, given 1/r and 1/h (the
+ * interaction loops' form: F times r_ij is grad_i W_ij). Both branches of
+ * the spline are one expression, so a loop has no unpredictable branch:
+ * with t = 2 - q and a = max(1 - q, 0),
+ *   W = sigma [t^3/4 - a^3],  dW/dq = sigma [3 a^2 - 3/4 t^2]
+ * (for q < 1, t^3/4 - a^3 expands to 1 - 3/2 q^2 + 3/4 q^3). Agrees with
+ * sph_cubic_w_dw to round-off (tests/test_kernel.c). */
+static inline void sph_cubic_w_f(double r, double inv_r, double inv_h, double *w, double *f) {
+  const double q = r * inv_h, t = 2.0 - q, a = q < 1.0 ? 1.0 - q : 0.0;
+  const double sigma = (10.0 / (7.0 * SPH_PI)) * inv_h * inv_h;
+  *w = sigma * (0.25 * (t * t * t) - a * a * a);
+  *f = (sigma * inv_h) * (3.0 * (a * a) - 0.75 * (t * t)) * inv_r;
+}
+
 /* W alone (tests, filters). */
 double sph_cubic_w(double r, double h);
 /* The gradient of W_ij with respect to x_i: (dW/dr) (x_i - x_j)/r; zero at

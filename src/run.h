@@ -48,6 +48,12 @@ typedef struct sph_run_result {
  * Returns 0 for END, STOPPED and INTERRUPTED, non-zero otherwise (with err). */
 int sph_run(sph_sim *s, const sph_run_options *o, sph_run_result *r, sph_error *err);
 
+/* The same for a sim restored from a snapshot (sph_sim_restore), rd its
+ * restart record: the output numbering, gauge levels and CSV files carry
+ * on from there (see run.c); rd NULL is sph_run. */
+int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_restart_data *rd,
+                   sph_run_result *r, sph_error *err);
+
 const char *sph_run_status_name(sph_run_status st);
 
 #endif

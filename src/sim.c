@@ -8,14 +8,20 @@
  * block's surface, so walls hold the column up from the first step. Every
  * particle has mass rho0 dx^2 and smoothing length h = h_factor dx.
  *
- * One step is paper B's predictor-corrector (integrate.h) with the grid
- * rebuilt before each of the two interaction passes, so neighbour search is
- * exact at both stages. The time step comes from the first pass (the state
+ * One step is paper B's predictor-corrector (integrate.h) with an
+ * interaction pass at the mid-step state and one at the new state. The
+ * passes walk a neighbour list (grid.h) that is kept, with a skin, for as
+ * long as it provably holds every pair within the support (see
+ * neighbours()), so the grid is not rebuilt at every pass; every pair
+ * inside the support is evaluated at every pass, exactly as with a fresh
+ * grid. The time step comes from the first pass (the state
  * at t^n). After the step every particle is checked: finite state, density
  * within density_limit of rho0, inside the domain. The first offender in id
  * order is reported, so the message is the same for any thread count.
  */
 #include "config.h"
+
+#include "parallel.h"
 
 #include "sim.h"
 
@@ -54,6 +60,9 @@ struct sph_sim {
   double e0, e0_fluid;           /* initial totals */
   sph_particles p;
   sph_grid grid;
+  sph_nlist nl;               /* neighbour list of the interaction passes */
+  double skin;                /* its skin; 0 = rebuilt at every pass */
+  int resort;                 /* the next pass sorts the store by cell */
   sph_force_work work;
   sph_force_params fp;
   double t, last_dt;
@@ -64,6 +73,14 @@ struct sph_sim {
   double view[4];
   char *parameters; /* sph_case_describe */
 };
+
+/* The neighbour list's skin as a fraction of the support 2h
+ * (SPH_SKIN overrides it, for benchmarks; 0 rebuilds at every pass). */
+static double sph_skin_fraction(void) {
+  const char *e = getenv("SPH_SKIN");
+  if (e && *e) return atof(e);
+  return 0.15;
+}
 
 /* Cells of the grid are a hair larger than the support, so rounding in the
  * cell index can never separate a pair closer than 2h by a whole cell. */
@@ -79,8 +96,9 @@ static int add_fluid(sph_sim *s, sph_error *err) {
     const long ny = (long)floor((fb->y1 - fb->y0) / dx + 1e-9);
     for (long j = 0; j < ny; j++)
       for (long i = 0; i < nx; i++) {
-        const double x = fb->x0 + ((double)i + 0.5) * dx;
-        const double y = fb->y0 + ((double)j + 0.5) * dx;
+        double x = fb->x0 + ((double)i + 0.5) * dx;
+        double y = fb->y0 + ((double)j + 0.5) * dx;
+        sph_fluid_jitter(fb, b, i, j, dx, &x, &y); /* perturbed start, if asked for */
         double rho = c->rho0;
         if (fb->hydrostatic) rho = sph_eos_density(&s->fp.eos, c->rho0 * gmag * (fb->surface - y));
         if (sph_particles_add(&s->p, x, y, fb->vx, fb->vy, rho, mass, c->h, SPH_KIND_FLUID, err) <
@@ -266,6 +284,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   if (!s) return sph_error_set(err, "out of memory");
   s->c = c;
   sph_grid_init(&s->grid);
+  sph_nlist_init(&s->nl);
   s->fp.eos = sph_eos_tait(c->rho0, c->sound_speed);
   s->fp.h = c->h;
   s->fp.alpha = c->alpha;
@@ -293,6 +312,8 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   if (add_fluid(s, err)) goto fail;
   if (add_walls(s, err)) goto fail;
   if (c->periodic) dedupe_periodic(s);
+  /* a neighbour list kept across passes where nothing needs a fresh grid */
+  if (!s->n_mirror && !s->detect && !s->fp.var_h) s->skin = sph_skin_fraction() * SPH_CUBIC_SUPPORT * c->h;
   if (s->p.n == 0) {
     sph_error_set(err, "case %s: no particles", c->name);
     goto fail;
@@ -306,6 +327,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
     goto fail;
   }
   move_walls(s, 0.0);
+  s->resort = 1;
   if (pass(s, err)) goto fail; /* rates and flags of the initial state */
   if (c->energy) {
     sph_diag_row row;
@@ -326,6 +348,7 @@ void sph_sim_free(sph_sim *s) {
   if (!s) return;
   sph_particles_free(&s->p);
   sph_grid_free(&s->grid);
+  sph_nlist_free(&s->nl);
   sph_force_work_free(&s->work);
   free(s->parameters);
   free(s);
@@ -389,16 +412,58 @@ static int free_surface(sph_sim *s, sph_error *err) {
   return 0;
 }
 
+/* The interaction support: 2 max h, and the Lennard-Jones range if larger. */
+static double support(const sph_sim *s) {
+  double r = SPH_CUBIC_SUPPORT * h_max(s);
+  if (s->fp.repulsive && s->fp.lj_r0 > r) r = s->fp.lj_r0;
+  return r * SPH_CELL_MARGIN;
+}
+
 /* The cell list of the current positions (periodic in x when the case
- * is), cells fitting the largest smoothing length. At most ~64 cells per
- * particle: far more than any sane domain needs. */
-static int build_grid(sph_sim *s, sph_error *err) {
+ * is), cells fitting the support plus the list's skin. At most ~64 cells
+ * per particle: far more than any sane domain needs. */
+static int build_grid(sph_sim *s, double cell, sph_error *err) {
   const sph_case *c = s->c;
   const size_t max_cells = 64 * s->p.n + 1024 * 1024;
-  const double cell = SPH_CUBIC_SUPPORT * h_max(s) * SPH_CELL_MARGIN;
   return c->periodic ? sph_grid_build_periodic(&s->grid, &s->p, cell, c->periodic_x[0],
                                                c->periodic_x[1], max_cells, err)
                      : sph_grid_build(&s->grid, &s->p, cell, max_cells, err);
+}
+
+/* Steps between sorts of the store when the neighbour list is kept. */
+#define SPH_RESORT_EVERY 40
+
+/* The neighbour list of the current state.
+ *
+ * Without a skin (cases whose passes need a fresh grid or change the
+ * store: mirror particles, free-surface detection, variable h) the store is
+ * sorted by cell and the list rebuilt at every pass.
+ *
+ * With a skin, a list built earlier is kept while sph_nlist_fresh proves it
+ * complete (no particle moved more than skin/2 since); otherwise the
+ * particles are binned without reordering the store and the list rebuilt.
+ * The store is sorted (for memory locality) only at the end-of-step pass
+ * of every SPH_RESORT_EVERY-th step: a function of the step count, not of
+ * when lists happened to be rebuilt. Since the rows of a list are in
+ * storage order, every sum of a pass then depends only on the state, the
+ * storage order and the step count, so a run restarted from any snapshot
+ * (which records the storage order) repeats the uninterrupted run bit for
+ * bit, whatever the skin. */
+static int neighbours(sph_sim *s, sph_error *err) {
+  const sph_case *c = s->c;
+  const int resort = s->resort;
+  s->resort = 0;
+  if (s->skin > 0.0 && !resort && sph_nlist_fresh(&s->nl, &s->p)) return 0;
+  const double cell = (support(s) + s->skin) * SPH_CELL_MARGIN;
+  const double px0 = c->periodic ? c->periodic_x[0] : 0.0;
+  const double px1 = c->periodic ? c->periodic_x[1] : 0.0;
+  /* the sort's cells fit the support alone, so the storage order (and
+   * with it every result) does not depend on the skin */
+  if ((s->skin == 0.0 || resort) && build_grid(s, support(s) * SPH_CELL_MARGIN, err)) return -1;
+  if (s->skin > 0.0 && sph_grid_bin(&s->grid, &s->p, cell, c->periodic, px0, px1,
+                                    64 * s->p.n + 1024 * 1024, err))
+    return -1;
+  return sph_nlist_build(&s->nl, &s->grid, &s->p, support(s), s->skin, px1 - px0, err);
 }
 
 /* Mirror particles, grid build, free-surface flags and one interaction
@@ -409,13 +474,13 @@ static int pass(sph_sim *s, sph_error *err) {
   update_h(s);
   if (s->n_mirror && sph_mirror_add(&s->p, s->mirror, s->n_mirror, s->mirror_reach, err) < 0)
     return -1;
-  int rc = build_grid(s, err);
+  int rc = neighbours(s, err);
   if (rc == 0 && s->detect) rc = free_surface(s, err);
-  if (rc == 0) rc = sph_forces_evaluate(&s->p, &s->grid, &s->fp, &s->work, err);
+  if (rc == 0) rc = sph_forces_evaluate(&s->p, &s->nl, &s->fp, &s->work, err);
   /* everything that reads the pass's per-particle work arrays, before
    * removing the mirror particles reorders the store under them */
   if (rc == 0) {
-    s->dt_paper_b = sph_dt_paper_b(&s->p, &s->work, c->h, c->dt_factor);
+    s->dt_paper_b = sph_dt_paper_b(&s->work, c->h, c->dt_factor);
     if (s->fp.ledger) ledger_powers(s);
   }
   if (s->n_mirror) sph_mirror_remove(&s->p, s->grid.perm, s->grid.work);
@@ -426,7 +491,8 @@ static int pass(sph_sim *s, sph_error *err) {
  * with the leap-frog the half-step density is reset to the filtered one. */
 static int apply_filter(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
-  if (build_grid(s, err)) return -1;
+  sph_nlist_invalidate(&s->nl); /* the grid build reorders the store */
+  if (build_grid(s, SPH_CUBIC_SUPPORT * h_max(s) * SPH_CELL_MARGIN, err)) return -1;
   sph_filter_params fp;
   sph_filter_params_default(&fp, s->fp.var_h ? 0.0 : c->h);
   if (sph_filter_apply(c->density_filter, &s->p, &s->grid, &fp, s->work.sigma, NULL, err))
@@ -449,30 +515,37 @@ static void wrap_periodic(sph_sim *s) {
   }
 }
 
-/* The blow-up check; the first offender in id order is named. */
+/* Why particle i fails the blow-up check, or NULL. */
+static inline const char *bad_particle(const sph_particles *p, size_t i, double lim, double rho0,
+                                       const double *d) {
+  if (!isfinite(p->x[i]) || !isfinite(p->y[i]) || !isfinite(p->vx[i]) || !isfinite(p->vy[i]) ||
+      !isfinite(p->rho[i]) || !isfinite(p->p[i]))
+    return "state is not finite (NaN or Inf)";
+  if (fabs(p->rho[i] / rho0 - 1.0) > lim) return "density outside the allowed band";
+  if (p->kind[i] == SPH_KIND_FLUID &&
+      (p->x[i] < d[0] || p->x[i] > d[1] || p->y[i] < d[2] || p->y[i] > d[3]))
+    return "particle left the domain";
+  return NULL;
+}
+
+/* The blow-up check; the first offender in id order is named (a min
+ * reduction over ids, exact in any order, then a serial look-up). */
 static int check_state(sph_sim *s, sph_error *err) {
   const sph_particles *p = &s->p;
   const double lim = s->c->density_limit, rho0 = s->c->rho0;
   const double *d = s->domain;
+  const long n = (long)p->n;
+  int64_t first = INT64_MAX;
+#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(min : first)
+  for (long i = 0; i < n; i++)
+    if (p->id[i] < first && bad_particle(p, (size_t)i, lim, rho0, d)) first = p->id[i];
+  if (first == INT64_MAX) return 0;
   long worst = -1;
-  const char *why = NULL;
-  for (size_t i = 0; i < p->n; i++) {
-    const char *w = NULL;
-    if (!isfinite(p->x[i]) || !isfinite(p->y[i]) || !isfinite(p->vx[i]) || !isfinite(p->vy[i]) ||
-        !isfinite(p->rho[i]) || !isfinite(p->p[i]))
-      w = "state is not finite (NaN or Inf)";
-    else if (fabs(p->rho[i] / rho0 - 1.0) > lim)
-      w = "density outside the allowed band";
-    else if (p->kind[i] == SPH_KIND_FLUID &&
-             (p->x[i] < d[0] || p->x[i] > d[1] || p->y[i] < d[2] || p->y[i] > d[3]))
-      w = "particle left the domain";
-    if (w && (worst < 0 || p->id[i] < p->id[worst])) {
-      worst = (long)i;
-      why = w;
-    }
-  }
+  for (long i = 0; i < n && worst < 0; i++)
+    if (p->id[i] == first) worst = i;
   if (worst < 0) return 0;
   const size_t i = (size_t)worst;
+  const char *why = bad_particle(p, i, lim, rho0, d);
   sph_error_set(err,
                 "blow-up at step %ld, t = %.9g s: %s particle %lld: %s "
                 "(x = %.6g, y = %.6g, vx = %.6g, vy = %.6g, rho = %.6g; allowed rho in "
@@ -508,8 +581,7 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
     dt = t_target - s->t;
     land = 1;
   }
-  sph_pc_save(&s->p);
-  s->t_saved = s->t;
+  s->t_saved = s->t; /* the stage (or the leap-frog) saves X^n in X0 */
   const double t_new = land ? t_target : s->t + dt;
   if (c->integrator == SPH_INTEGRATOR_LEAPFROG) {
     /* the rates of t^n drive the whole step: so do the ledger's powers */
@@ -517,23 +589,20 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
     s->drift_xsph += dt * s->power_xsph;
     s->impulse_x += dt * s->force_x;
     s->impulse_y += dt * s->force_y;
-    sph_leapfrog_step(&s->p, dt, s->first_step, xsph);
+    sph_leapfrog_step(&s->p, dt, s->first_step, xsph, &s->fp.eos);
     s->first_step = 0;
     move_walls(s, t_new);
-    sph_forces_pressure(&s->p, &s->fp.eos);
   } else {
-    sph_pc_half(&s->p, dt, xsph);
+    sph_pc_half(&s->p, dt, xsph, &s->fp.eos);
     move_walls(s, s->t + 0.5 * dt);
-    sph_forces_pressure(&s->p, &s->fp.eos);
     if (pass(s, err)) return -1;
     /* X^{n+1} = X^n + dt F(X^{n+1/2}): the mid-step powers drive the step */
     s->work_wall += dt * s->power_wall;
     s->drift_xsph += dt * s->power_xsph;
     s->impulse_x += dt * s->force_x;
     s->impulse_y += dt * s->force_y;
-    sph_pc_finish(&s->p, dt, xsph);
+    sph_pc_finish(&s->p, dt, xsph, &s->fp.eos);
     move_walls(s, t_new);
-    sph_forces_pressure(&s->p, &s->fp.eos);
   }
   wrap_periodic(s);
   s->t = t_new;
@@ -546,6 +615,7 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   if (st) return st;
   /* rates (and flags) of the new state: the next step starts from them,
    * and a snapshot of this state carries flags that belong to it */
+  s->resort = s->steps % SPH_RESORT_EVERY == 0;
   return pass(s, err);
 }
 
@@ -616,4 +686,149 @@ int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err) {
   sph_snapshot_meta m;
   fill_meta(s, &m, s->t_saved, s->steps - 1);
   return sph_snapshot_write(path, &m, &v, err);
+}
+
+/* ---- restart (sph run --restart) -------------------------------------------
+ * A snapshot written by sph_sim_write_run_snapshot carries, besides the
+ * fields, what the next step reads that the fields do not hold: the
+ * storage order (the grid's sort is stable, so the order within a cell,
+ * and with it the order of every neighbour sum, depends on the history),
+ * the leap-frog's half-step values and first-step flag, and the ledger's
+ * time integrals. Everything else the step uses is either a function of
+ * the case (set-up, rest positions and motion of walls, domain, initial
+ * energies and momentum, all remade by sph_sim_create) or of the state in
+ * that order (the rates, flags and step-rule inputs of the pass, which
+ * sph_sim_restore reruns). So a restored sim steps bit for bit as the one
+ * that wrote the snapshot. */
+
+int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t output_index,
+                               const double *levels, size_t n_levels, sph_error *err) {
+  sph_snapshot_meta m;
+  fill_meta(s, &m, s->t, s->steps);
+  sph_snapshot_restart r;
+  memset(&r, 0, sizeof r);
+  r.output_index = output_index;
+  r.first_step = s->first_step;
+  r.ledger[0] = s->work_wall;
+  r.ledger[1] = s->drift_xsph;
+  r.ledger[2] = s->impulse_x;
+  r.ledger[3] = s->impulse_y;
+  r.n_levels = n_levels;
+  r.levels = levels;
+  r.order = s->p.id;
+  if (s->c->integrator == SPH_INTEGRATOR_LEAPFROG) {
+    r.vxh = s->p.vxh;
+    r.vyh = s->p.vyh;
+    r.rhoh = s->p.rhoh;
+    r.uh = s->p.uh;
+  }
+  m.restart = &r;
+  return sph_snapshot_write(path, &m, &s->p, err);
+}
+
+/* The first line of a that differs from b, ignoring time.end (a restart
+ * may run further); NULL if none. Lines are "key: value". */
+static const char *first_difference(const char *a, const char *b, size_t *len) {
+  for (;;) {
+    while (!strncmp(a, "time.end:", 9)) a += strcspn(a, "\n") + (a[strcspn(a, "\n")] != 0);
+    while (!strncmp(b, "time.end:", 9)) b += strcspn(b, "\n") + (b[strcspn(b, "\n")] != 0);
+    if (!*a && !*b) return NULL;
+    const size_t la = strcspn(a, "\n"), lb = strcspn(b, "\n");
+    if (la != lb || memcmp(a, b, la)) {
+      *len = la ? la : lb;
+      return la ? a : b;
+    }
+    a += la + (a[la] != 0);
+    b += lb + (b[lb] != 0);
+  }
+}
+
+static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particles *q,
+                         const sph_snapshot_restart_data *rd, sph_error *err) {
+  const char *path = sph_snapshot_path(snap);
+  const size_t n = s->p.n;
+  if (q->n != n)
+    return sph_error_set(err, "%s: holds %zu particles, the case makes %zu: not a snapshot of "
+                              "this case",
+                         path, q->n, n);
+  const char *params = sph_snapshot_text(snap, "parameters");
+  size_t dlen = 0;
+  const char *diff = params ? first_difference(params, s->parameters, &dlen) : NULL;
+  if (!params || diff)
+    return sph_error_set(err, "%s: written with other parameters than the case (%s%.*s); "
+                              "only time.end may change on a restart",
+                         path, params ? "first difference: " : "no parameters attribute",
+                         (int)dlen, diff ? diff : "");
+  const int leapfrog = s->c->integrator == SPH_INTEGRATOR_LEAPFROG;
+  if (leapfrog && !rd->first_step && !rd->vxh)
+    return sph_error_set(err, "%s: a leap-frog run's snapshot without the half-step values "
+                              "(/restart/vxh, vyh, rhoh, uh)",
+                         path);
+  size_t *pos = malloc(n * sizeof *pos), *perm = malloc(n * sizeof *perm);
+  void *work = malloc(n * sizeof(double));
+  if (!pos || !perm || !work) {
+    free(pos);
+    free(perm);
+    free(work);
+    return sph_error_set(err, "out of memory");
+  }
+  for (size_t i = 0; i < n; i++) pos[s->p.id[i]] = i;
+  for (size_t k = 0; k < n; k++) perm[k] = pos[rd->order[k]];
+  sph_particles_permute(&s->p, perm, work);
+  free(pos);
+  free(perm);
+  free(work);
+  sph_particles *p = &s->p;
+  for (size_t k = 0; k < n; k++) {
+    const size_t i = (size_t)p->id[k]; /* row of the snapshot */
+    if (q->kind[i] != p->kind[k] || q->mass[i] != p->mass[k])
+      return sph_error_set(err, "%s: particle %zu is a %s of mass %g, the case makes a %s of "
+                                "mass %g: not a snapshot of this case",
+                           path, i, q->kind[i] == SPH_KIND_FLUID ? "fluid particle" : "wall particle",
+                           q->mass[i], p->kind[k] == SPH_KIND_FLUID ? "fluid particle" : "wall particle",
+                           p->mass[k]);
+    p->x[k] = q->x[i];
+    p->y[k] = q->y[i];
+    p->vx[k] = q->vx[i];
+    p->vy[k] = q->vy[i];
+    p->rho[k] = q->rho[i];
+    p->p[k] = q->p[i];
+    p->h[k] = q->h[i];
+    p->u[k] = q->u[i];
+    p->flags[k] = (uint8_t)((p->flags[k] & ~SPH_FLAG_FREE_SURFACE) | (q->flags[i] & 1u));
+    if (rd->vxh) {
+      p->vxh[k] = rd->vxh[k];
+      p->vyh[k] = rd->vyh[k];
+      p->rhoh[k] = rd->rhoh[k];
+      p->uh[k] = rd->uh[k];
+    }
+  }
+  s->t = sph_snapshot_time(snap);
+  s->steps = (long)sph_snapshot_step(snap);
+  s->last_dt = sph_snapshot_dt(snap);
+  s->first_step = (int)rd->first_step;
+  s->work_wall = rd->ledger[0];
+  s->drift_xsph = rd->ledger[1];
+  s->impulse_x = rd->ledger[2];
+  s->impulse_y = rd->ledger[3];
+  const int st = check_state(s, err);
+  if (st) return st;
+  return pass(s, err); /* the rates, flags and step-rule inputs of this state */
+}
+
+int sph_sim_restore(sph_sim *s, const char *path, sph_snapshot_restart_data *rd,
+                    sph_error *err) {
+  memset(rd, 0, sizeof *rd);
+  sph_snapshot *snap;
+  if (sph_snapshot_open(path, &snap, err)) return -1;
+  sph_particles q;
+  int rc = sph_snapshot_read_particles(snap, &q, err);
+  if (rc == 0) {
+    rc = sph_snapshot_read_restart(snap, rd, err);
+    if (rc == 0) rc = restore_state(s, snap, &q, rd, err);
+    sph_particles_free(&q);
+  }
+  sph_snapshot_close(snap);
+  if (rc) sph_snapshot_restart_free(rd);
+  return rc;
 }

@@ -8,9 +8,12 @@
  *   time step (from the last pass) -> predictor -> pass -> corrector
  *   -> moving walls -> density filter (every N steps) -> blow-up check
  *   -> pass on the new state
- * or leap-frog (one pass per step). A pass is: mirror particles -> grid
- * build (sort by cell) -> free-surface flags -> interaction terms. So the
- * rates and flags held with a state always belong to it.
+ * or leap-frog (one pass per step). A pass is: mirror particles ->
+ * neighbour list (kept while provably complete, else rebuilt from a grid;
+ * the store is sorted by cell every 40 steps, or at every pass in cases
+ * with mirror particles, free-surface detection or variable h) ->
+ * free-surface flags -> interaction terms. So the rates and flags held
+ * with a state always belong to it.
  * The library never prints or exits: failures come back as a status and an
  * sph_error message.
  */
@@ -21,6 +24,7 @@
 #include "diag.h"
 #include "error.h"
 #include "particles.h"
+#include "snapshot.h"
 
 typedef struct sph_sim sph_sim;
 
@@ -57,5 +61,20 @@ int sph_sim_write_snapshot(const sph_sim *s, const char *path, sph_error *err);
 /* Writes the state saved at the start of the last step (the last state that
  * passed the blow-up check) as a snapshot: used after a blow-up. */
 int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err);
+
+/* Restart (sph run --restart). sph_sim_write_run_snapshot writes the
+ * current state like sph_sim_write_snapshot plus the restart record
+ * (snapshot.h: the storage order, the leap-frog's half-step values, the
+ * ledger's integrals, and the run's own output_index and gauge levels).
+ * sph_sim_restore takes a sim freshly made by sph_sim_create from the same
+ * case (only time.end may differ: the snapshot's "parameters" must match)
+ * and puts it in the state of the snapshot at path, so that the steps that
+ * follow are bitwise those of the run that wrote it. rd receives the
+ * snapshot's restart record (free it with sph_snapshot_restart_free);
+ * errors name the file and what does not match. */
+int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t output_index,
+                               const double *levels, size_t n_levels, sph_error *err);
+int sph_sim_restore(sph_sim *s, const char *path, sph_snapshot_restart_data *rd,
+                    sph_error *err);
 
 #endif

@@ -18,6 +18,10 @@
  * p mass h u kind id [free_surface]); a file whose group lacks that index is
  * listed in name order.
  *
+ * The group /restart (snapshot.h) is written after /particles; its arrays
+ * are in storage order, raw. The reader checks everything a restart will
+ * index with: the shape of each array, and that order is a permutation.
+ *
  * HDF5 error printing is switched off inside every public function (and
  * restored on return); each HDF5 failure becomes one sph_error line naming
  * the file, the object and, in brackets, HDF5's innermost reason. The
@@ -290,6 +294,53 @@ static int write_particles(writer *w, const sph_particles *p, int free_surface,
   return rc;
 }
 
+/* A 1-D dataset of n raw values (storage order) in the /restart group. */
+static int write_raw(writer *w, hid_t group, const char *name, hid_t ftype, hid_t mtype,
+                     const void *values, size_t n) {
+  hsize_t dims[1] = {n};
+  hid_t dcpl = timeless(H5P_DATASET_CREATE);
+  hid_t space = H5Screate_simple(1, dims, NULL);
+  hid_t dset = dcpl < 0 || space < 0
+                   ? -1
+                   : H5Dcreate2(group, name, ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  int rc = 0;
+  if (dset < 0 || (n > 0 && H5Dwrite(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, values) < 0))
+    rc = h5_fail(w->err, w->path, "cannot write dataset /restart/%s", name);
+  close_id(dset);
+  close_id(space);
+  close_id(dcpl);
+  return rc;
+}
+
+/* The group /restart (snapshot.h, sph_snapshot_restart). */
+static int write_restart(writer *w, const sph_snapshot_restart *r, size_t n) {
+  hid_t gcpl = timeless(H5P_GROUP_CREATE);
+  hid_t g = gcpl < 0 ? -1 : H5Gcreate2(w->file, "restart", H5P_DEFAULT, gcpl, H5P_DEFAULT);
+  close_id(gcpl);
+  if (g < 0) return h5_fail(w->err, w->path, "cannot create group /restart");
+  const int64_t format = 1;
+  int rc = put_numbers(w, g, "/restart", "format", H5T_STD_I64LE, H5T_NATIVE_INT64, &format, 1) ||
+           put_numbers(w, g, "/restart", "output_index", H5T_STD_I64LE, H5T_NATIVE_INT64,
+                       &r->output_index, 1) ||
+           put_numbers(w, g, "/restart", "first_step", H5T_STD_I64LE, H5T_NATIVE_INT64,
+                       &r->first_step, 1) ||
+           put_numbers(w, g, "/restart", "ledger", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, r->ledger,
+                       4);
+  if (rc == 0 && r->n_levels > 0)
+    rc = put_numbers(w, g, "/restart", "gauge_levels", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                     r->levels, r->n_levels);
+  if (rc == 0 && !r->order)
+    rc = sph_error_set(w->err, "%s: restart record without the storage order", w->path);
+  if (rc == 0)
+    rc = write_raw(w, g, "order", H5T_STD_I64LE, H5T_NATIVE_INT64, r->order, n);
+  const char *names[4] = {"vxh", "vyh", "rhoh", "uh"};
+  const double *half[4] = {r->vxh, r->vyh, r->rhoh, r->uh};
+  for (int k = 0; rc == 0 && k < 4; k++)
+    if (half[k]) rc = write_raw(w, g, names[k], H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, half[k], n);
+  close_id(g);
+  return rc ? -1 : 0;
+}
+
 /* Creates the tmp file and writes everything; closes it. */
 static int write_file(writer *w, const char *tmp, const sph_snapshot_meta *meta,
                       const sph_particles *p, const size_t *pos) {
@@ -311,6 +362,7 @@ static int write_file(writer *w, const char *tmp, const sph_snapshot_meta *meta,
     rc = h5_fail(w->err, w->path, "cannot make the string type");
   if (rc == 0) rc = write_header(w, meta, p->n);
   if (rc == 0) rc = write_particles(w, p, meta->free_surface, pos);
+  if (rc == 0 && meta->restart) rc = write_restart(w, meta->restart, p->n);
   close_id(w->str);
   if (H5Fclose(w->file) < 0 && rc == 0) rc = h5_fail(w->err, w->path, "cannot close %s", tmp);
   return rc;
@@ -371,32 +423,40 @@ static int is_numeric(hid_t type) {
   return c == H5T_INTEGER || c == H5T_FLOAT;
 }
 
-/* Reads the numeric attribute name of "/" (exactly n values) as mtype. */
-static int get_numbers(const sph_snapshot *s, const char *name, hid_t mtype, void *out, size_t n,
-                       sph_error *err) {
-  htri_t there = H5Aexists(s->file, name);
-  if (there < 0) return h5_fail(err, s->path, "cannot look for attribute \"%s\" on /", name);
-  if (there == 0) return sph_error_set(err, "%s: missing attribute \"%s\" on /", s->path, name);
-  hid_t attr = H5Aopen(s->file, name, H5P_DEFAULT);
+/* Reads the numeric attribute name of obj (called where in messages;
+ * exactly n values) as mtype. */
+static int get_numbers_of(const sph_snapshot *s, hid_t obj, const char *where, const char *name,
+                          hid_t mtype, void *out, size_t n, sph_error *err) {
+  htri_t there = H5Aexists(obj, name);
+  if (there < 0)
+    return h5_fail(err, s->path, "cannot look for attribute \"%s\" on %s", name, where);
+  if (there == 0)
+    return sph_error_set(err, "%s: missing attribute \"%s\" on %s", s->path, name, where);
+  hid_t attr = H5Aopen(obj, name, H5P_DEFAULT);
   hid_t type = attr < 0 ? -1 : H5Aget_type(attr);
   hid_t space = attr < 0 ? -1 : H5Aget_space(attr);
   int rc = 0;
   if (type < 0 || space < 0) {
-    rc = h5_fail(err, s->path, "cannot open attribute \"%s\" on /", name);
+    rc = h5_fail(err, s->path, "cannot open attribute \"%s\" on %s", name, where);
   } else if (!is_numeric(type)) {
-    rc = sph_error_set(err, "%s: attribute \"%s\" on / is not a number", s->path, name);
+    rc = sph_error_set(err, "%s: attribute \"%s\" on %s is not a number", s->path, name, where);
   } else {
     hssize_t got = H5Sget_simple_extent_npoints(space);
     if (got != (hssize_t)n)
-      rc = sph_error_set(err, "%s: attribute \"%s\" on / has %lld values, expected %zu", s->path,
-                         name, (long long)got, n);
+      rc = sph_error_set(err, "%s: attribute \"%s\" on %s has %lld values, expected %zu",
+                         s->path, name, where, (long long)got, n);
     else if (H5Aread(attr, mtype, out) < 0)
-      rc = h5_fail(err, s->path, "cannot read attribute \"%s\" on /", name);
+      rc = h5_fail(err, s->path, "cannot read attribute \"%s\" on %s", name, where);
   }
   close_id(space);
   close_id(type);
   close_id(attr);
   return rc;
+}
+
+static int get_numbers(const sph_snapshot *s, const char *name, hid_t mtype, void *out, size_t n,
+                       sph_error *err) {
+  return get_numbers_of(s, s->file, "/", name, mtype, out, n, err);
 }
 
 /* A string attribute's value, variable- or fixed-length, into a malloc'd
@@ -682,4 +742,155 @@ int sph_snapshot_read_particles(const sph_snapshot *s, sph_particles *p, sph_err
   quiet_end(&q);
   if (rc) sph_particles_free(p);
   return rc;
+}
+
+/* ------------------------------------------------------------------------ */
+/* The restart record.                                                      */
+
+/* The number of values of attribute name on obj, 0 if absent, -1 on error. */
+static long long attribute_length(const sph_snapshot *s, hid_t obj, const char *name,
+                                  sph_error *err) {
+  htri_t there = H5Aexists(obj, name);
+  if (there < 0) return h5_fail(err, s->path, "cannot look for attribute \"%s\" on /restart", name);
+  if (there == 0) return 0;
+  hid_t attr = H5Aopen(obj, name, H5P_DEFAULT);
+  hid_t space = attr < 0 ? -1 : H5Aget_space(attr);
+  hssize_t n = space < 0 ? -1 : H5Sget_simple_extent_npoints(space);
+  close_id(space);
+  close_id(attr);
+  if (n < 0) return h5_fail(err, s->path, "cannot open attribute \"%s\" on /restart", name);
+  return (long long)n;
+}
+
+/* Dataset /restart/name: 1-D, count values, numeric, read as mtype into a
+ * new array (*out; NULL and no error when absent and not required). */
+static int read_restart_array(const sph_snapshot *s, hid_t g, const char *name, int required,
+                              hid_t mtype, size_t size, void **out, sph_error *err) {
+  *out = NULL;
+  htri_t there = H5Lexists(g, name, H5P_DEFAULT);
+  if (there < 0) return h5_fail(err, s->path, "cannot look for dataset /restart/%s", name);
+  if (there == 0)
+    return required ? sph_error_set(err, "%s: missing dataset /restart/%s", s->path, name) : 0;
+  hid_t dset = H5Dopen2(g, name, H5P_DEFAULT);
+  hid_t type = dset < 0 ? -1 : H5Dget_type(dset);
+  hid_t space = dset < 0 ? -1 : H5Dget_space(dset);
+  hsize_t dims[1] = {0};
+  int rc = 0;
+  if (type < 0 || space < 0)
+    rc = h5_fail(err, s->path, "cannot open dataset /restart/%s", name);
+  else if (!is_numeric(type))
+    rc = sph_error_set(err, "%s: dataset /restart/%s is not numeric", s->path, name);
+  else if (H5Sget_simple_extent_ndims(space) != 1 ||
+           H5Sget_simple_extent_dims(space, dims, NULL) < 0 || dims[0] != (hsize_t)s->count)
+    rc = sph_error_set(err, "%s: dataset /restart/%s is not 1-D with %zu values (particle_count)",
+                       s->path, name, s->count);
+  if (rc == 0) {
+    *out = malloc((s->count ? s->count : 1) * size);
+    if (!*out)
+      rc = sph_error_set(err, "%s: out of memory", s->path);
+    else if (s->count > 0 && H5Dread(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, *out) < 0)
+      rc = h5_fail(err, s->path, "cannot read dataset /restart/%s", name);
+  }
+  close_id(space);
+  close_id(type);
+  close_id(dset);
+  if (rc) {
+    free(*out);
+    *out = NULL;
+  }
+  return rc;
+}
+
+static int read_restart(const sph_snapshot *s, hid_t g, sph_snapshot_restart_data *r,
+                        sph_error *err) {
+  int64_t format = 0;
+  if (get_numbers_of(s, g, "/restart", "format", H5T_NATIVE_INT64, &format, 1, err)) return -1;
+  if (format != 1)
+    return sph_error_set(err, "%s: attribute \"format\" on /restart is %lld, this program reads 1",
+                         s->path, (long long)format);
+  if (get_numbers_of(s, g, "/restart", "output_index", H5T_NATIVE_INT64, &r->output_index, 1,
+                     err) ||
+      get_numbers_of(s, g, "/restart", "first_step", H5T_NATIVE_INT64, &r->first_step, 1, err) ||
+      get_numbers_of(s, g, "/restart", "ledger", H5T_NATIVE_DOUBLE, r->ledger, 4, err))
+    return -1;
+  if (r->output_index < 0 || r->output_index > 99999999)
+    return sph_error_set(err, "%s: attribute \"output_index\" on /restart is %lld, expected 0..99999999",
+                         s->path, (long long)r->output_index);
+  if (r->first_step != 0 && r->first_step != 1)
+    return sph_error_set(err, "%s: attribute \"first_step\" on /restart is %lld, expected 0 or 1",
+                         s->path, (long long)r->first_step);
+  long long nl = attribute_length(s, g, "gauge_levels", err);
+  if (nl < 0) return -1;
+  if (nl > 0) {
+    r->levels = malloc((size_t)nl * sizeof *r->levels);
+    if (!r->levels) return sph_error_set(err, "%s: out of memory", s->path);
+    r->n_levels = (size_t)nl;
+    if (get_numbers_of(s, g, "/restart", "gauge_levels", H5T_NATIVE_DOUBLE, r->levels,
+                       r->n_levels, err))
+      return -1;
+  }
+  r->count = s->count;
+  void *a = NULL;
+  if (read_restart_array(s, g, "order", 1, H5T_NATIVE_INT64, sizeof(int64_t), &a, err)) return -1;
+  r->order = a;
+  /* order must be a permutation of 0..count-1 */
+  unsigned char *seen = calloc(s->count ? s->count : 1, 1);
+  if (!seen) return sph_error_set(err, "%s: out of memory", s->path);
+  for (size_t k = 0; k < s->count; k++) {
+    const int64_t id = r->order[k];
+    if (id < 0 || (uint64_t)id >= s->count || seen[id]) {
+      free(seen);
+      return sph_error_set(err,
+                           "%s: dataset /restart/order holds %lld at row %zu: expected each of "
+                           "0..%zu once",
+                           s->path, (long long)id, k, s->count ? s->count - 1 : 0);
+    }
+    seen[id] = 1;
+  }
+  free(seen);
+  const char *names[4] = {"vxh", "vyh", "rhoh", "uh"};
+  double **half[4] = {&r->vxh, &r->vyh, &r->rhoh, &r->uh};
+  int present = 0;
+  for (int k = 0; k < 4; k++) {
+    if (read_restart_array(s, g, names[k], 0, H5T_NATIVE_DOUBLE, sizeof(double), &a, err))
+      return -1;
+    *half[k] = a;
+    present += a != NULL;
+  }
+  if (present != 0 && present != 4)
+    return sph_error_set(err, "%s: group /restart has only some of vxh, vyh, rhoh, uh", s->path);
+  return 0;
+}
+
+int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *r,
+                              sph_error *err) {
+  memset(r, 0, sizeof *r);
+  h5_quiet q;
+  quiet_begin(&q);
+  int rc = 0;
+  hid_t g = -1;
+  htri_t there = H5Lexists(s->file, "restart", H5P_DEFAULT);
+  if (there < 0)
+    rc = h5_fail(err, s->path, "cannot look for group /restart");
+  else if (there == 0)
+    rc = sph_error_set(err, "%s: no group /restart: the snapshot holds no restart record",
+                       s->path);
+  else if ((g = H5Gopen2(s->file, "restart", H5P_DEFAULT)) < 0)
+    rc = h5_fail(err, s->path, "cannot open group /restart");
+  else
+    rc = read_restart(s, g, r, err);
+  close_id(g);
+  quiet_end(&q);
+  if (rc) sph_snapshot_restart_free(r);
+  return rc;
+}
+
+void sph_snapshot_restart_free(sph_snapshot_restart_data *r) {
+  free(r->levels);
+  free(r->order);
+  free(r->vxh);
+  free(r->vyh);
+  free(r->rhoh);
+  free(r->uh);
+  memset(r, 0, sizeof *r);
 }

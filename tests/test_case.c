@@ -335,7 +335,7 @@ static void test_unknown_key(void) {
   expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\nfoo: 1\n"), want);
   expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\n      colour: blue\n"),
              "t.yaml:13: geometry.fluid[0].colour: unknown key (valid keys in "
-             "'geometry.fluid[0]': x, y, velocity, hydrostatic, surface)");
+             "'geometry.fluid[0]': x, y, velocity, hydrostatic, surface, jitter, seed)");
 }
 
 static void test_wrong_type(void) {
@@ -660,6 +660,8 @@ static const char MINIMAL_DESCRIPTION[] =
     "geometry.fluid[0].velocity: [0, 0]\n"
     "geometry.fluid[0].hydrostatic: true\n"
     "geometry.fluid[0].surface: 0.5\n"
+    "geometry.fluid[0].jitter: 0\n"
+    "geometry.fluid[0].seed: 1\n"
     "geometry.walls: []\n"
     "geometry.domain: none\n"
     "free_surface.radius_factor: 1\n"

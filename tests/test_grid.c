@@ -11,6 +11,17 @@
  * minimum image, for a period of exactly 3 cells (whole rows) and longer
  * ones, with particles exactly at px0, within a cell of either side, and a
  * little outside the period (as between the two stages of a step).
+ *
+ * The neighbour list (sph_nlist): built from a sorted grid and from a
+ * binned one (store not reordered), plain and periodic, its rows hold
+ * exactly the brute-force pairs within the list radius, in increasing
+ * storage index; after random moves of at most skin/2 sph_nlist_fresh
+ * says the list still holds every pair within the support (checked by
+ * brute force), after a larger move or a reordered store it says rebuild.
+ * A whole run gives byte-identical output for any skin (SPH_SKIN): the
+ * rows are in storage order, so the pairs of a sum come in the same order
+ * however old the list; and for either flavour of the interaction's lane
+ * loop (SPH_LANES=portable against AVX where the processor has it).
  */
 #include "config.h"
 
@@ -312,6 +323,145 @@ static void test_permute_carries_fields(void) {
   sph_particles_free(&p);
 }
 
+/* The list of p (built on a sorted or a binned grid) against brute force
+ * with radius support + skin: same pairs, rows in increasing storage index. */
+static void check_list(sph_particles *p, double support, double skin, double period,
+                       int binned) {
+  sph_grid g;
+  sph_grid_init(&g);
+  sph_nlist l;
+  sph_nlist_init(&l);
+  sph_error err;
+  const double cell = (support + skin) * (1.0 + 1e-9), px1 = period;
+  int rc;
+  if (binned)
+    rc = sph_grid_bin(&g, p, cell, period > 0.0, 0.0, px1, 1u << 24, &err);
+  else if (period > 0.0)
+    rc = sph_grid_build_periodic(&g, p, cell, 0.0, px1, 1u << 24, &err);
+  else
+    rc = sph_grid_build(&g, p, cell, 1u << 24, &err);
+  CU_ASSERT_FATAL(rc == 0);
+  CU_ASSERT_FATAL(sph_nlist_build(&l, &g, p, support, skin, period, &err) == 0);
+  const double r2 = (support + skin) * (support + skin);
+  size_t bad = 0, pairs = 0;
+  for (size_t i = 0; i < p->n; i++) {
+    const uint32_t *row = l.nb + l.start[i];
+    size_t k = 0;
+    for (size_t j = 0; j < p->n; j++) {
+      double dx = p->x[i] - p->x[j];
+      if (period > 0.0) dx -= period * nearbyint(dx / period);
+      const double dy = p->y[i] - p->y[j];
+      if (j == i || !(dx * dx + dy * dy < r2)) continue;
+      pairs++;
+      if (k >= l.count[i] || row[k] != j) bad++;
+      k++;
+    }
+    if (k != l.count[i]) bad++;
+  }
+  CU_ASSERT_EQUAL(bad, 0);
+  CU_ASSERT(pairs > 0);
+  sph_nlist_free(&l);
+  sph_grid_free(&g);
+}
+
+static void random_store(sph_particles *p, size_t n, double L) {
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(p, 16, &err) == 0);
+  for (size_t i = 0; i < n; i++)
+    sph_particles_add(p, L * uniform(), 0.5 * L * uniform() + 1.0, 0, 0, 1000, 1, 0.01,
+                      SPH_KIND_FLUID, &err);
+}
+
+static void test_list_brute_force(void) {
+  for (int trial = 0; trial < 4; trial++) {
+    sph_particles p;
+    random_store(&p, 600 + 300 * (size_t)trial, 0.2);
+    const int binned = trial % 2, periodic = trial >= 2;
+    check_list(&p, 0.02, 0.004 * trial, periodic ? 0.2 : 0.0, binned);
+    /* the periodic image of a particle a little outside the period */
+    if (periodic) p.x[0] = 0.2 + 0.001, p.x[1] = -0.001;
+    check_list(&p, 0.02, 0.003, periodic ? 0.2 : 0.0, !binned);
+    sph_particles_free(&p);
+  }
+}
+
+/* Moves of up to skin/2: the list stays fresh and holds every pair within
+ * the support; a larger move, or a reordered store, makes it stale. */
+static void test_list_fresh(void) {
+  sph_particles p;
+  random_store(&p, 1500, 0.2);
+  const double support = 0.02, skin = 0.006;
+  sph_grid g;
+  sph_grid_init(&g);
+  sph_nlist l;
+  sph_nlist_init(&l);
+  sph_error err;
+  CU_ASSERT_FATAL(sph_grid_build(&g, &p, (support + skin) * (1 + 1e-9), 1u << 24, &err) == 0);
+  CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, support, skin, 0.0, &err) == 0);
+  CU_ASSERT(sph_nlist_fresh(&l, &p));
+  for (size_t i = 0; i < p.n; i++) { /* |d| <= 0.49 skin */
+    const double a = 6.283185307179586 * uniform(), d = 0.49 * skin * uniform();
+    p.x[i] += 0.5 * d * cos(a);
+    p.y[i] += 0.5 * d * sin(a);
+    if (i % 7 == 0) { /* some at nearly the largest allowed move */
+      p.x[i] += 0.49 * 0.5 * skin * cos(a) - 0.5 * d * cos(a);
+      p.y[i] += 0.49 * 0.5 * skin * sin(a) - 0.5 * d * sin(a);
+    }
+  }
+  CU_ASSERT_FATAL(sph_nlist_fresh(&l, &p));
+  size_t missing = 0;
+  for (size_t i = 0; i < p.n; i++)
+    for (size_t j = 0; j < p.n; j++) {
+      const double dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j];
+      if (j == i || !(dx * dx + dy * dy < support * support)) continue;
+      int found = 0;
+      for (size_t k = 0; k < l.count[i]; k++) found |= l.nb[l.start[i] + k] == j;
+      missing += !found;
+    }
+  CU_ASSERT_EQUAL(missing, 0);
+  const double x5 = p.x[5];
+  p.x[5] = l.xref[5] + 0.51 * skin;
+  CU_ASSERT(!sph_nlist_fresh(&l, &p));
+  p.x[5] = x5;
+  CU_ASSERT(sph_nlist_fresh(&l, &p));
+  size_t perm[2] = {1, 0};
+  double work[2];
+  const size_t n = p.n;
+  p.n = 2; /* swap the first two particles: a reordered store */
+  sph_particles_permute(&p, perm, work);
+  p.n = n;
+  CU_ASSERT(!sph_nlist_fresh(&l, &p));
+  sph_nlist_free(&l);
+  sph_grid_free(&g);
+  sph_particles_free(&p);
+}
+
+/* A run gives the same bytes for any skin of the neighbour list, and with
+ * either flavour of the interaction's lane loop (AVX or portable,
+ * src/forces.c). */
+static void test_run_any_skin(void) {
+  char *d[4];
+  const char *env[4] = {"SPH_SKIN=0.05", "SPH_SKIN=0.15", "SPH_SKIN=0.4",
+                        "SPH_LANES=portable"};
+  for (int k = 0; k < 4; k++) {
+    d[k] = sph_test_tmpdir();
+    char cmd[8192];
+    snprintf(cmd, sizeof cmd, "%s '%s' run --quiet --threads 1 '%s' -o '%s' --set time.end=0.1",
+             env[k], sph_test_build("src/sph"), sph_test_src("cases/martin_moyce_coarse.yaml"),
+             d[k]);
+    CU_ASSERT_FATAL(sph_test_system(cmd) == 0);
+  }
+  for (int k = 1; k < 4; k++) {
+    char cmd[8192];
+    snprintf(cmd, sizeof cmd, "diff -r '%s' '%s' >/dev/null", d[0], d[k]);
+    CU_ASSERT(sph_test_system(cmd) == 0);
+  }
+  for (int k = 0; k < 4; k++) {
+    sph_test_rmtree(d[k]);
+    free(d[k]);
+  }
+}
+
 int main(void) {
   CU_TestInfo tests[] = {{"grid neighbours equal brute force (random sets)", test_random_sets},
                          {"particles on cell edges and at exactly 2h", test_cell_edges},
@@ -321,6 +471,12 @@ int main(void) {
                          {"periodic grid, longer periods, against brute force",
                           test_periodic_long},
                          {"periodic grid refuses a period under 3 cells", test_periodic_too_short},
+                         {"neighbour list equals brute force (sorted, binned, periodic)",
+                          test_list_brute_force},
+                         {"neighbour list: fresh within skin/2, stale beyond or reordered",
+                          test_list_fresh},
+                         {"a run is byte-identical for any skin and either lane flavour",
+                          test_run_any_skin},
                          CU_TEST_INFO_NULL};
   return sph_test_main("grid", tests);
 }

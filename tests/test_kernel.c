@@ -2,7 +2,9 @@
  * test_kernel.c - properties of the 2-D cubic spline kernel (kernel.h):
  * normalisation, positivity, compact support, exact antisymmetry of the
  * gradient, the moment properties of GOST R 57700.6 (A.18-A.20), and the
- * derivative against a finite difference.
+ * derivative against a finite difference; the branch-free evaluator of
+ * the interaction loops (sph_cubic_w_f: W and (1/r) dW/dr) against the
+ * reference one (sph_cubic_w_dw) to round-off over the whole support.
  *
  * Integrals over the plane are lattice (midpoint) sums with spacing h/100:
  * the kernel is C2 with compact support, so such sums converge far below
@@ -129,6 +131,27 @@ static void test_moments(void) {
   CU_ASSERT_DOUBLE_EQUAL(cx * m0 - mx, 0.0, 1e-6 * fabs(cx));
 }
 
+/* sph_cubic_w_f against sph_cubic_w_dw: relative differences at the
+ * round-off level (a few ulps of the larger terms it sums) for 0 < r < 2h. */
+static void test_branch_free_form(void) {
+  double worst_w = 0.0, worst_f = 0.0;
+  const double inv_h = 1.0 / H, wmax = sph_cubic_w(0.0, H);
+  for (int k = 1; k < 20000; k++) {
+    const double r = 2.0 * H * k / 20000.0;
+    double w, dw, w2, f;
+    sph_cubic_w_dw(r, H, &w, &dw);
+    sph_cubic_w_f(r, 1.0 / r, inv_h, &w2, &f);
+    const double ew = fabs(w2 - w) / wmax;
+    const double ef = fabs(f * r - dw) / (wmax * inv_h);
+    if (ew > worst_w) worst_w = ew;
+    if (ef > worst_f) worst_f = ef;
+  }
+  printf("\n  largest difference: W %.2e, dW/dr %.2e (relative to the kernel's scale)", worst_w,
+         worst_f);
+  CU_ASSERT(worst_w < 1e-14);
+  CU_ASSERT(worst_f < 1e-14);
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
       {"normalisation (lattice sum and radial quadrature)", test_normalisation},
@@ -136,6 +159,7 @@ int main(void) {
       {"grad W antisymmetric in the pair (bitwise)", test_gradient_antisymmetric},
       {"dW/dr matches a finite difference", test_derivative_matches_difference},
       {"moment properties A.18-A.20", test_moments},
+      {"branch-free W and dW/dr / r agree with the reference form", test_branch_free_form},
       CU_TEST_INFO_NULL};
   return sph_test_main("kernel", tests);
 }

@@ -1,0 +1,267 @@
+/*
+ * test_restart.c - `sph run --restart SNAPSHOT CASE` continues a run
+ * bitwise.
+ *
+ * Three small cases (tests/data/restart_*.yaml) between them switch on
+ * what a restart must carry over: the predictor-corrector and the
+ * leap-frog (half-step values, first step), the paper B, CFL and fixed
+ * step rules, an MLS and a Shepard filter (step counter), a moving gate
+ * (its phase), variable h and h* on the free surface, XSPH, Morris and SPS
+ * viscosity, dynamic, repulsive and mirror walls, periodic x, the energy
+ * ledger (its integrals) and wave gauges (their levels at t = 0). Each is
+ * run uninterrupted; then
+ *   - restarted from snap_0002 into a fresh directory (1 thread): every
+ *     later snapshot equals the uninterrupted one dataset by dataset, bit
+ *     for bit, restart record included, and the files are byte-identical;
+ *     diagnostics.csv starts at the restart time with the same rows;
+ *   - restarted in a copy of its own directory: diagnostics.csv,
+ *     gauges.csv and snapshots.xmf come out byte-identical to the
+ *     uninterrupted run's (later rows dropped, then appended again);
+ *   - restarted from snap_0000 (the leap-frog's first step still to do).
+ * Bad restarts fail with exit status 1 and a message naming the file and
+ * the cause: other parameters (naming the first differing key), another
+ * case, a snapshot without a restart record, a missing file; time.end may
+ * change (a run is extended).
+ */
+#include "config.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "particles.h"
+#include "snapcmp.h"
+#include "snapshot.h"
+#include "testutil.h"
+
+static char *tmp;
+
+/* Runs `sph ARGS` (stdout+stderr into out); returns the exit status. */
+static int sph(const char *args, char *out, size_t len) {
+  char cmd[32768], log[4200];
+  snprintf(log, sizeof log, "%s/log.txt", tmp);
+  snprintf(cmd, sizeof cmd, "'%s' %s >'%s' 2>&1", sph_test_build("src/sph"), args, log);
+  const int st = sph_test_system(cmd);
+  out[0] = 0;
+  FILE *f = fopen(log, "r");
+  if (f) {
+    const size_t n = fread(out, 1, len - 1, f);
+    out[n] = 0;
+    fclose(f);
+  }
+  return st;
+}
+
+static const char *case_file(const char *name) {
+  static char buf[4096];
+  char rel[256];
+  snprintf(rel, sizeof rel, "tests/data/%s.yaml", name);
+  snprintf(buf, sizeof buf, "%s", sph_test_src(rel));
+  return buf;
+}
+
+/* The uninterrupted run of a case into tmp/<name>.full; returns the
+ * number of snapshots. */
+static int full_run(const char *name) {
+  char args[32768], out[65536];
+  snprintf(args, sizeof args, "run -q '%s' -o '%s/%s.full'", case_file(name), tmp, name);
+  const int st = sph(args, out, sizeof out);
+  if (st) printf("\n%s\n", out);
+  CU_ASSERT_EQUAL_FATAL(st, 0);
+  int n = 0;
+  for (;; n++) {
+    char path[4300];
+    snprintf(path, sizeof path, "%s/%s.full/snap_%04d.h5", tmp, name, n);
+    FILE *f = fopen(path, "rb");
+    if (!f) break;
+    fclose(f);
+  }
+  return n;
+}
+
+/* Snapshots from..n-1 of dir equal those of the uninterrupted run. */
+static void same_snapshots(const char *name, const char *dir, int from, int n) {
+  for (int k = from; k < n; k++) {
+    char a[4300], b[4300], what[256];
+    snprintf(a, sizeof a, "%s/%s.full/snap_%04d.h5", tmp, name, k);
+    snprintf(b, sizeof b, "%s/snap_%04d.h5", dir, k);
+    snprintf(what, sizeof what, "%s snap_%04d", name, k);
+    CU_ASSERT_EQUAL(snapcmp(what, a, b, 1), 0);
+    CU_ASSERT_EQUAL(snapcmp_files(a, b), 0);
+  }
+}
+
+static char *slurp(const char *path) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return NULL;
+  char *buf = NULL;
+  size_t len = 0, cap = 0;
+  int c;
+  while ((c = getc(f)) != EOF) {
+    if (len + 2 > cap) {
+      cap = cap ? 2 * cap : 4096;
+      char *nb = realloc(buf, cap);
+      if (!nb) break;
+      buf = nb;
+    }
+    buf[len++] = (char)c;
+  }
+  fclose(f);
+  if (buf) buf[len] = 0;
+  return buf;
+}
+
+/* Fresh directory: restart from snap_<k>, compare what follows. */
+static void restart_fresh(const char *name, int k) {
+  const int n = full_run(name);
+  CU_ASSERT_FATAL(n > k + 2);
+  char args[32768], out[65536], dir[4200];
+  snprintf(dir, sizeof dir, "%s/%s.from%d", tmp, name, k);
+  snprintf(args, sizeof args, "run -q --threads 1 --restart '%s/%s.full/snap_%04d.h5' '%s' -o '%s'",
+           tmp, name, k, case_file(name), dir);
+  const int st = sph(args, out, sizeof out);
+  if (st) printf("\n%s\n", out);
+  CU_ASSERT_EQUAL_FATAL(st, 0);
+  same_snapshots(name, dir, k + 1, n);
+  /* the restart snapshot itself is not rewritten */
+  char path[4300];
+  snprintf(path, sizeof path, "%s/snap_%04d.h5", dir, k);
+  FILE *f = fopen(path, "rb");
+  CU_ASSERT(f == NULL);
+  if (f) fclose(f);
+  /* diagnostics: the header, then the full run's rows from the restart time */
+  snprintf(path, sizeof path, "%s/%s.full/diagnostics.csv", tmp, name);
+  char *full = slurp(path);
+  snprintf(path, sizeof path, "%s/diagnostics.csv", dir);
+  char *part = slurp(path);
+  CU_ASSERT_FATAL(full && part);
+  char *nl = strchr(part, '\n');
+  CU_ASSERT_FATAL(nl != NULL);
+  const size_t hlen = (size_t)(nl - part) + 1;
+  CU_ASSERT(strncmp(full, part, hlen) == 0);
+  const char *rows = full + hlen;
+  for (int r = 0; r < k; r++)
+    rows = strchr(rows, '\n') + 1;
+  CU_ASSERT_STRING_EQUAL(part + hlen, rows);
+  free(full);
+  free(part);
+}
+
+static void test_pc_fresh(void) { restart_fresh("restart_pc", 2); }
+static void test_lf_fresh(void) { restart_fresh("restart_lf", 2); }
+static void test_mirror_fresh(void) { restart_fresh("restart_mirror", 2); }
+static void test_lf_from_start(void) { restart_fresh("restart_lf", 0); }
+
+/* Restart in a copy of the run's own directory (which holds the later
+ * snapshots and rows already): the end result is byte for byte the
+ * uninterrupted run's. */
+static void restart_in_place(const char *name, int k) {
+  const int n = full_run(name);
+  char args[32768], out[65536], dir[4200];
+  snprintf(dir, sizeof dir, "%s/%s.copy", tmp, name);
+  snprintf(args, sizeof args, "rm -rf '%s' && cp -r '%s/%s.full' '%s'", dir, tmp, name, dir);
+  CU_ASSERT_FATAL(sph_test_system(args) == 0);
+  /* a torn last row, as a killed run may leave, is dropped too */
+  snprintf(args, sizeof args, "printf '0.99,12' >> '%s/diagnostics.csv'", dir);
+  CU_ASSERT_FATAL(sph_test_system(args) == 0);
+  snprintf(args, sizeof args, "run -q --restart '%s/snap_%04d.h5' '%s' -o '%s'", dir, k,
+           case_file(name), dir);
+  const int st = sph(args, out, sizeof out);
+  if (st) printf("\n%s\n", out);
+  CU_ASSERT_EQUAL_FATAL(st, 0);
+  same_snapshots(name, dir, 0, n);
+  const char *files[] = {"diagnostics.csv", "gauges.csv", "snapshots.xmf"};
+  for (int i = 0; i < 3; i++) {
+    char a[4300], b[4300];
+    snprintf(a, sizeof a, "%s/%s.full/%s", tmp, name, files[i]);
+    snprintf(b, sizeof b, "%s/%s", dir, files[i]);
+    FILE *f = fopen(a, "rb");
+    if (!f) continue; /* no gauges in this case */
+    fclose(f);
+    if (snapcmp_files(a, b)) printf("\n  %s differs\n", b);
+    CU_ASSERT_EQUAL(snapcmp_files(a, b), 0);
+  }
+}
+
+/* snap_0003 of restart_pc is at a listed output time (0.0123 s) */
+static void test_pc_in_place(void) { restart_in_place("restart_pc", 3); }
+static void test_mirror_in_place(void) { restart_in_place("restart_mirror", 4); }
+
+static void test_bad_restarts(void) {
+  full_run("restart_pc");
+  char args[32768], out[65536], snap[4200];
+  snprintf(snap, sizeof snap, "%s/restart_pc.full/snap_0002.h5", tmp);
+  /* other parameters: the first differing key is named */
+  snprintf(args, sizeof args,
+           "run -q --restart '%s' '%s' -o '%s/bad1' --set physics.artificial_viscosity.alpha=0.2",
+           snap, case_file("restart_pc"), tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  CU_ASSERT(strstr(out, "snap_0002.h5") != NULL);
+  CU_ASSERT(strstr(out, "physics.artificial_viscosity.alpha") != NULL);
+  /* another case altogether */
+  snprintf(args, sizeof args, "run -q --restart '%s' '%s' -o '%s/bad2'", snap,
+           case_file("restart_lf"), tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  CU_ASSERT(strstr(out, "not a snapshot of this case") != NULL ||
+            strstr(out, "other parameters") != NULL);
+  /* a missing file */
+  snprintf(args, sizeof args, "run -q --restart '%s/nope.h5' '%s' -o '%s/bad3'", tmp,
+           case_file("restart_pc"), tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  CU_ASSERT(strstr(out, "nope.h5") != NULL);
+  /* a snapshot without a restart record */
+  char plain[4300];
+  snprintf(plain, sizeof plain, "%s/plain.h5", tmp);
+  {
+    sph_particles p;
+    sph_error err;
+    CU_ASSERT_FATAL(sph_particles_init(&p, 4, &err) == 0);
+    CU_ASSERT_FATAL(sph_particles_add(&p, 0.1, 0.1, 0, 0, 1000, 0.1, 0.013, SPH_KIND_FLUID, &err) ==
+                    0);
+    p.id[0] = 0;
+    sph_snapshot_meta m;
+    memset(&m, 0, sizeof m);
+    m.case_name = "restart_pc";
+    CU_ASSERT_FATAL(sph_snapshot_write(plain, &m, &p, &err) == 0);
+    sph_particles_free(&p);
+  }
+  snprintf(args, sizeof args, "run -q --restart '%s' '%s' -o '%s/bad4'", plain,
+           case_file("restart_pc"), tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  CU_ASSERT(strstr(out, "plain.h5") != NULL);
+  /* a value missing from --restart is a usage error */
+  snprintf(args, sizeof args, "run '%s' --restart", case_file("restart_pc"));
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 2);
+  /* time.end may change: the run is extended past the first one's end */
+  snprintf(args, sizeof args,
+           "run -q --restart '%s/restart_pc.full/snap_0007.h5' '%s' -o '%s/longer' "
+           "--set time.end=0.04",
+           tmp, case_file("restart_pc"), tmp);
+  const int st = sph(args, out, sizeof out);
+  if (st) printf("\n%s\n", out);
+  CU_ASSERT_EQUAL(st, 0);
+  size_t n = 0;
+  double t = 0.0;
+  snprintf(snap, sizeof snap, "%s/longer/snap_0009.h5", tmp);
+  CU_ASSERT(snapcmp_complete(snap, &n, &t));
+  CU_ASSERT_DOUBLE_EQUAL(t, 0.04, 1e-12);
+  /* --help documents the flag */
+  CU_ASSERT_EQUAL(sph("run --help", out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "--restart SNAPSHOT") != NULL);
+}
+
+int main(void) {
+  tmp = sph_test_tmpdir();
+  CU_TestInfo tests[] = {
+      {"predictor-corrector: restart in a fresh directory is bitwise", test_pc_fresh},
+      {"leap-frog: restart in a fresh directory is bitwise", test_lf_fresh},
+      {"mirror, periodic: restart in a fresh directory is bitwise", test_mirror_fresh},
+      {"leap-frog: restart from t = 0 is bitwise", test_lf_from_start},
+      {"restart in the run's directory: CSV and XDMF as uninterrupted", test_pc_in_place},
+      {"mirror, periodic: restart in place", test_mirror_in_place},
+      {"bad restarts fail clearly; time.end may change", test_bad_restarts},
+      CU_TEST_INFO_NULL};
+  int rc = sph_test_main("restart", tests);
+  sph_test_rmtree(tmp);
+  return rc;
+}
