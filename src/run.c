@@ -280,11 +280,16 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
     goto io_error;
   }
   /* the next output times after the current time */
+  /* Output times closer than `same` to each other (or to the end) are one
+   * time: a listed time that is also a multiple of the interval up to
+   * rounding (0.4004 against 52 * 0.0077) gives one snapshot, not a second
+   * one after a step of 1e-17 s. */
+  const double same = 1e-9 * c->t_end;
   long k = 1;    /* next multiple of output_interval */
   size_t j = 0;  /* next of time.output_times */
   if (c->output_interval > 0.0)
-    while ((double)k * c->output_interval <= sph_sim_time(s)) k++;
-  while (j < c->n_output_times && c->output_times[j] <= sph_sim_time(s)) j++;
+    while ((double)k * c->output_interval <= sph_sim_time(s) + same) k++;
+  while (j < c->n_output_times && c->output_times[j] <= sph_sim_time(s) + same) j++;
   for (;;) {
     const double t = sph_sim_time(s);
     if (t >= c->t_end) {
@@ -295,6 +300,7 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
     if (c->output_interval > 0.0 && (double)k * c->output_interval < next)
       next = (double)k * c->output_interval;
     if (j < c->n_output_times && c->output_times[j] < next) next = c->output_times[j];
+    if (c->t_end - next <= same) next = c->t_end;
     int st = sph_sim_step(s, next, err);
     if (o->progress) o->progress(o->progress_ctx, s);
     if (st == SPH_BLOWUP) {
@@ -314,8 +320,9 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
     if (st) goto io_error;
     const int at_output = sph_sim_time(s) == next;
     if (at_output) {
-      if (c->output_interval > 0.0 && next == (double)k * c->output_interval) k++;
-      if (j < c->n_output_times && next == c->output_times[j]) j++;
+      if (c->output_interval > 0.0)
+        while ((double)k * c->output_interval <= next + same) k++;
+      while (j < c->n_output_times && c->output_times[j] <= next + same) j++;
       if (write_output(s, &out, r, err)) goto io_error;
     }
     if (stop_condition(s)) {

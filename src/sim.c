@@ -400,15 +400,18 @@ static double fluid_internal(const sph_sim *s) {
   return u;
 }
 
-/* Paper A §7: flag the free surface (circles of radius factor * h0), then
- * with h* = k h give surface particles the smoothing length k h0. */
+/* Paper A §7: flag the free surface (circles of radius factor * h_i), then
+ * with h* = k h give surface particles the smoothing length k h0. Without
+ * h* the smoothing lengths are left alone (constant, or paper B's
+ * variable h). */
 static int free_surface(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   sph_freesurface_params fp = {c->fs_radius_factor,
                                c->periodic ? c->periodic_x[1] - c->periodic_x[0] : 0.0};
-  if (s->fp.var_h) sph_freesurface_apply_h(&s->p, c->h, 1.0);
+  const int hstar = c->fs_h_factor > 0.0;
+  if (hstar) sph_freesurface_apply_h(&s->p, c->h, 1.0);
   if (sph_freesurface_detect(&s->p, &s->grid, &fp, &s->n_surface, err)) return -1;
-  if (s->fp.var_h) sph_freesurface_apply_h(&s->p, c->h, c->fs_h_factor);
+  if (hstar) sph_freesurface_apply_h(&s->p, c->h, c->fs_h_factor);
   return 0;
 }
 

@@ -127,6 +127,44 @@ static void test_good_run_and_info(void) {
   CU_ASSERT_EQUAL(lines, 4);
 }
 
+/* A listed output time that is also a multiple of the interval up to
+ * rounding (3 * 0.0077 = 0.023100000000000002, listed 0.0231) is one
+ * output: 0, 0.0077, 0.0154, 0.0231, 0.03 give five snapshots and five
+ * diagnostics rows, not a sixth after a step of 2e-18 s. */
+static void test_output_times_merge(void) {
+  char out[65536], args[8192];
+  write_file("good.yaml", GOOD);
+  snprintf(args, sizeof args,
+           "run '%s/good.yaml' -o '%s/merge' --set time.end=0.03 "
+           "--set time.output_interval=0.0077 --set 'time.output_times=[0.0231]'",
+           tmp, tmp);
+  int st = sph(args, out, sizeof out);
+  if (st) printf("\n%s\n", out);
+  CU_ASSERT_EQUAL_FATAL(st, 0);
+  snprintf(args, sizeof args, "test -s '%s/merge/snap_0004.h5' && ! test -e '%s/merge/snap_0005.h5'",
+           tmp, tmp);
+  CU_ASSERT_EQUAL(sph_test_system(args), 0);
+  char path[4096], line[4096];
+  snprintf(path, sizeof path, "%s/merge/diagnostics.csv", tmp);
+  FILE *f = fopen(path, "r");
+  CU_ASSERT_FATAL(f != NULL);
+  int lines = 0;
+  double last = -1.0, t;
+  int increasing = 1;
+  CU_ASSERT(fgets(line, sizeof line, f) != NULL);
+  while (fgets(line, sizeof line, f)) {
+    lines++;
+    if (sscanf(line, "%lf", &t) == 1) {
+      if (!(t > last)) increasing = 0;
+      last = t;
+    }
+  }
+  fclose(f);
+  CU_ASSERT_EQUAL(lines, 5);
+  CU_ASSERT(increasing);
+  CU_ASSERT_DOUBLE_EQUAL(last, 0.03, 1e-15);
+}
+
 /* A case that must blow up: fluid dropped onto the floor with a sound
  * speed far too low for the impact, and a strict density limit. */
 static void test_blowup_stops_cleanly(void) {
@@ -151,6 +189,8 @@ int main(void) {
   CU_TestInfo tests[] = {{"help, version, unknown command", test_help_and_version},
                          {"bad input gives a clear error and non-zero exit", test_bad_input},
                          {"a short run, diagnostics rows, sph info", test_good_run_and_info},
+                         {"an output time listed twice (interval and list) is one output",
+                          test_output_times_merge},
                          {"a blow-up stops with a message and keeps snapshots",
                           test_blowup_stops_cleanly},
                          CU_TEST_INFO_NULL};

@@ -17,6 +17,12 @@
  *    snapshot's "h" attribute) and 2h, with 2h on exactly the flagged fluid
  *    particles.
  *
+ * 3. numerics.smoothing_length=variable (paper B, h = h0 sqrt(rho0/rho)) with
+ *    the flags in the output: detection leaves the smoothing lengths alone
+ *    (it once reset them to h0, and to 0 on surface particles, so the MLS
+ *    filter refused the state): every particle's h in the last snapshot
+ *    is h0 sqrt(rho0/rho) of its density, and surface particles are flagged.
+ *
  * `test_freesurface_run --regen` (SPH_SRCDIR, SPH_BUILDDIR set, as `make
  * golden` does through tests/regen_golden.sh) rewrites the golden file
  * from a 1-thread run instead of testing.
@@ -255,6 +261,39 @@ static void test_h_factor(void) {
   free(f.id);
 }
 
+static void test_variable_h(void) {
+  char dir[4200], snap[4300];
+  snprintf(dir, sizeof dir, "%s/varh", tmpdir);
+  CU_ASSERT_FATAL(run_sph(dir, 2, "--set numerics.smoothing_length=variable "
+                                  "--set numerics.density_filter.kind=mls") == 0);
+  CU_ASSERT_FATAL(last_snapshot(dir, snap, sizeof snap) == 0);
+  sph_snapshot *s;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_snapshot_open(snap, &s, &err) == 0);
+  sph_particles p;
+  CU_ASSERT_FATAL(sph_snapshot_read_particles(s, &p, &err) == 0);
+  double h0 = 0.0;
+  CU_ASSERT_FATAL(sph_snapshot_number(s, "h", &h0, 1, &err) == 0);
+  sph_snapshot_close(s);
+  size_t bad = 0, surface = 0, distinct = 0;
+  double worst = 0.0;
+  for (size_t i = 0; i < p.n; i++) {
+    const double want = h0 * sqrt(1000.0 / p.rho[i]);
+    const double e = fabs(p.h[i] - want) / want;
+    if (e > worst) worst = e;
+    bad += e > 1e-12;
+    distinct += p.h[i] != h0;
+    surface += p.kind[i] == SPH_KIND_FLUID && (p.flags[i] & SPH_FLAG_FREE_SURFACE);
+  }
+  printf("\n  variable h: %zu particles, %zu flagged on the surface, %zu with h != h0, "
+         "worst |h - h0 sqrt(rho0/rho)| / h %.2e\n",
+         p.n, surface, distinct, worst);
+  CU_ASSERT_EQUAL(bad, 0);
+  CU_ASSERT(surface > 50);
+  CU_ASSERT(distinct > p.n / 2);
+  sph_particles_free(&p);
+}
+
 /* --regen: a 1-thread run, its flags written to the golden file. */
 static int regenerate(void) {
   char dir[4200], snap[4300], out[4300];
@@ -306,6 +345,7 @@ int main(int argc, char **argv) {
         {"dam break at t = 0.1 s: flags equal the golden ids, diagnostics agree",
          test_flags_match_golden},
         {"free_surface.h_factor=2: h on the interior, 2h on flagged fluid", test_h_factor},
+        {"variable h with the flags: h = h0 sqrt(rho0/rho) everywhere", test_variable_h},
         CU_TEST_INFO_NULL};
     rc = sph_test_main("freesurface_run", tests);
   }
