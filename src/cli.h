@@ -9,16 +9,26 @@
 #ifndef SPH_CLI_H
 #define SPH_CLI_H
 
+#include "case.h"
+#include "error.h"
+#include "snapshot.h"
+
 int sph_cli_run(int argc, char **argv);
 int sph_cli_info(int argc, char **argv);
 int sph_cli_profile(int argc, char **argv);
 int sph_cli_audit(int argc, char **argv);
+int sph_cli_face(int argc, char **argv);
 
 /* Shared by the commands that take snapshot files: checks the options
  * (only --help / -h, and "--"), counts the files. Returns 0 to go on, -1
  * after printing the usage for --help, else the exit status (2). */
 int sph_cli_snapshot_args(const char *cmd, const char *usage, int argc, char **argv,
                           int *n_files);
+
+/* The case a snapshot was run from: its stored case text parsed again
+ * with its stored --set overrides (cli_snapcase.c). 0, or -1 with err (and
+ * nothing to free). */
+int sph_cli_snapshot_case(const sph_snapshot *s, sph_case *c, sph_error *err);
 
 /* mkdir -p: creates path and its parents; 0, or -1 with errno set. */
 int sph_cli_make_dirs(const char *path);

@@ -51,53 +51,12 @@ static const char USAGE[] =
     "  L2  = 100 sqrt( sum_i (vx_i - v(y_i))^2 / N ) / v_max\n"
     "Exit status: 0 all measured, 1 a file failed, 2 usage error.\n";
 
-/* Splits the stored overrides ("k=v" lines) into a NULL-terminated array
- * of pointers into a private copy; *n gets the count. NULL on no memory. */
-static char **split_overrides(const char *text, size_t *n, char **copy) {
-  *n = 0;
-  *copy = strdup(text ? text : "");
-  if (!*copy) return NULL;
-  size_t lines = 1;
-  for (const char *q = *copy; *q; q++)
-    lines += *q == '\n';
-  char **v = calloc(lines + 1, sizeof *v);
-  if (!v) {
-    free(*copy);
-    *copy = NULL;
-    return NULL;
-  }
-  char *s = *copy;
-  while (*s) {
-    char *nl = strchr(s, '\n');
-    if (nl) *nl = '\0';
-    if (*s) v[(*n)++] = s;
-    if (!nl) break;
-    s = nl + 1;
-  }
-  return v;
-}
-
 /* g, nu, L and y0 of the case stored in s; 0, or -1 with err. */
 static int film_parameters(const sph_snapshot *s, double *g, double *nu, double *L, double *y0,
                            sph_error *err) {
-  const char *text = sph_snapshot_text(s, "case_text");
-  if (!text || !*text)
-    return sph_error_set(err, "%s: no case_text attribute (not written by sph run?)",
-                         sph_snapshot_path(s));
-  size_t n_set;
-  char *copy;
-  char **set = split_overrides(sph_snapshot_text(s, "overrides"), &n_set, &copy);
-  if (!set) return sph_error_set(err, "%s: out of memory", sph_snapshot_path(s));
-  char origin[4200];
-  snprintf(origin, sizeof origin, "%s (case_text)", sph_snapshot_path(s));
   sph_case c;
-  int rc = sph_case_parse(text, strlen(text), origin, (const char *const *)set, n_set, &c, err);
-  free(set);
-  free(copy);
-  if (rc) {
-    sph_case_free(&c);
-    return -1;
-  }
+  if (sph_cli_snapshot_case(s, &c, err)) return -1;
+  int rc = 0;
   if (c.viscosity == SPH_VISCOSITY_NONE || !(c.mu > 0.0))
     rc = sph_error_set(err,
                        "%s: the case has no laminar viscosity (physics.viscosity): no film flow",

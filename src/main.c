@@ -30,6 +30,9 @@ static void usage(FILE *f) {
           "                 Table 4), running the case once per count\n"
           "  profile SNAPSHOT...\n"
           "                 film-flow error against paper A eq. (26) (inclined plane)\n"
+          "  face SNAPSHOT...\n"
+          "                 front-face angle of a breaking wave, and when it first stands\n"
+          "                 vertical (paper B 4.3)\n"
           "\n"
           "options:\n"
           "  -h, --help     show this help (also: sph COMMAND --help)\n"
@@ -77,7 +80,9 @@ int main(int argc, char **argv) {
   if (!strcmp(cmd, "info")) return sph_cli_info(argc - 1, argv + 1);
   if (!strcmp(cmd, "profile")) return sph_cli_profile(argc - 1, argv + 1);
   if (!strcmp(cmd, "audit")) return sph_cli_audit(argc - 1, argv + 1);
+  if (!strcmp(cmd, "face")) return sph_cli_face(argc - 1, argv + 1);
   fprintf(stderr,
-          "sph: unknown command '%s' (valid: run, info, audit, profile; see sph --help)\n", cmd);
+          "sph: unknown command '%s' (valid: run, info, audit, profile, face; see sph --help)\n",
+          cmd);
   return 2;
 }

@@ -24,5 +24,6 @@
 #include "freesurface.h"
 #include "turbulence.h"
 #include "analytic.h"
+#include "wave_face.h"
 
 #endif
