@@ -87,17 +87,6 @@ static inline double grid_period(const sph_grid *g) {
   return g->periodic ? g->cellx * (double)g->nx : 0.0;
 }
 
-/* The x component of a pair vector, wrapped to the nearest image when the
- * grid is periodic in x over `period` (0: not periodic). */
-static inline double wrap_dx(double dx, double period) {
-  if (period > 0.0) {
-    if (dx > 0.5 * period)
-      dx -= period;
-    else if (dx < -0.5 * period)
-      dx += period;
-  }
-  return dx;
-}
 
 /* The kernel moments of one particle: A (upper triangle, positions in
  * units of h_a) and M = sum m_b W_ab P_ab. The Shepard filter uses a00 and
@@ -143,7 +132,7 @@ filter_one(const sph_particles *restrict p, const sph_grid *restrict g,
   for (int k = 0; k < NRANGES; k++) {
     for (size_t b = lo[k]; b < hi[k]; b++) {
       if (same && kind[b] != kind[a]) continue;
-      const double dx = wrap_dx(xa - x[b], period), dy = ya - y[b];
+      const double dx = sph_grid_min_image(xa - x[b], period), dy = ya - y[b];
       const double r2 = dx * dx + dy * dy;
       const double hab = VARH ? 0.5 * (ha + hh[b]) : ha;
       if (VARH) {

@@ -698,7 +698,7 @@ static const interact_fn VARIANT_TABLE_AVX[128] = {
 static void lennard_jones(sph_particles *p, const sph_nlist *l, const sph_force_params *fp) {
   const long n = (long)p->n;
   const double r0 = fp->lj_r0, d = fp->lj_d;
-  const double period = fp->period, half = 0.5 * fp->period;
+  const double period = fp->periodic ? fp->period : 0.0;
 #pragma omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)
   for (long li = 0; li < n; li++) {
     const size_t i = (size_t)li;
@@ -708,13 +708,7 @@ static void lennard_jones(sph_particles *p, const sph_nlist *l, const sph_force_
     for (size_t k = 0; k < cnt; k++) {
       const size_t j = nb[k];
       if (!(p->flags[j] & SPH_FLAG_REPULSIVE)) continue;
-      double dx = p->x[i] - p->x[j];
-      if (fp->periodic) {
-        if (dx > half)
-          dx -= period;
-        else if (dx < -half)
-          dx += period;
-      }
+      const double dx = sph_grid_min_image(p->x[i] - p->x[j], period);
       const double dy = p->y[i] - p->y[j];
       const double r2 = dx * dx + dy * dy;
       if (r2 >= r0 * r0 || r2 == 0.0) continue;

@@ -97,18 +97,6 @@ static size_t candidates(const sph_grid *g, size_t i) {
   return m;
 }
 
-/* x_j - x_i, as the minimum image when period > 0. */
-static double sep_x(double xj, double xi, double period) {
-  double d = xj - xi;
-  if (period > 0.0) {
-    if (d > 0.5 * period)
-      d -= period;
-    else if (d < -0.5 * period)
-      d += period;
-  }
-  return d;
-}
-
 /* 1 if some arc of the circle of particle i is uncovered. buf holds at
  * least candidates(g, i) arcs. */
 static int uncovered(const sph_particles *p, const sph_grid *g, size_t i, double f, double period,
@@ -119,7 +107,7 @@ static int uncovered(const sph_particles *p, const sph_grid *g, size_t i, double
   for (int k = 0; k < SPH_GRID_RANGES; k++)
     for (size_t j = lo[k]; j < hi[k]; j++) {
       if (j == i) continue;
-      const double dx = sep_x(p->x[j], xi, period), dy = p->y[j] - yi;
+      const double dx = sph_grid_min_image(p->x[j] - xi, period), dy = p->y[j] - yi;
       const int r = sph_freesurface_disc(dx, dy, ri, f * p->h[j], &buf[m]);
       if (r == SPH_DISC_FULL) return 0;
       if (r == SPH_DISC_ARC) m++;

@@ -168,17 +168,6 @@ void sph_nlist_free(sph_nlist *l) {
   memset(l, 0, sizeof *l);
 }
 
-/* x_i - x_j, with the minimum image when period > 0. */
-static inline double min_image(double d, double period) {
-  if (period > 0.0) {
-    if (d > 0.5 * period)
-      d -= period;
-    else if (d < -0.5 * period)
-      d += period;
-  }
-  return d;
-}
-
 /* The candidates of particle i within sqrt(r2max), in the grid's walk
  * order (positions, or storage indices through perm when the grid is only
  * binned), into row; returns how many. */
@@ -193,7 +182,7 @@ fill_row(const sph_grid *g, const double *restrict x, const double *restrict y, 
   for (int k = 0; k < SPH_GRID_RANGES; k++)
     for (size_t pos = lo[k]; pos < hi[k]; pos++) {
       const size_t j = sorted ? pos : perm[pos];
-      const double dx = min_image(xi - x[j], period), dy = yi - y[j];
+      const double dx = sph_grid_min_image(xi - x[j], period), dy = yi - y[j];
       row[c] = (uint32_t)j; /* kept only if the next line counts it: no branch */
       c += (uint32_t)((dx * dx + dy * dy < r2max) & (j != i));
     }
@@ -299,7 +288,7 @@ int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p) {
   int moved = 0;
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : d2) reduction(| : moved)
   for (long i = 0; i < n; i++) {
-    const double dx = min_image(x[i] - xr[i], period), dy = y[i] - yr[i];
+    const double dx = sph_grid_min_image(x[i] - xr[i], period), dy = y[i] - yr[i];
     const double d = dx * dx + dy * dy;
     if (d > d2) d2 = d;
     moved |= id[i] != idr[i];

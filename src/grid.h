@@ -78,6 +78,19 @@ static inline void sph_grid_ranges(const sph_grid *g, size_t i, size_t lo[3], si
  * neighbour candidates of the particle stored at index i: per row (below,
  * same, above) one range of three cells, or two when the row wraps around
  * a periodic seam. Unused and out-of-grid ranges are empty. */
+/* x_i - x_j = d as the minimum image in a domain periodic in x over
+ * `period` (period > 0); d unchanged when period is 0. The one helper of
+ * the grid, the filters, free-surface detection and the repulsive force. */
+static inline double sph_grid_min_image(double d, double period) {
+  if (period > 0.0) {
+    if (d > 0.5 * period)
+      d -= period;
+    else if (d < -0.5 * period)
+      d += period;
+  }
+  return d;
+}
+
 #define SPH_GRID_RANGES 6
 static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SPH_GRID_RANGES],
                                    size_t hi[SPH_GRID_RANGES]) {
