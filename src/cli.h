@@ -25,6 +25,14 @@ int sph_cli_face(int argc, char **argv);
 int sph_cli_snapshot_args(const char *cmd, const char *usage, int argc, char **argv,
                           int *n_files);
 
+/* Calls fn(path, ctx, err) for each snapshot argument in order (the files
+ * sph_cli_snapshot_args counted: the first "--" is skipped); a failure is
+ * reported on stderr as "sph CMD: <message>" after flushing stdout, and the
+ * other files are still processed. Returns 0 if every call succeeded, 1
+ * otherwise. */
+int sph_cli_each_snapshot(const char *cmd, int argc, char **argv,
+                          int (*fn)(const char *path, void *ctx, sph_error *err), void *ctx);
+
 /* The case a snapshot was run from: its stored case text parsed again
  * with its stored --set overrides (cli_snapcase.c). 0, or -1 with err (and
  * nothing to free). */

@@ -14,6 +14,25 @@
 
 #include "cli.h"
 
+int sph_cli_each_snapshot(const char *cmd, int argc, char **argv,
+                          int (*fn)(const char *path, void *ctx, sph_error *err), void *ctx) {
+  int status = 0, dashdash = 0;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (!dashdash && strcmp(a, "--") == 0) {
+      dashdash = 1;
+      continue;
+    }
+    sph_error err;
+    if (fn(a, ctx, &err)) {
+      fflush(stdout); /* keep stdout and stderr in order on a terminal */
+      fprintf(stderr, "sph %s: %s\n", cmd, err.msg);
+      status = 1;
+    }
+  }
+  return status;
+}
+
 int sph_cli_snapshot_args(const char *cmd, const char *usage, int argc, char **argv,
                           int *n_files) {
   int dashdash = 0;

@@ -78,29 +78,25 @@ static int measure(const char *path, double *t, double *angle, sph_error *err) {
   return 0;
 }
 
+/* Measures one file; the first one at least vertical is announced.
+ * found points to the flag "already announced". */
+static int measure_one(const char *path, void *found, sph_error *err) {
+  double t, angle;
+  if (measure(path, &t, &angle, err)) return -1;
+  if (!*(int *)found && angle >= 90.0) {
+    printf("# first vertical: t = %.9g (%s)\n", t, path);
+    *(int *)found = 1;
+  }
+  return 0;
+}
+
 int sph_cli_face(int argc, char **argv) {
   int n_files;
   const int rc = sph_cli_snapshot_args("face", USAGE, argc, argv, &n_files);
   if (rc != 0) return rc < 0 ? 0 : rc;
   printf("# time crest_x crest_y toe_x angle_deg (front face; see sph face --help)\n");
-  int status = 0, dashdash = 0, found = 0;
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    if (!dashdash && !strcmp(a, "--")) {
-      dashdash = 1;
-      continue;
-    }
-    sph_error err;
-    double t, angle;
-    if (measure(a, &t, &angle, &err)) {
-      fflush(stdout); /* keep stdout and stderr in order on a terminal */
-      fprintf(stderr, "sph face: %s\n", err.msg);
-      status = 1;
-    } else if (!found && angle >= 90.0) {
-      printf("# first vertical: t = %.9g (%s)\n", t, a);
-      found = 1;
-    }
-  }
+  int found = 0;
+  const int status = sph_cli_each_snapshot("face", argc, argv, measure_one, &found);
   if (!found) printf("# first vertical: not reached\n");
   return status;
 }

@@ -129,23 +129,14 @@ static int show(const char *path, int *printed, sph_error *err) {
 }
 
 
+static int show_one(const char *path, void *printed, sph_error *err) {
+  return show(path, (int *)printed, err);
+}
+
 int sph_cli_info(int argc, char **argv) {
   int n_files;
   int rc = sph_cli_snapshot_args("info", USAGE, argc, argv, &n_files);
   if (rc != 0) return rc < 0 ? 0 : rc;
-  int status = 0, printed = 0, dashdash = 0;
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    if (!dashdash && strcmp(a, "--") == 0) {
-      dashdash = 1;
-      continue;
-    }
-    sph_error err;
-    if (show(a, &printed, &err)) {
-      fflush(stdout); /* keep stdout and stderr in order on a terminal */
-      fprintf(stderr, "sph info: %s\n", err.msg);
-      status = 1;
-    }
-  }
-  return status;
+  int printed = 0;
+  return sph_cli_each_snapshot("info", argc, argv, show_one, &printed);
 }

@@ -78,7 +78,8 @@ static int film_parameters(const sph_snapshot *s, double *g, double *nu, double 
 }
 
 /* Measures one file and prints its line; 0, or -1 with err. */
-static int measure(const char *path, sph_error *err) {
+static int measure(const char *path, void *ctx, sph_error *err) {
+  (void)ctx;
   sph_snapshot *s;
   if (sph_snapshot_open(path, &s, err)) return -1;
   double g = 0.0, nu = 0.0, L = 0.0, y0 = 0.0;
@@ -107,19 +108,5 @@ int sph_cli_profile(int argc, char **argv) {
   const int rc = sph_cli_snapshot_args("profile", USAGE, argc, argv, &n_files);
   if (rc != 0) return rc < 0 ? 0 : rc;
   printf("# time max_rel_error_pct l2_rel_error_pct (paper A eq. 26; see sph profile --help)\n");
-  int status = 0, dashdash = 0;
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    if (!dashdash && !strcmp(a, "--")) {
-      dashdash = 1;
-      continue;
-    }
-    sph_error err;
-    if (measure(a, &err)) {
-      fflush(stdout); /* keep stdout and stderr in order on a terminal */
-      fprintf(stderr, "sph profile: %s\n", err.msg);
-      status = 1;
-    }
-  }
-  return status;
+  return sph_cli_each_snapshot("profile", argc, argv, measure, NULL);
 }
