@@ -12,8 +12,8 @@
 #include <math.h>
 
 int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, double by,
-                             int layers, double dx, double rho, double mass, double h,
-                             uint8_t flags, sph_error *err) {
+                             int layers, int stagger, int extend, double dx, double rho,
+                             double mass, double h, uint8_t flags, sph_error *err) {
   const double lx = bx - ax, ly = by - ay;
   const double len = sqrt(lx * lx + ly * ly);
   if (!(len > 0.0)) return sph_error_set(err, "wall segment has zero length");
@@ -23,16 +23,22 @@ int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, 
   if (count < 1) count = 1;
   const double sp = len / (double)count;
   for (int k = 0; k < layers; k++) {
-    const double off = 0.5 * dx * (double)k;
-    const int odd = k % 2;
-    const long npts = odd ? count + 2 : count + 1;
+    const double off = (stagger ? 0.5 : 1.0) * dx * (double)k;
+    const int odd = stagger && k % 2;
+    /* unstaggered layers reach `extend` spacings past both ends */
+    const long past = stagger ? 0 : extend;
+    const long npts = odd ? count + 2 : count + 1 + 2 * past;
+    /* the wall face lies dx/2 in front of layer 0, on the fluid side */
+    const double depth = 0.5 * dx + off;
     for (long i = 0; i < npts; i++) {
-      const double s = odd ? ((double)i - 0.5) * sp : (double)i * sp;
+      const double s = odd ? ((double)i - 0.5) * sp : (double)(i - past) * sp;
       const double x = ax + s * tx + off * nx;
       const double y = ay + s * ty + off * ny;
       const long idx = sph_particles_add(p, x, y, 0.0, 0.0, rho, mass, h, SPH_KIND_WALL, err);
       if (idx < 0) return -1;
       p->flags[idx] = flags;
+      p->mx[idx] = -2.0 * depth * nx;
+      p->my[idx] = -2.0 * depth * ny;
     }
   }
   return 0;
@@ -41,17 +47,20 @@ int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, 
 int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double rho,
                           double mass, double h, uint8_t flags, sph_error *err) {
   const double e = 0.5 * dx;
-  /* floor, right to left so that the left normal points down (outwards) */
-  if (sph_boundary_add_segment(p, t->x1 + e, t->y0 - e, t->x0 - e, t->y0 - e, t->layers, dx, rho,
+  const int L = t->layers, st = t->stagger;
+  /* floor, right to left so that the left normal points down (outwards);
+   * unstaggered, its layers reach under the side walls' layers, filling the
+   * corners */
+  if (sph_boundary_add_segment(p, t->x1 + e, t->y0 - e, t->x0 - e, t->y0 - e, L, st, L - 1, dx, rho,
                                mass, h, flags, err))
     return -1;
   /* left wall, upwards (left normal points to -x) */
-  if (sph_boundary_add_segment(p, t->x0 - e, t->y0 + e, t->x0 - e, t->y1, t->layers, dx, rho,
-                               mass, h, flags, err))
+  if (sph_boundary_add_segment(p, t->x0 - e, t->y0 + e, t->x0 - e, t->y1, L, st, 0, dx, rho, mass,
+                               h, flags, err))
     return -1;
   /* right wall, downwards (left normal points to +x) */
-  if (sph_boundary_add_segment(p, t->x1 + e, t->y1, t->x1 + e, t->y0 + e, t->layers, dx, rho,
-                               mass, h, flags, err))
+  if (sph_boundary_add_segment(p, t->x1 + e, t->y1, t->x1 + e, t->y0 + e, L, st, 0, dx, rho, mass,
+                               h, flags, err))
     return -1;
   return 0;
 }

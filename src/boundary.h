@@ -5,7 +5,9 @@
  * fixed in place, with density from the continuity equation and pressure
  * from the equation of state. A wall is a line of particles spaced about
  * dx, plus further layers each dx/2 further out and staggered by half a
- * spacing along the wall (paper B: two staggered layers).
+ * spacing along the wall (paper B: two staggered layers), or, unstaggered,
+ * layers dx apart on the fluid's lattice continued into the wall (Morris
+ * et al. 1997, paper A's "Morris particles").
  */
 #ifndef SPH_BOUNDARY_H
 #define SPH_BOUNDARY_H
@@ -16,14 +18,21 @@
 
 #include <stdint.h>
 
-/* Adds `layers` staggered layers of wall particles along the segment A->B:
- * layer 0 on the segment (spacing len/round(len/dx)), layer k offset by
- * k dx/2 to the left of the direction A->B; odd layers sit half a spacing
- * along and reach half a spacing past both ends. Each particle gets density
- * rho, mass and smoothing length h. */
+/* Adds `layers` layers of wall particles along the segment A->B, layer 0
+ * on the segment (spacing len/round(len/dx)). Staggered (stagger != 0):
+ * layer k is offset by k dx/2 to the left of the direction A->B, and odd
+ * layers sit half a spacing along and reach half a spacing past both ends.
+ * Unstaggered: layer k is offset by k dx, at the same positions along the
+ * wall as layer 0 (the fluid's lattice continued), every layer reaching
+ * `extend` spacings past both ends (a tank floor under its side walls;
+ * ignored when staggered).
+ * Each particle gets density rho, mass, smoothing length h, `flags`, and
+ * its mirror offset (mx, my): twice its distance to the wall face, which
+ * lies dx/2 in front of layer 0 on the right of A->B (the fluid side),
+ * along the face's normal into the fluid. */
 int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, double by,
-                             int layers, double dx, double rho, double mass, double h,
-                             uint8_t flags, sph_error *err);
+                             int layers, int stagger, int extend, double dx, double rho,
+                             double mass, double h, uint8_t flags, sph_error *err);
 
 /* Adds the walls of a rectangular tank whose inner faces are x0, x1 (sides)
  * and y0 (floor), side walls up to y1. The first wall layer lies dx/2

@@ -781,7 +781,7 @@ static const char *const top_keys[] = {"name",     "description", "physics",    
                                        "time",     "geometry",    "free_surface", "output",
                                        NULL};
 static const char *const fs_keys[] = {"radius_factor", "h_factor", NULL};
-static const char *const laminar_keys[] = {"model", "mu", NULL};
+static const char *const laminar_keys[] = {"model", "mu", "gradient_correction", NULL};
 static const char *const physics_keys[] = {"rho0",      "gravity",   "body_force",
                                            "sound_speed", "artificial_viscosity", "viscosity",
                                            "turbulence", "repulsion", "xsph",   NULL};
@@ -794,10 +794,12 @@ static const char *const dt_keys[] = {"rule", "factor", "dt", NULL};
 static const char *const filter_keys[] = {"kind", "every", NULL};
 static const char *const time_keys[] = {"end", "output_interval", "output_times", "stop", NULL};
 static const char *const geometry_keys[] = {"tank", "fluid", "walls", "periodic_x", "domain", NULL};
-static const char *const tank_keys[] = {"x", "y", "layers", "boundary", NULL};
+static const char *const tank_keys[] = {"x",       "y", "layers", "boundary", "stagger",
+                                        "extrapolated_velocity", NULL};
 static const char *const fluid_keys[] = {"x",       "y",      "velocity", "hydrostatic",
                                           "surface", "jitter", "seed",     NULL};
-static const char *const wall_keys[] = {"from", "to", "layers", "boundary", "motion", NULL};
+static const char *const wall_keys[] = {"from",   "to",     "layers", "boundary",
+                                        "motion", "stagger", "extrapolated_velocity", NULL};
 static const char *const motion_keys[] = {"type",  "velocity",    "start", "stop",  "period",
                                           "stroke", "wave_height", "depth", "ramp", "hinge",
                                           NULL};
@@ -909,6 +911,12 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
     if (has_mu && c->viscosity == SPH_VISCOSITY_NONE)
       return fail_at(x, find(v, "mu")->val, "physics.viscosity.mu",
                      "only used with a viscosity model (model is 'none')");
+    int has_gc = get_bool(x, v, vp, "gradient_correction", &c->gradient_correction);
+    if (has_gc < 0) return -1;
+    if (has_gc && c->gradient_correction && c->viscosity != SPH_VISCOSITY_STRESS_TENSOR)
+      return fail_at(x, find(v, "gradient_correction")->val, "physics.viscosity.gradient_correction",
+                     "corrects the stress-tensor viscosity: needs model 'stress_tensor', got '%s'",
+                     sph_viscosity_name(c->viscosity));
   }
   rc = get_section(x, m, p, "turbulence", 0, turbulence_keys, &v);
   if (rc < 0) return -1;
@@ -1042,6 +1050,32 @@ static int check_layers(const ctx *x, const node *m, const char *p, sph_boundary
   return 0;
 }
 
+/* `stagger` and `extrapolated_velocity` of a wall of particles with
+ * evolving density (dynamic, fixed_layers); an error on the others, and
+ * the extrapolated velocity only where a strain-rate pass uses it. */
+static int read_layout(const ctx *x, const node *m, const char *p, const sph_case *c,
+                       sph_boundary_kind b, int *stagger, int *extrapolated) {
+  const node *t;
+  char kp[KEYLEN];
+  const int evolving = b == SPH_BOUNDARY_DYNAMIC || b == SPH_BOUNDARY_FIXED_LAYERS;
+  static const char *const keys[] = {"stagger", "extrapolated_velocity"};
+  for (int k = 0; k < 2; k++)
+    if (!evolving && lookup(x, m, p, keys[k], 0, &t, kp) > 0)
+      return fail_at(x, t, kp, "only for 'dynamic' and 'fixed_layers' walls (this one is '%s')",
+                     sph_boundary_name(b));
+  if (get_bool(x, m, p, "stagger", stagger) < 0) return -1;
+  int rc = get_bool(x, m, p, "extrapolated_velocity", extrapolated);
+  if (rc < 0) return -1;
+  if (rc > 0 && *extrapolated && c->viscosity != SPH_VISCOSITY_STRESS_TENSOR && !c->sps) {
+    lookup(x, m, p, "extrapolated_velocity", 0, &t, kp);
+    return fail_at(x, t, kp,
+                   "acts in the strain-rate pass: needs physics.viscosity.model 'stress_tensor' "
+                   "or physics.turbulence (viscosity model is '%s')",
+                   sph_viscosity_name(c->viscosity));
+  }
+  return 0;
+}
+
 static int read_tank(const ctx *x, const node *m, sph_case *c) {
   const char *p = "geometry.tank";
   const node *t;
@@ -1060,6 +1094,9 @@ static int read_tank(const ctx *x, const node *m, sph_case *c) {
   if (get_int(x, t, p, "layers", 1, 8, &c->tank.layers) < 0) return -1;
   if (get_choice(x, t, p, "boundary", boundary_names, &b) < 0) return -1;
   c->tank.boundary = (sph_boundary_kind)b;
+  c->tank.stagger = 1;
+  if (read_layout(x, t, p, c, c->tank.boundary, &c->tank.stagger, &c->tank.extrapolated))
+    return -1;
   return check_layers(x, t, p, c->tank.boundary, &c->tank.layers);
 }
 
@@ -1211,7 +1248,8 @@ static int read_motion(const ctx *x, const node *m, const char *p, sph_wall_segm
   return get_number(x, t, kp, "stop", 0, &after, &w->motion.stop) < 0 ? -1 : 0;
 }
 
-static int read_wall(const ctx *x, const node *m, const char *p, sph_wall_segment *w) {
+static int read_wall(const ctx *x, const node *m, const char *p, const sph_case *c,
+                     sph_wall_segment *w) {
   char b[96];
   double from[2], to[2];
   int bnd = (int)SPH_BOUNDARY_DYNAMIC;
@@ -1235,7 +1273,17 @@ static int read_wall(const ctx *x, const node *m, const char *p, sph_wall_segmen
   if (get_choice(x, m, p, "boundary", boundary_names, &bnd) < 0) return -1;
   w->boundary = (sph_boundary_kind)bnd;
   if (check_layers(x, m, p, w->boundary, &w->layers)) return -1;
-  return read_motion(x, m, p, w);
+  w->stagger = 1;
+  if (read_layout(x, m, p, c, w->boundary, &w->stagger, &w->extrapolated)) return -1;
+  if (read_motion(x, m, p, w)) return -1;
+  if (w->extrapolated && w->motion.kind == SPH_MOTION_FLAP) {
+    const node *t;
+    char kp[KEYLEN];
+    lookup(x, m, p, "extrapolated_velocity", 0, &t, kp);
+    return fail_at(x, t, kp, "not on a turning wall (motion type 'flap'): its mirror points "
+                             "would turn with it");
+  }
+  return 0;
 }
 
 static int read_walls(const ctx *x, const node *m, sph_case *c) {
@@ -1250,7 +1298,7 @@ static int read_walls(const ctx *x, const node *m, sph_case *c) {
   c->n_walls = t->n;
   for (size_t i = 0; i < t->n; i++) {
     bprintf(kp, sizeof kp, "geometry.walls[%zu]", i);
-    if (read_wall(x, t->items[i], kp, &c->walls[i])) return -1;
+    if (read_wall(x, t->items[i], kp, c, &c->walls[i])) return -1;
   }
   return 0;
 }
@@ -1508,6 +1556,9 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
     sb_pair(b, "geometry.tank.y", c->tank.y0, c->tank.y1);
     sb_add(b, "geometry.tank.layers: %d\n", c->tank.layers);
     sb_add(b, "geometry.tank.boundary: %s\n", sph_boundary_name(c->tank.boundary));
+    /* written only when not the default, so that older records still match */
+    if (!c->tank.stagger) sb_add(b, "geometry.tank.stagger: false\n");
+    if (c->tank.extrapolated) sb_add(b, "geometry.tank.extrapolated_velocity: true\n");
   } else {
     sb_add(b, "geometry.tank: none\n");
   }
@@ -1530,6 +1581,8 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
     sb_add(b, "%s.to: [%.17g, %.17g]\n", k, w->x1, w->y1);
     sb_add(b, "%s.layers: %d\n", k, w->layers);
     sb_add(b, "%s.boundary: %s\n", k, sph_boundary_name(w->boundary));
+    if (!w->stagger) sb_add(b, "%s.stagger: false\n", k);
+    if (w->extrapolated) sb_add(b, "%s.extrapolated_velocity: true\n", k);
     if (w->motion.kind == SPH_MOTION_PISTON || w->motion.kind == SPH_MOTION_FLAP) {
       const sph_paddle *pd = &w->motion.paddle;
       sb_add(b, "%s.motion.type: %s\n", k, motion_names[w->motion.kind]);
@@ -1570,6 +1623,7 @@ char *sph_case_describe(const sph_case *c) {
   sb_add(&b, "physics.xsph: %.17g\n", c->xsph);
   sb_add(&b, "physics.viscosity.model: %s\n", sph_viscosity_name(c->viscosity));
   if (c->viscosity != SPH_VISCOSITY_NONE) sb_add(&b, "physics.viscosity.mu: %.17g\n", c->mu);
+  if (c->gradient_correction) sb_add(&b, "physics.viscosity.gradient_correction: true\n");
   sb_add(&b, "physics.turbulence.model: %s\n", c->sps ? "sps" : "none");
   if (c->sps) {
     sb_add(&b, "physics.turbulence.cs: %.17g\n", c->sps_cs);

@@ -77,6 +77,8 @@ typedef struct sph_tank {
   double x0, x1, y0, y1;
   int layers;                 /* wall layers, default 2 (staggered) */
   sph_boundary_kind boundary; /* default dynamic */
+  int stagger;                /* layers dx/2 apart and staggered (default), or dx apart */
+  int extrapolated;           /* no-slip: extrapolated wall velocity (src/wall_velocity.h) */
 } sph_tank;
 
 /* Prescribed motion of a wall (a gate): translation at a constant velocity
@@ -106,6 +108,8 @@ typedef struct sph_wall_segment {
   int layers;
   sph_boundary_kind boundary;
   sph_motion motion; /* default none (fixed) */
+  int stagger;       /* as sph_tank */
+  int extrapolated;  /* as sph_tank */
 } sph_wall_segment;
 
 typedef struct sph_case {
@@ -126,6 +130,7 @@ typedef struct sph_case {
   double sps_cs, sps_ci; /* Smagorinsky C_s = 0.12 and C_I = 0.00066; Delta = dx */
   sph_viscosity_kind viscosity; /* laminar viscosity model, default none */
   double mu;            /* dynamic viscosity (Pa s), required unless viscosity is none */
+  int gradient_correction; /* stress tensor: kernel-gradient correction (src/forces.h) */
   double repulsion;     /* D of the Lennard-Jones wall force (m^2/s^2), paper A eq. (22);
                            default 5 |g| H, H the deepest fluid block */
 

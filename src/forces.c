@@ -80,6 +80,12 @@ void sph_force_work_free(sph_force_work *w) {
   free(w->wpow);
   free(w->wfx);
   free(w->wfy);
+  free(w->lxx);
+  free(w->lxy);
+  free(w->lyy);
+  free(w->gvx);
+  free(w->gvy);
+  sph_wall_velocity_work_free(&w->wv);
   *w = (sph_force_work){0};
 }
 
@@ -87,7 +93,8 @@ static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
   if (n <= w->cap) return 0;
   const size_t cap = n + n / 4 + 16;
   double **arrays[] = {&w->prho2, &w->cs,   &w->sigma, &w->sxx, &w->sxy,
-                       &w->syy,   &w->wpow, &w->wfx,   &w->wfy};
+                       &w->syy,   &w->wpow, &w->wfx,   &w->wfy, &w->lxx, &w->lxy, &w->lyy,
+                       &w->gvx,   &w->gvy};
   for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++) {
     double *a = realloc(*arrays[k], cap * sizeof *a);
     if (!a) return sph_error_set(err, "forces: out of memory for %zu particles", n);
@@ -262,16 +269,27 @@ AVX2 void v4x_store(double *o, v4x a) { _mm256_storeu_pd(o, a); }
 
 /* ---- the strain-rate pass (paper A eq. 13-14) ------------------------------------ */
 
+/* Runtime options of the strain-rate pass (not bits of F: the loop is not
+ * hot enough to need a variant each). */
+typedef struct strain_opts {
+  const double *gvx, *gvy; /* velocity of wall particles in the viscous terms, or NULL */
+  double *lxx, *lxy, *lyy; /* kernel-gradient correction L = M^-1 out, or NULL (off) */
+} strain_opts;
+
 static inline __attribute__((always_inline)) void
 strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
            const sph_force_params *restrict fp, size_t i, double *exx, double *exy, double *eyy,
-           const unsigned F) {
+           const strain_opts *o, const unsigned F) {
   const double *restrict x = p->x, *restrict y = p->y, *restrict h = p->h;
-  const double *restrict vx = p->vx, *restrict vy = p->vy;
+  const double *restrict vx = o->gvx ? o->gvx : p->vx, *restrict vy = o->gvy ? o->gvy : p->vy;
   const double *restrict m = p->mass, *restrict rho = p->rho;
   const double period = fp->period, half = 0.5 * fp->period;
   const double xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
   double sxx = 0.0, sxy = 0.0, syy = 0.0, div = 0.0;
+  /* with the correction: G_ab = sum_j V_j (v_j - v_i)_a (grad_i W_ij)_b and
+   * M_ab = sum_j V_j (x_j - x_i)_a (grad_i W_ij)_b */
+  double gxx = 0.0, gxy = 0.0, gyx = 0.0, gyy = 0.0, mxx = 0.0, mxy = 0.0, myy = 0.0;
+  const int correct = o->lxx != NULL;
   ROW(l, i, nb, cnt)
   for (size_t k = 0; k < cnt; k++) {
       const size_t j = nb[k];
@@ -285,11 +303,39 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
       const double f = dw / r * (m[j] / rho[j]);
       const double gx = f * dx, gy = f * dy;       /* V_j grad_i W_ij */
       const double ux = vx[j] - vxi, uy = vy[j] - vyi; /* v_ji */
-      sxx += 2.0 * ux * gx;
-      syy += 2.0 * uy * gy;
-      sxy += uy * gx + ux * gy;
-      div += ux * gx + uy * gy;
+      if (correct) {
+        gxx += ux * gx;
+        gxy += ux * gy;
+        gyx += uy * gx;
+        gyy += uy * gy;
+        mxx -= dx * gx;
+        mxy -= dx * gy;
+        myy -= dy * gy;
+      } else {
+        sxx += 2.0 * ux * gx;
+        syy += 2.0 * uy * gy;
+        sxy += uy * gx + ux * gy;
+        div += ux * gx + uy * gy;
+      }
     }
+  if (correct) { /* grad v = G M^-1 where M is invertible (Bonet and Lok 1999) */
+    const double det = mxx * myy - mxy * mxy;
+    double axx = 1.0, axy = 0.0, ayy = 1.0;
+    if (det > SPH_GRADIENT_CORRECTION_MIN_DET && mxx > 0.0) {
+      axx = myy / det;
+      axy = -mxy / det;
+      ayy = mxx / det;
+    }
+    o->lxx[i] = axx;
+    o->lxy[i] = axy;
+    o->lyy[i] = ayy;
+    const double cxx = gxx * axx + gxy * axy, cxy = gxx * axy + gxy * ayy;
+    const double cyx = gyx * axx + gyy * axy, cyy = gyx * axy + gyy * ayy;
+    sxx = 2.0 * cxx;
+    syy = 2.0 * cyy;
+    sxy = cyx + cxy;
+    div = cxx + cyy;
+  }
   /* the deviatoric part as the paper writes it (its 2/3 is the 3-D factor) */
   exx[i] = sxx - (2.0 / 3.0) * div;
   eyy[i] = syy - (2.0 / 3.0) * div;
@@ -302,10 +348,10 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
 #define STRAIN_VARIANT(k)                                                                    \
   static void strain_all_##k(const sph_particles *p, const sph_nlist *l,                      \
                              const sph_force_params *fp, double *exx, double *exy,            \
-                             double *eyy) {                                                   \
+                             double *eyy, const strain_opts *o) {                             \
     const long n = (long)p->n;                                                               \
     _Pragma("omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)") for (long i = 0; i < n; i++)          \
-        strain_one(p, l, fp, (size_t)i, exx, exy, eyy, k);                                   \
+        strain_one(p, l, fp, (size_t)i, exx, exy, eyy, o, k);                                 \
   }
 STRAIN_VARIANT(0)
 STRAIN_VARIANT(16)
@@ -313,13 +359,13 @@ STRAIN_VARIANT(32)
 STRAIN_VARIANT(48)
 
 static void strain_list(const sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
-                        double *exx, double *exy, double *eyy) {
+                        double *exx, double *exy, double *eyy, const strain_opts *o) {
   const unsigned F = (fp->periodic ? F_PERIODIC : 0) | (fp->var_h ? F_VARH : 0);
   switch (F) {
-  case 0: strain_all_0(p, l, fp, exx, exy, eyy); break;
-  case F_PERIODIC: strain_all_16(p, l, fp, exx, exy, eyy); break;
-  case F_VARH: strain_all_32(p, l, fp, exx, exy, eyy); break;
-  default: strain_all_48(p, l, fp, exx, exy, eyy); break;
+  case 0: strain_all_0(p, l, fp, exx, exy, eyy, o); break;
+  case F_PERIODIC: strain_all_16(p, l, fp, exx, exy, eyy, o); break;
+  case F_VARH: strain_all_32(p, l, fp, exx, exy, eyy, o); break;
+  default: strain_all_48(p, l, fp, exx, exy, eyy, o); break;
   }
 }
 
@@ -333,7 +379,27 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
   sph_nlist_init(&l);
   int rc = sph_nlist_build(&l, g, p, SPH_CUBIC_SUPPORT * hmax, 0.0,
                            fp->periodic ? fp->period : 0.0, err);
-  if (rc == 0) strain_list(p, &l, fp, exx, exy, eyy);
+  strain_opts o = {0};
+  double *scratch = NULL;
+  if (rc == 0 && (fp->gradient_correction || fp->no_slip)) {
+    scratch = malloc(5 * (p->n ? p->n : 1) * sizeof *scratch);
+    if (!scratch) rc = sph_error_set(err, "strain rate: out of memory for %zu particles", p->n);
+  }
+  if (rc == 0 && fp->gradient_correction) {
+    o.lxx = scratch;
+    o.lxy = scratch + p->n;
+    o.lyy = scratch + 2 * p->n;
+  }
+  sph_wall_velocity_work wv = {0};
+  if (rc == 0 && fp->no_slip) {
+    o.gvx = scratch + 3 * p->n;
+    o.gvy = scratch + 4 * p->n;
+    rc = sph_wall_velocity(p, SPH_CUBIC_SUPPORT * hmax, fp->px0, fp->periodic ? fp->period : 0.0,
+                           scratch + 3 * p->n, scratch + 4 * p->n, &wv, err);
+  }
+  if (rc == 0) strain_list(p, &l, fp, exx, exy, eyy, &o);
+  sph_wall_velocity_work_free(&wv);
+  free(scratch);
   sph_nlist_free(&l);
   return rc;
 }
@@ -769,7 +835,24 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
   if (fp->var_h) F |= F_VARH;
   if (fp->ledger) F |= F_LEDGER;
   if (F & F_STRESS) {
-    strain_list(p, l, fp, w->sxx, w->sxy, w->syy);
+    strain_opts o = {0};
+    if (fp->gradient_correction) {
+      o.lxx = w->lxx;
+      o.lxy = w->lxy;
+      o.lyy = w->lyy;
+    }
+    if (fp->no_slip) {
+      double hmax = fp->h;
+      if (fp->var_h)
+        for (size_t i = 0; i < p->n; i++)
+          if (p->h[i] > hmax) hmax = p->h[i];
+      if (sph_wall_velocity(p, SPH_CUBIC_SUPPORT * hmax, fp->px0, fp->periodic ? fp->period : 0.0,
+                            w->gvx, w->gvy, &w->wv, err))
+        return -1;
+      o.gvx = w->gvx;
+      o.gvy = w->gvy;
+    }
+    strain_list(p, l, fp, w->sxx, w->sxy, w->syy, &o);
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
     for (long i = 0; i < n; i++) { /* tau / rho^2: laminar mu eps, plus the SPS stress */
       const double rho = p->rho[i];
@@ -784,6 +867,14 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
         txx += a / rho;
         txy += b / rho;
         tyy += c / rho;
+      }
+      if (o.lxx) { /* sym(tau L): the divergence with the corrected gradient */
+        const double axx = w->lxx[i], axy = w->lxy[i], ayy = w->lyy[i];
+        const double bxx = txx * axx + txy * axy, byy = txy * axy + tyy * ayy;
+        const double bxy = 0.5 * ((txx * axy + txy * ayy) + (txy * axx + tyy * axy));
+        txx = bxx;
+        txy = bxy;
+        tyy = byy;
       }
       w->sxx[i] = txx;
       w->sxy[i] = txy;

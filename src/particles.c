@@ -18,7 +18,7 @@
  * permutation written once. */
 #define SPH_PARTICLE_DOUBLES(X)                                                              \
   X(x) X(y) X(vx) X(vy) X(rho) X(p) X(mass) X(h) X(u) X(x0) X(y0) X(vx0) X(vy0) X(rho0)    \
-  X(u0) X(ax) X(ay) X(drho) X(du) X(xsx) X(xsy) X(vxh) X(vyh) X(rhoh) X(uh) X(xr) X(yr)
+  X(u0) X(ax) X(ay) X(drho) X(du) X(xsx) X(xsy) X(vxh) X(vyh) X(rhoh) X(uh) X(xr) X(yr) X(mx) X(my)
 
 static int grow(sph_particles *p, size_t cap, sph_error *err) {
   void *np;
@@ -64,6 +64,7 @@ long sph_particles_add(sph_particles *p, double x, double y, double vx, double v
   p->body[i] = -1;
   p->xr[i] = x;
   p->yr[i] = y;
+  p->mx[i] = p->my[i] = 0.0;
   p->id[i] = (int64_t)i;
   p->flags[i] = 0;
   return (long)i;

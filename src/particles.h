@@ -25,7 +25,8 @@ enum { SPH_KIND_FLUID = 0, SPH_KIND_WALL = 1, SPH_KIND_MIRROR = 2 };
 /* Bits of `flags`. */
 enum {
   SPH_FLAG_FREE_SURFACE = 1, /* on the free surface (paper A §7) */
-  SPH_FLAG_REPULSIVE = 2     /* a wall particle of a repulsive wall (paper A eq. 21-22) */
+  SPH_FLAG_REPULSIVE = 2,    /* a wall particle of a repulsive wall (paper A eq. 21-22) */
+  SPH_FLAG_NO_SLIP = 4       /* a wall particle with the extrapolated velocity (wall_velocity.h) */
 };
 
 typedef struct sph_particles {
@@ -49,6 +50,8 @@ typedef struct sph_particles {
   double *xr, *yr;               /* rest position of a wall particle (moving walls) */
   int32_t *body;                 /* index of the moving wall a particle belongs to, or -1 */
   double *xsx, *xsy;             /* XSPH velocity correction */
+  double *mx, *my;               /* wall particle: offset to its mirror point across the
+                                    wall face (src/wall_velocity.h) */
 } sph_particles;
 
 /* Allocates room for cap particles (all arrays zeroed); n = 0. */

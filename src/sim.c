@@ -112,8 +112,9 @@ static int add_fluid(sph_sim *s, sph_error *err) {
 static int pass(sph_sim *s, sph_error *err);
 static double fluid_internal(const sph_sim *s);
 
-static uint8_t wall_flags(sph_boundary_kind b) {
-  return b == SPH_BOUNDARY_REPULSIVE ? SPH_FLAG_REPULSIVE : 0;
+static uint8_t wall_flags(sph_boundary_kind b, int extrapolated) {
+  return (uint8_t)((b == SPH_BOUNDARY_REPULSIVE ? SPH_FLAG_REPULSIVE : 0) |
+                   (extrapolated ? SPH_FLAG_NO_SLIP : 0));
 }
 
 /* Wall particles of the tank and segments; mirror walls become lines. */
@@ -121,11 +122,13 @@ static int add_walls(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   const double wall_mass = c->rho0 * c->dx * c->dx;
   s->mirror_reach = SPH_CUBIC_SUPPORT * c->h * (c->fs_h_factor > 1.0 ? c->fs_h_factor : 1.0);
+  s->fp.no_slip = c->tank.present && c->tank.extrapolated;
+  for (size_t w = 0; w < c->n_walls; w++) s->fp.no_slip |= c->walls[w].extrapolated;
   if (c->tank.present) {
     if (c->tank.boundary == SPH_BOUNDARY_MIRROR) {
       s->n_mirror += sph_mirror_tank_lines(&c->tank, s->mirror_reach, s->mirror);
     } else if (sph_boundary_add_tank(&s->p, &c->tank, c->dx, c->rho0, wall_mass, c->h,
-                                     wall_flags(c->tank.boundary), err)) {
+                                     wall_flags(c->tank.boundary, c->tank.extrapolated), err)) {
       return -1;
     }
     if (c->tank.boundary == SPH_BOUNDARY_REPULSIVE) s->fp.repulsive = 1;
@@ -140,8 +143,9 @@ static int add_walls(sph_sim *s, sph_error *err) {
     }
     if (ws->boundary == SPH_BOUNDARY_REPULSIVE) s->fp.repulsive = 1;
     const size_t first = s->p.n;
-    if (sph_boundary_add_segment(&s->p, ws->x0, ws->y0, ws->x1, ws->y1, ws->layers, c->dx, c->rho0,
-                                 wall_mass, c->h, wall_flags(ws->boundary), err))
+    if (sph_boundary_add_segment(&s->p, ws->x0, ws->y0, ws->x1, ws->y1, ws->layers, ws->stagger, 0,
+                                 c->dx, c->rho0, wall_mass, c->h,
+                                 wall_flags(ws->boundary, ws->extrapolated), err))
       return -1;
     if (ws->motion.kind != SPH_MOTION_NONE) {
       s->moving = 1;
@@ -179,6 +183,8 @@ static void dedupe_periodic(sph_sim *s) {
       p->flags[kept] = p->flags[i];
       p->body[kept] = p->body[i];
       p->yr[kept] = p->yr[i];
+      p->mx[kept] = p->mx[i];
+      p->my[kept] = p->my[i];
     }
     p->xr[kept] = p->x[kept]; /* the rest position is the wrapped one */
     p->id[kept] = (int64_t)kept;
@@ -297,6 +303,8 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.mu = c->mu;
   s->fp.periodic = c->periodic;
   s->fp.period = c->periodic ? c->periodic_x[1] - c->periodic_x[0] : 0.0;
+  s->fp.px0 = c->periodic ? c->periodic_x[0] : 0.0;
+  s->fp.gradient_correction = c->gradient_correction;
   s->fp.var_h = c->fs_h_factor > 0.0;
   s->fp.lj_d = c->repulsion;
   s->fp.lj_r0 = c->dx;

@@ -25,5 +25,6 @@
 #include "turbulence.h"
 #include "analytic.h"
 #include "wave_face.h"
+#include "wall_velocity.h"
 
 #endif

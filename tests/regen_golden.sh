@@ -64,13 +64,13 @@ mv "$out.tmp" "$out"
 echo "wrote $out"
 
 # 6. The inclined-plane table on a CI-sized subset (tests/test_inclined_sweep.c):
-#    bench/inclined_plane with fixed_layers at 100, 400, 900 and repulsive at
+#    bench/inclined_plane with fixed_layers at 100, 400, 900, 1600 and repulsive at
 #    100, 400 fluid particles.
-SPH="$sph" OUT="$tmp/ipa" CONFIGS=fixed_layers COUNTS="100 400 900" sh "$src/bench/inclined_plane" > /dev/null
+SPH="$sph" OUT="$tmp/ipa" CONFIGS=fixed_layers COUNTS="100 400 900 1600" sh "$src/bench/inclined_plane" > /dev/null
 SPH="$sph" OUT="$tmp/ipb" CONFIGS=repulsive COUNTS="100 400" sh "$src/bench/inclined_plane" > /dev/null
 out="$src/golden/inclined_plane_ci.csv"
 {
-  echo "# golden: bench/inclined_plane, fixed_layers at 100/400/900 and repulsive at 100/400 fluid particles"
+  echo "# golden: bench/inclined_plane, fixed_layers at 100/400/900/1600 and repulsive at 100/400 fluid particles"
   echo "# (film flow at t = 4 s against paper A eq. 26, max and L2 in % of v_max; wall_s, a timing, is written as 0)"
   echo "# made by: make golden ($("$sph" --version | head -n 1)); compared within 1 % + 0.005 by tests/test_inclined_sweep.c"
   { cat "$tmp/ipa/inclined_plane.csv"; tail -n +2 "$tmp/ipb/inclined_plane.csv"; } |
