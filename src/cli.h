@@ -37,6 +37,10 @@ int sph_cli_each_snapshot(const char *cmd, int argc, char **argv,
  * with its stored --set overrides (cli_snapcase.c). 0, or -1 with err (and
  * nothing to free). */
 int sph_cli_snapshot_case(const sph_snapshot *s, sph_case *c, sph_error *err);
+/* The same with n_extra further overrides applied after the stored ones
+ * (sph run --restart SNAPSHOT --set time.end=...). */
+int sph_cli_snapshot_case_set(const sph_snapshot *s, const char *const *extra, size_t n_extra,
+                              sph_case *c, sph_error *err);
 
 /* mkdir -p: creates path and its parents; 0, or -1 with errno set. */
 int sph_cli_make_dirs(const char *path);

@@ -1,6 +1,7 @@
 /*
  * cli_run.c - `sph run CASE [-o DIR] [--threads N] [--set key=value]...
- *             [--restart SNAPSHOT]`
+ *             [--restart SNAPSHOT]`, and `sph run --restart SNAPSHOT [...]`
+ *             with the case taken from the snapshot
  *
  * Loads and validates the case (with overrides), prints the choices in
  * force, creates the output directory, and runs the case with a progress
@@ -46,8 +47,11 @@ static void run_usage(FILE *f) {
   fprintf(f,
           "usage: sph run CASE [-o DIR] [--threads N] [--set key=value]... [--quiet]\n"
           "               [--restart SNAPSHOT]\n"
+          "       sph run --restart SNAPSHOT [-o DIR] [--threads N] [--set time.end=T] [--quiet]\n"
           "\n"
-          "Runs the case file CASE (YAML; see README.md for every key).\n"
+          "Runs the case file CASE (YAML; see README.md for every key). Without CASE,\n"
+          "--restart takes the case from SNAPSHOT (the case text and --set overrides it\n"
+          "stores) and writes to SNAPSHOT's directory unless -o is given.\n"
           "\n"
           "  -o, --output DIR   output directory (default out/<case name>); created if needed\n"
           "  -r, --restart SNAPSHOT\n"
@@ -135,7 +139,7 @@ int sph_cli_run(int argc, char **argv) {
       return 2;
     }
   }
-  if (!case_path) {
+  if (!case_path && !restart) {
     run_usage(stderr);
     free(sets);
     return 2;
@@ -143,7 +147,30 @@ int sph_cli_run(int argc, char **argv) {
 
   sph_error err = {{0}};
   sph_case c;
-  if (sph_case_load(case_path, sets, n_set, &c, &err)) {
+  char snapdir[4096];
+  if (!case_path) { /* the case of the snapshot, and by default its directory */
+    sph_snapshot *snap;
+    int rc = sph_snapshot_open(restart, &snap, &err);
+    if (rc == 0) {
+      rc = sph_cli_snapshot_case_set(snap, sets, n_set, &c, &err);
+      sph_snapshot_close(snap);
+    }
+    if (rc) {
+      fprintf(stderr, "sph run: --restart: %s\n", err.msg);
+      free(sets);
+      return 1;
+    }
+    case_path = "the snapshot's case";
+    if (!outdir) {
+      snprintf(snapdir, sizeof snapdir, "%s", restart);
+      char *slash = strrchr(snapdir, '/');
+      if (slash)
+        *slash = '\0';
+      else
+        snprintf(snapdir, sizeof snapdir, ".");
+      outdir = snapdir;
+    }
+  } else if (sph_case_load(case_path, sets, n_set, &c, &err)) {
     fprintf(stderr, "sph run: %s\n", err.msg);
     sph_case_free(&c);
     free(sets);
@@ -245,11 +272,10 @@ int sph_cli_run(int argc, char **argv) {
   case SPH_RUN_INTERRUPTED:
     fprintf(stderr,
             "sph run: interrupted by %s at t = %.9g s (step %ld); final snapshot %s\n"
-            "sph run: continue with: sph run --restart %s %s -o %s%s\n",
+            "sph run: continue with: sph run --restart %s -o %s\n",
             interrupted == SIGTERM ? "SIGTERM" : "SIGINT", sph_sim_time(s), r.steps,
             r.last_snapshot[0] ? r.last_snapshot : "(none)",
-            r.last_snapshot[0] ? r.last_snapshot : "SNAPSHOT", case_path, outdir,
-            n_set ? " and the same --set options" : "");
+            r.last_snapshot[0] ? r.last_snapshot : "SNAPSHOT", outdir);
     status = 4;
     break;
   case SPH_RUN_BLOWUP:

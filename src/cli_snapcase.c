@@ -1,6 +1,8 @@
 /*
  * cli_snapcase.c - the case a snapshot was run from, for the commands that
- * measure snapshots (sph profile, sph face).
+ * measure snapshots (sph profile, sph face)
+ *
+ * and for `sph run --restart SNAPSHOT` without a case file.
  *
  * Each snapshot written by `sph run` carries the text of its case file
  * (attribute case_text) and the run's --set overrides, one "key=value" per
@@ -16,15 +18,16 @@
 #include "cli.h"
 
 /* Splits the stored overrides ("k=v" lines) into a NULL-terminated array
- * of pointers into a private copy; *n gets the count. NULL on no memory. */
-static char **split_overrides(const char *text, size_t *n, char **copy) {
+ * of pointers into a private copy, with `extra` room for more; *n gets the
+ * count. NULL on no memory. */
+static char **split_overrides(const char *text, size_t extra, size_t *n, char **copy) {
   *n = 0;
   *copy = strdup(text ? text : "");
   if (!*copy) return NULL;
   size_t lines = 1;
   for (const char *q = *copy; *q; q++)
     lines += *q == '\n';
-  char **v = calloc(lines + 1, sizeof *v);
+  char **v = calloc(lines + extra + 1, sizeof *v);
   if (!v) {
     free(*copy);
     *copy = NULL;
@@ -41,15 +44,17 @@ static char **split_overrides(const char *text, size_t *n, char **copy) {
   return v;
 }
 
-int sph_cli_snapshot_case(const sph_snapshot *s, sph_case *c, sph_error *err) {
+int sph_cli_snapshot_case_set(const sph_snapshot *s, const char *const *extra, size_t n_extra,
+                              sph_case *c, sph_error *err) {
   const char *text = sph_snapshot_text(s, "case_text");
   if (!text || !*text)
     return sph_error_set(err, "%s: no case_text attribute (not written by sph run?)",
                          sph_snapshot_path(s));
   size_t n_set;
   char *copy;
-  char **set = split_overrides(sph_snapshot_text(s, "overrides"), &n_set, &copy);
+  char **set = split_overrides(sph_snapshot_text(s, "overrides"), n_extra, &n_set, &copy);
   if (!set) return sph_error_set(err, "%s: out of memory", sph_snapshot_path(s));
+  for (size_t k = 0; k < n_extra; k++) set[n_set++] = (char *)extra[k];
   char origin[4200];
   snprintf(origin, sizeof origin, "%s (case_text)", sph_snapshot_path(s));
   const int rc =
@@ -58,4 +63,8 @@ int sph_cli_snapshot_case(const sph_snapshot *s, sph_case *c, sph_error *err) {
   free(copy);
   if (rc) sph_case_free(c);
   return rc ? -1 : 0;
+}
+
+int sph_cli_snapshot_case(const sph_snapshot *s, sph_case *c, sph_error *err) {
+  return sph_cli_snapshot_case_set(s, NULL, 0, c, err);
 }

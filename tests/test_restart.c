@@ -16,7 +16,9 @@
  *     diagnostics.csv starts at the restart time with the same rows;
  *   - restarted in a copy of its own directory: diagnostics.csv,
  *     gauges.csv and snapshots.xmf come out byte-identical to the
- *     uninterrupted run's (later rows dropped, then appended again);
+ *     uninterrupted run's (later rows dropped, then appended again); the
+ *     mirror case as `sph run --restart SNAPSHOT` alone (the case and its
+ *     overrides from the snapshot, the output in its directory);
  *   - restarted from snap_0000 (the leap-frog's first step still to do).
  * Bad restarts fail with exit status 1 and a message naming the file and
  * the cause: other parameters (naming the first differing key), another
@@ -155,7 +157,7 @@ static void test_lf_from_start(void) { restart_fresh("restart_lf", 0); }
 /* Restart in a copy of the run's own directory (which holds the later
  * snapshots and rows already): the end result is byte for byte the
  * uninterrupted run's. */
-static void restart_in_place(const char *name, int k) {
+static void restart_in_place(const char *name, int k, int short_form) {
   const int n = full_run(name);
   char args[32768], out[65536], dir[4200];
   snprintf(dir, sizeof dir, "%s/%s.copy", tmp, name);
@@ -164,8 +166,11 @@ static void restart_in_place(const char *name, int k) {
   /* a torn last row, as a killed run may leave, is dropped too */
   snprintf(args, sizeof args, "printf '0.99,12' >> '%s/diagnostics.csv'", dir);
   CU_ASSERT_FATAL(sph_test_system(args) == 0);
-  snprintf(args, sizeof args, "run -q --restart '%s/snap_%04d.h5' '%s' -o '%s'", dir, k,
-           case_file(name), dir);
+  if (short_form) /* the case from the snapshot, the output in its directory */
+    snprintf(args, sizeof args, "run -q --restart '%s/snap_%04d.h5'", dir, k);
+  else
+    snprintf(args, sizeof args, "run -q --restart '%s/snap_%04d.h5' '%s' -o '%s'", dir, k,
+             case_file(name), dir);
   const int st = sph(args, out, sizeof out);
   if (st) printf("\n%s\n", out);
   CU_ASSERT_EQUAL_FATAL(st, 0);
@@ -184,8 +189,8 @@ static void restart_in_place(const char *name, int k) {
 }
 
 /* snap_0003 of restart_pc is at a listed output time (0.0123 s) */
-static void test_pc_in_place(void) { restart_in_place("restart_pc", 3); }
-static void test_mirror_in_place(void) { restart_in_place("restart_mirror", 4); }
+static void test_pc_in_place(void) { restart_in_place("restart_pc", 3, 0); }
+static void test_mirror_in_place(void) { restart_in_place("restart_mirror", 4, 1); }
 
 static void test_bad_restarts(void) {
   full_run("restart_pc");
@@ -229,6 +234,21 @@ static void test_bad_restarts(void) {
            case_file("restart_pc"), tmp);
   CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
   CU_ASSERT(strstr(out, "plain.h5") != NULL);
+  /* without a case file: a missing snapshot, one without a stored case, and
+   * an override other than time.end */
+  snprintf(args, sizeof args, "run -q --restart '%s/nope.h5'", tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  CU_ASSERT(strstr(out, "--restart") != NULL && strstr(out, "nope.h5") != NULL);
+  snprintf(args, sizeof args, "run -q --restart '%s' -o '%s/bad5'", plain, tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  CU_ASSERT(strstr(out, "plain.h5") != NULL && strstr(out, "case_text") != NULL);
+  snprintf(args, sizeof args,
+           "run -q --restart '%s' -o '%s/bad6' --set physics.artificial_viscosity.alpha=0.2", snap,
+           tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  CU_ASSERT(strstr(out, "physics.artificial_viscosity.alpha") != NULL);
+  /* no case and no --restart: usage */
+  CU_ASSERT_EQUAL(sph("run -q", out, sizeof out), 2);
   /* a value missing from --restart is a usage error */
   snprintf(args, sizeof args, "run '%s' --restart", case_file("restart_pc"));
   CU_ASSERT_EQUAL(sph(args, out, sizeof out), 2);
