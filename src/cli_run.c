@@ -221,16 +221,21 @@ int sph_cli_run(int argc, char **argv) {
     else
       printf(" (factor %g)\n", c.dt_factor);
     printf("  walls:");
-    if (c.tank.present) printf(" tank %s", sph_boundary_name(c.tank.boundary));
+    if (c.tank.present)
+      printf(" tank %s%s%s", sph_boundary_name(c.tank.boundary),
+             c.tank.stagger ? "" : " unstaggered",
+             c.tank.extrapolated ? " (extrapolated velocity)" : "");
     for (size_t w = 0; w < c.n_walls; w++)
-      printf("%s wall %zu %s%s", c.tank.present || w ? "," : "", w,
-             sph_boundary_name(c.walls[w].boundary),
+      printf("%s wall %zu %s%s%s%s", c.tank.present || w ? "," : "", w,
+             sph_boundary_name(c.walls[w].boundary), c.walls[w].stagger ? "" : " unstaggered",
+             c.walls[w].extrapolated ? " (extrapolated velocity)" : "",
              c.walls[w].motion.kind != SPH_MOTION_NONE ? " (moving)" : "");
     if (!c.tank.present && c.n_walls == 0) printf(" none");
     if (c.periodic) printf("; periodic in x over [%g, %g]", c.periodic_x[0], c.periodic_x[1]);
     printf("\n  artificial viscosity alpha %g beta %g, laminar viscosity %s", c.alpha, c.beta,
            sph_viscosity_name(c.viscosity));
-    if (c.viscosity != SPH_VISCOSITY_NONE) printf(" (mu %g Pa s)", c.mu);
+    if (c.viscosity != SPH_VISCOSITY_NONE)
+      printf(" (mu %g Pa s%s)", c.mu, c.gradient_correction ? ", gradient correction" : "");
     printf(", XSPH %g, density filter %s", c.xsph, sph_filter_name(c.density_filter));
     if (c.density_filter != SPH_FILTER_NONE) printf(" every %d steps", c.filter_every);
     printf("\n  free surface %s, energy ledger %s; end %g s, output", 
