@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -42,26 +43,65 @@ static void usage(FILE *f) {
           "             3 numerical blow-up, 4 interrupted (final snapshot written)\n");
 }
 
-/* Threads that wait at the end of a parallel loop sleep rather than spin,
- * unless the user chose otherwise. A step has about a dozen short parallel
- * loops; with spinning waiters a second thread that is not scheduled (any
- * other load on the machine) stalls every loop: the a/50 dam break took
- * 289 s on 2 threads against 42 s on 1 with one other job running, and
- * 9.1 s (passive) against 19.6 s (spinning) for its first 0.04 s. The
- * OpenMP runtime reads OMP_WAIT_POLICY when it is loaded, before main(),
- * so the program re-executes itself once with the variable set. */
-static void prefer_passive_wait(char **argv) {
+/* The busy and total jiffies of all CPUs so far (/proc/stat); 0 if unknown. */
+static int cpu_jiffies(double *busy, double *total) {
+  FILE *f = fopen("/proc/stat", "r");
+  if (!f) return 0;
+  double v[8] = {0};
+  const int n = fscanf(f, "cpu %lf %lf %lf %lf %lf %lf %lf %lf", &v[0], &v[1], &v[2], &v[3],
+                       &v[4], &v[5], &v[6], &v[7]);
+  fclose(f);
+  if (n < 4) return 0;
+  *total = 0.0;
+  for (int k = 0; k < 8; k++) *total += v[k];
+  *busy = *total - v[3] - v[4]; /* all but idle and iowait */
+  return 1;
+}
+
+/* Whether the machine's CPUs are all but idle: less than half a CPU busy
+ * over 0.1 s (/proc/stat); no when it cannot tell. */
+static int machine_idle(void) {
+  double b0, t0, b1, t1;
+  if (!cpu_jiffies(&b0, &t0)) return 0;
+  const struct timespec pause = {0, 100000000L};
+  nanosleep(&pause, NULL);
+  if (!cpu_jiffies(&b1, &t1) || !(t1 > t0)) return 0;
+  const long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+  return ncpu > 0 && (b1 - b0) / (t1 - t0) * (double)ncpu < 0.5;
+}
+
+/* How threads wait at the end of a parallel loop, unless the user chose
+ * (OMP_WAIT_POLICY or GOMP_SPINCOUNT set). A step has five to nine short
+ * parallel loops. On a busy machine (half a CPU or more busy over 0.1 s
+ * at start-up, or unknown) waiters sleep at once (passive): with spinning
+ * waiters a second thread that is not scheduled stalls every loop - the
+ * a/50 dam break took 289 s on 2 threads against 42 s on 1 with one other
+ * job running, and 9.1 s (passive) against 19.6 s (spinning) for its
+ * first 0.04 s. On an idle machine they spin for GOMP_SPINCOUNT = 100000
+ * turns first (some 0.1 ms), then sleep: the loops of a step follow each
+ * other closely, and a futex sleep and wake-up per loop cost 2 threads
+ * much of their gain (a/100 to t = 0.08 s: 27.5 s spinning, 32.2 s
+ * passive, 54.1 s on 1 thread). The OpenMP runtime reads both variables
+ * when it is loaded, before main(), so the program re-executes itself
+ * once with one of them set. Only `sph run` looks (0.1 s); the other
+ * commands wait passively. */
+static void choose_wait_policy(int argc, char **argv) {
 #ifdef _OPENMP
-  if (getenv("OMP_WAIT_POLICY")) return;
-  if (setenv("OMP_WAIT_POLICY", "passive", 1) == 0) execv("/proc/self/exe", argv);
+  if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT")) return;
+  /* only `sph run` runs long parallel loops: the others need not look */
+  const int run = argc > 1 && !strcmp(argv[1], "run");
+  const int rc = run && machine_idle() ? setenv("GOMP_SPINCOUNT", "100000", 1)
+                                       : setenv("OMP_WAIT_POLICY", "passive", 1);
+  if (rc == 0) execv("/proc/self/exe", argv);
   /* if the re-exec failed, run as we are */
 #else
+  (void)argc;
   (void)argv;
 #endif
 }
 
 int main(int argc, char **argv) {
-  prefer_passive_wait(argv);
+  choose_wait_policy(argc, argv);
   if (argc < 2) {
     usage(stderr);
     return 2;
