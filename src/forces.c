@@ -369,16 +369,28 @@ static void strain_list(const sph_particles *p, const sph_nlist *l, const sph_fo
   }
 }
 
-int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_force_params *fp,
-                           double *exx, double *exy, double *eyy, sph_error *err) {
+/* The kernel's reach: 2 h, or 2 max h with per-particle h. */
+static double kernel_reach(const sph_particles *p, const sph_force_params *fp) {
   double hmax = fp->h;
   if (fp->var_h)
     for (size_t i = 0; i < p->n; i++)
       if (p->h[i] > hmax) hmax = p->h[i];
+  return SPH_CUBIC_SUPPORT * hmax;
+}
+
+/* The velocities the strain-rate pass reads, no-slip walls extrapolated. */
+static int wall_ghosts(const sph_particles *p, const sph_force_params *fp, double *gvx,
+                       double *gvy, sph_wall_velocity_work *wv, sph_error *err) {
+  return sph_wall_velocity(p, kernel_reach(p, fp), fp->px0, fp->periodic ? fp->period : 0.0,
+                           gvx, gvy, wv, err);
+}
+
+int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_force_params *fp,
+                           double *exx, double *exy, double *eyy, sph_error *err) {
   sph_nlist l;
   sph_nlist_init(&l);
-  int rc = sph_nlist_build(&l, g, p, SPH_CUBIC_SUPPORT * hmax, 0.0,
-                           fp->periodic ? fp->period : 0.0, err);
+  int rc = sph_nlist_build(&l, g, p, kernel_reach(p, fp), 0.0, fp->periodic ? fp->period : 0.0,
+                           err);
   strain_opts o = {0};
   double *scratch = NULL;
   if (rc == 0 && (fp->gradient_correction || fp->no_slip)) {
@@ -392,10 +404,10 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
   }
   sph_wall_velocity_work wv = {0};
   if (rc == 0 && fp->no_slip) {
-    o.gvx = scratch + 3 * p->n;
-    o.gvy = scratch + 4 * p->n;
-    rc = sph_wall_velocity(p, SPH_CUBIC_SUPPORT * hmax, fp->px0, fp->periodic ? fp->period : 0.0,
-                           scratch + 3 * p->n, scratch + 4 * p->n, &wv, err);
+    double *gvx = scratch + 3 * p->n, *gvy = scratch + 4 * p->n;
+    o.gvx = gvx;
+    o.gvy = gvy;
+    rc = wall_ghosts(p, fp, gvx, gvy, &wv, err);
   }
   if (rc == 0) strain_list(p, &l, fp, exx, exy, eyy, &o);
   sph_wall_velocity_work_free(&wv);
@@ -732,31 +744,24 @@ VARIANTS8(120, 121, 122, 123, 124, 125, 126, 127)
 
 typedef void (*interact_fn)(sph_particles *, const sph_nlist *, const sph_force_params *,
                             sph_force_work *);
-#define FN8(a, b, c, d, e, f, g, h)                                                          \
-  interact_all_##a, interact_all_##b, interact_all_##c, interact_all_##d, interact_all_##e,   \
-      interact_all_##f, interact_all_##g, interact_all_##h
-static const interact_fn VARIANT_TABLE[128] = {
-    FN8(0, 1, 2, 3, 4, 5, 6, 7),         FN8(8, 9, 10, 11, 12, 13, 14, 15),
-    FN8(16, 17, 18, 19, 20, 21, 22, 23), FN8(24, 25, 26, 27, 28, 29, 30, 31),
-    FN8(32, 33, 34, 35, 36, 37, 38, 39), FN8(40, 41, 42, 43, 44, 45, 46, 47),
-    FN8(48, 49, 50, 51, 52, 53, 54, 55), FN8(56, 57, 58, 59, 60, 61, 62, 63),
-    FN8(64, 65, 66, 67, 68, 69, 70, 71), FN8(72, 73, 74, 75, 76, 77, 78, 79),
-    FN8(80, 81, 82, 83, 84, 85, 86, 87), FN8(88, 89, 90, 91, 92, 93, 94, 95),
-    FN8(96, 97, 98, 99, 100, 101, 102, 103), FN8(104, 105, 106, 107, 108, 109, 110, 111),
-    FN8(112, 113, 114, 115, 116, 117, 118, 119), FN8(120, 121, 122, 123, 124, 125, 126, 127)};
+/* The 128 variants of one flavour (prefix P) in the order of F. */
+#define FN8(P, a, b, c, d, e, f, g, h) P##a, P##b, P##c, P##d, P##e, P##f, P##g, P##h
+#define VARIANTS128(P)                                                                       \
+  {                                                                                          \
+    FN8(P, 0, 1, 2, 3, 4, 5, 6, 7), FN8(P, 8, 9, 10, 11, 12, 13, 14, 15),                    \
+        FN8(P, 16, 17, 18, 19, 20, 21, 22, 23), FN8(P, 24, 25, 26, 27, 28, 29, 30, 31),      \
+        FN8(P, 32, 33, 34, 35, 36, 37, 38, 39), FN8(P, 40, 41, 42, 43, 44, 45, 46, 47),      \
+        FN8(P, 48, 49, 50, 51, 52, 53, 54, 55), FN8(P, 56, 57, 58, 59, 60, 61, 62, 63),      \
+        FN8(P, 64, 65, 66, 67, 68, 69, 70, 71), FN8(P, 72, 73, 74, 75, 76, 77, 78, 79),      \
+        FN8(P, 80, 81, 82, 83, 84, 85, 86, 87), FN8(P, 88, 89, 90, 91, 92, 93, 94, 95),      \
+        FN8(P, 96, 97, 98, 99, 100, 101, 102, 103),                                          \
+        FN8(P, 104, 105, 106, 107, 108, 109, 110, 111),                                      \
+        FN8(P, 112, 113, 114, 115, 116, 117, 118, 119),                                      \
+        FN8(P, 120, 121, 122, 123, 124, 125, 126, 127)                                       \
+  }
+static const interact_fn VARIANT_TABLE[128] = VARIANTS128(interact_all_);
 #ifdef SPH_LANES_AVX
-#define FNX8(a, b, c, d, e, f, g, h)                                                         \
-  interact_avx_##a, interact_avx_##b, interact_avx_##c, interact_avx_##d, interact_avx_##e,   \
-      interact_avx_##f, interact_avx_##g, interact_avx_##h
-static const interact_fn VARIANT_TABLE_AVX[128] = {
-    FNX8(0, 1, 2, 3, 4, 5, 6, 7),         FNX8(8, 9, 10, 11, 12, 13, 14, 15),
-    FNX8(16, 17, 18, 19, 20, 21, 22, 23), FNX8(24, 25, 26, 27, 28, 29, 30, 31),
-    FNX8(32, 33, 34, 35, 36, 37, 38, 39), FNX8(40, 41, 42, 43, 44, 45, 46, 47),
-    FNX8(48, 49, 50, 51, 52, 53, 54, 55), FNX8(56, 57, 58, 59, 60, 61, 62, 63),
-    FNX8(64, 65, 66, 67, 68, 69, 70, 71), FNX8(72, 73, 74, 75, 76, 77, 78, 79),
-    FNX8(80, 81, 82, 83, 84, 85, 86, 87), FNX8(88, 89, 90, 91, 92, 93, 94, 95),
-    FNX8(96, 97, 98, 99, 100, 101, 102, 103), FNX8(104, 105, 106, 107, 108, 109, 110, 111),
-    FNX8(112, 113, 114, 115, 116, 117, 118, 119), FNX8(120, 121, 122, 123, 124, 125, 126, 127)};
+static const interact_fn VARIANT_TABLE_AVX[128] = VARIANTS128(interact_avx_);
 #endif
 
 /* ---- repulsive walls (paper A eq. 21-22) ------------------------------------------- */
@@ -842,13 +847,7 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
       o.lyy = w->lyy;
     }
     if (fp->no_slip) {
-      double hmax = fp->h;
-      if (fp->var_h)
-        for (size_t i = 0; i < p->n; i++)
-          if (p->h[i] > hmax) hmax = p->h[i];
-      if (sph_wall_velocity(p, SPH_CUBIC_SUPPORT * hmax, fp->px0, fp->periodic ? fp->period : 0.0,
-                            w->gvx, w->gvy, &w->wv, err))
-        return -1;
+      if (wall_ghosts(p, fp, w->gvx, w->gvy, &w->wv, err)) return -1;
       o.gvx = w->gvx;
       o.gvy = w->gvy;
     }

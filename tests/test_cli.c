@@ -14,20 +14,9 @@
 
 static char *tmp;
 
-/* Runs `sph ARGS`, capturing stdout+stderr into out; returns the status. */
+/* Runs `sph ARGS` (output in tmp/sph.log, returned in out). */
 static int sph(const char *args, char *out, size_t len) {
-  char cmd[8192], log[4096];
-  snprintf(log, sizeof log, "%s/out.txt", tmp);
-  snprintf(cmd, sizeof cmd, "'%s' %s >'%s' 2>&1", sph_test_build("src/sph"), args, log);
-  int st = sph_test_system(cmd);
-  out[0] = 0;
-  FILE *f = fopen(log, "r");
-  if (f) {
-    size_t n = fread(out, 1, len - 1, f);
-    out[n] = 0;
-    fclose(f);
-  }
-  return st;
+  return sph_test_sph(args, tmp, out, len);
 }
 
 static void write_file(const char *name, const char *text) {

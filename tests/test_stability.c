@@ -151,20 +151,9 @@ static void test_hydrostatic_long(void) {
   sph_case_free(&c);
 }
 
-/* Runs `sph ARGS` (output in tmp/log.txt, returned in out). */
+/* Runs `sph ARGS` (output in tmp/sph.log, returned in out). */
 static int sph(const char *args, char *out, size_t len) {
-  char cmd[32768], log[4200];
-  snprintf(log, sizeof log, "%s/log.txt", tmp);
-  snprintf(cmd, sizeof cmd, "'%s' %s >'%s' 2>&1", sph_test_build("src/sph"), args, log);
-  const int st = sph_test_system(cmd);
-  out[0] = 0;
-  FILE *f = fopen(log, "r");
-  if (f) {
-    const size_t n = fread(out, 1, len - 1, f);
-    out[n] = 0;
-    fclose(f);
-  }
-  return st;
+  return sph_test_sph(args, tmp, out, len);
 }
 
 /* A fixed step of 1e-3 s, some ten times h/c0 of the impact case: both

@@ -70,3 +70,19 @@ int sph_test_system(const char *cmd) {
   if (WIFEXITED(st)) return WEXITSTATUS(st);
   return -1;
 }
+
+int sph_test_sph(const char *args, const char *dir, char *out, size_t len) {
+  char cmd[40000];
+  char log[4200];
+  snprintf(log, sizeof log, "%s/sph.log", dir);
+  snprintf(cmd, sizeof cmd, "'%s' %s >'%s' 2>&1", sph_test_build("src/sph"), args, log);
+  const int st = sph_test_system(cmd);
+  out[0] = 0;
+  FILE *f = fopen(log, "r");
+  if (f) {
+    const size_t n = fread(out, 1, len - 1, f);
+    out[n] = 0;
+    fclose(f);
+  }
+  return st;
+}

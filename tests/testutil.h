@@ -29,5 +29,9 @@ char *sph_test_tmpdir(void);
 void sph_test_rmtree(const char *dir);
 /* Runs a shell command, returns its exit status (or -1). */
 int sph_test_system(const char *cmd);
+/* Runs the build tree's `sph ARGS` (ARGS shell-quoted by the caller) with
+ * stdout and stderr captured in DIR/sph.log and returned in out (len
+ * bytes, truncated, NUL-terminated); returns the exit status. */
+int sph_test_sph(const char *args, const char *dir, char *out, size_t len);
 
 #endif
