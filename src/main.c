@@ -59,7 +59,9 @@ static int cpu_jiffies(double *busy, double *total) {
 }
 
 /* Whether the machine's CPUs are all but idle: less than half a CPU busy
- * over 0.1 s (/proc/stat); no when it cannot tell. */
+ * over 0.1 s (/proc/stat; busy is all but idle and iowait, so time a
+ * hypervisor gives to other machines, "steal", counts as busy: our CPUs
+ * are then descheduled too); no when it cannot tell. */
 static int machine_idle(void) {
   double b0, t0, b1, t1;
   if (!cpu_jiffies(&b0, &t0)) return 0;
@@ -83,13 +85,17 @@ static int machine_idle(void) {
  * much of their gain (a/100 to t = 0.08 s: 27.5 s spinning, 32.2 s
  * passive, 54.1 s on 1 thread). The OpenMP runtime reads both variables
  * when it is loaded, before main(), so the program re-executes itself
- * once with one of them set. Only `sph run` looks (0.1 s); the other
- * commands wait passively. */
+ * once with one of them set. Only `sph run` on more than one thread
+ * looks (0.1 s); the other commands wait passively. */
 static void choose_wait_policy(int argc, char **argv) {
 #ifdef _OPENMP
   if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT")) return;
-  /* only `sph run` runs long parallel loops: the others need not look */
-  const int run = argc > 1 && !strcmp(argv[1], "run");
+  /* only `sph run` on more than one thread waits at loop ends: the other
+   * commands, and a run given --threads 1, need not look */
+  int run = argc > 1 && !strcmp(argv[1], "run");
+  for (int i = 2; run && i + 1 < argc; i++)
+    if ((!strcmp(argv[i], "-t") || !strcmp(argv[i], "--threads")) && !strcmp(argv[i + 1], "1"))
+      run = 0;
   const int rc = run && machine_idle() ? setenv("GOMP_SPINCOUNT", "100000", 1)
                                        : setenv("OMP_WAIT_POLICY", "passive", 1);
   if (rc == 0) execv("/proc/self/exe", argv);
