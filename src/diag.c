@@ -5,11 +5,15 @@
 
 #include "diag.h"
 
+#include "parallel.h"
+
 #include <math.h>
 
 double sph_diag_front(const sph_particles *p, double floor_y, double band) {
-  double front = -INFINITY;
-  for (size_t i = 0; i < p->n; i++)
+  double front = -INFINITY; /* a maximum: exact in any order */
+  const long n = (long)p->n;
+#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : front)
+  for (long i = 0; i < n; i++)
     if (p->kind[i] == SPH_KIND_FLUID && p->y[i] < floor_y + band && p->x[i] > front)
       front = p->x[i];
   return front;

@@ -45,6 +45,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "arrays.h"
 #include "kernel.h"
 #include "turbulence.h"
 
@@ -69,42 +70,35 @@ enum {
 };
 
 void sph_force_work_free(sph_force_work *w) {
-  free(w->hot);
+  free(w->block);
   free(w->rows);
-  free(w->prho2);
-  free(w->cs);
-  free(w->sigma);
-  free(w->sxx);
-  free(w->sxy);
-  free(w->syy);
-  free(w->wpow);
-  free(w->wfx);
-  free(w->wfy);
-  free(w->lxx);
-  free(w->lxy);
-  free(w->lyy);
-  free(w->gvx);
-  free(w->gvy);
   sph_wall_velocity_work_free(&w->wv);
   *w = (sph_force_work){0};
 }
 
+/* Room for n particles: every per-particle array in one block (arrays.h),
+ * the contents of the old one carried over. */
 static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
   if (n <= w->cap) return 0;
   const size_t cap = n + n / 4 + 16;
-  double **arrays[] = {&w->prho2, &w->cs,   &w->sigma, &w->sxx, &w->sxy,
-                       &w->syy,   &w->wpow, &w->wfx,   &w->wfy, &w->lxx, &w->lxy, &w->lyy,
-                       &w->gvx,   &w->gvy};
-  for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++) {
-    double *a = realloc(*arrays[k], cap * sizeof *a);
-    if (!a) return sph_error_set(err, "forces: out of memory for %zu particles", n);
-    *arrays[k] = a;
+  void **arrays[] = {(void **)&w->hot, (void **)&w->prho2, (void **)&w->cs,
+                     (void **)&w->sigma, (void **)&w->sxx, (void **)&w->sxy,
+                     (void **)&w->syy, (void **)&w->wpow, (void **)&w->wfx,
+                     (void **)&w->wfy, (void **)&w->lxx, (void **)&w->lxy,
+                     (void **)&w->lyy, (void **)&w->gvx, (void **)&w->gvy};
+  enum { N_ARRAYS = sizeof arrays / sizeof arrays[0] };
+  size_t size[N_ARRAYS];
+  void *start[N_ARRAYS];
+  size[0] = sizeof *w->hot;
+  for (size_t k = 1; k < N_ARRAYS; k++) size[k] = sizeof(double);
+  void *block = sph_arrays_block(cap, N_ARRAYS, size, start);
+  if (!block) return sph_error_set(err, "forces: out of memory for %zu particles", n);
+  for (size_t k = 0; k < N_ARRAYS; k++) {
+    if (w->cap) memcpy(start[k], *arrays[k], w->cap * size[k]);
+    *arrays[k] = start[k];
   }
-  /* the packed copy is refilled at every pass: no need to keep contents */
-  free(w->hot);
-  w->hot = NULL;
-  if (posix_memalign((void **)&w->hot, 64, cap * sizeof *w->hot))
-    return w->hot = NULL, sph_error_set(err, "forces: out of memory for %zu particles", n);
+  free(w->block);
+  w->block = block;
   w->cap = cap;
   return 0;
 }
@@ -705,14 +699,17 @@ DEFINE_INTERACT_LANES(v4x, AVX2)
                        sph_force_work *w) {                                                   \
     const long n = (long)p->n;                                                               \
     double mx = 0.0; /* max of cs + sigma: exact in any order */                             \
-    _Pragma("omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN) reduction(max : mx)") \
-    for (long i = 0; i < n; i++) {                                                           \
-      if ((k) & (F_VARH | F_LEDGER))                                                         \
-        interact_one(p, l, fp, w, (size_t)i, k);                                             \
-      else                                                                                   \
-        interact_##FL(p, l, fp, w, (size_t)i, k);                                            \
-      const double c = w->cs[i] + w->sigma[i];                                               \
-      if (c > mx) mx = c;                                                                    \
+    _Pragma("omp parallel if (n > SPH_OMP_MIN) reduction(max : mx)") {                       \
+      size_t lo, hi; /* slices of equal neighbour counts (parallel.h) */                     \
+      sph_slice(l->cost, (size_t)n, &lo, &hi);                 \
+      for (size_t i = lo; i < hi; i++) {                                                     \
+        if ((k) & (F_VARH | F_LEDGER))                                                       \
+          interact_one(p, l, fp, w, i, k);                                                   \
+        else                                                                                 \
+          interact_##FL(p, l, fp, w, i, k);                                                  \
+        const double c = w->cs[i] + w->sigma[i];                                             \
+        if (c > mx) mx = c;                                                                  \
+      }                                                                                      \
     }                                                                                        \
     w->cs_sigma_max = mx;                                                                    \
   }
@@ -814,12 +811,16 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
                         sph_force_work *w, sph_error *err) {
   const long n = (long)p->n;
   if (work_reserve(w, p->n, err)) return -1;
-#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
-  for (long i = 0; i < n; i++) {
-    const double rho = p->rho[i], cs = sph_eos_sound_speed(&fp->eos, rho);
-    w->cs[i] = cs;
-    w->hot[i] = (sph_force_hot){p->x[i], p->y[i], p->vx[i], p->vy[i], rho,
-                                p->p[i] / (rho * rho), cs, p->mass[i]};
+#pragma omp parallel if (n > SPH_OMP_MIN)
+  {
+    size_t lo, hi; /* the slices of the interaction loop below */
+    sph_slice(l->cost, p->n, &lo, &hi);
+    for (size_t i = lo; i < hi; i++) {
+      const double rho = p->rho[i], cs = sph_eos_sound_speed(&fp->eos, rho);
+      w->cs[i] = cs;
+      w->hot[i] = (sph_force_hot){p->x[i], p->y[i], p->vx[i], p->vy[i], rho,
+                                  p->p[i] / (rho * rho), cs, p->mass[i]};
+    }
   }
   {
     const size_t stride = (size_t)l->maxcount + 4, need = stride * (size_t)MAX_THREADS();

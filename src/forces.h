@@ -96,6 +96,7 @@ typedef struct sph_force_hot {
 /* Per-particle quantities of a pass (storage order). */
 typedef struct sph_force_work {
   size_t cap;
+  void *block;           /* the one allocation of the arrays below (arrays.h) */
   sph_force_hot *hot;    /* packed copy of the state read from neighbours */
   double *prho2;         /* scratch of n doubles (p / rho^2 lives in hot) */
   double *cs;            /* sound speed */

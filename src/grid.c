@@ -13,6 +13,8 @@
 
 #include "grid.h"
 
+#include "arrays.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -67,7 +69,10 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
   const size_t n = q->n;
   if (!(cell > 0.0)) return sph_error_set(err, "grid: cell size must be positive");
   double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
-  for (size_t i = 0; i < n; i++) {
+  const long ln = (long)n;
+#pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN) reduction(min : xmin, ymin) \
+    reduction(max : xmax, ymax)
+  for (long i = 0; i < ln; i++) {
     if (q->x[i] < xmin) xmin = q->x[i];
     if (q->x[i] > xmax) xmax = q->x[i];
     if (q->y[i] < ymin) ymin = q->y[i];
@@ -107,7 +112,8 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
   if (reserve(g, n, cells, err)) return -1;
 
   const double inv = 1.0 / cell, invx = 1.0 / cellx;
-  for (size_t i = 0; i < n; i++) {
+#pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN)
+  for (long i = 0; i < ln; i++) {
     long cx = (long)floor((q->x[i] - xmin) * invx);
     long cy = (long)((q->y[i] - ymin) * inv);
     if (periodic) cx = ((cx % g->nx) + g->nx) % g->nx;
@@ -121,21 +127,17 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
   for (size_t c = 0; c < cells; c++) g->count[c + 1] += g->count[c];
   memcpy(g->start, g->count, (cells + 1) * sizeof *g->start);
   for (size_t i = 0; i < n; i++) g->perm[g->count[g->key[i]]++] = i;
-  if (!p) { /* binned only: cells by storage index */
-    for (size_t i = 0; i < n; i++) {
-      g->cx[i] = (long)(g->key[i] % (size_t)g->nx);
-      g->cy[i] = (long)(g->key[i] / (size_t)g->nx);
-    }
-    g->sorted = 0;
-    return 0;
+  /* the cell of each storage index: binned only, the particle's own key;
+   * sorted, the key of the particle moved there */
+  if (p) sph_particles_permute(p, g->perm, g->work);
+  const size_t *restrict key = g->key, *restrict perm = g->perm, nx = (size_t)g->nx;
+#pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN)
+  for (long i = 0; i < ln; i++) {
+    const size_t k = p ? key[perm[i]] : key[i];
+    g->cx[i] = (long)(k % nx);
+    g->cy[i] = (long)(k / nx);
   }
-  sph_particles_permute(p, g->perm, g->work);
-  for (size_t c = 0; c < cells; c++)
-    for (size_t i = g->start[c]; i < g->start[c + 1]; i++) {
-      g->cx[i] = (long)(c % (size_t)g->nx);
-      g->cy[i] = (long)(c / (size_t)g->nx);
-    }
-  g->sorted = 1;
+  g->sorted = p != NULL;
   return 0;
 }
 
@@ -159,12 +161,8 @@ int sph_grid_bin(sph_grid *g, const sph_particles *p, double cell, int periodic,
 void sph_nlist_init(sph_nlist *l) { memset(l, 0, sizeof *l); }
 
 void sph_nlist_free(sph_nlist *l) {
-  free(l->start);
-  free(l->count);
+  free(l->block);
   free(l->nb);
-  free(l->xref);
-  free(l->yref);
-  free(l->idref);
   memset(l, 0, sizeof *l);
 }
 
@@ -194,20 +192,19 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   const size_t n = p->n;
   l->valid = 0;
   if (n > UINT32_MAX) return sph_error_set(err, "grid: %zu particles is too many for a list", n);
-  if (n + 1 > l->cap_n) {
+  if (n + 1 > l->cap_n) { /* every row array is rewritten below: nothing to keep */
     const size_t cap = n + 1 + n / 4 + 16;
-    void *a = realloc(l->start, cap * sizeof *l->start);
-    if (a) l->start = a;
-    void *b = realloc(l->count, cap * sizeof *l->count);
-    if (b) l->count = b;
-    void *c = realloc(l->xref, cap * sizeof *l->xref);
-    if (c) l->xref = c;
-    void *d = realloc(l->yref, cap * sizeof *l->yref);
-    if (d) l->yref = d;
-    void *e = realloc(l->idref, cap * sizeof *l->idref);
-    if (e) l->idref = e;
-    if (!a || !b || !c || !d || !e)
+    void **arrays[] = {(void **)&l->start, (void **)&l->count, (void **)&l->xref,
+                       (void **)&l->yref, (void **)&l->idref, (void **)&l->cost};
+    const size_t size[] = {sizeof *l->start, sizeof *l->count, sizeof *l->xref,
+                           sizeof *l->yref,  sizeof *l->idref, sizeof *l->cost};
+    void *start[6];
+    void *block = sph_arrays_block(cap, 6, size, start);
+    if (!block)
       return sph_error_set(err, "grid: out of memory for the neighbour list of %zu particles", n);
+    free(l->block);
+    l->block = block;
+    for (int k = 0; k < 6; k++) *arrays[k] = start[k];
     l->cap_n = cap;
   }
   /* a row's capacity is its candidate count: the rows are filled in
@@ -235,38 +232,43 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   const double *restrict x = p->x, *restrict y = p->y;
   const int sorted = g->sorted;
   uint32_t mc = 0;
-#pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN) reduction(max : mc)
-  for (long li = 0; li < ln; li++) {
-    const size_t i = (size_t)li;
-    uint32_t *restrict row = l->nb + l->start[i];
-    const double xi = x[i], yi = y[i];
-    /* the four kinds of grid each with a loop of its own, free of tests
-     * that do not change along it */
-    uint32_t c;
-    if (sorted && period <= 0.0)
-      c = fill_row(g, x, y, i, r2max, 0.0, row, 1);
-    else if (sorted)
-      c = fill_row(g, x, y, i, r2max, period, row, 1);
-    else if (period <= 0.0)
-      c = fill_row(g, x, y, i, r2max, 0.0, row, 0);
-    else
-      c = fill_row(g, x, y, i, r2max, period, row, 0);
-    /* increasing storage index: already so on a sorted grid that is not
-     * periodic (rows below, same, above in key order); otherwise an
-     * insertion sort, linear on nearly sorted rows */
-    if (!sorted || period > 0.0)
-      for (uint32_t a = 1; a < c; a++) {
-        const uint32_t v = row[a];
-        uint32_t b = a;
-        for (; b > 0 && row[b - 1] > v; b--) row[b] = row[b - 1];
-        row[b] = v;
-      }
-    l->count[i] = c;
-    l->xref[i] = xi;
-    l->yref[i] = yi;
-    l->idref[i] = p->id[i];
-    if (c > mc) mc = c;
+#pragma omp parallel if (ln > SPH_OMP_MIN) reduction(max : mc)
+  {
+    size_t lo, hi; /* slices of equal candidate counts (parallel.h) */
+    sph_share(l->start, n, sph_thread(), sph_threads(), &lo, &hi);
+    for (size_t i = lo; i < hi; i++) {
+      uint32_t *restrict row = l->nb + l->start[i];
+      const double xi = x[i], yi = y[i];
+      /* the four kinds of grid each with a loop of its own, free of tests
+       * that do not change along it */
+      uint32_t c;
+      if (sorted && period <= 0.0)
+        c = fill_row(g, x, y, i, r2max, 0.0, row, 1);
+      else if (sorted)
+        c = fill_row(g, x, y, i, r2max, period, row, 1);
+      else if (period <= 0.0)
+        c = fill_row(g, x, y, i, r2max, 0.0, row, 0);
+      else
+        c = fill_row(g, x, y, i, r2max, period, row, 0);
+      /* increasing storage index: already so on a sorted grid that is not
+       * periodic (rows below, same, above in key order); otherwise an
+       * insertion sort, linear on nearly sorted rows */
+      if (!sorted || period > 0.0)
+        for (uint32_t a = 1; a < c; a++) {
+          const uint32_t v = row[a];
+          uint32_t b = a;
+          for (; b > 0 && row[b - 1] > v; b--) row[b] = row[b - 1];
+          row[b] = v;
+        }
+      l->count[i] = c;
+      l->xref[i] = xi;
+      l->yref[i] = yi;
+      l->idref[i] = p->id[i];
+      if (c > mc) mc = c;
+    }
   }
+  l->cost[0] = 0; /* exact: integers */
+  for (size_t i = 0; i < n; i++) l->cost[i + 1] = l->cost[i] + l->count[i] + SPH_NLIST_ROW_COST;
   l->maxcount = mc;
   l->n = n;
   l->radius = radius;
@@ -286,12 +288,16 @@ int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p) {
   const double period = l->period;
   double d2 = 0.0;
   int moved = 0;
-#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : d2) reduction(| : moved)
-  for (long i = 0; i < n; i++) {
-    const double dx = sph_grid_min_image(x[i] - xr[i], period), dy = y[i] - yr[i];
-    const double d = dx * dx + dy * dy;
-    if (d > d2) d2 = d;
-    moved |= id[i] != idr[i];
+#pragma omp parallel if (n > SPH_OMP_MIN) reduction(max : d2) reduction(| : moved)
+  {
+    size_t lo, hi;
+    sph_slice(l->cost, p->n, &lo, &hi);
+    for (size_t i = lo; i < hi; i++) {
+      const double dx = sph_grid_min_image(x[i] - xr[i], period), dy = y[i] - yr[i];
+      const double d = dx * dx + dy * dy;
+      if (d > d2) d2 = d;
+      moved |= id[i] != idr[i];
+    }
   }
   if (moved) return 0;
   /* max displacement < skin/2, with a relative margin for rounding */

@@ -143,6 +143,11 @@ static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SP
  * every listed pair, so which pairs interact never depends on the skin;
  * only the summation order does (the storage order of the last sort).
  */
+/* The cost of a particle in a pass, in neighbour pairs: its row's length
+ * plus this much for the per-particle work (the integrator's update, the
+ * row's final sums). */
+#define SPH_NLIST_ROW_COST 8
+
 typedef struct sph_nlist {
   int valid;          /* built, and the store not reordered since */
   size_t n;           /* particles at the build */
@@ -156,6 +161,9 @@ typedef struct sph_nlist {
   double *xref, *yref; /* positions at the build */
   int64_t *idref;     /* ids at the build (a reordered store is detected) */
   size_t cap_n, cap_nb;
+  size_t *cost;       /* n + 1: prefix sums of count[i] + SPH_NLIST_ROW_COST, the split of
+                         the loops over the store among threads (parallel.h) */
+  void *block;        /* the one allocation of start ... cost (arrays.h) */
   long builds;        /* number of builds (statistics) */
 } sph_nlist;
 

@@ -18,11 +18,16 @@
 #include "forces.h"
 #include "particles.h"
 
+/* Every update below is per particle; `cost` (n + 1 entries, or NULL)
+ * splits the store among the threads as the neighbour loops do
+ * (sph_slice in parallel.h), which changes only the time. */
+
 /* X0 <- X, then X <- X0 + dt/2 F (the predictor), and the pressure. */
-void sph_pc_half(sph_particles *p, double dt, int xsph, const sph_eos *eos);
+void sph_pc_half(sph_particles *p, double dt, int xsph, const sph_eos *eos, const size_t *cost);
 /* X <- 2 (X0 + dt/2 F) - X0: the corrector half step and the final
  * update, and the pressure. */
-void sph_pc_finish(sph_particles *p, double dt, int xsph, const sph_eos *eos);
+void sph_pc_finish(sph_particles *p, double dt, int xsph, const sph_eos *eos,
+                   const size_t *cost);
 
 /* The leap-frog of paper A eq. (17)-(19), one force evaluation per step.
  * Between steps the store holds x^n, the half-step values (vxh, vyh, rhoh)
@@ -33,7 +38,8 @@ void sph_pc_finish(sph_particles *p, double dt, int xsph, const sph_eos *eos);
  *                      (v, rho)^0 + dt/2 (dv, drho)/dt^0)
  *   x^{n+1} = x^n + dt (v^{n+1/2} + XSPH correction)
  *   (v, rho)^{n+1} predicted = (v, rho)^{n+1/2} + dt/2 (dv, drho)/dt^n. */
-void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const sph_eos *eos);
+void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const sph_eos *eos,
+                       const size_t *cost);
 
 /* Paper B §2.6: dt = min_a factor h / (c_a + sigma_a), from the maximum of
  * c_a + sigma_a that the last interaction pass found (w->cs_sigma_max). */

@@ -1,6 +1,6 @@
 /*
- * parallel.c - the serial-below threshold of the parallel loops (see
- * parallel.h).
+ * parallel.c - the serial-below threshold of the parallel loops, and the
+ * split of a loop into slices of equal cost (see parallel.h).
  */
 #include "config.h"
 
@@ -22,4 +22,42 @@ long sph_omp_min(void) {
     value = v; /* the same value whichever thread stores it */
   }
   return v;
+}
+
+/* The first i in 0..n with prefix[i] >= target. */
+static size_t first_at(const size_t *prefix, size_t n, size_t target) {
+  size_t a = 0, b = n;
+  while (a < b) {
+    const size_t m = a + (b - a) / 2;
+    if (prefix[m] < target)
+      a = m + 1;
+    else
+      b = m;
+  }
+  return a;
+}
+
+void sph_share(const size_t *prefix, size_t n, int t, int parts, size_t *lo, size_t *hi) {
+  if (parts <= 1) {
+    *lo = 0;
+    *hi = n;
+    return;
+  }
+  const size_t total = prefix[n] - prefix[0];
+  /* the quotient exactly, without overflowing total * t */
+  const size_t q = total / (size_t)parts, r = total % (size_t)parts;
+  const size_t at_lo = q * (size_t)t + r * (size_t)t / (size_t)parts;
+  const size_t at_hi = q * (size_t)(t + 1) + r * (size_t)(t + 1) / (size_t)parts;
+  *lo = t == 0 ? 0 : first_at(prefix, n, prefix[0] + at_lo);
+  *hi = t == parts - 1 ? n : first_at(prefix, n, prefix[0] + at_hi);
+}
+
+void sph_slice(const size_t *prefix, size_t n, size_t *lo, size_t *hi) {
+  const int t = sph_thread(), parts = sph_threads();
+  if (prefix) {
+    sph_share(prefix, n, t, parts, lo, hi);
+    return;
+  }
+  *lo = n / (size_t)parts * (size_t)t + n % (size_t)parts * (size_t)t / (size_t)parts;
+  *hi = n / (size_t)parts * (size_t)(t + 1) + n % (size_t)parts * (size_t)(t + 1) / (size_t)parts;
 }

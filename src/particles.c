@@ -1,15 +1,18 @@
 /*
  * particles.c - the particle store (structure of arrays).
  *
- * All arrays are allocated together with the same capacity and grown by
- * doubling. Storage order is free to change (the grid sorts by cell); the id
- * array keeps each particle's creation index so output can be written in id
+ * All arrays live in one block (arrays.h), with the same capacity, and
+ * grow by doubling. Storage order is free to change (the grid sorts by
+ * cell); the id array keeps each particle's creation index so output can be written in id
  * order. Permutation goes through one scratch buffer, field by field, so it
  * costs one extra array of memory, not a copy of the whole store.
  */
 #include "config.h"
 
 #include "particles.h"
+
+#include "arrays.h"
+#include "parallel.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -19,20 +22,28 @@
 #define SPH_PARTICLE_DOUBLES(X)                                                              \
   X(x) X(y) X(vx) X(vy) X(rho) X(p) X(mass) X(h) X(u) X(x0) X(y0) X(vx0) X(vy0) X(rho0)    \
   X(u0) X(ax) X(ay) X(drho) X(du) X(xsx) X(xsy) X(vxh) X(vyh) X(rhoh) X(uh) X(xr) X(yr) X(mx) X(my)
+#define SPH_PARTICLE_OTHERS(X) X(kind) X(body) X(id) X(flags)
+#define SPH_PARTICLE_ONE(f) +1
+enum { SPH_PARTICLE_ARRAYS = 0 SPH_PARTICLE_DOUBLES(SPH_PARTICLE_ONE) SPH_PARTICLE_OTHERS(SPH_PARTICLE_ONE) };
 
+/* The block of arrays is reallocated whole (arrays.h: staggered starts) and
+ * the first p->cap entries of every array copied over. */
 static int grow(sph_particles *p, size_t cap, sph_error *err) {
-  void *np;
-#define GROW(field)                                                                          \
-  np = realloc(p->field, cap * sizeof *p->field);                                            \
-  if (!np) return sph_error_set(err, "out of memory for %zu particles", cap);                \
-  p->field = np;                                                                             \
-  memset(p->field + p->cap, 0, (cap - p->cap) * sizeof *p->field);
-  SPH_PARTICLE_DOUBLES(GROW)
-  GROW(kind)
-  GROW(body)
-  GROW(id)
-  GROW(flags)
-#undef GROW
+  size_t size[SPH_PARTICLE_ARRAYS];
+  void **field[SPH_PARTICLE_ARRAYS], *start[SPH_PARTICLE_ARRAYS];
+  size_t k = 0;
+#define LIST(f) size[k] = sizeof *p->f, field[k++] = (void **)&p->f;
+  SPH_PARTICLE_DOUBLES(LIST)
+  SPH_PARTICLE_OTHERS(LIST)
+#undef LIST
+  void *block = sph_arrays_block(cap, k, size, start);
+  if (!block) return sph_error_set(err, "out of memory for %zu particles", cap);
+  for (k = 0; k < SPH_PARTICLE_ARRAYS; k++) {
+    if (p->cap) memcpy(start[k], *field[k], p->cap * size[k]);
+    *field[k] = start[k];
+  }
+  free(p->block);
+  p->block = block;
   p->cap = cap;
   return 0;
 }
@@ -71,13 +82,7 @@ long sph_particles_add(sph_particles *p, double x, double y, double vx, double v
 }
 
 void sph_particles_free(sph_particles *p) {
-#define FREE(field) free(p->field);
-  SPH_PARTICLE_DOUBLES(FREE)
-  FREE(kind)
-  FREE(body)
-  FREE(id)
-  FREE(flags)
-#undef FREE
+  free(p->block);
   memset(p, 0, sizeof *p);
 }
 
@@ -90,16 +95,19 @@ size_t sph_particles_count_kind(const sph_particles *p, int32_t kind) {
 void sph_particles_permute(sph_particles *p, const size_t *perm, void *work) {
   size_t n = p->n;
   if (n == 0) return;
+  const long ln = (long)n;
+  /* one parallel region; each field's gather and copy-back split by index */
 #define PERMUTE(field)                                                                       \
   {                                                                                          \
     __typeof__(p->field) tmp = work;                                                         \
-    for (size_t i = 0; i < n; i++) tmp[i] = p->field[perm[i]];                               \
-    memcpy(p->field, tmp, n * sizeof *tmp);                                                  \
+    _Pragma("omp for schedule(static)") for (long i = 0; i < ln; i++) tmp[i] =              \
+        p->field[perm[i]];                                                                   \
+    _Pragma("omp for schedule(static)") for (long i = 0; i < ln; i++) p->field[i] = tmp[i];  \
   }
-  SPH_PARTICLE_DOUBLES(PERMUTE)
-  PERMUTE(kind)
-  PERMUTE(body)
-  PERMUTE(id)
-  PERMUTE(flags)
+#pragma omp parallel if (ln > SPH_OMP_MIN)
+  {
+    SPH_PARTICLE_DOUBLES(PERMUTE)
+    SPH_PARTICLE_OTHERS(PERMUTE)
+  }
 #undef PERMUTE
 }

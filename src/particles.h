@@ -32,6 +32,7 @@ enum {
 typedef struct sph_particles {
   size_t n;   /* particles in use */
   size_t cap; /* allocated length of every array */
+  void *block; /* the one allocation holding every array (particles.c) */
   /* state */
   double *x, *y;     /* position (m) */
   double *vx, *vy;   /* velocity (m/s) */

@@ -526,6 +526,12 @@ static void wrap_periodic(sph_sim *s) {
   }
 }
 
+/* How the loops over the store split it among threads: by the neighbour
+ * list's rows while the list covers the store (parallel.h). */
+static const size_t *slices(const sph_sim *s) {
+  return s->nl.cost && s->nl.n == s->p.n ? s->nl.cost : NULL;
+}
+
 /* Why particle i fails the blow-up check, or NULL. */
 static inline const char *bad_particle(const sph_particles *p, size_t i, double lim, double rho0,
                                        const double *d) {
@@ -547,9 +553,13 @@ static int check_state(sph_sim *s, sph_error *err) {
   const double *d = s->domain;
   const long n = (long)p->n;
   int64_t first = INT64_MAX;
-#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(min : first)
-  for (long i = 0; i < n; i++)
-    if (p->id[i] < first && bad_particle(p, (size_t)i, lim, rho0, d)) first = p->id[i];
+#pragma omp parallel if (n > SPH_OMP_MIN) reduction(min : first)
+  {
+    size_t lo, hi;
+    sph_slice(slices(s), p->n, &lo, &hi);
+    for (size_t i = lo; i < hi; i++)
+      if (p->id[i] < first && bad_particle(p, i, lim, rho0, d)) first = p->id[i];
+  }
   if (first == INT64_MAX) return 0;
   long worst = -1;
   for (long i = 0; i < n && worst < 0; i++)
@@ -600,11 +610,11 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
     s->drift_xsph += dt * s->power_xsph;
     s->impulse_x += dt * s->force_x;
     s->impulse_y += dt * s->force_y;
-    sph_leapfrog_step(&s->p, dt, s->first_step, xsph, &s->fp.eos);
+    sph_leapfrog_step(&s->p, dt, s->first_step, xsph, &s->fp.eos, slices(s));
     s->first_step = 0;
     move_walls(s, t_new);
   } else {
-    sph_pc_half(&s->p, dt, xsph, &s->fp.eos);
+    sph_pc_half(&s->p, dt, xsph, &s->fp.eos, slices(s));
     move_walls(s, s->t + 0.5 * dt);
     if (pass(s, err)) return -1;
     /* X^{n+1} = X^n + dt F(X^{n+1/2}): the mid-step powers drive the step */
@@ -612,7 +622,7 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
     s->drift_xsph += dt * s->power_xsph;
     s->impulse_x += dt * s->force_x;
     s->impulse_y += dt * s->force_y;
-    sph_pc_finish(&s->p, dt, xsph, &s->fp.eos);
+    sph_pc_finish(&s->p, dt, xsph, &s->fp.eos, slices(s));
     move_walls(s, t_new);
   }
   wrap_periodic(s);

@@ -1,0 +1,39 @@
+/*
+ * arrays.c - staggered array blocks (see arrays.h). Array k starts at
+ * page boundary + k * 64 bytes (k taken modulo 64, the lines of a page), so
+ * up to 64 arrays walked at the same index never share an L1 set.
+ */
+#include "config.h"
+
+#include "arrays.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define SPH_PAGE 4096
+#define SPH_LINE 64
+
+static size_t round_up(size_t v, size_t to) { return (v + to - 1) / to * to; }
+
+/* Offset of array k in a block whose arrays 0..k-1 end at `end`. */
+static size_t place(size_t end, size_t k) {
+  return round_up(end, SPH_PAGE) + SPH_LINE * (k % (SPH_PAGE / SPH_LINE));
+}
+
+void *sph_arrays_block(size_t cap, size_t count, const size_t *size, void **start) {
+  size_t end = 0;
+  for (size_t k = 0; k < count; k++) {
+    if (size[k] && cap > ((size_t)-1 - 2 * SPH_PAGE - end) / size[k]) return NULL;
+    end = place(end, k) + cap * size[k];
+  }
+  char *block = NULL;
+  if (posix_memalign((void **)&block, SPH_PAGE, round_up(end, SPH_PAGE) + SPH_PAGE)) return NULL;
+  end = 0;
+  for (size_t k = 0; k < count; k++) {
+    const size_t off = place(end, k);
+    start[k] = block + off;
+    memset(start[k], 0, cap * size[k]);
+    end = off + cap * size[k];
+  }
+  return block;
+}
