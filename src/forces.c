@@ -700,8 +700,8 @@ DEFINE_INTERACT_LANES(v4x, AVX2)
     const long n = (long)p->n;                                                               \
     double mx = 0.0; /* max of cs + sigma: exact in any order */                             \
     _Pragma("omp parallel if (n > SPH_OMP_MIN) reduction(max : mx)") {                       \
-      size_t lo, hi; /* slices of equal neighbour counts (parallel.h) */                     \
-      sph_slice(l->cost, (size_t)n, &lo, &hi);                 \
+      size_t lo, hi; /* slices of equal cost (parallel.h, grid.h) */                         \
+      sph_slice(l->cost, (size_t)n, &lo, &hi);                                               \
       for (size_t i = lo; i < hi; i++) {                                                     \
         if ((k) & (F_VARH | F_LEDGER))                                                       \
           interact_one(p, l, fp, w, i, k);                                                   \

@@ -268,7 +268,9 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     }
   }
   l->cost[0] = 0; /* exact: integers */
-  for (size_t i = 0; i < n; i++) l->cost[i + 1] = l->cost[i] + l->count[i] + SPH_NLIST_ROW_COST;
+  for (size_t i = 0; i < n; i++)
+    l->cost[i + 1] = l->cost[i] + SPH_NLIST_ROW_COST +
+                     (p->kind[i] == SPH_KIND_FLUID ? l->count[i] : l->count[i] / 2);
   l->maxcount = mc;
   l->n = n;
   l->radius = radius;
