@@ -7,8 +7,8 @@
 
 #include "arrays.h"
 
+#include <stdint.h>
 #include <stdlib.h>
-#include <string.h>
 
 #define SPH_PAGE 4096
 #define SPH_LINE 64
@@ -26,13 +26,16 @@ void *sph_arrays_block(size_t cap, size_t count, const size_t *size, void **star
     if (size[k] && cap > ((size_t)-1 - 2 * SPH_PAGE - end) / size[k]) return NULL;
     end = place(end, k) + cap * size[k];
   }
-  char *block = NULL;
-  if (posix_memalign((void **)&block, SPH_PAGE, round_up(end, SPH_PAGE) + SPH_PAGE)) return NULL;
+  /* calloc, not an aligned malloc and memset: a large block comes zeroed
+   * from the kernel without being touched, so arrays a case never uses (the
+   * stress tensor's, the ledger's, ...) take no resident memory */
+  char *block = calloc(1, end + SPH_PAGE);
+  if (!block) return NULL;
+  char *base = block + (SPH_PAGE - (uintptr_t)block % SPH_PAGE) % SPH_PAGE;
   end = 0;
   for (size_t k = 0; k < count; k++) {
     const size_t off = place(end, k);
-    start[k] = block + off;
-    memset(start[k], 0, cap * size[k]);
+    start[k] = base + off;
     end = off + cap * size[k];
   }
   return block;

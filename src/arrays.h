@@ -19,8 +19,9 @@
 
 /* One block holding count arrays of cap elements, element k of `size`
  * bytes each; start[k] receives the address of array k. Every array is
- * zeroed. Returns the block (release it with free()), or NULL when out of
- * memory. */
+ * zero (calloc: pages of a large block stay untouched, and out of the
+ * resident set, until an array is used). Returns the block (release it
+ * with free()), or NULL when out of memory. */
 void *sph_arrays_block(size_t cap, size_t count, const size_t *size, void **start);
 
 #endif
