@@ -1,6 +1,7 @@
 /*
  * test_determinism.c - same case, same build: byte-identical output on 1
- * and on 2 threads, for every kind of loop the solver has (DESIGN rule 1).
+ * and on 2 threads, for every kind of loop the solver has (DESIGN rule 1),
+ * and on 3 for the plain scheme (slices of unequal size).
  * test_dam_break covers the plain scheme; here short runs switch on the
  * other terms, each run with SPH_OMP_MIN=0 so that even these small cases
  * take the parallel paths:
@@ -21,23 +22,39 @@
 
 #include "testutil.h"
 
-static void same_on_1_and_2_threads(const char *case_rel, const char *sets) {
-  char *d1 = sph_test_tmpdir(), *d2 = sph_test_tmpdir(), cmd[8192];
-  for (int t = 1; t <= 2; t++) {
+/* Runs the case on 1 .. max_threads threads and compares every output
+ * directory with the 1-thread one. */
+static void same_on_threads(const char *case_rel, const char *sets, int max_threads) {
+  char *d[4], cmd[8192];
+  for (int t = 1; t <= max_threads; t++) {
+    d[t - 1] = sph_test_tmpdir();
     snprintf(cmd, sizeof cmd, "SPH_OMP_MIN=0 '%s' run --quiet --threads %d '%s' -o '%s' %s",
-             sph_test_build("src/sph"), t, sph_test_src(case_rel), t == 1 ? d1 : d2, sets);
+             sph_test_build("src/sph"), t, sph_test_src(case_rel), d[t - 1], sets);
     const int rc = sph_test_system(cmd);
     if (rc) printf("\n  %s: exit %d", case_rel, rc);
     CU_ASSERT_FATAL(rc == 0);
   }
-  snprintf(cmd, sizeof cmd, "diff -r '%s' '%s' >/dev/null", d1, d2);
-  const int same = sph_test_system(cmd) == 0;
-  printf("\n  %s: %s", case_rel, same ? "identical" : "DIFFERENT");
-  CU_ASSERT(same);
-  sph_test_rmtree(d1);
-  sph_test_rmtree(d2);
-  free(d1);
-  free(d2);
+  for (int t = 2; t <= max_threads; t++) {
+    snprintf(cmd, sizeof cmd, "diff -r '%s' '%s' >/dev/null", d[0], d[t - 1]);
+    const int same = sph_test_system(cmd) == 0;
+    printf("\n  %s, %d threads: %s", case_rel, t, same ? "identical" : "DIFFERENT");
+    CU_ASSERT(same);
+  }
+  for (int t = 1; t <= max_threads; t++) {
+    sph_test_rmtree(d[t - 1]);
+    free(d[t - 1]);
+  }
+}
+
+static void same_on_1_and_2_threads(const char *case_rel, const char *sets) {
+  same_on_threads(case_rel, sets, 2);
+}
+
+/* Three threads on the plain scheme: uneven cost-balanced slices
+ * (src/parallel.h) in every loop of the step, and the kept neighbour list. */
+static void test_three_threads(void) {
+  same_on_threads("cases/martin_moyce_coarse.yaml",
+                  "--set time.end=0.1 --set numerics.integrator=leapfrog", 3);
 }
 
 static void test_wet_bed(void) {
@@ -74,6 +91,7 @@ int main(void) {
                          {"mirror walls and the MLS filter", test_mirror_filter},
                          {"periodic x, leap-frog, free surface with h*", test_periodic_free_surface},
                          {"paddle, gauges, variable h, Shepard filter", test_paddle},
+                         {"leap-frog dam break on 1, 2 and 3 threads", test_three_threads},
                          CU_TEST_INFO_NULL};
   return sph_test_main("determinism", tests);
 }
