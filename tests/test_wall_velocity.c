@@ -191,8 +191,9 @@ static void test_ghost_linear(void) {
     build(&p, &f, moving[m][0], moving[m][1], 1);
     double *g = malloc(2 * p.n * sizeof *g);
     CU_ASSERT_FATAL(g != NULL);
-    CU_ASSERT_FATAL(sph_wall_velocity(&p, 2.0 * H, 0.0, 0.0, g, g + p.n, &(sph_wall_velocity_work){0},
-                                      &err) == 0);
+    sph_wall_velocity_work w = {0};
+    CU_ASSERT_FATAL(sph_wall_velocity(&p, 2.0 * H, 0.0, 0.0, g, g + p.n, &w, &err) == 0);
+    sph_wall_velocity_work_free(&w);
     size_t checked;
     const double worst = check_ghosts(&p, &f, moving[m][0], moving[m][1], g, g + p.n, &checked);
     printf("\n  linear field, wall velocity (%g, %g): %zu ghosts, worst error %.2e m/s", moving[m][0],
