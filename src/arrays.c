@@ -9,6 +9,7 @@
 
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define SPH_PAGE 4096
 #define SPH_LINE 64
@@ -39,4 +40,20 @@ void *sph_arrays_block(size_t cap, size_t count, const size_t *size, void **star
     end = off + cap * size[k];
   }
   return block;
+}
+
+int sph_arrays_regrow(void **block, size_t cap, size_t keep, size_t count, const size_t *size,
+                      void **const *field) {
+  enum { MAX_ARRAYS = 64 };
+  void *start[MAX_ARRAYS];
+  if (count > MAX_ARRAYS) return -1;
+  void *fresh = sph_arrays_block(cap, count, size, start);
+  if (!fresh) return -1;
+  for (size_t k = 0; k < count; k++) {
+    if (keep) memcpy(start[k], *field[k], keep * size[k]);
+    *field[k] = start[k];
+  }
+  free(*block);
+  *block = fresh;
+  return 0;
 }

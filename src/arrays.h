@@ -24,4 +24,11 @@
  * with free()), or NULL when out of memory. */
 void *sph_arrays_block(size_t cap, size_t count, const size_t *size, void **start);
 
+/* Moves a set of arrays to a new block of cap elements each: *field[k]
+ * (size[k] bytes per element) points into the new block, with the first
+ * `keep` elements copied from where it pointed; the old *block is freed
+ * and replaced. Returns 0, or -1 when out of memory (nothing changed). */
+int sph_arrays_regrow(void **block, size_t cap, size_t keep, size_t count, const size_t *size,
+                      void **const *field);
+
 #endif

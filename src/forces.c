@@ -88,17 +88,10 @@ static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
                      (void **)&w->lyy, (void **)&w->gvx, (void **)&w->gvy};
   enum { N_ARRAYS = sizeof arrays / sizeof arrays[0] };
   size_t size[N_ARRAYS];
-  void *start[N_ARRAYS];
   size[0] = sizeof *w->hot;
   for (size_t k = 1; k < N_ARRAYS; k++) size[k] = sizeof(double);
-  void *block = sph_arrays_block(cap, N_ARRAYS, size, start);
-  if (!block) return sph_error_set(err, "forces: out of memory for %zu particles", n);
-  for (size_t k = 0; k < N_ARRAYS; k++) {
-    if (w->cap) memcpy(start[k], *arrays[k], w->cap * size[k]);
-    *arrays[k] = start[k];
-  }
-  free(w->block);
-  w->block = block;
+  if (sph_arrays_regrow(&w->block, cap, w->cap, N_ARRAYS, size, arrays))
+    return sph_error_set(err, "forces: out of memory for %zu particles", n);
   w->cap = cap;
   return 0;
 }

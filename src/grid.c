@@ -23,29 +23,22 @@ void sph_grid_init(sph_grid *g) { memset(g, 0, sizeof *g); }
 
 void sph_grid_free(sph_grid *g) {
   free(g->start);
-  free(g->cx);
-  free(g->cy);
-  free(g->key);
-  free(g->perm);
   free(g->count);
-  free(g->work);
+  free(g->block);
   memset(g, 0, sizeof *g);
 }
 
+/* Room for n particles and `cells` cells. Every per-particle array is
+ * rewritten by the build that calls this, so a new block (arrays.h) keeps
+ * nothing of the old one. */
 static int reserve(sph_grid *g, size_t n, size_t cells, sph_error *err) {
   if (n > g->cap_particles) {
-    size_t cap = n + n / 4 + 16;
-    void *a = realloc(g->cx, cap * sizeof *g->cx);
-    if (a) g->cx = a;
-    void *b = realloc(g->cy, cap * sizeof *g->cy);
-    if (b) g->cy = b;
-    void *c = realloc(g->key, cap * sizeof *g->key);
-    if (c) g->key = c;
-    void *d = realloc(g->perm, cap * sizeof *g->perm);
-    if (d) g->perm = d;
-    void *e = realloc(g->work, cap * 8);
-    if (e) g->work = e;
-    if (!a || !b || !c || !d || !e) return sph_error_set(err, "grid: out of memory for %zu particles", n);
+    const size_t cap = n + n / 4 + 16;
+    void **const arrays[] = {(void **)&g->cx, (void **)&g->cy, (void **)&g->key,
+                             (void **)&g->perm, &g->work};
+    const size_t size[] = {sizeof *g->cx, sizeof *g->cy, sizeof *g->key, sizeof *g->perm, 8};
+    if (sph_arrays_regrow(&g->block, cap, 0, 5, size, arrays))
+      return sph_error_set(err, "grid: out of memory for %zu particles", n);
     g->cap_particles = cap;
   }
   if (cells + 1 > g->cap_cells) {
@@ -194,17 +187,12 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   if (n > UINT32_MAX) return sph_error_set(err, "grid: %zu particles is too many for a list", n);
   if (n + 1 > l->cap_n) { /* every row array is rewritten below: nothing to keep */
     const size_t cap = n + 1 + n / 4 + 16;
-    void **arrays[] = {(void **)&l->start, (void **)&l->count, (void **)&l->xref,
-                       (void **)&l->yref, (void **)&l->idref, (void **)&l->cost};
+    void **const arrays[] = {(void **)&l->start, (void **)&l->count, (void **)&l->xref,
+                             (void **)&l->yref,  (void **)&l->idref, (void **)&l->cost};
     const size_t size[] = {sizeof *l->start, sizeof *l->count, sizeof *l->xref,
                            sizeof *l->yref,  sizeof *l->idref, sizeof *l->cost};
-    void *start[6];
-    void *block = sph_arrays_block(cap, 6, size, start);
-    if (!block)
+    if (sph_arrays_regrow(&l->block, cap, 0, 6, size, arrays))
       return sph_error_set(err, "grid: out of memory for the neighbour list of %zu particles", n);
-    free(l->block);
-    l->block = block;
-    for (int k = 0; k < 6; k++) *arrays[k] = start[k];
     l->cap_n = cap;
   }
   /* a row's capacity is its candidate count: the rows are filled in

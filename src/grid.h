@@ -32,6 +32,7 @@ typedef struct sph_grid {
   size_t cap_cells, cap_particles;
   size_t *key, *perm, *count; /* scratch */
   void *work;                 /* scratch for permutation (8 bytes per particle) */
+  void *block;                /* the one allocation of cx, cy, key, perm, work (arrays.h) */
 } sph_grid;
 
 void sph_grid_init(sph_grid *g);

@@ -30,20 +30,14 @@ enum { SPH_PARTICLE_ARRAYS = 0 SPH_PARTICLE_DOUBLES(SPH_PARTICLE_ONE) SPH_PARTIC
  * the first p->cap entries of every array copied over. */
 static int grow(sph_particles *p, size_t cap, sph_error *err) {
   size_t size[SPH_PARTICLE_ARRAYS];
-  void **field[SPH_PARTICLE_ARRAYS], *start[SPH_PARTICLE_ARRAYS];
+  void **field[SPH_PARTICLE_ARRAYS];
   size_t k = 0;
 #define LIST(f) size[k] = sizeof *p->f, field[k++] = (void **)&p->f;
   SPH_PARTICLE_DOUBLES(LIST)
   SPH_PARTICLE_OTHERS(LIST)
 #undef LIST
-  void *block = sph_arrays_block(cap, k, size, start);
-  if (!block) return sph_error_set(err, "out of memory for %zu particles", cap);
-  for (k = 0; k < SPH_PARTICLE_ARRAYS; k++) {
-    if (p->cap) memcpy(start[k], *field[k], p->cap * size[k]);
-    *field[k] = start[k];
-  }
-  free(p->block);
-  p->block = block;
+  if (sph_arrays_regrow(&p->block, cap, p->cap, k, size, field))
+    return sph_error_set(err, "out of memory for %zu particles", cap);
   p->cap = cap;
   return 0;
 }

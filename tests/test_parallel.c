@@ -13,7 +13,9 @@
  *
  * sph_arrays_block: every array starts k cache lines past a page boundary,
  * arrays do not overlap, every byte is zero, and an impossible size gives
- * NULL rather than a short block.
+ * NULL rather than a short block. sph_arrays_regrow carries the first
+ * `keep` elements of every array into the new block, zeroes the rest, and
+ * changes nothing when the memory is not there.
  */
 #include "config.h"
 
@@ -152,12 +154,44 @@ static void test_arrays_block(void) {
   CU_ASSERT_PTR_NULL(sph_arrays_block(SIZE_MAX / 4, 2, huge, start));
 }
 
+static void test_arrays_regrow(void) {
+  double *a = NULL;
+  int32_t *b = NULL;
+  void *block = NULL;
+  void **const field[] = {(void **)&a, (void **)&b};
+  const size_t size[] = {sizeof *a, sizeof *b};
+  CU_ASSERT_FATAL(sph_arrays_regrow(&block, 10, 0, 2, size, field) == 0);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(block);
+  for (int i = 0; i < 10; i++) {
+    a[i] = 0.5 * i;
+    b[i] = -i;
+  }
+  void *old = block;
+  CU_ASSERT_FATAL(sph_arrays_regrow(&block, 1000, 10, 2, size, field) == 0);
+  CU_ASSERT(block != old);
+  int kept = 1, zero = 1;
+  for (int i = 0; i < 10; i++) kept &= a[i] == 0.5 * i && b[i] == -i;
+  for (int i = 10; i < 1000; i++) zero &= a[i] == 0.0 && b[i] == 0;
+  CU_ASSERT(kept); /* the first `keep` elements carried over */
+  CU_ASSERT(zero); /* the rest zero */
+  CU_ASSERT_EQUAL((uintptr_t)a % 4096, 0);
+  CU_ASSERT_EQUAL((uintptr_t)b % 4096, 64);
+  /* out of memory: -1 and nothing changed */
+  double *a0 = a;
+  old = block;
+  CU_ASSERT(sph_arrays_regrow(&block, SIZE_MAX / 4, 10, 2, size, field) == -1);
+  CU_ASSERT(block == old && a == a0 && a[9] == 4.5);
+  free(block);
+}
+
 int main(void) {
   CU_TestInfo tests[] = {{"share: uniform cost, the equal-count split", test_share_uniform},
                          {"share: a dense block is split by cost", test_share_skewed},
                          {"share: zero cost and no items", test_share_degenerate},
                          {"slice: each thread of a team takes its share", test_slice_in_team},
                          {"arrays block: staggered, disjoint, zeroed", test_arrays_block},
+                         {"arrays regrow: keeps the first elements, zeroes the rest",
+                          test_arrays_regrow},
                          CU_TEST_INFO_NULL};
   return sph_test_main("parallel", tests);
 }
