@@ -223,7 +223,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
 #pragma omp parallel if (ln > SPH_OMP_MIN) reduction(max : mc)
   {
     size_t lo, hi; /* slices of equal candidate counts (parallel.h) */
-    sph_share(l->start, n, sph_thread(), sph_threads(), &lo, &hi);
+    sph_slice(l->start, n, &lo, &hi);
     for (size_t i = lo; i < hi; i++) {
       uint32_t *restrict row = l->nb + l->start[i];
       const double xi = x[i], yi = y[i];

@@ -37,6 +37,13 @@ static size_t first_at(const size_t *prefix, size_t n, size_t target) {
   return a;
 }
 
+/* floor(total t / parts), without overflowing total * t: where part t of
+ * `parts` equal parts of 0..total starts. */
+static size_t part_start(size_t total, int t, int parts) {
+  const size_t q = total / (size_t)parts, r = total % (size_t)parts;
+  return q * (size_t)t + r * (size_t)t / (size_t)parts;
+}
+
 void sph_share(const size_t *prefix, size_t n, int t, int parts, size_t *lo, size_t *hi) {
   if (parts <= 1) {
     *lo = 0;
@@ -44,12 +51,8 @@ void sph_share(const size_t *prefix, size_t n, int t, int parts, size_t *lo, siz
     return;
   }
   const size_t total = prefix[n] - prefix[0];
-  /* the quotient exactly, without overflowing total * t */
-  const size_t q = total / (size_t)parts, r = total % (size_t)parts;
-  const size_t at_lo = q * (size_t)t + r * (size_t)t / (size_t)parts;
-  const size_t at_hi = q * (size_t)(t + 1) + r * (size_t)(t + 1) / (size_t)parts;
-  *lo = t == 0 ? 0 : first_at(prefix, n, prefix[0] + at_lo);
-  *hi = t == parts - 1 ? n : first_at(prefix, n, prefix[0] + at_hi);
+  *lo = t == 0 ? 0 : first_at(prefix, n, prefix[0] + part_start(total, t, parts));
+  *hi = t == parts - 1 ? n : first_at(prefix, n, prefix[0] + part_start(total, t + 1, parts));
 }
 
 void sph_slice(const size_t *prefix, size_t n, size_t *lo, size_t *hi) {
@@ -58,6 +61,6 @@ void sph_slice(const size_t *prefix, size_t n, size_t *lo, size_t *hi) {
     sph_share(prefix, n, t, parts, lo, hi);
     return;
   }
-  *lo = n / (size_t)parts * (size_t)t + n % (size_t)parts * (size_t)t / (size_t)parts;
-  *hi = n / (size_t)parts * (size_t)(t + 1) + n % (size_t)parts * (size_t)(t + 1) / (size_t)parts;
+  *lo = part_start(n, t, parts);
+  *hi = part_start(n, t + 1, parts);
 }

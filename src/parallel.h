@@ -41,9 +41,9 @@ long sph_omp_min(void);
 #define SPH_OMP_MIN sph_omp_min()
 
 /* The slice [*lo, *hi) of 0..n-1 that part t of `parts` takes when the cost
- * of items 0..i-1 is prefix[i] (prefix[0] = 0, nondecreasing): contiguous
- * slices of about equal cost, found by bisection. The neighbour loops split
- * by their rows' candidate counts this way rather than by item count: the
+ * of items 0..i-1 is prefix[i] - prefix[0] (prefix nondecreasing):
+ * contiguous slices of about equal cost, found by bisection. The loops of
+ * a step split by their rows' costs this way rather than by item count: the
  * dense bottom of a tank otherwise leaves one thread waiting for the other,
  * and a dynamic schedule hands each particle's outputs to a different
  * thread at every pass (their cache lines then move between the cores).
@@ -51,10 +51,9 @@ long sph_omp_min(void);
 void sph_share(const size_t *prefix, size_t n, int t, int parts, size_t *lo, size_t *hi);
 
 /* The calling thread's slice of 0..n-1 in its team: sph_share by `prefix`
- * when given (n + 1 entries), else equal counts. Loops over the store that
- * run between neighbour loops take the neighbour list's slices (its row
- * offsets as prefix), so each thread writes and reads the same particles
- * in every loop of a step. */
+ * when given (n + 1 entries), else equal counts. Every loop over the store
+ * in a step takes the neighbour list's slices (its cost prefix, grid.h),
+ * so each thread writes and reads the same particles in every loop. */
 void sph_slice(const size_t *prefix, size_t n, size_t *lo, size_t *hi);
 
 #endif

@@ -3,9 +3,10 @@
  *
  * All arrays live in one block (arrays.h), with the same capacity, and
  * grow by doubling. Storage order is free to change (the grid sorts by
- * cell); the id array keeps each particle's creation index so output can be written in id
- * order. Permutation goes through one scratch buffer, field by field, so it
- * costs one extra array of memory, not a copy of the whole store.
+ * cell); the id array keeps each particle's creation index so output can
+ * be written in id order. Permutation goes through one scratch buffer,
+ * field by field, so it costs one extra array of memory, not a copy of the
+ * whole store.
  */
 #include "config.h"
 
