@@ -372,33 +372,37 @@ static int wall_ghosts(const sph_particles *p, const sph_force_params *fp, doubl
                            gvx, gvy, wv, err);
 }
 
+/* The options of the strain-rate pass as fp asks for them, into w's arrays:
+ * the gradient correction's L, and the wall particles' extrapolated
+ * velocities (computed here). */
+static int strain_setup(const sph_particles *p, const sph_force_params *fp, sph_force_work *w,
+                        strain_opts *o, sph_error *err) {
+  *o = (strain_opts){0};
+  if (fp->gradient_correction) {
+    o->lxx = w->lxx;
+    o->lxy = w->lxy;
+    o->lyy = w->lyy;
+  }
+  if (fp->no_slip) {
+    if (wall_ghosts(p, fp, w->gvx, w->gvy, &w->wv, err)) return -1;
+    o->gvx = w->gvx;
+    o->gvy = w->gvy;
+  }
+  return 0;
+}
+
 int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_force_params *fp,
                            double *exx, double *exy, double *eyy, sph_error *err) {
   sph_nlist l;
   sph_nlist_init(&l);
+  sph_force_work w = {0};
+  strain_opts o;
   int rc = sph_nlist_build(&l, g, p, kernel_reach(p, fp), 0.0, fp->periodic ? fp->period : 0.0,
                            err);
-  strain_opts o = {0};
-  double *scratch = NULL;
-  if (rc == 0 && (fp->gradient_correction || fp->no_slip)) {
-    scratch = malloc(5 * (p->n ? p->n : 1) * sizeof *scratch);
-    if (!scratch) rc = sph_error_set(err, "strain rate: out of memory for %zu particles", p->n);
-  }
-  if (rc == 0 && fp->gradient_correction) {
-    o.lxx = scratch;
-    o.lxy = scratch + p->n;
-    o.lyy = scratch + 2 * p->n;
-  }
-  sph_wall_velocity_work wv = {0};
-  if (rc == 0 && fp->no_slip) {
-    double *gvx = scratch + 3 * p->n, *gvy = scratch + 4 * p->n;
-    o.gvx = gvx;
-    o.gvy = gvy;
-    rc = wall_ghosts(p, fp, gvx, gvy, &wv, err);
-  }
+  if (rc == 0) rc = work_reserve(&w, p->n, err);
+  if (rc == 0) rc = strain_setup(p, fp, &w, &o, err);
   if (rc == 0) strain_list(p, &l, fp, exx, exy, eyy, &o);
-  sph_wall_velocity_work_free(&wv);
-  free(scratch);
+  sph_force_work_free(&w);
   sph_nlist_free(&l);
   return rc;
 }
@@ -834,17 +838,8 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
   if (fp->var_h) F |= F_VARH;
   if (fp->ledger) F |= F_LEDGER;
   if (F & F_STRESS) {
-    strain_opts o = {0};
-    if (fp->gradient_correction) {
-      o.lxx = w->lxx;
-      o.lxy = w->lxy;
-      o.lyy = w->lyy;
-    }
-    if (fp->no_slip) {
-      if (wall_ghosts(p, fp, w->gvx, w->gvy, &w->wv, err)) return -1;
-      o.gvx = w->gvx;
-      o.gvy = w->gvy;
-    }
+    strain_opts o;
+    if (strain_setup(p, fp, w, &o, err)) return -1;
     strain_list(p, l, fp, w->sxx, w->sxy, w->syy, &o);
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
     for (long i = 0; i < n; i++) { /* tau / rho^2: laminar mu eps, plus the SPS stress */
