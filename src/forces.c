@@ -58,6 +58,10 @@
 #define MAX_THREADS() 1
 #endif
 
+/* Rows per stolen chunk of the interaction loop: a few microseconds of
+ * work, so a thread waits at most that long at the end of a pass. */
+#define SPH_STEAL_GRAIN 32
+
 /* The terms, as bits of F. */
 enum {
   F_AV = 1,        /* artificial viscosity */
@@ -72,6 +76,7 @@ enum {
 void sph_force_work_free(sph_force_work *w) {
   free(w->block);
   free(w->rows);
+  sph_steal_free(&w->steal);
   sph_wall_velocity_work_free(&w->wv);
   *w = (sph_force_work){0};
 }
@@ -697,16 +702,16 @@ DEFINE_INTERACT_LANES(v4x, AVX2)
     const long n = (long)p->n;                                                               \
     double mx = 0.0; /* max of cs + sigma: exact in any order */                             \
     _Pragma("omp parallel if (n > SPH_OMP_MIN) reduction(max : mx)") {                       \
-      size_t lo, hi; /* slices of equal cost (parallel.h, grid.h) */                         \
-      sph_slice(l->cost, (size_t)n, &lo, &hi);                                               \
-      for (size_t i = lo; i < hi; i++) {                                                     \
-        if ((k) & (F_VARH | F_LEDGER))                                                       \
-          interact_one(p, l, fp, w, i, k);                                                   \
-        else                                                                                 \
-          interact_##FL(p, l, fp, w, i, k);                                                  \
-        const double c = w->cs[i] + w->sigma[i];                                             \
-        if (c > mx) mx = c;                                                                  \
-      }                                                                                      \
+      size_t lo, hi; /* slices of equal cost, with stealing (parallel.h) */                  \
+      while (sph_steal_next(&w->steal, SPH_STEAL_GRAIN, &lo, &hi))                           \
+        for (size_t i = lo; i < hi; i++) {                                                   \
+          if ((k) & (F_VARH | F_LEDGER))                                                     \
+            interact_one(p, l, fp, w, i, k);                                                 \
+          else                                                                               \
+            interact_##FL(p, l, fp, w, i, k);                                                \
+          const double c = w->cs[i] + w->sigma[i];                                           \
+          if (c > mx) mx = c;                                                                \
+        }                                                                                    \
     }                                                                                        \
     w->cs_sigma_max = mx;                                                                    \
   }
@@ -829,6 +834,9 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
     }
     w->rows_stride = stride;
   }
+  /* the interaction loop's slices: the list's, with stealing */
+  if (sph_steal_reset(&w->steal, l->cost, p->n, n > SPH_OMP_MIN ? MAX_THREADS() : 1))
+    return sph_error_set(err, "forces: out of memory for the thread slices");
   unsigned F = 0;
   if (fp->alpha != 0.0 || fp->beta != 0.0) F |= F_AV;
   if (fp->xsph != 0.0) F |= F_XSPH;

@@ -56,6 +56,7 @@
 #include "case.h"
 #include "eos.h"
 #include "grid.h"
+#include "parallel.h"
 #include "particles.h"
 #include "wall_velocity.h"
 
@@ -110,6 +111,7 @@ typedef struct sph_force_work {
   double cs_sigma_max;   /* max over the particles of cs + sigma (the step rule) */
   uint32_t *rows;        /* per thread: a neighbour row cut to the support */
   size_t rows_stride, rows_cap;
+  sph_steal steal;       /* the interaction loop's slices (parallel.h) */
 } sph_force_work;
 
 void sph_force_work_free(sph_force_work *w);

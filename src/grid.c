@@ -156,6 +156,7 @@ void sph_nlist_init(sph_nlist *l) { memset(l, 0, sizeof *l); }
 void sph_nlist_free(sph_nlist *l) {
   free(l->block);
   free(l->nb);
+  sph_steal_free(&l->steal);
   memset(l, 0, sizeof *l);
 }
 
@@ -220,40 +221,42 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   const double *restrict x = p->x, *restrict y = p->y;
   const int sorted = g->sorted;
   uint32_t mc = 0;
+  if (sph_steal_reset(&l->steal, l->start, n, ln > SPH_OMP_MIN ? sph_max_threads() : 1))
+    return sph_error_set(err, "grid: out of memory for the thread slices");
 #pragma omp parallel if (ln > SPH_OMP_MIN) reduction(max : mc)
   {
-    size_t lo, hi; /* slices of equal candidate counts (parallel.h) */
-    sph_slice(l->start, n, &lo, &hi);
-    for (size_t i = lo; i < hi; i++) {
-      uint32_t *restrict row = l->nb + l->start[i];
-      const double xi = x[i], yi = y[i];
-      /* the four kinds of grid each with a loop of its own, free of tests
-       * that do not change along it */
-      uint32_t c;
-      if (sorted && period <= 0.0)
-        c = fill_row(g, x, y, i, r2max, 0.0, row, 1);
-      else if (sorted)
-        c = fill_row(g, x, y, i, r2max, period, row, 1);
-      else if (period <= 0.0)
-        c = fill_row(g, x, y, i, r2max, 0.0, row, 0);
-      else
-        c = fill_row(g, x, y, i, r2max, period, row, 0);
-      /* increasing storage index: already so on a sorted grid that is not
-       * periodic (rows below, same, above in key order); otherwise an
-       * insertion sort, linear on nearly sorted rows */
-      if (!sorted || period > 0.0)
-        for (uint32_t a = 1; a < c; a++) {
-          const uint32_t v = row[a];
-          uint32_t b = a;
-          for (; b > 0 && row[b - 1] > v; b--) row[b] = row[b - 1];
-          row[b] = v;
-        }
-      l->count[i] = c;
-      l->xref[i] = xi;
-      l->yref[i] = yi;
-      l->idref[i] = p->id[i];
-      if (c > mc) mc = c;
-    }
+    size_t lo, hi; /* slices of equal candidate counts, with stealing (parallel.h) */
+    while (sph_steal_next(&l->steal, SPH_NLIST_STEAL_GRAIN, &lo, &hi))
+      for (size_t i = lo; i < hi; i++) {
+        uint32_t *restrict row = l->nb + l->start[i];
+        const double xi = x[i], yi = y[i];
+        /* the four kinds of grid each with a loop of its own, free of tests
+         * that do not change along it */
+        uint32_t c;
+        if (sorted && period <= 0.0)
+          c = fill_row(g, x, y, i, r2max, 0.0, row, 1);
+        else if (sorted)
+          c = fill_row(g, x, y, i, r2max, period, row, 1);
+        else if (period <= 0.0)
+          c = fill_row(g, x, y, i, r2max, 0.0, row, 0);
+        else
+          c = fill_row(g, x, y, i, r2max, period, row, 0);
+        /* increasing storage index: already so on a sorted grid that is not
+         * periodic (rows below, same, above in key order); otherwise an
+         * insertion sort, linear on nearly sorted rows */
+        if (!sorted || period > 0.0)
+          for (uint32_t a = 1; a < c; a++) {
+            const uint32_t v = row[a];
+            uint32_t b = a;
+            for (; b > 0 && row[b - 1] > v; b--) row[b] = row[b - 1];
+            row[b] = v;
+          }
+        l->count[i] = c;
+        l->xref[i] = xi;
+        l->yref[i] = yi;
+        l->idref[i] = p->id[i];
+        if (c > mc) mc = c;
+      }
   }
   l->cost[0] = 0; /* exact: integers */
   for (size_t i = 0; i < n; i++)

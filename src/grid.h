@@ -17,6 +17,7 @@
 #include <stdint.h>
 
 #include "error.h"
+#include "parallel.h"
 #include "particles.h"
 
 typedef struct sph_grid {
@@ -152,6 +153,8 @@ static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SP
  * tank floor finished its interaction loops 0.85 s earlier in all (of
  * 17.5 s), halved 0.4-0.56 s. */
 #define SPH_NLIST_ROW_COST 8
+/* Rows per stolen chunk of the list's fill loop (parallel.h). */
+#define SPH_NLIST_STEAL_GRAIN 32
 
 typedef struct sph_nlist {
   int valid;          /* built, and the store not reordered since */
@@ -170,6 +173,7 @@ typedef struct sph_nlist {
                          the loops over the store among threads (parallel.h) */
   void *block;        /* the one allocation of start ... cost (arrays.h) */
   long builds;        /* number of builds (statistics) */
+  sph_steal steal;    /* the fill loop's slices (parallel.h) */
 } sph_nlist;
 
 void sph_nlist_init(sph_nlist *l);

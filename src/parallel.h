@@ -14,6 +14,7 @@
 #define SPH_PARALLEL_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -31,6 +32,15 @@ static inline int sph_thread(void) {
 static inline int sph_threads(void) {
 #ifdef _OPENMP
   return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
+
+/* The team size a parallel region will have (1 without OpenMP). */
+static inline int sph_max_threads(void) {
+#ifdef _OPENMP
+  return omp_get_max_threads();
 #else
   return 1;
 #endif
@@ -55,5 +65,45 @@ void sph_share(const size_t *prefix, size_t n, int t, int parts, size_t *lo, siz
  * in a step takes the neighbour list's slices (its cost prefix, grid.h),
  * so each thread writes and reads the same particles in every loop. */
 void sph_slice(const size_t *prefix, size_t n, size_t *lo, size_t *hi);
+
+/* ---- slices with stealing ----
+ *
+ * The interaction loop's rows cost the same on every thread only on
+ * average: from pass to pass one core or the other is held up (cache
+ * misses, an interrupt, the host), by 5-25 % of a pass, and the other
+ * waits at the join. With stealing, each thread starts on its sph_share
+ * slice and takes chunks from the front of it; a thread whose slice is
+ * used up takes chunks from the back of another's. Which thread computes
+ * a row never changes a result (rows are independent), so this balances
+ * the pass without touching determinism, and most rows stay with the
+ * thread that owns them in every other loop of the step.
+ *
+ * Use: sph_steal_reset (serially, before the parallel region, for the team
+ * size the region will have), then in the region
+ *   size_t lo, hi;
+ *   while (sph_steal_next(&s, grain, &lo, &hi)) for (i = lo; i < hi; i++) ...
+ * Every row is handed out exactly once whatever the team size turns out to
+ * be: threads without a slice of their own only steal, and slices without
+ * a thread are stolen. Needs n < 2^32 (sph_steal_reset fails otherwise). */
+typedef struct sph_steal_slot {
+  uint64_t range; /* front (low 32 bits) and back (high 32 bits) of a slice */
+  char pad[56];   /* one cache line per slot */
+} sph_steal_slot;
+typedef struct sph_steal {
+  void *mem;            /* the allocation (slots aligned to 64 bytes in it) */
+  sph_steal_slot *slot; /* parts slots */
+  int parts, cap;
+} sph_steal;
+
+/* Gives part t of `parts` its sph_share slice (prefix may be NULL: equal
+ * counts). Returns -1 when n >= 2^32 or memory is short. */
+int sph_steal_reset(sph_steal *s, const size_t *prefix, size_t n, int parts);
+
+/* The calling thread's next chunk [*lo, *hi): from the front of its own
+ * slice, else (at least `grain` rows, half of what is left) from the back
+ * of another's; 0 when every row has been handed out. */
+int sph_steal_next(sph_steal *s, size_t grain, size_t *lo, size_t *hi);
+
+void sph_steal_free(sph_steal *s);
 
 #endif

@@ -9,7 +9,15 @@
  * equal-count split that sph_slice uses without a prefix. Inside an OpenMP
  * team of 1..4 threads sph_slice gives each thread exactly its sph_share
  * slice. (That a run's output does not depend on the split is
- * test_determinism's job: it compares runs on 1 and 2 threads.)
+ * test_determinism's job: it compares runs on 1, 2 and 3 threads.)
+ *
+ * sph_steal: for 1..5 slices and teams of 1..4 threads (more slices than
+ * threads, and fewer) every row is handed out exactly once, in chunks of at
+ * least the grain unless fewer rows were left; one thread alone takes its
+ * own slice front to back before any other's; a thread that finds nothing
+ * left ends at once; and a thread whose partner has not started takes the
+ * partner's slice as well (stealing happens). More than 2^32 rows is
+ * refused.
  *
  * sph_arrays_block: every array starts k cache lines past a page boundary,
  * arrays do not overlap, every byte is zero, and an impossible size gives
@@ -184,11 +192,110 @@ static void test_arrays_regrow(void) {
   free(block);
 }
 
+/* Hands out prefix's N rows (parts slices) to a team of nth threads with
+ * the given grain; counts how often each row came out in count. */
+static void steal_run(sph_steal *s, const size_t *prefix, size_t n, int parts, int nth,
+                      size_t grain, int *count, int *small_chunks) {
+  CU_ASSERT_FATAL(sph_steal_reset(s, prefix, n, parts) == 0);
+  int small = 0;
+#ifdef _OPENMP
+#pragma omp parallel num_threads(nth) reduction(+ : small)
+#else
+  (void)nth;
+#endif
+  {
+    size_t lo, hi;
+    while (sph_steal_next(s, grain, &lo, &hi)) {
+      if (hi - lo < grain) small++; /* allowed only for the last rows of a slice */
+      for (size_t i = lo; i < hi; i++) __atomic_fetch_add(&count[i], 1, __ATOMIC_RELAXED);
+    }
+    if (sph_steal_next(s, grain, &lo, &hi)) small += 1000; /* nothing after the end */
+  }
+  *small_chunks = small;
+}
+
+static void test_steal_once(void) {
+  enum { N = 20000 };
+  size_t *prefix = malloc((N + 1) * sizeof *prefix);
+  int *count = malloc(N * sizeof *count);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(prefix);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(count);
+  prefix[0] = 0;
+  for (size_t i = 0; i < N; i++) prefix[i + 1] = prefix[i] + (i < 3000 ? 60 : 8);
+  sph_steal s = {0};
+  for (int parts = 1; parts <= 5; parts++)
+    for (int nth = 1; nth <= 4; nth++)
+      for (size_t grain = 1; grain <= 64; grain *= 8) {
+        memset(count, 0, N * sizeof *count);
+        int small = 0;
+        steal_run(&s, parts % 2 ? prefix : NULL, N, parts, nth, grain, count, &small);
+        int once = 1;
+        for (size_t i = 0; i < N; i++) once &= count[i] == 1;
+        CU_ASSERT(once);
+        /* a chunk below the grain empties its slice: one per slice at most */
+        CU_ASSERT(small <= parts);
+      }
+  sph_steal_free(&s);
+  free(count);
+  free(prefix);
+}
+
+static void test_steal_alone(void) {
+  enum { N = 1000 };
+  sph_steal s = {0};
+  /* one slice, one thread: front to back, in order */
+  CU_ASSERT_FATAL(sph_steal_reset(&s, NULL, N, 1) == 0);
+  size_t lo, hi, next = 0;
+  int chunks = 0;
+  while (sph_steal_next(&s, 10, &lo, &hi)) {
+    CU_ASSERT_EQUAL(lo, next);
+    CU_ASSERT(hi > lo);
+    next = hi;
+    chunks++;
+  }
+  CU_ASSERT_EQUAL(next, N);
+  CU_ASSERT(chunks > 1 && chunks <= N / 10); /* chunks of at least the grain */
+  /* an empty store */
+  CU_ASSERT_FATAL(sph_steal_reset(&s, NULL, 0, 3) == 0);
+  CU_ASSERT_FALSE(sph_steal_next(&s, 10, &lo, &hi));
+  /* rows must fit in 32 bits */
+  CU_ASSERT(sph_steal_reset(&s, NULL, (size_t)UINT32_MAX + 1, 2) == -1);
+  sph_steal_free(&s);
+}
+
+/* Thread 1 starts only once thread 0 has run out of rows: thread 0 must
+ * have taken thread 1's slice too. */
+static void test_steal_takes_over(void) {
+  enum { N = 3000 };
+  sph_steal s = {0};
+  CU_ASSERT_FATAL(sph_steal_reset(&s, NULL, N, 2) == 0);
+  size_t taken[2] = {0, 0};
+  int done = 0;
+#ifdef _OPENMP
+#pragma omp parallel num_threads(2)
+#endif
+  {
+    const int t = sph_thread();
+    if (t == 1)
+      while (!__atomic_load_n(&done, __ATOMIC_ACQUIRE)) {
+      }
+    size_t lo, hi;
+    while (sph_steal_next(&s, 16, &lo, &hi)) taken[t] += hi - lo;
+    if (t == 0) __atomic_store_n(&done, 1, __ATOMIC_RELEASE);
+  }
+  CU_ASSERT_EQUAL(taken[0], N);
+  CU_ASSERT_EQUAL(taken[1], 0);
+  sph_steal_free(&s);
+}
+
 int main(void) {
   CU_TestInfo tests[] = {{"share: uniform cost, the equal-count split", test_share_uniform},
                          {"share: a dense block is split by cost", test_share_skewed},
                          {"share: zero cost and no items", test_share_degenerate},
                          {"slice: each thread of a team takes its share", test_slice_in_team},
+                         {"steal: every row once, for any slices and team", test_steal_once},
+                         {"steal: one thread takes its slice in order", test_steal_alone},
+                         {"steal: an idle thread's slice is taken over", test_steal_takes_over},
                          {"arrays block: staggered, disjoint, zeroed", test_arrays_block},
                          {"arrays regrow: keeps the first elements, zeroes the rest",
                           test_arrays_regrow},
