@@ -43,39 +43,41 @@ static void usage(FILE *f) {
           "             3 numerical blow-up, 4 interrupted (final snapshot written)\n");
 }
 
-/* The busy and total jiffies of all CPUs so far (/proc/stat); 0 if unknown. */
-static int cpu_jiffies(double *busy, double *total) {
+/* Processes running or ready to run at this moment, this one included
+ * (procs_running in /proc/stat); -1 if unknown. */
+static int procs_running(void) {
   FILE *f = fopen("/proc/stat", "r");
-  if (!f) return 0;
-  double v[8] = {0};
-  const int n = fscanf(f, "cpu %lf %lf %lf %lf %lf %lf %lf %lf", &v[0], &v[1], &v[2], &v[3],
-                       &v[4], &v[5], &v[6], &v[7]);
+  if (!f) return -1;
+  char line[256]; /* longer lines (intr) come in pieces, none of which starts with the key */
+  int n = -1;
+  while (n < 0 && fgets(line, sizeof line, f))
+    if (sscanf(line, "procs_running %d", &n) != 1) n = -1;
   fclose(f);
-  if (n < 4) return 0;
-  *total = 0.0;
-  for (int k = 0; k < 8; k++) *total += v[k];
-  *busy = *total - v[3] - v[4]; /* all but idle and iowait */
-  return 1;
+  return n;
 }
 
-/* Whether the machine's CPUs are all but idle: less than half a CPU busy
- * over 0.1 s (/proc/stat; busy is all but idle and iowait, so time a
- * hypervisor gives to other machines, "steal", counts as busy: our CPUs
- * are then descheduled too); no when it cannot tell. */
+/* Whether nothing else wants the CPUs: besides this process, fewer than
+ * half a process running or ready on average over 20 looks 1 ms apart
+ * (about 20 ms); no when it cannot tell. */
 static int machine_idle(void) {
-  double b0, t0, b1, t1;
-  if (!cpu_jiffies(&b0, &t0)) return 0;
-  const struct timespec pause = {0, 100000000L};
-  nanosleep(&pause, NULL);
-  if (!cpu_jiffies(&b1, &t1) || !(t1 > t0)) return 0;
-  const long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-  return ncpu > 0 && (b1 - b0) / (t1 - t0) * (double)ncpu < 0.5;
+  int others = 0;
+  for (int k = 0; k < 20; k++) {
+    if (k) {
+      const struct timespec pause = {0, 1000000L};
+      nanosleep(&pause, NULL);
+    }
+    const int r = procs_running();
+    if (r < 1) return 0;
+    others += r - 1;
+  }
+  return others < 10;
 }
 
 /* How threads wait at the end of a parallel loop, unless the user chose
  * (OMP_WAIT_POLICY or GOMP_SPINCOUNT set). A step has five to nine short
- * parallel loops. On a busy machine (half a CPU or more busy over 0.1 s
- * at start-up, or unknown) waiters sleep at once (passive): with spinning
+ * parallel loops. On a busy machine (on average half a process or more
+ * running or ready besides this one over 20 ms at start-up, or unknown)
+ * waiters sleep at once (passive): with spinning
  * waiters a second thread that is not scheduled stalls every loop - the
  * a/50 dam break took 289 s on 2 threads against 42 s on 1 with one other
  * job running, and 9.1 s (passive) against 19.6 s (spinning) for its
@@ -86,7 +88,8 @@ static int machine_idle(void) {
  * passive, 54.1 s on 1 thread). The OpenMP runtime reads both variables
  * when it is loaded, before main(), so the program re-executes itself
  * once with one of them set. Only `sph run` on more than one thread
- * looks (0.1 s); the other commands wait passively. */
+ * looks (20 ms: the earlier look, CPU time over 0.1 s, added 3 % to the
+ * a/50 dam break on 2 threads); the other commands wait passively. */
 static void choose_wait_policy(int argc, char **argv) {
 #ifdef _OPENMP
   if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT")) return;
