@@ -78,6 +78,8 @@ void rcli_usage(FILE *fp) {
         "    --label TEXT               legend text (default: the file's name)\n"
         "  --xlabel TEXT, --ylabel TEXT, --title TEXT\n"
         "  --xrange MIN:MAX, --yrange MIN:MAX   axis ranges (default: from the data)\n"
+        "  --xlog, --ylog               logarithmic axis (values <= 0 are left out; the\n"
+        "                               default range is whole decades)\n"
         "  --legend top-left|top-right|bottom-left|bottom-right|none\n"
         "  --size W[xH] (default 960x640), --background, --font-scale, --compression, --backend\n"
         "\n"
@@ -350,6 +352,11 @@ int rcli_parse(int argc, char **argv, roptions *o, sph_error *err) {
       VALUE();
       if (parse_range(a.name, v, o->yrange, err) != 0) return -1;
       o->have_yrange = 1;
+    } else if (plot && (is(&a, "--xlog") || is(&a, "--ylog"))) {
+      if (is(&a, "--xlog"))
+        o->xlog = 1;
+      else
+        o->ylog = 1;
     } else if (plot && is(&a, "--legend")) {
       VALUE();
       o->legend = rlegend_corner(v);

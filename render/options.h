@@ -71,6 +71,7 @@ typedef struct roptions {
   const char *xlabel, *ylabel;
   int have_xrange, have_yrange;
   double xrange[2], yrange[2];
+  int xlog, ylog; /* logarithmic axes */
   int legend;
 } roptions;
 

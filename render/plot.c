@@ -6,7 +6,9 @@
  * T = t sqrt(2 g / a) for the dam-break front of Martin & Moyce (1952); with
  * `relative` y becomes (y - y0) / |y0|, y0 its first finite value (the
  * relative energy deviation of paper A, eq. 28-30). Axis ranges default to
- * the data widened to nice tick multiples (ticks.c). Lines are drawn in the
+ * the data widened to nice tick multiples (ticks.c); a logarithmic axis
+ * maps log10 of the value, leaves out values <= 0 (a line breaks there as
+ * at a missing value) and defaults to whole decades. Lines are drawn in the
  * order given, then points on top, so measurements stay visible over the
  * curves. The margins follow the same font-scale rules as the snapshot
  * figures (layout.c); everything else is fixed by the inputs, so the PNG is
@@ -88,20 +90,23 @@ static int load_series(const roptions *o, const rseries_opt *so, series *s, sph_
   return rc;
 }
 
-static void data_range(const series *s, int n, int axis, double *lo, double *hi) {
+/* The range of the finite values of an axis (only the positive ones on a
+ * logarithmic axis); 0 when there is none. */
+static int data_range(const series *s, int n, int axis, int log, double *lo, double *hi) {
   int any = 0;
   for (int k = 0; k < n; k++)
     for (size_t i = 0; i < s[k].n; i++) {
       double v = axis ? s[k].y[i] : s[k].x[i];
-      if (!isfinite(v)) continue;
+      if (!isfinite(v) || (log && !(v > 0.0))) continue;
       if (!any || v < *lo) *lo = v;
       if (!any || v > *hi) *hi = v;
       any = 1;
     }
   if (!any) {
-    *lo = 0.0;
-    *hi = 1.0;
+    *lo = log ? 1.0 : 0.0;
+    *hi = log ? 10.0 : 1.0;
   }
+  return any;
 }
 
 static int label_width(const rticks *t, int s) {
@@ -115,16 +120,48 @@ static int label_width(const rticks *t, int s) {
   return w;
 }
 
+/* The axes' ranges in plotted coordinates: log10 of the value on a
+ * logarithmic axis. */
 typedef struct frame {
   rrect box;
   double x0, x1, y0, y1;
+  int xlog, ylog;
 } frame;
 
+static double axis_value(int log, double v) { return log ? (v > 0.0 ? log10(v) : NAN) : v; }
+
 static double map_x(const frame *f, double x) {
-  return f->box.x0 + (x - f->x0) / (f->x1 - f->x0) * (f->box.x1 - f->box.x0);
+  return f->box.x0 + (axis_value(f->xlog, x) - f->x0) / (f->x1 - f->x0) * (f->box.x1 - f->box.x0);
 }
 static double map_y(const frame *f, double y) {
-  return f->box.y1 - (y - f->y0) / (f->y1 - f->y0) * (f->box.y1 - f->box.y0);
+  return f->box.y1 - (axis_value(f->ylog, y) - f->y0) / (f->y1 - f->y0) * (f->box.y1 - f->box.y0);
+}
+
+/* An axis' range: given, or the data's widened to ticks (decades on a
+ * logarithmic axis); in plotted coordinates. */
+static void axis_range(const series *s, int n, int axis, int log, int have, const double given[2],
+                       double *lo, double *hi) {
+  if (have) {
+    *lo = given[0];
+    *hi = given[1];
+  } else {
+    data_range(s, n, axis, log, lo, hi);
+    if (log)
+      rticks_expand_log(lo, hi);
+    else
+      rticks_expand(lo, hi, 6);
+  }
+  if (log) {
+    *lo = log10(*lo);
+    *hi = log10(*hi);
+  }
+}
+
+static void axis_ticks(int log, double lo, double hi, int target, rticks *t) {
+  if (log)
+    rticks_make_log(pow(10.0, lo), pow(10.0, hi), target, t);
+  else
+    rticks_make(lo, hi, target, t);
 }
 
 static void draw(rcanvas *c, const roptions *o, const series *s, int n, const char *xlabel,
@@ -134,20 +171,10 @@ static void draw(rcanvas *c, const roptions *o, const series *s, int n, const ch
   rcolor grid = {(uint8_t)((bg.r * 7 + fg.r) / 8), (uint8_t)((bg.g * 7 + fg.g) / 8),
                  (uint8_t)((bg.b * 7 + fg.b) / 8), 255};
   frame f;
-  if (o->have_xrange) {
-    f.x0 = o->xrange[0];
-    f.x1 = o->xrange[1];
-  } else {
-    data_range(s, n, 0, &f.x0, &f.x1);
-    rticks_expand(&f.x0, &f.x1, 6);
-  }
-  if (o->have_yrange) {
-    f.y0 = o->yrange[0];
-    f.y1 = o->yrange[1];
-  } else {
-    data_range(s, n, 1, &f.y0, &f.y1);
-    rticks_expand(&f.y0, &f.y1, 6);
-  }
+  f.xlog = o->xlog;
+  f.ylog = o->ylog;
+  axis_range(s, n, 0, f.xlog, o->have_xrange, o->xrange, &f.x0, &f.x1);
+  axis_range(s, n, 1, f.ylog, o->have_yrange, o->yrange, &f.y0, &f.y1);
   int tick = 3 * sc, lw = sc > 2 ? sc / 2 : 1;
   double top = o->title ? 16 * sc : 10 * sc;
   double bottom = tick + 2 * sc + 9 * sc + 4 * sc + 9 * sc + 3 * sc;
@@ -158,10 +185,10 @@ static void draw(rcanvas *c, const roptions *o, const series *s, int n, const ch
     f.box = (rrect){floor(left), floor(top), floor(W - right), floor(H - bottom)};
     int tx = (int)((f.box.x1 - f.box.x0) / (60.0 * sc)) + 1;
     int ty = (int)((f.box.y1 - f.box.y0) / (40.0 * sc)) + 1;
-    rticks_make(f.x0, f.x1, tx < 2 ? 2 : tx, &xt);
-    rticks_make(f.y0, f.y1, ty < 2 ? 2 : ty, &yt);
+    axis_ticks(f.xlog, f.x0, f.x1, tx < 2 ? 2 : tx, &xt);
+    axis_ticks(f.ylog, f.y0, f.y1, ty < 2 ? 2 : ty, &yt);
     left = 3 * sc + 9 * sc + 4 * sc + label_width(&yt, sc) + 2 * sc + tick;
-    double half = 0.5 * label_width(&xt, sc);
+    double half = 0.5 * label_width(&xt, sc) + sc; /* the last label, centred on the edge */
     right = half > 8 * sc ? half : 8 * sc;
   }
   const rrect *b = &f.box;
@@ -191,11 +218,11 @@ static void draw(rcanvas *c, const roptions *o, const series *s, int n, const ch
       int have = 0;
       double qx = 0.0, qy = 0.0;
       for (size_t i = 0; i < s[k].n; i++) {
-        if (!isfinite(s[k].x[i]) || !isfinite(s[k].y[i])) {
+        double px = map_x(&f, s[k].x[i]), py = map_y(&f, s[k].y[i]);
+        if (!isfinite(px) || !isfinite(py)) { /* missing, or <= 0 on a log axis */
           have = 0;
           continue;
         }
-        double px = map_x(&f, s[k].x[i]), py = map_y(&f, s[k].y[i]);
         if (s[k].points) {
           rmark_draw(c, k % RMARK_COUNT, px, py, 2.5 * sc, rmark_palette(k), fg, 1.0);
         } else {
@@ -227,11 +254,20 @@ int rplot_run(const roptions *o, sph_error *err) {
   if ((o->have_xrange && !(o->xrange[1] > o->xrange[0])) ||
       (o->have_yrange && !(o->yrange[1] > o->yrange[0])))
     return sph_error_set(err, "plot: a range needs min < max");
+  if ((o->xlog && o->have_xrange && !(o->xrange[0] > 0.0)) ||
+      (o->ylog && o->have_yrange && !(o->yrange[0] > 0.0)))
+    return sph_error_set(err, "plot: a logarithmic axis needs a range with min > 0");
   series s[ROPT_MAX_LIST];
   memset(s, 0, sizeof s);
   int rc = 0, n = o->n_series;
   for (int k = 0; k < n && rc == 0; k++)
     rc = load_series(o, &o->series[k], &s[k], err);
+  for (int axis = 0; axis < 2 && rc == 0; axis++) {
+    double lo, hi;
+    if ((axis ? o->ylog : o->xlog) && !data_range(s, n, axis, 1, &lo, &hi))
+      rc = sph_error_set(err, "plot: --%slog: no %s value is above 0", axis ? "y" : "x",
+                         axis ? "y" : "x");
+  }
   const rseries_opt *first = &o->series[0];
   char xlabel[128], ylabel[128];
   snprintf(xlabel, sizeof xlabel, "%s",

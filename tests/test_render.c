@@ -41,6 +41,7 @@
 #include "font.h"
 #include "inputs.h"
 #include "layout.h"
+#include "marks.h"
 #include "particles.h"
 #include "snapdata.h"
 #include "snapshot.h"
@@ -308,6 +309,38 @@ static void test_ticks(void) {
   CU_ASSERT_DOUBLE_EQUAL(hi, 4.0, 1e-12);
   CU_ASSERT_DOUBLE_EQUAL(rticks_nice(0.23, 1), 0.2, 1e-15);
   CU_ASSERT_DOUBLE_EQUAL(rticks_nice(0.23, 0), 0.5, 1e-15);
+  /* logarithmic: decades over a wide range, fixed notation inside [1e-3, 1e4] */
+  rticks_make_log(0.5, 2000.0, 6, &t);
+  CU_ASSERT_EQUAL_FATAL(t.n, 4);
+  const char *wide[4] = {"1", "10", "100", "1000"};
+  for (int i = 0; i < 4; i++) {
+    rticks_label(&t, t.v[i], buf, sizeof buf);
+    CU_ASSERT_STRING_EQUAL(buf, wide[i]);
+  }
+  /* 1, 2, 5 over fewer than target / 3 decades */
+  rticks_make_log(0.015, 0.3, 9, &t);
+  CU_ASSERT_EQUAL_FATAL(t.n, 4);
+  const char *narrow[4] = {"0.02", "0.05", "0.1", "0.2"};
+  for (int i = 0; i < 4; i++) {
+    rticks_label(&t, t.v[i], buf, sizeof buf);
+    CU_ASSERT_STRING_EQUAL(buf, narrow[i]);
+  }
+  /* small values: every label in exponent form */
+  rticks_make_log(2e-6, 0.05, 6, &t);
+  CU_ASSERT_EQUAL_FATAL(t.n, 4);
+  rticks_label(&t, t.v[0], buf, sizeof buf);
+  CU_ASSERT_STRING_EQUAL(buf, "1e-5");
+  rticks_label(&t, t.v[3], buf, sizeof buf);
+  CU_ASSERT_STRING_EQUAL(buf, "1e-2");
+  lo = 0.13;
+  hi = 3.94;
+  rticks_expand_log(&lo, &hi);
+  CU_ASSERT_DOUBLE_EQUAL(lo, 0.1, 1e-15);
+  CU_ASSERT_DOUBLE_EQUAL(hi, 10.0, 1e-15);
+  lo = hi = 7.0; /* one value: its decade */
+  rticks_expand_log(&lo, &hi);
+  CU_ASSERT_DOUBLE_EQUAL(lo, 1.0, 1e-15);
+  CU_ASSERT_DOUBLE_EQUAL(hi, 10.0, 1e-15);
 }
 
 static void test_csv(void) {
@@ -588,6 +621,59 @@ static void test_plot(void) {
   CU_ASSERT_FALSE(exists(path_in(tmp, "bad.png")));
 }
 
+/* The row of the topmost pixel of colour (r, g, b) in column x, or -1. */
+static int first_row_of(const uint8_t *img, int w, int h, int x, int r, int g, int b) {
+  for (int y = 0; y < h; y++) {
+    const uint8_t *q = img + 3 * ((size_t)y * w + x);
+    if (abs(q[0] - r) < 40 && abs(q[1] - g) < 40 && abs(q[2] - b) < 40) return y;
+  }
+  return -1;
+}
+
+/* Logarithmic axes: a power law err = 10 n^-1 is a straight line of slope
+ * -1 on log-log axes (so the line's pixel rows, where it crosses three
+ * columns, are equally spaced for equally spaced log n); golden image;
+ * values <= 0 are left out; a log axis refuses a range reaching 0 and data
+ * with nothing above 0. */
+static void test_plot_log(void) {
+  char args[8192], data[4096];
+  snprintf(data, sizeof data, "%s", sph_test_src("tests/data/render/loglog.csv"));
+  snprintf(args, sizeof args,
+           "plot '%s' --x n --y err --label 'err = 10/n' --xlog --ylog --xlabel particles "
+           "--ylabel 'error (%%)' --legend none --size 640x420 --compression 9 -o log.png",
+           data);
+  CU_ASSERT_EQUAL_FATAL(render(args), 0);
+  int w, h;
+  uint8_t *img = read_png(path_in(tmp, "log.png"), &w, &h);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(img);
+  /* the line is series 0's colour (marks.c); find it in three columns a
+   * quarter of the box apart and compare the spacing of the rows */
+  const rcolor c0 = rmark_palette(0);
+  int rows[3], cols[3] = {w / 4, w / 2, 3 * w / 4};
+  for (int k = 0; k < 3; k++) rows[k] = first_row_of(img, w, h, cols[k], c0.r, c0.g, c0.b);
+  CU_ASSERT(rows[0] > 0 && rows[1] > rows[0] && rows[2] > rows[1]);
+  CU_ASSERT(abs((rows[1] - rows[0]) - (rows[2] - rows[1])) <= 2); /* straight */
+  free(img);
+  check_golden(path_in(tmp, "log.png"), "plot_log.png", 1);
+  /* a linear y axis over the same data is not straight */
+  snprintf(args, sizeof args, "plot '%s' --x n --y err --xlog --size 640x420 -o semilog.png",
+           data);
+  CU_ASSERT_EQUAL_FATAL(render(args), 0);
+  img = read_png(path_in(tmp, "semilog.png"), &w, &h);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(img);
+  for (int k = 0; k < 3; k++) rows[k] = first_row_of(img, w, h, cols[k], c0.r, c0.g, c0.b);
+  CU_ASSERT(abs((rows[1] - rows[0]) - (rows[2] - rows[1])) > 10);
+  free(img);
+  /* errors */
+  snprintf(args, sizeof args, "plot '%s' --x n --y err --ylog --yrange 0:10 -o bad.png", data);
+  CU_ASSERT_NOT_EQUAL(render(args), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "min > 0"));
+  snprintf(args, sizeof args, "plot '%s' --x n --y neg --ylog -o bad.png", data);
+  CU_ASSERT_NOT_EQUAL(render(args), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "--ylog"));
+  CU_ASSERT_FALSE(exists(path_in(tmp, "bad.png")));
+}
+
 /* -------------------------------------------------------------- bad inputs */
 
 static void no_png_in(const char *dir) {
@@ -682,6 +768,7 @@ int main(void) {
       {"panels with overlay, golden", test_panels_overlay},
       {"compare two runs", test_compare},
       {"plot mode, golden", test_plot},
+      {"plot mode, logarithmic axes", test_plot_log},
       {"bad input: missing file", test_missing_file},
       {"bad input: missing field", test_missing_field},
       {"bad input: corrupt HDF5", test_corrupt_file},
