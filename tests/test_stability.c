@@ -50,11 +50,21 @@
 
 static char *tmp;
 
-static int load(const char *rel, const char *const *set, size_t n_set, sph_case *c) {
+/* Loads the case rel (with --set overrides) and sets up its sim; prints
+ * the error and frees what it made when either fails. */
+static int open_sim(const char *rel, const char *const *set, size_t n_set, sph_case *c,
+                    sph_sim **s) {
   sph_error err;
-  const int rc = sph_case_load(sph_test_src(rel), set, n_set, c, &err);
-  if (rc) printf("\n  %s\n", err.msg);
-  return rc;
+  if (sph_case_load(sph_test_src(rel), set, n_set, c, &err)) {
+    printf("\n  %s\n", err.msg);
+    return -1;
+  }
+  if (sph_sim_create(c, s, &err)) {
+    printf("\n  %s\n", err.msg);
+    sph_case_free(c);
+    return -1;
+  }
+  return 0;
 }
 
 typedef struct extremes {
@@ -114,10 +124,9 @@ static void test_hydrostatic_long(void) {
   const char *env = getenv("SPH_STABILITY_STEPS");
   const long steps = env && atol(env) > 0 ? atol(env) : 5000;
   sph_case c;
-  CU_ASSERT_FATAL(load("cases/hydrostatic_tank.yaml", STILL_WATER, 2, &c) == 0);
   sph_sim *s;
   sph_error err;
-  CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
+  CU_ASSERT_FATAL(open_sim("cases/hydrostatic_tank.yaml", STILL_WATER, 2, &c, &s) == 0);
   const double H = c.fluid[0].y1, vref = sqrt(9.81 * H);
   extremes e = {0, 0, 0, 0, 0, 0, 0}, start = {0, 0, 0, 0, 0, 0, 0};
   measure(s, H, &start);
@@ -205,14 +214,8 @@ static void expect_error(const char *set, const char *want) {
 static double *jittered(const char *jitter, const char *seed, size_t *n) {
   const char *sets[2] = {jitter, seed};
   sph_case c;
-  if (load("cases/hydrostatic_tank.yaml", sets, seed ? 2 : 1, &c)) return NULL;
   sph_sim *s;
-  sph_error err;
-  if (sph_sim_create(&c, &s, &err)) {
-    printf("\n  %s\n", err.msg);
-    sph_case_free(&c);
-    return NULL;
-  }
+  if (open_sim("cases/hydrostatic_tank.yaml", sets, seed ? 2 : 1, &c, &s)) return NULL;
   const sph_particles *p = sph_sim_particles(s);
   double *xy = calloc(2 * p->n, sizeof *xy);
   for (size_t i = 0; xy && i < p->n; i++) {
@@ -266,10 +269,9 @@ static void test_jitter(void) {
   /* a jittered tank settles without losing a particle */
   sph_case c;
   const char *sets[1] = {"geometry.fluid=[{x: [0, 0.2], y: [0, 0.1], jitter: 0.2, seed: 7}]"};
-  CU_ASSERT_FATAL(load("cases/hydrostatic_tank.yaml", sets, 1, &c) == 0);
   sph_sim *s;
   sph_error err;
-  CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
+  CU_ASSERT_FATAL(open_sim("cases/hydrostatic_tank.yaml", sets, 1, &c, &s) == 0);
   extremes e = {0, 0, 0, 0, 0, 0, 0};
   measure(s, 0.0, &e);
   const size_t nf = e.n_fluid;
@@ -292,10 +294,9 @@ static void test_jitter(void) {
  * at every output time. */
 static void run_to_end(const char *rel) {
   sph_case c;
-  CU_ASSERT_FATAL(load(rel, NULL, 0, &c) == 0);
   sph_sim *s;
   sph_error err;
-  CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
+  CU_ASSERT_FATAL(open_sim(rel, NULL, 0, &c, &s) == 0);
   extremes e = {0, 0, 0, 0, 0, 0, 0};
   measure(s, 0.0, &e);
   const size_t nf = e.n_fluid;
