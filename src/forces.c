@@ -49,15 +49,6 @@
 #include "kernel.h"
 #include "turbulence.h"
 
-#ifdef _OPENMP
-#include <omp.h>
-#define THREAD_NUM() omp_get_thread_num()
-#define MAX_THREADS() omp_get_max_threads()
-#else
-#define THREAD_NUM() 0
-#define MAX_THREADS() 1
-#endif
-
 /* Rows per stolen chunk of the interaction loop: a few microseconds of
  * work, so a thread waits at most that long at the end of a pass. */
 #define SPH_STEAL_GRAIN 32
@@ -582,7 +573,7 @@ interact_##FL(sph_particles *restrict p, const sph_nlist *restrict l,           
     w->sigma[i] = 0.0;                                                                                                               \
     return;                                                                                                                          \
   }                                                                                                                                  \
-  uint32_t *restrict nb = w->rows + (size_t)THREAD_NUM() * w->rows_stride;                                                           \
+  uint32_t *restrict nb = w->rows + (size_t)sph_thread() * w->rows_stride;                                                           \
   const size_t cnt = cut_row(hot, l, fp, i, nb, F);                                                                                  \
   for (size_t k = cnt; k < cnt + 3 && cnt > 0; k++) nb[k] = nb[cnt - 1]; /* padding lanes */                                         \
   const sph_force_hot qi = hot[i];                                                                                                   \
@@ -825,7 +816,7 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
     }
   }
   {
-    const size_t stride = (size_t)l->maxcount + 4, need = stride * (size_t)MAX_THREADS();
+    const size_t stride = (size_t)l->maxcount + 4, need = stride * (size_t)sph_max_threads();
     if (need > w->rows_cap) {
       uint32_t *a = realloc(w->rows, need * sizeof *a);
       if (!a) return sph_error_set(err, "forces: out of memory for neighbour rows");
@@ -835,7 +826,7 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
     w->rows_stride = stride;
   }
   /* the interaction loop's slices: the list's, with stealing */
-  if (sph_steal_reset(&w->steal, l->cost, p->n, n > SPH_OMP_MIN ? MAX_THREADS() : 1))
+  if (sph_steal_reset(&w->steal, l->cost, p->n, sph_team_size(p->n)))
     return sph_error_set(err, "forces: out of memory for the thread slices");
   unsigned F = 0;
   if (fp->alpha != 0.0 || fp->beta != 0.0) F |= F_AV;

@@ -221,7 +221,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   const double *restrict x = p->x, *restrict y = p->y;
   const int sorted = g->sorted;
   uint32_t mc = 0;
-  if (sph_steal_reset(&l->steal, l->start, n, ln > SPH_OMP_MIN ? sph_max_threads() : 1))
+  if (sph_steal_reset(&l->steal, l->start, n, sph_team_size(n)))
     return sph_error_set(err, "grid: out of memory for the thread slices");
 #pragma omp parallel if (ln > SPH_OMP_MIN) reduction(max : mc)
   {

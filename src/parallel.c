@@ -55,14 +55,18 @@ void sph_share(const size_t *prefix, size_t n, int t, int parts, size_t *lo, siz
   *hi = t == parts - 1 ? n : first_at(prefix, n, prefix[0] + part_start(total, t + 1, parts));
 }
 
-void sph_slice(const size_t *prefix, size_t n, size_t *lo, size_t *hi) {
-  const int t = sph_thread(), parts = sph_threads();
+/* Part t of `parts`: by cost when prefix is given, else equal counts. */
+static void part_of(const size_t *prefix, size_t n, int t, int parts, size_t *lo, size_t *hi) {
   if (prefix) {
     sph_share(prefix, n, t, parts, lo, hi);
     return;
   }
   *lo = part_start(n, t, parts);
   *hi = part_start(n, t + 1, parts);
+}
+
+void sph_slice(const size_t *prefix, size_t n, size_t *lo, size_t *hi) {
+  part_of(prefix, n, sph_thread(), sph_threads(), lo, hi);
 }
 
 /* ---- slices with stealing ---- */
@@ -86,19 +90,15 @@ int sph_steal_reset(sph_steal *s, const size_t *prefix, size_t n, int parts) {
   s->parts = parts;
   for (int t = 0; t < parts; t++) {
     size_t lo, hi;
-    if (prefix)
-      sph_share(prefix, n, t, parts, &lo, &hi);
-    else {
-      lo = part_start(n, t, parts);
-      hi = part_start(n, t + 1, parts);
-    }
+    part_of(prefix, n, t, parts, &lo, &hi);
     s->slot[t].range = steal_pack(lo, hi);
   }
   return 0;
 }
 
-/* Takes g = take(rest) rows off the front (own slice) or back of slot v;
- * 0 when the slot is empty. Relaxed order suffices: the claim only has to
+/* Takes a chunk off the front (the owner: a sixteenth of what is left) or
+ * the back (a thief: half) of slot, at least `grain` rows; 0 when the slot
+ * is empty. Relaxed order suffices: the claim only has to
  * be atomic (the rows' data are ordered by the region's fork and join). */
 static int steal_take(sph_steal_slot *slot, int back, size_t grain, size_t *lo, size_t *hi) {
   uint64_t r = __atomic_load_n(&slot->range, __ATOMIC_RELAXED);
