@@ -286,6 +286,18 @@ static void test_colormap(void) {
   CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "viridis"));
 }
 
+/* The ticks of a logarithmic axis over [lo, hi] are labelled want[0..n). */
+static void check_log_labels(double lo, double hi, int target, const char *const *want, int n) {
+  rticks t;
+  char buf[64];
+  rticks_make_log(lo, hi, target, &t);
+  CU_ASSERT_EQUAL_FATAL(t.n, n);
+  for (int i = 0; i < n; i++) {
+    rticks_label(&t, t.v[i], buf, sizeof buf);
+    CU_ASSERT_STRING_EQUAL(buf, want[i]);
+  }
+}
+
 static void test_ticks(void) {
   rticks t;
   char buf[64];
@@ -310,21 +322,11 @@ static void test_ticks(void) {
   CU_ASSERT_DOUBLE_EQUAL(rticks_nice(0.23, 1), 0.2, 1e-15);
   CU_ASSERT_DOUBLE_EQUAL(rticks_nice(0.23, 0), 0.5, 1e-15);
   /* logarithmic: decades over a wide range, fixed notation inside [1e-3, 1e4] */
-  rticks_make_log(0.5, 2000.0, 6, &t);
-  CU_ASSERT_EQUAL_FATAL(t.n, 4);
   const char *wide[4] = {"1", "10", "100", "1000"};
-  for (int i = 0; i < 4; i++) {
-    rticks_label(&t, t.v[i], buf, sizeof buf);
-    CU_ASSERT_STRING_EQUAL(buf, wide[i]);
-  }
+  check_log_labels(0.5, 2000.0, 6, wide, 4);
   /* 1, 2, 5 over fewer than target / 3 decades */
-  rticks_make_log(0.015, 0.3, 9, &t);
-  CU_ASSERT_EQUAL_FATAL(t.n, 4);
   const char *narrow[4] = {"0.02", "0.05", "0.1", "0.2"};
-  for (int i = 0; i < 4; i++) {
-    rticks_label(&t, t.v[i], buf, sizeof buf);
-    CU_ASSERT_STRING_EQUAL(buf, narrow[i]);
-  }
+  check_log_labels(0.015, 0.3, 9, narrow, 4);
   /* small values: every label in exponent form */
   rticks_make_log(2e-6, 0.05, 6, &t);
   CU_ASSERT_EQUAL_FATAL(t.n, 4);
