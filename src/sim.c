@@ -74,12 +74,14 @@ struct sph_sim {
   char *parameters; /* sph_case_describe */
 };
 
-/* The neighbour list's skin as a fraction of the support 2h
- * (SPH_SKIN overrides it, for benchmarks; 0 rebuilds at every pass). */
+/* The neighbour list's skin as a fraction of the support 2h: the default,
+ * and the one in effect (SPH_SKIN overrides it, for benchmarks; 0 rebuilds
+ * at every pass). */
+#define SPH_SKIN_DEFAULT 0.15
 static double sph_skin_fraction(void) {
   const char *e = getenv("SPH_SKIN");
   if (e && *e) return atof(e);
-  return 0.15;
+  return SPH_SKIN_DEFAULT;
 }
 
 /* Cells of the grid are a hair larger than the support, so rounding in the
@@ -468,9 +470,19 @@ static int neighbours(sph_sim *s, sph_error *err) {
   const double cell = (support(s) + s->skin) * SPH_CELL_MARGIN;
   const double px0 = c->periodic ? c->periodic_x[0] : 0.0;
   const double px1 = c->periodic ? c->periodic_x[1] : 0.0;
-  /* the sort's cells fit the support alone, so the storage order (and
-   * with it every result) does not depend on the skin */
-  if ((s->skin == 0.0 || resort) && build_grid(s, support(s) * SPH_CELL_MARGIN, err)) return -1;
+  /* Without a skin the cells fit the support. With one, the store is
+   * sorted by cells that fit the support plus the default skin, whatever
+   * the skin in effect: the storage order (and with it every result) does
+   * not depend on the skin, and with the default skin the list's cells are
+   * the sort's. A particle then stays in the cell it was sorted by until
+   * it crosses a cell edge, so the cells' contents, walked in the grid's
+   * order, come out nearly in storage order and the rows' insertion sort
+   * (sph_nlist_build) has little to do; with smaller sort cells every row
+   * interleaves several cells' runs of indices. */
+  const double sort_cell =
+      (support(s) + (s->skin > 0.0 ? SPH_SKIN_DEFAULT * SPH_CUBIC_SUPPORT * c->h : 0.0)) *
+      SPH_CELL_MARGIN;
+  if ((s->skin == 0.0 || resort) && build_grid(s, sort_cell, err)) return -1;
   if (s->skin > 0.0 && sph_grid_bin(&s->grid, &s->p, cell, c->periodic, px0, px1,
                                     64 * s->p.n + 1024 * 1024, err))
     return -1;
