@@ -704,6 +704,7 @@ DEFINE_INTERACT_LANES(v4x, AVX2)
           if (c > mx) mx = c;                                                                \
         }                                                                                    \
     }                                                                                        \
+    sph_steal_learn(&w->steal);                                                              \
     w->cs_sigma_max = mx;                                                                    \
   }
 #ifdef SPH_LANES_AVX

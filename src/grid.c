@@ -258,6 +258,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
         if (c > mc) mc = c;
       }
   }
+  sph_steal_learn(&l->steal);
   l->cost[0] = 0; /* exact: integers */
   for (size_t i = 0; i < n; i++)
     l->cost[i + 1] = l->cost[i] + SPH_NLIST_ROW_COST +

@@ -66,11 +66,39 @@ static inline int sph_team_size(size_t n) {
  * Which thread takes an item never changes a result: items are independent. */
 void sph_share(const size_t *prefix, size_t n, int t, int parts, size_t *lo, size_t *hi);
 
-/* The calling thread's slice of 0..n-1 in its team: sph_share by `prefix`
- * when given (n + 1 entries), else equal counts. Every loop over the store
- * in a step takes the neighbour list's slices (its cost prefix, grid.h),
- * so each thread writes and reads the same particles in every loop. */
+/* The calling thread's slice of 0..n-1 in its team: by `prefix` when given
+ * (n + 1 entries), else by counts, in the learned shares below (equal
+ * shares, sph_share's slices, until a stealing loop of a team of this size
+ * has been learned from). Every loop over the store in a step takes the
+ * neighbour list's slices (its cost prefix, grid.h), so each thread writes
+ * and reads the same particles in every loop. */
 void sph_slice(const size_t *prefix, size_t n, size_t *lo, size_t *hi);
+
+/* ---- the learned split ----
+ *
+ * On a virtual machine one core can run 10-20 % slower than the other for
+ * a whole run. Stealing (below) keeps such a team busy to the end of a
+ * loop, but at a price: the stolen rows' data sit in the other core's
+ * cache, so they cross between the cores twice a step (to the thief, and
+ * back to the owner in the next loops), and the loops that do not steal
+ * wait for the slower core. So every stealing loop also records how much
+ * of its cost each thread took (both finish together, so that is each
+ * core's share of the speed), and sph_steal_learn, called after the loop,
+ * moves the team's shares a sixteenth of the way to what it measured.
+ * sph_slice and sph_steal_reset then split by those shares: the faster
+ * core's slice grows in every loop of the step, little is left to steal,
+ * and the slices stay put from loop to loop. The shares are the process's
+ * (they describe its threads, not a simulation), kept for one team size
+ * at a time, at least half an equal share each; only the split depends
+ * on them, never a result (items are independent). SPH_BALANCE=equal in
+ * the environment keeps the shares equal (for benchmarks). Learning and
+ * reading happen outside parallel regions or in regions that only read:
+ * call sph_steal_learn from one thread, between regions. */
+void sph_balance_reset(void);
+
+/* The learned share of part t of `parts` (1/parts when none is learned
+ * for that team size). */
+double sph_balance_share(int t, int parts);
 
 /* ---- slices with stealing ----
  *
@@ -93,22 +121,31 @@ void sph_slice(const size_t *prefix, size_t n, size_t *lo, size_t *hi);
  * a thread are stolen. Needs n < 2^32 (sph_steal_reset fails otherwise). */
 typedef struct sph_steal_slot {
   uint64_t range; /* front (low 32 bits) and back (high 32 bits) of a slice */
-  char pad[56];   /* one cache line per slot */
+  uint64_t done;  /* the cost thread t has taken since the reset */
+  char pad[48];   /* one cache line per slot */
 } sph_steal_slot;
 typedef struct sph_steal {
   void *mem;            /* the allocation (slots aligned to 64 bytes in it) */
   sph_steal_slot *slot; /* parts slots */
+  const size_t *prefix; /* the costs (NULL: one per row) */
   int parts, cap;
+  int team; /* the size of the team that ran the loop */
 } sph_steal;
 
-/* Gives part t of `parts` its sph_share slice (prefix may be NULL: equal
- * counts). Returns -1 when n >= 2^32 or memory is short. */
+/* Gives part t of `parts` its slice in the learned shares (prefix may be
+ * NULL: by counts); prefix must stay valid until the loop has run and
+ * sph_steal_learn has read it. Returns -1 when n >= 2^32 or memory is
+ * short. */
 int sph_steal_reset(sph_steal *s, const size_t *prefix, size_t n, int parts);
 
 /* The calling thread's next chunk [*lo, *hi): from the front of its own
  * slice, else (at least `grain` rows, half of what is left) from the back
  * of another's; 0 when every row has been handed out. */
 int sph_steal_next(sph_steal *s, size_t grain, size_t *lo, size_t *hi);
+
+/* After the loop: moves the learned shares toward the cost each thread
+ * took (when the team had one slice per thread). */
+void sph_steal_learn(sph_steal *s);
 
 void sph_steal_free(sph_steal *s);
 

@@ -19,6 +19,14 @@
  * partner's slice as well (stealing happens). More than 2^32 rows is
  * refused.
  *
+ * Learned split: after a pass in which thread 0 of 2 took all the cost the
+ * shares move a sixteenth of the way toward 0.75 and 0.25 (its 1 and 0
+ * kept to at least half an equal share each), to 0.515625, sph_slice
+ * and sph_steal_reset (by cost and by counts) split there, every row is
+ * still handed out once; a team smaller than its slices, and other team
+ * sizes, split equally; 200 such passes leave thread 1 at least half an
+ * equal share; sph_balance_reset returns to equal shares.
+ *
  * sph_arrays_block: every array starts k cache lines past a page boundary,
  * arrays do not overlap, every byte is zero, and an impossible size gives
  * NULL rather than a short block. sph_arrays_regrow carries the first
@@ -288,6 +296,114 @@ static void test_steal_takes_over(void) {
   sph_steal_free(&s);
 }
 
+/* One stealing pass over prefix's N rows by a team of nth threads in which
+ * thread 0 takes every row (the others start once it has run out), then
+ * sph_steal_learn. */
+static void pass_by_thread0(sph_steal *s, const size_t *prefix, size_t n, int nth) {
+  CU_ASSERT_FATAL(sph_steal_reset(s, prefix, n, 2) == 0);
+  int done = 0;
+#ifdef _OPENMP
+#pragma omp parallel num_threads(nth)
+#else
+  (void)nth;
+#endif
+  {
+    const int t = sph_thread();
+    if (t != 0)
+      while (!__atomic_load_n(&done, __ATOMIC_ACQUIRE)) {
+      }
+    size_t lo, hi;
+    while (sph_steal_next(s, 16, &lo, &hi)) {
+    }
+    if (t == 0) __atomic_store_n(&done, 1, __ATOMIC_RELEASE);
+  }
+  sph_steal_learn(s);
+}
+
+/* The first i with prefix[i] >= target, by a plain scan. */
+static size_t scan_at(const size_t *prefix, size_t n, size_t target) {
+  size_t i = 0;
+  while (i < n && prefix[i] < target) i++;
+  return i;
+}
+
+/* sph_steal_learn moves a team's shares a sixteenth of the way to the cost
+ * each thread took, never below half an equal share; sph_slice and
+ * sph_steal_reset then split by them; other team sizes, a team smaller
+ * than its slices and sph_balance_reset give equal shares. */
+static void test_balance_learn(void) {
+  enum { N = 3000 };
+  size_t *prefix = malloc((N + 1) * sizeof *prefix);
+  int *count = malloc(N * sizeof *count);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(prefix);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(count);
+  prefix[0] = 0;
+  for (size_t i = 0; i < N; i++) prefix[i + 1] = prefix[i] + (i < 1000 ? 5 : 1);
+  const size_t total = prefix[N];
+  sph_steal s = {0};
+  sph_balance_reset();
+  CU_ASSERT_DOUBLE_EQUAL(sph_balance_share(0, 2), 0.5, 0.0);
+  /* a team of one thread for two slices teaches nothing */
+  pass_by_thread0(&s, prefix, N, 1);
+  CU_ASSERT_DOUBLE_EQUAL(sph_balance_share(0, 2), 0.5, 0.0);
+  pass_by_thread0(&s, prefix, N, 2);
+#ifdef _OPENMP
+  /* thread 0 took all the cost: 1 and 0, raised to 0.75 and 0.25 */
+  const double b0 = 0.5 + (0.75 - 0.5) / 16.0;
+#else
+  const double b0 = 0.5; /* no teams: nothing to learn */
+#endif
+  CU_ASSERT_DOUBLE_EQUAL(sph_balance_share(0, 2), b0, 1e-15);
+  CU_ASSERT_DOUBLE_EQUAL(sph_balance_share(1, 2), 1.0 - b0, 1e-15);
+  /* the split follows: thread 0's slice holds b0 of the cost */
+  const size_t cut = scan_at(prefix, N, (size_t)(b0 * (double)total));
+  size_t got[2][2] = {{0, 0}, {0, 0}};
+#ifdef _OPENMP
+#pragma omp parallel num_threads(2)
+#endif
+  {
+    const int t = sph_thread();
+    sph_slice(prefix, N, &got[t][0], &got[t][1]);
+  }
+#ifdef _OPENMP
+  CU_ASSERT(got[0][0] == 0 && got[0][1] == cut && got[1][0] == cut && got[1][1] == N);
+  CU_ASSERT(cut > 0 && cut < N);
+#endif
+  CU_ASSERT_FATAL(sph_steal_reset(&s, prefix, N, 2) == 0);
+  CU_ASSERT_EQUAL(s.slot[0].range, (uint64_t)cut << 32);
+  CU_ASSERT_EQUAL(s.slot[1].range, (uint64_t)N << 32 | cut);
+  /* by counts when there is no prefix */
+  CU_ASSERT_FATAL(sph_steal_reset(&s, NULL, N, 2) == 0);
+  CU_ASSERT_EQUAL(s.slot[0].range, (uint64_t)(size_t)(b0 * N) << 32);
+  /* every row still handed out once */
+  for (int nth = 1; nth <= 3; nth++) {
+    memset(count, 0, N * sizeof *count);
+    int small = 0, once = 1;
+    steal_run(&s, prefix, N, 2, nth, 8, count, &small);
+    for (size_t i = 0; i < N; i++) once &= count[i] == 1;
+    CU_ASSERT(once);
+  }
+  /* other team sizes split equally */
+  CU_ASSERT_DOUBLE_EQUAL(sph_balance_share(0, 3), 1.0 / 3.0, 0.0);
+  CU_ASSERT_FATAL(sph_steal_reset(&s, prefix, N, 3) == 0);
+  for (int t = 0; t < 3; t++) {
+    size_t lo, hi;
+    sph_share(prefix, N, t, 3, &lo, &hi);
+    CU_ASSERT_EQUAL(s.slot[t].range, (uint64_t)hi << 32 | lo);
+  }
+  /* never below half an equal share, and the shares sum to 1 */
+  for (int k = 0; k < 200; k++) pass_by_thread0(&s, prefix, N, 2);
+#ifdef _OPENMP
+  CU_ASSERT(sph_balance_share(1, 2) >= 0.25 - 1e-15 && sph_balance_share(1, 2) < 0.26);
+#endif
+  CU_ASSERT_DOUBLE_EQUAL(sph_balance_share(0, 2) + sph_balance_share(1, 2), 1.0, 1e-15);
+  sph_balance_reset();
+  CU_ASSERT_DOUBLE_EQUAL(sph_balance_share(0, 2), 0.5, 0.0);
+  sph_steal_free(&s);
+  free(count);
+  free(prefix);
+}
+
 int main(void) {
   CU_TestInfo tests[] = {{"share: uniform cost, the equal-count split", test_share_uniform},
                          {"share: a dense block is split by cost", test_share_skewed},
@@ -296,6 +412,7 @@ int main(void) {
                          {"steal: every row once, for any slices and team", test_steal_once},
                          {"steal: one thread takes its slice in order", test_steal_alone},
                          {"steal: an idle thread's slice is taken over", test_steal_takes_over},
+                         {"balance: the split learns each thread's share", test_balance_learn},
                          {"arrays block: staggered, disjoint, zeroed", test_arrays_block},
                          {"arrays regrow: keeps the first elements, zeroes the rest",
                           test_arrays_regrow},
