@@ -34,6 +34,12 @@
  * (tests/data/stability_impact.yaml) and a layer of one and of two particle
  * rows (tests/data/stability_thin.yaml) run to their end without a blow-up,
  * keep every fluid particle inside the tank and lose none.
+ *
+ * Blow-up check: one step of the hydrostatic tank after a fluid particle's
+ * density was set 1.5 density limits above and below rho0, after it was
+ * moved out of the domain and after its velocity was made NaN stops with
+ * SPH_BLOWUP, naming that particle and the reason; a wall particle moved
+ * out of the domain stops nothing.
  */
 #include "config.h"
 
@@ -324,6 +330,68 @@ static void run_to_end(const char *rel) {
 static void test_impact(void) { run_to_end("tests/data/stability_impact.yaml"); }
 static void test_thin_layer(void) { run_to_end("tests/data/stability_thin.yaml"); }
 
+/* One step of the hydrostatic tank after `what` has been done to the
+ * fluid particle in the middle of the store (or, with wall != 0, to the
+ * first wall particle); the step's status and error, and the particle's
+ * id. */
+enum offence { DENSE, THIN, OUTSIDE, NOT_FINITE };
+static int step_after(enum offence what, int wall, sph_error *err, long long *id) {
+  sph_case c;
+  sph_sim *s;
+  CU_ASSERT_FATAL(open_sim("cases/hydrostatic_tank.yaml", NULL, 0, &c, &s) == 0);
+  sph_particles *p = sph_sim_particles(s);
+  const int kind = wall ? SPH_KIND_WALL : SPH_KIND_FLUID;
+  size_t i = wall ? 0 : p->n / 2;
+  while (i < p->n && p->kind[i] != kind) i++;
+  CU_ASSERT_FATAL(i < p->n);
+  *id = (long long)p->id[i];
+  double box[4];
+  sph_sim_domain(s, box);
+  const double lim = c.density_limit;
+  switch (what) {
+  case DENSE:
+    p->rho[i] = c.rho0 * (1.0 + 1.5 * lim);
+    break;
+  case THIN:
+    p->rho[i] = c.rho0 * (1.0 - 1.5 * lim);
+    break;
+  case OUTSIDE:
+    p->x[i] = box[1] + 0.5 * (box[1] - box[0]);
+    break;
+  case NOT_FINITE:
+    p->vy[i] = NAN;
+    break;
+  }
+  const int rc = sph_sim_step(s, c.t_end, err);
+  sph_sim_free(s);
+  sph_case_free(&c);
+  return rc;
+}
+
+/* The blow-up check names each kind of offender, and a wall particle
+ * outside the domain is none. */
+static void test_blowup_reasons(void) {
+  static const struct {
+    enum offence what;
+    const char *why;
+  } cases[] = {{DENSE, "density outside the allowed band"},
+               {THIN, "density outside the allowed band"},
+               {OUTSIDE, "particle left the domain"},
+               {NOT_FINITE, "state is not finite"}};
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+    sph_error err = {0};
+    long long id;
+    CU_ASSERT_EQUAL(step_after(cases[k].what, 0, &err, &id), SPH_BLOWUP);
+    char who[64];
+    snprintf(who, sizeof who, "fluid particle %lld: %s", id, cases[k].why);
+    CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, who));
+    if (!strstr(err.msg, who)) printf("\n  expected '%s' in: %s", who, err.msg);
+  }
+  sph_error err = {0};
+  long long id;
+  CU_ASSERT_EQUAL(step_after(OUTSIDE, 1, &err, &id), 0);
+}
+
 int main(void) {
   tmp = sph_test_tmpdir();
   CU_TestInfo tests[] = {
@@ -332,6 +400,8 @@ int main(void) {
       {"perturbed start: jitter validated, seeded, bounded, stable", test_jitter},
       {"high-speed impact of a dropped column", test_impact},
       {"very thin layers: one and two rows", test_thin_layer},
+      {"blow-up check: each kind of offender named, walls exempt from the domain",
+       test_blowup_reasons},
       CU_TEST_INFO_NULL};
   if (getenv("SPH_STABILITY_STEPS")) /* bench/stability: the long run only */
     tests[1] = (CU_TestInfo)CU_TEST_INFO_NULL;
