@@ -3,9 +3,10 @@
  *
  * Build: (1) bounding box of all particles (min/max: exact, order-free);
  * (2) cell coordinates per particle; (3) counting sort by row-major key,
- * stable because particles are placed in increasing old index; (4) the
- * store is permuted into cell order. All steps are serial or per-particle,
- * so the result does not depend on the number of threads.
+ * stable because particles are placed in increasing old index (in
+ * parallel, one histogram per thread: the same order); (4) the store is
+ * permuted into cell order. All steps are serial, per-particle or that
+ * sort, so the result does not depend on the number of threads.
  */
 #include "config.h"
 
@@ -24,6 +25,7 @@ void sph_grid_init(sph_grid *g) { memset(g, 0, sizeof *g); }
 void sph_grid_free(sph_grid *g) {
   free(g->start);
   free(g->count);
+  free(g->hist);
   free(g->block);
   memset(g, 0, sizeof *g);
 }
@@ -49,6 +51,59 @@ static int reserve(sph_grid *g, size_t n, size_t cells, sph_error *err) {
     if (b) g->count = b;
     if (!a || !b) return sph_error_set(err, "grid: out of memory for %zu cells", cells);
     g->cap_cells = cap;
+  }
+  return 0;
+}
+
+/* Stable counting sort of 0..n-1 by g->key into g->perm, and the cells'
+ * offsets g->start. Serially, or (a team of several threads, and no more
+ * cells than particles) with one histogram per thread over its contiguous
+ * slice of the particles: cell by cell, thread t's particles come after
+ * those of threads before it, each thread's in increasing index, so the
+ * order is the serial sort's, whatever the team. */
+static int counting_sort(sph_grid *g, size_t n, size_t cells, sph_error *err) {
+  const size_t *restrict key = g->key;
+  size_t *restrict perm = g->perm;
+  const int team = sph_team_size(n);
+  if (team <= 1 || cells > n) {
+    memset(g->count, 0, (cells + 1) * sizeof *g->count);
+    for (size_t i = 0; i < n; i++) g->count[key[i] + 1]++;
+    for (size_t c = 0; c < cells; c++) g->count[c + 1] += g->count[c];
+    memcpy(g->start, g->count, (cells + 1) * sizeof *g->start);
+    for (size_t i = 0; i < n; i++) perm[g->count[key[i]]++] = i;
+    return 0;
+  }
+  const size_t need = (size_t)team * cells;
+  if (need > g->cap_hist) {
+    void *a = realloc(g->hist, need * sizeof *g->hist);
+    if (!a) return sph_error_set(err, "grid: out of memory for %zu cell counts", need);
+    g->hist = a;
+    g->cap_hist = need;
+  }
+  size_t *restrict hist = g->hist;
+#pragma omp parallel if ((long)n > SPH_OMP_MIN)
+  {
+    const int t = sph_thread(), nt = sph_threads();
+    size_t *restrict h = hist + (size_t)t * cells;
+    size_t lo, hi;
+    sph_slice(NULL, n, &lo, &hi);
+    memset(h, 0, cells * sizeof *h);
+    for (size_t i = lo; i < hi; i++) h[key[i]]++;
+#pragma omp barrier
+#pragma omp single
+    { /* each count becomes its thread's first place in its cell */
+      size_t run = 0;
+      for (size_t c = 0; c < cells; c++) {
+        g->start[c] = run;
+        for (int u = 0; u < nt; u++) {
+          const size_t k = hist[(size_t)u * cells + c];
+          hist[(size_t)u * cells + c] = run;
+          run += k;
+        }
+      }
+      g->start[cells] = run;
+    }
+    for (size_t i = lo; i < hi; i++) perm[h[key[i]]++] = i;
   }
   return 0;
 }
@@ -114,12 +169,7 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
     if (cy >= g->ny) cy = g->ny - 1;
     g->key[i] = (size_t)cy * (size_t)g->nx + (size_t)cx;
   }
-  /* stable counting sort by key */
-  memset(g->count, 0, (cells + 1) * sizeof *g->count);
-  for (size_t i = 0; i < n; i++) g->count[g->key[i] + 1]++;
-  for (size_t c = 0; c < cells; c++) g->count[c + 1] += g->count[c];
-  memcpy(g->start, g->count, (cells + 1) * sizeof *g->start);
-  for (size_t i = 0; i < n; i++) g->perm[g->count[g->key[i]]++] = i;
+  if (counting_sort(g, n, cells, err)) return -1;
   /* the cell of each storage index: binned only, the particle's own key;
    * sorted, the key of the particle moved there */
   if (p) sph_particles_permute(p, g->perm, g->work);

@@ -32,6 +32,7 @@ typedef struct sph_grid {
   long *cx, *cy; /* cell coordinates of the particle at each storage index */
   size_t cap_cells, cap_particles;
   size_t *key, *perm, *count; /* scratch */
+  size_t *hist, cap_hist;     /* scratch: one count per cell per thread */
   void *work;                 /* scratch for permutation (8 bytes per particle) */
   void *block;                /* the one allocation of cx, cy, key, perm, work (arrays.h) */
 } sph_grid;

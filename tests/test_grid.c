@@ -4,8 +4,9 @@
  * For random particle sets (and sets with particles exactly on cell edges
  * and at exactly the support distance), the neighbours found through the
  * grid's three index ranges equal the pairs found by testing every pair;
- * the sort is stable (ids keep their order within a cell) and a permutation
- * of the store carries every field along. On a grid periodic in x
+ * the sort is stable (ids keep their order within a cell), gives the same
+ * permutation and offsets on teams of 1, 2 and 3 threads (one histogram
+ * per thread), and a permutation of the store carries every field along. On a grid periodic in x
  * (sph_grid_build_periodic + sph_grid_ranges_all) the neighbours at
  * minimum-image distance below the support equal brute force with the
  * minimum image, for a period of exactly 3 cells (whole rows) and longer
@@ -33,6 +34,10 @@
 #include "grid.h"
 #include "particles.h"
 #include "testutil.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 static unsigned long long rng = 88172645463325252ULL;
 static double uniform(void) {
@@ -385,6 +390,43 @@ static void test_list_brute_force(void) {
   }
 }
 
+/* The counting sort on teams of 1 to 3 threads (one histogram per thread
+ * when the store is above the serial threshold and has more particles
+ * than cells): the same permutation and cell offsets, and each cell's
+ * particles in increasing index. */
+static void test_sort_any_team(void) {
+  enum { N = 6000 };
+  sph_particles p;
+  random_store(&p, N, 0.2);
+  const double cell = 0.01; /* 20 x 10 cells: far fewer than particles */
+  sph_grid g[3];
+  sph_error err;
+  for (int k = 0; k < 3; k++) {
+    sph_grid_init(&g[k]);
+#ifdef _OPENMP
+    omp_set_num_threads(k + 1);
+#endif
+    CU_ASSERT_FATAL(sph_grid_bin(&g[k], &p, cell, 0, 0.0, 0.0, 1u << 24, &err) == 0);
+  }
+#ifdef _OPENMP
+  omp_set_num_threads(2);
+#endif
+  const size_t cells = (size_t)g[0].nx * (size_t)g[0].ny;
+  CU_ASSERT_FATAL(cells < N);
+  int ordered = 1;
+  for (size_t c = 0; c < cells; c++)
+    for (size_t k = g[0].start[c] + 1; k < g[0].start[c + 1]; k++)
+      ordered &= g[0].perm[k - 1] < g[0].perm[k];
+  CU_ASSERT(ordered);
+  CU_ASSERT_EQUAL(g[0].start[cells], N);
+  for (int k = 1; k < 3; k++) {
+    CU_ASSERT(memcmp(g[k].start, g[0].start, (cells + 1) * sizeof *g[0].start) == 0);
+    CU_ASSERT(memcmp(g[k].perm, g[0].perm, N * sizeof *g[0].perm) == 0);
+  }
+  for (int k = 0; k < 3; k++) sph_grid_free(&g[k]);
+  sph_particles_free(&p);
+}
+
 /* Moves of up to skin/2: the list stays fresh and holds every pair within
  * the support; a larger move, or a reordered store, makes it stale. */
 static void test_list_fresh(void) {
@@ -464,6 +506,8 @@ static void test_run_any_skin(void) {
 
 int main(void) {
   CU_TestInfo tests[] = {{"grid neighbours equal brute force (random sets)", test_random_sets},
+                         {"counting sort: the same order on teams of 1 to 3 threads",
+                          test_sort_any_team},
                          {"particles on cell edges and at exactly 2h", test_cell_edges},
                          {"permutation carries every field", test_permute_carries_fields},
                          {"periodic grid, period of exactly 3 cells, against brute force",
