@@ -129,6 +129,21 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
   if (n == 0) xmin = xmax = ymin = ymax = 0.0;
   if (!isfinite(xmin) || !isfinite(xmax) || !isfinite(ymin) || !isfinite(ymax))
     return sph_error_set(err, "grid: particle position is not finite");
+  /* Rows of cells run along the longer side of the particles' box (along
+   * x unless the box is wider than tall and not periodic: then along y,
+   * and "x" below is y). A sorted store is in row order, and threads take
+   * contiguous slices of it, so the boundary between two slices is a row:
+   * across the shorter side, with the fewest particles near it. */
+  const int transposed = !periodic && xmax - xmin > ymax - ymin;
+  const double *restrict qx = transposed ? q->y : q->x, *restrict qy = transposed ? q->x : q->y;
+  if (transposed) {
+    double t = xmin;
+    xmin = ymin;
+    ymin = t;
+    t = xmax;
+    xmax = ymax;
+    ymax = t;
+  }
   double cellx = cell;
   if (periodic) {
     /* between the two stages of a step particles may stand up to one step's
@@ -149,6 +164,7 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
   if (fx * fy > (double)max_cells)
     return sph_error_set(err, "grid: particles spread over %.0f x %.0f cells (limit %zu)", fx, fy,
                          max_cells);
+  g->transposed = transposed;
   g->x0 = xmin;
   g->y0 = ymin;
   g->cell = cell;
@@ -162,8 +178,8 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
   const double inv = 1.0 / cell, invx = 1.0 / cellx;
 #pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN)
   for (long i = 0; i < ln; i++) {
-    long cx = (long)floor((q->x[i] - xmin) * invx);
-    long cy = (long)((q->y[i] - ymin) * inv);
+    long cx = (long)floor((qx[i] - xmin) * invx);
+    long cy = (long)((qy[i] - ymin) * inv);
     if (periodic) cx = ((cx % g->nx) + g->nx) % g->nx;
     if (cx >= g->nx) cx = g->nx - 1;
     if (cy >= g->ny) cy = g->ny - 1;

@@ -21,10 +21,12 @@
 #include "particles.h"
 
 typedef struct sph_grid {
-  double x0, y0; /* lower-left corner of cell (0, 0) */
-  double cell;   /* cell side (rows); columns are cellx wide */
-  double cellx;  /* column width: = cell, or period/nx when periodic in x */
-  int periodic;  /* columns wrap around (periodic in x) */
+  int transposed; /* rows run along y (a box wider than tall, not periodic):
+                     below, read x as y and y as x */
+  double x0, y0;  /* lower-left corner of cell (0, 0) */
+  double cell;    /* cell side (rows); columns are cellx wide */
+  double cellx;   /* column width: = cell, or period/nx when periodic in x */
+  int periodic;   /* columns wrap around (periodic in x) */
   int sorted;    /* the store is in cell order (sph_grid_build*); 0 after
                     sph_grid_bin: cell c holds perm[start[c]] .. perm[start[c+1]-1] */
   long nx, ny;   /* cells per row, rows */

@@ -1,9 +1,10 @@
 /*
  * test_grid.c - the cell-linked list (grid.h) against a brute-force search.
  *
- * For random particle sets (and sets with particles exactly on cell edges
- * and at exactly the support distance), the neighbours found through the
- * grid's three index ranges equal the pairs found by testing every pair;
+ * For random particle sets, wide (rows of cells along y) and tall (rows
+ * along x), and sets with particles exactly on cell edges and at exactly
+ * the support distance, the neighbours found through the grid's three
+ * index ranges equal the pairs found by testing every pair;
  * the sort is stable (ids keep their order within a cell), gives the same
  * permutation and offsets on teams of 1, 2 and 3 threads (one histogram
  * per thread), and a permutation of the store carries every field along. On a grid periodic in x
@@ -58,6 +59,13 @@ static void check_against_brute_force(sph_particles *p, double support) {
   sph_grid_init(&g);
   sph_error err;
   CU_ASSERT_FATAL(sph_grid_build(&g, p, support * (1.0 + 1e-9), 1u << 24, &err) == 0);
+  /* rows along the longer side of the particles' box */
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  for (size_t i = 0; i < p->n; i++) {
+    x0 = fmin(x0, p->x[i]), x1 = fmax(x1, p->x[i]);
+    y0 = fmin(y0, p->y[i]), y1 = fmax(y1, p->y[i]);
+  }
+  CU_ASSERT_EQUAL(g.transposed, x1 - x0 > y1 - y0);
   const double s2 = support * support;
   int64_t *a = malloc(p->n * sizeof *a), *b = malloc(p->n * sizeof *b);
   size_t mismatches = 0, pairs = 0;
@@ -93,14 +101,16 @@ static void check_against_brute_force(sph_particles *p, double support) {
 }
 
 static void test_random_sets(void) {
-  for (int trial = 0; trial < 5; trial++) {
+  for (int trial = 0; trial < 6; trial++) {
     sph_particles p;
     sph_error err;
     CU_ASSERT_FATAL(sph_particles_init(&p, 16, &err) == 0);
-    const size_t n = 500 + 400 * (size_t)trial;
-    const double L = 0.1 * (trial + 1);
+    const size_t n = 500 + 400 * (size_t)(trial % 5);
+    const double L = 0.1 * (trial % 5 + 1);
+    /* wide boxes (rows along y), and a tall one (rows along x) */
+    const double w = trial < 5 ? L : 0.3 * L, hgt = trial < 5 ? 0.5 * L : L;
     for (size_t i = 0; i < n; i++)
-      sph_particles_add(&p, L * uniform() - 0.3, 0.5 * L * uniform() + 2.0, 0, 0, 1000, 1, 0.01,
+      sph_particles_add(&p, w * uniform() - 0.3, hgt * uniform() + 2.0, 0, 0, 1000, 1, 0.01,
                         SPH_KIND_FLUID, &err);
     check_against_brute_force(&p, 0.02 + 0.005 * trial);
     sph_particles_free(&p);
