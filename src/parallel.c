@@ -173,7 +173,11 @@ static int steal_took(sph_steal *s, int t, size_t lo, size_t hi) {
 int sph_steal_next(sph_steal *s, size_t grain, size_t *lo, size_t *hi) {
   const int t = sph_thread(), parts = s->parts;
   if (grain < 1) grain = 1;
-  __atomic_store_n(&s->team, sph_threads(), __ATOMIC_RELAXED);
+  /* stored once per loop: a store on every call would pull the line that
+   * every thread reads (slot, parts, prefix) away from the other core */
+  const int nt = sph_threads();
+  if (__atomic_load_n(&s->team, __ATOMIC_RELAXED) != nt)
+    __atomic_store_n(&s->team, nt, __ATOMIC_RELAXED);
   if (t < parts && steal_take(&s->slot[t], 0, grain, lo, hi)) return steal_took(s, t, *lo, *hi);
   for (;;) { /* the slice with the most rows left; slices only shrink */
     int v = -1;
