@@ -13,8 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "case.h"
-#include "snapshot.h"
+#include "case/case.h"
+#include "io/snapshot.h"
 
 #define MAX_SETS 8
 

@@ -22,7 +22,7 @@
 #include "figure.h"
 #include "gl_context.h"
 #include "marks.h"
-#include "version.h"
+#include "core/version.h"
 
 void rcli_usage(FILE *fp) {
   fputs("usage: sph-render [OPTIONS] SNAPSHOT|RUN_DIR... -o OUT\n"

@@ -6,7 +6,7 @@
 
 #include <stdio.h>
 
-#include "error.h"
+#include "core/error.h"
 #include "options.h"
 
 /* Fills o from argv. Returns 0 to go on, 1 if the command was --help or

@@ -14,7 +14,7 @@
 
 #include <GL/glcorearb.h>
 
-#include "error.h"
+#include "core/error.h"
 
 /* One X(type, name) per entry point: the struct and the loader are both
  * generated from this list, so they cannot disagree. */

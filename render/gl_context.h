@@ -13,7 +13,7 @@
 #ifndef SPH_RENDER_GL_CONTEXT_H
 #define SPH_RENDER_GL_CONTEXT_H
 
-#include "error.h"
+#include "core/error.h"
 #include "gl_api.h"
 
 typedef struct rgl_context {

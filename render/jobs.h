@@ -7,7 +7,7 @@
 
 #include <stddef.h>
 
-#include "error.h"
+#include "core/error.h"
 
 typedef struct rjobs_ops {
   /* Called once in each worker before its first task (e.g. makes the GL

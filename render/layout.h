@@ -12,7 +12,7 @@
 #define SPH_RENDER_LAYOUT_H
 
 #include "canvas.h"
-#include "error.h"
+#include "core/error.h"
 #include "ticks.h"
 
 enum { RLAYOUT_MAX_PANELS = 64, RLAYOUT_MAX_SIZE = 16384 };

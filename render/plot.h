@@ -6,7 +6,7 @@
 #ifndef SPH_RENDER_PLOT_H
 #define SPH_RENDER_PLOT_H
 
-#include "error.h"
+#include "core/error.h"
 #include "options.h"
 
 /* Draws the series of o into o->output (a PNG). */

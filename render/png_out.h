@@ -6,7 +6,7 @@
 
 #include <stdint.h>
 
-#include "error.h"
+#include "core/error.h"
 
 /* Writes rgb (width * height * 3 bytes, top row first) to path with zlib
  * compression level 0..9. The file appears complete or not at all: it is

@@ -5,7 +5,7 @@
 #ifndef SPH_RENDER_SEQUENCE_H
 #define SPH_RENDER_SEQUENCE_H
 
-#include "error.h"
+#include "core/error.h"
 #include "options.h"
 
 /* Renders what o asks for. Returns 0 on success; -1 with err if nothing

@@ -1,6 +1,6 @@
 /*
  * snapdata.c - loads the parts of a snapshot the renderer draws
- * (see snapdata.h), through the reader of src/snapshot.h only.
+ * (see snapdata.h), through the reader of src/io/snapshot.h only.
  *
  * Every failure leaves *s empty and names the file and the field or
  * attribute, because the user's fix is in one of those: a missing field
@@ -17,7 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "snapshot.h"
+#include "io/snapshot.h"
 
 typedef struct field_info {
   const char *name, *dataset, *units;

@@ -1,7 +1,7 @@
 /*
  * snapdata.h - what the renderer needs from one snapshot: positions, one
  * field, which particles are walls, the time, the particle spacing and the
- * default view. Read only through src/snapshot.h.
+ * default view. Read only through src/io/snapshot.h.
  *
  * Field names are the snapshot's dataset names (x y vx vy rho p mass h u
  * kind id free_surface ...) plus "speed" = |v| (derived from vx, vy) and the
@@ -13,7 +13,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "error.h"
+#include "core/error.h"
 
 typedef struct rsnap {
   char *path;

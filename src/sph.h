@@ -1,30 +1,34 @@
 /*
- * sph.h - the public API of libsph in one include.
+ * sph.h - the public API of libsph in one include: what a program needs to
+ * load a case, run it, read and write snapshots, read the diagnostics and
+ * measure a state against analytic solutions. Everything else under src/
+ * is internal to the library and not installed.
+ *
+ *   core/error.h        sph_error: every call reports failure through it
+ *   core/version.h      sph_version(), the program's version string
+ *   core/particles.h    the particle store (structure of arrays)
+ *   io/snapshot.h       HDF5 snapshots and their XDMF index
+ *   case/case.h         case files: load, validate, describe
+ *   solver/sim.h        a simulation: create, step, restart
+ *   solver/run.h        the run loop with outputs, signals and progress
+ *   solver/diag.h       the diagnostics row of a state (energy, momentum, front)
+ *   analysis/analytic.h, analysis/wave_face.h
+ *                       analytic profiles and the wave-face measure
+ *   physics/models.h, walls/wall_types.h, walls/wavemaker.h
+ *                       the named choices and wall types a case holds
  */
 #ifndef SPH_H
 #define SPH_H
 
-#include "error.h"
-#include "particles.h"
-#include "kernel.h"
-#include "eos.h"
-#include "grid.h"
-#include "forces.h"
-#include "boundary.h"
-#include "integrate.h"
-#include "diag.h"
-#include "case.h"
-#include "snapshot.h"
-#include "sim.h"
-#include "run.h"
-#include "version.h"
-#include "filter.h"
-#include "wavemaker.h"
-#include "parallel.h"
-#include "freesurface.h"
-#include "turbulence.h"
-#include "analytic.h"
-#include "wave_face.h"
-#include "wall_velocity.h"
+#include "core/error.h"
+#include "core/version.h"
+#include "core/particles.h"
+#include "io/snapshot.h"
+#include "case/case.h"
+#include "solver/diag.h"
+#include "solver/sim.h"
+#include "solver/run.h"
+#include "analysis/analytic.h"
+#include "analysis/wave_face.h"
 
 #endif

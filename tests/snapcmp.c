@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "snapshot.h"
+#include "io/snapshot.h"
 
 static int differ(const char *what, const char *msg, const char *field) {
   printf("\n  %s: %s%s%s\n", what, msg, field ? " " : "", field ? field : "");

@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "case.h"
+#include "case/case.h"
 #include "testutil.h"
 
 /* The smallest valid case: every optional key left to its default. */

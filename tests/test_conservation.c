@@ -12,8 +12,8 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "case.h"
-#include "sim.h"
+#include "case/case.h"
+#include "solver/sim.h"
 #include "testutil.h"
 
 static double uniform(unsigned long long *s) {

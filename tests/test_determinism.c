@@ -51,7 +51,7 @@ static void same_on_1_and_2_threads(const char *case_rel, const char *sets) {
 }
 
 /* Three threads on the plain scheme: uneven cost-balanced slices
- * (src/parallel.h) in every loop of the step, and the kept neighbour list. */
+ * (src/core/parallel.h) in every loop of the step, and the kept neighbour list. */
 static void test_three_threads(void) {
   same_on_threads("cases/martin_moyce_coarse.yaml",
                   "--set time.end=0.1 --set numerics.integrator=leapfrog", 3);

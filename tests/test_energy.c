@@ -29,8 +29,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "case.h"
-#include "sim.h"
+#include "case/case.h"
+#include "solver/sim.h"
 #include "testutil.h"
 
 /* Runs a case to its end; returns the first and last diagnostics. */

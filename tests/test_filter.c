@@ -27,10 +27,10 @@
 #include <omp.h>
 #endif
 
-#include "filter.h"
-#include "grid.h"
-#include "kernel.h"
-#include "particles.h"
+#include "physics/filter.h"
+#include "neighbours/grid.h"
+#include "physics/kernel.h"
+#include "core/particles.h"
 #include "testutil.h"
 
 static unsigned long long rng;

@@ -28,10 +28,10 @@
 #include <omp.h>
 #endif
 
-#include "freesurface.h"
-#include "grid.h"
-#include "kernel.h"
-#include "particles.h"
+#include "physics/freesurface.h"
+#include "neighbours/grid.h"
+#include "physics/kernel.h"
+#include "core/particles.h"
 #include "testutil.h"
 
 #define TWO_PI (2.0 * SPH_PI)

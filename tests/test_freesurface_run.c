@@ -34,10 +34,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "particles.h"
-#include "snapshot.h"
+#include "core/particles.h"
+#include "io/snapshot.h"
 #include "testutil.h"
-#include "version.h"
+#include "core/version.h"
 
 #define GOLDEN "golden/freesurface/dam_break_coarse_t0.1.csv"
 #define T_OUT 0.1

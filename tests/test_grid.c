@@ -32,8 +32,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "grid.h"
-#include "particles.h"
+#include "neighbours/grid.h"
+#include "core/particles.h"
 #include "testutil.h"
 
 #ifdef _OPENMP
@@ -490,7 +490,7 @@ static void test_list_fresh(void) {
 
 /* A run gives the same bytes for any skin of the neighbour list, and with
  * either flavour of the interaction's lane loop (AVX or portable,
- * src/forces.c). */
+ * src/solver/forces.c). */
 static void test_run_any_skin(void) {
   char *d[4];
   const char *env[4] = {"SPH_SKIN=0.05", "SPH_SKIN=0.15", "SPH_SKIN=0.4",

@@ -20,9 +20,9 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "case.h"
-#include "kernel.h"
-#include "sim.h"
+#include "case/case.h"
+#include "physics/kernel.h"
+#include "solver/sim.h"
 #include "testutil.h"
 
 static void test_still_water(void) {

@@ -15,7 +15,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "kernel.h"
+#include "physics/kernel.h"
 #include "testutil.h"
 
 static const double H = 0.013; /* any smoothing length */

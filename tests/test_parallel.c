@@ -39,8 +39,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "arrays.h"
-#include "parallel.h"
+#include "core/arrays.h"
+#include "core/parallel.h"
 #include "testutil.h"
 
 /* Checks the slices of prefix (n items) for 1..7 parts. */

@@ -42,9 +42,9 @@
 #include "inputs.h"
 #include "layout.h"
 #include "marks.h"
-#include "particles.h"
+#include "core/particles.h"
 #include "snapdata.h"
-#include "snapshot.h"
+#include "io/snapshot.h"
 #include "testutil.h"
 #include "ticks.h"
 

@@ -31,9 +31,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "particles.h"
+#include "core/particles.h"
 #include "snapcmp.h"
-#include "snapshot.h"
+#include "io/snapshot.h"
 #include "testutil.h"
 
 static char *tmp;

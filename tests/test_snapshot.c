@@ -20,10 +20,10 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "particles.h"
-#include "snapshot.h"
+#include "core/particles.h"
+#include "io/snapshot.h"
 #include "testutil.h"
-#include "version.h"
+#include "core/version.h"
 
 #define N_TEST 347
 

@@ -48,9 +48,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "case.h"
-#include "eos.h"
-#include "sim.h"
+#include "case/case.h"
+#include "physics/eos.h"
+#include "solver/sim.h"
 #include "snapcmp.h"
 #include "testutil.h"
 

@@ -1,6 +1,6 @@
 /*
  * test_turbulence.c - the SPS (Smagorinsky) stress of paper B eq. (4)
- * (src/turbulence.h) and its use in a run.
+ * (src/physics/turbulence.h) and its use in a run.
  *
  * 1. Hand computation: for simple shear v = (gamma y, 0), S_xy = gamma/2,
  *    |S| = (2 S:S)^(1/2) = gamma, nu_t = (C_s Delta)^2 gamma; the stress is
@@ -22,11 +22,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "forces.h"
-#include "grid.h"
-#include "particles.h"
+#include "solver/forces.h"
+#include "neighbours/grid.h"
+#include "core/particles.h"
 #include "testutil.h"
-#include "turbulence.h"
+#include "physics/turbulence.h"
 
 static const double CS = 0.12, CI = 0.00066;
 

@@ -65,12 +65,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "analytic.h"
-#include "case.h"
-#include "forces.h"
-#include "grid.h"
-#include "particles.h"
-#include "sim.h"
+#include "analysis/analytic.h"
+#include "case/case.h"
+#include "solver/forces.h"
+#include "neighbours/grid.h"
+#include "core/particles.h"
+#include "solver/sim.h"
 #include "testutil.h"
 
 /* ---- 1. the strain rate on a lattice ------------------------------------- */

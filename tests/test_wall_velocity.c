@@ -1,6 +1,6 @@
 /*
  * test_wall_velocity.c - unstaggered wall layers and the extrapolated
- * (no-slip) velocity of wall particles (src/boundary.h, src/wall_velocity.h).
+ * (no-slip) velocity of wall particles (src/walls/boundary.h, src/walls/wall_velocity.h).
  *
  * 1. Layers. sph_boundary_add_segment with stagger = 0 puts layer k at k dx
  *    from layer 0, at the same positions along the wall; every particle's
@@ -31,11 +31,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "boundary.h"
-#include "case.h"
-#include "particles.h"
+#include "walls/boundary.h"
+#include "case/case.h"
+#include "core/particles.h"
 #include "testutil.h"
-#include "wall_velocity.h"
+#include "walls/wall_velocity.h"
 
 #define DX 0.01
 #define H (1.3 * DX)

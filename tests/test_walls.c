@@ -19,8 +19,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "case.h"
-#include "sim.h"
+#include "case/case.h"
+#include "solver/sim.h"
 #include "testutil.h"
 
 static void run_model(const char *boundary, double start_bound, double bound,

@@ -16,10 +16,10 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "kernel.h" /* SPH_PI */
-#include "particles.h"
+#include "physics/kernel.h" /* SPH_PI */
+#include "core/particles.h"
 #include "testutil.h"
-#include "wave_face.h"
+#include "analysis/wave_face.h"
 
 static const double DX = 0.001, LEVEL = 0.010, TOP = 0.022;
 static const double X_FOOT = 0.100; /* the face meets the still level here */

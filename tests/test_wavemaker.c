@@ -17,9 +17,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "kernel.h" /* SPH_PI */
+#include "physics/kernel.h" /* SPH_PI */
 #include "testutil.h"
-#include "wavemaker.h"
+#include "walls/wavemaker.h"
 
 static const double G = 9.81;
 

@@ -5,7 +5,7 @@
  *
  * 1. The height of the second generated wave at the gauge against linear
  *    theory, H = S (H/S)(kd) with k from the dispersion relation (flap
- *    transfer function, src/wavemaker.h): H = 1.081 m. The waves are the
+ *    transfer function, src/walls/wavemaker.h): H = 1.081 m. The waves are the
  *    stretches between zero up-crossings of the record after it first
  *    exceeds 5 % of H; the second generated wave is the first whole one
  *    (the first generated wave starts as a trough). Measured on this
@@ -25,7 +25,7 @@
 #include <string.h>
 
 #include "testutil.h"
-#include "wavemaker.h"
+#include "walls/wavemaker.h"
 
 typedef struct record {
   size_t n;

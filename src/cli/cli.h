@@ -1,0 +1,46 @@
+/*
+ * cli.h - the sub-commands of the `sph` program. Each takes the argument
+ * vector starting at its own name and returns the process exit status.
+ * They use the library's public API only.
+ *
+ * Exit statuses: 0 success, 1 bad input or I/O error, 2 usage error,
+ * 3 numerical blow-up, 4 interrupted (a final snapshot was written).
+ */
+#ifndef SPH_CLI_H
+#define SPH_CLI_H
+
+#include "sph.h"
+
+int sph_cli_run(int argc, char **argv);
+int sph_cli_info(int argc, char **argv);
+int sph_cli_profile(int argc, char **argv);
+int sph_cli_audit(int argc, char **argv);
+int sph_cli_face(int argc, char **argv);
+
+/* Shared by the commands that take snapshot files: checks the options
+ * (only --help / -h, and "--"), counts the files. Returns 0 to go on, -1
+ * after printing the usage for --help, else the exit status (2). */
+int sph_cli_snapshot_args(const char *cmd, const char *usage, int argc, char **argv,
+                          int *n_files);
+
+/* Calls fn(path, ctx, err) for each snapshot argument in order (the files
+ * sph_cli_snapshot_args counted: the first "--" is skipped); a failure is
+ * reported on stderr as "sph CMD: <message>" after flushing stdout, and the
+ * other files are still processed. Returns 0 if every call succeeded, 1
+ * otherwise. */
+int sph_cli_each_snapshot(const char *cmd, int argc, char **argv,
+                          int (*fn)(const char *path, void *ctx, sph_error *err), void *ctx);
+
+/* The case a snapshot was run from: its stored case text parsed again
+ * with its stored --set overrides (cli_snapcase.c). 0, or -1 with err (and
+ * nothing to free). */
+int sph_cli_snapshot_case(const sph_snapshot *s, sph_case *c, sph_error *err);
+/* The same with n_extra further overrides applied after the stored ones
+ * (sph run --restart SNAPSHOT --set time.end=...). */
+int sph_cli_snapshot_case_set(const sph_snapshot *s, const char *const *extra, size_t n_extra,
+                              sph_case *c, sph_error *err);
+
+/* mkdir -p: creates path and its parents; 0, or -1 with errno set. */
+int sph_cli_make_dirs(const char *path);
+
+#endif

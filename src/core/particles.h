@@ -1,0 +1,71 @@
+/*
+ * particles.h - the particle store: a structure of arrays.
+ *
+ * Terms of GOST R 57700.6-2017: fluid particles are "computational particles"
+ * (3.4.8); wall particles are "fictitious particles" (3.4.9), here of the
+ * "dynamic particles" kind (3.4.7).
+ *
+ * Invariants: every array holds n valid entries; id is a permutation of
+ * 0..n-1 fixed at creation (the order snapshots are written in); the storage
+ * order is free to change (the grid sorts particles by cell).
+ */
+#ifndef SPH_PARTICLES_H
+#define SPH_PARTICLES_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/error.h"
+
+/* Particle kinds, stored as the integer dataset `kind` in snapshots.
+ * Mirror particles (GOST R 57700.6 3.4.5) exist only during a force
+ * evaluation and are never written. */
+enum { SPH_KIND_FLUID = 0, SPH_KIND_WALL = 1, SPH_KIND_MIRROR = 2 };
+
+/* Bits of `flags`. */
+enum {
+  SPH_FLAG_FREE_SURFACE = 1, /* on the free surface (paper A §7) */
+  SPH_FLAG_REPULSIVE = 2,    /* a wall particle of a repulsive wall (paper A eq. 21-22) */
+  SPH_FLAG_NO_SLIP = 4       /* a wall particle with the extrapolated velocity (wall_velocity.h) */
+};
+
+typedef struct sph_particles {
+  size_t n;   /* particles in use */
+  size_t cap; /* allocated length of every array */
+  void *block; /* the one allocation holding every array (particles.c) */
+  /* state */
+  double *x, *y;     /* position (m) */
+  double *vx, *vy;   /* velocity (m/s) */
+  double *rho;       /* density (kg/m^3) */
+  double *p;         /* pressure (Pa), from the equation of state */
+  double *mass;      /* mass (kg) */
+  double *h;         /* smoothing length (m) */
+  double *u;         /* thermal energy per unit mass (J/kg) */
+  int32_t *kind;     /* SPH_KIND_* */
+  int64_t *id;       /* 0..n-1, fixed at creation */
+  uint8_t *flags;    /* per-particle flags (bit 0: free surface) */
+  /* state at the start of the step (predictor-corrector), and rates */
+  double *x0, *y0, *vx0, *vy0, *rho0, *u0;
+  double *ax, *ay, *drho, *du;   /* dv/dt, drho/dt, du/dt */
+  double *vxh, *vyh, *rhoh, *uh; /* leap-frog: velocity, density, energy at the half step */
+  double *xr, *yr;               /* rest position of a wall particle (moving walls) */
+  int32_t *body;                 /* index of the moving wall a particle belongs to, or -1 */
+  double *xsx, *xsy;             /* XSPH velocity correction */
+  double *mx, *my;               /* wall particle: offset to its mirror point across the
+                                    wall face (src/walls/wall_velocity.h) */
+} sph_particles;
+
+/* Allocates room for cap particles (all arrays zeroed); n = 0. */
+int sph_particles_init(sph_particles *p, size_t cap, sph_error *err);
+/* Appends one particle (state arrays set, rates zero); grows if needed.
+ * Returns its storage index, or -1 (with err) on allocation failure. */
+long sph_particles_add(sph_particles *p, double x, double y, double vx, double vy,
+                       double rho, double mass, double h, int32_t kind, sph_error *err);
+void sph_particles_free(sph_particles *p);
+/* Counts of each kind. */
+size_t sph_particles_count_kind(const sph_particles *p, int32_t kind);
+/* Reorders every array so that new index i holds old index perm[i]. work must
+ * hold n doubles (8 bytes each) of scratch. */
+void sph_particles_permute(sph_particles *p, const size_t *perm, void *work);
+
+#endif

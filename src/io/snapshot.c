@@ -1,0 +1,896 @@
+/*
+ * snapshot.c - HDF5 snapshot files: the writer and the reader (snapshot.h).
+ *
+ * Writing gathers every field into id order (out[id[i]] = field[i]) through
+ * one scratch buffer, writes "<path>.tmp" and renames it over path, so a
+ * reader never sees a half-written file; on any failure the tmp file is
+ * removed. Files are byte-identical for identical inputs: object
+ * modification times are switched off for the file, every group and every
+ * dataset, file types are fixed little-endian types whatever the host, and
+ * nothing about the host, the date or the file name is stored (the bytes
+ * may differ between HDF5 library versions, never between runs).
+ *
+ * Strings (root and dataset attributes) are scalar variable-length UTF-8
+ * strings: they have no length limit (a case text can exceed the 64 KiB an
+ * object header holds) and h5py reads them as str. The reader also accepts
+ * fixed-length strings. /particles tracks and indexes link creation order,
+ * so its datasets are listed in the order they were written (x y vx vy rho
+ * p mass h u kind id [free_surface]); a file whose group lacks that index is
+ * listed in name order.
+ *
+ * The group /restart (snapshot.h) is written after /particles; its arrays
+ * are in storage order, raw. The reader checks everything a restart will
+ * index with: the shape of each array, and that order is a permutation.
+ *
+ * HDF5 error printing is switched off inside every public function (and
+ * restored on return); each HDF5 failure becomes one sph_error line naming
+ * the file, the object and, in brackets, HDF5's innermost reason. The
+ * serial HDF5 library is not thread-safe: call these from one thread.
+ */
+#include "config.h"
+
+#include "io/snapshot.h"
+
+#include <errno.h>
+#include <hdf5.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/version.h"
+
+/* ------------------------------------------------------------------------ */
+/* The fields of a snapshot and where they live in the particle store.      */
+
+#include "io/snapshot_fields.h"
+
+/* The string attributes of "/" the reader keeps (snapshot.h). */
+static const char *const TEXTS[] = {"case_name", "case_text",      "overrides", "parameters",
+                                    "version",   "configure_args", "compiler"};
+#define N_TEXTS (sizeof TEXTS / sizeof TEXTS[0])
+
+static hid_t file_type(field_type t) {
+  switch (t) {
+  case FT_F64: return H5T_IEEE_F64LE;
+  case FT_I32: return H5T_STD_I32LE;
+  case FT_I64: return H5T_STD_I64LE;
+  case FT_U8: return H5T_STD_U8LE;
+  }
+  return -1;
+}
+
+static hid_t mem_type(field_type t) {
+  switch (t) {
+  case FT_F64: return H5T_NATIVE_DOUBLE;
+  case FT_I32: return H5T_NATIVE_INT32;
+  case FT_I64: return H5T_NATIVE_INT64;
+  case FT_U8: return H5T_NATIVE_UINT8;
+  }
+  return -1;
+}
+
+/* The store's array for field f (as void *: its type is f->type). */
+static void *member_array(const sph_particles *p, const field_spec *f) {
+  const void *slot = (const char *)p + f->member;
+  switch (f->type) {
+  case FT_F64: return *(double *const *)slot;
+  case FT_I32: return *(int32_t *const *)slot;
+  case FT_I64: return *(int64_t *const *)slot;
+  case FT_U8: return *(uint8_t *const *)slot;
+  }
+  return NULL;
+}
+
+/* ------------------------------------------------------------------------ */
+/* HDF5 error handling.                                                     */
+
+typedef struct h5_quiet {
+  H5E_auto2_t func;
+  void *data;
+} h5_quiet;
+
+static void quiet_begin(h5_quiet *q) {
+  q->func = NULL;
+  q->data = NULL;
+  H5Eget_auto2(H5E_DEFAULT, &q->func, &q->data);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+}
+
+static void quiet_end(const h5_quiet *q) { H5Eset_auto2(H5E_DEFAULT, q->func, q->data); }
+
+#define REASON_LEN 200
+
+static herr_t take_innermost(unsigned n, const H5E_error2_t *e, void *data) {
+  if (n == 0 && e->desc && e->desc[0]) snprintf(data, REASON_LEN, "%s", e->desc);
+  return 0;
+}
+
+/* Formats "<path>: <what> (HDF5: <reason>)" from the error stack of the
+ * HDF5 call that just failed; returns -1. */
+static int h5_fail(sph_error *err, const char *path, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+static int h5_fail(sph_error *err, const char *path, const char *fmt, ...) {
+  char what[600], reason[REASON_LEN] = "";
+  va_list ap;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, take_innermost, reason);
+  va_start(ap, fmt);
+  vsnprintf(what, sizeof what, fmt, ap);
+  va_end(ap);
+  if (reason[0]) return sph_error_set(err, "%s: %s (HDF5: %s)", path, what, reason);
+  return sph_error_set(err, "%s: %s", path, what);
+}
+
+static void close_id(hid_t id) {
+  if (id >= 0) H5Idec_ref(id);
+}
+
+/* ------------------------------------------------------------------------ */
+/* Writing.                                                                 */
+
+typedef struct writer {
+  const char *path; /* the final name, used in messages */
+  hid_t file;
+  hid_t str; /* variable-length UTF-8 string type */
+  sph_error *err;
+} writer;
+
+/* A creation property list of class cls that records no times. */
+static hid_t timeless(hid_t cls) {
+  hid_t pl = H5Pcreate(cls);
+  if (pl >= 0 && H5Pset_obj_track_times(pl, 0) < 0) {
+    H5Pclose(pl);
+    return -1;
+  }
+  return pl;
+}
+
+static int put_text(writer *w, hid_t obj, const char *where, const char *name,
+                    const char *value) {
+  hid_t space = H5Screate(H5S_SCALAR);
+  hid_t attr = space < 0 ? -1 : H5Acreate2(obj, name, w->str, space, H5P_DEFAULT, H5P_DEFAULT);
+  int rc = 0;
+  if (attr < 0 || H5Awrite(attr, w->str, &value) < 0)
+    rc = h5_fail(w->err, w->path, "cannot write attribute \"%s\" of %s", name, where);
+  close_id(attr);
+  close_id(space);
+  return rc;
+}
+
+/* n values of memory type mtype, stored as ftype: a scalar when n == 1. */
+static int put_numbers(writer *w, hid_t obj, const char *where, const char *name, hid_t ftype,
+                       hid_t mtype, const void *values, size_t n) {
+  hsize_t dims[1] = {n};
+  hid_t space = n == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, dims, NULL);
+  hid_t attr = space < 0 ? -1 : H5Acreate2(obj, name, ftype, space, H5P_DEFAULT, H5P_DEFAULT);
+  int rc = 0;
+  if (attr < 0 || H5Awrite(attr, mtype, values) < 0)
+    rc = h5_fail(w->err, w->path, "cannot write attribute \"%s\" of %s", name, where);
+  close_id(attr);
+  close_id(space);
+  return rc;
+}
+
+static int put_double(writer *w, const char *name, double v) {
+  return put_numbers(w, w->file, "/", name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &v, 1);
+}
+
+static int put_int64(writer *w, const char *name, int64_t v) {
+  return put_numbers(w, w->file, "/", name, H5T_STD_I64LE, H5T_NATIVE_INT64, &v, 1);
+}
+
+static const char *or_empty(const char *s) { return s ? s : ""; }
+
+static int write_header(writer *w, const sph_snapshot_meta *meta, size_t n) {
+  if (put_double(w, "time", meta->time) || put_int64(w, "step", meta->step) ||
+      put_double(w, "dt", meta->dt) || put_int64(w, "particle_count", (int64_t)n))
+    return -1;
+  const char *texts[N_TEXTS] = {meta->case_name,       or_empty(meta->case_text),
+                                or_empty(meta->overrides), or_empty(meta->parameters),
+                                sph_version(),         sph_configure_args(),
+                                sph_compiler()};
+  for (size_t i = 0; i < N_TEXTS; i++)
+    if (put_text(w, w->file, "/", TEXTS[i], texts[i])) return -1;
+  if (put_double(w, "dx", meta->dx) || put_double(w, "h", meta->h) ||
+      put_double(w, "rho0", meta->rho0))
+    return -1;
+  return put_numbers(w, w->file, "/", "view", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, meta->view, 4);
+}
+
+/* pos[k] = storage index of the particle with id k; checks that id is a
+ * permutation of 0..n-1. */
+static int id_positions(const sph_particles *p, const char *path, size_t **out, sph_error *err) {
+  size_t n = p->n;
+  size_t *pos = malloc((n ? n : 1) * sizeof *pos);
+  if (!pos) return sph_error_set(err, "%s: out of memory for %zu particles", path, n);
+  for (size_t k = 0; k < n; k++) pos[k] = (size_t)-1;
+  for (size_t i = 0; i < n; i++) {
+    int64_t id = p->id[i];
+    const char *bad = NULL;
+    if (id < 0 || (uint64_t)id >= n)
+      bad = "outside 0..n-1";
+    else if (pos[id] != (size_t)-1)
+      bad = "a duplicate";
+    if (bad) {
+      free(pos);
+      return sph_error_set(err, "%s: particle at storage index %zu has id %lld, %s (n = %zu)",
+                           path, i, (long long)id, bad, n);
+    }
+    pos[id] = i;
+  }
+  *out = pos;
+  return 0;
+}
+
+/* buf[k] = field f of the particle with id k. */
+static void gather(const sph_particles *p, const field_spec *f, const size_t *pos, void *buf) {
+  size_t n = p->n;
+  const void *src = member_array(p, f);
+  switch (f->type) {
+  case FT_F64:
+    for (size_t k = 0; k < n; k++) ((double *)buf)[k] = ((const double *)src)[pos[k]];
+    break;
+  case FT_I32:
+    for (size_t k = 0; k < n; k++) ((int32_t *)buf)[k] = ((const int32_t *)src)[pos[k]];
+    break;
+  case FT_I64:
+    for (size_t k = 0; k < n; k++) ((int64_t *)buf)[k] = ((const int64_t *)src)[pos[k]];
+    break;
+  case FT_U8: /* only free_surface: flags bit 0 */
+    for (size_t k = 0; k < n; k++) ((uint8_t *)buf)[k] = ((const uint8_t *)src)[pos[k]] & 1u;
+    break;
+  }
+}
+
+static int write_field(writer *w, hid_t group, const field_spec *f, const void *buf, size_t n) {
+  char where[64];
+  snprintf(where, sizeof where, "/particles/%s", f->name);
+  hsize_t dims[1] = {n};
+  hid_t dcpl = timeless(H5P_DATASET_CREATE);
+  hid_t space = H5Screate_simple(1, dims, NULL);
+  hid_t dset = dcpl < 0 || space < 0 ? -1
+                                     : H5Dcreate2(group, f->name, file_type(f->type), space,
+                                                  H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  int rc = 0;
+  if (dset < 0)
+    rc = h5_fail(w->err, w->path, "cannot create dataset %s", where);
+  else if (n > 0 && H5Dwrite(dset, mem_type(f->type), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0)
+    rc = h5_fail(w->err, w->path, "cannot write dataset %s", where);
+  else if (put_text(w, dset, where, "units", f->units) ||
+           put_text(w, dset, where, "description", f->description))
+    rc = -1;
+  close_id(dset);
+  close_id(space);
+  close_id(dcpl);
+  return rc;
+}
+
+static int write_particles(writer *w, const sph_particles *p, int free_surface,
+                           const size_t *pos) {
+  size_t n = p->n;
+  void *buf = malloc((n ? n : 1) * sizeof(double)); /* the widest field type */
+  if (!buf) return sph_error_set(w->err, "%s: out of memory for %zu particles", w->path, n);
+  /* links kept in the group's header (compact, up to 32), in creation order */
+  hid_t gcpl = timeless(H5P_GROUP_CREATE);
+  if (gcpl >= 0 &&
+      (H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) < 0 ||
+       H5Pset_link_phase_change(gcpl, 32, 24) < 0)) {
+    H5Pclose(gcpl);
+    gcpl = -1;
+  }
+  hid_t group = gcpl < 0 ? -1 : H5Gcreate2(w->file, "particles", H5P_DEFAULT, gcpl, H5P_DEFAULT);
+  int rc = 0;
+  if (group < 0) rc = h5_fail(w->err, w->path, "cannot create group /particles");
+  for (size_t i = 0; rc == 0 && i < N_FIELDS; i++) {
+    if (i == FREE_SURFACE_FIELD && !free_surface) continue;
+    gather(p, &FIELDS[i], pos, buf);
+    rc = write_field(w, group, &FIELDS[i], buf, n);
+  }
+  close_id(group);
+  close_id(gcpl);
+  free(buf);
+  return rc;
+}
+
+/* A 1-D dataset of n raw values (storage order) in the /restart group. */
+static int write_raw(writer *w, hid_t group, const char *name, hid_t ftype, hid_t mtype,
+                     const void *values, size_t n) {
+  hsize_t dims[1] = {n};
+  hid_t dcpl = timeless(H5P_DATASET_CREATE);
+  hid_t space = H5Screate_simple(1, dims, NULL);
+  hid_t dset = dcpl < 0 || space < 0
+                   ? -1
+                   : H5Dcreate2(group, name, ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  int rc = 0;
+  if (dset < 0 || (n > 0 && H5Dwrite(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, values) < 0))
+    rc = h5_fail(w->err, w->path, "cannot write dataset /restart/%s", name);
+  close_id(dset);
+  close_id(space);
+  close_id(dcpl);
+  return rc;
+}
+
+/* The group /restart (snapshot.h, sph_snapshot_restart). */
+static int write_restart(writer *w, const sph_snapshot_restart *r, size_t n) {
+  hid_t gcpl = timeless(H5P_GROUP_CREATE);
+  hid_t g = gcpl < 0 ? -1 : H5Gcreate2(w->file, "restart", H5P_DEFAULT, gcpl, H5P_DEFAULT);
+  close_id(gcpl);
+  if (g < 0) return h5_fail(w->err, w->path, "cannot create group /restart");
+  const int64_t format = 1;
+  int rc = put_numbers(w, g, "/restart", "format", H5T_STD_I64LE, H5T_NATIVE_INT64, &format, 1) ||
+           put_numbers(w, g, "/restart", "output_index", H5T_STD_I64LE, H5T_NATIVE_INT64,
+                       &r->output_index, 1) ||
+           put_numbers(w, g, "/restart", "first_step", H5T_STD_I64LE, H5T_NATIVE_INT64,
+                       &r->first_step, 1) ||
+           put_numbers(w, g, "/restart", "ledger", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, r->ledger,
+                       4);
+  if (rc == 0 && r->n_levels > 0)
+    rc = put_numbers(w, g, "/restart", "gauge_levels", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                     r->levels, r->n_levels);
+  if (rc == 0 && !r->order)
+    rc = sph_error_set(w->err, "%s: restart record without the storage order", w->path);
+  if (rc == 0)
+    rc = write_raw(w, g, "order", H5T_STD_I64LE, H5T_NATIVE_INT64, r->order, n);
+  const char *names[4] = {"vxh", "vyh", "rhoh", "uh"};
+  const double *half[4] = {r->vxh, r->vyh, r->rhoh, r->uh};
+  for (int k = 0; rc == 0 && k < 4; k++)
+    if (half[k]) rc = write_raw(w, g, names[k], H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, half[k], n);
+  close_id(g);
+  return rc ? -1 : 0;
+}
+
+/* Creates the tmp file and writes everything; closes it. */
+static int write_file(writer *w, const char *tmp, const sph_snapshot_meta *meta,
+                      const sph_particles *p, const size_t *pos) {
+  hid_t fcpl = timeless(H5P_FILE_CREATE);
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  if (fcpl < 0 || fapl < 0 || H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG) < 0) {
+    close_id(fcpl);
+    close_id(fapl);
+    return h5_fail(w->err, w->path, "cannot set up HDF5 property lists");
+  }
+  w->file = H5Fcreate(tmp, H5F_ACC_TRUNC, fcpl, fapl);
+  int rc = w->file < 0 ? h5_fail(w->err, w->path, "cannot create %s", tmp) : 0;
+  close_id(fcpl);
+  close_id(fapl);
+  if (rc) return rc;
+  w->str = H5Tcopy(H5T_C_S1);
+  if (w->str < 0 || H5Tset_size(w->str, H5T_VARIABLE) < 0 ||
+      H5Tset_cset(w->str, H5T_CSET_UTF8) < 0)
+    rc = h5_fail(w->err, w->path, "cannot make the string type");
+  if (rc == 0) rc = write_header(w, meta, p->n);
+  if (rc == 0) rc = write_particles(w, p, meta->free_surface, pos);
+  if (rc == 0 && meta->restart) rc = write_restart(w, meta->restart, p->n);
+  close_id(w->str);
+  if (H5Fclose(w->file) < 0 && rc == 0) rc = h5_fail(w->err, w->path, "cannot close %s", tmp);
+  return rc;
+}
+
+int sph_snapshot_write(const char *path, const sph_snapshot_meta *meta, const sph_particles *p,
+                       sph_error *err) {
+  if (!path || !*path) return sph_error_set(err, "snapshot: empty file name");
+  if (!p) return sph_error_set(err, "%s: no particles to write", path);
+  if (!meta || !meta->case_name)
+    return sph_error_set(err, "%s: snapshot metadata without a case name", path);
+  size_t len = strlen(path);
+  char *tmp = malloc(len + 5);
+  if (!tmp) return sph_error_set(err, "%s: out of memory", path);
+  memcpy(tmp, path, len);
+  memcpy(tmp + len, ".tmp", 5);
+  size_t *pos = NULL;
+  if (id_positions(p, path, &pos, err)) {
+    free(tmp);
+    return -1;
+  }
+  writer w = {path, -1, -1, err};
+  h5_quiet q;
+  quiet_begin(&q);
+  int rc = write_file(&w, tmp, meta, p, pos);
+  quiet_end(&q);
+  if (rc == 0 && rename(tmp, path) != 0)
+    rc = sph_error_set(err, "%s: cannot rename %s to it: %s", path, tmp, strerror(errno));
+  if (rc != 0) remove(tmp);
+  free(pos);
+  free(tmp);
+  return rc;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Reading.                                                                 */
+
+struct sph_snapshot {
+  char *path;
+  hid_t file, group; /* the file and its /particles */
+  double time, dt;
+  int64_t step;
+  size_t count;
+  char *text[N_TEXTS]; /* NULL when absent */
+  size_t n_fields;
+  char **fields; /* dataset names in file order */
+};
+
+static char *dup_string(const char *s) {
+  size_t len = strlen(s) + 1;
+  char *d = malloc(len);
+  if (d) memcpy(d, s, len);
+  return d;
+}
+
+static int is_numeric(hid_t type) {
+  H5T_class_t c = H5Tget_class(type);
+  return c == H5T_INTEGER || c == H5T_FLOAT;
+}
+
+/* Reads the numeric attribute name of obj (called where in messages;
+ * exactly n values) as mtype. */
+static int get_numbers_of(const sph_snapshot *s, hid_t obj, const char *where, const char *name,
+                          hid_t mtype, void *out, size_t n, sph_error *err) {
+  htri_t there = H5Aexists(obj, name);
+  if (there < 0)
+    return h5_fail(err, s->path, "cannot look for attribute \"%s\" on %s", name, where);
+  if (there == 0)
+    return sph_error_set(err, "%s: missing attribute \"%s\" on %s", s->path, name, where);
+  hid_t attr = H5Aopen(obj, name, H5P_DEFAULT);
+  hid_t type = attr < 0 ? -1 : H5Aget_type(attr);
+  hid_t space = attr < 0 ? -1 : H5Aget_space(attr);
+  int rc = 0;
+  if (type < 0 || space < 0) {
+    rc = h5_fail(err, s->path, "cannot open attribute \"%s\" on %s", name, where);
+  } else if (!is_numeric(type)) {
+    rc = sph_error_set(err, "%s: attribute \"%s\" on %s is not a number", s->path, name, where);
+  } else {
+    hssize_t got = H5Sget_simple_extent_npoints(space);
+    if (got != (hssize_t)n)
+      rc = sph_error_set(err, "%s: attribute \"%s\" on %s has %lld values, expected %zu",
+                         s->path, name, where, (long long)got, n);
+    else if (H5Aread(attr, mtype, out) < 0)
+      rc = h5_fail(err, s->path, "cannot read attribute \"%s\" on %s", name, where);
+  }
+  close_id(space);
+  close_id(type);
+  close_id(attr);
+  return rc;
+}
+
+static int get_numbers(const sph_snapshot *s, const char *name, hid_t mtype, void *out, size_t n,
+                       sph_error *err) {
+  return get_numbers_of(s, s->file, "/", name, mtype, out, n, err);
+}
+
+/* A string attribute's value, variable- or fixed-length, into a malloc'd
+ * string. */
+static int read_string(const sph_snapshot *s, hid_t attr, hid_t type, const char *name,
+                       char **out, sph_error *err) {
+  if (H5Tis_variable_str(type) > 0) {
+    hid_t mtype = H5Tcopy(H5T_C_S1);
+    hid_t space = H5Aget_space(attr);
+    char *v = NULL;
+    int rc = 0;
+    if (mtype < 0 || space < 0 || H5Tset_size(mtype, H5T_VARIABLE) < 0 ||
+        H5Tset_cset(mtype, H5Tget_cset(type)) < 0 || H5Aread(attr, mtype, &v) < 0)
+      rc = h5_fail(err, s->path, "cannot read attribute \"%s\" on /", name);
+    else if (!(*out = dup_string(v ? v : "")))
+      rc = sph_error_set(err, "%s: out of memory", s->path);
+    if (v) H5Dvlen_reclaim(mtype, space, H5P_DEFAULT, &v);
+    close_id(space);
+    close_id(mtype);
+    return rc;
+  }
+  size_t size = H5Tget_size(type);
+  char *buf = calloc(size + 1, 1);
+  if (!buf) return sph_error_set(err, "%s: out of memory", s->path);
+  if (H5Aread(attr, type, buf) < 0) {
+    free(buf);
+    return h5_fail(err, s->path, "cannot read attribute \"%s\" on /", name);
+  }
+  if (H5Tget_strpad(type) == H5T_STR_SPACEPAD)
+    for (size_t k = size; k > 0 && buf[k - 1] == ' '; k--) buf[k - 1] = '\0';
+  *out = buf;
+  return 0;
+}
+
+/* Reads the string attribute name of "/" into *out (NULL if absent and
+ * not required). */
+static int get_text(const sph_snapshot *s, const char *name, int required, char **out,
+                    sph_error *err) {
+  *out = NULL;
+  htri_t there = H5Aexists(s->file, name);
+  if (there < 0) return h5_fail(err, s->path, "cannot look for attribute \"%s\" on /", name);
+  if (there == 0)
+    return required ? sph_error_set(err, "%s: missing attribute \"%s\" on /", s->path, name) : 0;
+  hid_t attr = H5Aopen(s->file, name, H5P_DEFAULT);
+  hid_t type = attr < 0 ? -1 : H5Aget_type(attr);
+  hid_t space = attr < 0 ? -1 : H5Aget_space(attr);
+  int rc = 0;
+  if (type < 0 || space < 0)
+    rc = h5_fail(err, s->path, "cannot open attribute \"%s\" on /", name);
+  else if (H5Tget_class(type) != H5T_STRING || H5Sget_simple_extent_npoints(space) != 1)
+    rc = sph_error_set(err, "%s: attribute \"%s\" on / is not a single string", s->path, name);
+  else
+    rc = read_string(s, attr, type, name, out, err);
+  close_id(space);
+  close_id(type);
+  close_id(attr);
+  return rc;
+}
+
+static int read_header(sph_snapshot *s, sph_error *err) {
+  int64_t count;
+  if (get_numbers(s, "time", H5T_NATIVE_DOUBLE, &s->time, 1, err) ||
+      get_numbers(s, "dt", H5T_NATIVE_DOUBLE, &s->dt, 1, err) ||
+      get_numbers(s, "step", H5T_NATIVE_INT64, &s->step, 1, err) ||
+      get_numbers(s, "particle_count", H5T_NATIVE_INT64, &count, 1, err))
+    return -1;
+  if (count < 0)
+    return sph_error_set(err, "%s: attribute \"particle_count\" on / is negative (%lld)", s->path,
+                         (long long)count);
+  s->count = (size_t)count;
+  for (size_t i = 0; i < N_TEXTS; i++)
+    if (get_text(s, TEXTS[i], i == 0, &s->text[i], err)) return -1;
+  return 0;
+}
+
+typedef struct lister {
+  sph_snapshot *s;
+  sph_error *err;
+} lister;
+
+static int add_field(sph_snapshot *s, const char *name, sph_error *err) {
+  char **grown = realloc(s->fields, (s->n_fields + 1) * sizeof *grown);
+  if (!grown) return sph_error_set(err, "%s: out of memory", s->path);
+  s->fields = grown;
+  if (!(s->fields[s->n_fields] = dup_string(name)))
+    return sph_error_set(err, "%s: out of memory", s->path);
+  s->n_fields++;
+  return 0;
+}
+
+/* Checks that the dataset is 1-D with one value per particle. */
+static int check_length(const sph_snapshot *s, hid_t dset, const char *name, sph_error *err) {
+  hid_t space = H5Dget_space(dset);
+  hsize_t dims[1] = {0};
+  int rank = space < 0 ? -1 : H5Sget_simple_extent_ndims(space);
+  int rc = 0;
+  if (rank < 0)
+    rc = h5_fail(err, s->path, "cannot get the shape of dataset /particles/%s", name);
+  else if (rank != 1)
+    rc = sph_error_set(err, "%s: dataset /particles/%s has rank %d, expected 1", s->path, name,
+                       rank);
+  else if (H5Sget_simple_extent_dims(space, dims, NULL) < 0)
+    rc = h5_fail(err, s->path, "cannot get the shape of dataset /particles/%s", name);
+  else if (dims[0] != (hsize_t)s->count)
+    rc = sph_error_set(err, "%s: dataset /particles/%s has %llu values, expected %zu "
+                       "(particle_count)", s->path, name, (unsigned long long)dims[0], s->count);
+  close_id(space);
+  return rc;
+}
+
+/* H5Literate callback: records each dataset (other objects are skipped);
+ * returns 1 to stop on an error (already in l->err). */
+static herr_t list_one(hid_t group, const char *name, const H5L_info_t *info, void *data) {
+  lister *l = data;
+  if (info->type != H5L_TYPE_HARD) return 0;
+  hid_t obj = H5Oopen(group, name, H5P_DEFAULT);
+  if (obj < 0) {
+    h5_fail(l->err, l->s->path, "cannot open /particles/%s", name);
+    return 1;
+  }
+  int rc = 0;
+  if (H5Iget_type(obj) == H5I_DATASET)
+    rc = check_length(l->s, obj, name, l->err) || add_field(l->s, name, l->err);
+  close_id(obj);
+  return rc ? 1 : 0;
+}
+
+static int list_fields(sph_snapshot *s, sph_error *err) {
+  htri_t there = H5Lexists(s->file, "particles", H5P_DEFAULT);
+  if (there <= 0) return sph_error_set(err, "%s: missing group /particles", s->path);
+  s->group = H5Gopen2(s->file, "particles", H5P_DEFAULT);
+  if (s->group < 0) return h5_fail(err, s->path, "cannot open group /particles");
+  unsigned order = 0;
+  hid_t gcpl = H5Gget_create_plist(s->group);
+  if (gcpl < 0 || H5Pget_link_creation_order(gcpl, &order) < 0) order = 0;
+  close_id(gcpl);
+  H5_index_t index = (order & H5P_CRT_ORDER_INDEXED) ? H5_INDEX_CRT_ORDER : H5_INDEX_NAME;
+  lister l = {s, err};
+  hsize_t at = 0;
+  herr_t rc = H5Literate(s->group, index, H5_ITER_INC, &at, list_one, &l);
+  if (rc < 0) return h5_fail(err, s->path, "cannot list group /particles");
+  return rc == 0 ? 0 : -1;
+}
+
+/* Opens the file, after checking it exists and is HDF5 at all. */
+static int open_file(sph_snapshot *s, sph_error *err) {
+  FILE *f = fopen(s->path, "rb");
+  if (!f) return sph_error_set(err, "%s: cannot open: %s", s->path, strerror(errno));
+  fclose(f);
+  htri_t is = H5Fis_hdf5(s->path);
+  if (is < 0) return h5_fail(err, s->path, "cannot read the file");
+  if (is == 0) return sph_error_set(err, "%s: not an HDF5 file", s->path);
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  if (fapl < 0 || H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG) < 0) {
+    close_id(fapl);
+    return h5_fail(err, s->path, "cannot set up the HDF5 file access list");
+  }
+  s->file = H5Fopen(s->path, H5F_ACC_RDONLY, fapl);
+  int rc = s->file < 0 ? h5_fail(err, s->path, "cannot open the HDF5 file") : 0;
+  close_id(fapl);
+  return rc;
+}
+
+static void release(sph_snapshot *s) {
+  close_id(s->group);
+  if (s->file >= 0) H5Fclose(s->file);
+  for (size_t i = 0; i < N_TEXTS; i++) free(s->text[i]);
+  for (size_t i = 0; i < s->n_fields; i++) free(s->fields[i]);
+  free(s->fields);
+  free(s->path);
+  free(s);
+}
+
+int sph_snapshot_open(const char *path, sph_snapshot **out, sph_error *err) {
+  *out = NULL;
+  if (!path || !*path) return sph_error_set(err, "snapshot: empty file name");
+  sph_snapshot *s = calloc(1, sizeof *s);
+  if (!s || !(s->path = dup_string(path))) {
+    free(s);
+    return sph_error_set(err, "%s: out of memory", path);
+  }
+  s->file = s->group = -1;
+  h5_quiet q;
+  quiet_begin(&q);
+  int rc = open_file(s, err);
+  if (rc == 0) rc = read_header(s, err);
+  if (rc == 0) rc = list_fields(s, err);
+  if (rc != 0) release(s);
+  quiet_end(&q);
+  if (rc == 0) *out = s;
+  return rc;
+}
+
+void sph_snapshot_close(sph_snapshot *s) {
+  if (!s) return;
+  h5_quiet q;
+  quiet_begin(&q);
+  release(s);
+  quiet_end(&q);
+}
+
+const char *sph_snapshot_path(const sph_snapshot *s) { return s->path; }
+double sph_snapshot_time(const sph_snapshot *s) { return s->time; }
+double sph_snapshot_dt(const sph_snapshot *s) { return s->dt; }
+int64_t sph_snapshot_step(const sph_snapshot *s) { return s->step; }
+size_t sph_snapshot_count(const sph_snapshot *s) { return s->count; }
+
+const char *sph_snapshot_text(const sph_snapshot *s, const char *name) {
+  for (size_t i = 0; i < N_TEXTS; i++)
+    if (strcmp(TEXTS[i], name) == 0) return s->text[i];
+  return NULL;
+}
+
+int sph_snapshot_number(const sph_snapshot *s, const char *name, double *out, size_t n,
+                        sph_error *err) {
+  h5_quiet q;
+  quiet_begin(&q);
+  int rc = get_numbers(s, name, H5T_NATIVE_DOUBLE, out, n, err);
+  quiet_end(&q);
+  return rc;
+}
+
+size_t sph_snapshot_field_count(const sph_snapshot *s) { return s->n_fields; }
+
+const char *sph_snapshot_field_name(const sph_snapshot *s, size_t i) {
+  return i < s->n_fields ? s->fields[i] : NULL;
+}
+
+int sph_snapshot_has_field(const sph_snapshot *s, const char *name) {
+  for (size_t i = 0; i < s->n_fields; i++)
+    if (strcmp(s->fields[i], name) == 0) return 1;
+  return 0;
+}
+
+/* Reads dataset /particles/name, converted to mtype, into out. */
+static int read_dataset(const sph_snapshot *s, const char *name, hid_t mtype, void *out,
+                        sph_error *err) {
+  if (!sph_snapshot_has_field(s, name))
+    return sph_error_set(err, "%s: no dataset /particles/%s", s->path, name);
+  hid_t dset = H5Dopen2(s->group, name, H5P_DEFAULT);
+  hid_t type = dset < 0 ? -1 : H5Dget_type(dset);
+  int rc = 0;
+  if (type < 0)
+    rc = h5_fail(err, s->path, "cannot open dataset /particles/%s", name);
+  else if (!is_numeric(type))
+    rc = sph_error_set(err, "%s: dataset /particles/%s is not numeric", s->path, name);
+  else if (s->count > 0 && H5Dread(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) < 0)
+    rc = h5_fail(err, s->path, "cannot read dataset /particles/%s", name);
+  close_id(type);
+  close_id(dset);
+  return rc;
+}
+
+int sph_snapshot_read_field(const sph_snapshot *s, const char *name, double *out, sph_error *err) {
+  h5_quiet q;
+  quiet_begin(&q);
+  int rc = read_dataset(s, name, H5T_NATIVE_DOUBLE, out, err);
+  quiet_end(&q);
+  return rc;
+}
+
+static int read_store(const sph_snapshot *s, sph_particles *p, sph_error *err) {
+  for (size_t i = 0; i < N_FIELDS; i++) {
+    const field_spec *f = &FIELDS[i];
+    if (i == FREE_SURFACE_FIELD && !sph_snapshot_has_field(s, f->name)) continue;
+    if (read_dataset(s, f->name, mem_type(f->type), member_array(p, f), err)) return -1;
+  }
+  for (size_t k = 0; k < p->n; k++) {
+    p->flags[k] = p->flags[k] ? 1u : 0u;
+    if (p->id[k] != (int64_t)k)
+      return sph_error_set(err, "%s: dataset /particles/id holds %lld at row %zu, expected %zu",
+                           s->path, (long long)p->id[k], k, k);
+  }
+  return 0;
+}
+
+int sph_snapshot_read_particles(const sph_snapshot *s, sph_particles *p, sph_error *err) {
+  if (sph_particles_init(p, s->count, err)) return -1;
+  p->n = s->count;
+  h5_quiet q;
+  quiet_begin(&q);
+  int rc = read_store(s, p, err);
+  quiet_end(&q);
+  if (rc) sph_particles_free(p);
+  return rc;
+}
+
+/* ------------------------------------------------------------------------ */
+/* The restart record.                                                      */
+
+/* The number of values of attribute name on obj, 0 if absent, -1 on error. */
+static long long attribute_length(const sph_snapshot *s, hid_t obj, const char *name,
+                                  sph_error *err) {
+  htri_t there = H5Aexists(obj, name);
+  if (there < 0) return h5_fail(err, s->path, "cannot look for attribute \"%s\" on /restart", name);
+  if (there == 0) return 0;
+  hid_t attr = H5Aopen(obj, name, H5P_DEFAULT);
+  hid_t space = attr < 0 ? -1 : H5Aget_space(attr);
+  hssize_t n = space < 0 ? -1 : H5Sget_simple_extent_npoints(space);
+  close_id(space);
+  close_id(attr);
+  if (n < 0) return h5_fail(err, s->path, "cannot open attribute \"%s\" on /restart", name);
+  return (long long)n;
+}
+
+/* Dataset /restart/name: 1-D, count values, numeric, read as mtype into a
+ * new array (*out; NULL and no error when absent and not required). */
+static int read_restart_array(const sph_snapshot *s, hid_t g, const char *name, int required,
+                              hid_t mtype, size_t size, void **out, sph_error *err) {
+  *out = NULL;
+  htri_t there = H5Lexists(g, name, H5P_DEFAULT);
+  if (there < 0) return h5_fail(err, s->path, "cannot look for dataset /restart/%s", name);
+  if (there == 0)
+    return required ? sph_error_set(err, "%s: missing dataset /restart/%s", s->path, name) : 0;
+  hid_t dset = H5Dopen2(g, name, H5P_DEFAULT);
+  hid_t type = dset < 0 ? -1 : H5Dget_type(dset);
+  hid_t space = dset < 0 ? -1 : H5Dget_space(dset);
+  hsize_t dims[1] = {0};
+  int rc = 0;
+  if (type < 0 || space < 0)
+    rc = h5_fail(err, s->path, "cannot open dataset /restart/%s", name);
+  else if (!is_numeric(type))
+    rc = sph_error_set(err, "%s: dataset /restart/%s is not numeric", s->path, name);
+  else if (H5Sget_simple_extent_ndims(space) != 1 ||
+           H5Sget_simple_extent_dims(space, dims, NULL) < 0 || dims[0] != (hsize_t)s->count)
+    rc = sph_error_set(err, "%s: dataset /restart/%s is not 1-D with %zu values (particle_count)",
+                       s->path, name, s->count);
+  if (rc == 0) {
+    *out = malloc((s->count ? s->count : 1) * size);
+    if (!*out)
+      rc = sph_error_set(err, "%s: out of memory", s->path);
+    else if (s->count > 0 && H5Dread(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, *out) < 0)
+      rc = h5_fail(err, s->path, "cannot read dataset /restart/%s", name);
+  }
+  close_id(space);
+  close_id(type);
+  close_id(dset);
+  if (rc) {
+    free(*out);
+    *out = NULL;
+  }
+  return rc;
+}
+
+static int read_restart(const sph_snapshot *s, hid_t g, sph_snapshot_restart_data *r,
+                        sph_error *err) {
+  int64_t format = 0;
+  if (get_numbers_of(s, g, "/restart", "format", H5T_NATIVE_INT64, &format, 1, err)) return -1;
+  if (format != 1)
+    return sph_error_set(err, "%s: attribute \"format\" on /restart is %lld, this program reads 1",
+                         s->path, (long long)format);
+  if (get_numbers_of(s, g, "/restart", "output_index", H5T_NATIVE_INT64, &r->output_index, 1,
+                     err) ||
+      get_numbers_of(s, g, "/restart", "first_step", H5T_NATIVE_INT64, &r->first_step, 1, err) ||
+      get_numbers_of(s, g, "/restart", "ledger", H5T_NATIVE_DOUBLE, r->ledger, 4, err))
+    return -1;
+  if (r->output_index < 0 || r->output_index > 99999999)
+    return sph_error_set(err, "%s: attribute \"output_index\" on /restart is %lld, expected 0..99999999",
+                         s->path, (long long)r->output_index);
+  if (r->first_step != 0 && r->first_step != 1)
+    return sph_error_set(err, "%s: attribute \"first_step\" on /restart is %lld, expected 0 or 1",
+                         s->path, (long long)r->first_step);
+  long long nl = attribute_length(s, g, "gauge_levels", err);
+  if (nl < 0) return -1;
+  if (nl > 0) {
+    r->levels = malloc((size_t)nl * sizeof *r->levels);
+    if (!r->levels) return sph_error_set(err, "%s: out of memory", s->path);
+    r->n_levels = (size_t)nl;
+    if (get_numbers_of(s, g, "/restart", "gauge_levels", H5T_NATIVE_DOUBLE, r->levels,
+                       r->n_levels, err))
+      return -1;
+  }
+  r->count = s->count;
+  void *a = NULL;
+  if (read_restart_array(s, g, "order", 1, H5T_NATIVE_INT64, sizeof(int64_t), &a, err)) return -1;
+  r->order = a;
+  /* order must be a permutation of 0..count-1 */
+  unsigned char *seen = calloc(s->count ? s->count : 1, 1);
+  if (!seen) return sph_error_set(err, "%s: out of memory", s->path);
+  for (size_t k = 0; k < s->count; k++) {
+    const int64_t id = r->order[k];
+    if (id < 0 || (uint64_t)id >= s->count || seen[id]) {
+      free(seen);
+      return sph_error_set(err,
+                           "%s: dataset /restart/order holds %lld at row %zu: expected each of "
+                           "0..%zu once",
+                           s->path, (long long)id, k, s->count ? s->count - 1 : 0);
+    }
+    seen[id] = 1;
+  }
+  free(seen);
+  const char *names[4] = {"vxh", "vyh", "rhoh", "uh"};
+  double **half[4] = {&r->vxh, &r->vyh, &r->rhoh, &r->uh};
+  int present = 0;
+  for (int k = 0; k < 4; k++) {
+    if (read_restart_array(s, g, names[k], 0, H5T_NATIVE_DOUBLE, sizeof(double), &a, err))
+      return -1;
+    *half[k] = a;
+    present += a != NULL;
+  }
+  if (present != 0 && present != 4)
+    return sph_error_set(err, "%s: group /restart has only some of vxh, vyh, rhoh, uh", s->path);
+  return 0;
+}
+
+int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *r,
+                              sph_error *err) {
+  memset(r, 0, sizeof *r);
+  h5_quiet q;
+  quiet_begin(&q);
+  int rc = 0;
+  hid_t g = -1;
+  htri_t there = H5Lexists(s->file, "restart", H5P_DEFAULT);
+  if (there < 0)
+    rc = h5_fail(err, s->path, "cannot look for group /restart");
+  else if (there == 0)
+    rc = sph_error_set(err, "%s: no group /restart: the snapshot holds no restart record",
+                       s->path);
+  else if ((g = H5Gopen2(s->file, "restart", H5P_DEFAULT)) < 0)
+    rc = h5_fail(err, s->path, "cannot open group /restart");
+  else
+    rc = read_restart(s, g, r, err);
+  close_id(g);
+  quiet_end(&q);
+  if (rc) sph_snapshot_restart_free(r);
+  return rc;
+}
+
+void sph_snapshot_restart_free(sph_snapshot_restart_data *r) {
+  free(r->levels);
+  free(r->order);
+  free(r->vxh);
+  free(r->vyh);
+  free(r->rhoh);
+  free(r->uh);
+  memset(r, 0, sizeof *r);
+}

@@ -1,0 +1,122 @@
+/*
+ * snapshot.h - HDF5 snapshots: one file per output time, and their XDMF index.
+ *
+ * Layout of a snapshot file (see README.md, "Snapshot format"):
+ *   attributes on "/": time, step, dt, particle_count, case_name, case_text,
+ *     overrides, parameters, version, configure_args, compiler, dx, h, rho0,
+ *     view (4 doubles: x0, x1, y0, y1 of the region the case was set in);
+ *   /particles/<field>: one 1-D dataset per field, particles in id order,
+ *     each with string attributes "units" and "description".
+ *   Fields: x y vx vy rho p mass h u (float64), kind (int32), id (int64), and
+ *     free_surface (uint8) when the writer is asked for it;
+ *   /restart: what `sph run --restart` needs beyond the fields (written when
+ *     the meta has a restart record; see sph_snapshot_restart below).
+ * Files are written to "<path>.tmp" and renamed, so an interrupted run never
+ * leaves a torn snapshot. Nothing time- or host-dependent is stored.
+ *
+ * The renderer and `sph info` use only the reading half of this API.
+ */
+#ifndef SPH_SNAPSHOT_H
+#define SPH_SNAPSHOT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/error.h"
+#include "core/particles.h"
+
+typedef struct sph_snapshot_meta {
+  double time, dt;
+  int64_t step;
+  const char *case_name;  /* required */
+  const char *case_text;  /* may be NULL: stored as "" */
+  const char *overrides;  /* may be NULL */
+  const char *parameters; /* resolved parameters and choices, "key: value" lines; may be NULL */
+  double dx, h, rho0;
+  double view[4];         /* x0, x1, y0, y1 */
+  int free_surface;       /* write the free_surface field (flags bit 0) */
+  const struct sph_snapshot_restart *restart; /* the /restart group, or NULL for none */
+} sph_snapshot_meta;
+
+/* What a run needs beyond the particle fields to continue exactly from a
+ * snapshot (`sph run --restart`), stored in the group /restart:
+ *   attributes: format (1), output_index (k of snap_k), first_step (1 until
+ *     the leap-frog's first step is done), ledger (4 values: wall work, XSPH
+ *     drift, impulse x, impulse y; see ledger in sim.c), gauge_levels (each
+ *     gauge's level at t = 0; absent without gauges);
+ *   datasets (in storage order, not id order): order (int64: the id of the
+ *     particle at each storage index: the within-cell order the neighbour
+ *     sums run in), and with the leap-frog vxh, vyh, rhoh, uh (float64: the
+ *     half-step values).
+ * For writing, the arrays are the store's own (n values each, storage
+ * order); NULL half-step arrays are not written. */
+typedef struct sph_snapshot_restart {
+  int64_t output_index;
+  int64_t first_step;
+  double ledger[4];
+  size_t n_levels;
+  const double *levels;
+  const int64_t *order;
+  const double *vxh, *vyh, *rhoh, *uh;
+} sph_snapshot_restart;
+
+/* Writes p (any storage order) to path in id order, atomically. */
+int sph_snapshot_write(const char *path, const sph_snapshot_meta *meta, const sph_particles *p,
+                       sph_error *err);
+
+/* Writes (atomically) an XDMF 3 file that describes a series of snapshots,
+ * so ParaView and VisIt open the whole run: h5_names are the snapshot file
+ * names relative to the XDMF file, times their times. */
+int sph_xdmf_write(const char *xmf_path, size_t n_snap, const char *const *h5_names,
+                   const double *times, size_t n_particles, int free_surface, sph_error *err);
+
+/* Reading. */
+typedef struct sph_snapshot sph_snapshot;
+
+/* Opens a snapshot and reads its header; errors name the file (and the
+ * missing attribute or dataset). */
+int sph_snapshot_open(const char *path, sph_snapshot **out, sph_error *err);
+void sph_snapshot_close(sph_snapshot *s);
+const char *sph_snapshot_path(const sph_snapshot *s);
+double sph_snapshot_time(const sph_snapshot *s);
+double sph_snapshot_dt(const sph_snapshot *s);
+int64_t sph_snapshot_step(const sph_snapshot *s);
+size_t sph_snapshot_count(const sph_snapshot *s);
+/* A string attribute of "/" (case_name, case_text, overrides, parameters,
+ * version, configure_args, compiler), or NULL if absent. Owned by s. */
+const char *sph_snapshot_text(const sph_snapshot *s, const char *name);
+/* A floating-point attribute of "/" with exactly n values (dx, h, rho0: 1;
+ * view: 4). Returns non-zero with err if absent or of another length. */
+int sph_snapshot_number(const sph_snapshot *s, const char *name, double *out, size_t n,
+                        sph_error *err);
+/* The fields present, in file order. */
+size_t sph_snapshot_field_count(const sph_snapshot *s);
+const char *sph_snapshot_field_name(const sph_snapshot *s, size_t i);
+int sph_snapshot_has_field(const sph_snapshot *s, const char *name);
+/* Reads one field converted to double into out (count values). An absent
+ * field or a failed read is an error naming the file and the dataset. */
+int sph_snapshot_read_field(const sph_snapshot *s, const char *name, double *out, sph_error *err);
+/* Reads the full particle state (exact types, id order) into p, which is
+ * initialised here (free with sph_particles_free). */
+int sph_snapshot_read_particles(const sph_snapshot *s, sph_particles *p, sph_error *err);
+
+/* The restart record of a snapshot, read into malloc'd arrays (free with
+ * sph_snapshot_restart_free): order is checked to be a permutation of
+ * 0..count-1; the half-step arrays are NULL when absent (all four or none).
+ * A snapshot without /restart, or a malformed one, is an error naming the
+ * file and the attribute or dataset. */
+typedef struct sph_snapshot_restart_data {
+  int64_t output_index;
+  int64_t first_step;
+  double ledger[4];
+  size_t n_levels;
+  double *levels;
+  size_t count;
+  int64_t *order;
+  double *vxh, *vyh, *rhoh, *uh;
+} sph_snapshot_restart_data;
+int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *r,
+                              sph_error *err);
+void sph_snapshot_restart_free(sph_snapshot_restart_data *r);
+
+#endif

@@ -1,0 +1,366 @@
+/*
+ * grid.c - cell-linked list with a stable counting sort (see grid.h).
+ *
+ * Build: (1) bounding box of all particles (min/max: exact, order-free);
+ * (2) cell coordinates per particle; (3) counting sort by row-major key,
+ * stable because particles are placed in increasing old index (in
+ * parallel, one histogram per thread: the same order); (4) the store is
+ * permuted into cell order. All steps are serial, per-particle or that
+ * sort, so the result does not depend on the number of threads.
+ */
+#include "config.h"
+
+#include "core/parallel.h"
+
+#include "neighbours/grid.h"
+
+#include "core/arrays.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void sph_grid_init(sph_grid *g) { memset(g, 0, sizeof *g); }
+
+void sph_grid_free(sph_grid *g) {
+  free(g->start);
+  free(g->count);
+  free(g->hist);
+  free(g->block);
+  memset(g, 0, sizeof *g);
+}
+
+/* Room for n particles and `cells` cells. Every per-particle array is
+ * rewritten by the build that calls this, so a new block (arrays.h) keeps
+ * nothing of the old one. */
+static int reserve(sph_grid *g, size_t n, size_t cells, sph_error *err) {
+  if (n > g->cap_particles) {
+    const size_t cap = n + n / 4 + 16;
+    void **const arrays[] = {(void **)&g->cx, (void **)&g->cy, (void **)&g->key,
+                             (void **)&g->perm, &g->work};
+    const size_t size[] = {sizeof *g->cx, sizeof *g->cy, sizeof *g->key, sizeof *g->perm, 8};
+    if (sph_arrays_regrow(&g->block, cap, 0, 5, size, arrays))
+      return sph_error_set(err, "grid: out of memory for %zu particles", n);
+    g->cap_particles = cap;
+  }
+  if (cells + 1 > g->cap_cells) {
+    size_t cap = cells + 1 + cells / 4;
+    void *a = realloc(g->start, cap * sizeof *g->start);
+    if (a) g->start = a;
+    void *b = realloc(g->count, cap * sizeof *g->count);
+    if (b) g->count = b;
+    if (!a || !b) return sph_error_set(err, "grid: out of memory for %zu cells", cells);
+    g->cap_cells = cap;
+  }
+  return 0;
+}
+
+/* Stable counting sort of 0..n-1 by g->key into g->perm, and the cells'
+ * offsets g->start. Serially, or (a team of several threads, and no more
+ * cells than particles) with one histogram per thread over its contiguous
+ * slice of the particles: cell by cell, thread t's particles come after
+ * those of threads before it, each thread's in increasing index, so the
+ * order is the serial sort's, whatever the team. */
+static int counting_sort(sph_grid *g, size_t n, size_t cells, sph_error *err) {
+  const size_t *restrict key = g->key;
+  size_t *restrict perm = g->perm;
+  const int team = sph_team_size(n);
+  if (team <= 1 || cells > n) {
+    memset(g->count, 0, (cells + 1) * sizeof *g->count);
+    for (size_t i = 0; i < n; i++) g->count[key[i] + 1]++;
+    for (size_t c = 0; c < cells; c++) g->count[c + 1] += g->count[c];
+    memcpy(g->start, g->count, (cells + 1) * sizeof *g->start);
+    for (size_t i = 0; i < n; i++) perm[g->count[key[i]]++] = i;
+    return 0;
+  }
+  const size_t need = (size_t)team * cells;
+  if (need > g->cap_hist) {
+    void *a = realloc(g->hist, need * sizeof *g->hist);
+    if (!a) return sph_error_set(err, "grid: out of memory for %zu cell counts", need);
+    g->hist = a;
+    g->cap_hist = need;
+  }
+  size_t *restrict hist = g->hist;
+#pragma omp parallel if ((long)n > SPH_OMP_MIN)
+  {
+    const int t = sph_thread(), nt = sph_threads();
+    size_t *restrict h = hist + (size_t)t * cells;
+    size_t lo, hi;
+    sph_slice(NULL, n, &lo, &hi);
+    memset(h, 0, cells * sizeof *h);
+    for (size_t i = lo; i < hi; i++) h[key[i]]++;
+#pragma omp barrier
+#pragma omp single
+    { /* each count becomes its thread's first place in its cell */
+      size_t run = 0;
+      for (size_t c = 0; c < cells; c++) {
+        g->start[c] = run;
+        for (int u = 0; u < nt; u++) {
+          const size_t k = hist[(size_t)u * cells + c];
+          hist[(size_t)u * cells + c] = run;
+          run += k;
+        }
+      }
+      g->start[cells] = run;
+    }
+    for (size_t i = lo; i < hi; i++) perm[h[key[i]]++] = i;
+  }
+  return 0;
+}
+
+/* The shared build: bounding box in y (and in x unless periodic), keys,
+ * stable counting sort, and the permutation of the store (p != NULL) or
+ * only the cell lists in g->perm (p == NULL, the store read through q). */
+static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double cell,
+                 int periodic, double px0, double px1, size_t max_cells, sph_error *err) {
+  if (p) q = p;
+  const size_t n = q->n;
+  if (!(cell > 0.0)) return sph_error_set(err, "grid: cell size must be positive");
+  double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+  const long ln = (long)n;
+#pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN) reduction(min : xmin, ymin) \
+    reduction(max : xmax, ymax)
+  for (long i = 0; i < ln; i++) {
+    if (q->x[i] < xmin) xmin = q->x[i];
+    if (q->x[i] > xmax) xmax = q->x[i];
+    if (q->y[i] < ymin) ymin = q->y[i];
+    if (q->y[i] > ymax) ymax = q->y[i];
+  }
+  if (n == 0) xmin = xmax = ymin = ymax = 0.0;
+  if (!isfinite(xmin) || !isfinite(xmax) || !isfinite(ymin) || !isfinite(ymax))
+    return sph_error_set(err, "grid: particle position is not finite");
+  /* Rows of cells run along the longer side of the particles' box (along
+   * x unless the box is wider than tall and not periodic: then along y,
+   * and "x" below is y). A sorted store is in row order, and threads take
+   * contiguous slices of it, so the boundary between two slices is a row:
+   * across the shorter side, with the fewest particles near it. */
+  const int transposed = !periodic && xmax - xmin > ymax - ymin;
+  const double *restrict qx = transposed ? q->y : q->x, *restrict qy = transposed ? q->x : q->y;
+  if (transposed) {
+    double t = xmin;
+    xmin = ymin;
+    ymin = t;
+    t = xmax;
+    xmax = ymax;
+    ymax = t;
+  }
+  double cellx = cell;
+  if (periodic) {
+    /* between the two stages of a step particles may stand up to one step's
+     * travel outside the period; further is an error */
+    if (xmin < px0 - (px1 - px0) || xmax >= px1 + (px1 - px0))
+      return sph_error_set(err, "grid: a particle is more than a period outside [%g, %g)", px0,
+                           px1);
+    const double ncol = floor((px1 - px0) / cell);
+    if (ncol < 3)
+      return sph_error_set(err, "grid: the period %g holds fewer than 3 cells of %g", px1 - px0,
+                           cell);
+    xmin = px0;
+    xmax = px1;
+    cellx = (px1 - px0) / ncol;
+  }
+  const double fx = periodic ? floor((px1 - px0) / cell) : floor((xmax - xmin) / cell) + 1.0;
+  const double fy = floor((ymax - ymin) / cell) + 1.0;
+  if (fx * fy > (double)max_cells)
+    return sph_error_set(err, "grid: particles spread over %.0f x %.0f cells (limit %zu)", fx, fy,
+                         max_cells);
+  g->transposed = transposed;
+  g->x0 = xmin;
+  g->y0 = ymin;
+  g->cell = cell;
+  g->cellx = cellx;
+  g->periodic = periodic;
+  g->nx = (long)fx;
+  g->ny = (long)fy;
+  const size_t cells = (size_t)g->nx * (size_t)g->ny;
+  if (reserve(g, n, cells, err)) return -1;
+
+  const double inv = 1.0 / cell, invx = 1.0 / cellx;
+#pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN)
+  for (long i = 0; i < ln; i++) {
+    long cx = (long)floor((qx[i] - xmin) * invx);
+    long cy = (long)((qy[i] - ymin) * inv);
+    if (periodic) cx = ((cx % g->nx) + g->nx) % g->nx;
+    if (cx >= g->nx) cx = g->nx - 1;
+    if (cy >= g->ny) cy = g->ny - 1;
+    g->key[i] = (size_t)cy * (size_t)g->nx + (size_t)cx;
+  }
+  if (counting_sort(g, n, cells, err)) return -1;
+  /* the cell of each storage index: binned only, the particle's own key;
+   * sorted, the key of the particle moved there */
+  if (p) sph_particles_permute(p, g->perm, g->work);
+  const size_t *restrict key = g->key, *restrict perm = g->perm, nx = (size_t)g->nx;
+#pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN)
+  for (long i = 0; i < ln; i++) {
+    const size_t k = p ? key[perm[i]] : key[i];
+    g->cx[i] = (long)(k % nx);
+    g->cy[i] = (long)(k / nx);
+  }
+  g->sorted = p != NULL;
+  return 0;
+}
+
+int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells,
+                   sph_error *err) {
+  return build(g, p, NULL, cell, 0, 0.0, 0.0, max_cells, err);
+}
+
+int sph_grid_build_periodic(sph_grid *g, sph_particles *p, double cell, double px0, double px1,
+                            size_t max_cells, sph_error *err) {
+  return build(g, p, NULL, cell, 1, px0, px1, max_cells, err);
+}
+
+int sph_grid_bin(sph_grid *g, const sph_particles *p, double cell, int periodic, double px0,
+                 double px1, size_t max_cells, sph_error *err) {
+  return build(g, NULL, p, cell, periodic, px0, px1, max_cells, err);
+}
+
+/* ---- the neighbour list ------------------------------------------------------------- */
+
+void sph_nlist_init(sph_nlist *l) { memset(l, 0, sizeof *l); }
+
+void sph_nlist_free(sph_nlist *l) {
+  free(l->block);
+  free(l->nb);
+  sph_steal_free(&l->steal);
+  memset(l, 0, sizeof *l);
+}
+
+/* The candidates of particle i within sqrt(r2max), in the grid's walk
+ * order (positions, or storage indices through perm when the grid is only
+ * binned), into row; returns how many. */
+static inline __attribute__((always_inline)) uint32_t
+fill_row(const sph_grid *g, const double *restrict x, const double *restrict y, size_t i,
+         double r2max, double period, uint32_t *restrict row, const int sorted) {
+  size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES];
+  sph_grid_ranges_all(g, i, lo, hi);
+  const size_t *restrict perm = g->perm;
+  const double xi = x[i], yi = y[i];
+  uint32_t c = 0;
+  for (int k = 0; k < SPH_GRID_RANGES; k++)
+    for (size_t pos = lo[k]; pos < hi[k]; pos++) {
+      const size_t j = sorted ? pos : perm[pos];
+      const double dx = sph_grid_min_image(xi - x[j], period), dy = yi - y[j];
+      row[c] = (uint32_t)j; /* kept only if the next line counts it: no branch */
+      c += (uint32_t)((dx * dx + dy * dy < r2max) & (j != i));
+    }
+  return c;
+}
+
+int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, double support,
+                    double skin, double period, sph_error *err) {
+  const size_t n = p->n;
+  l->valid = 0;
+  if (n > UINT32_MAX) return sph_error_set(err, "grid: %zu particles is too many for a list", n);
+  if (n + 1 > l->cap_n) { /* every row array is rewritten below: nothing to keep */
+    const size_t cap = n + 1 + n / 4 + 16;
+    void **const arrays[] = {(void **)&l->start, (void **)&l->count, (void **)&l->xref,
+                             (void **)&l->yref,  (void **)&l->idref, (void **)&l->cost};
+    const size_t size[] = {sizeof *l->start, sizeof *l->count, sizeof *l->xref,
+                           sizeof *l->yref,  sizeof *l->idref, sizeof *l->cost};
+    if (sph_arrays_regrow(&l->block, cap, 0, 6, size, arrays))
+      return sph_error_set(err, "grid: out of memory for the neighbour list of %zu particles", n);
+    l->cap_n = cap;
+  }
+  /* a row's capacity is its candidate count: the rows are filled in
+   * parallel without a counting pass, each into its own slice */
+  const long ln = (long)n;
+  l->start[0] = 0;
+#pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN)
+  for (long li = 0; li < ln; li++) {
+    size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES];
+    sph_grid_ranges_all(g, (size_t)li, lo, hi);
+    size_t c = 0;
+    for (int k = 0; k < SPH_GRID_RANGES; k++) c += hi[k] - lo[k];
+    l->start[li + 1] = c;
+  }
+  for (size_t i = 0; i < n; i++) l->start[i + 1] += l->start[i]; /* exact: integers */
+  const size_t total = l->start[n];
+  if (total > l->cap_nb) {
+    const size_t cap = total + total / 4 + 64;
+    void *a = realloc(l->nb, cap * sizeof *l->nb);
+    if (!a) return sph_error_set(err, "grid: out of memory for %zu neighbour candidates", total);
+    l->nb = a;
+    l->cap_nb = cap;
+  }
+  const double radius = support + skin, r2max = radius * radius;
+  const double *restrict x = p->x, *restrict y = p->y;
+  const int sorted = g->sorted;
+  uint32_t mc = 0;
+  if (sph_steal_reset(&l->steal, l->start, n, sph_team_size(n)))
+    return sph_error_set(err, "grid: out of memory for the thread slices");
+#pragma omp parallel if (ln > SPH_OMP_MIN) reduction(max : mc)
+  {
+    size_t lo, hi; /* slices of equal candidate counts, with stealing (parallel.h) */
+    while (sph_steal_next(&l->steal, SPH_NLIST_STEAL_GRAIN, &lo, &hi))
+      for (size_t i = lo; i < hi; i++) {
+        uint32_t *restrict row = l->nb + l->start[i];
+        const double xi = x[i], yi = y[i];
+        /* the four kinds of grid each with a loop of its own, free of tests
+         * that do not change along it */
+        uint32_t c;
+        if (sorted && period <= 0.0)
+          c = fill_row(g, x, y, i, r2max, 0.0, row, 1);
+        else if (sorted)
+          c = fill_row(g, x, y, i, r2max, period, row, 1);
+        else if (period <= 0.0)
+          c = fill_row(g, x, y, i, r2max, 0.0, row, 0);
+        else
+          c = fill_row(g, x, y, i, r2max, period, row, 0);
+        /* increasing storage index: already so on a sorted grid that is not
+         * periodic (rows below, same, above in key order); otherwise an
+         * insertion sort, linear on nearly sorted rows */
+        if (!sorted || period > 0.0)
+          for (uint32_t a = 1; a < c; a++) {
+            const uint32_t v = row[a];
+            uint32_t b = a;
+            for (; b > 0 && row[b - 1] > v; b--) row[b] = row[b - 1];
+            row[b] = v;
+          }
+        l->count[i] = c;
+        l->xref[i] = xi;
+        l->yref[i] = yi;
+        l->idref[i] = p->id[i];
+        if (c > mc) mc = c;
+      }
+  }
+  sph_steal_learn(&l->steal);
+  l->cost[0] = 0; /* exact: integers */
+  for (size_t i = 0; i < n; i++)
+    l->cost[i + 1] = l->cost[i] + SPH_NLIST_ROW_COST +
+                     (p->kind[i] == SPH_KIND_FLUID ? l->count[i] : l->count[i] / 2);
+  l->maxcount = mc;
+  l->n = n;
+  l->radius = radius;
+  l->skin = skin;
+  l->period = period;
+  l->builds++;
+  l->valid = 1;
+  return 0;
+}
+
+int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p) {
+  if (!l->valid || l->n != p->n) return 0;
+  const long n = (long)p->n;
+  const double *restrict x = p->x, *restrict y = p->y;
+  const double *restrict xr = l->xref, *restrict yr = l->yref;
+  const int64_t *restrict id = p->id, *restrict idr = l->idref;
+  const double period = l->period;
+  double d2 = 0.0;
+  int moved = 0;
+#pragma omp parallel if (n > SPH_OMP_MIN) reduction(max : d2) reduction(| : moved)
+  {
+    size_t lo, hi;
+    sph_slice(l->cost, p->n, &lo, &hi);
+    for (size_t i = lo; i < hi; i++) {
+      const double dx = sph_grid_min_image(x[i] - xr[i], period), dy = y[i] - yr[i];
+      const double d = dx * dx + dy * dy;
+      if (d > d2) d2 = d;
+      moved |= id[i] != idr[i];
+    }
+  }
+  if (moved) return 0;
+  /* max displacement < skin/2, with a relative margin for rounding */
+  const double half = 0.5 * l->skin * (1.0 - 1e-6);
+  return d2 < half * half;
+}

@@ -1,0 +1,200 @@
+/*
+ * grid.h - the cell-linked list ("dynamic grid" of paper A §2).
+ *
+ * Square cells of side >= the smoothing radius cover the particles' bounding
+ * box. Building the grid sorts the particle store by cell with a stable
+ * counting sort (row-major cell key), so particles of a cell are contiguous
+ * and, within a cell, keep their previous relative order: the neighbour
+ * order of every particle is a function of the state alone, never of the
+ * thread count. The neighbours of a particle are the particles of the 3x3
+ * block of cells around its own; because a row of three cells is one
+ * contiguous range, a neighbour walk is three index ranges.
+ */
+#ifndef SPH_GRID_H
+#define SPH_GRID_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/particles.h"
+
+typedef struct sph_grid {
+  int transposed; /* rows run along y (a box wider than tall, not periodic):
+                     below, read x as y and y as x */
+  double x0, y0;  /* lower-left corner of cell (0, 0) */
+  double cell;    /* cell side (rows); columns are cellx wide */
+  double cellx;   /* column width: = cell, or period/nx when periodic in x */
+  int periodic;   /* columns wrap around (periodic in x) */
+  int sorted;    /* the store is in cell order (sph_grid_build*); 0 after
+                    sph_grid_bin: cell c holds perm[start[c]] .. perm[start[c+1]-1] */
+  long nx, ny;   /* cells per row, rows */
+  size_t *start; /* nx*ny + 1 offsets into the sorted store */
+  long *cx, *cy; /* cell coordinates of the particle at each storage index */
+  size_t cap_cells, cap_particles;
+  size_t *key, *perm, *count; /* scratch */
+  size_t *hist, cap_hist;     /* scratch: one count per cell per thread */
+  void *work;                 /* scratch for permutation (8 bytes per particle) */
+  void *block;                /* the one allocation of cx, cy, key, perm, work (arrays.h) */
+} sph_grid;
+
+void sph_grid_init(sph_grid *g);
+void sph_grid_free(sph_grid *g);
+
+/* Sorts p by cell (cells of side `cell`) and fills the cell offsets. Fails
+ * if the bounding box would need more than max_cells cells (particles far
+ * apart: the caller's domain check should have caught it). */
+int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells,
+                   sph_error *err);
+/* The same for a domain periodic in x over [px0, px1): columns are
+ * (px1 - px0)/nx >= cell wide (nx >= 3); a particle outside [px0, px1)
+ * (by less than a period) is binned in the column of its periodic image. */
+int sph_grid_build_periodic(sph_grid *g, sph_particles *p, double cell, double px0, double px1,
+                            size_t max_cells, sph_error *err);
+
+/* Bins p by cell like sph_grid_build_periodic (periodic != 0) or
+ * sph_grid_build, without reordering the store: the cell lists are
+ * positions into g->perm (the storage indices in cell order, stable), and
+ * g->sorted = 0. Only sph_nlist_build reads such a grid. */
+int sph_grid_bin(sph_grid *g, const sph_particles *p, double cell, int periodic, double px0,
+                 double px1, size_t max_cells, sph_error *err);
+
+/* The three contiguous index ranges [lo[k], hi[k]) holding the neighbour
+ * candidates of the particle stored at index i (rows below, same, above,
+ * each spanning three cells) in a grid that is not periodic. Rows outside
+ * the grid give empty ranges. */
+static inline void sph_grid_ranges(const sph_grid *g, size_t i, size_t lo[3], size_t hi[3]) {
+  const long cx = g->cx[i], cy = g->cy[i];
+  const long xa = cx > 0 ? cx - 1 : 0;
+  const long xb = cx + 1 < g->nx ? cx + 1 : g->nx - 1;
+  for (int k = 0; k < 3; k++) {
+    const long y = cy - 1 + k;
+    if (y < 0 || y >= g->ny) {
+      lo[k] = hi[k] = 0;
+      continue;
+    }
+    lo[k] = g->start[y * g->nx + xa];
+    hi[k] = g->start[y * g->nx + xb + 1];
+  }
+}
+
+/* Any grid, periodic or not: up to SPH_GRID_RANGES contiguous index ranges [lo[k], hi[k]) holding the
+ * neighbour candidates of the particle stored at index i: per row (below,
+ * same, above) one range of three cells, or two when the row wraps around
+ * a periodic seam. Unused and out-of-grid ranges are empty. */
+/* x_i - x_j = d as the minimum image in a domain periodic in x over
+ * `period` (period > 0); d unchanged when period is 0. The one helper of
+ * the grid, the filters, free-surface detection and the repulsive force. */
+static inline double sph_grid_min_image(double d, double period) {
+  if (period > 0.0) {
+    if (d > 0.5 * period)
+      d -= period;
+    else if (d < -0.5 * period)
+      d += period;
+  }
+  return d;
+}
+
+#define SPH_GRID_RANGES 6
+static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SPH_GRID_RANGES],
+                                   size_t hi[SPH_GRID_RANGES]) {
+  const long cx = g->cx[i], cy = g->cy[i], nx = g->nx;
+  for (int k = 0; k < SPH_GRID_RANGES; k++) lo[k] = hi[k] = 0;
+  for (int r = 0; r < 3; r++) {
+    const long y = cy - 1 + r;
+    if (y < 0 || y >= g->ny) continue;
+    const size_t *row = g->start + y * nx;
+    if (!g->periodic || nx <= 3) { /* nx <= 3 periodic: the whole row, once */
+      const long xa = g->periodic ? 0 : (cx > 0 ? cx - 1 : 0);
+      const long xb = g->periodic ? nx - 1 : (cx + 1 < nx ? cx + 1 : nx - 1);
+      lo[2 * r] = row[xa];
+      hi[2 * r] = row[xb + 1];
+    } else if (cx == 0) { /* columns nx-1 | 0, 1 */
+      lo[2 * r] = row[nx - 1];
+      hi[2 * r] = row[nx];
+      lo[2 * r + 1] = row[0];
+      hi[2 * r + 1] = row[2];
+    } else if (cx == nx - 1) { /* columns nx-2, nx-1 | 0 */
+      lo[2 * r] = row[nx - 2];
+      hi[2 * r] = row[nx];
+      lo[2 * r + 1] = row[0];
+      hi[2 * r + 1] = row[1];
+    } else {
+      lo[2 * r] = row[cx - 1];
+      hi[2 * r] = row[cx + 2];
+    }
+  }
+}
+
+/* ---- the neighbour list (Verlet list) ------------------------------------------------
+ *
+ * For every particle i, the particles j != i that stood closer than
+ * `radius` to it when the list was built, in increasing storage index (on
+ * a sorted grid that is the grid's walk order, rows below, same, above, so
+ * a sum over a row runs in the same order as over the grid's ranges). The
+ * row of i is nb[start[i]], ..., nb[start[i] + count[i] - 1].
+ * Because a row is in storage order, the pairs of a row inside the support
+ * come in the same order whatever the skin and whenever the list was built:
+ * a sum over them depends on the state and the storage order only.
+ *
+ * With radius = support + skin the list stays complete for the support
+ * (every pair closer than `support` is in it) as long as no particle has
+ * moved more than skin/2 since the build: |r_ij(now)| <= |r_ij(build)| + 2
+ * max displacement. sph_nlist_fresh checks exactly that (a max over the
+ * particles, exact in any order), so a list is reused across the stages and
+ * steps of a run only while it is provably complete, and rebuilt (grid
+ * sort + list) otherwise. Interaction loops still test r < support for
+ * every listed pair, so which pairs interact never depends on the skin;
+ * only the summation order does (the storage order of the last sort).
+ */
+/* The cost of a particle in a pass, in neighbour pairs: its row's length
+ * (half of it for a wall particle, which sums only the continuity term and
+ * the step rule's sigma) plus this much for the per-particle work (the
+ * integrator's update, the row's final sums). Measured on the a/100 dam
+ * break on 2 threads: with wall rows at full length the thread holding the
+ * tank floor finished its interaction loops 0.85 s earlier in all (of
+ * 17.5 s), halved 0.4-0.56 s. */
+#define SPH_NLIST_ROW_COST 8
+/* Rows per stolen chunk of the list's fill loop (parallel.h). */
+#define SPH_NLIST_STEAL_GRAIN 32
+
+typedef struct sph_nlist {
+  int valid;          /* built, and the store not reordered since */
+  size_t n;           /* particles at the build */
+  double radius;      /* list radius: support + skin */
+  double skin;        /* radius - support */
+  double period;      /* > 0: minimum image in x with this period */
+  size_t *start;      /* n + 1 offsets into nb (a row's capacity: its candidates) */
+  uint32_t *count;    /* neighbours of each particle */
+  uint32_t maxcount;  /* the longest row */
+  uint32_t *nb;       /* neighbour storage indices */
+  double *xref, *yref; /* positions at the build */
+  int64_t *idref;     /* ids at the build (a reordered store is detected) */
+  size_t cap_n, cap_nb;
+  size_t *cost;       /* n + 1: prefix sums of the particles' costs (SPH_NLIST_ROW_COST), the split of
+                         the loops over the store among threads (parallel.h) */
+  void *block;        /* the one allocation of start ... cost (arrays.h) */
+  long builds;        /* number of builds (statistics) */
+  sph_steal steal;    /* the fill loop's slices (parallel.h) */
+} sph_nlist;
+
+void sph_nlist_init(sph_nlist *l);
+void sph_nlist_free(sph_nlist *l);
+
+/* Builds the list of p from g (built or binned on p's current positions
+ * with cells of side >= radius) for pairs closer than radius = support +
+ * skin; periodic grids take the minimum image in x with period = the
+ * grid's period (px1 - px0). */
+int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, double support,
+                    double skin, double period, sph_error *err);
+
+/* 1 if the list built earlier on p is still complete for its support:
+ * the same particles in the same storage order (ids compared), every one
+ * within skin/2 (less a rounding margin) of where it stood at the build. */
+int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p);
+
+/* Forgets the list (after the store was reordered). */
+static inline void sph_nlist_invalidate(sph_nlist *l) { l->valid = 0; }
+
+#endif

@@ -1,0 +1,11 @@
+/*
+ * eos.c - inverse of the Tait equation of state (see eos.h); used only when
+ * particles are created, so pow() is fine here.
+ */
+#include "config.h"
+
+#include "physics/eos.h"
+
+double sph_eos_density(const sph_eos *e, double p) {
+  return e->rho0 * pow(1.0 + p / e->B, 1.0 / 7.0);
+}

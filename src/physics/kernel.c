@@ -1,0 +1,28 @@
+/*
+ * kernel.c - out-of-line forms of the kernel evaluator (see kernel.h), for
+ * tests and for code off the hot path. The interaction loops use the
+ * static inline sph_cubic_w_dw directly.
+ */
+#include "config.h"
+
+#include "physics/kernel.h"
+
+#include <math.h>
+
+double sph_cubic_w(double r, double h) {
+  double w, dw;
+  sph_cubic_w_dw(r, h, &w, &dw);
+  return w;
+}
+
+void sph_cubic_grad(double dx, double dy, double h, double *gx, double *gy) {
+  double r = sqrt(dx * dx + dy * dy);
+  if (r == 0.0) {
+    *gx = *gy = 0.0;
+    return;
+  }
+  double w, dw;
+  sph_cubic_w_dw(r, h, &w, &dw);
+  *gx = dw * dx / r;
+  *gy = dw * dy / r;
+}

@@ -1,0 +1,74 @@
+/*
+ * diag.c - front tracking and conserved sums over the fluid (see diag.h).
+ */
+#include "config.h"
+
+#include "solver/diag.h"
+
+#include "core/parallel.h"
+
+#include <math.h>
+
+double sph_diag_front(const sph_particles *p, double floor_y, double band) {
+  double front = -INFINITY; /* a maximum: exact in any order */
+  const long n = (long)p->n;
+#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : front)
+  for (long i = 0; i < n; i++)
+    if (p->kind[i] == SPH_KIND_FLUID && p->y[i] < floor_y + band && p->x[i] > front)
+      front = p->x[i];
+  return front;
+}
+
+double sph_diag_surface_at(const sph_particles *p, double x, double half, double dx) {
+  double top = -INFINITY;
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_FLUID && fabs(p->x[i] - x) < half && p->y[i] > top) top = p->y[i];
+  return top + 0.5 * dx;
+}
+
+void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[2],
+                      sph_diag_row *row) {
+  size_t n = 0;
+  double mass = 0.0, mx = 0.0, my = 0.0, ke = 0.0, pe = 0.0;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->kind[i] != SPH_KIND_FLUID) continue;
+    const double m = p->mass[i];
+    n++;
+    mass += m;
+    mx += m * p->vx[i];
+    my += m * p->vy[i];
+    ke += 0.5 * m * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);
+    pe -= m * (g[0] * p->x[i] + g[1] * (p->y[i] - floor_y));
+  }
+  row->n_fluid = n;
+  row->front_x = sph_diag_front(p, floor_y, band);
+  row->mass = mass;
+  row->momentum_x = mx;
+  row->momentum_y = my;
+  row->kinetic = ke;
+  row->potential = pe;
+  row->n_surface = -1;
+  row->ledger = 0;
+}
+
+int sph_diag_write_header(FILE *f, int free_surface, int ledger) {
+  return fprintf(f, "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential%s%s\n",
+                 free_surface ? ",n_free_surface" : "",
+                 ledger ? ",internal,boundary_work,xsph_drift,total_energy,energy_deviation,"
+                          "fluid_energy_deviation,momentum_residual_x,momentum_residual_y"
+                        : "") < 0;
+}
+
+int sph_diag_write_row(FILE *f, const sph_diag_row *r) {
+  if (fprintf(f, "%.17g,%ld,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", r->time, r->step,
+              r->dt, r->n_fluid, r->front_x, r->mass, r->momentum_x, r->momentum_y, r->kinetic,
+              r->potential) < 0)
+    return 1;
+  if (r->n_surface >= 0 && fprintf(f, ",%ld", r->n_surface) < 0) return 1;
+  if (r->ledger && fprintf(f, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", r->internal,
+                           r->boundary_work, r->xsph_drift, r->total, r->deviation,
+                           r->fluid_deviation, r->momentum_residual_x,
+                           r->momentum_residual_y) < 0)
+    return 1;
+  return fputc('\n', f) == EOF;
+}

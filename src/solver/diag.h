@@ -1,0 +1,61 @@
+/*
+ * diag.h - diagnostics: the surge front and the conserved quantities of the
+ * fluid, one CSV row per output time (diagnostics.csv).
+ *
+ * Columns: time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential
+ *   front_x    largest x of fluid particles within `band` (2 dx) of the floor
+ *   mass       sum of fluid masses (exact: masses never change)
+ *   momentum   sum of m v over fluid particles
+ *   kinetic    sum of m |v|^2 / 2 over fluid particles
+ *   potential  sum of -m g.(r - r_floor) over fluid particles, r_floor = (0, floor):
+ *              zero on the floor, so E0 is a sizeable positive number
+ *   n_free_surface  fluid particles flagged on the free surface (a column
+ *              only when the case runs free-surface detection)
+ *   internal,boundary_work,xsph_drift,total_energy,energy_deviation,
+ *   fluid_energy_deviation,momentum_residual_x,momentum_residual_y
+ *              the energy ledger and the momentum balance (columns only
+ *              with output.energy)
+ * Numbers are printed with %.17g: a row reads back to the same bits. Sums
+ * run serially over the store in its (deterministic) sorted order.
+ */
+#ifndef SPH_DIAG_H
+#define SPH_DIAG_H
+
+#include <stdio.h>
+
+#include "core/particles.h"
+
+typedef struct sph_diag_row {
+  double time, dt;
+  long step;
+  size_t n_fluid;
+  double front_x, mass, momentum_x, momentum_y, kinetic, potential;
+  long n_surface; /* fluid particles on the free surface; -1: detection is off */
+  /* energy ledger (columns only when the case sets output.energy) */
+  int ledger;
+  double internal;        /* sum m u over fluid and wall particles */
+  double boundary_work;   /* work done on the fluid by moving walls, integrated in time */
+  double xsph_drift;      /* change of potential energy caused by the XSPH correction */
+  double total;           /* kinetic + potential + internal - boundary_work - xsph_drift */
+  double deviation;       /* (total - E0) / E0, E0 the initial total */
+  double fluid_deviation; /* the fluid's own kinetic + potential + internal against its start */
+  /* momentum balance: P - P0 - integral of the external force (walls,
+   * mirror particles, body force) on the fluid; zero but for round-off and
+   * time integration if momentum is conserved */
+  double momentum_residual_x, momentum_residual_y;
+} sph_diag_row;
+
+/* Largest x of fluid particles with y < floor_y + band; -inf if none. */
+double sph_diag_front(const sph_particles *p, double floor_y, double band);
+/* Wave gauge: the highest fluid particle centre with |x_i - x| < half,
+ * plus dx/2 (the top of its lattice cell): the free-surface level at x,
+ * read as a gauge would. -inf if no fluid particle is there. */
+double sph_diag_surface_at(const sph_particles *p, double x, double half, double dx);
+/* Fills every column but time, step and dt. */
+void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[2],
+                      sph_diag_row *row);
+/* CSV header line and rows. Return non-zero on a write error. */
+int sph_diag_write_header(FILE *f, int free_surface, int ledger);
+int sph_diag_write_row(FILE *f, const sph_diag_row *row);
+
+#endif

@@ -1,0 +1,136 @@
+/*
+ * forces.h - the interaction passes: rates of change of every particle from
+ * its neighbours (gather form: each particle sums over its own neighbours
+ * into its own accumulators, so no two threads write the same memory and
+ * the summation order is fixed by the sorted store).
+ *
+ * Terms (paper A = dam-break paper, paper B = breaking-wave paper):
+ *   continuity       drho_i/dt = sum_j m_j (v_i - v_j) . grad_i W_ij      (B eq. 2, A eq. 12)
+ *   momentum         dv_i/dt = -sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) grad_i W_ij + g
+ *                                                                         (A eq. 11, B eq. 3)
+ *   art. viscosity   Pi_ij = (-alpha c_ij mu_ij + beta mu_ij^2)/rho_ij if v_ij.r_ij < 0, else 0
+ *                    mu_ij = h_ij v_ij.r_ij / (r_ij^2 + eta^2), eta = eta_f h_ij (A eq. 15-16)
+ *   viscous stress   + sum_j m_j sum_d (tau_i^ad/rho_i^2 + tau_j^ad/rho_j^2) dW_ij/dx_i^d,
+ *                    tau = mu eps, eps from the strain-rate pass          (A eq. 11, 13, 14)
+ *   Morris viscosity + sum_j m_j 4 nu0 r_ij.grad_i W_ij / ((rho_i + rho_j)(r_ij^2 + eta^2)) v_ij
+ *                    nu0 = mu / rho0                                       (B eq. 4, laminar)
+ *   XSPH             dr_i/dt = v_i + eps sum_j (m_j/rho_ij) (v_j - v_i) W_ij  (B eq. 6),
+ *                    over fluid neighbours only (a wall at rest would drag
+ *                    the fluid otherwise)
+ *   SPS turbulence   + sum_j m_j (tau*_i/rho_i^2 + tau*_j/rho_j^2) . grad_i W_ij, tau* the
+ *                    Smagorinsky SPS stress of src/physics/turbulence.h       (B eq. 4)
+ *   Lennard-Jones    + D [(r0/r)^12 - (r0/r)^4] r_ij / r^2 from repulsive wall particles
+ *                    closer than r0                                        (A eq. 21-22)
+ *   time-step data   sigma_i = max_j |h v_ij.r_ij / r_ij^2|                 (B §2.6)
+ *   energy ledger    du_i/dt = 1/2 sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) v_ij.grad_i W_ij
+ *                    (A eq. 28-29, with the artificial-viscosity share) plus the
+ *                    viscous dissipation in the pairwise form that balances
+ *                    the viscous force's work exactly, for fluid and dynamic
+ *                    wall particles (each takes half of a pair's heat); and
+ *                    the power sum_j a_ij . v_j of wall particles j on fluid i
+ * Dynamic wall particles (GOST R 57700.6 3.4.7) get drho/dt (and du/dt with
+ * the ledger); repulsive wall particles and mirror particles get no rates. Walls and mirrors act on
+ * fluid through their pressure and the viscous terms.
+ *
+ * Kernel-gradient correction of the stress tensor (physics.viscosity.
+ * gradient_correction; Bonet and Lok 1999): the strain-rate pass sums
+ * G_ab = sum_j V_j (v_j - v_i)_a dW_ij/dx_i^b and the moment
+ * M_ab = sum_j V_j (x_j - x_i)_a dW_ij/dx_i^b, and takes grad v = G M^-1
+ * (exact for a linear field whatever the neighbours); the stress divergence
+ * then uses sym(tau L_i), L = M^-1, in place of tau_i, so that a linear
+ * stress has its exact divergence while the pair terms stay antisymmetric
+ * (momentum conserved). On a square lattice at h = 1.3 dx M = 1.0105 I,
+ * so without it the nested gradients make the Laplacian 2.1 % too large.
+ * Where det M <= SPH_GRADIENT_CORRECTION_MIN_DET (the free surface, the
+ * outer layers of a wall) L = I: inverting a truncated moment there
+ * amplifies noise (at 4900 particles the film blew up at 0.05 s with 0.25).
+ * With extrapolated wall velocities (wall_velocity.h) the strain-rate pass
+ * reads the wall particles' ghost velocities.
+ *
+ * Each term a case does not use is compiled out of the loop it runs (the
+ * loop is instantiated for every combination of terms, DESIGN rule 4).
+ */
+#ifndef SPH_FORCES_H
+#define SPH_FORCES_H
+
+#include "physics/models.h"
+#include "physics/eos.h"
+#include "neighbours/grid.h"
+#include "core/parallel.h"
+#include "core/particles.h"
+#include "walls/wall_velocity.h"
+
+#define SPH_GRADIENT_CORRECTION_MIN_DET 0.8
+
+typedef struct sph_force_params {
+  sph_eos eos;
+  double h;            /* smoothing length when uniform */
+  int var_h;           /* per-particle h (pair mean h_ij); the grid must fit 2 max h */
+  double alpha, beta;  /* artificial viscosity; both 0 = off */
+  double eta;          /* eta = eta_f * h_ij */
+  double xsph;         /* XSPH epsilon; 0 = off */
+  double gx, gy;       /* body force per unit mass */
+  sph_viscosity_kind viscosity;
+  double mu;           /* dynamic viscosity (Pa s) */
+  int periodic;        /* minimum image in x */
+  double period;       /* length of the period */
+  int repulsive;       /* repulsive wall particles present */
+  double lj_d, lj_r0;  /* Lennard-Jones strength D and range r0 */
+  int ledger;          /* energy ledger: du/dt and the power of wall particles on fluid */
+  int sps;             /* SPS turbulence stress (src/physics/turbulence.h) */
+  int gradient_correction; /* kernel-gradient correction of the stress tensor (below) */
+  int no_slip;         /* some wall particles carry SPH_FLAG_NO_SLIP (wall_velocity.h) */
+  double px0;          /* periodic: the period starts at x = px0 */
+  double sps_cs, sps_ci, sps_delta;
+} sph_force_params;
+
+/* The fields a neighbour reads, packed in one cache line per particle
+ * (storage order), so that walking a neighbour row touches one line per
+ * neighbour instead of one per field. */
+typedef struct sph_force_hot {
+  double x, y, vx, vy, rho;
+  double prho2; /* p / rho^2 */
+  double cs;    /* sound speed */
+  double m;     /* mass */
+} sph_force_hot;
+
+/* Per-particle quantities of a pass (storage order). */
+typedef struct sph_force_work {
+  size_t cap;
+  void *block;           /* the one allocation of the arrays below (arrays.h) */
+  sph_force_hot *hot;    /* packed copy of the state read from neighbours */
+  double *prho2;         /* scratch of n doubles (p / rho^2 lives in hot) */
+  double *cs;            /* sound speed */
+  double *sigma;         /* max_j |h v_ij.r_ij / r_ij^2| */
+  double *sxx, *sxy, *syy; /* tau / rho^2 (stress-tensor viscosity only) */
+  double *wpow;          /* ledger: sum over wall neighbours j of a_ij . v_j (fluid i) */
+  double *wfx, *wfy;     /* ledger: sum over wall and mirror neighbours j of a_ij (fluid i) */
+  double *lxx, *lxy, *lyy; /* kernel-gradient correction M^-1 of the strain-rate pass */
+  double *gvx, *gvy;     /* velocity in the strain-rate pass (extrapolated on no-slip walls) */
+  sph_wall_velocity_work wv;
+  double cs_sigma_max;   /* max over the particles of cs + sigma (the step rule) */
+  uint32_t *rows;        /* per thread: a neighbour row cut to the support */
+  size_t rows_stride, rows_cap;
+  sph_steal steal;       /* the interaction loop's slices (parallel.h) */
+} sph_force_work;
+
+void sph_force_work_free(sph_force_work *w);
+
+/* Sets p->p from the equation of state for every particle. */
+void sph_forces_pressure(sph_particles *p, const sph_eos *eos);
+
+/* One interaction pass over the neighbour list l (complete for the
+ * support 2 h, 2 max h with var_h, and for the Lennard-Jones range r0 on
+ * p's current positions: see sph_nlist_fresh): fills p->drho, p->ax, p->ay
+ * (and p->xsx, p->xsy when XSPH is on), w->sigma, w->cs and
+ * w->cs_sigma_max. Needs p->p current. */
+int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
+                        sph_force_work *w, sph_error *err);
+
+/* The strain-rate tensor of paper A eq. (13)-(14) at every particle, for
+ * tests and output: eps_xx, eps_xy, eps_yy (each n values); with fp's
+ * gradient correction and extrapolated wall velocities when set. */
+int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_force_params *fp,
+                           double *exx, double *exy, double *eyy, sph_error *err);
+
+#endif

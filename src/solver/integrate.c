@@ -1,0 +1,132 @@
+/*
+ * integrate.c - predictor-corrector stages and time-step rules (see
+ * integrate.h). Every loop is per particle (no sums), and the step rules use
+ * min/max reductions only, which are exact in any order, so the results do
+ * not depend on the number of threads.
+ */
+#include "config.h"
+
+#include "core/parallel.h"
+
+#include "solver/integrate.h"
+
+#include <math.h>
+
+/* The shared update: X <- X0 + dt/2 F, then doubled-and-shifted when
+ * `finish`: X <- 2 X - X0; the predictor first saves X0 <- X (`save`).
+ * The pressure follows from the new density in the same loop, so a stage
+ * is one pass over the store (and one parallel region). */
+static inline __attribute__((always_inline)) void stage(sph_particles *p, double dt, int xsph,
+                                                         const sph_eos *eos, const size_t *cost,
+                                                         const int save, const int finish) {
+  const long n = (long)p->n;
+  const double hdt = 0.5 * dt;
+#pragma omp parallel if (n > SPH_OMP_MIN)
+  {
+    size_t lo, hi;
+    sph_slice(cost, p->n, &lo, &hi);
+    for (size_t i = lo; i < hi; i++) {
+      if (save) {
+        p->x0[i] = p->x[i];
+        p->y0[i] = p->y[i];
+        p->vx0[i] = p->vx[i];
+        p->vy0[i] = p->vy[i];
+        p->rho0[i] = p->rho[i];
+        p->u0[i] = p->u[i];
+      }
+      double rho = p->rho0[i] + hdt * p->drho[i];
+      double u = p->u0[i] + hdt * p->du[i];
+      if (finish) {
+        rho = 2.0 * rho - p->rho0[i];
+        u = 2.0 * u - p->u0[i];
+      }
+      p->rho[i] = rho;
+      p->u[i] = u;
+      p->p[i] = sph_eos_pressure(eos, rho);
+      if (p->kind[i] != SPH_KIND_FLUID) continue;
+      double ux = p->vx[i], uy = p->vy[i]; /* dr/dt uses the velocity of the evaluated state */
+      if (xsph) {
+        ux += p->xsx[i];
+        uy += p->xsy[i];
+      }
+      double x = p->x0[i] + hdt * ux, y = p->y0[i] + hdt * uy;
+      double vx = p->vx0[i] + hdt * p->ax[i], vy = p->vy0[i] + hdt * p->ay[i];
+      if (finish) {
+        x = 2.0 * x - p->x0[i];
+        y = 2.0 * y - p->y0[i];
+        vx = 2.0 * vx - p->vx0[i];
+        vy = 2.0 * vy - p->vy0[i];
+      }
+      p->x[i] = x;
+      p->y[i] = y;
+      p->vx[i] = vx;
+      p->vy[i] = vy;
+    }
+  }
+}
+
+void sph_pc_half(sph_particles *p, double dt, int xsph, const sph_eos *eos, const size_t *cost) {
+  stage(p, dt, xsph, eos, cost, 1, 0);
+}
+void sph_pc_finish(sph_particles *p, double dt, int xsph, const sph_eos *eos,
+                   const size_t *cost) {
+  stage(p, dt, xsph, eos, cost, 0, 1);
+}
+
+void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const sph_eos *eos,
+                       const size_t *cost) {
+  const long n = (long)p->n;
+  const double kick = first ? 0.5 * dt : dt, hdt = 0.5 * dt;
+#pragma omp parallel if (n > SPH_OMP_MIN)
+  {
+    size_t lo, hi;
+    sph_slice(cost, p->n, &lo, &hi);
+    for (size_t i = lo; i < hi; i++) {
+      p->x0[i] = p->x[i]; /* the saved state (last good state after a blow-up) */
+      p->y0[i] = p->y[i];
+      p->vx0[i] = p->vx[i];
+      p->vy0[i] = p->vy[i];
+      p->rho0[i] = p->rho[i];
+      p->u0[i] = p->u[i];
+      const double rh = (first ? p->rho[i] : p->rhoh[i]) + kick * p->drho[i];
+      p->rhoh[i] = rh;
+      p->rho[i] = rh + hdt * p->drho[i];
+      p->p[i] = sph_eos_pressure(eos, p->rho[i]);
+      const double uh = (first ? p->u[i] : p->uh[i]) + kick * p->du[i];
+      p->uh[i] = uh;
+      p->u[i] = uh + hdt * p->du[i];
+      if (p->kind[i] != SPH_KIND_FLUID) continue;
+      const double vxh = (first ? p->vx[i] : p->vxh[i]) + kick * p->ax[i];
+      const double vyh = (first ? p->vy[i] : p->vyh[i]) + kick * p->ay[i];
+      double ux = vxh, uy = vyh;
+      if (xsph) {
+        ux += p->xsx[i];
+        uy += p->xsy[i];
+      }
+      p->x[i] += dt * ux;
+      p->y[i] += dt * uy;
+      p->vxh[i] = vxh;
+      p->vyh[i] = vyh;
+      p->vx[i] = vxh + hdt * p->ax[i];
+      p->vy[i] = vyh + hdt * p->ay[i];
+    }
+  }
+}
+
+double sph_dt_paper_b(const sph_force_work *w, double h, double factor) {
+  /* min_a (factor h) / x_a = (factor h) / max_a x_a exactly: a correctly
+   * rounded division is monotone in its divisor */
+  return factor * h / w->cs_sigma_max;
+}
+
+double sph_dt_cfl(const sph_particles *p, const sph_eos *eos, double h, double factor) {
+  const long n = (long)p->n;
+  double vmax = 0.0;
+#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : vmax)
+  for (long i = 0; i < n; i++) {
+    const double v = sph_eos_sound_speed(eos, p->rho[i]) +
+                     sqrt(p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);
+    if (v > vmax) vmax = v;
+  }
+  return factor * h / vmax;
+}

@@ -1,0 +1,50 @@
+/*
+ * integrate.h - time integration: the predictor-corrector of paper B
+ * (eq. 7-8) and the time-step rules.
+ *
+ *   X^{n+1/2} = X^n + dt/2 F(X^n)          (predictor)
+ *   X^{n+1/2} = X^n + dt/2 F(X^{n+1/2})    (corrector)
+ *   X^{n+1}   = 2 X^{n+1/2} - X^n
+ * with X = (r, v, rho, u) for fluid particles (dr/dt = v + XSPH correction)
+ * and X = (rho, u) for wall particles (u: thermal energy per unit mass,
+ * integrated like the density, paper A §9); the pressure follows from the EOS
+ * in each stage's loop. The state before the step is saved in X0 (x0, y0,
+ * vx0, vy0, rho0, u0) by the predictor (and by the leap-frog).
+ */
+#ifndef SPH_INTEGRATE_H
+#define SPH_INTEGRATE_H
+
+#include "physics/eos.h"
+#include "solver/forces.h"
+#include "core/particles.h"
+
+/* Every update below is per particle; `cost` (n + 1 entries, or NULL)
+ * splits the store among the threads as the neighbour loops do
+ * (sph_slice in parallel.h), which changes only the time. */
+
+/* X0 <- X, then X <- X0 + dt/2 F (the predictor), and the pressure. */
+void sph_pc_half(sph_particles *p, double dt, int xsph, const sph_eos *eos, const size_t *cost);
+/* X <- 2 (X0 + dt/2 F) - X0: the corrector half step and the final
+ * update, and the pressure. */
+void sph_pc_finish(sph_particles *p, double dt, int xsph, const sph_eos *eos,
+                   const size_t *cost);
+
+/* The leap-frog of paper A eq. (17)-(19), one force evaluation per step.
+ * Between steps the store holds x^n, the half-step values (vxh, vyh, rhoh)
+ * = (v, rho)^{n-1/2}, and the values at t^n predicted from them,
+ * (v, rho)^n = (v, rho)^{n-1/2} + dt/2 (dv, drho)/dt^{n-1}, at which the
+ * rates are evaluated. After the rates at t^n are known:
+ *   (v, rho)^{n+1/2} = (v, rho)^{n-1/2} + dt (dv, drho)/dt^n   (first step:
+ *                      (v, rho)^0 + dt/2 (dv, drho)/dt^0)
+ *   x^{n+1} = x^n + dt (v^{n+1/2} + XSPH correction)
+ *   (v, rho)^{n+1} predicted = (v, rho)^{n+1/2} + dt/2 (dv, drho)/dt^n. */
+void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const sph_eos *eos,
+                       const size_t *cost);
+
+/* Paper B §2.6: dt = min_a factor h / (c_a + sigma_a), from the maximum of
+ * c_a + sigma_a that the last interaction pass found (w->cs_sigma_max). */
+double sph_dt_paper_b(const sph_force_work *w, double h, double factor);
+/* Paper A eq. (20): dt = factor min h / max_a (c_a + |v_a|). */
+double sph_dt_cfl(const sph_particles *p, const sph_eos *eos, double h, double factor);
+
+#endif

@@ -1,0 +1,358 @@
+/*
+ * run.c - the run loop and its outputs (see run.h).
+ *
+ * Files are only ever replaced atomically (snapshots and the XDMF index by
+ * the snapshot module; diagnostics.csv is appended row by row and flushed,
+ * so an interrupted run keeps every complete row).
+ *
+ * Every snapshot carries the restart record (sim.h): besides the sim's own
+ * state, its number k and the gauges' levels at t = 0. A resumed run
+ * (sph_run_resume) writes snap_{k+1} onwards; it keeps the rows of an
+ * existing diagnostics.csv / gauges.csv (same header) up to the restart
+ * time, drops the later ones (a run that went on past the snapshot) and
+ * appends, so a run interrupted and resumed in its own directory ends with
+ * the files of the uninterrupted run; in a fresh directory the files start
+ * with the row of the restart time. The XDMF index lists the earlier
+ * snapshots still present in the directory.
+ */
+#include "config.h"
+
+#include "solver/run.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/snapshot.h"
+
+typedef struct outputs {
+  const char *dir;
+  FILE *diag;
+  FILE *gauges;      /* gauges.csv, when the case has wave gauges */
+  double *still;     /* each gauge's level at t = 0 */
+  size_t index;      /* number of the next snapshot file, snap_<index>.h5 */
+  size_t n, cap;     /* snapshots listed in the XDMF index */
+  char **names;
+  double *times;
+} outputs;
+
+static void outputs_free(outputs *o) {
+  if (o->diag) fclose(o->diag);
+  if (o->gauges) fclose(o->gauges);
+  free(o->still);
+  for (size_t i = 0; i < o->n; i++) free(o->names[i]);
+  free(o->names);
+  free(o->times);
+}
+
+/* One row of gauges.csv: time, then each gauge's elevation above its level
+ * at t = 0 (the highest fluid particle within dx of the gauge, diag.h). */
+static int write_gauges(sph_sim *s, outputs *o, sph_error *err) {
+  const sph_case *c = sph_sim_case(s);
+  const sph_particles *p = sph_sim_particles(s);
+  if (!o->gauges) return 0;
+  if (fprintf(o->gauges, "%.17g", sph_sim_time(s)) < 0) goto fail;
+  for (size_t g = 0; g < c->n_gauges; g++) {
+    const double level = sph_diag_surface_at(p, c->gauges[g], c->dx, c->dx);
+    if (sph_sim_time(s) == 0.0) o->still[g] = level;
+    if (fprintf(o->gauges, ",%.17g", level - o->still[g]) < 0) goto fail;
+  }
+  if (fputc('\n', o->gauges) == EOF || fflush(o->gauges)) goto fail;
+  return 0;
+fail:
+  return sph_error_set(err, "%s/gauges.csv: write failed: %s", o->dir, strerror(errno));
+}
+
+/* Adds a snapshot to the XDMF list. */
+static int list_snapshot(outputs *o, const char *name, double t, sph_error *err) {
+  if (o->n == o->cap) {
+    size_t cap = o->cap ? 2 * o->cap : 64;
+    char **nn = realloc(o->names, cap * sizeof *nn);
+    if (nn) o->names = nn;
+    double *nt = realloc(o->times, cap * sizeof *nt);
+    if (nt) o->times = nt;
+    if (!nn || !nt) return sph_error_set(err, "out of memory");
+    o->cap = cap;
+  }
+  if (!(o->names[o->n] = strdup(name))) return sph_error_set(err, "out of memory");
+  o->times[o->n++] = t;
+  return 0;
+}
+
+/* The diagnostics row of the current state (which & 1) and its gauges
+ * row (which & 2). */
+static int write_rows(sph_sim *s, outputs *o, int which, sph_error *err) {
+  if (which & 1) {
+    sph_diag_row row;
+    sph_sim_diag(s, &row);
+    if (sph_diag_write_row(o->diag, &row) || fflush(o->diag))
+      return sph_error_set(err, "%s/diagnostics.csv: write failed: %s", o->dir, strerror(errno));
+  }
+  return (which & 2) ? write_gauges(s, o, err) : 0;
+}
+
+static int write_output(sph_sim *s, outputs *o, sph_run_result *r, sph_error *err) {
+  r->outputs++;
+  if (!o->dir) return 0;
+  if (write_rows(s, o, 3, err)) return -1;
+  if (!sph_sim_case(s)->snapshots) return 0;
+  char name[64], path[4096];
+  snprintf(name, sizeof name, "snap_%04zu.h5", o->index);
+  snprintf(path, sizeof path, "%s/%s", o->dir, name);
+  if (sph_sim_write_run_snapshot(s, path, (int64_t)o->index, o->still,
+                                 sph_sim_case(s)->n_gauges, err))
+    return -1;
+  o->index++;
+  if (list_snapshot(o, name, sph_sim_time(s), err)) return -1;
+  snprintf(r->last_snapshot, sizeof r->last_snapshot, "%s", path);
+  snprintf(path, sizeof path, "%s/snapshots.xmf", o->dir);
+  return sph_xdmf_write(path, o->n, (const char *const *)o->names, o->times,
+                        sph_sim_particles(s)->n, sph_case_needs_free_surface(sph_sim_case(s)),
+                        err);
+}
+
+static int stop_condition(sph_sim *s) {
+  const sph_case *c = sph_sim_case(s);
+  if (c->stop == SPH_STOP_FRONT_AT_WALL) {
+    const double front = sph_diag_front(sph_sim_particles(s), sph_sim_floor(s), 2.0 * c->dx);
+    return front >= c->tank.x1 - c->dx;
+  }
+  return 0;
+}
+
+/* Opens a CSV file of the run for writing: a new file gets the header;
+ * on a resumed run (t_keep >= 0) an existing file with the same header
+ * keeps its rows of time <= t_keep (the rest is dropped: rewritten
+ * through a temporary file and renamed) and is opened for appending.
+ * *kept_last tells whether a row of time t_keep was kept. */
+static FILE *open_csv(const char *path, const char *header, double t_keep, int *kept_last,
+                      sph_error *err) {
+  *kept_last = 0;
+  FILE *old = t_keep >= 0.0 ? fopen(path, "r") : NULL;
+  char tmp[4200];
+  snprintf(tmp, sizeof tmp, "%s.tmp", path);
+  FILE *f = fopen(old ? tmp : path, "w");
+  if (!f) {
+    sph_error_set(err, "%s: cannot create: %s", old ? tmp : path, strerror(errno));
+    if (old) fclose(old);
+    return NULL;
+  }
+  int bad = fputs(header, f) == EOF;
+  if (old) {
+    char *line = NULL;
+    size_t cap = 0;
+    ssize_t len = getline(&line, &cap, old);
+    if (len > 0 && strcmp(line, header) == 0) {
+      while (!bad && (len = getline(&line, &cap, old)) > 0) {
+        if (line[len - 1] != '\n') break; /* a torn last row */
+        char *end;
+        const double t = strtod(line, &end);
+        if (end == line || *end != ',' || !(t <= t_keep)) break;
+        *kept_last = t == t_keep;
+        bad = fputs(line, f) == EOF;
+      }
+    }
+    free(line);
+    fclose(old);
+  }
+  if (bad || fflush(f)) {
+    sph_error_set(err, "%s: write failed: %s", old ? tmp : path, strerror(errno));
+    fclose(f);
+    return NULL;
+  }
+  if (old) {
+    fclose(f);
+    if (rename(tmp, path) != 0) {
+      sph_error_set(err, "%s: cannot rename %s to it: %s", path, tmp, strerror(errno));
+      remove(tmp);
+      return NULL;
+    }
+    f = fopen(path, "a");
+    if (!f) sph_error_set(err, "%s: cannot open: %s", path, strerror(errno));
+  }
+  return f;
+}
+
+/* The header line of diagnostics.csv or gauges.csv, in a malloc'd string. */
+static char *csv_header(const sph_case *c, int gauges) {
+  char *buf = NULL;
+  size_t len = 0;
+  FILE *m = open_memstream(&buf, &len);
+  if (!m) return NULL;
+  int bad;
+  if (gauges) {
+    bad = fprintf(m, "time") < 0;
+    for (size_t g = 0; !bad && g < c->n_gauges; g++)
+      bad = fprintf(m, ",eta_%.6g", c->gauges[g]) < 0;
+    bad = bad || fputc('\n', m) == EOF;
+  } else {
+    bad = sph_diag_write_header(m, sph_case_needs_free_surface(c), c->energy) != 0;
+  }
+  if (fclose(m) || bad) {
+    free(buf);
+    return NULL;
+  }
+  return buf;
+}
+
+/* The snapshots snap_0000 .. snap_<last> still in dir, for the XDMF index
+ * of a resumed run (a missing or unreadable one is left out). */
+static int list_earlier(outputs *o, size_t last, sph_error *err) {
+  for (size_t k = 0; k <= last; k++) {
+    char name[64], path[4200];
+    snprintf(name, sizeof name, "snap_%04zu.h5", k);
+    snprintf(path, sizeof path, "%s/%s", o->dir, name);
+    sph_snapshot *snap;
+    sph_error e2;
+    if (sph_snapshot_open(path, &snap, &e2)) continue;
+    const double t = sph_snapshot_time(snap);
+    sph_snapshot_close(snap);
+    if (list_snapshot(o, name, t, err)) return -1;
+  }
+  return 0;
+}
+
+/* Opens diagnostics.csv (and gauges.csv). *need_row: the current state's
+ * row still has to be written to diagnostics.csv (bit 0) or gauges.csv
+ * (bit 1): a resumed run whose files lack it. */
+static int open_outputs(sph_sim *s, outputs *out, const sph_snapshot_restart_data *rd,
+                        int *need_row, sph_error *err) {
+  const sph_case *c = sph_sim_case(s);
+  const double t_keep = rd ? sph_sim_time(s) : -1.0;
+  char path[4096];
+  int kept_diag = 0, kept_gauges = 1;
+  *need_row = 0;
+  char *header = csv_header(c, 0);
+  if (!header) return sph_error_set(err, "out of memory");
+  snprintf(path, sizeof path, "%s/diagnostics.csv", out->dir);
+  out->diag = open_csv(path, header, t_keep, &kept_diag, err);
+  free(header);
+  if (!out->diag) return -1;
+  if (c->n_gauges) {
+    out->still = calloc(c->n_gauges, sizeof *out->still);
+    if (!out->still) return sph_error_set(err, "out of memory");
+    if (rd) {
+      if (rd->n_levels != c->n_gauges)
+        return sph_error_set(err, "restart: the snapshot holds %zu gauge levels, the case has %zu "
+                                  "gauges",
+                             rd->n_levels, c->n_gauges);
+      memcpy(out->still, rd->levels, c->n_gauges * sizeof *out->still);
+    }
+    header = csv_header(c, 1);
+    if (!header) return sph_error_set(err, "out of memory");
+    snprintf(path, sizeof path, "%s/gauges.csv", out->dir);
+    out->gauges = open_csv(path, header, t_keep, &kept_gauges, err);
+    free(header);
+    if (!out->gauges) return -1;
+  }
+  if (rd) {
+    /* a file that lacks the restart time's row gets it */
+    *need_row = (!kept_diag ? 1 : 0) | (!kept_gauges ? 2 : 0);
+    out->index = (size_t)rd->output_index + 1;
+    if (c->snapshots && list_earlier(out, (size_t)rd->output_index, err)) return -1;
+  }
+  return 0;
+}
+
+int sph_run(sph_sim *s, const sph_run_options *o, sph_run_result *r, sph_error *err) {
+  return sph_run_resume(s, o, NULL, r, err);
+}
+
+int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_restart_data *rd,
+                   sph_run_result *r, sph_error *err) {
+  const sph_case *c = sph_sim_case(s);
+  outputs out = {0};
+  memset(r, 0, sizeof *r);
+  out.dir = o->outdir;
+  int rc = 0;
+  int need_row = 0;
+  if (out.dir && open_outputs(s, &out, rd, &need_row, err)) {
+    r->status = SPH_RUN_ERROR;
+    outputs_free(&out);
+    return -1;
+  }
+  if (o->progress) o->progress(o->progress_ctx, s);
+  if (!rd) {
+    if (write_output(s, &out, r, err)) goto io_error;
+  } else if (need_row && write_rows(s, &out, need_row, err)) {
+    goto io_error;
+  }
+  /* the next output times after the current time */
+  /* Output times closer than `same` to each other (or to the end) are one
+   * time: a listed time that is also a multiple of the interval up to
+   * rounding (0.4004 against 52 * 0.0077) gives one snapshot, not a second
+   * one after a step of 1e-17 s. */
+  const double same = 1e-9 * c->t_end;
+  long k = 1;    /* next multiple of output_interval */
+  size_t j = 0;  /* next of time.output_times */
+  if (c->output_interval > 0.0)
+    while ((double)k * c->output_interval <= sph_sim_time(s) + same) k++;
+  while (j < c->n_output_times && c->output_times[j] <= sph_sim_time(s) + same) j++;
+  for (;;) {
+    const double t = sph_sim_time(s);
+    if (t >= c->t_end) {
+      r->status = SPH_RUN_END;
+      break;
+    }
+    double next = c->t_end;
+    if (c->output_interval > 0.0 && (double)k * c->output_interval < next)
+      next = (double)k * c->output_interval;
+    if (j < c->n_output_times && c->output_times[j] < next) next = c->output_times[j];
+    if (c->t_end - next <= same) next = c->t_end;
+    int st = sph_sim_step(s, next, err);
+    if (o->progress) o->progress(o->progress_ctx, s);
+    if (st == SPH_BLOWUP) {
+      r->status = SPH_RUN_BLOWUP;
+      rc = -1;
+      if (out.dir) {
+        char path[4096];
+        sph_error e2;
+        snprintf(path, sizeof path, "%s/last_good.h5", out.dir);
+        if (sph_sim_write_saved_snapshot(s, path, &e2) == 0) {
+          size_t len = strlen(err->msg);
+          snprintf(err->msg + len, sizeof err->msg - len, "; last good state written to %s", path);
+        }
+      }
+      break;
+    }
+    if (st) goto io_error;
+    const int at_output = sph_sim_time(s) == next;
+    if (at_output) {
+      if (c->output_interval > 0.0)
+        while ((double)k * c->output_interval <= next + same) k++;
+      while (j < c->n_output_times && c->output_times[j] <= next + same) j++;
+      if (write_output(s, &out, r, err)) goto io_error;
+    }
+    if (stop_condition(s)) {
+      if (!at_output && write_output(s, &out, r, err)) goto io_error;
+      r->status = SPH_RUN_STOPPED;
+      break;
+    }
+    if (o->interrupt && *o->interrupt) {
+      if (!at_output && write_output(s, &out, r, err)) goto io_error;
+      r->status = SPH_RUN_INTERRUPTED;
+      break;
+    }
+  }
+  r->steps = sph_sim_steps(s);
+  outputs_free(&out);
+  return rc;
+io_error:
+  r->status = SPH_RUN_ERROR;
+  r->steps = sph_sim_steps(s);
+  outputs_free(&out);
+  return -1;
+}
+
+const char *sph_run_status_name(sph_run_status st) {
+  switch (st) {
+  case SPH_RUN_END: return "reached the end time";
+  case SPH_RUN_STOPPED: return "stop condition met";
+  case SPH_RUN_INTERRUPTED: return "interrupted";
+  case SPH_RUN_BLOWUP: return "blow-up";
+  case SPH_RUN_ERROR: return "error";
+  }
+  return "?";
+}

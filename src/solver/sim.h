@@ -1,0 +1,80 @@
+/*
+ * sim.h - the simulation object: the particles of a case and one time step.
+ *
+ * sph_sim_create builds the particles of a case (fluid blocks on a lattice,
+ * tank and wall segments of wall particles or mirror lines, hydrostatic
+ * start) and runs the interaction pass on that state. sph_sim_step then
+ * advances them by one step of the case's integrator, predictor-corrector:
+ *   time step (from the last pass) -> predictor -> pass -> corrector
+ *   -> moving walls -> density filter (every N steps) -> blow-up check
+ *   -> pass on the new state
+ * or leap-frog (one pass per step). A pass is: mirror particles ->
+ * neighbour list (kept while provably complete, else rebuilt from a grid;
+ * the store is sorted by cell every 40 steps, or at every pass in cases
+ * with mirror particles, free-surface detection or variable h) ->
+ * free-surface flags -> interaction terms. So the rates and flags held
+ * with a state always belong to it.
+ * The library never prints or exits: failures come back as a status and an
+ * sph_error message.
+ */
+#ifndef SPH_SIM_H
+#define SPH_SIM_H
+
+#include "case/case.h"
+#include "solver/diag.h"
+#include "core/error.h"
+#include "core/particles.h"
+#include "io/snapshot.h"
+
+typedef struct sph_sim sph_sim;
+
+/* Status of sph_sim_step and friends: 0 = fine, SPH_BLOWUP = the new state
+ * failed the blow-up check (err names step, time, particle and reason; the
+ * state before the step is still held as the saved state), -1 = other error. */
+#define SPH_BLOWUP 1
+
+/* Builds the initial particles of a case. The case must outlive the sim. */
+int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err);
+void sph_sim_free(sph_sim *s);
+
+/* Advances one step; the step is shortened so as not to pass t_target, and
+ * when it reaches t_target the time is set to t_target exactly. */
+int sph_sim_step(sph_sim *s, double t_target, sph_error *err);
+
+double sph_sim_time(const sph_sim *s);
+long sph_sim_steps(const sph_sim *s);
+double sph_sim_last_dt(const sph_sim *s);
+const sph_case *sph_sim_case(const sph_sim *s);
+/* The particles (storage order changes at every step; use id for identity). */
+sph_particles *sph_sim_particles(sph_sim *s);
+/* The y of the floor used for the front (tank floor, or the lowest fluid
+ * block bottom) and the band height (2 dx). */
+double sph_sim_floor(const sph_sim *s);
+/* The domain box x0, x1, y0, y1: a particle leaving it is a blow-up. */
+void sph_sim_domain(const sph_sim *s, double box[4]);
+/* The view box (the tank with its walls, or the particles' initial box). */
+void sph_sim_view(const sph_sim *s, double box[4]);
+/* Diagnostics of the current state. */
+void sph_sim_diag(const sph_sim *s, sph_diag_row *row);
+/* Writes the current state as a snapshot (atomically). */
+int sph_sim_write_snapshot(const sph_sim *s, const char *path, sph_error *err);
+/* Writes the state saved at the start of the last step (the last state that
+ * passed the blow-up check) as a snapshot: used after a blow-up. */
+int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err);
+
+/* Restart (sph run --restart). sph_sim_write_run_snapshot writes the
+ * current state like sph_sim_write_snapshot plus the restart record
+ * (snapshot.h: the storage order, the leap-frog's half-step values, the
+ * ledger's integrals, and the run's own output_index and gauge levels).
+ * sph_sim_restore takes a sim freshly made by sph_sim_create from the same
+ * case (only time.end may differ: the snapshot's "parameters" must match)
+ * and puts it in the state of the snapshot at path, so that the steps that
+ * follow are bitwise those of the run that wrote it. rd receives the
+ * snapshot's restart record (free it with sph_snapshot_restart_free);
+ * errors name the file and what does not match. */
+int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t output_index,
+                               const double *levels, size_t n_levels, sph_error *err);
+int sph_sim_restore(sph_sim *s, const char *path, sph_snapshot_restart_data *rd,
+                    sph_error *err);
+
+#endif

@@ -1,0 +1,134 @@
+/*
+ * boundary.c - building walls of dynamic particles (see boundary.h).
+ *
+ * Positions are computed from the segment end points and integer indices
+ * (never by accumulating a step), so the same case always gives the same
+ * bits.
+ */
+#include "config.h"
+
+#include "walls/boundary.h"
+
+#include <math.h>
+
+int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, double by,
+                             int layers, int stagger, int extend, double dx, double rho,
+                             double mass, double h, uint8_t flags, sph_error *err) {
+  const double lx = bx - ax, ly = by - ay;
+  const double len = sqrt(lx * lx + ly * ly);
+  if (!(len > 0.0)) return sph_error_set(err, "wall segment has zero length");
+  const double tx = lx / len, ty = ly / len; /* along the wall */
+  const double nx = -ty, ny = tx;            /* left normal */
+  long count = (long)floor(len / dx + 0.5);
+  if (count < 1) count = 1;
+  const double sp = len / (double)count;
+  for (int k = 0; k < layers; k++) {
+    const double off = (stagger ? 0.5 : 1.0) * dx * (double)k;
+    const int odd = stagger && k % 2;
+    /* unstaggered layers reach `extend` spacings past both ends */
+    const long past = stagger ? 0 : extend;
+    const long npts = odd ? count + 2 : count + 1 + 2 * past;
+    /* the wall face lies dx/2 in front of layer 0, on the fluid side */
+    const double depth = 0.5 * dx + off;
+    for (long i = 0; i < npts; i++) {
+      const double s = odd ? ((double)i - 0.5) * sp : (double)(i - past) * sp;
+      const double x = ax + s * tx + off * nx;
+      const double y = ay + s * ty + off * ny;
+      const long idx = sph_particles_add(p, x, y, 0.0, 0.0, rho, mass, h, SPH_KIND_WALL, err);
+      if (idx < 0) return -1;
+      p->flags[idx] = flags;
+      p->mx[idx] = -2.0 * depth * nx;
+      p->my[idx] = -2.0 * depth * ny;
+    }
+  }
+  return 0;
+}
+
+int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double rho,
+                          double mass, double h, uint8_t flags, sph_error *err) {
+  const double e = 0.5 * dx;
+  const int L = t->layers, st = t->stagger;
+  /* floor, right to left so that the left normal points down (outwards);
+   * unstaggered, its layers reach under the side walls' layers, filling the
+   * corners */
+  if (sph_boundary_add_segment(p, t->x1 + e, t->y0 - e, t->x0 - e, t->y0 - e, L, st, L - 1, dx, rho,
+                               mass, h, flags, err))
+    return -1;
+  /* left wall, upwards (left normal points to -x) */
+  if (sph_boundary_add_segment(p, t->x0 - e, t->y0 + e, t->x0 - e, t->y1, L, st, 0, dx, rho, mass,
+                               h, flags, err))
+    return -1;
+  /* right wall, downwards (left normal points to +x) */
+  if (sph_boundary_add_segment(p, t->x1 + e, t->y1, t->x1 + e, t->y0 + e, L, st, 0, dx, rho, mass,
+                               h, flags, err))
+    return -1;
+  return 0;
+}
+
+/* ---- mirror particles ------------------------------------------------------------ */
+
+/* Positions along a line are s = (r - P).t with the tangent t = (ny, -nx). */
+size_t sph_mirror_tank_lines(const sph_tank *t, double reach, sph_mirror_line out[3]) {
+  const double w = t->x1 - t->x0, hgt = t->y1 - t->y0;
+  out[0] = (sph_mirror_line){t->x0, t->y0, 0.0, 1.0, -reach, w + reach};   /* floor, t = +x */
+  out[1] = (sph_mirror_line){t->x0, t->y0, 1.0, 0.0, -hgt - reach, reach}; /* left, t = -y */
+  out[2] = (sph_mirror_line){t->x1, t->y0, -1.0, 0.0, -reach, hgt + reach}; /* right, t = +y */
+  return 3;
+}
+
+sph_mirror_line sph_mirror_segment_line(double ax, double ay, double bx, double by) {
+  const double lx = bx - ax, ly = by - ay, len = sqrt(lx * lx + ly * ly);
+  /* the fluid is on the right of A -> B, as for particle walls (whose layers
+   * go to the left): normal (ly, -lx)/len; tangent (-lx, -ly)/len, so
+   * s = 0 at A and -len at B */
+  return (sph_mirror_line){ax, ay, ly / len, -lx / len, -len, 0.0};
+}
+
+static long add_image(sph_particles *p, size_t i, double x, double y, sph_error *err) {
+  const long k = sph_particles_add(p, x, y, -p->vx[i], -p->vy[i], p->rho[i], p->mass[i], p->h[i],
+                                   SPH_KIND_MIRROR, err);
+  if (k >= 0) p->p[k] = p->p[i];
+  return k;
+}
+
+long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lines, double reach,
+                    sph_error *err) {
+  const size_t n = p->n;
+  long added = 0;
+  for (size_t i = 0; i < n; i++) {
+    if (p->kind[i] != SPH_KIND_FLUID) continue;
+    int near[SPH_MIRROR_MAX_LINES], nn = 0;
+    for (size_t l = 0; l < n_lines && l < SPH_MIRROR_MAX_LINES; l++) {
+      const sph_mirror_line *L = &lines[l];
+      const double rx = p->x[i] - L->px, ry = p->y[i] - L->py;
+      const double d = rx * L->nx + ry * L->ny;
+      const double s = rx * L->ny - ry * L->nx;
+      if (d < 0.0 || d >= reach || s < L->t0 || s > L->t1) continue;
+      near[nn++] = (int)l;
+      if (add_image(p, i, p->x[i] - 2.0 * d * L->nx, p->y[i] - 2.0 * d * L->ny, err) < 0)
+        return -1;
+      added++;
+    }
+    for (int a = 0; a < nn; a++) /* corners: the image through two perpendicular lines */
+      for (int b = a + 1; b < nn; b++) {
+        const sph_mirror_line *A = &lines[near[a]], *B = &lines[near[b]];
+        if (A->nx * B->nx + A->ny * B->ny != 0.0) continue;
+        const double da = (p->x[i] - A->px) * A->nx + (p->y[i] - A->py) * A->ny;
+        const double db = (p->x[i] - B->px) * B->nx + (p->y[i] - B->py) * B->ny;
+        const double x = p->x[i] - 2.0 * da * A->nx - 2.0 * db * B->nx;
+        const double y = p->y[i] - 2.0 * da * A->ny - 2.0 * db * B->ny;
+        if (add_image(p, i, x, y, err) < 0) return -1;
+        added++;
+      }
+  }
+  return added;
+}
+
+void sph_mirror_remove(sph_particles *p, size_t *perm, void *work) {
+  size_t kept = 0;
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] != SPH_KIND_MIRROR) perm[kept++] = i;
+  if (kept == p->n) return;
+  p->n = kept;
+  sph_particles_permute(p, perm, work);
+}

@@ -1,0 +1,72 @@
+/*
+ * boundary.h - wall particles: where they are created.
+ *
+ * Walls are made of dynamic particles (paper B §2.7; GOST R 57700.6 3.4.7):
+ * fixed in place, with density from the continuity equation and pressure
+ * from the equation of state. A wall is a line of particles spaced about
+ * dx, plus further layers each dx/2 further out and staggered by half a
+ * spacing along the wall (paper B: two staggered layers), or, unstaggered,
+ * layers dx apart on the fluid's lattice continued into the wall (Morris
+ * et al. 1997, paper A's "Morris particles").
+ */
+#ifndef SPH_BOUNDARY_H
+#define SPH_BOUNDARY_H
+
+#include "walls/wall_types.h"
+#include "core/error.h"
+#include "core/particles.h"
+
+#include <stdint.h>
+
+/* Adds `layers` layers of wall particles along the segment A->B, layer 0
+ * on the segment (spacing len/round(len/dx)). Staggered (stagger != 0):
+ * layer k is offset by k dx/2 to the left of the direction A->B, and odd
+ * layers sit half a spacing along and reach half a spacing past both ends.
+ * Unstaggered: layer k is offset by k dx, at the same positions along the
+ * wall as layer 0 (the fluid's lattice continued), every layer reaching
+ * `extend` spacings past both ends (a tank floor under its side walls;
+ * ignored when staggered).
+ * Each particle gets density rho, mass, smoothing length h, `flags`, and
+ * its mirror offset (mx, my): twice its distance to the wall face, which
+ * lies dx/2 in front of layer 0 on the right of A->B (the fluid side),
+ * along the face's normal into the fluid. */
+int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, double by,
+                             int layers, int stagger, int extend, double dx, double rho,
+                             double mass, double h, uint8_t flags, sph_error *err);
+
+/* Adds the walls of a rectangular tank whose inner faces are x0, x1 (sides)
+ * and y0 (floor), side walls up to y1. The first wall layer lies dx/2
+ * outside each inner face, so it is dx from the first fluid layer of a
+ * block filled against that face. */
+int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double rho,
+                          double mass, double h, uint8_t flags, sph_error *err);
+
+/* A straight mirror wall (GOST R 57700.6 3.4.5): the line through (px, py)
+ * with unit normal (nx, ny) pointing into the fluid, used for particles
+ * whose position along the line, (r - P).t with t = (ny, -nx), lies in
+ * [t0, t1]. */
+#define SPH_MIRROR_MAX_LINES 64
+
+typedef struct sph_mirror_line {
+  double px, py, nx, ny, t0, t1;
+} sph_mirror_line;
+
+/* The mirror lines of a tank (floor and both side walls, faces as given). */
+size_t sph_mirror_tank_lines(const sph_tank *t, double reach, sph_mirror_line out[3]);
+/* The mirror line of a wall segment: the fluid is on the right of A -> B,
+ * as for a segment of wall particles. */
+sph_mirror_line sph_mirror_segment_line(double ax, double ay, double bx, double by);
+
+/* Appends a mirror particle for every fluid particle closer than `reach` to
+ * a line in front of it: reflected position, the same density, pressure,
+ * mass and smoothing length, the opposite velocity (no slip). A particle
+ * near two perpendicular lines (a tank corner) also gets the image through
+ * both. Mirror particles have kind SPH_KIND_MIRROR and ids from n up, in the
+ * storage order of their sources. Returns the number added, or -1. */
+long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lines, double reach,
+                    sph_error *err);
+/* Removes every mirror particle, keeping the others in order. perm needs
+ * n entries, work n doubles. */
+void sph_mirror_remove(sph_particles *p, size_t *perm, void *work);
+
+#endif

@@ -1,0 +1,57 @@
+/*
+ * wall_types.h - how a case describes its walls: the boundary model of
+ * wall particles, the tank, extra wall segments and the prescribed motion
+ * of a wall (a gate, a piston or flap paddle). Types only: the case schema
+ * (src/case/) fills them in, the wall builder (boundary.h) and the motion
+ * law (motion.h) act on them.
+ */
+#ifndef SPH_WALL_TYPES_H
+#define SPH_WALL_TYPES_H
+
+#include "walls/wavemaker.h"
+
+typedef enum {
+  SPH_BOUNDARY_DYNAMIC = 0,      /* dynamic particles, GOST R 57700.6 3.4.7; paper B §2.7 */
+  SPH_BOUNDARY_FIXED_LAYERS = 1, /* Morris' fixed layers (paper A §6 b): the same particles */
+  SPH_BOUNDARY_REPULSIVE = 2,    /* one layer + Lennard-Jones force, paper A eq. (21)-(22) */
+  SPH_BOUNDARY_MIRROR = 3        /* mirror particles, GOST R 57700.6 3.4.5 */
+} sph_boundary_kind;
+
+/* A rectangular tank: inner faces at x0 (left), x1 (right), y0 (floor); the
+ * side walls rise to y1. Wall particles sit outside the inner faces. */
+typedef struct sph_tank {
+  int present;
+  double x0, x1, y0, y1;
+  int layers;                 /* wall layers, default 2 (staggered) */
+  sph_boundary_kind boundary; /* default dynamic */
+  int stagger;                /* layers dx/2 apart and staggered (default), or dx apart */
+  int extrapolated;           /* no-slip: extrapolated wall velocity (src/wall_velocity.h) */
+} sph_tank;
+
+/* Prescribed motion of a wall (a gate): translation at a constant velocity
+ * from `start` to `stop`, at rest before and after. */
+typedef enum {
+  SPH_MOTION_NONE = 0,
+  SPH_MOTION_TRANSLATE = 1, /* constant velocity from start to stop (a gate) */
+  SPH_MOTION_PISTON = 2,    /* wavemaker piston, X(t) = (S/2) sin(omega t), paper B §4.2 */
+  SPH_MOTION_FLAP = 3       /* bottom-hinged flap with the same displacement at the still-water level */
+} sph_motion_kind;
+typedef struct sph_motion {
+  sph_motion_kind kind;
+  double vx, vy;      /* translate: velocity while moving (m/s) */
+  double start, stop; /* translate: time interval of the motion (s); stop may be INFINITY */
+  sph_paddle paddle;  /* piston and flap (src/wavemaker.h) */
+} sph_motion;
+
+/* An extra straight wall from (x0,y0) to (x1,y1): particles spaced dx along
+ * it, `layers` staggered layers on its left side (seen from start to end). */
+typedef struct sph_wall_segment {
+  double x0, y0, x1, y1;
+  int layers;
+  sph_boundary_kind boundary;
+  sph_motion motion; /* default none (fixed) */
+  int stagger;       /* as sph_tank */
+  int extrapolated;  /* as sph_tank */
+} sph_wall_segment;
+
+#endif

@@ -1,0 +1,62 @@
+/*
+ * wall_velocity.h - the extrapolated (no-slip) velocity of wall particles.
+ *
+ * Morris, Fox and Zhu (1997) give the wall particles, in the viscous terms
+ * only, a velocity extrapolated from the fluid so that the velocity
+ * vanishes on the wall face itself rather than somewhere inside the wall
+ * layers: with the face at distance d_B behind wall particle B and d_A in
+ * front of fluid particle A, v_B = -(d_B/d_A) v_A. Paper A (§6 b) calls
+ * such walls "Morris particles". Here the extrapolation is done once per
+ * wall particle, through its mirror point across the face: a wall particle
+ * at depth d carries
+ *
+ *     v_ghost = 2 v_wall - v_fluid(x + m),   m = 2 d n
+ *
+ * with n the face's normal into the fluid, v_wall its own (prescribed)
+ * velocity and v_fluid the fluid's velocity at the mirror point: the value
+ * at that point of the linear moving-least-squares fit to the fluid
+ * particles j within reach (weights W(x + m - x_j, h_j)), exact for a
+ * linear field even though the wall cuts the kernel there (the Shepard
+ * average sum_j v_j W / sum_j W, biased into the fluid, doubled the film's
+ * error next to the bed); the Shepard average only where the fit's moment
+ * matrix is near singular. For a velocity field linear in the distance
+ * from a straight face the ghost is v(x) continued through the face,
+ * exactly; the same ghost velocity serves every fluid
+ * neighbour, so the wall particles' own strain rates (paper A eq. 13),
+ * which enter the stress divergence, are those of the continued field too.
+ * A mirror point with no fluid within reach leaves the wall velocity.
+ *
+ * The mirror offset m of each wall particle (particles.h: mx, my) is set
+ * when the wall is built (boundary.h); SPH_FLAG_NO_SLIP marks the
+ * particles of walls with `extrapolated_velocity: true`.
+ */
+#ifndef SPH_WALL_VELOCITY_H
+#define SPH_WALL_VELOCITY_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/error.h"
+#include "core/particles.h"
+
+/* Scratch of the interpolation: the fluid particles binned in square cells
+ * of side >= the largest support (kept between calls). */
+typedef struct sph_wall_velocity_work {
+  size_t *start;  /* cell offsets into idx */
+  uint32_t *idx;  /* fluid storage indices by cell, in storage order within a cell */
+  size_t *key;    /* cell of each particle (scratch) */
+  size_t cap_cells, cap_n;
+} sph_wall_velocity_work;
+
+void sph_wall_velocity_work_free(sph_wall_velocity_work *w);
+
+/* gvx, gvy (n values each) = the velocity of every particle in the viscous
+ * terms: the ghost velocity above for particles flagged SPH_FLAG_NO_SLIP,
+ * the particle's own velocity for all others. `support` is the kernel's
+ * reach (2 max h); period > 0: the domain is periodic in x over
+ * [px0, px0 + period). Deterministic: each sum runs in cell order, storage
+ * order within a cell, whatever the thread count. */
+int sph_wall_velocity(const sph_particles *p, double support, double px0, double period,
+                      double *gvx, double *gvy, sph_wall_velocity_work *w, sph_error *err);
+
+#endif
