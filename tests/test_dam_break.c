@@ -84,8 +84,8 @@ static double interp(const series *s, double t) {
 
 static int run(const char *dir, int threads) {
   char cmd[8192];
-  /* SPH_OMP_MIN=0: run every loop in parallel however small the case */
-  snprintf(cmd, sizeof cmd, "SPH_OMP_MIN=0 '%s' run --quiet --threads %d '%s' -o '%s'",
+  /* SPH_TEST_OMP_MIN=0: run every loop in parallel however small the case */
+  snprintf(cmd, sizeof cmd, "SPH_TEST_OMP_MIN=0 '%s' run --quiet --threads %d '%s' -o '%s'",
            sph_test_build("src/sph"),
            threads, sph_test_src("cases/martin_moyce_coarse.yaml"), dir);
   return sph_test_system(cmd);

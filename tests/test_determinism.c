@@ -3,7 +3,7 @@
  * and on 2 threads, for every kind of loop the solver has (DESIGN rule 1),
  * and on 3 for the plain scheme (slices of unequal size).
  * test_dam_break covers the plain scheme; here short runs switch on the
- * other terms, each run with SPH_OMP_MIN=0 so that even these small cases
+ * other terms, each run with SPH_TEST_OMP_MIN=0 so that even these small cases
  * take the parallel paths:
  *   - wet-bed dam break: stress-tensor viscosity, artificial viscosity,
  *     XSPH, the energy ledger, a moving gate, output_times;
@@ -28,7 +28,7 @@ static void same_on_threads(const char *case_rel, const char *sets, int max_thre
   char *d[4], cmd[8192];
   for (int t = 1; t <= max_threads; t++) {
     d[t - 1] = sph_test_tmpdir();
-    snprintf(cmd, sizeof cmd, "SPH_OMP_MIN=0 '%s' run --quiet --threads %d '%s' -o '%s' %s",
+    snprintf(cmd, sizeof cmd, "SPH_TEST_OMP_MIN=0 '%s' run --quiet --threads %d '%s' -o '%s' %s",
              sph_test_build("src/sph"), t, sph_test_src(case_rel), d[t - 1], sets);
     const int rc = sph_test_system(cmd);
     if (rc) printf("\n  %s: exit %d", case_rel, rc);

@@ -541,7 +541,7 @@ static void test_none_and_errors(void) {
 
 int main(void) {
   /* run the filters' loops in parallel however small the test sets are */
-  setenv("SPH_OMP_MIN", "0", 1);
+  setenv("SPH_TEST_OMP_MIN", "0", 1);
   CU_TestInfo tests[] = {
       {"MLS reproduces a linear field on an irregular set", test_mls_linear_exact},
       {"MLS linear field with variable h", test_mls_linear_variable_h},

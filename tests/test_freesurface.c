@@ -851,7 +851,7 @@ static void test_apply_h(void) {
 }
 
 int main(int argc, char **argv) {
-  setenv("SPH_OMP_MIN", "0", 1); /* parallel loops even for the small test sets */
+  setenv("SPH_TEST_OMP_MIN", "0", 1); /* parallel loops even for the small test sets */
   for (int k = 1; k < argc; k++) {
     if (!strcmp(argv[k], "--regen")) {
       regen = 1;

@@ -4,7 +4,7 @@
  *
  * 1. The coarse Martin & Moyce dam break (cases/martin_moyce_coarse.yaml,
  *    --set output.free_surface=true --set time.end=0.1) is run through the
- *    `sph` program with 2 threads and every loop parallel (SPH_OMP_MIN=0).
+ *    `sph` program with 2 threads and every loop parallel (SPH_TEST_OMP_MIN=0).
  *    In its snapshot at t = 0.1 s the ids of the fluid particles whose
  *    free_surface flag is set must equal golden/freesurface/
  *    dam_break_coarse_t0.1.csv exactly (written from a 1-thread run, so the
@@ -48,7 +48,7 @@ static char *tmpdir;
 /* Runs the coarse dam break with RUN_ARGS and `extra` into dir. */
 static int run_sph(const char *dir, int threads, const char *extra) {
   char cmd[12000];
-  snprintf(cmd, sizeof cmd, "SPH_OMP_MIN=0 '%s' run --quiet --threads %d '%s' -o '%s' %s %s",
+  snprintf(cmd, sizeof cmd, "SPH_TEST_OMP_MIN=0 '%s' run --quiet --threads %d '%s' -o '%s' %s %s",
            sph_test_build("src/sph"), threads, sph_test_src("cases/martin_moyce_coarse.yaml"), dir,
            RUN_ARGS, extra);
   return sph_test_system(cmd);

@@ -20,10 +20,10 @@
  * storage index; after random moves of at most skin/2 sph_nlist_fresh
  * says the list still holds every pair within the support (checked by
  * brute force), after a larger move or a reordered store it says rebuild.
- * A whole run gives byte-identical output for any skin (SPH_SKIN): the
+ * A whole run gives byte-identical output for any skin (SPH_TEST_SKIN): the
  * rows are in storage order, so the pairs of a sum come in the same order
  * however old the list; and for either flavour of the interaction's lane
- * loop (SPH_LANES=portable against AVX where the processor has it).
+ * loop (SPH_TEST_LANES=portable against AVX where the processor has it).
  */
 #include "config.h"
 
@@ -493,8 +493,8 @@ static void test_list_fresh(void) {
  * src/solver/forces.c). */
 static void test_run_any_skin(void) {
   char *d[4];
-  const char *env[4] = {"SPH_SKIN=0.05", "SPH_SKIN=0.15", "SPH_SKIN=0.4",
-                        "SPH_LANES=portable"};
+  const char *env[4] = {"SPH_TEST_SKIN=0.05", "SPH_TEST_SKIN=0.15", "SPH_TEST_SKIN=0.4",
+                        "SPH_TEST_LANES=portable"};
   for (int k = 0; k < 4; k++) {
     d[k] = sph_test_tmpdir();
     char cmd[8192];

@@ -13,7 +13,7 @@ long sph_omp_min(void) {
   static long value = -1;
   long v = value;
   if (v < 0) {
-    const char *e = getenv("SPH_OMP_MIN");
+    const char *e = getenv("SPH_TEST_OMP_MIN");
     char *end;
     v = 2048;
     if (e && *e) {
@@ -55,7 +55,7 @@ static int balance_off(void) {
   static int value = -1;
   int v = value;
   if (v < 0) {
-    const char *e = getenv("SPH_BALANCE");
+    const char *e = getenv("SPH_TEST_BALANCE");
     v = e && strcmp(e, "equal") == 0;
     value = v; /* the same value whichever thread stores it */
   }

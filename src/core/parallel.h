@@ -7,7 +7,7 @@
  * nothing but the time. Below sph_omp_min() particles (2048) the cost of
  * starting and joining a parallel region exceeds the work, and on a loaded
  * machine waiting threads can cost far more, so such loops run serially.
- * The environment variable SPH_OMP_MIN overrides the threshold (the
+ * The test hook SPH_TEST_OMP_MIN (environment; doc/testing.md) overrides the threshold (the
  * determinism test sets it to 0 so that small cases do run in parallel).
  */
 #ifndef SPH_PARALLEL_H
@@ -46,7 +46,7 @@ static inline int sph_max_threads(void) {
 #endif
 }
 
-/* The threshold, read from SPH_OMP_MIN once (default 2048). */
+/* The threshold, read from SPH_TEST_OMP_MIN once (default 2048). */
 long sph_omp_min(void);
 #define SPH_OMP_MIN sph_omp_min()
 
@@ -90,7 +90,7 @@ void sph_slice(const size_t *prefix, size_t n, size_t *lo, size_t *hi);
  * and the slices stay put from loop to loop. The shares are the process's
  * (they describe its threads, not a simulation), kept for one team size
  * at a time, at least half an equal share each; only the split depends
- * on them, never a result (items are independent). SPH_BALANCE=equal in
+ * on them, never a result (items are independent). SPH_TEST_BALANCE=equal in
  * the environment keeps the shares equal (for benchmarks). Learning and
  * reading happen outside parallel regions or in regions that only read:
  * call sph_steal_learn from one thread, between regions. */

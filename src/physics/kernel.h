@@ -13,6 +13,8 @@
 #ifndef SPH_KERNEL_H
 #define SPH_KERNEL_H
 
+#include "physics/pair_terms.h"
+
 #define SPH_PI 3.14159265358979323846
 
 /* Support radius of the cubic spline in units of h. */
@@ -36,18 +38,13 @@ static inline void sph_cubic_w_dw(double r, double h, double *w, double *dwdr) {
   }
 }
 
-/* W and F = (1/r) dW/dr together, for 0 < r < 2h, given 1/r and 1/h (the
- * interaction loops' form: F times r_ij is grad_i W_ij). Both branches of
- * the spline are one expression, so a loop has no unpredictable branch:
- * with t = 2 - q and a = max(1 - q, 0),
- *   W = sigma [t^3/4 - a^3],  dW/dq = sigma [3 a^2 - 3/4 t^2]
- * (for q < 1, t^3/4 - a^3 expands to 1 - 3/2 q^2 + 3/4 q^3). Agrees with
- * sph_cubic_w_dw to round-off (tests/test_kernel.c). */
+/* W and F = (1/r) dW/dr together, for 0 < r < 2h, given 1/r and 1/h: the
+ * interaction loops' branch-free form (F times r_ij is grad_i W_ij),
+ * written once as cubic_w_f_FL in src/physics/pair_terms_body.h. Agrees
+ * with sph_cubic_w_dw to round-off (tests/test_kernel.c). */
 static inline void sph_cubic_w_f(double r, double inv_r, double inv_h, double *w, double *f) {
-  const double q = r * inv_h, t = 2.0 - q, a = q < 1.0 ? 1.0 - q : 0.0;
   const double sigma = (10.0 / (7.0 * SPH_PI)) * inv_h * inv_h;
-  *w = sigma * (0.25 * (t * t * t) - a * a * a);
-  *f = (sigma * inv_h) * (3.0 * (a * a) - 0.75 * (t * t)) * inv_r;
+  cubic_w_f_v1(r, inv_r, inv_h, sigma, sigma * inv_h, w, f);
 }
 
 /* W alone (tests, filters). */

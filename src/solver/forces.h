@@ -62,6 +62,22 @@
 
 #define SPH_GRADIENT_CORRECTION_MIN_DET 0.8
 
+/* Which loop evaluates the main pass (src/solver/interact.h). Every loop
+ * gives the same physics; they differ in summation order (the scalar loop
+ * sums a row in order, the lane loops in four lanes), so each is bitwise
+ * reproducible but two of them agree only to round-off, except the two
+ * lane flavours, which agree bitwise. The default is what runs use; the
+ * others are for tests (tests/test_pair_terms.c). */
+typedef enum {
+  SPH_LOOP_AUTO = 0,      /* AVX2 lanes where the processor has them, else portable lanes */
+  SPH_LOOP_SCALAR = 1,    /* the scalar loop for every term set */
+  SPH_LOOP_LANES = 2,     /* the portable four-lane loop (scalar for var_h, ledger) */
+  SPH_LOOP_LANES_AVX = 3  /* the AVX2 four-lane loop (scalar for var_h, ledger) */
+} sph_force_loop;
+
+/* Whether the loop can run on this build and processor. */
+int sph_force_loop_available(sph_force_loop loop);
+
 typedef struct sph_force_params {
   sph_eos eos;
   double h;            /* smoothing length when uniform */
@@ -82,6 +98,7 @@ typedef struct sph_force_params {
   int no_slip;         /* some wall particles carry SPH_FLAG_NO_SLIP (wall_velocity.h) */
   double px0;          /* periodic: the period starts at x = px0 */
   double sps_cs, sps_ci, sps_delta;
+  sph_force_loop loop; /* default SPH_LOOP_AUTO */
 } sph_force_params;
 
 /* The fields a neighbour reads, packed in one cache line per particle

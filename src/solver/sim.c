@@ -76,13 +76,25 @@ struct sph_sim {
 };
 
 /* The neighbour list's skin as a fraction of the support 2h: the default,
- * and the one in effect (SPH_SKIN overrides it, for benchmarks; 0 rebuilds
+ * and the one in effect (SPH_TEST_SKIN overrides it, for benchmarks; 0 rebuilds
  * at every pass). */
 #define SPH_SKIN_DEFAULT 0.15
 static double sph_skin_fraction(void) {
-  const char *e = getenv("SPH_SKIN");
+  const char *e = getenv("SPH_TEST_SKIN");
   if (e && *e) return atof(e);
   return SPH_SKIN_DEFAULT;
+}
+
+/* The interaction loop: the default, or the one the test hook
+ * SPH_TEST_LANES names (portable, avx or scalar; doc/testing.md), for the
+ * tests that compare the loops through whole runs. */
+static sph_force_loop sph_test_loop(void) {
+  const char *e = getenv("SPH_TEST_LANES");
+  if (!e) return SPH_LOOP_AUTO;
+  if (strcmp(e, "portable") == 0) return SPH_LOOP_LANES;
+  if (strcmp(e, "avx") == 0) return SPH_LOOP_LANES_AVX;
+  if (strcmp(e, "scalar") == 0) return SPH_LOOP_SCALAR;
+  return SPH_LOOP_AUTO;
 }
 
 /* Cells of the grid are a hair larger than the support, so rounding in the
@@ -319,6 +331,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.sps_ci = c->sps_ci;
   s->fp.sps_delta = c->dx;
   if (c->variable_h) s->fp.var_h = 1;
+  s->fp.loop = sph_test_loop();
   if (sph_particles_init(&s->p, 1024, err)) goto fail;
   if (add_fluid(s, err)) goto fail;
   if (add_walls(s, err)) goto fail;

@@ -1,0 +1,181 @@
+/*
+ * lanes.h - the arithmetic that pair terms are written in: one set of
+ * operations, several flavours, bitwise the same results in each lane.
+ *
+ *   v1   one double (the scalar loop); masks are ints
+ *   v2   two doubles: SSE2 where there is SSE2, else plain C (row cuts)
+ *   v4e  four doubles as two v2 halves (the portable lane loop)
+ *   v4x  four doubles in one AVX register (x86-64 with GCC, chosen at run
+ *        time when the processor has AVX2; SPH_LANES_AVX is then defined)
+ *
+ * Every flavour FL has the same names: FL_all(a), FL_add/sub/mul/div(a, b),
+ * FL_sqrt, FL_abs, FL_neg (IEEE negation: the sign bit flipped),
+ * FL_min(a, b) = a < b ? a : b and FL_max(a, b) = a > b ? a : b per lane
+ * (the x86 minpd/maxpd rule, also for the plain-C lanes), FL_lt(a, b) a
+ * mask (all ones where a < b), FL_sel(m, a, b) = m ? a : b, FL_and(m, a)
+ * = m ? a : +0. Each lane does exactly the IEEE operations of v1 on its own
+ * numbers, with no fused multiply-add (the build has -ffp-contract=off), so
+ * a term written once in these operations (src/physics/pair_terms.h) gives
+ * the same bits in the scalar loop and in any lane of any flavour: a result
+ * never depends on the machine's vector width. The four-lane flavours also
+ * have FL_set(a, b, c, d) and FL_store(out[4], a).
+ */
+#ifndef SPH_LANES_H
+#define SPH_LANES_H
+
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#define SPH_LANE_INLINE static inline __attribute__((always_inline))
+
+/* ---- v1: one double -------------------------------------------------------------- */
+
+typedef double v1;
+typedef int v1_mask;
+SPH_LANE_INLINE v1 v1_all(double a) { return a; }
+SPH_LANE_INLINE v1 v1_add(v1 a, v1 b) { return a + b; }
+SPH_LANE_INLINE v1 v1_sub(v1 a, v1 b) { return a - b; }
+SPH_LANE_INLINE v1 v1_mul(v1 a, v1 b) { return a * b; }
+SPH_LANE_INLINE v1 v1_div(v1 a, v1 b) { return a / b; }
+SPH_LANE_INLINE v1 v1_sqrt(v1 a) { return sqrt(a); }
+SPH_LANE_INLINE v1 v1_abs(v1 a) { return fabs(a); }
+SPH_LANE_INLINE v1 v1_neg(v1 a) { return -a; }
+SPH_LANE_INLINE v1 v1_min(v1 a, v1 b) { return a < b ? a : b; }
+SPH_LANE_INLINE v1 v1_max(v1 a, v1 b) { return a > b ? a : b; }
+SPH_LANE_INLINE v1_mask v1_lt(v1 a, v1 b) { return a < b; }
+SPH_LANE_INLINE v1 v1_sel(v1_mask m, v1 a, v1 b) { return m ? a : b; }
+SPH_LANE_INLINE v1 v1_and(v1_mask m, v1 a) { return m ? a : 0.0; }
+
+/* ---- v2: two doubles ------------------------------------------------------------- */
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+typedef __m128d v2;
+SPH_LANE_INLINE v2 v2_set(double a, double b) { return _mm_set_pd(b, a); }
+SPH_LANE_INLINE v2 v2_all(double a) { return _mm_set1_pd(a); }
+SPH_LANE_INLINE v2 v2_add(v2 a, v2 b) { return _mm_add_pd(a, b); }
+SPH_LANE_INLINE v2 v2_sub(v2 a, v2 b) { return _mm_sub_pd(a, b); }
+SPH_LANE_INLINE v2 v2_mul(v2 a, v2 b) { return _mm_mul_pd(a, b); }
+SPH_LANE_INLINE v2 v2_div(v2 a, v2 b) { return _mm_div_pd(a, b); }
+SPH_LANE_INLINE v2 v2_sqrt(v2 a) { return _mm_sqrt_pd(a); }
+SPH_LANE_INLINE v2 v2_max(v2 a, v2 b) { return _mm_max_pd(a, b); }
+SPH_LANE_INLINE v2 v2_min(v2 a, v2 b) { return _mm_min_pd(a, b); }
+SPH_LANE_INLINE v2 v2_abs(v2 a) { return _mm_andnot_pd(_mm_set1_pd(-0.0), a); }
+SPH_LANE_INLINE v2 v2_neg(v2 a) { return _mm_xor_pd(_mm_set1_pd(-0.0), a); }
+SPH_LANE_INLINE v2 v2_lt(v2 a, v2 b) { return _mm_cmplt_pd(a, b); }
+SPH_LANE_INLINE v2 v2_and(v2 a, v2 b) { return _mm_and_pd(a, b); }
+SPH_LANE_INLINE v2 v2_andnot(v2 m, v2 a) { return _mm_andnot_pd(m, a); } /* ~m & a */
+SPH_LANE_INLINE v2 v2_or(v2 a, v2 b) { return _mm_or_pd(a, b); }
+SPH_LANE_INLINE double v2_lane0(v2 a) { return _mm_cvtsd_f64(a); }
+SPH_LANE_INLINE double v2_lane1(v2 a) { return _mm_cvtsd_f64(_mm_unpackhi_pd(a, a)); }
+SPH_LANE_INLINE unsigned v2_bits2(v2 m) { return (unsigned)_mm_movemask_pd(m); } /* lane k: bit k */
+#else
+typedef struct {
+  double l[2];
+} v2;
+SPH_LANE_INLINE double v2_bits(uint64_t u) {
+  double d;
+  memcpy(&d, &u, sizeof d);
+  return d;
+}
+SPH_LANE_INLINE uint64_t v2_u(double d) {
+  uint64_t u;
+  memcpy(&u, &d, sizeof u);
+  return u;
+}
+#define SPH_V2_OP(name, expr)                                                                \
+  SPH_LANE_INLINE v2 name(v2 a, v2 b) {                                                      \
+    v2 r;                                                                                    \
+    for (int k = 0; k < 2; k++) {                                                            \
+      const double x = a.l[k], y = b.l[k];                                                   \
+      r.l[k] = (expr);                                                                       \
+    }                                                                                        \
+    return r;                                                                                \
+  }
+SPH_LANE_INLINE v2 v2_set(double a, double b) { return (v2){{a, b}}; }
+SPH_LANE_INLINE v2 v2_all(double a) { return (v2){{a, a}}; }
+SPH_V2_OP(v2_add, x + y)
+SPH_V2_OP(v2_sub, x - y)
+SPH_V2_OP(v2_mul, x * y)
+SPH_V2_OP(v2_div, x / y)
+SPH_V2_OP(v2_max, x > y ? x : y)
+SPH_V2_OP(v2_min, x < y ? x : y)
+SPH_V2_OP(v2_lt, v2_bits(x < y ? ~(uint64_t)0 : 0))
+SPH_V2_OP(v2_and, v2_bits(v2_u(x) & v2_u(y)))
+SPH_V2_OP(v2_andnot, v2_bits(~v2_u(x) & v2_u(y)))
+SPH_V2_OP(v2_or, v2_bits(v2_u(x) | v2_u(y)))
+#undef SPH_V2_OP
+SPH_LANE_INLINE v2 v2_sqrt(v2 a) { return (v2){{sqrt(a.l[0]), sqrt(a.l[1])}}; }
+SPH_LANE_INLINE v2 v2_abs(v2 a) { return (v2){{fabs(a.l[0]), fabs(a.l[1])}}; }
+SPH_LANE_INLINE v2 v2_neg(v2 a) { return (v2){{-a.l[0], -a.l[1]}}; }
+SPH_LANE_INLINE double v2_lane0(v2 a) { return a.l[0]; }
+SPH_LANE_INLINE double v2_lane1(v2 a) { return a.l[1]; }
+SPH_LANE_INLINE unsigned v2_bits2(v2 m) {
+  return (unsigned)(v2_u(m.l[0]) >> 63) | (unsigned)(v2_u(m.l[1]) >> 63) << 1;
+}
+#endif
+SPH_LANE_INLINE v2 v2_sel(v2 m, v2 a, v2 b) { return v2_or(v2_and(m, a), v2_andnot(m, b)); }
+
+/* ---- v4e: four doubles as two v2 halves ------------------------------------------ */
+
+typedef struct {
+  v2 lo, hi;
+} v4e;
+typedef v4e v4e_mask;
+#define SPH_V4E_OP(name)                                                                     \
+  SPH_LANE_INLINE v4e v4e_##name(v4e a, v4e b) {                                             \
+    return (v4e){v2_##name(a.lo, b.lo), v2_##name(a.hi, b.hi)};                              \
+  }
+SPH_V4E_OP(add)
+SPH_V4E_OP(sub)
+SPH_V4E_OP(mul)
+SPH_V4E_OP(div)
+SPH_V4E_OP(max)
+SPH_V4E_OP(min)
+SPH_V4E_OP(lt)
+SPH_V4E_OP(and)
+#undef SPH_V4E_OP
+SPH_LANE_INLINE v4e v4e_set(double a, double b, double c, double d) {
+  return (v4e){v2_set(a, b), v2_set(c, d)};
+}
+SPH_LANE_INLINE v4e v4e_all(double a) { return (v4e){v2_all(a), v2_all(a)}; }
+SPH_LANE_INLINE v4e v4e_sqrt(v4e a) { return (v4e){v2_sqrt(a.lo), v2_sqrt(a.hi)}; }
+SPH_LANE_INLINE v4e v4e_abs(v4e a) { return (v4e){v2_abs(a.lo), v2_abs(a.hi)}; }
+SPH_LANE_INLINE v4e v4e_neg(v4e a) { return (v4e){v2_neg(a.lo), v2_neg(a.hi)}; }
+SPH_LANE_INLINE v4e v4e_sel(v4e m, v4e a, v4e b) {
+  return (v4e){v2_sel(m.lo, a.lo, b.lo), v2_sel(m.hi, a.hi, b.hi)};
+}
+SPH_LANE_INLINE void v4e_store(double *o, v4e a) {
+  o[0] = v2_lane0(a.lo);
+  o[1] = v2_lane1(a.lo);
+  o[2] = v2_lane0(a.hi);
+  o[3] = v2_lane1(a.hi);
+}
+
+/* ---- v4x: four doubles in one AVX register ---------------------------------------- */
+
+#if defined(__GNUC__) && defined(__x86_64__)
+#define SPH_LANES_AVX 1
+#include <immintrin.h>
+#define SPH_AVX2 static inline __attribute__((always_inline, target("avx2")))
+typedef __m256d v4x;
+typedef v4x v4x_mask;
+SPH_AVX2 v4x v4x_set(double a, double b, double c, double d) { return _mm256_set_pd(d, c, b, a); }
+SPH_AVX2 v4x v4x_all(double a) { return _mm256_set1_pd(a); }
+SPH_AVX2 v4x v4x_add(v4x a, v4x b) { return _mm256_add_pd(a, b); }
+SPH_AVX2 v4x v4x_sub(v4x a, v4x b) { return _mm256_sub_pd(a, b); }
+SPH_AVX2 v4x v4x_mul(v4x a, v4x b) { return _mm256_mul_pd(a, b); }
+SPH_AVX2 v4x v4x_div(v4x a, v4x b) { return _mm256_div_pd(a, b); }
+SPH_AVX2 v4x v4x_sqrt(v4x a) { return _mm256_sqrt_pd(a); }
+SPH_AVX2 v4x v4x_max(v4x a, v4x b) { return _mm256_max_pd(a, b); } /* as maxpd */
+SPH_AVX2 v4x v4x_min(v4x a, v4x b) { return _mm256_min_pd(a, b); } /* as minpd */
+SPH_AVX2 v4x v4x_abs(v4x a) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), a); }
+SPH_AVX2 v4x v4x_neg(v4x a) { return _mm256_xor_pd(_mm256_set1_pd(-0.0), a); }
+SPH_AVX2 v4x v4x_lt(v4x a, v4x b) { return _mm256_cmp_pd(a, b, _CMP_LT_OS); } /* as cmpltpd */
+SPH_AVX2 v4x v4x_and(v4x a, v4x b) { return _mm256_and_pd(a, b); }
+SPH_AVX2 v4x v4x_sel(v4x m, v4x a, v4x b) { return _mm256_blendv_pd(b, a, m); }
+SPH_AVX2 void v4x_store(double *o, v4x a) { _mm256_storeu_pd(o, a); }
+#endif
+
+#endif

@@ -1,0 +1,133 @@
+/*
+ * pair_terms_body.h - the pair terms for one arithmetic flavour FL (v1,
+ * v4e, v4x of src/core/lanes.h), with PT_ATTR their attributes. Not a
+ * header to include directly: src/physics/pair_terms.h includes it once
+ * per flavour, and each function below becomes name_FL (continuity_v1,
+ * continuity_v4e, ...). No include guard on purpose.
+ *
+ * Each function is one term of one pair and returns its contribution; the
+ * loops add them up (src/solver/interact.h). The order of the operations
+ * inside each function is the order of the results' bits: change it and
+ * the golden files move.
+ */
+
+#define T FL
+#define PT(name) SPH_PT_XGLUE(name, FL)
+#define OP(name) SPH_PT_XGLUE(FL, name)
+#define ALL OP(all)
+#define ADD OP(add)
+#define SUB OP(sub)
+#define MUL OP(mul)
+#define DIV OP(div)
+#define NEG OP(neg)
+#define ABS OP(abs)
+#define MIN OP(min)
+#define MAX OP(max)
+
+/* The 2-D cubic spline (paper A eq. 8, paper B §2.1; src/physics/kernel.h)
+ * in the loops' form: W_ij and F_ij = (1/r) dW/dr for 0 < r < 2h, from
+ * 1/r, 1/h, sigma = 10/(7 pi h^2) and sigma/h. Both branches of the spline
+ * are one expression (no unpredictable branch): with t = 2 - q and
+ * a = max(1 - q, 0), W = sigma [t^3/4 - a^3], dW/dq = sigma [3 a^2 - 3/4 t^2]. */
+PT_ATTR void PT(cubic_w_f)(T r, T inv_r, T inv_h, T sigma, T sigma_h, T *w, T *f) {
+  const T q = MUL(r, inv_h), t = SUB(ALL(2.0), q);
+  const T a = MAX(SUB(ALL(1.0), q), ALL(0.0));
+  *w = MUL(sigma, SUB(MUL(ALL(0.25), MUL(MUL(t, t), t)), MUL(MUL(a, a), a)));
+  *f = MUL(MUL(sigma_h, SUB(MUL(ALL(3.0), MUL(a, a)), MUL(ALL(0.75), MUL(t, t)))), inv_r);
+}
+
+/* Continuity, paper B eq. (2), paper A eq. (12): m_j v_ij . grad_i W_ij. */
+PT_ATTR T PT(continuity)(T mj, T dvx, T dvy, T gx, T gy) {
+  return MUL(mj, ADD(MUL(dvx, gx), MUL(dvy, gy)));
+}
+
+/* The time-step rule's signal term, paper B §2.6: |h_ij v_ij . r_ij| / r^2. */
+PT_ATTR T PT(signal)(T hij, T vdotr, T inv_r2) { return MUL(ABS(MUL(hij, vdotr)), inv_r2); }
+
+/* 1 / rho_ij with rho_ij = (rho_i + rho_j) / 2 (artificial viscosity, XSPH). */
+PT_ATTR T PT(inv_rho_mean)(T rhoi, T rhoj) { return DIV(ALL(2.0), ADD(rhoi, rhoj)); }
+
+/* Artificial viscosity Pi_ij, paper A eq. (15)-(16):
+ *   mu_ij = h_ij min(v_ij . r_ij, 0) / (r^2 + eta^2)   (0 unless approaching)
+ *   Pi_ij = (-alpha c_ij mu_ij + beta mu_ij^2) / rho_ij, c_ij = (c_i + c_j) / 2,
+ * with nalpha = -alpha and eta2 = (eta_f h_ij)^2. */
+PT_ATTR T PT(artificial_viscosity)(T vdotr, T hij, T r2, T eta2, T ci, T cj, T nalpha, T beta,
+                                   T inv_rb) {
+  const T mu = DIV(MUL(hij, MIN(vdotr, ALL(0.0))), ADD(r2, eta2));
+  const T cbar = MUL(ALL(0.5), ADD(ci, cj));
+  return MUL(ADD(MUL(MUL(nalpha, cbar), mu), MUL(MUL(beta, mu), mu)), inv_rb);
+}
+
+/* Pressure (and Pi_ij) force on i per unit mass, paper A eq. (11), paper B
+ * eq. (3): -m_j (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) grad_i W_ij, given
+ * mp = m_j (prho2_i + prho2_j + Pi_ij). Antisymmetric in the pair. */
+PT_ATTR void PT(pressure_force)(T mp, T gx, T gy, T *ax, T *ay) {
+  const T nmp = NEG(mp);
+  *ax = MUL(nmp, gx);
+  *ay = MUL(nmp, gy);
+}
+
+/* The heat of the pressure pair term, paper A eq. (28) with the artificial
+ * viscosity's share: du_i/dt += 1/2 mp v_ij . grad_i W_ij (energy ledger). */
+PT_ATTR T PT(pressure_heat)(T mp, T dvx, T dvy, T gx, T gy) {
+  return MUL(MUL(ALL(0.5), mp), ADD(MUL(dvx, gx), MUL(dvy, gy)));
+}
+
+/* Viscous stress force, paper A eq. (11) (and the SPS stress of paper B
+ * eq. 4, src/physics/turbulence.h): m_j sum_b (tau_i^ab/rho_i^2 +
+ * tau_j^ab/rho_j^2) dW_ij/dx_i^b, given the pair sums txx = sxx_i + sxx_j,
+ * txy, tyy of tau / rho^2. */
+PT_ATTR void PT(stress_force)(T mj, T txx, T txy, T tyy, T gx, T gy, T *ax, T *ay) {
+  *ax = MUL(mj, ADD(MUL(txx, gx), MUL(txy, gy)));
+  *ay = MUL(mj, ADD(MUL(txy, gx), MUL(tyy, gy)));
+}
+
+/* The viscous dissipation of the stress pair, the discrete form of paper A
+ * eq. (29) that balances the pair's work exactly: the amount subtracted
+ * from du_i/dt, 1/2 m_j tau_ij : (v_ij grad_i W_ij). */
+PT_ATTR T PT(stress_heat)(T mj, T txx, T txy, T tyy, T dvx, T dvy, T gx, T gy) {
+  const T s = ADD(ADD(MUL(MUL(txx, dvx), gx), MUL(txy, ADD(MUL(dvx, gy), MUL(dvy, gx)))),
+                  MUL(MUL(tyy, dvy), gy));
+  return MUL(MUL(ALL(0.5), mj), s);
+}
+
+/* Morris' laminar viscosity, paper B eq. (4): the factor c of
+ *   dv_i/dt += c v_ij,  c = m_j 4 nu0 r_ij . grad_i W_ij / ((rho_i + rho_j)(r^2 + eta^2)),
+ * given nu4 = 4 mu / rho0, F_ij and eta2 = (eta_f h_ij)^2. */
+PT_ATTR T PT(morris_factor)(T mj, T nu4, T f, T r2, T rhoi, T rhoj, T eta2) {
+  return DIV(MUL(MUL(mj, nu4), MUL(f, r2)), MUL(ADD(rhoi, rhoj), ADD(r2, eta2)));
+}
+
+/* Its dissipation, subtracted from du_i/dt: 1/2 c |v_ij|^2. */
+PT_ATTR T PT(morris_heat)(T c, T dvx, T dvy) {
+  return MUL(MUL(ALL(0.5), c), ADD(MUL(dvx, dvx), MUL(dvy, dvy)));
+}
+
+/* XSPH, paper B eq. (6): the factor m_j W_ij / rho_ij of
+ * dr_i/dt = v_i + eps sum_j (m_j / rho_ij) (v_j - v_i) W_ij, with mj = 0
+ * for a neighbour that is not fluid (a wall at rest would drag the fluid). */
+PT_ATTR T PT(xsph_factor)(T mj, T inv_rb, T wij) { return MUL(MUL(mj, inv_rb), wij); }
+
+/* The power of a wall particle j's pair force (ax, ay) on fluid i, per unit
+ * mass of i (energy ledger, the boundary work of paper A §5). */
+PT_ATTR T PT(wall_power)(T ax, T ay, T vxj, T vyj) { return ADD(MUL(ax, vxj), MUL(ay, vyj)); }
+
+/* Lennard-Jones wall force of a repulsive wall particle within r0, paper A
+ * eq. (21)-(22): the factor D [(r0/r)^12 - (r0/r)^4] / r^2 of r_ij. */
+PT_ATTR T PT(lennard_jones)(T d, T r0, T r2) {
+  const T q2 = DIV(MUL(r0, r0), r2), q4 = MUL(q2, q2), q12 = MUL(MUL(q4, q4), q4);
+  return DIV(MUL(d, SUB(q12, q4)), r2);
+}
+
+#undef MAX
+#undef MIN
+#undef ABS
+#undef NEG
+#undef DIV
+#undef MUL
+#undef SUB
+#undef ADD
+#undef ALL
+#undef OP
+#undef PT
+#undef T

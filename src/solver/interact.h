@@ -1,0 +1,240 @@
+/*
+ * interact.h - the loops of the main interaction pass, for one particle i
+ * over its neighbour row (internal to src/solver/forces.c).
+ *
+ * The terms in use are a bit set F, a constant at every call site, so each
+ * of the 128 combinations compiles to a loop without the terms it does not
+ * use (DESIGN rule 4). Two loops evaluate the same terms of
+ * src/physics/pair_terms.h:
+ *   interact_one    the scalar loop, one pair after the other in row order:
+ *                   every term set (the only one for per-particle h and the
+ *                   energy ledger, whose wall particles also take heat);
+ *   interact_FL     the lane loop, four pairs at a time (interact_lanes.h,
+ *                   instantiated here for v4e and, on x86-64, v4x).
+ * Each sum runs over the row in increasing storage index (the lane loop:
+ * per lane, then (l0 + l1) + (l2 + l3)), so results do not depend on the
+ * thread count, the schedule or the age of the neighbour list.
+ */
+#ifndef SPH_INTERACT_H
+#define SPH_INTERACT_H
+
+#include <math.h>
+#include <stdint.h>
+
+#include "core/lanes.h"
+#include "core/parallel.h"
+#include "core/particles.h"
+#include "neighbours/grid.h"
+#include "physics/kernel.h"
+#include "physics/pair_terms.h"
+#include "solver/forces.h"
+
+/* The terms, as bits of F. */
+enum {
+  F_AV = 1,        /* artificial viscosity */
+  F_XSPH = 2,      /* XSPH velocity correction */
+  F_STRESS = 4,    /* viscous stress tensor (paper A) and SPS stress (paper B) */
+  F_MORRIS = 8,    /* Morris laminar viscosity, paper B */
+  F_PERIODIC = 16, /* minimum image in x */
+  F_VARH = 32,     /* per-particle smoothing length */
+  F_LEDGER = 64    /* energy ledger: du/dt and the power of moving walls */
+};
+
+/* The term set a pass with these parameters needs. */
+static inline unsigned sph_interact_terms(const sph_force_params *fp) {
+  unsigned F = 0;
+  if (fp->alpha != 0.0 || fp->beta != 0.0) F |= F_AV;
+  if (fp->xsph != 0.0) F |= F_XSPH;
+  if (fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps) F |= F_STRESS;
+  if (fp->viscosity == SPH_VISCOSITY_MORRIS) F |= F_MORRIS;
+  if (fp->periodic) F |= F_PERIODIC;
+  if (fp->var_h) F |= F_VARH;
+  if (fp->ledger) F |= F_LEDGER;
+  return F;
+}
+
+/* The neighbour row of i in the list l: j = row_[0], ..., row_[len_ - 1]. */
+#define ROW(l, i, row_, len_)                                                                \
+  const uint32_t *restrict row_ = (l)->nb + (l)->start[i];                                  \
+  const size_t len_ = (l)->count[i];
+
+/* x_i - x_j with the minimum image when periodic. */
+static inline __attribute__((always_inline)) double sep_x(double xi, double xj, double period,
+                                                          double half, const unsigned F) {
+  double d = xi - xj;
+  if (F & F_PERIODIC) {
+    if (d > half)
+      d -= period;
+    else if (d < -half)
+      d += period;
+  }
+  return d;
+}
+
+/* The scalar loop: every term set. */
+static inline __attribute__((always_inline)) void
+interact_one(sph_particles *restrict p, const sph_nlist *restrict l,
+             const sph_force_params *restrict fp, sph_force_work *restrict w, size_t i,
+             const unsigned F) {
+  const sph_force_hot *restrict hot = w->hot;
+  const double *restrict h = p->h;
+  const double *restrict sxx = w->sxx, *restrict sxy = w->sxy, *restrict syy = w->syy;
+  const int32_t *restrict kind = p->kind;
+  const double period = fp->period, half = 0.5 * fp->period;
+  const double nu4 = 4.0 * fp->mu / fp->eos.rho0;
+  const double nalpha = -fp->alpha, beta = fp->beta, eta_f = fp->eta;
+  if (kind[i] == SPH_KIND_MIRROR || (p->flags[i] & SPH_FLAG_REPULSIVE)) {
+    p->drho[i] = p->ax[i] = p->ay[i] = 0.0;
+    w->sigma[i] = 0.0;
+    if (F & F_LEDGER) p->du[i] = w->wpow[i] = w->wfx[i] = w->wfy[i] = 0.0;
+    return;
+  }
+  const sph_force_hot qi = hot[i];
+  const double xi = qi.x, yi = qi.y, vxi = qi.vx, vyi = qi.vy;
+  const double rhoi = qi.rho, pri = qi.prho2, ci = qi.cs;
+  const int fluid = kind[i] == SPH_KIND_FLUID;
+  /* fixed h: 1/h, 4h^2 and the kernel's sigma once per particle (F_VARH: per pair) */
+  const double h0 = fp->h, inv_h0 = 1.0 / h0, supp0 = 4.0 * h0 * h0;
+  const double sigma0 = (10.0 / (7.0 * SPH_PI)) * inv_h0 * inv_h0;
+  double drho = 0.0, ax = 0.0, ay = 0.0, xs = 0.0, ys = 0.0, sig = 0.0;
+  double du = 0.0, wpow = 0.0, wfx = 0.0, wfy = 0.0; /* energy and momentum ledger */
+  ROW(l, i, nb, cnt)
+  for (size_t k = 0; k < cnt; k++) {
+    const size_t j = nb[k];
+    const sph_force_hot *restrict qj = &hot[j];
+    const double dx = sep_x(xi, qj->x, period, half, F), dy = yi - qj->y;
+    const double r2 = dx * dx + dy * dy;
+    const double hij = (F & F_VARH) ? 0.5 * (h[i] + h[j]) : h0;
+    const double supp = (F & F_VARH) ? 4.0 * hij * hij : supp0;
+    if (r2 >= supp || r2 == 0.0) continue; /* outside the support, or coincident */
+    const double inv_r2 = 1.0 / r2, r = sqrt(r2), inv_r = r * inv_r2;
+    const double inv_h = (F & F_VARH) ? 1.0 / hij : inv_h0;
+    const double sigma = (F & F_VARH) ? (10.0 / (7.0 * SPH_PI)) * inv_h * inv_h : sigma0;
+    double wij, f; /* W_ij and (1/r) dW/dr: grad_i W_ij = f (dx, dy) */
+    cubic_w_f_v1(r, inv_r, inv_h, sigma, sigma * inv_h, &wij, &f);
+    const double gx = f * dx, gy = f * dy;
+    const double dvx = vxi - qj->vx, dvy = vyi - qj->vy;
+    const double mj = qj->m;
+    drho += continuity_v1(mj, dvx, dvy, gx, gy);
+    const double vdotr = dvx * dx + dvy * dy;
+    const double s = signal_v1(hij, vdotr, inv_r2);
+    sig = s > sig ? s : sig;
+    /* a wall particle needs the pair terms only for its share of the heat */
+    if (!fluid && !((F & F_LEDGER) && kind[j] == SPH_KIND_FLUID)) continue;
+    double pij = pri + qj->prho2;
+    double inv_rb = 0.0;
+    if (F & (F_AV | F_XSPH)) inv_rb = inv_rho_mean_v1(rhoi, qj->rho);
+    if (F & F_AV) {
+      const double eta = eta_f * hij;
+      pij += artificial_viscosity_v1(vdotr, hij, r2, eta * eta, ci, qj->cs, nalpha, beta, inv_rb);
+    }
+    const double mp = mj * pij;
+    double pax, pay;
+    pressure_force_v1(mp, gx, gy, &pax, &pay);
+    if (F & F_LEDGER) du += pressure_heat_v1(mp, dvx, dvy, gx, gy);
+    if (F & F_STRESS) {
+      const double txx = sxx[i] + sxx[j], txy = sxy[i] + sxy[j], tyy = syy[i] + syy[j];
+      double sx, sy;
+      stress_force_v1(mj, txx, txy, tyy, gx, gy, &sx, &sy);
+      pax += sx;
+      pay += sy;
+      if (F & F_LEDGER) du -= stress_heat_v1(mj, txx, txy, tyy, dvx, dvy, gx, gy);
+    }
+    if (F & F_MORRIS) {
+      const double eta = eta_f * hij;
+      const double c = morris_factor_v1(mj, nu4, f, r2, rhoi, qj->rho, eta * eta);
+      pax += c * dvx;
+      pay += c * dvy;
+      if (F & F_LEDGER) du -= morris_heat_v1(c, dvx, dvy);
+    }
+    if (!fluid) continue;
+    ax += pax;
+    ay += pay;
+    /* power of a (moving) wall particle's force on i, per unit mass of i */
+    if ((F & F_LEDGER) && kind[j] == SPH_KIND_WALL) wpow += wall_power_v1(pax, pay, qj->vx, qj->vy);
+    /* force of walls and mirror particles on i: external to the fluid */
+    if ((F & F_LEDGER) && kind[j] != SPH_KIND_FLUID) {
+      wfx += pax;
+      wfy += pay;
+    }
+    if (F & F_XSPH) { /* over fluid neighbours */
+      const double c = xsph_factor_v1(kind[j] == SPH_KIND_FLUID ? mj : 0.0, inv_rb, wij);
+      xs -= c * dvx;
+      ys -= c * dvy;
+    }
+  }
+  p->drho[i] = drho;
+  w->sigma[i] = sig;
+  if (F & F_LEDGER) {
+    p->du[i] = du;
+    w->wpow[i] = wpow;
+    w->wfx[i] = wfx;
+    w->wfy[i] = wfy;
+  }
+  if (fluid) {
+    p->ax[i] = ax + fp->gx;
+    p->ay[i] = ay + fp->gy;
+    if (F & F_XSPH) {
+      p->xsx[i] = fp->xsph * xs;
+      p->xsy[i] = fp->xsph * ys;
+    }
+  } else {
+    p->ax[i] = p->ay[i] = 0.0;
+  }
+}
+
+/* The row of i cut to the pairs inside the support (not coincident), in
+ * row order, into nb; returns their number. Which entry goes to which lane
+ * of the lane loop then depends only on the pairs, never on the skin. */
+static inline __attribute__((always_inline)) size_t
+cut_row(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
+        const sph_force_params *restrict fp, size_t i, uint32_t *restrict nb, const unsigned F) {
+  const sph_force_hot qi = hot[i];
+  const double h0 = fp->h;
+  const v2 xi = v2_all(qi.x), yi = v2_all(qi.y), zero = v2_all(0.0);
+  const v2 per = v2_all(fp->period), hper = v2_all(0.5 * fp->period);
+  const v2 nper = v2_all(-0.5 * fp->period);
+  size_t cnt = 0;
+  ROW(l, i, row, len)
+  const double xs0 = qi.x, ys0 = qi.y, s0 = 4.0 * h0 * h0;
+  const double period = fp->period, hp = 0.5 * fp->period;
+  const v2 sv = v2_all(s0);
+  size_t k = 0;
+  for (; k + 1 < len; k += 2) { /* two entries at a time */
+    const uint32_t j0 = row[k], j1 = row[k + 1];
+    v2 dx = v2_sub(xi, v2_set(hot[j0].x, hot[j1].x));
+    if (F & F_PERIODIC)
+      dx = v2_sel(v2_lt(hper, dx), v2_sub(dx, per), v2_sel(v2_lt(dx, nper), v2_add(dx, per), dx));
+    const v2 dy = v2_sub(yi, v2_set(hot[j0].y, hot[j1].y));
+    const v2 r2 = v2_add(v2_mul(dx, dx), v2_mul(dy, dy));
+    const unsigned m = v2_bits2(v2_and(v2_lt(r2, sv), v2_lt(zero, r2)));
+    nb[cnt] = j0; /* kept only if counted: no branch */
+    cnt += m & 1u;
+    nb[cnt] = j1;
+    cnt += m >> 1;
+  }
+  if (k < len) {
+    const size_t j = row[k];
+    const double dx = sep_x(xs0, hot[j].x, period, hp, F), dy = ys0 - hot[j].y;
+    const double r2 = dx * dx + dy * dy;
+    nb[cnt] = (uint32_t)j;
+    cnt += (size_t)((r2 < s0) & (r2 > 0.0));
+  }
+  return cnt;
+}
+
+#define FL v4e
+#define LOOP_ATTR static inline __attribute__((always_inline))
+#include "solver/interact_lanes.h"
+#undef LOOP_ATTR
+#undef FL
+
+#ifdef SPH_LANES_AVX
+#define FL v4x
+#define LOOP_ATTR static inline __attribute__((always_inline, target("avx2")))
+#include "solver/interact_lanes.h"
+#undef LOOP_ATTR
+#undef FL
+#endif
+
+#endif

@@ -1,0 +1,138 @@
+/*
+ * interact_lanes.h - the main pass for one particle, four neighbours at a
+ * time, in the arithmetic flavour FL (v4e or v4x of src/core/lanes.h),
+ * with LOOP_ATTR its attributes. An ordinary C body included once per
+ * flavour by src/solver/interact.h (templates by include, as SWIFT's
+ * runner_doiact_functions_hydro.h); it defines interact_FL. No include
+ * guard on purpose.
+ *
+ * It serves the term sets without per-particle h and the energy ledger
+ * (those run interact_one, the scalar loop): the row is first cut to the
+ * pairs inside the support (cut_row), padded to a multiple of four with
+ * its last pair, masked out; then each lane takes entries k, k + 4, ... and
+ * keeps its own partial sums, added as (l0 + l1) + (l2 + l3) at the end: a
+ * fixed order, whatever the machine's vector width. The terms are those of
+ * src/physics/pair_terms.h, evaluated pair for pair with the operations of
+ * the scalar loop.
+ */
+
+#define LT FL
+#define LOP(name) SPH_PT_XGLUE(FL, name)
+#define LTERM(name) SPH_PT_XGLUE(name, FL)
+
+LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_nlist *restrict l,
+                                          const sph_force_params *restrict fp,
+                                          sph_force_work *restrict w, size_t i, const unsigned F) {
+  const sph_force_hot *restrict hot = w->hot;
+  const double *restrict sxx = w->sxx, *restrict sxy = w->sxy, *restrict syy = w->syy;
+  const int32_t *restrict kind = p->kind;
+  if (kind[i] == SPH_KIND_MIRROR || (p->flags[i] & SPH_FLAG_REPULSIVE)) {
+    p->drho[i] = p->ax[i] = p->ay[i] = 0.0;
+    w->sigma[i] = 0.0;
+    return;
+  }
+  uint32_t *restrict nb = w->rows + (size_t)sph_thread() * w->rows_stride;
+  const size_t cnt = cut_row(hot, l, fp, i, nb, F);
+  for (size_t k = cnt; k < cnt + 3 && cnt > 0; k++) nb[k] = nb[cnt - 1]; /* padding lanes */
+  const sph_force_hot qi = hot[i];
+  const int fluid = kind[i] == SPH_KIND_FLUID;
+  const double h0 = fp->h, inv_h0 = 1.0 / h0;
+  const double sigma0 = (10.0 / (7.0 * SPH_PI)) * inv_h0 * inv_h0;
+  const LT xi = LOP(all)(qi.x), yi = LOP(all)(qi.y), vxi = LOP(all)(qi.vx), vyi = LOP(all)(qi.vy);
+  const LT rhoi = LOP(all)(qi.rho), pri = LOP(all)(qi.prho2), ci = LOP(all)(qi.cs);
+  const LT hh = LOP(all)(h0), inv_h = LOP(all)(inv_h0), one = LOP(all)(1.0);
+  const LT zero = LOP(all)(0.0);
+  const LT sigma = LOP(all)(sigma0), sigma_h = LOP(all)(sigma0 * inv_h0);
+  const LT per = LOP(all)(fp->period), hper = LOP(all)(0.5 * fp->period);
+  const LT nper = LOP(all)(-0.5 * fp->period);
+  const double eta = fp->eta * h0;
+  const LT eta2 = LOP(all)(eta * eta), nalpha = LOP(all)(-fp->alpha), beta = LOP(all)(fp->beta);
+  const LT nu4 = LOP(all)(4.0 * fp->mu / fp->eos.rho0);
+  const LT lane = LOP(set)(0.0, 1.0, 2.0, 3.0), n = LOP(all)((double)cnt);
+  LT drho = zero, ax = zero, ay = zero, xs = zero, ys = zero, sig = zero;
+  for (size_t k = 0; k < cnt; k += 4) {
+    const size_t j0 = nb[k], j1 = nb[k + 1], j2 = nb[k + 2], j3 = nb[k + 3];
+    const sph_force_hot *restrict a = &hot[j0], *restrict b = &hot[j1];
+    const sph_force_hot *restrict c_ = &hot[j2], *restrict d = &hot[j3];
+#define GATHER(field) LOP(set)(a->field, b->field, c_->field, d->field)
+    LT dx = LOP(sub)(xi, GATHER(x));
+    if (F & F_PERIODIC) /* minimum image, as sep_x */
+      dx = LOP(sel)(LOP(lt)(hper, dx), LOP(sub)(dx, per),
+                    LOP(sel)(LOP(lt)(dx, nper), LOP(add)(dx, per), dx));
+    const LT dy = LOP(sub)(yi, GATHER(y));
+    const LT r2 = LOP(add)(LOP(mul)(dx, dx), LOP(mul)(dy, dy));
+    /* the padding lanes past the row's end repeat its last pair, masked out */
+    const LT in = LOP(lt)(LOP(add)(LOP(all)((double)k), lane), n);
+    /* 1/r2 and sqrt(r2) side by side: a shorter chain than 1/sqrt(r2) */
+    const LT inv_r2 = LOP(div)(one, r2), r = LOP(sqrt)(r2), inv_r = LOP(mul)(r, inv_r2);
+    LT wij, f;
+    LTERM(cubic_w_f)(r, inv_r, inv_h, sigma, sigma_h, &wij, &f);
+    wij = LOP(and)(in, wij);
+    f = LOP(and)(in, f);
+    const LT gx = LOP(mul)(f, dx), gy = LOP(mul)(f, dy);
+    const LT dvx = LOP(sub)(vxi, GATHER(vx)), dvy = LOP(sub)(vyi, GATHER(vy));
+    const LT mj = GATHER(m);
+    drho = LOP(add)(drho, LTERM(continuity)(mj, dvx, dvy, gx, gy));
+    const LT vdotr = LOP(add)(LOP(mul)(dvx, dx), LOP(mul)(dvy, dy));
+    sig = LOP(max)(LOP(and)(in, LTERM(signal)(hh, vdotr, inv_r2)), sig);
+    if (!fluid) continue; /* a wall particle needs no pair terms */
+    LT pij = LOP(add)(pri, GATHER(prho2));
+    LT inv_rb = zero;
+    if (F & (F_AV | F_XSPH)) inv_rb = LTERM(inv_rho_mean)(rhoi, GATHER(rho));
+    if (F & F_AV)
+      pij = LOP(add)(pij, LTERM(artificial_viscosity)(vdotr, hh, r2, eta2, ci, GATHER(cs),
+                                                      nalpha, beta, inv_rb));
+    LT pax, pay;
+    LTERM(pressure_force)(LOP(mul)(mj, pij), gx, gy, &pax, &pay);
+    if (F & F_STRESS) {
+      const LT txx = LOP(add)(LOP(all)(sxx[i]), LOP(set)(sxx[j0], sxx[j1], sxx[j2], sxx[j3]));
+      const LT txy = LOP(add)(LOP(all)(sxy[i]), LOP(set)(sxy[j0], sxy[j1], sxy[j2], sxy[j3]));
+      const LT tyy = LOP(add)(LOP(all)(syy[i]), LOP(set)(syy[j0], syy[j1], syy[j2], syy[j3]));
+      LT sx, sy;
+      LTERM(stress_force)(mj, txx, txy, tyy, gx, gy, &sx, &sy);
+      pax = LOP(add)(pax, sx);
+      pay = LOP(add)(pay, sy);
+    }
+    if (F & F_MORRIS) {
+      const LT c = LTERM(morris_factor)(mj, nu4, f, r2, rhoi, GATHER(rho), eta2);
+      pax = LOP(add)(pax, LOP(mul)(c, dvx));
+      pay = LOP(add)(pay, LOP(mul)(c, dvy));
+    }
+    ax = LOP(add)(ax, pax);
+    ay = LOP(add)(ay, pay);
+    if (F & F_XSPH) { /* over fluid neighbours */
+      const LT mx = LOP(set)(kind[j0] == SPH_KIND_FLUID ? a->m : 0.0,
+                             kind[j1] == SPH_KIND_FLUID ? b->m : 0.0,
+                             kind[j2] == SPH_KIND_FLUID ? c_->m : 0.0,
+                             kind[j3] == SPH_KIND_FLUID ? d->m : 0.0);
+      const LT c = LTERM(xsph_factor)(mx, inv_rb, wij);
+      xs = LOP(sub)(xs, LOP(mul)(c, dvx));
+      ys = LOP(sub)(ys, LOP(mul)(c, dvy));
+    }
+#undef GATHER
+  }
+  double lv[4];
+  LOP(store)(lv, drho);
+  p->drho[i] = (lv[0] + lv[1]) + (lv[2] + lv[3]);
+  LOP(store)(lv, sig);
+  const double s01 = lv[0] > lv[1] ? lv[0] : lv[1], s23 = lv[2] > lv[3] ? lv[2] : lv[3];
+  w->sigma[i] = s01 > s23 ? s01 : s23;
+  if (fluid) {
+    LOP(store)(lv, ax);
+    p->ax[i] = ((lv[0] + lv[1]) + (lv[2] + lv[3])) + fp->gx;
+    LOP(store)(lv, ay);
+    p->ay[i] = ((lv[0] + lv[1]) + (lv[2] + lv[3])) + fp->gy;
+    if (F & F_XSPH) {
+      LOP(store)(lv, xs);
+      p->xsx[i] = fp->xsph * ((lv[0] + lv[1]) + (lv[2] + lv[3]));
+      LOP(store)(lv, ys);
+      p->xsy[i] = fp->xsph * ((lv[0] + lv[1]) + (lv[2] + lv[3]));
+    }
+  } else {
+    p->ax[i] = p->ay[i] = 0.0;
+  }
+}
+
+#undef LTERM
+#undef LOP
+#undef LT

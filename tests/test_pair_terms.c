@@ -1,0 +1,477 @@
+/*
+ * test_pair_terms.c - the pair terms are written once and every loop that
+ * sums them agrees (src/physics/pair_terms.h, src/solver/interact.h).
+ *
+ * 1. Oracle: for each of the 128 term sets F (artificial viscosity, XSPH,
+ *    stress tensor, Morris, periodic, per-particle h, energy ledger) and
+ *    three random particle sets (fluid on a jittered lattice with random
+ *    velocities and densities; dynamic, moving, repulsive and mirror wall
+ *    particles below it; periodic in x when F says so, per-particle h
+ *    when F says so), the main pass is run with the scalar loop, the
+ *    portable lane loop and, where the processor has AVX2, the AVX2 lane
+ *    loop, and compared with a naive all-pairs loop written here from the
+ *    papers' equations (piecewise kernel, no neighbour list). Every rate
+ *    (drho/dt, dv/dt with gravity and the Lennard-Jones force, XSPH, du/dt,
+ *    the step rule's sigma, the ledger's wall power and wall force) agrees
+ *    to 1e-12 of the largest magnitude of that rate over the set. The two
+ *    lane flavours agree bitwise, and so do the lane and scalar loops where
+ *    the lane loop defers to the scalar one (per-particle h, ledger).
+ * 2. Symmetry: each force term evaluated for the pair (i, j) and for
+ *    (j, i), with the inputs formed as a loop forms them (x_j - x_i, ...),
+ *    is exactly antisymmetric (equal masses), and each scalar term (the
+ *    continuity sum, signal, heats, kernel) exactly symmetric; and each
+ *    term gives the same bits in every lane of v4e as in v1 (v4x is held
+ *    to v4e bitwise through the loops in 1).
+ */
+#include "config.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "core/particles.h"
+#include "neighbours/grid.h"
+#include "physics/eos.h"
+#include "physics/kernel.h"
+#include "physics/pair_terms.h"
+#include "physics/turbulence.h"
+#include "solver/forces.h"
+#include "testutil.h"
+
+#define DX 0.02
+#define NXL 12 /* lattice columns */
+#define NYL 10 /* lattice rows: 3 wall rows, then fluid */
+#define RHO0 1000.0
+#define TOL 1e-12
+
+/* a small counter-based generator: uniform in [0, 1) */
+static uint64_t rng_state;
+static double uniform(void) {
+  rng_state = rng_state * 6364136223846793005ULL + 1442695040888963407ULL;
+  return (double)(rng_state >> 11) * 0x1.0p-53;
+}
+static double between(double a, double b) { return a + (b - a) * uniform(); }
+
+/* The random set: walls in rows 0-2 (row 0 repulsive, row 1 every third a
+ * mirror particle, row 2 dynamic and moving), fluid above. */
+static void make_set(sph_particles *p, unsigned seed, int periodic, int varh, const sph_eos *eos) {
+  sph_error err;
+  rng_state = 0x9e3779b97f4a7c15ULL * (seed + 1);
+  CU_ASSERT_FATAL(sph_particles_init(p, NXL * NYL, &err) == 0);
+  const double h0 = 1.3 * DX;
+  for (int j = 0; j < NYL; j++)
+    for (int i = 0; i < NXL; i++) {
+      double x = (i + 0.5) * DX + between(-0.2, 0.2) * DX;
+      const double y = (j + 0.5) * DX + between(-0.2, 0.2) * DX;
+      if (periodic) x = fmod(x + NXL * DX, NXL * DX);
+      const double rho = RHO0 * between(0.98, 1.02);
+      int32_t kind = j < 3 ? SPH_KIND_WALL : SPH_KIND_FLUID;
+      if (j == 1 && i % 3 == 0) kind = SPH_KIND_MIRROR;
+      double vx = 0.0, vy = 0.0;
+      if (kind == SPH_KIND_FLUID || j == 2) {
+        vx = between(-1.0, 1.0);
+        vy = between(-1.0, 1.0);
+      }
+      const double h = varh ? h0 * between(0.9, 1.1) : h0;
+      const long k = sph_particles_add(p, x, y, vx, vy, rho, rho * DX * DX, h, kind, &err);
+      CU_ASSERT_FATAL(k >= 0);
+      if (j == 0) p->flags[k] |= SPH_FLAG_REPULSIVE;
+      p->p[k] = sph_eos_pressure(eos, rho);
+    }
+}
+
+static void params_for(unsigned F, sph_force_params *fp) {
+  memset(fp, 0, sizeof *fp);
+  fp->eos = sph_eos_tait(RHO0, 20.0);
+  fp->h = 1.3 * DX;
+  fp->eta = 0.1;
+  fp->gx = 0.3;
+  fp->gy = -9.81;
+  if (F & 1) fp->alpha = 0.08, fp->beta = 0.5;
+  if (F & 2) fp->xsph = 0.5;
+  if (F & 4) fp->viscosity = SPH_VISCOSITY_STRESS_TENSOR, fp->mu = 0.05;
+  if (F & 8) fp->viscosity = SPH_VISCOSITY_MORRIS, fp->mu = 0.03;
+  if ((F & 12) == 12) fp->viscosity = SPH_VISCOSITY_STRESS_TENSOR, fp->sps = 1; /* both bits */
+  fp->sps_cs = 0.12;
+  fp->sps_ci = 0.00066;
+  fp->sps_delta = DX;
+  if (F & 16) fp->periodic = 1, fp->period = NXL * DX, fp->px0 = 0.0;
+  if (F & 32) fp->var_h = 1;
+  if (F & 64) fp->ledger = 1;
+  fp->repulsive = 1;
+  fp->lj_d = 5.0;
+  fp->lj_r0 = DX;
+}
+
+typedef struct rates {
+  double *f[10]; /* drho ax ay xsx xsy du sigma wpow wfx wfy */
+} rates;
+static const char *const FIELD[10] = {"drho", "ax",    "ay",   "xsx", "xsy",
+                                      "du",   "sigma", "wpow", "wfx", "wfy"};
+
+static void rates_alloc(rates *r, size_t n) {
+  for (int k = 0; k < 10; k++) r->f[k] = calloc(n, sizeof(double));
+}
+static void rates_free(rates *r) {
+  for (int k = 0; k < 10; k++) free(r->f[k]);
+}
+
+/* ---- the naive oracle, from the equations ---------------------------------------- */
+
+static double min_image(double d, const sph_force_params *fp) {
+  if (!fp->periodic) return d;
+  if (d > 0.5 * fp->period) return d - fp->period;
+  if (d < -0.5 * fp->period) return d + fp->period;
+  return d;
+}
+
+/* the pair (i, j): separation, h_ij, gradient of the piecewise kernel */
+static int pair(const sph_particles *p, const sph_force_params *fp, size_t i, size_t j,
+                double *dx, double *dy, double *r, double *hij, double *w, double *gx,
+                double *gy) {
+  *dx = min_image(p->x[i] - p->x[j], fp);
+  *dy = p->y[i] - p->y[j];
+  *r = sqrt(*dx * *dx + *dy * *dy);
+  *hij = fp->var_h ? 0.5 * (p->h[i] + p->h[j]) : fp->h;
+  if (*r >= 2.0 * *hij || *r == 0.0) return 0;
+  double dw;
+  sph_cubic_w_dw(*r, *hij, w, &dw);
+  *gx = dw * *dx / *r;
+  *gy = dw * *dy / *r;
+  return 1;
+}
+
+/* tau / rho^2 at every particle: paper A eq. (13)-(14) (3-D 2/3 factor as
+ * the code and the paper), plus the SPS stress when on */
+static void oracle_stress(const sph_particles *p, const sph_force_params *fp, double *txx,
+                          double *txy, double *tyy) {
+  for (size_t i = 0; i < p->n; i++) {
+    double gxx = 0, gxy = 0, gyx = 0, gyy = 0;
+    for (size_t j = 0; j < p->n; j++) {
+      double dx, dy, r, hij, w, gx, gy;
+      if (j == i || !pair(p, fp, i, j, &dx, &dy, &r, &hij, &w, &gx, &gy)) continue;
+      const double vj = p->mass[j] / p->rho[j];
+      const double ux = p->vx[j] - p->vx[i], uy = p->vy[j] - p->vy[i];
+      gxx += vj * ux * gx;
+      gxy += vj * ux * gy;
+      gyx += vj * uy * gx;
+      gyy += vj * uy * gy;
+    }
+    const double div = gxx + gyy;
+    const double exx = 2 * gxx - 2.0 / 3.0 * div, eyy = 2 * gyy - 2.0 / 3.0 * div;
+    const double exy = gxy + gyx, rho = p->rho[i];
+    const double lam = fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR ? fp->mu / (rho * rho) : 0;
+    txx[i] = lam * exx;
+    txy[i] = lam * exy;
+    tyy[i] = lam * eyy;
+    if (fp->sps) {
+      double a, b, c;
+      sph_sps_stress(0.5 * (2 * exx + eyy), 0.5 * exy, 0.5 * (2 * eyy + exx), fp->sps_cs,
+                     fp->sps_ci, fp->sps_delta, &a, &b, &c);
+      txx[i] += a / rho;
+      txy[i] += b / rho;
+      tyy[i] += c / rho;
+    }
+  }
+}
+
+static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o) {
+  const size_t n = p->n;
+  double *txx = calloc(n, sizeof *txx), *txy = calloc(n, sizeof *txy),
+         *tyy = calloc(n, sizeof *tyy);
+  const int stress = fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps;
+  if (stress) oracle_stress(p, fp, txx, txy, tyy);
+  for (size_t i = 0; i < n; i++) {
+    for (int k = 0; k < 10; k++) o->f[k][i] = 0.0;
+    if (p->kind[i] == SPH_KIND_MIRROR || (p->flags[i] & SPH_FLAG_REPULSIVE)) continue;
+    const int fluid = p->kind[i] == SPH_KIND_FLUID;
+    const double rhoi = p->rho[i], ci = sph_eos_sound_speed(&fp->eos, rhoi);
+    double ax = 0, ay = 0, xs = 0, ys = 0, du = 0, sig = 0, drho = 0, wpow = 0, wfx = 0, wfy = 0;
+    for (size_t j = 0; j < n; j++) {
+      double dx, dy, r, hij, w, gx, gy;
+      if (j == i || !pair(p, fp, i, j, &dx, &dy, &r, &hij, &w, &gx, &gy)) continue;
+      const double mj = p->mass[j], rhoj = p->rho[j];
+      const double vx = p->vx[i] - p->vx[j], vy = p->vy[i] - p->vy[j];
+      const double vg = vx * gx + vy * gy, vr = vx * dx + vy * dy;
+      drho += mj * vg;                                   /* B eq. 2 */
+      sig = fmax(sig, fabs(hij * vr) / (r * r));         /* B §2.6 */
+      if (!fluid && !(fp->ledger && p->kind[j] == SPH_KIND_FLUID)) continue;
+      double P = p->p[i] / (rhoi * rhoi) + p->p[j] / (rhoj * rhoj);
+      if ((fp->alpha != 0 || fp->beta != 0) && vr < 0) { /* A eq. 15-16 */
+        const double eta = fp->eta * hij, mu = hij * vr / (r * r + eta * eta);
+        const double cbar = 0.5 * (ci + sph_eos_sound_speed(&fp->eos, rhoj));
+        P += (-fp->alpha * cbar * mu + fp->beta * mu * mu) / (0.5 * (rhoi + rhoj));
+      }
+      double fx = -mj * P * gx, fy = -mj * P * gy; /* A eq. 11 */
+      du += 0.5 * mj * P * vg;                     /* A eq. 28 */
+      if (stress) {
+        const double sxx = txx[i] + txx[j], sxy = txy[i] + txy[j], syy = tyy[i] + tyy[j];
+        fx += mj * (sxx * gx + sxy * gy);
+        fy += mj * (sxy * gx + syy * gy);
+        du -= 0.5 * mj * (sxx * vx * gx + sxy * (vx * gy + vy * gx) + syy * vy * gy);
+      }
+      if (fp->viscosity == SPH_VISCOSITY_MORRIS) { /* B eq. 4 */
+        const double eta = fp->eta * hij;
+        const double c = mj * 4.0 * fp->mu / fp->eos.rho0 * (dx * gx + dy * gy) /
+                         ((rhoi + rhoj) * (r * r + eta * eta));
+        fx += c * vx;
+        fy += c * vy;
+        du -= 0.5 * c * (vx * vx + vy * vy);
+      }
+      if (!fluid) continue;
+      ax += fx;
+      ay += fy;
+      if (p->kind[j] == SPH_KIND_WALL) wpow += fx * p->vx[j] + fy * p->vy[j];
+      if (p->kind[j] != SPH_KIND_FLUID) wfx += fx, wfy += fy;
+      if (p->kind[j] == SPH_KIND_FLUID) { /* B eq. 6 */
+        xs -= mj / (0.5 * (rhoi + rhoj)) * vx * w;
+        ys -= mj / (0.5 * (rhoi + rhoj)) * vy * w;
+      }
+    }
+    if (fluid) {
+      ax += fp->gx;
+      ay += fp->gy;
+      for (size_t j = 0; j < n; j++) { /* A eq. 21-22 */
+        if (!(p->flags[j] & SPH_FLAG_REPULSIVE)) continue;
+        const double dx = min_image(p->x[i] - p->x[j], fp), dy = p->y[i] - p->y[j];
+        const double r2 = dx * dx + dy * dy, r0 = fp->lj_r0;
+        if (r2 >= r0 * r0 || r2 == 0) continue;
+        const double f = fp->lj_d * (pow(r0 * r0 / r2, 6) - pow(r0 * r0 / r2, 2)) / r2;
+        ax += f * dx;
+        ay += f * dy;
+      }
+    }
+    const double v[10] = {drho, ax, ay, fp->xsph * xs, fp->xsph * ys, du, sig, wpow, wfx, wfy};
+    for (int k = 0; k < 10; k++) o->f[k][i] = v[k];
+  }
+  free(txx);
+  free(txy);
+  free(tyy);
+}
+
+/* ---- the library's loops ------------------------------------------------------------ */
+
+/* One main pass with the loop asked for; the rates by particle id. */
+static void run_loop(const sph_particles *p0, const sph_force_params *fp0, sph_force_loop loop,
+                     rates *o) {
+  sph_error err;
+  sph_particles p;
+  CU_ASSERT_FATAL(sph_particles_init(&p, p0->n, &err) == 0);
+  for (size_t i = 0; i < p0->n; i++) {
+    const long k = sph_particles_add(&p, p0->x[i], p0->y[i], p0->vx[i], p0->vy[i], p0->rho[i],
+                                     p0->mass[i], p0->h[i], p0->kind[i], &err);
+    p.flags[k] = p0->flags[i];
+    p.p[k] = p0->p[i];
+  }
+  sph_force_params fp = *fp0;
+  fp.loop = loop;
+  double hmax = fp.h;
+  for (size_t i = 0; i < p.n; i++) hmax = fmax(hmax, p.h[i]);
+  const double support = 2.0 * (fp.var_h ? hmax : fp.h);
+  sph_grid g;
+  sph_grid_init(&g);
+  const double cell = support * (1.0 + 1e-9);
+  int rc = fp.periodic ? sph_grid_build_periodic(&g, &p, cell, 0.0, fp.period, 1u << 16, &err)
+                       : sph_grid_build(&g, &p, cell, 1u << 16, &err);
+  CU_ASSERT_FATAL(rc == 0);
+  sph_nlist l;
+  sph_nlist_init(&l);
+  CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, support, 0.0, fp.periodic ? fp.period : 0.0,
+                                  &err) == 0);
+  sph_force_work w;
+  memset(&w, 0, sizeof w);
+  CU_ASSERT_FATAL(sph_forces_evaluate(&p, &l, &fp, &w, &err) == 0);
+  for (size_t i = 0; i < p.n; i++) {
+    const size_t id = (size_t)p.id[i];
+    const double v[10] = {p.drho[i], p.ax[i], p.ay[i],    p.xsx[i], p.xsy[i],
+                          p.du[i],   w.sigma[i], w.wpow[i], w.wfx[i], w.wfy[i]};
+    for (int k = 0; k < 10; k++) o->f[k][id] = v[k];
+  }
+  sph_force_work_free(&w);
+  sph_nlist_free(&l);
+  sph_grid_free(&g);
+  sph_particles_free(&p);
+}
+
+/* Whether field k is an output of the term set F. */
+static int field_used(int k, unsigned F) {
+  if (k == 3 || k == 4) return (F & 2) != 0;
+  if (k == 5 || k >= 7) return (F & 64) != 0;
+  return 1;
+}
+
+/* max_i |a_i - b_i| / max_i |b_i| over field k */
+static double rel_err(const rates *a, const rates *b, int k, size_t n) {
+  double d = 0.0, s = 0.0;
+  for (size_t i = 0; i < n; i++) {
+    d = fmax(d, fabs(a->f[k][i] - b->f[k][i]));
+    s = fmax(s, fabs(b->f[k][i]));
+  }
+  return s > 0.0 ? d / s : d;
+}
+
+static void test_oracle_every_term_set(void) {
+  const int avx = sph_force_loop_available(SPH_LOOP_LANES_AVX);
+  if (!avx) printf("\n  (no AVX2 on this processor: the AVX2 lane loop is not compared)");
+  double worst[3] = {0, 0, 0}; /* scalar, lanes, avx against the oracle */
+  unsigned bad = 0;
+  for (unsigned F = 0; F < 128; F++)
+    for (unsigned seed = 0; seed < 3; seed++) {
+      sph_force_params fp;
+      params_for(F, &fp);
+      sph_particles p;
+      make_set(&p, F * 3 + seed, (F & 16) != 0, (F & 32) != 0, &fp.eos);
+      const size_t n = p.n;
+      rates o, r[3];
+      rates_alloc(&o, n);
+      oracle(&p, &fp, &o);
+      const sph_force_loop loops[3] = {SPH_LOOP_SCALAR, SPH_LOOP_LANES, SPH_LOOP_LANES_AVX};
+      for (int m = 0; m < 3; m++) {
+        rates_alloc(&r[m], n);
+        if (m == 2 && !avx) continue;
+        run_loop(&p, &fp, loops[m], &r[m]);
+        for (int k = 0; k < 10; k++) {
+          if (!field_used(k, F)) continue;
+          const double e = rel_err(&r[m], &o, k, n);
+          worst[m] = fmax(worst[m], e);
+          if (!(e <= TOL) && bad++ < 10)
+            printf("\n  F = %u, set %u, loop %d: %s off by %.3g relative", F, seed, m, FIELD[k], e);
+        }
+      }
+      for (int k = 0; k < 10; k++) {
+        if (!field_used(k, F)) continue;
+        const size_t bytes = n * sizeof(double);
+        if (avx) CU_ASSERT(memcmp(r[1].f[k], r[2].f[k], bytes) == 0); /* lane flavours */
+        if (F & (32 | 64)) CU_ASSERT(memcmp(r[0].f[k], r[1].f[k], bytes) == 0);
+      }
+      for (int m = 0; m < 3; m++) rates_free(&r[m]);
+      rates_free(&o);
+      sph_particles_free(&p);
+    }
+  printf("\n  128 term sets x 3 sets: worst relative difference from the all-pairs oracle: "
+         "scalar %.2e, lanes %.2e, AVX2 lanes %.2e (tolerance %.0e)",
+         worst[0], worst[1], worst[2], TOL);
+  CU_ASSERT(bad == 0);
+}
+
+/* ---- symmetry and flavour agreement of each term -------------------------------- */
+
+static int same(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+/* v4e and (if present) v4x give the bits of v1 in every lane: each term is
+ * evaluated on four different argument sets at once. */
+#define LANES_AGREE(call1, callv)                                                            \
+  do {                                                                                       \
+    double want[4], got[4];                                                                  \
+    for (int q = 0; q < 4; q++) want[q] = call1;                                             \
+    v4e_store(got, callv);                                                                   \
+    for (int q = 0; q < 4; q++) CU_ASSERT(same(got[q], want[q]));                            \
+  } while (0)
+
+static void test_pair_symmetry(void) {
+  rng_state = 12345;
+  unsigned checked = 0;
+  for (int t = 0; t < 2000; t++) {
+    const double h = DX * between(1.0, 1.5), m = between(0.3, 0.5);
+    const double xi = between(0, 1), yi = between(0, 1);
+    const double xj = xi + between(-1.9, 1.9) * h, yj = yi + between(-1.9, 1.9) * h;
+    const double vxi = between(-2, 2), vyi = between(-2, 2), vxj = between(-2, 2),
+                 vyj = between(-2, 2);
+    const double rhoi = between(990, 1010), rhoj = between(990, 1010);
+    const double ci = between(19, 21), cj = between(19, 21);
+    const double s[6] = {between(-1, 1), between(-1, 1), between(-1, 1),
+                         between(-1, 1), between(-1, 1), between(-1, 1)};
+    /* as a loop forms them, from i's side and from j's */
+    const double dx = xi - xj, dy = yi - yj, ex = xj - xi, ey = yj - yi;
+    const double r2 = dx * dx + dy * dy, q2 = ex * ex + ey * ey;
+    if (!(r2 < 4 * h * h) || r2 == 0) continue;
+    CU_ASSERT(same(r2, q2));
+    const double inv_r2 = 1 / r2, r = sqrt(r2), inv_r = r * inv_r2, inv_h = 1 / h;
+    const double sigma = 10 / (7 * SPH_PI) * inv_h * inv_h;
+    double w, f;
+    cubic_w_f_v1(r, inv_r, inv_h, sigma, sigma * inv_h, &w, &f);
+    const double gx = f * dx, gy = f * dy, hx = f * ex, hy = f * ey;
+    const double dvx = vxi - vxj, dvy = vyi - vyj, evx = vxj - vxi, evy = vyj - vyi;
+    const double vr = dvx * dx + dvy * dy, ur = evx * ex + evy * ey;
+    CU_ASSERT(same(vr, ur));
+    CU_ASSERT(same(continuity_v1(m, dvx, dvy, gx, gy), continuity_v1(m, evx, evy, hx, hy)));
+    CU_ASSERT(same(signal_v1(h, vr, inv_r2), signal_v1(h, ur, inv_r2)));
+    const double eta2 = 0.01 * h * h, irb = inv_rho_mean_v1(rhoi, rhoj);
+    CU_ASSERT(same(irb, inv_rho_mean_v1(rhoj, rhoi)));
+    const double pi_ij = artificial_viscosity_v1(vr, h, r2, eta2, ci, cj, -0.08, 0.5, irb);
+    const double pi_ji = artificial_viscosity_v1(ur, h, q2, eta2, cj, ci, -0.08, 0.5, irb);
+    CU_ASSERT(same(pi_ij, pi_ji));
+    const double mp = m * ((s[0] + s[1]) + pi_ij), mq = m * ((s[1] + s[0]) + pi_ji);
+    double ax, ay, bx, by;
+    pressure_force_v1(mp, gx, gy, &ax, &ay);
+    pressure_force_v1(mq, hx, hy, &bx, &by);
+    CU_ASSERT(same(ax, -bx) && same(ay, -by));
+    CU_ASSERT(same(pressure_heat_v1(mp, dvx, dvy, gx, gy), pressure_heat_v1(mq, evx, evy, hx, hy)));
+    const double txx = s[0] + s[3], txy = s[1] + s[4], tyy = s[2] + s[5];
+    const double uxx = s[3] + s[0], uxy = s[4] + s[1], uyy = s[5] + s[2];
+    stress_force_v1(m, txx, txy, tyy, gx, gy, &ax, &ay);
+    stress_force_v1(m, uxx, uxy, uyy, hx, hy, &bx, &by);
+    CU_ASSERT(same(ax, -bx) && same(ay, -by));
+    CU_ASSERT(same(stress_heat_v1(m, txx, txy, tyy, dvx, dvy, gx, gy),
+                   stress_heat_v1(m, uxx, uxy, uyy, evx, evy, hx, hy)));
+    const double c = morris_factor_v1(m, 2e-4, f, r2, rhoi, rhoj, eta2);
+    CU_ASSERT(same(c, morris_factor_v1(m, 2e-4, f, q2, rhoj, rhoi, eta2)));
+    CU_ASSERT(same(c * dvx, -(c * evx)) && same(c * dvy, -(c * evy)));
+    CU_ASSERT(same(morris_heat_v1(c, dvx, dvy), morris_heat_v1(c, evx, evy)));
+    const double xf = xsph_factor_v1(m, irb, w);
+    CU_ASSERT(same(xf * dvx, -(xf * evx)));
+    const double lj = lennard_jones_v1(5.0, 1.2 * h, r2);
+    CU_ASSERT(same(lj * dx, -(lj * ex)) && same(lj, lennard_jones_v1(5.0, 1.2 * h, q2)));
+    checked++;
+
+    /* the lane flavours: four different pairs at once (scaled copies) */
+    const double k4[4] = {1.0, 0.9, 0.8, 0.7};
+#define V4(e) v4e_set((e) * k4[0], (e) * k4[1], (e) * k4[2], (e) * k4[3])
+#define S(e) ((e) * k4[q])
+    LANES_AGREE(continuity_v1(S(m), S(dvx), S(dvy), S(gx), S(gy)),
+                continuity_v4e(V4(m), V4(dvx), V4(dvy), V4(gx), V4(gy)));
+    LANES_AGREE(signal_v1(S(h), S(vr), S(inv_r2)), signal_v4e(V4(h), V4(vr), V4(inv_r2)));
+    LANES_AGREE(artificial_viscosity_v1(S(vr), S(h), S(r2), S(eta2), S(ci), S(cj), -0.08, 0.5,
+                                        S(irb)),
+                artificial_viscosity_v4e(V4(vr), V4(h), V4(r2), V4(eta2), V4(ci), V4(cj),
+                                         v4e_all(-0.08), v4e_all(0.5), V4(irb)));
+    LANES_AGREE(morris_factor_v1(S(m), 2e-4, S(f), S(r2), S(rhoi), S(rhoj), S(eta2)),
+                morris_factor_v4e(V4(m), v4e_all(2e-4), V4(f), V4(r2), V4(rhoi), V4(rhoj),
+                                  V4(eta2)));
+    LANES_AGREE(stress_heat_v1(S(m), S(txx), S(txy), S(tyy), S(dvx), S(dvy), S(gx), S(gy)),
+                stress_heat_v4e(V4(m), V4(txx), V4(txy), V4(tyy), V4(dvx), V4(dvy), V4(gx),
+                                V4(gy)));
+    { /* the kernel at four radii */
+      double rq[4], iq[4], wq[4], fq[4], wl[4], fl[4];
+      for (int q = 0; q < 4; q++) {
+        rq[q] = S(r);
+        iq[q] = 1 / rq[q];
+        cubic_w_f_v1(rq[q], iq[q], inv_h, sigma, sigma * inv_h, &wq[q], &fq[q]);
+      }
+      v4e W, Fv;
+      cubic_w_f_v4e(v4e_set(rq[0], rq[1], rq[2], rq[3]), v4e_set(iq[0], iq[1], iq[2], iq[3]),
+                    v4e_all(inv_h), v4e_all(sigma), v4e_all(sigma * inv_h), &W, &Fv);
+      v4e_store(wl, W);
+      v4e_store(fl, Fv);
+      for (int q = 0; q < 4; q++) CU_ASSERT(same(wl[q], wq[q]) && same(fl[q], fq[q]));
+    }
+#undef S
+#undef V4
+  }
+  printf("\n  %u random pairs: every force term exactly antisymmetric, every scalar term "
+         "symmetric, v4e lanes bitwise v1",
+         checked);
+  CU_ASSERT(checked > 1000);
+}
+
+int main(void) {
+  CU_TestInfo tests[] = {
+      {"the 128 term sets: scalar, lane and AVX2 loops against the all-pairs oracle",
+       test_oracle_every_term_set},
+      {"each term antisymmetric or symmetric in the pair, and bitwise in every lane",
+       test_pair_symmetry},
+      CU_TEST_INFO_NULL,
+  };
+  return sph_test_main("pair terms", tests);
+}
