@@ -1,7 +1,7 @@
 /*
  * forces.c - the interaction passes (see forces.h for the equations): the
  * per-pass set-up, the strain-rate pass, the main pass's 128 variants and
- * its dispatch, and the Lennard-Jones wall force.
+ * its dispatch (the Lennard-Jones wall force is src/walls/repulsion.c).
  *
  * The physics of a pair is written once, in src/physics/pair_terms.h; the
  * loops that sum it over a neighbour row are in src/solver/interact.h (the
@@ -42,6 +42,7 @@
 #include "physics/pair_terms.h"
 #include "physics/turbulence.h"
 #include "solver/interact.h"
+#include "walls/repulsion.h"
 
 /* Rows per stolen chunk of the interaction loop: a few microseconds of
  * work, so a thread waits at most that long at the end of a pass. */
@@ -316,33 +317,6 @@ static const interact_fn VARIANT_TABLE_SCALAR[128] = VARIANTS128(interact_scalar
 static const interact_fn VARIANT_TABLE_AVX[128] = VARIANTS128(interact_avx_);
 #endif
 
-/* ---- repulsive walls (paper A eq. 21-22) ------------------------------------------- */
-
-static void lennard_jones(sph_particles *p, const sph_nlist *l, const sph_force_params *fp) {
-  const long n = (long)p->n;
-  const double r0 = fp->lj_r0, d = fp->lj_d;
-  const double period = fp->periodic ? fp->period : 0.0;
-#pragma omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)
-  for (long li = 0; li < n; li++) {
-    const size_t i = (size_t)li;
-    if (p->kind[i] != SPH_KIND_FLUID) continue;
-    ROW(l, i, nb, cnt)
-    double ax = 0.0, ay = 0.0;
-    for (size_t k = 0; k < cnt; k++) {
-      const size_t j = nb[k];
-      if (!(p->flags[j] & SPH_FLAG_REPULSIVE)) continue;
-      const double dx = sph_grid_min_image(p->x[i] - p->x[j], period);
-      const double dy = p->y[i] - p->y[j];
-      const double r2 = dx * dx + dy * dy;
-      if (r2 >= r0 * r0 || r2 == 0.0) continue;
-      const double f = lennard_jones_v1(d, r0, r2);
-      ax += f * dx;
-      ay += f * dy;
-    }
-    p->ax[i] += ax;
-    p->ay[i] += ay;
-  }
-}
 
 #ifdef SPH_LANES_AVX
 /* Whether the processor has AVX2 (asked once). */
@@ -468,6 +442,7 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
   if (prepare_pass(p, l, fp, w, err)) return -1;
   if ((F & F_STRESS) && stress_pass(p, l, fp, w, err)) return -1;
   run(p, l, fp, w);
-  if (fp->repulsive) lennard_jones(p, l, fp);
+  if (fp->repulsive)
+    sph_repulsion_add(p, l, fp->lj_d, fp->lj_r0, fp->periodic ? fp->period : 0.0);
   return 0;
 }

@@ -1,0 +1,74 @@
+/*
+ * ledger.c - the energy and momentum ledger (see ledger.h).
+ */
+#include "config.h"
+
+#include "solver/ledger.h"
+
+void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_work *w,
+                      const double gravity[2], int xsph) {
+  const double *g = gravity;
+  double pw = 0.0, px = 0.0, fx = 0.0, fy = 0.0;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->kind[i] != SPH_KIND_FLUID) continue;
+    const double m = p->mass[i];
+    pw += m * w->wpow[i];
+    if (xsph) px -= m * (g[0] * p->xsx[i] + g[1] * p->xsy[i]);
+    fx += m * (w->wfx[i] + g[0]);
+    fy += m * (w->wfy[i] + g[1]);
+  }
+  lg->power_wall = pw;
+  lg->power_xsph = px;
+  lg->force_x = fx;
+  lg->force_y = fy;
+}
+
+void sph_ledger_advance(sph_ledger *lg, double dt) {
+  lg->work_wall += dt * lg->power_wall;
+  lg->drift_xsph += dt * lg->power_xsph;
+  lg->impulse_x += dt * lg->force_x;
+  lg->impulse_y += dt * lg->force_y;
+}
+
+double sph_ledger_fluid_internal(const sph_particles *p) {
+  double u = 0.0;
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_FLUID) u += p->mass[i] * p->u[i];
+  return u;
+}
+
+void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, sph_diag_row *row) {
+  double u = 0.0; /* every particle's heat: dynamic walls take half a pair's */
+  for (size_t i = 0; i < p->n; i++) u += p->mass[i] * p->u[i];
+  row->ledger = 1;
+  row->internal = u;
+  row->boundary_work = lg->work_wall;
+  row->xsph_drift = lg->drift_xsph;
+  row->total = row->kinetic + row->potential + u - lg->work_wall - lg->drift_xsph;
+  row->deviation = lg->e0 != 0.0 ? (row->total - lg->e0) / lg->e0 : 0.0;
+  const double ef = row->kinetic + row->potential + sph_ledger_fluid_internal(p);
+  row->fluid_deviation = lg->e0_fluid != 0.0 ? (ef - lg->e0_fluid) / lg->e0_fluid : 0.0;
+  row->momentum_residual_x = row->momentum_x - lg->p0x - lg->impulse_x;
+  row->momentum_residual_y = row->momentum_y - lg->p0y - lg->impulse_y;
+}
+
+void sph_ledger_start(sph_ledger *lg, const sph_particles *p, const sph_diag_row *row) {
+  lg->e0 = row->total;
+  lg->e0_fluid = row->kinetic + row->potential + sph_ledger_fluid_internal(p);
+  lg->p0x = row->momentum_x;
+  lg->p0y = row->momentum_y;
+}
+
+void sph_ledger_save(const sph_ledger *lg, double out[SPH_LEDGER_SAVED]) {
+  out[0] = lg->work_wall;
+  out[1] = lg->drift_xsph;
+  out[2] = lg->impulse_x;
+  out[3] = lg->impulse_y;
+}
+
+void sph_ledger_restore(sph_ledger *lg, const double in[SPH_LEDGER_SAVED]) {
+  lg->work_wall = in[0];
+  lg->drift_xsph = in[1];
+  lg->impulse_x = in[2];
+  lg->impulse_y = in[3];
+}

@@ -1,0 +1,76 @@
+/*
+ * ledger.h - the energy and momentum ledger of a run (output.energy).
+ *
+ * Paper A §5 (eq. 28-29) checks a run by its energy: kinetic + potential
+ * + internal (the heat of the pressure, artificial-viscosity and viscous
+ * pair terms) stays constant, less the work that moving walls do on the
+ * fluid. The ledger keeps, besides the state's own sums (diag.h):
+ *   power_wall   sum over fluid i of m_i sum_{wall j} a_ij . v_j   (W)
+ *   power_xsph   -sum over fluid i of m_i g . xs_i: the rate at which the
+ *                XSPH correction (a displacement no force pays for)
+ *                changes the potential energy                         (W)
+ *   force        the external force on the fluid: walls, mirror
+ *                particles and the body force                         (N)
+ * at the last interaction pass, and their time integrals work_wall,
+ * drift_xsph and the impulse. With these
+ *   total     = kinetic + potential + internal - work_wall - drift_xsph
+ *   deviation = (total - total_0) / total_0
+ * closes to round-off for a conservative scheme, and the momentum residual
+ * p - p_0 - impulse closes to round-off. Sums run serially in storage
+ * order: the same bits for any thread count.
+ *
+ * The per-pair parts (heat, a_ij . v_j, a_ij from walls) are pair terms
+ * (src/physics/pair_terms.h) summed by the interaction loop into du and
+ * the pass's wpow, wfx, wfy; this file sums them over the particles,
+ * integrates them in time (one call for both integrators: the rates that
+ * drive the step drive the ledger), and writes them to the diagnostics
+ * row and the restart record.
+ */
+#ifndef SPH_LEDGER_H
+#define SPH_LEDGER_H
+
+#include "core/particles.h"
+#include "solver/diag.h"
+#include "solver/forces.h"
+
+/* The number of doubles a restart record keeps (sph_ledger_save). */
+#define SPH_LEDGER_SAVED 4
+
+typedef struct sph_ledger {
+  /* rates at the last pass */
+  double power_wall, power_xsph;
+  double force_x, force_y;
+  /* their time integrals */
+  double work_wall, drift_xsph;
+  double impulse_x, impulse_y;
+  /* the initial state */
+  double e0, e0_fluid; /* total, and the fluid's own kinetic + potential + internal */
+  double p0x, p0y;     /* fluid momentum */
+} sph_ledger;
+
+/* The rates of the pass just run (w holds its wpow, wfx, wfy; p its xsx,
+ * xsy when XSPH is on), over the fluid particles of p. */
+void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_work *w,
+                      const double gravity[2], int xsph);
+
+/* Integrates the rates over a step of dt (the rates of the pass that
+ * drives the step: t^n for the leap-frog, the mid-step for the
+ * predictor-corrector). */
+void sph_ledger_advance(sph_ledger *lg, double dt);
+
+/* sum over fluid particles of m_i u_i */
+double sph_ledger_fluid_internal(const sph_particles *p);
+
+/* Completes a diagnostics row (row->kinetic, potential and momentum
+ * already filled by sph_diag_compute) with the ledger's columns. */
+void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, sph_diag_row *row);
+
+/* Takes the initial totals from the first row (filled by
+ * sph_ledger_fill with zero integrals). */
+void sph_ledger_start(sph_ledger *lg, const sph_particles *p, const sph_diag_row *row);
+
+/* The time integrals for a restart record, and back. */
+void sph_ledger_save(const sph_ledger *lg, double out[SPH_LEDGER_SAVED]);
+void sph_ledger_restore(sph_ledger *lg, const double in[SPH_LEDGER_SAVED]);
+
+#endif

@@ -1,0 +1,151 @@
+/*
+ * restart.c - a run's snapshot that a later run can continue from, bit for
+ * bit (sph run --restart).
+ */
+#include "config.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "solver/sim_internal.h"
+
+/* ---- restart (sph run --restart) -------------------------------------------
+ * A snapshot written by sph_sim_write_run_snapshot carries, besides the
+ * fields, what the next step reads that the fields do not hold: the
+ * storage order (the grid's sort is stable, so the order within a cell,
+ * and with it the order of every neighbour sum, depends on the history),
+ * the leap-frog's half-step values and first-step flag, and the ledger's
+ * time integrals. Everything else the step uses is either a function of
+ * the case (set-up, rest positions and motion of walls, domain, initial
+ * energies and momentum, all remade by sph_sim_create) or of the state in
+ * that order (the rates, flags and step-rule inputs of the pass, which
+ * sph_sim_restore reruns). So a restored sim steps bit for bit as the one
+ * that wrote the snapshot. */
+
+int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t output_index,
+                               const double *levels, size_t n_levels, sph_error *err) {
+  sph_snapshot_meta m;
+  sph_sim_fill_meta(s, &m, s->t, s->steps);
+  sph_snapshot_restart r;
+  memset(&r, 0, sizeof r);
+  r.output_index = output_index;
+  r.first_step = s->first_step;
+  sph_ledger_save(&s->ledger, r.ledger);
+  r.n_levels = n_levels;
+  r.levels = levels;
+  r.order = s->p.id;
+  if (s->c->integrator == SPH_INTEGRATOR_LEAPFROG) {
+    r.vxh = s->p.vxh;
+    r.vyh = s->p.vyh;
+    r.rhoh = s->p.rhoh;
+    r.uh = s->p.uh;
+  }
+  m.restart = &r;
+  return sph_snapshot_write(path, &m, &s->p, err);
+}
+
+/* The first line of a that differs from b, ignoring time.end (a restart
+ * may run further); NULL if none. Lines are "key: value". */
+static const char *first_difference(const char *a, const char *b, size_t *len) {
+  for (;;) {
+    while (!strncmp(a, "time.end:", 9)) a += strcspn(a, "\n") + (a[strcspn(a, "\n")] != 0);
+    while (!strncmp(b, "time.end:", 9)) b += strcspn(b, "\n") + (b[strcspn(b, "\n")] != 0);
+    if (!*a && !*b) return NULL;
+    const size_t la = strcspn(a, "\n"), lb = strcspn(b, "\n");
+    if (la != lb || memcmp(a, b, la)) {
+      *len = la ? la : lb;
+      return la ? a : b;
+    }
+    a += la + (a[la] != 0);
+    b += lb + (b[lb] != 0);
+  }
+}
+
+static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particles *q,
+                         const sph_snapshot_restart_data *rd, sph_error *err) {
+  const char *path = sph_snapshot_path(snap);
+  const size_t n = s->p.n;
+  if (q->n != n)
+    return sph_error_set(err, "%s: holds %zu particles, the case makes %zu: not a snapshot of "
+                              "this case",
+                         path, q->n, n);
+  const char *params = sph_snapshot_text(snap, "parameters");
+  size_t dlen = 0;
+  const char *diff = params ? first_difference(params, s->parameters, &dlen) : NULL;
+  if (!params || diff)
+    return sph_error_set(err, "%s: written with other parameters than the case (%s%.*s); "
+                              "only time.end may change on a restart",
+                         path, params ? "first difference: " : "no parameters attribute",
+                         (int)dlen, diff ? diff : "");
+  const int leapfrog = s->c->integrator == SPH_INTEGRATOR_LEAPFROG;
+  if (leapfrog && !rd->first_step && !rd->vxh)
+    return sph_error_set(err, "%s: a leap-frog run's snapshot without the half-step values "
+                              "(/restart/vxh, vyh, rhoh, uh)",
+                         path);
+  size_t *pos = malloc(n * sizeof *pos), *perm = malloc(n * sizeof *perm);
+  void *work = malloc(n * sizeof(double));
+  if (!pos || !perm || !work) {
+    free(pos);
+    free(perm);
+    free(work);
+    return sph_error_set(err, "out of memory");
+  }
+  for (size_t i = 0; i < n; i++) pos[s->p.id[i]] = i;
+  for (size_t k = 0; k < n; k++) perm[k] = pos[rd->order[k]];
+  sph_particles_permute(&s->p, perm, work);
+  free(pos);
+  free(perm);
+  free(work);
+  sph_particles *p = &s->p;
+  for (size_t k = 0; k < n; k++) {
+    const size_t i = (size_t)p->id[k]; /* row of the snapshot */
+    if (q->kind[i] != p->kind[k] || q->mass[i] != p->mass[k])
+      return sph_error_set(err, "%s: particle %zu is a %s of mass %g, the case makes a %s of "
+                                "mass %g: not a snapshot of this case",
+                           path, i, q->kind[i] == SPH_KIND_FLUID ? "fluid particle" : "wall particle",
+                           q->mass[i], p->kind[k] == SPH_KIND_FLUID ? "fluid particle" : "wall particle",
+                           p->mass[k]);
+    p->x[k] = q->x[i];
+    p->y[k] = q->y[i];
+    p->vx[k] = q->vx[i];
+    p->vy[k] = q->vy[i];
+    p->rho[k] = q->rho[i];
+    p->p[k] = q->p[i];
+    p->h[k] = q->h[i];
+    p->u[k] = q->u[i];
+    p->flags[k] = (uint8_t)((p->flags[k] & ~SPH_FLAG_FREE_SURFACE) | (q->flags[i] & 1u));
+    if (rd->vxh) {
+      p->vxh[k] = rd->vxh[k];
+      p->vyh[k] = rd->vyh[k];
+      p->rhoh[k] = rd->rhoh[k];
+      p->uh[k] = rd->uh[k];
+    }
+  }
+  s->t = sph_snapshot_time(snap);
+  s->steps = (long)sph_snapshot_step(snap);
+  s->last_dt = sph_snapshot_dt(snap);
+  s->first_step = (int)rd->first_step;
+  sph_ledger_restore(&s->ledger, rd->ledger);
+  const int st = sph_sim_check_state(s, err);
+  if (st) return st;
+  return sph_sim_pass(s, err); /* the rates, flags and step-rule inputs of this state */
+}
+
+int sph_sim_restore(sph_sim *s, const char *path, sph_snapshot_restart_data *rd,
+                    sph_error *err) {
+  memset(rd, 0, sizeof *rd);
+  sph_snapshot *snap;
+  if (sph_snapshot_open(path, &snap, err)) return -1;
+  sph_particles q;
+  int rc = sph_snapshot_read_particles(snap, &q, err);
+  if (rc == 0) {
+    rc = sph_snapshot_read_restart(snap, rd, err);
+    if (rc == 0) rc = restore_state(s, snap, &q, rd, err);
+    sph_particles_free(&q);
+  }
+  sph_snapshot_close(snap);
+  if (rc) sph_snapshot_restart_free(rd);
+  return rc;
+}

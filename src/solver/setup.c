@@ -1,0 +1,265 @@
+/*
+ * setup.c - making a simulation from a case (sph_sim_create) and freeing
+ * it.
+ *
+ * Fluid blocks are filled on the lattice x0 + (i + 1/2) dx (with the
+ * block's seeded jitter, if any); walls come from src/walls/. With a
+ * hydrostatic start the density of a fluid particle is the Tait density
+ * of p = rho0 |g| (surface - y), and a wall particle within 2h of a
+ * block's x-range gets the same law for that block's surface, so walls
+ * hold the column up from the first step. Every particle has mass
+ * rho0 dx^2 and smoothing length h = h_factor dx. The boxes (the view, the
+ * domain whose leaving is a blow-up, the floor of the front measure) are
+ * fixed here, and the first interaction pass gives the initial rates.
+ */
+#include "config.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "physics/eos.h"
+#include "physics/kernel.h"
+#include "solver/sim_internal.h"
+
+static double sph_skin_fraction(void) {
+  const char *e = getenv("SPH_TEST_SKIN");
+  if (e && *e) return atof(e);
+  return SPH_SKIN_DEFAULT;
+}
+
+/* The interaction loop: the default, or the one the test hook
+ * SPH_TEST_LANES names (portable, avx or scalar; doc/testing.md), for the
+ * tests that compare the loops through whole runs. */
+static sph_force_loop sph_test_loop(void) {
+  const char *e = getenv("SPH_TEST_LANES");
+  if (!e) return SPH_LOOP_AUTO;
+  if (strcmp(e, "portable") == 0) return SPH_LOOP_LANES;
+  if (strcmp(e, "avx") == 0) return SPH_LOOP_LANES_AVX;
+  if (strcmp(e, "scalar") == 0) return SPH_LOOP_SCALAR;
+  return SPH_LOOP_AUTO;
+}
+
+static int add_fluid(sph_sim *s, sph_error *err) {
+  const sph_case *c = s->c;
+  const double dx = c->dx, mass = c->rho0 * dx * dx;
+  const double gmag = -c->gravity[1] > 0.0 ? -c->gravity[1] : 0.0;
+  for (size_t b = 0; b < c->n_fluid; b++) {
+    const sph_fluid_block *fb = &c->fluid[b];
+    const long nx = (long)floor((fb->x1 - fb->x0) / dx + 1e-9);
+    const long ny = (long)floor((fb->y1 - fb->y0) / dx + 1e-9);
+    for (long j = 0; j < ny; j++)
+      for (long i = 0; i < nx; i++) {
+        double x = fb->x0 + ((double)i + 0.5) * dx;
+        double y = fb->y0 + ((double)j + 0.5) * dx;
+        sph_fluid_jitter(fb, b, i, j, dx, &x, &y); /* perturbed start, if asked for */
+        double rho = c->rho0;
+        if (fb->hydrostatic) rho = sph_eos_density(&s->fp.eos, c->rho0 * gmag * (fb->surface - y));
+        if (sph_particles_add(&s->p, x, y, fb->vx, fb->vy, rho, mass, c->h, SPH_KIND_FLUID, err) <
+            0)
+          return -1;
+      }
+  }
+  return 0;
+}
+
+/* Periodic in x: wall particles are wrapped into [x0, x1), and a wall
+ * particle that then coincides with an earlier one (a staggered layer that
+ * reaches both ends of a period) is dropped. Ids are renumbered in order. */
+static void dedupe_periodic(sph_sim *s) {
+  sph_particles *p = &s->p;
+  const double x0 = s->c->periodic_x[0], x1 = s->c->periodic_x[1], L = x1 - x0;
+  const double tol = 1e-9 * L;
+  size_t kept = 0;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->x[i] >= x1) p->x[i] -= L;
+    if (p->x[i] < x0) p->x[i] += L;
+    int dup = 0;
+    for (size_t j = 0; j < kept && !dup && p->kind[i] == SPH_KIND_WALL; j++)
+      dup = p->kind[j] == SPH_KIND_WALL && fabs(p->y[j] - p->y[i]) < tol &&
+            (fabs(p->x[j] - p->x[i]) < tol || fabs(fabs(p->x[j] - p->x[i]) - L) < tol);
+    if (dup) continue;
+    if (kept != i) {
+      p->x[kept] = p->x[i];
+      p->y[kept] = p->y[i];
+      p->vx[kept] = p->vx[i];
+      p->vy[kept] = p->vy[i];
+      p->rho[kept] = p->rho[i];
+      p->mass[kept] = p->mass[i];
+      p->h[kept] = p->h[i];
+      p->kind[kept] = p->kind[i];
+      p->flags[kept] = p->flags[i];
+      p->body[kept] = p->body[i];
+      p->yr[kept] = p->yr[i];
+      p->mx[kept] = p->mx[i];
+      p->my[kept] = p->my[i];
+    }
+    p->xr[kept] = p->x[kept]; /* the rest position is the wrapped one */
+    p->id[kept] = (int64_t)kept;
+    kept++;
+  }
+  p->n = kept;
+}
+
+/* Hydrostatic density of the wall particles beside or under a block. */
+static void init_wall_density(sph_sim *s) {
+  const sph_case *c = s->c;
+  const double gmag = -c->gravity[1] > 0.0 ? -c->gravity[1] : 0.0;
+  const double reach = SPH_CUBIC_SUPPORT * c->h;
+  for (size_t i = 0; i < s->p.n; i++) {
+    if (s->p.kind[i] != SPH_KIND_WALL || (s->p.flags[i] & SPH_FLAG_REPULSIVE)) continue;
+    double depth = 0.0;
+    for (size_t b = 0; b < c->n_fluid; b++) {
+      const sph_fluid_block *fb = &c->fluid[b];
+      if (!fb->hydrostatic || s->p.x[i] < fb->x0 - reach || s->p.x[i] > fb->x1 + reach) continue;
+      const double d = fb->surface - s->p.y[i];
+      if (d > depth) depth = d;
+    }
+    if (depth > 0.0) s->p.rho[i] = sph_eos_density(&s->fp.eos, c->rho0 * gmag * depth);
+  }
+}
+
+static void bounding_box(const sph_particles *p, double box[4]) {
+  box[0] = box[2] = INFINITY;
+  box[1] = box[3] = -INFINITY;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->x[i] < box[0]) box[0] = p->x[i];
+    if (p->x[i] > box[1]) box[1] = p->x[i];
+    if (p->y[i] < box[2]) box[2] = p->y[i];
+    if (p->y[i] > box[3]) box[3] = p->y[i];
+  }
+}
+
+static void set_boxes(sph_sim *s) {
+  const sph_case *c = s->c;
+  double bb[4];
+  bounding_box(&s->p, bb);
+  if (c->tank.present) { /* a mirror tank has no wall particles: take its faces */
+    if (c->tank.x0 < bb[0]) bb[0] = c->tank.x0;
+    if (c->tank.x1 > bb[1]) bb[1] = c->tank.x1;
+    if (c->tank.y0 < bb[2]) bb[2] = c->tank.y0;
+    if (c->tank.y1 > bb[3]) bb[3] = c->tank.y1;
+  }
+  if (c->periodic) {
+    s->view[0] = c->periodic_x[0];
+    s->view[1] = c->periodic_x[1];
+    s->view[2] = bb[2];
+    s->view[3] = bb[3];
+  }
+  if (c->tank.present) {
+    const double wall = 0.5 * c->dx * (double)(c->tank.layers + 1);
+    s->view[0] = c->tank.x0 - wall;
+    s->view[1] = c->tank.x1 + wall;
+    s->view[2] = c->tank.y0 - wall;
+    s->view[3] = c->tank.y1;
+    s->floor_y = c->tank.y0;
+  } else {
+    memcpy(s->view, bb, sizeof bb);
+    s->floor_y = INFINITY;
+    for (size_t b = 0; b < c->n_fluid; b++)
+      if (c->fluid[b].y0 < s->floor_y) s->floor_y = c->fluid[b].y0;
+  }
+  if (c->domain_set) {
+    memcpy(s->domain, c->domain, sizeof s->domain);
+  } else if (c->periodic) { /* x wraps: only a runaway beyond a period is an error */
+    const double L = c->periodic_x[1] - c->periodic_x[0], hgt = bb[3] - bb[2];
+    s->domain[0] = c->periodic_x[0] - L;
+    s->domain[1] = c->periodic_x[1] + L;
+    s->domain[2] = bb[2] - hgt - 4.0 * c->h;
+    s->domain[3] = bb[3] + 2.0 * hgt + 4.0 * c->h;
+  } else {
+    /* the particles' box, widened by half its size sideways and below, and
+     * by twice its height above (splashes rise, nothing should fall far) */
+    const double w = bb[1] - bb[0], hgt = bb[3] - bb[2];
+    const double m = 0.5 * (w > hgt ? w : hgt) + 4.0 * c->h;
+    s->domain[0] = bb[0] - m;
+    s->domain[1] = bb[1] + m;
+    s->domain[2] = bb[2] - m;
+    s->domain[3] = bb[3] + 2.0 * hgt + m;
+  }
+}
+
+int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
+  *out = NULL;
+  sph_sim *s = calloc(1, sizeof *s);
+  if (!s) return sph_error_set(err, "out of memory");
+  s->c = c;
+  sph_grid_init(&s->grid);
+  sph_nlist_init(&s->nl);
+  s->fp.eos = sph_eos_tait(c->rho0, c->sound_speed);
+  s->fp.h = c->h;
+  s->fp.alpha = c->alpha;
+  s->fp.beta = c->beta;
+  s->fp.eta = c->eta;
+  s->fp.xsph = c->xsph;
+  s->fp.gx = c->gravity[0];
+  s->fp.gy = c->gravity[1];
+  s->fp.viscosity = c->viscosity;
+  s->fp.mu = c->mu;
+  s->fp.periodic = c->periodic;
+  s->fp.period = c->periodic ? c->periodic_x[1] - c->periodic_x[0] : 0.0;
+  s->fp.px0 = c->periodic ? c->periodic_x[0] : 0.0;
+  s->fp.gradient_correction = c->gradient_correction;
+  s->fp.var_h = c->fs_h_factor > 0.0;
+  s->fp.lj_d = c->repulsion;
+  s->fp.lj_r0 = c->dx;
+  s->first_step = 1;
+  s->detect = sph_case_needs_free_surface(c);
+  s->fp.ledger = c->energy;
+  s->fp.sps = c->sps;
+  s->fp.sps_cs = c->sps_cs;
+  s->fp.sps_ci = c->sps_ci;
+  s->fp.sps_delta = c->dx;
+  if (c->variable_h) s->fp.var_h = 1;
+  s->fp.loop = sph_test_loop();
+  if (sph_particles_init(&s->p, 1024, err)) goto fail;
+  if (add_fluid(s, err)) goto fail;
+  if (sph_walls_create(&s->walls, &s->p, &c->tank, c->walls, c->n_walls, c->dx, c->rho0, c->h,
+                       SPH_CUBIC_SUPPORT * c->h * (c->fs_h_factor > 1.0 ? c->fs_h_factor : 1.0),
+                       err)) {
+    sph_error ew = *err;
+    sph_error_set(err, "case %s: %s", c->name, ew.msg);
+    goto fail;
+  }
+  s->fp.no_slip = s->walls.no_slip;
+  s->fp.repulsive = s->walls.repulsive;
+  if (c->periodic) dedupe_periodic(s);
+  /* a neighbour list kept across passes where nothing needs a fresh grid */
+  if (!s->walls.n_mirror && !s->detect && !s->fp.var_h) s->skin = sph_skin_fraction() * SPH_CUBIC_SUPPORT * c->h;
+  if (s->p.n == 0) {
+    sph_error_set(err, "case %s: no particles", c->name);
+    goto fail;
+  }
+  init_wall_density(s);
+  sph_forces_pressure(&s->p, &s->fp.eos);
+  set_boxes(s);
+  s->parameters = sph_case_describe(c);
+  if (!s->parameters) {
+    sph_error_set(err, "out of memory");
+    goto fail;
+  }
+  sph_walls_move(&s->walls, &s->p, 0.0);
+  s->resort = 1;
+  if (sph_sim_pass(s, err)) goto fail; /* rates and flags of the initial state */
+  if (c->energy) {
+    sph_diag_row row;
+    sph_sim_diag(s, &row);
+    sph_ledger_start(&s->ledger, &s->p, &row);
+  }
+  *out = s;
+  return 0;
+fail:
+  sph_sim_free(s);
+  return -1;
+}
+
+void sph_sim_free(sph_sim *s) {
+  if (!s) return;
+  sph_particles_free(&s->p);
+  sph_grid_free(&s->grid);
+  sph_nlist_free(&s->nl);
+  sph_force_work_free(&s->work);
+  free(s->parameters);
+  free(s);
+}

@@ -1,0 +1,60 @@
+/*
+ * sim_internal.h - the simulation object's insides, shared by the files
+ * of src/solver/ that make it (setup.c), step it (sim.c) and restart it
+ * (restart.c). Not installed: programs see the opaque sph_sim of sim.h.
+ */
+#ifndef SPH_SIM_INTERNAL_H
+#define SPH_SIM_INTERNAL_H
+
+#include "core/particles.h"
+#include "io/snapshot.h"
+#include "neighbours/grid.h"
+#include "solver/forces.h"
+#include "solver/ledger.h"
+#include "solver/sim.h"
+#include "walls/walls.h"
+
+/* Cells of the grid are a hair larger than the support, so rounding in the
+ * cell index can never separate a pair closer than 2h by a whole cell. */
+#define SPH_CELL_MARGIN (1.0 + 1e-9)
+
+/* The neighbour list's skin as a fraction of the support 2h (the test
+ * hook SPH_TEST_SKIN overrides it for a run; 0 rebuilds at every pass). */
+#define SPH_SKIN_DEFAULT 0.15
+
+struct sph_sim {
+  const sph_case *c;
+  sph_walls walls;            /* wall particles' models, mirror lines, motions */
+  int first_step;             /* leap-frog: the special first half step */
+  int detect;                 /* free-surface detection runs at every pass */
+  size_t n_surface;           /* particles flagged at the last pass */
+  sph_ledger ledger;          /* energy and momentum ledger (output.energy) */
+  double dt_paper_b;          /* paper B §2.6 step from the last pass */
+  sph_particles p;
+  sph_grid grid;
+  sph_nlist nl;               /* neighbour list of the interaction passes */
+  double skin;                /* its skin; 0 = rebuilt at every pass */
+  int resort;                 /* the next pass sorts the store by cell */
+  sph_force_work work;
+  sph_force_params fp;
+  double t, last_dt;
+  double t_saved; /* time of the state saved at the start of the last step */
+  long steps;
+  double floor_y;
+  double domain[4];
+  double view[4];
+  char *parameters; /* sph_case_describe */
+};
+
+/* Mirror particles, grid build, free-surface flags and one interaction
+ * pass on the current state (sim.c). */
+int sph_sim_pass(sph_sim *s, sph_error *err);
+
+/* The blow-up check of the current state: SPH_BLOWUP with err naming the
+ * first offender in id order, or 0 (sim.c). */
+int sph_sim_check_state(sph_sim *s, sph_error *err);
+
+/* The snapshot header of the sim's state at time t, step `step` (sim.c). */
+void sph_sim_fill_meta(const sph_sim *s, sph_snapshot_meta *m, double t, long step);
+
+#endif

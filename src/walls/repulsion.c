@@ -1,0 +1,37 @@
+/*
+ * repulsion.c - the Lennard-Jones force of repulsive wall particles on
+ * fluid particles (see repulsion.h). Each fluid particle sums over its own
+ * neighbour row in storage order (gather form), so the result does not
+ * depend on the thread count.
+ */
+#include "config.h"
+
+#include "walls/repulsion.h"
+
+#include "core/parallel.h"
+#include "physics/pair_terms.h"
+
+void sph_repulsion_add(sph_particles *p, const sph_nlist *l, double d, double r0, double period) {
+  const long n = (long)p->n;
+#pragma omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)
+  for (long li = 0; li < n; li++) {
+    const size_t i = (size_t)li;
+    if (p->kind[i] != SPH_KIND_FLUID) continue;
+    const uint32_t *nb = l->nb + l->start[i];
+    const size_t cnt = l->count[i];
+    double ax = 0.0, ay = 0.0;
+    for (size_t k = 0; k < cnt; k++) {
+      const size_t j = nb[k];
+      if (!(p->flags[j] & SPH_FLAG_REPULSIVE)) continue;
+      const double dx = sph_grid_min_image(p->x[i] - p->x[j], period);
+      const double dy = p->y[i] - p->y[j];
+      const double r2 = dx * dx + dy * dy;
+      if (r2 >= r0 * r0 || r2 == 0.0) continue;
+      const double f = lennard_jones_v1(d, r0, r2);
+      ax += f * dx;
+      ay += f * dy;
+    }
+    p->ax[i] += ax;
+    p->ay[i] += ay;
+  }
+}

@@ -1,0 +1,65 @@
+/*
+ * walls.c - the walls of a run (see walls.h). Wall particles are appended
+ * to the store in the order tank, then segments, so their ids (and so the
+ * bits of every later sum) depend only on the case.
+ */
+#include "config.h"
+
+#include "walls/walls.h"
+
+#include "walls/motion.h"
+
+static uint8_t wall_flags(sph_boundary_kind b, int extrapolated) {
+  return (uint8_t)((b == SPH_BOUNDARY_REPULSIVE ? SPH_FLAG_REPULSIVE : 0) |
+                   (extrapolated ? SPH_FLAG_NO_SLIP : 0));
+}
+
+int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
+                     const sph_wall_segment *segments, size_t n_segments, double dx, double rho0,
+                     double h, double mirror_reach, sph_error *err) {
+  const double wall_mass = rho0 * dx * dx;
+  *w = (sph_walls){0};
+  w->mirror_reach = mirror_reach;
+  w->segments = segments;
+  w->n_segments = n_segments;
+  w->no_slip = tank->present && tank->extrapolated;
+  for (size_t k = 0; k < n_segments; k++) w->no_slip |= segments[k].extrapolated;
+  if (tank->present) {
+    if (tank->boundary == SPH_BOUNDARY_MIRROR) {
+      w->n_mirror += sph_mirror_tank_lines(tank, mirror_reach, w->mirror);
+    } else if (sph_boundary_add_tank(p, tank, dx, rho0, wall_mass, h,
+                                     wall_flags(tank->boundary, tank->extrapolated), err)) {
+      return -1;
+    }
+    if (tank->boundary == SPH_BOUNDARY_REPULSIVE) w->repulsive = 1;
+  }
+  for (size_t k = 0; k < n_segments; k++) {
+    const sph_wall_segment *ws = &segments[k];
+    if (ws->boundary == SPH_BOUNDARY_MIRROR) {
+      if (w->n_mirror == SPH_MIRROR_MAX_LINES)
+        return sph_error_set(err, "more than %zu mirror walls", w->n_mirror);
+      w->mirror[w->n_mirror++] = sph_mirror_segment_line(ws->x0, ws->y0, ws->x1, ws->y1);
+      continue;
+    }
+    if (ws->boundary == SPH_BOUNDARY_REPULSIVE) w->repulsive = 1;
+    const size_t first = p->n;
+    if (sph_boundary_add_segment(p, ws->x0, ws->y0, ws->x1, ws->y1, ws->layers, ws->stagger, 0,
+                                 dx, rho0, wall_mass, h, wall_flags(ws->boundary, ws->extrapolated),
+                                 err))
+      return -1;
+    if (ws->motion.kind != SPH_MOTION_NONE) {
+      w->moving = 1;
+      for (size_t i = first; i < p->n; i++) p->body[i] = (int32_t)k;
+    }
+  }
+  return 0;
+}
+
+void sph_walls_move(const sph_walls *w, sph_particles *p, double t) {
+  if (!w->moving) return;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->body[i] < 0) continue;
+    sph_motion_point(&w->segments[p->body[i]].motion, t, p->xr[i], p->yr[i], &p->x[i], &p->y[i],
+                     &p->vx[i], &p->vy[i]);
+  }
+}

@@ -1,0 +1,47 @@
+/*
+ * walls.h - the walls of a run as a whole: the tank and the wall segments
+ * of a case turned into wall particles (boundary.h) or mirror lines, the
+ * flags each boundary model gives its particles, and the prescribed motion
+ * of the moving ones (motion.h) at every stage of a step.
+ *
+ * Boundary models (GOST R 57700.6-2017 terms): dynamic wall particles
+ * (3.4.7; paper B §2.7) and Morris' fixed layers (paper A §6 b) are wall
+ * particles with continuity; repulsive walls (paper A eq. 21-22) are one
+ * layer acting by the Lennard-Jones force; mirror walls (3.4.5) are lines
+ * whose mirror particles are made for each pass (boundary.h).
+ */
+#ifndef SPH_WALLS_H
+#define SPH_WALLS_H
+
+#include <stddef.h>
+
+#include "core/error.h"
+#include "core/particles.h"
+#include "walls/boundary.h"
+#include "walls/wall_types.h"
+
+typedef struct sph_walls {
+  sph_mirror_line mirror[SPH_MIRROR_MAX_LINES]; /* mirror walls */
+  size_t n_mirror;
+  double mirror_reach;               /* how far behind a mirror line particles are mirrored */
+  int moving;                        /* some wall particles follow a prescribed motion */
+  int repulsive;                     /* some wall particles are repulsive (Lennard-Jones) */
+  int no_slip;                       /* some wall particles carry SPH_FLAG_NO_SLIP */
+  const sph_wall_segment *segments;  /* the case's segments (their motions), not owned */
+  size_t n_segments;
+} sph_walls;
+
+/* Adds the wall particles of the tank (if present) and of the segments to
+ * p (mass, density rho0, smoothing length h, spacing dx), and records the
+ * mirror walls as lines with reach mirror_reach. A moving segment's
+ * particles get body = the segment's index. */
+int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
+                     const sph_wall_segment *segments, size_t n_segments, double dx, double rho0,
+                     double h, double mirror_reach, sph_error *err);
+
+/* Positions and velocities of the moving wall particles at time t: rest
+ * position plus the prescribed displacement (never accumulated, so a wall
+ * is exactly where its law puts it). */
+void sph_walls_move(const sph_walls *w, sph_particles *p, double t);
+
+#endif
