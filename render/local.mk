@@ -12,7 +12,6 @@ render_libsphrender_la_SOURCES = \
 	render/canvas.c render/canvas.h \
 	render/cli.c render/cli.h render/options.h \
 	render/colormap.c render/colormap.h \
-	render/csv.c render/csv.h \
 	render/figure.c render/figure.h \
 	render/font.c render/font.h \
 	render/gl_api.c render/gl_api.h \

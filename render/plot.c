@@ -24,7 +24,7 @@
 #include <string.h>
 
 #include "canvas.h"
-#include "csv.h"
+#include "io/csv.h"
 #include "font.h"
 #include "gl_context.h"
 #include "inputs.h"
@@ -41,8 +41,8 @@ typedef struct series {
 } series;
 
 static int load_series(const roptions *o, const rseries_opt *so, series *s, sph_error *err) {
-  rcsv t;
-  if (rcsv_read(so->path, &t, err) != 0) return -1;
+  sph_csv t;
+  if (sph_csv_read(so->path, &t, err) != 0) return -1;
   const char *xc = so->xcol ? so->xcol : o->xcol;
   const char *yc = so->ycol ? so->ycol : o->ycol;
   int rc = 0;
@@ -54,8 +54,8 @@ static int load_series(const roptions *o, const rseries_opt *so, series *s, sph_
   s->x = malloc((t.nrow + 1) * sizeof *s->x);
   s->y = malloc((t.nrow + 1) * sizeof *s->y);
   if (!rc && (!s->x || !s->y)) rc = sph_error_set(err, "out of memory");
-  if (!rc) rc = rcsv_eval(&t, xc, s->x, err);
-  if (!rc) rc = rcsv_eval(&t, yc, s->y, err);
+  if (!rc) rc = sph_csv_eval(&t, xc, s->x, err);
+  if (!rc) rc = sph_csv_eval(&t, yc, s->y, err);
   double y0 = NAN;
   for (size_t i = 0; !rc && i < s->n; i++) {
     s->x[i] *= so->xscale;
@@ -86,7 +86,7 @@ static int load_series(const roptions *o, const rseries_opt *so, series *s, sph_
     }
     snprintf(s->label, sizeof s->label, "%s", stem);
   }
-  rcsv_free(&t);
+  sph_csv_free(&t);
   return rc;
 }
 

@@ -22,7 +22,7 @@
 #include <string.h>
 
 #include "colormap.h"
-#include "csv.h"
+#include "io/csv.h"
 #include "figure.h"
 #include "gl_context.h"
 #include "inputs.h"
@@ -269,8 +269,8 @@ static int load_overlays(plan *p, sph_error *err) {
   for (int i = 0; i < o->n_overlays; i++) {
     const roverlay_opt *ov = &o->overlay[i];
     roverlay *dst = &p->overlay[i];
-    rcsv t;
-    if (rcsv_read(ov->path, &t, err) != 0) return -1;
+    sph_csv t;
+    if (sph_csv_read(ov->path, &t, err) != 0) return -1;
     int rc = 0;
     if (t.ncol < 2 && (!ov->xcol || !ov->ycol))
       rc = sph_error_set(err, "%s: an overlay needs two columns (x, y)", ov->path);
@@ -280,16 +280,16 @@ static int load_overlays(plan *p, sph_error *err) {
     if (ov->tcol) dst->t = malloc((t.nrow + 1) * sizeof *dst->t);
     if (!rc && (!dst->x || !dst->y || (ov->tcol && !dst->t)))
       rc = sph_error_set(err, "out of memory");
-    if (!rc) rc = rcsv_eval(&t, ov->xcol ? ov->xcol : t.names[0], dst->x, err);
-    if (!rc) rc = rcsv_eval(&t, ov->ycol ? ov->ycol : t.names[1], dst->y, err);
-    if (!rc && ov->tcol) rc = rcsv_eval(&t, ov->tcol, dst->t, err);
+    if (!rc) rc = sph_csv_eval(&t, ov->xcol ? ov->xcol : t.names[0], dst->x, err);
+    if (!rc) rc = sph_csv_eval(&t, ov->ycol ? ov->ycol : t.names[1], dst->y, err);
+    if (!rc && ov->tcol) rc = sph_csv_eval(&t, ov->tcol, dst->t, err);
     for (size_t r = 0; !rc && r < t.nrow; r++) {
       dst->x[r] *= ov->xscale;
       dst->y[r] *= ov->yscale;
     }
     dst->line = ov->line;
     dst->label = ov->label;
-    rcsv_free(&t);
+    sph_csv_free(&t);
     if (rc) return -1;
   }
   p->style.overlays = p->overlay;

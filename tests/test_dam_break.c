@@ -40,36 +40,17 @@ typedef struct series {
 /* Reads columns `time` and `front_x` of a CSV with a header (lines
  * starting with '#' skipped). */
 static int read_front(const char *path, series *s) {
-  FILE *f = fopen(path, "r");
-  if (!f) return -1;
-  char line[4096];
-  int ct = -1, cx = -1;
+  double *c[2] = {NULL, NULL};
+  const long n = sph_test_csv(path, "time,front_x", c);
   s->n = 0;
-  while (fgets(line, sizeof line, f)) {
-    if (line[0] == '#') continue;
-    if (ct < 0) { /* header */
-      int col = 0;
-      for (char *tok = strtok(line, ",\n"); tok; tok = strtok(NULL, ",\n"), col++) {
-        if (!strcmp(tok, "time")) ct = col;
-        if (!strcmp(tok, "front_x")) cx = col;
-      }
-      if (ct < 0 || cx < 0) break;
-      continue;
-    }
-    int col = 0;
-    double t = NAN, x = NAN;
-    for (char *tok = strtok(line, ",\n"); tok; tok = strtok(NULL, ",\n"), col++) {
-      if (col == ct) t = strtod(tok, NULL);
-      if (col == cx) x = strtod(tok, NULL);
-    }
-    if (s->n < 4096) {
-      s->t[s->n] = t;
-      s->x[s->n] = x;
-      s->n++;
-    }
+  for (long i = 0; i < n && s->n < 4096; i++) {
+    s->t[s->n] = c[0][i];
+    s->x[s->n] = c[1][i];
+    s->n++;
   }
-  fclose(f);
-  return (ct < 0 || cx < 0 || s->n == 0) ? -1 : 0;
+  free(c[0]);
+  free(c[1]);
+  return s->n ? 0 : -1;
 }
 
 static double interp(const series *s, double t) {
@@ -108,15 +89,16 @@ static void test_front_against_experiment(void) {
   char path[4096];
   snprintf(path, sizeof path, "%s/diagnostics.csv", dir1);
   CU_ASSERT_FATAL(read_front(path, &sim) == 0);
-  FILE *f = fopen(sph_test_src("tests/data/martin_moyce_1952_front_n2_2.csv"), "r");
-  CU_ASSERT_FATAL(f != NULL);
-  char line[1024];
+  double *exp_[2] = {NULL, NULL}; /* T = t sqrt(2g/a), Z = x/a */
+  const long nexp =
+      sph_test_csv(sph_test_src("tests/data/martin_moyce_1952_front_n2_2.csv"), "#0,#1", exp_);
+  CU_ASSERT_FATAL(nexp > 0);
   double sum2 = 0.0, emax = 0.0;
   int n = 0;
   printf("\n     T     Z_exp   Z_sph   rel.err\n");
-  while (fgets(line, sizeof line, f)) {
-    double T, Z;
-    if (line[0] == '#' || sscanf(line, "%lf,%lf", &T, &Z) != 2 || Z >= 3.9) continue;
+  for (long k = 0; k < nexp; k++) {
+    const double T = exp_[0][k], Z = exp_[1][k];
+    if (Z >= 3.9) continue;
     const double t = T / sqrt(2 * G / A);
     const double zs = interp(&sim, t) / A;
     const double e = (zs - Z) / Z;
@@ -126,7 +108,8 @@ static void test_front_against_experiment(void) {
     if (fabs(e) > emax) emax = fabs(e);
     n++;
   }
-  fclose(f);
+  free(exp_[0]);
+  free(exp_[1]);
   const double rms = sqrt(sum2 / n);
   printf("  front vs Martin & Moyce (%d points, Z < 3.9): RMS %.2f %%, max %.2f %%\n", n,
          100 * rms, 100 * emax);

@@ -102,20 +102,13 @@ typedef struct audit_entry {
 } audit_entry;
 
 static int read_audit(const char *path, audit_entry *e, int max) {
-  FILE *f = fopen(path, "r");
-  if (!f) return -1;
-  char line[1024];
-  int n = 0;
-  while (fgets(line, sizeof line, f) && n < max) {
-    long np;
-    double dx, t, dev, fdev, mass, mom;
-    if (line[0] == '#' || sscanf(line, "%ld,%lf,%lf,%lf,%lf,%lf,%lf", &np, &dx, &t, &dev, &fdev,
-                                 &mass, &mom) != 7)
-      continue;
-    e[n++] = (audit_entry){np, t, dev, mom};
-  }
-  fclose(f);
-  return n;
+  double *c[4] = {NULL, NULL, NULL, NULL};
+  const long n = sph_test_csv(path, "particles,time,energy_deviation,momentum_drift", c);
+  int k = 0;
+  for (long i = 0; i < n && k < max; i++)
+    e[k++] = (audit_entry){(long)c[0][i], c[1][i], c[2][i], c[3][i]};
+  for (int j = 0; j < 4; j++) free(c[j]);
+  return k;
 }
 
 static void test_audit_golden(void) {

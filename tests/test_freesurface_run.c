@@ -145,46 +145,23 @@ static int read_flags(const char *path, flagged *f, double **h_out, double **kin
 /* Ids from the golden CSV: '#' lines and the "id" header skipped. */
 static int read_golden(const char *path, flagged *f) {
   memset(f, 0, sizeof *f);
-  FILE *in = fopen(path, "r");
-  if (!in) return -1;
-  char line[512];
-  while (fgets(line, sizeof line, in)) {
-    if (line[0] == '#' || !strncmp(line, "id", 2)) continue;
-    char *end;
-    const long long v = strtoll(line, &end, 10);
-    if (end == line) continue;
-    push(f, v);
-  }
-  fclose(in);
+  double *c[1] = {NULL};
+  const long n = sph_test_csv(path, "id", c);
+  for (long i = 0; i < n; i++) push(f, (long long)c[0][i]);
+  free(c[0]);
   if (f->n) qsort(f->id, f->n, sizeof *f->id, cmp_ll);
   return f->n ? 0 : -1;
 }
 
 /* The n_free_surface of the diagnostics row at time t (-1 if absent). */
 static long diag_surface_count(const char *path, double t) {
-  FILE *in = fopen(path, "r");
-  if (!in) return -1;
-  char line[4096];
-  int col_t = -1, col_n = -1;
+  double *c[2] = {NULL, NULL};
+  const long n = sph_test_csv(path, "time,n_free_surface", c);
   long found = -1;
-  if (fgets(line, sizeof line, in)) {
-    int col = 0;
-    for (char *tok = strtok(line, ",\n"); tok; tok = strtok(NULL, ",\n"), col++) {
-      if (!strcmp(tok, "time")) col_t = col;
-      if (!strcmp(tok, "n_free_surface")) col_n = col;
-    }
-  }
-  while (col_t >= 0 && col_n >= 0 && fgets(line, sizeof line, in)) {
-    double tt = NAN;
-    long v = -1;
-    int col = 0;
-    for (char *tok = strtok(line, ",\n"); tok; tok = strtok(NULL, ",\n"), col++) {
-      if (col == col_t) tt = strtod(tok, NULL);
-      if (col == col_n) v = strtol(tok, NULL, 10);
-    }
-    if (fabs(tt - t) < 1e-12) found = v;
-  }
-  fclose(in);
+  for (long i = 0; i < n; i++)
+    if (fabs(c[0][i] - t) < 1e-12) found = (long)c[1][i];
+  free(c[0]);
+  free(c[1]);
   return found;
 }
 

@@ -36,7 +36,7 @@
 #include <sys/stat.h>
 
 #include "colormap.h"
-#include "csv.h"
+#include "io/csv.h"
 #include "figure.h"
 #include "font.h"
 #include "inputs.h"
@@ -346,33 +346,33 @@ static void test_ticks(void) {
 }
 
 static void test_csv(void) {
-  rcsv t;
+  sph_csv t;
   sph_error err;
-  CU_ASSERT_EQUAL_FATAL(rcsv_read(sph_test_src("tests/data/render/experiment.csv"), &t, &err), 0);
+  CU_ASSERT_EQUAL_FATAL(sph_csv_read(sph_test_src("tests/data/render/experiment.csv"), &t, &err), 0);
   CU_ASSERT_EQUAL(t.ncol, 2);
   CU_ASSERT_EQUAL(t.nrow, 8);
   CU_ASSERT_STRING_EQUAL(t.names[1], "Z");
-  CU_ASSERT_EQUAL(rcsv_column(&t, "Z", &err), 1);
-  CU_ASSERT_EQUAL(rcsv_column(&t, "front_x", &err), -1);
+  CU_ASSERT_EQUAL(sph_csv_column(&t, "Z", &err), 1);
+  CU_ASSERT_EQUAL(sph_csv_column(&t, "front_x", &err), -1);
   CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "front_x"));
   CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "experiment.csv"));
   double v[8];
-  CU_ASSERT_EQUAL(rcsv_eval(&t, "T+Z", v, &err), 0);
+  CU_ASSERT_EQUAL(sph_csv_eval(&t, "T+Z", v, &err), 0);
   CU_ASSERT_DOUBLE_EQUAL(v[0], 1.5, 1e-12);
-  rcsv_free(&t);
+  sph_csv_free(&t);
   /* a cell that is not a number: file, line and column in the message */
   char *bad = path_in(tmp, "bad.csv");
   FILE *fp = fopen(bad, "w");
   CU_ASSERT_PTR_NOT_NULL_FATAL(fp);
   fputs("# comment\r\na,b\r\n1,2\r\n\r\n3,x\r\n", fp);
   fclose(fp);
-  CU_ASSERT_NOT_EQUAL(rcsv_read(bad, &t, &err), 0);
+  CU_ASSERT_NOT_EQUAL(sph_csv_read(bad, &t, &err), 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "bad.csv:5"));
   CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "'b'"));
   fp = fopen(bad, "w");
   fputs("a,b\n1,2,3\n", fp);
   fclose(fp);
-  CU_ASSERT_NOT_EQUAL(rcsv_read(bad, &t, &err), 0);
+  CU_ASSERT_NOT_EQUAL(sph_csv_read(bad, &t, &err), 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "bad.csv:2"));
 }
 

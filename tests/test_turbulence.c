@@ -115,30 +115,16 @@ typedef struct series {
 } series;
 
 static int read_front(const char *path, series *s) {
-  FILE *f = fopen(path, "r");
-  if (!f) return -1;
-  char line[4096];
+  double *c[2] = {NULL, NULL};
+  const long n = sph_test_csv(path, "time,front_x", c);
   s->n = 0;
-  int header = 0;
-  while (fgets(line, sizeof line, f)) {
-    if (line[0] == '#') continue;
-    if (!header) {
-      header = 1;
-      continue;
-    }
-    double t, a, b, c, x;
-    long step;
-    /* diagnostics: time,step,dt,n_fluid,front_x,...; golden: time,front_x */
-    if (sscanf(line, "%lf,%ld,%lf,%lf,%lf", &t, &step, &a, &b, &x) == 5 ||
-        (sscanf(line, "%lf,%lf", &t, &c) == 2 && (x = c, 1))) {
-      if (s->n < 1024) {
-        s->t[s->n] = t;
-        s->x[s->n] = x;
-        s->n++;
-      }
-    }
+  for (long i = 0; i < n && s->n < 1024; i++) {
+    s->t[s->n] = c[0][i];
+    s->x[s->n] = c[1][i];
+    s->n++;
   }
-  fclose(f);
+  free(c[0]);
+  free(c[1]);
   return s->n ? 0 : -1;
 }
 

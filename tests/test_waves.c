@@ -33,20 +33,16 @@ typedef struct record {
 } record;
 
 static int read_record(const char *path, record *r) {
-  FILE *f = fopen(path, "r");
-  if (!f) return -1;
-  char line[1024];
+  double *c[2] = {NULL, NULL}; /* time, and the gauge's column (named by its x) */
+  const long n = sph_test_csv(path, "#0,#1", c);
   r->n = 0;
-  while (fgets(line, sizeof line, f)) {
-    double t, e;
-    if (line[0] == '#' || sscanf(line, "%lf,%lf", &t, &e) != 2) continue;
-    if (r->n < 4096) {
-      r->t[r->n] = t;
-      r->eta[r->n] = e;
-      r->n++;
-    }
+  for (long i = 0; i < n && r->n < 4096; i++) {
+    r->t[r->n] = c[0][i];
+    r->eta[r->n] = c[1][i];
+    r->n++;
   }
-  fclose(f);
+  free(c[0]);
+  free(c[1]);
   return r->n ? 0 : -1;
 }
 

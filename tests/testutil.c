@@ -5,6 +5,8 @@
 
 #include "testutil.h"
 
+#include "io/csv.h"
+
 #include <CUnit/Basic.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -85,4 +87,31 @@ int sph_test_sph(const char *args, const char *dir, char *out, size_t len) {
     fclose(f);
   }
   return st;
+}
+
+long sph_test_csv(const char *path, const char *names, double **out) {
+  sph_csv t;
+  sph_error err;
+  if (sph_csv_read(path, &t, &err)) {
+    printf("\n  %s\n", err.msg);
+    return -1;
+  }
+  char buf[1024];
+  snprintf(buf, sizeof buf, "%s", names);
+  int k = 0;
+  long rc = (long)t.nrow;
+  for (char *save = NULL, *name = strtok_r(buf, ",", &save); name;
+       name = strtok_r(NULL, ",", &save), k++) {
+    int col = name[0] == '#' ? atoi(name + 1) : sph_csv_column(&t, name, &err);
+    if (col < 0 || (size_t)col >= t.ncol) {
+      printf("\n  %s: no column %s\n", path, name);
+      rc = -1;
+      out[k] = NULL;
+      continue;
+    }
+    out[k] = malloc((t.nrow ? t.nrow : 1) * sizeof(double));
+    for (size_t r = 0; r < t.nrow; r++) out[k][r] = t.data[r * t.ncol + (size_t)col];
+  }
+  sph_csv_free(&t);
+  return rc;
 }

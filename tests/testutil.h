@@ -34,4 +34,12 @@ int sph_test_system(const char *cmd);
  * bytes, truncated, NUL-terminated); returns the exit status. */
 int sph_test_sph(const char *args, const char *dir, char *out, size_t len);
 
+/* Reads columns of the CSV table at path with the project's one reader
+ * (src/io/csv.h): `names` lists them by header name, comma-separated
+ * ("time,front_x"), or by position as "#0,#1" (for tables whose header
+ * names carry units); out[k] receives a malloc'd array of the rows'
+ * values of the k-th (free each). Returns the row count, or -1 (message
+ * printed) if the file, a column or a number is missing. */
+long sph_test_csv(const char *path, const char *names, double **out);
+
 #endif

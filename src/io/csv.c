@@ -11,7 +11,7 @@
  */
 #include "config.h"
 
-#include "csv.h"
+#include "io/csv.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -94,7 +94,7 @@ static int parse_cell(const char *s, double *out) {
   return 0;
 }
 
-int rcsv_read(const char *path, rcsv *t, sph_error *err) {
+int sph_csv_read(const char *path, sph_csv *t, sph_error *err) {
   memset(t, 0, sizeof *t);
   FILE *fp = fopen(path, "r");
   if (!fp) return sph_error_set(err, "%s: cannot open: %s", path, strerror(errno));
@@ -164,11 +164,11 @@ int rcsv_read(const char *path, rcsv *t, sph_error *err) {
   fclose(fp);
   free(line);
   free(cells);
-  if (rc) rcsv_free(t);
+  if (rc) sph_csv_free(t);
   return rc;
 }
 
-void rcsv_free(rcsv *t) {
+void sph_csv_free(sph_csv *t) {
   if (!t) return;
   if (t->names)
     for (size_t k = 0; k < t->ncol; k++)
@@ -179,7 +179,7 @@ void rcsv_free(rcsv *t) {
   memset(t, 0, sizeof *t);
 }
 
-int rcsv_column(const rcsv *t, const char *name, sph_error *err) {
+int sph_csv_column(const sph_csv *t, const char *name, sph_error *err) {
   for (size_t k = 0; k < t->ncol; k++)
     if (strcmp(t->names[k], name) == 0) return (int)k;
   char list[512] = "";
@@ -193,7 +193,7 @@ int rcsv_column(const rcsv *t, const char *name, sph_error *err) {
   return -1;
 }
 
-int rcsv_eval(const rcsv *t, const char *expr, double *out, sph_error *err) {
+int sph_csv_eval(const sph_csv *t, const char *expr, double *out, sph_error *err) {
   for (size_t r = 0; r < t->nrow; r++)
     out[r] = 0.0;
   const char *p = expr;
@@ -205,7 +205,7 @@ int rcsv_eval(const rcsv *t, const char *expr, double *out, sph_error *err) {
       return sph_error_set(err, "%s: bad column expression '%s'", t->path, expr);
     memcpy(name, p, len);
     name[len] = '\0';
-    int k = rcsv_column(t, trim(name), err);
+    int k = sph_csv_column(t, trim(name), err);
     if (k < 0) return -1;
     for (size_t r = 0; r < t->nrow; r++)
       out[r] += t->data[r * t->ncol + (size_t)k];

@@ -1,30 +1,31 @@
 /*
  * csv.h - numeric tables from CSV files: a header row of column names, then
- * rows of numbers. Lines starting with '#' (comments, e.g. a data source)
+ * rows of numbers (diagnostics.csv, gauges.csv, audit.csv, the experimental
+ * tables; the one reader of sph-render and the tests). Lines starting with '#' (comments, e.g. a data source)
  * and blank lines are skipped anywhere.
  */
-#ifndef SPH_RENDER_CSV_H
-#define SPH_RENDER_CSV_H
+#ifndef SPH_CSV_H
+#define SPH_CSV_H
 
 #include <stddef.h>
 
 #include "core/error.h"
 
-typedef struct rcsv {
+typedef struct sph_csv {
   char *path;
   size_t ncol, nrow;
   char **names; /* ncol column names */
   double *data; /* nrow * ncol values, row-major; an empty cell or "nan" is NaN */
-} rcsv;
+} sph_csv;
 
 /* Reads path. Errors name the file and line (and the column for a cell
  * that is not a number). */
-int rcsv_read(const char *path, rcsv *out, sph_error *err);
-void rcsv_free(rcsv *t);
+int sph_csv_read(const char *path, sph_csv *out, sph_error *err);
+void sph_csv_free(sph_csv *t);
 /* Index of the named column, or -1 with an error listing the columns. */
-int rcsv_column(const rcsv *t, const char *name, sph_error *err);
+int sph_csv_column(const sph_csv *t, const char *name, sph_error *err);
 /* Fills out (nrow values) with a column expression: a column name, or
  * several joined by '+' (their sum, e.g. "kinetic+potential"). */
-int rcsv_eval(const rcsv *t, const char *expr, double *out, sph_error *err);
+int sph_csv_eval(const sph_csv *t, const char *expr, double *out, sph_error *err);
 
 #endif
