@@ -9,6 +9,8 @@
 #ifndef SPH_CLI_H
 #define SPH_CLI_H
 
+#include <stdio.h>
+
 #include "sph.h"
 
 int sph_cli_run(int argc, char **argv);
@@ -39,6 +41,20 @@ int sph_cli_snapshot_case(const sph_snapshot *s, sph_case *c, sph_error *err);
  * (sph run --restart SNAPSHOT --set time.end=...). */
 int sph_cli_snapshot_case_set(const sph_snapshot *s, const char *const *extra, size_t n_extra,
                               sph_case *c, sph_error *err);
+
+/* Whether arg is one of the NULL-terminated names. */
+int sph_cli_is_one_of(const char *arg, const char *const *names);
+/* --threads VALUE: a whole number from 1 to 4096 into *threads; 0, or -1
+ * with the message "CMD: --threads: ..." printed. */
+int sph_cli_parse_threads(const char *cmd, const char *value, int *threads);
+/* Sets the OpenMP thread count (threads > 0; 0 keeps the default) and
+ * returns the count in force; without OpenMP, 1 (with a note on stderr
+ * when more were asked for and quiet is 0). */
+int sph_cli_set_threads(int threads, int quiet);
+
+/* Prints a "key: value" listing (sph_case_describe) line by line after
+ * indent, each number outside quotes shortened to %.6g for reading. */
+void sph_cli_print_listing(FILE *f, const char *listing, const char *indent);
 
 /* mkdir -p: creates path and its parents; 0, or -1 with errno set. */
 int sph_cli_make_dirs(const char *path);

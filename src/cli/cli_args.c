@@ -3,14 +3,19 @@
  * list of snapshot files (sph info, sph profile): options may stand
  * anywhere before "--", --help prints the usage, anything else starting
  * with '-' is an error, and at least one file is required; and mkdir -p
- * for the commands that write a directory (sph run, sph audit).
+ * for the commands that write a directory (sph run, sph audit); the
+ * options every running command shares (--threads).
  */
 #include "config.h"
 
 #include <errno.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "cli/cli.h"
 
@@ -74,4 +79,65 @@ int sph_cli_make_dirs(const char *path) {
     return -1;
   }
   return 0;
+}
+
+int sph_cli_is_one_of(const char *arg, const char *const *names) {
+  for (; *names; names++)
+    if (!strcmp(arg, *names)) return 1;
+  return 0;
+}
+
+int sph_cli_parse_threads(const char *cmd, const char *value, int *threads) {
+  char *end;
+  const long t = strtol(value, &end, 10);
+  if (*end || end == value || t < 1 || t > 4096) {
+    fprintf(stderr, "%s: --threads: expected a whole number >= 1, got '%s'\n", cmd, value);
+    return -1;
+  }
+  *threads = (int)t;
+  return 0;
+}
+
+int sph_cli_set_threads(int threads, int quiet) {
+#ifdef _OPENMP
+  (void)quiet;
+  if (threads > 0) omp_set_num_threads(threads);
+  return omp_get_max_threads();
+#else
+  if (threads > 1 && !quiet) fprintf(stderr, "sph: built without OpenMP; running on 1 thread\n");
+  return 1;
+#endif
+}
+
+/* Whether c ends a number token in a listing value. */
+static int ends_token(char c) { return c == '\0' || c == '\n' || c == ',' || c == ']' || c == ' '; }
+
+void sph_cli_print_listing(FILE *f, const char *listing, const char *indent) {
+  int at_line_start = 1, quoted = 0, after_colon = 0;
+  char prev = ' ';
+  for (const char *q = listing; *q;) {
+    if (at_line_start) {
+      fputs(indent, f);
+      at_line_start = quoted = after_colon = 0;
+      prev = ' ';
+    }
+    const char c = *q;
+    if (after_colon && !quoted && (prev == ' ' || prev == '[' || prev == ',') &&
+        (c == '-' || c == '+' || c == '.' || (c >= '0' && c <= '9'))) {
+      char *end;
+      const double v = strtod(q, &end);
+      if (end != q && ends_token(*end)) {
+        fprintf(f, "%.6g", v);
+        prev = end[-1];
+        q = end;
+        continue;
+      }
+    }
+    if (c == '"') quoted = !quoted;
+    if (c == ':' && !after_colon) after_colon = 1;
+    fputc(c, f);
+    if (c == '\n') at_line_start = 1;
+    prev = c;
+    q++;
+  }
 }

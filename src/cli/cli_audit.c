@@ -18,6 +18,8 @@
  * the last time (the momentum balance of the ledger).
  * Output: a table on stdout, DIR/audit.csv and DIR/audit.md, and each run's
  * diagnostics in DIR/n<count>/. A progress line per run goes to stderr.
+ * The table's numbers are the diagnostics rows the run hands over as it
+ * writes them (sph_run_options.row), not a re-reading of the CSV.
  */
 #include "config.h"
 
@@ -27,9 +29,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "sph.h"
 #include "cli/cli.h"
@@ -126,52 +125,36 @@ typedef struct audit_row {
   double wall;
 } audit_row;
 
-/* Reads the rows of DIR/diagnostics.csv at the given times. */
-static int read_diag(const char *dir, const double *times, int nt, double gmag, audit_row *row) {
-  char path[4096], line[8192];
-  if (path_join(path, sizeof path, dir, "diagnostics.csv")) return -1;
-  FILE *f = fopen(path, "r");
-  if (!f) return -1;
-  int c_time = -1, c_dev = -1, c_fdev = -1, c_mass = -1, c_step = -1, c_rx = -1, c_ry = -1;
-  int found = 0;
-  double mass0 = NAN, mass_last = NAN, res_last = NAN, t_last = NAN;
-  for (int i = 0; i < nt; i++) row->dev[i] = row->fdev[i] = NAN;
-  while (fgets(line, sizeof line, f)) {
-    double v[32];
-    int n = 0, col = 0;
-    if (c_time < 0) {
-      for (char *tok = strtok(line, ",\n"); tok; tok = strtok(NULL, ",\n"), col++) {
-        if (!strcmp(tok, "time")) c_time = col;
-        if (!strcmp(tok, "energy_deviation")) c_dev = col;
-        if (!strcmp(tok, "fluid_energy_deviation")) c_fdev = col;
-        if (!strcmp(tok, "mass")) c_mass = col;
-        if (!strcmp(tok, "step")) c_step = col;
-        if (!strcmp(tok, "momentum_residual_x")) c_rx = col;
-        if (!strcmp(tok, "momentum_residual_y")) c_ry = col;
-      }
-      if (c_time < 0 || c_dev < 0 || c_fdev < 0 || c_mass < 0 || c_step < 0 || c_rx < 0 ||
-          c_ry < 0)
-        break;
-      continue;
+typedef struct audit_args {
+  const char *case_path, *outdir;
+  double counts[MAX_RUNS], times[MAX_TIMES];
+  int ncounts, ntimes, threads, quiet;
+  const char **sets; /* the user's --set overrides, then the audit's own */
+  size_t n_set;
+} audit_args;
+
+/* What the run hands over, row by row (sph_run_options.row). */
+typedef struct row_sink {
+  const double *times;
+  int nt, found;
+  double gmag;
+  double mass0, mass_last, res_last, t_last;
+  audit_row *row;
+} row_sink;
+
+static void on_row(void *ctx, const sph_diag_row *d) {
+  row_sink *k = ctx;
+  if (isnan(k->mass0)) k->mass0 = d->mass;
+  k->mass_last = d->mass;
+  k->res_last = hypot(d->momentum_residual_x, d->momentum_residual_y);
+  k->t_last = d->time;
+  k->row->steps = d->step;
+  for (int i = 0; i < k->nt; i++)
+    if (fabs(d->time - k->times[i]) <= 1e-12 * (1.0 + k->times[i])) {
+      k->row->dev[i] = d->deviation;
+      k->row->fdev[i] = d->fluid_deviation;
+      k->found++;
     }
-    for (char *tok = strtok(line, ",\n"); tok && n < 32; tok = strtok(NULL, ",\n")) v[n++] = strtod(tok, NULL);
-    if (n <= c_fdev || n <= c_ry || n <= c_rx) continue;
-    if (isnan(mass0)) mass0 = v[c_mass];
-    mass_last = v[c_mass];
-    res_last = hypot(v[c_rx], v[c_ry]);
-    t_last = v[c_time];
-    row->steps = (long)v[c_step];
-    for (int i = 0; i < nt; i++)
-      if (fabs(v[c_time] - times[i]) <= 1e-12 * (1.0 + times[i])) {
-        row->dev[i] = v[c_dev];
-        row->fdev[i] = v[c_fdev];
-        found++;
-      }
-  }
-  fclose(f);
-  row->mass_drift = (mass_last - mass0) / mass0;
-  row->momentum_drift = res_last / (mass_last * gmag * t_last);
-  return found == nt ? 0 : -1;
 }
 
 static void print_table(FILE *f, int md, const audit_row *rows, int nr, const double *times, int nt,
@@ -197,209 +180,185 @@ static void print_table(FILE *f, int md, const audit_row *rows, int nr, const do
   }
 }
 
-int sph_cli_audit(int argc, char **argv) {
-  const char *case_path = NULL, *outdir = NULL;
-  double counts[MAX_RUNS], times[MAX_TIMES];
-  int ncounts = 0, ntimes = 0, threads = 0, quiet = 0;
-  const char **sets = calloc((size_t)argc + 8, sizeof *sets);
-  size_t n_set = 0;
-  if (!sets) return 1;
-  int status = 2;
+/* One option with its value (argv[*i + 1]) into a; 0, or 2 (usage error,
+ * message printed). */
+static int audit_option(audit_args *a, int argc, char **argv, int *i) {
+  const char *o = argv[*i];
+  if (*i + 1 >= argc) {
+    fprintf(stderr, "sph audit: option %s needs a value\n", o);
+    return 2;
+  }
+  const char *v = argv[++*i];
+  if (!strcmp(o, "-p") || !strcmp(o, "--particles")) {
+    a->ncounts = parse_list(v, a->counts, MAX_RUNS);
+    for (int k = 0; k < a->ncounts; k++)
+      if (a->counts[k] < 4 || a->counts[k] != floor(a->counts[k])) a->ncounts = -1;
+    if (a->ncounts <= 0) {
+      fprintf(stderr, "sph audit: --particles: expected whole numbers >= 4 separated by "
+                      "commas, got '%s'\n", v);
+      return 2;
+    }
+  } else if (!strcmp(o, "-T") || !strcmp(o, "--times")) {
+    a->ntimes = parse_list(v, a->times, MAX_TIMES);
+    for (int k = 0; k < a->ntimes; k++)
+      if (!(a->times[k] > (k ? a->times[k - 1] : 0.0))) a->ntimes = -1;
+    if (a->ntimes <= 0) {
+      fprintf(stderr, "sph audit: --times: expected increasing positive times separated by "
+                      "commas, got '%s'\n", v);
+      return 2;
+    }
+  } else if (!strcmp(o, "-o") || !strcmp(o, "--output")) {
+    a->outdir = v;
+  } else if (!strcmp(o, "-t") || !strcmp(o, "--threads")) {
+    if (sph_cli_parse_threads("sph audit", v, &a->threads)) return 2;
+  } else {
+    if (!strchr(v, '=')) {
+      fprintf(stderr, "sph audit: --set: expected key=value, got '%s'\n", v);
+      return 2;
+    }
+    a->sets[a->n_set++] = v;
+  }
+  return 0;
+}
+
+/* The command line into a; -1 after --help (printed), 0, or 2. */
+static int parse_audit_args(int argc, char **argv, audit_args *a) {
+  static const char *const with_value[] = {"-p", "--particles", "-T", "--times", "-o",
+                                           "--output", "-t", "--threads", "-s", "--set", NULL};
   for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+    const char *o = argv[i];
+    if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
       audit_usage(stdout);
-      free(sets);
-      return 0;
-    } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
-      quiet = 1;
-    } else if (!strcmp(a, "-p") || !strcmp(a, "--particles") || !strcmp(a, "-T") ||
-               !strcmp(a, "--times") || !strcmp(a, "-o") || !strcmp(a, "--output") ||
-               !strcmp(a, "-t") || !strcmp(a, "--threads") || !strcmp(a, "-s") ||
-               !strcmp(a, "--set")) {
-      if (i + 1 >= argc) {
-        fprintf(stderr, "sph audit: option %s needs a value\n", a);
-        goto done;
-      }
-      const char *v = argv[++i];
-      if (!strcmp(a, "-p") || !strcmp(a, "--particles")) {
-        ncounts = parse_list(v, counts, MAX_RUNS);
-        for (int k = 0; k < ncounts; k++)
-          if (counts[k] < 4 || counts[k] != floor(counts[k])) ncounts = -1;
-        if (ncounts <= 0) {
-          fprintf(stderr, "sph audit: --particles: expected whole numbers >= 4 separated by "
-                          "commas, got '%s'\n", v);
-          goto done;
-        }
-      } else if (!strcmp(a, "-T") || !strcmp(a, "--times")) {
-        ntimes = parse_list(v, times, MAX_TIMES);
-        for (int k = 0; k < ntimes; k++)
-          if (!(times[k] > (k ? times[k - 1] : 0.0))) ntimes = -1;
-        if (ntimes <= 0) {
-          fprintf(stderr, "sph audit: --times: expected increasing positive times separated by "
-                          "commas, got '%s'\n", v);
-          goto done;
-        }
-      } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-        outdir = v;
-      } else if (!strcmp(a, "-t") || !strcmp(a, "--threads")) {
-        char *end;
-        long t = strtol(v, &end, 10);
-        if (*end || t < 1 || t > 4096) {
-          fprintf(stderr, "sph audit: --threads: expected a whole number >= 1, got '%s'\n", v);
-          goto done;
-        }
-        threads = (int)t;
-      } else {
-        if (!strchr(v, '=')) {
-          fprintf(stderr, "sph audit: --set: expected key=value, got '%s'\n", v);
-          goto done;
-        }
-        sets[n_set++] = v;
-      }
-    } else if (a[0] == '-' && a[1]) {
-      fprintf(stderr, "sph audit: unknown option '%s' (see sph audit --help)\n", a);
-      goto done;
-    } else if (!case_path) {
-      case_path = a;
+      return -1;
+    } else if (!strcmp(o, "-q") || !strcmp(o, "--quiet")) {
+      a->quiet = 1;
+    } else if (sph_cli_is_one_of(o, with_value)) {
+      if (audit_option(a, argc, argv, &i)) return 2;
+    } else if (o[0] == '-' && o[1]) {
+      fprintf(stderr, "sph audit: unknown option '%s' (see sph audit --help)\n", o);
+      return 2;
+    } else if (!a->case_path) {
+      a->case_path = o;
     } else {
       fprintf(stderr, "sph audit: more than one case file given\n");
-      goto done;
+      return 2;
     }
   }
-  if (!case_path || ncounts <= 0) {
+  if (!a->case_path || a->ncounts <= 0) {
     audit_usage(stderr);
-    goto done;
+    return 2;
   }
-#ifdef _OPENMP
-  if (threads > 0) omp_set_num_threads(threads);
-#else
-  (void)threads;
-#endif
-  status = 1;
+  return 0;
+}
+
+/* Without --times: the case's output times, else its output interval. */
+static void default_times(audit_args *a, const sph_case *base) {
+  if (a->ntimes) return;
+  if (base->n_output_times) {
+    for (size_t k = 0; k < base->n_output_times && a->ntimes < MAX_TIMES; k++)
+      a->times[a->ntimes++] = base->output_times[k];
+    return;
+  }
+  for (int k = 1; k * base->output_interval <= base->t_end * (1 + 1e-12) && a->ntimes < MAX_TIMES;
+       k++)
+    a->times[a->ntimes++] = k * base->output_interval;
+}
+
+/* The overrides every audit run gets after the user's: ledger on,
+ * snapshots off, outputs at the audit times, to the last of them, and
+ * the spacing (set_dx, filled per run). */
+static void audit_sets(audit_args *a, char *set_times, size_t n_times, char *set_end,
+                       size_t n_end, char *set_dx) {
+  size_t len = (size_t)snprintf(set_times, n_times, "time.output_times=[");
+  for (int k = 0; k < a->ntimes; k++)
+    len += (size_t)snprintf(set_times + len, n_times - len, "%s%.17g", k ? "," : "", a->times[k]);
+  snprintf(set_times + len, n_times - len, "]");
+  snprintf(set_end, n_end, "time.end=%.17g", a->times[a->ntimes - 1]);
+  a->sets[a->n_set++] = "output.energy=true";
+  a->sets[a->n_set++] = "output.snapshots=false";
+  a->sets[a->n_set++] = set_times;
+  a->sets[a->n_set++] = set_end;
+  a->sets[a->n_set++] = "time.stop=none";
+  a->sets[a->n_set++] = set_dx;
+}
+
+/* Run r of the audit (the case as loaded with a->sets) into row; 0, or
+ * the exit status (message printed). */
+static int audit_run(const audit_args *a, int r, long got, double dx, audit_row *row) {
   sph_error err = {{0}};
-  sph_case base;
-  if (sph_case_load(case_path, sets, n_set, &base, &err)) {
+  sph_case c;
+  if (sph_case_load(a->case_path, a->sets, a->n_set, &c, &err)) {
     fprintf(stderr, "sph audit: %s\n", err.msg);
-    sph_case_free(&base);
-    goto done;
+    return 1;
   }
-  if (ntimes == 0) {
-    if (base.n_output_times) {
-      for (size_t k = 0; k < base.n_output_times && ntimes < MAX_TIMES; k++)
-        times[ntimes++] = base.output_times[k];
-    } else {
-      for (int k = 1; k * base.output_interval <= base.t_end * (1 + 1e-12) && ntimes < MAX_TIMES;
-           k++)
-        times[ntimes++] = k * base.output_interval;
-    }
-  }
-  char defdir[4096];
-  if (!outdir) {
-    snprintf(defdir, sizeof defdir, "out/%s_audit", base.name);
-    outdir = defdir;
-  }
-  if (sph_cli_make_dirs(outdir)) {
-    fprintf(stderr, "sph audit: cannot create %s: %s\n", outdir, strerror(errno));
-    sph_case_free(&base);
-    goto done;
-  }
-  audit_row rows[MAX_RUNS];
-  char set_dx[128], set_times[4096], set_end[128];
-  {
-    size_t len = (size_t)snprintf(set_times, sizeof set_times, "time.output_times=[");
-    for (int k = 0; k < ntimes; k++)
-      len += (size_t)snprintf(set_times + len, sizeof set_times - len, "%s%.17g", k ? "," : "",
-                              times[k]);
-    snprintf(set_times + len, sizeof set_times - len, "]");
-  }
-  snprintf(set_end, sizeof set_end, "time.end=%.17g", times[ntimes - 1]);
-  const size_t n_user = n_set;
-  sets[n_set++] = "output.energy=true";
-  sets[n_set++] = "output.snapshots=false";
-  sets[n_set++] = set_times;
-  sets[n_set++] = set_end;
-  sets[n_set++] = "time.stop=none";
-  sets[n_set++] = set_dx;
-  for (int r = 0; r < ncounts; r++) {
-    long got;
-    const double dx = dx_for(&base, (long)counts[r], &got);
-    snprintf(set_dx, sizeof set_dx, "numerics.dx=%.17g", dx);
-    sph_case c;
-    if (sph_case_load(case_path, sets, n_set, &c, &err)) {
-      fprintf(stderr, "sph audit: %s\n", err.msg);
-      sph_case_free(&base);
-      goto done;
-    }
-    char dir[4096], name[64];
-    snprintf(name, sizeof name, "n%ld", got);
-    if (path_join(dir, sizeof dir, outdir, name)) {
-      fprintf(stderr, "sph audit: output path too long\n");
-      sph_case_free(&c);
-      sph_case_free(&base);
-      goto done;
-    }
-    sph_sim *s = NULL;
-    const int no_dir = sph_cli_make_dirs(dir) != 0;
-    if (no_dir) sph_error_set(&err, "cannot create %s: %s", dir, strerror(errno));
-    if (no_dir || sph_sim_create(&c, &s, &err)) {
-      fprintf(stderr, "sph audit: %s\n", err.msg);
-      sph_case_free(&c);
-      sph_case_free(&base);
-      goto done;
-    }
+  char dir[4096], name[64];
+  snprintf(name, sizeof name, "n%ld", got);
+  sph_sim *s = NULL;
+  int status = 1;
+  if (path_join(dir, sizeof dir, a->outdir, name)) {
+    fprintf(stderr, "sph audit: output path too long\n");
+  } else if (sph_cli_make_dirs(dir)) {
+    fprintf(stderr, "sph audit: cannot create %s: %s\n", dir, strerror(errno));
+  } else if (sph_sim_create(&c, &s, &err)) {
+    fprintf(stderr, "sph audit: %s\n", err.msg);
+  } else {
+    const double g = hypot(c.gravity[0], c.gravity[1]);
+    row_sink sink = {a->times, a->ntimes, 0, g > 0.0 ? g : 1.0, NAN, NAN, NAN, NAN, row};
+    for (int i = 0; i < a->ntimes; i++) row->dev[i] = row->fdev[i] = NAN;
     sph_progress bar;
-    sph_progress_init(&bar, stderr, c.t_end, quiet);
-    sph_run_options opt = {dir, on_progress, &bar, NULL};
+    sph_progress_init(&bar, stderr, c.t_end, a->quiet);
+    sph_run_options opt = {dir, on_progress, &bar, NULL, on_row, &sink};
     sph_run_result res;
     const double w0 = sph_wall_seconds();
-    int rc = sph_run(s, &opt, &res, &err);
-    rows[r].wall = sph_wall_seconds() - w0;
+    const int rc = sph_run(s, &opt, &res, &err);
+    row->wall = sph_wall_seconds() - w0;
     sph_progress_done(&bar);
-    rows[r].particles = got;
-    rows[r].dx = dx;
-    const double gmag = hypot(c.gravity[0], c.gravity[1]);
-    if (rc || read_diag(dir, times, ntimes, gmag > 0.0 ? gmag : 1.0, &rows[r])) {
+    row->particles = got;
+    row->dx = dx;
+    row->mass_drift = (sink.mass_last - sink.mass0) / sink.mass0;
+    row->momentum_drift = sink.res_last / (sink.mass_last * sink.gmag * sink.t_last);
+    if (rc || sink.found != a->ntimes) {
       fprintf(stderr, "sph audit: run %d (%ld particles): %s\n", r + 1, got,
               rc ? err.msg : "diagnostics lack the audit times");
-      sph_sim_free(s);
-      sph_case_free(&c);
-      sph_case_free(&base);
       status = res.status == SPH_RUN_BLOWUP ? 3 : 1;
-      goto done;
+    } else {
+      status = 0;
     }
-    if (!quiet)
-      fprintf(stderr,
-              "audit: run %d/%d: %ld fluid particles (asked %ld), dx = %.6g m, %ld steps, "
-              "%.1f s wall; deviation at t = %g s: %+.4f %% (fluid's own: %+.4f %%)\n",
-              r + 1, ncounts, got, (long)counts[r], dx, rows[r].steps, rows[r].wall,
-              times[ntimes - 1], 100 * rows[r].dev[ntimes - 1], 100 * rows[r].fdev[ntimes - 1]);
-    sph_sim_free(s);
-    sph_case_free(&c);
   }
-  (void)n_user;
+  sph_sim_free(s);
+  sph_case_free(&c);
+  return status;
+}
 
+/* The tables on stdout. */
+static void print_report(const char *name, const audit_row *rows, int nr, const double *times,
+                         int nt) {
   printf("Energy deviation (E - E0)/E0, closed balance (kinetic + potential + internal\n"
-         "- moving-wall work - XSPH drift), case %s:\n", base.name);
-  print_table(stdout, 0, rows, ncounts, times, ntimes, 0);
+         "- moving-wall work - XSPH drift), case %s:\n", name);
+  print_table(stdout, 0, rows, nr, times, nt, 0);
   printf("\nThe fluid's own kinetic + potential + internal energy against its start\n"
-         "(the quantity of paper A, Table 4):\n");
-  print_table(stdout, 0, rows, ncounts, times, ntimes, 1);
-  printf("\nMass drift at t = %g s:", times[ntimes - 1]);
-  for (int r = 0; r < ncounts; r++) printf(" %ld: %.3g", rows[r].particles, rows[r].mass_drift);
+         "(the quantity of paper A, Table 4; it differs from the closed balance by the\n"
+         "work of moving walls and the heat the walls take, which the fluid alone\n"
+         "does not hold):\n");
+  print_table(stdout, 0, rows, nr, times, nt, 1);
+  printf("\nMass drift at t = %g s:", times[nt - 1]);
+  for (int r = 0; r < nr; r++) printf(" %ld: %.3g", rows[r].particles, rows[r].mass_drift);
   printf("\nMomentum drift |P - P0 - impulse of walls and gravity| / (M |g| t) at t = %g s:",
-         times[ntimes - 1]);
-  for (int r = 0; r < ncounts; r++)
-    printf(" %ld: %.3g", rows[r].particles, rows[r].momentum_drift);
+         times[nt - 1]);
+  for (int r = 0; r < nr; r++) printf(" %ld: %.3g", rows[r].particles, rows[r].momentum_drift);
   printf("\n");
+}
 
+/* DIR/audit.csv and DIR/audit.md; 0 or -1. */
+static int write_report(const char *outdir, const char *name, const audit_row *rows, int nr,
+                        const double *times, int nt) {
   char path[4096];
   FILE *f = path_join(path, sizeof path, outdir, "audit.csv") ? NULL : fopen(path, "w");
   if (f) {
     fprintf(f, "particles,dx,time,energy_deviation,fluid_energy_deviation,mass_drift,"
                "momentum_drift\n");
-    for (int r = 0; r < ncounts; r++)
-      for (int k = 0; k < ntimes; k++)
+    for (int r = 0; r < nr; r++)
+      for (int k = 0; k < nt; k++)
         fprintf(f, "%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", rows[r].particles, rows[r].dx,
                 times[k], rows[r].dev[k], rows[r].fdev[k], rows[r].mass_drift,
                 rows[r].momentum_drift);
@@ -407,25 +366,77 @@ int sph_cli_audit(int argc, char **argv) {
   }
   FILE *m = path_join(path, sizeof path, outdir, "audit.md") ? NULL : fopen(path, "w");
   if (m) {
-    fprintf(m, "Energy audit of case `%s`.\n\nClosed balance, (E - E0)/E0:\n\n", base.name);
-    print_table(m, 1, rows, ncounts, times, ntimes, 0);
+    fprintf(m, "Energy audit of case `%s`.\n\nClosed balance, (E - E0)/E0:\n\n", name);
+    print_table(m, 1, rows, nr, times, nt, 0);
     fprintf(m, "\nThe fluid's own kinetic + potential + internal energy (paper A, Table 4):\n\n");
-    print_table(m, 1, rows, ncounts, times, ntimes, 1);
+    print_table(m, 1, rows, nr, times, nt, 1);
     fprintf(m, "\n| particles | mass drift | momentum drift (t = %g s) |\n|---|---|---|\n",
-            times[ntimes - 1]);
-    for (int r = 0; r < ncounts; r++)
+            times[nt - 1]);
+    for (int r = 0; r < nr; r++)
       fprintf(m, "| %ld | %.3g | %.3g |\n", rows[r].particles, rows[r].mass_drift,
               rows[r].momentum_drift);
     fclose(m);
   }
-  if (!f || !m) {
-    fprintf(stderr, "sph audit: cannot write %s/audit.{csv,md}\n", outdir);
-    sph_case_free(&base);
-    goto done;
+  return f && m ? 0 : -1;
+}
+
+/* Every run of the audit, then the report; the exit status. */
+static int audit_all(audit_args *a, const sph_case *base) {
+  audit_row rows[MAX_RUNS];
+  char set_dx[128], set_times[4096], set_end[128];
+  audit_sets(a, set_times, sizeof set_times, set_end, sizeof set_end, set_dx);
+  for (int r = 0; r < a->ncounts; r++) {
+    long got;
+    const double dx = dx_for(base, (long)a->counts[r], &got);
+    snprintf(set_dx, sizeof set_dx, "numerics.dx=%.17g", dx);
+    const int st = audit_run(a, r, got, dx, &rows[r]);
+    if (st) return st;
+    if (!a->quiet)
+      fprintf(stderr,
+              "audit: run %d/%d: %ld fluid particles (asked %ld), dx = %.6g m, %ld steps, "
+              "%.1f s wall; deviation at t = %g s: %+.4f %% (fluid's own: %+.4f %%)\n",
+              r + 1, a->ncounts, got, (long)a->counts[r], dx, rows[r].steps, rows[r].wall,
+              a->times[a->ntimes - 1], 100 * rows[r].dev[a->ntimes - 1],
+              100 * rows[r].fdev[a->ntimes - 1]);
+  }
+  print_report(base->name, rows, a->ncounts, a->times, a->ntimes);
+  if (write_report(a->outdir, base->name, rows, a->ncounts, a->times, a->ntimes)) {
+    fprintf(stderr, "sph audit: cannot write %s/audit.{csv,md}\n", a->outdir);
+    return 1;
+  }
+  return 0;
+}
+
+int sph_cli_audit(int argc, char **argv) {
+  audit_args a = {0};
+  a.sets = calloc((size_t)argc + 8, sizeof *a.sets);
+  if (!a.sets) return 1;
+  int status = parse_audit_args(argc, argv, &a);
+  if (status) {
+    free(a.sets);
+    return status < 0 ? 0 : status;
+  }
+  sph_cli_set_threads(a.threads, 1);
+  sph_error err = {{0}};
+  sph_case base;
+  char defdir[4096];
+  if (sph_case_load(a.case_path, a.sets, a.n_set, &base, &err)) {
+    fprintf(stderr, "sph audit: %s\n", err.msg);
+    status = 1;
+  } else {
+    default_times(&a, &base);
+    if (!a.outdir) {
+      snprintf(defdir, sizeof defdir, "out/%s_audit", base.name);
+      a.outdir = defdir;
+    }
+    if (sph_cli_make_dirs(a.outdir)) {
+      fprintf(stderr, "sph audit: cannot create %s: %s\n", a.outdir, strerror(errno));
+      status = 1;
+    } else {
+      status = audit_all(&a, &base);
+    }
   }
   sph_case_free(&base);
-  status = 0;
-done:
-  free(sets);
+  free(a.sets);
   return status;
 }

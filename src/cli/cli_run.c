@@ -3,8 +3,9 @@
  *             [--restart SNAPSHOT]`, and `sph run --restart SNAPSHOT [...]`
  *             with the case taken from the snapshot
  *
- * Loads and validates the case (with overrides), prints the choices in
- * force, creates the output directory, and runs the case with a progress
+ * Loads and validates the case (with overrides), prints the case as it
+ * will run (sph_case_describe, the same listing the snapshots store),
+ * creates the output directory, and runs the case with a progress
  * bar on a terminal. With --restart the run continues from a snapshot of an
  * earlier run of the same case (sim.h, sph_sim_restore), bitwise as if it
  * had not stopped. SIGINT/SIGTERM end the run after the current step with
@@ -21,9 +22,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "sph.h"
 #include "cli/cli.h"
@@ -78,223 +76,205 @@ static void on_progress(void *ctx, const sph_sim *s) {
   sph_progress_update(&pc->bar, sph_sim_time(s), sph_sim_steps(s));
 }
 
-int sph_cli_run(int argc, char **argv) {
-  const char *case_path = NULL, *outdir = NULL, *restart = NULL;
-  int threads = 0, quiet = 0;
-  const char **sets = calloc((size_t)argc, sizeof *sets);
-  size_t n_set = 0;
-  if (!sets) return 1;
+typedef struct run_args {
+  const char *case_path, *outdir, *restart;
+  int threads, quiet;
+  const char **sets;
+  size_t n_set;
+} run_args;
+
+/* The command line into a; -1 after --help (printed), 0, or 2 (usage
+ * error, message printed). */
+static int parse_run_args(int argc, char **argv, run_args *a) {
+  static const char *const with_value[] = {"-o", "--output", "-t", "--threads", "-s", "--set",
+                                           "-r", "--restart", NULL};
   for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    const char *val = NULL;
-    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+    const char *o = argv[i];
+    if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
       run_usage(stdout);
-      free(sets);
-      return 0;
-    } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
-      quiet = 1;
-    } else if (!strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "-t") ||
-               !strcmp(a, "--threads") || !strcmp(a, "-s") || !strcmp(a, "--set") ||
-               !strcmp(a, "-r") || !strcmp(a, "--restart")) {
+      return -1;
+    } else if (!strcmp(o, "-q") || !strcmp(o, "--quiet")) {
+      a->quiet = 1;
+    } else if (sph_cli_is_one_of(o, with_value)) {
       if (i + 1 >= argc) {
-        fprintf(stderr, "sph run: option %s needs a value\n", a);
-        free(sets);
+        fprintf(stderr, "sph run: option %s needs a value\n", o);
         return 2;
       }
-      val = argv[++i];
-      if (a[1] == 'o' || !strcmp(a, "--output")) {
-        outdir = val;
-      } else if (a[1] == 'r' || !strcmp(a, "--restart")) {
-        restart = val;
-      } else if (a[1] == 't' || !strcmp(a, "--threads")) {
-        char *end;
-        long t = strtol(val, &end, 10);
-        if (*end || t < 1 || t > 4096) {
-          fprintf(stderr, "sph run: --threads: expected a whole number >= 1, got '%s'\n", val);
-          free(sets);
-          return 2;
-        }
-        threads = (int)t;
+      const char *v = argv[++i];
+      if (!strcmp(o, "-o") || !strcmp(o, "--output")) {
+        a->outdir = v;
+      } else if (!strcmp(o, "-r") || !strcmp(o, "--restart")) {
+        a->restart = v;
+      } else if (!strcmp(o, "-t") || !strcmp(o, "--threads")) {
+        if (sph_cli_parse_threads("sph run", v, &a->threads)) return 2;
+      } else if (!strchr(v, '=')) {
+        fprintf(stderr, "sph run: --set: expected key=value, got '%s'\n", v);
+        return 2;
       } else {
-        if (!strchr(val, '=')) {
-          fprintf(stderr, "sph run: --set: expected key=value, got '%s'\n", val);
-          free(sets);
-          return 2;
-        }
-        sets[n_set++] = val;
+        a->sets[a->n_set++] = v;
       }
-    } else if (a[0] == '-' && a[1]) {
-      fprintf(stderr, "sph run: unknown option '%s' (see sph run --help)\n", a);
-      free(sets);
+    } else if (o[0] == '-' && o[1]) {
+      fprintf(stderr, "sph run: unknown option '%s' (see sph run --help)\n", o);
       return 2;
-    } else if (!case_path) {
-      case_path = a;
+    } else if (!a->case_path) {
+      a->case_path = o;
     } else {
-      fprintf(stderr, "sph run: more than one case file given ('%s', '%s')\n", case_path, a);
-      free(sets);
+      fprintf(stderr, "sph run: more than one case file given ('%s', '%s')\n", a->case_path, o);
       return 2;
     }
   }
-  if (!case_path && !restart) {
+  if (!a->case_path && !a->restart) {
     run_usage(stderr);
-    free(sets);
     return 2;
   }
+  return 0;
+}
 
+/* The case: from CASE, or with --restart alone from the snapshot (whose
+ * directory is then the default output, into snapdir). 0, or 1 with the
+ * message printed. */
+static int load_run_case(run_args *a, sph_case *c, char *snapdir, size_t n) {
   sph_error err = {{0}};
-  sph_case c;
-  char snapdir[4096];
-  if (!case_path) { /* the case of the snapshot, and by default its directory */
-    sph_snapshot *snap;
-    int rc = sph_snapshot_open(restart, &snap, &err);
-    if (rc == 0) {
-      rc = sph_cli_snapshot_case_set(snap, sets, n_set, &c, &err);
-      sph_snapshot_close(snap);
-    }
-    if (rc) {
-      fprintf(stderr, "sph run: --restart: %s\n", err.msg);
-      free(sets);
-      return 1;
-    }
-    case_path = "the snapshot's case";
-    if (!outdir) {
-      snprintf(snapdir, sizeof snapdir, "%s", restart);
-      char *slash = strrchr(snapdir, '/');
-      if (slash)
-        *slash = '\0';
-      else
-        snprintf(snapdir, sizeof snapdir, ".");
-      outdir = snapdir;
-    }
-  } else if (sph_case_load(case_path, sets, n_set, &c, &err)) {
+  if (a->case_path) {
+    if (sph_case_load(a->case_path, a->sets, a->n_set, c, &err) == 0) return 0;
     fprintf(stderr, "sph run: %s\n", err.msg);
-    sph_case_free(&c);
-    free(sets);
+    sph_case_free(c);
     return 1;
   }
-  free(sets);
-#ifdef _OPENMP
-  if (threads > 0) omp_set_num_threads(threads);
-  const int nthreads = omp_get_max_threads();
-#else
-  const int nthreads = 1;
-  if (threads > 1 && !quiet)
-    fprintf(stderr, "sph run: built without OpenMP; running on 1 thread\n");
-#endif
-  char defdir[4096];
-  if (!outdir) {
-    snprintf(defdir, sizeof defdir, "out/%s", c.name);
-    outdir = defdir;
+  sph_snapshot *snap;
+  int rc = sph_snapshot_open(a->restart, &snap, &err);
+  if (rc == 0) {
+    rc = sph_cli_snapshot_case_set(snap, a->sets, a->n_set, c, &err);
+    sph_snapshot_close(snap);
   }
-  if (sph_cli_make_dirs(outdir)) {
-    fprintf(stderr, "sph run: cannot create output directory %s: %s\n", outdir, strerror(errno));
-    sph_case_free(&c);
-    return 1;
-  }
-  sph_sim *s;
-  if (sph_sim_create(&c, &s, &err)) {
-    fprintf(stderr, "sph run: %s\n", err.msg);
-    sph_case_free(&c);
-    return 1;
-  }
-  sph_snapshot_restart_data rd;
-  if (restart && sph_sim_restore(s, restart, &rd, &err)) {
+  if (rc) {
     fprintf(stderr, "sph run: --restart: %s\n", err.msg);
-    sph_sim_free(s);
-    sph_case_free(&c);
     return 1;
   }
+  a->case_path = "the snapshot's case";
+  if (!a->outdir) {
+    snprintf(snapdir, n, "%s", a->restart);
+    char *slash = strrchr(snapdir, '/');
+    if (slash)
+      *slash = '\0';
+    else
+      snprintf(snapdir, n, ".");
+    a->outdir = snapdir;
+  }
+  return 0;
+}
+
+/* The start-up listing: the run's own facts, then the case exactly as it
+ * runs, line for line the listing sph_case_describe gives the snapshots
+ * (numbers shortened to 6 significant digits for reading). */
+static void print_banner(const run_args *a, const sph_case *c, sph_sim *s, int nthreads) {
   const sph_particles *p = sph_sim_particles(s);
   const size_t nf = sph_particles_count_kind(p, SPH_KIND_FLUID);
-  if (!quiet) {
-    printf("%s: case %s (%s)\n", sph_version(), c.name, case_path);
-    printf("  particles %zu (fluid %zu, wall %zu), dx = %g m, h = %g m, c0 = %g m/s\n", p->n, nf,
-           p->n - nf, c.dx, c.h, c.sound_speed);
-    printf("  kernel %s, integrator %s, time step %s", sph_kernel_name(c.kernel),
-           sph_integrator_name(c.integrator), sph_dt_rule_name(c.dt_rule));
-    if (c.dt_rule == SPH_DT_FIXED)
-      printf(" (dt %g s)\n", c.dt_fixed);
-    else
-      printf(" (factor %g)\n", c.dt_factor);
-    printf("  walls:");
-    if (c.tank.present)
-      printf(" tank %s%s%s", sph_boundary_name(c.tank.boundary),
-             c.tank.stagger ? "" : " unstaggered",
-             c.tank.extrapolated ? " (extrapolated velocity)" : "");
-    for (size_t w = 0; w < c.n_walls; w++)
-      printf("%s wall %zu %s%s%s%s", c.tank.present || w ? "," : "", w,
-             sph_boundary_name(c.walls[w].boundary), c.walls[w].stagger ? "" : " unstaggered",
-             c.walls[w].extrapolated ? " (extrapolated velocity)" : "",
-             c.walls[w].motion.kind != SPH_MOTION_NONE ? " (moving)" : "");
-    if (!c.tank.present && c.n_walls == 0) printf(" none");
-    if (c.periodic) printf("; periodic in x over [%g, %g]", c.periodic_x[0], c.periodic_x[1]);
-    printf("\n  artificial viscosity alpha %g beta %g, laminar viscosity %s", c.alpha, c.beta,
-           sph_viscosity_name(c.viscosity));
-    if (c.viscosity != SPH_VISCOSITY_NONE)
-      printf(" (mu %g Pa s%s)", c.mu, c.gradient_correction ? ", gradient correction" : "");
-    printf(", XSPH %g, density filter %s", c.xsph, sph_filter_name(c.density_filter));
-    if (c.density_filter != SPH_FILTER_NONE) printf(" every %d steps", c.filter_every);
-    printf("\n  free surface %s, energy ledger %s; end %g s, output", 
-           sph_case_needs_free_surface(&c) ? "detected" : "off", c.energy ? "on" : "off",
-           c.t_end);
-    if (c.output_interval > 0.0) printf(" every %g s", c.output_interval);
-    if (c.n_output_times) printf("%s at %zu listed times", c.output_interval > 0.0 ? " and" : "",
-                                 c.n_output_times);
-    printf(", stop %s\n", sph_stop_name(c.stop));
-    printf("  threads %d, output %s\n", nthreads, outdir);
-    if (restart)
-      printf("  restarting from %s at t = %.9g s, step %ld\n", restart, sph_sim_time(s),
-             sph_sim_steps(s));
-    fflush(stdout);
+  printf("%s: case %s (%s)\n", sph_version(), c->name, a->case_path);
+  printf("  particles %zu (fluid %zu, wall %zu), threads %d, output %s\n", p->n, nf, p->n - nf,
+         nthreads, a->outdir);
+  if (a->restart)
+    printf("  restarting from %s at t = %.9g s, step %ld\n", a->restart, sph_sim_time(s),
+           sph_sim_steps(s));
+  char *d = sph_case_describe(c);
+  if (d) {
+    printf("  the case as it runs (the parameters stored in every snapshot):\n");
+    sph_cli_print_listing(stdout, d, "    ");
+    free(d);
   }
+  fflush(stdout);
+}
 
+static void install_signals(void) {
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
   sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
+}
 
-  progress_ctx pc;
-  sph_progress_init(&pc.bar, stderr, c.t_end, quiet);
-  sph_run_options opt = {outdir, on_progress, &pc, &interrupted};
-  sph_run_result r;
-  const double w0 = sph_wall_seconds();
-  int rc = sph_run_resume(s, &opt, restart ? &rd : NULL, &r, &err);
-  if (restart) sph_snapshot_restart_free(&rd);
-  const double wall = sph_wall_seconds() - w0;
-  sph_progress_done(&pc.bar);
-  int status = 0;
-  switch (r.status) {
+/* The message of how the run ended; its exit status. */
+static int report_end(const sph_run_result *r, const sph_sim *s, const sph_error *err,
+                      const char *outdir) {
+  switch (r->status) {
   case SPH_RUN_END:
   case SPH_RUN_STOPPED:
-    status = 0;
-    break;
+    return 0;
   case SPH_RUN_INTERRUPTED:
     fprintf(stderr,
             "sph run: interrupted by %s at t = %.9g s (step %ld); final snapshot %s\n"
             "sph run: continue with: sph run --restart %s -o %s\n",
-            interrupted == SIGTERM ? "SIGTERM" : "SIGINT", sph_sim_time(s), r.steps,
-            r.last_snapshot[0] ? r.last_snapshot : "(none)",
-            r.last_snapshot[0] ? r.last_snapshot : "SNAPSHOT", outdir);
-    status = 4;
-    break;
+            interrupted == SIGTERM ? "SIGTERM" : "SIGINT", sph_sim_time(s), r->steps,
+            r->last_snapshot[0] ? r->last_snapshot : "(none)",
+            r->last_snapshot[0] ? r->last_snapshot : "SNAPSHOT", outdir);
+    return 4;
   case SPH_RUN_BLOWUP:
-    fprintf(stderr, "sph run: %s\n", err.msg);
+    fprintf(stderr, "sph run: %s\n", err->msg);
     fprintf(stderr, "sph run: last regular snapshot kept: %s\n",
-            r.last_snapshot[0] ? r.last_snapshot : "(none)");
-    status = 3;
-    break;
+            r->last_snapshot[0] ? r->last_snapshot : "(none)");
+    return 3;
   case SPH_RUN_ERROR:
-    fprintf(stderr, "sph run: %s\n", err.msg);
-    status = 1;
     break;
   }
-  (void)rc;
-  if (!quiet && status != 1) {
-    const double ps = wall > 0 ? (double)p->n * (double)r.steps / wall : 0.0;
+  fprintf(stderr, "sph run: %s\n", err->msg);
+  return 1;
+}
+
+/* Runs s (restored from a->restart when set) with progress and signals;
+ * the exit status. */
+static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
+                   sph_snapshot_restart_data *rd) {
+  install_signals();
+  progress_ctx pc;
+  sph_progress_init(&pc.bar, stderr, c->t_end, a->quiet);
+  sph_run_options opt = {a->outdir, on_progress, &pc, &interrupted, NULL, NULL};
+  sph_run_result r;
+  sph_error err = {{0}};
+  const double w0 = sph_wall_seconds();
+  sph_run_resume(s, &opt, a->restart ? rd : NULL, &r, &err);
+  const double wall = sph_wall_seconds() - w0;
+  sph_progress_done(&pc.bar);
+  const int status = report_end(&r, s, &err, a->outdir);
+  if (!a->quiet && status != 1) {
+    const double n = (double)sph_sim_particles((sph_sim *)s)->n;
+    const double ps = wall > 0 ? n * (double)r.steps / wall : 0.0;
     printf("%s at t = %.9g s: %ld steps, %zu outputs, %.2f s wall, %.3g particle-steps/s\n",
            sph_run_status_name(r.status), sph_sim_time(s), r.steps, r.outputs, wall, ps);
+  }
+  return status;
+}
+
+int sph_cli_run(int argc, char **argv) {
+  run_args a = {0};
+  a.sets = calloc((size_t)argc, sizeof *a.sets);
+  if (!a.sets) return 1;
+  int status = parse_run_args(argc, argv, &a);
+  sph_case c;
+  char snapdir[4096], defdir[4096];
+  if (status == 0) status = load_run_case(&a, &c, snapdir, sizeof snapdir);
+  free(a.sets);
+  if (status) return status < 0 ? 0 : status;
+  const int nthreads = sph_cli_set_threads(a.threads, a.quiet);
+  if (!a.outdir) {
+    snprintf(defdir, sizeof defdir, "out/%s", c.name);
+    a.outdir = defdir;
+  }
+  sph_error err = {{0}};
+  sph_sim *s = NULL;
+  sph_snapshot_restart_data rd;
+  status = 1;
+  if (sph_cli_make_dirs(a.outdir)) {
+    fprintf(stderr, "sph run: cannot create output directory %s: %s\n", a.outdir,
+            strerror(errno));
+  } else if (sph_sim_create(&c, &s, &err)) {
+    fprintf(stderr, "sph run: %s\n", err.msg);
+  } else if (a.restart && sph_sim_restore(s, a.restart, &rd, &err)) {
+    fprintf(stderr, "sph run: --restart: %s\n", err.msg);
+  } else {
+    if (!a.quiet) print_banner(&a, &c, s, nthreads);
+    status = run_sim(&a, &c, s, &rd);
+    if (a.restart) sph_snapshot_restart_free(&rd);
   }
   sph_sim_free(s);
   sph_case_free(&c);

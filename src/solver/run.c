@@ -29,6 +29,8 @@
 
 typedef struct outputs {
   const char *dir;
+  void (*row)(void *ctx, const sph_diag_row *r); /* sph_run_options.row */
+  void *row_ctx;
   FILE *diag;
   FILE *gauges;      /* gauges.csv, when the case has wave gauges */
   double *still;     /* each gauge's level at t = 0 */
@@ -84,19 +86,20 @@ static int list_snapshot(outputs *o, const char *name, double t, sph_error *err)
 /* The diagnostics row of the current state (which & 1) and its gauges
  * row (which & 2). */
 static int write_rows(sph_sim *s, outputs *o, int which, sph_error *err) {
-  if (which & 1) {
+  if ((which & 1) && (o->diag || o->row)) {
     sph_diag_row row;
     sph_sim_diag(s, &row);
-    if (sph_diag_write_row(o->diag, &row) || fflush(o->diag))
+    if (o->row) o->row(o->row_ctx, &row);
+    if (o->diag && (sph_diag_write_row(o->diag, &row) || fflush(o->diag)))
       return sph_error_set(err, "%s/diagnostics.csv: write failed: %s", o->dir, strerror(errno));
   }
-  return (which & 2) ? write_gauges(s, o, err) : 0;
+  return (which & 2) && o->dir ? write_gauges(s, o, err) : 0;
 }
 
 static int write_output(sph_sim *s, outputs *o, sph_run_result *r, sph_error *err) {
   r->outputs++;
-  if (!o->dir) return 0;
   if (write_rows(s, o, 3, err)) return -1;
+  if (!o->dir) return 0;
   if (!sph_sim_case(s)->snapshots) return 0;
   char name[64], path[4096];
   snprintf(name, sizeof name, "snap_%04zu.h5", o->index);
@@ -266,6 +269,8 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
   outputs out = {0};
   memset(r, 0, sizeof *r);
   out.dir = o->outdir;
+  out.row = o->row;
+  out.row_ctx = o->row_ctx;
   int rc = 0;
   int need_row = 0;
   if (out.dir && open_outputs(s, &out, rd, &need_row, err)) {

@@ -35,6 +35,10 @@ typedef struct sph_run_options {
   void (*progress)(void *ctx, const sph_sim *s);
   void *progress_ctx;
   volatile sig_atomic_t *interrupt; /* may be NULL */
+  /* called with every row written to diagnostics.csv (at t = 0 and at each
+   * output time), or that would be without an outdir; may be NULL */
+  void (*row)(void *ctx, const sph_diag_row *r);
+  void *row_ctx;
 } sph_run_options;
 
 typedef struct sph_run_result {
