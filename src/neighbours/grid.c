@@ -14,6 +14,8 @@
 
 #include "neighbours/grid.h"
 
+#include "core/check.h"
+
 #include "core/arrays.h"
 
 #include <math.h>
@@ -197,6 +199,10 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
     g->cy[i] = (long)(k / nx);
   }
   g->sorted = p != NULL;
+  if (SPH_DEBUG) {
+    const char *bad = sph_grid_check(g, n);
+    SPH_INVARIANT(bad == NULL, "%s", bad);
+  }
   return 0;
 }
 
@@ -336,6 +342,10 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   l->period = period;
   l->builds++;
   l->valid = 1;
+  if (SPH_DEBUG) {
+    const char *bad = sph_nlist_check(l, p, support);
+    SPH_INVARIANT(bad == NULL, "%s", bad);
+  }
   return 0;
 }
 
@@ -363,4 +373,62 @@ int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p) {
   /* max displacement < skin/2, with a relative margin for rounding */
   const double half = 0.5 * l->skin * (1.0 - 1e-6);
   return d2 < half * half;
+}
+
+/* ---- debug invariants ------------------------------------------------------------------ */
+
+static char check_msg[256];
+
+const char *sph_grid_check(const sph_grid *g, size_t n) {
+  const size_t cells = (size_t)g->nx * (size_t)g->ny, nx = (size_t)g->nx;
+  if (g->start[0] != 0 || g->start[cells] != n) {
+    snprintf(check_msg, sizeof check_msg, "grid: cell offsets span %zu..%zu, not 0..%zu",
+             g->start[0], g->start[cells], n);
+    return check_msg;
+  }
+  for (size_t c = 0; c < cells; c++) {
+    if (g->start[c + 1] < g->start[c]) {
+      snprintf(check_msg, sizeof check_msg, "grid: cell %zu ends before it starts", c);
+      return check_msg;
+    }
+    for (size_t pos = g->start[c]; pos < g->start[c + 1]; pos++) {
+      const size_t i = g->sorted ? pos : g->perm[pos];
+      if (i >= n || (size_t)g->cy[i] * nx + (size_t)g->cx[i] != c) {
+        snprintf(check_msg, sizeof check_msg,
+                 "grid: position %zu of cell %zu holds particle %zu of another cell", pos, c, i);
+        return check_msg;
+      }
+    }
+  }
+  return NULL;
+}
+
+const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double support) {
+  const size_t n = p->n;
+  const double r2 = support * support;
+  for (size_t i = 0; i < n; i++) {
+    const uint32_t *row = l->nb + l->start[i];
+    for (uint32_t k = 0; k < l->count[i]; k++)
+      if (row[k] >= n || row[k] == i || (k && row[k] <= row[k - 1])) {
+        snprintf(check_msg, sizeof check_msg,
+                 "neighbour list: row %zu is not sorted or holds %u at entry %u", i, row[k], k);
+        return check_msg;
+      }
+  }
+  const size_t stride = n > 20000 ? n / 2000 : 1;
+  for (size_t i = 0; i < n; i += stride) {
+    const uint32_t *row = l->nb + l->start[i];
+    size_t k = 0;
+    for (size_t j = 0; j < n; j++) {
+      const double dx = sph_grid_min_image(p->x[i] - p->x[j], l->period), dy = p->y[i] - p->y[j];
+      while (k < l->count[i] && row[k] < j) k++;
+      if (j == i || !(dx * dx + dy * dy < r2)) continue;
+      if (k == l->count[i] || row[k] != j) {
+        snprintf(check_msg, sizeof check_msg,
+                 "neighbour list: row %zu lacks particle %zu within the support", i, j);
+        return check_msg;
+      }
+    }
+  }
+  return NULL;
 }

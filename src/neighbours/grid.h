@@ -194,6 +194,17 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
  * within skin/2 (less a rounding margin) of where it stood at the build. */
 int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p);
 
+/* Debug invariants (src/core/check.h), run after every build in a build
+ * with --enable-debug-checks and by tests/test_checks.c: NULL if they hold,
+ * else what is broken (a static buffer).
+ * sph_grid_check: the cell offsets cover the n particles once, in order,
+ * and every particle sits in the cell its position gives.
+ * sph_nlist_check: every row is sorted by storage index (no i, no index
+ * twice, none out of range) and holds every particle closer than
+ * `support` (all pairs up to 20 000 particles, a sample of rows above). */
+const char *sph_grid_check(const sph_grid *g, size_t n);
+const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double support);
+
 /* Forgets the list (after the store was reordered). */
 static inline void sph_nlist_invalidate(sph_nlist *l) { l->valid = 0; }
 

@@ -38,6 +38,7 @@
 #include <string.h>
 
 #include "core/arrays.h"
+#include "core/check.h"
 #include "physics/kernel.h"
 #include "physics/pair_terms.h"
 #include "physics/turbulence.h"
@@ -434,6 +435,19 @@ static int stress_pass(const sph_particles *p, const sph_nlist *l, const sph_for
   return 0;
 }
 
+/* Debug invariant: every rate of the pass is finite (a NaN here is a bug in
+ * a term or a loop, not a blow-up: the state it read was checked). */
+static void check_rates(const sph_particles *p, const sph_force_work *w, unsigned F) {
+  for (size_t i = 0; i < p->n; i++) {
+    int ok = isfinite(p->drho[i]) && isfinite(p->ax[i]) && isfinite(p->ay[i]) &&
+             isfinite(w->sigma[i]);
+    if ((F & F_XSPH) && p->kind[i] == SPH_KIND_FLUID) ok &= isfinite(p->xsx[i]) && isfinite(p->xsy[i]);
+    if (F & F_LEDGER) ok &= isfinite(p->du[i]) && isfinite(w->wpow[i]);
+    SPH_INVARIANT(ok, "particle %zu (id %lld) has a rate that is not finite after a pass", i,
+                  (long long)p->id[i]);
+  }
+}
+
 int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                         sph_force_work *w, sph_error *err) {
   const unsigned F = sph_interact_terms(fp);
@@ -442,6 +456,7 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
   if (prepare_pass(p, l, fp, w, err)) return -1;
   if ((F & F_STRESS) && stress_pass(p, l, fp, w, err)) return -1;
   run(p, l, fp, w);
+  if (SPH_DEBUG) check_rates(p, w, F);
   if (fp->repulsive)
     sph_repulsion_add(p, l, fp->lj_d, fp->lj_r0, fp->periodic ? fp->period : 0.0);
   return 0;

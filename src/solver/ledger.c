@@ -5,6 +5,10 @@
 
 #include "solver/ledger.h"
 
+#include <math.h>
+
+#include "core/check.h"
+
 void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_work *w,
                       const double gravity[2], int xsph) {
   const double *g = gravity;
@@ -50,6 +54,12 @@ void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, sph_diag_row 
   row->fluid_deviation = lg->e0_fluid != 0.0 ? (ef - lg->e0_fluid) / lg->e0_fluid : 0.0;
   row->momentum_residual_x = row->momentum_x - lg->p0x - lg->impulse_x;
   row->momentum_residual_y = row->momentum_y - lg->p0y - lg->impulse_y;
+  /* debug invariants: masses never change, and every total is a number */
+  SPH_INVARIANT(lg->m0 == 0.0 || row->mass == lg->m0, "fluid mass %.17g, initially %.17g",
+                row->mass, lg->m0);
+  SPH_INVARIANT(isfinite(row->total) && isfinite(lg->work_wall) && isfinite(lg->impulse_x) &&
+                    isfinite(lg->impulse_y),
+                "a ledger total is not finite at t = %.9g s", row->time);
 }
 
 void sph_ledger_start(sph_ledger *lg, const sph_particles *p, const sph_diag_row *row) {
@@ -57,6 +67,7 @@ void sph_ledger_start(sph_ledger *lg, const sph_particles *p, const sph_diag_row
   lg->e0_fluid = row->kinetic + row->potential + sph_ledger_fluid_internal(p);
   lg->p0x = row->momentum_x;
   lg->p0y = row->momentum_y;
+  lg->m0 = row->mass;
 }
 
 void sph_ledger_save(const sph_ledger *lg, double out[SPH_LEDGER_SAVED]) {

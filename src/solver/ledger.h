@@ -46,6 +46,7 @@ typedef struct sph_ledger {
   /* the initial state */
   double e0, e0_fluid; /* total, and the fluid's own kinetic + potential + internal */
   double p0x, p0y;     /* fluid momentum */
+  double m0;           /* fluid mass (exact: it never changes) */
 } sph_ledger;
 
 /* The rates of the pass just run (w holds its wpow, wfx, wfy; p its xsx,
