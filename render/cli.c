@@ -19,10 +19,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/version.h"
 #include "figure.h"
 #include "gl_context.h"
 #include "marks.h"
-#include "core/version.h"
 
 void rcli_usage(FILE *fp) {
   fputs("usage: sph-render [OPTIONS] SNAPSHOT|RUN_DIR... -o OUT\n"

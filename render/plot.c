@@ -24,10 +24,10 @@
 #include <string.h>
 
 #include "canvas.h"
-#include "io/csv.h"
 #include "font.h"
 #include "gl_context.h"
 #include "inputs.h"
+#include "io/csv.h"
 #include "layout.h"
 #include "marks.h"
 #include "png_out.h"

@@ -22,10 +22,10 @@
 #include <string.h>
 
 #include "colormap.h"
-#include "io/csv.h"
 #include "figure.h"
 #include "gl_context.h"
 #include "inputs.h"
+#include "io/csv.h"
 #include "jobs.h"
 #include "layout.h"
 #include "marks.h"

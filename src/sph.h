@@ -20,15 +20,15 @@
 #ifndef SPH_H
 #define SPH_H
 
-#include "core/error.h"
-#include "core/version.h"
-#include "core/particles.h"
-#include "io/snapshot.h"
-#include "case/case.h"
-#include "solver/diag.h"
-#include "solver/sim.h"
-#include "solver/run.h"
 #include "analysis/analytic.h"
 #include "analysis/wave_face.h"
+#include "case/case.h"
+#include "core/error.h"
+#include "core/particles.h"
+#include "core/version.h"
+#include "io/snapshot.h"
+#include "solver/diag.h"
+#include "solver/run.h"
+#include "solver/sim.h"
 
 #endif

@@ -20,18 +20,18 @@
 #include "testutil.h"
 
 /* The smallest valid case: every optional key left to its default. */
-static const char MINIMAL[] = "name: mini\n"              /* 1 */
-                              "physics:\n"                /* 2 */
-                              "  sound_speed: 20\n"       /* 3 */
-                              "numerics:\n"               /* 4 */
-                              "  dx: 0.01\n"              /* 5 */
-                              "time:\n"                   /* 6 */
-                              "  end: 1\n"                /* 7 */
-                              "  output_interval: 0.1\n"  /* 8 */
-                              "geometry:\n"               /* 9 */
-                              "  fluid:\n"                /* 10 */
-                              "    - x: [0, 1]\n"         /* 11 */
-                              "      y: [0, 0.5]\n";      /* 12 */
+static const char MINIMAL[] = "name: mini\n"             /* 1 */
+                              "physics:\n"               /* 2 */
+                              "  sound_speed: 20\n"      /* 3 */
+                              "numerics:\n"              /* 4 */
+                              "  dx: 0.01\n"             /* 5 */
+                              "time:\n"                  /* 6 */
+                              "  end: 1\n"               /* 7 */
+                              "  output_interval: 0.1\n" /* 8 */
+                              "geometry:\n"              /* 9 */
+                              "  fluid:\n"               /* 10 */
+                              "    - x: [0, 1]\n"        /* 11 */
+                              "      y: [0, 0.5]\n";     /* 12 */
 
 /* Every key of the schema given. */
 static const char FULL[] = "# a complete case\n"                           /* 1 */
@@ -252,9 +252,9 @@ static void test_sound_speed(void) {
   expect_ok(edit(MINIMAL, 3, "  sound_speed: {factor: 10, height: 0.1143}\n"), NULL, 0, &c);
   CU_ASSERT_DOUBLE_EQUAL(c.sound_speed, 14.97519949783642, 1e-12);
   sph_case_free(&c);
-  expect_ok(edit(MINIMAL, 3,
-                 "  gravity: [3, -4]\n  sound_speed:\n    factor: 2\n    height: 0.4\n"),
-            NULL, 0, &c);
+  expect_ok(
+      edit(MINIMAL, 3, "  gravity: [3, -4]\n  sound_speed:\n    factor: 2\n    height: 0.4\n"),
+      NULL, 0, &c);
   CU_ASSERT_DOUBLE_EQUAL(c.sound_speed, 4.0, 1e-15); /* 2 sqrt(2 * 5 * 0.4) */
   sph_case_free(&c);
   expect_ok(edit(MINIMAL, 3, "  sound_speed: {factor: 10, speed: 1.5}\n"), NULL, 0, &c);
@@ -546,14 +546,14 @@ static void test_set_overrides(void) {
   CU_ASSERT_STRING_EQUAL(c.text, MINIMAL); /* the file text is kept as written */
   sph_case_free(&c);
 
-  const char *s2[] = {"physics.gravity=[0,-1]", "time.stop=none", "physics.xsph=0.25",
-                      "output.snapshots=false", "numerics.time_step.rule=cfl",
-                      "description=from the command line"};
+  const char *s2[] = {"physics.gravity=[0,-1]",      "time.stop=none",
+                      "physics.xsph=0.25",           "output.snapshots=false",
+                      "numerics.time_step.rule=cfl", "description=from the command line"};
   expect_ok(MINIMAL, s2, 6, &c);
   CU_ASSERT_EQUAL(c.gravity[0], 0.0);
   CU_ASSERT_EQUAL(c.gravity[1], -1.0);
   CU_ASSERT_EQUAL(c.stop, SPH_STOP_NONE);
-  CU_ASSERT_EQUAL(c.xsph, 0.25);  /* added to an existing mapping */
+  CU_ASSERT_EQUAL(c.xsph, 0.25);   /* added to an existing mapping */
   CU_ASSERT_EQUAL(c.snapshots, 0); /* added with a new intermediate mapping */
   CU_ASSERT_EQUAL(c.dt_rule, SPH_DT_CFL);
   CU_ASSERT_STRING_EQUAL(c.description, "from the command line");
@@ -576,8 +576,8 @@ static void test_set_errors(void) {
            PHYSICS_KEYS);
   expect_err_set(MINIMAL, s2, 1, want);
   const char *s3[] = {"nosuch.key=1"};
-  snprintf(want, sizeof want,
-           "--set nosuch.key=1: nosuch: unknown key (valid top-level keys: %s)", TOP_KEYS);
+  snprintf(want, sizeof want, "--set nosuch.key=1: nosuch: unknown key (valid top-level keys: %s)",
+           TOP_KEYS);
   expect_err_set(MINIMAL, s3, 1, want);
   const char *s4[] = {"numerics.dx"};
   expect_err_set(MINIMAL, s4, 1,
@@ -627,48 +627,47 @@ static void test_free_after_failure(void) {
   sph_case_free(&c);
 }
 
-static const char MINIMAL_DESCRIPTION[] =
-    "name: mini\n"
-    "description: \"\"\n"
-    "physics.rho0: 1000\n"
-    "physics.gravity: [0, -9.8100000000000005]\n"
-    "physics.sound_speed: 20\n"
-    "physics.artificial_viscosity.alpha: 0\n"
-    "physics.artificial_viscosity.beta: 0\n"
-    "physics.artificial_viscosity.eta: 0.10000000000000001\n"
-    "physics.xsph: 0\n"
-    "physics.viscosity.model: none\n"
-    "physics.turbulence.model: none\n"
-    "physics.repulsion: 24.525000000000002\n"
-    "numerics.dx: 0.01\n"
-    "numerics.h_factor: 1.3\n"
-    "numerics.h: 0.013000000000000001\n"
-    "numerics.smoothing_length: constant\n"
-    "numerics.kernel: cubic_spline\n"
-    "numerics.integrator: predictor_corrector\n"
-    "numerics.time_step.rule: paper_b\n"
-    "numerics.time_step.factor: 0.29999999999999999\n"
-    "numerics.density_filter.kind: none\n"
-    "numerics.density_filter.every: 30\n"
-    "numerics.density_limit: 0.29999999999999999\n"
-    "time.end: 1\n"
-    "time.output_interval: 0.10000000000000001\n"
-    "time.stop: none\n"
-    "geometry.tank: none\n"
-    "geometry.fluid[0].x: [0, 1]\n"
-    "geometry.fluid[0].y: [0, 0.5]\n"
-    "geometry.fluid[0].velocity: [0, 0]\n"
-    "geometry.fluid[0].hydrostatic: true\n"
-    "geometry.fluid[0].surface: 0.5\n"
-    "geometry.fluid[0].jitter: 0\n"
-    "geometry.fluid[0].seed: 1\n"
-    "geometry.walls: []\n"
-    "geometry.domain: none\n"
-    "free_surface.radius_factor: 1\n"
-    "free_surface.h_factor: 0\n"
-    "output.snapshots: true\n"
-    "output.free_surface: false\n"
-    "output.energy: false\n";
+static const char MINIMAL_DESCRIPTION[] = "name: mini\n"
+                                          "description: \"\"\n"
+                                          "physics.rho0: 1000\n"
+                                          "physics.gravity: [0, -9.8100000000000005]\n"
+                                          "physics.sound_speed: 20\n"
+                                          "physics.artificial_viscosity.alpha: 0\n"
+                                          "physics.artificial_viscosity.beta: 0\n"
+                                          "physics.artificial_viscosity.eta: 0.10000000000000001\n"
+                                          "physics.xsph: 0\n"
+                                          "physics.viscosity.model: none\n"
+                                          "physics.turbulence.model: none\n"
+                                          "physics.repulsion: 24.525000000000002\n"
+                                          "numerics.dx: 0.01\n"
+                                          "numerics.h_factor: 1.3\n"
+                                          "numerics.h: 0.013000000000000001\n"
+                                          "numerics.smoothing_length: constant\n"
+                                          "numerics.kernel: cubic_spline\n"
+                                          "numerics.integrator: predictor_corrector\n"
+                                          "numerics.time_step.rule: paper_b\n"
+                                          "numerics.time_step.factor: 0.29999999999999999\n"
+                                          "numerics.density_filter.kind: none\n"
+                                          "numerics.density_filter.every: 30\n"
+                                          "numerics.density_limit: 0.29999999999999999\n"
+                                          "time.end: 1\n"
+                                          "time.output_interval: 0.10000000000000001\n"
+                                          "time.stop: none\n"
+                                          "geometry.tank: none\n"
+                                          "geometry.fluid[0].x: [0, 1]\n"
+                                          "geometry.fluid[0].y: [0, 0.5]\n"
+                                          "geometry.fluid[0].velocity: [0, 0]\n"
+                                          "geometry.fluid[0].hydrostatic: true\n"
+                                          "geometry.fluid[0].surface: 0.5\n"
+                                          "geometry.fluid[0].jitter: 0\n"
+                                          "geometry.fluid[0].seed: 1\n"
+                                          "geometry.walls: []\n"
+                                          "geometry.domain: none\n"
+                                          "free_surface.radius_factor: 1\n"
+                                          "free_surface.h_factor: 0\n"
+                                          "output.snapshots: true\n"
+                                          "output.free_surface: false\n"
+                                          "output.energy: false\n";
 
 static void test_describe(void) {
   sph_case a, b;
@@ -705,8 +704,7 @@ static void test_describe(void) {
   sph_case_free(&b);
 
   /* a multi-line description stays on one line */
-  expect_ok(edit(MINIMAL, 1, "name: mini\ndescription: |\n  two \"lines\"\n  here\n"), NULL, 0,
-            &a);
+  expect_ok(edit(MINIMAL, 1, "name: mini\ndescription: |\n  two \"lines\"\n  here\n"), NULL, 0, &a);
   d = sph_case_describe(&a);
   CU_ASSERT_PTR_NOT_NULL(strstr(d, "\ndescription: \"two \\\"lines\\\"\\nhere\\n\"\n"));
   free(d);

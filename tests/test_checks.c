@@ -24,10 +24,11 @@ static sph_sim *s;
 
 static void load(void) {
   sph_error err;
-  CU_ASSERT_FATAL(sph_case_load(sph_test_src("cases/martin_moyce_coarse.yaml"), NULL, 0, &c,
-                                &err) == 0);
+  CU_ASSERT_FATAL(
+      sph_case_load(sph_test_src("cases/martin_moyce_coarse.yaml"), NULL, 0, &c, &err) == 0);
   CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
-  for (int k = 0; k < 30; k++) CU_ASSERT_FATAL(sph_sim_step(s, c.t_end, &err) == 0);
+  for (int k = 0; k < 30; k++)
+    CU_ASSERT_FATAL(sph_sim_step(s, c.t_end, &err) == 0);
 }
 
 static void test_real_state_passes(void) {
@@ -50,8 +51,8 @@ static void test_real_state_passes(void) {
     /* binned without sorting, with a skin */
     CU_ASSERT_FATAL(sph_grid_bin(&g, p, support * 1.2, periodic, x0, x1, 1u << 20, &err) == 0);
     CU_ASSERT(sph_grid_check(&g, p->n) == NULL);
-    CU_ASSERT_FATAL(sph_nlist_build(&l, &g, p, support, 0.2 * support, periodic ? x1 - x0 : 0.0,
-                                    &err) == 0);
+    CU_ASSERT_FATAL(
+        sph_nlist_build(&l, &g, p, support, 0.2 * support, periodic ? x1 - x0 : 0.0, &err) == 0);
     CU_ASSERT(sph_nlist_check(&l, p, support) == NULL);
     sph_nlist_free(&l);
     sph_grid_free(&g);
@@ -69,7 +70,8 @@ static void test_corruption_caught(void) {
   sph_nlist_init(&l);
   CU_ASSERT_FATAL(sph_nlist_build(&l, &g, p, support, 0.0, 0.0, &err) == 0);
   size_t i = 0; /* a particle with at least 3 neighbours */
-  while (l.count[i] < 3) i++;
+  while (l.count[i] < 3)
+    i++;
   uint32_t *row = l.nb + l.start[i];
   uint32_t t = row[0];
   row[0] = row[1];
@@ -86,7 +88,8 @@ static void test_corruption_caught(void) {
   printf("\n  dropped neighbour: %s", m ? m : "(not caught)");
   l.count[i]++;
   size_t cell = 0; /* a cell with particles: move its end one back */
-  while (g.start[cell + 1] == g.start[cell]) cell++;
+  while (g.start[cell + 1] == g.start[cell])
+    cell++;
   g.start[cell + 1]--;
   m = sph_grid_check(&g, p->n);
   CU_ASSERT(m != NULL);

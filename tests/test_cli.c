@@ -28,20 +28,19 @@ static void write_file(const char *name, const char *text) {
   fclose(f);
 }
 
-static const char *GOOD =
-    "name: tiny\n"
-    "physics:\n"
-    "  sound_speed: 10\n"
-    "  artificial_viscosity: {alpha: 0.1}\n"
-    "numerics:\n"
-    "  dx: 0.01\n"
-    "time:\n"
-    "  end: 0.002\n"
-    "  output_interval: 0.001\n"
-    "geometry:\n"
-    "  tank: {x: [0, 0.1], y: [0, 0.1]}\n"
-    "  fluid:\n"
-    "    - {x: [0, 0.05], y: [0, 0.05]}\n";
+static const char *GOOD = "name: tiny\n"
+                          "physics:\n"
+                          "  sound_speed: 10\n"
+                          "  artificial_viscosity: {alpha: 0.1}\n"
+                          "numerics:\n"
+                          "  dx: 0.01\n"
+                          "time:\n"
+                          "  end: 0.002\n"
+                          "  output_interval: 0.001\n"
+                          "geometry:\n"
+                          "  tank: {x: [0, 0.1], y: [0, 0.1]}\n"
+                          "  fluid:\n"
+                          "    - {x: [0, 0.05], y: [0, 0.05]}\n";
 
 static void test_help_and_version(void) {
   char out[65536];
@@ -111,7 +110,8 @@ static void test_good_run_and_info(void) {
   CU_ASSERT(fgets(line, sizeof line, f) != NULL);
   CU_ASSERT_STRING_EQUAL(line, "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,"
                                "potential\n");
-  while (fgets(line, sizeof line, f)) lines++;
+  while (fgets(line, sizeof line, f))
+    lines++;
   fclose(f);
   CU_ASSERT_EQUAL(lines, 4);
 }
@@ -130,8 +130,8 @@ static void test_output_times_merge(void) {
   int st = sph(args, out, sizeof out);
   if (st) printf("\n%s\n", out);
   CU_ASSERT_EQUAL_FATAL(st, 0);
-  snprintf(args, sizeof args, "test -s '%s/merge/snap_0004.h5' && ! test -e '%s/merge/snap_0005.h5'",
-           tmp, tmp);
+  snprintf(args, sizeof args,
+           "test -s '%s/merge/snap_0004.h5' && ! test -e '%s/merge/snap_0005.h5'", tmp, tmp);
   CU_ASSERT_EQUAL(sph_test_system(args), 0);
   char path[4096], line[4096];
   snprintf(path, sizeof path, "%s/merge/diagnostics.csv", tmp);
@@ -175,14 +175,13 @@ static void test_blowup_stops_cleanly(void) {
 
 int main(void) {
   tmp = sph_test_tmpdir();
-  CU_TestInfo tests[] = {{"help, version, unknown command", test_help_and_version},
-                         {"bad input gives a clear error and non-zero exit", test_bad_input},
-                         {"a short run, diagnostics rows, sph info", test_good_run_and_info},
-                         {"an output time listed twice (interval and list) is one output",
-                          test_output_times_merge},
-                         {"a blow-up stops with a message and keeps snapshots",
-                          test_blowup_stops_cleanly},
-                         CU_TEST_INFO_NULL};
+  CU_TestInfo tests[] = {
+      {"help, version, unknown command", test_help_and_version},
+      {"bad input gives a clear error and non-zero exit", test_bad_input},
+      {"a short run, diagnostics rows, sph info", test_good_run_and_info},
+      {"an output time listed twice (interval and list) is one output", test_output_times_merge},
+      {"a blow-up stops with a message and keeps snapshots", test_blowup_stops_cleanly},
+      CU_TEST_INFO_NULL};
   int rc = sph_test_main("cli", tests);
   sph_test_rmtree(tmp);
   return rc;

@@ -63,11 +63,12 @@ static void isolated_patch(const char *const *set, size_t n_set, sph_integrator_
   CU_ASSERT_EQUAL(steps, 100);
   double m1, mx1, my1, scale1;
   totals(p, &m1, &mx1, &my1, &scale1);
-  printf("\n  momentum change: %.3e %.3e (scale %.3e); mass %.17g -> %.17g\n", mx1 - mx0,
-         my1 - my0, scale, m0, m1);
+  printf("\n  momentum change: %.3e %.3e (scale %.3e); mass %.17g -> %.17g\n", mx1 - mx0, my1 - my0,
+         scale, m0, m1);
   /* masses never change: the same numbers summed in another order may
    * differ in the last bit only, so compare per-particle */
-  for (size_t i = 0; i < p->n; i++) CU_ASSERT_EQUAL(p->mass[i], c.rho0 * c.dx * c.dx);
+  for (size_t i = 0; i < p->n; i++)
+    CU_ASSERT_EQUAL(p->mass[i], c.rho0 * c.dx * c.dx);
   CU_ASSERT_DOUBLE_EQUAL(m1, m0, 1e-14 * m0);
   CU_ASSERT(fabs(mx1 - mx0) < 1e-13 * scale);
   CU_ASSERT(fabs(my1 - my0) < 1e-13 * scale);
@@ -87,10 +88,10 @@ static void test_isolated_patch_leapfrog(void) {
 }
 
 int main(void) {
-  CU_TestInfo tests[] = {{"isolated patch: exact mass, momentum to round-off over 100 steps",
-                          test_isolated_patch},
-                         {"isolated patch with the leap-frog (paper A eq. 17-19): the same",
-                          test_isolated_patch_leapfrog},
-                         CU_TEST_INFO_NULL};
+  CU_TestInfo tests[] = {
+      {"isolated patch: exact mass, momentum to round-off over 100 steps", test_isolated_patch},
+      {"isolated patch with the leap-frog (paper A eq. 17-19): the same",
+       test_isolated_patch_leapfrog},
+      CU_TEST_INFO_NULL};
   return sph_test_main("conservation", tests);
 }

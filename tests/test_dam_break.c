@@ -67,8 +67,7 @@ static int run(const char *dir, int threads) {
   char cmd[8192];
   /* SPH_TEST_OMP_MIN=0: run every loop in parallel however small the case */
   snprintf(cmd, sizeof cmd, "SPH_TEST_OMP_MIN=0 '%s' run --quiet --threads %d '%s' -o '%s'",
-           sph_test_build("src/sph"),
-           threads, sph_test_src("cases/martin_moyce_coarse.yaml"), dir);
+           sph_test_build("src/sph"), threads, sph_test_src("cases/martin_moyce_coarse.yaml"), dir);
   return sph_test_system(cmd);
 }
 
@@ -111,8 +110,8 @@ static void test_front_against_experiment(void) {
   free(exp_[0]);
   free(exp_[1]);
   const double rms = sqrt(sum2 / n);
-  printf("  front vs Martin & Moyce (%d points, Z < 3.9): RMS %.2f %%, max %.2f %%\n", n,
-         100 * rms, 100 * emax);
+  printf("  front vs Martin & Moyce (%d points, Z < 3.9): RMS %.2f %%, max %.2f %%\n", n, 100 * rms,
+         100 * emax);
   CU_ASSERT(n >= 13);
   CU_ASSERT(rms < 0.05);
   CU_ASSERT(emax < 0.10);
@@ -133,8 +132,7 @@ static void test_golden_front(void) {
     const double d = fabs(sim.x[i] - gold.x[i]);
     if (d > worst) worst = d;
   }
-  printf("\n  largest front difference from golden: %.3e m (tolerance %.3e m)\n", worst,
-         0.05 * DX);
+  printf("\n  largest front difference from golden: %.3e m (tolerance %.3e m)\n", worst, 0.05 * DX);
   CU_ASSERT(worst <= 0.05 * DX);
 }
 

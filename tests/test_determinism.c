@@ -86,12 +86,13 @@ static void test_paddle(void) {
 }
 
 int main(void) {
-  CU_TestInfo tests[] = {{"wet bed: viscosity, ledger, moving gate", test_wet_bed},
-                         {"SPS turbulence", test_sps},
-                         {"mirror walls and the MLS filter", test_mirror_filter},
-                         {"periodic x, leap-frog, free surface with h*", test_periodic_free_surface},
-                         {"paddle, gauges, variable h, Shepard filter", test_paddle},
-                         {"leap-frog dam break on 1, 2 and 3 threads", test_three_threads},
-                         CU_TEST_INFO_NULL};
+  CU_TestInfo tests[] = {
+      {"wet bed: viscosity, ledger, moving gate", test_wet_bed},
+      {"SPS turbulence", test_sps},
+      {"mirror walls and the MLS filter", test_mirror_filter},
+      {"periodic x, leap-frog, free surface with h*", test_periodic_free_surface},
+      {"paddle, gauges, variable h, Shepard filter", test_paddle},
+      {"leap-frog dam break on 1, 2 and 3 threads", test_three_threads},
+      CU_TEST_INFO_NULL};
   return sph_test_main("determinism", tests);
 }

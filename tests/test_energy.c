@@ -50,7 +50,8 @@ static int run_case(const char *rel, const char **sets, size_t n_set, sph_diag_r
   }
   sph_sim_diag(s, first);
   int rc = 0;
-  while (rc == 0 && sph_sim_time(s) < c.t_end) rc = sph_sim_step(s, c.t_end, &err);
+  while (rc == 0 && sph_sim_time(s) < c.t_end)
+    rc = sph_sim_step(s, c.t_end, &err);
   if (rc) printf("\n%s\n", err.msg);
   sph_sim_diag(s, last);
   sph_sim_free(s);
@@ -107,7 +108,8 @@ static int read_audit(const char *path, audit_entry *e, int max) {
   int k = 0;
   for (long i = 0; i < n && k < max; i++)
     e[k++] = (audit_entry){(long)c[0][i], c[1][i], c[2][i], c[3][i]};
-  for (int j = 0; j < 4; j++) free(c[j]);
+  for (int j = 0; j < 4; j++)
+    free(c[j]);
   return k;
 }
 
@@ -147,7 +149,8 @@ static void test_audit_golden(void) {
 
 int main(void) {
   CU_TestInfo tests[] = {
-      {"no dissipation: energy conserved, error shrinks with dt", test_conserved_without_dissipation},
+      {"no dissipation: energy conserved, error shrinks with dt",
+       test_conserved_without_dissipation},
       {"artificial viscosity: heat = lost mechanical energy", test_viscous_heating},
       {"a piston does the quasi-static work", test_piston_work},
       {"energy audit against golden/energy_drift.csv", test_audit_golden},

@@ -27,10 +27,10 @@
 #include <omp.h>
 #endif
 
-#include "physics/filter.h"
-#include "neighbours/grid.h"
-#include "physics/kernel.h"
 #include "core/particles.h"
+#include "neighbours/grid.h"
+#include "physics/filter.h"
+#include "physics/kernel.h"
 #include "testutil.h"
 
 static unsigned long long rng;

@@ -28,10 +28,10 @@
 #include <omp.h>
 #endif
 
-#include "physics/freesurface.h"
-#include "neighbours/grid.h"
-#include "physics/kernel.h"
 #include "core/particles.h"
+#include "neighbours/grid.h"
+#include "physics/freesurface.h"
+#include "physics/kernel.h"
 #include "testutil.h"
 
 #define TWO_PI (2.0 * SPH_PI)

@@ -35,9 +35,9 @@
 #include <string.h>
 
 #include "core/particles.h"
+#include "core/version.h"
 #include "io/snapshot.h"
 #include "testutil.h"
-#include "core/version.h"
 
 #define GOLDEN "golden/freesurface/dam_break_coarse_t0.1.csv"
 #define T_OUT 0.1
@@ -147,7 +147,8 @@ static int read_golden(const char *path, flagged *f) {
   memset(f, 0, sizeof *f);
   double *c[1] = {NULL};
   const long n = sph_test_csv(path, "id", c);
-  for (long i = 0; i < n; i++) push(f, (long long)c[0][i]);
+  for (long i = 0; i < n; i++)
+    push(f, (long long)c[0][i]);
   free(c[0]);
   if (f->n) qsort(f->id, f->n, sizeof *f->id, cmp_ll);
   return f->n ? 0 : -1;
@@ -241,8 +242,9 @@ static void test_h_factor(void) {
 static void test_variable_h(void) {
   char dir[4200], snap[4300];
   snprintf(dir, sizeof dir, "%s/varh", tmpdir);
-  CU_ASSERT_FATAL(run_sph(dir, 2, "--set numerics.smoothing_length=variable "
-                                  "--set numerics.density_filter.kind=mls") == 0);
+  CU_ASSERT_FATAL(run_sph(dir, 2,
+                          "--set numerics.smoothing_length=variable "
+                          "--set numerics.density_filter.kind=mls") == 0);
   CU_ASSERT_FATAL(last_snapshot(dir, snap, sizeof snap) == 0);
   sph_snapshot *s;
   sph_error err;

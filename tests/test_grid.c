@@ -32,8 +32,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "neighbours/grid.h"
 #include "core/particles.h"
+#include "neighbours/grid.h"
 #include "testutil.h"
 
 #ifdef _OPENMP
@@ -130,7 +130,8 @@ static void test_cell_edges(void) {
       sph_particles_add(&p, 0.125 * i, 0.125 * j, 0, 0, 1000, 1, 0.1, SPH_KIND_FLUID, &err);
   /* shuffle storage order (ids stay), then sort */
   size_t *perm = malloc(p.n * sizeof *perm);
-  for (size_t i = 0; i < p.n; i++) perm[i] = i;
+  for (size_t i = 0; i < p.n; i++)
+    perm[i] = i;
   for (size_t i = p.n - 1; i > 0; i--) {
     size_t k = (size_t)(uniform() * (double)(i + 1));
     size_t t = perm[i];
@@ -202,7 +203,8 @@ static size_t check_periodic(sph_particles *p, double support, double cell, doub
         if (j != i && dx * dx + dy * dy < s2) a[na++] = p->id[j];
       }
     for (int k = 0; k < SPH_GRID_RANGES; k++)
-      for (size_t j = lo[k]; j < hi[k]; j++) seen[j] = 0;
+      for (size_t j = lo[k]; j < hi[k]; j++)
+        seen[j] = 0;
     for (size_t j = 0; j < p->n; j++) {
       const double dx = min_image(p->x[i] - p->x[j], period), dy = p->y[i] - p->y[j];
       if (j != i && dx * dx + dy * dy < s2) b[nb++] = p->id[j];
@@ -215,7 +217,8 @@ static size_t check_periodic(sph_particles *p, double support, double cell, doub
   CU_ASSERT_EQUAL(mismatches, 0);
   CU_ASSERT_EQUAL(duplicates, 0);
   /* cell order with the columns of the period */
-  for (size_t i = 0; i < p->n; i++) CU_ASSERT(g.cx[i] >= 0 && g.cx[i] < g.nx);
+  for (size_t i = 0; i < p->n; i++)
+    CU_ASSERT(g.cx[i] >= 0 && g.cx[i] < g.nx);
   for (size_t i = 1; i < p->n; i++)
     CU_ASSERT(g.cy[i - 1] * g.nx + g.cx[i - 1] <= g.cy[i] * g.nx + g.cx[i]);
   free(a);
@@ -252,10 +255,10 @@ static void periodic_set(sph_particles *p, size_t n, double px0, double px1, dou
     }
   }
   /* exactly `support` apart through the seam: px0 + s/4 and px1 - 3s/4 */
-  sph_particles_add(p, px0 + 0.25 * support, y0 + 0.5 * height, 0, 0, 1000, 1, 0.1,
-                    SPH_KIND_FLUID, &err);
-  sph_particles_add(p, px1 - 0.75 * support, y0 + 0.5 * height, 0, 0, 1000, 1, 0.1,
-                    SPH_KIND_FLUID, &err);
+  sph_particles_add(p, px0 + 0.25 * support, y0 + 0.5 * height, 0, 0, 1000, 1, 0.1, SPH_KIND_FLUID,
+                    &err);
+  sph_particles_add(p, px1 - 0.75 * support, y0 + 0.5 * height, 0, 0, 1000, 1, 0.1, SPH_KIND_FLUID,
+                    &err);
 }
 
 /* A period of exactly 3 cells: every row is one whole range, and each pair
@@ -325,23 +328,22 @@ static void test_permute_carries_fields(void) {
     p.flags[i] = (uint8_t)(i % 3);
   }
   size_t perm[100];
-  for (int i = 0; i < 100; i++) perm[i] = (size_t)(99 - i);
+  for (int i = 0; i < 100; i++)
+    perm[i] = (size_t)(99 - i);
   double work[100];
   sph_particles_permute(&p, perm, work);
   for (int i = 0; i < 100; i++) {
     const int o = 99 - i;
-    CU_ASSERT(p.id[i] == o && p.x[i] == o && p.y[i] == -o && p.vx[i] == 2 * o &&
-              p.vy[i] == 3 * o && p.rho[i] == 1000 + o && p.mass[i] == 1 + o &&
-              p.h[i] == 0.5 * o && p.kind[i] == o % 2 && p.u[i] == 7.0 * o &&
-              p.flags[i] == o % 3);
+    CU_ASSERT(p.id[i] == o && p.x[i] == o && p.y[i] == -o && p.vx[i] == 2 * o && p.vy[i] == 3 * o &&
+              p.rho[i] == 1000 + o && p.mass[i] == 1 + o && p.h[i] == 0.5 * o &&
+              p.kind[i] == o % 2 && p.u[i] == 7.0 * o && p.flags[i] == o % 3);
   }
   sph_particles_free(&p);
 }
 
 /* The list of p (built on a sorted or a binned grid) against brute force
  * with radius support + skin: same pairs, rows in increasing storage index. */
-static void check_list(sph_particles *p, double support, double skin, double period,
-                       int binned) {
+static void check_list(sph_particles *p, double support, double skin, double period, int binned) {
   sph_grid g;
   sph_grid_init(&g);
   sph_nlist l;
@@ -433,7 +435,8 @@ static void test_sort_any_team(void) {
     CU_ASSERT(memcmp(g[k].start, g[0].start, (cells + 1) * sizeof *g[0].start) == 0);
     CU_ASSERT(memcmp(g[k].perm, g[0].perm, N * sizeof *g[0].perm) == 0);
   }
-  for (int k = 0; k < 3; k++) sph_grid_free(&g[k]);
+  for (int k = 0; k < 3; k++)
+    sph_grid_free(&g[k]);
   sph_particles_free(&p);
 }
 
@@ -467,7 +470,8 @@ static void test_list_fresh(void) {
       const double dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j];
       if (j == i || !(dx * dx + dy * dy < support * support)) continue;
       int found = 0;
-      for (size_t k = 0; k < l.count[i]; k++) found |= l.nb[l.start[i] + k] == j;
+      for (size_t k = 0; k < l.count[i]; k++)
+        found |= l.nb[l.start[i] + k] == j;
       missing += !found;
     }
   CU_ASSERT_EQUAL(missing, 0);
@@ -515,22 +519,17 @@ static void test_run_any_skin(void) {
 }
 
 int main(void) {
-  CU_TestInfo tests[] = {{"grid neighbours equal brute force (random sets)", test_random_sets},
-                         {"counting sort: the same order on teams of 1 to 3 threads",
-                          test_sort_any_team},
-                         {"particles on cell edges and at exactly 2h", test_cell_edges},
-                         {"permutation carries every field", test_permute_carries_fields},
-                         {"periodic grid, period of exactly 3 cells, against brute force",
-                          test_periodic_three_cells},
-                         {"periodic grid, longer periods, against brute force",
-                          test_periodic_long},
-                         {"periodic grid refuses a period under 3 cells", test_periodic_too_short},
-                         {"neighbour list equals brute force (sorted, binned, periodic)",
-                          test_list_brute_force},
-                         {"neighbour list: fresh within skin/2, stale beyond or reordered",
-                          test_list_fresh},
-                         {"a run is byte-identical for any skin and either lane flavour",
-                          test_run_any_skin},
-                         CU_TEST_INFO_NULL};
+  CU_TestInfo tests[] = {
+      {"grid neighbours equal brute force (random sets)", test_random_sets},
+      {"counting sort: the same order on teams of 1 to 3 threads", test_sort_any_team},
+      {"particles on cell edges and at exactly 2h", test_cell_edges},
+      {"permutation carries every field", test_permute_carries_fields},
+      {"periodic grid, period of exactly 3 cells, against brute force", test_periodic_three_cells},
+      {"periodic grid, longer periods, against brute force", test_periodic_long},
+      {"periodic grid refuses a period under 3 cells", test_periodic_too_short},
+      {"neighbour list equals brute force (sorted, binned, periodic)", test_list_brute_force},
+      {"neighbour list: fresh within skin/2, stale beyond or reordered", test_list_fresh},
+      {"a run is byte-identical for any skin and either lane flavour", test_run_any_skin},
+      CU_TEST_INFO_NULL};
   return sph_test_main("grid", tests);
 }

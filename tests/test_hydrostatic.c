@@ -62,8 +62,8 @@ static void test_still_water(void) {
     double num = 0.0, den = 0.0;
     for (size_t j = 0; j < p->n; j++) {
       if (p->kind[j] != SPH_KIND_FLUID) continue;
-      const double w = sph_cubic_w(hypot(p->x[i] - p->x[j], p->y[i] - p->y[j]), c.h) *
-                       p->mass[j] / p->rho[j];
+      const double w =
+          sph_cubic_w(hypot(p->x[i] - p->x[j], p->y[i] - p->y[j]), c.h) * p->mass[j] / p->rho[j];
       num += w * p->p[j];
       den += w;
     }

@@ -50,7 +50,8 @@ static int read_table(const char *path, row *r, int cap) {
     double dx, wall;
     int used = 0;
     if (sscanf(line, "%63[^,],%d,%lf,%lf,%lf,%lf,%lf,%n", r[n].config, &r[n].particles, &dx,
-               &r[n].max_pct, &r[n].l2_pct, &r[n].paper_pct, &wall, &used) != 7 || !used) {
+               &r[n].max_pct, &r[n].l2_pct, &r[n].paper_pct, &wall, &used) != 7 ||
+        !used) {
       /* a failed run has '-' for its errors: keep it with NaN errors */
       char a[64], b[64];
       if (sscanf(line, "%63[^,],%d,%lf,%63[^,],%63[^,],", r[n].config, &r[n].particles, &dx, a,
@@ -86,7 +87,8 @@ static void run_sweep(void) {
   /* the two wall models side by side on the two cores */
   snprintf(cmd, sizeof cmd,
            "mkdir -p '%s/a' '%s/b' && "
-           "( SPH='%s' OUT='%s/a' CONFIGS=fixed_layers COUNTS='100 400 900 1600' sh '%s' > '%s/a.log' 2>&1 & "
+           "( SPH='%s' OUT='%s/a' CONFIGS=fixed_layers COUNTS='100 400 900 1600' sh '%s' > "
+           "'%s/a.log' 2>&1 & "
            "  SPH='%s' OUT='%s/b' CONFIGS=repulsive COUNTS='100 400' sh '%s' > '%s/b.log' 2>&1; "
            "  rb=$?; wait $!; ra=$?; [ $ra -eq 0 ] && [ $rb -eq 0 ] ) && "
            "cat '%s/a/inclined_plane.csv' > '%s/all.csv' && "

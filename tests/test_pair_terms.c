@@ -111,10 +111,12 @@ static const char *const FIELD[10] = {"drho", "ax",    "ay",   "xsx", "xsy",
                                       "du",   "sigma", "wpow", "wfx", "wfy"};
 
 static void rates_alloc(rates *r, size_t n) {
-  for (int k = 0; k < 10; k++) r->f[k] = calloc(n, sizeof(double));
+  for (int k = 0; k < 10; k++)
+    r->f[k] = calloc(n, sizeof(double));
 }
 static void rates_free(rates *r) {
-  for (int k = 0; k < 10; k++) free(r->f[k]);
+  for (int k = 0; k < 10; k++)
+    free(r->f[k]);
 }
 
 /* ---- the naive oracle, from the equations ---------------------------------------- */
@@ -127,9 +129,8 @@ static double min_image(double d, const sph_force_params *fp) {
 }
 
 /* the pair (i, j): separation, h_ij, gradient of the piecewise kernel */
-static int pair(const sph_particles *p, const sph_force_params *fp, size_t i, size_t j,
-                double *dx, double *dy, double *r, double *hij, double *w, double *gx,
-                double *gy) {
+static int pair(const sph_particles *p, const sph_force_params *fp, size_t i, size_t j, double *dx,
+                double *dy, double *r, double *hij, double *w, double *gx, double *gy) {
   *dx = min_image(p->x[i] - p->x[j], fp);
   *dy = p->y[i] - p->y[j];
   *r = sqrt(*dx * *dx + *dy * *dy);
@@ -183,7 +184,8 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
   const int stress = fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps;
   if (stress) oracle_stress(p, fp, txx, txy, tyy);
   for (size_t i = 0; i < n; i++) {
-    for (int k = 0; k < 10; k++) o->f[k][i] = 0.0;
+    for (int k = 0; k < 10; k++)
+      o->f[k][i] = 0.0;
     if (p->kind[i] == SPH_KIND_MIRROR || (p->flags[i] & SPH_FLAG_REPULSIVE)) continue;
     const int fluid = p->kind[i] == SPH_KIND_FLUID;
     const double rhoi = p->rho[i], ci = sph_eos_sound_speed(&fp->eos, rhoi);
@@ -194,8 +196,8 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
       const double mj = p->mass[j], rhoj = p->rho[j];
       const double vx = p->vx[i] - p->vx[j], vy = p->vy[i] - p->vy[j];
       const double vg = vx * gx + vy * gy, vr = vx * dx + vy * dy;
-      drho += mj * vg;                                   /* B eq. 2 */
-      sig = fmax(sig, fabs(hij * vr) / (r * r));         /* B §2.6 */
+      drho += mj * vg;                           /* B eq. 2 */
+      sig = fmax(sig, fabs(hij * vr) / (r * r)); /* B §2.6 */
       if (!fluid && !(fp->ledger && p->kind[j] == SPH_KIND_FLUID)) continue;
       double P = p->p[i] / (rhoi * rhoi) + p->p[j] / (rhoj * rhoj);
       if ((fp->alpha != 0 || fp->beta != 0) && vr < 0) { /* A eq. 15-16 */
@@ -243,7 +245,8 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
       }
     }
     const double v[10] = {drho, ax, ay, fp->xsph * xs, fp->xsph * ys, du, sig, wpow, wfx, wfy};
-    for (int k = 0; k < 10; k++) o->f[k][i] = v[k];
+    for (int k = 0; k < 10; k++)
+      o->f[k][i] = v[k];
   }
   free(txx);
   free(txy);
@@ -267,7 +270,8 @@ static void run_loop(const sph_particles *p0, const sph_force_params *fp0, sph_f
   sph_force_params fp = *fp0;
   fp.loop = loop;
   double hmax = fp.h;
-  for (size_t i = 0; i < p.n; i++) hmax = fmax(hmax, p.h[i]);
+  for (size_t i = 0; i < p.n; i++)
+    hmax = fmax(hmax, p.h[i]);
   const double support = 2.0 * (fp.var_h ? hmax : fp.h);
   sph_grid g;
   sph_grid_init(&g);
@@ -277,16 +281,17 @@ static void run_loop(const sph_particles *p0, const sph_force_params *fp0, sph_f
   CU_ASSERT_FATAL(rc == 0);
   sph_nlist l;
   sph_nlist_init(&l);
-  CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, support, 0.0, fp.periodic ? fp.period : 0.0,
-                                  &err) == 0);
+  CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, support, 0.0, fp.periodic ? fp.period : 0.0, &err) ==
+                  0);
   sph_force_work w;
   memset(&w, 0, sizeof w);
   CU_ASSERT_FATAL(sph_forces_evaluate(&p, &l, &fp, &w, &err) == 0);
   for (size_t i = 0; i < p.n; i++) {
     const size_t id = (size_t)p.id[i];
-    const double v[10] = {p.drho[i], p.ax[i], p.ay[i],    p.xsx[i], p.xsy[i],
+    const double v[10] = {p.drho[i], p.ax[i],    p.ay[i],   p.xsx[i], p.xsy[i],
                           p.du[i],   w.sigma[i], w.wpow[i], w.wfx[i], w.wfy[i]};
-    for (int k = 0; k < 10; k++) o->f[k][id] = v[k];
+    for (int k = 0; k < 10; k++)
+      o->f[k][id] = v[k];
   }
   sph_force_work_free(&w);
   sph_nlist_free(&l);
@@ -345,7 +350,8 @@ static void test_oracle_every_term_set(void) {
         if (avx) CU_ASSERT(memcmp(r[1].f[k], r[2].f[k], bytes) == 0); /* lane flavours */
         if (F & (32 | 64)) CU_ASSERT(memcmp(r[0].f[k], r[1].f[k], bytes) == 0);
       }
-      for (int m = 0; m < 3; m++) rates_free(&r[m]);
+      for (int m = 0; m < 3; m++)
+        rates_free(&r[m]);
       rates_free(&o);
       sph_particles_free(&p);
     }
@@ -361,12 +367,14 @@ static int same(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
 
 /* v4e and (if present) v4x give the bits of v1 in every lane: each term is
  * evaluated on four different argument sets at once. */
-#define LANES_AGREE(call1, callv)                                                            \
-  do {                                                                                       \
-    double want[4], got[4];                                                                  \
-    for (int q = 0; q < 4; q++) want[q] = call1;                                             \
-    v4e_store(got, callv);                                                                   \
-    for (int q = 0; q < 4; q++) CU_ASSERT(same(got[q], want[q]));                            \
+#define LANES_AGREE(call1, callv)                                                                  \
+  do {                                                                                             \
+    double want[4], got[4];                                                                        \
+    for (int q = 0; q < 4; q++)                                                                    \
+      want[q] = call1;                                                                             \
+    v4e_store(got, callv);                                                                         \
+    for (int q = 0; q < 4; q++)                                                                    \
+      CU_ASSERT(same(got[q], want[q]));                                                            \
   } while (0)
 
 static void test_pair_symmetry(void) {
@@ -427,21 +435,21 @@ static void test_pair_symmetry(void) {
 
     /* the lane flavours: four different pairs at once (scaled copies) */
     const double k4[4] = {1.0, 0.9, 0.8, 0.7};
-#define V4(e) v4e_set((e) * k4[0], (e) * k4[1], (e) * k4[2], (e) * k4[3])
-#define S(e) ((e) * k4[q])
+#define V4(e) v4e_set((e)*k4[0], (e)*k4[1], (e)*k4[2], (e)*k4[3])
+#define S(e) ((e)*k4[q])
     LANES_AGREE(continuity_v1(S(m), S(dvx), S(dvy), S(gx), S(gy)),
                 continuity_v4e(V4(m), V4(dvx), V4(dvy), V4(gx), V4(gy)));
     LANES_AGREE(signal_v1(S(h), S(vr), S(inv_r2)), signal_v4e(V4(h), V4(vr), V4(inv_r2)));
-    LANES_AGREE(artificial_viscosity_v1(S(vr), S(h), S(r2), S(eta2), S(ci), S(cj), -0.08, 0.5,
-                                        S(irb)),
-                artificial_viscosity_v4e(V4(vr), V4(h), V4(r2), V4(eta2), V4(ci), V4(cj),
-                                         v4e_all(-0.08), v4e_all(0.5), V4(irb)));
-    LANES_AGREE(morris_factor_v1(S(m), 2e-4, S(f), S(r2), S(rhoi), S(rhoj), S(eta2)),
-                morris_factor_v4e(V4(m), v4e_all(2e-4), V4(f), V4(r2), V4(rhoi), V4(rhoj),
-                                  V4(eta2)));
-    LANES_AGREE(stress_heat_v1(S(m), S(txx), S(txy), S(tyy), S(dvx), S(dvy), S(gx), S(gy)),
-                stress_heat_v4e(V4(m), V4(txx), V4(txy), V4(tyy), V4(dvx), V4(dvy), V4(gx),
-                                V4(gy)));
+    LANES_AGREE(
+        artificial_viscosity_v1(S(vr), S(h), S(r2), S(eta2), S(ci), S(cj), -0.08, 0.5, S(irb)),
+        artificial_viscosity_v4e(V4(vr), V4(h), V4(r2), V4(eta2), V4(ci), V4(cj), v4e_all(-0.08),
+                                 v4e_all(0.5), V4(irb)));
+    LANES_AGREE(
+        morris_factor_v1(S(m), 2e-4, S(f), S(r2), S(rhoi), S(rhoj), S(eta2)),
+        morris_factor_v4e(V4(m), v4e_all(2e-4), V4(f), V4(r2), V4(rhoi), V4(rhoj), V4(eta2)));
+    LANES_AGREE(
+        stress_heat_v1(S(m), S(txx), S(txy), S(tyy), S(dvx), S(dvy), S(gx), S(gy)),
+        stress_heat_v4e(V4(m), V4(txx), V4(txy), V4(tyy), V4(dvx), V4(dvy), V4(gx), V4(gy)));
     { /* the kernel at four radii */
       double rq[4], iq[4], wq[4], fq[4], wl[4], fl[4];
       for (int q = 0; q < 4; q++) {
@@ -454,7 +462,8 @@ static void test_pair_symmetry(void) {
                     v4e_all(inv_h), v4e_all(sigma), v4e_all(sigma * inv_h), &W, &Fv);
       v4e_store(wl, W);
       v4e_store(fl, Fv);
-      for (int q = 0; q < 4; q++) CU_ASSERT(same(wl[q], wq[q]) && same(fl[q], fq[q]));
+      for (int q = 0; q < 4; q++)
+        CU_ASSERT(same(wl[q], wq[q]) && same(fl[q], fq[q]));
     }
 #undef S
 #undef V4

@@ -65,7 +65,8 @@ static void check_shares(const size_t *prefix, size_t n, size_t max_item) {
 static void test_share_uniform(void) {
   enum { N = 1001 };
   size_t prefix[N + 1];
-  for (size_t i = 0; i <= N; i++) prefix[i] = 3 * i;
+  for (size_t i = 0; i <= N; i++)
+    prefix[i] = 3 * i;
   check_shares(prefix, N, 3);
   /* uniform cost: the equal-count split */
   for (int parts = 1; parts <= 4; parts++)
@@ -81,7 +82,8 @@ static void test_share_skewed(void) {
   enum { N = 2000 };
   size_t prefix[N + 1];
   prefix[0] = 7; /* a prefix need not start at 0 */
-  for (size_t i = 0; i < N; i++) prefix[i + 1] = prefix[i] + (i < 400 ? 90 : 10);
+  for (size_t i = 0; i < N; i++)
+    prefix[i + 1] = prefix[i] + (i < 400 ? 90 : 10);
   check_shares(prefix, N, 90);
   /* two parts: 36000 of the 52000 lie in the dense block, so the first
    * part ends inside it, at 26000 / 90 = 289 */
@@ -108,7 +110,8 @@ static void test_slice_in_team(void) {
   size_t *prefix = malloc((N + 1) * sizeof *prefix);
   CU_ASSERT_PTR_NOT_NULL_FATAL(prefix);
   prefix[0] = 0;
-  for (size_t i = 0; i < N; i++) prefix[i + 1] = prefix[i] + 1 + (i * 7919) % 50;
+  for (size_t i = 0; i < N; i++)
+    prefix[i + 1] = prefix[i] + 1 + (i * 7919) % 50;
   for (int nth = 1; nth <= 4; nth++) {
     size_t got[4][2], uni[4][2];
     int team = 0;
@@ -150,7 +153,8 @@ static void test_arrays_block(void) {
   size_t size[K];
   void *start[K];
   const size_t cap = 3001;
-  for (size_t k = 0; k < K; k++) size[k] = k % 3 == 0 ? 8 : k % 3 == 1 ? 4 : 1;
+  for (size_t k = 0; k < K; k++)
+    size[k] = k % 3 == 0 ? 8 : k % 3 == 1 ? 4 : 1;
   char *block = sph_arrays_block(cap, K, size, start);
   CU_ASSERT_PTR_NOT_NULL_FATAL(block);
   for (size_t k = 0; k < K; k++) {
@@ -186,8 +190,10 @@ static void test_arrays_regrow(void) {
   CU_ASSERT_FATAL(sph_arrays_regrow(&block, 1000, 10, 2, size, field) == 0);
   CU_ASSERT(block != old);
   int kept = 1, zero = 1;
-  for (int i = 0; i < 10; i++) kept &= a[i] == 0.5 * i && b[i] == -i;
-  for (int i = 10; i < 1000; i++) zero &= a[i] == 0.0 && b[i] == 0;
+  for (int i = 0; i < 10; i++)
+    kept &= a[i] == 0.5 * i && b[i] == -i;
+  for (int i = 10; i < 1000; i++)
+    zero &= a[i] == 0.0 && b[i] == 0;
   CU_ASSERT(kept); /* the first `keep` elements carried over */
   CU_ASSERT(zero); /* the rest zero */
   CU_ASSERT_EQUAL((uintptr_t)a % 4096, 0);
@@ -215,7 +221,8 @@ static void steal_run(sph_steal *s, const size_t *prefix, size_t n, int parts, i
     size_t lo, hi;
     while (sph_steal_next(s, grain, &lo, &hi)) {
       if (hi - lo < grain) small++; /* allowed only for the last rows of a slice */
-      for (size_t i = lo; i < hi; i++) __atomic_fetch_add(&count[i], 1, __ATOMIC_RELAXED);
+      for (size_t i = lo; i < hi; i++)
+        __atomic_fetch_add(&count[i], 1, __ATOMIC_RELAXED);
     }
     if (sph_steal_next(s, grain, &lo, &hi)) small += 1000; /* nothing after the end */
   }
@@ -229,7 +236,8 @@ static void test_steal_once(void) {
   CU_ASSERT_PTR_NOT_NULL_FATAL(prefix);
   CU_ASSERT_PTR_NOT_NULL_FATAL(count);
   prefix[0] = 0;
-  for (size_t i = 0; i < N; i++) prefix[i + 1] = prefix[i] + (i < 3000 ? 60 : 8);
+  for (size_t i = 0; i < N; i++)
+    prefix[i + 1] = prefix[i] + (i < 3000 ? 60 : 8);
   sph_steal s = {0};
   for (int parts = 1; parts <= 5; parts++)
     for (int nth = 1; nth <= 4; nth++)
@@ -238,7 +246,8 @@ static void test_steal_once(void) {
         int small = 0;
         steal_run(&s, parts % 2 ? prefix : NULL, N, parts, nth, grain, count, &small);
         int once = 1;
-        for (size_t i = 0; i < N; i++) once &= count[i] == 1;
+        for (size_t i = 0; i < N; i++)
+          once &= count[i] == 1;
         CU_ASSERT(once);
         /* a chunk below the grain empties its slice: one per slice at most */
         CU_ASSERT(small <= parts);
@@ -288,7 +297,8 @@ static void test_steal_takes_over(void) {
       while (!__atomic_load_n(&done, __ATOMIC_ACQUIRE)) {
       }
     size_t lo, hi;
-    while (sph_steal_next(&s, 16, &lo, &hi)) taken[t] += hi - lo;
+    while (sph_steal_next(&s, 16, &lo, &hi))
+      taken[t] += hi - lo;
     if (t == 0) __atomic_store_n(&done, 1, __ATOMIC_RELEASE);
   }
   CU_ASSERT_EQUAL(taken[0], N);
@@ -323,7 +333,8 @@ static void pass_by_thread0(sph_steal *s, const size_t *prefix, size_t n, int nt
 /* The first i with prefix[i] >= target, by a plain scan. */
 static size_t scan_at(const size_t *prefix, size_t n, size_t target) {
   size_t i = 0;
-  while (i < n && prefix[i] < target) i++;
+  while (i < n && prefix[i] < target)
+    i++;
   return i;
 }
 
@@ -338,7 +349,8 @@ static void test_balance_learn(void) {
   CU_ASSERT_PTR_NOT_NULL_FATAL(prefix);
   CU_ASSERT_PTR_NOT_NULL_FATAL(count);
   prefix[0] = 0;
-  for (size_t i = 0; i < N; i++) prefix[i + 1] = prefix[i] + (i < 1000 ? 5 : 1);
+  for (size_t i = 0; i < N; i++)
+    prefix[i + 1] = prefix[i] + (i < 1000 ? 5 : 1);
   const size_t total = prefix[N];
   sph_steal s = {0};
   sph_balance_reset();
@@ -380,7 +392,8 @@ static void test_balance_learn(void) {
     memset(count, 0, N * sizeof *count);
     int small = 0, once = 1;
     steal_run(&s, prefix, N, 2, nth, 8, count, &small);
-    for (size_t i = 0; i < N; i++) once &= count[i] == 1;
+    for (size_t i = 0; i < N; i++)
+      once &= count[i] == 1;
     CU_ASSERT(once);
   }
   /* other team sizes split equally */
@@ -392,7 +405,8 @@ static void test_balance_learn(void) {
     CU_ASSERT_EQUAL(s.slot[t].range, (uint64_t)hi << 32 | lo);
   }
   /* never below half an equal share, and the shares sum to 1 */
-  for (int k = 0; k < 200; k++) pass_by_thread0(&s, prefix, N, 2);
+  for (int k = 0; k < 200; k++)
+    pass_by_thread0(&s, prefix, N, 2);
 #ifdef _OPENMP
   CU_ASSERT(sph_balance_share(1, 2) >= 0.25 - 1e-15 && sph_balance_share(1, 2) < 0.26);
 #endif
@@ -405,17 +419,17 @@ static void test_balance_learn(void) {
 }
 
 int main(void) {
-  CU_TestInfo tests[] = {{"share: uniform cost, the equal-count split", test_share_uniform},
-                         {"share: a dense block is split by cost", test_share_skewed},
-                         {"share: zero cost and no items", test_share_degenerate},
-                         {"slice: each thread of a team takes its share", test_slice_in_team},
-                         {"steal: every row once, for any slices and team", test_steal_once},
-                         {"steal: one thread takes its slice in order", test_steal_alone},
-                         {"steal: an idle thread's slice is taken over", test_steal_takes_over},
-                         {"balance: the split learns each thread's share", test_balance_learn},
-                         {"arrays block: staggered, disjoint, zeroed", test_arrays_block},
-                         {"arrays regrow: keeps the first elements, zeroes the rest",
-                          test_arrays_regrow},
-                         CU_TEST_INFO_NULL};
+  CU_TestInfo tests[] = {
+      {"share: uniform cost, the equal-count split", test_share_uniform},
+      {"share: a dense block is split by cost", test_share_skewed},
+      {"share: zero cost and no items", test_share_degenerate},
+      {"slice: each thread of a team takes its share", test_slice_in_team},
+      {"steal: every row once, for any slices and team", test_steal_once},
+      {"steal: one thread takes its slice in order", test_steal_alone},
+      {"steal: an idle thread's slice is taken over", test_steal_takes_over},
+      {"balance: the split learns each thread's share", test_balance_learn},
+      {"arrays block: staggered, disjoint, zeroed", test_arrays_block},
+      {"arrays regrow: keeps the first elements, zeroes the rest", test_arrays_regrow},
+      CU_TEST_INFO_NULL};
   return sph_test_main("parallel", tests);
 }

@@ -36,15 +36,15 @@
 #include <sys/stat.h>
 
 #include "colormap.h"
-#include "io/csv.h"
+#include "core/particles.h"
 #include "figure.h"
 #include "font.h"
 #include "inputs.h"
+#include "io/csv.h"
+#include "io/snapshot.h"
 #include "layout.h"
 #include "marks.h"
-#include "core/particles.h"
 #include "snapdata.h"
-#include "io/snapshot.h"
 #include "testutil.h"
 #include "ticks.h"
 
@@ -348,7 +348,8 @@ static void test_ticks(void) {
 static void test_csv(void) {
   sph_csv t;
   sph_error err;
-  CU_ASSERT_EQUAL_FATAL(sph_csv_read(sph_test_src("tests/data/render/experiment.csv"), &t, &err), 0);
+  CU_ASSERT_EQUAL_FATAL(sph_csv_read(sph_test_src("tests/data/render/experiment.csv"), &t, &err),
+                        0);
   CU_ASSERT_EQUAL(t.ncol, 2);
   CU_ASSERT_EQUAL(t.nrow, 8);
   CU_ASSERT_STRING_EQUAL(t.names[1], "Z");
@@ -652,18 +653,19 @@ static void test_plot_log(void) {
    * quarter of the box apart and compare the spacing of the rows */
   const rcolor c0 = rmark_palette(0);
   int rows[3], cols[3] = {w / 4, w / 2, 3 * w / 4};
-  for (int k = 0; k < 3; k++) rows[k] = first_row_of(img, w, h, cols[k], c0.r, c0.g, c0.b);
+  for (int k = 0; k < 3; k++)
+    rows[k] = first_row_of(img, w, h, cols[k], c0.r, c0.g, c0.b);
   CU_ASSERT(rows[0] > 0 && rows[1] > rows[0] && rows[2] > rows[1]);
   CU_ASSERT(abs((rows[1] - rows[0]) - (rows[2] - rows[1])) <= 2); /* straight */
   free(img);
   check_golden(path_in(tmp, "log.png"), "plot_log.png", 1);
   /* a linear y axis over the same data is not straight */
-  snprintf(args, sizeof args, "plot '%s' --x n --y err --xlog --size 640x420 -o semilog.png",
-           data);
+  snprintf(args, sizeof args, "plot '%s' --x n --y err --xlog --size 640x420 -o semilog.png", data);
   CU_ASSERT_EQUAL_FATAL(render(args), 0);
   img = read_png(path_in(tmp, "semilog.png"), &w, &h);
   CU_ASSERT_PTR_NOT_NULL_FATAL(img);
-  for (int k = 0; k < 3; k++) rows[k] = first_row_of(img, w, h, cols[k], c0.r, c0.g, c0.b);
+  for (int k = 0; k < 3; k++)
+    rows[k] = first_row_of(img, w, h, cols[k], c0.r, c0.g, c0.b);
   CU_ASSERT(abs((rows[1] - rows[0]) - (rows[2] - rows[1])) > 10);
   free(img);
   /* errors */

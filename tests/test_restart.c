@@ -32,8 +32,8 @@
 #include <string.h>
 
 #include "core/particles.h"
-#include "snapcmp.h"
 #include "io/snapshot.h"
+#include "snapcmp.h"
 #include "testutil.h"
 
 static char *tmp;

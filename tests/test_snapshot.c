@@ -21,9 +21,9 @@
 #include <unistd.h>
 
 #include "core/particles.h"
+#include "core/version.h"
 #include "io/snapshot.h"
 #include "testutil.h"
-#include "core/version.h"
 
 #define N_TEST 347
 
@@ -82,7 +82,8 @@ static void build_store(sph_particles *p, size_t n) {
   size_t *perm = malloc(n * sizeof *perm);
   void *work = malloc(n * sizeof(double));
   CU_ASSERT_FATAL(perm && work);
-  for (size_t i = 0; i < n; i++) perm[i] = i;
+  for (size_t i = 0; i < n; i++)
+    perm[i] = i;
   for (size_t i = n; i > 1; i--) {
     size_t j = (size_t)(lcg(&s) % i), t = perm[i - 1];
     perm[i - 1] = perm[j];
@@ -212,7 +213,8 @@ static void test_round_trip(void) {
   static const char *const names[] = {"x",    "y", "vx", "vy",   "rho", "p",
                                       "mass", "h", "u",  "kind", "id",  "free_surface"};
   CU_ASSERT_FATAL(sph_snapshot_field_count(s) == 12);
-  for (size_t i = 0; i < 12; i++) CU_ASSERT_STRING_EQUAL(sph_snapshot_field_name(s, i), names[i]);
+  for (size_t i = 0; i < 12; i++)
+    CU_ASSERT_STRING_EQUAL(sph_snapshot_field_name(s, i), names[i]);
   CU_ASSERT_PTR_NULL(sph_snapshot_field_name(s, 12));
 
   rc = sph_snapshot_read_particles(s, &r, &err);
@@ -232,7 +234,8 @@ static void test_round_trip(void) {
   CU_ASSERT(SAME_BITS(r.id, q.id, N_TEST));
   CU_ASSERT(signbit(r.vx[0]) && r.vx[0] == 0.0);
   int flags_ok = 1;
-  for (size_t k = 0; k < N_TEST; k++) flags_ok &= r.flags[k] == (q.flags[k] & 1u);
+  for (size_t k = 0; k < N_TEST; k++)
+    flags_ok &= r.flags[k] == (q.flags[k] & 1u);
   CU_ASSERT(flags_ok);
 
   /* read_field converts every type to double */
@@ -241,11 +244,14 @@ static void test_round_trip(void) {
   CU_ASSERT(sph_snapshot_read_field(s, "rho", f, &err) == 0 && SAME_BITS(f, q.rho, N_TEST));
   int kind_ok = 1, fs_ok = 1, id_ok = 1;
   CU_ASSERT(sph_snapshot_read_field(s, "kind", f, &err) == 0);
-  for (size_t k = 0; k < N_TEST; k++) kind_ok &= f[k] == (double)q.kind[k];
+  for (size_t k = 0; k < N_TEST; k++)
+    kind_ok &= f[k] == (double)q.kind[k];
   CU_ASSERT(sph_snapshot_read_field(s, "free_surface", f, &err) == 0);
-  for (size_t k = 0; k < N_TEST; k++) fs_ok &= f[k] == (double)(q.flags[k] & 1u);
+  for (size_t k = 0; k < N_TEST; k++)
+    fs_ok &= f[k] == (double)(q.flags[k] & 1u);
   CU_ASSERT(sph_snapshot_read_field(s, "id", f, &err) == 0);
-  for (size_t k = 0; k < N_TEST; k++) id_ok &= f[k] == (double)k;
+  for (size_t k = 0; k < N_TEST; k++)
+    id_ok &= f[k] == (double)k;
   CU_ASSERT(kind_ok && fs_ok && id_ok);
   free(f);
 
@@ -307,7 +313,8 @@ static void test_free_surface_optional(void) {
   free(f);
   CU_ASSERT_FATAL(sph_snapshot_read_particles(s, &r, &err) == 0);
   int zero = 1;
-  for (size_t k = 0; k < r.n; k++) zero &= r.flags[k] == 0;
+  for (size_t k = 0; k < r.n; k++)
+    zero &= r.flags[k] == 0;
   CU_ASSERT(zero);
   sph_particles_free(&r);
   sph_snapshot_close(s);
@@ -401,7 +408,8 @@ static void test_bad_files(void) {
 
   unsigned char junk[4096];
   uint64_t st = 99;
-  for (size_t i = 0; i < sizeof junk; i++) junk[i] = (unsigned char)lcg(&st);
+  for (size_t i = 0; i < sizeof junk; i++)
+    junk[i] = (unsigned char)lcg(&st);
   spit(garbage, junk, sizeof junk);
   expect_open_failure(garbage, "not an HDF5 file");
   spit(garbage, "", 0);
@@ -444,8 +452,8 @@ static void test_broken_contents(void) {
   CU_ASSERT(H5Ldelete(f, "/particles/vy", H5P_DEFAULT) >= 0);
   hsize_t dims[1] = {49};
   hid_t sp = H5Screate_simple(1, dims, NULL);
-  hid_t d = H5Dcreate2(f, "/particles/vy", H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT,
-                       H5P_DEFAULT);
+  hid_t d =
+      H5Dcreate2(f, "/particles/vy", H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   CU_ASSERT(d >= 0);
   H5Dclose(d);
   H5Sclose(sp);
@@ -543,8 +551,8 @@ static void test_xdmf(void) {
   CU_ASSERT(contains(text, "<Time Value=\"0\"/>"));
   CU_ASSERT(contains(text, "<Time Value=\"0.10000000000000001\"/>"));
   CU_ASSERT(contains(text, "<Time Value=\"0.30000000000000004\"/>"));
-  static const char *const fields[] = {"x", "y", "vx",   "vy", "rho", "p",
-                                       "mass", "h", "u", "kind", "id", "free_surface"};
+  static const char *const fields[] = {"x",    "y", "vx", "vy",   "rho", "p",
+                                       "mass", "h", "u",  "kind", "id",  "free_surface"};
   for (int i = 0; i < 3; i++)
     for (int k = 0; k < 12; k++) {
       char ref[128];

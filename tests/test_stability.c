@@ -50,8 +50,8 @@
 
 #include "case/case.h"
 #include "physics/eos.h"
-#include "solver/sim.h"
 #include "snapcmp.h"
+#include "solver/sim.h"
 #include "testutil.h"
 
 static char *tmp;
@@ -342,25 +342,18 @@ static int step_after(enum offence what, int wall, sph_error *err, long long *id
   sph_particles *p = sph_sim_particles(s);
   const int kind = wall ? SPH_KIND_WALL : SPH_KIND_FLUID;
   size_t i = wall ? 0 : p->n / 2;
-  while (i < p->n && p->kind[i] != kind) i++;
+  while (i < p->n && p->kind[i] != kind)
+    i++;
   CU_ASSERT_FATAL(i < p->n);
   *id = (long long)p->id[i];
   double box[4];
   sph_sim_domain(s, box);
   const double lim = c.density_limit;
   switch (what) {
-  case DENSE:
-    p->rho[i] = c.rho0 * (1.0 + 1.5 * lim);
-    break;
-  case THIN:
-    p->rho[i] = c.rho0 * (1.0 - 1.5 * lim);
-    break;
-  case OUTSIDE:
-    p->x[i] = box[1] + 0.5 * (box[1] - box[0]);
-    break;
-  case NOT_FINITE:
-    p->vy[i] = NAN;
-    break;
+  case DENSE: p->rho[i] = c.rho0 * (1.0 + 1.5 * lim); break;
+  case THIN: p->rho[i] = c.rho0 * (1.0 - 1.5 * lim); break;
+  case OUTSIDE: p->x[i] = box[1] + 0.5 * (box[1] - box[0]); break;
+  case NOT_FINITE: p->vy[i] = NAN; break;
   }
   const int rc = sph_sim_step(s, c.t_end, err);
   sph_sim_free(s);

@@ -22,11 +22,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "solver/forces.h"
-#include "neighbours/grid.h"
 #include "core/particles.h"
-#include "testutil.h"
+#include "neighbours/grid.h"
 #include "physics/turbulence.h"
+#include "solver/forces.h"
+#include "testutil.h"
 
 static const double CS = 0.12, CI = 0.00066;
 
@@ -152,11 +152,10 @@ static void test_sps_dam_break_golden(void) {
 }
 
 int main(void) {
-  CU_TestInfo tests[] = {{"Smagorinsky stress for simple shear by hand", test_hand_shear},
-                         {"lattice: zero for translation and rotation, hand value for shear",
-                          test_lattice},
-                         {"coarse SPS dam break against its golden front",
-                          test_sps_dam_break_golden},
-                         CU_TEST_INFO_NULL};
+  CU_TestInfo tests[] = {
+      {"Smagorinsky stress for simple shear by hand", test_hand_shear},
+      {"lattice: zero for translation and rotation, hand value for shear", test_lattice},
+      {"coarse SPS dam break against its golden front", test_sps_dam_break_golden},
+      CU_TEST_INFO_NULL};
   return sph_test_main("turbulence", tests);
 }

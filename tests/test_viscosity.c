@@ -67,9 +67,9 @@
 
 #include "analysis/analytic.h"
 #include "case/case.h"
-#include "solver/forces.h"
-#include "neighbours/grid.h"
 #include "core/particles.h"
+#include "neighbours/grid.h"
+#include "solver/forces.h"
 #include "solver/sim.h"
 #include "testutil.h"
 
@@ -207,7 +207,8 @@ static void test_strain_rate_lattice(void) {
   check_lattice("stretch", lattice_strain(v_stretch, 0, 0, 2.0 * G * K, 0.0, -2.0 * G * K, G * K),
                 in);
   check_lattice("expansion",
-                lattice_strain(v_expand, 0, 0, 2.0 / 3.0 * G * K, 0.0, 2.0 / 3.0 * G * K, G * K), in);
+                lattice_strain(v_expand, 0, 0, 2.0 / 3.0 * G * K, 0.0, 2.0 / 3.0 * G * K, G * K),
+                in);
   check_lattice("rotation", lattice_strain(v_rotate, 0, 0, 0.0, 0.0, 0.0, G), in);
   lattice_result t = lattice_strain(v_translate, 0, 0, 0.0, 0.0, 0.0, 1.0);
   check_lattice("translation", t, in);
@@ -217,8 +218,8 @@ static void test_strain_rate_lattice(void) {
                 (size_t)NL * (NL - 6));
   /* with the kernel-gradient correction: the continuum values, K = 1 */
   check_lattice("shear, corrected", lattice_strain(v_shear, 0, 1, 0.0, G, 0.0, G), in);
-  check_lattice("stretch, corrected",
-                lattice_strain(v_stretch, 0, 1, 2.0 * G, 0.0, -2.0 * G, G), in);
+  check_lattice("stretch, corrected", lattice_strain(v_stretch, 0, 1, 2.0 * G, 0.0, -2.0 * G, G),
+                in);
   check_lattice("rotation, corrected", lattice_strain(v_rotate, 0, 1, 0.0, 0.0, 0.0, G), in);
   printf("\n");
 }

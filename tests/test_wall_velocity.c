@@ -31,10 +31,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "walls/boundary.h"
 #include "case/case.h"
 #include "core/particles.h"
 #include "testutil.h"
+#include "walls/boundary.h"
 #include "walls/wall_velocity.h"
 
 #define DX 0.01
@@ -109,7 +109,8 @@ static void test_unstaggered_tank(void) {
   }
   qsort(pts, p.n, 2 * sizeof *pts, cmp_point);
   size_t dup = 0;
-  for (size_t i = 1; i < p.n; i++) dup += cmp_point(pts + 2 * (i - 1), pts + 2 * i) == 0;
+  for (size_t i = 1; i < p.n; i++)
+    dup += cmp_point(pts + 2 * (i - 1), pts + 2 * i) == 0;
   CU_ASSERT_EQUAL(dup, 0);
   /* the corner squares below-left and below-right: 3 x 3 cells each */
   size_t corner = 0;
@@ -196,8 +197,8 @@ static void test_ghost_linear(void) {
     sph_wall_velocity_work_free(&w);
     size_t checked;
     const double worst = check_ghosts(&p, &f, moving[m][0], moving[m][1], g, g + p.n, &checked);
-    printf("\n  linear field, wall velocity (%g, %g): %zu ghosts, worst error %.2e m/s", moving[m][0],
-           moving[m][1], checked, worst);
+    printf("\n  linear field, wall velocity (%g, %g): %zu ghosts, worst error %.2e m/s",
+           moving[m][0], moving[m][1], checked, worst);
     CU_ASSERT_EQUAL(checked, 4 * 16);
     CU_ASSERT(worst < 1e-12);
     /* the far no-slip particle: its own (wall) velocity */
@@ -271,7 +272,10 @@ static void test_case_keys(void) {
   int rc = sph_case_load(base, set2, 2, &c, &err);
   printf("\n  morris viscosity with extrapolated_velocity: %s\n", rc ? err.msg : "(accepted)");
   CU_ASSERT(rc != 0);
-  if (rc) CU_ASSERT(strstr(err.msg, "geometry.walls[0].extrapolated_velocity: acts in the strain-rate pass") != NULL);
+  if (rc)
+    CU_ASSERT(
+        strstr(err.msg, "geometry.walls[0].extrapolated_velocity: acts in the strain-rate pass") !=
+        NULL);
 }
 
 int main(void) {

@@ -23,8 +23,7 @@
 #include "solver/sim.h"
 #include "testutil.h"
 
-static void run_model(const char *boundary, double start_bound, double bound,
-                      size_t expect_walls) {
+static void run_model(const char *boundary, double start_bound, double bound, size_t expect_walls) {
   char set[256];
   snprintf(set, sizeof set, "geometry.tank={x: [0.0, 0.2], y: [0.0, 0.15], boundary: %s}",
            boundary);

@@ -16,10 +16,10 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "physics/kernel.h" /* SPH_PI */
-#include "core/particles.h"
-#include "testutil.h"
 #include "analysis/wave_face.h"
+#include "core/particles.h"
+#include "physics/kernel.h" /* SPH_PI */
+#include "testutil.h"
 
 static const double DX = 0.001, LEVEL = 0.010, TOP = 0.022;
 static const double X_FOOT = 0.100; /* the face meets the still level here */
@@ -36,10 +36,13 @@ static void build(sph_particles *p, double theta_deg, int reversed) {
     const long i = m % nx, j = m / nx;
     const double x = (i + 0.5) * DX, y = (j + 0.5) * DX;
     const int in = y < LEVEL || (x >= 0.05 && x <= X_FOOT + (y - LEVEL) * t);
-    if (in) CU_ASSERT_FATAL(sph_particles_add(p, x, y, 0, 0, 1000, 1e-3, 1.3 * DX, SPH_KIND_FLUID, &err) >= 0);
+    if (in)
+      CU_ASSERT_FATAL(
+          sph_particles_add(p, x, y, 0, 0, 1000, 1e-3, 1.3 * DX, SPH_KIND_FLUID, &err) >= 0);
   }
   /* a wall particle above everything: not fluid, so never the crest */
-  CU_ASSERT_FATAL(sph_particles_add(p, 0.0, 0.05, 0, 0, 1000, 1e-3, 1.3 * DX, SPH_KIND_WALL, &err) >= 0);
+  CU_ASSERT_FATAL(
+      sph_particles_add(p, 0.0, 0.05, 0, 0, 1000, 1e-3, 1.3 * DX, SPH_KIND_WALL, &err) >= 0);
 }
 
 static void test_known_angles(void) {
@@ -97,9 +100,9 @@ static void test_no_face(void) {
 }
 
 int main(void) {
-  CU_TestInfo tests[] = {{"a straight face at 60..120 degrees is measured within 3 degrees",
-                          test_known_angles},
-                         {"no face in still water; bad arguments are errors", test_no_face},
-                         CU_TEST_INFO_NULL};
+  CU_TestInfo tests[] = {
+      {"a straight face at 60..120 degrees is measured within 3 degrees", test_known_angles},
+      {"no face in still water; bad arguments are errors", test_no_face},
+      CU_TEST_INFO_NULL};
   return sph_test_main("wave_face", tests);
 }

@@ -68,7 +68,8 @@ static void test_second_wave(void) {
   CU_ASSERT_FATAL(sph_wave_number(2.0 * 3.14159265358979323846 / T, d, g, &k, &err) == 0);
   const double H = S * sph_paddle_transfer(SPH_PADDLE_FLAP, k * d);
   size_t i = 0;
-  while (i < rec.n && fabs(rec.eta[i]) < 0.05 * H) i++;
+  while (i < rec.n && fabs(rec.eta[i]) < 0.05 * H)
+    i++;
   size_t up[3];
   int nu = 0;
   for (i = i + 1; i < rec.n && nu < 3; i++)
@@ -80,8 +81,9 @@ static void test_second_wave(void) {
     if (rec.eta[i] < lo) lo = rec.eta[i];
   }
   const double h2 = hi - lo;
-  printf("\n  second wave at the gauge: %.3f m (t = %.1f .. %.1f s); linear theory %.3f m: %+.1f %%",
-         h2, rec.t[up[0]], rec.t[up[1]], H, 100 * (h2 - H) / H);
+  printf(
+      "\n  second wave at the gauge: %.3f m (t = %.1f .. %.1f s); linear theory %.3f m: %+.1f %%",
+      h2, rec.t[up[0]], rec.t[up[1]], H, 100 * (h2 - H) / H);
   CU_ASSERT(fabs(h2 - H) < 0.25 * H);
 }
 

@@ -110,7 +110,8 @@ long sph_test_csv(const char *path, const char *names, double **out) {
       continue;
     }
     out[k] = malloc((t.nrow ? t.nrow : 1) * sizeof(double));
-    for (size_t r = 0; r < t.nrow; r++) out[k][r] = t.data[r * t.ncol + (size_t)col];
+    for (size_t r = 0; r < t.nrow; r++)
+      out[k][r] = t.data[r * t.ncol + (size_t)col];
   }
   sph_csv_free(&t);
   return rc;

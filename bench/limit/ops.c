@@ -30,29 +30,38 @@ static double lanes(__m256d v) {
 /* Best of five timings of `iters` iterations of `body` (which updates the
  * chains v0..v7), per instruction; `per_iter` instructions an iteration.
  * The empty asm keeps the chains in registers and the work in the loop. */
-#define TIME(name, per_iter, body)                                                            \
-  do {                                                                                        \
-    double best = 1e30, s = 0.0;                                                              \
-    for (int r = 0; r < 5; r++) {                                                             \
-      __m256d v0 = _mm256_set1_pd(1.0), v1 = _mm256_set1_pd(1.1), v2 = _mm256_set1_pd(1.2),  \
-              v3 = _mm256_set1_pd(1.3), v4 = _mm256_set1_pd(1.4), v5 = _mm256_set1_pd(1.5),  \
-              v6 = _mm256_set1_pd(1.6), v7 = _mm256_set1_pd(1.7);                            \
-      const double t0 = now();                                                                \
-      for (long it = 0; it < iters; it++) {                                                   \
-        body;                                                                                 \
-        __asm__ volatile("" : "+x"(v0), "+x"(v1), "+x"(v2), "+x"(v3), "+x"(v4), "+x"(v5),     \
-                         "+x"(v6), "+x"(v7));                                                 \
-      }                                                                                       \
-      const double t = now() - t0;                                                            \
-      if (t < best) best = t;                                                                 \
-      s += lanes(v0) + lanes(v1) + lanes(v2) + lanes(v3) + lanes(v4) + lanes(v5) +            \
-           lanes(v6) + lanes(v7);                                                             \
-    }                                                                                         \
-    printf("%s %.4f%s\n", name, 1e9 * best / ((double)iters * (per_iter)),                    \
-           s == 12345.678 ? " !" : "");                                                       \
+#define TIME(name, per_iter, body)                                                                 \
+  do {                                                                                             \
+    double best = 1e30, s = 0.0;                                                                   \
+    for (int r = 0; r < 5; r++) {                                                                  \
+      __m256d v0 = _mm256_set1_pd(1.0), v1 = _mm256_set1_pd(1.1), v2 = _mm256_set1_pd(1.2),        \
+              v3 = _mm256_set1_pd(1.3), v4 = _mm256_set1_pd(1.4), v5 = _mm256_set1_pd(1.5),        \
+              v6 = _mm256_set1_pd(1.6), v7 = _mm256_set1_pd(1.7);                                  \
+      const double t0 = now();                                                                     \
+      for (long it = 0; it < iters; it++) {                                                        \
+        body;                                                                                      \
+        __asm__ volatile(""                                                                        \
+                         : "+x"(v0), "+x"(v1), "+x"(v2), "+x"(v3), "+x"(v4), "+x"(v5), "+x"(v6),   \
+                           "+x"(v7));                                                              \
+      }                                                                                            \
+      const double t = now() - t0;                                                                 \
+      if (t < best) best = t;                                                                      \
+      s += lanes(v0) + lanes(v1) + lanes(v2) + lanes(v3) + lanes(v4) + lanes(v5) + lanes(v6) +     \
+           lanes(v7);                                                                              \
+    }                                                                                              \
+    printf("%s %.4f%s\n", name, 1e9 * best / ((double)iters * (per_iter)),                         \
+           s == 12345.678 ? " !" : "");                                                            \
   } while (0)
 
-#define ALL8(f) f(v0); f(v1); f(v2); f(v3); f(v4); f(v5); f(v6); f(v7)
+#define ALL8(f)                                                                                    \
+  f(v0);                                                                                           \
+  f(v1);                                                                                           \
+  f(v2);                                                                                           \
+  f(v3);                                                                                           \
+  f(v4);                                                                                           \
+  f(v5);                                                                                           \
+  f(v6);                                                                                           \
+  f(v7)
 #define DIV(v) v = _mm256_div_pd(d, v)
 #define SQRT(v) v = _mm256_sqrt_pd(v)
 
@@ -83,14 +92,21 @@ static void mul_add12(long iters) {
     __m256d s0 = b, s1 = b, s2 = b, s3 = b, s4 = b, s5 = b;
     const double t0 = now();
     for (long it = 0; it < iters; it++) {
-      m0 = _mm256_mul_pd(m0, a); s0 = _mm256_add_pd(s0, b);
-      m1 = _mm256_mul_pd(m1, a); s1 = _mm256_add_pd(s1, b);
-      m2 = _mm256_mul_pd(m2, a); s2 = _mm256_add_pd(s2, b);
-      m3 = _mm256_mul_pd(m3, a); s3 = _mm256_add_pd(s3, b);
-      m4 = _mm256_mul_pd(m4, a); s4 = _mm256_add_pd(s4, b);
-      m5 = _mm256_mul_pd(m5, a); s5 = _mm256_add_pd(s5, b);
-      __asm__ volatile("" : "+x"(m0), "+x"(m1), "+x"(m2), "+x"(m3), "+x"(m4), "+x"(m5),
-                       "+x"(s0), "+x"(s1), "+x"(s2), "+x"(s3), "+x"(s4), "+x"(s5));
+      m0 = _mm256_mul_pd(m0, a);
+      s0 = _mm256_add_pd(s0, b);
+      m1 = _mm256_mul_pd(m1, a);
+      s1 = _mm256_add_pd(s1, b);
+      m2 = _mm256_mul_pd(m2, a);
+      s2 = _mm256_add_pd(s2, b);
+      m3 = _mm256_mul_pd(m3, a);
+      s3 = _mm256_add_pd(s3, b);
+      m4 = _mm256_mul_pd(m4, a);
+      s4 = _mm256_add_pd(s4, b);
+      m5 = _mm256_mul_pd(m5, a);
+      s5 = _mm256_add_pd(s5, b);
+      __asm__ volatile(""
+                       : "+x"(m0), "+x"(m1), "+x"(m2), "+x"(m3), "+x"(m4), "+x"(m5), "+x"(s0),
+                         "+x"(s1), "+x"(s2), "+x"(s3), "+x"(s4), "+x"(s5));
     }
     const double t = now() - t0;
     if (t < best) best = t;
@@ -115,17 +131,27 @@ int main(int argc, char **argv) {
   /* the interaction loop's mix: three divisions and a square root per
    * four-lane iteration; two iterations' worth per turn */
   TIME("div3_sqrt1", 2, {
-    DIV(v0); DIV(v1); DIV(v2); SQRT(v3);
-    DIV(v4); DIV(v5); DIV(v6); SQRT(v7);
+    DIV(v0);
+    DIV(v1);
+    DIV(v2);
+    SQRT(v3);
+    DIV(v4);
+    DIV(v5);
+    DIV(v6);
+    SQRT(v7);
   });
   /* four chains of multiplies, four of adds (no fused multiply-add); with
    * a latency of three cycles eight chains may not fill the pipes, so this
    * is an upper bound on the time per instruction */
   TIME("mul_add", 8, {
-    v0 = _mm256_mul_pd(v0, a); v1 = _mm256_add_pd(v1, b);
-    v2 = _mm256_mul_pd(v2, a); v3 = _mm256_add_pd(v3, b);
-    v4 = _mm256_mul_pd(v4, a); v5 = _mm256_add_pd(v5, b);
-    v6 = _mm256_mul_pd(v6, a); v7 = _mm256_add_pd(v7, b);
+    v0 = _mm256_mul_pd(v0, a);
+    v1 = _mm256_add_pd(v1, b);
+    v2 = _mm256_mul_pd(v2, a);
+    v3 = _mm256_add_pd(v3, b);
+    v4 = _mm256_mul_pd(v4, a);
+    v5 = _mm256_add_pd(v5, b);
+    v6 = _mm256_mul_pd(v6, a);
+    v7 = _mm256_add_pd(v7, b);
   });
   mul_add12(iters);
   return 0;

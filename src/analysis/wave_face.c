@@ -35,7 +35,8 @@ static int toe(const sph_particles *p, double xc, double ylo, double dx, double 
   const size_t k_max = (size_t)span + 1;
   double *top = malloc(k_max * sizeof *top);
   if (!top) return sph_error_set(err, "wave face: out of memory for %zu columns", k_max);
-  for (size_t k = 0; k < k_max; k++) top[k] = -INFINITY;
+  for (size_t k = 0; k < k_max; k++)
+    top[k] = -INFINITY;
   for (size_t i = 0; i < p->n; i++) {
     if (!fluid_in(p, i, xc + 0.5 * dx, x1)) continue;
     const size_t k = (size_t)floor((p->x[i] - xc) / dx + 0.5);
@@ -55,10 +56,11 @@ int sph_wave_face_measure(const sph_particles *p, double level, double dx, doubl
                           sph_wave_face *f, sph_error *err) {
   f->crest_x = f->crest_y = f->toe_x = f->angle = NAN;
   f->bands = 0;
-  if (!p || !isfinite(level) || !(dx > 0.0) || !isfinite(dx) || !isfinite(x0) ||
-      !isfinite(x1) || !(x1 > x0))
-    return sph_error_set(err, "wave face: need particles, a finite level, dx > 0 and x0 < x1 "
-                              "(got level %g, dx %g, window [%g, %g])",
+  if (!p || !isfinite(level) || !(dx > 0.0) || !isfinite(dx) || !isfinite(x0) || !isfinite(x1) ||
+      !(x1 > x0))
+    return sph_error_set(err,
+                         "wave face: need particles, a finite level, dx > 0 and x0 < x1 "
+                         "(got level %g, dx %g, window [%g, %g])",
                          level, dx, x0, x1);
   const long c = crest(p, x0, x1);
   if (c < 0) return 1;
@@ -73,7 +75,8 @@ int sph_wave_face_measure(const sph_particles *p, double level, double dx, doubl
   const size_t nb = (size_t)floor((yc - ylo) / dx);
   double *lead = malloc((nb ? nb : 1) * sizeof *lead);
   if (!lead) return sph_error_set(err, "wave face: out of memory for %zu bands", nb);
-  for (size_t b = 0; b < nb; b++) lead[b] = -INFINITY;
+  for (size_t b = 0; b < nb; b++)
+    lead[b] = -INFINITY;
   for (size_t i = 0; i < p->n; i++) {
     if (!fluid_in(p, i, x0, xt) || p->x[i] >= xt || p->y[i] < ylo) continue;
     const double u = floor((p->y[i] - ylo) / dx);

@@ -51,7 +51,7 @@ static const char *const kernel_names[] = {"cubic_spline", NULL};
 static const char *const integrator_names[] = {"predictor_corrector", "leapfrog", NULL};
 static const char *const dt_rule_names[] = {"paper_b", "cfl", "fixed", NULL};
 static const char *const boundary_names[] = {"dynamic", "fixed_layers", "repulsive", "mirror",
-                                               NULL};
+                                             NULL};
 static const char *const viscosity_names[] = {"none", "stress_tensor", "morris", NULL};
 static const char *const stop_names[] = {"none", "front_at_wall", NULL};
 
@@ -72,7 +72,6 @@ const char *sph_viscosity_name(sph_viscosity_kind v) {
   return choice_name(viscosity_names, (int)v);
 }
 
-
 /* A counter-based generator (the splitmix64 finaliser applied to the
  * seed, block and lattice indices in turn): each particle's draw depends
  * on its own indices only, never on the order particles are made in. */
@@ -83,8 +82,8 @@ static uint64_t mix64(uint64_t z) {
   return z ^ (z >> 31);
 }
 
-void sph_fluid_jitter(const sph_fluid_block *fb, size_t block, long i, long j, double dx,
-                      double *x, double *y) {
+void sph_fluid_jitter(const sph_fluid_block *fb, size_t block, long i, long j, double dx, double *x,
+                      double *y) {
   if (!(fb->jitter > 0.0)) return;
   uint64_t h = mix64((uint64_t)(uint32_t)fb->seed);
   h = mix64(h ^ (uint64_t)block);
@@ -115,13 +114,13 @@ typedef struct entry {
 
 struct node {
   node_kind kind;
-  int src;         /* FROM_FILE or the index of the --set that gave it */
-  size_t line;     /* 1-based line in the file; 0 from --set */
-  char *text;      /* scalar: its text */
-  int plain;       /* scalar: written plain (not quoted, not a block scalar) */
-  size_t n;        /* list items or mapping entries */
-  node **items;    /* list */
-  entry *entries;  /* mapping, in the order written */
+  int src;        /* FROM_FILE or the index of the --set that gave it */
+  size_t line;    /* 1-based line in the file; 0 from --set */
+  char *text;     /* scalar: its text */
+  int plain;      /* scalar: written plain (not quoted, not a block scalar) */
+  size_t n;       /* list items or mapping entries */
+  node **items;   /* list */
+  entry *entries; /* mapping, in the order written */
 };
 
 static void node_free(node *t) {
@@ -176,18 +175,17 @@ static entry *find(const node *m, const char *key) {
 /* ---- errors --------------------------------------------------------------- */
 
 typedef struct ctx {
-  const char *origin;     /* the file path (or the caller's name for the text) */
-  const char *text;       /* the case text, for locating reader errors */
+  const char *origin; /* the file path (or the caller's name for the text) */
+  const char *text;   /* the case text, for locating reader errors */
   size_t len;
   const char *const *set; /* the overrides */
   sph_error *err;
-  const node *dx_node;    /* numerics.dx, for the cross-checks */
-  const node *stop_node;  /* time.stop if given */
+  const node *dx_node;   /* numerics.dx, for the cross-checks */
+  const node *stop_node; /* time.stop if given */
 } ctx;
 
 /* "origin[:line]: key: message"; the origin of a --set node is the --set. */
-static int failv(const ctx *x, int src, size_t line, const char *key, const char *fmt,
-                 va_list ap) {
+static int failv(const ctx *x, int src, size_t line, const char *key, const char *fmt, va_list ap) {
   char where[512], msg[768];
   if (src >= 0)
     bprintf(where, sizeof where, "--set %s", x->set[src]);
@@ -233,7 +231,8 @@ static const char *got(const node *t, char *buf, size_t n) {
   if (t->plain && !t->text[0]) return "nothing";
   char s[72];
   size_t len = strlen(t->text), k = len > 60 ? 60 : len;
-  while (k < len && k > 0 && ((unsigned char)t->text[k] & 0xC0) == 0x80) k--;
+  while (k < len && k > 0 && ((unsigned char)t->text[k] & 0xC0) == 0x80)
+    k--;
   for (size_t i = 0; i < k; i++) {
     unsigned char ch = (unsigned char)t->text[i];
     s[i] = (ch < 0x20 || ch == 0x7f) ? '?' : (char)ch;
@@ -376,8 +375,8 @@ static void locate(const char *text, size_t len, size_t off, size_t *line, size_
   }
 }
 
-static int syntax_error(const ctx *x, const yaml_parser_t *p, const char *text, size_t len,
-                        int src, const char *key) {
+static int syntax_error(const ctx *x, const yaml_parser_t *p, const char *text, size_t len, int src,
+                        const char *key) {
   const char *problem = p->problem ? p->problem : "cannot be parsed";
   size_t line = p->problem_mark.line + 1, col = p->problem_mark.column + 1;
   char ctxt[256] = "";
@@ -385,7 +384,7 @@ static int syntax_error(const ctx *x, const yaml_parser_t *p, const char *text, 
   if (p->error == YAML_READER_ERROR) locate(text, len, p->problem_offset, &line, &col);
   if (p->context && src == FROM_FILE)
     bprintf(ctxt, sizeof ctxt, " (%s at line %zu, column %zu)", p->context,
-             p->context_mark.line + 1, p->context_mark.column + 1);
+            p->context_mark.line + 1, p->context_mark.column + 1);
   else if (p->context)
     bprintf(ctxt, sizeof ctxt, " (%s)", p->context);
   if (src == FROM_FILE)
@@ -670,7 +669,8 @@ static int check_keys(const ctx *x, const node *m, const char *path, const char 
   for (size_t i = 0; i < m->n; i++) {
     const entry *e = &m->entries[i];
     int known = 0;
-    for (int j = 0; valid[j] && !known; j++) known = strcmp(e->key, valid[j]) == 0;
+    for (int j = 0; valid[j] && !known; j++)
+      known = strcmp(e->key, valid[j]) == 0;
     if (known) continue;
     char list[512], kp[KEYLEN];
     list_names(valid, list, sizeof list);
@@ -693,8 +693,8 @@ static int lookup(const ctx *x, const node *m, const char *path, const char *key
   return fail(x, m->src, m->line, kp, "required key is missing");
 }
 
-static int get_number(const ctx *x, const node *m, const char *path, const char *key,
-                      int required, const range *r, double *out) {
+static int get_number(const ctx *x, const node *m, const char *path, const char *key, int required,
+                      const range *r, double *out) {
   const node *t;
   char kp[KEYLEN];
   int rc = lookup(x, m, path, key, required, &t, kp);
@@ -702,8 +702,8 @@ static int get_number(const ctx *x, const node *m, const char *path, const char 
   return read_number(x, t, kp, r, out) ? -1 : 1;
 }
 
-static int get_int(const ctx *x, const node *m, const char *path, const char *key, long lo,
-                   long hi, int *out) {
+static int get_int(const ctx *x, const node *m, const char *path, const char *key, long lo, long hi,
+                   int *out) {
   const node *t;
   char kp[KEYLEN];
   int rc = lookup(x, m, path, key, 0, &t, kp);
@@ -738,8 +738,8 @@ static int get_pair(const ctx *x, const node *m, const char *path, const char *k
 }
 
 /* A mapping-valued key whose own keys are all in `valid`. */
-static int get_section(const ctx *x, const node *m, const char *path, const char *key,
-                       int required, const char *const *valid, const node **out) {
+static int get_section(const ctx *x, const node *m, const char *path, const char *key, int required,
+                       const char *const *valid, const node **out) {
   char kp[KEYLEN], b[96];
   int rc = lookup(x, m, path, key, required, out, kp);
   if (rc <= 0) return rc;
@@ -762,32 +762,31 @@ static int get_string(const ctx *x, const node *m, const char *key, int required
 
 /* ---- the schema ----------------------------------------------------------- */
 
-static const char *const top_keys[] = {"name",     "description", "physics",      "numerics",
-                                       "time",     "geometry",    "free_surface", "output",
-                                       NULL};
+static const char *const top_keys[] = {"name",     "description",  "physics", "numerics", "time",
+                                       "geometry", "free_surface", "output",  NULL};
 static const char *const fs_keys[] = {"radius_factor", "h_factor", NULL};
 static const char *const laminar_keys[] = {"model", "mu", "gradient_correction", NULL};
-static const char *const physics_keys[] = {"rho0",      "gravity",   "body_force",
-                                           "sound_speed", "artificial_viscosity", "viscosity",
-                                           "turbulence", "repulsion", "xsph",   NULL};
+static const char *const physics_keys[] = {
+    "rho0",      "gravity",    "body_force", "sound_speed", "artificial_viscosity",
+    "viscosity", "turbulence", "repulsion",  "xsph",        NULL};
 static const char *const c0_keys[] = {"factor", "height", "speed", NULL};
 static const char *const visc_keys[] = {"alpha", "beta", "eta", NULL};
-static const char *const numerics_keys[] = {"dx",         "h_factor",  "kernel", "integrator",
-                                            "smoothing_length", "time_step", "density_filter",
-                                            "density_limit", NULL};
+static const char *const numerics_keys[] = {
+    "dx",        "h_factor",       "kernel",        "integrator", "smoothing_length",
+    "time_step", "density_filter", "density_limit", NULL};
 static const char *const dt_keys[] = {"rule", "factor", "dt", NULL};
 static const char *const filter_keys[] = {"kind", "every", NULL};
 static const char *const time_keys[] = {"end", "output_interval", "output_times", "stop", NULL};
 static const char *const geometry_keys[] = {"tank", "fluid", "walls", "periodic_x", "domain", NULL};
-static const char *const tank_keys[] = {"x",       "y", "layers", "boundary", "stagger",
-                                        "extrapolated_velocity", NULL};
+static const char *const tank_keys[] = {
+    "x", "y", "layers", "boundary", "stagger", "extrapolated_velocity", NULL};
 static const char *const fluid_keys[] = {"x",       "y",      "velocity", "hydrostatic",
-                                          "surface", "jitter", "seed",     NULL};
-static const char *const wall_keys[] = {"from",   "to",     "layers", "boundary",
-                                        "motion", "stagger", "extrapolated_velocity", NULL};
-static const char *const motion_keys[] = {"type",  "velocity",    "start", "stop",  "period",
-                                          "stroke", "wave_height", "depth", "ramp", "hinge",
-                                          NULL};
+                                         "surface", "jitter", "seed",     NULL};
+static const char *const wall_keys[] = {
+    "from", "to", "layers", "boundary", "motion", "stagger", "extrapolated_velocity", NULL};
+static const char *const motion_keys[] = {"type",   "velocity", "start",       "stop",
+                                          "period", "stroke",   "wave_height", "depth",
+                                          "ramp",   "hinge",    NULL};
 static const char *const motion_names[] = {"none", "translate", "piston", "flap", NULL};
 static const char *const turbulence_keys[] = {"model", "cs", "ci", NULL};
 static const char *const turbulence_names[] = {"none", "sps", NULL};
@@ -899,7 +898,8 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
     int has_gc = get_bool(x, v, vp, "gradient_correction", &c->gradient_correction);
     if (has_gc < 0) return -1;
     if (has_gc && c->gradient_correction && c->viscosity != SPH_VISCOSITY_STRESS_TENSOR)
-      return fail_at(x, find(v, "gradient_correction")->val, "physics.viscosity.gradient_correction",
+      return fail_at(x, find(v, "gradient_correction")->val,
+                     "physics.viscosity.gradient_correction",
                      "corrects the stress-tensor viscosity: needs model 'stress_tensor', got '%s'",
                      sph_viscosity_name(c->viscosity));
   }
@@ -1002,8 +1002,7 @@ static int read_time(ctx *x, const node *m, sph_case *c) {
       bprintf(ik, sizeof ik, "time.output_times[%zu]", i);
       const double lo = i ? c->output_times[i - 1] : 0.0;
       char w2[96];
-      bprintf(w2, sizeof w2, "a time > %g (increasing; times after time.end are not reached)",
-              lo);
+      bprintf(w2, sizeof w2, "a time > %g (increasing; times after time.end are not reached)", lo);
       range r = {lo, 0, '(', 0, w2};
       if (read_number(x, ot->items[i], ik, &r, &c->output_times[i])) return -1;
     }
@@ -1080,8 +1079,7 @@ static int read_tank(const ctx *x, const node *m, sph_case *c) {
   if (get_choice(x, t, p, "boundary", boundary_names, &b) < 0) return -1;
   c->tank.boundary = (sph_boundary_kind)b;
   c->tank.stagger = 1;
-  if (read_layout(x, t, p, c, c->tank.boundary, &c->tank.stagger, &c->tank.extrapolated))
-    return -1;
+  if (read_layout(x, t, p, c, c->tank.boundary, &c->tank.stagger, &c->tank.extrapolated)) return -1;
   return check_layers(x, t, p, c->tank.boundary, &c->tank.layers);
 }
 
@@ -1265,8 +1263,9 @@ static int read_wall(const ctx *x, const node *m, const char *p, const sph_case 
     const node *t;
     char kp[KEYLEN];
     lookup(x, m, p, "extrapolated_velocity", 0, &t, kp);
-    return fail_at(x, t, kp, "not on a turning wall (motion type 'flap'): its mirror points "
-                             "would turn with it");
+    return fail_at(x, t, kp,
+                   "not on a turning wall (motion type 'flap'): its mirror points "
+                   "would turn with it");
   }
   return 0;
 }
@@ -1371,7 +1370,8 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
 /* "a\nb\nc" from the overrides. */
 static char *join_overrides(const char *const *set, size_t n) {
   size_t len = 0;
-  for (size_t i = 0; i < n; i++) len += strlen(set[i]) + 1;
+  for (size_t i = 0; i < n; i++)
+    len += strlen(set[i]) + 1;
   char *s = malloc(len + 1), *p = s;
   if (!s) return NULL;
   for (size_t i = 0; i < n; i++) {
@@ -1393,7 +1393,8 @@ static int parse_into(ctx *x, const char *text, size_t len, size_t n_set, sph_ca
     rc = fail_at(x, root, NULL, "expected a mapping of case keys at the top level, got %s",
                  got(root, b, sizeof b));
   }
-  for (size_t i = 0; rc == 0 && i < n_set; i++) rc = apply_set(x, root, (int)i);
+  for (size_t i = 0; rc == 0 && i < n_set; i++)
+    rc = apply_set(x, root, (int)i);
   set_defaults(c);
   if (rc == 0) rc = read_case(x, root, c);
   node_free(root);
@@ -1496,7 +1497,8 @@ static void sb_add(sbuf *b, const char *fmt, ...) {
   }
   if (b->len + (size_t)n + 1 > b->cap) {
     size_t cap = b->cap ? b->cap : 1024;
-    while (b->len + (size_t)n + 1 > cap) cap *= 2;
+    while (b->len + (size_t)n + 1 > cap)
+      cap *= 2;
     char *s = realloc(b->s, cap);
     if (!s) {
       b->failed = 1;

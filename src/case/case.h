@@ -43,20 +43,20 @@ const char *sph_viscosity_name(sph_viscosity_kind v);
  * at (x0 + (i + 1/2) dx, y0 + (j + 1/2) dx) inside [x0,x1] x [y0,y1]. */
 typedef struct sph_fluid_block {
   double x0, x1, y0, y1;
-  double vx, vy;    /* initial velocity, default 0 */
-  int hydrostatic;  /* initial density from rho0 g (surface - y), default 1 */
-  double surface;   /* free-surface height for the hydrostatic start, default y1 */
-  double jitter;    /* perturbed start: each particle moved by up to jitter*dx in x and in y
-                       (uniform, seeded), in [0, 0.5); default 0 = on the lattice */
-  int seed;         /* seed of the jitter, default 1 */
+  double vx, vy;   /* initial velocity, default 0 */
+  int hydrostatic; /* initial density from rho0 g (surface - y), default 1 */
+  double surface;  /* free-surface height for the hydrostatic start, default y1 */
+  double jitter;   /* perturbed start: each particle moved by up to jitter*dx in x and in y
+                      (uniform, seeded), in [0, 0.5); default 0 = on the lattice */
+  int seed;        /* seed of the jitter, default 1 */
 } sph_fluid_block;
 
 /* Adds the block's seeded jitter (if any) to the lattice position (x, y) of
  * its particle (i, j); block is the block's index in the case. The draw
  * depends only on (seed, block, i, j), so it is the same on every run and
  * platform and for any creation order. */
-void sph_fluid_jitter(const sph_fluid_block *fb, size_t block, long i, long j, double dx,
-                      double *x, double *y);
+void sph_fluid_jitter(const sph_fluid_block *fb, size_t block, long i, long j, double dx, double *x,
+                      double *y);
 
 typedef struct sph_case {
   char *name;        /* required, [A-Za-z0-9_.-]+ */
@@ -66,61 +66,61 @@ typedef struct sph_case {
   char *overrides;   /* the --set overrides, "k=v" joined by "\n" ("" if none) */
 
   /* physics */
-  double rho0;          /* reference density, default 1000 */
-  double gravity[2];    /* default (0, -9.81) */
-  double sound_speed;   /* c0 (m/s), resolved: value, or factor*sqrt(2|g|height), or factor*speed */
-  double alpha, beta;   /* artificial viscosity, paper A eq. (15)-(16); defaults 0, 0 */
-  double eta;           /* eta = eta * h_ij, default 0.1 (eta^2 = 0.01 h^2) */
-  double xsph;          /* XSPH epsilon, paper B eq. (6); default 0 = off */
-  int sps;              /* SPS turbulence (paper B eq. 4), default off */
-  double sps_cs, sps_ci; /* Smagorinsky C_s = 0.12 and C_I = 0.00066; Delta = dx */
+  double rho0;        /* reference density, default 1000 */
+  double gravity[2];  /* default (0, -9.81) */
+  double sound_speed; /* c0 (m/s), resolved: value, or factor*sqrt(2|g|height), or factor*speed */
+  double alpha, beta; /* artificial viscosity, paper A eq. (15)-(16); defaults 0, 0 */
+  double eta;         /* eta = eta * h_ij, default 0.1 (eta^2 = 0.01 h^2) */
+  double xsph;        /* XSPH epsilon, paper B eq. (6); default 0 = off */
+  int sps;            /* SPS turbulence (paper B eq. 4), default off */
+  double sps_cs, sps_ci;        /* Smagorinsky C_s = 0.12 and C_I = 0.00066; Delta = dx */
   sph_viscosity_kind viscosity; /* laminar viscosity model, default none */
-  double mu;            /* dynamic viscosity (Pa s), required unless viscosity is none */
+  double mu;                    /* dynamic viscosity (Pa s), required unless viscosity is none */
   int gradient_correction; /* stress tensor: kernel-gradient correction (src/solver/forces.h) */
-  double repulsion;     /* D of the Lennard-Jones wall force (m^2/s^2), paper A eq. (22);
-                           default 5 |g| H, H the deepest fluid block */
+  double repulsion;        /* D of the Lennard-Jones wall force (m^2/s^2), paper A eq. (22);
+                              default 5 |g| H, H the deepest fluid block */
 
   /* numerics */
-  double dx;            /* initial particle spacing (required) */
-  double h_factor;      /* h = h_factor * dx, default 1.3 */
-  double h;             /* derived: h_factor * dx (h0 when variable) */
-  int variable_h;       /* h = h0 (rho0/rho)^(1/2), paper B §2.1; default constant */
+  double dx;       /* initial particle spacing (required) */
+  double h_factor; /* h = h_factor * dx, default 1.3 */
+  double h;        /* derived: h_factor * dx (h0 when variable) */
+  int variable_h;  /* h = h0 (rho0/rho)^(1/2), paper B §2.1; default constant */
   sph_kernel_kind kernel;
   sph_integrator_kind integrator;
-  sph_dt_rule dt_rule;  /* default paper_b */
-  double dt_factor;     /* CFL coefficient, default 0.3 */
-  double dt_fixed;      /* required when dt_rule == SPH_DT_FIXED */
-  double density_limit; /* blow-up when |rho/rho0 - 1| exceeds it; default 0.3 */
+  sph_dt_rule dt_rule;            /* default paper_b */
+  double dt_factor;               /* CFL coefficient, default 0.3 */
+  double dt_fixed;                /* required when dt_rule == SPH_DT_FIXED */
+  double density_limit;           /* blow-up when |rho/rho0 - 1| exceeds it; default 0.3 */
   sph_filter_kind density_filter; /* paper B §2.8, default none */
-  int filter_every;     /* steps between filter applications, default 30 */
+  int filter_every;               /* steps between filter applications, default 30 */
 
   /* time */
   double t_end;           /* required */
   double output_interval; /* required unless output_times is given */
   size_t n_output_times;  /* time.output_times: extra output times, increasing */
   double *output_times;
-  sph_stop_kind stop;     /* default none */
+  sph_stop_kind stop; /* default none */
 
   /* geometry */
   sph_tank tank;
   size_t n_fluid;
-  sph_fluid_block *fluid;   /* at least one block */
+  sph_fluid_block *fluid; /* at least one block */
   size_t n_walls;
   sph_wall_segment *walls;
-  int periodic;             /* 1 if geometry.periodic_x was given */
-  double periodic_x[2];     /* x0, x1: particles leaving one side re-enter at the other */
-  int domain_set;           /* 1 if geometry.domain was given */
-  double domain[4];         /* x0, x1, y0, y1: leaving it stops the run */
+  int periodic;         /* 1 if geometry.periodic_x was given */
+  double periodic_x[2]; /* x0, x1: particles leaving one side re-enter at the other */
+  int domain_set;       /* 1 if geometry.domain was given */
+  double domain[4];     /* x0, x1, y0, y1: leaving it stops the run */
 
   /* free surface (paper A §7) */
-  double fs_radius_factor;  /* circle radius = factor * h, default 1 */
-  double fs_h_factor;       /* h* = k h on surface particles; 0 = off (default) */
+  double fs_radius_factor; /* circle radius = factor * h, default 1 */
+  double fs_h_factor;      /* h* = k h on surface particles; 0 = off (default) */
 
   /* output */
-  int snapshots;            /* write HDF5 snapshots, default 1 */
-  int output_free_surface;  /* write the free_surface field, default 0 */
-  int energy;               /* energy ledger (output.energy), default 0 */
-  size_t n_gauges;          /* output.gauges: wave gauges at these x (gauges.csv) */
+  int snapshots;           /* write HDF5 snapshots, default 1 */
+  int output_free_surface; /* write the free_surface field, default 0 */
+  int energy;              /* energy ledger (output.energy), default 0 */
+  size_t n_gauges;         /* output.gauges: wave gauges at these x (gauges.csv) */
   double *gauges;
 } sph_case;
 

@@ -22,8 +22,7 @@ int sph_cli_face(int argc, char **argv);
 /* Shared by the commands that take snapshot files: checks the options
  * (only --help / -h, and "--"), counts the files. Returns 0 to go on, -1
  * after printing the usage for --help, else the exit status (2). */
-int sph_cli_snapshot_args(const char *cmd, const char *usage, int argc, char **argv,
-                          int *n_files);
+int sph_cli_snapshot_args(const char *cmd, const char *usage, int argc, char **argv, int *n_files);
 
 /* Calls fn(path, ctx, err) for each snapshot argument in order (the files
  * sph_cli_snapshot_args counted: the first "--" is skipped); a failure is

@@ -9,8 +9,8 @@
 #include "config.h"
 
 #include <errno.h>
-#include <stdlib.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #ifdef _OPENMP
@@ -38,8 +38,7 @@ int sph_cli_each_snapshot(const char *cmd, int argc, char **argv,
   return status;
 }
 
-int sph_cli_snapshot_args(const char *cmd, const char *usage, int argc, char **argv,
-                          int *n_files) {
+int sph_cli_snapshot_args(const char *cmd, const char *usage, int argc, char **argv, int *n_files) {
   int dashdash = 0;
   *n_files = 0;
   for (int i = 1; i < argc; i++) {

@@ -30,31 +30,30 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "sph.h"
 #include "cli/cli.h"
 #include "cli/progress.h"
+#include "sph.h"
 
 #define MAX_RUNS 32
 #define MAX_TIMES 64
 
 static void audit_usage(FILE *f) {
-  fprintf(f,
-          "usage: sph audit CASE --particles N1,N2,... [--times t1,t2,...] [-o DIR]\n"
-          "                 [--threads N] [--set key=value]... [--quiet]\n"
-          "\n"
-          "Runs CASE once per fluid-particle count with the energy ledger on and prints\n"
-          "the relative deviation of the total energy from its initial value against\n"
-          "particle count and time (paper A, Table 4), as a closed balance and as the\n"
-          "fluid's own energy, plus the mass drift.\n"
-          "\n"
-          "  -p, --particles LIST  fluid-particle counts; dx is chosen for each\n"
-          "  -T, --times LIST      times of the table (default: the case's\n"
-          "                        time.output_times, else its output interval)\n"
-          "  -o, --output DIR      where audit.csv, audit.md and the runs go\n"
-          "                        (default out/<case name>_audit)\n"
-          "  -t, --threads N       OpenMP threads\n"
-          "  -s, --set K=V         case override, as for sph run\n"
-          "  -q, --quiet           no progress lines\n");
+  fprintf(f, "usage: sph audit CASE --particles N1,N2,... [--times t1,t2,...] [-o DIR]\n"
+             "                 [--threads N] [--set key=value]... [--quiet]\n"
+             "\n"
+             "Runs CASE once per fluid-particle count with the energy ledger on and prints\n"
+             "the relative deviation of the total energy from its initial value against\n"
+             "particle count and time (paper A, Table 4), as a closed balance and as the\n"
+             "fluid's own energy, plus the mass drift.\n"
+             "\n"
+             "  -p, --particles LIST  fluid-particle counts; dx is chosen for each\n"
+             "  -T, --times LIST      times of the table (default: the case's\n"
+             "                        time.output_times, else its output interval)\n"
+             "  -o, --output DIR      where audit.csv, audit.md and the runs go\n"
+             "                        (default out/<case name>_audit)\n"
+             "  -t, --threads N       OpenMP threads\n"
+             "  -s, --set K=V         case override, as for sph run\n"
+             "  -q, --quiet           no progress lines\n");
 }
 
 /* dir/name into out (n bytes); -1 if it does not fit. */
@@ -73,8 +72,10 @@ static int parse_list(const char *s, double *v, int max) {
     if (end == s || errno || !isfinite(x) || n == max) return -1;
     v[n++] = x;
     s = end;
-    if (*s == ',') s++;
-    else if (*s) return -1;
+    if (*s == ',')
+      s++;
+    else if (*s)
+      return -1;
   }
   return n;
 }
@@ -161,13 +162,16 @@ static void print_table(FILE *f, int md, const audit_row *rows, int nr, const do
                         int fluid) {
   if (md) {
     fprintf(f, "| particles \\ t (s) |");
-    for (int i = 0; i < nt; i++) fprintf(f, " %g |", times[i]);
+    for (int i = 0; i < nt; i++)
+      fprintf(f, " %g |", times[i]);
     fprintf(f, "\n|---|");
-    for (int i = 0; i < nt; i++) fprintf(f, "---|");
+    for (int i = 0; i < nt; i++)
+      fprintf(f, "---|");
     fprintf(f, "\n");
   } else {
     fprintf(f, "%10s", "particles");
-    for (int i = 0; i < nt; i++) fprintf(f, " %10g", times[i]);
+    for (int i = 0; i < nt; i++)
+      fprintf(f, " %10g", times[i]);
     fprintf(f, "\n");
   }
   for (int r = 0; r < nr; r++) {
@@ -194,8 +198,10 @@ static int audit_option(audit_args *a, int argc, char **argv, int *i) {
     for (int k = 0; k < a->ncounts; k++)
       if (a->counts[k] < 4 || a->counts[k] != floor(a->counts[k])) a->ncounts = -1;
     if (a->ncounts <= 0) {
-      fprintf(stderr, "sph audit: --particles: expected whole numbers >= 4 separated by "
-                      "commas, got '%s'\n", v);
+      fprintf(stderr,
+              "sph audit: --particles: expected whole numbers >= 4 separated by "
+              "commas, got '%s'\n",
+              v);
       return 2;
     }
   } else if (!strcmp(o, "-T") || !strcmp(o, "--times")) {
@@ -203,8 +209,10 @@ static int audit_option(audit_args *a, int argc, char **argv, int *i) {
     for (int k = 0; k < a->ntimes; k++)
       if (!(a->times[k] > (k ? a->times[k - 1] : 0.0))) a->ntimes = -1;
     if (a->ntimes <= 0) {
-      fprintf(stderr, "sph audit: --times: expected increasing positive times separated by "
-                      "commas, got '%s'\n", v);
+      fprintf(stderr,
+              "sph audit: --times: expected increasing positive times separated by "
+              "commas, got '%s'\n",
+              v);
       return 2;
     }
   } else if (!strcmp(o, "-o") || !strcmp(o, "--output")) {
@@ -223,8 +231,8 @@ static int audit_option(audit_args *a, int argc, char **argv, int *i) {
 
 /* The command line into a; -1 after --help (printed), 0, or 2. */
 static int parse_audit_args(int argc, char **argv, audit_args *a) {
-  static const char *const with_value[] = {"-p", "--particles", "-T", "--times", "-o",
-                                           "--output", "-t", "--threads", "-s", "--set", NULL};
+  static const char *const with_value[] = {"-p", "--particles", "-T", "--times", "-o", "--output",
+                                           "-t", "--threads",   "-s", "--set",   NULL};
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
@@ -267,8 +275,8 @@ static void default_times(audit_args *a, const sph_case *base) {
 /* The overrides every audit run gets after the user's: ledger on,
  * snapshots off, outputs at the audit times, to the last of them, and
  * the spacing (set_dx, filled per run). */
-static void audit_sets(audit_args *a, char *set_times, size_t n_times, char *set_end,
-                       size_t n_end, char *set_dx) {
+static void audit_sets(audit_args *a, char *set_times, size_t n_times, char *set_end, size_t n_end,
+                       char *set_dx) {
   size_t len = (size_t)snprintf(set_times, n_times, "time.output_times=[");
   for (int k = 0; k < a->ntimes; k++)
     len += (size_t)snprintf(set_times + len, n_times - len, "%s%.17g", k ? "," : "", a->times[k]);
@@ -304,7 +312,8 @@ static int audit_run(const audit_args *a, int r, long got, double dx, audit_row 
   } else {
     const double g = hypot(c.gravity[0], c.gravity[1]);
     row_sink sink = {a->times, a->ntimes, 0, g > 0.0 ? g : 1.0, NAN, NAN, NAN, NAN, row};
-    for (int i = 0; i < a->ntimes; i++) row->dev[i] = row->fdev[i] = NAN;
+    for (int i = 0; i < a->ntimes; i++)
+      row->dev[i] = row->fdev[i] = NAN;
     sph_progress bar;
     sph_progress_init(&bar, stderr, c.t_end, a->quiet);
     sph_run_options opt = {dir, on_progress, &bar, NULL, on_row, &sink};
@@ -334,7 +343,8 @@ static int audit_run(const audit_args *a, int r, long got, double dx, audit_row 
 static void print_report(const char *name, const audit_row *rows, int nr, const double *times,
                          int nt) {
   printf("Energy deviation (E - E0)/E0, closed balance (kinetic + potential + internal\n"
-         "- moving-wall work - XSPH drift), case %s:\n", name);
+         "- moving-wall work - XSPH drift), case %s:\n",
+         name);
   print_table(stdout, 0, rows, nr, times, nt, 0);
   printf("\nThe fluid's own kinetic + potential + internal energy against its start\n"
          "(the quantity of paper A, Table 4; it differs from the closed balance by the\n"
@@ -342,10 +352,12 @@ static void print_report(const char *name, const audit_row *rows, int nr, const 
          "does not hold):\n");
   print_table(stdout, 0, rows, nr, times, nt, 1);
   printf("\nMass drift at t = %g s:", times[nt - 1]);
-  for (int r = 0; r < nr; r++) printf(" %ld: %.3g", rows[r].particles, rows[r].mass_drift);
+  for (int r = 0; r < nr; r++)
+    printf(" %ld: %.3g", rows[r].particles, rows[r].mass_drift);
   printf("\nMomentum drift |P - P0 - impulse of walls and gravity| / (M |g| t) at t = %g s:",
          times[nt - 1]);
-  for (int r = 0; r < nr; r++) printf(" %ld: %.3g", rows[r].particles, rows[r].momentum_drift);
+  for (int r = 0; r < nr; r++)
+    printf(" %ld: %.3g", rows[r].particles, rows[r].momentum_drift);
   printf("\n");
 }
 

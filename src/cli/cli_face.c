@@ -21,8 +21,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "sph.h"
 #include "cli/cli.h"
+#include "sph.h"
 
 static const char USAGE[] =
     "usage: sph face [--help] SNAPSHOT...\n"

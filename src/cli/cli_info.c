@@ -128,7 +128,6 @@ static int show(const char *path, int *printed, sph_error *err) {
   return rc;
 }
 
-
 static int show_one(const char *path, void *printed, sph_error *err) {
   return show(path, (int *)printed, err);
 }

@@ -31,8 +31,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sph.h"
 #include "cli/cli.h"
+#include "sph.h"
 
 static const char USAGE[] =
     "usage: sph profile [--help] SNAPSHOT...\n"
@@ -98,7 +98,6 @@ static int measure(const char *path, void *ctx, sph_error *err) {
   printf("%.9g %.9g %.9g\n", t, 100.0 * emax, 100.0 * el2);
   return 0;
 }
-
 
 int sph_cli_profile(int argc, char **argv) {
   int n_files;

@@ -23,9 +23,9 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "sph.h"
 #include "cli/cli.h"
 #include "cli/progress.h"
+#include "sph.h"
 
 static volatile sig_atomic_t interrupted = 0;
 static void on_signal(int sig) {
@@ -86,8 +86,8 @@ typedef struct run_args {
 /* The command line into a; -1 after --help (printed), 0, or 2 (usage
  * error, message printed). */
 static int parse_run_args(int argc, char **argv, run_args *a) {
-  static const char *const with_value[] = {"-o", "--output", "-t", "--threads", "-s", "--set",
-                                           "-r", "--restart", NULL};
+  static const char *const with_value[] = {"-o",    "--output", "-t",        "--threads", "-s",
+                                           "--set", "-r",       "--restart", NULL};
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
@@ -199,8 +199,7 @@ static int report_end(const sph_run_result *r, const sph_sim *s, const sph_error
                       const char *outdir) {
   switch (r->status) {
   case SPH_RUN_END:
-  case SPH_RUN_STOPPED:
-    return 0;
+  case SPH_RUN_STOPPED: return 0;
   case SPH_RUN_INTERRUPTED:
     fprintf(stderr,
             "sph run: interrupted by %s at t = %.9g s (step %ld); final snapshot %s\n"
@@ -214,8 +213,7 @@ static int report_end(const sph_run_result *r, const sph_sim *s, const sph_error
     fprintf(stderr, "sph run: last regular snapshot kept: %s\n",
             r->last_snapshot[0] ? r->last_snapshot : "(none)");
     return 3;
-  case SPH_RUN_ERROR:
-    break;
+  case SPH_RUN_ERROR: break;
   }
   fprintf(stderr, "sph run: %s\n", err->msg);
   return 1;
@@ -265,8 +263,7 @@ int sph_cli_run(int argc, char **argv) {
   sph_snapshot_restart_data rd;
   status = 1;
   if (sph_cli_make_dirs(a.outdir)) {
-    fprintf(stderr, "sph run: cannot create output directory %s: %s\n", a.outdir,
-            strerror(errno));
+    fprintf(stderr, "sph run: cannot create output directory %s: %s\n", a.outdir, strerror(errno));
   } else if (sph_sim_create(&c, &s, &err)) {
     fprintf(stderr, "sph run: %s\n", err.msg);
   } else if (a.restart && sph_sim_restore(s, a.restart, &rd, &err)) {

@@ -54,7 +54,8 @@ int sph_cli_snapshot_case_set(const sph_snapshot *s, const char *const *extra, s
   char *copy;
   char **set = split_overrides(sph_snapshot_text(s, "overrides"), n_extra, &n_set, &copy);
   if (!set) return sph_error_set(err, "%s: out of memory", sph_snapshot_path(s));
-  for (size_t k = 0; k < n_extra; k++) set[n_set++] = (char *)extra[k];
+  for (size_t k = 0; k < n_extra; k++)
+    set[n_set++] = (char *)extra[k];
   char origin[4200];
   snprintf(origin, sizeof origin, "%s (case_text)", sph_snapshot_path(s));
   const int rc =

@@ -13,34 +13,33 @@
 #include "sph.h"
 
 static void usage(FILE *f) {
-  fprintf(f,
-          "usage: sph COMMAND [options]\n"
-          "\n"
-          "Deterministic weakly-compressible SPH solver for 2-D free-surface flows.\n"
-          "\n"
-          "commands:\n"
-          "  run CASE [-o DIR] [--threads N] [--set key=value]... [--quiet]\n"
-          "      [--restart SNAPSHOT]\n"
-          "                 run a case file (YAML), writing HDF5 snapshots, an XDMF index\n"
-          "                 and diagnostics.csv into DIR (default out/<case name>); with\n"
-          "                 --restart, continue an earlier run from one of its snapshots\n"
-          "  info SNAPSHOT...\n"
-          "                 print a snapshot's header and the range of every field\n"
-          "  audit CASE --particles N1,N2,... [--times t1,t2,...] [-o DIR]\n"
-          "                 energy deviation against particle count and time (paper A\n"
-          "                 Table 4), running the case once per count\n"
-          "  profile SNAPSHOT...\n"
-          "                 film-flow error against paper A eq. (26) (inclined plane)\n"
-          "  face SNAPSHOT...\n"
-          "                 front-face angle of a breaking wave, and when it first stands\n"
-          "                 vertical (paper B 4.3)\n"
-          "\n"
-          "options:\n"
-          "  -h, --help     show this help (also: sph COMMAND --help)\n"
-          "  --version      show the version and build\n"
-          "\n"
-          "exit status: 0 success, 1 bad input or I/O error, 2 usage error,\n"
-          "             3 numerical blow-up, 4 interrupted (final snapshot written)\n");
+  fprintf(f, "usage: sph COMMAND [options]\n"
+             "\n"
+             "Deterministic weakly-compressible SPH solver for 2-D free-surface flows.\n"
+             "\n"
+             "commands:\n"
+             "  run CASE [-o DIR] [--threads N] [--set key=value]... [--quiet]\n"
+             "      [--restart SNAPSHOT]\n"
+             "                 run a case file (YAML), writing HDF5 snapshots, an XDMF index\n"
+             "                 and diagnostics.csv into DIR (default out/<case name>); with\n"
+             "                 --restart, continue an earlier run from one of its snapshots\n"
+             "  info SNAPSHOT...\n"
+             "                 print a snapshot's header and the range of every field\n"
+             "  audit CASE --particles N1,N2,... [--times t1,t2,...] [-o DIR]\n"
+             "                 energy deviation against particle count and time (paper A\n"
+             "                 Table 4), running the case once per count\n"
+             "  profile SNAPSHOT...\n"
+             "                 film-flow error against paper A eq. (26) (inclined plane)\n"
+             "  face SNAPSHOT...\n"
+             "                 front-face angle of a breaking wave, and when it first stands\n"
+             "                 vertical (paper B 4.3)\n"
+             "\n"
+             "options:\n"
+             "  -h, --help     show this help (also: sph COMMAND --help)\n"
+             "  --version      show the version and build\n"
+             "\n"
+             "exit status: 0 success, 1 bad input or I/O error, 2 usage error,\n"
+             "             3 numerical blow-up, 4 interrupted (final snapshot written)\n");
 }
 
 /* Processes running or ready to run at this moment, this one included
@@ -102,7 +101,7 @@ static void choose_wait_policy(int argc, char **argv) {
   const int rc = run && machine_idle() ? setenv("GOMP_SPINCOUNT", "100000", 1)
                                        : setenv("OMP_WAIT_POLICY", "passive", 1);
   if (rc == 0) execv("/proc/self/exe", argv);
-  /* if the re-exec failed, run as we are */
+    /* if the re-exec failed, run as we are */
 #else
   (void)argc;
   (void)argv;

@@ -44,7 +44,8 @@ void sph_progress_update(sph_progress *pg, double t, long step) {
   if (frac > 1) frac = 1;
   const int width = 30, fill = (int)(frac * width);
   char bar[64];
-  for (int i = 0; i < width; i++) bar[i] = i < fill ? '#' : '.';
+  for (int i = 0; i < width; i++)
+    bar[i] = i < fill ? '#' : '.';
   bar[width] = 0;
   char eta[32];
   fmt_duration(eta, sizeof eta, frac > 0 ? el * (1 - frac) / frac : -1);

@@ -23,14 +23,14 @@
 
 #ifdef SPH_DEBUG_CHECKS
 #define SPH_DEBUG 1
-#define SPH_INVARIANT(cond, ...)                                                             \
-  do {                                                                                       \
-    if (!(cond)) {                                                                           \
-      fprintf(stderr, "%s:%d: invariant broken: %s: ", __FILE__, __LINE__, #cond);           \
-      fprintf(stderr, __VA_ARGS__);                                                          \
-      fputc('\n', stderr);                                                                   \
-      abort();                                                                               \
-    }                                                                                        \
+#define SPH_INVARIANT(cond, ...)                                                                   \
+  do {                                                                                             \
+    if (!(cond)) {                                                                                 \
+      fprintf(stderr, "%s:%d: invariant broken: %s: ", __FILE__, __LINE__, #cond);                 \
+      fprintf(stderr, __VA_ARGS__);                                                                \
+      fputc('\n', stderr);                                                                         \
+      abort();                                                                                     \
+    }                                                                                              \
   } while (0)
 #else
 #define SPH_DEBUG 0

@@ -17,7 +17,6 @@ typedef struct sph_error {
 
 /* Formats a message into err (if err is not NULL) and returns -1, so that a
  * failing function can write `return sph_error_set(err, "...", ...);`. */
-int sph_error_set(sph_error *err, const char *fmt, ...)
-    __attribute__((format(printf, 2, 3)));
+int sph_error_set(sph_error *err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 #endif

@@ -84,20 +84,20 @@ SPH_LANE_INLINE uint64_t v2_u(double d) {
   memcpy(&u, &d, sizeof u);
   return u;
 }
-#define SPH_V2_OP(name, expr)                                                                \
-  SPH_LANE_INLINE v2 name(v2 a, v2 b) {                                                      \
-    v2 r;                                                                                    \
-    for (int k = 0; k < 2; k++) {                                                            \
-      const double x = a.l[k], y = b.l[k];                                                   \
-      r.l[k] = (expr);                                                                       \
-    }                                                                                        \
-    return r;                                                                                \
+#define SPH_V2_OP(name, expr)                                                                      \
+  SPH_LANE_INLINE v2 name(v2 a, v2 b) {                                                            \
+    v2 r;                                                                                          \
+    for (int k = 0; k < 2; k++) {                                                                  \
+      const double x = a.l[k], y = b.l[k];                                                         \
+      r.l[k] = (expr);                                                                             \
+    }                                                                                              \
+    return r;                                                                                      \
   }
 SPH_LANE_INLINE v2 v2_set(double a, double b) { return (v2){{a, b}}; }
 SPH_LANE_INLINE v2 v2_all(double a) { return (v2){{a, a}}; }
 SPH_V2_OP(v2_add, x + y)
 SPH_V2_OP(v2_sub, x - y)
-SPH_V2_OP(v2_mul, x * y)
+SPH_V2_OP(v2_mul, x *y)
 SPH_V2_OP(v2_div, x / y)
 SPH_V2_OP(v2_max, x > y ? x : y)
 SPH_V2_OP(v2_min, x < y ? x : y)
@@ -123,9 +123,9 @@ typedef struct {
   v2 lo, hi;
 } v4e;
 typedef v4e v4e_mask;
-#define SPH_V4E_OP(name)                                                                     \
-  SPH_LANE_INLINE v4e v4e_##name(v4e a, v4e b) {                                             \
-    return (v4e){v2_##name(a.lo, b.lo), v2_##name(a.hi, b.hi)};                              \
+#define SPH_V4E_OP(name)                                                                           \
+  SPH_LANE_INLINE v4e v4e_##name(v4e a, v4e b) {                                                   \
+    return (v4e){v2_##name(a.lo, b.lo), v2_##name(a.hi, b.hi)};                                    \
   }
 SPH_V4E_OP(add)
 SPH_V4E_OP(sub)

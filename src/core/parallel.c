@@ -47,7 +47,7 @@ static size_t part_start(size_t total, int t, int parts) {
 
 /* ---- the learned split ---- */
 
-#define BALANCE_MAX 16 /* teams up to this size learn */
+#define BALANCE_MAX 16              /* teams up to this size learn */
 static double balance[BALANCE_MAX]; /* the shares, summing to 1 */
 static int balance_parts;           /* the team size they are for; 0: none */
 
@@ -75,7 +75,8 @@ static size_t start_of(size_t total, int t, int parts, int learned) {
   if (!learned || parts != balance_parts || t <= 0 || t >= parts)
     return part_start(total, t, parts);
   double f = 0.0;
-  for (int k = 0; k < t; k++) f += balance[k];
+  for (int k = 0; k < t; k++)
+    f += balance[k];
   const double x = f * (double)total;
   return x <= 0.0 ? 0 : x >= (double)total ? total : (size_t)x;
 }
@@ -95,8 +96,8 @@ static void part(const size_t *prefix, size_t n, int t, int parts, int learned, 
   }
   const size_t total = prefix[n] - prefix[0];
   *lo = t == 0 ? 0 : first_at(prefix, n, prefix[0] + start_of(total, t, parts, learned));
-  *hi = t == parts - 1 ? n
-                       : first_at(prefix, n, prefix[0] + start_of(total, t + 1, parts, learned));
+  *hi =
+      t == parts - 1 ? n : first_at(prefix, n, prefix[0] + start_of(total, t + 1, parts, learned));
 }
 
 void sph_share(const size_t *prefix, size_t n, int t, int parts, size_t *lo, size_t *hi) {
@@ -204,10 +205,12 @@ void sph_steal_learn(sph_steal *s) {
   const int parts = s->parts;
   if (parts < 2 || parts > BALANCE_MAX || s->team != parts || balance_off()) return;
   double total = 0.0;
-  for (int t = 0; t < parts; t++) total += (double)s->slot[t].done;
+  for (int t = 0; t < parts; t++)
+    total += (double)s->slot[t].done;
   if (!(total > 0.0)) return;
   if (balance_parts != parts) {
-    for (int t = 0; t < parts; t++) balance[t] = 1.0 / parts;
+    for (int t = 0; t < parts; t++)
+      balance[t] = 1.0 / parts;
     balance_parts = parts;
   }
   /* the measured shares, raised to at least `least` each by scaling the

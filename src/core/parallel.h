@@ -52,9 +52,7 @@ long sph_omp_min(void);
 
 /* The team a loop over n items gets from `#pragma omp parallel if (n >
  * SPH_OMP_MIN)`: what sph_steal_reset needs before such a region. */
-static inline int sph_team_size(size_t n) {
-  return (long)n > SPH_OMP_MIN ? sph_max_threads() : 1;
-}
+static inline int sph_team_size(size_t n) { return (long)n > SPH_OMP_MIN ? sph_max_threads() : 1; }
 
 /* The slice [*lo, *hi) of 0..n-1 that part t of `parts` takes when the cost
  * of items 0..i-1 is prefix[i] - prefix[0] (prefix nondecreasing):

@@ -20,12 +20,20 @@
 
 /* Every array of the store, with its element size, for allocation and
  * permutation written once. */
-#define SPH_PARTICLE_DOUBLES(X)                                                              \
-  X(x) X(y) X(vx) X(vy) X(rho) X(p) X(mass) X(h) X(u) X(x0) X(y0) X(vx0) X(vy0) X(rho0)    \
-  X(u0) X(ax) X(ay) X(drho) X(du) X(xsx) X(xsy) X(vxh) X(vyh) X(rhoh) X(uh) X(xr) X(yr) X(mx) X(my)
+/* (left as written: clang-format 14 does not settle on one layout of it) */
+/* clang-format off */
+#define SPH_PARTICLE_DOUBLES(X) \
+  X(x) X(y) X(vx) X(vy) X(rho) X(p) X(mass) X(h) X(u) \
+  X(x0) X(y0) X(vx0) X(vy0) X(rho0) X(u0) \
+  X(ax) X(ay) X(drho) X(du) X(xsx) X(xsy) \
+  X(vxh) X(vyh) X(rhoh) X(uh) X(xr) X(yr) X(mx) X(my)
+/* clang-format on */
 #define SPH_PARTICLE_OTHERS(X) X(kind) X(body) X(id) X(flags)
 #define SPH_PARTICLE_ONE(f) +1
-enum { SPH_PARTICLE_ARRAYS = 0 SPH_PARTICLE_DOUBLES(SPH_PARTICLE_ONE) SPH_PARTICLE_OTHERS(SPH_PARTICLE_ONE) };
+enum {
+  SPH_PARTICLE_ARRAYS =
+      0 SPH_PARTICLE_DOUBLES(SPH_PARTICLE_ONE) SPH_PARTICLE_OTHERS(SPH_PARTICLE_ONE)
+};
 
 /* The block of arrays is reallocated whole (arrays.h: staggered starts) and
  * the first p->cap entries of every array copied over. */
@@ -83,7 +91,8 @@ void sph_particles_free(sph_particles *p) {
 
 size_t sph_particles_count_kind(const sph_particles *p, int32_t kind) {
   size_t c = 0;
-  for (size_t i = 0; i < p->n; i++) c += p->kind[i] == kind;
+  for (size_t i = 0; i < p->n; i++)
+    c += p->kind[i] == kind;
   return c;
 }
 
@@ -92,12 +101,11 @@ void sph_particles_permute(sph_particles *p, const size_t *perm, void *work) {
   if (n == 0) return;
   const long ln = (long)n;
   /* one parallel region; each field's gather and copy-back split by index */
-#define PERMUTE(field)                                                                       \
-  {                                                                                          \
-    __typeof__(p->field) tmp = work;                                                         \
-    _Pragma("omp for schedule(static)") for (long i = 0; i < ln; i++) tmp[i] =              \
-        p->field[perm[i]];                                                                   \
-    _Pragma("omp for schedule(static)") for (long i = 0; i < ln; i++) p->field[i] = tmp[i];  \
+#define PERMUTE(field)                                                                             \
+  {                                                                                                \
+    __typeof__(p->field) tmp = work;                                                               \
+    _Pragma("omp for schedule(static)") for (long i = 0; i < ln; i++) tmp[i] = p->field[perm[i]];  \
+    _Pragma("omp for schedule(static)") for (long i = 0; i < ln; i++) p->field[i] = tmp[i];        \
   }
 #pragma omp parallel if (ln > SPH_OMP_MIN)
   {

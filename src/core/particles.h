@@ -30,20 +30,20 @@ enum {
 };
 
 typedef struct sph_particles {
-  size_t n;   /* particles in use */
-  size_t cap; /* allocated length of every array */
+  size_t n;    /* particles in use */
+  size_t cap;  /* allocated length of every array */
   void *block; /* the one allocation holding every array (particles.c) */
   /* state */
-  double *x, *y;     /* position (m) */
-  double *vx, *vy;   /* velocity (m/s) */
-  double *rho;       /* density (kg/m^3) */
-  double *p;         /* pressure (Pa), from the equation of state */
-  double *mass;      /* mass (kg) */
-  double *h;         /* smoothing length (m) */
-  double *u;         /* thermal energy per unit mass (J/kg) */
-  int32_t *kind;     /* SPH_KIND_* */
-  int64_t *id;       /* 0..n-1, fixed at creation */
-  uint8_t *flags;    /* per-particle flags (bit 0: free surface) */
+  double *x, *y;   /* position (m) */
+  double *vx, *vy; /* velocity (m/s) */
+  double *rho;     /* density (kg/m^3) */
+  double *p;       /* pressure (Pa), from the equation of state */
+  double *mass;    /* mass (kg) */
+  double *h;       /* smoothing length (m) */
+  double *u;       /* thermal energy per unit mass (J/kg) */
+  int32_t *kind;   /* SPH_KIND_* */
+  int64_t *id;     /* 0..n-1, fixed at creation */
+  uint8_t *flags;  /* per-particle flags (bit 0: free surface) */
   /* state at the start of the step (predictor-corrector), and rates */
   double *x0, *y0, *vx0, *vy0, *rho0, *u0;
   double *ax, *ay, *drho, *du;   /* dv/dt, drho/dt, du/dt */
@@ -59,8 +59,8 @@ typedef struct sph_particles {
 int sph_particles_init(sph_particles *p, size_t cap, sph_error *err);
 /* Appends one particle (state arrays set, rates zero); grows if needed.
  * Returns its storage index, or -1 (with err) on allocation failure. */
-long sph_particles_add(sph_particles *p, double x, double y, double vx, double vy,
-                       double rho, double mass, double h, int32_t kind, sph_error *err);
+long sph_particles_add(sph_particles *p, double x, double y, double vx, double vy, double rho,
+                       double mass, double h, int32_t kind, sph_error *err);
 void sph_particles_free(sph_particles *p);
 /* Counts of each kind. */
 size_t sph_particles_count_kind(const sph_particles *p, int32_t kind);

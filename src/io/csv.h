@@ -1,8 +1,8 @@
 /*
  * csv.h - numeric tables from CSV files: a header row of column names, then
  * rows of numbers (diagnostics.csv, gauges.csv, audit.csv, the experimental
- * tables; the one reader of sph-render and the tests). Lines starting with '#' (comments, e.g. a data source)
- * and blank lines are skipped anywhere.
+ * tables; the one reader of sph-render and the tests). Lines starting with '#' (comments, e.g. a
+ * data source) and blank lines are skipped anywhere.
  */
 #ifndef SPH_CSV_H
 #define SPH_CSV_H

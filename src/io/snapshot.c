@@ -147,8 +147,7 @@ static hid_t timeless(hid_t cls) {
   return pl;
 }
 
-static int put_text(writer *w, hid_t obj, const char *where, const char *name,
-                    const char *value) {
+static int put_text(writer *w, hid_t obj, const char *where, const char *name, const char *value) {
   hid_t space = H5Screate(H5S_SCALAR);
   hid_t attr = space < 0 ? -1 : H5Acreate2(obj, name, w->str, space, H5P_DEFAULT, H5P_DEFAULT);
   int rc = 0;
@@ -187,9 +186,12 @@ static int write_header(writer *w, const sph_snapshot_meta *meta, size_t n) {
   if (put_double(w, "time", meta->time) || put_int64(w, "step", meta->step) ||
       put_double(w, "dt", meta->dt) || put_int64(w, "particle_count", (int64_t)n))
     return -1;
-  const char *texts[N_TEXTS] = {meta->case_name,       or_empty(meta->case_text),
-                                or_empty(meta->overrides), or_empty(meta->parameters),
-                                sph_version(),         sph_configure_args(),
+  const char *texts[N_TEXTS] = {meta->case_name,
+                                or_empty(meta->case_text),
+                                or_empty(meta->overrides),
+                                or_empty(meta->parameters),
+                                sph_version(),
+                                sph_configure_args(),
                                 sph_compiler()};
   for (size_t i = 0; i < N_TEXTS; i++)
     if (put_text(w, w->file, "/", TEXTS[i], texts[i])) return -1;
@@ -205,7 +207,8 @@ static int id_positions(const sph_particles *p, const char *path, size_t **out, 
   size_t n = p->n;
   size_t *pos = malloc((n ? n : 1) * sizeof *pos);
   if (!pos) return sph_error_set(err, "%s: out of memory for %zu particles", path, n);
-  for (size_t k = 0; k < n; k++) pos[k] = (size_t)-1;
+  for (size_t k = 0; k < n; k++)
+    pos[k] = (size_t)-1;
   for (size_t i = 0; i < n; i++) {
     int64_t id = p->id[i];
     const char *bad = NULL;
@@ -215,8 +218,8 @@ static int id_positions(const sph_particles *p, const char *path, size_t **out, 
       bad = "a duplicate";
     if (bad) {
       free(pos);
-      return sph_error_set(err, "%s: particle at storage index %zu has id %lld, %s (n = %zu)",
-                           path, i, (long long)id, bad, n);
+      return sph_error_set(err, "%s: particle at storage index %zu has id %lld, %s (n = %zu)", path,
+                           i, (long long)id, bad, n);
     }
     pos[id] = i;
   }
@@ -230,16 +233,20 @@ static void gather(const sph_particles *p, const field_spec *f, const size_t *po
   const void *src = member_array(p, f);
   switch (f->type) {
   case FT_F64:
-    for (size_t k = 0; k < n; k++) ((double *)buf)[k] = ((const double *)src)[pos[k]];
+    for (size_t k = 0; k < n; k++)
+      ((double *)buf)[k] = ((const double *)src)[pos[k]];
     break;
   case FT_I32:
-    for (size_t k = 0; k < n; k++) ((int32_t *)buf)[k] = ((const int32_t *)src)[pos[k]];
+    for (size_t k = 0; k < n; k++)
+      ((int32_t *)buf)[k] = ((const int32_t *)src)[pos[k]];
     break;
   case FT_I64:
-    for (size_t k = 0; k < n; k++) ((int64_t *)buf)[k] = ((const int64_t *)src)[pos[k]];
+    for (size_t k = 0; k < n; k++)
+      ((int64_t *)buf)[k] = ((const int64_t *)src)[pos[k]];
     break;
   case FT_U8: /* only free_surface: flags bit 0 */
-    for (size_t k = 0; k < n; k++) ((uint8_t *)buf)[k] = ((const uint8_t *)src)[pos[k]] & 1u;
+    for (size_t k = 0; k < n; k++)
+      ((uint8_t *)buf)[k] = ((const uint8_t *)src)[pos[k]] & 1u;
     break;
   }
 }
@@ -267,8 +274,7 @@ static int write_field(writer *w, hid_t group, const field_spec *f, const void *
   return rc;
 }
 
-static int write_particles(writer *w, const sph_particles *p, int free_surface,
-                           const size_t *pos) {
+static int write_particles(writer *w, const sph_particles *p, int free_surface, const size_t *pos) {
   size_t n = p->n;
   void *buf = malloc((n ? n : 1) * sizeof(double)); /* the widest field type */
   if (!buf) return sph_error_set(w->err, "%s: out of memory for %zu particles", w->path, n);
@@ -324,15 +330,13 @@ static int write_restart(writer *w, const sph_snapshot_restart *r, size_t n) {
                        &r->output_index, 1) ||
            put_numbers(w, g, "/restart", "first_step", H5T_STD_I64LE, H5T_NATIVE_INT64,
                        &r->first_step, 1) ||
-           put_numbers(w, g, "/restart", "ledger", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, r->ledger,
-                       4);
+           put_numbers(w, g, "/restart", "ledger", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, r->ledger, 4);
   if (rc == 0 && r->n_levels > 0)
-    rc = put_numbers(w, g, "/restart", "gauge_levels", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
-                     r->levels, r->n_levels);
+    rc = put_numbers(w, g, "/restart", "gauge_levels", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, r->levels,
+                     r->n_levels);
   if (rc == 0 && !r->order)
     rc = sph_error_set(w->err, "%s: restart record without the storage order", w->path);
-  if (rc == 0)
-    rc = write_raw(w, g, "order", H5T_STD_I64LE, H5T_NATIVE_INT64, r->order, n);
+  if (rc == 0) rc = write_raw(w, g, "order", H5T_STD_I64LE, H5T_NATIVE_INT64, r->order, n);
   const char *names[4] = {"vxh", "vyh", "rhoh", "uh"};
   const double *half[4] = {r->vxh, r->vyh, r->rhoh, r->uh};
   for (int k = 0; rc == 0 && k < 4; k++)
@@ -357,8 +361,7 @@ static int write_file(writer *w, const char *tmp, const sph_snapshot_meta *meta,
   close_id(fapl);
   if (rc) return rc;
   w->str = H5Tcopy(H5T_C_S1);
-  if (w->str < 0 || H5Tset_size(w->str, H5T_VARIABLE) < 0 ||
-      H5Tset_cset(w->str, H5T_CSET_UTF8) < 0)
+  if (w->str < 0 || H5Tset_size(w->str, H5T_VARIABLE) < 0 || H5Tset_cset(w->str, H5T_CSET_UTF8) < 0)
     rc = h5_fail(w->err, w->path, "cannot make the string type");
   if (rc == 0) rc = write_header(w, meta, p->n);
   if (rc == 0) rc = write_particles(w, p, meta->free_surface, pos);
@@ -443,8 +446,8 @@ static int get_numbers_of(const sph_snapshot *s, hid_t obj, const char *where, c
   } else {
     hssize_t got = H5Sget_simple_extent_npoints(space);
     if (got != (hssize_t)n)
-      rc = sph_error_set(err, "%s: attribute \"%s\" on %s has %lld values, expected %zu",
-                         s->path, name, where, (long long)got, n);
+      rc = sph_error_set(err, "%s: attribute \"%s\" on %s has %lld values, expected %zu", s->path,
+                         name, where, (long long)got, n);
     else if (H5Aread(attr, mtype, out) < 0)
       rc = h5_fail(err, s->path, "cannot read attribute \"%s\" on %s", name, where);
   }
@@ -461,8 +464,8 @@ static int get_numbers(const sph_snapshot *s, const char *name, hid_t mtype, voi
 
 /* A string attribute's value, variable- or fixed-length, into a malloc'd
  * string. */
-static int read_string(const sph_snapshot *s, hid_t attr, hid_t type, const char *name,
-                       char **out, sph_error *err) {
+static int read_string(const sph_snapshot *s, hid_t attr, hid_t type, const char *name, char **out,
+                       sph_error *err) {
   if (H5Tis_variable_str(type) > 0) {
     hid_t mtype = H5Tcopy(H5T_C_S1);
     hid_t space = H5Aget_space(attr);
@@ -486,7 +489,8 @@ static int read_string(const sph_snapshot *s, hid_t attr, hid_t type, const char
     return h5_fail(err, s->path, "cannot read attribute \"%s\" on /", name);
   }
   if (H5Tget_strpad(type) == H5T_STR_SPACEPAD)
-    for (size_t k = size; k > 0 && buf[k - 1] == ' '; k--) buf[k - 1] = '\0';
+    for (size_t k = size; k > 0 && buf[k - 1] == ' '; k--)
+      buf[k - 1] = '\0';
   *out = buf;
   return 0;
 }
@@ -561,8 +565,10 @@ static int check_length(const sph_snapshot *s, hid_t dset, const char *name, sph
   else if (H5Sget_simple_extent_dims(space, dims, NULL) < 0)
     rc = h5_fail(err, s->path, "cannot get the shape of dataset /particles/%s", name);
   else if (dims[0] != (hsize_t)s->count)
-    rc = sph_error_set(err, "%s: dataset /particles/%s has %llu values, expected %zu "
-                       "(particle_count)", s->path, name, (unsigned long long)dims[0], s->count);
+    rc = sph_error_set(err,
+                       "%s: dataset /particles/%s has %llu values, expected %zu "
+                       "(particle_count)",
+                       s->path, name, (unsigned long long)dims[0], s->count);
   close_id(space);
   return rc;
 }
@@ -623,8 +629,10 @@ static int open_file(sph_snapshot *s, sph_error *err) {
 static void release(sph_snapshot *s) {
   close_id(s->group);
   if (s->file >= 0) H5Fclose(s->file);
-  for (size_t i = 0; i < N_TEXTS; i++) free(s->text[i]);
-  for (size_t i = 0; i < s->n_fields; i++) free(s->fields[i]);
+  for (size_t i = 0; i < N_TEXTS; i++)
+    free(s->text[i]);
+  for (size_t i = 0; i < s->n_fields; i++)
+    free(s->fields[i]);
   free(s->fields);
   free(s->path);
   free(s);
@@ -814,7 +822,8 @@ static int read_restart(const sph_snapshot *s, hid_t g, sph_snapshot_restart_dat
       get_numbers_of(s, g, "/restart", "ledger", H5T_NATIVE_DOUBLE, r->ledger, 4, err))
     return -1;
   if (r->output_index < 0 || r->output_index > 99999999)
-    return sph_error_set(err, "%s: attribute \"output_index\" on /restart is %lld, expected 0..99999999",
+    return sph_error_set(err,
+                         "%s: attribute \"output_index\" on /restart is %lld, expected 0..99999999",
                          s->path, (long long)r->output_index);
   if (r->first_step != 0 && r->first_step != 1)
     return sph_error_set(err, "%s: attribute \"first_step\" on /restart is %lld, expected 0 or 1",
@@ -825,8 +834,8 @@ static int read_restart(const sph_snapshot *s, hid_t g, sph_snapshot_restart_dat
     r->levels = malloc((size_t)nl * sizeof *r->levels);
     if (!r->levels) return sph_error_set(err, "%s: out of memory", s->path);
     r->n_levels = (size_t)nl;
-    if (get_numbers_of(s, g, "/restart", "gauge_levels", H5T_NATIVE_DOUBLE, r->levels,
-                       r->n_levels, err))
+    if (get_numbers_of(s, g, "/restart", "gauge_levels", H5T_NATIVE_DOUBLE, r->levels, r->n_levels,
+                       err))
       return -1;
   }
   r->count = s->count;
@@ -862,8 +871,7 @@ static int read_restart(const sph_snapshot *s, hid_t g, sph_snapshot_restart_dat
   return 0;
 }
 
-int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *r,
-                              sph_error *err) {
+int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *r, sph_error *err) {
   memset(r, 0, sizeof *r);
   h5_quiet q;
   quiet_begin(&q);
@@ -873,8 +881,7 @@ int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *
   if (there < 0)
     rc = h5_fail(err, s->path, "cannot look for group /restart");
   else if (there == 0)
-    rc = sph_error_set(err, "%s: no group /restart: the snapshot holds no restart record",
-                       s->path);
+    rc = sph_error_set(err, "%s: no group /restart: the snapshot holds no restart record", s->path);
   else if ((g = H5Gopen2(s->file, "restart", H5P_DEFAULT)) < 0)
     rc = h5_fail(err, s->path, "cannot open group /restart");
   else

@@ -33,8 +33,8 @@ typedef struct sph_snapshot_meta {
   const char *overrides;  /* may be NULL */
   const char *parameters; /* resolved parameters and choices, "key: value" lines; may be NULL */
   double dx, h, rho0;
-  double view[4];         /* x0, x1, y0, y1 */
-  int free_surface;       /* write the free_surface field (flags bit 0) */
+  double view[4];                             /* x0, x1, y0, y1 */
+  int free_surface;                           /* write the free_surface field (flags bit 0) */
   const struct sph_snapshot_restart *restart; /* the /restart group, or NULL for none */
 } sph_snapshot_meta;
 
@@ -115,8 +115,7 @@ typedef struct sph_snapshot_restart_data {
   int64_t *order;
   double *vxh, *vyh, *rhoh, *uh;
 } sph_snapshot_restart_data;
-int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *r,
-                              sph_error *err);
+int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *r, sph_error *err);
 void sph_snapshot_restart_free(sph_snapshot_restart_data *r);
 
 #endif

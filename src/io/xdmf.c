@@ -45,8 +45,7 @@ static void put_escaped(FILE *f, const char *s) {
 }
 
 /* A DataItem referencing /particles/<field> of snapshot h5. */
-static void put_item(FILE *f, const char *indent, const char *h5, const field_spec *x,
-                     size_t n) {
+static void put_item(FILE *f, const char *indent, const char *h5, const field_spec *x, size_t n) {
   fprintf(f, "%s<DataItem Dimensions=\"%zu\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">",
           indent, n, field_xdmf_type(x->type), field_bytes(x->type));
   put_escaped(f, h5);
@@ -87,13 +86,14 @@ static void put_grid(FILE *f, const char *h5, double time, size_t n, int free_su
   fputs("      </Grid>\n", f);
 }
 
-static void put_document(FILE *f, size_t n_snap, const char *const *h5_names,
-                         const double *times, size_t n, int free_surface) {
+static void put_document(FILE *f, size_t n_snap, const char *const *h5_names, const double *times,
+                         size_t n, int free_surface) {
   fputs("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n", f);
   fputs("<Xdmf Version=\"3.0\">\n", f);
   fputs("  <Domain>\n", f);
   fputs("    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", f);
-  for (size_t i = 0; i < n_snap; i++) put_grid(f, h5_names[i], times[i], n, free_surface);
+  for (size_t i = 0; i < n_snap; i++)
+    put_grid(f, h5_names[i], times[i], n, free_surface);
   fputs("    </Grid>\n", f);
   fputs("  </Domain>\n", f);
   fputs("</Xdmf>\n", f);
@@ -107,8 +107,10 @@ static int check_inputs(const char *xmf_path, size_t n_snap, const char *const *
     const char *h5 = h5_names[i];
     if (!h5 || !*h5) return sph_error_set(err, "%s: snapshot %zu has no file name", xmf_path, i);
     if (strchr(h5, ':'))
-      return sph_error_set(err, "%s: snapshot file name \"%s\" contains ':', which XDMF "
-                           "cannot reference", xmf_path, h5);
+      return sph_error_set(err,
+                           "%s: snapshot file name \"%s\" contains ':', which XDMF "
+                           "cannot reference",
+                           xmf_path, h5);
     if (!isfinite(times[i]))
       return sph_error_set(err, "%s: snapshot %s has a non-finite time", xmf_path, h5);
   }

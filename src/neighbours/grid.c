@@ -38,8 +38,8 @@ void sph_grid_free(sph_grid *g) {
 static int reserve(sph_grid *g, size_t n, size_t cells, sph_error *err) {
   if (n > g->cap_particles) {
     const size_t cap = n + n / 4 + 16;
-    void **const arrays[] = {(void **)&g->cx, (void **)&g->cy, (void **)&g->key,
-                             (void **)&g->perm, &g->work};
+    void **const arrays[] = {(void **)&g->cx, (void **)&g->cy, (void **)&g->key, (void **)&g->perm,
+                             &g->work};
     const size_t size[] = {sizeof *g->cx, sizeof *g->cy, sizeof *g->key, sizeof *g->perm, 8};
     if (sph_arrays_regrow(&g->block, cap, 0, 5, size, arrays))
       return sph_error_set(err, "grid: out of memory for %zu particles", n);
@@ -69,10 +69,13 @@ static int counting_sort(sph_grid *g, size_t n, size_t cells, sph_error *err) {
   const int team = sph_team_size(n);
   if (team <= 1 || cells > n) {
     memset(g->count, 0, (cells + 1) * sizeof *g->count);
-    for (size_t i = 0; i < n; i++) g->count[key[i] + 1]++;
-    for (size_t c = 0; c < cells; c++) g->count[c + 1] += g->count[c];
+    for (size_t i = 0; i < n; i++)
+      g->count[key[i] + 1]++;
+    for (size_t c = 0; c < cells; c++)
+      g->count[c + 1] += g->count[c];
     memcpy(g->start, g->count, (cells + 1) * sizeof *g->start);
-    for (size_t i = 0; i < n; i++) perm[g->count[key[i]]++] = i;
+    for (size_t i = 0; i < n; i++)
+      perm[g->count[key[i]]++] = i;
     return 0;
   }
   const size_t need = (size_t)team * cells;
@@ -90,7 +93,8 @@ static int counting_sort(sph_grid *g, size_t n, size_t cells, sph_error *err) {
     size_t lo, hi;
     sph_slice(NULL, n, &lo, &hi);
     memset(h, 0, cells * sizeof *h);
-    for (size_t i = lo; i < hi; i++) h[key[i]]++;
+    for (size_t i = lo; i < hi; i++)
+      h[key[i]]++;
 #pragma omp barrier
 #pragma omp single
     { /* each count becomes its thread's first place in its cell */
@@ -105,7 +109,8 @@ static int counting_sort(sph_grid *g, size_t n, size_t cells, sph_error *err) {
       }
       g->start[cells] = run;
     }
-    for (size_t i = lo; i < hi; i++) perm[h[key[i]]++] = i;
+    for (size_t i = lo; i < hi; i++)
+      perm[h[key[i]]++] = i;
   }
   return 0;
 }
@@ -113,15 +118,17 @@ static int counting_sort(sph_grid *g, size_t n, size_t cells, sph_error *err) {
 /* The shared build: bounding box in y (and in x unless periodic), keys,
  * stable counting sort, and the permutation of the store (p != NULL) or
  * only the cell lists in g->perm (p == NULL, the store read through q). */
-static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double cell,
-                 int periodic, double px0, double px1, size_t max_cells, sph_error *err) {
+static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double cell, int periodic,
+                 double px0, double px1, size_t max_cells, sph_error *err) {
   if (p) q = p;
   const size_t n = q->n;
   if (!(cell > 0.0)) return sph_error_set(err, "grid: cell size must be positive");
   double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
   const long ln = (long)n;
-#pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN) reduction(min : xmin, ymin) \
-    reduction(max : xmax, ymax)
+#pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN) reduction(min                      \
+                                                                          : xmin, ymin)            \
+    reduction(max                                                                                  \
+              : xmax, ymax)
   for (long i = 0; i < ln; i++) {
     if (q->x[i] < xmin) xmin = q->x[i];
     if (q->x[i] > xmax) xmax = q->x[i];
@@ -206,8 +213,7 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
   return 0;
 }
 
-int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells,
-                   sph_error *err) {
+int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells, sph_error *err) {
   return build(g, p, NULL, cell, 0, 0.0, 0.0, max_cells, err);
 }
 
@@ -277,10 +283,12 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES];
     sph_grid_ranges_all(g, (size_t)li, lo, hi);
     size_t c = 0;
-    for (int k = 0; k < SPH_GRID_RANGES; k++) c += hi[k] - lo[k];
+    for (int k = 0; k < SPH_GRID_RANGES; k++)
+      c += hi[k] - lo[k];
     l->start[li + 1] = c;
   }
-  for (size_t i = 0; i < n; i++) l->start[i + 1] += l->start[i]; /* exact: integers */
+  for (size_t i = 0; i < n; i++)
+    l->start[i + 1] += l->start[i]; /* exact: integers */
   const size_t total = l->start[n];
   if (total > l->cap_nb) {
     const size_t cap = total + total / 4 + 64;
@@ -320,7 +328,8 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
           for (uint32_t a = 1; a < c; a++) {
             const uint32_t v = row[a];
             uint32_t b = a;
-            for (; b > 0 && row[b - 1] > v; b--) row[b] = row[b - 1];
+            for (; b > 0 && row[b - 1] > v; b--)
+              row[b] = row[b - 1];
             row[b] = v;
           }
         l->count[i] = c;
@@ -421,7 +430,8 @@ const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double s
     size_t k = 0;
     for (size_t j = 0; j < n; j++) {
       const double dx = sph_grid_min_image(p->x[i] - p->x[j], l->period), dy = p->y[i] - p->y[j];
-      while (k < l->count[i] && row[k] < j) k++;
+      while (k < l->count[i] && row[k] < j)
+        k++;
       if (j == i || !(dx * dx + dy * dy < r2)) continue;
       if (k == l->count[i] || row[k] != j) {
         snprintf(check_msg, sizeof check_msg,

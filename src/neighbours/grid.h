@@ -27,11 +27,11 @@ typedef struct sph_grid {
   double cell;    /* cell side (rows); columns are cellx wide */
   double cellx;   /* column width: = cell, or period/nx when periodic in x */
   int periodic;   /* columns wrap around (periodic in x) */
-  int sorted;    /* the store is in cell order (sph_grid_build*); 0 after
-                    sph_grid_bin: cell c holds perm[start[c]] .. perm[start[c+1]-1] */
-  long nx, ny;   /* cells per row, rows */
-  size_t *start; /* nx*ny + 1 offsets into the sorted store */
-  long *cx, *cy; /* cell coordinates of the particle at each storage index */
+  int sorted;     /* the store is in cell order (sph_grid_build*); 0 after
+                     sph_grid_bin: cell c holds perm[start[c]] .. perm[start[c+1]-1] */
+  long nx, ny;    /* cells per row, rows */
+  size_t *start;  /* nx*ny + 1 offsets into the sorted store */
+  long *cx, *cy;  /* cell coordinates of the particle at each storage index */
   size_t cap_cells, cap_particles;
   size_t *key, *perm, *count; /* scratch */
   size_t *hist, cap_hist;     /* scratch: one count per cell per thread */
@@ -45,8 +45,7 @@ void sph_grid_free(sph_grid *g);
 /* Sorts p by cell (cells of side `cell`) and fills the cell offsets. Fails
  * if the bounding box would need more than max_cells cells (particles far
  * apart: the caller's domain check should have caught it). */
-int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells,
-                   sph_error *err);
+int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells, sph_error *err);
 /* The same for a domain periodic in x over [px0, px1): columns are
  * (px1 - px0)/nx >= cell wide (nx >= 3); a particle outside [px0, px1)
  * (by less than a period) is binned in the column of its periodic image. */
@@ -79,10 +78,10 @@ static inline void sph_grid_ranges(const sph_grid *g, size_t i, size_t lo[3], si
   }
 }
 
-/* Any grid, periodic or not: up to SPH_GRID_RANGES contiguous index ranges [lo[k], hi[k]) holding the
- * neighbour candidates of the particle stored at index i: per row (below,
- * same, above) one range of three cells, or two when the row wraps around
- * a periodic seam. Unused and out-of-grid ranges are empty. */
+/* Any grid, periodic or not: up to SPH_GRID_RANGES contiguous index ranges [lo[k], hi[k]) holding
+ * the neighbour candidates of the particle stored at index i: per row (below, same, above) one
+ * range of three cells, or two when the row wraps around a periodic seam. Unused and out-of-grid
+ * ranges are empty. */
 /* x_i - x_j = d as the minimum image in a domain periodic in x over
  * `period` (period > 0); d unchanged when period is 0. The one helper of
  * the grid, the filters, free-surface detection and the repulsive force. */
@@ -98,9 +97,10 @@ static inline double sph_grid_min_image(double d, double period) {
 
 #define SPH_GRID_RANGES 6
 static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SPH_GRID_RANGES],
-                                   size_t hi[SPH_GRID_RANGES]) {
+                                       size_t hi[SPH_GRID_RANGES]) {
   const long cx = g->cx[i], cy = g->cy[i], nx = g->nx;
-  for (int k = 0; k < SPH_GRID_RANGES; k++) lo[k] = hi[k] = 0;
+  for (int k = 0; k < SPH_GRID_RANGES; k++)
+    lo[k] = hi[k] = 0;
   for (int r = 0; r < 3; r++) {
     const long y = cy - 1 + r;
     if (y < 0 || y >= g->ny) continue;
@@ -160,23 +160,23 @@ static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SP
 #define SPH_NLIST_STEAL_GRAIN 32
 
 typedef struct sph_nlist {
-  int valid;          /* built, and the store not reordered since */
-  size_t n;           /* particles at the build */
-  double radius;      /* list radius: support + skin */
-  double skin;        /* radius - support */
-  double period;      /* > 0: minimum image in x with this period */
-  size_t *start;      /* n + 1 offsets into nb (a row's capacity: its candidates) */
-  uint32_t *count;    /* neighbours of each particle */
-  uint32_t maxcount;  /* the longest row */
-  uint32_t *nb;       /* neighbour storage indices */
+  int valid;           /* built, and the store not reordered since */
+  size_t n;            /* particles at the build */
+  double radius;       /* list radius: support + skin */
+  double skin;         /* radius - support */
+  double period;       /* > 0: minimum image in x with this period */
+  size_t *start;       /* n + 1 offsets into nb (a row's capacity: its candidates) */
+  uint32_t *count;     /* neighbours of each particle */
+  uint32_t maxcount;   /* the longest row */
+  uint32_t *nb;        /* neighbour storage indices */
   double *xref, *yref; /* positions at the build */
-  int64_t *idref;     /* ids at the build (a reordered store is detected) */
+  int64_t *idref;      /* ids at the build (a reordered store is detected) */
   size_t cap_n, cap_nb;
-  size_t *cost;       /* n + 1: prefix sums of the particles' costs (SPH_NLIST_ROW_COST), the split of
-                         the loops over the store among threads (parallel.h) */
-  void *block;        /* the one allocation of start ... cost (arrays.h) */
-  long builds;        /* number of builds (statistics) */
-  sph_steal steal;    /* the fill loop's slices (parallel.h) */
+  size_t *cost;    /* n + 1: prefix sums of the particles' costs (SPH_NLIST_ROW_COST), the split of
+                      the loops over the store among threads (parallel.h) */
+  void *block;     /* the one allocation of start ... cost (arrays.h) */
+  long builds;     /* number of builds (statistics) */
+  sph_steal steal; /* the fill loop's slices (parallel.h) */
 } sph_nlist;
 
 void sph_nlist_init(sph_nlist *l);

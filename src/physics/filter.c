@@ -87,7 +87,6 @@ static inline double grid_period(const sph_grid *g) {
   return g->periodic ? g->cellx * (double)g->nx : 0.0;
 }
 
-
 /* The kernel moments of one particle: A (upper triangle, positions in
  * units of h_a) and M = sum m_b W_ab P_ab. The Shepard filter uses a00 and
  * m0 only. */

@@ -34,11 +34,9 @@
 #include <stddef.h>
 
 #include "core/error.h"
-#include "neighbours/grid.h"
 #include "core/particles.h"
+#include "neighbours/grid.h"
 #include "physics/models.h"
-
-
 
 /* Default fallback threshold of the MLS filter (see mls_det_min). */
 #define SPH_FILTER_MLS_DET_MIN 1e-3

@@ -43,8 +43,8 @@
 #include <stddef.h>
 
 #include "core/error.h"
-#include "neighbours/grid.h"
 #include "core/particles.h"
+#include "neighbours/grid.h"
 
 /* A gap between covered arcs no longer than this (radians) counts as
  * covered. Arc end points carry a rounding error of a few 1e-16 rad when

@@ -52,7 +52,8 @@ void sph_diag_compute(const sph_particles *p, double floor_y, double band, const
 }
 
 int sph_diag_write_header(FILE *f, int free_surface, int ledger) {
-  return fprintf(f, "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential%s%s\n",
+  return fprintf(f,
+                 "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential%s%s\n",
                  free_surface ? ",n_free_surface" : "",
                  ledger ? ",internal,boundary_work,xsph_drift,total_energy,energy_deviation,"
                           "fluid_energy_deviation,momentum_residual_x,momentum_residual_y"
@@ -60,15 +61,14 @@ int sph_diag_write_header(FILE *f, int free_surface, int ledger) {
 }
 
 int sph_diag_write_row(FILE *f, const sph_diag_row *r) {
-  if (fprintf(f, "%.17g,%ld,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", r->time, r->step,
-              r->dt, r->n_fluid, r->front_x, r->mass, r->momentum_x, r->momentum_y, r->kinetic,
+  if (fprintf(f, "%.17g,%ld,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", r->time, r->step, r->dt,
+              r->n_fluid, r->front_x, r->mass, r->momentum_x, r->momentum_y, r->kinetic,
               r->potential) < 0)
     return 1;
   if (r->n_surface >= 0 && fprintf(f, ",%ld", r->n_surface) < 0) return 1;
   if (r->ledger && fprintf(f, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", r->internal,
                            r->boundary_work, r->xsph_drift, r->total, r->deviation,
-                           r->fluid_deviation, r->momentum_residual_x,
-                           r->momentum_residual_y) < 0)
+                           r->fluid_deviation, r->momentum_residual_x, r->momentum_residual_y) < 0)
     return 1;
   return fputc('\n', f) == EOF;
 }

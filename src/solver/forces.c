@@ -49,7 +49,6 @@
  * work, so a thread waits at most that long at the end of a pass. */
 #define SPH_STEAL_GRAIN 32
 
-
 void sph_force_work_free(sph_force_work *w) {
   free(w->block);
   free(w->rows);
@@ -63,15 +62,15 @@ void sph_force_work_free(sph_force_work *w) {
 static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
   if (n <= w->cap) return 0;
   const size_t cap = n + n / 4 + 16;
-  void **arrays[] = {(void **)&w->hot, (void **)&w->prho2, (void **)&w->cs,
-                     (void **)&w->sigma, (void **)&w->sxx, (void **)&w->sxy,
-                     (void **)&w->syy, (void **)&w->wpow, (void **)&w->wfx,
-                     (void **)&w->wfy, (void **)&w->lxx, (void **)&w->lxy,
-                     (void **)&w->lyy, (void **)&w->gvx, (void **)&w->gvy};
+  void **arrays[] = {(void **)&w->hot, (void **)&w->prho2, (void **)&w->cs,  (void **)&w->sigma,
+                     (void **)&w->sxx, (void **)&w->sxy,   (void **)&w->syy, (void **)&w->wpow,
+                     (void **)&w->wfx, (void **)&w->wfy,   (void **)&w->lxx, (void **)&w->lxy,
+                     (void **)&w->lyy, (void **)&w->gvx,   (void **)&w->gvy};
   enum { N_ARRAYS = sizeof arrays / sizeof arrays[0] };
   size_t size[N_ARRAYS];
   size[0] = sizeof *w->hot;
-  for (size_t k = 1; k < N_ARRAYS; k++) size[k] = sizeof(double);
+  for (size_t k = 1; k < N_ARRAYS; k++)
+    size[k] = sizeof(double);
   if (sph_arrays_regrow(&w->block, cap, w->cap, N_ARRAYS, size, arrays))
     return sph_error_set(err, "forces: out of memory for %zu particles", n);
   w->cap = cap;
@@ -81,7 +80,8 @@ static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
 void sph_forces_pressure(sph_particles *p, const sph_eos *eos) {
   const long n = (long)p->n;
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
-  for (long i = 0; i < n; i++) p->p[i] = sph_eos_pressure(eos, p->rho[i]);
+  for (long i = 0; i < n; i++)
+    p->p[i] = sph_eos_pressure(eos, p->rho[i]);
 }
 
 /* The neighbour row of i in the list l: j = nb[0], ..., nb[cnt - 1]. */
@@ -110,32 +110,32 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
   const int correct = o->lxx != NULL;
   ROW(l, i, nb, cnt)
   for (size_t k = 0; k < cnt; k++) {
-      const size_t j = nb[k];
-      const double dx = sep_x(xi, x[j], period, half, F), dy = yi - y[j];
-      const double r2 = dx * dx + dy * dy;
-      const double hij = (F & F_VARH) ? 0.5 * (h[i] + h[j]) : fp->h;
-      if (r2 >= 4.0 * hij * hij || r2 == 0.0) continue;
-      const double r = sqrt(r2);
-      double wij, dw;
-      sph_cubic_w_dw(r, hij, &wij, &dw);
-      const double f = dw / r * (m[j] / rho[j]);
-      const double gx = f * dx, gy = f * dy;       /* V_j grad_i W_ij */
-      const double ux = vx[j] - vxi, uy = vy[j] - vyi; /* v_ji */
-      if (correct) {
-        gxx += ux * gx;
-        gxy += ux * gy;
-        gyx += uy * gx;
-        gyy += uy * gy;
-        mxx -= dx * gx;
-        mxy -= dx * gy;
-        myy -= dy * gy;
-      } else {
-        sxx += 2.0 * ux * gx;
-        syy += 2.0 * uy * gy;
-        sxy += uy * gx + ux * gy;
-        div += ux * gx + uy * gy;
-      }
+    const size_t j = nb[k];
+    const double dx = sep_x(xi, x[j], period, half, F), dy = yi - y[j];
+    const double r2 = dx * dx + dy * dy;
+    const double hij = (F & F_VARH) ? 0.5 * (h[i] + h[j]) : fp->h;
+    if (r2 >= 4.0 * hij * hij || r2 == 0.0) continue;
+    const double r = sqrt(r2);
+    double wij, dw;
+    sph_cubic_w_dw(r, hij, &wij, &dw);
+    const double f = dw / r * (m[j] / rho[j]);
+    const double gx = f * dx, gy = f * dy;           /* V_j grad_i W_ij */
+    const double ux = vx[j] - vxi, uy = vy[j] - vyi; /* v_ji */
+    if (correct) {
+      gxx += ux * gx;
+      gxy += ux * gy;
+      gyx += uy * gx;
+      gyy += uy * gy;
+      mxx -= dx * gx;
+      mxy -= dx * gy;
+      myy -= dy * gy;
+    } else {
+      sxx += 2.0 * ux * gx;
+      syy += 2.0 * uy * gy;
+      sxy += uy * gx + ux * gy;
+      div += ux * gx + uy * gy;
     }
+  }
   if (correct) { /* grad v = G M^-1 where M is invertible (Bonet and Lok 1999) */
     const double det = mxx * myy - mxy * mxy;
     double axx = 1.0, axy = 0.0, ayy = 1.0;
@@ -163,13 +163,14 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
 /* One function per variant, with F a literal inside the parallel region
  * (OpenMP outlines the region before inlining, so a constant must be
  * spelled out there to reach the loop). */
-#define STRAIN_VARIANT(k)                                                                    \
-  static void strain_all_##k(const sph_particles *p, const sph_nlist *l,                      \
-                             const sph_force_params *fp, double *exx, double *exy,            \
-                             double *eyy, const strain_opts *o) {                             \
-    const long n = (long)p->n;                                                               \
-    _Pragma("omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)") for (long i = 0; i < n; i++)          \
-        strain_one(p, l, fp, (size_t)i, exx, exy, eyy, o, k);                                 \
+#define STRAIN_VARIANT(k)                                                                          \
+  static void strain_all_##k(const sph_particles *p, const sph_nlist *l,                           \
+                             const sph_force_params *fp, double *exx, double *exy, double *eyy,    \
+                             const strain_opts *o) {                                               \
+    const long n = (long)p->n;                                                                     \
+    _Pragma("omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)") for (long i = 0;       \
+                                                                                 i < n; i++)       \
+        strain_one(p, l, fp, (size_t)i, exx, exy, eyy, o, k);                                      \
   }
 STRAIN_VARIANT(0)
 STRAIN_VARIANT(16)
@@ -197,10 +198,10 @@ static double kernel_reach(const sph_particles *p, const sph_force_params *fp) {
 }
 
 /* The velocities the strain-rate pass reads, no-slip walls extrapolated. */
-static int wall_ghosts(const sph_particles *p, const sph_force_params *fp, double *gvx,
-                       double *gvy, sph_wall_velocity_work *wv, sph_error *err) {
-  return sph_wall_velocity(p, kernel_reach(p, fp), fp->px0, fp->periodic ? fp->period : 0.0,
-                           gvx, gvy, wv, err);
+static int wall_ghosts(const sph_particles *p, const sph_force_params *fp, double *gvx, double *gvy,
+                       sph_wall_velocity_work *wv, sph_error *err) {
+  return sph_wall_velocity(p, kernel_reach(p, fp), fp->px0, fp->periodic ? fp->period : 0.0, gvx,
+                           gvy, wv, err);
 }
 
 /* The options of the strain-rate pass as fp asks for them, into w's arrays:
@@ -228,8 +229,8 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
   sph_nlist_init(&l);
   sph_force_work w = {0};
   strain_opts o;
-  int rc = sph_nlist_build(&l, g, p, kernel_reach(p, fp), 0.0, fp->periodic ? fp->period : 0.0,
-                           err);
+  int rc =
+      sph_nlist_build(&l, g, p, kernel_reach(p, fp), 0.0, fp->periodic ? fp->period : 0.0, err);
   if (rc == 0) rc = work_reserve(&w, p->n, err);
   if (rc == 0) rc = strain_setup(p, fp, &w, &o, err);
   if (rc == 0) strain_list(p, &l, fp, exx, exy, eyy, &o);
@@ -238,45 +239,44 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
   return rc;
 }
 
-
 /* One particle of the main pass in a flavour: the lane loop where it
  * serves the term set F, else the scalar loop. */
 #define PARTICLE_v1(p, l, fp, w, i, k) interact_one(p, l, fp, w, i, k)
-#define PARTICLE_v4e(p, l, fp, w, i, k)                                                      \
+#define PARTICLE_v4e(p, l, fp, w, i, k)                                                            \
   (((k) & (F_VARH | F_LEDGER)) ? interact_one(p, l, fp, w, i, k) : interact_v4e(p, l, fp, w, i, k))
-#define PARTICLE_v4x(p, l, fp, w, i, k)                                                      \
+#define PARTICLE_v4x(p, l, fp, w, i, k)                                                            \
   (((k) & (F_VARH | F_LEDGER)) ? interact_one(p, l, fp, w, i, k) : interact_v4x(p, l, fp, w, i, k))
 
 /* One function per combination of terms and flavour, F a literal in its
  * parallel region (see STRAIN_VARIANT). */
-#define VARIANT_FL(k, FL, NAME, ATTR)                                                         \
-  ATTR void NAME##_##k(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,       \
-                       sph_force_work *w) {                                                   \
-    const long n = (long)p->n;                                                               \
-    double mx = 0.0; /* max of cs + sigma: exact in any order */                             \
-    _Pragma("omp parallel if (n > SPH_OMP_MIN) reduction(max : mx)") {                       \
-      size_t lo, hi; /* slices of equal cost, with stealing (parallel.h) */                  \
-      while (sph_steal_next(&w->steal, SPH_STEAL_GRAIN, &lo, &hi))                           \
-        for (size_t i = lo; i < hi; i++) {                                                   \
-          PARTICLE_##FL(p, l, fp, w, i, k);                                                  \
-          const double c = w->cs[i] + w->sigma[i];                                           \
-          if (c > mx) mx = c;                                                                \
-        }                                                                                    \
-    }                                                                                        \
-    sph_steal_learn(&w->steal);                                                              \
-    w->cs_sigma_max = mx;                                                                    \
+#define VARIANT_FL(k, FL, NAME, ATTR)                                                              \
+  ATTR void NAME##_##k(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,           \
+                       sph_force_work *w) {                                                        \
+    const long n = (long)p->n;                                                                     \
+    double mx = 0.0; /* max of cs + sigma: exact in any order */                                   \
+    _Pragma("omp parallel if (n > SPH_OMP_MIN) reduction(max : mx)") {                             \
+      size_t lo, hi; /* slices of equal cost, with stealing (parallel.h) */                        \
+      while (sph_steal_next(&w->steal, SPH_STEAL_GRAIN, &lo, &hi))                                 \
+        for (size_t i = lo; i < hi; i++) {                                                         \
+          PARTICLE_##FL(p, l, fp, w, i, k);                                                        \
+          const double c = w->cs[i] + w->sigma[i];                                                 \
+          if (c > mx) mx = c;                                                                      \
+        }                                                                                          \
+    }                                                                                              \
+    sph_steal_learn(&w->steal);                                                                    \
+    w->cs_sigma_max = mx;                                                                          \
   }
 #ifdef SPH_LANES_AVX
-#define VARIANT(k)                                                                           \
-  VARIANT_FL(k, v4e, interact_all, static)                                                   \
-  VARIANT_FL(k, v1, interact_scalar, static)                                                 \
+#define VARIANT(k)                                                                                 \
+  VARIANT_FL(k, v4e, interact_all, static)                                                         \
+  VARIANT_FL(k, v1, interact_scalar, static)                                                       \
   VARIANT_FL(k, v4x, interact_avx, static __attribute__((target("avx2"))))
 #else
-#define VARIANT(k)                                                                           \
-  VARIANT_FL(k, v4e, interact_all, static)                                                   \
+#define VARIANT(k)                                                                                 \
+  VARIANT_FL(k, v4e, interact_all, static)                                                         \
   VARIANT_FL(k, v1, interact_scalar, static)
 #endif
-#define VARIANTS8(a, b, c, d, e, f, g, h)                                                    \
+#define VARIANTS8(a, b, c, d, e, f, g, h)                                                          \
   VARIANT(a) VARIANT(b) VARIANT(c) VARIANT(d) VARIANT(e) VARIANT(f) VARIANT(g) VARIANT(h)
 VARIANTS8(0, 1, 2, 3, 4, 5, 6, 7)
 VARIANTS8(8, 9, 10, 11, 12, 13, 14, 15)
@@ -299,25 +299,24 @@ typedef void (*interact_fn)(sph_particles *, const sph_nlist *, const sph_force_
                             sph_force_work *);
 /* The 128 variants of one flavour (prefix P) in the order of F. */
 #define FN8(P, a, b, c, d, e, f, g, h) P##a, P##b, P##c, P##d, P##e, P##f, P##g, P##h
-#define VARIANTS128(P)                                                                       \
-  {                                                                                          \
-    FN8(P, 0, 1, 2, 3, 4, 5, 6, 7), FN8(P, 8, 9, 10, 11, 12, 13, 14, 15),                    \
-        FN8(P, 16, 17, 18, 19, 20, 21, 22, 23), FN8(P, 24, 25, 26, 27, 28, 29, 30, 31),      \
-        FN8(P, 32, 33, 34, 35, 36, 37, 38, 39), FN8(P, 40, 41, 42, 43, 44, 45, 46, 47),      \
-        FN8(P, 48, 49, 50, 51, 52, 53, 54, 55), FN8(P, 56, 57, 58, 59, 60, 61, 62, 63),      \
-        FN8(P, 64, 65, 66, 67, 68, 69, 70, 71), FN8(P, 72, 73, 74, 75, 76, 77, 78, 79),      \
-        FN8(P, 80, 81, 82, 83, 84, 85, 86, 87), FN8(P, 88, 89, 90, 91, 92, 93, 94, 95),      \
-        FN8(P, 96, 97, 98, 99, 100, 101, 102, 103),                                          \
-        FN8(P, 104, 105, 106, 107, 108, 109, 110, 111),                                      \
-        FN8(P, 112, 113, 114, 115, 116, 117, 118, 119),                                      \
-        FN8(P, 120, 121, 122, 123, 124, 125, 126, 127)                                       \
+#define VARIANTS128(P)                                                                             \
+  {                                                                                                \
+    FN8(P, 0, 1, 2, 3, 4, 5, 6, 7), FN8(P, 8, 9, 10, 11, 12, 13, 14, 15),                          \
+        FN8(P, 16, 17, 18, 19, 20, 21, 22, 23), FN8(P, 24, 25, 26, 27, 28, 29, 30, 31),            \
+        FN8(P, 32, 33, 34, 35, 36, 37, 38, 39), FN8(P, 40, 41, 42, 43, 44, 45, 46, 47),            \
+        FN8(P, 48, 49, 50, 51, 52, 53, 54, 55), FN8(P, 56, 57, 58, 59, 60, 61, 62, 63),            \
+        FN8(P, 64, 65, 66, 67, 68, 69, 70, 71), FN8(P, 72, 73, 74, 75, 76, 77, 78, 79),            \
+        FN8(P, 80, 81, 82, 83, 84, 85, 86, 87), FN8(P, 88, 89, 90, 91, 92, 93, 94, 95),            \
+        FN8(P, 96, 97, 98, 99, 100, 101, 102, 103),                                                \
+        FN8(P, 104, 105, 106, 107, 108, 109, 110, 111),                                            \
+        FN8(P, 112, 113, 114, 115, 116, 117, 118, 119),                                            \
+        FN8(P, 120, 121, 122, 123, 124, 125, 126, 127)                                             \
   }
 static const interact_fn VARIANT_TABLE[128] = VARIANTS128(interact_all_);
 static const interact_fn VARIANT_TABLE_SCALAR[128] = VARIANTS128(interact_scalar_);
 #ifdef SPH_LANES_AVX
 static const interact_fn VARIANT_TABLE_AVX[128] = VARIANTS128(interact_avx_);
 #endif
-
 
 #ifdef SPH_LANES_AVX
 /* Whether the processor has AVX2 (asked once). */
@@ -379,8 +378,8 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
     for (size_t i = lo; i < hi; i++) {
       const double rho = p->rho[i], cs = sph_eos_sound_speed(&fp->eos, rho);
       w->cs[i] = cs;
-      w->hot[i] = (sph_force_hot){p->x[i], p->y[i], p->vx[i], p->vy[i], rho,
-                                  p->p[i] / (rho * rho), cs, p->mass[i]};
+      w->hot[i] = (sph_force_hot){
+          p->x[i], p->y[i], p->vx[i], p->vy[i], rho, p->p[i] / (rho * rho), cs, p->mass[i]};
     }
   }
   const size_t stride = (size_t)l->maxcount + 4, need = stride * (size_t)sph_max_threads();
@@ -439,9 +438,10 @@ static int stress_pass(const sph_particles *p, const sph_nlist *l, const sph_for
  * a term or a loop, not a blow-up: the state it read was checked). */
 static void check_rates(const sph_particles *p, const sph_force_work *w, unsigned F) {
   for (size_t i = 0; i < p->n; i++) {
-    int ok = isfinite(p->drho[i]) && isfinite(p->ax[i]) && isfinite(p->ay[i]) &&
-             isfinite(w->sigma[i]);
-    if ((F & F_XSPH) && p->kind[i] == SPH_KIND_FLUID) ok &= isfinite(p->xsx[i]) && isfinite(p->xsy[i]);
+    int ok =
+        isfinite(p->drho[i]) && isfinite(p->ax[i]) && isfinite(p->ay[i]) && isfinite(w->sigma[i]);
+    if ((F & F_XSPH) && p->kind[i] == SPH_KIND_FLUID)
+      ok &= isfinite(p->xsx[i]) && isfinite(p->xsy[i]);
     if (F & F_LEDGER) ok &= isfinite(p->du[i]) && isfinite(w->wpow[i]);
     SPH_INVARIANT(ok, "particle %zu (id %lld) has a rate that is not finite after a pass", i,
                   (long long)p->id[i]);
@@ -457,7 +457,6 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
   if ((F & F_STRESS) && stress_pass(p, l, fp, w, err)) return -1;
   run(p, l, fp, w);
   if (SPH_DEBUG) check_rates(p, w, F);
-  if (fp->repulsive)
-    sph_repulsion_add(p, l, fp->lj_d, fp->lj_r0, fp->periodic ? fp->period : 0.0);
+  if (fp->repulsive) sph_repulsion_add(p, l, fp->lj_d, fp->lj_r0, fp->periodic ? fp->period : 0.0);
   return 0;
 }

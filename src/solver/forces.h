@@ -53,11 +53,11 @@
 #ifndef SPH_FORCES_H
 #define SPH_FORCES_H
 
-#include "physics/models.h"
-#include "physics/eos.h"
-#include "neighbours/grid.h"
 #include "core/parallel.h"
 #include "core/particles.h"
+#include "neighbours/grid.h"
+#include "physics/eos.h"
+#include "physics/models.h"
 #include "walls/wall_velocity.h"
 
 #define SPH_GRADIENT_CORRECTION_MIN_DET 0.8
@@ -69,10 +69,10 @@
  * lane flavours, which agree bitwise. The default is what runs use; the
  * others are for tests (tests/test_pair_terms.c). */
 typedef enum {
-  SPH_LOOP_AUTO = 0,      /* AVX2 lanes where the processor has them, else portable lanes */
-  SPH_LOOP_SCALAR = 1,    /* the scalar loop for every term set */
-  SPH_LOOP_LANES = 2,     /* the portable four-lane loop (scalar for var_h, ledger) */
-  SPH_LOOP_LANES_AVX = 3  /* the AVX2 four-lane loop (scalar for var_h, ledger) */
+  SPH_LOOP_AUTO = 0,     /* AVX2 lanes where the processor has them, else portable lanes */
+  SPH_LOOP_SCALAR = 1,   /* the scalar loop for every term set */
+  SPH_LOOP_LANES = 2,    /* the portable four-lane loop (scalar for var_h, ledger) */
+  SPH_LOOP_LANES_AVX = 3 /* the AVX2 four-lane loop (scalar for var_h, ledger) */
 } sph_force_loop;
 
 /* Whether the loop can run on this build and processor. */
@@ -80,23 +80,23 @@ int sph_force_loop_available(sph_force_loop loop);
 
 typedef struct sph_force_params {
   sph_eos eos;
-  double h;            /* smoothing length when uniform */
-  int var_h;           /* per-particle h (pair mean h_ij); the grid must fit 2 max h */
-  double alpha, beta;  /* artificial viscosity; both 0 = off */
-  double eta;          /* eta = eta_f * h_ij */
-  double xsph;         /* XSPH epsilon; 0 = off */
-  double gx, gy;       /* body force per unit mass */
+  double h;           /* smoothing length when uniform */
+  int var_h;          /* per-particle h (pair mean h_ij); the grid must fit 2 max h */
+  double alpha, beta; /* artificial viscosity; both 0 = off */
+  double eta;         /* eta = eta_f * h_ij */
+  double xsph;        /* XSPH epsilon; 0 = off */
+  double gx, gy;      /* body force per unit mass */
   sph_viscosity_kind viscosity;
-  double mu;           /* dynamic viscosity (Pa s) */
-  int periodic;        /* minimum image in x */
-  double period;       /* length of the period */
-  int repulsive;       /* repulsive wall particles present */
-  double lj_d, lj_r0;  /* Lennard-Jones strength D and range r0 */
-  int ledger;          /* energy ledger: du/dt and the power of wall particles on fluid */
-  int sps;             /* SPS turbulence stress (src/physics/turbulence.h) */
+  double mu;               /* dynamic viscosity (Pa s) */
+  int periodic;            /* minimum image in x */
+  double period;           /* length of the period */
+  int repulsive;           /* repulsive wall particles present */
+  double lj_d, lj_r0;      /* Lennard-Jones strength D and range r0 */
+  int ledger;              /* energy ledger: du/dt and the power of wall particles on fluid */
+  int sps;                 /* SPS turbulence stress (src/physics/turbulence.h) */
   int gradient_correction; /* kernel-gradient correction of the stress tensor (below) */
-  int no_slip;         /* some wall particles carry SPH_FLAG_NO_SLIP (wall_velocity.h) */
-  double px0;          /* periodic: the period starts at x = px0 */
+  int no_slip;             /* some wall particles carry SPH_FLAG_NO_SLIP (wall_velocity.h) */
+  double px0;              /* periodic: the period starts at x = px0 */
   double sps_cs, sps_ci, sps_delta;
   sph_force_loop loop; /* default SPH_LOOP_AUTO */
 } sph_force_params;
@@ -114,21 +114,21 @@ typedef struct sph_force_hot {
 /* Per-particle quantities of a pass (storage order). */
 typedef struct sph_force_work {
   size_t cap;
-  void *block;           /* the one allocation of the arrays below (arrays.h) */
-  sph_force_hot *hot;    /* packed copy of the state read from neighbours */
-  double *prho2;         /* scratch of n doubles (p / rho^2 lives in hot) */
-  double *cs;            /* sound speed */
-  double *sigma;         /* max_j |h v_ij.r_ij / r_ij^2| */
+  void *block;             /* the one allocation of the arrays below (arrays.h) */
+  sph_force_hot *hot;      /* packed copy of the state read from neighbours */
+  double *prho2;           /* scratch of n doubles (p / rho^2 lives in hot) */
+  double *cs;              /* sound speed */
+  double *sigma;           /* max_j |h v_ij.r_ij / r_ij^2| */
   double *sxx, *sxy, *syy; /* tau / rho^2 (stress-tensor viscosity only) */
-  double *wpow;          /* ledger: sum over wall neighbours j of a_ij . v_j (fluid i) */
-  double *wfx, *wfy;     /* ledger: sum over wall and mirror neighbours j of a_ij (fluid i) */
+  double *wpow;            /* ledger: sum over wall neighbours j of a_ij . v_j (fluid i) */
+  double *wfx, *wfy;       /* ledger: sum over wall and mirror neighbours j of a_ij (fluid i) */
   double *lxx, *lxy, *lyy; /* kernel-gradient correction M^-1 of the strain-rate pass */
-  double *gvx, *gvy;     /* velocity in the strain-rate pass (extrapolated on no-slip walls) */
+  double *gvx, *gvy;       /* velocity in the strain-rate pass (extrapolated on no-slip walls) */
   sph_wall_velocity_work wv;
-  double cs_sigma_max;   /* max over the particles of cs + sigma (the step rule) */
-  uint32_t *rows;        /* per thread: a neighbour row cut to the support */
+  double cs_sigma_max; /* max over the particles of cs + sigma (the step rule) */
+  uint32_t *rows;      /* per thread: a neighbour row cut to the support */
   size_t rows_stride, rows_cap;
-  sph_steal steal;       /* the interaction loop's slices (parallel.h) */
+  sph_steal steal; /* the interaction loop's slices (parallel.h) */
 } sph_force_work;
 
 void sph_force_work_free(sph_force_work *w);

@@ -17,8 +17,8 @@
  * The pressure follows from the new density in the same loop, so a stage
  * is one pass over the store (and one parallel region). */
 static inline __attribute__((always_inline)) void stage(sph_particles *p, double dt, int xsph,
-                                                         const sph_eos *eos, const size_t *cost,
-                                                         const int save, const int finish) {
+                                                        const sph_eos *eos, const size_t *cost,
+                                                        const int save, const int finish) {
   const long n = (long)p->n;
   const double hdt = 0.5 * dt;
 #pragma omp parallel if (n > SPH_OMP_MIN)
@@ -68,8 +68,7 @@ static inline __attribute__((always_inline)) void stage(sph_particles *p, double
 void sph_pc_half(sph_particles *p, double dt, int xsph, const sph_eos *eos, const size_t *cost) {
   stage(p, dt, xsph, eos, cost, 1, 0);
 }
-void sph_pc_finish(sph_particles *p, double dt, int xsph, const sph_eos *eos,
-                   const size_t *cost) {
+void sph_pc_finish(sph_particles *p, double dt, int xsph, const sph_eos *eos, const size_t *cost) {
   stage(p, dt, xsph, eos, cost, 0, 1);
 }
 
@@ -124,8 +123,8 @@ double sph_dt_cfl(const sph_particles *p, const sph_eos *eos, double h, double f
   double vmax = 0.0;
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : vmax)
   for (long i = 0; i < n; i++) {
-    const double v = sph_eos_sound_speed(eos, p->rho[i]) +
-                     sqrt(p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);
+    const double v =
+        sph_eos_sound_speed(eos, p->rho[i]) + sqrt(p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);
     if (v > vmax) vmax = v;
   }
   return factor * h / vmax;

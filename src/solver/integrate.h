@@ -14,9 +14,9 @@
 #ifndef SPH_INTEGRATE_H
 #define SPH_INTEGRATE_H
 
+#include "core/particles.h"
 #include "physics/eos.h"
 #include "solver/forces.h"
-#include "core/particles.h"
 
 /* Every update below is per particle; `cost` (n + 1 entries, or NULL)
  * splits the store among the threads as the neighbour loops do
@@ -26,8 +26,7 @@
 void sph_pc_half(sph_particles *p, double dt, int xsph, const sph_eos *eos, const size_t *cost);
 /* X <- 2 (X0 + dt/2 F) - X0: the corrector half step and the final
  * update, and the pressure. */
-void sph_pc_finish(sph_particles *p, double dt, int xsph, const sph_eos *eos,
-                   const size_t *cost);
+void sph_pc_finish(sph_particles *p, double dt, int xsph, const sph_eos *eos, const size_t *cost);
 
 /* The leap-frog of paper A eq. (17)-(19), one force evaluation per step.
  * Between steps the store holds x^n, the half-step values (vxh, vyh, rhoh)

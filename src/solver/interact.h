@@ -54,8 +54,8 @@ static inline unsigned sph_interact_terms(const sph_force_params *fp) {
 }
 
 /* The neighbour row of i in the list l: j = row_[0], ..., row_[len_ - 1]. */
-#define ROW(l, i, row_, len_)                                                                \
-  const uint32_t *restrict row_ = (l)->nb + (l)->start[i];                                  \
+#define ROW(l, i, row_, len_)                                                                      \
+  const uint32_t *restrict row_ = (l)->nb + (l)->start[i];                                         \
   const size_t len_ = (l)->count[i];
 
 /* x_i - x_j with the minimum image when periodic. */
@@ -72,10 +72,11 @@ static inline __attribute__((always_inline)) double sep_x(double xi, double xj, 
 }
 
 /* The scalar loop: every term set. */
-static inline __attribute__((always_inline)) void
-interact_one(sph_particles *restrict p, const sph_nlist *restrict l,
-             const sph_force_params *restrict fp, sph_force_work *restrict w, size_t i,
-             const unsigned F) {
+static inline __attribute__((always_inline)) void interact_one(sph_particles *restrict p,
+                                                               const sph_nlist *restrict l,
+                                                               const sph_force_params *restrict fp,
+                                                               sph_force_work *restrict w, size_t i,
+                                                               const unsigned F) {
   const sph_force_hot *restrict hot = w->hot;
   const double *restrict h = p->h;
   const double *restrict sxx = w->sxx, *restrict sxy = w->sxy, *restrict syy = w->syy;

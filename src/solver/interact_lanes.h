@@ -33,7 +33,8 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   }
   uint32_t *restrict nb = w->rows + (size_t)sph_thread() * w->rows_stride;
   const size_t cnt = cut_row(hot, l, fp, i, nb, F);
-  for (size_t k = cnt; k < cnt + 3 && cnt > 0; k++) nb[k] = nb[cnt - 1]; /* padding lanes */
+  for (size_t k = cnt; k < cnt + 3 && cnt > 0; k++)
+    nb[k] = nb[cnt - 1]; /* padding lanes */
   const sph_force_hot qi = hot[i];
   const int fluid = kind[i] == SPH_KIND_FLUID;
   const double h0 = fp->h, inv_h0 = 1.0 / h0;
@@ -80,8 +81,8 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     LT inv_rb = zero;
     if (F & (F_AV | F_XSPH)) inv_rb = LTERM(inv_rho_mean)(rhoi, GATHER(rho));
     if (F & F_AV)
-      pij = LOP(add)(pij, LTERM(artificial_viscosity)(vdotr, hh, r2, eta2, ci, GATHER(cs),
-                                                      nalpha, beta, inv_rb));
+      pij = LOP(add)(pij, LTERM(artificial_viscosity)(vdotr, hh, r2, eta2, ci, GATHER(cs), nalpha,
+                                                      beta, inv_rb));
     LT pax, pay;
     LTERM(pressure_force)(LOP(mul)(mj, pij), gx, gy, &pax, &pay);
     if (F & F_STRESS) {
@@ -101,10 +102,9 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     ax = LOP(add)(ax, pax);
     ay = LOP(add)(ay, pay);
     if (F & F_XSPH) { /* over fluid neighbours */
-      const LT mx = LOP(set)(kind[j0] == SPH_KIND_FLUID ? a->m : 0.0,
-                             kind[j1] == SPH_KIND_FLUID ? b->m : 0.0,
-                             kind[j2] == SPH_KIND_FLUID ? c_->m : 0.0,
-                             kind[j3] == SPH_KIND_FLUID ? d->m : 0.0);
+      const LT mx = LOP(set)(
+          kind[j0] == SPH_KIND_FLUID ? a->m : 0.0, kind[j1] == SPH_KIND_FLUID ? b->m : 0.0,
+          kind[j2] == SPH_KIND_FLUID ? c_->m : 0.0, kind[j3] == SPH_KIND_FLUID ? d->m : 0.0);
       const LT c = LTERM(xsph_factor)(mx, inv_rb, wij);
       xs = LOP(sub)(xs, LOP(mul)(c, dvx));
       ys = LOP(sub)(ys, LOP(mul)(c, dvy));

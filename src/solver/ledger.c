@@ -43,7 +43,8 @@ double sph_ledger_fluid_internal(const sph_particles *p) {
 
 void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, sph_diag_row *row) {
   double u = 0.0; /* every particle's heat: dynamic walls take half a pair's */
-  for (size_t i = 0; i < p->n; i++) u += p->mass[i] * p->u[i];
+  for (size_t i = 0; i < p->n; i++)
+    u += p->mass[i] * p->u[i];
   row->ledger = 1;
   row->internal = u;
   row->boundary_work = lg->work_wall;

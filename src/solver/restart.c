@@ -50,8 +50,10 @@ int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t outpu
  * may run further); NULL if none. Lines are "key: value". */
 static const char *first_difference(const char *a, const char *b, size_t *len) {
   for (;;) {
-    while (!strncmp(a, "time.end:", 9)) a += strcspn(a, "\n") + (a[strcspn(a, "\n")] != 0);
-    while (!strncmp(b, "time.end:", 9)) b += strcspn(b, "\n") + (b[strcspn(b, "\n")] != 0);
+    while (!strncmp(a, "time.end:", 9))
+      a += strcspn(a, "\n") + (a[strcspn(a, "\n")] != 0);
+    while (!strncmp(b, "time.end:", 9))
+      b += strcspn(b, "\n") + (b[strcspn(b, "\n")] != 0);
     if (!*a && !*b) return NULL;
     const size_t la = strcspn(a, "\n"), lb = strcspn(b, "\n");
     if (la != lb || memcmp(a, b, la)) {
@@ -68,21 +70,24 @@ static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particl
   const char *path = sph_snapshot_path(snap);
   const size_t n = s->p.n;
   if (q->n != n)
-    return sph_error_set(err, "%s: holds %zu particles, the case makes %zu: not a snapshot of "
-                              "this case",
+    return sph_error_set(err,
+                         "%s: holds %zu particles, the case makes %zu: not a snapshot of "
+                         "this case",
                          path, q->n, n);
   const char *params = sph_snapshot_text(snap, "parameters");
   size_t dlen = 0;
   const char *diff = params ? first_difference(params, s->parameters, &dlen) : NULL;
   if (!params || diff)
-    return sph_error_set(err, "%s: written with other parameters than the case (%s%.*s); "
-                              "only time.end may change on a restart",
-                         path, params ? "first difference: " : "no parameters attribute",
-                         (int)dlen, diff ? diff : "");
+    return sph_error_set(err,
+                         "%s: written with other parameters than the case (%s%.*s); "
+                         "only time.end may change on a restart",
+                         path, params ? "first difference: " : "no parameters attribute", (int)dlen,
+                         diff ? diff : "");
   const int leapfrog = s->c->integrator == SPH_INTEGRATOR_LEAPFROG;
   if (leapfrog && !rd->first_step && !rd->vxh)
-    return sph_error_set(err, "%s: a leap-frog run's snapshot without the half-step values "
-                              "(/restart/vxh, vyh, rhoh, uh)",
+    return sph_error_set(err,
+                         "%s: a leap-frog run's snapshot without the half-step values "
+                         "(/restart/vxh, vyh, rhoh, uh)",
                          path);
   size_t *pos = malloc(n * sizeof *pos), *perm = malloc(n * sizeof *perm);
   void *work = malloc(n * sizeof(double));
@@ -92,8 +97,10 @@ static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particl
     free(work);
     return sph_error_set(err, "out of memory");
   }
-  for (size_t i = 0; i < n; i++) pos[s->p.id[i]] = i;
-  for (size_t k = 0; k < n; k++) perm[k] = pos[rd->order[k]];
+  for (size_t i = 0; i < n; i++)
+    pos[s->p.id[i]] = i;
+  for (size_t k = 0; k < n; k++)
+    perm[k] = pos[rd->order[k]];
   sph_particles_permute(&s->p, perm, work);
   free(pos);
   free(perm);
@@ -102,11 +109,12 @@ static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particl
   for (size_t k = 0; k < n; k++) {
     const size_t i = (size_t)p->id[k]; /* row of the snapshot */
     if (q->kind[i] != p->kind[k] || q->mass[i] != p->mass[k])
-      return sph_error_set(err, "%s: particle %zu is a %s of mass %g, the case makes a %s of "
-                                "mass %g: not a snapshot of this case",
-                           path, i, q->kind[i] == SPH_KIND_FLUID ? "fluid particle" : "wall particle",
-                           q->mass[i], p->kind[k] == SPH_KIND_FLUID ? "fluid particle" : "wall particle",
-                           p->mass[k]);
+      return sph_error_set(
+          err,
+          "%s: particle %zu is a %s of mass %g, the case makes a %s of "
+          "mass %g: not a snapshot of this case",
+          path, i, q->kind[i] == SPH_KIND_FLUID ? "fluid particle" : "wall particle", q->mass[i],
+          p->kind[k] == SPH_KIND_FLUID ? "fluid particle" : "wall particle", p->mass[k]);
     p->x[k] = q->x[i];
     p->y[k] = q->y[i];
     p->vx[k] = q->vx[i];
@@ -133,8 +141,7 @@ static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particl
   return sph_sim_pass(s, err); /* the rates, flags and step-rule inputs of this state */
 }
 
-int sph_sim_restore(sph_sim *s, const char *path, sph_snapshot_restart_data *rd,
-                    sph_error *err) {
+int sph_sim_restore(sph_sim *s, const char *path, sph_snapshot_restart_data *rd, sph_error *err) {
   memset(rd, 0, sizeof *rd);
   sph_snapshot *snap;
   if (sph_snapshot_open(path, &snap, err)) return -1;

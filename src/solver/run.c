@@ -32,10 +32,10 @@ typedef struct outputs {
   void (*row)(void *ctx, const sph_diag_row *r); /* sph_run_options.row */
   void *row_ctx;
   FILE *diag;
-  FILE *gauges;      /* gauges.csv, when the case has wave gauges */
-  double *still;     /* each gauge's level at t = 0 */
-  size_t index;      /* number of the next snapshot file, snap_<index>.h5 */
-  size_t n, cap;     /* snapshots listed in the XDMF index */
+  FILE *gauges;  /* gauges.csv, when the case has wave gauges */
+  double *still; /* each gauge's level at t = 0 */
+  size_t index;  /* number of the next snapshot file, snap_<index>.h5 */
+  size_t n, cap; /* snapshots listed in the XDMF index */
   char **names;
   double *times;
 } outputs;
@@ -44,7 +44,8 @@ static void outputs_free(outputs *o) {
   if (o->diag) fclose(o->diag);
   if (o->gauges) fclose(o->gauges);
   free(o->still);
-  for (size_t i = 0; i < o->n; i++) free(o->names[i]);
+  for (size_t i = 0; i < o->n; i++)
+    free(o->names[i]);
   free(o->names);
   free(o->times);
 }
@@ -104,16 +105,15 @@ static int write_output(sph_sim *s, outputs *o, sph_run_result *r, sph_error *er
   char name[64], path[4096];
   snprintf(name, sizeof name, "snap_%04zu.h5", o->index);
   snprintf(path, sizeof path, "%s/%s", o->dir, name);
-  if (sph_sim_write_run_snapshot(s, path, (int64_t)o->index, o->still,
-                                 sph_sim_case(s)->n_gauges, err))
+  if (sph_sim_write_run_snapshot(s, path, (int64_t)o->index, o->still, sph_sim_case(s)->n_gauges,
+                                 err))
     return -1;
   o->index++;
   if (list_snapshot(o, name, sph_sim_time(s), err)) return -1;
   snprintf(r->last_snapshot, sizeof r->last_snapshot, "%s", path);
   snprintf(path, sizeof path, "%s/snapshots.xmf", o->dir);
   return sph_xdmf_write(path, o->n, (const char *const *)o->names, o->times,
-                        sph_sim_particles(s)->n, sph_case_needs_free_surface(sph_sim_case(s)),
-                        err);
+                        sph_sim_particles(s)->n, sph_case_needs_free_surface(sph_sim_case(s)), err);
 }
 
 static int stop_condition(sph_sim *s) {
@@ -238,8 +238,9 @@ static int open_outputs(sph_sim *s, outputs *out, const sph_snapshot_restart_dat
     if (!out->still) return sph_error_set(err, "out of memory");
     if (rd) {
       if (rd->n_levels != c->n_gauges)
-        return sph_error_set(err, "restart: the snapshot holds %zu gauge levels, the case has %zu "
-                                  "gauges",
+        return sph_error_set(err,
+                             "restart: the snapshot holds %zu gauge levels, the case has %zu "
+                             "gauges",
                              rd->n_levels, c->n_gauges);
       memcpy(out->still, rd->levels, c->n_gauges * sizeof *out->still);
     }
@@ -290,11 +291,13 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
    * rounding (0.4004 against 52 * 0.0077) gives one snapshot, not a second
    * one after a step of 1e-17 s. */
   const double same = 1e-9 * c->t_end;
-  long k = 1;    /* next multiple of output_interval */
-  size_t j = 0;  /* next of time.output_times */
+  long k = 1;   /* next multiple of output_interval */
+  size_t j = 0; /* next of time.output_times */
   if (c->output_interval > 0.0)
-    while ((double)k * c->output_interval <= sph_sim_time(s) + same) k++;
-  while (j < c->n_output_times && c->output_times[j] <= sph_sim_time(s) + same) j++;
+    while ((double)k * c->output_interval <= sph_sim_time(s) + same)
+      k++;
+  while (j < c->n_output_times && c->output_times[j] <= sph_sim_time(s) + same)
+    j++;
   for (;;) {
     const double t = sph_sim_time(s);
     if (t >= c->t_end) {
@@ -326,8 +329,10 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
     const int at_output = sph_sim_time(s) == next;
     if (at_output) {
       if (c->output_interval > 0.0)
-        while ((double)k * c->output_interval <= next + same) k++;
-      while (j < c->n_output_times && c->output_times[j] <= next + same) j++;
+        while ((double)k * c->output_interval <= next + same)
+          k++;
+      while (j < c->n_output_times && c->output_times[j] <= next + same)
+        j++;
       if (write_output(s, &out, r, err)) goto io_error;
     }
     if (stop_condition(s)) {

@@ -44,8 +44,8 @@ typedef struct sph_run_options {
 typedef struct sph_run_result {
   sph_run_status status;
   long steps;
-  size_t outputs;             /* snapshots (or output times) written */
-  char last_snapshot[4096];   /* path of the last snapshot written, "" if none */
+  size_t outputs;           /* snapshots (or output times) written */
+  char last_snapshot[4096]; /* path of the last snapshot written, "" if none */
 } sph_run_result;
 
 /* Runs s until time.end, the stop condition, an interrupt or a blow-up.

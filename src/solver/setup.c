@@ -226,7 +226,8 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.repulsive = s->walls.repulsive;
   if (c->periodic) dedupe_periodic(s);
   /* a neighbour list kept across passes where nothing needs a fresh grid */
-  if (!s->walls.n_mirror && !s->detect && !s->fp.var_h) s->skin = sph_skin_fraction() * SPH_CUBIC_SUPPORT * c->h;
+  if (!s->walls.n_mirror && !s->detect && !s->fp.var_h)
+    s->skin = sph_skin_fraction() * SPH_CUBIC_SUPPORT * c->h;
   if (s->p.n == 0) {
     sph_error_set(err, "case %s: no particles", c->name);
     goto fail;

@@ -26,30 +26,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "walls/boundary.h"
+#include "io/snapshot.h"
+#include "neighbours/grid.h"
+#include "physics/eos.h"
 #include "physics/filter.h"
 #include "physics/freesurface.h"
-#include "physics/eos.h"
-#include "solver/forces.h"
-#include "neighbours/grid.h"
-#include "solver/integrate.h"
 #include "physics/kernel.h"
-#include "io/snapshot.h"
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
+#include "solver/forces.h"
+#include "solver/integrate.h"
+#include "walls/boundary.h"
 
 /* The largest smoothing length: k h with h* = k h on the free surface. */
 static double h_max(const sph_sim *s) {
@@ -64,10 +49,9 @@ static double h_max(const sph_sim *s) {
 static void update_h(sph_sim *s) {
   if (!s->c->variable_h) return;
   const double h0 = s->c->h, rho0 = s->c->rho0;
-  for (size_t i = 0; i < s->p.n; i++) s->p.h[i] = h0 * sqrt(rho0 / s->p.rho[i]);
+  for (size_t i = 0; i < s->p.n; i++)
+    s->p.h[i] = h0 * sqrt(rho0 / s->p.rho[i]);
 }
-
-
 
 /* Paper A §7: flag the free surface (circles of radius factor * h_i), then
  * with h* = k h give surface particles the smoothing length k h0. Without
@@ -142,8 +126,8 @@ static int neighbours(sph_sim *s, sph_error *err) {
       (support(s) + (s->skin > 0.0 ? SPH_SKIN_DEFAULT * SPH_CUBIC_SUPPORT * c->h : 0.0)) *
       SPH_CELL_MARGIN;
   if ((s->skin == 0.0 || resort) && build_grid(s, sort_cell, err)) return -1;
-  if (s->skin > 0.0 && sph_grid_bin(&s->grid, &s->p, cell, c->periodic, px0, px1,
-                                    64 * s->p.n + 1024 * 1024, err))
+  if (s->skin > 0.0 &&
+      sph_grid_bin(&s->grid, &s->p, cell, c->periodic, px0, px1, 64 * s->p.n + 1024 * 1024, err))
     return -1;
   return sph_nlist_build(&s->nl, &s->grid, &s->p, support(s), s->skin, px1 - px0, err);
 }
@@ -154,7 +138,8 @@ static int neighbours(sph_sim *s, sph_error *err) {
 int sph_sim_pass(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   update_h(s);
-  if (s->walls.n_mirror && sph_mirror_add(&s->p, s->walls.mirror, s->walls.n_mirror, s->walls.mirror_reach, err) < 0)
+  if (s->walls.n_mirror &&
+      sph_mirror_add(&s->p, s->walls.mirror, s->walls.n_mirror, s->walls.mirror_reach, err) < 0)
     return -1;
   int rc = neighbours(s, err);
   if (rc == 0 && s->detect) rc = free_surface(s, err);
@@ -180,7 +165,8 @@ static int apply_filter(sph_sim *s, sph_error *err) {
   if (sph_filter_apply(c->density_filter, &s->p, &s->grid, &fp, s->work.sigma, NULL, err))
     return -1;
   if (c->integrator == SPH_INTEGRATOR_LEAPFROG)
-    for (size_t i = 0; i < s->p.n; i++) s->p.rhoh[i] = s->p.rho[i];
+    for (size_t i = 0; i < s->p.n; i++)
+      s->p.rhoh[i] = s->p.rho[i];
   sph_forces_pressure(&s->p, &s->fp.eos);
   return 0;
 }
@@ -224,8 +210,8 @@ static inline const char *bad_particle(const sph_particles *p, size_t i, double 
 static inline int surely_good(const sph_particles *p, size_t i, double rlo, double rhi,
                               const double *d) {
   const double x = p->x[i], y = p->y[i], rho = p->rho[i];
-  const double z = (x - x) + (y - y) + (p->vx[i] - p->vx[i]) + (p->vy[i] - p->vy[i]) +
-                   (rho - rho) + (p->p[i] - p->p[i]);
+  const double z = (x - x) + (y - y) + (p->vx[i] - p->vx[i]) + (p->vy[i] - p->vy[i]) + (rho - rho) +
+                   (p->p[i] - p->p[i]);
   return z == 0.0 && rho > rlo && rho < rhi &&
          (p->kind[i] != SPH_KIND_FLUID || !(x < d[0] || x > d[1] || y < d[2] || y > d[3]));
 }
@@ -269,16 +255,10 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   const int xsph = c->xsph != 0.0;
   double dt; /* from the rates of the current state, computed by the last pass */
   switch (c->dt_rule) {
-  case SPH_DT_FIXED:
-    dt = c->dt_fixed;
-    break;
-  case SPH_DT_CFL:
-    dt = sph_dt_cfl(&s->p, &s->fp.eos, c->h, c->dt_factor);
-    break;
+  case SPH_DT_FIXED: dt = c->dt_fixed; break;
+  case SPH_DT_CFL: dt = sph_dt_cfl(&s->p, &s->fp.eos, c->h, c->dt_factor); break;
   case SPH_DT_PAPER_B:
-  default:
-    dt = s->dt_paper_b;
-    break;
+  default: dt = s->dt_paper_b; break;
   }
   if (!(dt > 0.0) || !isfinite(dt))
     return sph_error_set(err, "blow-up at step %ld, t = %.9g s: time step is %g", s->steps, s->t,
@@ -371,9 +351,9 @@ int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err) {
   v.rho = s->p.rho0;
   v.u = s->p.u0;
   v.p = s->work.prho2; /* scratch: pressure of the saved state */
-  for (size_t i = 0; i < v.n; i++) v.p[i] = sph_eos_pressure(&s->fp.eos, v.rho[i]);
+  for (size_t i = 0; i < v.n; i++)
+    v.p[i] = sph_eos_pressure(&s->fp.eos, v.rho[i]);
   sph_snapshot_meta m;
   sph_sim_fill_meta(s, &m, s->t_saved, s->steps - 1);
   return sph_snapshot_write(path, &m, &v, err);
 }
-

@@ -21,10 +21,10 @@
 #define SPH_SIM_H
 
 #include "case/case.h"
-#include "solver/diag.h"
 #include "core/error.h"
 #include "core/particles.h"
 #include "io/snapshot.h"
+#include "solver/diag.h"
 
 typedef struct sph_sim sph_sim;
 
@@ -74,7 +74,6 @@ int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err);
  * errors name the file and what does not match. */
 int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t output_index,
                                const double *levels, size_t n_levels, sph_error *err);
-int sph_sim_restore(sph_sim *s, const char *path, sph_snapshot_restart_data *rd,
-                    sph_error *err);
+int sph_sim_restore(sph_sim *s, const char *path, sph_snapshot_restart_data *rd, sph_error *err);
 
 #endif

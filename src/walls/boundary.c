@@ -44,8 +44,8 @@ int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, 
   return 0;
 }
 
-int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double rho,
-                          double mass, double h, uint8_t flags, sph_error *err) {
+int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double rho, double mass,
+                          double h, uint8_t flags, sph_error *err) {
   const double e = 0.5 * dx;
   const int L = t->layers, st = t->stagger;
   /* floor, right to left so that the left normal points down (outwards);
@@ -70,8 +70,8 @@ int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double
 /* Positions along a line are s = (r - P).t with the tangent t = (ny, -nx). */
 size_t sph_mirror_tank_lines(const sph_tank *t, double reach, sph_mirror_line out[3]) {
   const double w = t->x1 - t->x0, hgt = t->y1 - t->y0;
-  out[0] = (sph_mirror_line){t->x0, t->y0, 0.0, 1.0, -reach, w + reach};   /* floor, t = +x */
-  out[1] = (sph_mirror_line){t->x0, t->y0, 1.0, 0.0, -hgt - reach, reach}; /* left, t = -y */
+  out[0] = (sph_mirror_line){t->x0, t->y0, 0.0, 1.0, -reach, w + reach};    /* floor, t = +x */
+  out[1] = (sph_mirror_line){t->x0, t->y0, 1.0, 0.0, -hgt - reach, reach};  /* left, t = -y */
   out[2] = (sph_mirror_line){t->x1, t->y0, -1.0, 0.0, -reach, hgt + reach}; /* right, t = +y */
   return 3;
 }
@@ -105,8 +105,7 @@ long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lin
       const double s = rx * L->ny - ry * L->nx;
       if (d < 0.0 || d >= reach || s < L->t0 || s > L->t1) continue;
       near[nn++] = (int)l;
-      if (add_image(p, i, p->x[i] - 2.0 * d * L->nx, p->y[i] - 2.0 * d * L->ny, err) < 0)
-        return -1;
+      if (add_image(p, i, p->x[i] - 2.0 * d * L->nx, p->y[i] - 2.0 * d * L->ny, err) < 0) return -1;
       added++;
     }
     for (int a = 0; a < nn; a++) /* corners: the image through two perpendicular lines */

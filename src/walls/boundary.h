@@ -12,9 +12,9 @@
 #ifndef SPH_BOUNDARY_H
 #define SPH_BOUNDARY_H
 
-#include "walls/wall_types.h"
 #include "core/error.h"
 #include "core/particles.h"
+#include "walls/wall_types.h"
 
 #include <stdint.h>
 
@@ -38,8 +38,8 @@ int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, 
  * and y0 (floor), side walls up to y1. The first wall layer lies dx/2
  * outside each inner face, so it is dx from the first fluid layer of a
  * block filled against that face. */
-int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double rho,
-                          double mass, double h, uint8_t flags, sph_error *err);
+int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double rho, double mass,
+                          double h, uint8_t flags, sph_error *err);
 
 /* A straight mirror wall (GOST R 57700.6 3.4.5): the line through (px, py)
  * with unit normal (nx, ny) pointing into the fluid, used for particles

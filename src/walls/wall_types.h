@@ -34,7 +34,7 @@ typedef enum {
   SPH_MOTION_NONE = 0,
   SPH_MOTION_TRANSLATE = 1, /* constant velocity from start to stop (a gate) */
   SPH_MOTION_PISTON = 2,    /* wavemaker piston, X(t) = (S/2) sin(omega t), paper B §4.2 */
-  SPH_MOTION_FLAP = 3       /* bottom-hinged flap with the same displacement at the still-water level */
+  SPH_MOTION_FLAP = 3 /* bottom-hinged flap with the same displacement at the still-water level */
 } sph_motion_kind;
 typedef struct sph_motion {
   sph_motion_kind kind;

@@ -6,9 +6,9 @@
 
 #include "walls/wall_velocity.h"
 
+#include "core/parallel.h"
 #include "neighbours/grid.h"
 #include "physics/kernel.h"
-#include "core/parallel.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -55,7 +55,8 @@ static int interpolate(const sph_particles *p, const layout *g, const sph_wall_v
   long cols[3], nc = 0;
   const long c0 = column(g, x);
   if (g->period > 0.0 && g->nx <= 3) {
-    for (long c = 0; c < g->nx; c++) cols[nc++] = c; /* every column, once */
+    for (long c = 0; c < g->nx; c++)
+      cols[nc++] = c; /* every column, once */
   } else if (g->period > 0.0) {
     cols[nc++] = (c0 + g->nx - 1) % g->nx;
     cols[nc++] = c0;
@@ -164,16 +165,19 @@ int sph_wall_velocity(const sph_particles *p, double support, double px0, double
     w->cap_n = n;
   }
   /* counting sort of the fluid particles by cell, stable */
-  for (size_t c = 0; c <= cells; c++) w->start[c] = 0;
+  for (size_t c = 0; c <= cells; c++)
+    w->start[c] = 0;
   for (size_t i = 0; i < n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     w->key[i] = (size_t)(row(&g, p->y[i]) * g.nx + column(&g, p->x[i]));
     w->start[w->key[i] + 1]++;
   }
-  for (size_t c = 0; c < cells; c++) w->start[c + 1] += w->start[c];
+  for (size_t c = 0; c < cells; c++)
+    w->start[c + 1] += w->start[c];
   for (size_t i = 0; i < n; i++)
     if (p->kind[i] == SPH_KIND_FLUID) w->idx[w->start[w->key[i]]++] = (uint32_t)i;
-  for (size_t c = cells; c > 0; c--) w->start[c] = w->start[c - 1];
+  for (size_t c = cells; c > 0; c--)
+    w->start[c] = w->start[c - 1];
   w->start[0] = 0;
   const long nl = (long)n;
 #pragma omp parallel for schedule(dynamic, 256) if (nl > SPH_OMP_MIN)

@@ -42,9 +42,9 @@
 /* Scratch of the interpolation: the fluid particles binned in square cells
  * of side >= the largest support (kept between calls). */
 typedef struct sph_wall_velocity_work {
-  size_t *start;  /* cell offsets into idx */
-  uint32_t *idx;  /* fluid storage indices by cell, in storage order within a cell */
-  size_t *key;    /* cell of each particle (scratch) */
+  size_t *start; /* cell offsets into idx */
+  uint32_t *idx; /* fluid storage indices by cell, in storage order within a cell */
+  size_t *key;   /* cell of each particle (scratch) */
   size_t cap_cells, cap_n;
 } sph_wall_velocity_work;
 

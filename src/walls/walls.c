@@ -23,7 +23,8 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
   w->segments = segments;
   w->n_segments = n_segments;
   w->no_slip = tank->present && tank->extrapolated;
-  for (size_t k = 0; k < n_segments; k++) w->no_slip |= segments[k].extrapolated;
+  for (size_t k = 0; k < n_segments; k++)
+    w->no_slip |= segments[k].extrapolated;
   if (tank->present) {
     if (tank->boundary == SPH_BOUNDARY_MIRROR) {
       w->n_mirror += sph_mirror_tank_lines(tank, mirror_reach, w->mirror);
@@ -43,13 +44,14 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
     }
     if (ws->boundary == SPH_BOUNDARY_REPULSIVE) w->repulsive = 1;
     const size_t first = p->n;
-    if (sph_boundary_add_segment(p, ws->x0, ws->y0, ws->x1, ws->y1, ws->layers, ws->stagger, 0,
-                                 dx, rho0, wall_mass, h, wall_flags(ws->boundary, ws->extrapolated),
+    if (sph_boundary_add_segment(p, ws->x0, ws->y0, ws->x1, ws->y1, ws->layers, ws->stagger, 0, dx,
+                                 rho0, wall_mass, h, wall_flags(ws->boundary, ws->extrapolated),
                                  err))
       return -1;
     if (ws->motion.kind != SPH_MOTION_NONE) {
       w->moving = 1;
-      for (size_t i = first; i < p->n; i++) p->body[i] = (int32_t)k;
+      for (size_t i = first; i < p->n; i++)
+        p->body[i] = (int32_t)k;
     }
   }
   return 0;

@@ -23,11 +23,11 @@
 typedef struct sph_walls {
   sph_mirror_line mirror[SPH_MIRROR_MAX_LINES]; /* mirror walls */
   size_t n_mirror;
-  double mirror_reach;               /* how far behind a mirror line particles are mirrored */
-  int moving;                        /* some wall particles follow a prescribed motion */
-  int repulsive;                     /* some wall particles are repulsive (Lennard-Jones) */
-  int no_slip;                       /* some wall particles carry SPH_FLAG_NO_SLIP */
-  const sph_wall_segment *segments;  /* the case's segments (their motions), not owned */
+  double mirror_reach;              /* how far behind a mirror line particles are mirrored */
+  int moving;                       /* some wall particles follow a prescribed motion */
+  int repulsive;                    /* some wall particles are repulsive (Lennard-Jones) */
+  int no_slip;                      /* some wall particles carry SPH_FLAG_NO_SLIP */
+  const sph_wall_segment *segments; /* the case's segments (their motions), not owned */
   size_t n_segments;
 } sph_walls;
 
