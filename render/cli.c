@@ -242,6 +242,222 @@ static int check(const roptions *o, sph_error *err) {
   return 0;
 }
 
+#define VALUE_P()                                                                                  \
+  const char *v = value(a, err);                                                                   \
+  if (!v) return -1
+
+/* Options of every mode: output, size, colours, text, workers; --help and --version return 2
+ * (done). Returns 1 if the option was this group's (handled), 0 if not, -1 on error. */
+static int common_option(args *a, roptions *o, sph_error *err) {
+  if (is(a, "-h") || is(a, "--help")) {
+    rcli_usage(stdout);
+    return 2;
+  } else if (is(a, "--version")) {
+    printf("sph-render (%s)\n", sph_version());
+    return 2;
+  } else if (is(a, "-o") || is(a, "--output")) {
+    VALUE_P();
+    o->output = v;
+  } else if (is(a, "-v") || is(a, "--verbose")) {
+    o->verbose = 1;
+  } else if (is(a, "--backend")) {
+    VALUE_P();
+    o->backend = v;
+  } else if (is(a, "--jobs")) {
+    VALUE_P();
+    if (parse_int(a->name, v, 1, 256, &o->jobs, err) != 0) return -1;
+  } else if (is(a, "--size")) {
+    VALUE_P();
+    if (parse_size(a->name, v, &o->width, &o->height, err) != 0) return -1;
+  } else if (is(a, "--font-scale")) {
+    VALUE_P();
+    if (parse_int(a->name, v, 1, 16, &o->font_scale, err) != 0) return -1;
+  } else if (is(a, "--compression")) {
+    VALUE_P();
+    if (parse_int(a->name, v, 0, 9, &o->compression, err) != 0) return -1;
+  } else if (is(a, "--background")) {
+    VALUE_P();
+    if (parse_color(a->name, v, &o->bg, err) != 0) return -1;
+  } else if (is(a, "--title")) {
+    VALUE_P();
+    o->title = v;
+  } else {
+    return 0;
+  }
+  return 1;
+}
+
+/* Plot mode: series and axes. Returns 1 if the option was
+ * this group's (handled), 0 if not, -1 on error. */
+static int plot_option(args *a, roptions *o, rseries_opt **sep, sph_error *err) {
+  if ((is(a, "--line") || is(a, "--points"))) {
+    VALUE_P();
+    if (o->n_series == ROPT_MAX_LIST) return sph_error_set(err, "too many series");
+    *sep = &o->series[o->n_series++];
+    **sep = (rseries_opt){v, NULL, NULL, 1.0, 1.0, is(a, "--points"), 0, NULL};
+  } else if ((is(a, "--x") || is(a, "--y"))) {
+    VALUE_P();
+    if (*sep && is(a, "--x"))
+      (*sep)->xcol = v;
+    else if (*sep)
+      (*sep)->ycol = v;
+    else if (is(a, "--x"))
+      o->xcol = v;
+    else
+      o->ycol = v;
+  } else if ((is(a, "--x-scale") || is(a, "--y-scale"))) {
+    VALUE_P();
+    if (!*sep)
+      return sph_error_set(err, "%s applies to the series before it: give a CSV first", a->name);
+    if (parse_double(a->name, v, is(a, "--x-scale") ? &(*sep)->xscale : &(*sep)->yscale, err) != 0)
+      return -1;
+  } else if (is(a, "--relative")) {
+    if (!*sep) return sph_error_set(err, "--relative applies to the series before it");
+    (*sep)->relative = 1;
+  } else if (is(a, "--label")) {
+    VALUE_P();
+    if (!*sep) return sph_error_set(err, "--label applies to the series before it");
+    (*sep)->label = v;
+  } else if ((is(a, "--xlabel") || is(a, "--ylabel"))) {
+    VALUE_P();
+    if (is(a, "--xlabel"))
+      o->xlabel = v;
+    else
+      o->ylabel = v;
+  } else if (is(a, "--xrange")) {
+    VALUE_P();
+    if (parse_range(a->name, v, o->xrange, err) != 0) return -1;
+    o->have_xrange = 1;
+  } else if (is(a, "--yrange")) {
+    VALUE_P();
+    if (parse_range(a->name, v, o->yrange, err) != 0) return -1;
+    o->have_yrange = 1;
+  } else if ((is(a, "--xlog") || is(a, "--ylog"))) {
+    if (is(a, "--xlog"))
+      o->xlog = 1;
+    else
+      o->ylog = 1;
+  } else if (is(a, "--legend")) {
+    VALUE_P();
+    o->legend = rlegend_corner(v);
+    if (o->legend < 0)
+      return sph_error_set(err,
+                           "--legend: unknown '%s' (valid: top-left, top-right, "
+                           "bottom-left, bottom-right, none)",
+                           v);
+  } else {
+    return 0;
+  }
+  return 1;
+}
+
+/* Snapshot modes: field, colours, view, figure layout, times. Returns 1 if the option was
+ * this group's (handled), 0 if not, -1 on error. */
+static int snapshot_option(args *a, roptions *o, int *compare, int *panels, sph_error *err) {
+  if (is(a, "--field")) {
+    VALUE_P();
+    o->field = v;
+  } else if (is(a, "--cmap")) {
+    VALUE_P();
+    o->cmap = v;
+  } else if (is(a, "--range")) {
+    VALUE_P();
+    if (parse_range(a->name, v, o->range, err) != 0) return -1;
+    o->have_range = 1;
+  } else if (is(a, "--view")) {
+    VALUE_P();
+    if (parse_numbers(a->name, v, ':', o->view, 4, NULL, "X0:X1:Y0:Y1", err) != 0) return -1;
+    if (!(o->view[1] > o->view[0]) || !(o->view[3] > o->view[2]))
+      return sph_error_set(err, "--view: '%s': need X0 < X1 and Y0 < Y1", v);
+    o->have_view = 1;
+  } else if (is(a, "--disc-scale")) {
+    VALUE_P();
+    if (parse_double(a->name, v, &o->disc_scale, err) != 0) return -1;
+    if (!(o->disc_scale > 0.0)) return sph_error_set(err, "--disc-scale: must be positive");
+  } else if (is(a, "--disc-size")) {
+    VALUE_P();
+    if (parse_double(a->name, v, &o->disc_size, err) != 0) return -1;
+    if (!(o->disc_size > 0.0)) return sph_error_set(err, "--disc-size: must be positive");
+  } else if (is(a, "--walls")) {
+    VALUE_P();
+    if (strcmp(v, "grey") == 0 || strcmp(v, "gray") == 0)
+      o->walls = RWALLS_GREY;
+    else if (strcmp(v, "field") == 0)
+      o->walls = RWALLS_FIELD;
+    else if (strcmp(v, "none") == 0)
+      o->walls = RWALLS_NONE;
+    else
+      return sph_error_set(err, "--walls: unknown '%s' (valid: grey, field, none)", v);
+  } else if (is(a, "--bare")) {
+    o->bare = 1;
+  } else if (is(a, "--no-colorbar")) {
+    o->colorbar = 0;
+  } else if (is(a, "--panels")) {
+    VALUE_P();
+    if (parse_grid(a->name, v, &o->cols, &o->rows, err) != 0) return -1;
+    *panels = 1;
+  } else if (is(a, "--compare")) {
+    *compare = 1;
+  } else if (is(a, "--times")) {
+    VALUE_P();
+    if (parse_numbers(a->name, v, ',', o->times, ROPT_MAX_LIST, &o->n_times,
+                      "times T1,T2,... in seconds", err) != 0)
+      return -1;
+  } else if (is(a, "--names")) {
+    VALUE_P();
+    if (parse_names(a->name, v, o, err) != 0) return -1;
+  } else if (is(a, "--match-tol")) {
+    VALUE_P();
+    if (parse_double(a->name, v, &o->match_tol, err) != 0) return -1;
+    if (o->match_tol < 0.0) return sph_error_set(err, "--match-tol: must not be negative");
+  } else if (is(a, "--overlay-tol")) {
+    VALUE_P();
+    if (parse_double(a->name, v, &o->overlay_tol, err) != 0) return -1;
+  } else {
+    return 0;
+  }
+  return 1;
+}
+
+/* Reference points drawn over snapshots. Returns 1 if the option was
+ * this group's (handled), 0 if not, -1 on error. */
+static int overlay_option(args *a, roptions *o, roverlay_opt **ovp, sph_error *err) {
+  if (is(a, "--overlay")) {
+    VALUE_P();
+    if (o->n_overlays == 16) return sph_error_set(err, "at most 16 overlays");
+    *ovp = &o->overlay[o->n_overlays++];
+    **ovp = (roverlay_opt){v, NULL, NULL, NULL, 1.0, 1.0, 0, NULL};
+  } else if ((is(a, "--overlay-x") || is(a, "--overlay-y") || is(a, "--overlay-time") ||
+              is(a, "--overlay-label") || is(a, "--overlay-style") || is(a, "--overlay-scale"))) {
+    VALUE_P();
+    if (!*ovp) return sph_error_set(err, "%s applies to the --overlay before it", a->name);
+    if (is(a, "--overlay-x"))
+      (*ovp)->xcol = v;
+    else if (is(a, "--overlay-y"))
+      (*ovp)->ycol = v;
+    else if (is(a, "--overlay-time"))
+      (*ovp)->tcol = v;
+    else if (is(a, "--overlay-label"))
+      (*ovp)->label = v;
+    else if (is(a, "--overlay-style")) {
+      if (strcmp(v, "points") == 0)
+        (*ovp)->line = 0;
+      else if (strcmp(v, "line") == 0)
+        (*ovp)->line = 1;
+      else
+        return sph_error_set(err, "--overlay-style: unknown '%s' (valid: points, line)", v);
+    } else { /* --overlay-scale */
+      double sc[2];
+      if (parse_numbers(a->name, v, ':', sc, 2, NULL, "SX:SY", err) != 0) return -1;
+      (*ovp)->xscale = sc[0];
+      (*ovp)->yscale = sc[1];
+    }
+  } else {
+    return 0;
+  }
+  return 1;
+}
+
 int rcli_parse(int argc, char **argv, roptions *o, sph_error *err) {
   defaults(o);
   args a = {argc, 1, argv, NULL, NULL, ""};
@@ -278,187 +494,16 @@ int rcli_parse(int argc, char **argv, roptions *o, sph_error *err) {
     } else {
       a.name = arg;
     }
-    if (is(&a, "-h") || is(&a, "--help")) {
-      rcli_usage(stdout);
-      return 1;
-    } else if (is(&a, "--version")) {
-      printf("sph-render (%s)\n", sph_version());
-      return 1;
-    } else if (is(&a, "-o") || is(&a, "--output")) {
-      VALUE();
-      o->output = v;
-    } else if (is(&a, "-v") || is(&a, "--verbose")) {
-      o->verbose = 1;
-    } else if (is(&a, "--backend")) {
-      VALUE();
-      o->backend = v;
-    } else if (is(&a, "--jobs")) {
-      VALUE();
-      if (parse_int(a.name, v, 1, 256, &o->jobs, err) != 0) return -1;
-    } else if (is(&a, "--size")) {
-      VALUE();
-      if (parse_size(a.name, v, &o->width, &o->height, err) != 0) return -1;
-    } else if (is(&a, "--font-scale")) {
-      VALUE();
-      if (parse_int(a.name, v, 1, 16, &o->font_scale, err) != 0) return -1;
-    } else if (is(&a, "--compression")) {
-      VALUE();
-      if (parse_int(a.name, v, 0, 9, &o->compression, err) != 0) return -1;
-    } else if (is(&a, "--background")) {
-      VALUE();
-      if (parse_color(a.name, v, &o->bg, err) != 0) return -1;
-    } else if (is(&a, "--title")) {
-      VALUE();
-      o->title = v;
-    } else if (plot && (is(&a, "--line") || is(&a, "--points"))) {
-      VALUE();
-      if (o->n_series == ROPT_MAX_LIST) return sph_error_set(err, "too many series");
-      se = &o->series[o->n_series++];
-      *se = (rseries_opt){v, NULL, NULL, 1.0, 1.0, is(&a, "--points"), 0, NULL};
-    } else if (plot && (is(&a, "--x") || is(&a, "--y"))) {
-      VALUE();
-      if (se && is(&a, "--x"))
-        se->xcol = v;
-      else if (se)
-        se->ycol = v;
-      else if (is(&a, "--x"))
-        o->xcol = v;
-      else
-        o->ycol = v;
-    } else if (plot && (is(&a, "--x-scale") || is(&a, "--y-scale"))) {
-      VALUE();
-      if (!se)
-        return sph_error_set(err, "%s applies to the series before it: give a CSV first", a.name);
-      if (parse_double(a.name, v, is(&a, "--x-scale") ? &se->xscale : &se->yscale, err) != 0)
-        return -1;
-    } else if (plot && is(&a, "--relative")) {
-      if (!se) return sph_error_set(err, "--relative applies to the series before it");
-      se->relative = 1;
-    } else if (plot && is(&a, "--label")) {
-      VALUE();
-      if (!se) return sph_error_set(err, "--label applies to the series before it");
-      se->label = v;
-    } else if (plot && (is(&a, "--xlabel") || is(&a, "--ylabel"))) {
-      VALUE();
-      if (is(&a, "--xlabel"))
-        o->xlabel = v;
-      else
-        o->ylabel = v;
-    } else if (plot && is(&a, "--xrange")) {
-      VALUE();
-      if (parse_range(a.name, v, o->xrange, err) != 0) return -1;
-      o->have_xrange = 1;
-    } else if (plot && is(&a, "--yrange")) {
-      VALUE();
-      if (parse_range(a.name, v, o->yrange, err) != 0) return -1;
-      o->have_yrange = 1;
-    } else if (plot && (is(&a, "--xlog") || is(&a, "--ylog"))) {
-      if (is(&a, "--xlog"))
-        o->xlog = 1;
-      else
-        o->ylog = 1;
-    } else if (plot && is(&a, "--legend")) {
-      VALUE();
-      o->legend = rlegend_corner(v);
-      if (o->legend < 0)
-        return sph_error_set(err,
-                             "--legend: unknown '%s' (valid: top-left, top-right, "
-                             "bottom-left, bottom-right, none)",
-                             v);
-    } else if (!plot && is(&a, "--field")) {
-      VALUE();
-      o->field = v;
-    } else if (!plot && is(&a, "--cmap")) {
-      VALUE();
-      o->cmap = v;
-    } else if (!plot && is(&a, "--range")) {
-      VALUE();
-      if (parse_range(a.name, v, o->range, err) != 0) return -1;
-      o->have_range = 1;
-    } else if (!plot && is(&a, "--view")) {
-      VALUE();
-      if (parse_numbers(a.name, v, ':', o->view, 4, NULL, "X0:X1:Y0:Y1", err) != 0) return -1;
-      if (!(o->view[1] > o->view[0]) || !(o->view[3] > o->view[2]))
-        return sph_error_set(err, "--view: '%s': need X0 < X1 and Y0 < Y1", v);
-      o->have_view = 1;
-    } else if (!plot && is(&a, "--disc-scale")) {
-      VALUE();
-      if (parse_double(a.name, v, &o->disc_scale, err) != 0) return -1;
-      if (!(o->disc_scale > 0.0)) return sph_error_set(err, "--disc-scale: must be positive");
-    } else if (!plot && is(&a, "--disc-size")) {
-      VALUE();
-      if (parse_double(a.name, v, &o->disc_size, err) != 0) return -1;
-      if (!(o->disc_size > 0.0)) return sph_error_set(err, "--disc-size: must be positive");
-    } else if (!plot && is(&a, "--walls")) {
-      VALUE();
-      if (strcmp(v, "grey") == 0 || strcmp(v, "gray") == 0)
-        o->walls = RWALLS_GREY;
-      else if (strcmp(v, "field") == 0)
-        o->walls = RWALLS_FIELD;
-      else if (strcmp(v, "none") == 0)
-        o->walls = RWALLS_NONE;
-      else
-        return sph_error_set(err, "--walls: unknown '%s' (valid: grey, field, none)", v);
-    } else if (!plot && is(&a, "--bare")) {
-      o->bare = 1;
-    } else if (!plot && is(&a, "--no-colorbar")) {
-      o->colorbar = 0;
-    } else if (!plot && is(&a, "--panels")) {
-      VALUE();
-      if (parse_grid(a.name, v, &o->cols, &o->rows, err) != 0) return -1;
-      panels = 1;
-    } else if (!plot && is(&a, "--compare")) {
-      compare = 1;
-    } else if (!plot && is(&a, "--times")) {
-      VALUE();
-      if (parse_numbers(a.name, v, ',', o->times, ROPT_MAX_LIST, &o->n_times,
-                        "times T1,T2,... in seconds", err) != 0)
-        return -1;
-    } else if (!plot && is(&a, "--names")) {
-      VALUE();
-      if (parse_names(a.name, v, o, err) != 0) return -1;
-    } else if (!plot && is(&a, "--match-tol")) {
-      VALUE();
-      if (parse_double(a.name, v, &o->match_tol, err) != 0) return -1;
-      if (o->match_tol < 0.0) return sph_error_set(err, "--match-tol: must not be negative");
-    } else if (!plot && is(&a, "--overlay")) {
-      VALUE();
-      if (o->n_overlays == 16) return sph_error_set(err, "at most 16 overlays");
-      ov = &o->overlay[o->n_overlays++];
-      *ov = (roverlay_opt){v, NULL, NULL, NULL, 1.0, 1.0, 0, NULL};
-    } else if (!plot && (is(&a, "--overlay-x") || is(&a, "--overlay-y") ||
-                         is(&a, "--overlay-time") || is(&a, "--overlay-label") ||
-                         is(&a, "--overlay-style") || is(&a, "--overlay-scale"))) {
-      VALUE();
-      if (!ov) return sph_error_set(err, "%s applies to the --overlay before it", a.name);
-      if (is(&a, "--overlay-x"))
-        ov->xcol = v;
-      else if (is(&a, "--overlay-y"))
-        ov->ycol = v;
-      else if (is(&a, "--overlay-time"))
-        ov->tcol = v;
-      else if (is(&a, "--overlay-label"))
-        ov->label = v;
-      else if (is(&a, "--overlay-style")) {
-        if (strcmp(v, "points") == 0)
-          ov->line = 0;
-        else if (strcmp(v, "line") == 0)
-          ov->line = 1;
-        else
-          return sph_error_set(err, "--overlay-style: unknown '%s' (valid: points, line)", v);
-      } else { /* --overlay-scale */
-        double sc[2];
-        if (parse_numbers(a.name, v, ':', sc, 2, NULL, "SX:SY", err) != 0) return -1;
-        ov->xscale = sc[0];
-        ov->yscale = sc[1];
-      }
-    } else if (!plot && is(&a, "--overlay-tol")) {
-      VALUE();
-      if (parse_double(a.name, v, &o->overlay_tol, err) != 0) return -1;
-    } else {
+    int r = common_option(&a, o, err);
+    if (r == 0) {
+      r = plot ? plot_option(&a, o, &se, err) : snapshot_option(&a, o, &compare, &panels, err);
+      if (r == 0 && !plot) r = overlay_option(&a, o, &ov, err);
+    }
+    if (r < 0) return -1;
+    if (r == 2) return 1; /* --help or --version: done */
+    if (r == 0)
       return sph_error_set(err, "unknown option %s%s (see --help)", a.name,
                            plot ? " in plot mode" : "");
-    }
   }
   if (compare && panels && o->cols * o->rows < o->n_inputs)
     return sph_error_set(err, "--panels %dx%d is too small for %d runs", o->cols, o->rows,
