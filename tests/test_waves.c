@@ -13,7 +13,7 @@
  *    height: under-resolved; dx = 0.3 m gives 0.859 m, the full case at
  *    dx = 0.2 m 1.005 m, 7 % low); asserted within 25 %, a check that the
  *    paddle makes a wave of the right size, not the accuracy claim, which
- *    is the full case's (README, "Linear wave"). Paper B reports about 8 %.
+ *    is the full case's (doc/method.md, "Linear wave"). Paper B reports about 8 %.
  * 2. The gauge record matches golden/linear_wave_coarse_gauge.csv within
  *    0.02 m at every output time (`make golden`).
  */

@@ -3,7 +3,7 @@
  *
  * The case file is read with libyaml into a tree, `--set key=value`
  * overrides are applied to that tree, and the tree is then validated
- * strictly against the schema documented in README.md ("Case files"):
+ * strictly against the schema documented in doc/case-files.md:
  * an unknown key, a wrong type, a missing required key or a value out of
  * range is an error naming the file, line, key and what was expected.
  * Choices are names (kernel: cubic_spline), never numbers.

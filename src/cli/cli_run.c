@@ -43,7 +43,7 @@ static void run_usage(FILE *f) {
           "               [--restart SNAPSHOT]\n"
           "       sph run --restart SNAPSHOT [-o DIR] [--threads N] [--set time.end=T] [--quiet]\n"
           "\n"
-          "Runs the case file CASE (YAML; see README.md for every key). Without CASE,\n"
+          "Runs the case file CASE (YAML; every key: doc/case-files.md, man sph). Without CASE,\n"
           "--restart takes the case from SNAPSHOT (the case text and --set overrides it\n"
           "stores) and writes to SNAPSHOT's directory unless -o is given.\n"
           "\n"

@@ -1,7 +1,7 @@
 /*
  * snapshot.h - HDF5 snapshots: one file per output time, and their XDMF index.
  *
- * Layout of a snapshot file (see README.md, "Snapshot format"):
+ * Layout of a snapshot file (see doc/snapshot-format.md):
  *   attributes on "/": time, step, dt, particle_count, case_name, case_text,
  *     overrides, parameters, version, configure_args, compiler, dx, h, rho0,
  *     view (4 doubles: x0, x1, y0, y1 of the region the case was set in);
