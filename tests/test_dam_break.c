@@ -40,16 +40,7 @@ typedef struct series {
 /* Reads columns `time` and `front_x` of a CSV with a header (lines
  * starting with '#' skipped). */
 static int read_front(const char *path, series *s) {
-  double *c[2] = {NULL, NULL};
-  const long n = sph_test_csv(path, "time,front_x", c);
-  s->n = 0;
-  for (long i = 0; i < n && s->n < 4096; i++) {
-    s->t[s->n] = c[0][i];
-    s->x[s->n] = c[1][i];
-    s->n++;
-  }
-  free(c[0]);
-  free(c[1]);
+  s->n = sph_test_csv2(path, "time,front_x", s->t, s->x, 4096);
   return s->n ? 0 : -1;
 }
 

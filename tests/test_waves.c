@@ -33,16 +33,7 @@ typedef struct record {
 } record;
 
 static int read_record(const char *path, record *r) {
-  double *c[2] = {NULL, NULL}; /* time, and the gauge's column (named by its x) */
-  const long n = sph_test_csv(path, "#0,#1", c);
-  r->n = 0;
-  for (long i = 0; i < n && r->n < 4096; i++) {
-    r->t[r->n] = c[0][i];
-    r->eta[r->n] = c[1][i];
-    r->n++;
-  }
-  free(c[0]);
-  free(c[1]);
+  r->n = sph_test_csv2(path, "#0,#1", r->t, r->eta, 4096);
   return r->n ? 0 : -1;
 }
 

@@ -116,3 +116,16 @@ long sph_test_csv(const char *path, const char *names, double **out) {
   sph_csv_free(&t);
   return rc;
 }
+
+size_t sph_test_csv2(const char *path, const char *names, double *a, double *b, size_t cap) {
+  double *c[2] = {NULL, NULL};
+  const long n = sph_test_csv(path, names, c);
+  size_t k = 0;
+  for (; n > 0 && k < (size_t)n && k < cap; k++) {
+    a[k] = c[0][k];
+    b[k] = c[1][k];
+  }
+  free(c[0]);
+  free(c[1]);
+  return k;
+}

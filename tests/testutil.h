@@ -41,5 +41,8 @@ int sph_test_sph(const char *args, const char *dir, char *out, size_t len);
  * values of the k-th (free each). Returns the row count, or -1 (message
  * printed) if the file, a column or a number is missing. */
 long sph_test_csv(const char *path, const char *names, double **out);
+/* The same for two columns into the arrays a and b of cap values each;
+ * returns the rows kept (at most cap), or 0 if none could be read. */
+size_t sph_test_csv2(const char *path, const char *names, double *a, double *b, size_t cap);
 
 #endif
