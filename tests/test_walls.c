@@ -12,6 +12,14 @@
  * the first fluid layer about; mirror particles give the calmest water.
  * Mirror particles must also leave the store after every step (the
  * particle count stays that of the case).
+ *
+ * Mirror lines are impermeable (walls.h, sph_walls_keep_off_mirrors): a
+ * particle put on a line, or moved across it, of the floor and of each
+ * side wall, is reflected back to 2 d_min - d in front of it with its
+ * velocity pointing into the fluid; one in front of the line, or beside a
+ * segment's ends, is left alone. And the coarse Martin & Moyce dam break
+ * with mirror walls runs to its stop condition: it blew up at t = 0.1604 s
+ * (a particle on the floor line met its own image, r = 3e-155).
  */
 #include "config.h"
 
@@ -20,8 +28,11 @@
 #include <string.h>
 
 #include "case/case.h"
+#include "core/particles.h"
+#include "solver/run.h"
 #include "solver/sim.h"
 #include "testutil.h"
+#include "walls/walls.h"
 
 static void run_model(const char *boundary, double start_bound, double bound, size_t expect_walls) {
   char set[256];
@@ -75,11 +86,79 @@ static void test_fixed_layers(void) { run_model("fixed_layers", 0.06, 0.01, 207)
 static void test_repulsive(void) { run_model("repulsive", 0.15, 0.08, 102); }
 static void test_mirror(void) { run_model("mirror", 0.01, 0.001, 0); }
 
+/* A particle at (x, y) with velocity (vx, vy) after keep_off_mirrors with
+ * the lines of a [0, 1] x [0, 1] tank and d_min = 0.01. */
+static size_t reflect_one(double *x, double *y, double *vx, double *vy) {
+  sph_tank t = {1, 0.0, 1.0, 0.0, 1.0, 2, SPH_BOUNDARY_MIRROR, 1, 0};
+  sph_walls w = {0};
+  w.mirror_reach = 0.05;
+  w.n_mirror = sph_mirror_tank_lines(&t, w.mirror_reach, w.mirror);
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 4, &err) == 0);
+  CU_ASSERT_FATAL(sph_particles_add(&p, *x, *y, *vx, *vy, 1000, 1, 0.01, SPH_KIND_FLUID, &err) ==
+                  0);
+  const size_t moved = sph_walls_keep_off_mirrors(&w, &p, 0.01, 0);
+  *x = p.x[0];
+  *y = p.y[0];
+  *vx = p.vx[0];
+  *vy = p.vy[0];
+  sph_particles_free(&p);
+  return moved;
+}
+
+static void test_mirror_lines_impermeable(void) {
+  double x = 0.5, y = 0.0, vx = 0.3, vy = -2.0; /* on the floor line, moving down */
+  CU_ASSERT(reflect_one(&x, &y, &vx, &vy) == 1);
+  CU_ASSERT(fabs(y - 0.02) < 1e-15 && x == 0.5 && vx == 0.3 && vy == 2.0);
+  x = 0.5, y = -0.004, vx = 0.0, vy = -1.0; /* crossed the floor within a step */
+  CU_ASSERT(reflect_one(&x, &y, &vx, &vy) == 1);
+  CU_ASSERT(fabs(y - 0.024) < 1e-15 && vy == 1.0);
+  x = 1.003, y = 0.5, vx = 1.0, vy = 0.5; /* crossed the right wall */
+  CU_ASSERT(reflect_one(&x, &y, &vx, &vy) == 1);
+  CU_ASSERT(fabs(x - (1.0 - 0.023)) < 1e-15 && vx == -1.0 && vy == 0.5);
+  x = 0.0, y = 0.5, vx = -0.2, vy = 0.0; /* on the left wall line */
+  CU_ASSERT(reflect_one(&x, &y, &vx, &vy) == 1);
+  CU_ASSERT(fabs(x - 0.02) < 1e-15 && vx == 0.2);
+  x = 0.5, y = 0.012, vx = 0.0, vy = -1.0; /* in front of d_min: left alone */
+  CU_ASSERT(reflect_one(&x, &y, &vx, &vy) == 0);
+  CU_ASSERT(y == 0.012 && vy == -1.0);
+  x = 0.5, y = 0.005, vx = 0.0, vy = 1.0; /* within d_min, already leaving: moved, v kept */
+  CU_ASSERT(reflect_one(&x, &y, &vx, &vy) == 1);
+  CU_ASSERT(fabs(y - 0.015) < 1e-15 && vy == 1.0);
+  x = 0.5, y = -0.2, vx = 0.0, vy = -1.0; /* far behind the line (beyond the reach) */
+  CU_ASSERT(reflect_one(&x, &y, &vx, &vy) == 0);
+}
+
+static void test_mirror_dam_break_runs(void) {
+  const char *sets[] = {"geometry.tank={x: [0.0, 0.2286], y: [0.0, 0.17145], boundary: mirror}",
+                        "output.snapshots=false"};
+  sph_case c;
+  sph_error err;
+  int rc = sph_case_load(sph_test_src("cases/martin_moyce_coarse.yaml"), sets, 2, &c, &err);
+  if (rc) printf("\n%s\n", err.msg);
+  CU_ASSERT_FATAL(rc == 0);
+  sph_sim *s;
+  CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
+  sph_run_options opt = {NULL, NULL, NULL, NULL, NULL, NULL};
+  sph_run_result r;
+  rc = sph_run(s, &opt, &r, &err);
+  if (rc) printf("\n%s\n", err.msg);
+  printf("\n  coarse dam break, mirror walls: %s at t = %.4f s after %ld steps",
+         sph_run_status_name(r.status), sph_sim_time(s), r.steps);
+  CU_ASSERT(rc == 0 && r.status == SPH_RUN_STOPPED);
+  sph_sim_free(s);
+  sph_case_free(&c);
+}
+
 int main(void) {
-  CU_TestInfo tests[] = {{"dynamic walls hold still water", test_dynamic},
-                         {"fixed_layers walls hold still water", test_fixed_layers},
-                         {"repulsive walls hold still water", test_repulsive},
-                         {"mirror walls hold still water", test_mirror},
-                         CU_TEST_INFO_NULL};
+  CU_TestInfo tests[] = {
+      {"dynamic walls hold still water", test_dynamic},
+      {"fixed_layers walls hold still water", test_fixed_layers},
+      {"repulsive walls hold still water", test_repulsive},
+      {"mirror walls hold still water", test_mirror},
+      {"mirror lines: a particle on or across one is reflected", test_mirror_lines_impermeable},
+      {"coarse dam break with mirror walls runs to its stop", test_mirror_dam_break_runs},
+      CU_TEST_INFO_NULL};
   return sph_test_main("walls", tests);
 }

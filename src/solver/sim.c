@@ -277,14 +277,17 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
     sph_leapfrog_step(&s->p, dt, s->first_step, xsph, &s->fp.eos, slices(s));
     s->first_step = 0;
     sph_walls_move(&s->walls, &s->p, t_new);
+    sph_walls_keep_off_mirrors(&s->walls, &s->p, SPH_MIRROR_MIN_DISTANCE * c->dx, 1);
   } else {
     sph_pc_half(&s->p, dt, xsph, &s->fp.eos, slices(s));
     sph_walls_move(&s->walls, &s->p, s->t + 0.5 * dt);
+    sph_walls_keep_off_mirrors(&s->walls, &s->p, SPH_MIRROR_MIN_DISTANCE * c->dx, 0);
     if (sph_sim_pass(s, err)) return -1;
     /* X^{n+1} = X^n + dt F(X^{n+1/2}): the mid-step powers drive the step */
     sph_ledger_advance(&s->ledger, dt);
     sph_pc_finish(&s->p, dt, xsph, &s->fp.eos, slices(s));
     sph_walls_move(&s->walls, &s->p, t_new);
+    sph_walls_keep_off_mirrors(&s->walls, &s->p, SPH_MIRROR_MIN_DISTANCE * c->dx, 0);
   }
   wrap_periodic(s);
   s->t = t_new;

@@ -22,6 +22,11 @@
  * hook SPH_TEST_SKIN overrides it for a run; 0 rebuilds at every pass). */
 #define SPH_SKIN_DEFAULT 0.15
 
+/* The closest a fluid particle comes to a mirror line, in units of dx
+ * (walls.h, sph_walls_keep_off_mirrors): half the first row's distance on
+ * the initial lattice. */
+#define SPH_MIRROR_MIN_DISTANCE 0.25
+
 struct sph_sim {
   const sph_case *c;
   sph_walls walls;   /* wall particles' models, mirror lines, motions */

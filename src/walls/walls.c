@@ -65,3 +65,41 @@ void sph_walls_move(const sph_walls *w, sph_particles *p, double t) {
                      &p->vx[i], &p->vy[i]);
   }
 }
+
+/* The reflection of particle i off line L if it is within d_min in front
+ * of it or just behind it; 1 if it was moved. */
+static int reflect(const sph_mirror_line *L, sph_particles *p, size_t i, double d_min,
+                   double reach, int half_step) {
+  const double rx = p->x[i] - L->px, ry = p->y[i] - L->py;
+  const double d = rx * L->nx + ry * L->ny;
+  const double s = rx * L->ny - ry * L->nx;
+  if (!(d < d_min) || d <= -reach || s < L->t0 || s > L->t1) return 0;
+  const double shift = 2.0 * (d_min - d);
+  p->x[i] += shift * L->nx;
+  p->y[i] += shift * L->ny;
+  const double vn = p->vx[i] * L->nx + p->vy[i] * L->ny;
+  if (vn < 0.0) {
+    p->vx[i] -= 2.0 * vn * L->nx;
+    p->vy[i] -= 2.0 * vn * L->ny;
+  }
+  if (half_step) {
+    const double hn = p->vxh[i] * L->nx + p->vyh[i] * L->ny;
+    if (hn < 0.0) {
+      p->vxh[i] -= 2.0 * hn * L->nx;
+      p->vyh[i] -= 2.0 * hn * L->ny;
+    }
+  }
+  return 1;
+}
+
+size_t sph_walls_keep_off_mirrors(const sph_walls *w, sph_particles *p, double d_min,
+                                  int half_step) {
+  size_t moved = 0;
+  if (w->n_mirror == 0) return 0;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->kind[i] != SPH_KIND_FLUID) continue;
+    for (size_t l = 0; l < w->n_mirror; l++)
+      moved += (size_t)reflect(&w->mirror[l], p, i, d_min, w->mirror_reach, half_step);
+  }
+  return moved;
+}

@@ -44,4 +44,19 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
  * is exactly where its law puts it). */
 void sph_walls_move(const sph_walls *w, sph_particles *p, double t);
 
+/* Mirror walls are impermeable (GOST R 57700.6 3.4.5 gives the images; this
+ * keeps the particles off the line the images are taken across). A fluid
+ * particle closer than d_min to a mirror line in front of it, or behind it
+ * by less than `reach` (it crossed within a step), is reflected
+ * specularly about the line's parallel at d_min: its distance becomes
+ * 2 d_min - d and the normal component of its velocity (and of its
+ * half-step velocity vxh, vyh when half_step is set: the leap-frog)
+ * points into the fluid. Without it a particle drawn onto the line by
+ * negative pressure meets its own image at r -> 0, where the kernel
+ * gradient is 0/0 (the coarse Martin & Moyce case blew up at t = 0.16 s).
+ * The positions it sets depend on the particle alone: bitwise the same for
+ * any thread count. Returns the number of particles reflected. */
+size_t sph_walls_keep_off_mirrors(const sph_walls *w, sph_particles *p, double d_min,
+                                  int half_step);
+
 #endif
