@@ -68,8 +68,8 @@ void sph_walls_move(const sph_walls *w, sph_particles *p, double t) {
 
 /* The reflection of particle i off line L if it is within d_min in front
  * of it or just behind it; 1 if it was moved. */
-static int reflect(const sph_mirror_line *L, sph_particles *p, size_t i, double d_min,
-                   double reach, int half_step) {
+static int reflect(const sph_mirror_line *L, sph_particles *p, size_t i, double d_min, double reach,
+                   int half_step) {
   const double rx = p->x[i] - L->px, ry = p->y[i] - L->py;
   const double d = rx * L->nx + ry * L->ny;
   const double s = rx * L->ny - ry * L->nx;
