@@ -15,6 +15,10 @@
  *    golden/martin_moyce_coarse_front.csv within 0.05 dx (a change that
  *    moves the front by a twentieth of a particle spacing is caught;
  *    regenerate with `make golden`).
+ * 4. gauges over a dry bed (x = 0.1 and 0.2 m, ahead of the column): every
+ *    value of gauges.csv is finite, 0 until the surge front has passed the
+ *    gauge, then the depth of water, positive and below the column's 2a;
+ *    it was -inf and nan on every row.
  */
 #include "config.h"
 
@@ -127,12 +131,44 @@ static void test_golden_front(void) {
   CU_ASSERT(worst <= 0.05 * DX);
 }
 
+static void test_dry_bed_gauges(void) {
+  char *dir = sph_test_tmpdir(), cmd[8192], path[4096];
+  snprintf(cmd, sizeof cmd,
+           "'%s' run --quiet '%s' -o '%s' --set 'output.gauges=[0.1, 0.2]' "
+           "--set output.snapshots=false",
+           sph_test_build("src/sph"), sph_test_src("cases/martin_moyce_coarse.yaml"), dir);
+  CU_ASSERT_FATAL(sph_test_system(cmd) == 0);
+  static double t[4096], g1[4096], g2[4096], ft[4096], fx[4096];
+  snprintf(path, sizeof path, "%s/gauges.csv", dir);
+  size_t n = sph_test_csv2(path, "time,eta_0.1", t, g1, 4096);
+  CU_ASSERT_FATAL(n > 10 && sph_test_csv2(path, "time,eta_0.2", t, g2, 4096) == n);
+  snprintf(path, sizeof path, "%s/diagnostics.csv", dir);
+  CU_ASSERT_FATAL(sph_test_csv2(path, "time,front_x", ft, fx, 4096) == n);
+  int bad = 0, wet1 = 0, wet2 = 0;
+  for (size_t k = 0; k < n; k++) {
+    const double x[2] = {0.1, 0.2}, v[2] = {g1[k], g2[k]};
+    for (int q = 0; q < 2; q++) {
+      const int reached = fx[k] > x[q] - DX; /* the front is within dx of the gauge */
+      if (!isfinite(v[q]) || v[q] < 0.0 || v[q] > 2 * A || (!reached && v[q] != 0.0)) bad++;
+    }
+    wet1 += g1[k] > 0.0;
+    wet2 += g2[k] > 0.0;
+  }
+  printf("\n  dry-bed gauges: %zu rows, wet at x = 0.1 m in %d, at 0.2 m in %d; last: %.4f, %.4f m",
+         n, wet1, wet2, g1[n - 1], g2[n - 1]);
+  CU_ASSERT(bad == 0);
+  CU_ASSERT(wet1 > 0 && wet2 > 0 && g1[0] == 0.0 && g2[0] == 0.0);
+  sph_test_rmtree(dir);
+  free(dir);
+}
+
 int main(void) {
   dir1 = sph_test_tmpdir();
   dir2 = sph_test_tmpdir();
   CU_TestInfo tests[] = {{"1 and 2 threads give byte-identical output", test_determinism},
                          {"front against Martin & Moyce (1952)", test_front_against_experiment},
                          {"front against the golden file", test_golden_front},
+                         {"gauges over a dry bed read 0, then the depth", test_dry_bed_gauges},
                          CU_TEST_INFO_NULL};
   int rc = sph_test_main("dam_break", tests);
   sph_test_rmtree(dir1);
