@@ -85,8 +85,18 @@ static void test_paddle(void) {
                           "--set 'numerics.density_filter={kind: shepard, every: 10}'");
 }
 
+/* mdbc walls: the wall density from the fluid's fit at the mirror points,
+ * through the impact on the right wall (and restart-safe: the pass that a
+ * restore reruns recomputes it) */
+static void test_mdbc(void) {
+  same_on_1_and_2_threads("cases/martin_moyce_coarse.yaml",
+                          "--set time.end=0.2 --set time.stop=none --set 'geometry.tank={x: [0.0, "
+                          "0.2286], y: [0.0, 0.17145], boundary: mdbc}'");
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
+      {"mdbc walls through an impact", test_mdbc},
       {"wet bed: viscosity, ledger, moving gate", test_wet_bed},
       {"SPS turbulence", test_sps},
       {"mirror walls and the MLS filter", test_mirror_filter},

@@ -50,8 +50,8 @@
 static const char *const kernel_names[] = {"cubic_spline", NULL};
 static const char *const integrator_names[] = {"predictor_corrector", "leapfrog", NULL};
 static const char *const dt_rule_names[] = {"paper_b", "cfl", "fixed", NULL};
-static const char *const boundary_names[] = {"dynamic", "fixed_layers", "repulsive", "mirror",
-                                             NULL};
+static const char *const boundary_names[] = {"dynamic", "fixed_layers", "repulsive",
+                                             "mirror",  "mdbc",         NULL};
 static const char *const viscosity_names[] = {"none", "stress_tensor", "morris", NULL};
 static const char *const stop_names[] = {"none", "front_at_wall", NULL};
 
@@ -1041,11 +1041,13 @@ static int read_layout(const ctx *x, const node *m, const char *p, const sph_cas
                        sph_boundary_kind b, int *stagger, int *extrapolated) {
   const node *t;
   char kp[KEYLEN];
-  const int evolving = b == SPH_BOUNDARY_DYNAMIC || b == SPH_BOUNDARY_FIXED_LAYERS;
+  const int evolving =
+      b == SPH_BOUNDARY_DYNAMIC || b == SPH_BOUNDARY_FIXED_LAYERS || b == SPH_BOUNDARY_MDBC;
   static const char *const keys[] = {"stagger", "extrapolated_velocity"};
   for (int k = 0; k < 2; k++)
     if (!evolving && lookup(x, m, p, keys[k], 0, &t, kp) > 0)
-      return fail_at(x, t, kp, "only for 'dynamic' and 'fixed_layers' walls (this one is '%s')",
+      return fail_at(x, t, kp,
+                     "only for 'dynamic', 'fixed_layers' and 'mdbc' walls (this one is '%s')",
                      sph_boundary_name(b));
   if (get_bool(x, m, p, "stagger", stagger) < 0) return -1;
   int rc = get_bool(x, m, p, "extrapolated_velocity", extrapolated);

@@ -261,6 +261,7 @@ void sph_sim_free(sph_sim *s) {
   sph_grid_free(&s->grid);
   sph_nlist_free(&s->nl);
   sph_force_work_free(&s->work);
+  sph_wall_velocity_work_free(&s->mdbc_work);
   free(s->parameters);
   free(s);
 }

@@ -35,6 +35,7 @@
 #include "solver/forces.h"
 #include "solver/integrate.h"
 #include "walls/boundary.h"
+#include "walls/wall_velocity.h"
 
 /* The largest smoothing length: k h with h* = k h on the free surface. */
 static double h_max(const sph_sim *s) {
@@ -132,6 +133,19 @@ static int neighbours(sph_sim *s, sph_error *err) {
   return sph_nlist_build(&s->nl, &s->grid, &s->p, support(s), s->skin, px1 - px0, err);
 }
 
+/* mDBC wall particles (wall_velocity.h): density from the fluid through
+ * their mirror points, pressure from the equation of state. */
+static int mdbc_walls(sph_sim *s, sph_error *err) {
+  const sph_case *c = s->c;
+  sph_particles *p = &s->p;
+  if (sph_wall_mdbc_density(p, SPH_CUBIC_SUPPORT * h_max(s), s->fp.px0,
+                            c->periodic ? s->fp.period : 0.0, c->rho0, &s->mdbc_work, err))
+    return -1;
+  for (size_t i = 0; i < p->n; i++)
+    if (p->flags[i] & SPH_FLAG_MDBC) p->p[i] = sph_eos_pressure(&s->fp.eos, p->rho[i]);
+  return 0;
+}
+
 /* Mirror particles, grid build, free-surface flags and one interaction
  * pass on the current state; the mirror particles are gone again when it
  * returns. */
@@ -143,6 +157,7 @@ int sph_sim_pass(sph_sim *s, sph_error *err) {
     return -1;
   int rc = neighbours(s, err);
   if (rc == 0 && s->detect) rc = free_surface(s, err);
+  if (rc == 0 && s->walls.mdbc) rc = mdbc_walls(s, err);
   if (rc == 0) rc = sph_forces_evaluate(&s->p, &s->nl, &s->fp, &s->work, err);
   /* everything that reads the pass's per-particle work arrays, before
    * removing the mirror particles reorders the store under them */

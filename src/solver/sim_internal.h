@@ -12,6 +12,7 @@
 #include "solver/forces.h"
 #include "solver/ledger.h"
 #include "solver/sim.h"
+#include "walls/wall_velocity.h"
 #include "walls/walls.h"
 
 /* Cells of the grid are a hair larger than the support, so rounding in the
@@ -41,6 +42,7 @@ struct sph_sim {
   double skin;  /* its skin; 0 = rebuilt at every pass */
   int resort;   /* the next pass sorts the store by cell */
   sph_force_work work;
+  sph_wall_velocity_work mdbc_work; /* the mDBC walls' fits (walls/wall_velocity.h) */
   sph_force_params fp;
   double t, last_dt;
   double t_saved; /* time of the state saved at the start of the last step */

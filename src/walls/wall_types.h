@@ -14,7 +14,9 @@ typedef enum {
   SPH_BOUNDARY_DYNAMIC = 0,      /* dynamic particles, GOST R 57700.6 3.4.7; paper B §2.7 */
   SPH_BOUNDARY_FIXED_LAYERS = 1, /* Morris' fixed layers (paper A §6 b): the same particles */
   SPH_BOUNDARY_REPULSIVE = 2,    /* one layer + Lennard-Jones force, paper A eq. (21)-(22) */
-  SPH_BOUNDARY_MIRROR = 3        /* mirror particles, GOST R 57700.6 3.4.5 */
+  SPH_BOUNDARY_MIRROR = 3,       /* mirror particles, GOST R 57700.6 3.4.5 */
+  SPH_BOUNDARY_MDBC = 4          /* dynamic particles whose density is the fluid's extrapolated
+                                    across the face (English et al. 2022; wall_velocity.h) */
 } sph_boundary_kind;
 
 /* A rectangular tank: inner faces at x0 (left), x1 (right), y0 (floor); the

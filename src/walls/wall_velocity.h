@@ -59,4 +59,21 @@ void sph_wall_velocity_work_free(sph_wall_velocity_work *w);
 int sph_wall_velocity(const sph_particles *p, double support, double px0, double period,
                       double *gvx, double *gvy, sph_wall_velocity_work *w, sph_error *err);
 
+/* The modified dynamic boundary condition (mDBC; English, Dominguez,
+ * Vacondio, Crespo, Stansby, Lind, Chiapponi and Gomez-Gesteira,
+ * Computational Particle Mechanics 9, 2022) for the wall particles flagged
+ * SPH_FLAG_MDBC: instead of evolving by continuity, a wall particle takes
+ * the density of the fluid extrapolated to it through its mirror point
+ * x + m across the wall face: the linear MLS fit of the fluid density at
+ * x + m (the same fit as the ghost velocity above), evaluated at the wall
+ * particle, rho = rho_g - m . grad rho_g, limited to the largest density
+ * among the fluid particles of the fit (the extrapolation over up to 2 dx
+ * overshot at an impact: 1.3 rho0 in a corner of the coarse dam break).
+ * Where no fluid reaches the mirror point, rho0; and never below rho0, so
+ * a wall pushes the fluid but never pulls it (a wall particle left with a negative pressure held
+ * a film of fluid on the dam break's back wall). Sets p->rho of those
+ * particles; the caller sets their pressure from the equation of state. */
+int sph_wall_mdbc_density(sph_particles *p, double support, double px0, double period, double rho0,
+                          sph_wall_velocity_work *w, sph_error *err);
+
 #endif

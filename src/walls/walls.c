@@ -11,6 +11,7 @@
 
 static uint8_t wall_flags(sph_boundary_kind b, int extrapolated) {
   return (uint8_t)((b == SPH_BOUNDARY_REPULSIVE ? SPH_FLAG_REPULSIVE : 0) |
+                   (b == SPH_BOUNDARY_MDBC ? SPH_FLAG_MDBC : 0) |
                    (extrapolated ? SPH_FLAG_NO_SLIP : 0));
 }
 
@@ -33,6 +34,7 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
       return -1;
     }
     if (tank->boundary == SPH_BOUNDARY_REPULSIVE) w->repulsive = 1;
+    if (tank->boundary == SPH_BOUNDARY_MDBC) w->mdbc = 1;
   }
   for (size_t k = 0; k < n_segments; k++) {
     const sph_wall_segment *ws = &segments[k];
@@ -43,6 +45,7 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
       continue;
     }
     if (ws->boundary == SPH_BOUNDARY_REPULSIVE) w->repulsive = 1;
+    if (ws->boundary == SPH_BOUNDARY_MDBC) w->mdbc = 1;
     const size_t first = p->n;
     if (sph_boundary_add_segment(p, ws->x0, ws->y0, ws->x1, ws->y1, ws->layers, ws->stagger, 0, dx,
                                  rho0, wall_mass, h, wall_flags(ws->boundary, ws->extrapolated),

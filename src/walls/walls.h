@@ -27,6 +27,7 @@ typedef struct sph_walls {
   int moving;                       /* some wall particles follow a prescribed motion */
   int repulsive;                    /* some wall particles are repulsive (Lennard-Jones) */
   int no_slip;                      /* some wall particles carry SPH_FLAG_NO_SLIP */
+  int mdbc;                         /* some wall particles carry SPH_FLAG_MDBC */
   const sph_wall_segment *segments; /* the case's segments (their motions), not owned */
   size_t n_segments;
 } sph_walls;
