@@ -1034,6 +1034,15 @@ static int check_layers(const ctx *x, const node *m, const char *p, sph_boundary
   return 0;
 }
 
+/* The layers of a wall by default: 2 staggered layers dx/2 apart for the
+ * dynamic models; for mdbc, whose wall density continues the fluid's
+ * field, 3 layers on the fluid's lattice continued (they fill the support
+ * 2h = 2.6 dx; in still water the floor particles then carry their
+ * hydrostatic load within 3 %, against 42-53 % under it with 2 staggered
+ * layers). */
+static int default_layers(sph_boundary_kind b) { return b == SPH_BOUNDARY_MDBC ? 3 : 2; }
+static int default_stagger(sph_boundary_kind b) { return b != SPH_BOUNDARY_MDBC; }
+
 /* `stagger` and `extrapolated_velocity` of a wall of particles with
  * evolving density (dynamic, fixed_layers); an error on the others, and
  * the extrapolated velocity only where a strain-rate pass uses it. */
@@ -1070,17 +1079,17 @@ static int read_tank(const ctx *x, const node *m, sph_case *c) {
   int rc = get_section(x, m, "geometry", "tank", 0, tank_keys, &t);
   if (rc <= 0) return rc;
   c->tank.present = 1;
-  c->tank.layers = 2;
   if (get_pair(x, t, p, "x", 1, 'x', v) < 0) return -1;
   c->tank.x0 = v[0];
   c->tank.x1 = v[1];
   if (get_pair(x, t, p, "y", 1, 'y', v) < 0) return -1;
   c->tank.y0 = v[0];
   c->tank.y1 = v[1];
-  if (get_int(x, t, p, "layers", 1, 8, &c->tank.layers) < 0) return -1;
   if (get_choice(x, t, p, "boundary", boundary_names, &b) < 0) return -1;
   c->tank.boundary = (sph_boundary_kind)b;
-  c->tank.stagger = 1;
+  c->tank.layers = default_layers(c->tank.boundary);
+  if (get_int(x, t, p, "layers", 1, 8, &c->tank.layers) < 0) return -1;
+  c->tank.stagger = default_stagger(c->tank.boundary);
   if (read_layout(x, t, p, c, c->tank.boundary, &c->tank.stagger, &c->tank.extrapolated)) return -1;
   return check_layers(x, t, p, c->tank.boundary, &c->tank.layers);
 }
@@ -1253,12 +1262,12 @@ static int read_wall(const ctx *x, const node *m, const char *p, const sph_case 
   w->y0 = from[1];
   w->x1 = to[0];
   w->y1 = to[1];
-  w->layers = 2;
-  if (get_int(x, m, p, "layers", 1, 8, &w->layers) < 0) return -1;
   if (get_choice(x, m, p, "boundary", boundary_names, &bnd) < 0) return -1;
   w->boundary = (sph_boundary_kind)bnd;
+  w->layers = default_layers(w->boundary);
+  if (get_int(x, m, p, "layers", 1, 8, &w->layers) < 0) return -1;
   if (check_layers(x, m, p, w->boundary, &w->layers)) return -1;
-  w->stagger = 1;
+  w->stagger = default_stagger(w->boundary);
   if (read_layout(x, m, p, c, w->boundary, &w->stagger, &w->extrapolated)) return -1;
   if (read_motion(x, m, p, w)) return -1;
   if (w->extrapolated && w->motion.kind == SPH_MOTION_FLAP) {
