@@ -171,6 +171,25 @@ static int sph(const char *args, char *out, size_t len) {
   return sph_test_sph(args, tmp, out, len);
 }
 
+/* An initial state that is not finite (rho0 = 1e308: the hydrostatic
+ * densities overflow) stops before anything is written: exit 3, a message
+ * naming step 0, and no snapshot (snap_0000.h5 held NaN before; issue 21,
+ * D13). */
+static void test_initial_state_checked(void) {
+  char args[16384], out[65536], dir[4200], path[4300];
+  snprintf(dir, sizeof dir, "%s/nan_start", tmp);
+  snprintf(args, sizeof args, "run -q '%s' -o '%s' --set physics.rho0=1e308",
+           sph_test_src("cases/martin_moyce_coarse.yaml"), dir);
+  const int st = sph(args, out, sizeof out);
+  CU_ASSERT_EQUAL(st, 3);
+  CU_ASSERT(strstr(out, "blow-up at step 0, t = 0 s") != NULL);
+  snprintf(path, sizeof path, "%s/snap_0000.h5", dir);
+  FILE *f = fopen(path, "rb");
+  CU_ASSERT(f == NULL);
+  if (f) fclose(f);
+  printf("\n  rho0 = 1e308: exit %d, no snapshot written", st);
+}
+
 /* A fixed step of 1e-3 s, some ten times h/c0 of the impact case: both
  * integrators must stop with the blow-up status and no NaN on disk. */
 static void test_dt_too_large(void) {
@@ -390,6 +409,8 @@ int main(void) {
   CU_TestInfo tests[] = {
       {"hydrostatic tank, long run: still, in the tank, hydrostatic", test_hydrostatic_long},
       {"time step too large: blow-up stop, no NaN on disk", test_dt_too_large},
+      {"a start that is not finite: stopped before anything is written",
+       test_initial_state_checked},
       {"perturbed start: jitter validated, seeded, bounded, stable", test_jitter},
       {"high-speed impact of a dropped column", test_impact},
       {"very thin layers: one and two rows", test_thin_layer},

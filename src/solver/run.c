@@ -26,6 +26,7 @@
 #include <string.h>
 
 #include "io/snapshot.h"
+#include "solver/sim_internal.h"
 
 typedef struct outputs {
   const char *dir;
@@ -284,6 +285,11 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
     return -1;
   }
   if (o->progress) o->progress(o->progress_ctx, s);
+  if (!rd && sph_sim_check_state(s, err)) { /* the initial state is checked like any other */
+    r->status = SPH_RUN_BLOWUP;
+    outputs_free(&out);
+    return -1;
+  }
   if (!rd) {
     if (write_output(s, &out, r, err)) goto io_error;
   } else if (need_row && write_rows(s, &out, need_row, err)) {
