@@ -428,8 +428,12 @@ static void test_out_of_range(void) {
   expect_err(edit(MINIMAL, 3, "  sound_speed: 20\n  artificial_viscosity: {alpha: -0.1}\n"),
              "t.yaml:4: physics.artificial_viscosity.alpha: expected a number >= 0, got '-0.1'");
   expect_err(edit(MINIMAL, 8, "  output_interval: 2\n"),
-             "t.yaml:8: time.output_interval: expected a positive number <= time.end (1), got "
-             "'2'");
+             "t.yaml:8: time.output_interval: expected a number from time.end/100000 (1e-05, at "
+             "most 100000 outputs) to time.end (1), got '2'");
+  /* a tiny interval would fill the disk with snapshots (issue 21, D7) */
+  expect_err(edit(MINIMAL, 8, "  output_interval: 1e-12\n"),
+             "t.yaml:8: time.output_interval: expected a number from time.end/100000 (1e-05, at "
+             "most 100000 outputs) to time.end (1), got '1e-12'");
   expect_err(edit(MINIMAL, 10, "  tank: {x: [0, 1], y: [0, 1], layers: 9}\n  fluid:\n"),
              "t.yaml:10: geometry.tank.layers: expected an integer in 1..8, got '9'");
   expect_err(edit(MINIMAL, 10, "  tank: {x: [0, 1], y: [0, 1], layers: 2.0}\n  fluid:\n"),
