@@ -41,10 +41,10 @@
 #include <string.h>
 #include <yaml.h>
 
-#define FROM_FILE (-1) /* node source: the case file (else a --set index) */
-#define MAX_DEPTH 64   /* deepest nesting accepted in a case file */
+#define FROM_FILE (-1)         /* node source: the case file (else a --set index) */
+#define MAX_DEPTH 64           /* deepest nesting accepted in a case file */
 #define SPH_MAX_OUTPUTS 100000 /* output times from time.output_interval, at most */
-#define KEYLEN 256     /* room for a dotted key such as geometry.fluid[3].x */
+#define KEYLEN 256             /* room for a dotted key such as geometry.fluid[3].x */
 
 /* ---- choices -------------------------------------------------------------- */
 
@@ -988,9 +988,8 @@ static int read_time(ctx *x, const node *m, sph_case *c) {
   /* at most SPH_MAX_OUTPUTS output times from the interval: a tiny one
    * would fill the disk with snapshots (issue 21, D7) */
   const double least = c->t_end / SPH_MAX_OUTPUTS;
-  bprintf(what, sizeof what,
-          "a number from time.end/%d (%g, at most %d outputs) to time.end (%g)", SPH_MAX_OUTPUTS,
-          least, SPH_MAX_OUTPUTS, c->t_end);
+  bprintf(what, sizeof what, "a number from time.end/%d (%g, at most %d outputs) to time.end (%g)",
+          SPH_MAX_OUTPUTS, least, SPH_MAX_OUTPUTS, c->t_end);
   range interval = {least, c->t_end, '[', ']', what};
   const node *ot;
   int has_times = lookup(x, m, p, "output_times", 0, &ot, kp);
