@@ -17,6 +17,7 @@
 #include "core/particles.h"
 #include "neighbours/grid.h"
 #include "solver/sim.h"
+#include "testsim.h"
 #include "testutil.h"
 
 static sph_case c;
@@ -24,9 +25,7 @@ static sph_sim *s;
 
 static void load(void) {
   sph_error err;
-  CU_ASSERT_FATAL(
-      sph_case_load(sph_test_src("cases/martin_moyce_coarse.yaml"), NULL, 0, &c, &err) == 0);
-  CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
+  CU_ASSERT_FATAL(sph_test_open_sim("cases/martin_moyce_coarse.yaml", NULL, 0, &c, &s) == 0);
   for (int k = 0; k < 30; k++)
     CU_ASSERT_FATAL(sph_sim_step(s, c.t_end, &err) == 0);
 }

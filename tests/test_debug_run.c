@@ -17,14 +17,14 @@
 #include <stdio.h>
 
 #include "sph.h"
+#include "testsim.h"
 #include "testutil.h"
 
 static void steps(const char *rel, const char *const *set, size_t n_set, int n) {
   sph_error err;
   sph_case c;
   sph_sim *s;
-  CU_ASSERT_FATAL(sph_case_load(sph_test_src(rel), set, n_set, &c, &err) == 0);
-  CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
+  CU_ASSERT_FATAL(sph_test_open_sim(rel, set, n_set, &c, &s) == 0);
   int ok = 1;
   for (int k = 0; k < n && ok; k++) {
     ok = sph_sim_step(s, c.t_end, &err) == 0;

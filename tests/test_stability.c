@@ -52,26 +52,10 @@
 #include "physics/eos.h"
 #include "snapcmp.h"
 #include "solver/sim.h"
+#include "testsim.h"
 #include "testutil.h"
 
 static char *tmp;
-
-/* Loads the case rel (with --set overrides) and sets up its sim; prints
- * the error and frees what it made when either fails. */
-static int open_sim(const char *rel, const char *const *set, size_t n_set, sph_case *c,
-                    sph_sim **s) {
-  sph_error err;
-  if (sph_case_load(sph_test_src(rel), set, n_set, c, &err)) {
-    printf("\n  %s\n", err.msg);
-    return -1;
-  }
-  if (sph_sim_create(c, s, &err)) {
-    printf("\n  %s\n", err.msg);
-    sph_case_free(c);
-    return -1;
-  }
-  return 0;
-}
 
 typedef struct extremes {
   double drho;        /* largest |rho - rho_h(y)| / rho0 away from the floor's corners */
@@ -132,7 +116,7 @@ static void test_hydrostatic_long(void) {
   sph_case c;
   sph_sim *s;
   sph_error err;
-  CU_ASSERT_FATAL(open_sim("cases/hydrostatic_tank.yaml", STILL_WATER, 2, &c, &s) == 0);
+  CU_ASSERT_FATAL(sph_test_open_sim("cases/hydrostatic_tank.yaml", STILL_WATER, 2, &c, &s) == 0);
   const double H = c.fluid[0].y1, vref = sqrt(9.81 * H);
   extremes e = {0, 0, 0, 0, 0, 0, 0}, start = {0, 0, 0, 0, 0, 0, 0};
   measure(s, H, &start);
@@ -240,7 +224,7 @@ static double *jittered(const char *jitter, const char *seed, size_t *n) {
   const char *sets[2] = {jitter, seed};
   sph_case c;
   sph_sim *s;
-  if (open_sim("cases/hydrostatic_tank.yaml", sets, seed ? 2 : 1, &c, &s)) return NULL;
+  if (sph_test_open_sim("cases/hydrostatic_tank.yaml", sets, seed ? 2 : 1, &c, &s)) return NULL;
   const sph_particles *p = sph_sim_particles(s);
   double *xy = calloc(2 * p->n, sizeof *xy);
   for (size_t i = 0; xy && i < p->n; i++) {
@@ -296,7 +280,7 @@ static void test_jitter(void) {
   const char *sets[1] = {"geometry.fluid=[{x: [0, 0.2], y: [0, 0.1], jitter: 0.2, seed: 7}]"};
   sph_sim *s;
   sph_error err;
-  CU_ASSERT_FATAL(open_sim("cases/hydrostatic_tank.yaml", sets, 1, &c, &s) == 0);
+  CU_ASSERT_FATAL(sph_test_open_sim("cases/hydrostatic_tank.yaml", sets, 1, &c, &s) == 0);
   extremes e = {0, 0, 0, 0, 0, 0, 0};
   measure(s, 0.0, &e);
   const size_t nf = e.n_fluid;
@@ -321,7 +305,7 @@ static void run_to_end(const char *rel) {
   sph_case c;
   sph_sim *s;
   sph_error err;
-  CU_ASSERT_FATAL(open_sim(rel, NULL, 0, &c, &s) == 0);
+  CU_ASSERT_FATAL(sph_test_open_sim(rel, NULL, 0, &c, &s) == 0);
   extremes e = {0, 0, 0, 0, 0, 0, 0};
   measure(s, 0.0, &e);
   const size_t nf = e.n_fluid;
@@ -357,7 +341,7 @@ enum offence { DENSE, THIN, OUTSIDE, NOT_FINITE };
 static int step_after(enum offence what, int wall, sph_error *err, long long *id) {
   sph_case c;
   sph_sim *s;
-  CU_ASSERT_FATAL(open_sim("cases/hydrostatic_tank.yaml", NULL, 0, &c, &s) == 0);
+  CU_ASSERT_FATAL(sph_test_open_sim("cases/hydrostatic_tank.yaml", NULL, 0, &c, &s) == 0);
   sph_particles *p = sph_sim_particles(s);
   const int kind = wall ? SPH_KIND_WALL : SPH_KIND_FLUID;
   size_t i = wall ? 0 : p->n / 2;

@@ -42,21 +42,26 @@
 #include "core/particles.h"
 #include "solver/run.h"
 #include "solver/sim.h"
+#include "testsim.h"
 #include "testutil.h"
 #include "walls/walls.h"
 
-static void run_model(const char *boundary, double start_bound, double bound, size_t expect_walls) {
+/* How run_model treats the floor's load (floor_load below). */
+enum { LOAD_SKIP, LOAD_REPORT, LOAD_HOLD };
+
+static void floor_load(const sph_case *c, sph_sim *s, const char *tank, int hold);
+
+static void run_model(const char *boundary, double start_bound, double bound, size_t expect_walls,
+                      int load) {
   char set[256];
   snprintf(set, sizeof set, "geometry.tank={x: [0.0, 0.2], y: [0.0, 0.15], boundary: %s}",
            boundary);
   const char *sets[] = {set};
   sph_case c;
-  sph_error err;
-  int rc = sph_case_load(sph_test_src("cases/hydrostatic_tank.yaml"), sets, 1, &c, &err);
-  if (rc) printf("\n%s\n", err.msg);
-  CU_ASSERT_FATAL(rc == 0);
   sph_sim *s;
-  CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
+  sph_error err;
+  CU_ASSERT_FATAL(sph_test_open_sim("cases/hydrostatic_tank.yaml", sets, 1, &c, &s) == 0);
+  int rc;
   const size_t n0 = sph_sim_particles(s)->n;
   CU_ASSERT_EQUAL(n0 - sph_particles_count_kind(sph_sim_particles(s), SPH_KIND_FLUID),
                   expect_walls);
@@ -85,6 +90,7 @@ static void run_model(const char *boundary, double start_bound, double bound, si
   CU_ASSERT_EQUAL(crossed, 0);
   CU_ASSERT(vstart < start_bound * vref);
   CU_ASSERT(vmax < bound * vref);
+  if (load != LOAD_SKIP) floor_load(&c, s, boundary, load == LOAD_HOLD);
   sph_sim_free(s);
   sph_case_free(&c);
 }
@@ -92,29 +98,19 @@ static void run_model(const char *boundary, double start_bound, double bound, si
 /* Wall particles boundary.c places for the case's tank (dx = 0.005 m, inner
  * box 0.2 x 0.15 m): 207 in two staggered layers, 102 in one, none for
  * mirror walls. */
-static void test_dynamic(void) { run_model("dynamic", 0.06, 0.01, 207); }
-static void test_fixed_layers(void) { run_model("fixed_layers", 0.06, 0.01, 207); }
-static void test_repulsive(void) { run_model("repulsive", 0.15, 0.08, 102); }
-static void test_mirror(void) { run_model("mirror", 0.01, 0.001, 0); }
-static void test_mdbc(void) { run_model("mdbc", 0.06, 0.01, 318); }
+static void test_dynamic(void) { run_model("dynamic", 0.06, 0.01, 207, LOAD_REPORT); }
+static void test_fixed_layers(void) { run_model("fixed_layers", 0.06, 0.01, 207, LOAD_SKIP); }
+static void test_repulsive(void) { run_model("repulsive", 0.15, 0.08, 102, LOAD_SKIP); }
+static void test_mirror(void) { run_model("mirror", 0.01, 0.001, 0, LOAD_SKIP); }
+static void test_mdbc(void) { run_model("mdbc", 0.06, 0.01, 318, LOAD_HOLD); }
 
 /* The first fluid row's height above the floor face (in dx, mean over the
  * middle half of the tank) and the floor's first wall layer's pressure
- * against rho0 g (surface - y) at its depth, after 0.5 s of still water. */
-static void floor_load(const char *tank, int hold) {
-  char set[256];
-  snprintf(set, sizeof set, "geometry.tank={x: [0.0, 0.2], y: [0.0, 0.15], %s}", tank);
-  const char *sets[] = {set};
-  sph_case c;
-  sph_error err;
-  CU_ASSERT_FATAL(sph_case_load(sph_test_src("cases/hydrostatic_tank.yaml"), sets, 1, &c, &err) ==
-                  0);
-  sph_sim *s;
-  CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
-  while (sph_sim_time(s) < c.t_end)
-    CU_ASSERT_FATAL(sph_sim_step(s, c.t_end, &err) == 0);
+ * against rho0 g (surface - y) at its depth, in the finished still-water
+ * run s of case c; held (hold) or only reported. */
+static void floor_load(const sph_case *c, sph_sim *s, const char *tank, int hold) {
   const sph_particles *p = sph_sim_particles(s);
-  const double dx = c.dx, g = -c.gravity[1];
+  const double dx = c->dx, g = -c->gravity[1];
   double top = 0.0;
   for (size_t i = 0; i < p->n; i++)
     if (p->kind[i] == SPH_KIND_FLUID && p->y[i] > top) top = p->y[i];
@@ -132,7 +128,7 @@ static void floor_load(const char *tank, int hold) {
     if (p->kind[i] == SPH_KIND_WALL && p->x[i] > 0.05 && p->x[i] < 0.15 && p->y[i] < 0.0 &&
         p->y[i] > -0.5 * dx - 1e-9) {
       pw += p->p[i];
-      load += c.rho0 * g * (top - p->y[i]);
+      load += c->rho0 * g * (top - p->y[i]);
       nw++;
     }
   row /= ncol * dx;
@@ -144,14 +140,24 @@ static void floor_load(const char *tank, int hold) {
     CU_ASSERT(fabs(row - 0.5) <= 0.2);
     CU_ASSERT(fabs(dev) <= 0.10);
   }
-  sph_sim_free(s);
-  sph_case_free(&c);
 }
 
+/* The dynamic model laid as 3 unstaggered layers (mdbc's and dynamic's
+ * own layouts are measured in their still-water runs above). */
 static void test_floor_load(void) {
-  floor_load("boundary: mdbc", 1);
-  floor_load("boundary: dynamic, layers: 3, stagger: false", 1);
-  floor_load("boundary: dynamic", 0);
+  const char *tank = "boundary: dynamic, layers: 3, stagger: false";
+  char set[256];
+  snprintf(set, sizeof set, "geometry.tank={x: [0.0, 0.2], y: [0.0, 0.15], %s}", tank);
+  const char *sets[] = {set};
+  sph_case c;
+  sph_sim *s;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_test_open_sim("cases/hydrostatic_tank.yaml", sets, 1, &c, &s) == 0);
+  while (sph_sim_time(s) < c.t_end)
+    CU_ASSERT_FATAL(sph_sim_step(s, c.t_end, &err) == 0);
+  floor_load(&c, s, tank, 1);
+  sph_sim_free(s);
+  sph_case_free(&c);
 }
 
 /* Martin & Moyce's residual column height H = eta / (2a) at tau =
@@ -176,11 +182,9 @@ static double mm_height(double tau) {
 static void test_mdbc_back_wall_drains(void) {
   const char *sets[] = {"geometry.tank={x: [0.0, 0.2286], y: [0.0, 0.17145], boundary: mdbc}"};
   sph_case c;
-  sph_error err;
-  CU_ASSERT_FATAL(
-      sph_case_load(sph_test_src("cases/martin_moyce_coarse.yaml"), sets, 1, &c, &err) == 0);
   sph_sim *s;
-  CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
+  sph_error err;
+  CU_ASSERT_FATAL(sph_test_open_sim("cases/martin_moyce_coarse.yaml", sets, 1, &c, &s) == 0);
   const double a = 0.05715, dx = c.dx, times[2] = {0.1, 0.15};
   for (int k = 0; k < 2; k++) {
     while (sph_sim_time(s) < times[k])
@@ -251,15 +255,12 @@ static void test_mirror_dam_break_runs(void) {
   const char *sets[] = {"geometry.tank={x: [0.0, 0.2286], y: [0.0, 0.17145], boundary: mirror}",
                         "output.snapshots=false"};
   sph_case c;
-  sph_error err;
-  int rc = sph_case_load(sph_test_src("cases/martin_moyce_coarse.yaml"), sets, 2, &c, &err);
-  if (rc) printf("\n%s\n", err.msg);
-  CU_ASSERT_FATAL(rc == 0);
   sph_sim *s;
-  CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
+  sph_error err;
+  CU_ASSERT_FATAL(sph_test_open_sim("cases/martin_moyce_coarse.yaml", sets, 2, &c, &s) == 0);
   sph_run_options opt = {NULL, NULL, NULL, NULL, NULL, NULL};
   sph_run_result r;
-  rc = sph_run(s, &opt, &r, &err);
+  const int rc = sph_run(s, &opt, &r, &err);
   if (rc) printf("\n%s\n", err.msg);
   printf("\n  coarse dam break, mirror walls: %s at t = %.4f s after %ld steps",
          sph_run_status_name(r.status), sph_sim_time(s), r.steps);
@@ -275,7 +276,7 @@ int main(void) {
       {"repulsive walls hold still water", test_repulsive},
       {"mirror walls hold still water", test_mirror},
       {"mdbc walls hold still water", test_mdbc},
-      {"still water: the floor carries its hydrostatic load", test_floor_load},
+      {"still water: 3 unstaggered dynamic layers carry the floor's load", test_floor_load},
       {"mdbc walls: the back wall drains as in Martin & Moyce", test_mdbc_back_wall_drains},
       {"mirror lines: a particle on or across one is reflected", test_mirror_lines_impermeable},
       {"coarse dam break with mirror walls runs to its stop", test_mirror_dam_break_runs},
