@@ -450,7 +450,20 @@ static void test_unknown_choice(void) {
              "t.yaml:6: numerics.kernel: expected one of: cubic_spline, got a list of 1 item");
   expect_err(edit(MINIMAL, 8, "  output_interval: 0.1\n  stop: never\n"),
              "t.yaml:9: time.stop: unknown choice 'never' (valid: none, front_at_wall)");
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  density_diffusion: {model: delta_sph}\n"),
+             "t.yaml:6: numerics.density_diffusion.model: unknown choice 'delta_sph' (valid: none, "
+             "molteni_colagrossi, antuono, fourtakas)");
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  density_diffusion: {model: antuono, delta: 0}\n"),
+             "t.yaml:6: numerics.density_diffusion.delta: expected a number in (0, 1], got '0'");
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  density_diffusion: {model: antuono, d: 0.1}\n"),
+             "t.yaml:6: numerics.density_diffusion.d: unknown key (valid keys in "
+             "'numerics.density_diffusion': model, delta)");
   sph_case c;
+  expect_ok(edit(MINIMAL, 5, "  dx: 0.01\n  density_diffusion: {model: fourtakas, delta: 0.05}\n"),
+            NULL, 0, &c);
+  CU_ASSERT_EQUAL(c.diffusion, SPH_DIFFUSION_FOURTAKAS);
+  CU_ASSERT_EQUAL(c.diffusion_delta, 0.05);
+  sph_case_free(&c);
   expect_ok(edit(MINIMAL, 5, "  dx: 0.01\n  kernel: \"cubic_spline\"\n"), NULL, 0, &c);
   CU_ASSERT_EQUAL(c.kernel, SPH_KERNEL_CUBIC_SPLINE);
   sph_case_free(&c);
@@ -653,6 +666,8 @@ static const char MINIMAL_DESCRIPTION[] = "name: mini\n"
                                           "numerics.time_step.factor: 0.29999999999999999\n"
                                           "numerics.density_filter.kind: none\n"
                                           "numerics.density_filter.every: 30\n"
+                                          "numerics.density_diffusion.model: none\n"
+                                          "numerics.density_diffusion.delta: 0.10000000000000001\n"
                                           "numerics.density_limit: 0.29999999999999999\n"
                                           "time.end: 1\n"
                                           "time.output_interval: 0.10000000000000001\n"

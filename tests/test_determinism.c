@@ -94,8 +94,21 @@ static void test_mdbc(void) {
                           "0.2286], y: [0.0, 0.17145], boundary: mdbc}'");
 }
 
+/* density diffusion: the antuono model's gradient pass and the pair term
+ * (lane loop), and fourtakas with the energy ledger (scalar loop, the
+ * diffusion_energy column) on the wet bed */
+static void test_density_diffusion(void) {
+  same_on_1_and_2_threads("cases/martin_moyce_coarse.yaml",
+                          "--set time.end=0.2 --set time.stop=none "
+                          "--set 'numerics.density_diffusion={model: antuono}'");
+  same_on_1_and_2_threads("cases/wet_bed_dam_break.yaml",
+                          "--set numerics.dx=0.012 --set time.end=0.1 "
+                          "--set 'numerics.density_diffusion={model: fourtakas, delta: 0.1}'");
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
+      {"density diffusion: antuono, fourtakas with the ledger", test_density_diffusion},
       {"mdbc walls through an impact", test_mdbc},
       {"wet bed: viscosity, ledger, moving gate", test_wet_bed},
       {"SPS turbulence", test_sps},

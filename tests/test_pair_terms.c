@@ -2,8 +2,9 @@
  * test_pair_terms.c - the pair terms are written once and every loop that
  * sums them agrees (src/physics/pair_terms.h, src/solver/interact.h).
  *
- * 1. Oracle: for each of the 128 term sets F (artificial viscosity, XSPH,
- *    stress tensor, Morris, periodic, per-particle h, energy ledger) and
+ * 1. Oracle: for each of the 256 term sets F (artificial viscosity, XSPH,
+ *    stress tensor, Morris, periodic, per-particle h, energy ledger,
+ *    density diffusion: Molteni-Colagrossi, Antuono, Fourtakas by set) and
  *    three random particle sets (fluid on a jittered lattice with random
  *    velocities and densities; dynamic, moving, repulsive and mirror wall
  *    particles below it; periodic in x when F says so, per-particle h
@@ -81,7 +82,11 @@ static void make_set(sph_particles *p, unsigned seed, int periodic, int varh, co
     }
 }
 
-static void params_for(unsigned F, sph_force_params *fp) {
+/* F & 128 (density diffusion) takes the model by the set's seed. */
+static const sph_diffusion_kind DIFFUSION[3] = {SPH_DIFFUSION_MOLTENI, SPH_DIFFUSION_ANTUONO,
+                                                SPH_DIFFUSION_FOURTAKAS};
+
+static void params_for(unsigned F, unsigned seed, sph_force_params *fp) {
   memset(fp, 0, sizeof *fp);
   fp->eos = sph_eos_tait(RHO0, 20.0);
   fp->h = 1.3 * DX;
@@ -99,6 +104,7 @@ static void params_for(unsigned F, sph_force_params *fp) {
   if (F & 16) fp->periodic = 1, fp->period = NXL * DX, fp->px0 = 0.0;
   if (F & 32) fp->var_h = 1;
   if (F & 64) fp->ledger = 1;
+  if (F & 128) fp->diffusion = DIFFUSION[seed % 3], fp->diffusion_delta = 0.1;
   fp->repulsive = 1;
   fp->lj_d = 5.0;
   fp->lj_r0 = DX;
@@ -177,8 +183,43 @@ static void oracle_stress(const sph_particles *p, const sph_force_params *fp, do
   }
 }
 
+/* The density diffusion's c_i (physics/density_diffusion.h): 0, half the
+ * renormalised density gradient over every neighbour, or rho0 g / (2 c0^2). */
+static void oracle_diffusion_c(const sph_particles *p, const sph_force_params *fp, double *cx,
+                               double *cy) {
+  for (size_t i = 0; i < p->n; i++) {
+    cx[i] = cy[i] = 0.0;
+    if (fp->diffusion == SPH_DIFFUSION_FOURTAKAS) {
+      cx[i] = 0.5 * fp->eos.rho0 * fp->gx / (fp->eos.c0 * fp->eos.c0);
+      cy[i] = 0.5 * fp->eos.rho0 * fp->gy / (fp->eos.c0 * fp->eos.c0);
+    }
+    if (fp->diffusion != SPH_DIFFUSION_ANTUONO || p->kind[i] != SPH_KIND_FLUID) continue;
+    double g[2] = {0, 0}, M[2][2] = {{0, 0}, {0, 0}}; /* Antuono et al. 2010 eq. (6) */
+    for (size_t j = 0; j < p->n; j++) {
+      double dx, dy, r, hij, w, gx, gy;
+      if (j == i || !pair(p, fp, i, j, &dx, &dy, &r, &hij, &w, &gx, &gy)) continue;
+      const double V = p->mass[j] / p->rho[j], d[2] = {-dx, -dy}, gw[2] = {gx * V, gy * V};
+      for (int a = 0; a < 2; a++) {
+        g[a] += (p->rho[j] - p->rho[i]) * gw[a];
+        for (int b = 0; b < 2; b++)
+          M[a][b] += d[a] * gw[b];
+      }
+    }
+    const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+    double gx = g[0], gy = g[1];
+    if (det > SPH_GRADIENT_CORRECTION_MIN_DET && M[0][0] > 0) {
+      gx = (M[1][1] * g[0] - M[0][1] * g[1]) / det;
+      gy = (-M[1][0] * g[0] + M[0][0] * g[1]) / det;
+    }
+    cx[i] = 0.5 * gx;
+    cy[i] = 0.5 * gy;
+  }
+}
+
 static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o) {
   const size_t n = p->n;
+  double *dcx = calloc(n, sizeof *dcx), *dcy = calloc(n, sizeof *dcy);
+  oracle_diffusion_c(p, fp, dcx, dcy);
   double *txx = calloc(n, sizeof *txx), *txy = calloc(n, sizeof *txy),
          *tyy = calloc(n, sizeof *tyy);
   const int stress = fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps;
@@ -230,6 +271,11 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
         xs -= mj / (0.5 * (rhoi + rhoj)) * vx * w;
         ys -= mj / (0.5 * (rhoi + rhoj)) * vy * w;
       }
+      if (fp->diffusion && p->kind[j] == SPH_KIND_FLUID) { /* density_diffusion.h */
+        const double psi = 2.0 * ((rhoj - rhoi) + (dcx[i] + dcx[j]) * dx + (dcy[i] + dcy[j]) * dy);
+        const double rji_gw = -(dx * gx + dy * gy); /* r_ji . grad_i W_ij */
+        drho += fp->diffusion_delta * hij * fp->eos.c0 * psi * rji_gw / (r * r) * mj / rhoj;
+      }
     }
     if (fluid) {
       ax += fp->gx;
@@ -251,6 +297,8 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
   free(txx);
   free(txy);
   free(tyy);
+  free(dcx);
+  free(dcy);
 }
 
 /* ---- the library's loops ------------------------------------------------------------ */
@@ -321,10 +369,10 @@ static void test_oracle_every_term_set(void) {
   if (!avx) printf("\n  (no AVX2 on this processor: the AVX2 lane loop is not compared)");
   double worst[3] = {0, 0, 0}; /* scalar, lanes, avx against the oracle */
   unsigned bad = 0;
-  for (unsigned F = 0; F < 128; F++)
+  for (unsigned F = 0; F < 256; F++)
     for (unsigned seed = 0; seed < 3; seed++) {
       sph_force_params fp;
-      params_for(F, &fp);
+      params_for(F, seed, &fp);
       sph_particles p;
       make_set(&p, F * 3 + seed, (F & 16) != 0, (F & 32) != 0, &fp.eos);
       const size_t n = p.n;
@@ -355,7 +403,8 @@ static void test_oracle_every_term_set(void) {
       rates_free(&o);
       sph_particles_free(&p);
     }
-  printf("\n  128 term sets x 3 sets: worst relative difference from the all-pairs oracle: "
+  printf("\n  256 term sets x 3 sets (density diffusion: the three models by set): worst relative "
+         "difference from the all-pairs oracle: "
          "scalar %.2e, lanes %.2e, AVX2 lanes %.2e (tolerance %.0e)",
          worst[0], worst[1], worst[2], TOL);
   CU_ASSERT(bad == 0);
@@ -431,6 +480,9 @@ static void test_pair_symmetry(void) {
     CU_ASSERT(same(xf * dvx, -(xf * evx)));
     const double lj = lennard_jones_v1(5.0, 1.2 * h, r2);
     CU_ASSERT(same(lj * dx, -(lj * ex)) && same(lj, lennard_jones_v1(5.0, 1.2 * h, q2)));
+    const double ccx = s[0] * 1e3, ccy = s[1] * 1e3; /* c_i + c_j of the diffusion */
+    const double psi = diffusion_psi_v1(rhoi, rhoj, dx, dy, ccx, ccy);
+    CU_ASSERT(same(psi, -diffusion_psi_v1(rhoj, rhoi, ex, ey, ccx, ccy)));
     checked++;
 
     /* the lane flavours: four different pairs at once (scaled copies) */
@@ -450,6 +502,10 @@ static void test_pair_symmetry(void) {
     LANES_AGREE(
         stress_heat_v1(S(m), S(txx), S(txy), S(tyy), S(dvx), S(dvy), S(gx), S(gy)),
         stress_heat_v4e(V4(m), V4(txx), V4(txy), V4(tyy), V4(dvx), V4(dvy), V4(gx), V4(gy)));
+    LANES_AGREE(diffusion_psi_v1(S(rhoi), S(rhoj), S(dx), S(dy), S(ccx), S(ccy)),
+                diffusion_psi_v4e(V4(rhoi), V4(rhoj), V4(dx), V4(dy), V4(ccx), V4(ccy)));
+    LANES_AGREE(diffusion_v1(S(psi), S(f), S(m), S(rhoj)),
+                diffusion_v4e(V4(psi), V4(f), V4(m), V4(rhoj)));
     { /* the kernel at four radii */
       double rq[4], iq[4], wq[4], fq[4], wl[4], fl[4];
       for (int q = 0; q < 4; q++) {
@@ -476,7 +532,7 @@ static void test_pair_symmetry(void) {
 
 int main(void) {
   CU_TestInfo tests[] = {
-      {"the 128 term sets: scalar, lane and AVX2 loops against the all-pairs oracle",
+      {"the 256 term sets: scalar, lane and AVX2 loops against the all-pairs oracle",
        test_oracle_every_term_set},
       {"each term antisymmetric or symmetric in the pair, and bitwise in every lane",
        test_pair_symmetry},

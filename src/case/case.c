@@ -29,6 +29,8 @@
 
 #include "case/case.h"
 
+#include "physics/density_diffusion.h"
+
 #include "physics/filter.h"
 #include "walls/wavemaker.h"
 
@@ -773,10 +775,11 @@ static const char *const physics_keys[] = {
 static const char *const c0_keys[] = {"factor", "height", "speed", NULL};
 static const char *const visc_keys[] = {"alpha", "beta", "eta", NULL};
 static const char *const numerics_keys[] = {
-    "dx",        "h_factor",       "kernel",        "integrator", "smoothing_length",
-    "time_step", "density_filter", "density_limit", NULL};
+    "dx",        "h_factor",       "kernel",        "integrator",        "smoothing_length",
+    "time_step", "density_filter", "density_limit", "density_diffusion", NULL};
 static const char *const dt_keys[] = {"rule", "factor", "dt", NULL};
 static const char *const filter_keys[] = {"kind", "every", NULL};
+static const char *const diffusion_keys[] = {"model", "delta", NULL};
 static const char *const time_keys[] = {"end", "output_interval", "output_times", "stop", NULL};
 static const char *const geometry_keys[] = {"tank", "fluid", "walls", "periodic_x", "domain", NULL};
 static const char *const tank_keys[] = {
@@ -816,6 +819,8 @@ static void set_defaults(sph_case *c) {
   c->fs_radius_factor = 1.0;
   c->density_filter = SPH_FILTER_NONE;
   c->filter_every = 30;
+  c->diffusion = SPH_DIFFUSION_NONE;
+  c->diffusion_delta = SPH_DIFFUSION_DELTA_DEFAULT;
   c->sps_cs = 0.12;
   c->sps_ci = 0.00066;
 }
@@ -975,6 +980,17 @@ static int read_numerics(ctx *x, const node *m, sph_case *c) {
         get_int(x, f, "numerics.density_filter", "every", 1, 1000000, &c->filter_every) < 0)
       return -1;
     c->density_filter = (sph_filter_kind)kind;
+  }
+  static const range delta = {0, 1, '(', ']', NULL};
+  rc = get_section(x, m, p, "density_diffusion", 0, diffusion_keys, &f);
+  if (rc < 0) return -1;
+  if (rc > 0) {
+    int model = (int)c->diffusion;
+    if (get_choice(x, f, "numerics.density_diffusion", "model", sph_diffusion_kind_names, &model) <
+            0 ||
+        get_number(x, f, "numerics.density_diffusion", "delta", 0, &delta, &c->diffusion_delta) < 0)
+      return -1;
+    c->diffusion = (sph_diffusion_kind)model;
   }
   return get_number(x, m, p, "density_limit", 0, &limit, &c->density_limit) < 0 ? -1 : 0;
 }
@@ -1644,6 +1660,8 @@ char *sph_case_describe(const sph_case *c) {
   if (c->dt_rule == SPH_DT_FIXED) sb_add(&b, "numerics.time_step.dt: %.17g\n", c->dt_fixed);
   sb_add(&b, "numerics.density_filter.kind: %s\n", sph_filter_name(c->density_filter));
   sb_add(&b, "numerics.density_filter.every: %d\n", c->filter_every);
+  sb_add(&b, "numerics.density_diffusion.model: %s\n", sph_diffusion_name(c->diffusion));
+  sb_add(&b, "numerics.density_diffusion.delta: %.17g\n", c->diffusion_delta);
   sb_add(&b, "numerics.density_limit: %.17g\n", c->density_limit);
   sb_add(&b, "time.end: %.17g\n", c->t_end);
   sb_add(&b, "time.output_interval: %.17g\n", c->output_interval);

@@ -93,6 +93,8 @@ typedef struct sph_case {
   double density_limit;           /* blow-up when |rho/rho0 - 1| exceeds it; default 0.3 */
   sph_filter_kind density_filter; /* paper B §2.8, default none */
   int filter_every;               /* steps between filter applications, default 30 */
+  sph_diffusion_kind diffusion;   /* numerics.density_diffusion.model, default none */
+  double diffusion_delta;         /* numerics.density_diffusion.delta, default 0.1 */
 
   /* time */
   double t_end;           /* required */

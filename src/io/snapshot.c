@@ -331,6 +331,9 @@ static int write_restart(writer *w, const sph_snapshot_restart *r, size_t n) {
            put_numbers(w, g, "/restart", "first_step", H5T_STD_I64LE, H5T_NATIVE_INT64,
                        &r->first_step, 1) ||
            put_numbers(w, g, "/restart", "ledger", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, r->ledger, 4);
+  if (rc == 0 && r->has_diffusion)
+    rc = put_numbers(w, g, "/restart", "ledger_diffusion", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                     &r->ledger_diffusion, 1);
   if (rc == 0 && r->n_levels > 0)
     rc = put_numbers(w, g, "/restart", "gauge_levels", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, r->levels,
                      r->n_levels);
@@ -820,6 +823,13 @@ static int read_restart(const sph_snapshot *s, hid_t g, sph_snapshot_restart_dat
                      err) ||
       get_numbers_of(s, g, "/restart", "first_step", H5T_NATIVE_INT64, &r->first_step, 1, err) ||
       get_numbers_of(s, g, "/restart", "ledger", H5T_NATIVE_DOUBLE, r->ledger, 4, err))
+    return -1;
+  const htri_t has_diffusion = H5Aexists(g, "ledger_diffusion");
+  if (has_diffusion < 0)
+    return h5_fail(err, s->path, "cannot look for attribute \"ledger_diffusion\" on /restart");
+  r->ledger_diffusion = 0.0;
+  if (has_diffusion > 0 && get_numbers_of(s, g, "/restart", "ledger_diffusion", H5T_NATIVE_DOUBLE,
+                                          &r->ledger_diffusion, 1, err))
     return -1;
   if (r->output_index < 0 || r->output_index > 99999999)
     return sph_error_set(err,

@@ -42,8 +42,10 @@ typedef struct sph_snapshot_meta {
  * snapshot (`sph run --restart`), stored in the group /restart:
  *   attributes: format (1), output_index (k of snap_k), first_step (1 until
  *     the leap-frog's first step is done), ledger (4 values: wall work, XSPH
- *     drift, impulse x, impulse y; see ledger in sim.c), gauge_levels (each
- *     gauge's level at t = 0; absent without gauges);
+ *     drift, impulse x, impulse y; see ledger in sim.c), ledger_diffusion
+ *     (the density diffusion's energy; only in runs with density diffusion,
+ *     0 when absent), gauge_levels (each gauge's level at t = 0; absent
+ *     without gauges);
  *   datasets (in storage order, not id order): order (int64: the id of the
  *     particle at each storage index: the within-cell order the neighbour
  *     sums run in), and with the leap-frog vxh, vyh, rhoh, uh (float64: the
@@ -54,6 +56,8 @@ typedef struct sph_snapshot_restart {
   int64_t output_index;
   int64_t first_step;
   double ledger[4];
+  int has_diffusion; /* write ledger_diffusion */
+  double ledger_diffusion;
   size_t n_levels;
   const double *levels;
   const int64_t *order;
@@ -109,6 +113,7 @@ typedef struct sph_snapshot_restart_data {
   int64_t output_index;
   int64_t first_step;
   double ledger[4];
+  double ledger_diffusion; /* 0 when the attribute is absent */
   size_t n_levels;
   double *levels;
   size_t count;

@@ -28,6 +28,15 @@ typedef enum sph_filter_kind {
   SPH_FILTER_SHEPARD = 2
 } sph_filter_kind;
 
+/* Density diffusion in the continuity equation (src/physics/
+ * density_diffusion.h): none, or one of three published forms. */
+typedef enum sph_diffusion_kind {
+  SPH_DIFFUSION_NONE = 0,
+  SPH_DIFFUSION_MOLTENI = 1,  /* Molteni & Colagrossi 2009 */
+  SPH_DIFFUSION_ANTUONO = 2,  /* Antuono, Colagrossi, Marrone & Molteni 2010 (delta-SPH) */
+  SPH_DIFFUSION_FOURTAKAS = 3 /* Fourtakas, Dominguez, Vacondio & Rogers 2019 */
+} sph_diffusion_kind;
+
 /* The names of the choices in enum order, NULL-terminated:
  * {"none", "mls", "shepard", NULL}. */
 extern const char *const sph_filter_kind_names[];
@@ -35,5 +44,10 @@ extern const char *const sph_filter_kind_names[];
 const char *sph_filter_name(sph_filter_kind k);
 /* The kind named `name`; an unknown name is an error listing the valid ones. */
 int sph_filter_from_name(const char *name, sph_filter_kind *k, sph_error *err);
+
+/* {"none", "molteni_colagrossi", "antuono", "fourtakas", NULL} */
+extern const char *const sph_diffusion_kind_names[];
+/* The name of k; "?" for a value outside the enum. */
+const char *sph_diffusion_name(sph_diffusion_kind k);
 
 #endif

@@ -1,7 +1,7 @@
 /*
  * pair_terms.h - the physics of one particle pair i, j, written once.
  *
- * Every term of the interaction pass (continuity, pressure, artificial
+ * Every term of the interaction pass (continuity, density diffusion, pressure, artificial
  * viscosity, viscous stress, Morris viscosity, XSPH, the energy ledger's
  * heat and wall power, the Lennard-Jones wall force) and the branch-free
  * cubic spline they use is a small always-inline function in

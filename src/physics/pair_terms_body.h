@@ -41,6 +41,16 @@ PT_ATTR T PT(continuity)(T mj, T dvx, T dvy, T gx, T gy) {
   return MUL(mj, ADD(MUL(dvx, gx), MUL(dvy, gy)));
 }
 
+/* Density diffusion (src/physics/density_diffusion.h): the bracket of
+ * psi_ij / 2 = (rho_j - rho_i) + c_ij . r_ij, given c_ij = c_i + c_j. */
+PT_ATTR T PT(diffusion_psi)(T rhoi, T rhoj, T dx, T dy, T cx, T cy) {
+  return ADD(SUB(rhoj, rhoi), ADD(MUL(cx, dx), MUL(cy, dy)));
+}
+
+/* Its pair sum F_ij psi_ij m_j / rho_j; the loop scales the sum by
+ * -2 delta h c0 (r_ji . grad_i W_ij / r^2 = -F_ij). */
+PT_ATTR T PT(diffusion)(T psi, T f, T mj, T rhoj) { return DIV(MUL(MUL(f, psi), mj), rhoj); }
+
 /* The time-step rule's signal term, paper B §2.6: |h_ij v_ij . r_ij| / r^2. */
 PT_ATTR T PT(signal)(T hij, T vdotr, T inv_r2) { return MUL(ABS(MUL(hij, vdotr)), inv_r2); }
 

@@ -49,15 +49,17 @@ void sph_diag_compute(const sph_particles *p, double floor_y, double band, const
   row->potential = pe;
   row->n_surface = -1;
   row->ledger = 0;
+  row->diffusion = 0;
 }
 
-int sph_diag_write_header(FILE *f, int free_surface, int ledger) {
-  return fprintf(f,
-                 "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential%s%s\n",
-                 free_surface ? ",n_free_surface" : "",
-                 ledger ? ",internal,boundary_work,xsph_drift,total_energy,energy_deviation,"
-                          "fluid_energy_deviation,momentum_residual_x,momentum_residual_y"
-                        : "") < 0;
+int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion) {
+  return fprintf(
+             f, "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential%s%s%s\n",
+             free_surface ? ",n_free_surface" : "",
+             ledger ? ",internal,boundary_work,xsph_drift,total_energy,energy_deviation,"
+                      "fluid_energy_deviation,momentum_residual_x,momentum_residual_y"
+                    : "",
+             ledger && diffusion ? ",diffusion_energy" : "") < 0;
 }
 
 int sph_diag_write_row(FILE *f, const sph_diag_row *r) {
@@ -70,5 +72,6 @@ int sph_diag_write_row(FILE *f, const sph_diag_row *r) {
                            r->boundary_work, r->xsph_drift, r->total, r->deviation,
                            r->fluid_deviation, r->momentum_residual_x, r->momentum_residual_y) < 0)
     return 1;
+  if (r->ledger && r->diffusion && fprintf(f, ",%.17g", r->diffusion_energy) < 0) return 1;
   return fputc('\n', f) == EOF;
 }

@@ -15,6 +15,9 @@
  *   fluid_energy_deviation,momentum_residual_x,momentum_residual_y
  *              the energy ledger and the momentum balance (columns only
  *              with output.energy)
+ *   diffusion_energy  the elastic energy the density diffusion added
+ *              (ledger.h; a column only with output.energy and density
+ *              diffusion on)
  * Numbers are printed with %.17g: a row reads back to the same bits. Sums
  * run serially over the store in its (deterministic) sorted order.
  */
@@ -33,12 +36,14 @@ typedef struct sph_diag_row {
   long n_surface; /* fluid particles on the free surface; -1: detection is off */
   /* energy ledger (columns only when the case sets output.energy) */
   int ledger;
-  double internal;        /* sum m u over fluid and wall particles */
-  double boundary_work;   /* work done on the fluid by moving walls, integrated in time */
-  double xsph_drift;      /* change of potential energy caused by the XSPH correction */
-  double total;           /* kinetic + potential + internal - boundary_work - xsph_drift */
-  double deviation;       /* (total - E0) / E0, E0 the initial total */
-  double fluid_deviation; /* the fluid's own kinetic + potential + internal against its start */
+  double internal;         /* sum m u over fluid and wall particles */
+  double boundary_work;    /* work done on the fluid by moving walls, integrated in time */
+  double xsph_drift;       /* change of potential energy caused by the XSPH correction */
+  int diffusion;           /* write diffusion_energy */
+  double diffusion_energy; /* elastic energy added by the density diffusion (ledger.h) */
+  double total;            /* kinetic + potential + internal - boundary_work - xsph_drift */
+  double deviation;        /* (total - E0) / E0, E0 the initial total */
+  double fluid_deviation;  /* the fluid's own kinetic + potential + internal against its start */
   /* momentum balance: P - P0 - integral of the external force (walls,
    * mirror particles, body force) on the fluid; zero but for round-off and
    * time integration if momentum is conserved */
@@ -55,7 +60,7 @@ double sph_diag_surface_at(const sph_particles *p, double x, double half, double
 void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[2],
                       sph_diag_row *row);
 /* CSV header line and rows. Return non-zero on a write error. */
-int sph_diag_write_header(FILE *f, int free_surface, int ledger);
+int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion);
 int sph_diag_write_row(FILE *f, const sph_diag_row *row);
 
 #endif

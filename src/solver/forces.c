@@ -1,6 +1,6 @@
 /*
  * forces.c - the interaction passes (see forces.h for the equations): the
- * per-pass set-up, the strain-rate pass, the main pass's 128 variants and
+ * per-pass set-up, the strain-rate pass, the main pass's variants and
  * its dispatch (the Lennard-Jones wall force is src/walls/repulsion.c).
  *
  * The physics of a pair is written once, in src/physics/pair_terms.h; the
@@ -42,6 +42,7 @@
 #include "physics/kernel.h"
 #include "physics/pair_terms.h"
 #include "physics/turbulence.h"
+#include "solver/diffusion.h"
 #include "solver/interact.h"
 #include "walls/repulsion.h"
 
@@ -62,10 +63,11 @@ void sph_force_work_free(sph_force_work *w) {
 static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
   if (n <= w->cap) return 0;
   const size_t cap = n + n / 4 + 16;
-  void **arrays[] = {(void **)&w->hot, (void **)&w->prho2, (void **)&w->cs,  (void **)&w->sigma,
-                     (void **)&w->sxx, (void **)&w->sxy,   (void **)&w->syy, (void **)&w->wpow,
-                     (void **)&w->wfx, (void **)&w->wfy,   (void **)&w->lxx, (void **)&w->lxy,
-                     (void **)&w->lyy, (void **)&w->gvx,   (void **)&w->gvy};
+  void **arrays[] = {(void **)&w->hot,  (void **)&w->prho2, (void **)&w->cs,  (void **)&w->sigma,
+                     (void **)&w->sxx,  (void **)&w->sxy,   (void **)&w->syy, (void **)&w->wpow,
+                     (void **)&w->wfx,  (void **)&w->wfy,   (void **)&w->lxx, (void **)&w->lxy,
+                     (void **)&w->lyy,  (void **)&w->gvx,   (void **)&w->gvy, (void **)&w->ddcx,
+                     (void **)&w->ddcy, (void **)&w->dd};
   enum { N_ARRAYS = sizeof arrays / sizeof arrays[0] };
   size_t size[N_ARRAYS];
   size[0] = sizeof *w->hot;
@@ -239,13 +241,10 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
   return rc;
 }
 
-/* One particle of the main pass in a flavour: the lane loop where it
- * serves the term set F, else the scalar loop. */
+/* One particle of the main pass in a flavour. */
 #define PARTICLE_v1(p, l, fp, w, i, k) interact_one(p, l, fp, w, i, k)
-#define PARTICLE_v4e(p, l, fp, w, i, k)                                                            \
-  (((k) & (F_VARH | F_LEDGER)) ? interact_one(p, l, fp, w, i, k) : interact_v4e(p, l, fp, w, i, k))
-#define PARTICLE_v4x(p, l, fp, w, i, k)                                                            \
-  (((k) & (F_VARH | F_LEDGER)) ? interact_one(p, l, fp, w, i, k) : interact_v4x(p, l, fp, w, i, k))
+#define PARTICLE_v4e(p, l, fp, w, i, k) interact_v4e(p, l, fp, w, i, k)
+#define PARTICLE_v4x(p, l, fp, w, i, k) interact_v4x(p, l, fp, w, i, k)
 
 /* One function per combination of terms and flavour, F a literal in its
  * parallel region (see STRAIN_VARIANT). */
@@ -266,57 +265,116 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
     sph_steal_learn(&w->steal);                                                                    \
     w->cs_sigma_max = mx;                                                                          \
   }
+
+/* The scalar loop for all 256 term sets; the lane loops only for the 64
+ * sets without F_SCALAR_ONLY (bits 0-4 and 7: F = 0..31, 128..159), the
+ * others fall back to the scalar loop (pick_variant). */
+#define VARIANT_S(k) VARIANT_FL(k, v1, interact_scalar, static)
 #ifdef SPH_LANES_AVX
-#define VARIANT(k)                                                                                 \
+#define VARIANT_L(k)                                                                               \
   VARIANT_FL(k, v4e, interact_all, static)                                                         \
-  VARIANT_FL(k, v1, interact_scalar, static)                                                       \
   VARIANT_FL(k, v4x, interact_avx, static __attribute__((target("avx2"))))
 #else
-#define VARIANT(k)                                                                                 \
-  VARIANT_FL(k, v4e, interact_all, static)                                                         \
-  VARIANT_FL(k, v1, interact_scalar, static)
+#define VARIANT_L(k) VARIANT_FL(k, v4e, interact_all, static)
 #endif
-#define VARIANTS8(a, b, c, d, e, f, g, h)                                                          \
-  VARIANT(a) VARIANT(b) VARIANT(c) VARIANT(d) VARIANT(e) VARIANT(f) VARIANT(g) VARIANT(h)
-VARIANTS8(0, 1, 2, 3, 4, 5, 6, 7)
-VARIANTS8(8, 9, 10, 11, 12, 13, 14, 15)
-VARIANTS8(16, 17, 18, 19, 20, 21, 22, 23)
-VARIANTS8(24, 25, 26, 27, 28, 29, 30, 31)
-VARIANTS8(32, 33, 34, 35, 36, 37, 38, 39)
-VARIANTS8(40, 41, 42, 43, 44, 45, 46, 47)
-VARIANTS8(48, 49, 50, 51, 52, 53, 54, 55)
-VARIANTS8(56, 57, 58, 59, 60, 61, 62, 63)
-VARIANTS8(64, 65, 66, 67, 68, 69, 70, 71)
-VARIANTS8(72, 73, 74, 75, 76, 77, 78, 79)
-VARIANTS8(80, 81, 82, 83, 84, 85, 86, 87)
-VARIANTS8(88, 89, 90, 91, 92, 93, 94, 95)
-VARIANTS8(96, 97, 98, 99, 100, 101, 102, 103)
-VARIANTS8(104, 105, 106, 107, 108, 109, 110, 111)
-VARIANTS8(112, 113, 114, 115, 116, 117, 118, 119)
-VARIANTS8(120, 121, 122, 123, 124, 125, 126, 127)
+#define VARIANTS8(V, a, b, c, d, e, f, g, h) V(a) V(b) V(c) V(d) V(e) V(f) V(g) V(h)
+VARIANTS8(VARIANT_S, 0, 1, 2, 3, 4, 5, 6, 7)
+VARIANTS8(VARIANT_S, 8, 9, 10, 11, 12, 13, 14, 15)
+VARIANTS8(VARIANT_S, 16, 17, 18, 19, 20, 21, 22, 23)
+VARIANTS8(VARIANT_S, 24, 25, 26, 27, 28, 29, 30, 31)
+VARIANTS8(VARIANT_S, 32, 33, 34, 35, 36, 37, 38, 39)
+VARIANTS8(VARIANT_S, 40, 41, 42, 43, 44, 45, 46, 47)
+VARIANTS8(VARIANT_S, 48, 49, 50, 51, 52, 53, 54, 55)
+VARIANTS8(VARIANT_S, 56, 57, 58, 59, 60, 61, 62, 63)
+VARIANTS8(VARIANT_S, 64, 65, 66, 67, 68, 69, 70, 71)
+VARIANTS8(VARIANT_S, 72, 73, 74, 75, 76, 77, 78, 79)
+VARIANTS8(VARIANT_S, 80, 81, 82, 83, 84, 85, 86, 87)
+VARIANTS8(VARIANT_S, 88, 89, 90, 91, 92, 93, 94, 95)
+VARIANTS8(VARIANT_S, 96, 97, 98, 99, 100, 101, 102, 103)
+VARIANTS8(VARIANT_S, 104, 105, 106, 107, 108, 109, 110, 111)
+VARIANTS8(VARIANT_S, 112, 113, 114, 115, 116, 117, 118, 119)
+VARIANTS8(VARIANT_S, 120, 121, 122, 123, 124, 125, 126, 127)
+VARIANTS8(VARIANT_S, 128, 129, 130, 131, 132, 133, 134, 135)
+VARIANTS8(VARIANT_S, 136, 137, 138, 139, 140, 141, 142, 143)
+VARIANTS8(VARIANT_S, 144, 145, 146, 147, 148, 149, 150, 151)
+VARIANTS8(VARIANT_S, 152, 153, 154, 155, 156, 157, 158, 159)
+VARIANTS8(VARIANT_S, 160, 161, 162, 163, 164, 165, 166, 167)
+VARIANTS8(VARIANT_S, 168, 169, 170, 171, 172, 173, 174, 175)
+VARIANTS8(VARIANT_S, 176, 177, 178, 179, 180, 181, 182, 183)
+VARIANTS8(VARIANT_S, 184, 185, 186, 187, 188, 189, 190, 191)
+VARIANTS8(VARIANT_S, 192, 193, 194, 195, 196, 197, 198, 199)
+VARIANTS8(VARIANT_S, 200, 201, 202, 203, 204, 205, 206, 207)
+VARIANTS8(VARIANT_S, 208, 209, 210, 211, 212, 213, 214, 215)
+VARIANTS8(VARIANT_S, 216, 217, 218, 219, 220, 221, 222, 223)
+VARIANTS8(VARIANT_S, 224, 225, 226, 227, 228, 229, 230, 231)
+VARIANTS8(VARIANT_S, 232, 233, 234, 235, 236, 237, 238, 239)
+VARIANTS8(VARIANT_S, 240, 241, 242, 243, 244, 245, 246, 247)
+VARIANTS8(VARIANT_S, 248, 249, 250, 251, 252, 253, 254, 255)
+VARIANTS8(VARIANT_L, 0, 1, 2, 3, 4, 5, 6, 7)
+VARIANTS8(VARIANT_L, 8, 9, 10, 11, 12, 13, 14, 15)
+VARIANTS8(VARIANT_L, 16, 17, 18, 19, 20, 21, 22, 23)
+VARIANTS8(VARIANT_L, 24, 25, 26, 27, 28, 29, 30, 31)
+VARIANTS8(VARIANT_L, 128, 129, 130, 131, 132, 133, 134, 135)
+VARIANTS8(VARIANT_L, 136, 137, 138, 139, 140, 141, 142, 143)
+VARIANTS8(VARIANT_L, 144, 145, 146, 147, 148, 149, 150, 151)
+VARIANTS8(VARIANT_L, 152, 153, 154, 155, 156, 157, 158, 159)
 
 typedef void (*interact_fn)(sph_particles *, const sph_nlist *, const sph_force_params *,
                             sph_force_work *);
-/* The 128 variants of one flavour (prefix P) in the order of F. */
+/* The variants of one flavour (prefix P) for the term sets a, ..., h. */
 #define FN8(P, a, b, c, d, e, f, g, h) P##a, P##b, P##c, P##d, P##e, P##f, P##g, P##h
-#define VARIANTS128(P)                                                                             \
+/* The scalar loop's 256 variants in the order of F. */
+static const interact_fn VARIANT_TABLE_SCALAR[256] = {
+    FN8(interact_scalar_, 0, 1, 2, 3, 4, 5, 6, 7),
+    FN8(interact_scalar_, 8, 9, 10, 11, 12, 13, 14, 15),
+    FN8(interact_scalar_, 16, 17, 18, 19, 20, 21, 22, 23),
+    FN8(interact_scalar_, 24, 25, 26, 27, 28, 29, 30, 31),
+    FN8(interact_scalar_, 32, 33, 34, 35, 36, 37, 38, 39),
+    FN8(interact_scalar_, 40, 41, 42, 43, 44, 45, 46, 47),
+    FN8(interact_scalar_, 48, 49, 50, 51, 52, 53, 54, 55),
+    FN8(interact_scalar_, 56, 57, 58, 59, 60, 61, 62, 63),
+    FN8(interact_scalar_, 64, 65, 66, 67, 68, 69, 70, 71),
+    FN8(interact_scalar_, 72, 73, 74, 75, 76, 77, 78, 79),
+    FN8(interact_scalar_, 80, 81, 82, 83, 84, 85, 86, 87),
+    FN8(interact_scalar_, 88, 89, 90, 91, 92, 93, 94, 95),
+    FN8(interact_scalar_, 96, 97, 98, 99, 100, 101, 102, 103),
+    FN8(interact_scalar_, 104, 105, 106, 107, 108, 109, 110, 111),
+    FN8(interact_scalar_, 112, 113, 114, 115, 116, 117, 118, 119),
+    FN8(interact_scalar_, 120, 121, 122, 123, 124, 125, 126, 127),
+    FN8(interact_scalar_, 128, 129, 130, 131, 132, 133, 134, 135),
+    FN8(interact_scalar_, 136, 137, 138, 139, 140, 141, 142, 143),
+    FN8(interact_scalar_, 144, 145, 146, 147, 148, 149, 150, 151),
+    FN8(interact_scalar_, 152, 153, 154, 155, 156, 157, 158, 159),
+    FN8(interact_scalar_, 160, 161, 162, 163, 164, 165, 166, 167),
+    FN8(interact_scalar_, 168, 169, 170, 171, 172, 173, 174, 175),
+    FN8(interact_scalar_, 176, 177, 178, 179, 180, 181, 182, 183),
+    FN8(interact_scalar_, 184, 185, 186, 187, 188, 189, 190, 191),
+    FN8(interact_scalar_, 192, 193, 194, 195, 196, 197, 198, 199),
+    FN8(interact_scalar_, 200, 201, 202, 203, 204, 205, 206, 207),
+    FN8(interact_scalar_, 208, 209, 210, 211, 212, 213, 214, 215),
+    FN8(interact_scalar_, 216, 217, 218, 219, 220, 221, 222, 223),
+    FN8(interact_scalar_, 224, 225, 226, 227, 228, 229, 230, 231),
+    FN8(interact_scalar_, 232, 233, 234, 235, 236, 237, 238, 239),
+    FN8(interact_scalar_, 240, 241, 242, 243, 244, 245, 246, 247),
+    FN8(interact_scalar_, 248, 249, 250, 251, 252, 253, 254, 255),
+};
+/* A lane loop's 64 variants, in the order of lane_index(F). */
+#define LANE_TABLE(P)                                                                              \
   {                                                                                                \
     FN8(P, 0, 1, 2, 3, 4, 5, 6, 7), FN8(P, 8, 9, 10, 11, 12, 13, 14, 15),                          \
         FN8(P, 16, 17, 18, 19, 20, 21, 22, 23), FN8(P, 24, 25, 26, 27, 28, 29, 30, 31),            \
-        FN8(P, 32, 33, 34, 35, 36, 37, 38, 39), FN8(P, 40, 41, 42, 43, 44, 45, 46, 47),            \
-        FN8(P, 48, 49, 50, 51, 52, 53, 54, 55), FN8(P, 56, 57, 58, 59, 60, 61, 62, 63),            \
-        FN8(P, 64, 65, 66, 67, 68, 69, 70, 71), FN8(P, 72, 73, 74, 75, 76, 77, 78, 79),            \
-        FN8(P, 80, 81, 82, 83, 84, 85, 86, 87), FN8(P, 88, 89, 90, 91, 92, 93, 94, 95),            \
-        FN8(P, 96, 97, 98, 99, 100, 101, 102, 103),                                                \
-        FN8(P, 104, 105, 106, 107, 108, 109, 110, 111),                                            \
-        FN8(P, 112, 113, 114, 115, 116, 117, 118, 119),                                            \
-        FN8(P, 120, 121, 122, 123, 124, 125, 126, 127)                                             \
+        FN8(P, 128, 129, 130, 131, 132, 133, 134, 135),                                            \
+        FN8(P, 136, 137, 138, 139, 140, 141, 142, 143),                                            \
+        FN8(P, 144, 145, 146, 147, 148, 149, 150, 151),                                            \
+        FN8(P, 152, 153, 154, 155, 156, 157, 158, 159),                                            \
   }
-static const interact_fn VARIANT_TABLE[128] = VARIANTS128(interact_all_);
-static const interact_fn VARIANT_TABLE_SCALAR[128] = VARIANTS128(interact_scalar_);
+static const interact_fn VARIANT_TABLE[64] = LANE_TABLE(interact_all_);
 #ifdef SPH_LANES_AVX
-static const interact_fn VARIANT_TABLE_AVX[128] = VARIANTS128(interact_avx_);
+static const interact_fn VARIANT_TABLE_AVX[64] = LANE_TABLE(interact_avx_);
 #endif
+
+/* The place of a term set without F_SCALAR_ONLY in a lane table. */
+static unsigned lane_index(unsigned F) { return (F & 31u) | ((F & F_DDIFF) ? 32u : 0u); }
 
 #ifdef SPH_LANES_AVX
 /* Whether the processor has AVX2 (asked once). */
@@ -348,18 +406,21 @@ int sph_force_loop_available(sph_force_loop loop) {
 static interact_fn pick_variant(unsigned F, sph_force_loop loop) {
   switch (loop) {
   case SPH_LOOP_SCALAR: return VARIANT_TABLE_SCALAR[F];
-  case SPH_LOOP_LANES: return VARIANT_TABLE[F];
+  case SPH_LOOP_LANES:
+    return (F & F_SCALAR_ONLY) ? VARIANT_TABLE_SCALAR[F] : VARIANT_TABLE[lane_index(F)];
   case SPH_LOOP_LANES_AVX:
 #ifdef SPH_LANES_AVX
-    return cpu_has_avx2() ? VARIANT_TABLE_AVX[F] : NULL;
+    if (!cpu_has_avx2()) return NULL;
+    return (F & F_SCALAR_ONLY) ? VARIANT_TABLE_SCALAR[F] : VARIANT_TABLE_AVX[lane_index(F)];
 #else
     return NULL;
 #endif
   case SPH_LOOP_AUTO:
 #ifdef SPH_LANES_AVX
-    if (cpu_has_avx2()) return VARIANT_TABLE_AVX[F];
+    if (cpu_has_avx2())
+      return (F & F_SCALAR_ONLY) ? VARIANT_TABLE_SCALAR[F] : VARIANT_TABLE_AVX[lane_index(F)];
 #endif
-    return VARIANT_TABLE[F];
+    return (F & F_SCALAR_ONLY) ? VARIANT_TABLE_SCALAR[F] : VARIANT_TABLE[lane_index(F)];
   }
   return NULL;
 }
@@ -455,6 +516,7 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
   if (!run) return sph_error_set(err, "forces: the interaction loop asked for cannot run here");
   if (prepare_pass(p, l, fp, w, err)) return -1;
   if ((F & F_STRESS) && stress_pass(p, l, fp, w, err)) return -1;
+  if (F & F_DDIFF) sph_diffusion_prepare(p, l, fp, w);
   run(p, l, fp, w);
   if (SPH_DEBUG) check_rates(p, w, F);
   if (fp->repulsive) sph_repulsion_add(p, l, fp->lj_d, fp->lj_r0, fp->periodic ? fp->period : 0.0);

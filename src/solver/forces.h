@@ -21,6 +21,9 @@
  *                    Smagorinsky SPS stress of src/physics/turbulence.h       (B eq. 4)
  *   Lennard-Jones    + D [(r0/r)^12 - (r0/r)^4] r_ij / r^2 from repulsive wall particles
  *                    closer than r0                                        (A eq. 21-22)
+ *   density diff.    + delta h c0 sum_j psi_ij (r_ji . grad_i W_ij) / r_ij^2 V_j on drho_i/dt,
+ *                    fluid pairs only (physics/density_diffusion.h: Molteni &
+ *                    Colagrossi 2009, Antuono et al. 2010, Fourtakas et al. 2019)
  *   time-step data   sigma_i = max_j |h v_ij.r_ij / r_ij^2|                 (B §2.6)
  *   energy ledger    du_i/dt = 1/2 sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) v_ij.grad_i W_ij
  *                    (A eq. 28-29, with the artificial-viscosity share) plus the
@@ -56,6 +59,7 @@
 #include "core/parallel.h"
 #include "core/particles.h"
 #include "neighbours/grid.h"
+#include "physics/density_diffusion.h"
 #include "physics/eos.h"
 #include "physics/models.h"
 #include "walls/wall_velocity.h"
@@ -98,7 +102,9 @@ typedef struct sph_force_params {
   int no_slip;             /* some wall particles carry SPH_FLAG_NO_SLIP (wall_velocity.h) */
   double px0;              /* periodic: the period starts at x = px0 */
   double sps_cs, sps_ci, sps_delta;
-  sph_force_loop loop; /* default SPH_LOOP_AUTO */
+  sph_force_loop loop;          /* default SPH_LOOP_AUTO */
+  sph_diffusion_kind diffusion; /* density diffusion (physics/density_diffusion.h); NONE = off */
+  double diffusion_delta;       /* its delta */
 } sph_force_params;
 
 /* The fields a neighbour reads, packed in one cache line per particle
@@ -124,6 +130,8 @@ typedef struct sph_force_work {
   double *wfx, *wfy;       /* ledger: sum over wall and mirror neighbours j of a_ij (fluid i) */
   double *lxx, *lxy, *lyy; /* kernel-gradient correction M^-1 of the strain-rate pass */
   double *gvx, *gvy;       /* velocity in the strain-rate pass (extrapolated on no-slip walls) */
+  double *ddcx, *ddcy;     /* density diffusion: the model's vector c_i (solver/diffusion.h) */
+  double *dd;              /* density diffusion D_i of the last pass (fluid; with the ledger) */
   sph_wall_velocity_work wv;
   double cs_sigma_max; /* max over the particles of cs + sigma (the step rule) */
   uint32_t *rows;      /* per thread: a neighbour row cut to the support */

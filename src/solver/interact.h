@@ -3,7 +3,7 @@
  * over its neighbour row (internal to src/solver/forces.c).
  *
  * The terms in use are a bit set F, a constant at every call site, so each
- * of the 128 combinations compiles to a loop without the terms it does not
+ * of the 256 combinations compiles to a loop without the terms it does not
  * use (DESIGN rule 4). Two loops evaluate the same terms of
  * src/physics/pair_terms.h:
  *   interact_one    the scalar loop, one pair after the other in row order:
@@ -37,8 +37,12 @@ enum {
   F_MORRIS = 8,    /* Morris laminar viscosity, paper B */
   F_PERIODIC = 16, /* minimum image in x */
   F_VARH = 32,     /* per-particle smoothing length */
-  F_LEDGER = 64    /* energy ledger: du/dt and the power of moving walls */
+  F_LEDGER = 64,   /* energy ledger: du/dt and the power of moving walls */
+  F_DDIFF = 128    /* density diffusion (physics/density_diffusion.h) */
 };
+
+/* The lane loop serves the term sets without these (the scalar loop runs them). */
+#define F_SCALAR_ONLY (F_VARH | F_LEDGER)
 
 /* The term set a pass with these parameters needs. */
 static inline unsigned sph_interact_terms(const sph_force_params *fp) {
@@ -50,6 +54,7 @@ static inline unsigned sph_interact_terms(const sph_force_params *fp) {
   if (fp->periodic) F |= F_PERIODIC;
   if (fp->var_h) F |= F_VARH;
   if (fp->ledger) F |= F_LEDGER;
+  if (fp->diffusion != SPH_DIFFUSION_NONE) F |= F_DDIFF;
   return F;
 }
 
@@ -71,6 +76,13 @@ static inline __attribute__((always_inline)) double sep_x(double xi, double xj, 
   return d;
 }
 
+/* The factor of the density diffusion's pair sum (interact_one, interact_FL):
+ * -2 delta c0 h, with h the smoothing length (1 with per-particle h: the
+ * loop multiplies each pair by its h_ij). */
+static inline double diffusion_scale(const sph_force_params *fp, const unsigned F) {
+  return -2.0 * fp->diffusion_delta * fp->eos.c0 * ((F & F_VARH) ? 1.0 : fp->h);
+}
+
 /* The scalar loop: every term set. */
 static inline __attribute__((always_inline)) void interact_one(sph_particles *restrict p,
                                                                const sph_nlist *restrict l,
@@ -88,6 +100,7 @@ static inline __attribute__((always_inline)) void interact_one(sph_particles *re
     p->drho[i] = p->ax[i] = p->ay[i] = 0.0;
     w->sigma[i] = 0.0;
     if (F & F_LEDGER) p->du[i] = w->wpow[i] = w->wfx[i] = w->wfy[i] = 0.0;
+    if ((F & F_DDIFF) && (F & F_LEDGER)) w->dd[i] = 0.0;
     return;
   }
   const sph_force_hot qi = hot[i];
@@ -99,6 +112,9 @@ static inline __attribute__((always_inline)) void interact_one(sph_particles *re
   const double sigma0 = (10.0 / (7.0 * SPH_PI)) * inv_h0 * inv_h0;
   double drho = 0.0, ax = 0.0, ay = 0.0, xs = 0.0, ys = 0.0, sig = 0.0;
   double du = 0.0, wpow = 0.0, wfx = 0.0, wfy = 0.0; /* energy and momentum ledger */
+  double dd = 0.0;                                   /* density diffusion */
+  const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy;
+  const double cxi = (F & F_DDIFF) ? ddcx[i] : 0.0, cyi = (F & F_DDIFF) ? ddcy[i] : 0.0;
   ROW(l, i, nb, cnt)
   for (size_t k = 0; k < cnt; k++) {
     const size_t j = nb[k];
@@ -151,6 +167,11 @@ static inline __attribute__((always_inline)) void interact_one(sph_particles *re
     if (!fluid) continue;
     ax += pax;
     ay += pay;
+    if ((F & F_DDIFF) && kind[j] == SPH_KIND_FLUID) {
+      const double psi = diffusion_psi_v1(rhoi, qj->rho, dx, dy, cxi + ddcx[j], cyi + ddcy[j]);
+      const double d = diffusion_v1(psi, f, mj, qj->rho);
+      dd += (F & F_VARH) ? hij * d : d;
+    }
     /* power of a (moving) wall particle's force on i, per unit mass of i */
     if ((F & F_LEDGER) && kind[j] == SPH_KIND_WALL) wpow += wall_power_v1(pax, pay, qj->vx, qj->vy);
     /* force of walls and mirror particles on i: external to the fluid */
@@ -163,6 +184,11 @@ static inline __attribute__((always_inline)) void interact_one(sph_particles *re
       xs -= c * dvx;
       ys -= c * dvy;
     }
+  }
+  if (F & F_DDIFF) {
+    dd *= diffusion_scale(fp, F);
+    drho += dd;
+    if (F & F_LEDGER) w->dd[i] = dd;
   }
   p->drho[i] = drho;
   w->sigma[i] = sig;

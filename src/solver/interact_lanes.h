@@ -50,7 +50,10 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const LT eta2 = LOP(all)(eta * eta), nalpha = LOP(all)(-fp->alpha), beta = LOP(all)(fp->beta);
   const LT nu4 = LOP(all)(4.0 * fp->mu / fp->eos.rho0);
   const LT lane = LOP(set)(0.0, 1.0, 2.0, 3.0), n = LOP(all)((double)cnt);
-  LT drho = zero, ax = zero, ay = zero, xs = zero, ys = zero, sig = zero;
+  LT drho = zero, ax = zero, ay = zero, xs = zero, ys = zero, sig = zero, dd = zero;
+  const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy;
+  const LT cxi = LOP(all)((F & F_DDIFF) ? ddcx[i] : 0.0);
+  const LT cyi = LOP(all)((F & F_DDIFF) ? ddcy[i] : 0.0);
   for (size_t k = 0; k < cnt; k += 4) {
     const size_t j0 = nb[k], j1 = nb[k + 1], j2 = nb[k + 2], j3 = nb[k + 3];
     const sph_force_hot *restrict a = &hot[j0], *restrict b = &hot[j1];
@@ -101,10 +104,19 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     }
     ax = LOP(add)(ax, pax);
     ay = LOP(add)(ay, pay);
-    if (F & F_XSPH) { /* over fluid neighbours */
-      const LT mx = LOP(set)(
+    LT mx = zero; /* m_j of fluid neighbours, 0 for the others */
+    if (F & (F_XSPH | F_DDIFF))
+      mx = LOP(set)(
           kind[j0] == SPH_KIND_FLUID ? a->m : 0.0, kind[j1] == SPH_KIND_FLUID ? b->m : 0.0,
           kind[j2] == SPH_KIND_FLUID ? c_->m : 0.0, kind[j3] == SPH_KIND_FLUID ? d->m : 0.0);
+    if (F & F_DDIFF) { /* over fluid neighbours */
+      const LT rhoj = GATHER(rho);
+      const LT cx = LOP(add)(cxi, LOP(set)(ddcx[j0], ddcx[j1], ddcx[j2], ddcx[j3]));
+      const LT cy = LOP(add)(cyi, LOP(set)(ddcy[j0], ddcy[j1], ddcy[j2], ddcy[j3]));
+      const LT psi = LTERM(diffusion_psi)(rhoi, rhoj, dx, dy, cx, cy);
+      dd = LOP(add)(dd, LTERM(diffusion)(psi, f, mx, rhoj));
+    }
+    if (F & F_XSPH) { /* over fluid neighbours */
       const LT c = LTERM(xsph_factor)(mx, inv_rb, wij);
       xs = LOP(sub)(xs, LOP(mul)(c, dvx));
       ys = LOP(sub)(ys, LOP(mul)(c, dvy));
@@ -114,6 +126,10 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   double lv[4];
   LOP(store)(lv, drho);
   p->drho[i] = (lv[0] + lv[1]) + (lv[2] + lv[3]);
+  if (F & F_DDIFF) { /* as the scalar loop: the scaled sum added last */
+    LOP(store)(lv, dd);
+    p->drho[i] += ((lv[0] + lv[1]) + (lv[2] + lv[3])) * diffusion_scale(fp, F);
+  }
   LOP(store)(lv, sig);
   const double s01 = lv[0] > lv[1] ? lv[0] : lv[1], s23 = lv[2] > lv[3] ? lv[2] : lv[3];
   w->sigma[i] = s01 > s23 ? s01 : s23;

@@ -10,9 +10,9 @@
 #include "core/check.h"
 
 void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_work *w,
-                      const double gravity[2], int xsph) {
+                      const double gravity[2], int xsph, int diffusion) {
   const double *g = gravity;
-  double pw = 0.0, px = 0.0, fx = 0.0, fy = 0.0;
+  double pw = 0.0, px = 0.0, fx = 0.0, fy = 0.0, pd = 0.0;
   for (size_t i = 0; i < p->n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     const double m = p->mass[i];
@@ -20,7 +20,9 @@ void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_wo
     if (xsph) px -= m * (g[0] * p->xsx[i] + g[1] * p->xsy[i]);
     fx += m * (w->wfx[i] + g[0]);
     fy += m * (w->wfy[i] + g[1]);
+    if (diffusion) pd += m * w->hot[i].prho2 * w->dd[i];
   }
+  lg->power_diffusion = pd;
   lg->power_wall = pw;
   lg->power_xsph = px;
   lg->force_x = fx;
@@ -30,6 +32,7 @@ void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_wo
 void sph_ledger_advance(sph_ledger *lg, double dt) {
   lg->work_wall += dt * lg->power_wall;
   lg->drift_xsph += dt * lg->power_xsph;
+  lg->work_diffusion += dt * lg->power_diffusion;
   lg->impulse_x += dt * lg->force_x;
   lg->impulse_y += dt * lg->force_y;
 }
@@ -49,6 +52,7 @@ void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, sph_diag_row 
   row->internal = u;
   row->boundary_work = lg->work_wall;
   row->xsph_drift = lg->drift_xsph;
+  row->diffusion_energy = lg->work_diffusion;
   row->total = row->kinetic + row->potential + u - lg->work_wall - lg->drift_xsph;
   row->deviation = lg->e0 != 0.0 ? (row->total - lg->e0) / lg->e0 : 0.0;
   const double ef = row->kinetic + row->potential + sph_ledger_fluid_internal(p);

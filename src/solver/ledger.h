@@ -11,12 +11,18 @@
  *                changes the potential energy                         (W)
  *   force        the external force on the fluid: walls, mirror
  *                particles and the body force                         (N)
+ *   power_diffusion  sum over fluid i of m_i (p_i / rho_i^2) D_i, D_i the
+ *                density diffusion's share of drho_i/dt               (W)
  * at the last interaction pass, and their time integrals work_wall,
- * drift_xsph and the impulse. With these
+ * drift_xsph, the impulse and work_diffusion. With these
  *   total     = kinetic + potential + internal - work_wall - drift_xsph
  *   deviation = (total - total_0) / total_0
  * closes to round-off for a conservative scheme, and the momentum residual
- * p - p_0 - impulse closes to round-off. Sums run serially in storage
+ * p - p_0 - impulse closes to round-off. The density diffusion moves no
+ * particle, so it leaves that balance closed (internal is the work of the
+ * pair forces, not the equation of state's elastic energy); work_diffusion
+ * (the diagnostics' diffusion_energy column) is the elastic energy it adds
+ * beyond that work, negative where it damps the density's noise. Sums run serially in storage
  * order: the same bits for any thread count.
  *
  * The per-pair parts (heat, a_ij . v_j, a_ij from walls) are pair terms
@@ -38,10 +44,10 @@
 
 typedef struct sph_ledger {
   /* rates at the last pass */
-  double power_wall, power_xsph;
+  double power_wall, power_xsph, power_diffusion;
   double force_x, force_y;
   /* their time integrals */
-  double work_wall, drift_xsph;
+  double work_wall, drift_xsph, work_diffusion;
   double impulse_x, impulse_y;
   /* the initial state */
   double e0, e0_fluid; /* total, and the fluid's own kinetic + potential + internal */
@@ -49,10 +55,11 @@ typedef struct sph_ledger {
   double m0;           /* fluid mass (exact: it never changes) */
 } sph_ledger;
 
-/* The rates of the pass just run (w holds its wpow, wfx, wfy; p its xsx,
- * xsy when XSPH is on), over the fluid particles of p. */
+/* The rates of the pass just run (w holds its wpow, wfx, wfy, and dd with
+ * density diffusion; p its xsx, xsy when XSPH is on), over the fluid
+ * particles of p. */
 void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_work *w,
-                      const double gravity[2], int xsph);
+                      const double gravity[2], int xsph, int diffusion);
 
 /* Integrates the rates over a step of dt (the rates of the pass that
  * drives the step: t^n for the leap-frog, the mid-step for the

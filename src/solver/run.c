@@ -196,7 +196,8 @@ static char *csv_header(const sph_case *c, int gauges) {
       bad = fprintf(m, ",eta_%.6g", c->gauges[g]) < 0;
     bad = bad || fputc('\n', m) == EOF;
   } else {
-    bad = sph_diag_write_header(m, sph_case_needs_free_surface(c), c->energy) != 0;
+    bad = sph_diag_write_header(m, sph_case_needs_free_surface(c), c->energy,
+                                c->diffusion != SPH_DIFFUSION_NONE) != 0;
   }
   if (fclose(m) || bad) {
     free(buf);

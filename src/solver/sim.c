@@ -163,7 +163,9 @@ int sph_sim_pass(sph_sim *s, sph_error *err) {
    * removing the mirror particles reorders the store under them */
   if (rc == 0) {
     s->dt_paper_b = sph_dt_paper_b(&s->work, c->h, c->dt_factor);
-    if (s->fp.ledger) sph_ledger_rates(&s->ledger, &s->p, &s->work, c->gravity, c->xsph != 0.0);
+    if (s->fp.ledger)
+      sph_ledger_rates(&s->ledger, &s->p, &s->work, c->gravity, c->xsph != 0.0,
+                       c->diffusion != SPH_DIFFUSION_NONE);
   }
   if (s->walls.n_mirror) sph_mirror_remove(&s->p, s->grid.perm, s->grid.work);
   return rc;
@@ -331,7 +333,10 @@ void sph_sim_view(const sph_sim *s, double box[4]) { memcpy(box, s->view, 4 * si
 void sph_sim_diag(const sph_sim *s, sph_diag_row *row) {
   sph_diag_compute(&s->p, s->floor_y, 2.0 * s->c->dx, s->c->gravity, row);
   row->n_surface = s->detect ? (long)s->n_surface : -1;
-  if (s->c->energy) sph_ledger_fill(&s->ledger, &s->p, row);
+  if (s->c->energy) {
+    sph_ledger_fill(&s->ledger, &s->p, row);
+    row->diffusion = s->c->diffusion != SPH_DIFFUSION_NONE;
+  }
   row->time = s->t;
   row->step = s->steps;
   row->dt = s->last_dt;
