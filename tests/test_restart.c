@@ -15,7 +15,7 @@
  *     for bit, restart record included, and the files are byte-identical;
  *     diagnostics.csv starts at the restart time with the same rows;
  *   - restarted in a copy of its own directory: diagnostics.csv,
- *     gauges.csv and snapshots.xmf come out byte-identical to the
+ *     gauges.csv, probes.csv and snapshots.xmf come out byte-identical to the
  *     uninterrupted run's (later rows dropped, then appended again); the
  *     mirror case as `sph run --restart SNAPSHOT` alone (the case and its
  *     overrides from the snapshot, the output in its directory);
@@ -136,6 +136,21 @@ static void restart_fresh(const char *name, int k) {
   CU_ASSERT_STRING_EQUAL(part + hlen, rows);
   free(full);
   free(part);
+  /* probes.csv: the header, then the full run's last rows (those after the
+   * restart time, and its own if one was due) */
+  snprintf(path, sizeof path, "%s/%s.full/probes.csv", tmp, name);
+  full = slurp(path);
+  if (!full) return; /* no probes in this case */
+  snprintf(path, sizeof path, "%s/probes.csv", dir);
+  part = slurp(path);
+  CU_ASSERT_FATAL(part != NULL);
+  nl = strchr(part, '\n');
+  CU_ASSERT_FATAL(nl != NULL);
+  const size_t plen = strlen(nl + 1), flen = strlen(full);
+  CU_ASSERT(strncmp(full, part, (size_t)(nl - part) + 1) == 0);
+  CU_ASSERT(plen > 0 && plen < flen && strcmp(full + flen - plen, nl + 1) == 0);
+  free(full);
+  free(part);
 }
 
 static void test_pc_fresh(void) { restart_fresh("restart_pc", 2); }
@@ -164,8 +179,8 @@ static void restart_in_place(const char *name, int k, int short_form) {
   if (st) printf("\n%s\n", out);
   CU_ASSERT_EQUAL_FATAL(st, 0);
   same_snapshots(name, dir, 0, n);
-  const char *files[] = {"diagnostics.csv", "gauges.csv", "snapshots.xmf"};
-  for (int i = 0; i < 3; i++) {
+  const char *files[] = {"diagnostics.csv", "gauges.csv", "probes.csv", "snapshots.xmf"};
+  for (int i = 0; i < 4; i++) {
     char a[4300], b[4300];
     snprintf(a, sizeof a, "%s/%s.full/%s", tmp, name, files[i]);
     snprintf(b, sizeof b, "%s/%s", dir, files[i]);

@@ -796,7 +796,13 @@ static const char *const turbulence_keys[] = {"model", "cs", "ci", NULL};
 static const char *const turbulence_names[] = {"none", "sps", NULL};
 static const char *const h_names[] = {"constant", "variable", NULL};
 static const char *const domain_keys[] = {"x", "y", NULL};
-static const char *const output_keys[] = {"snapshots", "free_surface", "energy", "gauges", NULL};
+static const char *const output_keys[] = {"snapshots", "free_surface",   "energy", "gauges",
+                                          "probes",    "probe_interval", NULL};
+static const char *const probe_keys[] = {"name", "kind", "at", "x", "diameter", "along", NULL};
+static const char *const probe_kind_names[] = {"pressure", "level", "velocity", NULL};
+static const char *const along_names[] = {"y", "x", NULL};
+
+const char *sph_probe_kind_name(sph_probe_kind k) { return choice_name(probe_kind_names, (int)k); }
 
 static void set_defaults(sph_case *c) {
   c->rho0 = 1000.0;
@@ -1339,6 +1345,83 @@ static int read_geometry(const ctx *x, const node *m, sph_case *c) {
   return get_pair(x, d, "geometry.domain", "y", 1, 'y', &c->domain[2]) < 0 ? -1 : 0;
 }
 
+/* One entry of output.probes (p its key, output.probes[i]). */
+static int read_probe(const ctx *x, const node *m, const char *p, sph_probe *pr) {
+  const node *t;
+  char kp[KEYLEN], b[96];
+  if (m->kind != NODE_MAP)
+    return fail_at(x, m, p, "expected a mapping, got %s", got(m, b, sizeof b));
+  if (check_keys(x, m, p, probe_keys)) return -1;
+  if (lookup(x, m, p, "name", 1, &t, kp) < 0) return -1;
+  const char *s = t->kind == NODE_SCALAR ? t->text : "";
+  const size_t n = strlen(s);
+  if (n < 1 || n > 64 ||
+      strspn(s, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_.-") != n)
+    return fail_at(x, t, kp, "expected a name of 1 to 64 characters from [A-Za-z0-9_.-], got %s",
+                   got(t, b, sizeof b));
+  memcpy(pr->name, s, n + 1);
+  int kind = -1;
+  if (lookup(x, m, p, "kind", 1, &t, kp) < 0 || read_choice(x, t, kp, probe_kind_names, &kind))
+    return -1;
+  pr->kind = (sph_probe_kind)kind;
+  const int level = pr->kind == SPH_PROBE_LEVEL, pressure = pr->kind == SPH_PROBE_PRESSURE;
+  /* the keys each kind takes */
+  static const char *const only[] = {"at", "x", "diameter", "along"};
+  const int allowed[3][4] = {{1, 0, 1, 1}, {0, 1, 0, 0}, {1, 0, 0, 0}};
+  for (int k = 0; k < 4; k++)
+    if (!allowed[kind][k] && lookup(x, m, p, only[k], 0, &t, kp) > 0)
+      return fail_at(x, t, kp, "not a key of a %s probe", probe_kind_names[kind]);
+  if (level) {
+    if (get_number(x, m, p, "x", 1, &R_ANY, &pr->x) < 0) return -1;
+    return 0;
+  }
+  double v[2] = {0, 0};
+  if (get_pair(x, m, p, "at", 1, 0, v) < 0) return -1;
+  pr->x = v[0];
+  pr->y = v[1];
+  if (pressure) {
+    static const range dia = {0, 0, '[', 0, NULL};
+    int along = 0;
+    if (get_number(x, m, p, "diameter", 0, &dia, &pr->diameter) < 0 ||
+        get_choice(x, m, p, "along", along_names, &along) < 0)
+      return -1;
+    pr->along_x = along;
+  }
+  return 0;
+}
+
+/* output.probes and output.probe_interval. */
+static int read_probes(const ctx *x, const node *s, sph_case *c) {
+  const node *t;
+  char kp[KEYLEN], b[96];
+  if (lookup(x, s, "output", "probes", 0, &t, kp) <= 0) {
+    if (lookup(x, s, "output", "probe_interval", 0, &t, kp) > 0)
+      return fail_at(x, t, kp, "expected output.probes alongside it");
+    return 0;
+  }
+  if (t->kind != NODE_LIST || t->n == 0)
+    return fail_at(x, t, kp, "expected a non-empty list of probes, got %s", got(t, b, sizeof b));
+  if (t->n > 1000) return fail_at(x, t, kp, "expected at most 1000 probes, got %zu", t->n);
+  if (!(c->probes = calloc(t->n, sizeof *c->probes))) return oom(x);
+  c->n_probes = t->n;
+  for (size_t i = 0; i < t->n; i++) {
+    bprintf(kp, sizeof kp, "output.probes[%zu]", i);
+    if (read_probe(x, t->items[i], kp, &c->probes[i])) return -1;
+    for (size_t k = 0; k < i; k++)
+      if (strcmp(c->probes[k].name, c->probes[i].name) == 0) {
+        char nk[KEYLEN];
+        bprintf(nk, sizeof nk, "%s.name", kp);
+        return fail_at(x, find(t->items[i], "name")->val, nk,
+                       "expected a name of its own, got '%s' (the name of output.probes[%zu])",
+                       c->probes[i].name, k);
+      }
+  }
+  char what[128];
+  bprintf(what, sizeof what, "a number from 0 (every step) to time.end (%g)", c->t_end);
+  const range iv = {0, c->t_end, '[', ']', what};
+  return get_number(x, s, "output", "probe_interval", 0, &iv, &c->probe_interval) < 0 ? -1 : 0;
+}
+
 /* Reads every section of the (overridden) tree into c, in schema order. */
 static int read_case(ctx *x, const node *root, sph_case *c) {
   const node *s;
@@ -1396,6 +1479,7 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
       if (read_number(x, gl->items[i], ik, &R_ANY, &c->gauges[i])) return -1;
     }
   }
+  if (rc >= 0 && s && read_probes(x, s, c)) return -1;
   return rc < 0 ? -1 : 0;
 }
 
@@ -1505,6 +1589,7 @@ void sph_case_free(sph_case *c) {
   free(c->walls);
   free(c->output_times);
   free(c->gauges);
+  free(c->probes);
   memset(c, 0, sizeof *c);
 }
 
@@ -1676,6 +1761,18 @@ char *sph_case_describe(const sph_case *c) {
   sb_add(&b, "output.energy: %s\n", c->energy ? "true" : "false");
   for (size_t i = 0; i < c->n_gauges; i++)
     sb_add(&b, "output.gauges[%zu]: %.17g\n", i, c->gauges[i]);
+  for (size_t i = 0; i < c->n_probes; i++) {
+    const sph_probe *q = &c->probes[i];
+    sb_add(&b, "output.probes[%zu]: %s %s", i, q->name, sph_probe_kind_name(q->kind));
+    if (q->kind == SPH_PROBE_LEVEL)
+      sb_add(&b, " x %.17g\n", q->x);
+    else if (q->kind == SPH_PROBE_VELOCITY)
+      sb_add(&b, " at [%.17g, %.17g]\n", q->x, q->y);
+    else
+      sb_add(&b, " at [%.17g, %.17g] diameter %.17g along %s\n", q->x, q->y, q->diameter,
+             q->along_x ? "x" : "y");
+  }
+  if (c->n_probes) sb_add(&b, "output.probe_interval: %.17g\n", c->probe_interval);
   if (b.failed) {
     free(b.s);
     return NULL;

@@ -16,6 +16,7 @@
 
 #include <stddef.h>
 
+#include "analysis/probes.h"
 #include "core/error.h"
 #include "physics/models.h"
 #include "walls/wall_types.h"
@@ -57,6 +58,8 @@ typedef struct sph_fluid_block {
  * platform and for any creation order. */
 void sph_fluid_jitter(const sph_fluid_block *fb, size_t block, long i, long j, double dx, double *x,
                       double *y);
+
+const char *sph_probe_kind_name(sph_probe_kind k);
 
 typedef struct sph_case {
   char *name;        /* required, [A-Za-z0-9_.-]+ */
@@ -124,6 +127,9 @@ typedef struct sph_case {
   int energy;              /* energy ledger (output.energy), default 0 */
   size_t n_gauges;         /* output.gauges: wave gauges at these x (gauges.csv) */
   double *gauges;
+  size_t n_probes; /* output.probes (probes.csv) */
+  sph_probe *probes;
+  double probe_interval; /* output.probe_interval: time between probe rows, 0 = every step */
 } sph_case;
 
 /* Reads and validates a case file, applying n_set overrides of the form

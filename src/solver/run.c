@@ -25,6 +25,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/probes.h"
 #include "io/snapshot.h"
 #include "solver/sim_internal.h"
 
@@ -35,6 +36,8 @@ typedef struct outputs {
   FILE *diag;
   FILE *gauges;  /* gauges.csv, when the case has wave gauges */
   double *still; /* each gauge's level at t = 0 */
+  FILE *probes;  /* probes.csv, when the case has probes */
+  long probe_k;  /* the next probe row is due at probe_k * probe_interval */
   size_t index;  /* number of the next snapshot file, snap_<index>.h5 */
   size_t n, cap; /* snapshots listed in the XDMF index */
   char **names;
@@ -44,6 +47,7 @@ typedef struct outputs {
 static void outputs_free(outputs *o) {
   if (o->diag) fclose(o->diag);
   if (o->gauges) fclose(o->gauges);
+  if (o->probes) fclose(o->probes);
   free(o->still);
   for (size_t i = 0; i < o->n; i++)
     free(o->names[i]);
@@ -73,6 +77,37 @@ fail:
   return sph_error_set(err, "%s/gauges.csv: write failed: %s", o->dir, strerror(errno));
 }
 
+/* One row of probes.csv: time, then each probe's reading (probes.h). */
+static int write_probes(sph_sim *s, outputs *o, sph_error *err) {
+  const sph_case *c = sph_sim_case(s);
+  const sph_particles *p = sph_sim_particles(s);
+  if (fprintf(o->probes, "%.17g", sph_sim_time(s)) < 0) goto fail;
+  for (size_t k = 0; k < c->n_probes; k++) {
+    double v[2];
+    sph_probe_read(&c->probes[k], p, c->h, c->dx, sph_sim_floor(s), c->gravity, v);
+    for (int m = 0; m < sph_probe_columns(&c->probes[k]); m++)
+      if (fprintf(o->probes, ",%.17g", v[m]) < 0) goto fail;
+  }
+  if (fputc('\n', o->probes) == EOF || fflush(o->probes)) goto fail;
+  return 0;
+fail:
+  return sph_error_set(err, "%s/probes.csv: write failed: %s", o->dir, strerror(errno));
+}
+
+/* After a step: the probes' row when one is due (every step with interval
+ * 0, else at the first step ending at or past k * interval, k counted in
+ * integers so that no row is merged or skipped), then the next k. */
+static int probe_step(sph_sim *s, outputs *o, sph_error *err) {
+  if (!o->probes) return 0;
+  const double iv = sph_sim_case(s)->probe_interval, t = sph_sim_time(s);
+  if (iv > 0.0 && t < (double)o->probe_k * iv) return 0;
+  if (write_probes(s, o, err)) return -1;
+  if (iv > 0.0)
+    while ((double)o->probe_k * iv <= t)
+      o->probe_k++;
+  return 0;
+}
+
 /* Adds a snapshot to the XDMF list. */
 static int list_snapshot(outputs *o, const char *name, double t, sph_error *err) {
   if (o->n == o->cap) {
@@ -99,7 +134,8 @@ static int write_rows(sph_sim *s, outputs *o, int which, sph_error *err) {
     if (o->diag && (sph_diag_write_row(o->diag, &row) || fflush(o->diag)))
       return sph_error_set(err, "%s/diagnostics.csv: write failed: %s", o->dir, strerror(errno));
   }
-  return (which & 2) && o->dir ? write_gauges(s, o, err) : 0;
+  if ((which & 2) && o->dir && write_gauges(s, o, err)) return -1;
+  return (which & 4) && o->probes ? probe_step(s, o, err) : 0;
 }
 
 static int write_output(sph_sim *s, outputs *o, sph_run_result *r, sph_error *err) {
@@ -183,14 +219,23 @@ static FILE *open_csv(const char *path, const char *header, double t_keep, int *
   return f;
 }
 
-/* The header line of diagnostics.csv or gauges.csv, in a malloc'd string. */
-static char *csv_header(const sph_case *c, int gauges) {
+/* The header line of diagnostics.csv (what 0), gauges.csv (1) or
+ * probes.csv (2), in a malloc'd string. */
+static char *csv_header(const sph_case *c, int what) {
   char *buf = NULL;
   size_t len = 0;
   FILE *m = open_memstream(&buf, &len);
   if (!m) return NULL;
   int bad;
-  if (gauges) {
+  if (what == 2) {
+    bad = fprintf(m, "time") < 0;
+    for (size_t k = 0; !bad && k < c->n_probes; k++) {
+      char col[200];
+      sph_probe_header(&c->probes[k], col, sizeof col);
+      bad = fputs(col, m) == EOF;
+    }
+    bad = bad || fputc('\n', m) == EOF;
+  } else if (what == 1) {
     bad = fprintf(m, "time") < 0;
     for (size_t g = 0; !bad && g < c->n_gauges; g++)
       bad = fprintf(m, ",eta_%.6g", c->gauges[g]) < 0;
@@ -231,7 +276,7 @@ static int open_outputs(sph_sim *s, outputs *out, const sph_snapshot_restart_dat
   const sph_case *c = sph_sim_case(s);
   const double t_keep = rd ? sph_sim_time(s) : -1.0;
   char path[4096];
-  int kept_diag = 0, kept_gauges = 1;
+  int kept_diag = 0, kept_gauges = 1, kept_probes = 1;
   *need_row = 0;
   char *header = csv_header(c, 0);
   if (!header) return sph_error_set(err, "out of memory");
@@ -257,9 +302,24 @@ static int open_outputs(sph_sim *s, outputs *out, const sph_snapshot_restart_dat
     free(header);
     if (!out->gauges) return -1;
   }
+  if (c->n_probes) {
+    header = csv_header(c, 2);
+    if (!header) return sph_error_set(err, "out of memory");
+    snprintf(path, sizeof path, "%s/probes.csv", out->dir);
+    out->probes = open_csv(path, header, t_keep, &kept_probes, err);
+    free(header);
+    if (!out->probes) return -1;
+    out->probe_k = 0; /* the row of the current time is the first due */
+    if (c->probe_interval > 0.0)
+      while ((double)out->probe_k * c->probe_interval < sph_sim_time(s))
+        out->probe_k++;
+    if (rd && kept_probes) /* the restart time's row is there: the next one */
+      while ((double)out->probe_k * c->probe_interval <= sph_sim_time(s) && c->probe_interval > 0.0)
+        out->probe_k++;
+  }
   if (rd) {
     /* a file that lacks the restart time's row gets it */
-    *need_row = (!kept_diag ? 1 : 0) | (!kept_gauges ? 2 : 0);
+    *need_row = (!kept_diag ? 1 : 0) | (!kept_gauges ? 2 : 0) | (!kept_probes ? 4 : 0);
     out->index = (size_t)rd->output_index + 1;
     if (c->snapshots && list_earlier(out, (size_t)rd->output_index, err)) return -1;
   }
@@ -293,6 +353,7 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
   }
   if (!rd) {
     if (write_output(s, &out, r, err)) goto io_error;
+    if (probe_step(s, &out, err)) goto io_error;
   } else if (need_row && write_rows(s, &out, need_row, err)) {
     goto io_error;
   }
@@ -337,6 +398,7 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
       break;
     }
     if (st) goto io_error;
+    if (probe_step(s, &out, err)) goto io_error;
     const int at_output = sph_sim_time(s) == next;
     if (at_output) {
       if (c->output_interval > 0.0)

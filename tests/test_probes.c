@@ -1,0 +1,190 @@
+/*
+ * test_probes.c - pressure, level and velocity probes (output.probes,
+ * src/analysis/probes.h, probes.csv):
+ *   - on a lattice of fluid particles holding the hydrostatic field
+ *     p = rho g (H - y) and a uniform velocity: a pressure probe reads the
+ *     field exactly (1e-9 of rho g H) in the fluid, on the lattice's side
+ *     face and on its floor, a sensor of some diameter reads the mean of
+ *     its face, velocity probes read the velocity, and a point away from
+ *     the fluid reads 0 (dry); a level gauge reads the top of the fluid
+ *     above the bed, 0 and finite where dry;
+ *   - the hydrostatic tank (cases/hydrostatic_tank.yaml with its walls as
+ *     3 unstaggered layers and the fourtakas density diffusion) run by
+ *     `sph run` for 0.3 s: probes.csv has a time column, units in its
+ *     header and a row every probe_interval; wall sensors at two depths and
+ *     a floor sensor read rho0 g (H - y) within 1 % of rho0 g H, the level
+ *     gauge H within dx/2, the velocity probe stays below 1 mm/s;
+ *   - case errors name the probe's key.
+ * Restart safety of probes.csv is in tests/test_restart.c.
+ */
+#include "config.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/probes.h"
+#include "case/case.h"
+#include "core/particles.h"
+#include "testutil.h"
+
+#define DXL 0.01
+#define NX 30
+#define NY 20 /* H = 0.2 m */
+
+static void lattice(sph_particles *p) {
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(p, NX * NY, &err) == 0);
+  for (int j = 0; j < NY; j++)
+    for (int i = 0; i < NX; i++) {
+      const double y = (j + 0.5) * DXL;
+      const long k = sph_particles_add(p, (i + 0.5) * DXL, y, 0.3, -0.2, 1000.0, 0.1, 1.3 * DXL,
+                                       SPH_KIND_FLUID, &err);
+      CU_ASSERT_FATAL(k >= 0);
+      p->p[k] = 1000.0 * 9.81 * (NY * DXL - y);
+    }
+}
+
+static sph_probe probe(sph_probe_kind kind, double x, double y, double diameter, int along_x) {
+  sph_probe q;
+  memset(&q, 0, sizeof q);
+  snprintf(q.name, sizeof q.name, "q");
+  q.kind = kind;
+  q.x = x;
+  q.y = y;
+  q.diameter = diameter;
+  q.along_x = along_x;
+  return q;
+}
+
+static void test_lattice(void) {
+  sph_particles p;
+  lattice(&p);
+  const double g[2] = {0.0, -9.81}, H = NY * DXL, rgh = 1000.0 * 9.81 * H;
+  const double pts[4][3] = {/* x, y, diameter */
+                            {0.15, 0.1, 0.0},
+                            {0.30, 0.05, 0.0},
+                            {0.30, 0.05, 0.004},
+                            {0.0, 0.013, 0.004}};
+  for (int k = 0; k < 4; k++) {
+    const sph_probe q = probe(SPH_PROBE_PRESSURE, pts[k][0], pts[k][1], pts[k][2], 0);
+    double v;
+    sph_probe_read(&q, &p, 1.3 * DXL, DXL, 0.0, g, &v);
+    CU_ASSERT(fabs(v - 1000.0 * 9.81 * (H - pts[k][1])) < 1e-9 * rgh);
+  }
+  /* a floor sensor, its face along x */
+  sph_probe q = probe(SPH_PROBE_PRESSURE, 0.15, 0.0, 0.01, 1);
+  double v[2];
+  sph_probe_read(&q, &p, 1.3 * DXL, DXL, 0.0, g, v);
+  CU_ASSERT(fabs(v[0] - rgh) < 1e-9 * rgh);
+  /* dry: away from the fluid */
+  q = probe(SPH_PROBE_PRESSURE, 0.15, H + 0.05, 0.0, 0);
+  sph_probe_read(&q, &p, 1.3 * DXL, DXL, 0.0, g, v);
+  CU_ASSERT(v[0] == 0.0);
+  q = probe(SPH_PROBE_VELOCITY, 0.1, 0.1, 0.0, 0);
+  sph_probe_read(&q, &p, 1.3 * DXL, DXL, 0.0, g, v);
+  CU_ASSERT(fabs(v[0] - 0.3) < 1e-12 && fabs(v[1] + 0.2) < 1e-12);
+  q = probe(SPH_PROBE_VELOCITY, 1.0, 0.1, 0.0, 0);
+  sph_probe_read(&q, &p, 1.3 * DXL, DXL, 0.0, g, v);
+  CU_ASSERT(v[0] == 0.0 && v[1] == 0.0);
+  q = probe(SPH_PROBE_LEVEL, 0.1, 0.0, 0.0, 0);
+  sph_probe_read(&q, &p, 1.3 * DXL, DXL, 0.0, g, v);
+  CU_ASSERT(fabs(v[0] - H) < 1e-12);
+  sph_probe_read(&q, &p, 1.3 * DXL, DXL, -0.1, g, v); /* a bed 0.1 m lower */
+  CU_ASSERT(fabs(v[0] - H - 0.1) < 1e-12);
+  q = probe(SPH_PROBE_LEVEL, 2.0, 0.0, 0.0, 0);
+  sph_probe_read(&q, &p, 1.3 * DXL, DXL, 0.0, g, v);
+  CU_ASSERT(v[0] == 0.0);
+  sph_particles_free(&p);
+}
+
+static void test_tank(void) {
+  char *dir = sph_test_tmpdir();
+  char args[8192], out[16384], path[4200];
+  snprintf(args, sizeof args,
+           "run -q '%s' -o '%s/run' --set time.end=0.3 --set output.snapshots=false "
+           "--set 'geometry.tank={x: [0.0, 0.2], y: [0.0, 0.15], layers: 3, stagger: false}' "
+           "--set 'numerics.density_diffusion={model: fourtakas}' --set output.probe_interval=0.01 "
+           "--set 'output.probes=[{name: P1, kind: pressure, at: [0.2, 0.02], diameter: 0.005}, "
+           "{name: P2, kind: pressure, at: [0.0, 0.05]}, "
+           "{name: Pf, kind: pressure, at: [0.1, 0.0], along: x, diameter: 0.01}, "
+           "{name: H1, kind: level, x: 0.1}, {name: V1, kind: velocity, at: [0.1, 0.05]}]'",
+           sph_test_src("cases/hydrostatic_tank.yaml"), dir);
+  const int st = sph_test_sph(args, dir, out, sizeof out);
+  if (st) printf("\n%s\n", out);
+  CU_ASSERT_FATAL(st == 0);
+  snprintf(path, sizeof path, "%s/run/probes.csv", dir);
+  FILE *f = fopen(path, "r");
+  CU_ASSERT_FATAL(f != NULL);
+  char header[512] = "";
+  CU_ASSERT(fgets(header, sizeof header, f) != NULL);
+  fclose(f);
+  CU_ASSERT_STRING_EQUAL(header, "time,P1 (Pa),P2 (Pa),Pf (Pa),H1 (m),V1_vx (m/s),V1_vy (m/s)\n");
+  double *col[7];
+  const long n = sph_test_csv(path, "#0,#1,#2,#3,#4,#5,#6", col);
+  CU_ASSERT_FATAL(n > 0);
+  CU_ASSERT(n == 31); /* t = 0, then every 0.01 s to 0.3 s */
+  const double rgh = 1000.0 * 9.81 * 0.1, want[3] = {0.08, 0.05, 0.1};
+  double worst = 0.0, vmax = 0.0;
+  for (long r = n / 2; r < n; r++) { /* settled: the second half */
+    for (int k = 0; k < 3; k++)
+      worst = fmax(worst, fabs(col[k + 1][r] - 1000.0 * 9.81 * want[k]) / rgh);
+    vmax = fmax(vmax, hypot(col[5][r], col[6][r]));
+    CU_ASSERT(fabs(col[4][r] - 0.1) < 0.0025);
+  }
+  printf("\n  tank: wall and floor sensors within %.2f %% of rho0 g H, |v| <= %.2e m/s, "
+         "level %.5f m\n",
+         100 * worst, vmax, col[4][n - 1]);
+  CU_ASSERT(worst < 0.01);
+  CU_ASSERT(vmax < 1e-3);
+  for (int k = 0; k < 7; k++)
+    free(col[k]);
+  sph_test_rmtree(dir);
+  free(dir);
+}
+
+static void expect_err(const char *probes, const char *want) {
+  char text[2048];
+  snprintf(text, sizeof text,
+           "name: t\nphysics: {sound_speed: 20}\nnumerics: {dx: 0.01}\n"
+           "time: {end: 1, output_interval: 0.1}\n"
+           "geometry:\n  fluid:\n    - {x: [0, 0.5], y: [0, 0.5]}\noutput:\n%s",
+           probes);
+  sph_case c;
+  sph_error err;
+  const int rc = sph_case_parse(text, strlen(text), "t.yaml", NULL, 0, &c, &err);
+  CU_ASSERT(rc != 0);
+  if (rc) {
+    if (strcmp(err.msg, want)) printf("\n  want: %s\n  got:  %s\n", want, err.msg);
+    CU_ASSERT_STRING_EQUAL(err.msg, want);
+  }
+  sph_case_free(&c);
+}
+
+static void test_case_errors(void) {
+  expect_err("  probes:\n    - {name: a, kind: level, at: [0, 0]}\n",
+             "t.yaml:10: output.probes[0].at: not a key of a level probe");
+  expect_err("  probes:\n    - {name: a, kind: gauge, x: 0}\n",
+             "t.yaml:10: output.probes[0].kind: unknown choice 'gauge' (valid: pressure, level, "
+             "velocity)");
+  expect_err("  probes:\n    - {name: a, kind: level, x: 0}\n    - {name: a, kind: level, x: 1}\n",
+             "t.yaml:11: output.probes[1].name: expected a name of its own, got 'a' (the name of "
+             "output.probes[0])");
+  expect_err("  probes:\n    - {name: a b, kind: level, x: 0}\n",
+             "t.yaml:10: output.probes[0].name: expected a name of 1 to 64 characters from "
+             "[A-Za-z0-9_.-], got 'a b'");
+  expect_err("  probe_interval: 0.1\n",
+             "t.yaml:9: output.probe_interval: expected output.probes alongside it");
+  expect_err("  probe_interval: 2\n  probes:\n    - {name: a, kind: velocity, at: [0, 0]}\n",
+             "t.yaml:9: output.probe_interval: expected a number from 0 (every step) to time.end "
+             "(1), got '2'");
+}
+
+int main(void) {
+  CU_TestInfo tests[] = {{"readings on a hydrostatic lattice", test_lattice},
+                         {"hydrostatic tank: probes.csv against rho0 g (H - y)", test_tank},
+                         {"case errors", test_case_errors},
+                         CU_TEST_INFO_NULL};
+  return sph_test_main("probes", tests);
+}
