@@ -445,9 +445,12 @@ static void test_out_of_range(void) {
 
 static void test_unknown_choice(void) {
   expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  kernel: wendland\n"),
-             "t.yaml:6: numerics.kernel: unknown choice 'wendland' (valid: cubic_spline)");
-  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  kernel: [cubic_spline]\n"),
-             "t.yaml:6: numerics.kernel: expected one of: cubic_spline, got a list of 1 item");
+             "t.yaml:6: numerics.kernel: unknown choice 'wendland' (valid: cubic_spline, "
+             "wendland_c2)");
+  expect_err(
+      edit(MINIMAL, 5, "  dx: 0.01\n  kernel: [cubic_spline]\n"),
+      "t.yaml:6: numerics.kernel: expected one of: cubic_spline, wendland_c2, got a list of 1 "
+      "item");
   expect_err(edit(MINIMAL, 8, "  output_interval: 0.1\n  stop: never\n"),
              "t.yaml:9: time.stop: unknown choice 'never' (valid: none, front_at_wall)");
   expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  density_diffusion: {model: delta_sph}\n"),

@@ -11,9 +11,13 @@
  *   - hydrostatic tank with mirror walls, MLS filter every 5 steps;
  *   - inclined plane: periodic x, leap-frog, free surface with h* = 2h;
  *   - coarse flap wavemaker: paddle motion, wave gauges, variable h,
- *     Shepard filter.
+ *     Shepard filter;
+ *   - coarse dam break with the Wendland kernel, the stress tensor, the
+ *     MLS filter and a pressure probe;
+ *   - density diffusion: antuono (its gradient pass) on the coarse dam
+ *     break, fourtakas with the energy ledger on the wet bed.
  * Every file of the two output directories (snapshots, XDMF index,
- * diagnostics.csv, gauges.csv) must be identical.
+ * diagnostics.csv, gauges.csv, probes.csv) must be identical.
  */
 #include "config.h"
 
@@ -106,8 +110,19 @@ static void test_density_diffusion(void) {
                           "--set 'numerics.density_diffusion={model: fourtakas, delta: 0.1}'");
 }
 
+/* the Wendland kernel in the pair loop, the strain-rate pass, the MLS
+ * filter and the probes */
+static void test_wendland(void) {
+  same_on_1_and_2_threads("cases/martin_moyce_coarse.yaml",
+                          "--set time.end=0.1 --set numerics.kernel=wendland_c2 "
+                          "--set 'physics.viscosity={model: stress_tensor, mu: 0.001}' "
+                          "--set 'numerics.density_filter={kind: mls, every: 10}' "
+                          "--set 'output.probes=[{name: P, kind: pressure, at: [0.0, 0.01]}]'");
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
+      {"Wendland kernel, stress tensor, MLS filter, probes", test_wendland},
       {"density diffusion: antuono, fourtakas with the ledger", test_density_diffusion},
       {"mdbc walls through an impact", test_mdbc},
       {"wet bed: viscosity, ledger, moving gate", test_wet_bed},

@@ -4,7 +4,8 @@
  *
  * 1. Oracle: for each of the 256 term sets F (artificial viscosity, XSPH,
  *    stress tensor, Morris, periodic, per-particle h, energy ledger,
- *    density diffusion: Molteni-Colagrossi, Antuono, Fourtakas by set) and
+ *    density diffusion: Molteni-Colagrossi, Antuono, Fourtakas by set;
+ *    the cubic spline and the Wendland C2 kernel alternating) and
  *    three random particle sets (fluid on a jittered lattice with random
  *    velocities and densities; dynamic, moving, repulsive and mirror wall
  *    particles below it; periodic in x when F says so, per-particle h
@@ -105,6 +106,8 @@ static void params_for(unsigned F, unsigned seed, sph_force_params *fp) {
   if (F & 32) fp->var_h = 1;
   if (F & 64) fp->ledger = 1;
   if (F & 128) fp->diffusion = DIFFUSION[seed % 3], fp->diffusion_delta = 0.1;
+  /* the kernel alternates with the set: both in every term set */
+  fp->kernel = ((F + seed) & 1) ? SPH_KERNEL_WENDLAND_C2 : SPH_KERNEL_CUBIC_SPLINE;
   fp->repulsive = 1;
   fp->lj_d = 5.0;
   fp->lj_r0 = DX;
@@ -143,7 +146,7 @@ static int pair(const sph_particles *p, const sph_force_params *fp, size_t i, si
   *hij = fp->var_h ? 0.5 * (p->h[i] + p->h[j]) : fp->h;
   if (*r >= 2.0 * *hij || *r == 0.0) return 0;
   double dw;
-  sph_cubic_w_dw(*r, *hij, w, &dw);
+  sph_kernel_w_dw(fp->kernel, *r, *hij, w, &dw);
   *gx = dw * *dx / *r;
   *gy = dw * *dy / *r;
   return 1;
@@ -506,6 +509,22 @@ static void test_pair_symmetry(void) {
                 diffusion_psi_v4e(V4(rhoi), V4(rhoj), V4(dx), V4(dy), V4(ccx), V4(ccy)));
     LANES_AGREE(diffusion_v1(S(psi), S(f), S(m), S(rhoj)),
                 diffusion_v4e(V4(psi), V4(f), V4(m), V4(rhoj)));
+    { /* the Wendland kernel at four radii */
+      double rq[4], wq[4], fq[4], wl[4], fl[4];
+      const double sw = 7 / (4 * SPH_PI) * inv_h * inv_h;
+      for (int q = 0; q < 4; q++) {
+        rq[q] = S(r);
+        wendland_w_f_v1(rq[q], 1 / rq[q], inv_h, sw, sw * inv_h, &wq[q], &fq[q]);
+      }
+      v4e W, Fv;
+      wendland_w_f_v4e(v4e_set(rq[0], rq[1], rq[2], rq[3]),
+                       v4e_set(1 / rq[0], 1 / rq[1], 1 / rq[2], 1 / rq[3]), v4e_all(inv_h),
+                       v4e_all(sw), v4e_all(sw * inv_h), &W, &Fv);
+      v4e_store(wl, W);
+      v4e_store(fl, Fv);
+      for (int q = 0; q < 4; q++)
+        CU_ASSERT(same(wl[q], wq[q]) && same(fl[q], fq[q]));
+    }
     { /* the kernel at four radii */
       double rq[4], iq[4], wq[4], fq[4], wl[4], fl[4];
       for (int q = 0; q < 4; q++) {

@@ -70,31 +70,31 @@ static void test_lattice(void) {
   for (int k = 0; k < 4; k++) {
     const sph_probe q = probe(SPH_PROBE_PRESSURE, pts[k][0], pts[k][1], pts[k][2], 0);
     double v;
-    sph_probe_read(&q, &p, 1.3 * DXL, DXL, 0.0, g, &v);
+    sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, 1.3 * DXL, DXL, 0.0, g, &v);
     CU_ASSERT(fabs(v - 1000.0 * 9.81 * (H - pts[k][1])) < 1e-9 * rgh);
   }
   /* a floor sensor, its face along x */
   sph_probe q = probe(SPH_PROBE_PRESSURE, 0.15, 0.0, 0.01, 1);
   double v[2];
-  sph_probe_read(&q, &p, 1.3 * DXL, DXL, 0.0, g, v);
+  sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, 1.3 * DXL, DXL, 0.0, g, v);
   CU_ASSERT(fabs(v[0] - rgh) < 1e-9 * rgh);
   /* dry: away from the fluid */
   q = probe(SPH_PROBE_PRESSURE, 0.15, H + 0.05, 0.0, 0);
-  sph_probe_read(&q, &p, 1.3 * DXL, DXL, 0.0, g, v);
+  sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, 1.3 * DXL, DXL, 0.0, g, v);
   CU_ASSERT(v[0] == 0.0);
   q = probe(SPH_PROBE_VELOCITY, 0.1, 0.1, 0.0, 0);
-  sph_probe_read(&q, &p, 1.3 * DXL, DXL, 0.0, g, v);
+  sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, 1.3 * DXL, DXL, 0.0, g, v);
   CU_ASSERT(fabs(v[0] - 0.3) < 1e-12 && fabs(v[1] + 0.2) < 1e-12);
   q = probe(SPH_PROBE_VELOCITY, 1.0, 0.1, 0.0, 0);
-  sph_probe_read(&q, &p, 1.3 * DXL, DXL, 0.0, g, v);
+  sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, 1.3 * DXL, DXL, 0.0, g, v);
   CU_ASSERT(v[0] == 0.0 && v[1] == 0.0);
   q = probe(SPH_PROBE_LEVEL, 0.1, 0.0, 0.0, 0);
-  sph_probe_read(&q, &p, 1.3 * DXL, DXL, 0.0, g, v);
+  sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, 1.3 * DXL, DXL, 0.0, g, v);
   CU_ASSERT(fabs(v[0] - H) < 1e-12);
-  sph_probe_read(&q, &p, 1.3 * DXL, DXL, -0.1, g, v); /* a bed 0.1 m lower */
+  sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, 1.3 * DXL, DXL, -0.1, g, v); /* a bed 0.1 m lower */
   CU_ASSERT(fabs(v[0] - H - 0.1) < 1e-12);
   q = probe(SPH_PROBE_LEVEL, 2.0, 0.0, 0.0, 0);
-  sph_probe_read(&q, &p, 1.3 * DXL, DXL, 0.0, g, v);
+  sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, 1.3 * DXL, DXL, 0.0, g, v);
   CU_ASSERT(v[0] == 0.0);
   sph_particles_free(&p);
 }

@@ -25,15 +25,15 @@ void sph_probe_header(const sph_probe *q, char *buf, size_t len) {
  * along the hydrostatic gradient: p_j + rho_j g . (x - x_j)), vx and vy
  * over the fluid at (x, y); returns 0 where the point is dry (out
  * untouched). */
-static int shepard_at(const sph_particles *p, double x, double y, double h, const double g[2],
-                      double out[3]) {
+static int shepard_at(const sph_particles *p, sph_kernel_kind kernel, double x, double y, double h,
+                      const double g[2], double out[3]) {
   const double reach = 2.0 * h;
   double den = 0.0, sp = 0.0, svx = 0.0, svy = 0.0;
   for (size_t j = 0; j < p->n; j++) {
     if (p->kind[j] != SPH_KIND_FLUID) continue;
     const double dx = x - p->x[j], dy = y - p->y[j];
     if (fabs(dx) >= reach || fabs(dy) >= reach) continue;
-    const double w = sph_cubic_w(sqrt(dx * dx + dy * dy), h) * (p->mass[j] / p->rho[j]);
+    const double w = sph_kernel_w(kernel, sqrt(dx * dx + dy * dy), h) * (p->mass[j] / p->rho[j]);
     den += w;
     sp += w * (p->p[j] + p->rho[j] * (g[0] * dx + g[1] * dy));
     svx += w * p->vx[j];
@@ -46,8 +46,8 @@ static int shepard_at(const sph_particles *p, double x, double y, double h, cons
   return 1;
 }
 
-void sph_probe_read(const sph_probe *q, const sph_particles *p, double h, double dx, double floor_y,
-                    const double g[2], double *out) {
+void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind kernel, double h,
+                    double dx, double floor_y, const double g[2], double *out) {
   double v[3];
   switch (q->kind) {
   case SPH_PROBE_PRESSURE: {
@@ -56,7 +56,7 @@ void sph_probe_read(const sph_probe *q, const sph_particles *p, double h, double
     for (int k = 0; k < n; k++) {
       const double s = n > 1 ? ((double)k / (n - 1) - 0.5) * q->diameter : 0.0;
       const double x = q->x + (q->along_x ? s : 0.0), y = q->y + (q->along_x ? 0.0 : s);
-      if (shepard_at(p, x, y, h, g, v)) sum += v[0];
+      if (shepard_at(p, kernel, x, y, h, g, v)) sum += v[0];
     }
     out[0] = sum / n;
     break;
@@ -71,7 +71,7 @@ void sph_probe_read(const sph_probe *q, const sph_particles *p, double h, double
   }
   case SPH_PROBE_VELOCITY:
     out[0] = out[1] = 0.0;
-    if (shepard_at(p, q->x, q->y, h, g, v)) {
+    if (shepard_at(p, kernel, q->x, q->y, h, g, v)) {
       out[0] = v[1];
       out[1] = v[2];
     }

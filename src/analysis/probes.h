@@ -31,6 +31,7 @@
 #include <stddef.h>
 
 #include "core/particles.h"
+#include "physics/models.h"
 
 #define SPH_PROBE_FACE_POINTS 5
 #define SPH_PROBE_WET_SUM 0.1
@@ -54,9 +55,10 @@ int sph_probe_columns(const sph_probe *q);
 /* The header of its columns, "name (Pa)" or "name_vx (m/s),name_vy (m/s)",
  * written to buf with a leading comma. */
 void sph_probe_header(const sph_probe *q, char *buf, size_t len);
-/* Its reading on the particles p (h the smoothing length, dx the particle
- * spacing, floor_y the bed's height, g the gravity) into out[0..columns-1]. */
-void sph_probe_read(const sph_probe *q, const sph_particles *p, double h, double dx, double floor_y,
-                    const double g[2], double *out);
+/* Its reading on the particles p (with the kernel, h the smoothing length,
+ * dx the particle spacing, floor_y the bed's height, g the gravity) into
+ * out[0..columns-1]. */
+void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind kernel, double h,
+                    double dx, double floor_y, const double g[2], double *out);
 
 #endif

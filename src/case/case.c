@@ -50,7 +50,7 @@
 
 /* ---- choices -------------------------------------------------------------- */
 
-static const char *const kernel_names[] = {"cubic_spline", NULL};
+static const char *const kernel_names[] = {"cubic_spline", "wendland_c2", NULL};
 static const char *const integrator_names[] = {"predictor_corrector", "leapfrog", NULL};
 static const char *const dt_rule_names[] = {"paper_b", "cfl", "fixed", NULL};
 static const char *const boundary_names[] = {"dynamic", "fixed_layers", "repulsive",

@@ -75,6 +75,7 @@ void sph_filter_params_default(sph_filter_params *fp, double h) {
   fp->filter_walls = 0;
   fp->same_kind_only = 0;
   fp->mls_det_min = SPH_FILTER_MLS_DET_MIN;
+  fp->kernel = SPH_KERNEL_CUBIC_SPLINE;
 }
 
 /* Neighbour candidates of particle i (up to SPH_GRID_RANGES ranges: a grid
@@ -141,7 +142,7 @@ filter_one(const sph_particles *restrict p, const sph_grid *restrict g,
         continue;
       }
       double w, dw;
-      sph_cubic_w_dw(sqrt(r2), hab, &w, &dw);
+      sph_kernel_w_dw(fp->kernel, sqrt(r2), hab, &w, &dw);
       const double mw = m[b] * w, vw = m[b] / rho[b] * w;
       s.a00 += vw;
       s.m0 += mw;

@@ -53,6 +53,7 @@ typedef struct sph_filter_params {
    * (a number in [0, 1]: 0 for a singular A, 1 for A proportional to the
    * identity). Default SPH_FILTER_MLS_DET_MIN. */
   double mls_det_min;
+  sph_kernel_kind kernel; /* the case's kernel; default the cubic spline */
 } sph_filter_params;
 
 /* The defaults above, with the given constant h (0: variable h). */

@@ -15,6 +15,12 @@ double sph_cubic_w(double r, double h) {
   return w;
 }
 
+double sph_kernel_w(sph_kernel_kind k, double r, double h) {
+  double w, dw;
+  sph_kernel_w_dw(k, r, h, &w, &dw);
+  return w;
+}
+
 void sph_cubic_grad(double dx, double dy, double h, double *gx, double *gy) {
   double r = sqrt(dx * dx + dy * dy);
   if (r == 0.0) {

@@ -11,8 +11,11 @@
 
 #include "core/error.h"
 
-/* The smoothing kernel (src/physics/kernel.h). */
-typedef enum { SPH_KERNEL_CUBIC_SPLINE = 0 } sph_kernel_kind;
+/* The smoothing kernel (src/physics/kernel.h); both have support 2h. */
+typedef enum {
+  SPH_KERNEL_CUBIC_SPLINE = 0, /* paper A eq. (8), paper B §2.1 */
+  SPH_KERNEL_WENDLAND_C2 = 1   /* Wendland (1995), C2, 2-D */
+} sph_kernel_kind;
 
 /* The laminar viscosity model (src/solver/forces.h). */
 typedef enum {

@@ -36,6 +36,18 @@ PT_ATTR void PT(cubic_w_f)(T r, T inv_r, T inv_h, T sigma, T sigma_h, T *w, T *f
   *f = MUL(MUL(sigma_h, SUB(MUL(ALL(3.0), MUL(a, a)), MUL(ALL(0.75), MUL(t, t)))), inv_r);
 }
 
+/* The 2-D Wendland C2 kernel (Wendland 1995; src/physics/kernel.h) in the
+ * loops' form, the same arguments as cubic_w_f with sigma = 7/(4 pi h^2):
+ * with t = 1 - q/2 (0 < q < 2), W = sigma t^4 (2q + 1) and
+ * dW/dq = -5 sigma q t^3, so F = (1/r) dW/dr = -5 (sigma/h) (1/h) t^3 (no 1/r). */
+PT_ATTR void PT(wendland_w_f)(T r, T inv_r, T inv_h, T sigma, T sigma_h, T *w, T *f) {
+  (void)inv_r;
+  const T q = MUL(r, inv_h), t = SUB(ALL(1.0), MUL(ALL(0.5), q));
+  const T t3 = MUL(MUL(t, t), t);
+  *w = MUL(sigma, MUL(MUL(t3, t), ADD(MUL(ALL(2.0), q), ALL(1.0))));
+  *f = MUL(MUL(ALL(-5.0), sigma_h), MUL(inv_h, t3));
+}
+
 /* Continuity, paper B eq. (2), paper A eq. (12): m_j v_ij . grad_i W_ij. */
 PT_ATTR T PT(continuity)(T mj, T dvx, T dvy, T gx, T gy) {
   return MUL(mj, ADD(MUL(dvx, gx), MUL(dvy, gy)));

@@ -34,7 +34,7 @@ static void half_gradient(const sph_particles *restrict p, const sph_nlist *rest
     if (r2 >= 4.0 * hij * hij || r2 == 0.0) continue;
     const double r = sqrt(r2);
     double wij, f;
-    sph_cubic_w_f(r, r / r2, 1.0 / hij, &wij, &f);
+    sph_kernel_w_f(fp->kernel, r, r / r2, 1.0 / hij, &wij, &f);
     const double fv = f * (m[j] / rho[j]); /* V_j grad_i W_ij = fv (dx, dy) */
     const double drho = rho[j] - rhoi;
     gx += drho * fv * dx;

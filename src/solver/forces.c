@@ -119,7 +119,7 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
     if (r2 >= 4.0 * hij * hij || r2 == 0.0) continue;
     const double r = sqrt(r2);
     double wij, dw;
-    sph_cubic_w_dw(r, hij, &wij, &dw);
+    sph_kernel_w_dw(fp->kernel, r, hij, &wij, &dw);
     const double f = dw / r * (m[j] / rho[j]);
     const double gx = f * dx, gy = f * dy;           /* V_j grad_i W_ij */
     const double ux = vx[j] - vxi, uy = vy[j] - vyi; /* v_ji */

@@ -103,6 +103,7 @@ typedef struct sph_force_params {
   double px0;              /* periodic: the period starts at x = px0 */
   double sps_cs, sps_ci, sps_delta;
   sph_force_loop loop;          /* default SPH_LOOP_AUTO */
+  sph_kernel_kind kernel;       /* the smoothing kernel; default (0) the cubic spline */
   sph_diffusion_kind diffusion; /* density diffusion (physics/density_diffusion.h); NONE = off */
   double diffusion_delta;       /* its delta */
 } sph_force_params;

@@ -109,7 +109,8 @@ static inline __attribute__((always_inline)) void interact_one(sph_particles *re
   const int fluid = kind[i] == SPH_KIND_FLUID;
   /* fixed h: 1/h, 4h^2 and the kernel's sigma once per particle (F_VARH: per pair) */
   const double h0 = fp->h, inv_h0 = 1.0 / h0, supp0 = 4.0 * h0 * h0;
-  const double sigma0 = (10.0 / (7.0 * SPH_PI)) * inv_h0 * inv_h0;
+  const int wendland = fp->kernel == SPH_KERNEL_WENDLAND_C2;
+  const double sigma0 = sph_kernel_sigma(fp->kernel, inv_h0);
   double drho = 0.0, ax = 0.0, ay = 0.0, xs = 0.0, ys = 0.0, sig = 0.0;
   double du = 0.0, wpow = 0.0, wfx = 0.0, wfy = 0.0; /* energy and momentum ledger */
   double dd = 0.0;                                   /* density diffusion */
@@ -126,9 +127,12 @@ static inline __attribute__((always_inline)) void interact_one(sph_particles *re
     if (r2 >= supp || r2 == 0.0) continue; /* outside the support, or coincident */
     const double inv_r2 = 1.0 / r2, r = sqrt(r2), inv_r = r * inv_r2;
     const double inv_h = (F & F_VARH) ? 1.0 / hij : inv_h0;
-    const double sigma = (F & F_VARH) ? (10.0 / (7.0 * SPH_PI)) * inv_h * inv_h : sigma0;
+    const double sigma = (F & F_VARH) ? sph_kernel_sigma(fp->kernel, inv_h) : sigma0;
     double wij, f; /* W_ij and (1/r) dW/dr: grad_i W_ij = f (dx, dy) */
-    cubic_w_f_v1(r, inv_r, inv_h, sigma, sigma * inv_h, &wij, &f);
+    if (wendland)  /* the same for every pair: a branch the processor predicts */
+      wendland_w_f_v1(r, inv_r, inv_h, sigma, sigma * inv_h, &wij, &f);
+    else
+      cubic_w_f_v1(r, inv_r, inv_h, sigma, sigma * inv_h, &wij, &f);
     const double gx = f * dx, gy = f * dy;
     const double dvx = vxi - qj->vx, dvy = vyi - qj->vy;
     const double mj = qj->m;

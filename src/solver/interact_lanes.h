@@ -38,7 +38,8 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const sph_force_hot qi = hot[i];
   const int fluid = kind[i] == SPH_KIND_FLUID;
   const double h0 = fp->h, inv_h0 = 1.0 / h0;
-  const double sigma0 = (10.0 / (7.0 * SPH_PI)) * inv_h0 * inv_h0;
+  const int wendland = fp->kernel == SPH_KERNEL_WENDLAND_C2;
+  const double sigma0 = sph_kernel_sigma(fp->kernel, inv_h0);
   const LT xi = LOP(all)(qi.x), yi = LOP(all)(qi.y), vxi = LOP(all)(qi.vx), vyi = LOP(all)(qi.vy);
   const LT rhoi = LOP(all)(qi.rho), pri = LOP(all)(qi.prho2), ci = LOP(all)(qi.cs);
   const LT hh = LOP(all)(h0), inv_h = LOP(all)(inv_h0), one = LOP(all)(1.0);
@@ -70,7 +71,10 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     /* 1/r2 and sqrt(r2) side by side: a shorter chain than 1/sqrt(r2) */
     const LT inv_r2 = LOP(div)(one, r2), r = LOP(sqrt)(r2), inv_r = LOP(mul)(r, inv_r2);
     LT wij, f;
-    LTERM(cubic_w_f)(r, inv_r, inv_h, sigma, sigma_h, &wij, &f);
+    if (wendland) /* the same for every pair: a branch the processor predicts */
+      LTERM(wendland_w_f)(r, inv_r, inv_h, sigma, sigma_h, &wij, &f);
+    else
+      LTERM(cubic_w_f)(r, inv_r, inv_h, sigma, sigma_h, &wij, &f);
     wij = LOP(and)(in, wij);
     f = LOP(and)(in, f);
     const LT gx = LOP(mul)(f, dx), gy = LOP(mul)(f, dy);

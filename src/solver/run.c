@@ -84,7 +84,7 @@ static int write_probes(sph_sim *s, outputs *o, sph_error *err) {
   if (fprintf(o->probes, "%.17g", sph_sim_time(s)) < 0) goto fail;
   for (size_t k = 0; k < c->n_probes; k++) {
     double v[2];
-    sph_probe_read(&c->probes[k], p, c->h, c->dx, sph_sim_floor(s), c->gravity, v);
+    sph_probe_read(&c->probes[k], p, c->kernel, c->h, c->dx, sph_sim_floor(s), c->gravity, v);
     for (int m = 0; m < sph_probe_columns(&c->probes[k]); m++)
       if (fprintf(o->probes, ",%.17g", v[m]) < 0) goto fail;
   }

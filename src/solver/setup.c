@@ -211,6 +211,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.sps_cs = c->sps_cs;
   s->fp.sps_ci = c->sps_ci;
   s->fp.sps_delta = c->dx;
+  s->fp.kernel = c->kernel;
   s->fp.diffusion = c->diffusion;
   s->fp.diffusion_delta = c->diffusion_delta;
   if (c->variable_h) s->fp.var_h = 1;

@@ -179,6 +179,7 @@ static int apply_filter(sph_sim *s, sph_error *err) {
   if (build_grid(s, SPH_CUBIC_SUPPORT * h_max(s) * SPH_CELL_MARGIN, err)) return -1;
   sph_filter_params fp;
   sph_filter_params_default(&fp, s->fp.var_h ? 0.0 : c->h);
+  fp.kernel = c->kernel;
   if (sph_filter_apply(c->density_filter, &s->p, &s->grid, &fp, s->work.sigma, NULL, err))
     return -1;
   if (c->integrator == SPH_INTEGRATOR_LEAPFROG)
