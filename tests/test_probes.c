@@ -91,7 +91,8 @@ static void test_lattice(void) {
   q = probe(SPH_PROBE_LEVEL, 0.1, 0.0, 0.0, 0);
   sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, 1.3 * DXL, DXL, 0.0, g, v);
   CU_ASSERT(fabs(v[0] - H) < 1e-12);
-  sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, 1.3 * DXL, DXL, -0.1, g, v); /* a bed 0.1 m lower */
+  sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, 1.3 * DXL, DXL, -0.1, g,
+                 v); /* a bed 0.1 m lower */
   CU_ASSERT(fabs(v[0] - H - 0.1) < 1e-12);
   q = probe(SPH_PROBE_LEVEL, 2.0, 0.0, 0.0, 0);
   sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, 1.3 * DXL, DXL, 0.0, g, v);
