@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "case/case.h"
 #include "testutil.h"
@@ -507,6 +508,61 @@ static void test_yaml_syntax(void) {
   expect_err("name: \xff\n", "t.yaml:1:7: YAML syntax error: invalid leading UTF-8 octet");
 }
 
+/* Hostile inputs are refused before they cost time or memory (issue 21):
+ * D6, nesting 100000 levels deep fails at once; D8, an endless file
+ * (/dev/zero) and one over 1 MiB are refused; D12, a description over
+ * 10000 characters (stored in every snapshot) is refused. */
+static void test_bounded_input(void) {
+  sph_case c;
+  sph_error e = {{0}};
+  const size_t deep = 100000;
+  char *text = malloc(2 * deep + 64);
+  CU_ASSERT_FATAL(text != NULL);
+  size_t n = (size_t)sprintf(text, "name: x\nphysics: ");
+  memset(text + n, '[', deep);
+  memset(text + n + deep, ']', deep);
+  n += 2 * deep;
+  text[n++] = '\n';
+  const clock_t t0 = clock();
+  CU_ASSERT(sph_case_parse(text, n, "d.yaml", NULL, 0, &c, &e) != 0);
+  const double cpu = (double)(clock() - t0) / CLOCKS_PER_SEC;
+  CU_ASSERT_STRING_EQUAL(e.msg, "d.yaml:2: nested deeper than 64 levels");
+  printf("\n  100000 levels of nesting refused in %.3f s CPU", cpu);
+  CU_ASSERT(cpu < 1.0); /* was 20 s, quadratic */
+  sph_case_free(&c);
+  free(text);
+  FILE *z = fopen("/dev/zero", "rb");
+  if (z) {
+    fclose(z);
+    CU_ASSERT(sph_case_load("/dev/zero", NULL, 0, &c, &e) != 0);
+    CU_ASSERT_STRING_EQUAL(e.msg, "/dev/zero: the case file is larger than 1048576 bytes (1 MiB): "
+                                  "not a case file");
+    sph_case_free(&c);
+  }
+  char *dir = sph_test_tmpdir(), path[4200];
+  snprintf(path, sizeof path, "%s/big.yaml", dir);
+  FILE *f = fopen(path, "w");
+  CU_ASSERT_FATAL(f != NULL);
+  for (int k = 0; k < 40000; k++)
+    fputs("# a comment line of some thirty bytes\n", f);
+  fclose(f);
+  CU_ASSERT(sph_case_load(path, NULL, 0, &c, &e) != 0);
+  CU_ASSERT(strstr(e.msg, "larger than 1048576 bytes") != NULL);
+  sph_case_free(&c);
+  sph_test_rmtree(dir);
+  free(dir);
+  static char big[12000];
+  char aaa[10002];
+  memset(aaa, 'a', 10001);
+  aaa[10001] = 0;
+  const size_t first = (size_t)(strchr(MINIMAL, '\n') - MINIMAL) + 1;
+  snprintf(big, sizeof big, "%.*sdescription: %s\n%s", (int)first, MINIMAL, aaa, MINIMAL + first);
+  CU_ASSERT(sph_case_parse(big, strlen(big), "t.yaml", NULL, 0, &c, &e) != 0);
+  CU_ASSERT_STRING_EQUAL(e.msg, "t.yaml:2: description: expected at most 10000 characters (it is "
+                                "stored in every snapshot), got 10001");
+  sph_case_free(&c);
+}
+
 static void test_missing_file(void) {
   sph_case c;
   sph_error e = {{0}};
@@ -762,6 +818,7 @@ int main(void) {
                          {"duplicate key", test_duplicate_key},
                          {"YAML syntax errors", test_yaml_syntax},
                          {"missing file", test_missing_file},
+                         {"bounded input: nesting, size, description", test_bounded_input},
                          {"fixture files", test_fixture_files},
                          {"--set overrides", test_set_overrides},
                          {"--set errors", test_set_errors},

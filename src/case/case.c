@@ -43,10 +43,12 @@
 #include <string.h>
 #include <yaml.h>
 
-#define FROM_FILE (-1)         /* node source: the case file (else a --set index) */
-#define MAX_DEPTH 64           /* deepest nesting accepted in a case file */
-#define SPH_MAX_OUTPUTS 100000 /* output times from time.output_interval, at most */
-#define KEYLEN 256             /* room for a dotted key such as geometry.fluid[3].x */
+#define FROM_FILE (-1)            /* node source: the case file (else a --set index) */
+#define MAX_DEPTH 64              /* deepest nesting accepted in a case file */
+#define MAX_CASE_BYTES (1u << 20) /* the largest case file read: 1 MiB (issue 21, D8) */
+#define MAX_DESCRIPTION 10000     /* the longest description, in bytes (stored in snapshots: D12) */
+#define SPH_MAX_OUTPUTS 100000    /* output times from time.output_interval, at most */
+#define KEYLEN 256                /* room for a dotted key such as geometry.fluid[3].x */
 
 /* ---- choices -------------------------------------------------------------- */
 
@@ -399,6 +401,38 @@ static int syntax_error(const ctx *x, const yaml_parser_t *p, const char *text, 
               ctxt);
 }
 
+/* The nesting of the text checked event by event before the document is
+ * loaded: libyaml's loader takes time quadratic in the depth (200 KB of
+ * '[' took 20 s), the event parser stops at the first level too deep
+ * (issue 21, D6). 0 if within MAX_DEPTH (or a syntax error, which the
+ * loader then reports), else -1 with the message. */
+static int check_depth(const ctx *x, const char *text, size_t len, int src, const char *key) {
+  yaml_parser_t p;
+  if (!yaml_parser_initialize(&p)) return oom(x);
+  yaml_parser_set_input_string(&p, (const unsigned char *)text, len);
+  int depth = 0, rc = 0;
+  for (;;) {
+    yaml_event_t e;
+    if (!yaml_parser_parse(&p, &e)) break; /* the loader reports it */
+    const yaml_event_type_t type = e.type;
+    const size_t line = e.start_mark.line + 1;
+    yaml_event_delete(&e);
+    if (type == YAML_SEQUENCE_START_EVENT || type == YAML_MAPPING_START_EVENT) {
+      if (++depth > MAX_DEPTH + 1) {
+        rc = fail(x, src, src == FROM_FILE ? line : 0, key ? key : "",
+                  "nested deeper than %d levels", MAX_DEPTH);
+        break;
+      }
+    } else if (type == YAML_SEQUENCE_END_EVENT || type == YAML_MAPPING_END_EVENT) {
+      depth--;
+    } else if (type == YAML_STREAM_END_EVENT) {
+      break;
+    }
+  }
+  yaml_parser_delete(&p);
+  return rc;
+}
+
 /* Parses one YAML document into a tree; an empty document is an empty
  * plain scalar (YAML's null). `key` names a --set value in messages. */
 static int parse_yaml(const ctx *x, const char *text, size_t len, int src, const char *key,
@@ -407,6 +441,7 @@ static int parse_yaml(const ctx *x, const char *text, size_t len, int src, const
   yaml_document_t doc;
   int rc = 0;
   *out = NULL;
+  if (check_depth(x, text, len, src, key)) return -1;
   if (!yaml_parser_initialize(&p)) return oom(x);
   yaml_parser_set_input_string(&p, (const unsigned char *)text, len);
   if (!yaml_parser_load(&p, &doc)) {
@@ -1427,6 +1462,10 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
   const node *s;
   if (check_keys(x, root, "", top_keys) || read_name(x, root, c)) return -1;
   if (get_string(x, root, "description", 0, &c->description) < 0) return -1;
+  if (c->description && strlen(c->description) > MAX_DESCRIPTION)
+    return fail_at(x, find(root, "description")->val, "description",
+                   "expected at most %d characters (it is stored in every snapshot), got %zu",
+                   MAX_DESCRIPTION, strlen(c->description));
   if (get_section(x, root, "", "physics", 1, physics_keys, &s) < 0 || read_physics(x, s, c))
     return -1;
   if (get_section(x, root, "", "numerics", 1, numerics_keys, &s) < 0 || read_numerics(x, s, c))
@@ -1560,6 +1599,13 @@ int sph_case_load(const char *path, const char *const *set, size_t n_set, sph_ca
     }
     size_t got_n = fread(buf + len, 1, cap - len, f);
     len += got_n;
+    if (len > MAX_CASE_BYTES) { /* /dev/zero would never end (issue 21, D8) */
+      fclose(f);
+      free(buf);
+      return sph_error_set(err,
+                           "%s: the case file is larger than %u bytes (1 MiB): not a case file",
+                           path, MAX_CASE_BYTES);
+    }
     if (got_n == 0) {
       if (ferror(f)) {
         saved = errno;
