@@ -173,6 +173,33 @@ static void interrupt_with(int sig, const char *name) {
   CU_ASSERT_EQUAL(snapcmp(name, a, b, 1), 0);
 }
 
+/* A signal during the set-up (issue 21, D11): exit 4 with a message,
+ * nothing written, not even the output directory. The set-up is held
+ * open by the test hook SPH_TEST_SETUP_PAUSE (doc/testing.md). */
+static void setup_signal(int sig, const char *name) {
+  char dir[4200], log[4300];
+  snprintf(dir, sizeof dir, "%s/%s", tmp, name);
+  setenv("SPH_TEST_SETUP_PAUSE", "30", 1);
+  const pid_t pid = start(dir, NULL);
+  unsetenv("SPH_TEST_SETUP_PAUSE");
+  CU_ASSERT_FATAL(pid > 0);
+  sleep_ms(300);
+  CU_ASSERT_FATAL(kill(pid, sig) == 0);
+  int st = 0;
+  CU_ASSERT_FATAL(waitpid(pid, &st, 0) == pid);
+  snprintf(log, sizeof log, "%s.log", dir);
+  const char *msg = slurp(log);
+  if (!WIFEXITED(st) || WEXITSTATUS(st) != 4) printf("\n%s\n", msg);
+  CU_ASSERT_FATAL(WIFEXITED(st));
+  CU_ASSERT_EQUAL(WEXITSTATUS(st), 4);
+  CU_ASSERT(strstr(msg, sig == SIGINT
+                            ? "interrupted by SIGINT during set-up; nothing written"
+                            : "interrupted by SIGTERM during set-up; nothing written") != NULL);
+  CU_ASSERT(!exists(dir));
+}
+static void test_setup_sigint(void) { setup_signal(SIGINT, "setup_sigint"); }
+static void test_setup_sigterm(void) { setup_signal(SIGTERM, "setup_sigterm"); }
+
 static void test_sigint(void) { interrupt_with(SIGINT, "sigint"); }
 static void test_sigterm(void) { interrupt_with(SIGTERM, "sigterm"); }
 
@@ -212,7 +239,9 @@ static void test_sigkill_never_tears(void) {
 
 int main(void) {
   tmp = sph_test_tmpdir();
-  CU_TestInfo tests[] = {{"SIGINT: final snapshot, exit 4, bitwise restart", test_sigint},
+  CU_TestInfo tests[] = {{"SIGINT during set-up: exit 4, nothing written", test_setup_sigint},
+                         {"SIGTERM during set-up: exit 4, nothing written", test_setup_sigterm},
+                         {"SIGINT: final snapshot, exit 4, bitwise restart", test_sigint},
                          {"SIGTERM: final snapshot, exit 4, bitwise restart", test_sigterm},
                          {"SIGKILL never leaves a torn snap_*.h5", test_sigkill_never_tears},
                          CU_TEST_INFO_NULL};

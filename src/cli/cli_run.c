@@ -22,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 
 #include "cli/cli.h"
 #include "cli/progress.h"
@@ -62,8 +63,9 @@ static void run_usage(FILE *f) {
           "  -h, --help         this help\n"
           "\n"
           "SIGINT or SIGTERM (Ctrl-C) ends the run after the current step: a final snapshot\n"
-          "is written (restartable with --restart) and the exit status is 4; a second\n"
-          "signal ends it at once. Exit status: 0 done, 1 bad input or I/O error, 2 usage\n"
+          "is written (restartable with --restart) and the exit status is 4 (during the\n"
+          "set-up: nothing is written, exit 4); a second signal ends it at once. Exit status: 0 "
+          "done, 1 bad input or I/O error, 2 usage\n"
           "error, 3 numerical blow-up (last good state in DIR/last_good.h5), 4 interrupted.\n");
 }
 
@@ -223,7 +225,6 @@ static int report_end(const sph_run_result *r, const sph_sim *s, const sph_error
  * the exit status. */
 static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
                    sph_snapshot_restart_data *rd) {
-  install_signals();
   progress_ctx pc;
   sph_progress_init(&pc.bar, stderr, c->t_end, a->quiet);
   sph_run_options opt = {a->outdir, on_progress, &pc, &interrupted, NULL, NULL};
@@ -243,7 +244,27 @@ static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
   return status;
 }
 
+/* A signal that came before the run started: nothing was written (issue
+ * 21, D11). */
+static int setup_interrupted(void) {
+  fprintf(stderr, "sph run: interrupted by %s during set-up; nothing written\n",
+          interrupted == SIGTERM ? "SIGTERM" : "SIGINT");
+  return 4;
+}
+
+/* Test hook (doc/testing.md): SPH_TEST_SETUP_PAUSE=S waits up to S seconds
+ * before the set-up, or until a signal, so a test can signal the set-up. */
+static void setup_pause(void) {
+  const char *e = getenv("SPH_TEST_SETUP_PAUSE");
+  const double secs = e ? atof(e) : 0.0;
+  for (double t = 0.0; t < secs && !interrupted; t += 0.01) {
+    struct timespec ts = {0, 10000000L};
+    nanosleep(&ts, NULL);
+  }
+}
+
 int sph_cli_run(int argc, char **argv) {
+  install_signals(); /* from the start: a signal during set-up is reported too */
   run_args a = {0};
   a.sets = calloc((size_t)argc, sizeof *a.sets);
   if (!a.sets) return 1;
@@ -262,12 +283,19 @@ int sph_cli_run(int argc, char **argv) {
   sph_sim *s = NULL;
   sph_snapshot_restart_data rd;
   status = 1;
-  if (sph_cli_make_dirs(a.outdir)) {
-    fprintf(stderr, "sph run: cannot create output directory %s: %s\n", a.outdir, strerror(errno));
+  setup_pause();
+  if (interrupted) {
+    status = setup_interrupted();
   } else if (sph_sim_create(&c, &s, &err)) {
     fprintf(stderr, "sph run: %s\n", err.msg);
   } else if (a.restart && sph_sim_restore(s, a.restart, &rd, &err)) {
     fprintf(stderr, "sph run: --restart: %s\n", err.msg);
+  } else if (interrupted) { /* during the set-up: nothing written yet */
+    status = setup_interrupted();
+    if (a.restart) sph_snapshot_restart_free(&rd);
+  } else if (sph_cli_make_dirs(a.outdir)) {
+    fprintf(stderr, "sph run: cannot create output directory %s: %s\n", a.outdir, strerror(errno));
+    if (a.restart) sph_snapshot_restart_free(&rd);
   } else {
     if (!a.quiet) print_banner(&a, &c, s, nthreads);
     status = run_sim(&a, &c, s, &rd);
