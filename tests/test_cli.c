@@ -86,6 +86,46 @@ static void test_bad_input(void) {
   CU_ASSERT(strstr(out, "missing.h5") != NULL);
 }
 
+static int dir_exists(const char *name) {
+  char path[4200];
+  snprintf(path, sizeof path, "%s/%s", tmp, name);
+  FILE *f = fopen(path, "r");
+  if (f) fclose(f);
+  return f != NULL;
+}
+
+/* The particle count is bounded before any particle is made (issue 21,
+ * D3, D4): a tiny dx, a denormal dx, a wall 2000 km long and a bound asked
+ * for are refused at once with exit 1, naming numerics.dx, and nothing is
+ * written; a bad --max-particles is a usage error. */
+static void test_resource_bound(void) {
+  char out[65536], args[8192];
+  write_file("good.yaml", GOOD);
+  const char *sets[] = {"--set numerics.dx=1e-7", "--set numerics.dx=4.9e-324",
+                        "--set 'geometry.walls=[{from: [0, 0], to: [2e6, 0]}]'",
+                        "--max-particles 100"};
+  for (int k = 0; k < 4; k++) {
+    snprintf(args, sizeof args, "run '%s/good.yaml' -o '%s/big%d' %s", tmp, tmp, k, sets[k]);
+    const int st = sph(args, out, sizeof out);
+    CU_ASSERT_EQUAL(st, 1);
+    CU_ASSERT(strstr(out, "numerics.dx") != NULL && strstr(out, "particles") != NULL &&
+              strstr(out, "--max-particles") != NULL);
+    if (st != 1 || !strstr(out, "numerics.dx")) printf("\n  %s\n  -> %d: %s", sets[k], st, out);
+    char name[32];
+    snprintf(name, sizeof name, "big%d", k);
+    CU_ASSERT(!dir_exists(name));
+  }
+  CU_ASSERT(strstr(out, "good.yaml:6: numerics.dx: 0.01 makes about") != NULL);
+  snprintf(args, sizeof args, "run '%s/good.yaml' --max-particles 0", tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 2);
+  snprintf(args, sizeof args, "run '%s/good.yaml' --max-particles 1e12", tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 2);
+  /* the listing states the memory and the bound */
+  snprintf(args, sizeof args, "run '%s/good.yaml' -o '%s/ok' --max-particles 10000", tmp, tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "at most 10000 particles allowed") != NULL);
+}
+
 static void test_good_run_and_info(void) {
   char out[65536], args[8192];
   write_file("good.yaml", GOOD);
@@ -178,6 +218,7 @@ int main(void) {
   CU_TestInfo tests[] = {
       {"help, version, unknown command", test_help_and_version},
       {"bad input gives a clear error and non-zero exit", test_bad_input},
+      {"the particle count is bounded before the set-up", test_resource_bound},
       {"a short run, diagnostics rows, sph info", test_good_run_and_info},
       {"an output time listed twice (interval and list) is one output", test_output_times_merge},
       {"a blow-up stops with a message and keeps snapshots", test_blowup_stops_cleanly},

@@ -41,6 +41,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include <yaml.h>
 
 #define FROM_FILE (-1)            /* node source: the case file (else a --set index) */
@@ -1003,6 +1004,7 @@ static int read_numerics(ctx *x, const node *m, sph_case *c) {
   if (lookup(x, m, p, "dx", 1, &t, kp) < 0) return -1;
   if (read_number(x, t, kp, &R_POS, &c->dx)) return -1;
   x->dx_node = t;
+  c->dx_line = t->src == FROM_FILE ? t->line : 0;
   if (get_number(x, m, p, "h_factor", 0, &h_factor, &c->h_factor) < 0) return -1;
   c->h = c->h_factor * c->dx;
   if (!isfinite(c->h)) return fail_at(x, t, kp, "h = h_factor*dx overflows");
@@ -1380,6 +1382,63 @@ static int read_geometry(const ctx *x, const node *m, sph_case *c) {
   return get_pair(x, d, "geometry.domain", "y", 1, 'y', &c->domain[2]) < 0 ? -1 : 0;
 }
 
+/* The particles the geometry makes at dx, from above, in floating point (a
+ * tiny dx gives a huge or infinite count, never an overflow): the fluid
+ * blocks' lattices, and for the tank and each wall segment a row of
+ * particles dx apart per layer along its length, plus the corners. */
+static void estimate_particles(sph_case *c) {
+  const double dx = c->dx;
+  double fluid = 0.0, wall = 0.0;
+  for (size_t b = 0; b < c->n_fluid; b++) {
+    const sph_fluid_block *f = &c->fluid[b];
+    fluid += floor((f->x1 - f->x0) / dx + 1e-9) * floor((f->y1 - f->y0) / dx + 1e-9);
+  }
+  if (c->tank.present) {
+    const sph_tank *k = &c->tank;
+    const double per_layer = (k->x1 - k->x0 + 2.0 * (k->y1 - k->y0)) / dx + 8.0 * k->layers;
+    wall += k->layers * per_layer;
+  }
+  for (size_t i = 0; i < c->n_walls; i++) {
+    const sph_wall_segment *w = &c->walls[i];
+    const double len = hypot(w->x1 - w->x0, w->y1 - w->y0);
+    wall += w->layers * (len / dx + 2.0);
+  }
+  int mirror = c->tank.present && c->tank.boundary == SPH_BOUNDARY_MIRROR;
+  for (size_t i = 0; i < c->n_walls; i++)
+    mirror |= c->walls[i].boundary == SPH_BOUNDARY_MIRROR;
+  c->est_fluid = fluid;
+  c->est_wall = wall + (mirror ? fluid : 0.0); /* mirror images of the fluid, at most */
+}
+
+double sph_case_default_max(void) {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  double bytes = pages > 0 && page > 0 ? (double)pages * (double)page : 4e9;
+  const double max = 0.5 * bytes / SPH_BYTES_PER_PARTICLE;
+  return max < SPH_MAX_PARTICLES_HARD ? max : SPH_MAX_PARTICLES_HARD;
+}
+
+int sph_case_check_size(const sph_case *c, double max, sph_error *err) {
+  const int given = max > 0.0;
+  if (!given) max = sph_case_default_max();
+  if (max > SPH_MAX_PARTICLES_HARD) max = SPH_MAX_PARTICLES_HARD;
+  const double n = c->est_fluid + c->est_wall;
+  if (n <= max) return 0;
+  char where[4200];
+  if (c->dx_line)
+    snprintf(where, sizeof where, "%s:%zu: numerics.dx", c->path ? c->path : "", c->dx_line);
+  else
+    snprintf(where, sizeof where, "--set numerics.dx");
+  return sph_error_set(err,
+                       "%s: %g makes about %.3g particles (fluid %.3g, walls %.3g), about %.3g "
+                       "GB; the bound is %.0f particles (%s; sph run --max-particles N changes "
+                       "it): expected a larger dx",
+                       where, c->dx, n, c->est_fluid, c->est_wall, n * SPH_BYTES_PER_PARTICLE / 1e9,
+                       max,
+                       max >= SPH_MAX_PARTICLES_HARD ? "what 32-bit indices reach"
+                       : given                       ? "the bound asked for"
+                                                     : "half this machine's memory");
+}
+
 /* One entry of output.probes (p its key, output.probes[i]). */
 static int read_probe(const ctx *x, const node *m, const char *p, sph_probe *pr) {
   const node *t;
@@ -1519,6 +1578,7 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
     }
   }
   if (rc >= 0 && s && read_probes(x, s, c)) return -1;
+  if (rc >= 0) estimate_particles(c);
   return rc < 0 ? -1 : 0;
 }
 

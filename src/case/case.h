@@ -130,7 +130,29 @@ typedef struct sph_case {
   size_t n_probes; /* output.probes (probes.csv) */
   sph_probe *probes;
   double probe_interval; /* output.probe_interval: time between probe rows, 0 = every step */
+
+  /* resources (not case keys) */
+  double est_fluid, est_wall; /* particles the geometry makes at dx, estimated from above */
+  size_t dx_line;             /* the line of numerics.dx in the file; 0: from a --set */
+  double max_particles;       /* the bound sph_sim_create enforces; 0: sph_case_default_max */
 } sph_case;
+
+/* Bytes per particle a run needs, as the bound reckons it (measured: about
+ * 740 bytes per extra particle, bench/results/features.md; with room for
+ * the optional terms' arrays). */
+#define SPH_BYTES_PER_PARTICLE 1200.0
+/* The largest particle count the storage can index (neighbour rows hold
+ * 32-bit indices). */
+#define SPH_MAX_PARTICLES_HARD 2147483647.0
+/* The default bound: half this machine's physical memory at
+ * SPH_BYTES_PER_PARTICLE (at most SPH_MAX_PARTICLES_HARD). */
+double sph_case_default_max(void);
+/* Whether the estimated particle count (est_fluid + est_wall, mirror
+ * particles counted as fluid where the case has mirror walls) is within
+ * max (0: the default) and the hard bound: 0, or -1 with an error naming
+ * numerics.dx (file:line), the count, the memory and the bound. Checked by
+ * sph_sim_create before any particle is made (issue 21, D3, D4). */
+int sph_case_check_size(const sph_case *c, double max, sph_error *err);
 
 /* Reads and validates a case file, applying n_set overrides of the form
  * "dotted.key=yaml-value" (e.g. "numerics.dx=0.001"). On failure returns

@@ -60,6 +60,9 @@ static void run_usage(FILE *f) {
           "  -s, --set K=V      override a case key, e.g. --set numerics.dx=0.001\n"
           "                     (V is YAML: --set physics.gravity=[0,-9.81]); repeatable\n"
           "  -q, --quiet        no start-up listing and no progress bar\n"
+          "      --max-particles N\n"
+          "                     refuse a case whose geometry makes more than N particles\n"
+          "                     (default: half this machine's memory at 1200 bytes each)\n"
           "  -h, --help         this help\n"
           "\n"
           "SIGINT or SIGTERM (Ctrl-C) ends the run after the current step: a final snapshot\n"
@@ -81,6 +84,7 @@ static void on_progress(void *ctx, const sph_sim *s) {
 typedef struct run_args {
   const char *case_path, *outdir, *restart;
   int threads, quiet;
+  double max_particles; /* --max-particles; 0: the default bound */
   const char **sets;
   size_t n_set;
 } run_args;
@@ -88,8 +92,9 @@ typedef struct run_args {
 /* The command line into a; -1 after --help (printed), 0, or 2 (usage
  * error, message printed). */
 static int parse_run_args(int argc, char **argv, run_args *a) {
-  static const char *const with_value[] = {"-o",    "--output", "-t",        "--threads", "-s",
-                                           "--set", "-r",       "--restart", NULL};
+  static const char *const with_value[] = {
+      "-o",    "--output", "-t",        "--threads",       "-s",
+      "--set", "-r",       "--restart", "--max-particles", NULL};
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
@@ -109,6 +114,15 @@ static int parse_run_args(int argc, char **argv, run_args *a) {
         a->restart = v;
       } else if (!strcmp(o, "-t") || !strcmp(o, "--threads")) {
         if (sph_cli_parse_threads("sph run", v, &a->threads)) return 2;
+      } else if (!strcmp(o, "--max-particles")) {
+        char *end;
+        const double n = strtod(v, &end);
+        if (end == v || *end || !(n >= 1.0) || !(n <= SPH_MAX_PARTICLES_HARD)) {
+          fprintf(stderr, "sph run: --max-particles: expected a count from 1 to %.0f, got '%s'\n",
+                  SPH_MAX_PARTICLES_HARD, v);
+          return 2;
+        }
+        a->max_particles = n;
       } else if (!strchr(v, '=')) {
         fprintf(stderr, "sph run: --set: expected key=value, got '%s'\n", v);
         return 2;
@@ -175,6 +189,9 @@ static void print_banner(const run_args *a, const sph_case *c, sph_sim *s, int n
   printf("%s: case %s (%s)\n", sph_version(), c->name, a->case_path);
   printf("  particles %zu (fluid %zu, wall %zu), threads %d, output %s\n", p->n, nf, p->n - nf,
          nthreads, a->outdir);
+  const double max = c->max_particles > 0.0 ? c->max_particles : sph_case_default_max();
+  printf("  memory about %.0f MB (%.0f bytes per particle); at most %.0f particles allowed\n",
+         (double)p->n * SPH_BYTES_PER_PARTICLE / 1e6, SPH_BYTES_PER_PARTICLE, max);
   if (a->restart)
     printf("  restarting from %s at t = %.9g s, step %ld\n", a->restart, sph_sim_time(s),
            sph_sim_steps(s));
@@ -274,6 +291,7 @@ int sph_cli_run(int argc, char **argv) {
   if (status == 0) status = load_run_case(&a, &c, snapdir, sizeof snapdir);
   free(a.sets);
   if (status) return status < 0 ? 0 : status;
+  c.max_particles = a.max_particles;
   const int nthreads = sph_cli_set_threads(a.threads, a.quiet);
   if (!a.outdir) {
     snprintf(defdir, sizeof defdir, "out/%s", c.name);

@@ -182,6 +182,8 @@ static void set_boxes(sph_sim *s) {
 
 int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   *out = NULL;
+  /* resources bounded before any particle is made (issue 21, D3, D4) */
+  if (sph_case_check_size(c, c->max_particles, err)) return -1;
   sph_sim *s = calloc(1, sizeof *s);
   if (!s) return sph_error_set(err, "out of memory");
   s->c = c;
