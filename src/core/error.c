@@ -14,6 +14,10 @@ int sph_error_set(sph_error *err, const char *fmt, ...) {
     va_start(ap, fmt);
     vsnprintf(err->msg, sizeof err->msg, fmt, ap);
     va_end(ap);
+    /* one line, always: a control byte (a newline in a reason from HDF5, a
+     * raw byte of a damaged file) becomes a space (issue 21, D10) */
+    for (char *c = err->msg; *c; c++)
+      if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = ' ';
   }
   return -1;
 }

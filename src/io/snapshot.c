@@ -133,7 +133,6 @@ static void close_id(hid_t id) {
 typedef struct writer {
   const char *path; /* the final name, used in messages */
   hid_t file;
-  hid_t str; /* variable-length UTF-8 string type */
   sph_error *err;
 } writer;
 
@@ -147,14 +146,27 @@ static hid_t timeless(hid_t cls) {
   return pl;
 }
 
+/* A text attribute as a fixed-length, NUL-terminated UTF-8 string, which
+ * HDF5 keeps in the object's (checksummed) header or dense attribute
+ * storage: a variable-length string would live in the global heap, which
+ * has no checksum, and a damaged heap can crash HDF5 while it reads
+ * (issue 21, D9). */
 static int put_text(writer *w, hid_t obj, const char *where, const char *name, const char *value) {
-  hid_t space = H5Screate(H5S_SCALAR);
-  hid_t attr = space < 0 ? -1 : H5Acreate2(obj, name, w->str, space, H5P_DEFAULT, H5P_DEFAULT);
+  const size_t len = strlen(value);
+  hid_t type = H5Tcopy(H5T_C_S1);
+  if (type >= 0 && (H5Tset_size(type, len + 1) < 0 || H5Tset_cset(type, H5T_CSET_UTF8) < 0 ||
+                    H5Tset_strpad(type, H5T_STR_NULLTERM) < 0)) {
+    close_id(type);
+    type = -1;
+  }
+  hid_t space = type < 0 ? -1 : H5Screate(H5S_SCALAR);
+  hid_t attr = space < 0 ? -1 : H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
   int rc = 0;
-  if (attr < 0 || H5Awrite(attr, w->str, &value) < 0)
+  if (attr < 0 || H5Awrite(attr, type, value) < 0)
     rc = h5_fail(w->err, w->path, "cannot write attribute \"%s\" of %s", name, where);
   close_id(attr);
   close_id(space);
+  close_id(type);
   return rc;
 }
 
@@ -251,11 +263,27 @@ static void gather(const sph_particles *p, const field_spec *f, const size_t *po
   }
 }
 
+/* The creation properties of a dataset of n values: no times, and for
+ * n > 0 chunked with HDF5's Fletcher-32 checksum, which every read checks,
+ * so damage to the data is an error rather than a changed value (issue
+ * 21, D9). Chunks of up to SPH_SNAPSHOT_CHUNK values. */
+#define SPH_SNAPSHOT_CHUNK 65536
+static hid_t data_properties(size_t n) {
+  hid_t dcpl = timeless(H5P_DATASET_CREATE);
+  if (dcpl < 0 || n == 0) return dcpl;
+  const hsize_t chunk[1] = {n < SPH_SNAPSHOT_CHUNK ? n : SPH_SNAPSHOT_CHUNK};
+  if (H5Pset_chunk(dcpl, 1, chunk) < 0 || H5Pset_fletcher32(dcpl) < 0) {
+    H5Pclose(dcpl);
+    return -1;
+  }
+  return dcpl;
+}
+
 static int write_field(writer *w, hid_t group, const field_spec *f, const void *buf, size_t n) {
   char where[64];
   snprintf(where, sizeof where, "/particles/%s", f->name);
   hsize_t dims[1] = {n};
-  hid_t dcpl = timeless(H5P_DATASET_CREATE);
+  hid_t dcpl = data_properties(n);
   hid_t space = H5Screate_simple(1, dims, NULL);
   hid_t dset = dcpl < 0 || space < 0 ? -1
                                      : H5Dcreate2(group, f->name, file_type(f->type), space,
@@ -304,7 +332,7 @@ static int write_particles(writer *w, const sph_particles *p, int free_surface, 
 static int write_raw(writer *w, hid_t group, const char *name, hid_t ftype, hid_t mtype,
                      const void *values, size_t n) {
   hsize_t dims[1] = {n};
-  hid_t dcpl = timeless(H5P_DATASET_CREATE);
+  hid_t dcpl = data_properties(n);
   hid_t space = H5Screate_simple(1, dims, NULL);
   hid_t dset = dcpl < 0 || space < 0
                    ? -1
@@ -353,7 +381,11 @@ static int write_file(writer *w, const char *tmp, const sph_snapshot_meta *meta,
                       const sph_particles *p, const size_t *pos) {
   hid_t fcpl = timeless(H5P_FILE_CREATE);
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  if (fcpl < 0 || fapl < 0 || H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG) < 0) {
+  /* the HDF5 1.10 file format: object headers, links and the chunk
+   * indexes carry checksums of their own (readable by HDF5 1.10 and later:
+   * Debian 12 ships 1.10.8) */
+  if (fcpl < 0 || fapl < 0 || H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG) < 0 ||
+      H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110) < 0) {
     close_id(fcpl);
     close_id(fapl);
     return h5_fail(w->err, w->path, "cannot set up HDF5 property lists");
@@ -363,13 +395,9 @@ static int write_file(writer *w, const char *tmp, const sph_snapshot_meta *meta,
   close_id(fcpl);
   close_id(fapl);
   if (rc) return rc;
-  w->str = H5Tcopy(H5T_C_S1);
-  if (w->str < 0 || H5Tset_size(w->str, H5T_VARIABLE) < 0 || H5Tset_cset(w->str, H5T_CSET_UTF8) < 0)
-    rc = h5_fail(w->err, w->path, "cannot make the string type");
-  if (rc == 0) rc = write_header(w, meta, p->n);
+  rc = write_header(w, meta, p->n);
   if (rc == 0) rc = write_particles(w, p, meta->free_surface, pos);
   if (rc == 0 && meta->restart) rc = write_restart(w, meta->restart, p->n);
-  close_id(w->str);
   if (H5Fclose(w->file) < 0 && rc == 0) rc = h5_fail(w->err, w->path, "cannot close %s", tmp);
   return rc;
 }
@@ -390,7 +418,7 @@ int sph_snapshot_write(const char *path, const sph_snapshot_meta *meta, const sp
     free(tmp);
     return -1;
   }
-  writer w = {path, -1, -1, err};
+  writer w = {path, -1, err};
   h5_quiet q;
   quiet_begin(&q);
   int rc = write_file(&w, tmp, meta, p, pos);
