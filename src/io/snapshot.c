@@ -102,10 +102,35 @@ static void quiet_end(const h5_quiet *q) { H5Eset_auto2(H5E_DEFAULT, q->func, q-
 
 #define REASON_LEN 200
 
+/* The innermost HDF5 error's description, made readable: a low-level I/O
+ * failure ("file write failed: time = ..., filename = ..., file descriptor
+ * = 4, errno = 27, error message = 'File too large', buf = 0x...") becomes
+ * "file write failed: File too large" (issue 21, D10). */
 static herr_t take_innermost(unsigned n, const H5E_error2_t *e, void *data) {
-  if (n == 0 && e->desc && e->desc[0]) snprintf(data, REASON_LEN, "%s", e->desc);
+  if (n != 0 || !e->desc || !e->desc[0]) return 0;
+  char *out = data;
+  snprintf(out, REASON_LEN, "%s", e->desc);
+  char *t = strstr(out, "time = ");
+  if (!t) return 0;
+  while (t > out && (t[-1] == ' ' || t[-1] == ',' || t[-1] == ':'))
+    t--;
+  *t = '\0';
+  const char *m = strstr(e->desc, "error message = '");
+  if (m) {
+    m += strlen("error message = '");
+    const size_t len = strcspn(m, "'");
+    const size_t used = strlen(out);
+    snprintf(out + used, REASON_LEN - used, ": %.*s", (int)len, m);
+  }
   return 0;
 }
+
+/* HDF5 cleans up at exit; after a close that failed (a full disk) it
+ * tries to flush the file again there and crashes (SIGSEGV in
+ * H5_term_library, issue 21, D1). Every file this library opens is closed
+ * or abandoned (its .tmp removed) before it returns, so the clean-up at
+ * exit has nothing to do: it is switched off before the first HDF5 call. */
+__attribute__((constructor)) static void no_hdf5_cleanup_at_exit(void) { H5dont_atexit(); }
 
 /* Formats "<path>: <what> (HDF5: <reason>)" from the error stack of the
  * HDF5 call that just failed; returns -1. */
