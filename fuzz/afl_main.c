@@ -1,6 +1,6 @@
 /*
  * afl_main.c - the AFL++ driver of one fuzz target (harness.h), chosen at
- * build time: -DFUZZ_TARGET_CASE or -DFUZZ_TARGET_SNAPSHOT. Built by
+ * build time: -DFUZZ_TARGET_CASE, -DFUZZ_TARGET_SNAPSHOT or -DFUZZ_TARGET_CSV. Built by
  * fuzz/run with afl-clang-fast (persistent mode: many inputs per process);
  * built with any other compiler it replays the files named on its command
  * line once each (or stdin), which is how a crash is reproduced by hand.
@@ -21,8 +21,10 @@ static int one(const uint8_t *data, size_t len) {
   return sph_fuzz_case(data, len);
 #elif defined(FUZZ_TARGET_SNAPSHOT)
   return sph_fuzz_snapshot(data, len, scratch);
+#elif defined(FUZZ_TARGET_CSV)
+  return sph_fuzz_csv(data, len, scratch);
 #else
-#error "define FUZZ_TARGET_CASE or FUZZ_TARGET_SNAPSHOT"
+#error "define FUZZ_TARGET_CASE, FUZZ_TARGET_SNAPSHOT or FUZZ_TARGET_CSV"
 #endif
 }
 

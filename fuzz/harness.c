@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "case/case.h"
+#include "io/csv.h"
 #include "io/snapshot.h"
 
 #define MAX_SETS 8
@@ -130,5 +131,32 @@ int sph_fuzz_snapshot(const uint8_t *data, size_t len, const char *scratch) {
     }
   }
   sph_snapshot_close(s);
+  return 0;
+}
+
+int sph_fuzz_csv(const uint8_t *data, size_t len, const char *scratch) {
+  FILE *f = fopen(scratch, "wb");
+  check(f != NULL);
+  check(fwrite(data, 1, len, f) == len || len == 0);
+  check(fclose(f) == 0);
+  sph_csv t;
+  sph_error err;
+  memset(&err, 0, sizeof err);
+  if (sph_csv_read(scratch, &t, &err)) {
+    check(strstr(err.msg, scratch) != NULL && strchr(err.msg, '\n') == NULL);
+    return 0;
+  }
+  check(t.ncol > 0 && t.names != NULL);
+  check(t.nrow == 0 || t.data != NULL);
+  double sum = 0.0;
+  for (size_t k = 0; k < t.nrow * t.ncol; k++)
+    sum += t.data[k] == t.data[k] ? 0.0 : 1.0; /* every value is read */
+  (void)sum;
+  for (size_t c = 0; c < t.ncol; c++) {
+    check(t.names[c] != NULL);
+    const int found = sph_csv_column(&t, t.names[c], &err);
+    check(found >= 0 && (size_t)found <= c); /* a duplicate name finds the first */
+  }
+  sph_csv_free(&t);
   return 0;
 }

@@ -31,4 +31,11 @@ int sph_fuzz_case(const uint8_t *data, size_t len);
  * record whose order is a permutation. */
 int sph_fuzz_snapshot(const uint8_t *data, size_t len, const char *scratch);
 
+/* The CSV reader (src/io/csv.h: sph-render plot's tables, diagnostics.csv,
+ * gauges.csv, probes.csv, the experiments' tables): the bytes are written
+ * to `scratch` and read. Invariants: a failure names the file in one line;
+ * a success gives ncol named columns, nrow * ncol values, and every column
+ * found by its own name. */
+int sph_fuzz_csv(const uint8_t *data, size_t len, const char *scratch);
+
 #endif

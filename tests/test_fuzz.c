@@ -57,6 +57,9 @@ static double now(void) {
 
 /* Feeds every regular file of dir (relative to the source tree) to the
  * target; returns how many. */
+/* which harness replay_dir feeds */
+enum { CASE = 0, SNAPSHOT = 1, CSV = 2 };
+
 static int replay_dir(const char *rel, int snapshot) {
   char dir[4096];
   snprintf(dir, sizeof dir, "%s", sph_test_src(rel));
@@ -76,7 +79,9 @@ static int replay_dir(const char *rel, int snapshot) {
     printf("\n    %s (%zu bytes)", e->d_name, len);
     fflush(stdout);
     const double t0 = now();
-    const int rc = snapshot ? sph_fuzz_snapshot(data, len, scratch) : sph_fuzz_case(data, len);
+    const int rc = snapshot == SNAPSHOT ? sph_fuzz_snapshot(data, len, scratch)
+                   : snapshot == CSV    ? sph_fuzz_csv(data, len, scratch)
+                                        : sph_fuzz_case(data, len);
     const double dt = now() - t0;
     CU_ASSERT_EQUAL(rc, 0);
     if (dt > 5.0) printf(": took %.1f s", dt);
@@ -101,10 +106,17 @@ static void test_snapshot_inputs(void) {
   if (getenv("SPH_FUZZ_HDF5")) replay_dir("tests/data/fuzz/snapshot-hdf5", 1);
 }
 
+static void test_csv_inputs(void) {
+  const int n = replay_dir("tests/data/fuzz/csv", CSV) + replay_dir("fuzz/seeds/csv", CSV) +
+                replay_dir("tests/data/render", CSV);
+  CU_ASSERT(n >= 5);
+}
+
 int main(void) {
   tmp = sph_test_tmpdir();
   CU_TestInfo tests[] = {{"case parser: fuzz findings and seeds", test_case_inputs},
                          {"snapshot reader: fuzz findings and seeds", test_snapshot_inputs},
+                         {"CSV reader: fuzz findings and seeds", test_csv_inputs},
                          CU_TEST_INFO_NULL};
   int rc = sph_test_main("fuzz regressions", tests);
   sph_test_rmtree(tmp);
