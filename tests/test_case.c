@@ -454,6 +454,14 @@ static void test_unknown_choice(void) {
       "item");
   expect_err(edit(MINIMAL, 8, "  output_interval: 0.1\n  stop: never\n"),
              "t.yaml:9: time.stop: unknown choice 'never' (valid: none, front_at_wall)");
+  /* overlapping fluid blocks (issue 21, D5) */
+  expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\n    - {x: [0.5, 1.5], y: [0.25, 1]}\n"),
+             "t.yaml:13: geometry.fluid[1]: expected a block apart from geometry.fluid[0], got one "
+             "that overlaps it in [0.5, 1] x [0.25, 0.5] (their particles would coincide)");
+  sph_case c0;
+  expect_ok(edit(MINIMAL, 12, "      y: [0, 0.5]\n    - {x: [1, 1.5], y: [0, 1]}\n"), NULL, 0,
+            &c0); /* touching is not overlapping */
+  sph_case_free(&c0);
   expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  density_diffusion: {model: delta_sph}\n"),
              "t.yaml:6: numerics.density_diffusion.model: unknown choice 'delta_sph' (valid: none, "
              "molteni_colagrossi, antuono, fourtakas)");

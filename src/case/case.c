@@ -1233,6 +1233,20 @@ static int read_fluid(const ctx *x, const node *m, sph_case *c) {
   for (size_t i = 0; i < t->n; i++) {
     bprintf(kp, sizeof kp, "geometry.fluid[%zu]", i);
     if (read_block(x, t->items[i], kp, c, &c->fluid[i])) return -1;
+    /* blocks that overlap would put particles on top of one another: twice
+     * the mass there (issue 21, D5) */
+    const sph_fluid_block *a = &c->fluid[i];
+    for (size_t k = 0; k < i; k++) {
+      const sph_fluid_block *o = &c->fluid[k];
+      const double w = fmin(a->x1, o->x1) - fmax(a->x0, o->x0);
+      const double hh = fmin(a->y1, o->y1) - fmax(a->y0, o->y0);
+      if (w > 1e-9 * c->dx && hh > 1e-9 * c->dx)
+        return fail_at(x, t->items[i], kp,
+                       "expected a block apart from geometry.fluid[%zu], got one that overlaps "
+                       "it in [%g, %g] x [%g, %g] (their particles would coincide)",
+                       k, fmax(a->x0, o->x0), fmin(a->x1, o->x1), fmax(a->y0, o->y0),
+                       fmin(a->y1, o->y1));
+    }
   }
   return 0;
 }

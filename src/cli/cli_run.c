@@ -190,6 +190,10 @@ static void print_banner(const run_args *a, const sph_case *c, sph_sim *s, int n
   printf("  particles %zu (fluid %zu, wall %zu), threads %d, output %s\n", p->n, nf, p->n - nf,
          nthreads, a->outdir);
   const double max = c->max_particles > 0.0 ? c->max_particles : sph_case_default_max();
+  if (sph_sim_fluid_removed(s))
+    printf("  %zu fluid particles not made: closer than dx/2 to a wall particle (a wall drawn "
+           "through the fluid)\n",
+           sph_sim_fluid_removed(s));
   printf("  memory about %.0f MB (%.0f bytes per particle); at most %.0f particles allowed\n",
          (double)p->n * SPH_BYTES_PER_PARTICLE / 1e6, SPH_BYTES_PER_PARTICLE, max);
   if (a->restart)

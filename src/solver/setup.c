@@ -64,6 +64,102 @@ static int add_fluid(sph_sim *s, sph_error *err) {
   return 0;
 }
 
+/* Particle `from` of a store being made moves to `to` (to < from): the
+ * fields set at creation. */
+static void move_particle(sph_particles *p, size_t to, size_t from) {
+  p->x[to] = p->x[from];
+  p->y[to] = p->y[from];
+  p->vx[to] = p->vx[from];
+  p->vy[to] = p->vy[from];
+  p->rho[to] = p->rho[from];
+  p->mass[to] = p->mass[from];
+  p->h[to] = p->h[from];
+  p->kind[to] = p->kind[from];
+  p->flags[to] = p->flags[from];
+  p->body[to] = p->body[from];
+  p->xr[to] = p->xr[from];
+  p->yr[to] = p->yr[from];
+  p->mx[to] = p->mx[from];
+  p->my[to] = p->my[from];
+}
+
+/* Walls drawn through fluid (issue 21, D5), by a documented rule
+ * (doc/case-files.md): a fluid particle closer than
+ * SPH_WALL_CLEARANCE dx to a wall particle is not made. Wall particles are
+ * binned in cells of dx, each fluid particle looks at its cell and the
+ * eight around it. Ids are renumbered in order. Returns how many were
+ * removed, or -1 out of memory. */
+#define SPH_WALL_CLEARANCE 0.5
+static long remove_fluid_in_walls(sph_sim *s) {
+  sph_particles *p = &s->p;
+  const double dx = s->c->dx, d2 = (SPH_WALL_CLEARANCE * dx) * (SPH_WALL_CLEARANCE * dx);
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  size_t nw = 0;
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_WALL) {
+      x0 = fmin(x0, p->x[i]), x1 = fmax(x1, p->x[i]);
+      y0 = fmin(y0, p->y[i]), y1 = fmax(y1, p->y[i]);
+      nw++;
+    }
+  if (nw == 0) return 0;
+  const double nxd = floor((x1 - x0) / dx) + 1.0, nyd = floor((y1 - y0) / dx) + 1.0;
+  if (!(nxd * nyd < 4.0 * (double)p->n + 1e6)) return 0; /* walls far apart: too sparse to bin */
+  const size_t nx = (size_t)nxd, ny = (size_t)nyd, ncell = nx * ny;
+  size_t *start = calloc(ncell + 1, sizeof *start), *idx = malloc(nw * sizeof *idx);
+  if (!start || !idx) {
+    free(start);
+    free(idx);
+    return -1;
+  }
+#define CELL_OF(X, Y) ((size_t)floor(((Y)-y0) / dx) * nx + (size_t)floor(((X)-x0) / dx))
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_WALL) start[CELL_OF(p->x[i], p->y[i]) + 1]++;
+  for (size_t c = 0; c < ncell; c++)
+    start[c + 1] += start[c];
+  size_t *fill = calloc(ncell, sizeof *fill);
+  if (!fill) {
+    free(start);
+    free(idx);
+    return -1;
+  }
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_WALL) {
+      const size_t c = CELL_OF(p->x[i], p->y[i]);
+      idx[start[c] + fill[c]++] = i;
+    }
+#undef CELL_OF
+  size_t kept = 0;
+  long removed = 0;
+  for (size_t i = 0; i < p->n; i++) {
+    int near = 0;
+    if (p->kind[i] == SPH_KIND_FLUID) {
+      const double cx = floor((p->x[i] - x0) / dx), cy = floor((p->y[i] - y0) / dx);
+      for (double ry = cy - 1; ry <= cy + 1 && !near; ry++)
+        for (double rx = cx - 1; rx <= cx + 1 && !near; rx++) {
+          if (rx < 0 || ry < 0 || rx >= nxd || ry >= nyd) continue;
+          const size_t c = (size_t)ry * nx + (size_t)rx;
+          for (size_t k = start[c]; k < start[c + 1] && !near; k++) {
+            const size_t j = idx[k];
+            const double ex = p->x[i] - p->x[j], ey = p->y[i] - p->y[j];
+            near = ex * ex + ey * ey < d2;
+          }
+        }
+    }
+    if (near) {
+      removed++;
+      continue;
+    }
+    if (kept != i) move_particle(p, kept, i);
+    p->id[kept] = (int64_t)kept;
+    kept++;
+  }
+  p->n = kept;
+  free(start);
+  free(idx);
+  free(fill);
+  return removed;
+}
+
 /* Periodic in x: wall particles are wrapped into [x0, x1), and a wall
  * particle that then coincides with an earlier one (a staggered layer that
  * reaches both ends of a period) is dropped. Ids are renumbered in order. */
@@ -80,21 +176,7 @@ static void dedupe_periodic(sph_sim *s) {
       dup = p->kind[j] == SPH_KIND_WALL && fabs(p->y[j] - p->y[i]) < tol &&
             (fabs(p->x[j] - p->x[i]) < tol || fabs(fabs(p->x[j] - p->x[i]) - L) < tol);
     if (dup) continue;
-    if (kept != i) {
-      p->x[kept] = p->x[i];
-      p->y[kept] = p->y[i];
-      p->vx[kept] = p->vx[i];
-      p->vy[kept] = p->vy[i];
-      p->rho[kept] = p->rho[i];
-      p->mass[kept] = p->mass[i];
-      p->h[kept] = p->h[i];
-      p->kind[kept] = p->kind[i];
-      p->flags[kept] = p->flags[i];
-      p->body[kept] = p->body[i];
-      p->yr[kept] = p->yr[i];
-      p->mx[kept] = p->mx[i];
-      p->my[kept] = p->my[i];
-    }
+    if (kept != i) move_particle(p, kept, i);
     p->xr[kept] = p->x[kept]; /* the rest position is the wrapped one */
     p->id[kept] = (int64_t)kept;
     kept++;
@@ -230,6 +312,12 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.no_slip = s->walls.no_slip;
   s->fp.repulsive = s->walls.repulsive;
   if (c->periodic) dedupe_periodic(s);
+  const long removed = remove_fluid_in_walls(s);
+  if (removed < 0) {
+    sph_error_set(err, "out of memory");
+    goto fail;
+  }
+  s->fluid_removed = (size_t)removed;
   /* a neighbour list kept across passes where nothing needs a fresh grid */
   if (!s->walls.n_mirror && !s->detect && !s->fp.var_h)
     s->skin = sph_skin_fraction() * SPH_CUBIC_SUPPORT * c->h;

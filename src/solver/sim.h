@@ -50,6 +50,10 @@ sph_particles *sph_sim_particles(sph_sim *s);
 /* The y of the floor used for the front (tank floor, or the lowest fluid
  * block bottom) and the band height (2 dx). */
 double sph_sim_floor(const sph_sim *s);
+/* Fluid particles of the case's blocks that were not made because a wall
+ * particle lies closer than dx/2 (a wall drawn through the fluid;
+ * doc/case-files.md). */
+size_t sph_sim_fluid_removed(const sph_sim *s);
 /* The domain box x0, x1, y0, y1: a particle leaving it is a blow-up. */
 void sph_sim_domain(const sph_sim *s, double box[4]);
 /* The view box (the tank with its walls, or the particles' initial box). */

@@ -30,12 +30,13 @@
 
 struct sph_sim {
   const sph_case *c;
-  sph_walls walls;   /* wall particles' models, mirror lines, motions */
-  int first_step;    /* leap-frog: the special first half step */
-  int detect;        /* free-surface detection runs at every pass */
-  size_t n_surface;  /* particles flagged at the last pass */
-  sph_ledger ledger; /* energy and momentum ledger (output.energy) */
-  double dt_paper_b; /* paper B §2.6 step from the last pass */
+  sph_walls walls;      /* wall particles' models, mirror lines, motions */
+  int first_step;       /* leap-frog: the special first half step */
+  int detect;           /* free-surface detection runs at every pass */
+  size_t fluid_removed; /* fluid particles not made: inside a wall (setup.c) */
+  size_t n_surface;     /* particles flagged at the last pass */
+  sph_ledger ledger;    /* energy and momentum ledger (output.energy) */
+  double dt_paper_b;    /* paper B §2.6 step from the last pass */
   sph_particles p;
   sph_grid grid;
   sph_nlist nl; /* neighbour list of the interaction passes */
