@@ -431,6 +431,12 @@ static void test_out_of_range(void) {
   expect_err(edit(MINIMAL, 8, "  output_interval: 2\n"),
              "t.yaml:8: time.output_interval: expected a number from time.end/100000 (1e-05, at "
              "most 100000 outputs) to time.end (1), got '2'");
+  /* a huge end time: the output schedule (k * interval, k an integer) has
+   * at most 100000 times, so it neither merges times nor hangs before the
+   * first step (issue 21, D2: time.end=1e308 used to hang) */
+  expect_err(edit(MINIMAL, 7, "  end: 1e308\n"),
+             "t.yaml:8: time.output_interval: expected a number from time.end/100000 (1e+303, at "
+             "most 100000 outputs) to time.end (1e+308), got '0.1'");
   /* a tiny interval would fill the disk with snapshots (issue 21, D7) */
   expect_err(edit(MINIMAL, 8, "  output_interval: 1e-12\n"),
              "t.yaml:8: time.output_interval: expected a number from time.end/100000 (1e-05, at "
