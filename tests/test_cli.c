@@ -80,6 +80,12 @@ static void test_bad_input(void) {
   snprintf(args, sizeof args, "run '%s/good.yaml' --set novalue", tmp);
   CU_ASSERT_EQUAL(sph(args, out, sizeof out), 2);
   CU_ASSERT_EQUAL(sph("run", out, sizeof out), 2);
+  /* info on a directory: one line, no HDF5 timestamp or address (issue 21, D10) */
+  snprintf(args, sizeof args, "info '%s'", tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  CU_ASSERT(strstr(out, "Is a directory") != NULL);
+  CU_ASSERT(strchr(out, '\n') == out + strlen(out) - 1);
+  CU_ASSERT(strstr(out, "time =") == NULL && strstr(out, "0x") == NULL);
   /* info on a missing snapshot */
   snprintf(args, sizeof args, "info '%s/missing.h5'", tmp);
   CU_ASSERT_NOT_EQUAL(sph(args, out, sizeof out), 0);
