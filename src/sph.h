@@ -31,4 +31,12 @@
 #include "solver/run.h"
 #include "solver/sim.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#ifdef __cplusplus
+}
+#endif
+
 #endif

@@ -19,6 +19,10 @@
 
 #include "core/particles.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Paper A eq. (26): the steady film velocity at height y above the bed. */
 double sph_film_profile(double y, double g, double nu, double L);
 
@@ -30,5 +34,9 @@ double sph_film_profile(double y, double g, double nu, double L);
  * last bit. */
 long sph_film_error(const sph_particles *p, double g, double nu, double L, double y0,
                     double *max_rel, double *l2_rel);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

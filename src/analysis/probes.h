@@ -33,6 +33,10 @@
 #include "core/particles.h"
 #include "physics/models.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define SPH_PROBE_FACE_POINTS 5
 #define SPH_PROBE_WET_SUM 0.1
 
@@ -60,5 +64,9 @@ void sph_probe_header(const sph_probe *q, char *buf, size_t len);
  * out[0..columns-1]. */
 void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind kernel, double h,
                     double dx, double floor_y, const double g[2], double *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

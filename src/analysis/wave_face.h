@@ -27,6 +27,10 @@
 #include "core/error.h"
 #include "core/particles.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct sph_wave_face {
   double crest_x, crest_y; /* the highest fluid particle in the window */
   double toe_x;            /* end of the face region (see above) */
@@ -40,5 +44,9 @@ typedef struct sph_wave_face {
  * then NaN), or -1 with err for bad arguments. */
 int sph_wave_face_measure(const sph_particles *p, double level, double dx, double x0, double x1,
                           sph_wave_face *f, sph_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -21,6 +21,10 @@
 #include "physics/models.h"
 #include "walls/wall_types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
   SPH_INTEGRATOR_PREDICTOR_CORRECTOR = 0, /* paper B eq. (7)-(8) */
   SPH_INTEGRATOR_LEAPFROG = 1             /* paper A eq. (17)-(19) */
@@ -172,5 +176,9 @@ char *sph_case_describe(const sph_case *c);
 /* Whether the case needs free-surface detection (the field is asked for
  * in the output, or h* is set). */
 int sph_case_needs_free_surface(const sph_case *c);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

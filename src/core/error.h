@@ -9,6 +9,10 @@
 #ifndef SPH_ERROR_H
 #define SPH_ERROR_H
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define SPH_ERROR_LEN 1024
 
 typedef struct sph_error {
@@ -18,5 +22,9 @@ typedef struct sph_error {
 /* Formats a message into err (if err is not NULL) and returns -1, so that a
  * failing function can write `return sph_error_set(err, "...", ...);`. */
 int sph_error_set(sph_error *err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

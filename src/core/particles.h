@@ -17,6 +17,10 @@
 
 #include "core/error.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Particle kinds, stored as the integer dataset `kind` in snapshots.
  * Mirror particles (GOST R 57700.6 3.4.5) exist only during a force
  * evaluation and are never written. */
@@ -68,5 +72,9 @@ size_t sph_particles_count_kind(const sph_particles *p, int32_t kind);
 /* Reorders every array so that new index i holds old index perm[i]. work must
  * hold n doubles (8 bytes each) of scratch. */
 void sph_particles_permute(sph_particles *p, const size_t *perm, void *work);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

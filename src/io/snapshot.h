@@ -25,6 +25,10 @@
 #include "core/error.h"
 #include "core/particles.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct sph_snapshot_meta {
   double time, dt;
   int64_t step;
@@ -122,5 +126,9 @@ typedef struct sph_snapshot_restart_data {
 } sph_snapshot_restart_data;
 int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *r, sph_error *err);
 void sph_snapshot_restart_free(sph_snapshot_restart_data *r);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -11,6 +11,10 @@
 
 #include "core/error.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* The smoothing kernel (src/physics/kernel.h); both have support 2h. */
 typedef enum {
   SPH_KERNEL_CUBIC_SPLINE = 0, /* paper A eq. (8), paper B §2.1 */
@@ -52,5 +56,9 @@ int sph_filter_from_name(const char *name, sph_filter_kind *k, sph_error *err);
 extern const char *const sph_diffusion_kind_names[];
 /* The name of k; "?" for a value outside the enum. */
 const char *sph_diffusion_name(sph_diffusion_kind k);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -28,6 +28,10 @@
 
 #include "core/particles.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct sph_diag_row {
   double time, dt;
   long step;
@@ -62,5 +66,9 @@ void sph_diag_compute(const sph_particles *p, double floor_y, double band, const
 /* CSV header line and rows. Return non-zero on a write error. */
 int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion);
 int sph_diag_write_row(FILE *f, const sph_diag_row *row);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -21,6 +21,10 @@
 #include "core/error.h"
 #include "solver/sim.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
   SPH_RUN_END = 0,         /* reached time.end */
   SPH_RUN_STOPPED = 1,     /* the case's stop condition was met */
@@ -59,5 +63,9 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
                    sph_run_result *r, sph_error *err);
 
 const char *sph_run_status_name(sph_run_status st);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

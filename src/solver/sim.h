@@ -26,6 +26,10 @@
 #include "io/snapshot.h"
 #include "solver/diag.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct sph_sim sph_sim;
 
 /* Status of sph_sim_step and friends: 0 = fine, SPH_BLOWUP = the new state
@@ -79,5 +83,9 @@ int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err);
 int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t output_index,
                                const double *levels, size_t n_levels, sph_error *err);
 int sph_sim_restore(sph_sim *s, const char *path, sph_snapshot_restart_data *rd, sph_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -10,6 +10,10 @@
 
 #include "walls/wavemaker.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
   SPH_BOUNDARY_DYNAMIC = 0,      /* dynamic particles, GOST R 57700.6 3.4.7; paper B §2.7 */
   SPH_BOUNDARY_FIXED_LAYERS = 1, /* Morris' fixed layers (paper A §6 b): the same particles */
@@ -55,5 +59,9 @@ typedef struct sph_wall_segment {
   int stagger;       /* as sph_tank */
   int extrapolated;  /* as sph_tank */
 } sph_wall_segment;
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

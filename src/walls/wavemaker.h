@@ -25,6 +25,10 @@
 
 #include "core/error.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum sph_paddle_kind { SPH_PADDLE_PISTON = 0, SPH_PADDLE_FLAP = 1 } sph_paddle_kind;
 
 /* Names in enum order, NULL-terminated: {"piston", "flap", NULL}. */
@@ -91,5 +95,9 @@ void sph_paddle_angle(const sph_paddle *pd, double t, double *theta, double *ome
  * distance from the hinge and v = theta' x (r - r_hinge). */
 void sph_paddle_point(const sph_paddle *pd, double t, double xr, double yr, double *x, double *y,
                       double *vx, double *vy);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif
