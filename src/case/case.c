@@ -867,17 +867,28 @@ static void set_defaults(sph_case *c) {
   c->sps_ci = 0.00066;
 }
 
-static int read_name(const ctx *x, const node *root, sph_case *c) {
+/* The required key `key` of m (under path) as a name: 1 to 64 characters
+ * from [A-Za-z0-9_.-] (a case's name, a probe's); *out points into the
+ * tree. */
+static int read_plain_name(const ctx *x, const node *m, const char *path, const char *key,
+                           const char **out) {
   const node *t;
   char kp[KEYLEN], b[96];
-  if (lookup(x, root, "", "name", 1, &t, kp) < 0) return -1;
+  if (lookup(x, m, path, key, 1, &t, kp) < 0) return -1;
   const char *s = t->kind == NODE_SCALAR ? t->text : "";
-  size_t n = strlen(s);
+  const size_t n = strlen(s);
   if (n < 1 || n > 64 ||
       strspn(s, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_.-") != n)
     return fail_at(x, t, kp, "expected a name of 1 to 64 characters from [A-Za-z0-9_.-], got %s",
                    got(t, b, sizeof b));
-  c->name = dup_n(s, n);
+  *out = s;
+  return 0;
+}
+
+static int read_name(const ctx *x, const node *root, sph_case *c) {
+  const char *s;
+  if (read_plain_name(x, root, "", "name", &s)) return -1;
+  c->name = dup_n(s, strlen(s));
   return c->name ? 0 : oom(x);
 }
 
@@ -1460,14 +1471,9 @@ static int read_probe(const ctx *x, const node *m, const char *p, sph_probe *pr)
   if (m->kind != NODE_MAP)
     return fail_at(x, m, p, "expected a mapping, got %s", got(m, b, sizeof b));
   if (check_keys(x, m, p, probe_keys)) return -1;
-  if (lookup(x, m, p, "name", 1, &t, kp) < 0) return -1;
-  const char *s = t->kind == NODE_SCALAR ? t->text : "";
-  const size_t n = strlen(s);
-  if (n < 1 || n > 64 ||
-      strspn(s, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_.-") != n)
-    return fail_at(x, t, kp, "expected a name of 1 to 64 characters from [A-Za-z0-9_.-], got %s",
-                   got(t, b, sizeof b));
-  memcpy(pr->name, s, n + 1);
+  const char *s;
+  if (read_plain_name(x, m, p, "name", &s)) return -1;
+  memcpy(pr->name, s, strlen(s) + 1);
   int kind = -1;
   if (lookup(x, m, p, "kind", 1, &t, kp) < 0 || read_choice(x, t, kp, probe_kind_names, &kind))
     return -1;

@@ -251,6 +251,23 @@ static char *csv_header(const sph_case *c, int what) {
   return buf;
 }
 
+/* Opens the run's CSV file `what` (0 diagnostics.csv, 1 gauges.csv, 2
+ * probes.csv) in out->dir with its header (open_csv: kept rows up to
+ * t_keep on a resumed run). */
+static FILE *open_run_csv(const outputs *out, const sph_case *c, int what, double t_keep,
+                          int *kept_last, sph_error *err) {
+  static const char *const names[] = {"diagnostics.csv", "gauges.csv", "probes.csv"};
+  char *header = csv_header(c, what), path[4096];
+  if (!header) {
+    sph_error_set(err, "out of memory");
+    return NULL;
+  }
+  snprintf(path, sizeof path, "%s/%s", out->dir, names[what]);
+  FILE *f = open_csv(path, header, t_keep, kept_last, err);
+  free(header);
+  return f;
+}
+
 /* The snapshots snap_0000 .. snap_<last> still in dir, for the XDMF index
  * of a resumed run (a missing or unreadable one is left out). */
 static int list_earlier(outputs *o, size_t last, sph_error *err) {
@@ -275,15 +292,9 @@ static int open_outputs(sph_sim *s, outputs *out, const sph_snapshot_restart_dat
                         int *need_row, sph_error *err) {
   const sph_case *c = sph_sim_case(s);
   const double t_keep = rd ? sph_sim_time(s) : -1.0;
-  char path[4096];
   int kept_diag = 0, kept_gauges = 1, kept_probes = 1;
   *need_row = 0;
-  char *header = csv_header(c, 0);
-  if (!header) return sph_error_set(err, "out of memory");
-  snprintf(path, sizeof path, "%s/diagnostics.csv", out->dir);
-  out->diag = open_csv(path, header, t_keep, &kept_diag, err);
-  free(header);
-  if (!out->diag) return -1;
+  if (!(out->diag = open_run_csv(out, c, 0, t_keep, &kept_diag, err))) return -1;
   if (c->n_gauges) {
     out->still = calloc(c->n_gauges, sizeof *out->still);
     if (!out->still) return sph_error_set(err, "out of memory");
@@ -295,26 +306,16 @@ static int open_outputs(sph_sim *s, outputs *out, const sph_snapshot_restart_dat
                              rd->n_levels, c->n_gauges);
       memcpy(out->still, rd->levels, c->n_gauges * sizeof *out->still);
     }
-    header = csv_header(c, 1);
-    if (!header) return sph_error_set(err, "out of memory");
-    snprintf(path, sizeof path, "%s/gauges.csv", out->dir);
-    out->gauges = open_csv(path, header, t_keep, &kept_gauges, err);
-    free(header);
-    if (!out->gauges) return -1;
+    if (!(out->gauges = open_run_csv(out, c, 1, t_keep, &kept_gauges, err))) return -1;
   }
   if (c->n_probes) {
-    header = csv_header(c, 2);
-    if (!header) return sph_error_set(err, "out of memory");
-    snprintf(path, sizeof path, "%s/probes.csv", out->dir);
-    out->probes = open_csv(path, header, t_keep, &kept_probes, err);
-    free(header);
-    if (!out->probes) return -1;
-    out->probe_k = 0; /* the row of the current time is the first due */
-    if (c->probe_interval > 0.0)
-      while ((double)out->probe_k * c->probe_interval < sph_sim_time(s))
-        out->probe_k++;
-    if (rd && kept_probes) /* the restart time's row is there: the next one */
-      while ((double)out->probe_k * c->probe_interval <= sph_sim_time(s) && c->probe_interval > 0.0)
+    if (!(out->probes = open_run_csv(out, c, 2, t_keep, &kept_probes, err))) return -1;
+    /* the first row due: the current time's, unless a resumed run's file
+     * already has it */
+    const double iv = c->probe_interval, t = sph_sim_time(s);
+    out->probe_k = 0;
+    if (iv > 0.0)
+      while ((double)out->probe_k * iv < t || (rd && kept_probes && (double)out->probe_k * iv == t))
         out->probe_k++;
   }
   if (rd) {
