@@ -43,15 +43,10 @@ static void half_gradient(const sph_particles *restrict p, const sph_nlist *rest
     mxy -= dx * fv * dy;
     myy -= dy * fv * dy;
   }
-  const double det = mxx * myy - mxy * mxy;
-  if (det > SPH_GRADIENT_CORRECTION_MIN_DET && mxx > 0.0) {
-    const double axx = myy / det, axy = -mxy / det, ayy = mxx / det;
-    const double lx = axx * gx + axy * gy, ly = axy * gx + ayy * gy;
-    gx = lx;
-    gy = ly;
-  }
-  *cx = 0.5 * gx;
-  *cy = 0.5 * gy;
+  double axx, axy, ayy;
+  sph_gradient_correction(mxx, mxy, myy, &axx, &axy, &ayy);
+  *cx = 0.5 * (axx * gx + axy * gy);
+  *cy = 0.5 * (axy * gx + ayy * gy);
 }
 
 void sph_diffusion_prepare(const sph_particles *p, const sph_nlist *l, const sph_force_params *fp,

@@ -139,13 +139,8 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
     }
   }
   if (correct) { /* grad v = G M^-1 where M is invertible (Bonet and Lok 1999) */
-    const double det = mxx * myy - mxy * mxy;
-    double axx = 1.0, axy = 0.0, ayy = 1.0;
-    if (det > SPH_GRADIENT_CORRECTION_MIN_DET && mxx > 0.0) {
-      axx = myy / det;
-      axy = -mxy / det;
-      ayy = mxx / det;
-    }
+    double axx, axy, ayy;
+    sph_gradient_correction(mxx, mxy, myy, &axx, &axy, &ayy);
     o->lxx[i] = axx;
     o->lxy[i] = axy;
     o->lyy[i] = ayy;

@@ -66,6 +66,21 @@
 
 #define SPH_GRADIENT_CORRECTION_MIN_DET 0.8
 
+/* L = M^-1 of the symmetric moment M = [mxx mxy; mxy myy] where M is
+ * invertible enough (det M > SPH_GRADIENT_CORRECTION_MIN_DET, mxx > 0),
+ * else L = I (see above): the kernel-gradient correction of the
+ * strain-rate pass and the renormalised density gradient (diffusion.c). */
+static inline void sph_gradient_correction(double mxx, double mxy, double myy, double *axx,
+                                           double *axy, double *ayy) {
+  const double det = mxx * myy - mxy * mxy;
+  *axx = 1.0, *axy = 0.0, *ayy = 1.0;
+  if (det > SPH_GRADIENT_CORRECTION_MIN_DET && mxx > 0.0) {
+    *axx = myy / det;
+    *axy = -mxy / det;
+    *ayy = mxx / det;
+  }
+}
+
 /* Which loop evaluates the main pass (src/solver/interact.h). Every loop
  * gives the same physics; they differ in summation order (the scalar loop
  * sums a row in order, the lane loops in four lanes), so each is bitwise
