@@ -9,7 +9,9 @@
  *    three random particle sets (fluid on a jittered lattice with random
  *    velocities and densities; dynamic, moving, repulsive and mirror wall
  *    particles below it; periodic in x when F says so, per-particle h
- *    when F says so), the main pass is run with the scalar loop, the
+ *    when F says so; in the second set the moving wall is free-slip, in
+ *    the third the mirror particles carry their own no-slip velocity), the
+ *    main pass is run with the scalar loop, the
  *    portable lane loop and, where the processor has AVX2, the AVX2 lane
  *    loop, and compared with a naive all-pairs loop written here from the
  *    papers' equations (piecewise kernel, no neighbour list). Every rate
@@ -21,7 +23,10 @@
  * 2. Symmetry: each force term evaluated for the pair (i, j) and for
  *    (j, i), with the inputs formed as a loop forms them (x_j - x_i, ...),
  *    is exactly antisymmetric (equal masses), and each scalar term (the
- *    continuity sum, signal, heats, kernel) exactly symmetric; and each
+ *    continuity sum, signal, heats, kernel) exactly symmetric; a free-slip
+ *    wall's normal part of the gradient is antisymmetric and along the
+ *    normal; the Lennard-Jones potential is zero at r0 and its slope is
+ *    minus the force (central differences, 1e-5); and each
  *    term gives the same bits in every lane of v4e as in v1 (v4x is held
  *    to v4e bitwise through the loops in 1).
  */
@@ -56,8 +61,11 @@ static double uniform(void) {
 static double between(double a, double b) { return a + (b - a) * uniform(); }
 
 /* The random set: walls in rows 0-2 (row 0 repulsive, row 1 every third a
- * mirror particle, row 2 dynamic and moving), fluid above. */
-static void make_set(sph_particles *p, unsigned seed, int periodic, int varh, const sph_eos *eos) {
+ * mirror particle with a no-slip velocity of its own in vxh, vyh, row 2
+ * dynamic and moving, every other one flagged mdbc, free-slip when `slip`,
+ * its normal (0, -1) as a mirror offset (0, -DX)), fluid above. */
+static void make_set(sph_particles *p, unsigned seed, int periodic, int varh, int slip,
+                     const sph_eos *eos) {
   sph_error err;
   rng_state = 0x9e3779b97f4a7c15ULL * (seed + 1);
   CU_ASSERT_FATAL(sph_particles_init(p, NXL * NYL, &err) == 0);
@@ -79,6 +87,14 @@ static void make_set(sph_particles *p, unsigned seed, int periodic, int varh, co
       const long k = sph_particles_add(p, x, y, vx, vy, rho, rho * DX * DX, h, kind, &err);
       CU_ASSERT_FATAL(k >= 0);
       if (j == 0) p->flags[k] |= SPH_FLAG_REPULSIVE;
+      if (j == 2 && slip) p->flags[k] |= SPH_FLAG_FREE_SLIP;
+      if (j == 2 && i % 2 == 0) p->flags[k] |= SPH_FLAG_MDBC; /* no diffusion near them */
+      if (j == 2) p->my[k] = -DX;
+      p->vxh[k] = p->vyh[k] = 0.0;
+      if (kind == SPH_KIND_MIRROR) {
+        p->vxh[k] = between(-1.0, 1.0);
+        p->vyh[k] = between(-1.0, 1.0);
+      }
       p->p[k] = sph_eos_pressure(eos, rho);
     }
 }
@@ -111,6 +127,8 @@ static void params_for(unsigned F, unsigned seed, sph_force_params *fp) {
   fp->repulsive = 1;
   fp->lj_d = 5.0;
   fp->lj_r0 = DX;
+  fp->free_slip = seed % 3 == 1;
+  fp->mirror = seed % 3 == 2;
 }
 
 typedef struct rates {
@@ -162,7 +180,11 @@ static void oracle_stress(const sph_particles *p, const sph_force_params *fp, do
       double dx, dy, r, hij, w, gx, gy;
       if (j == i || !pair(p, fp, i, j, &dx, &dy, &r, &hij, &w, &gx, &gy)) continue;
       const double vj = p->mass[j] / p->rho[j];
-      const double ux = p->vx[j] - p->vx[i], uy = p->vy[j] - p->vy[i];
+      /* mirror particles: their no-slip velocity (boundary.h) */
+      const int mi = fp->mirror && p->kind[i] == SPH_KIND_MIRROR;
+      const int mj = fp->mirror && p->kind[j] == SPH_KIND_MIRROR;
+      const double ux = (mj ? p->vxh[j] : p->vx[j]) - (mi ? p->vxh[i] : p->vx[i]);
+      const double uy = (mj ? p->vyh[j] : p->vy[j]) - (mi ? p->vyh[i] : p->vy[i]);
       gxx += vj * ux * gx;
       gxy += vj * ux * gy;
       gyx += vj * uy * gx;
@@ -219,10 +241,26 @@ static void oracle_diffusion_c(const sph_particles *p, const sph_force_params *f
   }
 }
 
+/* Whether fluid particle i diffuses: no mdbc wall particle in its support
+ * (solver/diffusion.h). */
+static int oracle_diffuses(const sph_particles *p, const sph_force_params *fp, size_t i) {
+  if (p->kind[i] != SPH_KIND_FLUID) return 0;
+  for (size_t j = 0; j < p->n; j++) {
+    double dx, dy, r, hij, w, gx, gy;
+    if (j != i && (p->flags[j] & SPH_FLAG_MDBC) &&
+        pair(p, fp, i, j, &dx, &dy, &r, &hij, &w, &gx, &gy))
+      return 0;
+  }
+  return 1;
+}
+
 static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o) {
   const size_t n = p->n;
   double *dcx = calloc(n, sizeof *dcx), *dcy = calloc(n, sizeof *dcy);
+  int *dif = calloc(n, sizeof *dif);
   oracle_diffusion_c(p, fp, dcx, dcy);
+  for (size_t i = 0; i < n; i++)
+    dif[i] = oracle_diffuses(p, fp, i);
   double *txx = calloc(n, sizeof *txx), *txy = calloc(n, sizeof *txy),
          *tyy = calloc(n, sizeof *tyy);
   const int stress = fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps;
@@ -237,20 +275,30 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
     for (size_t j = 0; j < n; j++) {
       double dx, dy, r, hij, w, gx, gy;
       if (j == i || !pair(p, fp, i, j, &dx, &dy, &r, &hij, &w, &gx, &gy)) continue;
+      const double du_before_pair = du;
       const double mj = p->mass[j], rhoj = p->rho[j];
       const double vx = p->vx[i] - p->vx[j], vy = p->vy[i] - p->vy[j];
       const double vg = vx * gx + vy * gy, vr = vx * dx + vy * dy;
       drho += mj * vg;                           /* B eq. 2 */
       sig = fmax(sig, fabs(hij * vr) / (r * r)); /* B §2.6 */
       if (!fluid && !(fp->ledger && p->kind[j] == SPH_KIND_FLUID)) continue;
+      /* a mirror particle's no-slip velocity in the viscous terms */
+      const int img = fp->mirror && p->kind[j] == SPH_KIND_MIRROR;
+      const double ux = img ? p->vx[i] - p->vxh[j] : vx, uy = img ? p->vy[i] - p->vyh[j] : vy;
+      const double ur = ux * dx + uy * dy;
       double P = p->p[i] / (rhoi * rhoi) + p->p[j] / (rhoj * rhoj);
-      if ((fp->alpha != 0 || fp->beta != 0) && vr < 0) { /* A eq. 15-16 */
-        const double eta = fp->eta * hij, mu = hij * vr / (r * r + eta * eta);
+      if ((fp->alpha != 0 || fp->beta != 0) && ur < 0) { /* A eq. 15-16 */
+        const double eta = fp->eta * hij, mu = hij * ur / (r * r + eta * eta);
         const double cbar = 0.5 * (ci + sph_eos_sound_speed(&fp->eos, rhoj));
         P += (-fp->alpha * cbar * mu + fp->beta * mu * mu) / (0.5 * (rhoi + rhoj));
       }
-      double fx = -mj * P * gx, fy = -mj * P * gy; /* A eq. 11 */
-      du += 0.5 * mj * P * vg;                     /* A eq. 28 */
+      /* a free-slip wall: the pressure and Pi_ij along its normal (here the y axis) */
+      const size_t b = fluid ? j : i;
+      const int slip =
+          fp->free_slip && p->kind[b] == SPH_KIND_WALL && (p->flags[b] & SPH_FLAG_FREE_SLIP);
+      const double px = slip ? 0.0 : gx;
+      double fx = -mj * P * px, fy = -mj * P * gy; /* A eq. 11 */
+      du += 0.5 * mj * P * (vx * px + vy * gy);    /* A eq. 28 */
       if (stress) {
         const double sxx = txx[i] + txx[j], sxy = txy[i] + txy[j], syy = tyy[i] + tyy[j];
         fx += mj * (sxx * gx + sxy * gy);
@@ -261,9 +309,15 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
         const double eta = fp->eta * hij;
         const double c = mj * 4.0 * fp->mu / fp->eos.rho0 * (dx * gx + dy * gy) /
                          ((rhoi + rhoj) * (r * r + eta * eta));
-        fx += c * vx;
-        fy += c * vy;
+        fx += c * ux;
+        fy += c * uy;
         du -= 0.5 * c * (vx * vx + vy * vy);
+      }
+      if (p->kind[j] == SPH_KIND_MIRROR || (p->flags[j] & SPH_FLAG_REPULSIVE)) {
+        /* a neighbour that takes no heat: i takes all of it (pair_terms.h) */
+        const int wall = p->kind[j] == SPH_KIND_WALL;
+        const double wx = wall ? p->vx[j] : 0.0, wy = wall ? p->vy[j] : 0.0;
+        du = du_before_pair - (fx * (p->vx[i] - wx) + fy * (p->vy[i] - wy));
       }
       if (!fluid) continue;
       ax += fx;
@@ -274,7 +328,7 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
         xs -= mj / (0.5 * (rhoi + rhoj)) * vx * w;
         ys -= mj / (0.5 * (rhoi + rhoj)) * vy * w;
       }
-      if (fp->diffusion && p->kind[j] == SPH_KIND_FLUID) { /* density_diffusion.h */
+      if (fp->diffusion && dif[i] && dif[j]) { /* density_diffusion.h, diffusion.h */
         const double psi = 2.0 * ((rhoj - rhoi) + (dcx[i] + dcx[j]) * dx + (dcy[i] + dcy[j]) * dy);
         const double rji_gw = -(dx * gx + dy * gy); /* r_ji . grad_i W_ij */
         drho += fp->diffusion_delta * hij * fp->eos.c0 * psi * rji_gw / (r * r) * mj / rhoj;
@@ -291,6 +345,11 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
         const double f = fp->lj_d * (pow(r0 * r0 / r2, 6) - pow(r0 * r0 / r2, 2)) / r2;
         ax += f * dx;
         ay += f * dy;
+        if (fp->ledger) { /* its power and force, as the other wall forces' */
+          wpow += f * (dx * p->vx[j] + dy * p->vy[j]);
+          wfx += f * dx;
+          wfy += f * dy;
+        }
       }
     }
     const double v[10] = {drho, ax, ay, fp->xsph * xs, fp->xsph * ys, du, sig, wpow, wfx, wfy};
@@ -302,6 +361,7 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
   free(tyy);
   free(dcx);
   free(dcy);
+  free(dif);
 }
 
 /* ---- the library's loops ------------------------------------------------------------ */
@@ -317,6 +377,10 @@ static void run_loop(const sph_particles *p0, const sph_force_params *fp0, sph_f
                                      p0->mass[i], p0->h[i], p0->kind[i], &err);
     p.flags[k] = p0->flags[i];
     p.p[k] = p0->p[i];
+    p.mx[k] = p0->mx[i];
+    p.my[k] = p0->my[i];
+    p.vxh[k] = p0->vxh[i];
+    p.vyh[k] = p0->vyh[i];
   }
   sph_force_params fp = *fp0;
   fp.loop = loop;
@@ -377,7 +441,7 @@ static void test_oracle_every_term_set(void) {
       sph_force_params fp;
       params_for(F, seed, &fp);
       sph_particles p;
-      make_set(&p, F * 3 + seed, (F & 16) != 0, (F & 32) != 0, &fp.eos);
+      make_set(&p, F * 3 + seed, (F & 16) != 0, (F & 32) != 0, fp.free_slip, &fp.eos);
       const size_t n = p.n;
       rates o, r[3];
       rates_alloc(&o, n);
@@ -399,7 +463,8 @@ static void test_oracle_every_term_set(void) {
         if (!field_used(k, F)) continue;
         const size_t bytes = n * sizeof(double);
         if (avx) CU_ASSERT(memcmp(r[1].f[k], r[2].f[k], bytes) == 0); /* lane flavours */
-        if (F & (32 | 64)) CU_ASSERT(memcmp(r[0].f[k], r[1].f[k], bytes) == 0);
+        if ((F & (32 | 64)) || fp.free_slip || fp.mirror) /* the lanes defer to the scalar loop */
+          CU_ASSERT(memcmp(r[0].f[k], r[1].f[k], bytes) == 0);
       }
       for (int m = 0; m < 3; m++)
         rates_free(&r[m]);
@@ -483,6 +548,24 @@ static void test_pair_symmetry(void) {
     CU_ASSERT(same(xf * dvx, -(xf * evx)));
     const double lj = lennard_jones_v1(5.0, 1.2 * h, r2);
     CU_ASSERT(same(lj * dx, -(lj * ex)) && same(lj, lennard_jones_v1(5.0, 1.2 * h, q2)));
+    { /* a free-slip wall's normal part: antisymmetric, and along the normal */
+      const double mx = s[2] * DX, my = s[3] * DX;
+      double nx, ny, ox, oy;
+      normal_part_v1(gx, gy, mx, my, &nx, &ny);
+      normal_part_v1(hx, hy, mx, my, &ox, &oy);
+      CU_ASSERT(same(nx, -ox) && same(ny, -oy));
+      CU_ASSERT(fabs(nx * my - ny * mx) <= 1e-12 * (fabs(gx) + fabs(gy)) * (fabs(mx) + fabs(my)));
+    }
+    { /* the Lennard-Jones potential: zero at r0, its slope minus the force */
+      const double r0 = 1.2 * h, e = 1e-6 * r;
+      CU_ASSERT(fabs(lennard_jones_potential_v1(5.0, r0, r0 * r0)) <= 1e-15 * 5.0);
+      if (r < r0 - e) {
+        const double up = lennard_jones_potential_v1(5.0, r0, (r + e) * (r + e));
+        const double dn = lennard_jones_potential_v1(5.0, r0, (r - e) * (r - e));
+        const double slope = (up - dn) / (2 * e), force = lennard_jones_v1(5.0, r0, r2) * r;
+        CU_ASSERT(fabs(slope + force) <= 1e-5 * fabs(force) + 1e-9);
+      }
+    }
     const double ccx = s[0] * 1e3, ccy = s[1] * 1e3; /* c_i + c_j of the diffusion */
     const double psi = diffusion_psi_v1(rhoi, rhoj, dx, dy, ccx, ccy);
     CU_ASSERT(same(psi, -diffusion_psi_v1(rhoj, rhoi, ex, ey, ccx, ccy)));

@@ -105,6 +105,13 @@ int sph_case_needs_free_surface(const sph_case *c) {
   return c->output_free_surface || c->fs_h_factor > 0.0;
 }
 
+int sph_case_has_boundary(const sph_case *c, sph_boundary_kind b) {
+  int has = c->tank.present && c->tank.boundary == b;
+  for (size_t k = 0; k < c->n_walls; k++)
+    has |= c->walls[k].boundary == b;
+  return has;
+}
+
 /* ---- the tree ------------------------------------------------------------- */
 
 typedef enum { NODE_SCALAR, NODE_LIST, NODE_MAP } node_kind;
@@ -819,11 +826,12 @@ static const char *const diffusion_keys[] = {"model", "delta", NULL};
 static const char *const time_keys[] = {"end", "output_interval", "output_times", "stop", NULL};
 static const char *const geometry_keys[] = {"tank", "fluid", "walls", "periodic_x", "domain", NULL};
 static const char *const tank_keys[] = {
-    "x", "y", "layers", "boundary", "stagger", "extrapolated_velocity", NULL};
+    "x", "y", "layers", "boundary", "stagger", "extrapolated_velocity", "free_slip", NULL};
 static const char *const fluid_keys[] = {"x",       "y",      "velocity", "hydrostatic",
                                          "surface", "jitter", "seed",     NULL};
 static const char *const wall_keys[] = {
-    "from", "to", "layers", "boundary", "motion", "stagger", "extrapolated_velocity", NULL};
+    "from",      "to", "layers", "boundary", "motion", "stagger", "extrapolated_velocity",
+    "free_slip", NULL};
 static const char *const motion_keys[] = {"type",   "velocity", "start",       "stop",
                                           "period", "stroke",   "wave_height", "depth",
                                           "ramp",   "hinge",    NULL};
@@ -1118,22 +1126,24 @@ static int check_layers(const ctx *x, const node *m, const char *p, sph_boundary
 static int default_layers(sph_boundary_kind b) { return b == SPH_BOUNDARY_MDBC ? 3 : 2; }
 static int default_stagger(sph_boundary_kind b) { return b != SPH_BOUNDARY_MDBC; }
 
-/* `stagger` and `extrapolated_velocity` of a wall of particles with
- * evolving density (dynamic, fixed_layers); an error on the others, and
- * the extrapolated velocity only where a strain-rate pass uses it. */
+/* `stagger`, `extrapolated_velocity` and `free_slip` of a wall of
+ * particles with a density (dynamic, fixed_layers, mdbc); an error on the
+ * others, and the extrapolated velocity only where a strain-rate pass uses
+ * it. */
 static int read_layout(const ctx *x, const node *m, const char *p, const sph_case *c,
-                       sph_boundary_kind b, int *stagger, int *extrapolated) {
+                       sph_boundary_kind b, int *stagger, int *extrapolated, int *free_slip) {
   const node *t;
   char kp[KEYLEN];
   const int evolving =
       b == SPH_BOUNDARY_DYNAMIC || b == SPH_BOUNDARY_FIXED_LAYERS || b == SPH_BOUNDARY_MDBC;
-  static const char *const keys[] = {"stagger", "extrapolated_velocity"};
-  for (int k = 0; k < 2; k++)
+  static const char *const keys[] = {"stagger", "extrapolated_velocity", "free_slip"};
+  for (int k = 0; k < 3; k++)
     if (!evolving && lookup(x, m, p, keys[k], 0, &t, kp) > 0)
       return fail_at(x, t, kp,
                      "only for 'dynamic', 'fixed_layers' and 'mdbc' walls (this one is '%s')",
                      sph_boundary_name(b));
   if (get_bool(x, m, p, "stagger", stagger) < 0) return -1;
+  if (get_bool(x, m, p, "free_slip", free_slip) < 0) return -1;
   int rc = get_bool(x, m, p, "extrapolated_velocity", extrapolated);
   if (rc < 0) return -1;
   if (rc > 0 && *extrapolated && c->viscosity != SPH_VISCOSITY_STRESS_TENSOR && !c->sps) {
@@ -1165,7 +1175,9 @@ static int read_tank(const ctx *x, const node *m, sph_case *c) {
   c->tank.layers = default_layers(c->tank.boundary);
   if (get_int(x, t, p, "layers", 1, 8, &c->tank.layers) < 0) return -1;
   c->tank.stagger = default_stagger(c->tank.boundary);
-  if (read_layout(x, t, p, c, c->tank.boundary, &c->tank.stagger, &c->tank.extrapolated)) return -1;
+  if (read_layout(x, t, p, c, c->tank.boundary, &c->tank.stagger, &c->tank.extrapolated,
+                  &c->tank.free_slip))
+    return -1;
   return check_layers(x, t, p, c->tank.boundary, &c->tank.layers);
 }
 
@@ -1357,15 +1369,16 @@ static int read_wall(const ctx *x, const node *m, const char *p, const sph_case 
   if (get_int(x, m, p, "layers", 1, 8, &w->layers) < 0) return -1;
   if (check_layers(x, m, p, w->boundary, &w->layers)) return -1;
   w->stagger = default_stagger(w->boundary);
-  if (read_layout(x, m, p, c, w->boundary, &w->stagger, &w->extrapolated)) return -1;
+  if (read_layout(x, m, p, c, w->boundary, &w->stagger, &w->extrapolated, &w->free_slip)) return -1;
   if (read_motion(x, m, p, w)) return -1;
-  if (w->extrapolated && w->motion.kind == SPH_MOTION_FLAP) {
+  if ((w->extrapolated || w->free_slip) && w->motion.kind == SPH_MOTION_FLAP) {
     const node *t;
     char kp[KEYLEN];
-    lookup(x, m, p, "extrapolated_velocity", 0, &t, kp);
+    const char *key = w->extrapolated ? "extrapolated_velocity" : "free_slip";
+    lookup(x, m, p, key, 0, &t, kp);
     return fail_at(x, t, kp,
-                   "not on a turning wall (motion type 'flap'): its mirror points "
-                   "would turn with it");
+                   "not on a turning wall (motion type 'flap'): its mirror points and "
+                   "normals would turn with it");
   }
   return 0;
 }
@@ -1789,6 +1802,7 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
     /* written only when not the default, so that older records still match */
     if (!c->tank.stagger) sb_add(b, "geometry.tank.stagger: false\n");
     if (c->tank.extrapolated) sb_add(b, "geometry.tank.extrapolated_velocity: true\n");
+    if (c->tank.free_slip) sb_add(b, "geometry.tank.free_slip: true\n");
   } else {
     sb_add(b, "geometry.tank: none\n");
   }
@@ -1813,6 +1827,7 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
     sb_add(b, "%s.boundary: %s\n", k, sph_boundary_name(w->boundary));
     if (!w->stagger) sb_add(b, "%s.stagger: false\n", k);
     if (w->extrapolated) sb_add(b, "%s.extrapolated_velocity: true\n", k);
+    if (w->free_slip) sb_add(b, "%s.free_slip: true\n", k);
     if (w->motion.kind == SPH_MOTION_PISTON || w->motion.kind == SPH_MOTION_FLAP) {
       const sph_paddle *pd = &w->motion.paddle;
       sb_add(b, "%s.motion.type: %s\n", k, motion_names[w->motion.kind]);

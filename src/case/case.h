@@ -176,6 +176,8 @@ char *sph_case_describe(const sph_case *c);
 /* Whether the case needs free-surface detection (the field is asked for
  * in the output, or h* is set). */
 int sph_case_needs_free_surface(const sph_case *c);
+/* Whether the tank or a wall segment has the boundary model b. */
+int sph_case_has_boundary(const sph_case *c, sph_boundary_kind b);
 
 #ifdef __cplusplus
 }

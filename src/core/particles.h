@@ -31,7 +31,9 @@ enum {
   SPH_FLAG_FREE_SURFACE = 1, /* on the free surface (paper A §7) */
   SPH_FLAG_REPULSIVE = 2,    /* a wall particle of a repulsive wall (paper A eq. 21-22) */
   SPH_FLAG_NO_SLIP = 4,      /* a wall particle with the extrapolated velocity (wall_velocity.h) */
-  SPH_FLAG_MDBC = 8 /* a wall particle of an mdbc wall: density from the fluid (wall_velocity.h) */
+  SPH_FLAG_MDBC = 8, /* a wall particle of an mdbc wall: density from the fluid (wall_velocity.h) */
+  SPH_FLAG_FREE_SLIP = 16 /* a wall particle of a free-slip wall: its pressure and artificial-
+                             viscosity pair forces act along the wall's normal (pair_terms.h) */
 };
 
 typedef struct sph_particles {

@@ -63,6 +63,19 @@ PT_ATTR T PT(diffusion_psi)(T rhoi, T rhoj, T dx, T dy, T cx, T cy) {
  * -2 delta h c0 (r_ji . grad_i W_ij / r^2 = -F_ij). */
 PT_ATTR T PT(diffusion)(T psi, T f, T mj, T rhoj) { return DIV(MUL(MUL(f, psi), mj), rhoj); }
 
+/* A free-slip wall (walls.h, SPH_FLAG_FREE_SLIP): the part of the kernel
+ * gradient g of a fluid-wall pair along the wall's normal, given the wall
+ * particle's mirror offset m = (mx, my) (boundary.h: twice its depth, along
+ * the normal): g' = (g . m) m / |m|^2. The pair's pressure and artificial-
+ * viscosity force -mp g' and their heat then act along the normal only,
+ * so the wall neither drags the fluid along its face nor, moving along
+ * it, does work on it; the continuity term keeps g. */
+PT_ATTR void PT(normal_part)(T gx, T gy, T mx, T my, T *ngx, T *ngy) {
+  const T s = DIV(ADD(MUL(gx, mx), MUL(gy, my)), ADD(MUL(mx, mx), MUL(my, my)));
+  *ngx = MUL(s, mx);
+  *ngy = MUL(s, my);
+}
+
 /* The time-step rule's signal term, paper B §2.6: |h_ij v_ij . r_ij| / r^2. */
 PT_ATTR T PT(signal)(T hij, T vdotr, T inv_r2) { return MUL(ABS(MUL(hij, vdotr)), inv_r2); }
 
@@ -130,6 +143,16 @@ PT_ATTR T PT(morris_heat)(T c, T dvx, T dvy) {
  * for a neighbour that is not fluid (a wall at rest would drag the fluid). */
 PT_ATTR T PT(xsph_factor)(T mj, T inv_rb, T wij) { return MUL(MUL(mj, inv_rb), wij); }
 
+/* The heat of a pair whose other particle takes none (a mirror particle or
+ * a repulsive wall particle, moving at (vxj, vyj); a mirror particle's
+ * counts as at rest: it is an image, not a body): the pair force's work on
+ * i, less what the moving wall puts in, -a_ij . (v_i - v_j). Then the
+ * fluid's kinetic energy lost to the pair is all in i's internal energy,
+ * and the balance closes without a partner's half (method.md). */
+PT_ATTR T PT(passive_heat)(T ax, T ay, T vxi, T vyi, T vxj, T vyj) {
+  return NEG(ADD(MUL(ax, SUB(vxi, vxj)), MUL(ay, SUB(vyi, vyj))));
+}
+
 /* The power of a wall particle j's pair force (ax, ay) on fluid i, per unit
  * mass of i (energy ledger, the boundary work of paper A §5). */
 PT_ATTR T PT(wall_power)(T ax, T ay, T vxj, T vyj) { return ADD(MUL(ax, vxj), MUL(ay, vyj)); }
@@ -139,6 +162,14 @@ PT_ATTR T PT(wall_power)(T ax, T ay, T vxj, T vyj) { return ADD(MUL(ax, vxj), MU
 PT_ATTR T PT(lennard_jones)(T d, T r0, T r2) {
   const T q2 = DIV(MUL(r0, r0), r2), q4 = MUL(q2, q2), q12 = MUL(MUL(q4, q4), q4);
   return DIV(MUL(d, SUB(q12, q4)), r2);
+}
+
+/* Its potential energy per unit mass, zero at r0:
+ * D [(r0/r)^12 / 12 - (r0/r)^4 / 4 + 1/6]; the force above is minus its
+ * gradient (energy ledger). */
+PT_ATTR T PT(lennard_jones_potential)(T d, T r0, T r2) {
+  const T q2 = DIV(MUL(r0, r0), r2), q4 = MUL(q2, q2), q12 = MUL(MUL(q4, q4), q4);
+  return MUL(d, ADD(SUB(DIV(q12, ALL(12.0)), DIV(q4, ALL(4.0))), DIV(ALL(1.0), ALL(6.0))));
 }
 
 #undef MAX

@@ -49,10 +49,33 @@ static void half_gradient(const sph_particles *restrict p, const sph_nlist *rest
   *cy = 0.5 * (axy * gx + ayy * gy);
 }
 
+/* The mass with which fluid particle i takes part in the diffusion: m_i
+ * where no mdbc wall particle lies inside its support, 0 where one does
+ * (and for every particle that is not fluid). */
+static double diffusion_mass(const sph_particles *restrict p, const sph_nlist *restrict l,
+                             const sph_force_params *restrict fp, size_t i) {
+  if (p->kind[i] != SPH_KIND_FLUID) return 0.0;
+  const double period = fp->periodic ? fp->period : 0.0, half = 0.5 * period;
+  const unsigned F = fp->periodic ? F_PERIODIC : 0u;
+  ROW(l, i, nb, cnt)
+  for (size_t k = 0; k < cnt; k++) {
+    const size_t j = nb[k];
+    if (!(p->flags[j] & SPH_FLAG_MDBC)) continue;
+    const double dx = sep_x(p->x[i], p->x[j], period, half, F), dy = p->y[i] - p->y[j];
+    const double hij = fp->var_h ? 0.5 * (p->h[i] + p->h[j]) : fp->h;
+    if (dx * dx + dy * dy < 4.0 * hij * hij) return 0.0;
+  }
+  return p->mass[i];
+}
+
 void sph_diffusion_prepare(const sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                            sph_force_work *w) {
   const long n = (long)p->n;
   double cx = 0.0, cy = 0.0; /* the same c_i everywhere but for antuono */
+  if (fp->diffusion == SPH_DIFFUSION_NONE) return;
+#pragma omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)
+  for (long i = 0; i < n; i++)
+    w->ddm[i] = diffusion_mass(p, l, fp, (size_t)i);
   switch (fp->diffusion) {
   case SPH_DIFFUSION_NONE: return;
   case SPH_DIFFUSION_FOURTAKAS: {

@@ -67,7 +67,7 @@ static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
                      (void **)&w->sxx,  (void **)&w->sxy,   (void **)&w->syy, (void **)&w->wpow,
                      (void **)&w->wfx,  (void **)&w->wfy,   (void **)&w->lxx, (void **)&w->lxy,
                      (void **)&w->lyy,  (void **)&w->gvx,   (void **)&w->gvy, (void **)&w->ddcx,
-                     (void **)&w->ddcy, (void **)&w->dd};
+                     (void **)&w->ddcy, (void **)&w->dd,    (void **)&w->lj,  (void **)&w->ddm};
   enum { N_ARRAYS = sizeof arrays / sizeof arrays[0] };
   size_t size[N_ARRAYS];
   size[0] = sizeof *w->hot;
@@ -214,6 +214,20 @@ static int strain_setup(const sph_particles *p, const sph_force_params *fp, sph_
   }
   if (fp->no_slip) {
     if (wall_ghosts(p, fp, w->gvx, w->gvy, &w->wv, err)) return -1;
+    o->gvx = w->gvx;
+    o->gvy = w->gvy;
+  }
+  if (fp->mirror) { /* mirror particles: their no-slip velocity (boundary.h) */
+    if (!fp->no_slip)
+      for (size_t i = 0; i < p->n; i++) {
+        w->gvx[i] = p->vx[i];
+        w->gvy[i] = p->vy[i];
+      }
+    for (size_t i = 0; i < p->n; i++)
+      if (p->kind[i] == SPH_KIND_MIRROR) {
+        w->gvx[i] = p->vxh[i];
+        w->gvy[i] = p->vyh[i];
+      }
     o->gvx = w->gvx;
     o->gvy = w->gvy;
   }
@@ -397,8 +411,10 @@ int sph_force_loop_available(sph_force_loop loop) {
 /* The variant of the main pass for the term set F in the loop asked for:
  * SPH_LOOP_AUTO is the AVX2 lanes where the processor has them, else the
  * portable lanes (each falls back to the scalar loop for per-particle h
- * and the energy ledger). NULL if that loop cannot run here. */
-static interact_fn pick_variant(unsigned F, sph_force_loop loop) {
+ * and the energy ledger; every loop for free-slip walls, `scalar`). NULL
+ * if that loop cannot run here. */
+static interact_fn pick_variant(unsigned F, sph_force_loop loop, int scalar) {
+  if (scalar && sph_force_loop_available(loop)) return VARIANT_TABLE_SCALAR[F];
   switch (loop) {
   case SPH_LOOP_SCALAR: return VARIANT_TABLE_SCALAR[F];
   case SPH_LOOP_LANES:
@@ -507,13 +523,17 @@ static void check_rates(const sph_particles *p, const sph_force_work *w, unsigne
 int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                         sph_force_work *w, sph_error *err) {
   const unsigned F = sph_interact_terms(fp);
-  const interact_fn run = pick_variant(F, fp->loop);
+  const interact_fn run = pick_variant(F, fp->loop, fp->free_slip || fp->mirror);
   if (!run) return sph_error_set(err, "forces: the interaction loop asked for cannot run here");
   if (prepare_pass(p, l, fp, w, err)) return -1;
   if ((F & F_STRESS) && stress_pass(p, l, fp, w, err)) return -1;
   if (F & F_DDIFF) sph_diffusion_prepare(p, l, fp, w);
   run(p, l, fp, w);
   if (SPH_DEBUG) check_rates(p, w, F);
-  if (fp->repulsive) sph_repulsion_add(p, l, fp->lj_d, fp->lj_r0, fp->periodic ? fp->period : 0.0);
+  if (fp->repulsive) {
+    const sph_repulsion_ledger lg = {w->wfx, w->wfy, w->wpow, w->lj};
+    sph_repulsion_add(p, l, fp->lj_d, fp->lj_r0, fp->periodic ? fp->period : 0.0,
+                      (F & F_LEDGER) ? &lg : NULL);
+  }
   return 0;
 }

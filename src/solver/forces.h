@@ -115,6 +115,9 @@ typedef struct sph_force_params {
   int sps;                 /* SPS turbulence stress (src/physics/turbulence.h) */
   int gradient_correction; /* kernel-gradient correction of the stress tensor (below) */
   int no_slip;             /* some wall particles carry SPH_FLAG_NO_SLIP (wall_velocity.h) */
+  int free_slip;           /* some wall particles carry SPH_FLAG_FREE_SLIP: the scalar loop */
+  int mirror;              /* mirror walls: their particles' no-slip velocity in vxh, vyh, the
+                              scalar loop (boundary.h) */
   double px0;              /* periodic: the period starts at x = px0 */
   double sps_cs, sps_ci, sps_delta;
   sph_force_loop loop;          /* default SPH_LOOP_AUTO */
@@ -147,7 +150,9 @@ typedef struct sph_force_work {
   double *lxx, *lxy, *lyy; /* kernel-gradient correction M^-1 of the strain-rate pass */
   double *gvx, *gvy;       /* velocity in the strain-rate pass (extrapolated on no-slip walls) */
   double *ddcx, *ddcy;     /* density diffusion: the model's vector c_i (solver/diffusion.h) */
+  double *ddm;             /* density diffusion: the mass a particle diffuses with (0: none) */
   double *dd;              /* density diffusion D_i of the last pass (fluid; with the ledger) */
+  double *lj;              /* repulsive walls' potential energy per unit mass (with the ledger) */
   sph_wall_velocity_work wv;
   double cs_sigma_max; /* max over the particles of cs + sigma (the step rule) */
   uint32_t *rows;      /* per thread: a neighbour row cut to the support */

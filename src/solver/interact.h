@@ -7,8 +7,9 @@
  * use (DESIGN rule 4). Two loops evaluate the same terms of
  * src/physics/pair_terms.h:
  *   interact_one    the scalar loop, one pair after the other in row order:
- *                   every term set (the only one for per-particle h and the
- *                   energy ledger, whose wall particles also take heat);
+ *                   every term set (the only one for per-particle h, the
+ *                   energy ledger, whose wall particles also take heat, and
+ *                   free-slip walls);
  *   interact_FL     the lane loop, four pairs at a time (interact_lanes.h,
  *                   instantiated here for v4e and, on x86-64, v4x).
  * Each sum runs over the row in increasing storage index (the lane loop:
@@ -93,6 +94,10 @@ static inline __attribute__((always_inline)) void interact_one(sph_particles *re
   const double *restrict h = p->h;
   const double *restrict sxx = w->sxx, *restrict sxy = w->sxy, *restrict syy = w->syy;
   const int32_t *restrict kind = p->kind;
+  const uint8_t *restrict flags = p->flags;
+  /* loop invariants: one predicted branch per pair each */
+  const int slip = fp->free_slip, mirror = fp->mirror;
+  const double *restrict vxh = p->vxh, *restrict vyh = p->vyh; /* mirror: no-slip velocity */
   const double period = fp->period, half = 0.5 * fp->period;
   const double nu4 = 4.0 * fp->mu / fp->eos.rho0;
   const double nalpha = -fp->alpha, beta = fp->beta, eta_f = fp->eta;
@@ -114,8 +119,9 @@ static inline __attribute__((always_inline)) void interact_one(sph_particles *re
   double drho = 0.0, ax = 0.0, ay = 0.0, xs = 0.0, ys = 0.0, sig = 0.0;
   double du = 0.0, wpow = 0.0, wfx = 0.0, wfy = 0.0; /* energy and momentum ledger */
   double dd = 0.0;                                   /* density diffusion */
-  const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy;
+  const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy, *restrict ddm = w->ddm;
   const double cxi = (F & F_DDIFF) ? ddcx[i] : 0.0, cyi = (F & F_DDIFF) ? ddcy[i] : 0.0;
+  const int diffuses = (F & F_DDIFF) && ddm[i] != 0.0; /* not next to a wall (diffusion.h) */
   ROW(l, i, nb, cnt)
   for (size_t k = 0; k < cnt; k++) {
     const size_t j = nb[k];
@@ -142,38 +148,60 @@ static inline __attribute__((always_inline)) void interact_one(sph_particles *re
     sig = s > sig ? s : sig;
     /* a wall particle needs the pair terms only for its share of the heat */
     if (!fluid && !((F & F_LEDGER) && kind[j] == SPH_KIND_FLUID)) continue;
+    /* the relative velocity of the viscous terms: a mirror particle's is
+     * its no-slip velocity (boundary.h), the continuity's its reflected one */
+    double vvx = dvx, vvy = dvy, vvdotr = vdotr;
+    if (mirror && kind[j] == SPH_KIND_MIRROR) {
+      vvx = vxi - vxh[j];
+      vvy = vyi - vyh[j];
+      vvdotr = vvx * dx + vvy * dy;
+    }
     double pij = pri + qj->prho2;
     double inv_rb = 0.0;
     if (F & (F_AV | F_XSPH)) inv_rb = inv_rho_mean_v1(rhoi, qj->rho);
     if (F & F_AV) {
       const double eta = eta_f * hij;
-      pij += artificial_viscosity_v1(vdotr, hij, r2, eta * eta, ci, qj->cs, nalpha, beta, inv_rb);
+      pij += artificial_viscosity_v1(vvdotr, hij, r2, eta * eta, ci, qj->cs, nalpha, beta, inv_rb);
     }
     const double mp = mj * pij;
+    double pgx = gx, pgy = gy;        /* the kernel gradient of the pressure and Pi_ij terms */
+    if (slip) {                       /* a fluid-wall pair on a free-slip wall: its normal part */
+      const size_t b = fluid ? j : i; /* the pair's wall particle, if any */
+      if (kind[b] == SPH_KIND_WALL && (flags[b] & SPH_FLAG_FREE_SLIP))
+        normal_part_v1(gx, gy, p->mx[b], p->my[b], &pgx, &pgy);
+    }
     double pax, pay;
-    pressure_force_v1(mp, gx, gy, &pax, &pay);
-    if (F & F_LEDGER) du += pressure_heat_v1(mp, dvx, dvy, gx, gy);
+    pressure_force_v1(mp, pgx, pgy, &pax, &pay);
+    double heat = 0.0; /* this particle's half of the pair's heat (energy ledger) */
+    if (F & F_LEDGER) heat += pressure_heat_v1(mp, dvx, dvy, pgx, pgy);
     if (F & F_STRESS) {
       const double txx = sxx[i] + sxx[j], txy = sxy[i] + sxy[j], tyy = syy[i] + syy[j];
       double sx, sy;
       stress_force_v1(mj, txx, txy, tyy, gx, gy, &sx, &sy);
       pax += sx;
       pay += sy;
-      if (F & F_LEDGER) du -= stress_heat_v1(mj, txx, txy, tyy, dvx, dvy, gx, gy);
+      if (F & F_LEDGER) heat -= stress_heat_v1(mj, txx, txy, tyy, dvx, dvy, gx, gy);
     }
     if (F & F_MORRIS) {
       const double eta = eta_f * hij;
       const double c = morris_factor_v1(mj, nu4, f, r2, rhoi, qj->rho, eta * eta);
-      pax += c * dvx;
-      pay += c * dvy;
-      if (F & F_LEDGER) du -= morris_heat_v1(c, dvx, dvy);
+      pax += c * vvx;
+      pay += c * vvy;
+      if (F & F_LEDGER) heat -= morris_heat_v1(c, dvx, dvy);
     }
+    /* a neighbour that takes no heat (a mirror particle, a repulsive wall
+     * particle): i takes the whole of it, all its pair force's work on i
+     * but what a moving wall particle puts in (wall_power, boundary work) */
+    if ((F & F_LEDGER) && (kind[j] == SPH_KIND_MIRROR || (flags[j] & SPH_FLAG_REPULSIVE)))
+      heat = passive_heat_v1(pax, pay, vxi, vyi, kind[j] == SPH_KIND_WALL ? qj->vx : 0.0,
+                             kind[j] == SPH_KIND_WALL ? qj->vy : 0.0);
+    du += heat;
     if (!fluid) continue;
     ax += pax;
     ay += pay;
-    if ((F & F_DDIFF) && kind[j] == SPH_KIND_FLUID) {
+    if ((F & F_DDIFF) && diffuses && ddm[j] != 0.0) {
       const double psi = diffusion_psi_v1(rhoi, qj->rho, dx, dy, cxi + ddcx[j], cyi + ddcy[j]);
-      const double d = diffusion_v1(psi, f, mj, qj->rho);
+      const double d = diffusion_v1(psi, f, ddm[j], qj->rho);
       dd += (F & F_VARH) ? hij * d : d;
     }
     /* power of a (moving) wall particle's force on i, per unit mass of i */

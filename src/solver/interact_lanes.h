@@ -52,7 +52,8 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const LT nu4 = LOP(all)(4.0 * fp->mu / fp->eos.rho0);
   const LT lane = LOP(set)(0.0, 1.0, 2.0, 3.0), n = LOP(all)((double)cnt);
   LT drho = zero, ax = zero, ay = zero, xs = zero, ys = zero, sig = zero, dd = zero;
-  const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy;
+  const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy, *restrict ddm = w->ddm;
+  const int diffuses = (F & F_DDIFF) && ddm[i] != 0.0; /* not next to a wall (diffusion.h) */
   const LT cxi = LOP(all)((F & F_DDIFF) ? ddcx[i] : 0.0);
   const LT cyi = LOP(all)((F & F_DDIFF) ? ddcy[i] : 0.0);
   for (size_t k = 0; k < cnt; k += 4) {
@@ -109,16 +110,17 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     ax = LOP(add)(ax, pax);
     ay = LOP(add)(ay, pay);
     LT mx = zero; /* m_j of fluid neighbours, 0 for the others */
-    if (F & (F_XSPH | F_DDIFF))
+    if (F & F_XSPH)
       mx = LOP(set)(
           kind[j0] == SPH_KIND_FLUID ? a->m : 0.0, kind[j1] == SPH_KIND_FLUID ? b->m : 0.0,
           kind[j2] == SPH_KIND_FLUID ? c_->m : 0.0, kind[j3] == SPH_KIND_FLUID ? d->m : 0.0);
-    if (F & F_DDIFF) { /* over fluid neighbours */
+    if ((F & F_DDIFF) && diffuses) { /* over the neighbours that diffuse (diffusion.h) */
       const LT rhoj = GATHER(rho);
       const LT cx = LOP(add)(cxi, LOP(set)(ddcx[j0], ddcx[j1], ddcx[j2], ddcx[j3]));
       const LT cy = LOP(add)(cyi, LOP(set)(ddcy[j0], ddcy[j1], ddcy[j2], ddcy[j3]));
       const LT psi = LTERM(diffusion_psi)(rhoi, rhoj, dx, dy, cx, cy);
-      dd = LOP(add)(dd, LTERM(diffusion)(psi, f, mx, rhoj));
+      const LT mdd = LOP(set)(ddm[j0], ddm[j1], ddm[j2], ddm[j3]);
+      dd = LOP(add)(dd, LTERM(diffusion)(psi, f, mdd, rhoj));
     }
     if (F & F_XSPH) { /* over fluid neighbours */
       const LT c = LTERM(xsph_factor)(mx, inv_rb, wij);

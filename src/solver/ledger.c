@@ -12,7 +12,7 @@
 void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_work *w,
                       const double gravity[2], int xsph, int diffusion) {
   const double *g = gravity;
-  double pw = 0.0, px = 0.0, fx = 0.0, fy = 0.0, pd = 0.0;
+  double pw = 0.0, px = 0.0, fx = 0.0, fy = 0.0, pd = 0.0, phi = 0.0;
   for (size_t i = 0; i < p->n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     const double m = p->mass[i];
@@ -21,7 +21,9 @@ void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_wo
     fx += m * (w->wfx[i] + g[0]);
     fy += m * (w->wfy[i] + g[1]);
     if (diffusion) pd += m * w->hot[i].prho2 * w->dd[i];
+    if (lg->repulsion) phi += m * w->lj[i];
   }
+  lg->wall_potential = phi;
   lg->power_diffusion = pd;
   lg->power_wall = pw;
   lg->power_xsph = px;
@@ -35,6 +37,12 @@ void sph_ledger_advance(sph_ledger *lg, double dt) {
   lg->work_diffusion += dt * lg->power_diffusion;
   lg->impulse_x += dt * lg->force_x;
   lg->impulse_y += dt * lg->force_y;
+}
+
+void sph_ledger_add_kick(sph_ledger *lg, const double kick[4], const double gravity[2]) {
+  lg->work_wall -= gravity[0] * kick[0] + gravity[1] * kick[1];
+  lg->impulse_x += kick[2];
+  lg->impulse_y += kick[3];
 }
 
 double sph_ledger_fluid_internal(const sph_particles *p) {
@@ -53,7 +61,10 @@ void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, sph_diag_row 
   row->boundary_work = lg->work_wall;
   row->xsph_drift = lg->drift_xsph;
   row->diffusion_energy = lg->work_diffusion;
-  row->total = row->kinetic + row->potential + u - lg->work_wall - lg->drift_xsph;
+  row->repulsion = lg->repulsion;
+  row->wall_potential = lg->repulsion ? lg->wall_potential : 0.0;
+  row->total =
+      row->kinetic + row->potential + u + row->wall_potential - lg->work_wall - lg->drift_xsph;
   row->deviation = lg->e0 != 0.0 ? (row->total - lg->e0) / lg->e0 : 0.0;
   const double ef = row->kinetic + row->potential + sph_ledger_fluid_internal(p);
   row->fluid_deviation = lg->e0_fluid != 0.0 ? (ef - lg->e0_fluid) / lg->e0_fluid : 0.0;

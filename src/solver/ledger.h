@@ -13,9 +13,13 @@
  *                particles and the body force                         (N)
  *   power_diffusion  sum over fluid i of m_i (p_i / rho_i^2) D_i, D_i the
  *                density diffusion's share of drho_i/dt               (W)
+ *   wall_potential  sum over fluid i of m_i phi_i, the potential energy
+ *                of the Lennard-Jones force of repulsive walls
+ *                (repulsion.h; a state, not a rate)                   (J)
  * at the last interaction pass, and their time integrals work_wall,
  * drift_xsph, the impulse and work_diffusion. With these
- *   total     = kinetic + potential + internal - work_wall - drift_xsph
+ *   total     = kinetic + potential + internal + wall_potential
+ *               - work_wall - drift_xsph
  *   deviation = (total - total_0) / total_0
  * closes to round-off for a conservative scheme, and the momentum residual
  * p - p_0 - impulse closes to round-off. The density diffusion moves no
@@ -45,6 +49,8 @@
 typedef struct sph_ledger {
   /* rates at the last pass */
   double power_wall, power_xsph, power_diffusion;
+  int repulsion;         /* repulsive walls: wall_potential is part of the total */
+  double wall_potential; /* their Lennard-Jones potential energy at the last pass */
   double force_x, force_y;
   /* their time integrals */
   double work_wall, drift_xsph, work_diffusion;
@@ -65,6 +71,12 @@ void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_wo
  * drives the step: t^n for the leap-frog, the mid-step for the
  * predictor-corrector). */
 void sph_ledger_advance(sph_ledger *lg, double dt);
+
+/* What the mirror lines did to the fluid in a step by moving particles off
+ * them (walls.h, sph_walls_keep_off_mirrors: kick = sum m dx, m dy, m dvx,
+ * m dvy): the lift's potential energy -g . sum m dr is the walls' work, the
+ * velocity change their impulse. */
+void sph_ledger_add_kick(sph_ledger *lg, const double kick[4], const double gravity[2]);
 
 /* sum over fluid particles of m_i u_i */
 double sph_ledger_fluid_internal(const sph_particles *p);

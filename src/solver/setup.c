@@ -310,7 +310,10 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
     goto fail;
   }
   s->fp.no_slip = s->walls.no_slip;
+  s->fp.free_slip = s->walls.free_slip;
+  s->fp.mirror = s->walls.n_mirror > 0;
   s->fp.repulsive = s->walls.repulsive;
+  s->ledger.repulsion = c->energy && s->walls.repulsive;
   if (c->periodic) dedupe_periodic(s);
   const long removed = remove_fluid_in_walls(s);
   if (removed < 0) {

@@ -35,6 +35,7 @@
 #include "solver/forces.h"
 #include "solver/integrate.h"
 #include "walls/boundary.h"
+#include "walls/dbc.h"
 #include "walls/wall_velocity.h"
 
 /* The largest smoothing length: k h with h* = k h on the free surface. */
@@ -133,6 +134,19 @@ static int neighbours(sph_sim *s, sph_error *err) {
   return sph_nlist_build(&s->nl, &s->grid, &s->p, support(s), s->skin, px1 - px0, err);
 }
 
+/* The density bounds of dynamic walls (dbc.h). With variable h the
+ * particles they changed get the h of their new density, and where that
+ * reaches beyond the list's support the list is built again. */
+static int dbc_bound(sph_sim *s, sph_error *err) {
+  const sph_case *c = s->c;
+  const long changed =
+      sph_dbc_bound(&s->p, &s->nl, SPH_CUBIC_SUPPORT * h_max(s), c->periodic ? s->fp.period : 0.0,
+                    c->rho0, c->integrator == SPH_INTEGRATOR_LEAPFROG);
+  if (!changed || !c->variable_h) return 0;
+  update_h(s);
+  return SPH_CUBIC_SUPPORT * h_max(s) > s->nl.radius - s->nl.skin ? neighbours(s, err) : 0;
+}
+
 /* mDBC wall particles (wall_velocity.h): density from the fluid through
  * their mirror points, pressure from the equation of state. */
 static int mdbc_walls(sph_sim *s, sph_error *err) {
@@ -152,10 +166,11 @@ static int mdbc_walls(sph_sim *s, sph_error *err) {
 int sph_sim_pass(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   update_h(s);
-  if (s->walls.n_mirror &&
-      sph_mirror_add(&s->p, s->walls.mirror, s->walls.n_mirror, s->walls.mirror_reach, err) < 0)
+  if (s->walls.n_mirror && sph_mirror_add(&s->p, s->walls.mirror, s->walls.n_mirror,
+                                          s->walls.mirror_reach, c->rho0, err) < 0)
     return -1;
   int rc = neighbours(s, err);
+  if (rc == 0 && s->walls.dbc) rc = dbc_bound(s, err);
   if (rc == 0 && s->detect) rc = free_surface(s, err);
   if (rc == 0 && s->walls.mdbc) rc = mdbc_walls(s, err);
   if (rc == 0) rc = sph_forces_evaluate(&s->p, &s->nl, &s->fp, &s->work, err);
@@ -268,6 +283,19 @@ int sph_sim_check_state(sph_sim *s, sph_error *err) {
   return SPH_BLOWUP;
 }
 
+/* Mirror lines and tank faces keep the fluid off (walls.h), and the
+ * ledger books what that did to it. Only the step's result is kept off, not the mid-step
+ * state of the predictor-corrector: a reflection there would move the
+ * step's end (which is X^n + dt F(X^{n+1/2})) without being booked,
+ * and the pass does not need it (a particle across a line has no image,
+ * one exactly on it skips the coincident pair). */
+static void keep_off_mirrors(sph_sim *s, int half_step) {
+  double kick[4] = {0.0, 0.0, 0.0, 0.0};
+  const double d_min = SPH_MIRROR_MIN_DISTANCE * s->c->dx;
+  if (sph_walls_keep_off(&s->walls, &s->p, d_min, half_step, kick) && s->fp.ledger)
+    sph_ledger_add_kick(&s->ledger, kick, s->c->gravity);
+}
+
 int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   const sph_case *c = s->c;
   const int xsph = c->xsph != 0.0;
@@ -295,17 +323,17 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
     sph_leapfrog_step(&s->p, dt, s->first_step, xsph, &s->fp.eos, slices(s));
     s->first_step = 0;
     sph_walls_move(&s->walls, &s->p, t_new);
-    sph_walls_keep_off_mirrors(&s->walls, &s->p, SPH_MIRROR_MIN_DISTANCE * c->dx, 1);
+    keep_off_mirrors(s, 1);
   } else {
     sph_pc_half(&s->p, dt, xsph, &s->fp.eos, slices(s));
     sph_walls_move(&s->walls, &s->p, s->t + 0.5 * dt);
-    sph_walls_keep_off_mirrors(&s->walls, &s->p, SPH_MIRROR_MIN_DISTANCE * c->dx, 0);
+
     if (sph_sim_pass(s, err)) return -1;
     /* X^{n+1} = X^n + dt F(X^{n+1/2}): the mid-step powers drive the step */
     sph_ledger_advance(&s->ledger, dt);
     sph_pc_finish(&s->p, dt, xsph, &s->fp.eos, slices(s));
     sph_walls_move(&s->walls, &s->p, t_new);
-    sph_walls_keep_off_mirrors(&s->walls, &s->p, SPH_MIRROR_MIN_DISTANCE * c->dx, 0);
+    keep_off_mirrors(s, 0);
   }
   wrap_periodic(s);
   s->t = t_new;

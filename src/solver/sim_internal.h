@@ -23,8 +23,8 @@
  * hook SPH_TEST_SKIN overrides it for a run; 0 rebuilds at every pass). */
 #define SPH_SKIN_DEFAULT 0.15
 
-/* The closest a fluid particle comes to a mirror line, in units of dx
- * (walls.h, sph_walls_keep_off_mirrors): half the first row's distance on
+/* The closest a fluid particle comes to a mirror line, in units of dx,
+ * or a tank face (walls.h, sph_walls_keep_off): half the first row's distance on
  * the initial lattice. */
 #define SPH_MIRROR_MIN_DISTANCE 0.25
 

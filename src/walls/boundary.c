@@ -84,15 +84,30 @@ sph_mirror_line sph_mirror_segment_line(double ax, double ay, double bx, double 
   return (sph_mirror_line){ax, ay, ly / len, -lx / len, -len, 0.0};
 }
 
-static long add_image(sph_particles *p, size_t i, double x, double y, sph_error *err) {
-  const long k = sph_particles_add(p, x, y, -p->vx[i], -p->vy[i], p->rho[i], p->mass[i], p->h[i],
+/* The image of fluid particle i at (x, y): its velocity reflected in the
+ * line(s), (vx, vy), and its no-slip velocity -v_i in vxh, vyh; its
+ * density, and pressure, never below rho0 and 0. */
+static long add_image(sph_particles *p, size_t i, double x, double y, double vx, double vy,
+                      double rho0, sph_error *err) {
+  const int tension = p->rho[i] < rho0;
+  const long k = sph_particles_add(p, x, y, vx, vy, tension ? rho0 : p->rho[i], p->mass[i], p->h[i],
                                    SPH_KIND_MIRROR, err);
-  if (k >= 0) p->p[k] = p->p[i];
+  if (k < 0) return k;
+  p->p[k] = tension ? 0.0 : p->p[i];
+  p->vxh[k] = -p->vx[i];
+  p->vyh[k] = -p->vy[i];
   return k;
 }
 
+/* v reflected in the line with unit normal (nx, ny). */
+static void reflect_velocity(double nx, double ny, double *vx, double *vy) {
+  const double vn = *vx * nx + *vy * ny;
+  *vx -= 2.0 * vn * nx;
+  *vy -= 2.0 * vn * ny;
+}
+
 long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lines, double reach,
-                    sph_error *err) {
+                    double rho0, sph_error *err) {
   const size_t n = p->n;
   long added = 0;
   for (size_t i = 0; i < n; i++) {
@@ -105,7 +120,11 @@ long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lin
       const double s = rx * L->ny - ry * L->nx;
       if (d < 0.0 || d >= reach || s < L->t0 || s > L->t1) continue;
       near[nn++] = (int)l;
-      if (add_image(p, i, p->x[i] - 2.0 * d * L->nx, p->y[i] - 2.0 * d * L->ny, err) < 0) return -1;
+      double vx = p->vx[i], vy = p->vy[i];
+      reflect_velocity(L->nx, L->ny, &vx, &vy);
+      if (add_image(p, i, p->x[i] - 2.0 * d * L->nx, p->y[i] - 2.0 * d * L->ny, vx, vy, rho0, err) <
+          0)
+        return -1;
       added++;
     }
     for (int a = 0; a < nn; a++) /* corners: the image through two perpendicular lines */
@@ -116,7 +135,10 @@ long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lin
         const double db = (p->x[i] - B->px) * B->nx + (p->y[i] - B->py) * B->ny;
         const double x = p->x[i] - 2.0 * da * A->nx - 2.0 * db * B->nx;
         const double y = p->y[i] - 2.0 * da * A->ny - 2.0 * db * B->ny;
-        if (add_image(p, i, x, y, err) < 0) return -1;
+        double vx = p->vx[i], vy = p->vy[i];
+        reflect_velocity(A->nx, A->ny, &vx, &vy);
+        reflect_velocity(B->nx, B->ny, &vx, &vy);
+        if (add_image(p, i, x, y, vx, vy, rho0, err) < 0) return -1;
         added++;
       }
   }

@@ -59,12 +59,25 @@ sph_mirror_line sph_mirror_segment_line(double ax, double ay, double bx, double 
 
 /* Appends a mirror particle for every fluid particle closer than `reach` to
  * a line in front of it: reflected position, the same density, pressure,
- * mass and smoothing length, the opposite velocity (no slip). A particle
+ * mass and smoothing length. Its velocity is two (GOST R 57700.6 3.4.5
+ * gives the opposite velocity, no slip): in vx, vy the velocity reflected
+ * in the line (the normal component reversed), which the continuity and
+ * the step rule read, so the wall is impermeable but a particle sliding
+ * along it sees no spurious divergence; in vxh, vyh the opposite velocity
+ * -v, which the viscous terms read (artificial and laminar viscosity, the
+ * strain rate), so the wall is no-slip. Its density and pressure are the
+ * source's, but never below rho0 and 0: as dynamic and mdbc walls (dbc.h),
+ * a mirror wall pushes the fluid, it never pulls it. (With the opposite
+ * velocity in the
+ * continuity too, the surge tip of tests/data/energy_box.yaml thinned to
+ * 0.7 rho0 and stopped the run at t = 0.048 s: the images of the particles
+ * behind a tip running along the floor move the other way.) A particle
  * near two perpendicular lines (a tank corner) also gets the image through
- * both. Mirror particles have kind SPH_KIND_MIRROR and ids from n up, in the
- * storage order of their sources. Returns the number added, or -1. */
+ * both, whose reflected velocity is -v too. Mirror particles have kind
+ * SPH_KIND_MIRROR and ids from n up, in the storage order of their
+ * sources. Returns the number added, or -1. */
 long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lines, double reach,
-                    sph_error *err);
+                    double rho0, sph_error *err);
 /* Removes every mirror particle, keeping the others in order. perm needs
  * n entries, work n doubles. */
 void sph_mirror_remove(sph_particles *p, size_t *perm, void *work);

@@ -11,7 +11,8 @@
 #include "core/parallel.h"
 #include "physics/pair_terms.h"
 
-void sph_repulsion_add(sph_particles *p, const sph_nlist *l, double d, double r0, double period) {
+void sph_repulsion_add(sph_particles *p, const sph_nlist *l, double d, double r0, double period,
+                       const sph_repulsion_ledger *lg) {
   const long n = (long)p->n;
 #pragma omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)
   for (long li = 0; li < n; li++) {
@@ -19,7 +20,7 @@ void sph_repulsion_add(sph_particles *p, const sph_nlist *l, double d, double r0
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     const uint32_t *nb = l->nb + l->start[i];
     const size_t cnt = l->count[i];
-    double ax = 0.0, ay = 0.0;
+    double ax = 0.0, ay = 0.0, pw = 0.0, phi = 0.0;
     for (size_t k = 0; k < cnt; k++) {
       const size_t j = nb[k];
       if (!(p->flags[j] & SPH_FLAG_REPULSIVE)) continue;
@@ -30,8 +31,18 @@ void sph_repulsion_add(sph_particles *p, const sph_nlist *l, double d, double r0
       const double f = lennard_jones_v1(d, r0, r2);
       ax += f * dx;
       ay += f * dy;
+      if (lg) {
+        pw += wall_power_v1(f * dx, f * dy, p->vx[j], p->vy[j]);
+        phi += lennard_jones_potential_v1(d, r0, r2);
+      }
     }
     p->ax[i] += ax;
     p->ay[i] += ay;
+    if (lg) {
+      lg->wfx[i] += ax;
+      lg->wfy[i] += ay;
+      lg->wpow[i] += pw;
+      lg->phi[i] = phi;
+    }
   }
 }

@@ -32,6 +32,7 @@ typedef struct sph_tank {
   sph_boundary_kind boundary; /* default dynamic */
   int stagger;                /* layers dx/2 apart and staggered (default), or dx apart */
   int extrapolated;           /* no-slip: extrapolated wall velocity (src/wall_velocity.h) */
+  int free_slip;              /* pressure and artificial viscosity along the faces' normals */
 } sph_tank;
 
 /* Prescribed motion of a wall (a gate): translation at a constant velocity
@@ -58,6 +59,7 @@ typedef struct sph_wall_segment {
   sph_motion motion; /* default none (fixed) */
   int stagger;       /* as sph_tank */
   int extrapolated;  /* as sph_tank */
+  int free_slip;     /* as sph_tank */
 } sph_wall_segment;
 
 #ifdef __cplusplus

@@ -9,10 +9,16 @@
 
 #include "walls/motion.h"
 
-static uint8_t wall_flags(sph_boundary_kind b, int extrapolated) {
+static uint8_t wall_flags(sph_boundary_kind b, int extrapolated, int free_slip) {
   return (uint8_t)((b == SPH_BOUNDARY_REPULSIVE ? SPH_FLAG_REPULSIVE : 0) |
                    (b == SPH_BOUNDARY_MDBC ? SPH_FLAG_MDBC : 0) |
-                   (extrapolated ? SPH_FLAG_NO_SLIP : 0));
+                   (extrapolated ? SPH_FLAG_NO_SLIP : 0) | (free_slip ? SPH_FLAG_FREE_SLIP : 0));
+}
+
+/* Dynamic particles and Morris' fixed layers: density from continuity,
+ * bounded by dbc.h. */
+static int is_dbc(sph_boundary_kind b) {
+  return b == SPH_BOUNDARY_DYNAMIC || b == SPH_BOUNDARY_FIXED_LAYERS;
 }
 
 int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
@@ -24,17 +30,27 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
   w->segments = segments;
   w->n_segments = n_segments;
   w->no_slip = tank->present && tank->extrapolated;
-  for (size_t k = 0; k < n_segments; k++)
+  w->free_slip = tank->present && tank->free_slip;
+  for (size_t k = 0; k < n_segments; k++) {
     w->no_slip |= segments[k].extrapolated;
+    w->free_slip |= segments[k].free_slip;
+  }
   if (tank->present) {
     if (tank->boundary == SPH_BOUNDARY_MIRROR) {
       w->n_mirror += sph_mirror_tank_lines(tank, mirror_reach, w->mirror);
-    } else if (sph_boundary_add_tank(p, tank, dx, rho0, wall_mass, h,
-                                     wall_flags(tank->boundary, tank->extrapolated), err)) {
-      return -1;
+    } else {
+      if (sph_boundary_add_tank(p, tank, dx, rho0, wall_mass, h,
+                                wall_flags(tank->boundary, tank->extrapolated, tank->free_slip),
+                                err))
+        return -1;
+      /* the faces, along their length only: fluid above a side wall's top
+       * is outside the tank */
+      w->n_face = sph_mirror_tank_lines(tank, 0.0, w->face);
+      w->face_reach = (tank->stagger ? 0.5 : 1.0) * dx * (double)tank->layers;
     }
     if (tank->boundary == SPH_BOUNDARY_REPULSIVE) w->repulsive = 1;
     if (tank->boundary == SPH_BOUNDARY_MDBC) w->mdbc = 1;
+    if (is_dbc(tank->boundary)) w->dbc = 1;
   }
   for (size_t k = 0; k < n_segments; k++) {
     const sph_wall_segment *ws = &segments[k];
@@ -46,10 +62,11 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
     }
     if (ws->boundary == SPH_BOUNDARY_REPULSIVE) w->repulsive = 1;
     if (ws->boundary == SPH_BOUNDARY_MDBC) w->mdbc = 1;
+    if (is_dbc(ws->boundary)) w->dbc = 1;
     const size_t first = p->n;
     if (sph_boundary_add_segment(p, ws->x0, ws->y0, ws->x1, ws->y1, ws->layers, ws->stagger, 0, dx,
-                                 rho0, wall_mass, h, wall_flags(ws->boundary, ws->extrapolated),
-                                 err))
+                                 rho0, wall_mass, h,
+                                 wall_flags(ws->boundary, ws->extrapolated, ws->free_slip), err))
       return -1;
     if (ws->motion.kind != SPH_MOTION_NONE) {
       w->moving = 1;
@@ -70,20 +87,29 @@ void sph_walls_move(const sph_walls *w, sph_particles *p, double t) {
 }
 
 /* The reflection of particle i off line L if it is within d_min in front
- * of it or just behind it; 1 if it was moved. */
+ * of it or just behind it; 1 if it was moved. kick (if not NULL) gains its
+ * m dx, m dy, m dvx, m dvy. */
 static int reflect(const sph_mirror_line *L, sph_particles *p, size_t i, double d_min, double reach,
-                   int half_step) {
+                   int half_step, double *kick) {
   const double rx = p->x[i] - L->px, ry = p->y[i] - L->py;
   const double d = rx * L->nx + ry * L->ny;
   const double s = rx * L->ny - ry * L->nx;
   if (!(d < d_min) || d <= -reach || s < L->t0 || s > L->t1) return 0;
-  const double shift = 2.0 * (d_min - d);
+  const double shift = 2.0 * (d_min - d), m = p->mass[i];
   p->x[i] += shift * L->nx;
   p->y[i] += shift * L->ny;
   const double vn = p->vx[i] * L->nx + p->vy[i] * L->ny;
+  if (kick) {
+    kick[0] += m * shift * L->nx;
+    kick[1] += m * shift * L->ny;
+  }
   if (vn < 0.0) {
     p->vx[i] -= 2.0 * vn * L->nx;
     p->vy[i] -= 2.0 * vn * L->ny;
+    if (kick) {
+      kick[2] -= m * 2.0 * vn * L->nx;
+      kick[3] -= m * 2.0 * vn * L->ny;
+    }
   }
   if (half_step) {
     const double hn = p->vxh[i] * L->nx + p->vyh[i] * L->ny;
@@ -95,14 +121,16 @@ static int reflect(const sph_mirror_line *L, sph_particles *p, size_t i, double 
   return 1;
 }
 
-size_t sph_walls_keep_off_mirrors(const sph_walls *w, sph_particles *p, double d_min,
-                                  int half_step) {
+size_t sph_walls_keep_off(const sph_walls *w, sph_particles *p, double d_min, int half_step,
+                          double kick[4]) {
   size_t moved = 0;
-  if (w->n_mirror == 0) return 0;
+  if (w->n_mirror == 0 && w->n_face == 0) return 0;
   for (size_t i = 0; i < p->n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     for (size_t l = 0; l < w->n_mirror; l++)
-      moved += (size_t)reflect(&w->mirror[l], p, i, d_min, w->mirror_reach, half_step);
+      moved += (size_t)reflect(&w->mirror[l], p, i, d_min, w->mirror_reach, half_step, kick);
+    for (size_t l = 0; l < w->n_face; l++)
+      moved += (size_t)reflect(&w->face[l], p, i, d_min, w->face_reach, half_step, kick);
   }
   return moved;
 }
