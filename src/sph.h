@@ -8,6 +8,7 @@
  *   core/version.h      sph_version(), the program's version string
  *   core/particles.h    the particle store (structure of arrays)
  *   io/snapshot.h       HDF5 snapshots and their XDMF index
+ *   io/csv.h            numeric CSV tables (diagnostics, probes, reference data)
  *   case/case.h         case files: load, validate, describe
  *   solver/sim.h        a simulation: create, step, restart
  *   solver/run.h        the run loop with outputs, signals and progress
@@ -26,6 +27,7 @@
 #include "core/error.h"
 #include "core/particles.h"
 #include "core/version.h"
+#include "io/csv.h"
 #include "io/snapshot.h"
 #include "solver/diag.h"
 #include "solver/run.h"

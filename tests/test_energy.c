@@ -25,7 +25,10 @@
  *    1000 and 2000 fluid particles to t = 0.531 s) matches
  *    golden/energy_drift.csv (energy_deviation within 1e-5 + 5 % of the
  *    golden value; particle counts and times exactly), its closed
- *    deviation at t = 0.531 s falls as the particle count rises, and the
+ *    deviation at t = 0.531 s falls as the particle count rises, the
+ *    closed balance is the fluid's own deviation plus the walls' heat less
+ *    their work in every row (1e-12), the free-slip gate's work is at most
+ *    0.05 % of E0, paper A's Table 4 (--reference) is printed beside, and the
  *    momentum balance |P - P0 - impulse of walls and gravity| / (M |g| t)
  *    holds to 1e-12 (measured 1e-14).
  */
@@ -136,14 +139,47 @@ static int read_audit(const char *path, audit_entry *e, int max) {
   return k;
 }
 
+/* The audit's split of what the fluid alone does not hold: closed balance
+ * = the fluid's own deviation + the walls' heat - their work, row by row
+ * (to rounding), and the gate's work at most 0.05 % of E0. */
+static void check_split(const char *path) {
+  double *c[4] = {NULL, NULL, NULL, NULL};
+  const long n =
+      sph_test_csv(path, "energy_deviation,fluid_energy_deviation,wall_work,wall_heat", c);
+  CU_ASSERT(n == 18);
+  double worst = 0.0, work = 0.0;
+  for (long i = 0; i < n; i++) {
+    worst = fmax(worst, fabs(c[0][i] - (c[1][i] + c[3][i] - c[2][i])));
+    work = fmax(work, fabs(c[2][i]));
+  }
+  printf("\n  closed - (fluid's own + walls' heat - walls' work): %.1e; walls' work at most "
+         "%.4f %% of E0",
+         worst, 100 * work);
+  CU_ASSERT(worst < 1e-12);
+  CU_ASSERT(work <= 5e-4);
+  for (int j = 0; j < 4; j++)
+    free(c[j]);
+}
+
 static void test_audit_golden(void) {
-  char *dir = sph_test_tmpdir(), cmd[8192], path[4096];
+  char *dir = sph_test_tmpdir(), cmd[24576], path[4096];
+  char out[4096], ref[4096];
+  snprintf(out, sizeof out, "%s/stdout", dir);
+  snprintf(ref, sizeof ref, "%s", sph_test_src("tests/data/paper_a_table4.csv"));
   snprintf(cmd, sizeof cmd,
            "'%s' audit --quiet '%s' --particles 500,1000,2000 "
-           "--times 0.156,0.281,0.343,0.406,0.468,0.531 -o '%s' >/dev/null",
-           sph_test_build("src/sph"), sph_test_src("cases/wet_bed_dam_break.yaml"), dir);
+           "--times 0.156,0.281,0.343,0.406,0.468,0.531 --reference '%s' -o '%s' > '%s'",
+           sph_test_build("src/sph"), sph_test_src("cases/wet_bed_dam_break.yaml"), ref, dir, out);
   CU_ASSERT_FATAL(sph_test_system(cmd) == 0);
+  /* paper A's table printed beside ours: its 15276-particle row */
+  char *text = sph_test_read_file(out);
+  CU_ASSERT_FATAL(text != NULL);
+  CU_ASSERT(
+      strstr(text, "15276     0.025%       0.3%      0.34%      0.43%      0.49%      0.58%") !=
+      NULL);
+  free(text);
   snprintf(path, sizeof path, "%s/audit.csv", dir);
+  check_split(path);
   audit_entry got[64], gold[64];
   const int n = read_audit(path, got, 64);
   const int ng = read_audit(sph_test_src("golden/energy_drift.csv"), gold, 64);

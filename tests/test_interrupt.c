@@ -101,6 +101,7 @@ static char *slurp(const char *path) {
 static void interrupt_with(int sig, const char *name) {
   char dir[4200], path[4300], log[4300];
   snprintf(dir, sizeof dir, "%s/%s", tmp, name);
+  snprintf(log, sizeof log, "%s.log", dir);
   const pid_t pid = start(dir, NULL);
   CU_ASSERT_FATAL(pid > 0);
   snprintf(path, sizeof path, "%s/snap_0002.h5", dir);
@@ -110,7 +111,6 @@ static void interrupt_with(int sig, const char *name) {
   CU_ASSERT_FATAL(kill(pid, sig) == 0);
   int st = 0;
   CU_ASSERT_FATAL(waitpid(pid, &st, 0) == pid);
-  snprintf(log, sizeof log, "%s.log", dir);
   const char *msg = slurp(log);
   if (!WIFEXITED(st) || WEXITSTATUS(st) != 4) printf("\n%s\n", msg);
   CU_ASSERT_FATAL(WIFEXITED(st));
@@ -183,7 +183,14 @@ static void setup_signal(int sig, const char *name) {
   const pid_t pid = start(dir, NULL);
   unsetenv("SPH_TEST_SETUP_PAUSE");
   CU_ASSERT_FATAL(pid > 0);
-  sleep_ms(300);
+  /* signal once the set-up waits (the hook says so), not after a guess at
+   * how long start-up takes: on a loaded machine 300 ms was too short */
+  snprintf(log, sizeof log, "%s.log", dir);
+  for (int k = 0; k < 6000; k++) {
+    const char *sofar = slurp(log);
+    if (sofar && strstr(sofar, "the set-up waits")) break;
+    sleep_ms(5);
+  }
   CU_ASSERT_FATAL(kill(pid, sig) == 0);
   int st = 0;
   CU_ASSERT_FATAL(waitpid(pid, &st, 0) == pid);

@@ -8,6 +8,7 @@
 #include "io/csv.h"
 
 #include <CUnit/Basic.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -87,6 +88,43 @@ int sph_test_sph(const char *args, const char *dir, char *out, size_t len) {
     fclose(f);
   }
   return st;
+}
+
+static int cmp_double(const void *a, const void *b) {
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+double sph_test_median(const double *v, int n) {
+  double *c = malloc((size_t)n * sizeof *c);
+  if (!c) return NAN;
+  memcpy(c, v, (size_t)n * sizeof *c);
+  qsort(c, (size_t)n, sizeof *c, cmp_double);
+  const double m = n % 2 ? c[n / 2] : 0.5 * (c[n / 2 - 1] + c[n / 2]);
+  free(c);
+  return m;
+}
+
+char *sph_test_read_file(const char *path) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return NULL;
+  size_t cap = 4096, n = 0;
+  char *buf = malloc(cap);
+  while (buf) {
+    n += fread(buf + n, 1, cap - 1 - n, f);
+    if (n < cap - 1) break;
+    char *b = realloc(buf, 2 * cap);
+    if (!b) {
+      free(buf);
+      buf = NULL;
+      break;
+    }
+    buf = b;
+    cap *= 2;
+  }
+  fclose(f);
+  if (buf) buf[n] = '\0';
+  return buf;
 }
 
 long sph_test_csv(const char *path, const char *names, double **out) {

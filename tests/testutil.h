@@ -34,6 +34,12 @@ int sph_test_system(const char *cmd);
  * bytes, truncated, NUL-terminated); returns the exit status. */
 int sph_test_sph(const char *args, const char *dir, char *out, size_t len);
 
+/* The median of n values (sorts a copy; n > 0). */
+double sph_test_median(const double *v, int n);
+
+/* The whole file at path, malloc'd and NUL-terminated (free it), or NULL. */
+char *sph_test_read_file(const char *path);
+
 /* Reads columns of the CSV table at path with the project's one reader
  * (src/io/csv.h): `names` lists them by header name, comma-separated
  * ("time,front_x"), or by position as "#0,#1" (for tables whose header

@@ -12,10 +12,16 @@
  * internal energy of fluid and walls - work of moving walls - XSPH drift,
  * diagnostics column energy_deviation) and the paper-style deviation of the
  * fluid's own kinetic + potential + internal energy (fluid_energy_deviation),
- * which moving walls and the heat taken by the walls also change. Plus the
- * mass drift (exactly zero: masses never change) and the momentum drift,
- * |P - P0 - impulse of the walls and gravity on the fluid| / (M |g| t), at
- * the last time (the momentum balance of the ledger).
+ * which moving walls and the heat taken by the walls also change. The two
+ * differ by what the fluid alone does not hold, tabulated as its two
+ * parts: the work of moving walls (boundary_work + xsph_drift) and the heat
+ * the wall particles took (their half of each fluid-wall pair's heat),
+ * both in E0. With --reference FILE (a CSV with columns particles, time,
+ * deviation_pct, e.g. tests/data/paper_a_table4.csv) the reference's values
+ * are printed beside the fluid's own deviation at the audit's times. Plus
+ * the mass drift (exactly zero: masses never change) and the momentum
+ * drift, |P - P0 - impulse of the walls and gravity on the fluid| /
+ * (M |g| t), at the last time (the momentum balance of the ledger).
  * Output: a table on stdout, DIR/audit.csv and DIR/audit.md, and each run's
  * diagnostics in DIR/n<count>/. A progress line per run goes to stderr.
  * The table's numbers are the diagnostics rows the run hands over as it
@@ -39,18 +45,22 @@
 
 static void audit_usage(FILE *f) {
   fprintf(f, "usage: sph audit CASE --particles N1,N2,... [--times t1,t2,...] [-o DIR]\n"
-             "                 [--threads N] [--set key=value]... [--quiet]\n"
+             "                 [--reference FILE] [--threads N] [--set key=value]... [--quiet]\n"
              "\n"
              "Runs CASE once per fluid-particle count with the energy ledger on and prints\n"
              "the relative deviation of the total energy from its initial value against\n"
              "particle count and time (paper A, Table 4), as a closed balance and as the\n"
-             "fluid's own energy, plus the mass drift.\n"
+             "fluid's own energy, what makes them differ (the work of moving walls, the\n"
+             "heat the walls took), plus the mass drift.\n"
              "\n"
              "  -p, --particles LIST  fluid-particle counts; dx is chosen for each\n"
              "  -T, --times LIST      times of the table (default: the case's\n"
              "                        time.output_times, else its output interval)\n"
              "  -o, --output DIR      where audit.csv, audit.md and the runs go\n"
              "                        (default out/<case name>_audit)\n"
+             "  -r, --reference FILE  a published table to print beside the fluid's own\n"
+             "                        deviation: CSV columns particles,time,deviation_pct\n"
+             "                        (paper A's: tests/data/paper_a_table4.csv)\n"
              "  -t, --threads N       OpenMP threads\n"
              "  -s, --set K=V         case override, as for sph run\n"
              "  -q, --quiet           no progress lines\n");
@@ -120,6 +130,7 @@ typedef struct audit_row {
   long particles;
   double dx;
   double dev[MAX_TIMES], fdev[MAX_TIMES];
+  double work[MAX_TIMES], wall_heat[MAX_TIMES]; /* in E0: the walls' work, the heat they took */
   double mass_drift;
   double momentum_drift; /* |P - P0 - impulse| / (M |g| t) at the last time */
   long steps;
@@ -127,7 +138,7 @@ typedef struct audit_row {
 } audit_row;
 
 typedef struct audit_args {
-  const char *case_path, *outdir;
+  const char *case_path, *outdir, *reference;
   double counts[MAX_RUNS], times[MAX_TIMES];
   int ncounts, ntimes, threads, quiet;
   const char **sets; /* the user's --set overrides, then the audit's own */
@@ -138,14 +149,14 @@ typedef struct audit_args {
 typedef struct row_sink {
   const double *times;
   int nt, found;
-  double gmag;
+  double gmag, e0;
   double mass0, mass_last, res_last, t_last;
   audit_row *row;
 } row_sink;
 
 static void on_row(void *ctx, const sph_diag_row *d) {
   row_sink *k = ctx;
-  if (isnan(k->mass0)) k->mass0 = d->mass;
+  if (isnan(k->mass0)) k->mass0 = d->mass, k->e0 = d->total;
   k->mass_last = d->mass;
   k->res_last = hypot(d->momentum_residual_x, d->momentum_residual_y);
   k->t_last = d->time;
@@ -154,12 +165,19 @@ static void on_row(void *ctx, const sph_diag_row *d) {
     if (fabs(d->time - k->times[i]) <= 1e-12 * (1.0 + k->times[i])) {
       k->row->dev[i] = d->deviation;
       k->row->fdev[i] = d->fluid_deviation;
+      /* E - E_f = U_walls - W - D, and E0 = E_f0 (walls start without heat) */
+      const double w = k->e0 != 0.0 ? (d->boundary_work + d->xsph_drift) / k->e0 : 0.0;
+      k->row->work[i] = w;
+      k->row->wall_heat[i] = d->deviation - d->fluid_deviation + w;
       k->found++;
     }
 }
 
+/* Which column print_table shows. */
+enum { COL_CLOSED, COL_FLUID, COL_WORK, COL_WALL_HEAT };
+
 static void print_table(FILE *f, int md, const audit_row *rows, int nr, const double *times, int nt,
-                        int fluid) {
+                        int col) {
   if (md) {
     fprintf(f, "| particles \\ t (s) |");
     for (int i = 0; i < nt; i++)
@@ -177,8 +195,65 @@ static void print_table(FILE *f, int md, const audit_row *rows, int nr, const do
   for (int r = 0; r < nr; r++) {
     fprintf(f, md ? "| %ld |" : "%10ld", rows[r].particles);
     for (int i = 0; i < nt; i++) {
-      const double d = 100.0 * (fluid ? rows[r].fdev[i] : rows[r].dev[i]);
+      const double v[4] = {rows[r].dev[i], rows[r].fdev[i], rows[r].work[i], rows[r].wall_heat[i]};
+      const double d = 100.0 * v[col];
       fprintf(f, md ? " %.4f %% |" : " %+9.4f%%", d);
+    }
+    fprintf(f, "\n");
+  }
+}
+
+/* A published table to set beside the audit's (--reference): its particle
+ * counts in the order of the file and its values (in %) at the audit's
+ * times, NaN where it has none. */
+typedef struct reference {
+  const char *path;
+  int n;
+  long counts[MAX_RUNS];
+  double pct[MAX_RUNS][MAX_TIMES];
+} reference;
+
+/* Reads path (CSV: particles, time, deviation_pct) into ref for the times
+ * of the audit; 0, or -1 with err set. */
+static int read_reference(const char *path, const double *times, int nt, reference *ref,
+                          sph_error *err) {
+  sph_csv t;
+  *ref = (reference){path, 0, {0}, {{0}}};
+  if (sph_csv_read(path, &t, err)) return -1;
+  const int cn = sph_csv_column(&t, "particles", err), ct = sph_csv_column(&t, "time", err),
+            cd = sph_csv_column(&t, "deviation_pct", err);
+  int rc = cn < 0 || ct < 0 || cd < 0 ? -1 : 0;
+  for (size_t r = 0; rc == 0 && r < t.nrow; r++) {
+    const double *row = t.data + r * t.ncol;
+    int k = 0;
+    while (k < ref->n && ref->counts[k] != (long)row[cn])
+      k++;
+    if (k == ref->n) {
+      if (ref->n == MAX_RUNS) {
+        rc = sph_error_set(err, "%s: more than %d particle counts", path, MAX_RUNS);
+        break;
+      }
+      ref->counts[ref->n++] = (long)row[cn];
+      for (int i = 0; i < MAX_TIMES; i++)
+        ref->pct[k][i] = NAN;
+    }
+    for (int i = 0; i < nt; i++)
+      if (fabs(row[ct] - times[i]) <= 1e-9 * (1.0 + times[i])) ref->pct[k][i] = row[cd];
+  }
+  sph_csv_free(&t);
+  return rc;
+}
+
+/* The reference's table, as print_table's (md or text). */
+static void print_reference(FILE *f, int md, const reference *ref, int nt) {
+  for (int r = 0; r < ref->n; r++) {
+    fprintf(f, md ? "| %ld |" : "%10ld", ref->counts[r]);
+    for (int i = 0; i < nt; i++) {
+      const double v = ref->pct[r][i];
+      if (isnan(v))
+        fprintf(f, md ? " - |" : " %10s", "-");
+      else
+        fprintf(f, md ? " %g %% |" : " %9g%%", v);
     }
     fprintf(f, "\n");
   }
@@ -217,6 +292,8 @@ static int audit_option(audit_args *a, int argc, char **argv, int *i) {
     }
   } else if (!strcmp(o, "-o") || !strcmp(o, "--output")) {
     a->outdir = v;
+  } else if (!strcmp(o, "-r") || !strcmp(o, "--reference")) {
+    a->reference = v;
   } else if (!strcmp(o, "-t") || !strcmp(o, "--threads")) {
     if (sph_cli_parse_threads("sph audit", v, &a->threads)) return 2;
   } else {
@@ -231,8 +308,9 @@ static int audit_option(audit_args *a, int argc, char **argv, int *i) {
 
 /* The command line into a; -1 after --help (printed), 0, or 2. */
 static int parse_audit_args(int argc, char **argv, audit_args *a) {
-  static const char *const with_value[] = {"-p", "--particles", "-T", "--times", "-o", "--output",
-                                           "-t", "--threads",   "-s", "--set",   NULL};
+  static const char *const with_value[] = {"-p", "--particles", "-T", "--times",   "-o", "--output",
+                                           "-r", "--reference", "-t", "--threads", "-s", "--set",
+                                           NULL};
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
@@ -311,9 +389,9 @@ static int audit_run(const audit_args *a, int r, long got, double dx, audit_row 
     fprintf(stderr, "sph audit: %s\n", err.msg);
   } else {
     const double g = hypot(c.gravity[0], c.gravity[1]);
-    row_sink sink = {a->times, a->ntimes, 0, g > 0.0 ? g : 1.0, NAN, NAN, NAN, NAN, row};
+    row_sink sink = {a->times, a->ntimes, 0, g > 0.0 ? g : 1.0, NAN, NAN, NAN, NAN, NAN, row};
     for (int i = 0; i < a->ntimes; i++)
-      row->dev[i] = row->fdev[i] = NAN;
+      row->dev[i] = row->fdev[i] = row->work[i] = row->wall_heat[i] = NAN;
     sph_progress bar;
     sph_progress_init(&bar, stderr, c.t_end, a->quiet);
     sph_run_options opt = {dir, on_progress, &bar, NULL, on_row, &sink};
@@ -339,18 +417,45 @@ static int audit_run(const audit_args *a, int r, long got, double dx, audit_row 
   return status;
 }
 
-/* The tables on stdout. */
+/* The tables on stdout (md = 0) or in audit.md (md = 1). */
+static void print_tables(FILE *f, int md, const char *name, const audit_row *rows, int nr,
+                         const double *times, int nt, const reference *ref) {
+  static const char *const title[2][5] = {
+      {"Energy deviation (E - E0)/E0, closed balance (kinetic + potential + internal\n"
+       "- moving-wall work - XSPH drift), case %s:\n",
+       "\nThe fluid's own kinetic + potential + internal energy against its start\n"
+       "(the quantity of paper A, Table 4):\n",
+       "\nBeside it, %s:\n",
+       "\nWhat the fluid alone does not hold, in E0: the work of moving walls (and the\n"
+       "XSPH drift)\n",
+       "\nand the heat the wall particles took (their half of the fluid-wall pairs'\n"
+       "heat); closed balance = the fluid's own + heat - work:\n"},
+      {"Energy audit of case `%s`.\n\nClosed balance, (E - E0)/E0:\n\n",
+       "\nThe fluid's own kinetic + potential + internal energy (paper A, Table 4):\n\n",
+       "\nBeside it, %s:\n\n",
+       "\nWhat the fluid alone does not hold, in E0: the work of moving walls (and the XSPH "
+       "drift)\n\n",
+       "\nand the heat the wall particles took (their half of the fluid-wall pairs' heat); "
+       "closed balance = the fluid's own + heat - work:\n\n"}};
+  fprintf(f, title[md][0], name);
+  print_table(f, md, rows, nr, times, nt, COL_CLOSED);
+  fprintf(f, "%s", title[md][1]);
+  print_table(f, md, rows, nr, times, nt, COL_FLUID);
+  if (ref && ref->n) {
+    fprintf(f, title[md][2], ref->path);
+    print_table(f, md, NULL, 0, times, nt, COL_FLUID); /* the header */
+    print_reference(f, md, ref, nt);
+  }
+  fprintf(f, "%s", title[md][3]);
+  print_table(f, md, rows, nr, times, nt, COL_WORK);
+  fprintf(f, "%s", title[md][4]);
+  print_table(f, md, rows, nr, times, nt, COL_WALL_HEAT);
+}
+
+/* The report on stdout. */
 static void print_report(const char *name, const audit_row *rows, int nr, const double *times,
-                         int nt) {
-  printf("Energy deviation (E - E0)/E0, closed balance (kinetic + potential + internal\n"
-         "- moving-wall work - XSPH drift), case %s:\n",
-         name);
-  print_table(stdout, 0, rows, nr, times, nt, 0);
-  printf("\nThe fluid's own kinetic + potential + internal energy against its start\n"
-         "(the quantity of paper A, Table 4; it differs from the closed balance by the\n"
-         "work of moving walls and the heat the walls take, which the fluid alone\n"
-         "does not hold):\n");
-  print_table(stdout, 0, rows, nr, times, nt, 1);
+                         int nt, const reference *ref) {
+  print_tables(stdout, 0, name, rows, nr, times, nt, ref);
   printf("\nMass drift at t = %g s:", times[nt - 1]);
   for (int r = 0; r < nr; r++)
     printf(" %ld: %.3g", rows[r].particles, rows[r].mass_drift);
@@ -363,25 +468,22 @@ static void print_report(const char *name, const audit_row *rows, int nr, const 
 
 /* DIR/audit.csv and DIR/audit.md; 0 or -1. */
 static int write_report(const char *outdir, const char *name, const audit_row *rows, int nr,
-                        const double *times, int nt) {
+                        const double *times, int nt, const reference *ref) {
   char path[4096];
   FILE *f = path_join(path, sizeof path, outdir, "audit.csv") ? NULL : fopen(path, "w");
   if (f) {
-    fprintf(f, "particles,dx,time,energy_deviation,fluid_energy_deviation,mass_drift,"
-               "momentum_drift\n");
+    fprintf(f, "particles,dx,time,energy_deviation,fluid_energy_deviation,wall_work,wall_heat,"
+               "mass_drift,momentum_drift\n");
     for (int r = 0; r < nr; r++)
       for (int k = 0; k < nt; k++)
-        fprintf(f, "%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", rows[r].particles, rows[r].dx,
-                times[k], rows[r].dev[k], rows[r].fdev[k], rows[r].mass_drift,
-                rows[r].momentum_drift);
+        fprintf(f, "%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", rows[r].particles,
+                rows[r].dx, times[k], rows[r].dev[k], rows[r].fdev[k], rows[r].work[k],
+                rows[r].wall_heat[k], rows[r].mass_drift, rows[r].momentum_drift);
     fclose(f);
   }
   FILE *m = path_join(path, sizeof path, outdir, "audit.md") ? NULL : fopen(path, "w");
   if (m) {
-    fprintf(m, "Energy audit of case `%s`.\n\nClosed balance, (E - E0)/E0:\n\n", name);
-    print_table(m, 1, rows, nr, times, nt, 0);
-    fprintf(m, "\nThe fluid's own kinetic + potential + internal energy (paper A, Table 4):\n\n");
-    print_table(m, 1, rows, nr, times, nt, 1);
+    print_tables(m, 1, name, rows, nr, times, nt, ref);
     fprintf(m, "\n| particles | mass drift | momentum drift (t = %g s) |\n|---|---|---|\n",
             times[nt - 1]);
     for (int r = 0; r < nr; r++)
@@ -393,7 +495,7 @@ static int write_report(const char *outdir, const char *name, const audit_row *r
 }
 
 /* Every run of the audit, then the report; the exit status. */
-static int audit_all(audit_args *a, const sph_case *base) {
+static int audit_all(audit_args *a, const sph_case *base, const reference *ref) {
   audit_row rows[MAX_RUNS];
   char set_dx[128], set_times[4096], set_end[128];
   audit_sets(a, set_times, sizeof set_times, set_end, sizeof set_end, set_dx);
@@ -411,8 +513,8 @@ static int audit_all(audit_args *a, const sph_case *base) {
               a->times[a->ntimes - 1], 100 * rows[r].dev[a->ntimes - 1],
               100 * rows[r].fdev[a->ntimes - 1]);
   }
-  print_report(base->name, rows, a->ncounts, a->times, a->ntimes);
-  if (write_report(a->outdir, base->name, rows, a->ncounts, a->times, a->ntimes)) {
+  print_report(base->name, rows, a->ncounts, a->times, a->ntimes, ref);
+  if (write_report(a->outdir, base->name, rows, a->ncounts, a->times, a->ntimes, ref)) {
     fprintf(stderr, "sph audit: cannot write %s/audit.{csv,md}\n", a->outdir);
     return 1;
   }
@@ -445,7 +547,13 @@ int sph_cli_audit(int argc, char **argv) {
       fprintf(stderr, "sph audit: cannot create %s: %s\n", a.outdir, strerror(errno));
       status = 1;
     } else {
-      status = audit_all(&a, &base);
+      static reference ref; /* large: not on the stack */
+      if (a.reference && read_reference(a.reference, a.times, a.ntimes, &ref, &err)) {
+        fprintf(stderr, "sph audit: --reference: %s\n", err.msg);
+        status = 1;
+      } else {
+        status = audit_all(&a, &base, a.reference ? &ref : NULL);
+      }
     }
   }
   sph_case_free(&base);

@@ -274,10 +274,15 @@ static int setup_interrupted(void) {
 }
 
 /* Test hook (doc/testing.md): SPH_TEST_SETUP_PAUSE=S waits up to S seconds
- * before the set-up, or until a signal, so a test can signal the set-up. */
+ * before the set-up, or until a signal, so a test can signal the set-up;
+ * it says so on stderr first, so the test knows when to. */
 static void setup_pause(void) {
   const char *e = getenv("SPH_TEST_SETUP_PAUSE");
   const double secs = e ? atof(e) : 0.0;
+  if (secs > 0.0) {
+    fprintf(stderr, "sph run: SPH_TEST_SETUP_PAUSE: the set-up waits\n");
+    fflush(stderr);
+  }
   for (double t = 0.0; t < secs && !interrupted; t += 0.01) {
     struct timespec ts = {0, 10000000L};
     nanosleep(&ts, NULL);

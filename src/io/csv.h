@@ -11,6 +11,10 @@
 
 #include "core/error.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct sph_csv {
   char *path;
   size_t ncol, nrow;
@@ -27,5 +31,9 @@ int sph_csv_column(const sph_csv *t, const char *name, sph_error *err);
 /* Fills out (nrow values) with a column expression: a column name, or
  * several joined by '+' (their sum, e.g. "kinetic+potential"). */
 int sph_csv_eval(const sph_csv *t, const char *expr, double *out, sph_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif
