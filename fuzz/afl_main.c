@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * afl_main.c - the AFL++ driver of one fuzz target (harness.h), chosen at
  * build time: -DFUZZ_TARGET_CASE, -DFUZZ_TARGET_SNAPSHOT or -DFUZZ_TARGET_CSV. Built by

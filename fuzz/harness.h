@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * harness.h - the fuzz targets' logic, shared by the AFL++ drivers
  * (fuzz/afl_*.c, built by fuzz/run) and the regression test that replays

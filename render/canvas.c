@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * canvas.c - the drawing surface of canvas.h on OpenGL 3.3 core.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * canvas.h - a 2-D drawing surface of width x height pixels on an OpenGL
  * framebuffer object: rectangles, discs, lines, triangles and bitmap text,

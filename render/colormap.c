@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * colormap.c - builds the colour tables of colormap.h.
  *

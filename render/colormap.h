@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * colormap.h - colour maps: a value in [0, 1] to an 8-bit sRGB colour.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * figure.c - draws the snapshot panels of figure.h into a layout.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * figure.h - draws snapshot panels on a canvas: particles as discs coloured
  * through a colour map, walls in grey, axes with metre ticks, a label line

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * font.c - the glyphs of the built-in bitmap font (see font.h).
  *

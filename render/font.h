@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * font.h - the built-in bitmap font: 5x7 glyphs (cap height 7, two rows of
  * descender) for printable ASCII, so no font file is needed.

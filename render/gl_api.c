@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * gl_api.c - fills the table of OpenGL entry points (see gl_api.h).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * gl_api.h - the OpenGL entry points the renderer uses, as a table of
  * function pointers filled from the back end's proc-address loader.

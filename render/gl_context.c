@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * gl_context.c - chooses the back end that makes an OpenGL context.
  *

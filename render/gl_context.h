@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * gl_context.h - an off-screen OpenGL 3.3 core context from a named back end.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * gl_context_egl.c - the surfaceless EGL back end: a core-profile 3.3
  * context with no window system and no surface (EGL_MESA_platform_surfaceless,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * gl_context_osmesa.c - the OSMesa back end: a core-profile 3.3 context.
  *

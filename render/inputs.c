@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * inputs.c - snapshot lists from the command line (see inputs.h).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * inputs.h - turns command-line inputs into lists of snapshot files, names
  * output files after them, and matches snapshots by time.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * jobs.c - the worker pool of jobs.h, by fork(2).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * jobs.h - runs independent tasks (one output image each) on several
  * worker processes, each with its own OpenGL context.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * layout.h - where everything goes in a figure of snapshot panels: a grid
  * of rows x cols panels (one for a single frame), each with a label line,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # render/local.mk - the off-screen renderer sph-render, its test, and the
 # `frames` and `golden-render` targets. Included by the top-level Makefile.am.
 #

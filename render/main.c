@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * main.c - sph-render: SPH snapshots to PNG frames, figures and plots,
  * off screen (OSMesa or surfaceless EGL).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * marks.c - series colours, marker shapes and the legend (see marks.h).
  *

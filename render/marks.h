@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * marks.h - what identifies a data series: a colour from a fixed
  * colour-blind-safe palette, a marker shape, and the legend that names

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * options.h - the settings of one sph-render invocation, as parsed from the
  * command line by cli.c. Strings point into argv.

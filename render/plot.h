@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * plot.h - the CSV plot mode: lines and points from CSV columns on linear
  * axes with ticks, labels, grid and a legend (e.g. the dam-break front

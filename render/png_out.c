@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * png_out.c - PNG output through libpng (see png_out.h).
  *

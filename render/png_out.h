@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * png_out.h - writes an 8-bit RGB image as a PNG file, atomically.
  */

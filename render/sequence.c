@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * sequence.c - plans and renders the images of the snapshot modes.
  *

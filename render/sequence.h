@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * sequence.h - the snapshot modes of sph-render: one frame per snapshot,
  * a figure of panels, or runs compared side by side at matching times.

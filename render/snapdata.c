@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * snapdata.c - loads the parts of a snapshot the renderer draws
  * (see snapdata.h), through the reader of src/io/snapshot.h only.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * snapdata.h - what the renderer needs from one snapshot: positions, one
  * field, which particles are walls, the time, the particle spacing and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * ticks.c - "nice numbers for graph labels" (P. S. Heckbert, Graphics Gems,
  * 1990): the tick step is the nice number nearest (hi - lo) / (target - 1),

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * ticks.h - axis ticks at "nice" numbers (1, 2 or 5 times a power of ten)
  * and their labels.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * sph.h - the public API of libsph in one include: what a program needs to
  * load a case, run it, read and write snapshots, read the diagnostics and

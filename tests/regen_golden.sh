@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: BSD-3-Clause
 # Regenerates the golden files from the current build. Run it through
 # `make golden` (which sets SPH_SRCDIR and SPH_BUILDDIR), look at the diff,
 # and commit the new files with a message that says why the numbers moved.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * snapcmp.c - snapshot comparison helpers of the tests (snapcmp.h), through
  * the library's own reader.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * snapcmp.h - comparing snapshots in the tests of restart and interruption
  * (test_restart.c, test_interrupt.c): dataset by dataset, bit for bit.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_case.c - the strict YAML case reader (case.h).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_checks.c - the debug invariants (src/core/check.h) hold on real
  * states and catch what they are for.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_cli.c - the `sph` program as a user meets it: help and version, and
  * bad input (missing case file, unknown key, wrong type, bad option, bad
@@ -130,6 +131,18 @@ static void test_resource_bound(void) {
   snprintf(args, sizeof args, "run '%s/good.yaml' -o '%s/ok' --max-particles 10000", tmp, tmp);
   CU_ASSERT_EQUAL(sph(args, out, sizeof out), 0);
   CU_ASSERT(strstr(out, "at most 10000 particles allowed") != NULL);
+  /* the count and the memory come before the set-up, the particles made after it */
+  const char *plan = strstr(out, "setting up about "), *made = strstr(out, "  particles ");
+  CU_ASSERT(plan != NULL && made != NULL && plan < made);
+  CU_ASSERT(plan != NULL && strstr(plan, "memory about") != NULL);
+  /* a blow-up at a fixed step names the step the rule would have taken */
+  snprintf(args, sizeof args,
+           "run '%s/good.yaml' -o '%s/fixed' --set numerics.time_step.rule=fixed "
+           "--set numerics.time_step.dt=0.01 --set time.end=0.5 --set time.output_interval=0.1",
+           tmp, tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 3);
+  CU_ASSERT(strstr(out, "the fixed time step 0.01 s is") != NULL &&
+            strstr(out, "paper B's rule (time_step.rule: paper_b, factor 0.3)") != NULL);
 }
 
 static void test_good_run_and_info(void) {

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_conservation.c - mass is exact and total momentum of an isolated
  * fluid patch (no walls, no gravity, random velocities, artificial

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_dam_break.c - the coarse Martin & Moyce dam break
  * (cases/martin_moyce_coarse.yaml, dx = a/20) run through the `sph` program:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_debug_run.c - short runs with every debug invariant on.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_density_diffusion.c - the density diffusion of the continuity
  * equation (src/physics/density_diffusion.h), each model:

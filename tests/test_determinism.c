@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_determinism.c - same case, same build: byte-identical output on 1
  * and on 2 threads, for every kind of loop the solver has (DESIGN rule 1),

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_energy.c - the energy ledger (paper A §9; output.energy).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_filter.c - the density re-initialisation filters (filter.h).
  *

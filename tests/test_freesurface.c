@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_freesurface.c - free-surface detection (freesurface.h, paper A §7).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_freesurface_run.c - free-surface detection (paper A §7) inside a
  * real run: issue 3, free-surface test (4).

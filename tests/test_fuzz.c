@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_fuzz.c - the fuzzers' findings as regression tests, without AFL++.
  *

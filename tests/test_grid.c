@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_grid.c - the cell-linked list (grid.h) against a brute-force search.
  *

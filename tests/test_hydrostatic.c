@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_hydrostatic.c - still water stays still (cases/hydrostatic_tank.yaml).
  *

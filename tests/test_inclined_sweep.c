@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_inclined_sweep.c - paper A Tables 1 and 2 on a CI-sized subset:
  * bench/inclined_plane run at 100, 400, 900 and 1600 fluid particles with

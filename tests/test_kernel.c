@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_kernel.c - properties of the 2-D kernels (kernel.h), each test for
  * the cubic spline and the Wendland C2 kernel:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_pair_terms.c - the pair terms are written once and every loop that
  * sums them agrees (src/physics/pair_terms.h, src/solver/interact.h).

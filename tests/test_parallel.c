@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_parallel.c - how loops are split among threads (parallel.h) and the
  * staggered array blocks their data lives in (arrays.h).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_pressure_noise.c - pressure noise as a number (issue 19, point 5).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_probes.c - pressure, level and velocity probes (output.probes,
  * src/analysis/probes.h, probes.csv):

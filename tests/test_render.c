@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_render.c - tests of the off-screen renderer sph-render (render/).
  *

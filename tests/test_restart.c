@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_restart.c - `sph run --restart SNAPSHOT CASE` continues a run
  * bitwise.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_snapshot.c - HDF5 snapshots and the XDMF index.
  *

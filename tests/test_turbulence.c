@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_turbulence.c - the SPS (Smagorinsky) stress of paper B eq. (4)
  * (src/physics/turbulence.h) and its use in a run.

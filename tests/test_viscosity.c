@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_viscosity.c - laminar viscosity: the SPH strain rate of paper A
  * eq. (13)-(14) on a lattice, and the flow down an inclined plane (paper A

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_wall_velocity.c - unstaggered wall layers and the extrapolated
  * (no-slip) velocity of wall particles (src/walls/boundary.h, src/walls/wall_velocity.h).

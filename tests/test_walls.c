@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_walls.c - the wall models hold still water: cases/hydrostatic_tank.yaml
  * run for 0.5 s with each boundary of the tank (dynamic, fixed_layers,

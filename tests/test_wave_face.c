@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_wave_face.c - the front face of a breaking wave (wave_face.h).
  *

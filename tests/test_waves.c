@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_waves.c - wave generation by a flap paddle (paper B §4.2) on the
  * coarse flume cases/linear_wave_coarse.yaml (dx = 0.4 m, 10 particles in

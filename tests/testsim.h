@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * testsim.h - opening a simulation from a case file for the tests that
  * drive the library directly (kept apart from testutil.h so that the

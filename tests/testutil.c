@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * testutil.c - CUnit runner and file helpers shared by the test programs.
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * ops.c - how fast this core runs the arithmetic of the interaction loop
  * (bench/limit): four-lane double division, square root, and multiply /

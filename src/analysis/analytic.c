@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * analytic.c - the film-flow profile of paper A eq. (26) and the error of an
  * SPH state against it (see analytic.h for the norms).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * analytic.h - analytic solutions that validation cases are measured
  * against.

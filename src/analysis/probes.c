@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * probes.c - the readings of pressure, level and velocity probes (see
  * probes.h).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * probes.h - what a run's probes read (output.probes, probes.csv).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * wave_face.c - the front face of a breaking wave (definitions in
  * wave_face.h).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * wave_face.h - the front face of a breaking wave: how steep it is, and
  * whether it has passed vertical (paper B §4.3: "the front of the wave

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * case.c - the strict YAML case-file reader (see case.h).
  *

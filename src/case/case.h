@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * case.h - a case: everything a run needs, read from a YAML case file.
  *

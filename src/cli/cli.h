@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * cli.h - the sub-commands of the `sph` program. Each takes the argument
  * vector starting at its own name and returns the process exit status.
@@ -57,5 +58,13 @@ void sph_cli_print_listing(FILE *f, const char *listing, const char *indent);
 
 /* mkdir -p: creates path and its parents; 0, or -1 with errno set. */
 int sph_cli_make_dirs(const char *path);
+
+/* The case CASE names on the command line (case_lookup.c): CASE itself if
+ * it is a file; else, for a bare name (no '/'), NAME.yaml (or NAME) in the
+ * directory of installed cases, written into buf (n bytes). NULL if
+ * neither: why (nw bytes) then says so and lists the installed cases. */
+const char *sph_cli_find_case(const char *arg, char *buf, size_t n, char *why, size_t nw);
+/* The directory of installed cases: $SPH_CASES_DIR, else <datadir>/sph/cases. */
+const char *sph_cli_cases_dir(void);
 
 #endif

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * cli_args.c - the argument check shared by the sub-commands that take a
  * list of snapshot files (sph info, sph profile): options may stand

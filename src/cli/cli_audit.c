@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * cli_audit.c - `sph audit CASE --particles N1,N2,... [--times t1,t2,...]`
  *
@@ -123,7 +124,7 @@ static double dx_for(const sph_case *c, long want, long *got) {
 }
 
 static void on_progress(void *ctx, const sph_sim *s) {
-  sph_progress_update(ctx, sph_sim_time(s), sph_sim_steps(s));
+  sph_progress_update(ctx, sph_sim_time(s), sph_sim_steps(s), 0.0, 0.0);
 }
 
 typedef struct audit_row {
@@ -393,7 +394,7 @@ static int audit_run(const audit_args *a, int r, long got, double dx, audit_row 
     for (int i = 0; i < a->ntimes; i++)
       row->dev[i] = row->fdev[i] = row->work[i] = row->wall_heat[i] = NAN;
     sph_progress bar;
-    sph_progress_init(&bar, stderr, c.t_end, a->quiet);
+    sph_progress_init(&bar, stderr, c.t_end, NULL, a->quiet);
     sph_run_options opt = {dir, on_progress, &bar, NULL, on_row, &sink};
     sph_run_result res;
     const double w0 = sph_wall_seconds();

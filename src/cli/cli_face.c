@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * cli_face.c - `sph face [--help] SNAPSHOT...`: the front face of a
  * breaking wave in each snapshot (wave_face.h), and the first time it

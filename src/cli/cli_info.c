@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * cli_info.c - `sph info [--help] SNAPSHOT...`: what a snapshot holds.
  *

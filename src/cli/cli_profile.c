@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * cli_profile.c - `sph profile [--help] SNAPSHOT...`: the error of a film
  * flow down an inclined plane against its steady profile, paper A eq. (26).

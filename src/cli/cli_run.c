@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * cli_run.c - `sph run CASE [-o DIR] [--threads N] [--set key=value]...
  *             [--restart SNAPSHOT]`, and `sph run --restart SNAPSHOT [...]`
@@ -44,7 +45,9 @@ static void run_usage(FILE *f) {
           "               [--restart SNAPSHOT]\n"
           "       sph run --restart SNAPSHOT [-o DIR] [--threads N] [--set time.end=T] [--quiet]\n"
           "\n"
-          "Runs the case file CASE (YAML; every key: doc/case-files.md, man sph). Without CASE,\n"
+          "Runs the case file CASE (YAML; every key: doc/case-files.md, man sph). CASE may\n"
+          "also name an installed example case (e.g. martin_moyce) when no such file is\n"
+          "here: they are in %s ($SPH_CASES_DIR overrides). Without CASE,\n"
           "--restart takes the case from SNAPSHOT (the case text and --set overrides it\n"
           "stores) and writes to SNAPSHOT's directory unless -o is given.\n"
           "\n"
@@ -67,9 +70,10 @@ static void run_usage(FILE *f) {
           "\n"
           "SIGINT or SIGTERM (Ctrl-C) ends the run after the current step: a final snapshot\n"
           "is written (restartable with --restart) and the exit status is 4 (during the\n"
-          "set-up: nothing is written, exit 4); a second signal ends it at once. Exit status: 0 "
-          "done, 1 bad input or I/O error, 2 usage\n"
-          "error, 3 numerical blow-up (last good state in DIR/last_good.h5), 4 interrupted.\n");
+          "set-up: nothing is written, exit 4); a second signal ends it at once.\n"
+          "Exit status: 0 done, 1 bad input or I/O error, 2 usage error, 3 numerical blow-up\n"
+          "(last good state in DIR/last_good.h5), 4 interrupted.\n",
+          sph_cli_cases_dir());
 }
 
 typedef struct progress_ctx {
@@ -78,7 +82,9 @@ typedef struct progress_ctx {
 
 static void on_progress(void *ctx, const sph_sim *s) {
   progress_ctx *pc = ctx;
-  sph_progress_update(&pc->bar, sph_sim_time(s), sph_sim_steps(s));
+  double now = 0.0, stop = 0.0;
+  sph_run_stop_measure(s, &now, &stop);
+  sph_progress_update(&pc->bar, sph_sim_time(s), sph_sim_steps(s), now, stop);
 }
 
 typedef struct run_args {
@@ -152,6 +158,14 @@ static int parse_run_args(int argc, char **argv, run_args *a) {
 static int load_run_case(run_args *a, sph_case *c, char *snapdir, size_t n) {
   sph_error err = {{0}};
   if (a->case_path) {
+    static char found[4096]; /* outlives the call: a->case_path points into it */
+    char why[8192];
+    const char *path = sph_cli_find_case(a->case_path, found, sizeof found, why, sizeof why);
+    if (!path) {
+      fprintf(stderr, "sph run: %s\n", why);
+      return 1;
+    }
+    a->case_path = path;
     if (sph_case_load(a->case_path, a->sets, a->n_set, c, &err) == 0) return 0;
     fprintf(stderr, "sph run: %s\n", err.msg);
     sph_case_free(c);
@@ -180,22 +194,33 @@ static int load_run_case(run_args *a, sph_case *c, char *snapdir, size_t n) {
   return 0;
 }
 
-/* The start-up listing: the run's own facts, then the case exactly as it
- * runs, line for line the listing sph_case_describe gives the snapshots
- * (numbers shortened to 6 significant digits for reading). */
+/* Before the set-up allocates anything: what it will make, from the case
+ * alone (the counts are estimated from above; a large case's set-up
+ * takes a while, and its memory is known before it is spent). */
+static void print_plan(const run_args *a, const sph_case *c) {
+  const double max = c->max_particles > 0.0 ? c->max_particles : sph_case_default_max();
+  const double n = c->est_fluid + c->est_wall;
+  printf("%s: case %s (%s)\n", sph_version(), c->name, a->case_path);
+  printf("  setting up about %.0f particles (fluid %.0f, walls at most %.0f): memory about %.3g MB "
+         "(%.0f bytes per particle); at most %.0f particles allowed\n",
+         n, c->est_fluid, c->est_wall, n * SPH_BYTES_PER_PARTICLE / 1e6, SPH_BYTES_PER_PARTICLE,
+         max);
+  fflush(stdout);
+}
+
+/* The start-up listing after the set-up: the run's own facts, then the
+ * case exactly as it runs, line for line the listing sph_case_describe
+ * gives the snapshots (numbers shortened to 6 significant digits for
+ * reading). */
 static void print_banner(const run_args *a, const sph_case *c, sph_sim *s, int nthreads) {
   const sph_particles *p = sph_sim_particles(s);
   const size_t nf = sph_particles_count_kind(p, SPH_KIND_FLUID);
-  printf("%s: case %s (%s)\n", sph_version(), c->name, a->case_path);
   printf("  particles %zu (fluid %zu, wall %zu), threads %d, output %s\n", p->n, nf, p->n - nf,
          nthreads, a->outdir);
-  const double max = c->max_particles > 0.0 ? c->max_particles : sph_case_default_max();
   if (sph_sim_fluid_removed(s))
     printf("  %zu fluid particles not made: closer than dx/2 to a wall particle (a wall drawn "
            "through the fluid)\n",
            sph_sim_fluid_removed(s));
-  printf("  memory about %.0f MB (%.0f bytes per particle); at most %.0f particles allowed\n",
-         (double)p->n * SPH_BYTES_PER_PARTICLE / 1e6, SPH_BYTES_PER_PARTICLE, max);
   if (a->restart)
     printf("  restarting from %s at t = %.9g s, step %ld\n", a->restart, sph_sim_time(s),
            sph_sim_steps(s));
@@ -247,7 +272,8 @@ static int report_end(const sph_run_result *r, const sph_sim *s, const sph_error
 static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
                    sph_snapshot_restart_data *rd) {
   progress_ctx pc;
-  sph_progress_init(&pc.bar, stderr, c->t_end, a->quiet);
+  sph_progress_init(&pc.bar, stderr, c->t_end, c->stop == SPH_STOP_FRONT_AT_WALL ? "front" : NULL,
+                    a->quiet);
   sph_run_options opt = {a->outdir, on_progress, &pc, &interrupted, NULL, NULL};
   sph_run_result r;
   sph_error err = {{0}};
@@ -310,6 +336,7 @@ int sph_cli_run(int argc, char **argv) {
   sph_sim *s = NULL;
   sph_snapshot_restart_data rd;
   status = 1;
+  if (!a.quiet) print_plan(&a, &c);
   setup_pause();
   if (interrupted) {
     status = setup_interrupted();

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * cli_snapcase.c - the case a snapshot was run from, for the commands that
  * measure snapshots (sph profile, sph face)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * main.c - the `sph` command: dispatches to the sub-commands of cli.h.
  */
@@ -120,8 +121,9 @@ int main(int argc, char **argv) {
     return 0;
   }
   if (!strcmp(cmd, "--version")) {
-    printf("%s\nconfigured with: %s\ncompiler: %s\n", sph_version(), sph_configure_args(),
-           sph_compiler());
+    const char *args = sph_configure_args();
+    printf("%s\nconfigured with: %s\nbuild: %s\ncompiler: %s\n", sph_version(),
+           *args ? args : "(no options: the defaults)", sph_build_features(), sph_compiler());
     return 0;
   }
   if (!strcmp(cmd, "run")) return sph_cli_run(argc - 1, argv + 1);

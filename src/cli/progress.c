@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * progress.c - terminal progress bar (see progress.h).
  */
@@ -14,13 +15,36 @@ double sph_wall_seconds(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-void sph_progress_init(sph_progress *pg, FILE *out, double t_end, int quiet) {
+void sph_progress_init(sph_progress *pg, FILE *out, double t_end, const char *measure, int quiet) {
   pg->out = out;
   pg->enabled = !quiet && isatty(fileno(out));
   pg->t_end = t_end;
   pg->wall0 = sph_wall_seconds();
   pg->last_draw = -1.0;
   pg->drawn = 0;
+  pg->started = 0;
+  pg->t0 = pg->m0 = 0.0;
+  pg->step0 = 0;
+  pg->measure = measure;
+}
+
+static double clamp01(double f) { return f < 0.0 ? 0.0 : f > 1.0 ? 1.0 : f; }
+
+void sph_progress_state(const sph_progress *pg, double t, long step, double now, double stop,
+                        double elapsed, double *by_time, double *by_stop, double *left) {
+  (void)step;
+  const double span = pg->t_end - pg->t0;
+  *by_time = span > 0.0 ? clamp01((t - pg->t0) / span) : 1.0;
+  *by_stop = -1.0;
+  if (pg->measure && stop != pg->m0) *by_stop = clamp01((now - pg->m0) / (stop - pg->m0));
+  /* the sooner of the two estimates, each extrapolating its own pace */
+  *left = -1.0;
+  const double f[2] = {*by_time, *by_stop};
+  for (int k = 0; k < 2; k++)
+    if (f[k] > 0.0) {
+      const double est = elapsed * (1.0 - f[k]) / f[k];
+      if (*left < 0.0 || est < *left) *left = est;
+    }
 }
 
 static void fmt_duration(char *buf, size_t len, double s) {
@@ -34,30 +58,40 @@ static void fmt_duration(char *buf, size_t len, double s) {
     snprintf(buf, len, "%dh%02dm", (int)(s / 3600), ((int)s % 3600) / 60);
 }
 
-void sph_progress_update(sph_progress *pg, double t, long step) {
+void sph_progress_update(sph_progress *pg, double t, long step, double now, double stop) {
+  if (!pg->started) {
+    pg->started = 1;
+    pg->t0 = t;
+    pg->step0 = step;
+    pg->m0 = now;
+  }
   if (!pg->enabled) return;
-  const double now = sph_wall_seconds();
-  if (pg->last_draw >= 0 && now - pg->last_draw < 0.2) return;
-  pg->last_draw = now;
-  const double el = now - pg->wall0;
-  double frac = pg->t_end > 0 ? t / pg->t_end : 1.0;
-  if (frac > 1) frac = 1;
+  const double wall = sph_wall_seconds();
+  if (pg->last_draw >= 0 && wall - pg->last_draw < 0.2) return;
+  pg->last_draw = wall;
+  const double el = wall - pg->wall0;
+  double ft, fs, left;
+  sph_progress_state(pg, t, step, now, stop, el, &ft, &fs, &left);
+  const double frac = fs > ft ? fs : ft;
   const int width = 30, fill = (int)(frac * width);
   char bar[64];
   for (int i = 0; i < width; i++)
     bar[i] = i < fill ? '#' : '.';
   bar[width] = 0;
-  char eta[32];
-  fmt_duration(eta, sizeof eta, frac > 0 ? el * (1 - frac) / frac : -1);
-  fprintf(pg->out, "\r[%s] %5.1f%%  t = %.4f / %.4f s  step %ld  %.0f steps/s  ETA %s   ", bar,
-          100 * frac, t, pg->t_end, step, el > 0 ? (double)step / el : 0.0, eta);
+  char eta[32], cond[96] = "";
+  fmt_duration(eta, sizeof eta, left);
+  if (fs >= 0.0)
+    snprintf(cond, sizeof cond, "  %s %.4g / %.4g m (%.0f%%)", pg->measure, now, stop, 100 * fs);
+  fprintf(pg->out, "\r[%s] %5.1f%%  t = %.4f / %.4f s%s  step %ld  %.0f steps/s  ETA %s   ", bar,
+          100 * frac, t, pg->t_end, cond, step, el > 0 ? (double)(step - pg->step0) / el : 0.0,
+          eta);
   fflush(pg->out);
   pg->drawn = 1;
 }
 
 void sph_progress_done(sph_progress *pg) {
   if (pg->enabled && pg->drawn) {
-    fprintf(pg->out, "\r%*s\r", 100, "");
+    fprintf(pg->out, "\r%*s\r", 140, "");
     fflush(pg->out);
   }
   pg->drawn = 0;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * arrays.c - staggered array blocks (see arrays.h). Array k starts at
  * page boundary + k * 64 bytes (k taken modulo 64, the lines of a page), so

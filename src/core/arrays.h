@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * arrays.h - several arrays of one length in one allocation, each starting
  * at a different offset modulo the page size.

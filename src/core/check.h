@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * check.h - the two levels of checks (after Lua's): cheap argument checks
  * are always on and return errors; costly invariant checks run only in a

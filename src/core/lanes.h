@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * lanes.h - the arithmetic that pair terms are written in: one set of
  * operations, several flavours, bitwise the same results in each lane.

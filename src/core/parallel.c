@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * parallel.c - the serial-below threshold of the parallel loops, and the
  * split of a loop into slices of equal cost (see parallel.h).

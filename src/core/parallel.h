@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * parallel.h - when a particle loop is worth running on several threads.
  *

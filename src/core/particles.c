@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * particles.c - the particle store (structure of arrays).
  *

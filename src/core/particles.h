@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * particles.h - the particle store: a structure of arrays.
  *

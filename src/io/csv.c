@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * csv.c - reads the numeric CSV tables of csv.h.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * csv.h - numeric tables from CSV files: a header row of column names, then
  * rows of numbers (diagnostics.csv, gauges.csv, audit.csv, the experimental

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * snapshot.c - HDF5 snapshot files: the writer and the reader (snapshot.h).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * snapshot.h - HDF5 snapshots: one file per output time, and their XDMF index.
  *

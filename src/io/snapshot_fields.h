@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * snapshot_fields.h - the fields of a snapshot (internal to libsphio): name,
  * type, where the array lives in sph_particles, units and description.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * xdmf.c - the XDMF 3 index of a series of snapshots (see snapshot.h).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * grid.c - cell-linked list with a stable counting sort (see grid.h).
  *

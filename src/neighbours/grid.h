@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * grid.h - the cell-linked list ("dynamic grid" of paper A §2).
  *

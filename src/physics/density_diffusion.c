@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * density_diffusion.c - the names of the density-diffusion models (see
  * density_diffusion.h).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * density_diffusion.h - a diffusive term in the continuity equation, which
  * removes the high-frequency noise of the density (and so of the pressure)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * eos.c - inverse of the Tait equation of state (see eos.h); used only when
  * particles are created, so pow() is fine here.

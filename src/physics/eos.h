@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * eos.h - the Tait equation of state (paper A eq. (9)-(10); paper B eq. (5)):
  *   p = B [(rho/rho0)^gamma - 1],  B = rho0 c0^2 / gamma,  gamma = 7,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * filter.c - density re-initialisation filters (see filter.h).
  *

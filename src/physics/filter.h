@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * filter.h - density re-initialisation filters (paper B §2.8).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * freesurface.c - free-surface detection by uncovered arcs (paper A §7,
  * after Dilts; the rules are stated in freesurface.h).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * freesurface.h - free-surface detection by uncovered arcs (paper A §7,
  * after Dilts).

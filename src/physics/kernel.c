@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * kernel.c - out-of-line forms of the kernel evaluator (see kernel.h), for
  * tests and for code off the hot path. The interaction loops use the

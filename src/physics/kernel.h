@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * kernel.h - smoothing kernels W and their radial derivative dW/dr.
  *

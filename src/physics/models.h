@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * models.h - the named choices of the physical model that a case selects:
  * the smoothing kernel, the laminar viscosity model and the density

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * pair_terms.h - the physics of one particle pair i, j, written once.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * pair_terms_body.h - the pair terms for one arithmetic flavour FL (v1,
  * v4e, v4x of src/core/lanes.h), with PT_ATTR their attributes. Not a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * turbulence.h - the sub-particle-scale (SPS) stress of paper B eq. (4), a
  * Smagorinsky large-eddy closure (Dalrymple & Rogers 2006 form):

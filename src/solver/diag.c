@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * diag.c - front tracking and conserved sums over the fluid (see diag.h).
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * diag.h - diagnostics: the surge front and the conserved quantities of the
  * fluid, one CSV row per output time (diagnostics.csv).

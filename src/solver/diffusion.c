@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * diffusion.c - the per-particle vector c_i of the density diffusion (see
  * diffusion.h and src/physics/density_diffusion.h).

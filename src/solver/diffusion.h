@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * diffusion.h - the per-particle part of the density diffusion
  * (src/physics/density_diffusion.h), set before each interaction pass

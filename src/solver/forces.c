@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * forces.c - the interaction passes (see forces.h for the equations): the
  * per-pass set-up, the strain-rate pass, the main pass's variants and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * forces.h - the interaction passes: rates of change of every particle from
  * its neighbours (gather form: each particle sums over its own neighbours

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * integrate.c - predictor-corrector stages and time-step rules (see
  * integrate.h). Every loop is per particle (no sums), and the step rules use

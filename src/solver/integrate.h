@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * integrate.h - time integration: the predictor-corrector of paper B
  * (eq. 7-8) and the time-step rules.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * interact.h - the loops of the main interaction pass, for one particle i
  * over its neighbour row (internal to src/solver/forces.c).

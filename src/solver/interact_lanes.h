@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * interact_lanes.h - the main pass for one particle, four neighbours at a
  * time, in the arithmetic flavour FL (v4e or v4x of src/core/lanes.h),

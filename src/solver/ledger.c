@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * ledger.c - the energy and momentum ledger (see ledger.h).
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * ledger.h - the energy and momentum ledger of a run (output.energy).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * restart.c - a run's snapshot that a later run can continue from, bit for
  * bit (sph run --restart).

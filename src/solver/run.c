@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * run.c - the run loop and its outputs (see run.h).
  *
@@ -157,13 +158,18 @@ static int write_output(sph_sim *s, outputs *o, sph_run_result *r, sph_error *er
                         sph_sim_particles(s)->n, sph_case_needs_free_surface(sph_sim_case(s)), err);
 }
 
-static int stop_condition(sph_sim *s) {
+int sph_run_stop_measure(const sph_sim *s, double *now, double *stop) {
   const sph_case *c = sph_sim_case(s);
-  if (c->stop == SPH_STOP_FRONT_AT_WALL) {
-    const double front = sph_diag_front(sph_sim_particles(s), sph_sim_floor(s), 2.0 * c->dx);
-    return front >= c->tank.x1 - c->dx;
-  }
-  return 0;
+  if (c->stop != SPH_STOP_FRONT_AT_WALL) return 0;
+  sph_sim *m = (sph_sim *)s; /* read only: the store is not changed */
+  *now = sph_diag_front(sph_sim_particles(m), sph_sim_floor(s), 2.0 * c->dx);
+  *stop = c->tank.x1 - c->dx;
+  return 1;
+}
+
+static int stop_condition(sph_sim *s) {
+  double now, stop;
+  return sph_run_stop_measure(s, &now, &stop) && now >= stop;
 }
 
 /* Opens a CSV file of the run for writing: a new file gets the header;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * run.h - running a case to its end: the output schedule (snapshots, the
  * XDMF index, diagnostics.csv), the stop condition, interruption and
@@ -63,6 +64,13 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
                    sph_run_result *r, sph_error *err);
 
 const char *sph_run_status_name(sph_run_status st);
+
+/* The case's stop condition: the quantity it watches now, and the value at
+ * which it stops the run. front_at_wall: the surge front (sph_diag_front)
+ * and the right wall less dx. 0 (and nothing set) when the case has no stop
+ * condition. A progress display measures the run's progress by it
+ * between where it stood at the start and *stop. */
+int sph_run_stop_measure(const sph_sim *s, double *now, double *stop);
 
 #ifdef __cplusplus
 }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * setup.c - making a simulation from a case (sph_sim_create) and freeing
  * it.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * sim.c - the step: interaction passes, integrator stages, wall motion,
  * filters, the blow-up check, and what the state reports (diagnostics,
@@ -273,13 +274,22 @@ int sph_sim_check_state(sph_sim *s, sph_error *err) {
   if (worst < 0) return 0;
   const size_t i = (size_t)worst;
   const char *why = bad_particle(p, i, lim, rho0, d);
+  /* with a fixed step, what the step rule would have allowed (the last
+   * pass's state: the one the failed step started from) */
+  char hint[256] = "";
+  const sph_case *c = s->c;
+  if (c->dt_rule == SPH_DT_FIXED && c->dt_fixed > s->dt_paper_b)
+    snprintf(hint, sizeof hint,
+             "; the fixed time step %.6g s is %.3g times the stable step %.6g s that paper B's "
+             "rule (time_step.rule: paper_b, factor %g) gives for that state",
+             c->dt_fixed, c->dt_fixed / s->dt_paper_b, s->dt_paper_b, c->dt_factor);
   sph_error_set(err,
                 "blow-up at step %ld, t = %.9g s: %s particle %lld: %s "
                 "(x = %.6g, y = %.6g, vx = %.6g, vy = %.6g, rho = %.6g; allowed rho in "
-                "[%.6g, %.6g], domain x [%.6g, %.6g] y [%.6g, %.6g])",
+                "[%.6g, %.6g], domain x [%.6g, %.6g] y [%.6g, %.6g])%s",
                 s->steps, s->t, p->kind[i] == SPH_KIND_FLUID ? "fluid" : "wall",
                 (long long)p->id[i], why, p->x[i], p->y[i], p->vx[i], p->vy[i], p->rho[i],
-                rho0 * (1.0 - lim), rho0 * (1.0 + lim), d[0], d[1], d[2], d[3]);
+                rho0 * (1.0 - lim), rho0 * (1.0 + lim), d[0], d[1], d[2], d[3], hint);
   return SPH_BLOWUP;
 }
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * sim_internal.h - the simulation object's insides, shared by the files
  * of src/solver/ that make it (setup.c), step it (sim.c) and restart it

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * boundary.c - building walls of dynamic particles (see boundary.h).
  *

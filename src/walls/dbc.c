@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * dbc.c - the density bounds of dynamic boundary particles (see dbc.h).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * dbc.h - the bounds on the density of dynamic boundary particles.
  *

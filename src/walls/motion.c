@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * motion.c - the prescribed motion of wall particles (see motion.h). Each
  * particle keeps its rest position (xr, yr); its position at time t is a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * motion.h - the prescribed motion of a wall: where each of its particles
  * is at time t, and how fast it moves (a gate translated at a constant

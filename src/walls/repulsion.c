@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * repulsion.c - the Lennard-Jones force of repulsive wall particles on
  * fluid particles (see repulsion.h). Each fluid particle sums over its own

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * repulsion.h - repulsive walls (paper A eq. 21-22): a single layer of wall
  * particles (SPH_FLAG_REPULSIVE) pushes a fluid particle closer than r0

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * wall_types.h - how a case describes its walls: the boundary model of
  * wall particles, the tank, extra wall segments and the prescribed motion

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * wall_velocity.h - the extrapolated (no-slip) velocity of wall particles.
  *

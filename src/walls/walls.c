@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * walls.c - the walls of a run (see walls.h). Wall particles are appended
  * to the store in the order tank, then segments, so their ids (and so the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * walls.h - the walls of a run as a whole: the tank and the wall segments
  * of a case turned into wall particles (boundary.h) or mirror lines, the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * wavemaker.c - linear wavemaker theory and paddle motion (see wavemaker.h).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * wavemaker.h - linear wavemaker theory and paddle motion laws (paper B
  * §4.2).
