@@ -633,7 +633,11 @@ static void test_xdmf(void) {
                            "NodesPerElement=\"1\">\n          <DataItem Dimensions=\"30\" "
                            "NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">snap_000000.h5:"
                            "/particles/id</DataItem>\n        </Topology>"));
-  CU_ASSERT(contains(text, "GeometryType=\"X_Y\""));
+  CU_ASSERT(contains(text, "<Geometry GeometryType=\"XY\">\n          <DataItem Dimensions=\"30 "
+                           "2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">snap_000000.h5:"
+                           "/vectors/position</DataItem>"));
+  CU_ASSERT(contains(text, "<Attribute Name=\"velocity\" AttributeType=\"Vector\" "
+                           "Center=\"Node\">\n          <DataItem Dimensions=\"30 3\""));
   CU_ASSERT(contains(text, "<Time Value=\"0\"/>"));
   CU_ASSERT(contains(text, "<Time Value=\"0.10000000000000001\"/>"));
   CU_ASSERT(contains(text, "<Time Value=\"0.30000000000000004\"/>"));

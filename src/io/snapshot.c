@@ -354,6 +354,63 @@ static int write_particles(writer *w, const sph_particles *p, int free_surface, 
   return rc;
 }
 
+/* The group /vectors: position (n x 2: x, y) and velocity (n x 3: vx, vy,
+ * 0), the values of /particles/x, y, vx, vy in the same (id) order, as the
+ * readers that take vectors want them: the XDMF index's XY geometry and
+ * velocity vector (ParaView's glyphs need three components; meshio reads
+ * one dataset per geometry). Chunked and checksummed like the fields. */
+static int write_vectors(writer *w, const sph_particles *p, const size_t *pos) {
+  const size_t n = p->n;
+  double *buf = malloc((n ? n : 1) * 3 * sizeof *buf);
+  if (!buf) return sph_error_set(w->err, "%s: out of memory for %zu particles", w->path, n);
+  hid_t gcpl = timeless(H5P_GROUP_CREATE);
+  hid_t g = gcpl < 0 ? -1 : H5Gcreate2(w->file, "vectors", H5P_DEFAULT, gcpl, H5P_DEFAULT);
+  close_id(gcpl);
+  int rc = g < 0 ? h5_fail(w->err, w->path, "cannot create group /vectors") : 0;
+  static const char *const name[2] = {"position", "velocity"};
+  static const char *const units[2] = {"m", "m/s"};
+  static const char *const what[2] = {"position (x, y): /particles/x and y as one array",
+                                      "velocity (vx, vy, 0): /particles/vx and vy as one "
+                                      "array, z = 0"};
+  for (int v = 0; rc == 0 && v < 2; v++) {
+    const hsize_t cols = v == 0 ? 2 : 3;
+    const double *a = v == 0 ? p->x : p->vx, *b = v == 0 ? p->y : p->vy;
+    for (size_t k = 0; k < n; k++) {
+      buf[k * cols] = a[pos[k]];
+      buf[k * cols + 1] = b[pos[k]];
+      if (cols == 3) buf[k * cols + 2] = 0.0;
+    }
+    char where[64];
+    snprintf(where, sizeof where, "/vectors/%s", name[v]);
+    hsize_t dims[2] = {n, cols};
+    hid_t dcpl = timeless(H5P_DATASET_CREATE);
+    if (dcpl >= 0 && n > 0) {
+      const hsize_t chunk[2] = {n < SPH_SNAPSHOT_CHUNK ? n : SPH_SNAPSHOT_CHUNK, cols};
+      if (H5Pset_chunk(dcpl, 2, chunk) < 0 || H5Pset_fletcher32(dcpl) < 0) {
+        H5Pclose(dcpl);
+        dcpl = -1;
+      }
+    }
+    hid_t space = H5Screate_simple(2, dims, NULL);
+    hid_t dset = dcpl < 0 || space < 0 ? -1
+                                       : H5Dcreate2(g, name[v], H5T_IEEE_F64LE, space, H5P_DEFAULT,
+                                                    dcpl, H5P_DEFAULT);
+    if (dset < 0)
+      rc = h5_fail(w->err, w->path, "cannot create dataset %s", where);
+    else if (n > 0 && H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0)
+      rc = h5_fail(w->err, w->path, "cannot write dataset %s", where);
+    else if (put_text(w, dset, where, "units", units[v]) ||
+             put_text(w, dset, where, "description", what[v]))
+      rc = -1;
+    close_id(dset);
+    close_id(space);
+    close_id(dcpl);
+  }
+  close_id(g);
+  free(buf);
+  return rc;
+}
+
 /* A 1-D dataset of n raw values (storage order) in the /restart group. */
 static int write_raw(writer *w, hid_t group, const char *name, hid_t ftype, hid_t mtype,
                      const void *values, size_t n) {
@@ -423,6 +480,7 @@ static int write_file(writer *w, const char *tmp, const sph_snapshot_meta *meta,
   if (rc) return rc;
   rc = write_header(w, meta, p->n);
   if (rc == 0) rc = write_particles(w, p, meta->free_surface, pos);
+  if (rc == 0) rc = write_vectors(w, p, pos);
   if (rc == 0 && meta->restart) rc = write_restart(w, meta->restart, p->n);
   if (H5Fclose(w->file) < 0 && rc == 0) rc = h5_fail(w->err, w->path, "cannot close %s", tmp);
   return rc;

@@ -7,9 +7,11 @@
  * Time, a Polyvertex topology (one vertex cell per particle, its
  * connectivity the dataset /particles/id, which is 0..n-1: readers such as
  * ParaView's count cells from the connectivity array and would make none
- * without it), an X_Y geometry made of the two datasets /particles/x and
- * /particles/y, and every field
- * (x and y included) as a node-centred scalar Attribute that references
+ * without it), an XY geometry, the n x 2 dataset /vectors/position (one
+ * array, as meshio's reader wants: it refused the two-array X_Y), the
+ * node-centred Vector Attribute "velocity" (/vectors/velocity, n x 3 with
+ * z = 0: ParaView's glyphs take it as it is), and every field (x and y
+ * included) as a node-centred scalar Attribute that references
  * "<snapshot>:/particles/<field>". The data stay in the HDF5 files; only
  * their names, the particle count and the times are written here.
  *
@@ -53,6 +55,17 @@ static void put_item(FILE *f, const char *indent, const char *h5, const field_sp
   fprintf(f, ":/particles/%s</DataItem>\n", x->name);
 }
 
+/* A DataItem referencing /vectors/<name> (n x cols doubles) of snapshot h5. */
+static void put_vector(FILE *f, const char *indent, const char *h5, const char *name, size_t n,
+                       int cols) {
+  fprintf(f,
+          "%s<DataItem Dimensions=\"%zu %d\" NumberType=\"Float\" Precision=\"8\" "
+          "Format=\"HDF\">",
+          indent, n, cols);
+  put_escaped(f, h5);
+  fprintf(f, ":/vectors/%s</DataItem>\n", name);
+}
+
 /* %.17g whatever LC_NUMERIC says (XML wants a decimal point). */
 static void format_time(char *buf, size_t len, double t) {
   snprintf(buf, len, "%.17g", t);
@@ -73,10 +86,12 @@ static void put_grid(FILE *f, const char *h5, double time, size_t n, int free_su
           n);
   put_item(f, "          ", h5, &FIELDS[ID_FIELD], n); /* vertex i is point id[i] = i */
   fputs("        </Topology>\n", f);
-  fputs("        <Geometry GeometryType=\"X_Y\">\n", f);
-  put_item(f, "          ", h5, &FIELDS[0], n);
-  put_item(f, "          ", h5, &FIELDS[1], n);
+  fputs("        <Geometry GeometryType=\"XY\">\n", f);
+  put_vector(f, "          ", h5, "position", n, 2);
   fputs("        </Geometry>\n", f);
+  fputs("        <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n", f);
+  put_vector(f, "          ", h5, "velocity", n, 3);
+  fputs("        </Attribute>\n", f);
   for (size_t i = 0; i < N_FIELDS; i++) {
     if (i == N_FIELDS - 1 && !free_surface) continue;
     fprintf(f, "        <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n",
