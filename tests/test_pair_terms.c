@@ -443,6 +443,8 @@ static void test_oracle_every_term_set(void) {
       params_for(F, seed, &fp);
       sph_particles p;
       make_set(&p, F * 3 + seed, (F & 16) != 0, (F & 32) != 0, fp.free_slip, &fp.eos);
+      for (size_t k = 0; k < p.n; k++) /* as the set-up does: some walls are mdbc */
+        if (p.flags[k] & SPH_FLAG_MDBC) fp.mdbc = 1;
       const size_t n = p.n;
       rates o, r[3];
       rates_alloc(&o, n);

@@ -87,15 +87,22 @@ void sph_walls_move(const sph_walls *w, sph_particles *p, double t) {
   }
 }
 
-/* The reflection of particle i off line L if it is within d_min in front
- * of it or just behind it; 1 if it was moved. kick (if not NULL) gains its
- * m dx, m dy, m dvx, m dvy. */
+/* Whether (x, y) lies closer than d_min to the wall side of line L (or
+ * behind it); reflect() then checks the reach and the segment's ends. */
+static inline int closer(const sph_mirror_line *L, double x, double y, double d_min) {
+  return (x - L->px) * L->nx + (y - L->py) * L->ny < d_min;
+}
+
+/* The reflection of particle i off line L (closer() holds) if it is not
+ * beyond the reach behind it and within the segment; 1 if it was moved.
+ * kick (if not NULL) gains its m dx, m dy, m dvx, m dvy. */
+
 static int reflect(const sph_mirror_line *L, sph_particles *p, size_t i, double d_min, double reach,
                    int half_step, double *kick) {
   const double rx = p->x[i] - L->px, ry = p->y[i] - L->py;
   const double d = rx * L->nx + ry * L->ny;
   const double s = rx * L->ny - ry * L->nx;
-  if (!(d < d_min) || d <= -reach || s < L->t0 || s > L->t1) return 0;
+  if (d <= -reach || s < L->t0 || s > L->t1) return 0;
   const double shift = 2.0 * (d_min - d), m = p->mass[i];
   p->x[i] += shift * L->nx;
   p->y[i] += shift * L->ny;
@@ -128,10 +135,13 @@ size_t sph_walls_keep_off(const sph_walls *w, sph_particles *p, double d_min, in
   if (w->n_mirror == 0 && w->n_face == 0) return 0;
   for (size_t i = 0; i < p->n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
+    /* the distance test inline; the rare reflection out of line */
     for (size_t l = 0; l < w->n_mirror; l++)
-      moved += (size_t)reflect(&w->mirror[l], p, i, d_min, w->mirror_reach, half_step, kick);
+      if (closer(&w->mirror[l], p->x[i], p->y[i], d_min))
+        moved += (size_t)reflect(&w->mirror[l], p, i, d_min, w->mirror_reach, half_step, kick);
     for (size_t l = 0; l < w->n_face; l++)
-      moved += (size_t)reflect(&w->face[l], p, i, d_min, w->face_reach, half_step, kick);
+      if (closer(&w->face[l], p->x[i], p->y[i], d_min))
+        moved += (size_t)reflect(&w->face[l], p, i, d_min, w->face_reach, half_step, kick);
   }
   return moved;
 }
