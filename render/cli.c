@@ -20,16 +20,19 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sys/stat.h>
+
 #include "core/version.h"
 #include "figure.h"
 #include "gl_context.h"
+#include "inputs.h"
 #include "marks.h"
 
 void rcli_usage(FILE *fp) {
   fputs("usage: sph-render [OPTIONS] SNAPSHOT|RUN_DIR... -o OUT\n"
         "       sph-render --panels CxR [OPTIONS] SNAPSHOT|RUN_DIR... -o FIGURE.png\n"
         "       sph-render --compare [OPTIONS] RUN_DIR RUN_DIR... -o OUT\n"
-        "       sph-render plot [OPTIONS] FILE.csv [--points FILE.csv]... -o PLOT.png\n"
+        "       sph-render plot [OPTIONS] FILE.csv [--points FILE.csv]... -o PLOT.png|.svg|.pdf\n"
         "\n"
         "Renders SPH snapshots (HDF5, as written by `sph run`) to PNG images off screen.\n"
         "A directory stands for its snap_*.h5 files. OUT is a directory (one\n"
@@ -45,13 +48,20 @@ void rcli_usage(FILE *fp) {
         "                          panel column, height from the view's aspect)\n"
         "  --view X0:X1:Y0:Y1      world window in metres (default: the case's tank)\n"
         "  --background RRGGBB     background colour (default ffffff; also white, black)\n"
-        "  --disc-scale F          particle disc diameter = F * dx (default 1)\n"
+        "  --disc-scale F          particle disc diameter = F * dx (default 1; discs smaller\n"
+        "                          than 4 pixels then grow to cover their particle's cell)\n"
         "  --disc-size METRES      disc diameter when the snapshot has no dx\n"
+        "  --smooth                the field as its SPH interpolation on the pixels\n"
+        "                          (Shepard-normalised, blank outside the fluid) instead of\n"
+        "                          particle discs\n"
+        "  --outline               draw the free surface as a line (with or without --smooth)\n"
         "  --walls grey|field|none how to draw wall particles (default grey)\n"
         "  --bare                  particles only: no axes, labels or colour bar\n"
         "  --no-colorbar           no colour bar\n"
         "  --title TEXT            a title line above the figure\n"
         "  --font-scale N          text size multiplier (default: from the image size)\n"
+        "  --samples N             anti-aliasing: each pixel is the mean of NxN samples\n"
+        "                          (1 to 4, default 3; 1: none)\n"
         "  --compression N         PNG zlib level 0-9 (default 3)\n"
         "  --jobs N                worker processes (default: one per processor)\n"
         "  --backend NAME          osmesa (default) or egl (surfaceless)\n"
@@ -82,7 +92,9 @@ void rcli_usage(FILE *fp) {
         "  --xlog, --ylog               logarithmic axis (values <= 0 are left out; the\n"
         "                               default range is whole decades)\n"
         "  --legend top-left|top-right|bottom-left|bottom-right|none\n"
-        "  --size W[xH] (default 960x640), --background, --font-scale, --compression, --backend\n"
+        "  -o PLOT.png|PLOT.svg|PLOT.pdf  the plot as a PNG image, or as SVG or PDF (vector)\n"
+        "  --size W[xH] (default 960x640; pixels, or points for SVG and PDF), --background,\n"
+        "  --font-scale, --samples, --compression, --backend\n"
         "\n"
         "  -h, --help, --version\n",
         fp);
@@ -205,6 +217,7 @@ static void defaults(roptions *o) {
   o->match_tol = NAN;
   o->overlay_tol = 0.0005;
   o->legend = RLEGEND_TOP_LEFT;
+  o->samples = RCANVAS_DEFAULT_SAMPLES;
 }
 
 typedef struct args {
@@ -231,11 +244,49 @@ static const char *value(args *a, sph_error *err) {
 
 static int is(const args *a, const char *name) { return strcmp(a->name, name) == 0; }
 
+/* The extension of path's last component ("" if none; a trailing '/'
+ * marks a directory, whatever its name). */
+static const char *extension(const char *path) {
+  size_t n = strlen(path);
+  if (n == 0 || path[n - 1] == '/') return "";
+  const char *slash = strrchr(path, '/');
+  const char *base = slash ? slash + 1 : path;
+  const char *dot = strrchr(base, '.');
+  return dot && dot != base ? dot : "";
+}
+
+/* What -o may name: a plot is a .png, .svg or .pdf file; snapshot images
+ * are PNG files in a directory, or one .png. Any other extension is
+ * refused rather than taken for a directory's name (an existing directory
+ * or a path ending in '/' is always a directory). */
+static int check_output(const roptions *o, sph_error *err) {
+  const char *ext = extension(o->output);
+  struct stat st;
+  int is_dir = stat(o->output, &st) == 0 && S_ISDIR(st.st_mode);
+  if (o->mode == RMODE_PLOT) {
+    if (rinputs_is_png(o->output) || rcanvas_vector_kind(o->output)) return 0;
+    return sph_error_set(err, "-o %s: a plot is written as .png, .svg or .pdf%s%s%s", o->output,
+                         ext[0] ? " (not " : "", ext, ext[0] ? ")" : "");
+  }
+  if (rcanvas_vector_kind(o->output))
+    return sph_error_set(err,
+                         "-o %s: snapshot images are PNG (.png or a directory); SVG and PDF "
+                         "are for `sph-render plot`",
+                         o->output);
+  if (ext[0] && !rinputs_is_png(o->output) && !is_dir)
+    return sph_error_set(err,
+                         "-o %s: unknown extension '%s': give a .png file or a directory "
+                         "(end the name with '/' if a directory's name has a dot)",
+                         o->output, ext);
+  return 0;
+}
+
 static int check(const roptions *o, sph_error *err) {
   if (!o->output) return sph_error_set(err, "no output: give -o PATH (see --help)");
   if (!rgl_backend_valid(o->backend))
     return sph_error_set(err, "--backend: unknown '%s' (valid: %s)", o->backend,
                          rgl_backend_names());
+  if (check_output(o, err) != 0) return -1;
   if (o->mode == RMODE_PLOT) return 0;
   if (o->n_inputs == 0) return sph_error_set(err, "no snapshots given (see --help)");
   if (o->mode == RMODE_COMPARE && o->n_inputs > ROPT_MAX_LIST)
@@ -273,6 +324,9 @@ static int common_option(args *a, roptions *o, sph_error *err) {
   } else if (is(a, "--font-scale")) {
     VALUE_P();
     if (parse_int(a->name, v, 1, 16, &o->font_scale, err) != 0) return -1;
+  } else if (is(a, "--samples")) {
+    VALUE_P();
+    if (parse_int(a->name, v, 1, RCANVAS_MAX_SAMPLES, &o->samples, err) != 0) return -1;
   } else if (is(a, "--compression")) {
     VALUE_P();
     if (parse_int(a->name, v, 0, 9, &o->compression, err) != 0) return -1;
@@ -375,10 +429,12 @@ static int snapshot_option(args *a, roptions *o, int *compare, int *panels, sph_
     VALUE_P();
     if (parse_double(a->name, v, &o->disc_scale, err) != 0) return -1;
     if (!(o->disc_scale > 0.0)) return sph_error_set(err, "--disc-scale: must be positive");
+    o->disc_given = 1;
   } else if (is(a, "--disc-size")) {
     VALUE_P();
     if (parse_double(a->name, v, &o->disc_size, err) != 0) return -1;
     if (!(o->disc_size > 0.0)) return sph_error_set(err, "--disc-size: must be positive");
+    o->disc_given = 1;
   } else if (is(a, "--walls")) {
     VALUE_P();
     if (strcmp(v, "grey") == 0 || strcmp(v, "gray") == 0)
@@ -389,6 +445,10 @@ static int snapshot_option(args *a, roptions *o, int *compare, int *panels, sph_
       o->walls = RWALLS_NONE;
     else
       return sph_error_set(err, "--walls: unknown '%s' (valid: grey, field, none)", v);
+  } else if (is(a, "--smooth")) {
+    o->smooth = 1;
+  } else if (is(a, "--outline")) {
+    o->outline = 1;
   } else if (is(a, "--bare")) {
     o->bare = 1;
   } else if (is(a, "--no-colorbar")) {

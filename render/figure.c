@@ -4,6 +4,11 @@
  *
  * Particles: each is a disc of diameter dx * disc_scale (dx, the initial
  * particle spacing, is stored on every snapshot) centred on its position.
+ * Discs smaller than 4 pixels grow (unless the user set their size): to
+ * sqrt(2) dx below 2 pixels, enough to cover the square cell of a lattice,
+ * shrinking linearly to dx at 4 pixels. A lattice finer than 2 pixels
+ * (above the image's Nyquist frequency) would otherwise show its gaps as
+ * moire beats that no pixel filter removes; covered, it shows the field.
  * Walls are drawn first and fluid on top, each in file (id) order, so the
  * picture is a pure function of the snapshot; particles outside the plot
  * box are skipped and the rest are clipped to it. A value v maps to the
@@ -19,9 +24,12 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "contour.h"
 #include "font.h"
+#include "interp.h"
 #include "marks.h"
 
 void rfigure_time_label(double t, char *buf, size_t size) {
@@ -40,6 +48,12 @@ int rfigure_disc_size(const rfigure_style *st, const rsnap *s, double *out, sph_
   return 0;
 }
 
+double rfigure_growth(double d) {
+  if (d <= 2.0) return M_SQRT2;
+  if (d >= 4.0) return 1.0;
+  return M_SQRT2 + (1.0 - M_SQRT2) * 0.5 * (d - 2.0);
+}
+
 void rfigure_color(const rfigure_style *st, double v, uint8_t rgb[3]) {
   double t = st->hi > st->lo ? (v - st->lo) / (st->hi - st->lo) : 0.5;
   rcolormap_map(st->cmap, isnan(v) ? NAN : t, rgb);
@@ -47,29 +61,97 @@ void rfigure_color(const rfigure_style *st, double v, uint8_t rgb[3]) {
 
 static rcolor opaque(const uint8_t rgb[3]) { return (rcolor){rgb[0], rgb[1], rgb[2], 255}; }
 
-static void draw_particles(rcanvas *c, const rlayout *L, int k, const rfigure_style *st,
-                           const rsnap *s, double diameter) {
+/* The particles of one kind (walls if walls, else fluid) as discs. */
+static void draw_discs(rcanvas *c, const rlayout *L, int k, const rfigure_style *st, const rsnap *s,
+                       double r, int walls) {
   const rrect *box = &L->panel[k].plot;
-  double r = 0.5 * diameter * L->px_per_m;
-  if (r < 0.5) r = 0.5;                  /* keep sub-pixel particles visible */
-  for (int pass = 0; pass < 2; pass++) { /* walls, then fluid */
-    for (size_t i = 0; i < s->n; i++) {
-      if (s->wall[i] != (pass == 0)) continue;
-      if (s->wall[i] && st->walls == RWALLS_NONE) continue;
-      double px, py;
-      rlayout_to_px(L, k, s->x[i], s->y[i], &px, &py);
-      if (px + r + 1 < box->x0 || px - r - 1 > box->x1 || py + r + 1 < box->y0 ||
-          py - r - 1 > box->y1)
-        continue;
-      rcolor col = st->wall;
-      if (!s->wall[i] || st->walls == RWALLS_FIELD) {
-        uint8_t rgb[3];
-        rfigure_color(st, s->val[i], rgb);
-        col = opaque(rgb);
-      }
-      rcanvas_disc(c, px, py, r, col);
+  for (size_t i = 0; i < s->n; i++) {
+    if (s->wall[i] != walls) continue;
+    double px, py;
+    rlayout_to_px(L, k, s->x[i], s->y[i], &px, &py);
+    if (px + r + 1 < box->x0 || px - r - 1 > box->x1 || py + r + 1 < box->y0 ||
+        py - r - 1 > box->y1)
+      continue;
+    rcolor col = st->wall;
+    if (!walls || st->walls == RWALLS_FIELD) {
+      uint8_t rgb[3];
+      rfigure_color(st, s->val[i], rgb);
+      col = opaque(rgb);
     }
+    rcanvas_disc(c, px, py, r, col);
   }
+}
+
+typedef struct outline_ctx {
+  rcanvas *c;
+  double x0, y0, width;
+  rcolor col;
+} outline_ctx;
+
+static void outline_segment(void *ctx, double x0, double y0, double x1, double y1) {
+  const outline_ctx *o = ctx;
+  rcanvas_line(o->c, o->x0 + x0, o->y0 + y0, o->x0 + x1, o->y0 + y1, o->width, o->col);
+}
+
+/* The fluid of panel k as the SPH interpolation of the field at the
+ * centres of the plot box's pixels (interp.h), blank outside the fluid,
+ * and/or the free surface as a line: the level 1/2 of the kernel sum. */
+static int draw_smooth(rcanvas *c, const rlayout *L, int k, const rfigure_style *st, const rsnap *s,
+                       sph_error *err) {
+  const rrect *box = &L->panel[k].plot;
+  int nx = (int)(box->x1 - box->x0), ny = (int)(box->y1 - box->y0);
+  if (nx < 2 || ny < 2) return 0;
+  if (!s->h || !s->vol)
+    return sph_error_set(err, "%s: the interpolated view needs the particle volumes", s->path);
+  size_t np = (size_t)nx * ny;
+  double *f = malloc(np * sizeof *f), *sf = malloc(np * sizeof *sf), *sw = malloc(np * sizeof *sw);
+  double *phi = malloc(np * sizeof *phi);
+  uint8_t *rgba = malloc(np * 4), *keep = malloc(np);
+  int rc = 0;
+  if (!f || !sf || !sw || !phi || !rgba || !keep)
+    rc = sph_error_set(err, "%s: out of memory for a %dx%d interpolated view", s->path, nx, ny);
+  rinterp_in in = {s->n, s->x, s->y, s->h, s->vol, s->val, s->wall, s->kernel};
+  /* the world point of the box's top-left corner (the inverse of rlayout_to_px) */
+  double wx0, wy1, cx, cy;
+  rlayout_to_px(L, k, 0.0, 0.0, &cx, &cy);
+  wx0 = (box->x0 - cx) / L->px_per_m;
+  wy1 = (cy - box->y0) / L->px_per_m;
+  rinterp_grid g = {nx, ny, wx0, wy1, 1.0 / L->px_per_m};
+  if (!rc) rc = rinterp_field(&in, &g, f, sf, sw, err);
+  for (size_t q = 0; !rc && q < np; q++) {
+    int fluid = rinterp_is_fluid(sf[q]);
+    keep[q] = (uint8_t)(fluid ? 1 : 0) | (uint8_t)(sw[q] >= RINTERP_WALL_NEAR ? 2 : 0);
+    phi[q] = sf[q] - 0.5;
+    uint8_t rgb[3] = {0, 0, 0};
+    if (fluid) rfigure_color(st, f[q], rgb);
+    memcpy(rgba + 4 * q, rgb, 3);
+    rgba[4 * q + 3] = fluid ? 255 : 0;
+  }
+  if (!rc && st->smooth) rcanvas_image(c, *box, nx, ny, rgba);
+  if (!rc && st->outline) {
+    outline_ctx o = {c, box->x0, box->y0, rlayout_line_width(L) > 1 ? rlayout_line_width(L) : 1.5,
+                     st->fg};
+    rcontour(phi, keep, nx, ny, outline_segment, &o);
+  }
+  free(f);
+  free(sf);
+  free(sw);
+  free(phi);
+  free(rgba);
+  free(keep);
+  return rc;
+}
+
+/* Walls, then fluid (as discs, or interpolated), in file (id) order. */
+static int draw_particles(rcanvas *c, const rlayout *L, int k, const rfigure_style *st,
+                          const rsnap *s, double diameter, sph_error *err) {
+  double r = 0.5 * diameter * L->px_per_m;
+  if (st->grow_small) r *= rfigure_growth(2.0 * r);
+  if (r < 0.5) r = 0.5; /* keep sub-pixel particles visible */
+  if (st->walls != RWALLS_NONE) draw_discs(c, L, k, st, s, r, 1);
+  if (!st->smooth) draw_discs(c, L, k, st, s, r, 0);
+  if (st->smooth || st->outline) return draw_smooth(c, L, k, st, s, err);
+  return 0;
 }
 
 static void draw_overlays(rcanvas *c, const rlayout *L, int k, const rfigure_style *st,
@@ -181,7 +263,10 @@ int rfigure_draw(rcanvas *c, const rlayout *L, const rfigure_style *st, const rp
     double diameter;
     if (rfigure_disc_size(st, p[k].snap, &diameter, err) != 0) return -1;
     rcanvas_clip(c, &L->panel[k].plot);
-    draw_particles(c, L, k, st, p[k].snap, diameter);
+    if (draw_particles(c, L, k, st, p[k].snap, diameter, err) != 0) {
+      rcanvas_clip(c, NULL);
+      return -1;
+    }
     draw_overlays(c, L, k, st, p[k].snap->time);
     rcanvas_clip(c, NULL);
     if (L->bare) continue;

@@ -1,8 +1,10 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * figure.h - draws snapshot panels on a canvas: particles as discs coloured
- * through a colour map, walls in grey, axes with metre ticks, a label line
- * per panel (time, name), overlays of reference data, and the colour bar.
+ * through a colour map (or the field interpolated on the pixels, with the
+ * free surface as a line), walls in grey, axes with metre ticks, a label
+ * line per panel (time, name), overlays of reference data, and the colour
+ * bar.
  */
 #ifndef SPH_RENDER_FIGURE_H
 #define SPH_RENDER_FIGURE_H
@@ -33,7 +35,10 @@ typedef struct rfigure_style {
   const char *bar_label; /* e.g. "speed (m/s)" */
   double disc_size;      /* disc diameter in metres; 0: each snapshot's dx */
   double disc_scale;     /* multiplies the diameter */
+  int grow_small;        /* discs under 4 px grow to cover their cell (figure.c) */
   int walls;             /* RWALLS_* */
+  int smooth;            /* the fluid as its SPH interpolation on the pixels (interp.h) */
+  int outline;           /* the free surface as a line; both need rsnap_load_volumes */
   const roverlay *overlays;
   int n_overlays;
   double overlay_tol; /* seconds */
@@ -51,6 +56,8 @@ void rfigure_time_label(double t, char *buf, size_t size);
 /* The disc diameter in metres that style gives particles of snapshot s;
  * an error names the file if it has no spacing and none was given. */
 int rfigure_disc_size(const rfigure_style *st, const rsnap *s, double *out, sph_error *err);
+/* The factor by which a disc of d pixels grows (see figure.c). */
+double rfigure_growth(double d);
 /* The colour a field value maps to (the test oracle uses this too). */
 void rfigure_color(const rfigure_style *st, double v, uint8_t rgb[3]);
 /* Clears the canvas and draws n panels (n <= L->panels) with the style. */

@@ -66,6 +66,14 @@
   X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                                                         \
   X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                                               \
   X(PFNGLUNIFORM2FPROC, Uniform2f)                                                                 \
+  X(PFNGLUNIFORM1FPROC, Uniform1f)                                                                 \
+  X(PFNGLUNIFORM1IPROC, Uniform1i)                                                                 \
+  X(PFNGLGENTEXTURESPROC, GenTextures)                                                             \
+  X(PFNGLBINDTEXTUREPROC, BindTexture)                                                             \
+  X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                                       \
+  X(PFNGLTEXIMAGE2DPROC, TexImage2D)                                                               \
+  X(PFNGLTEXPARAMETERIPROC, TexParameteri)                                                         \
+  X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                                         \
   X(PFNGLDRAWARRAYSPROC, DrawArrays)
 
 typedef struct rgl {

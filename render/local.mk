@@ -10,9 +10,11 @@
 # Everything but main(), so the test can call the layout and colour code.
 noinst_LTLIBRARIES += render/libsphrender.la
 render_libsphrender_la_SOURCES = \
-	render/canvas.c render/canvas.h \
+	render/canvas.c render/canvas.h render/canvas_impl.h \
+	render/canvas_cairo.c render/canvas_gl.c \
 	render/cli.c render/cli.h render/options.h \
 	render/colormap.c render/colormap.h \
+	render/contour.c render/contour.h \
 	render/figure.c render/figure.h \
 	render/font.c render/font.h \
 	render/gl_api.c render/gl_api.h \
@@ -20,7 +22,9 @@ render_libsphrender_la_SOURCES = \
 	render/gl_context_egl.c \
 	render/gl_context_osmesa.c \
 	render/inputs.c render/inputs.h \
+	render/interp.c render/interp.h \
 	render/jobs.c render/jobs.h \
+	render/label.c render/label.h \
 	render/layout.c render/layout.h \
 	render/marks.c render/marks.h \
 	render/plot.c render/plot.h \
@@ -28,8 +32,10 @@ render_libsphrender_la_SOURCES = \
 	render/sequence.c render/sequence.h \
 	render/snapdata.c render/snapdata.h \
 	render/ticks.c render/ticks.h
-RENDER_CFLAGS = $(AM_CFLAGS) $(OSMESA_CFLAGS) $(EGL_CFLAGS) $(PNG_CFLAGS) $(HDF5_CFLAGS)
-RENDER_LIBS = src/libsphio.la $(OSMESA_LIBS) $(EGL_LIBS) $(PNG_LIBS) $(HDF5_LIBS) -lm
+RENDER_CFLAGS = $(AM_CFLAGS) $(OSMESA_CFLAGS) $(EGL_CFLAGS) $(PNG_CFLAGS) $(HDF5_CFLAGS) \
+	$(FREETYPE_CFLAGS) $(CAIRO_CFLAGS)
+RENDER_LIBS = src/libsphio.la $(OSMESA_LIBS) $(EGL_LIBS) $(PNG_LIBS) $(HDF5_LIBS) \
+	$(FREETYPE_LIBS) $(CAIRO_LIBS) -lm
 render_libsphrender_la_CFLAGS = $(RENDER_CFLAGS)
 
 bin_PROGRAMS += render/sph-render
@@ -58,10 +64,17 @@ frames: render/sph-render$(EXEEXT)
 	  "sph run cases/martin_moyce.yaml -o $(FRAMES_RUN)" >&2; exit 1; }
 	render/sph-render$(EXEEXT) $(FRAMES_FLAGS) '$(FRAMES_RUN)' -o '$(FRAMES_DIR)'
 
+# `make movie`: the frames in FRAMES_DIR as MOVIE (an MP4, MOVIE_FPS frames
+# per second) with ffmpeg; without ffmpeg it says what to install.
+MOVIE = movie.mp4
+MOVIE_FPS = 25
+movie:
+	$(SHELL) '$(srcdir)/render/movie.sh' '$(FRAMES_DIR)' '$(MOVIE)' '$(MOVIE_FPS)'
+
 # Rewrites golden/render/*.png from the current build (a deliberate act:
 # commit the new images with the reason they changed).
 golden-render: render/sph-render$(EXEEXT) tests/test_render$(EXEEXT)
 	SPH_SRCDIR='$(abs_top_srcdir)' SPH_BUILDDIR='$(abs_top_builddir)' SPH_RENDER_REGEN=1 \
 	  tests/test_render$(EXEEXT)
 
-.PHONY: frames golden-render
+.PHONY: frames golden-render movie

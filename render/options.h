@@ -38,6 +38,7 @@ typedef struct roptions {
   int jobs;          /* 0: one per processor */
   int width, height; /* 0: the mode's default; height 0 with width: automatic */
   int font_scale;    /* 0: automatic */
+  int samples;       /* sub-pixels per pixel and axis (anti-aliasing), 1 to 4 */
   int compression;
   rcolor bg;
   const char *title;
@@ -53,7 +54,10 @@ typedef struct roptions {
   int have_view;
   double view[4];
   double disc_scale, disc_size;
+  int disc_given; /* --disc-scale or --disc-size given: no growth of small discs */
   int walls;
+  int smooth;  /* the SPH interpolation of the field on the pixels (interp.h) */
+  int outline; /* the free surface as a line (the interpolation's level 1/2) */
   int bare, colorbar;
   int cols, rows; /* --panels */
   double times[ROPT_MAX_LIST];

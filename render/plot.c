@@ -29,6 +29,7 @@
 #include "gl_context.h"
 #include "inputs.h"
 #include "io/csv.h"
+#include "label.h"
 #include "layout.h"
 #include "marks.h"
 #include "png_out.h"
@@ -38,6 +39,7 @@ typedef struct series {
   size_t n;
   double *x, *y;
   char label[128];
+  char xname[128], yname[128]; /* the column expressions read */
   int points;
 } series;
 
@@ -51,6 +53,8 @@ static int load_series(const roptions *o, const rseries_opt *so, series *s, sph_
     rc = sph_error_set(err, "%s: a series needs two columns (or --x and --y)", so->path);
   if (!xc && !rc) xc = t.names[0];
   if (!yc && !rc) yc = t.names[1];
+  snprintf(s->xname, sizeof s->xname, "%s", xc ? xc : "x");
+  snprintf(s->yname, sizeof s->yname, "%s", yc ? yc : "y");
   s->n = t.nrow;
   s->x = malloc((t.nrow + 1) * sizeof *s->x);
   s->y = malloc((t.nrow + 1) * sizeof *s->y);
@@ -248,10 +252,44 @@ static void draw(rcanvas *c, const roptions *o, const series *s, int n, const ch
   rlegend_draw(c, *b, o->legend, e, n, sc, bg, fg);
 }
 
+/* Draws the plot on a raster canvas and writes the PNG. */
+static int write_png(const roptions *o, const series *s, int n, const char *xlabel,
+                     const char *ylabel, int W, int H, int sc, sph_error *err) {
+  rgl_context *gl = NULL;
+  rcanvas *c = NULL;
+  uint8_t *rgb = NULL;
+  int rc = rgl_context_create(o->backend, &gl, err);
+  if (rc == 0) rc = rcanvas_create(&gl->gl, W, H, o->samples, &c, err);
+  if (rc == 0 && !(rgb = malloc((size_t)W * H * 3))) rc = sph_error_set(err, "out of memory");
+  if (rc == 0) {
+    draw(c, o, s, n, xlabel, ylabel, W, H, sc);
+    rc = rcanvas_read_rgb(c, rgb, err);
+  }
+  if (rc == 0) rc = rpng_write(o->output, rgb, W, H, o->compression, err);
+  free(rgb);
+  rcanvas_destroy(c);
+  rgl_context_destroy(gl);
+  return rc;
+}
+
+/* Draws the plot on a vector canvas: the SVG or PDF file -o names. */
+static int write_vector(const roptions *o, const series *s, int n, const char *xlabel,
+                        const char *ylabel, int W, int H, int sc, sph_error *err) {
+  rcanvas *c = NULL;
+  int rc = rcanvas_create_vector(o->output, W, H, &c, err);
+  if (rc == 0) {
+    draw(c, o, s, n, xlabel, ylabel, W, H, sc);
+    rc = rcanvas_finish(c, err);
+  }
+  rcanvas_destroy(c);
+  return rc;
+}
+
 int rplot_run(const roptions *o, sph_error *err) {
   if (o->n_series == 0) return sph_error_set(err, "plot: no CSV file given");
-  if (!rinputs_is_png(o->output))
-    return sph_error_set(err, "plot: -o must name a .png file, not '%s'", o->output);
+  if (!rinputs_is_png(o->output) && !rcanvas_vector_kind(o->output))
+    return sph_error_set(err, "plot: -o must name a .png, .svg or .pdf file, not '%s'", o->output);
+  if (rfont_init(err) != 0) return -1;
   if ((o->have_xrange && !(o->xrange[1] > o->xrange[0])) ||
       (o->have_yrange && !(o->yrange[1] > o->yrange[0])))
     return sph_error_set(err, "plot: a range needs min < max");
@@ -270,37 +308,25 @@ int rplot_run(const roptions *o, sph_error *err) {
                          axis ? "y" : "x");
   }
   const rseries_opt *first = &o->series[0];
-  char xlabel[128], ylabel[128];
-  snprintf(xlabel, sizeof xlabel, "%s",
-           o->xlabel     ? o->xlabel
-           : first->xcol ? first->xcol
-           : o->xcol     ? o->xcol
-                         : "x");
-  snprintf(ylabel, sizeof ylabel, "%s",
-           o->ylabel     ? o->ylabel
-           : first->ycol ? first->ycol
-           : o->ycol     ? o->ycol
-                         : "y");
+  const char *xc = first->xcol ? first->xcol : o->xcol, *yc = first->ycol ? first->ycol : o->ycol;
+  char xlabel[256], ylabel[256];
+  if (o->xlabel)
+    snprintf(xlabel, sizeof xlabel, "%s", o->xlabel);
+  else
+    rlabel_column(xc ? xc : s[0].xname, first->xscale, 0, xlabel, sizeof xlabel);
+  if (o->ylabel)
+    snprintf(ylabel, sizeof ylabel, "%s", o->ylabel);
+  else
+    rlabel_column(yc ? yc : s[0].yname, first->yscale, first->relative, ylabel, sizeof ylabel);
   int W = o->width > 0 ? o->width : 960;
   int H = o->width > 0 && o->height > 0 ? o->height : o->width > 0 ? (W * 2 / 3) & ~1 : 640;
   int sc = o->font_scale;
   if (sc <= 0) sc = rlayout_auto_scale(W, H);
   if (rc == 0 && (W < 64 || H < 64 || W > 16384 || H > 16384))
     rc = sph_error_set(err, "plot: image size %dx%d: each side must be 64 to 16384", W, H);
-  rgl_context *gl = NULL;
-  rcanvas *c = NULL;
-  uint8_t *rgb = NULL;
-  if (rc == 0) rc = rgl_context_create(o->backend, &gl, err);
-  if (rc == 0) rc = rcanvas_create(&gl->gl, W, H, &c, err);
-  if (rc == 0 && !(rgb = malloc((size_t)W * H * 3))) rc = sph_error_set(err, "out of memory");
-  if (rc == 0) {
-    draw(c, o, s, n, xlabel, ylabel, W, H, sc);
-    rc = rcanvas_read_rgb(c, rgb, err);
-  }
-  if (rc == 0) rc = rpng_write(o->output, rgb, W, H, o->compression, err);
-  free(rgb);
-  rcanvas_destroy(c);
-  rgl_context_destroy(gl);
+  if (rc == 0)
+    rc = rcanvas_vector_kind(o->output) ? write_vector(o, s, n, xlabel, ylabel, W, H, sc, err)
+                                        : write_png(o, s, n, xlabel, ylabel, W, H, sc, err);
   for (int k = 0; k < n; k++) {
     free(s[k].x);
     free(s[k].y);

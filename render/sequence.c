@@ -24,10 +24,12 @@
 
 #include "colormap.h"
 #include "figure.h"
+#include "font.h"
 #include "gl_context.h"
 #include "inputs.h"
 #include "io/csv.h"
 #include "jobs.h"
+#include "label.h"
 #include "layout.h"
 #include "marks.h"
 #include "png_out.h"
@@ -306,7 +308,8 @@ static void *worker_init(void *ctx, sph_error *err) {
     return NULL;
   }
   if (rgl_context_create(p->o->backend, &w->gl, err) != 0 ||
-      rcanvas_create(&w->gl->gl, p->layout.width, p->layout.height, &w->canvas, err) != 0) {
+      rcanvas_create(&w->gl->gl, p->layout.width, p->layout.height, p->o->samples, &w->canvas,
+                     err) != 0) {
     rgl_context_destroy(w->gl);
     free(w);
     return NULL;
@@ -345,6 +348,10 @@ static int run_task(void *ctx, void *wp, size_t i, sph_error *err) {
       break;
     }
     loaded++;
+    if ((p->o->smooth || p->o->outline) && rsnap_load_volumes(&snaps[k], err) != 0) {
+      rc = -1;
+      break;
+    }
     rpanel *pa = &panels[k];
     char when[64];
     rfigure_time_label(snaps[k].time, when, sizeof when);
@@ -402,6 +409,7 @@ int rsequence_run(const roptions *o, const char *prog, sph_error *err) {
   int n_lists = o->mode == RMODE_COMPARE ? o->n_inputs : 1;
   rinputs *lists = calloc((size_t)n_lists, sizeof *lists);
   if (!lists) return sph_error_set(err, "out of memory");
+  if (rfont_init(err) != 0) goto done; /* before the workers: one message */
   const char *cmap = o->cmap ? o->cmap : rsnap_signed(o->field) ? "coolwarm" : "viridis";
   if (rcolormap_get(cmap, &p.cmap, err) != 0) goto done;
   for (int i = 0; i < o->n_inputs; i++)
@@ -431,14 +439,15 @@ int rsequence_run(const roptions *o, const char *prog, sph_error *err) {
   p.style.wall = (rcolor){150, 150, 150, 255};
   p.style.disc_size = o->disc_size;
   p.style.disc_scale = o->disc_scale;
+  p.style.grow_small = !o->disc_given;
   p.style.walls = o->walls;
   p.style.overlay_tol = o->overlay_tol;
   p.style.title = o->title;
-  const char *units = rsnap_units(o->field);
-  if (units[0])
-    snprintf(p.bar_label, sizeof p.bar_label, "%s (%s)", o->field, units);
-  else
-    snprintf(p.bar_label, sizeof p.bar_label, "%s", o->field);
+  p.style.smooth = o->smooth;
+  p.style.outline = o->outline;
+  char units[32];
+  if (rsnap_units(p.task[0].path[0], o->field, units, sizeof units, err) != 0) goto done;
+  rlabel_with_units(o->field, units, p.bar_label, sizeof p.bar_label);
   p.style.bar_label = p.bar_label;
 
   double view[4];

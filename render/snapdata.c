@@ -18,18 +18,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "interp.h"
 #include "io/snapshot.h"
 
 typedef struct field_info {
-  const char *name, *dataset, *units;
+  const char *name, *dataset;
   int is_signed;
 } field_info;
 
 static const field_info fields[] = {
-    {"speed", "speed", "m/s", 0}, {"vx", "vx", "m/s", 1}, {"vy", "vy", "m/s", 1},
-    {"pressure", "p", "Pa", 0},   {"p", "p", "Pa", 0},    {"density", "rho", "kg/m^3", 0},
-    {"rho", "rho", "kg/m^3", 0},  {"x", "x", "m", 0},     {"y", "y", "m", 0},
-    {"mass", "mass", "kg", 0},    {"h", "h", "m", 0},     {"u", "u", "J/kg", 0},
+    {"speed", "speed", 0}, {"vx", "vx", 1},       {"vy", "vy", 1},
+    {"pressure", "p", 0},  {"density", "rho", 0},
 };
 
 static const field_info *info(const char *field) {
@@ -43,9 +42,18 @@ const char *rsnap_canonical(const char *field) {
   return f ? f->dataset : field;
 }
 
-const char *rsnap_units(const char *field) {
-  const field_info *f = info(field);
-  return f ? f->units : "";
+/* The dataset whose units a field has (speed: vx's). */
+static const char *units_dataset(const char *field) {
+  return strcmp(field, "speed") == 0 ? "vx" : rsnap_canonical(field);
+}
+
+int rsnap_units(const char *path, const char *field, char *buf, size_t size, sph_error *err) {
+  sph_snapshot *ss = NULL;
+  if (size) buf[0] = '\0';
+  if (sph_snapshot_open(path, &ss, err) != 0) return -1;
+  sph_snapshot_field_units(ss, units_dataset(field), buf, size);
+  sph_snapshot_close(ss);
+  return 0;
 }
 
 int rsnap_signed(const char *field) {
@@ -96,6 +104,7 @@ int rsnap_load(const char *path, const char *field, rsnap *s, sph_error *err) {
     s->view[0] = s->view[1] = s->view[2] = s->view[3] = NAN;
   const char *cn = sph_snapshot_text(ss, "case_name");
   snprintf(s->case_name, sizeof s->case_name, "%s", cn ? cn : "");
+  if (field) sph_snapshot_field_units(ss, units_dataset(field), s->units, sizeof s->units);
   size_t n = s->n ? s->n : 1;
   s->x = malloc(n * sizeof *s->x);
   s->y = malloc(n * sizeof *s->y);
@@ -132,8 +141,37 @@ done:
   return rc;
 }
 
+int rsnap_load_volumes(rsnap *s, sph_error *err) {
+  sph_snapshot *ss = NULL;
+  if (sph_snapshot_open(s->path, &ss, err) != 0) return -1;
+  size_t n = s->n ? s->n : 1;
+  const char *why = " (the interpolated view needs h, mass and rho)";
+  double *rho = malloc(n * sizeof *rho);
+  s->h = malloc(n * sizeof *s->h);
+  s->vol = malloc(n * sizeof *s->vol);
+  int rc = 0;
+  if (!rho || !s->h || !s->vol)
+    rc = sph_error_set(err, "%s: out of memory for %zu particles", s->path, s->n);
+  if (!rc) rc = read_into(ss, s->path, "h", s->h, why, err);
+  if (!rc) rc = read_into(ss, s->path, "mass", s->vol, why, err);
+  if (!rc) rc = read_into(ss, s->path, "rho", rho, why, err);
+  for (size_t i = 0; !rc && i < s->n; i++)
+    s->vol[i] = rho[i] > 0.0 ? s->vol[i] / rho[i] : 0.0;
+  if (!rc) s->kernel = rinterp_kernel_of(sph_snapshot_text(ss, "parameters"));
+  free(rho);
+  sph_snapshot_close(ss);
+  if (rc) {
+    free(s->h);
+    free(s->vol);
+    s->h = s->vol = NULL;
+  }
+  return rc;
+}
+
 void rsnap_free(rsnap *s) {
   if (!s) return;
+  free(s->h);
+  free(s->vol);
   free(s->path);
   free(s->x);
   free(s->y);

@@ -26,12 +26,16 @@ typedef struct rsnap {
   double dx;           /* particle spacing (attribute dx), NaN if absent */
   double view[4];      /* x0, x1, y0, y1 (attribute view), NaN if absent */
   char case_name[128]; /* "" if absent */
+  char units[32];      /* the field's `units` attribute ("m/s"), "" if none */
+  double *h, *vol;     /* smoothing length, volume m / rho: NULL until rsnap_load_volumes */
+  int kernel;          /* the case's kernel (interp.h), with the volumes */
 } rsnap;
 
 /* The dataset a field name reads ("pressure" -> "p"); "speed" stays. */
 const char *rsnap_canonical(const char *field);
-/* Units of a field for labels ("m/s"), "" if none or unknown. */
-const char *rsnap_units(const char *field);
+/* The units of a field as a snapshot's `units` attribute gives them
+ * ("m/s"; speed has those of vx), into buf; "" if it has none. */
+int rsnap_units(const char *path, const char *field, char *buf, size_t size, sph_error *err);
 /* Non-zero for fields whose values are signed around zero (vx, vy). */
 int rsnap_signed(const char *field);
 
@@ -40,6 +44,9 @@ int rsnap_signed(const char *field);
 int rsnap_load(const char *path, const char *field, rsnap *s, sph_error *err);
 /* Reads only the time (and the view, NaN if absent) of a snapshot. */
 int rsnap_peek(const char *path, double *time, double view[4], sph_error *err);
+/* Adds each particle's smoothing length and volume and the case's kernel
+ * to a loaded snapshot (for the interpolated view, interp.h). */
+int rsnap_load_volumes(rsnap *s, sph_error *err);
 void rsnap_free(rsnap *s);
 /* Minimum and maximum of the field over fluid particles with finite values;
  * returns how many values there were (0: lo, hi untouched). */

@@ -41,6 +41,8 @@
 #include <string.h>
 
 #include "case/case.h"
+#include "io/csv.h"
+#include "solver/diag.h"
 #include "solver/sim.h"
 #include "testutil.h"
 
@@ -162,6 +164,22 @@ static void check_split(const char *path) {
     free(c[j]);
 }
 
+/* Every column of a header line (comma-separated names; the first line
+ * of text) has units in the table that labels plot axes (sph_csv_units);
+ * returns how many. */
+static int check_units_of(const char *header) {
+  char buf[2048];
+  snprintf(buf, sizeof buf, "%s", header);
+  buf[strcspn(buf, "\r\n")] = '\0';
+  int n = 0;
+  for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
+    if (!sph_csv_units(tok)) printf("\n  no units for column '%s'", tok);
+    CU_ASSERT_PTR_NOT_NULL(sph_csv_units(tok));
+    n++;
+  }
+  return n;
+}
+
 static void test_audit_golden(void) {
   char *dir = sph_test_tmpdir(), cmd[24576], path[4096];
   char out[4096], ref[4096];
@@ -181,6 +199,10 @@ static void test_audit_golden(void) {
   free(text);
   snprintf(path, sizeof path, "%s/audit.csv", dir);
   check_split(path);
+  char *audit = sph_test_read_file(path);
+  CU_ASSERT_FATAL(audit != NULL);
+  CU_ASSERT_EQUAL(check_units_of(audit), 9); /* the header line: units for plot axes */
+  free(audit);
   audit_entry got[64], gold[64];
   const int n = read_audit(path, got, 64);
   const int ng = read_audit(sph_test_src("golden/energy_drift.csv"), gold, 64);
@@ -207,6 +229,23 @@ static void test_audit_golden(void) {
   free(dir);
 }
 
+/* The units table covers every column the solver writes: diagnostics.csv
+ * with every optional group on and a gauge's column (audit.csv: in
+ * test_audit_golden, on the file the audit wrote). */
+static void test_column_units(void) {
+  char *text = NULL;
+  size_t len = 0;
+  FILE *m = open_memstream(&text, &len);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(m);
+  CU_ASSERT_EQUAL(sph_diag_write_header(m, 1, 1, 1, 1), 0);
+  fclose(m);
+  CU_ASSERT_EQUAL(check_units_of(text), 21);
+  free(text);
+  CU_ASSERT_STRING_EQUAL(sph_csv_units("eta_0.35"), "m");
+  CU_ASSERT_STRING_EQUAL(sph_csv_units("kinetic"), "J/m");
+  CU_ASSERT_PTR_NULL(sph_csv_units("no_such_column"));
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
       {"no dissipation: energy conserved, error shrinks with dt",
@@ -215,6 +254,7 @@ int main(void) {
       {"a piston does the quasi-static work", test_piston_work},
       {"the balance closes with every wall model", test_every_wall_model},
       {"energy audit against golden/energy_drift.csv", test_audit_golden},
+      {"units of every column written", test_column_units},
       CU_TEST_INFO_NULL};
   return sph_test_main("energy", tests);
 }

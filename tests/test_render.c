@@ -37,12 +37,15 @@
 #include <sys/stat.h>
 
 #include "colormap.h"
+#include "contour.h"
 #include "core/particles.h"
 #include "figure.h"
 #include "font.h"
 #include "inputs.h"
+#include "interp.h"
 #include "io/csv.h"
 #include "io/snapshot.h"
+#include "label.h"
 #include "layout.h"
 #include "marks.h"
 #include "snapdata.h"
@@ -125,6 +128,27 @@ static uint8_t *read_png(const char *path, int *w, int *h) {
   *w = (int)img.width;
   *h = (int)img.height;
   return buf;
+}
+
+/* Whether the file at path holds the bytes of needle (binary-safe: a PDF
+ * has NUL bytes in its streams). */
+static int file_has(const char *path, const char *needle) {
+  FILE *fp = fopen(path, "rb");
+  if (!fp) return 0;
+  size_t cap = 1 << 20, n = 0, k = strlen(needle);
+  char *buf = malloc(cap);
+  while (buf && (n += fread(buf + n, 1, cap - n, fp)) == cap) {
+    char *b = realloc(buf, cap * 2);
+    if (!b) break;
+    buf = b;
+    cap *= 2;
+  }
+  fclose(fp);
+  int found = 0;
+  for (size_t i = 0; buf && i + k <= n && !found; i++)
+    found = memcmp(buf + i, needle, k) == 0;
+  free(buf);
+  return found;
 }
 
 static int same_bytes(const char *a, const char *b) {
@@ -240,20 +264,173 @@ static int setup(void) {
 
 /* ------------------------------------------------------------ unit tests */
 
+/* The rows of a bitmap that hold ink (coverage above half). */
+static void ink_rows(const rfont_bitmap *b, int *top, int *bottom) {
+  *top = b->h;
+  *bottom = -1;
+  for (int y = 0; y < b->h; y++)
+    for (int x = 0; x < b->w; x++)
+      if (b->a[(size_t)y * b->w + x] > 127) {
+        if (y < *top) *top = y;
+        if (y > *bottom) *bottom = y;
+      }
+}
+
+/* FreeType text: the capitals are RFONT_CAP * scale pixels tall, g reaches
+ * below the baseline, widths grow with the text and with the scale, a
+ * raster is the same twice, and UTF-8 superscripts are glyphs of the font
+ * (not its missing-glyph box). */
 static void test_font(void) {
-  CU_ASSERT_EQUAL(rfont_check(), 0);
-  uint8_t rows[RFONT_ROWS];
-  for (int c = '!'; c <= '~'; c++) { /* every visible glyph lights something */
-    rfont_glyph((unsigned char)c, rows);
-    int lit = 0;
-    for (int r = 0; r < RFONT_ROWS; r++)
-      lit |= rows[r];
-    CU_ASSERT(lit != 0);
-  }
-  rfont_glyph('g', rows); /* g has a descender */
-  CU_ASSERT(rows[7] != 0 || rows[8] != 0);
-  CU_ASSERT_EQUAL(rfont_width("ab", 2), (2 * RFONT_ADVANCE - 1) * 2);
+  sph_error err;
+  CU_ASSERT_EQUAL_FATAL(rfont_init(&err), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(rfont_path(), ".ttf"));
+  rfont_bitmap b, b2;
+  CU_ASSERT_EQUAL_FATAL(rfont_raster("H", rfont_em(3), 0.0, &b, &err), 0);
+  int top, bottom;
+  ink_rows(&b, &top, &bottom);
+  CU_ASSERT(abs((bottom - top + 1) - RFONT_CAP * 3) <= 1); /* cap height 21 px */
+  CU_ASSERT(abs(bottom + 1 - b.oy) <= 1);                  /* H sits on the baseline */
+  CU_ASSERT_EQUAL_FATAL(rfont_raster("H", rfont_em(3), 0.0, &b2, &err), 0);
+  CU_ASSERT(b.w == b2.w && b.h == b2.h && memcmp(b.a, b2.a, (size_t)b.w * b.h) == 0);
+  int grey = 0; /* anti-aliased: some coverage between ink and paper */
+  for (int k = 0; k < b.w * b.h; k++)
+    grey += b.a[k] > 20 && b.a[k] < 235;
+  CU_ASSERT(grey > 0);
+  rfont_bitmap_free(&b);
+  rfont_bitmap_free(&b2);
+  CU_ASSERT_EQUAL_FATAL(rfont_raster("g", rfont_em(3), 0.0, &b, &err), 0);
+  ink_rows(&b, &top, &bottom);
+  CU_ASSERT(bottom >= b.oy + 3); /* a descender */
+  rfont_bitmap_free(&b);
   CU_ASSERT_EQUAL(rfont_width("", 3), 0);
+  CU_ASSERT(rfont_width("ab", 2) > rfont_width("a", 2));
+  CU_ASSERT(abs(rfont_width("speed (m/s)", 4) - 2 * rfont_width("speed (m/s)", 2)) <= 1);
+  /* the box the font draws for a character it lacks is not what ³ gets */
+  CU_ASSERT_EQUAL_FATAL(rfont_raster("\xe2\x81\xb0", rfont_em(4), 0.0, &b, &err), 0); /* U+2070 */
+  CU_ASSERT_EQUAL_FATAL(rfont_raster("\xc2\xb3", rfont_em(4), 0.0, &b2, &err), 0);    /* U+00B3 */
+  ink_rows(&b2, &top, &bottom);
+  CU_ASSERT(bottom < b2.oy - 2 * 4); /* a superscript: above the baseline */
+  rfont_bitmap_free(&b);
+  rfont_bitmap_free(&b2);
+  const char *p = "a\xc2\xb3\xff";
+  CU_ASSERT_EQUAL(rfont_utf8_next(&p), 'a');
+  CU_ASSERT_EQUAL(rfont_utf8_next(&p), 0xB3u);
+  CU_ASSERT_EQUAL(rfont_utf8_next(&p), 0xFFFDu); /* an invalid byte */
+  CU_ASSERT_EQUAL(*p, '\0');
+}
+
+/* Labels: units from the table of the solver's columns or from the name,
+ * powers as superscripts, none where a scale or a sum of unlike terms
+ * makes them unknown. */
+static void test_labels(void) {
+  static const struct {
+    const char *expr;
+    double scale;
+    int relative;
+    const char *want;
+  } cases[] = {
+      {"time", 1.0, 0, "time (s)"},
+      {"kinetic+potential", 1.0, 0, "kinetic+potential (J/m)"},
+      {"kinetic+front_x", 1.0, 0, "kinetic+front_x"}, /* unlike units */
+      {"front_x", 17.5, 0, "front_x"},                /* rescaled */
+      {"P1 (Pa)", 1.0, 0, "P1 (Pa)"},                 /* carried in the header */
+      {"eta_0.5", 1.0, 0, "eta_0.5 (m)"},             /* a gauge */
+      {"T", 1.0, 0, "T"},                             /* someone else's column: no guess */
+      {"kinetic", 1.0, 1, "kinetic, relative change"},
+  };
+  char buf[256];
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+    rlabel_column(cases[k].expr, cases[k].scale, cases[k].relative, buf, sizeof buf);
+    CU_ASSERT_STRING_EQUAL(buf, cases[k].want);
+  }
+  rlabel_with_units("density", "kg/m^3", buf, sizeof buf);
+  CU_ASSERT_STRING_EQUAL(buf, "density (kg/m\xc2\xb3)");
+  rlabel_with_units("rate", "s^-1", buf, sizeof buf);
+  CU_ASSERT_STRING_EQUAL(buf, "rate (s\xe2\x81\xbb\xc2\xb9)");
+  rlabel_with_units("kind", "1", buf, sizeof buf);
+  CU_ASSERT_STRING_EQUAL(buf, "kind");
+  /* a snapshot's field: the units attribute of its dataset */
+  sph_error err;
+  CU_ASSERT_EQUAL(rsnap_units(snap0, "speed", buf, sizeof buf, &err), 0);
+  CU_ASSERT_STRING_EQUAL(buf, "m/s");
+  CU_ASSERT_EQUAL(rsnap_units(snap0, "density", buf, sizeof buf, &err), 0);
+  CU_ASSERT_STRING_EQUAL(buf, "kg/m^3");
+}
+
+/* The SPH interpolation against exact answers on a lattice of spacing d
+ * (volumes d^2, h = 1.3 d): in the interior the kernel sum is 1 (to 1e-3
+ * for the cubic spline, 1e-2 for Wendland C2) and a linear field is
+ * reproduced to a hundredth of its change over one spacing (the Shepard
+ * division makes a constant exact; the lattice's first moment is not
+ * exactly zero off its points); the kernel sum is 1/2 on the block's edge half a spacing
+ * beyond its last row (to 0.03); and the outline drawn from it runs along
+ * that edge. Both kernels. */
+typedef struct seg_stats {
+  int n;
+  double ymin, ymax;
+} seg_stats;
+
+static void collect_segment(void *ctx, double x0, double y0, double x1, double y1) {
+  seg_stats *st = ctx;
+  if (fmin(x0, x1) < 20.0 || fmax(x0, x1) > 140.0) return; /* the top edge, not the sides */
+  st->n++;
+  st->ymin = fmin(st->ymin, fmin(y0, y1));
+  st->ymax = fmax(st->ymax, fmax(y0, y1));
+}
+
+static void test_interp(void) {
+  enum { NX = 40, NY = 20 };
+  const double d = 0.01;
+  static double x[NX * NY], y[NX * NY], h[NX * NY], vol[NX * NY], val[NX * NY];
+  static unsigned char wall[NX * NY];
+  for (int j = 0; j < NY; j++)
+    for (int i = 0; i < NX; i++) {
+      int k = j * NX + i;
+      x[k] = (i + 0.5) * d;
+      y[k] = (j + 0.5) * d;
+      h[k] = 1.3 * d;
+      vol[k] = d * d;
+      val[k] = 2.0 + 3.0 * x[k] - 5.0 * y[k];
+      wall[k] = 0;
+    }
+  for (int kernel = 0; kernel < 2; kernel++) {
+    rinterp_in in = {NX * NY, x, y, h, vol, val, wall, kernel};
+    /* points every d/4 over [0, 0.4] x [0, 0.25]: row j at y = 0.25 - (j + 1/2) d/4 */
+    rinterp_grid g = {160, 100, 0.0, 0.25, 0.25 * d};
+    static double f[160 * 100], sf[160 * 100], sw[160 * 100];
+    sph_error err;
+    CU_ASSERT_EQUAL_FATAL(rinterp_field(&in, &g, f, sf, sw, &err), 0);
+    double worst_f = 0.0, worst_s = 0.0;
+    for (int j = 0; j < g.ny; j++)
+      for (int i = 0; i < g.nx; i++) {
+        double px = (i + 0.5) * g.step, py = g.y1 - (j + 0.5) * g.step;
+        size_t q = (size_t)j * g.nx + i;
+        CU_ASSERT(sw[q] == 0.0);
+        if (px < 3 * d || px > 0.4 - 3 * d || py < 3 * d || py > 0.2 - 3 * d) continue;
+        worst_f = fmax(worst_f, fabs(f[q] - (2.0 + 3.0 * px - 5.0 * py)));
+        worst_s = fmax(worst_s, fabs(sf[q] - 1.0));
+      }
+    CU_ASSERT(worst_f < 0.01 * sqrt(3.0 * 3.0 + 5.0 * 5.0) * d);
+    CU_ASSERT(worst_s < (kernel == RKERNEL_CUBIC ? 1e-3 : 1e-2));
+    /* on the top edge y = 0.2 (grid row 19.5 from the top: between rows 19 and 20) */
+    double edge = 0.5 * (sf[19 * g.nx + 80] + sf[20 * g.nx + 80]);
+    CU_ASSERT(fabs(edge - 0.5) < 0.03);
+    CU_ASSERT(rinterp_is_fluid(sf[25 * g.nx + 80]) && !rinterp_is_fluid(sf[12 * g.nx + 80]));
+    /* the outline of the middle part of the top edge */
+    static double phi[160 * 100];
+    for (size_t q = 0; q < 160 * 100; q++)
+      phi[q] = sf[q] - 0.5;
+    seg_stats st = {0, INFINITY, -INFINITY};
+    rcontour(phi, NULL, g.nx, 40, collect_segment, &st); /* the top 40 rows only */
+    CU_ASSERT(st.n > 100);
+    CU_ASSERT(st.ymin > 20.0 - 0.5 && st.ymax < 20.0 + 0.5); /* grid units: y = 0.2 is 20 */
+    printf("\n  kernel %d: linear field error %.1e, kernel sum %.1e from 1, %.3f on the edge, "
+           "outline at %.2f to %.2f (20 exact)",
+           kernel, worst_f, worst_s, edge, st.ymin, st.ymax);
+  }
+  CU_ASSERT_EQUAL(rinterp_kernel_of("numerics.kernel: wendland_c2\n"), RKERNEL_WENDLAND_C2);
+  CU_ASSERT_EQUAL(rinterp_kernel_of("numerics.kernel: cubic_spline\n"), RKERNEL_CUBIC);
+  CU_ASSERT_EQUAL(rinterp_kernel_of(NULL), RKERNEL_CUBIC);
 }
 
 static double luminance(const uint8_t c[3]) {
@@ -455,6 +632,17 @@ static void fixture_layout(int w, int h, double lo, double hi, int bare, rlayout
   CU_ASSERT_EQUAL_FATAL(rlayout_figure(&in, L, &err), 0);
 }
 
+/* The style whose rfigure_color is the oracle of a rendered colour: map
+ * name over [lo, hi] (m receives the map). */
+static void oracle_style(const char *map, double lo, double hi, rcolormap *m, rfigure_style *st) {
+  sph_error err;
+  CU_ASSERT_EQUAL_FATAL(rcolormap_get(map, m, &err), 0);
+  memset(st, 0, sizeof *st);
+  st->cmap = m;
+  st->lo = lo;
+  st->hi = hi;
+}
+
 static void test_frame_exact(void) {
   CU_ASSERT_EQUAL_FATAL(render("--size 640x360 --range 0:1 --background 203040 --jobs 1 "
                                "--compression 9 run/snap_0001.h5 -o speed.png"),
@@ -472,13 +660,9 @@ static void test_frame_exact(void) {
   rlayout L;
   fixture_layout(640, 360, 0.0, 1.0, 0, &L);
   rcolormap m;
-  sph_error err;
-  CU_ASSERT_EQUAL_FATAL(rcolormap_get("viridis", &m, &err), 0);
   rfigure_style st;
-  memset(&st, 0, sizeof st);
-  st.cmap = &m;
-  st.lo = 0.0;
-  st.hi = 1.0;
+  oracle_style("viridis", 0.0, 1.0, &m, &st);
+  sph_error err;
   /* disc centres of fluid particles: the exact colour of their speed */
   rsnap s;
   CU_ASSERT_EQUAL_FATAL(rsnap_load(snap1, "speed", &s, &err), 0);
@@ -679,6 +863,224 @@ static void test_plot_log(void) {
   CU_ASSERT_FALSE(exists(path_in(tmp, "bad.png")));
 }
 
+/* A lattice of nx x ny fluid particles of spacing d (all with speed 1/2)
+ * filling the fixture's view: sub-pixel particles at a frame's size. */
+static int write_lattice(const char *path, double d, int nx, int ny) {
+  sph_particles p;
+  sph_error err;
+  if (sph_particles_init(&p, (size_t)nx * ny, &err) != 0) return -1;
+  for (int j = 0; j < ny; j++)
+    for (int i = 0; i < nx; i++)
+      sph_particles_add(&p, fixture_view[0] + (i + 0.5) * d, fixture_view[2] + (j + 0.5) * d, 0.5,
+                        0.0, 1000, 1000 * d * d, 1.3 * d, SPH_KIND_FLUID, &err);
+  sph_snapshot_meta m;
+  memset(&m, 0, sizeof m);
+  m.case_name = "lattice";
+  m.dx = d;
+  m.h = 1.3 * d;
+  m.rho0 = 1000;
+  memcpy(m.view, fixture_view, sizeof m.view);
+  int rc = sph_snapshot_write(path, &m, &p, &err);
+  sph_particles_free(&p);
+  return rc;
+}
+
+/* How much an image of a uniform field beats into moire: the standard
+ * deviation of the mean luminance of 4 x 4 pixel blocks (one colour and
+ * its gaps, evenly spread, average to the same grey in every block),
+ * over blocks inside [0, xmax) x [0, ymax). */
+static double moire(const uint8_t *img, int w, int xmax, int ymax) {
+  double sum = 0.0, sum2 = 0.0;
+  int n = 0;
+  for (int by = 1; by + 1 < ymax / 4; by++)
+    for (int bx = 1; bx + 1 < xmax / 4; bx++) {
+      double m = 0.0;
+      for (int y = 0; y < 4; y++)
+        for (int x = 0; x < 4; x++)
+          m += luminance(img + 3 * ((size_t)(by * 4 + y) * w + bx * 4 + x));
+      m /= 16.0;
+      sum += m;
+      sum2 += m * m;
+      n++;
+    }
+  double mean = sum / n;
+  return sqrt(fmax(sum2 / n - mean * mean, 0.0));
+}
+
+/* Anti-aliasing: particles 1.08 pixels apart, drawn as discs of that
+ * diameter sampled once per pixel (the renderer before this test:
+ * --samples 1 --disc-scale 1), alias into moire bands; with the defaults
+ * (3 x 3 samples per pixel, and discs under 4 pixels grown to cover their
+ * cell) the block means agree to a fraction of a grey level. The default
+ * image is the same bytes from one and two workers. */
+static void test_antialias(void) {
+  char *lat = path_in(tmp, "lattice/snap_0000.h5");
+  char dir[4200];
+  snprintf(dir, sizeof dir, "%s/lattice", tmp);
+  CU_ASSERT_EQUAL_FATAL(mkdir(dir, 0777), 0);
+  /* 240 px over 0.24 m: 1000 px/m; d = 0.00108 m is 1.08 px */
+  CU_ASSERT_EQUAL_FATAL(write_lattice(lat, 0.00108, 222, 129), 0);
+  CU_ASSERT_EQUAL_FATAL(render("--bare --size 240x140 --range 0:1 --samples 1 --disc-scale 1 "
+                               "--jobs 1 lattice/snap_0000.h5 -o aliased.png"),
+                        0);
+  CU_ASSERT_EQUAL_FATAL(render("--bare --size 240x140 --range 0:1 --jobs 1 "
+                               "lattice/snap_0000.h5 -o smooth.png"),
+                        0);
+  CU_ASSERT_EQUAL_FATAL(render("--bare --size 240x140 --range 0:1 --jobs 2 "
+                               "lattice/snap_0000.h5 -o smooth2.png"),
+                        0);
+  CU_ASSERT_TRUE(same_bytes(path_in(tmp, "smooth.png"), path_in(tmp, "smooth2.png")));
+  int w, h, w2, h2;
+  uint8_t *a = read_png(path_in(tmp, "aliased.png"), &w, &h);
+  uint8_t *b = read_png(path_in(tmp, "smooth.png"), &w2, &h2);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(a);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(b);
+  /* the lattice ends 0.2398 m x 0.1397 m from the view's corner: blocks
+   * inside it only */
+  double ma = moire(a, w, 236, 136), mb = moire(b, w2, 236, 136);
+  printf("\n  moire (std of 4x4 block luminance): one sample, discs of dx %.2f; defaults %.2f", ma,
+         mb);
+  CU_ASSERT(ma > 2.0);
+  CU_ASSERT(mb < 0.5);
+  free(a);
+  free(b);
+}
+
+/* The interpolated view (--smooth) of the fixture at t = 0, whose vx is
+ * linear in x: vx = (x / dx - 9) / 9 on the 18 x 11 block. Inside the
+ * block, two smoothing lengths from its edges, each pixel has the colour
+ * of that line at its centre (within one colour-table entry: the lattice
+ * reproduces a linear field to 1e-3 of its change over one spacing);
+ * above the block the background shows; with --outline the first ink in
+ * a column above the block's middle is the outline, on the block's top
+ * y = 0.11 m (within a pixel and a half); golden image with axes. */
+static void test_smooth(void) {
+  CU_ASSERT_EQUAL_FATAL(render("--bare --size 480x280 --field vx --range -1:1 --smooth --outline "
+                               "--jobs 1 run/snap_0000.h5 -o smooth_view.png"),
+                        0);
+  int w, h;
+  uint8_t *img = read_png(path_in(tmp, "smooth_view.png"), &w, &h);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(img);
+  rcolormap m;
+  rfigure_style st;
+  oracle_style("coolwarm", -1.0, 1.0, &m, &st);
+  /* 2000 px/m, the view's corner (-0.02, 0.12) at pixel (0, 0) */
+  int checked = 0, worst = 0;
+  for (double y = 0.03; y <= 0.08; y += 0.005)
+    for (double x = 0.03; x <= 0.15; x += 0.005) {
+      int px = (int)floor((x + 0.02) * 2000.0), py = (int)floor((0.12 - y) * 2000.0);
+      double cx = (px + 0.5) / 2000.0 - 0.02; /* the pixel centre's x */
+      uint8_t want[3];
+      rfigure_color(&st, (cx / 0.01 - 9.0) / 9.0, want);
+      const uint8_t *got = img + 3 * ((size_t)py * w + px);
+      for (int c = 0; c < 3; c++)
+        worst = abs(got[c] - want[c]) > worst ? abs(got[c] - want[c]) : worst;
+      checked++;
+    }
+  CU_ASSERT(checked > 200);
+  CU_ASSERT(worst <= 3);
+  /* above the block: white */
+  const uint8_t *above = img + 3 * ((size_t)(0.12 - 0.115) * 2000 * w + 220);
+  CU_ASSERT(above[0] == 255 && above[1] == 255 && above[2] == 255);
+  /* the outline: the first dark pixel from the top in the column x = 0.09 m */
+  int col = (int)floor((0.09 + 0.02) * 2000.0), row = -1;
+  for (int y = 0; y < h && row < 0; y++) {
+    const uint8_t *q = img + 3 * ((size_t)y * w + col);
+    if (luminance(q) < 128) row = y;
+  }
+  double want_row = (0.12 - 0.11) * 2000.0; /* 20 */
+  printf("\n  linear field: worst channel difference %d over %d pixels; outline at row %d "
+         "(block top at %.1f)",
+         worst, checked, row, want_row);
+  CU_ASSERT(row >= 0 && fabs(row + 0.5 - want_row) <= 1.5);
+  free(img);
+  /* the same with axes, text and colour bar: golden */
+  CU_ASSERT_EQUAL_FATAL(render("--size 640x360 --field speed --range 0:1 --smooth --outline "
+                               "--jobs 1 --compression 9 run/snap_0001.h5 -o smooth_frame.png"),
+                        0);
+  check_golden(path_in(tmp, "smooth_frame.png"), "fixture_smooth.png", 1);
+}
+
+/* Plots as SVG and PDF through cairo: a page of the requested size in
+ * points, glyphs of the font embedded (SVG: as outlines, one symbol per
+ * glyph used; PDF: a font subset), the same bytes on a second run, and
+ * the XML well-formed (python3 parses it). The units of the columns name
+ * the axes; nothing is left beside the file (no .tmp). */
+static void test_vector_plot(void) {
+  char args[16384], diag[4096];
+  snprintf(diag, sizeof diag, "%s", sph_test_src("tests/data/render/diagnostics.csv"));
+  for (int run = 0; run < 2; run++) {
+    snprintf(args, sizeof args,
+             "plot '%s' --x time --y front_x --points '%s' --x T --y Z --size 500x300 "
+             "-o plot%d.svg && '%s' plot '%s' --x time --y front_x --size 500x300 -o plot%d.pdf",
+             diag, sph_test_src("tests/data/render/experiment.csv"), run, renderer(), diag, run);
+    CU_ASSERT_EQUAL_FATAL(render(args), 0);
+  }
+  CU_ASSERT_TRUE(same_bytes(path_in(tmp, "plot0.svg"), path_in(tmp, "plot1.svg")));
+  CU_ASSERT_TRUE(same_bytes(path_in(tmp, "plot0.pdf"), path_in(tmp, "plot1.pdf")));
+  CU_ASSERT_EQUAL(count_files(tmp, ".tmp"), 0);
+  char *svg = sph_test_read_file(path_in(tmp, "plot0.svg"));
+  CU_ASSERT_PTR_NOT_NULL_FATAL(svg);
+  CU_ASSERT_PTR_NOT_NULL(strstr(svg, "<svg"));
+  CU_ASSERT_PTR_NOT_NULL(strstr(svg, "width=\"500pt\" height=\"300pt\""));
+  CU_ASSERT_PTR_NOT_NULL(strstr(svg, "id=\"glyph0-1\"")); /* text as the font's glyphs */
+  free(svg);
+  const char *pdf = path_in(tmp, "plot0.pdf");
+  CU_ASSERT_TRUE(file_has(pdf, "%PDF-"));
+  CU_ASSERT_TRUE(file_has(pdf, "/MediaBox [ 0 0 500 300 ]"));
+  CU_ASSERT_TRUE(file_has(pdf, "DejaVuSans")); /* the embedded font subset */
+  CU_ASSERT_TRUE(file_has(pdf, "%%EOF"));
+  char cmd[8400];
+  snprintf(cmd, sizeof cmd,
+           "python3 -c 'import sys, xml.etree.ElementTree as E; "
+           "r = E.parse(sys.argv[1]).getroot(); sys.exit(0 if r.tag.endswith(\"svg\") else 1)' "
+           "'%s'",
+           path_in(tmp, "plot0.svg"));
+  CU_ASSERT_EQUAL(sph_test_system(cmd), 0);
+}
+
+/* What -o may name: a plot's extension picks its format and any other is
+ * refused; snapshot images are PNG, so .pdf or .svg there is an error,
+ * not a directory named one.pdf/; a directory whose name has a dot is
+ * taken with a trailing slash or when it exists. */
+static void test_output_names(void) {
+  char args[8192];
+  snprintf(args, sizeof args, "plot '%s' -o plot.eps",
+           sph_test_src("tests/data/render/diagnostics.csv"));
+  CU_ASSERT_NOT_EQUAL(render(args), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), ".png, .svg or .pdf"));
+  CU_ASSERT_FALSE(exists(path_in(tmp, "plot.eps")));
+  CU_ASSERT_NOT_EQUAL(render("run/snap_0001.h5 -o one.pdf"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "sph-render plot"));
+  CU_ASSERT_FALSE(exists(path_in(tmp, "one.pdf")));
+  CU_ASSERT_NOT_EQUAL(render("run/snap_0001.h5 -o one.jpg"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "unknown extension '.jpg'"));
+  CU_ASSERT_FALSE(exists(path_in(tmp, "one.jpg")));
+  CU_ASSERT_EQUAL(render("--size 200 --jobs 1 run -o frames.v2/"), 0);
+  CU_ASSERT_TRUE(exists(path_in(tmp, "frames.v2/frame_0001.png")));
+  CU_ASSERT_EQUAL(render("--size 200 --jobs 1 run -o frames.v2"), 0); /* it exists now */
+}
+
+/* Without its font the renderer stops before drawing, naming the file and
+ * the Debian package to install; SPH_RENDER_FONT picks another font. */
+static void test_font_missing(void) {
+  char cmd[9000];
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && SPH_RENDER_FONT=/no/such/font.ttf '%s' --size 200 run/snap_0001.h5 "
+           "-o nofont.png 2> err.txt",
+           tmp, renderer());
+  CU_ASSERT_NOT_EQUAL(sph_test_system(cmd), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "/no/such/font.ttf"));
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "fonts-dejavu-core"));
+  CU_ASSERT_FALSE(exists(path_in(tmp, "nofont.png")));
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && SPH_RENDER_FONT=/usr/share/fonts/truetype/dejavu/DejaVuSerif.ttf '%s' "
+           "--size 200 run/snap_0001.h5 -o serif.png 2> err.txt",
+           tmp, renderer());
+  CU_ASSERT_EQUAL(sph_test_system(cmd), 0); /* fonts-dejavu-core has the serif too */
+  CU_ASSERT_TRUE(exists(path_in(tmp, "serif.png")));
+}
+
 /* -------------------------------------------------------------- bad inputs */
 
 static void no_png_in(const char *dir) {
@@ -760,7 +1162,9 @@ int main(void) {
     return 1;
   }
   CU_TestInfo tests[] = {
-      {"font glyph table", test_font},
+      {"FreeType text", test_font},
+      {"labels with units", test_labels},
+      {"SPH interpolation and outline, exact", test_interp},
       {"colour maps", test_colormap},
       {"nice ticks", test_ticks},
       {"CSV reader", test_csv},
@@ -774,6 +1178,11 @@ int main(void) {
       {"compare two runs", test_compare},
       {"plot mode, golden", test_plot},
       {"plot mode, logarithmic axes", test_plot_log},
+      {"anti-aliasing: no moire", test_antialias},
+      {"interpolated view and outline", test_smooth},
+      {"plots as SVG and PDF", test_vector_plot},
+      {"output names and extensions", test_output_names},
+      {"missing font", test_font_missing},
       {"bad input: missing file", test_missing_file},
       {"bad input: missing field", test_missing_field},
       {"bad input: corrupt HDF5", test_corrupt_file},

@@ -29,6 +29,12 @@ int sph_csv_read(const char *path, sph_csv *out, sph_error *err);
 void sph_csv_free(sph_csv *t);
 /* Index of the named column, or -1 with an error listing the columns. */
 int sph_csv_column(const sph_csv *t, const char *name, sph_error *err);
+/* The units of a column of the CSV files sph writes (diagnostics.csv,
+ * gauges.csv, probes.csv, audit.csv), as their documentation gives them:
+ * "s", "m", "J/m", ..., "" for counts and ratios, NULL for a name it does
+ * not know. A header that carries its own units ("P1 (Pa)") is not looked
+ * up: the units are in the name. */
+const char *sph_csv_units(const char *column);
 /* Fills out (nrow values) with a column expression: a column name, or
  * several joined by '+' (their sum, e.g. "kinetic+potential"). */
 int sph_csv_eval(const sph_csv *t, const char *expr, double *out, sph_error *err);

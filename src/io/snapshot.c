@@ -579,8 +579,8 @@ static int get_numbers(const sph_snapshot *s, const char *name, hid_t mtype, voi
 
 /* A string attribute's value, variable- or fixed-length, into a malloc'd
  * string. */
-static int read_string(const sph_snapshot *s, hid_t attr, hid_t type, const char *name, char **out,
-                       sph_error *err) {
+static int read_string(const sph_snapshot *s, hid_t attr, hid_t type, const char *where,
+                       const char *name, char **out, sph_error *err) {
   if (H5Tis_variable_str(type) > 0) {
     hid_t mtype = H5Tcopy(H5T_C_S1);
     hid_t space = H5Aget_space(attr);
@@ -588,7 +588,7 @@ static int read_string(const sph_snapshot *s, hid_t attr, hid_t type, const char
     int rc = 0;
     if (mtype < 0 || space < 0 || H5Tset_size(mtype, H5T_VARIABLE) < 0 ||
         H5Tset_cset(mtype, H5Tget_cset(type)) < 0 || H5Aread(attr, mtype, &v) < 0)
-      rc = h5_fail(err, s->path, "cannot read attribute \"%s\" on /", name);
+      rc = h5_fail(err, s->path, "cannot read attribute \"%s\" on %s", name, where);
     else if (!(*out = dup_string(v ? v : "")))
       rc = sph_error_set(err, "%s: out of memory", s->path);
     if (v) H5Dvlen_reclaim(mtype, space, H5P_DEFAULT, &v);
@@ -601,7 +601,7 @@ static int read_string(const sph_snapshot *s, hid_t attr, hid_t type, const char
   if (!buf) return sph_error_set(err, "%s: out of memory", s->path);
   if (H5Aread(attr, type, buf) < 0) {
     free(buf);
-    return h5_fail(err, s->path, "cannot read attribute \"%s\" on /", name);
+    return h5_fail(err, s->path, "cannot read attribute \"%s\" on %s", name, where);
   }
   if (H5Tget_strpad(type) == H5T_STR_SPACEPAD)
     for (size_t k = size; k > 0 && buf[k - 1] == ' '; k--)
@@ -610,29 +610,37 @@ static int read_string(const sph_snapshot *s, hid_t attr, hid_t type, const char
   return 0;
 }
 
-/* Reads the string attribute name of "/" into *out (NULL if absent and
- * not required). */
-static int get_text(const sph_snapshot *s, const char *name, int required, char **out,
-                    sph_error *err) {
+/* Reads the string attribute name of obj (called where in messages) into
+ * *out (NULL if absent and not required). */
+static int get_text_of(const sph_snapshot *s, hid_t obj, const char *where, const char *name,
+                       int required, char **out, sph_error *err) {
   *out = NULL;
-  htri_t there = H5Aexists(s->file, name);
-  if (there < 0) return h5_fail(err, s->path, "cannot look for attribute \"%s\" on /", name);
+  htri_t there = H5Aexists(obj, name);
+  if (there < 0)
+    return h5_fail(err, s->path, "cannot look for attribute \"%s\" on %s", name, where);
   if (there == 0)
-    return required ? sph_error_set(err, "%s: missing attribute \"%s\" on /", s->path, name) : 0;
-  hid_t attr = H5Aopen(s->file, name, H5P_DEFAULT);
+    return required ? sph_error_set(err, "%s: missing attribute \"%s\" on %s", s->path, name, where)
+                    : 0;
+  hid_t attr = H5Aopen(obj, name, H5P_DEFAULT);
   hid_t type = attr < 0 ? -1 : H5Aget_type(attr);
   hid_t space = attr < 0 ? -1 : H5Aget_space(attr);
   int rc = 0;
   if (type < 0 || space < 0)
-    rc = h5_fail(err, s->path, "cannot open attribute \"%s\" on /", name);
+    rc = h5_fail(err, s->path, "cannot open attribute \"%s\" on %s", name, where);
   else if (H5Tget_class(type) != H5T_STRING || H5Sget_simple_extent_npoints(space) != 1)
-    rc = sph_error_set(err, "%s: attribute \"%s\" on / is not a single string", s->path, name);
+    rc = sph_error_set(err, "%s: attribute \"%s\" on %s is not a single string", s->path, name,
+                       where);
   else
-    rc = read_string(s, attr, type, name, out, err);
+    rc = read_string(s, attr, type, where, name, out, err);
   close_id(space);
   close_id(type);
   close_id(attr);
   return rc;
+}
+
+static int get_text(const sph_snapshot *s, const char *name, int required, char **out,
+                    sph_error *err) {
+  return get_text_of(s, s->file, "/", name, required, out, err);
 }
 
 static int read_header(sph_snapshot *s, sph_error *err) {
@@ -812,6 +820,24 @@ int sph_snapshot_has_field(const sph_snapshot *s, const char *name) {
   for (size_t i = 0; i < s->n_fields; i++)
     if (strcmp(s->fields[i], name) == 0) return 1;
   return 0;
+}
+
+int sph_snapshot_field_units(const sph_snapshot *s, const char *name, char *buf, size_t size) {
+  if (size) buf[0] = '\0';
+  if (!sph_snapshot_has_field(s, name)) return -1;
+  h5_quiet q;
+  quiet_begin(&q);
+  hid_t dset = H5Dopen2(s->group, name, H5P_DEFAULT);
+  char *units = NULL, where[300];
+  snprintf(where, sizeof where, "/particles/%s", name);
+  sph_error err;
+  int rc = dset < 0 ? -1 : get_text_of(s, dset, where, "units", 0, &units, &err);
+  if (rc == 0 && !units) rc = -1;
+  if (rc == 0 && size) snprintf(buf, size, "%s", units);
+  free(units);
+  close_id(dset);
+  quiet_end(&q);
+  return rc;
 }
 
 /* Reads dataset /particles/name, converted to mtype, into out. */

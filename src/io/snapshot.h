@@ -102,6 +102,9 @@ int sph_snapshot_number(const sph_snapshot *s, const char *name, double *out, si
 size_t sph_snapshot_field_count(const sph_snapshot *s);
 const char *sph_snapshot_field_name(const sph_snapshot *s, size_t i);
 int sph_snapshot_has_field(const sph_snapshot *s, const char *name);
+/* The `units` attribute of a field (e.g. "m/s") into buf (size bytes);
+ * returns -1 (buf "") if the field or the attribute is absent. */
+int sph_snapshot_field_units(const sph_snapshot *s, const char *name, char *buf, size_t size);
 /* Reads one field converted to double into out (count values). An absent
  * field or a failed read is an error naming the file and the dataset. */
 int sph_snapshot_read_field(const sph_snapshot *s, const char *name, double *out, sph_error *err);

@@ -1,0 +1,167 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * interp.c - the SPH interpolation of interp.h on a grid of points.
+ *
+ * Particles go into square cells of side 2 max h (a counting sort, stable,
+ * so each cell keeps id order); a point visits the 3 x 3 cells around its
+ * own. Wall particles count with the volume of their number density (see
+ * below), fluid particles with m / rho. Kernels (2-D normalisation, support 2h), as in
+ * src/physics/kernel.h: cubic spline (paper A eq. 8)  W = 10/(7 pi h^2) [1 - 3/2 q^2 + 3/4 q^3],
+ *                                 10/(7 pi h^2) (2 - q)^3 / 4 for 1 <= q < 2
+ *   Wendland C2 (Wendland 1995)   W = 7/(4 pi h^2) (1 - q/2)^4 (2q + 1)
+ */
+#include "config.h"
+
+#include "interp.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+double rinterp_w(int k, double r, double h) {
+  const double q = r / h;
+  if (q >= 2.0) return 0.0;
+  if (k == RKERNEL_WENDLAND_C2) {
+    const double t = 1.0 - 0.5 * q;
+    return 7.0 / (4.0 * M_PI * h * h) * t * t * t * t * (2.0 * q + 1.0);
+  }
+  const double sigma = 10.0 / (7.0 * M_PI * h * h);
+  if (q < 1.0) return sigma * (1.0 - 1.5 * q * q + 0.75 * q * q * q);
+  const double t = 2.0 - q;
+  return sigma * 0.25 * t * t * t;
+}
+
+int rinterp_kernel_of(const char *parameters) {
+  const char *k = parameters ? strstr(parameters, "numerics.kernel:") : NULL;
+  if (!k) return RKERNEL_CUBIC;
+  k += strlen("numerics.kernel:");
+  while (*k == ' ')
+    k++;
+  return strncmp(k, "wendland_c2", 11) == 0 ? RKERNEL_WENDLAND_C2 : RKERNEL_CUBIC;
+}
+
+int rinterp_is_fluid(double sf) { return sf >= 0.5; }
+
+int rinterp_field(const rinterp_in *in, const rinterp_grid *g, double *f, double *sf, double *sw,
+                  sph_error *err) {
+  const size_t np = (size_t)g->nx * (size_t)g->ny;
+  for (size_t k = 0; k < np; k++) {
+    f[k] = NAN;
+    sf[k] = sw[k] = 0.0;
+  }
+  /* the particles' box and the cell size */
+  double hmax = 0.0, bx0 = INFINITY, bx1 = -INFINITY, by0 = INFINITY, by1 = -INFINITY;
+  size_t used = 0;
+  for (size_t i = 0; i < in->n; i++) {
+    if (!(in->h[i] > 0.0) || !isfinite(in->x[i]) || !isfinite(in->y[i]) || !(in->vol[i] > 0.0))
+      continue;
+    hmax = fmax(hmax, in->h[i]);
+    bx0 = fmin(bx0, in->x[i]);
+    bx1 = fmax(bx1, in->x[i]);
+    by0 = fmin(by0, in->y[i]);
+    by1 = fmax(by1, in->y[i]);
+    used++;
+  }
+  if (used == 0) return 0;
+  double cell = 2.0 * hmax;
+  /* at most about four cells per particle, whatever the spread */
+  while (((bx1 - bx0) / cell + 1.0) * ((by1 - by0) / cell + 1.0) > 4.0 * (double)used + 1e6)
+    cell *= 2.0;
+  const long cx = (long)((bx1 - bx0) / cell) + 1, cy = (long)((by1 - by0) / cell) + 1;
+  size_t *start = calloc((size_t)(cx * cy + 1), sizeof *start);
+  size_t *order = malloc(used * sizeof *order);
+  long *cell_of = malloc(in->n * sizeof *cell_of);
+  if (!start || !order || !cell_of) {
+    free(start);
+    free(order);
+    free(cell_of);
+    return sph_error_set(err, "--smooth: out of memory for %zu particles", in->n);
+  }
+  for (size_t i = 0; i < in->n; i++) {
+    cell_of[i] = -1;
+    if (!(in->h[i] > 0.0) || !isfinite(in->x[i]) || !isfinite(in->y[i]) || !(in->vol[i] > 0.0))
+      continue;
+    long a = (long)((in->x[i] - bx0) / cell), b = (long)((in->y[i] - by0) / cell);
+    if (a >= cx) a = cx - 1;
+    if (b >= cy) b = cy - 1;
+    cell_of[i] = b * cx + a;
+    start[cell_of[i] + 1]++;
+  }
+  for (long c = 0; c < cx * cy; c++)
+    start[c + 1] += start[c];
+  size_t *fill = malloc((size_t)(cx * cy) * sizeof *fill);
+  if (!fill) {
+    free(start);
+    free(order);
+    free(cell_of);
+    return sph_error_set(err, "--smooth: out of memory");
+  }
+  memcpy(fill, start, (size_t)(cx * cy) * sizeof *fill);
+  for (size_t i = 0; i < in->n; i++)
+    if (cell_of[i] >= 0) order[fill[cell_of[i]]++] = i;
+  free(fill);
+  /* wall particles' volumes from their number density, 1 / sum_k W_jk over
+   * every particle k: walls of any spacing (a layer at dx/2 of another)
+   * then fill their space once, whatever mass and density they carry */
+  double *vol = malloc(in->n * sizeof *vol);
+  if (!vol) {
+    free(start);
+    free(order);
+    free(cell_of);
+    return sph_error_set(err, "--smooth: out of memory");
+  }
+  for (size_t i = 0; i < in->n; i++) {
+    vol[i] = in->vol[i];
+    if (!in->wall[i] || cell_of[i] < 0) continue;
+    const long a = cell_of[i] % cx, b = cell_of[i] / cx;
+    double sum = 0.0;
+    for (long bb = b - 1; bb <= b + 1; bb++)
+      for (long aa = a - 1; aa <= a + 1; aa++) {
+        if (aa < 0 || aa >= cx || bb < 0 || bb >= cy) continue;
+        for (size_t k = start[bb * cx + aa]; k < start[bb * cx + aa + 1]; k++) {
+          const size_t q = order[k];
+          const double dx = in->x[i] - in->x[q], dy = in->y[i] - in->y[q];
+          sum += rinterp_w(in->kernel, sqrt(dx * dx + dy * dy), in->h[i]);
+        }
+      }
+    vol[i] = sum > 0.0 ? 1.0 / sum : 0.0;
+  }
+  for (int j = 0; j < g->ny; j++) {
+    const double py = g->y1 - (j + 0.5) * g->step;
+    const long b = (long)floor((py - by0) / cell);
+    for (int i = 0; i < g->nx; i++) {
+      const double px = g->x0 + (i + 0.5) * g->step;
+      const long a = (long)floor((px - bx0) / cell);
+      double s_f = 0.0, s_w = 0.0, s_v = 0.0;
+      for (long bb = b - 1; bb <= b + 1; bb++) {
+        if (bb < 0 || bb >= cy) continue;
+        for (long aa = a - 1; aa <= a + 1; aa++) {
+          if (aa < 0 || aa >= cx) continue;
+          const long c = bb * cx + aa;
+          for (size_t k = start[c]; k < start[c + 1]; k++) {
+            const size_t p = order[k];
+            const double dx = px - in->x[p], dy = py - in->y[p];
+            const double r2 = dx * dx + dy * dy, h = in->h[p];
+            if (r2 >= 4.0 * h * h) continue;
+            const double vw = vol[p] * rinterp_w(in->kernel, sqrt(r2), h);
+            if (in->wall[p]) {
+              s_w += vw;
+            } else {
+              s_f += vw;
+              s_v += vw * in->val[p];
+            }
+          }
+        }
+      }
+      const size_t q = (size_t)j * g->nx + i;
+      sf[q] = s_f;
+      sw[q] = s_w;
+      if (s_f > 0.0) f[q] = s_v / s_f;
+    }
+  }
+  free(vol);
+  free(start);
+  free(order);
+  free(cell_of);
+  return 0;
+}

@@ -1,0 +1,56 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * csv_units.c - the units of the columns sph writes (see csv.h), from the
+ * tables of doc/snapshot-format.md (diagnostics.csv, gauges.csv) and
+ * doc/cli.md (audit.csv). Quantities of a 2-D run are per metre of depth:
+ * mass kg/m, energies J/m, momenta kg/s. A test reads the headers the
+ * solver writes and checks that every column is here.
+ */
+#include "config.h"
+
+#include "io/csv.h"
+
+#include <string.h>
+
+typedef struct column_units {
+  const char *name, *units;
+} column_units;
+
+static const column_units table[] = {
+    /* diagnostics.csv */
+    {"time", "s"},
+    {"step", ""},
+    {"dt", "s"},
+    {"n_fluid", ""},
+    {"front_x", "m"},
+    {"mass", "kg/m"},
+    {"momentum_x", "kg/s"},
+    {"momentum_y", "kg/s"},
+    {"kinetic", "J/m"},
+    {"potential", "J/m"},
+    {"n_free_surface", ""},
+    {"internal", "J/m"},
+    {"boundary_work", "J/m"},
+    {"xsph_drift", "J/m"},
+    {"total_energy", "J/m"},
+    {"energy_deviation", ""},
+    {"fluid_energy_deviation", ""},
+    {"momentum_residual_x", "kg/s"},
+    {"momentum_residual_y", "kg/s"},
+    {"diffusion_energy", "J/m"},
+    {"wall_potential", "J/m"},
+    /* audit.csv (deviations, work and heat in units of E0) */
+    {"particles", ""},
+    {"dx", "m"},
+    {"wall_work", ""},
+    {"wall_heat", ""},
+    {"mass_drift", ""},
+    {"momentum_drift", ""},
+};
+
+const char *sph_csv_units(const char *column) {
+  for (size_t i = 0; i < sizeof table / sizeof table[0]; i++)
+    if (strcmp(table[i].name, column) == 0) return table[i].units;
+  if (strncmp(column, "eta_", 4) == 0) return "m"; /* gauges.csv: eta_<x> */
+  return NULL;
+}
