@@ -11,6 +11,8 @@
  *   - coarse SPS dam break: SPS turbulence with Morris viscosity;
  *   - hydrostatic tank with mirror walls, MLS filter every 5 steps;
  *   - inclined plane: periodic x, leap-frog, free surface with h* = 2h;
+ *   - free-surface flags on the kept neighbour list (coarse dam break on
+ *     1-3 threads, the inclined plane without h*);
  *   - coarse flap wavemaker: paddle motion, wave gauges, variable h,
  *     Shepard filter;
  *   - coarse dam break with the Wendland kernel, the stress tensor, the
@@ -84,6 +86,16 @@ static void test_periodic_free_surface(void) {
                           "--set 'free_surface={h_factor: 2}' --set output.free_surface=true");
 }
 
+/* free-surface flags from the rows of the neighbour list kept across
+ * steps (no h*, so the list keeps its skin), on a plain grid and periodic */
+static void test_free_surface_kept_list(void) {
+  same_on_threads("cases/martin_moyce_coarse.yaml",
+                  "--set time.end=0.1 --set output.free_surface=true", 3);
+  same_on_1_and_2_threads("cases/inclined_plane.yaml",
+                          "--set time.end=0.05 --set time.output_interval=0.01 "
+                          "--set output.free_surface=true");
+}
+
 static void test_paddle(void) {
   same_on_1_and_2_threads("cases/linear_wave_coarse.yaml",
                           "--set time.end=1.0 --set numerics.smoothing_length=variable "
@@ -130,6 +142,7 @@ int main(void) {
       {"SPS turbulence", test_sps},
       {"mirror walls and the MLS filter", test_mirror_filter},
       {"periodic x, leap-frog, free surface with h*", test_periodic_free_surface},
+      {"free surface on the kept neighbour list, 1-3 threads", test_free_surface_kept_list},
       {"paddle, gauges, variable h, Shepard filter", test_paddle},
       {"leap-frog dam break on 1, 2 and 3 threads", test_three_threads},
       CU_TEST_INFO_NULL};

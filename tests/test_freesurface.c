@@ -12,7 +12,11 @@
  * periodic in x, an isolated particle and pairs, coincident particles,
  * touching arcs in every rotation, and a lattice whose
  * particles sit on cell edges at equal and tangent distances, in shuffled
- * storage orders and with 1..3 threads.
+ * storage orders and with 1..3 threads. Every configuration is detected
+ * four ways, which must agree flag for flag: from the grid with the cheap
+ * certificates, from the grid by the arc test alone (exact_only), and from
+ * the rows of a neighbour list without and with a skin. The certificates
+ * are also tested alone, on random disc sets drawn at their edges.
  *
  * Golden files golden/freesurface/{hole,degenerate}.csv freeze the flags of
  * two configurations; `test_freesurface --regen` (with SPH_SRCDIR set to
@@ -135,6 +139,50 @@ static size_t detect(const cloud *c, const size_t *order, double f, double cell,
     set += out[p.id[i]];
   }
   CU_ASSERT_EQUAL(count, set);
+  /* the same flags from the arc test alone (no certificates), and from the
+   * rows of a neighbour list (without a skin, and with one on a coarser
+   * grid) instead of the grid's cells */
+  uint8_t *first = malloc(p.n ? p.n : 1);
+  for (size_t i = 0; i < p.n; i++)
+    first[i] = p.flags[i];
+  sph_freesurface_params exact = fp;
+  exact.exact_only = 1;
+  size_t n_exact = 0, n_list = 0, n_skin = 0, differ = 0;
+  CU_ASSERT_FATAL(sph_freesurface_detect(&p, &g, &exact, &n_exact, &err) == 0);
+  for (size_t i = 0; i < p.n; i++)
+    differ += p.flags[i] != first[i];
+  sph_nlist l;
+  sph_nlist_init(&l);
+  CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, cell, 0.0, c->period, &err) == 0);
+  rc = sph_freesurface_detect_list(&p, &l, &fp, &n_list, &err);
+  if (rc) fprintf(stderr, "detect_list: %s\n", err.msg);
+  CU_ASSERT_FATAL(rc == 0);
+  for (size_t i = 0; i < p.n; i++)
+    differ += p.flags[i] != first[i];
+  if (c->period <= 0.0 || c->period >= 3.0 * 1.5 * cell) {
+    sph_grid g2;
+    sph_grid_init(&g2);
+    if (c->period > 0.0)
+      CU_ASSERT_FATAL(
+          sph_grid_build_periodic(&g2, &p, 1.5 * cell, 0.0, c->period, 1u << 24, &err) == 0);
+    if (c->period <= 0.0) CU_ASSERT_FATAL(sph_grid_build(&g2, &p, 1.5 * cell, 1u << 24, &err) == 0);
+    /* the coarser grid reorders the store: compare by id */
+    for (size_t i = 0; i < p.n; i++)
+      first[i] = out[p.id[i]];
+    CU_ASSERT_FATAL(sph_nlist_build(&l, &g2, &p, cell, 0.5 * cell, c->period, &err) == 0);
+    CU_ASSERT_FATAL(sph_freesurface_detect_list(&p, &l, &fp, &n_skin, &err) == 0);
+    for (size_t i = 0; i < p.n; i++)
+      differ += (p.flags[i] & SPH_FLAG_FREE_SURFACE) != first[i];
+    sph_grid_free(&g2);
+  } else {
+    n_skin = count;
+  }
+  CU_ASSERT_EQUAL(differ, 0);
+  CU_ASSERT_EQUAL(n_exact, count);
+  CU_ASSERT_EQUAL(n_list, count);
+  CU_ASSERT_EQUAL(n_skin, count);
+  free(first);
+  sph_nlist_free(&l);
   sph_grid_free(&g);
   sph_particles_free(&p);
   return count;
@@ -799,6 +847,26 @@ static void test_errors(void) {
   fp.period = -1.0;
   CU_ASSERT_EQUAL(sph_freesurface_detect(&p, &g, &fp, &count, &err), -1);
   CU_ASSERT(strstr(err.msg, "period") != NULL);
+  /* a neighbour list: complete and large enough, else refused */
+  fp.period = 0.0;
+  sph_nlist l;
+  sph_nlist_init(&l);
+  CU_ASSERT_EQUAL(sph_freesurface_detect_list(&p, &l, &fp, &count, &err), -1); /* never built */
+  CU_ASSERT(strstr(err.msg, "list") != NULL);
+  CU_ASSERT_FATAL(sph_grid_build(&g, &p, 0.2, 1u << 20, &err) == 0);
+  CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, 0.15, 0.0, 0.0, &err) == 0);
+  CU_ASSERT_EQUAL(sph_freesurface_detect_list(&p, &l, &fp, &count, &err), -1); /* < 2 f h */
+  CU_ASSERT(strstr(err.msg, "support of at least 0.2") != NULL);
+  CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, 0.2, 0.0, 0.0, &err) == 0);
+  CU_ASSERT_EQUAL(sph_freesurface_detect_list(&p, &l, &fp, &count, &err), 0);
+  fp.period = 1.0;
+  CU_ASSERT_EQUAL(sph_freesurface_detect_list(&p, &l, &fp, &count, &err), -1);
+  CU_ASSERT(strstr(err.msg, "period") != NULL);
+  fp.period = 0.0;
+  p.x[0] += 1e-9; /* a move: a list without a skin is no longer complete */
+  CU_ASSERT_EQUAL(sph_freesurface_detect_list(&p, &l, &fp, &count, &err), -1);
+  CU_ASSERT(strstr(err.msg, "not complete") != NULL);
+  sph_nlist_free(&l);
   sph_grid_free(&g);
   sph_particles_free(&p);
 }
@@ -851,6 +919,100 @@ static void test_apply_h(void) {
   free(c.p);
 }
 
+/* The two certificates (freesurface.c) are only sufficient, and must never
+ * contradict the arc test. On a square lattice (h = 1.3 dx) the interior
+ * particle is proved covered and a top-row particle proved open at the
+ * point straight above it. Then 400000 random sets of 1-12 discs around a
+ * unit circle, drawn to sit on the certificates' edges: discs whose arcs
+ * are 90 degrees wide to within 1e-5 (the cone test's threshold is 90.001),
+ * directions within 1e-9 rad of a cone's edge (every other set with one
+ * disc in each cone), radii 1 or 0.3-3, points
+ * on the circle within 1e-9 rad of an arc's end; whenever cones_cover
+ * says 1 the arcs cover, whenever point_open says 1 they do not, and both
+ * certificates fire many times. */
+static void test_certificates(void) {
+  const double dx = 1.0, R = 1.3;
+  double ox[8], oy[8], rr[8];
+  int n = 0;
+  for (int a = -1; a <= 1; a++)
+    for (int b = -1; b <= 1; b++)
+      if (a || b) {
+        ox[n] = a * dx;
+        oy[n] = b * dx;
+        rr[n++] = R;
+      }
+  CU_ASSERT(sph_freesurface_cones_cover(ox, oy, rr, 8, R));
+  CU_ASSERT(!sph_freesurface_point_open(ox, oy, rr, 8, R, 0.0, R)); /* buried */
+  n = 0;
+  for (int a = -1; a <= 1; a++)
+    for (int b = -1; b <= 0; b++)
+      if (a || b) {
+        ox[n] = a * dx;
+        oy[n] = b * dx;
+        rr[n++] = R;
+      }
+  CU_ASSERT(!sph_freesurface_cones_cover(ox, oy, rr, 5, R));
+  CU_ASSERT(sph_freesurface_point_open(ox, oy, rr, 5, R, 0.0, R));
+  CU_ASSERT(!sph_freesurface_point_open(ox, oy, rr, 5, R, R, 0.0));
+  long cones = 0, open = 0, contradictions = 0;
+  for (int trial = 0; trial < 400000; trial++) {
+    /* every other trial: one disc per cone (then 0-4 more), so that the
+     * cone test has something to prove */
+    const int per_cone = trial & 1;
+    const int m = per_cone ? 8 + (int)(5 * uniform()) : 1 + (int)(12 * uniform());
+    double x[12], y[12], r[12];
+    sph_arc arcs[12];
+    int na = 0, full = 0;
+    for (int k = 0; k < m; k++) {
+      r[k] = uniform() < 0.7 ? 1.0 : 0.3 + 2.7 * uniform();
+      /* a half-width a near 45 degrees (cos a near 0.7071) or anywhere */
+      double ca = uniform() < 0.6 ? 0.70710678 + 2e-5 * (uniform() - 0.5) : 2 * uniform() - 1;
+      if (per_cone && k < 8 && uniform() < 0.97) ca = 0.7071 - 1e-5 * uniform(); /* just wide */
+      /* the distance d that gives cos a = ca: d^2 - 2 ca d + 1 - r^2 = 0 */
+      const double disc = ca * ca - 1.0 + r[k] * r[k];
+      double d = disc >= 0.0 ? ca + sqrt(disc) : 0.5 + uniform();
+      if (!(d > 0.0)) d = 0.5 * uniform() + 1e-3;
+      double th;
+      const double u = uniform();
+      if (per_cone && k < 8) /* in cone k, often at one of its edges */
+        th = (SPH_PI / 4.0) * k +
+             (u < 0.5 ? (SPH_PI / 8.0) * (uniform() < 0.5 ? -1 : 1) + 1e-9 * (uniform() - 0.5)
+                      : (SPH_PI / 4.0) * (uniform() - 0.5));
+      else if (u < 0.4) /* near a cone's edge */
+        th = (SPH_PI / 8.0) * (2 * (int)(8 * uniform()) + 1) + 1e-9 * (uniform() - 0.5);
+      else if (u < 0.6) /* on an axis or a diagonal */
+        th = (SPH_PI / 4.0) * (int)(8 * uniform());
+      else
+        th = TWO_PI * uniform();
+      x[k] = d * cos(th);
+      y[k] = d * sin(th);
+      const int rc = sph_freesurface_disc(x[k], y[k], 1.0, r[k], &arcs[na]);
+      if (rc == SPH_DISC_ARC) na++;
+      full |= rc == SPH_DISC_FULL;
+    }
+    sph_arc copy[12];
+    memcpy(copy, arcs, sizeof arcs);
+    const int covered = full || sph_freesurface_arcs_cover(copy, (size_t)na);
+    const int c1 = sph_freesurface_cones_cover(x, y, r, (size_t)m, 1.0);
+    /* a point near an arc's end, or anywhere */
+    double phi = TWO_PI * uniform();
+    if (na && uniform() < 0.7) {
+      const int k = (int)(na * uniform());
+      phi = (uniform() < 0.5 ? arcs[k].lo : arcs[k].hi) +
+            1e-9 * (uniform() - 0.5) * (uniform() < 0.5 ? 1 : 1e3);
+    }
+    const int c2 = sph_freesurface_point_open(x, y, r, (size_t)m, 1.0, cos(phi), sin(phi));
+    cones += c1;
+    open += c2;
+    contradictions += (c1 && !covered) + (c2 && covered);
+  }
+  printf("\n  certificates: covered %ld times, open %ld times, contradictions %ld", cones, open,
+         contradictions);
+  CU_ASSERT_EQUAL(contradictions, 0);
+  CU_ASSERT(cones > 1000);
+  CU_ASSERT(open > 10000);
+}
+
 int main(int argc, char **argv) {
   setenv("SPH_TEST_OMP_MIN", "0", 1); /* parallel loops even for the small test sets */
   for (int k = 1; k < argc; k++) {
@@ -874,6 +1036,7 @@ int main(int argc, char **argv) {
                          {"touching arcs, exact in floating point", test_touching_exact},
                          {"cell edges, tangent and coincident", test_degenerate_lattice},
                          {"random cloud against brute force", test_random_cloud},
+                         {"the cheap certificates never contradict the arcs", test_certificates},
                          {"periodic in x", test_periodic},
                          {"errors", test_errors},
                          {"h* = k h on the surface", test_apply_h},

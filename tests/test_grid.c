@@ -488,6 +488,12 @@ static void test_list_fresh(void) {
   sph_particles_permute(&p, perm, work);
   p.n = n;
   CU_ASSERT(!sph_nlist_fresh(&l, &p));
+  /* without a skin: fresh until the first move, however small */
+  CU_ASSERT_FATAL(sph_grid_build(&g, &p, support * (1 + 1e-9), 1u << 24, &err) == 0);
+  CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, support, 0.0, 0.0, &err) == 0);
+  CU_ASSERT(sph_nlist_fresh(&l, &p));
+  p.y[3] = nextafter(p.y[3], 1.0);
+  CU_ASSERT(!sph_nlist_fresh(&l, &p));
   sph_nlist_free(&l);
   sph_grid_free(&g);
   sph_particles_free(&p);

@@ -3,15 +3,17 @@
  * test_restart.c - `sph run --restart SNAPSHOT CASE` continues a run
  * bitwise.
  *
- * Three small cases (tests/data/restart_*.yaml) between them switch on
+ * Four small cases (tests/data/restart_*.yaml) between them switch on
  * what a restart must carry over: the predictor-corrector and the
  * leap-frog (half-step values, first step), the paper B, CFL and fixed
  * step rules, an MLS and a Shepard filter (step counter), a moving gate
  * (its phase), variable h and h* on the free surface, XSPH, Morris and SPS
  * viscosity, dynamic, repulsive and mirror walls, periodic x, the energy
- * ledger (its integrals) and wave gauges (their levels at t = 0). Each is
- * run uninterrupted; then
- *   - restarted from snap_0002 into a fresh directory (1 thread): every
+ * ledger (its integrals), wave gauges (their levels at t = 0) and
+ * free-surface flags read from the kept neighbour list. Each is run
+ * uninterrupted; then
+ *   - restarted from snap_0002 (restart_fs: snap_0003) into a fresh
+ *     directory (1 thread): every
  *     later snapshot equals the uninterrupted one dataset by dataset, bit
  *     for bit, restart record included, and the files are byte-identical;
  *     diagnostics.csv starts at the restart time with the same rows;
@@ -158,6 +160,7 @@ static void test_pc_fresh(void) { restart_fresh("restart_pc", 2); }
 static void test_lf_fresh(void) { restart_fresh("restart_lf", 2); }
 static void test_mirror_fresh(void) { restart_fresh("restart_mirror", 2); }
 static void test_lf_from_start(void) { restart_fresh("restart_lf", 0); }
+static void test_fs_fresh(void) { restart_fresh("restart_fs", 3); }
 
 /* Restart in a copy of the run's own directory (which holds the later
  * snapshots and rows already): the end result is byte for byte the
@@ -282,6 +285,7 @@ int main(void) {
       {"leap-frog: restart in a fresh directory is bitwise", test_lf_fresh},
       {"mirror, periodic: restart in a fresh directory is bitwise", test_mirror_fresh},
       {"leap-frog: restart from t = 0 is bitwise", test_lf_from_start},
+      {"free-surface flags on the kept list: restart is bitwise", test_fs_fresh},
       {"restart in the run's directory: CSV and XDMF as uninterrupted", test_pc_in_place},
       {"mirror, periodic: restart in place", test_mirror_in_place},
       {"bad restarts fail clearly; time.end may change", test_bad_restarts},

@@ -380,9 +380,10 @@ int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p) {
     }
   }
   if (moved) return 0;
-  /* max displacement < skin/2, with a relative margin for rounding */
+  /* max displacement < skin/2, with a relative margin for rounding; a
+   * list nobody has moved since its build is complete without a skin */
   const double half = 0.5 * l->skin * (1.0 - 1e-6);
-  return d2 < half * half;
+  return d2 == 0.0 || d2 < half * half;
 }
 
 /* ---- debug invariants ------------------------------------------------------------------ */

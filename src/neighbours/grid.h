@@ -192,7 +192,9 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
 
 /* 1 if the list built earlier on p is still complete for its support:
  * the same particles in the same storage order (ids compared), every one
- * within skin/2 (less a rounding margin) of where it stood at the build. */
+ * within skin/2 (less a rounding margin) of where it stood at the build,
+ * or none moved at all (so a list without a skin is fresh until the first
+ * move). */
 int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p);
 
 /* Debug invariants (src/core/check.h), run after every build in a build

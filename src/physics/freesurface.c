@@ -89,50 +89,180 @@ int sph_freesurface_arcs_cover(sph_arc *arcs, size_t n) {
   return reach >= TWO_PI - SPH_FREESURFACE_GAP_TOL;
 }
 
-/* Number of neighbour candidates of particle i (an upper bound on its arcs). */
-static size_t candidates(const sph_grid *g, size_t i) {
-  size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES], m = 0;
-  sph_grid_ranges_all(g, i, lo, hi);
-  for (int k = 0; k < SPH_GRID_RANGES; k++)
-    m += hi[k] - lo[k];
-  return m;
+/* ---- two cheap certificates -------------------------------------------------
+ *
+ * Interior: eight closed cones of 45 degrees (cone_of below) share out
+ * the directions around particle i. A neighbour j
+ * whose covered arc is at least 2 (45 + 0.00055) degrees wide, i.e. with
+ * c_j = cos a_j = (R_i^2 + d^2 - R_j^2) / (2 R_i d) <= GAMMA = 0.7071 (or
+ * whose disc contains circle i), covers the whole cone its direction
+ * theta_j lies in, with a margin of 9.6e-6 rad at both ends: the arc
+ * [theta_j - a_j, theta_j + a_j] is centred in that cone. When each of
+ * the eight cones holds such a neighbour, the circle is covered with
+ * overlaps of at least 2e-5 rad. The test needs no square root:
+ * A = R_i^2 + d^2 - R_j^2 <= 2 GAMMA R_i d holds if A <= 0, otherwise iff
+ * A^2 <= 4 GAMMA^2 R_i^2 d^2. c_j <= GAMMA < 1 also puts d below R_i + R_j
+ * and disc j not inside circle i (both need c_j >= 1), so the arc test
+ * takes the same neighbour as an arc (with sin a_j >= 0.7 its end points
+ * are within 1e-15 rad of exact) or as containing the circle: it says
+ * "covered" too. Offsets closer than D_MIN R_i (a duplicate carries no
+ * direction) and radii more than RATIO apart are passed over, so that
+ * the rounding of A (1e-16 (R_i^2 + d^2 + R_j^2)) stays far below the
+ * margin (2e-5 R_i d).
+ *
+ * Surface: a point P on circle i (the direction away from the sum of the
+ * offsets r_j - r_i, where a surface particle's open side mostly is) that
+ * lies outside every other disc, |P - r_j|^2 >= R_j^2 + ETA R_i (R_i +
+ * R_j), is at least ETA / 2 rad from every covered arc (the squared
+ * distance changes at most 2 R_i d per radian along the circle, and
+ * d < R_i + R_j for a disc that covers anything), far more than the
+ * arcs' rounding (at most 1.5e-8 rad, for a disc that barely touches) and
+ * SPH_FREESURFACE_GAP_TOL: the arc test finds the gap around P.
+ *
+ * So each certificate gives the arc test's answer, whatever its order of
+ * sums; where neither holds the arc test decides. The flags are those of
+ * the arc test alone, bit for bit (test_freesurface compares them with
+ * exact_only on lattices, disordered clouds and near-tangent cases). */
+#define GAMMA 0.7071
+#define D_MIN 1e-3
+#define RATIO 1e3
+#define ETA 1e-6
+
+/* The cones, numbered counter-clockwise from the one around +x, are
+ * centred on the axes and the diagonals (so that the neighbours of a
+ * square lattice lie inside them, not on their edges); their edges are
+ * the lines |dy| = t |dx| and |dx| = t |dy|, t = tan(22.5 degrees) (to
+ * 1e-16 rad: inside the margin). cone_of is indexed by [near the x axis,
+ * near the y axis, dx < 0, dy < 0]; both "near" bits hold only at d = 0,
+ * which cone_held does not use. */
+#define TAN_22_5 0.41421356237309505
+static const unsigned char cone_of[16] = {1, 0, 2, 0, 3, 4, 2, 4, 7, 0, 6, 0, 5, 4, 6, 4};
+
+/* The bit of the cone of offset (dx, dy), if `held`. */
+static inline unsigned cone_bit(double dx, double dy, int held) {
+  const double ax = fabs(dx), ay = fabs(dy);
+  const unsigned k = (unsigned)(ay <= TAN_22_5 * ax) | (unsigned)(ax <= TAN_22_5 * ay) << 1 |
+                     (unsigned)(dx < 0.0) << 2 | (unsigned)(dy < 0.0) << 3;
+  return (unsigned)held << cone_of[k];
 }
 
-/* 1 if some arc of the circle of particle i is uncovered. buf holds at
- * least candidates(g, i) arcs. */
-static int uncovered(const sph_particles *p, const sph_grid *g, size_t i, double f, double period,
-                     sph_arc *buf) {
+/* The bit of the cone of offset (dx, dy) if disc j covers that cone. */
+static inline unsigned cone_held(double dx, double dy, double ri, double rj) {
+  const double d2 = dx * dx + dy * dy;
+  const double A = ri * ri + d2 - rj * rj;
+  const int wide = A <= 0.0 || A * A <= (4.0 * GAMMA * GAMMA) * (ri * ri) * d2;
+  const int usable = d2 >= (D_MIN * D_MIN) * (ri * ri) && rj <= RATIO * ri && ri <= RATIO * rj;
+  return cone_bit(dx, dy, wide & usable);
+}
+
+/* The same for equal radii, R_j = R_i: A = d^2, so the disc is wide iff
+ * d^2 <= 4 GAMMA^2 R_i^2 (a bound lo2 <= d^2 <= hi2 passed in). */
+static inline unsigned cone_held_equal(double dx, double dy, double lo2, double hi2) {
+  const double d2 = dx * dx + dy * dy;
+  return cone_bit(dx, dy, (d2 >= lo2) & (d2 <= hi2));
+}
+
+/* 1 if the point (px, py) (offsets from particle i) stands off disc j with
+ * the margin. */
+static inline int stands_off(double px, double py, double dx, double dy, double ri, double rj) {
+  const double ex = px - dx, ey = py - dy;
+  return ex * ex + ey * ey >= rj * rj + ETA * ri * (ri + rj);
+}
+
+int sph_freesurface_cones_cover(const double *dx, const double *dy, const double *rj, size_t n,
+                                double ri) {
+  unsigned held = 0;
+  for (size_t k = 0; k < n; k++)
+    held |= cone_held(dx[k], dy[k], ri, rj[k]);
+  return held == 0xFFu;
+}
+
+int sph_freesurface_point_open(const double *dx, const double *dy, const double *rj, size_t n,
+                               double ri, double px, double py) {
+  for (size_t k = 0; k < n; k++)
+    if (!stands_off(px, py, dx[k], dy[k], ri, rj[k])) return 0;
+  return 1;
+}
+
+/* ---- one particle ------------------------------------------------------------ */
+
+/* 1 if some arc of the circle of particle i is uncovered, over the m
+ * candidates cand[] (every particle whose disc can overlap circle i; i
+ * itself may be among them): the two certificates first, unless
+ * exact_only, then the arc test. buf holds at least m arcs. */
+static int uncovered(const sph_particles *p, size_t i, const uint32_t *cand, size_t m, double f,
+                     double period, int exact_only, int equal_h, sph_arc *buf) {
   const double xi = p->x[i], yi = p->y[i], ri = f * p->h[i];
-  size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES], m = 0;
-  sph_grid_ranges_all(g, i, lo, hi);
-  for (int k = 0; k < SPH_GRID_RANGES; k++)
-    for (size_t j = lo[k]; j < hi[k]; j++) {
-      if (j == i) continue;
-      const double dx = sph_grid_min_image(p->x[j] - xi, period), dy = p->y[j] - yi;
-      const int r = sph_freesurface_disc(dx, dy, ri, f * p->h[j], &buf[m]);
-      if (r == SPH_DISC_FULL) return 0;
-      if (r == SPH_DISC_ARC) m++;
+  if (!exact_only) {
+    unsigned held = 0;
+    if (equal_h) { /* every particle has this h: no radius to load */
+      const double lo2 = (D_MIN * D_MIN) * (ri * ri), hi2 = (4.0 * GAMMA * GAMMA) * (ri * ri);
+      for (size_t k = 0; k < m; k++) {
+        const size_t j = cand[k];
+        held |= cone_held_equal(sph_grid_min_image(p->x[j] - xi, period), p->y[j] - yi, lo2, hi2);
+        if (held == 0xFFu) return 0;
+      }
+    } else {
+      for (size_t k = 0; k < m; k++) {
+        const size_t j = cand[k];
+        held |= cone_held(sph_grid_min_image(p->x[j] - xi, period), p->y[j] - yi, ri, f * p->h[j]);
+        if (held == 0xFFu) return 0;
+      }
     }
-  return !sph_freesurface_arcs_cover(buf, m);
+    double sx = 0.0, sy = 0.0;
+    for (size_t k = 0; k < m; k++) {
+      const size_t j = cand[k];
+      sx += sph_grid_min_image(p->x[j] - xi, period);
+      sy += p->y[j] - yi;
+    }
+    const double s2 = sx * sx + sy * sy;
+    if (s2 > 0.0) {
+      const double scale = -ri / sqrt(s2), px = scale * sx, py = scale * sy;
+      int open = 1;
+      for (size_t k = 0; k < m && open; k++) {
+        const size_t j = cand[k];
+        if (j == i) continue;
+        open = stands_off(px, py, sph_grid_min_image(p->x[j] - xi, period), p->y[j] - yi, ri,
+                          f * p->h[j]);
+      }
+      if (open) return 1;
+    }
+  }
+  size_t a = 0;
+  for (size_t k = 0; k < m; k++) {
+    const size_t j = cand[k];
+    if (j == i) continue;
+    const double dx = sph_grid_min_image(p->x[j] - xi, period), dy = p->y[j] - yi;
+    const int r = sph_freesurface_disc(dx, dy, ri, f * p->h[j], &buf[a]);
+    if (r == SPH_DISC_FULL) return 0;
+    if (r == SPH_DISC_ARC) a++;
+  }
+  return !sph_freesurface_arcs_cover(buf, a);
 }
 
-/* Cheap argument checks: the factor, every h, and a grid that belongs to p,
- * has cells large enough for the largest pair of discs and, if periodic,
- * the period given. */
-static int check_inputs(const sph_particles *p, const sph_grid *g, double f, double period,
-                        sph_error *err) {
+/* Cheap argument checks shared by both searches: the factor, the period
+ * and every h; the largest h in *hmax. */
+static int check_particles(const sph_particles *p, double f, double period, double *hmax,
+                           sph_error *err) {
   if (!(f > 0.0) || !isfinite(f))
     return sph_error_set(err, "free surface: radius factor must be positive and finite, got %g", f);
   if (!(period >= 0.0) || !isfinite(period))
     return sph_error_set(err, "free surface: period must be 0 or positive, got %g", period);
-  double hmax = 0.0;
+  if (p->n > UINT32_MAX) return sph_error_set(err, "free surface: %zu particles is too many", p->n);
+  *hmax = 0.0;
   for (size_t i = 0; i < p->n; i++) {
     if (!(p->h[i] > 0.0) || !isfinite(p->h[i]))
       return sph_error_set(err, "free surface: particle %lld has smoothing length %g",
                            (long long)p->id[i], p->h[i]);
-    if (p->h[i] > hmax) hmax = p->h[i];
+    if (p->h[i] > *hmax) *hmax = p->h[i];
   }
-  if (p->n == 0) return 0;
+  return 0;
+}
+
+/* A grid that belongs to p, has cells large enough for the largest pair of
+ * discs and, if periodic, the period given. */
+static int check_grid(const sph_particles *p, const sph_grid *g, double f, double period,
+                      double hmax, sph_error *err) {
   if (!g->start || !g->cx || !g->cy || g->nx <= 0 || g->ny <= 0 ||
       g->start[(size_t)g->nx * (size_t)g->ny] != p->n)
     return sph_error_set(err, "free surface: the grid was not built on these %zu particles", p->n);
@@ -150,45 +280,110 @@ static int check_inputs(const sph_particles *p, const sph_grid *g, double f, dou
   return 0;
 }
 
-int sph_freesurface_detect(sph_particles *p, const sph_grid *g, const sph_freesurface_params *fp,
-                           size_t *count, sph_error *err) {
-  const sph_freesurface_params defaults = SPH_FREESURFACE_DEFAULTS;
-  if (!fp) fp = &defaults;
-  const double f = fp->radius_factor, period = fp->period;
-  if (check_inputs(p, g, f, period, err)) return -1;
+/* A list built on p, still complete (sph_nlist_fresh) for a support that
+ * holds the largest pair of discs, with the period given. */
+static int check_list(const sph_particles *p, const sph_nlist *l, double f, double period,
+                      double hmax, sph_error *err) {
+  if (!l->valid || l->n != p->n || !sph_nlist_fresh(l, p))
+    return sph_error_set(err,
+                         "free surface: the neighbour list is not complete for these %zu "
+                         "particles (build it again)",
+                         p->n);
+  if (!(fabs(l->period - period) <= 1e-9 * period))
+    return sph_error_set(err, "free surface: the list's period is %g, the period given is %g",
+                         l->period, period);
+  if (2.0 * (f * hmax) > l->radius - l->skin)
+    return sph_error_set(err,
+                         "free surface: radius factor %g with h up to %g needs a list support of "
+                         "at least %g, the list has %g",
+                         f, hmax, 2.0 * (f * hmax), l->radius - l->skin);
+  return 0;
+}
+
+/* The flags of every particle from the candidates the grid g (or, if g is
+ * NULL, the list l) gives each. */
+static int detect(sph_particles *p, const sph_grid *g, const sph_nlist *l, double f, double period,
+                  int exact_only, size_t *count, sph_error *err) {
   const long n = (long)p->n;
+  int equal_h = 1;
+  for (size_t i = 1; i < p->n; i++)
+    equal_h &= p->h[i] == p->h[0];
   size_t flagged = 0;
   int oom = 0;
 #pragma omp parallel if (n > SPH_OMP_MIN) reduction(+ : flagged) reduction(| : oom)
   {
     sph_arc *buf = NULL;
+    uint32_t *cand = NULL;
     size_t cap = 0;
 #pragma omp for schedule(dynamic, 256)
-    for (long l = 0; l < n; l++) {
-      const size_t i = (size_t)l;
+    for (long li = 0; li < n; li++) {
+      const size_t i = (size_t)li;
       unsigned bit = 0;
       if (p->kind[i] == SPH_KIND_FLUID) {
-        const size_t need = candidates(g, i);
-        if (need > cap) {
-          sph_arc *b = realloc(buf, (need + need / 2 + 16) * sizeof *b);
-          if (b) {
-            buf = b;
-            cap = need + need / 2 + 16;
-          }
+        size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES], need = 0;
+        if (g) {
+          sph_grid_ranges_all(g, i, lo, hi);
+          for (int k = 0; k < SPH_GRID_RANGES; k++)
+            need += hi[k] - lo[k];
+        } else {
+          need = l->count[i];
         }
-        if (need > cap)
+        if (need > cap) { /* arcs, and with a grid the candidates' indices */
+          const size_t c = need + need / 2 + 16;
+          sph_arc *b = realloc(buf, c * sizeof *b);
+          if (b) buf = b;
+          uint32_t *q = g ? realloc(cand, c * sizeof *q) : NULL;
+          if (q) cand = q;
+          if (b && (q || !g)) cap = c;
+        }
+        if (need > cap) {
           oom = 1;
-        else
-          bit = uncovered(p, g, i, f, period, buf) ? SPH_FLAG_FREE_SURFACE : 0u;
+        } else {
+          const uint32_t *row = l ? l->nb + l->start[i] : cand;
+          if (g) {
+            size_t m = 0;
+            for (int k = 0; k < SPH_GRID_RANGES; k++)
+              for (size_t j = lo[k]; j < hi[k]; j++)
+                cand[m++] = (uint32_t)j;
+          }
+          bit = uncovered(p, i, row, need, f, period, exact_only, equal_h, buf)
+                    ? SPH_FLAG_FREE_SURFACE
+                    : 0u;
+        }
       }
       p->flags[i] = (uint8_t)((p->flags[i] & ~SPH_FLAG_FREE_SURFACE) | bit);
       flagged += bit ? 1u : 0u;
     }
     free(buf);
+    free(cand);
   }
   if (oom) return sph_error_set(err, "free surface: out of memory for the arc scratch");
   if (count) *count = flagged;
   return 0;
+}
+
+/* The checks, then detection from the grid g or, if g is NULL, the list l. */
+static int detect_checked(sph_particles *p, const sph_grid *g, const sph_nlist *l,
+                          const sph_freesurface_params *fp, size_t *count, sph_error *err) {
+  const sph_freesurface_params defaults = SPH_FREESURFACE_DEFAULTS;
+  if (!fp) fp = &defaults;
+  const double f = fp->radius_factor, period = fp->period;
+  double hmax = 0.0;
+  if (check_particles(p, f, period, &hmax, err)) return -1;
+  if (p->n == 0) return count ? (*count = 0, 0) : 0;
+  if (g ? check_grid(p, g, f, period, hmax, err) : check_list(p, l, f, period, hmax, err))
+    return -1;
+  return detect(p, g, l, f, period, fp->exact_only, count, err);
+}
+
+int sph_freesurface_detect(sph_particles *p, const sph_grid *g, const sph_freesurface_params *fp,
+                           size_t *count, sph_error *err) {
+  return detect_checked(p, g, NULL, fp, count, err);
+}
+
+int sph_freesurface_detect_list(sph_particles *p, const sph_nlist *l,
+                                const sph_freesurface_params *fp, size_t *count, sph_error *err) {
+  return detect_checked(p, NULL, l, fp, count, err);
 }
 
 void sph_freesurface_apply_h(sph_particles *p, double h0, double k) {

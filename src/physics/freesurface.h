@@ -37,6 +37,16 @@
  * The answer for a particle depends only on the set of its neighbours'
  * positions and radii: not on the storage order, the neighbour order, or
  * the thread count.
+ *
+ * Two cheap certificates come first: most interior particles have, in
+ * each of eight 45-degree cones, a neighbour whose disc covers the whole
+ * cone (sph_freesurface_cones_cover); most surface particles have a point
+ * of their circle, away from their neighbours, that no disc comes near
+ * (sph_freesurface_point_open). They need no trigonometry and no sort,
+ * and each gives the arc test's own answer (the argument is in
+ * freesurface.c, the check in test_freesurface); on the rest the arc test
+ * decides. The flags are therefore those of the arc test alone, bit for
+ * bit.
  */
 #ifndef SPH_FREESURFACE_H
 #define SPH_FREESURFACE_H
@@ -59,11 +69,13 @@
 typedef struct sph_freesurface_params {
   double radius_factor; /* R_i = radius_factor * h_i; paper A: 1 */
   double period;        /* x period of a periodic grid (px1 - px0); 0 if the grid is not */
+  int exact_only;       /* 1: the arc test on every particle, without the certificates (the
+                           oracle of the tests; the flags are the same) */
 } sph_freesurface_params;
 
 /* Paper A: the circle of radius h_i; not periodic. */
 #define SPH_FREESURFACE_DEFAULTS                                                                   \
-  { .radius_factor = 1.0, .period = 0.0 }
+  { .radius_factor = 1.0, .period = 0.0, .exact_only = 0 }
 
 /* A closed arc [lo, hi] of a circle, angles in radians measured
  * counter-clockwise from +x. */
@@ -88,6 +100,22 @@ int sph_freesurface_disc(double dx, double dy, double ri, double rj, sph_arc *ar
  * on the multiset of arcs, not on their order. */
 int sph_freesurface_arcs_cover(sph_arc *arcs, size_t n);
 
+/* The two certificates that spare most particles the arc test, for a
+ * circle of radius ri centred at the origin and n discs (offsets
+ * (dx[k], dy[k]), radii rj[k]); each is only sufficient (0 says nothing).
+ * cones_cover: 1 if each of the eight 45-degree cones cut by the axes and
+ * the diagonals holds the direction of a disc whose covered arc is at
+ * least 90.001 degrees wide (or that contains the circle); then
+ * sph_freesurface_arcs_cover of the discs' arcs is 1. point_open: 1 if
+ * (px, py), a point of the circle, stands off every disc by a margin;
+ * then the arcs leave a gap around it and arcs_cover is 0. Offsets closer
+ * than 1e-3 ri, and radii more than a factor 1000 from ri, do not count
+ * for cones_cover. */
+int sph_freesurface_cones_cover(const double *dx, const double *dy, const double *rj, size_t n,
+                                double ri);
+int sph_freesurface_point_open(const double *dx, const double *dy, const double *rj, size_t n,
+                               double ri, double px, double py);
+
 /* Sets bit SPH_FLAG_FREE_SURFACE of p->flags for every fluid particle on
  * the free surface and clears it for every other particle (walls are never
  * flagged but do cover); other bits are kept. fp NULL means the defaults.
@@ -102,6 +130,16 @@ int sph_freesurface_arcs_cover(sph_arc *arcs, size_t n);
  * error returns -1 with err set, flags unspecified. */
 int sph_freesurface_detect(sph_particles *p, const sph_grid *g, const sph_freesurface_params *fp,
                            size_t *count, sph_error *err);
+
+/* The same flags as sph_freesurface_detect, the candidates of each
+ * particle taken from its row of the neighbour list l instead of a grid:
+ * l must have been built on p in its current storage order and still be
+ * complete (sph_nlist_fresh: a list with a skin after moves within it, or
+ * any list before the first move) for a support of at least
+ * 2 * radius_factor * max h, with the period fp->period. The solver's list
+ * is: detection then needs neither a fresh grid nor a sorted store. */
+int sph_freesurface_detect_list(sph_particles *p, const sph_nlist *l,
+                                const sph_freesurface_params *fp, size_t *count, sph_error *err);
 
 /* The option free_surface.h_factor: k (paper A §7, h* = k h, k = 2 in the
  * paper): h_i = k h0 for fluid particles flagged on the free surface, h0

@@ -62,11 +62,13 @@ static void update_h(sph_sim *s) {
  * variable h). */
 static int free_surface(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
-  sph_freesurface_params fp = {c->fs_radius_factor,
-                               c->periodic ? c->periodic_x[1] - c->periodic_x[0] : 0.0};
+  const sph_freesurface_params fp = {.radius_factor = c->fs_radius_factor,
+                                     .period =
+                                         c->periodic ? c->periodic_x[1] - c->periodic_x[0] : 0.0,
+                                     .exact_only = 0};
   const int hstar = c->fs_h_factor > 0.0;
   if (hstar) sph_freesurface_apply_h(&s->p, c->h, 1.0);
-  if (sph_freesurface_detect(&s->p, &s->grid, &fp, &s->n_surface, err)) return -1;
+  if (sph_freesurface_detect_list(&s->p, &s->nl, &fp, &s->n_surface, err)) return -1;
   if (hstar) sph_freesurface_apply_h(&s->p, c->h, c->fs_h_factor);
   return 0;
 }
@@ -95,7 +97,7 @@ static int build_grid(sph_sim *s, double cell, sph_error *err) {
 /* The neighbour list of the current state.
  *
  * Without a skin (cases whose passes need a fresh grid or change the
- * store: mirror particles, free-surface detection, variable h) the store is
+ * store: mirror particles, variable h or h* = k h) the store is
  * sorted by cell and the list rebuilt at every pass.
  *
  * With a skin, a list built earlier is kept while sph_nlist_fresh proves it
