@@ -343,7 +343,8 @@ static void test_permute_carries_fields(void) {
 }
 
 /* The list of p (built on a sorted or a binned grid) against brute force
- * with radius support + skin: same pairs, rows in increasing storage index. */
+ * with radius support + skin: same pairs, rows in increasing storage index,
+ * stored compactly (each row as long as its count, no slot unused). */
 static void check_list(sph_particles *p, double support, double skin, double period, int binned) {
   sph_grid g;
   sph_grid_init(&g);
@@ -375,9 +376,11 @@ static void check_list(sph_particles *p, double support, double skin, double per
       k++;
     }
     if (k != l.count[i]) bad++;
+    if (l.start[i + 1] - l.start[i] != l.count[i]) bad++; /* rows stored compactly */
   }
   CU_ASSERT_EQUAL(bad, 0);
   CU_ASSERT(pairs > 0);
+  CU_ASSERT_EQUAL(l.start[p->n], pairs); /* exactly the pairs: no slot unused */
   sph_nlist_free(&l);
   sph_grid_free(&g);
 }

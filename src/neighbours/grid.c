@@ -260,6 +260,26 @@ fill_row(const sph_grid *g, const double *restrict x, const double *restrict y, 
   return c;
 }
 
+/* fill_row on whichever of the four kinds of grid g is, each with a loop
+ * of its own, free of tests that do not change along it. */
+static uint32_t fill_any(const sph_grid *g, const double *restrict x, const double *restrict y,
+                         size_t i, double r2max, double period, uint32_t *restrict row,
+                         int sorted) {
+  if (sorted && period <= 0.0) return fill_row(g, x, y, i, r2max, 0.0, row, 1);
+  if (sorted) return fill_row(g, x, y, i, r2max, period, row, 1);
+  if (period <= 0.0) return fill_row(g, x, y, i, r2max, 0.0, row, 0);
+  return fill_row(g, x, y, i, r2max, period, row, 0);
+}
+
+/* The candidates of particle i: the particles of its 3 x 3 cells. */
+static size_t candidates(const sph_grid *g, size_t i) {
+  size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES], c = 0;
+  sph_grid_ranges_all(g, i, lo, hi);
+  for (int k = 0; k < SPH_GRID_RANGES; k++)
+    c += hi[k] - lo[k];
+  return c;
+}
+
 int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, double support,
                     double skin, double period, sph_error *err) {
   const size_t n = p->n;
@@ -275,53 +295,68 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
       return sph_error_set(err, "grid: out of memory for the neighbour list of %zu particles", n);
     l->cap_n = cap;
   }
-  /* a row's capacity is its candidate count: the rows are filled in
-   * parallel without a counting pass, each into its own slice */
+  /* Rows are stored compactly, each as long as its neighbour count, so
+   * the list holds about 28 slots per particle instead of the ~80
+   * candidates of the 3 x 3 cells (doc/memory.md). A first pass counts
+   * each row (the same distance test as the fill, so the same answer),
+   * the prefix sums place the rows, and the second pass fills each row
+   * through a scratch row per thread (fill_row writes one slot past the
+   * row's end) and copies it in place. */
+  const double radius = support + skin, r2max = radius * radius;
+  const double *restrict x = p->x, *restrict y = p->y;
+  const int sorted = g->sorted;
   const long ln = (long)n;
+  size_t cmax = 0; /* the most candidates of any particle: the scratch row */
+  int oom = 0;
   l->start[0] = 0;
-#pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN)
-  for (long li = 0; li < ln; li++) {
-    size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES];
-    sph_grid_ranges_all(g, (size_t)li, lo, hi);
-    size_t c = 0;
-    for (int k = 0; k < SPH_GRID_RANGES; k++)
-      c += hi[k] - lo[k];
-    l->start[li + 1] = c;
+#pragma omp parallel if (ln > SPH_OMP_MIN) reduction(max : cmax) reduction(| : oom)
+  {
+    uint32_t *scratch = NULL;
+    size_t cap = 0;
+#pragma omp for schedule(static)
+    for (long li = 0; li < ln; li++) {
+      const size_t c = candidates(g, (size_t)li);
+      if (c > cmax) cmax = c;
+      if (c > cap) {
+        uint32_t *t = realloc(scratch, (c + c / 2 + 16) * sizeof *t);
+        if (t) {
+          scratch = t;
+          cap = c + c / 2 + 16;
+        }
+      }
+      if (c > cap) {
+        oom = 1;
+        l->start[li + 1] = 0;
+      } else {
+        l->start[li + 1] = fill_any(g, x, y, (size_t)li, r2max, period, scratch, sorted);
+      }
+    }
+    free(scratch);
   }
+  if (oom) return sph_error_set(err, "grid: out of memory for a scratch row");
   for (size_t i = 0; i < n; i++)
     l->start[i + 1] += l->start[i]; /* exact: integers */
   const size_t total = l->start[n];
   if (total > l->cap_nb) {
     const size_t cap = total + total / 4 + 64;
     void *a = realloc(l->nb, cap * sizeof *l->nb);
-    if (!a) return sph_error_set(err, "grid: out of memory for %zu neighbour candidates", total);
+    if (!a) return sph_error_set(err, "grid: out of memory for %zu neighbours", total);
     l->nb = a;
     l->cap_nb = cap;
   }
-  const double radius = support + skin, r2max = radius * radius;
-  const double *restrict x = p->x, *restrict y = p->y;
-  const int sorted = g->sorted;
   uint32_t mc = 0;
   if (sph_steal_reset(&l->steal, l->start, n, sph_team_size(n)))
     return sph_error_set(err, "grid: out of memory for the thread slices");
-#pragma omp parallel if (ln > SPH_OMP_MIN) reduction(max : mc)
+#pragma omp parallel if (ln > SPH_OMP_MIN) reduction(max : mc) reduction(| : oom)
   {
-    size_t lo, hi; /* slices of equal candidate counts, with stealing (parallel.h) */
-    while (sph_steal_next(&l->steal, SPH_NLIST_STEAL_GRAIN, &lo, &hi))
+    uint32_t *restrict scratch = malloc((cmax + 1) * sizeof *scratch);
+    size_t lo, hi; /* slices of equal neighbour counts, with stealing (parallel.h) */
+    if (!scratch) oom = 1;
+    while (scratch && sph_steal_next(&l->steal, SPH_NLIST_STEAL_GRAIN, &lo, &hi))
       for (size_t i = lo; i < hi; i++) {
+        const uint32_t c = fill_any(g, x, y, i, r2max, period, scratch, sorted);
         uint32_t *restrict row = l->nb + l->start[i];
-        const double xi = x[i], yi = y[i];
-        /* the four kinds of grid each with a loop of its own, free of tests
-         * that do not change along it */
-        uint32_t c;
-        if (sorted && period <= 0.0)
-          c = fill_row(g, x, y, i, r2max, 0.0, row, 1);
-        else if (sorted)
-          c = fill_row(g, x, y, i, r2max, period, row, 1);
-        else if (period <= 0.0)
-          c = fill_row(g, x, y, i, r2max, 0.0, row, 0);
-        else
-          c = fill_row(g, x, y, i, r2max, period, row, 0);
+        memcpy(row, scratch, c * sizeof *row);
         /* increasing storage index: already so on a sorted grid that is not
          * periodic (rows below, same, above in key order); otherwise an
          * insertion sort, linear on nearly sorted rows */
@@ -334,12 +369,14 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
             row[b] = v;
           }
         l->count[i] = c;
-        l->xref[i] = xi;
-        l->yref[i] = yi;
+        l->xref[i] = x[i];
+        l->yref[i] = y[i];
         l->idref[i] = p->id[i];
         if (c > mc) mc = c;
       }
+    free(scratch);
   }
+  if (oom) return sph_error_set(err, "grid: out of memory for a scratch row");
   sph_steal_learn(&l->steal);
   l->cost[0] = 0; /* exact: integers */
   for (size_t i = 0; i < n; i++)
