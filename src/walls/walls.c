@@ -6,6 +6,8 @@
  */
 #include "config.h"
 
+#include "core/parallel.h"
+
 #include "walls/walls.h"
 
 #include "walls/motion.h"
@@ -133,6 +135,23 @@ size_t sph_walls_keep_off(const sph_walls *w, sph_particles *p, double d_min, in
                           double kick[4]) {
   size_t moved = 0;
   if (w->n_mirror == 0 && w->n_face == 0) return 0;
+  /* First, in parallel, whether any fluid particle stands closer than
+   * d_min to a line: at most steps none does, and then nothing moves. A
+   * particle closer to no line keeps its position through the loop below
+   * (it reflects off none), so the loop, serial in index order with the
+   * kick's sums in that order, runs only when it has something to do. */
+  const long n = (long)p->n;
+  int any = 0;
+#pragma omp parallel for schedule(static) reduction(| : any) if (n > SPH_OMP_MIN)
+  for (long li = 0; li < n; li++) {
+    const size_t i = (size_t)li;
+    if (p->kind[i] != SPH_KIND_FLUID) continue;
+    for (size_t l = 0; l < w->n_mirror; l++)
+      any |= closer(&w->mirror[l], p->x[i], p->y[i], d_min);
+    for (size_t l = 0; l < w->n_face; l++)
+      any |= closer(&w->face[l], p->x[i], p->y[i], d_min);
+  }
+  if (!any) return 0;
   for (size_t i = 0; i < p->n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     /* the distance test inline; the rare reflection out of line */
