@@ -323,9 +323,13 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
     goto fail;
   }
   s->fluid_removed = (size_t)removed;
-  /* a neighbour list kept across passes where nothing needs a fresh grid
-   * (free-surface detection reads the list: it does not) */
-  if (!s->walls.n_mirror && !s->fp.var_h) s->skin = sph_skin_fraction() * SPH_CUBIC_SUPPORT * c->h;
+  /* a neighbour list kept across passes where nothing needs a fresh grid:
+   * free-surface detection reads the list, and with h* = k h the list's
+   * support is 2 k h whichever particles carry k h; only mirror particles
+   * (made anew at every pass) and paper B's variable h (whose largest h
+   * moves with the density) rebuild it at every pass */
+  if (!s->walls.n_mirror && !c->variable_h)
+    s->skin = sph_skin_fraction() * SPH_CUBIC_SUPPORT * c->h;
   if (s->p.n == 0) {
     sph_error_set(err, "case %s: no particles", c->name);
     goto fail;

@@ -97,7 +97,7 @@ static int build_grid(sph_sim *s, double cell, sph_error *err) {
 /* The neighbour list of the current state.
  *
  * Without a skin (cases whose passes need a fresh grid or change the
- * store: mirror particles, variable h or h* = k h) the store is
+ * store: mirror particles, variable h) the store is
  * sorted by cell and the list rebuilt at every pass.
  *
  * With a skin, a list built earlier is kept while sph_nlist_fresh proves it
