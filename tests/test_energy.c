@@ -191,7 +191,7 @@ static void test_audit_golden(void) {
            sph_test_build("src/sph"), sph_test_src("cases/wet_bed_dam_break.yaml"), ref, dir, out);
   CU_ASSERT_FATAL(sph_test_system(cmd) == 0);
   /* paper A's table printed beside ours: its 15276-particle row */
-  char *text = sph_test_read_file(out);
+  char *text = sph_test_read_file(out, NULL);
   CU_ASSERT_FATAL(text != NULL);
   CU_ASSERT(
       strstr(text, "15276     0.025%       0.3%      0.34%      0.43%      0.49%      0.58%") !=
@@ -199,7 +199,7 @@ static void test_audit_golden(void) {
   free(text);
   snprintf(path, sizeof path, "%s/audit.csv", dir);
   check_split(path);
-  char *audit = sph_test_read_file(path);
+  char *audit = sph_test_read_file(path, NULL);
   CU_ASSERT_FATAL(audit != NULL);
   CU_ASSERT_EQUAL(check_units_of(audit), 9); /* the header line: units for plot axes */
   free(audit);

@@ -930,27 +930,27 @@ static void test_apply_h(void) {
  * on the circle within 1e-9 rad of an arc's end; whenever cones_cover
  * says 1 the arcs cover, whenever point_open says 1 they do not, and both
  * certificates fire many times. */
-static void test_certificates(void) {
-  const double dx = 1.0, R = 1.3;
-  double ox[8], oy[8], rr[8];
+/* The neighbours of a unit square lattice point, radius R each, in the
+ * rows from dy = -1 up to dy = top; returns how many. */
+static int lattice_neighbours(int top, double R, double *ox, double *oy, double *rr) {
   int n = 0;
   for (int a = -1; a <= 1; a++)
-    for (int b = -1; b <= 1; b++)
+    for (int b = -1; b <= top; b++)
       if (a || b) {
-        ox[n] = a * dx;
-        oy[n] = b * dx;
+        ox[n] = a;
+        oy[n] = b;
         rr[n++] = R;
       }
+  return n;
+}
+
+static void test_certificates(void) {
+  const double R = 1.3; /* h = 1.3 dx, dx = 1 */
+  double ox[8], oy[8], rr[8];
+  CU_ASSERT_FATAL(lattice_neighbours(1, R, ox, oy, rr) == 8);
   CU_ASSERT(sph_freesurface_cones_cover(ox, oy, rr, 8, R));
   CU_ASSERT(!sph_freesurface_point_open(ox, oy, rr, 8, R, 0.0, R)); /* buried */
-  n = 0;
-  for (int a = -1; a <= 1; a++)
-    for (int b = -1; b <= 0; b++)
-      if (a || b) {
-        ox[n] = a * dx;
-        oy[n] = b * dx;
-        rr[n++] = R;
-      }
+  CU_ASSERT_FATAL(lattice_neighbours(0, R, ox, oy, rr) == 5);       /* a top-row particle */
   CU_ASSERT(!sph_freesurface_cones_cover(ox, oy, rr, 5, R));
   CU_ASSERT(sph_freesurface_point_open(ox, oy, rr, 5, R, 0.0, R));
   CU_ASSERT(!sph_freesurface_point_open(ox, oy, rr, 5, R, R, 0.0));

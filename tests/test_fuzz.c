@@ -28,28 +28,6 @@
 
 static char *tmp;
 
-static unsigned char *read_file(const char *path, size_t *len) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return NULL;
-  size_t cap = 4096, n = 0;
-  unsigned char *buf = malloc(cap);
-  while (buf) {
-    n += fread(buf + n, 1, cap - n, f);
-    if (n < cap) break;
-    unsigned char *nb = realloc(buf, 2 * cap);
-    if (!nb) {
-      free(buf);
-      buf = NULL;
-      break;
-    }
-    buf = nb;
-    cap *= 2;
-  }
-  fclose(f);
-  *len = n;
-  return buf;
-}
-
 static double now(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -75,7 +53,7 @@ static int replay_dir(const char *rel, int snapshot) {
     char path[8300];
     snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
     size_t len = 0;
-    unsigned char *data = read_file(path, &len);
+    unsigned char *data = (unsigned char *)sph_test_read_file(path, &len);
     CU_ASSERT_FATAL(data != NULL);
     printf("\n    %s (%zu bytes)", e->d_name, len);
     fflush(stdout);

@@ -1019,7 +1019,7 @@ static void test_vector_plot(void) {
   CU_ASSERT_TRUE(same_bytes(path_in(tmp, "plot0.svg"), path_in(tmp, "plot1.svg")));
   CU_ASSERT_TRUE(same_bytes(path_in(tmp, "plot0.pdf"), path_in(tmp, "plot1.pdf")));
   CU_ASSERT_EQUAL(count_files(tmp, ".tmp"), 0);
-  char *svg = sph_test_read_file(path_in(tmp, "plot0.svg"));
+  char *svg = sph_test_read_file(path_in(tmp, "plot0.svg"), NULL);
   CU_ASSERT_PTR_NOT_NULL_FATAL(svg);
   CU_ASSERT_PTR_NOT_NULL(strstr(svg, "<svg"));
   CU_ASSERT_PTR_NOT_NULL(strstr(svg, "width=\"500pt\" height=\"300pt\""));

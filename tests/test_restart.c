@@ -85,26 +85,6 @@ static void same_snapshots(const char *name, const char *dir, int from, int n) {
   }
 }
 
-static char *slurp(const char *path) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return NULL;
-  char *buf = NULL;
-  size_t len = 0, cap = 0;
-  int c;
-  while ((c = getc(f)) != EOF) {
-    if (len + 2 > cap) {
-      cap = cap ? 2 * cap : 4096;
-      char *nb = realloc(buf, cap);
-      if (!nb) break;
-      buf = nb;
-    }
-    buf[len++] = (char)c;
-  }
-  fclose(f);
-  if (buf) buf[len] = 0;
-  return buf;
-}
-
 /* Fresh directory: restart from snap_<k>, compare what follows. */
 static void restart_fresh(const char *name, int k) {
   const int n = full_run(name);
@@ -125,9 +105,9 @@ static void restart_fresh(const char *name, int k) {
   if (f) fclose(f);
   /* diagnostics: the header, then the full run's rows from the restart time */
   snprintf(path, sizeof path, "%s/%s.full/diagnostics.csv", tmp, name);
-  char *full = slurp(path);
+  char *full = sph_test_read_file(path, NULL);
   snprintf(path, sizeof path, "%s/diagnostics.csv", dir);
-  char *part = slurp(path);
+  char *part = sph_test_read_file(path, NULL);
   CU_ASSERT_FATAL(full && part);
   char *nl = strchr(part, '\n');
   CU_ASSERT_FATAL(nl != NULL);
@@ -142,10 +122,10 @@ static void restart_fresh(const char *name, int k) {
   /* probes.csv: the header, then the full run's last rows (those after the
    * restart time, and its own if one was due) */
   snprintf(path, sizeof path, "%s/%s.full/probes.csv", tmp, name);
-  full = slurp(path);
+  full = sph_test_read_file(path, NULL);
   if (!full) return; /* no probes in this case */
   snprintf(path, sizeof path, "%s/probes.csv", dir);
-  part = slurp(path);
+  part = sph_test_read_file(path, NULL);
   CU_ASSERT_FATAL(part != NULL);
   nl = strchr(part, '\n');
   CU_ASSERT_FATAL(nl != NULL);

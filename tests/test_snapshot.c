@@ -141,23 +141,6 @@ static int no_tmp_files(const char *dir) {
   return ok;
 }
 
-static char *slurp(const char *path, size_t *len) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return NULL;
-  fseek(f, 0, SEEK_END);
-  long size = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *buf = malloc((size_t)size + 1);
-  if (buf && fread(buf, 1, (size_t)size, f) != (size_t)size) {
-    free(buf);
-    buf = NULL;
-  }
-  fclose(f);
-  if (buf) buf[size] = '\0';
-  *len = (size_t)size;
-  return buf;
-}
-
 static void spit(const char *path, const void *data, size_t len) {
   FILE *f = fopen(path, "wb");
   CU_ASSERT_FATAL(f != NULL);
@@ -277,7 +260,7 @@ static void test_deterministic(void) {
   sleep(1); /* HDF5 timestamps have one-second resolution */
   CU_ASSERT_FATAL(sph_snapshot_write(b, &m, &p, &err) == 0);
   size_t la = 0, lb = 0;
-  char *da = slurp(a, &la), *db = slurp(b, &lb);
+  char *da = sph_test_read_file(a, &la), *db = sph_test_read_file(b, &lb);
   CU_ASSERT_FATAL(da && db);
   CU_ASSERT(la == lb && la > 0 && memcmp(da, db, la) == 0);
   free(da);
@@ -310,7 +293,7 @@ static void test_checksums(void) {
   CU_ASSERT_FATAL(sph_snapshot_read_particles(s, &q, &err) == 0);
   sph_snapshot_close(s);
   size_t len = 0;
-  char *data = slurp(path, &len);
+  char *data = sph_test_read_file(path, &len);
   CU_ASSERT_FATAL(data != NULL);
   int failed = 0, same = 0, silent = 0, multiline = 0;
   for (size_t off = 0; off < len; off += 37) {
@@ -505,7 +488,7 @@ static void test_bad_files(void) {
   sph_snapshot_meta m = test_meta(1);
   CU_ASSERT_FATAL(sph_snapshot_write(good, &m, &p, &err) == 0);
   size_t len;
-  char *data = slurp(good, &len);
+  char *data = sph_test_read_file(good, &len);
   CU_ASSERT_FATAL(data != NULL);
   for (size_t keep = len / 2; keep > 0; keep /= 4) { /* truncated at several lengths */
     spit(cut, data, keep);
@@ -625,7 +608,7 @@ static void test_xdmf(void) {
   CU_ASSERT_FATAL(rc == 0);
   CU_ASSERT(no_tmp_files(dir));
   size_t len;
-  char *text = slurp(xmf, &len);
+  char *text = sph_test_read_file(xmf, &len);
   CU_ASSERT_FATAL(text != NULL);
   CU_ASSERT(contains(text, "<Xdmf Version=\"3.0\">"));
   CU_ASSERT(contains(text, "GridType=\"Collection\" CollectionType=\"Temporal\""));
@@ -662,7 +645,7 @@ static void test_xdmf(void) {
   /* without free_surface, odd characters escaped, a time that cannot be written */
   const char *odd[1] = {"a&b<c>.h5"};
   CU_ASSERT_FATAL(sph_xdmf_write(xmf, 1, odd, times, p.n, 0, &err) == 0);
-  text = slurp(xmf, &len);
+  text = sph_test_read_file(xmf, &len);
   CU_ASSERT_FATAL(text != NULL);
   CU_ASSERT(!contains(text, "free_surface"));
   CU_ASSERT(contains(text, ">a&amp;b&lt;c&gt;.h5:/particles/rho</DataItem>"));

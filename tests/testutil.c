@@ -106,7 +106,7 @@ double sph_test_median(const double *v, int n) {
   return m;
 }
 
-char *sph_test_read_file(const char *path) {
+char *sph_test_read_file(const char *path, size_t *len) {
   FILE *f = fopen(path, "rb");
   if (!f) return NULL;
   size_t cap = 4096, n = 0;
@@ -125,6 +125,7 @@ char *sph_test_read_file(const char *path) {
   }
   fclose(f);
   if (buf) buf[n] = '\0';
+  if (buf && len) *len = n;
   return buf;
 }
 

@@ -38,8 +38,9 @@ int sph_test_sph(const char *args, const char *dir, char *out, size_t len);
 /* The median of n values (sorts a copy; n > 0). */
 double sph_test_median(const double *v, int n);
 
-/* The whole file at path, malloc'd and NUL-terminated (free it), or NULL. */
-char *sph_test_read_file(const char *path);
+/* The whole file at path, malloc'd and NUL-terminated (free it), or NULL;
+ * its length in bytes in *len unless len is NULL (binary files too). */
+char *sph_test_read_file(const char *path, size_t *len);
 
 /* Reads columns of the CSV table at path with the project's one reader
  * (src/io/csv.h): `names` lists them by header name, comma-separated
