@@ -241,19 +241,21 @@ static int uncovered(const sph_particles *p, size_t i, const uint32_t *cand, siz
 }
 
 /* Cheap argument checks shared by both searches: the factor, the period
- * and every h; the largest h in *hmax. */
-static int check_particles(const sph_particles *p, double f, double period, double *hmax,
-                           sph_error *err) {
+ * and every h; the smallest and largest h in *hmin, *hmax. */
+static int check_particles(const sph_particles *p, double f, double period, double *hmin,
+                           double *hmax, sph_error *err) {
   if (!(f > 0.0) || !isfinite(f))
     return sph_error_set(err, "free surface: radius factor must be positive and finite, got %g", f);
   if (!(period >= 0.0) || !isfinite(period))
     return sph_error_set(err, "free surface: period must be 0 or positive, got %g", period);
   if (p->n > UINT32_MAX) return sph_error_set(err, "free surface: %zu particles is too many", p->n);
+  *hmin = INFINITY;
   *hmax = 0.0;
   for (size_t i = 0; i < p->n; i++) {
     if (!(p->h[i] > 0.0) || !isfinite(p->h[i]))
       return sph_error_set(err, "free surface: particle %lld has smoothing length %g",
                            (long long)p->id[i], p->h[i]);
+    if (p->h[i] < *hmin) *hmin = p->h[i];
     if (p->h[i] > *hmax) *hmax = p->h[i];
   }
   return 0;
@@ -301,13 +303,10 @@ static int check_list(const sph_particles *p, const sph_nlist *l, double f, doub
 }
 
 /* The flags of every particle from the candidates the grid g (or, if g is
- * NULL, the list l) gives each. */
+ * NULL, the list l) gives each; equal_h: every particle has the same h. */
 static int detect(sph_particles *p, const sph_grid *g, const sph_nlist *l, double f, double period,
-                  int exact_only, size_t *count, sph_error *err) {
+                  int exact_only, int equal_h, size_t *count, sph_error *err) {
   const long n = (long)p->n;
-  int equal_h = 1;
-  for (size_t i = 1; i < p->n; i++)
-    equal_h &= p->h[i] == p->h[0];
   size_t flagged = 0;
   int oom = 0;
 #pragma omp parallel if (n > SPH_OMP_MIN) reduction(+ : flagged) reduction(| : oom)
@@ -368,12 +367,12 @@ static int detect_checked(sph_particles *p, const sph_grid *g, const sph_nlist *
   const sph_freesurface_params defaults = SPH_FREESURFACE_DEFAULTS;
   if (!fp) fp = &defaults;
   const double f = fp->radius_factor, period = fp->period;
-  double hmax = 0.0;
-  if (check_particles(p, f, period, &hmax, err)) return -1;
+  double hmin = 0.0, hmax = 0.0;
+  if (check_particles(p, f, period, &hmin, &hmax, err)) return -1;
   if (p->n == 0) return count ? (*count = 0, 0) : 0;
   if (g ? check_grid(p, g, f, period, hmax, err) : check_list(p, l, f, period, hmax, err))
     return -1;
-  return detect(p, g, l, f, period, fp->exact_only, count, err);
+  return detect(p, g, l, f, period, fp->exact_only, hmin == hmax, count, err);
 }
 
 int sph_freesurface_detect(sph_particles *p, const sph_grid *g, const sph_freesurface_params *fp,
