@@ -241,7 +241,9 @@ void sph_nlist_free(sph_nlist *l) {
 
 /* The candidates of particle i within sqrt(r2max), in the grid's walk
  * order (positions, or storage indices through perm when the grid is only
- * binned), into row; returns how many. */
+ * binned), into row (with row NULL: only counted); returns how many. The
+ * row needs room for all i's candidates: each is written before the test
+ * that keeps it. */
 static inline __attribute__((always_inline)) uint32_t
 fill_row(const sph_grid *g, const double *restrict x, const double *restrict y, size_t i,
          double r2max, double period, uint32_t *restrict row, const int sorted) {
@@ -254,17 +256,18 @@ fill_row(const sph_grid *g, const double *restrict x, const double *restrict y, 
     for (size_t pos = lo[k]; pos < hi[k]; pos++) {
       const size_t j = sorted ? pos : perm[pos];
       const double dx = sph_grid_min_image(xi - x[j], period), dy = yi - y[j];
-      row[c] = (uint32_t)j; /* kept only if the next line counts it: no branch */
+      if (row) row[c] = (uint32_t)j; /* kept only if the next line counts it: no branch */
       c += (uint32_t)((dx * dx + dy * dy < r2max) & (j != i));
     }
   return c;
 }
 
 /* fill_row on whichever of the four kinds of grid g is, each with a loop
- * of its own, free of tests that do not change along it. */
-static uint32_t fill_any(const sph_grid *g, const double *restrict x, const double *restrict y,
-                         size_t i, double r2max, double period, uint32_t *restrict row,
-                         int sorted) {
+ * of its own, free of tests that do not change along it (inlined where
+ * row is a literal NULL, so the counting loop writes nothing). */
+static inline __attribute__((always_inline)) uint32_t
+fill_any(const sph_grid *g, const double *restrict x, const double *restrict y, size_t i,
+         double r2max, double period, uint32_t *restrict row, int sorted) {
   if (sorted && period <= 0.0) return fill_row(g, x, y, i, r2max, 0.0, row, 1);
   if (sorted) return fill_row(g, x, y, i, r2max, period, row, 1);
   if (period <= 0.0) return fill_row(g, x, y, i, r2max, 0.0, row, 0);
@@ -298,42 +301,23 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   /* Rows are stored compactly, each as long as its neighbour count, so
    * the list holds about 28 slots per particle instead of the ~80
    * candidates of the 3 x 3 cells (doc/memory.md). A first pass counts
-   * each row (the same distance test as the fill, so the same answer),
-   * the prefix sums place the rows, and the second pass fills each row
-   * through a scratch row per thread (fill_row writes one slot past the
-   * row's end) and copies it in place. */
+   * each row without storing it (the same distance test as the fill, so
+   * the same answer), the prefix sums place the rows, and the second pass
+   * fills each row through a scratch row per thread as long as the most
+   * candidates (fill_row writes every candidate before its test) and
+   * copies it in place. */
   const double radius = support + skin, r2max = radius * radius;
   const double *restrict x = p->x, *restrict y = p->y;
   const int sorted = g->sorted;
   const long ln = (long)n;
   size_t cmax = 0; /* the most candidates of any particle: the scratch row */
-  int oom = 0;
   l->start[0] = 0;
-#pragma omp parallel if (ln > SPH_OMP_MIN) reduction(max : cmax) reduction(| : oom)
-  {
-    uint32_t *scratch = NULL;
-    size_t cap = 0;
-#pragma omp for schedule(static)
-    for (long li = 0; li < ln; li++) {
-      const size_t c = candidates(g, (size_t)li);
-      if (c > cmax) cmax = c;
-      if (c > cap) {
-        uint32_t *t = realloc(scratch, (c + c / 2 + 16) * sizeof *t);
-        if (t) {
-          scratch = t;
-          cap = c + c / 2 + 16;
-        }
-      }
-      if (c > cap) {
-        oom = 1;
-        l->start[li + 1] = 0;
-      } else {
-        l->start[li + 1] = fill_any(g, x, y, (size_t)li, r2max, period, scratch, sorted);
-      }
-    }
-    free(scratch);
+#pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN) reduction(max : cmax)
+  for (long li = 0; li < ln; li++) {
+    const size_t c = candidates(g, (size_t)li);
+    if (c > cmax) cmax = c;
+    l->start[li + 1] = fill_any(g, x, y, (size_t)li, r2max, period, NULL, sorted);
   }
-  if (oom) return sph_error_set(err, "grid: out of memory for a scratch row");
   for (size_t i = 0; i < n; i++)
     l->start[i + 1] += l->start[i]; /* exact: integers */
   const size_t total = l->start[n];
@@ -345,6 +329,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     l->cap_nb = cap;
   }
   uint32_t mc = 0;
+  int oom = 0;
   if (sph_steal_reset(&l->steal, l->start, n, sph_team_size(n)))
     return sph_error_set(err, "grid: out of memory for the thread slices");
 #pragma omp parallel if (ln > SPH_OMP_MIN) reduction(max : mc) reduction(| : oom)
