@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// bench/dsph_io.cpp - particle files for the DualSPHysics side of bench/peers.
+//
+// DualSPHysics' case generator (GenCase) is a closed binary; the solver
+// itself reads a case as an XML file and a particle file (CASE.bi4). This
+// program writes the particle file, and reads the solver's Part_*.bi4
+// output back, through DualSPHysics' own open data classes (JPartDataBi4
+// in the DualSPHysics source tree the user names). It is compiled by
+// bench/peers against that tree; nothing of DualSPHysics is committed here.
+//
+//   dsph_io case PARTICLES.csv DIR CASE DP H B RHO0 GAMMA MASSB MASSF
+//       PARTICLES.csv: header line, then "x,y,kind,rho" rows (kind 0 fluid,
+//       anything else a fixed boundary particle), boundary rows first.
+//       Writes DIR/CASE.bi4 in the solver's x-z plane (y = 0).
+//   dsph_io front DIR NBOUND FLOOR BAND
+//       For every DIR/Part_NNNN.bi4: "time,step,front_x", front_x the
+//       largest x of a fluid particle (id >= NBOUND) below FLOOR + BAND,
+//       as sph's diagnostics define the surge front.
+#include "JPartDataBi4.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+static int make_case(int argc, char **argv) {
+  if (argc != 12) {
+    std::fprintf(stderr,
+                 "usage: dsph_io case PARTICLES.csv DIR CASE DP H B RHO0 GAMMA MASSB MASSF\n");
+    return 2;
+  }
+  FILE *f = std::fopen(argv[2], "r");
+  if (!f) {
+    std::perror(argv[2]);
+    return 1;
+  }
+  char line[512];
+  if (!std::fgets(line, sizeof line, f)) {
+    std::fprintf(stderr, "%s: empty\n", argv[2]);
+    return 1;
+  }
+  std::vector<tfloat3> pos;
+  std::vector<tfloat3> vel;
+  std::vector<float> rho;
+  std::vector<unsigned> idp;
+  unsigned nbound = 0;
+  bool fluid_seen = false;
+  tdouble3 lo = TDouble3(1e30), hi = TDouble3(-1e30);
+  while (std::fgets(line, sizeof line, f)) {
+    double x, y, r;
+    int kind;
+    if (std::sscanf(line, "%lf,%lf,%d,%lf", &x, &y, &kind, &r) != 4) {
+      std::fprintf(stderr, "%s: bad row: %s", argv[2], line);
+      return 1;
+    }
+    if (kind != 0) {
+      if (fluid_seen) {
+        std::fprintf(stderr, "%s: boundary rows must come first\n", argv[2]);
+        return 1;
+      }
+      nbound++;
+    } else {
+      fluid_seen = true;
+    }
+    idp.push_back((unsigned)idp.size());
+    pos.push_back(TFloat3((float)x, 0.f, (float)y));
+    vel.push_back(TFloat3(0.f));
+    rho.push_back((float)r);
+    if (x < lo.x) lo.x = x;
+    if (y < lo.z) lo.z = y;
+    if (x > hi.x) hi.x = x;
+    if (y > hi.z) hi.z = y;
+  }
+  std::fclose(f);
+  lo.y = hi.y = 0;
+  const unsigned np = (unsigned)pos.size();
+  JPartDataBi4 pd;
+  pd.ConfigBasic(0, 1, "peers", "sph bench/peers", argv[4], true, 0.0, argv[3]);
+  pd.ConfigParticles(np, nbound, 0, 0, np - nbound, lo, hi);
+  pd.ConfigCtes(std::atof(argv[5]), std::atof(argv[6]), std::atof(argv[7]), std::atof(argv[8]),
+                std::atof(argv[9]), std::atof(argv[10]), std::atof(argv[11]));
+  pd.AddPartInfo(0, 0, np, 0, 0, 0, lo, hi);
+  pd.AddPartData(np, idp.data(), pos.data(), vel.data(), rho.data());
+  pd.SaveFileCase(argv[4]);
+  std::printf("%u particles (%u boundary, %u fluid)\n", np, nbound, np - nbound);
+  return 0;
+}
+
+static int fronts(int argc, char **argv) {
+  if (argc != 6) {
+    std::fprintf(stderr, "usage: dsph_io front DIR NBOUND FLOOR BAND\n");
+    return 2;
+  }
+  const std::string dir = argv[2];
+  const unsigned nbound = (unsigned)std::strtoul(argv[3], nullptr, 10);
+  const double top = std::atof(argv[4]) + std::atof(argv[5]);
+  std::printf("time,step,front_x\n");
+  for (unsigned k = 0;; k++) {
+    char name[64];
+    std::snprintf(name, sizeof name, "/Part_%04u.bi4", k);
+    FILE *probe = std::fopen((dir + name).c_str(), "rb");
+    if (!probe) break;
+    std::fclose(probe);
+    JPartDataBi4 pd;
+    pd.LoadFilePart(dir, k);
+    const unsigned n = pd.Get_Npok();
+    std::vector<unsigned> id(n);
+    pd.Get_Idp(n, id.data());
+    double front = -1e30;
+    if (pd.Get_PosSimple()) {
+      std::vector<tfloat3> p(n);
+      pd.Get_Pos(n, p.data());
+      for (unsigned i = 0; i < n; i++)
+        if (id[i] >= nbound && p[i].z < top && p[i].x > front) front = p[i].x;
+    } else {
+      std::vector<tdouble3> p(n);
+      pd.Get_Posd(n, p.data());
+      for (unsigned i = 0; i < n; i++)
+        if (id[i] >= nbound && p[i].z < top && p[i].x > front) front = p[i].x;
+    }
+    std::printf("%.9g,%u,%.9g\n", pd.Get_TimeStep(), pd.Get_Step(), front);
+  }
+  return 0;
+}
+
+int main(int argc, char **argv) {
+  const std::string cmd = argc > 1 ? argv[1] : "";
+  try {
+    if (cmd == "case") return make_case(argc, argv);
+    if (cmd == "front") return fronts(argc, argv);
+  } catch (const std::exception &e) {
+    std::fprintf(stderr, "dsph_io: %s\n", e.what());
+    return 1;
+  }
+  std::fprintf(stderr, "usage: dsph_io case ... | dsph_io front ...\n");
+  return 2;
+}
