@@ -142,9 +142,10 @@ typedef struct sph_case {
   double max_particles;       /* the bound sph_sim_create enforces; 0: sph_case_default_max */
 } sph_case;
 
-/* Bytes per particle a run needs, as the bound reckons it (measured: about
- * 740 bytes per extra particle, bench/results/features.md; with room for
- * the optional terms' arrays). */
+/* Bytes per particle a run needs, as the bound reckons it: measured peak
+ * RSS per extra particle is about 560 bytes for the plain dam break
+ * (bench/results/features.md) and about 890 with the stress tensor, the
+ * energy ledger and free-surface flags at h* = 2h together (doc/memory.md). */
 #define SPH_BYTES_PER_PARTICLE 1200.0
 /* The largest particle count the storage can index (neighbour rows hold
  * 32-bit indices). */
