@@ -161,13 +161,12 @@ static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SP
 #define SPH_NLIST_STEAL_GRAIN 32
 
 typedef struct sph_nlist {
-  int valid;     /* built, and the store not reordered since */
-  size_t n;      /* particles at the build */
-  double radius; /* list radius: support + skin */
-  double skin;   /* radius - support */
-  double period; /* > 0: minimum image in x with this period */
-  size_t *
-      start; /* n + 1 offsets into nb (rows stored compactly: start[i + 1] - start[i] = count[i]) */
+  int valid;           /* built, and the store not reordered since */
+  size_t n;            /* particles at the build */
+  double radius;       /* list radius: support + skin */
+  double skin;         /* radius - support */
+  double period;       /* > 0: minimum image in x with this period */
+  size_t *start;       /* n + 1 offsets into nb; compact rows: start[i+1] - start[i] = count[i] */
   uint32_t *count;     /* neighbours of each particle */
   uint32_t maxcount;   /* the longest row */
   uint32_t *nb;        /* neighbour storage indices */
