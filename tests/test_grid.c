@@ -23,8 +23,9 @@
  * brute force), after a larger move or a reordered store it says rebuild.
  * A whole run gives byte-identical output for any skin (SPH_TEST_SKIN): the
  * rows are in storage order, so the pairs of a sum come in the same order
- * however old the list; and for either flavour of the interaction's lane
- * loop (SPH_TEST_LANES=portable against AVX where the processor has it).
+ * however old the list; and for every flavour of the interaction's lane
+ * loop (SPH_TEST_LANES=portable and avx against the default, AVX-512 where
+ * the processor has it).
  */
 #include "config.h"
 
@@ -35,6 +36,7 @@
 
 #include "core/particles.h"
 #include "neighbours/grid.h"
+#include "solver/forces.h"
 #include "testutil.h"
 
 #ifdef _OPENMP
@@ -503,13 +505,22 @@ static void test_list_fresh(void) {
 }
 
 /* A run gives the same bytes for any skin of the neighbour list, and with
- * either flavour of the interaction's lane loop (AVX or portable,
+ * every flavour of the interaction's lane loop (the default, AVX-512 where
+ * the processor has it, against AVX2 and the portable lanes,
  * src/solver/forces.c). */
 static void test_run_any_skin(void) {
-  char *d[4];
-  const char *env[4] = {"SPH_TEST_SKIN=0.05", "SPH_TEST_SKIN=0.15", "SPH_TEST_SKIN=0.4",
-                        "SPH_TEST_LANES=portable"};
-  for (int k = 0; k < 4; k++) {
+  enum { N = 5 };
+  char *d[N] = {0};
+  const char *env[N] = {"SPH_TEST_SKIN=0.05", "SPH_TEST_SKIN=0.15", "SPH_TEST_SKIN=0.4",
+                        "SPH_TEST_LANES=portable", "SPH_TEST_LANES=avx"};
+  const int avx = sph_force_loop_available(SPH_LOOP_LANES_AVX);
+  const int k_end = avx ? N : N - 1;
+  if (!avx) printf("\n  (no AVX2 on this processor: the AVX2 lanes are not compared)");
+  printf("\n  the default loop here: %s", sph_force_loop_available(SPH_LOOP_LANES_AVX512)
+                                              ? "AVX-512 eight lanes"
+                                          : avx ? "AVX2 four lanes"
+                                                : "portable four lanes");
+  for (int k = 0; k < k_end; k++) {
     d[k] = sph_test_tmpdir();
     char cmd[8192];
     snprintf(cmd, sizeof cmd, "%s '%s' run --quiet --threads 1 '%s' -o '%s' --set time.end=0.1",
@@ -517,12 +528,12 @@ static void test_run_any_skin(void) {
              d[k]);
     CU_ASSERT_FATAL(sph_test_system(cmd) == 0);
   }
-  for (int k = 1; k < 4; k++) {
+  for (int k = 1; k < k_end; k++) {
     char cmd[8192];
     snprintf(cmd, sizeof cmd, "diff -r '%s' '%s' >/dev/null", d[0], d[k]);
     CU_ASSERT(sph_test_system(cmd) == 0);
   }
-  for (int k = 0; k < 4; k++) {
+  for (int k = 0; k < k_end; k++) {
     sph_test_rmtree(d[k]);
     free(d[k]);
   }
@@ -539,7 +550,7 @@ int main(void) {
       {"periodic grid refuses a period under 3 cells", test_periodic_too_short},
       {"neighbour list equals brute force (sorted, binned, periodic)", test_list_brute_force},
       {"neighbour list: fresh within skin/2, stale beyond or reordered", test_list_fresh},
-      {"a run is byte-identical for any skin and either lane flavour", test_run_any_skin},
+      {"a run is byte-identical for any skin and every lane flavour", test_run_any_skin},
       CU_TEST_INFO_NULL};
   return sph_test_main("grid", tests);
 }

@@ -13,14 +13,14 @@
  *    when F says so; in the second set the moving wall is free-slip, in
  *    the third the mirror particles carry their own no-slip velocity), the
  *    main pass is run with the scalar loop, the
- *    portable lane loop and, where the processor has AVX2, the AVX2 lane
- *    loop, and compared with a naive all-pairs loop written here from the
- *    papers' equations (piecewise kernel, no neighbour list). Every rate
- *    (drho/dt, dv/dt with gravity and the Lennard-Jones force, XSPH, du/dt,
- *    the step rule's sigma, the ledger's wall power and wall force) agrees
- *    to 1e-12 of the largest magnitude of that rate over the set. The two
- *    lane flavours agree bitwise, and so do the lane and scalar loops where
- *    the lane loop defers to the scalar one (per-particle h, ledger).
+ *    portable lane loop and, where the processor has them, the AVX2 lane
+ *    loop and the AVX-512 eight-lane loop, and compared with a naive all-pairs loop written here
+ * from the papers' equations (piecewise kernel, no neighbour list). Every rate (drho/dt, dv/dt with
+ * gravity and the Lennard-Jones force, XSPH, du/dt, the step rule's sigma, the ledger's wall power
+ * and wall force) agrees to 1e-12 of the largest magnitude of that rate over the set. The lane
+ * flavours (four lanes, portable and AVX2; eight lanes into four- lane sums, AVX-512) agree
+ * bitwise, and so do the lane and scalar loops where the lane loop defers to the scalar one
+ * (per-particle h, ledger).
  * 2. Symmetry: each force term evaluated for the pair (i, j) and for
  *    (j, i), with the inputs formed as a loop forms them (x_j - x_i, ...),
  *    is exactly antisymmetric (equal masses), and each scalar term (the
@@ -28,11 +28,17 @@
  *    wall's normal part of the gradient is antisymmetric and along the
  *    normal; the Lennard-Jones potential is zero at r0 and its slope is
  *    minus the force (central differences, 1e-5); and each
- *    term gives the same bits in every lane of v4e as in v1 (v4x is held
- *    to v4e bitwise through the loops in 1).
+ *    term gives the same bits in every lane of v4e as in v1 (v4x and v8z
+ *    are held to v4e bitwise through the loops in 1).
+ * 3. The AVX-512 operations themselves (where the processor has AVX-512):
+ *    every v8z operation gives v1's bits in each of its eight lanes, on
+ *    values that include signed zeros, infinities, ties of min and max and
+ *    subnormals; the record transpose puts field f of record q in lane q of
+ *    vector f; v8z_lo / v8z_hi are lanes 0-3 and 4-7.
  */
 #include "config.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -434,8 +440,10 @@ static double rel_err(const rates *a, const rates *b, int k, size_t n) {
 
 static void test_oracle_every_term_set(void) {
   const int avx = sph_force_loop_available(SPH_LOOP_LANES_AVX);
+  const int avx512 = sph_force_loop_available(SPH_LOOP_LANES_AVX512);
   if (!avx) printf("\n  (no AVX2 on this processor: the AVX2 lane loop is not compared)");
-  double worst[3] = {0, 0, 0}; /* scalar, lanes, avx against the oracle */
+  if (!avx512) printf("\n  (no AVX-512F on this processor: the eight-lane loop is not compared)");
+  double worst[4] = {0, 0, 0, 0}; /* scalar, lanes, avx, avx512 against the oracle */
   unsigned bad = 0;
   for (unsigned F = 0; F < 256; F++)
     for (unsigned seed = 0; seed < 3; seed++) {
@@ -446,13 +454,14 @@ static void test_oracle_every_term_set(void) {
       for (size_t k = 0; k < p.n; k++) /* as the set-up does: some walls are mdbc */
         if (p.flags[k] & SPH_FLAG_MDBC) fp.mdbc = 1;
       const size_t n = p.n;
-      rates o, r[3];
+      rates o, r[4];
       rates_alloc(&o, n);
       oracle(&p, &fp, &o);
-      const sph_force_loop loops[3] = {SPH_LOOP_SCALAR, SPH_LOOP_LANES, SPH_LOOP_LANES_AVX};
-      for (int m = 0; m < 3; m++) {
+      const sph_force_loop loops[4] = {SPH_LOOP_SCALAR, SPH_LOOP_LANES, SPH_LOOP_LANES_AVX,
+                                       SPH_LOOP_LANES_AVX512};
+      for (int m = 0; m < 4; m++) {
         rates_alloc(&r[m], n);
-        if (m == 2 && !avx) continue;
+        if ((m == 2 && !avx) || (m == 3 && !avx512)) continue;
         run_loop(&p, &fp, loops[m], &r[m]);
         for (int k = 0; k < 10; k++) {
           if (!field_used(k, F)) continue;
@@ -465,19 +474,20 @@ static void test_oracle_every_term_set(void) {
       for (int k = 0; k < 10; k++) {
         if (!field_used(k, F)) continue;
         const size_t bytes = n * sizeof(double);
-        if (avx) CU_ASSERT(memcmp(r[1].f[k], r[2].f[k], bytes) == 0); /* lane flavours */
+        if (avx) CU_ASSERT(memcmp(r[1].f[k], r[2].f[k], bytes) == 0);    /* lane flavours */
+        if (avx512) CU_ASSERT(memcmp(r[1].f[k], r[3].f[k], bytes) == 0); /* 8 lanes as 4 */
         if ((F & (32 | 64)) || fp.free_slip || fp.mirror) /* the lanes defer to the scalar loop */
           CU_ASSERT(memcmp(r[0].f[k], r[1].f[k], bytes) == 0);
       }
-      for (int m = 0; m < 3; m++)
+      for (int m = 0; m < 4; m++)
         rates_free(&r[m]);
       rates_free(&o);
       sph_particles_free(&p);
     }
   printf("\n  256 term sets x 3 sets (density diffusion: the three models by set): worst relative "
          "difference from the all-pairs oracle: "
-         "scalar %.2e, lanes %.2e, AVX2 lanes %.2e (tolerance %.0e)",
-         worst[0], worst[1], worst[2], TOL);
+         "scalar %.2e, lanes %.2e, AVX2 lanes %.2e, AVX-512 lanes %.2e (tolerance %.0e)",
+         worst[0], worst[1], worst[2], worst[3], TOL);
   CU_ASSERT(bad == 0);
 }
 
@@ -635,12 +645,105 @@ static void test_pair_symmetry(void) {
   CU_ASSERT(checked > 1000);
 }
 
+/* ---- the AVX-512 operations ------------------------------------------------------- */
+
+#ifdef SPH_LANES_AVX512
+static double bits_of(uint64_t u) {
+  double d;
+  memcpy(&d, &u, sizeof d);
+  return d;
+}
+
+/* Mismatches of every v8z operation against v1, lane by lane, over the
+ * values v (eight at a time, each against its neighbour in the list). */
+static __attribute__((target("avx512f"))) unsigned v8z_mismatches(const double *v, size_t nv) {
+  unsigned bad = 0;
+  for (size_t s = 0; s + 16 <= nv; s++) {
+    double a[8], b[8], o[8];
+    for (int q = 0; q < 8; q++) {
+      a[q] = v[s + (size_t)q];
+      b[q] = v[s + 8 + (size_t)q];
+    }
+    const v8z A = v8z_set(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7]);
+    const v8z B = _mm512_loadu_pd(b);
+    const v8z_mask lt = v8z_lt(A, B);
+#define CHECK(expr, want)                                                                          \
+  do {                                                                                             \
+    _mm512_storeu_pd(o, expr);                                                                     \
+    for (int q = 0; q < 8; q++) {                                                                  \
+      const double w_ = (want);                                                                    \
+      if (memcmp(&o[q], &w_, sizeof w_) != 0) bad++;                                               \
+    }                                                                                              \
+  } while (0)
+    CHECK(v8z_add(A, B), v1_add(a[q], b[q]));
+    CHECK(v8z_sub(A, B), v1_sub(a[q], b[q]));
+    CHECK(v8z_mul(A, B), v1_mul(a[q], b[q]));
+    CHECK(v8z_div(A, B), v1_div(a[q], b[q]));
+    CHECK(v8z_sqrt(A), isnan(v1_sqrt(a[q])) ? o[q] : v1_sqrt(a[q])); /* NaN's payload aside */
+    CHECK(v8z_min(A, B), v1_min(a[q], b[q]));
+    CHECK(v8z_max(A, B), v1_max(a[q], b[q]));
+    CHECK(v8z_abs(A), v1_abs(a[q]));
+    CHECK(v8z_neg(A), v1_neg(a[q]));
+    CHECK(v8z_and(lt, A), v1_and(v1_lt(a[q], b[q]), a[q]));
+    CHECK(v8z_sel(lt, A, B), v1_sel(v1_lt(a[q], b[q]), a[q], b[q]));
+    CHECK(v8z_all(a[3]), a[3]);
+    double lo[4], hi[4];
+    v4x_store(lo, v8z_lo(A));
+    v4x_store(hi, v8z_hi(A));
+    if (memcmp(lo, a, sizeof lo) != 0 || memcmp(hi, a + 4, sizeof hi) != 0) bad++;
+#undef CHECK
+  }
+  /* the transpose of eight records */
+  double rec[8][8];
+  const double *r[8];
+  for (int q = 0; q < 8; q++) {
+    for (int f = 0; f < 8; f++)
+      rec[q][f] = v[(size_t)(q * 8 + f) % nv] + (double)(q * 8 + f);
+    r[q] = rec[q];
+  }
+  v8z out[8];
+  v8z_transpose8(r, out);
+  for (int f = 0; f < 8; f++) {
+    double lanes[8];
+    _mm512_storeu_pd(lanes, out[f]);
+    for (int q = 0; q < 8; q++)
+      if (memcmp(&lanes[q], &rec[q][f], sizeof lanes[q]) != 0) bad++;
+  }
+  return bad;
+}
+#endif
+
+static void test_v8z_operations(void) {
+  if (!sph_force_loop_available(SPH_LOOP_LANES_AVX512)) {
+    printf("\n  (no AVX-512F on this processor: its operations are not checked)");
+    return;
+  }
+#ifdef SPH_LANES_AVX512
+  enum { NV = 400 };
+  double v[NV];
+  const double special[] = {
+      0.0, -0.0, 1.0,  -1.0, INFINITY, -INFINITY, 1e-310, -1e-310,    DBL_MAX, -DBL_MAX, 3.0,
+      3.0, 0.1,  -0.0, 0.0,  2.0,      1e300,     1e-300, bits_of(1), -2.5,    -2.5,     7.0};
+  const size_t ns = sizeof special / sizeof special[0];
+  rng_state = 777;
+  for (size_t k = 0; k < NV; k++)
+    v[k] = k < ns ? special[k] : (k % 5 == 0 ? special[k % ns] : between(-1e3, 1e3));
+  const unsigned bad = v8z_mismatches(v, NV);
+  printf("\n  v8z: %u mismatches against v1 over %d value sets (signed zeros, infinities, "
+         "subnormals, ties), transpose and halves included",
+         bad, NV - 15);
+  CU_ASSERT(bad == 0);
+#endif
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
-      {"the 256 term sets: scalar, lane and AVX2 loops against the all-pairs oracle",
+      {"the 256 term sets: scalar, lane, AVX2 and AVX-512 loops against the all-pairs oracle",
        test_oracle_every_term_set},
       {"each term antisymmetric or symmetric in the pair, and bitwise in every lane",
        test_pair_symmetry},
+      {"the AVX-512 operations bitwise v1 in every lane; the record transpose",
+       test_v8z_operations},
       CU_TEST_INFO_NULL,
   };
   return sph_test_main("pair terms", tests);

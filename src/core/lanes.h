@@ -8,6 +8,11 @@
  *   v4e  four doubles as two v2 halves (the portable lane loop)
  *   v4x  four doubles in one AVX register (x86-64 with GCC, chosen at run
  *        time when the processor has AVX2; SPH_LANES_AVX is then defined)
+ *   v8z  eight doubles in one AVX-512 register (x86-64 with GCC, chosen at
+ *        run time when the processor has AVX-512F); its masks are __mmask8
+ *        and v8z_lo / v8z_hi give its halves as v4x, so that a loop can
+ *        evaluate eight pairs at once and still add them into four-lane sums
+ *        in the four-lane order (src/solver/interact_lanes.h)
  *
  * Every flavour FL has the same names: FL_all(a), FL_add/sub/mul/div(a, b),
  * FL_sqrt, FL_abs, FL_neg (IEEE negation: the sign bit flipped),
@@ -19,7 +24,8 @@
  * a term written once in these operations (src/physics/pair_terms.h) gives
  * the same bits in the scalar loop and in any lane of any flavour: a result
  * never depends on the machine's vector width. The four-lane flavours also
- * have FL_set(a, b, c, d) and FL_store(out[4], a).
+ * have FL_set(a, b, c, d) and FL_store(out[4], a), v8z has
+ * v8z_set(a0, ..., a7); FL_mask is each flavour's mask type.
  */
 #ifndef SPH_LANES_H
 #define SPH_LANES_H
@@ -177,6 +183,72 @@ SPH_AVX2 v4x v4x_lt(v4x a, v4x b) { return _mm256_cmp_pd(a, b, _CMP_LT_OS); } /*
 SPH_AVX2 v4x v4x_and(v4x a, v4x b) { return _mm256_and_pd(a, b); }
 SPH_AVX2 v4x v4x_sel(v4x m, v4x a, v4x b) { return _mm256_blendv_pd(b, a, m); }
 SPH_AVX2 void v4x_store(double *o, v4x a) { _mm256_storeu_pd(o, a); }
+
+/* ---- v8z: eight doubles in one AVX-512 register ----------------------------------- */
+
+/* AVX-512F only (abs and neg through the integer logic: the floating-point
+ * and/xor forms are AVX-512DQ). The same instructions as v4x at twice the
+ * width: vaddpd, ..., vmaxpd/vminpd (the maxpd/minpd rule), vcmppd LT_OS. */
+#define SPH_LANES_AVX512 1
+#define SPH_AVX512 static inline __attribute__((always_inline, target("avx512f")))
+typedef __m512d v8z;
+typedef __mmask8 v8z_mask;
+SPH_AVX512 v8z v8z_set(double a0, double a1, double a2, double a3, double a4, double a5, double a6,
+                       double a7) {
+  return _mm512_set_pd(a7, a6, a5, a4, a3, a2, a1, a0);
+}
+SPH_AVX512 v8z v8z_all(double a) { return _mm512_set1_pd(a); }
+SPH_AVX512 v8z v8z_add(v8z a, v8z b) { return _mm512_add_pd(a, b); }
+SPH_AVX512 v8z v8z_sub(v8z a, v8z b) { return _mm512_sub_pd(a, b); }
+SPH_AVX512 v8z v8z_mul(v8z a, v8z b) { return _mm512_mul_pd(a, b); }
+SPH_AVX512 v8z v8z_div(v8z a, v8z b) { return _mm512_div_pd(a, b); }
+SPH_AVX512 v8z v8z_sqrt(v8z a) { return _mm512_sqrt_pd(a); }
+SPH_AVX512 v8z v8z_max(v8z a, v8z b) { return _mm512_max_pd(a, b); } /* as maxpd */
+SPH_AVX512 v8z v8z_min(v8z a, v8z b) { return _mm512_min_pd(a, b); } /* as minpd */
+SPH_AVX512 v8z v8z_abs(v8z a) {
+  return _mm512_castsi512_pd(
+      _mm512_and_si512(_mm512_castpd_si512(a), _mm512_set1_epi64(INT64_C(0x7fffffffffffffff))));
+}
+SPH_AVX512 v8z v8z_neg(v8z a) {
+  return _mm512_castsi512_pd(
+      _mm512_xor_si512(_mm512_castpd_si512(a), _mm512_set1_epi64(INT64_MIN)));
+}
+SPH_AVX512 v8z_mask v8z_lt(v8z a, v8z b) { return _mm512_cmp_pd_mask(a, b, _CMP_LT_OS); }
+SPH_AVX512 v8z v8z_and(v8z_mask m, v8z a) { return _mm512_maskz_mov_pd(m, a); } /* m ? a : +0 */
+SPH_AVX512 v8z v8z_sel(v8z_mask m, v8z a, v8z b) { return _mm512_mask_blend_pd(m, b, a); }
+SPH_AVX512 v4x v8z_lo(v8z a) { return _mm512_castpd512_pd256(a); }    /* lanes 0-3 */
+SPH_AVX512 v4x v8z_hi(v8z a) { return _mm512_extractf64x4_pd(a, 1); } /* lanes 4-7 */
+
+/* Eight records of eight doubles, r[q][0..7] (each 64 bytes, one cache
+ * line where aligned), turned into eight vectors: out[f] lane q = r[q][f].
+ * Eight loads and 24 shuffles in place of 64 single-element moves. */
+SPH_AVX512 void v8z_transpose8(const double *const r[8], v8z out[8]) {
+  const v8z r0 = _mm512_loadu_pd(r[0]), r1 = _mm512_loadu_pd(r[1]);
+  const v8z r2 = _mm512_loadu_pd(r[2]), r3 = _mm512_loadu_pd(r[3]);
+  const v8z r4 = _mm512_loadu_pd(r[4]), r5 = _mm512_loadu_pd(r[5]);
+  const v8z r6 = _mm512_loadu_pd(r[6]), r7 = _mm512_loadu_pd(r[7]);
+  /* pairs of records: t0 = (r0 f0, r1 f0, r0 f2, r1 f2, r0 f4, ...), t1 the odd fields */
+  const v8z t0 = _mm512_unpacklo_pd(r0, r1), t1 = _mm512_unpackhi_pd(r0, r1);
+  const v8z t2 = _mm512_unpacklo_pd(r2, r3), t3 = _mm512_unpackhi_pd(r2, r3);
+  const v8z t4 = _mm512_unpacklo_pd(r4, r5), t5 = _mm512_unpackhi_pd(r4, r5);
+  const v8z t6 = _mm512_unpacklo_pd(r6, r7), t7 = _mm512_unpackhi_pd(r6, r7);
+  /* quads: u0 = (r0..r3 f0, r0..r3 f4), u2 = (f2, f6), u1 = (f1, f5), u3 = (f3, f7) */
+  const __m512i ia = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0);
+  const __m512i ib = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
+  const v8z u0 = _mm512_permutex2var_pd(t0, ia, t2), u2 = _mm512_permutex2var_pd(t0, ib, t2);
+  const v8z u1 = _mm512_permutex2var_pd(t1, ia, t3), u3 = _mm512_permutex2var_pd(t1, ib, t3);
+  const v8z u4 = _mm512_permutex2var_pd(t4, ia, t6), u6 = _mm512_permutex2var_pd(t4, ib, t6);
+  const v8z u5 = _mm512_permutex2var_pd(t5, ia, t7), u7 = _mm512_permutex2var_pd(t5, ib, t7);
+  /* halves: field f of r0..r3 then of r4..r7 */
+  out[0] = _mm512_shuffle_f64x2(u0, u4, 0x44);
+  out[4] = _mm512_shuffle_f64x2(u0, u4, 0xee);
+  out[1] = _mm512_shuffle_f64x2(u1, u5, 0x44);
+  out[5] = _mm512_shuffle_f64x2(u1, u5, 0xee);
+  out[2] = _mm512_shuffle_f64x2(u2, u6, 0x44);
+  out[6] = _mm512_shuffle_f64x2(u2, u6, 0xee);
+  out[3] = _mm512_shuffle_f64x2(u3, u7, 0x44);
+  out[7] = _mm512_shuffle_f64x2(u3, u7, 0xee);
+}
 #endif
 
 #endif

@@ -32,14 +32,14 @@ const char *sph_configure_args(void) { return SPH_CONFIGURE_ARGS; }
 #define SPH_F_WERROR "no"
 #endif
 #if defined(__x86_64__) && defined(__GNUC__)
-#define SPH_F_AVX "yes (used where the processor has AVX2)"
+#define SPH_F_AVX "yes (AVX-512 or AVX2, the widest the processor has)"
 #else
 #define SPH_F_AVX "no"
 #endif
 
 const char *sph_build_features(void) {
   return "OpenMP " SPH_F_OMP ", debug checks " SPH_F_DEBUG ", sanitizers " SPH_F_SAN
-         ", -Werror " SPH_F_WERROR ", AVX2 lanes " SPH_F_AVX;
+         ", -Werror " SPH_F_WERROR ", SIMD lanes " SPH_F_AVX;
 }
 
 const char *sph_compiler(void) {

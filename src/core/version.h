@@ -25,8 +25,8 @@ const char *sph_version(void);
 /* The arguments ./configure was run with ("" when none). */
 const char *sph_configure_args(void);
 /* What the build has, whatever the arguments were: OpenMP, the debug
- * checks, the sanitizers, warnings as errors, the AVX2 lanes, e.g.
- * "OpenMP yes, debug checks no, sanitizers no, -Werror no, AVX2 lanes yes". */
+ * checks, the sanitizers, warnings as errors, the SIMD lanes, e.g.
+ * "OpenMP yes, debug checks no, sanitizers no, -Werror no, SIMD lanes yes". */
 const char *sph_build_features(void);
 /* Compiler name and version, and whether OpenMP was compiled in. */
 const char *sph_compiler(void);

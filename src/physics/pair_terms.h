@@ -12,6 +12,7 @@
  *   name_v1    serves the scalar loop (one pair at a time),
  *   name_v4e   the portable four-lane loop,
  *   name_v4x   the AVX2 four-lane loop (where SPH_LANES_AVX is defined),
+ *   name_v8z   the AVX-512 eight-lane loop (where SPH_LANES_AVX512 is),
  *
  * and each lane of a lane loop does, pair for pair, exactly the IEEE
  * operations of the scalar loop (tests/test_pair_terms.c holds them to one
@@ -46,6 +47,14 @@
 #ifdef SPH_LANES_AVX
 #define FL v4x
 #define PT_ATTR static inline __attribute__((always_inline, target("avx2")))
+#include "physics/pair_terms_body.h"
+#undef PT_ATTR
+#undef FL
+#endif
+
+#ifdef SPH_LANES_AVX512
+#define FL v8z
+#define PT_ATTR static inline __attribute__((always_inline, target("avx512f")))
 #include "physics/pair_terms_body.h"
 #undef PT_ATTR
 #undef FL

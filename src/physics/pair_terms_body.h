@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * pair_terms_body.h - the pair terms for one arithmetic flavour FL (v1,
- * v4e, v4x of src/core/lanes.h), with PT_ATTR their attributes. Not a
+ * v4e, v4x, v8z of src/core/lanes.h), with PT_ATTR their attributes. Not a
  * header to include directly: src/physics/pair_terms.h includes it once
  * per flavour, and each function below becomes name_FL (continuity_v1,
  * continuity_v4e, ...). No include guard on purpose.

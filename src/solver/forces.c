@@ -255,6 +255,7 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
 #define PARTICLE_v1(p, l, fp, w, i, k) interact_one(p, l, fp, w, i, k)
 #define PARTICLE_v4e(p, l, fp, w, i, k) interact_v4e(p, l, fp, w, i, k)
 #define PARTICLE_v4x(p, l, fp, w, i, k) interact_v4x(p, l, fp, w, i, k)
+#define PARTICLE_v8z(p, l, fp, w, i, k) interact_v8z(p, l, fp, w, i, k)
 
 /* One function per combination of terms and flavour, F a literal in its
  * parallel region (see STRAIN_VARIANT). */
@@ -280,7 +281,12 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
  * sets without F_SCALAR_ONLY (bits 0-4 and 7: F = 0..31, 128..159), the
  * others fall back to the scalar loop (pick_variant). */
 #define VARIANT_S(k) VARIANT_FL(k, v1, interact_scalar, static)
-#ifdef SPH_LANES_AVX
+#if defined(SPH_LANES_AVX512)
+#define VARIANT_L(k)                                                                               \
+  VARIANT_FL(k, v4e, interact_all, static)                                                         \
+  VARIANT_FL(k, v4x, interact_avx, static __attribute__((target("avx2"))))                         \
+  VARIANT_FL(k, v8z, interact_avx512, static __attribute__((target("avx512f"))))
+#elif defined(SPH_LANES_AVX)
 #define VARIANT_L(k)                                                                               \
   VARIANT_FL(k, v4e, interact_all, static)                                                         \
   VARIANT_FL(k, v4x, interact_avx, static __attribute__((target("avx2"))))
@@ -382,6 +388,9 @@ static const interact_fn VARIANT_TABLE[64] = LANE_TABLE(interact_all_);
 #ifdef SPH_LANES_AVX
 static const interact_fn VARIANT_TABLE_AVX[64] = LANE_TABLE(interact_avx_);
 #endif
+#ifdef SPH_LANES_AVX512
+static const interact_fn VARIANT_TABLE_AVX512[64] = LANE_TABLE(interact_avx512_);
+#endif
 
 /* The place of a term set without F_SCALAR_ONLY in a lane table. */
 static unsigned lane_index(unsigned F) { return (F & 31u) | ((F & F_DDIFF) ? 32u : 0u); }
@@ -399,42 +408,77 @@ static int cpu_has_avx2(void) {
   return v;
 }
 #endif
+#ifdef SPH_LANES_AVX512
+/* Whether the processor has AVX-512F (asked once; valgrind's emulated
+ * processor says no, so the AVX2 loop runs there). */
+static int cpu_has_avx512(void) {
+  static int value = -1;
+  int v = value;
+  if (v < 0) {
+    __builtin_cpu_init();
+    v = __builtin_cpu_supports("avx512f") ? 1 : 0;
+    value = v;
+  }
+  return v;
+}
+#endif
 
 int sph_force_loop_available(sph_force_loop loop) {
+  switch (loop) {
+  case SPH_LOOP_AUTO:
+  case SPH_LOOP_SCALAR:
+  case SPH_LOOP_LANES: return 1;
+  case SPH_LOOP_LANES_AVX:
 #ifdef SPH_LANES_AVX
-  if (loop == SPH_LOOP_LANES_AVX) return cpu_has_avx2();
+    return cpu_has_avx2();
 #else
-  if (loop == SPH_LOOP_LANES_AVX) return 0;
+    return 0;
 #endif
-  return loop >= SPH_LOOP_AUTO && loop <= SPH_LOOP_LANES_AVX;
+  case SPH_LOOP_LANES_AVX512:
+#ifdef SPH_LANES_AVX512
+    return cpu_has_avx512();
+#else
+    return 0;
+#endif
+  }
+  return 0;
+}
+
+/* The lane table of a loop that can run here (NULL otherwise); AUTO is the
+ * widest the processor has. */
+static const interact_fn *lane_table(sph_force_loop loop) {
+  if (!sph_force_loop_available(loop)) return NULL;
+  switch (loop) {
+  case SPH_LOOP_SCALAR: return NULL;
+  case SPH_LOOP_LANES: return VARIANT_TABLE;
+#ifdef SPH_LANES_AVX
+  case SPH_LOOP_LANES_AVX: return VARIANT_TABLE_AVX;
+#endif
+#ifdef SPH_LANES_AVX512
+  case SPH_LOOP_LANES_AVX512: return VARIANT_TABLE_AVX512;
+#endif
+  case SPH_LOOP_AUTO:
+#ifdef SPH_LANES_AVX512
+    if (cpu_has_avx512()) return VARIANT_TABLE_AVX512;
+#endif
+#ifdef SPH_LANES_AVX
+    if (cpu_has_avx2()) return VARIANT_TABLE_AVX;
+#endif
+    return VARIANT_TABLE;
+  default: return NULL;
+  }
 }
 
 /* The variant of the main pass for the term set F in the loop asked for:
- * SPH_LOOP_AUTO is the AVX2 lanes where the processor has them, else the
- * portable lanes (each falls back to the scalar loop for per-particle h
- * and the energy ledger; every loop for free-slip walls, `scalar`). NULL
- * if that loop cannot run here. */
+ * SPH_LOOP_AUTO is the widest lanes the processor has (AVX-512, AVX2, else
+ * the portable lanes; all give the same bits); each lane loop falls back to
+ * the scalar loop for per-particle h and the energy ledger, and every loop
+ * for free-slip walls (`scalar`). NULL if that loop cannot run here. */
 static interact_fn pick_variant(unsigned F, sph_force_loop loop, int scalar) {
-  if (scalar && sph_force_loop_available(loop)) return VARIANT_TABLE_SCALAR[F];
-  switch (loop) {
-  case SPH_LOOP_SCALAR: return VARIANT_TABLE_SCALAR[F];
-  case SPH_LOOP_LANES:
-    return (F & F_SCALAR_ONLY) ? VARIANT_TABLE_SCALAR[F] : VARIANT_TABLE[lane_index(F)];
-  case SPH_LOOP_LANES_AVX:
-#ifdef SPH_LANES_AVX
-    if (!cpu_has_avx2()) return NULL;
-    return (F & F_SCALAR_ONLY) ? VARIANT_TABLE_SCALAR[F] : VARIANT_TABLE_AVX[lane_index(F)];
-#else
-    return NULL;
-#endif
-  case SPH_LOOP_AUTO:
-#ifdef SPH_LANES_AVX
-    if (cpu_has_avx2())
-      return (F & F_SCALAR_ONLY) ? VARIANT_TABLE_SCALAR[F] : VARIANT_TABLE_AVX[lane_index(F)];
-#endif
-    return (F & F_SCALAR_ONLY) ? VARIANT_TABLE_SCALAR[F] : VARIANT_TABLE[lane_index(F)];
-  }
-  return NULL;
+  if (!sph_force_loop_available(loop)) return NULL;
+  if (scalar || loop == SPH_LOOP_SCALAR || (F & F_SCALAR_ONLY)) return VARIANT_TABLE_SCALAR[F];
+  const interact_fn *table = lane_table(loop);
+  return table ? table[lane_index(F)] : NULL;
 }
 
 /* Per pass: the packed state of every particle (w->hot, w->cs), a cut-row
@@ -455,7 +499,8 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
           p->x[i], p->y[i], p->vx[i], p->vy[i], rho, p->p[i] / (rho * rho), cs, p->mass[i]};
     }
   }
-  const size_t stride = (size_t)l->maxcount + 4, need = stride * (size_t)sph_max_threads();
+  const size_t stride = (size_t)l->maxcount + 8, /* + padding lanes */
+      need = stride * (size_t)sph_max_threads();
   if (need > w->rows_cap) {
     uint32_t *a = realloc(w->rows, need * sizeof *a);
     if (!a) return sph_error_set(err, "forces: out of memory for neighbour rows");

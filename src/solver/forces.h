@@ -85,14 +85,16 @@ static inline void sph_gradient_correction(double mxx, double mxy, double myy, d
 /* Which loop evaluates the main pass (src/solver/interact.h). Every loop
  * gives the same physics; they differ in summation order (the scalar loop
  * sums a row in order, the lane loops in four lanes), so each is bitwise
- * reproducible but two of them agree only to round-off, except the two
- * lane flavours, which agree bitwise. The default is what runs use; the
- * others are for tests (tests/test_pair_terms.c). */
+ * reproducible but two of them agree only to round-off, except the lane
+ * flavours, which agree bitwise with one another (four or eight lanes).
+ * The default is what runs use; the others are for tests
+ * (tests/test_pair_terms.c) and benchmarks. */
 typedef enum {
-  SPH_LOOP_AUTO = 0,     /* AVX2 lanes where the processor has them, else portable lanes */
-  SPH_LOOP_SCALAR = 1,   /* the scalar loop for every term set */
-  SPH_LOOP_LANES = 2,    /* the portable four-lane loop (scalar for var_h, ledger) */
-  SPH_LOOP_LANES_AVX = 3 /* the AVX2 four-lane loop (scalar for var_h, ledger) */
+  SPH_LOOP_AUTO = 0,        /* the widest lanes the processor has: AVX-512, AVX2, portable */
+  SPH_LOOP_SCALAR = 1,      /* the scalar loop for every term set */
+  SPH_LOOP_LANES = 2,       /* the portable four-lane loop (scalar for var_h, ledger) */
+  SPH_LOOP_LANES_AVX = 3,   /* the AVX2 four-lane loop (scalar for var_h, ledger) */
+  SPH_LOOP_LANES_AVX512 = 4 /* the AVX-512 eight-lane loop into four-lane sums (the same) */
 } sph_force_loop;
 
 /* Whether the loop can run on this build and processor. */
@@ -152,6 +154,7 @@ typedef struct sph_force_work {
   double *lxx, *lxy, *lyy; /* kernel-gradient correction M^-1 of the strain-rate pass */
   double *gvx, *gvy;       /* velocity in the strain-rate pass (extrapolated on no-slip walls) */
   double *ddcx, *ddcy;     /* density diffusion: the model's vector c_i (solver/diffusion.h) */
+  int dd_uniform;          /* ... the same c_i at every particle (all models but antuono) */
   double *ddm;             /* density diffusion: the mass a particle diffuses with (0: none) */
   double *dd;              /* density diffusion D_i of the last pass (fluid; with the ledger) */
   double *lj;              /* repulsive walls' potential energy per unit mass (with the ledger) */

@@ -12,7 +12,9 @@
  *                   energy ledger, whose wall particles also take heat, and
  *                   free-slip walls);
  *   interact_FL     the lane loop, four pairs at a time (interact_lanes.h,
- *                   instantiated here for v4e and, on x86-64, v4x).
+ *                   instantiated here for v4e and, on x86-64, v4x), or
+ *                   eight at a time into the same four-lane sums (v8z,
+ *                   AVX-512 on x86-64: the same bits as v4e and v4x).
  * Each sum runs over the row in increasing storage index (the lane loop:
  * per lane, then (l0 + l1) + (l2 + l3)), so results do not depend on the
  * thread count, the schedule or the age of the neighbour list.
@@ -21,6 +23,7 @@
 #define SPH_INTERACT_H
 
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "core/lanes.h"
@@ -283,6 +286,43 @@ cut_row(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
   return cnt;
 }
 
+/* The fields of a packed record (sph_force_hot) by their place, for the
+ * loops that load whole records and transpose them (v8z_transpose8). */
+enum { H_x, H_y, H_vx, H_vy, H_rho, H_prho2, H_cs, H_m };
+typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(double) &&
+                                   offsetof(sph_force_hot, rho) == H_rho * sizeof(double) &&
+                                   offsetof(sph_force_hot, m) == H_m * sizeof(double) &&
+                                   sizeof(sph_force_hot) == 8 * sizeof(double))
+                                      ? 1
+                                      : -1];
+
+/* The four-lane flavours: the sums are the flavour's own vectors, and the
+ * neighbours' fields are gathered one at a time (the compiler drops those
+ * a term set does not read). */
+#define LW 4
+#define LCUT cut_row
+#define LHOT(g)                                                                                    \
+  LT g[8];                                                                                         \
+  g[H_x] = LSET(E_HOT, x);                                                                         \
+  g[H_y] = LSET(E_HOT, y);                                                                         \
+  g[H_vx] = LSET(E_HOT, vx);                                                                       \
+  g[H_vy] = LSET(E_HOT, vy);                                                                       \
+  g[H_rho] = LSET(E_HOT, rho);                                                                     \
+  g[H_prho2] = LSET(E_HOT, prho2);                                                                 \
+  g[H_cs] = LSET(E_HOT, cs);                                                                       \
+  g[H_m] = LSET(E_HOT, m)
+#define LINDEX
+#define LGATHER(arr) LSET(E_ARR, arr)
+#define E_FLUIDM(q, m) (kind[jk[q]] == SPH_KIND_FLUID ? hot[jk[q]].m : 0.0)
+#define LFLUIDM(gm) LSET(E_FLUIDM, m)
+#define LA FL
+#define LAOP(name) SPH_PT_XGLUE(FL, name)
+#define LMASK SPH_PT_XGLUE(FL, mask)
+#define LACC(s, t) s = LAOP(add)(s, t)
+#define LDEC(s, t) s = LAOP(sub)(s, t)
+#define LAMAX(s, t) s = LAOP(max)(t, s)
+#define LSET(E, a) LAOP(set)(E(0, a), E(1, a), E(2, a), E(3, a))
+
 #define FL v4e
 #define LOOP_ATTR static inline __attribute__((always_inline))
 #include "solver/interact_lanes.h"
@@ -295,6 +335,78 @@ cut_row(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
 #include "solver/interact_lanes.h"
 #undef LOOP_ATTR
 #undef FL
+#endif
+
+#undef LFLUIDM
+#undef E_FLUIDM
+#undef LGATHER
+#undef LINDEX
+#undef LHOT
+#undef LCUT
+#undef LSET
+#undef LAMAX
+#undef LDEC
+#undef LACC
+#undef LMASK
+#undef LAOP
+#undef LA
+#undef LW
+
+/* The eight-lane flavour: eight pairs evaluated at once, their terms added
+ * into four-lane sums, lanes 0-3 first (the four-lane loop's order). */
+#ifdef SPH_LANES_AVX512
+#define LW 8
+#define LCUT cut_row
+#define LA v4x
+#define LAOP(name) v4x_##name
+#define LMASK v8z_mask
+#define LACC(s, t)                                                                                 \
+  do {                                                                                             \
+    const v8z t_ = (t);                                                                            \
+    s = v4x_add(v4x_add(s, v8z_lo(t_)), v8z_hi(t_));                                               \
+  } while (0)
+#define LDEC(s, t)                                                                                 \
+  do {                                                                                             \
+    const v8z t_ = (t);                                                                            \
+    s = v4x_sub(v4x_sub(s, v8z_lo(t_)), v8z_hi(t_));                                               \
+  } while (0)
+#define LAMAX(s, t)                                                                                \
+  do {                                                                                             \
+    const v8z t_ = (t);                                                                            \
+    s = v4x_max(v8z_hi(t_), v4x_max(v8z_lo(t_), s));                                               \
+  } while (0)
+#define LSET(E, a) v8z_set(E(0, a), E(1, a), E(2, a), E(3, a), E(4, a), E(5, a), E(6, a), E(7, a))
+#define LHOT(g)                                                                                    \
+  v8z g[8];                                                                                        \
+  {                                                                                                \
+    const double *const r_[8] = {&hot[jk[0]].x, &hot[jk[1]].x, &hot[jk[2]].x, &hot[jk[3]].x,       \
+                                 &hot[jk[4]].x, &hot[jk[5]].x, &hot[jk[6]].x, &hot[jk[7]].x};      \
+    v8z_transpose8(r_, g);                                                                         \
+  }
+#define LINDEX
+#define LGATHER(arr) LSET(E_ARR, arr)
+#define E_FLUIDM(q, m) (kind[jk[q]] == SPH_KIND_FLUID ? hot[jk[q]].m : 0.0)
+#define LFLUIDM(gm) LSET(E_FLUIDM, m)
+
+#define FL v8z
+#define LOOP_ATTR static inline __attribute__((always_inline, target("avx512f")))
+#include "solver/interact_lanes.h"
+#undef LOOP_ATTR
+#undef FL
+
+#undef LFLUIDM
+#undef LGATHER
+#undef LINDEX
+#undef LHOT
+#undef LCUT
+#undef LSET
+#undef LAMAX
+#undef LDEC
+#undef LACC
+#undef LMASK
+#undef LAOP
+#undef LA
+#undef LW
 #endif
 
 #endif

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * interact_lanes.h - the main pass for one particle, four neighbours at a
- * time, in the arithmetic flavour FL (v4e or v4x of src/core/lanes.h),
+ * time, in the arithmetic flavour FL (v4e, v4x or v8z of src/core/lanes.h),
  * with LOOP_ATTR its attributes. An ordinary C body included once per
  * flavour by src/solver/interact.h (templates by include, as SWIFT's
  * runner_doiact_functions_hydro.h); it defines interact_FL. No include
@@ -9,12 +9,30 @@
  *
  * It serves the term sets without per-particle h and the energy ledger
  * (those run interact_one, the scalar loop): the row is first cut to the
- * pairs inside the support (cut_row), padded to a multiple of four with
- * its last pair, masked out; then each lane takes entries k, k + 4, ... and
- * keeps its own partial sums, added as (l0 + l1) + (l2 + l3) at the end: a
- * fixed order, whatever the machine's vector width. The terms are those of
- * src/physics/pair_terms.h, evaluated pair for pair with the operations of
- * the scalar loop.
+ * pairs inside the support (cut_row), padded to a multiple of the width
+ * with its last pair, masked out; then each of four lanes takes entries k,
+ * k + 4, ... and keeps its own partial sums, added as (l0 + l1) + (l2 + l3)
+ * at the end: a fixed order, whatever the machine's vector width. The
+ * terms are those of src/physics/pair_terms.h, evaluated pair for pair with
+ * the operations of the scalar loop.
+ *
+ * The eight-lane flavour (v8z, AVX-512) evaluates the pairs k .. k + 7 at
+ * once and adds them into four-lane sums, first its lanes 0-3 (entries
+ * k .. k + 3), then its lanes 4-7 (k + 4 .. k + 7): each four-lane sum sees
+ * the same terms in the same order as in the four-lane loop, so the two
+ * give the same bits (tests/test_pair_terms.c). A padding half past the
+ * row's end adds masked terms, +0 or -0, which leave a sum as it is (a sum
+ * that starts at +0 is never -0 under round-to-nearest).
+ *
+ * Set by the includer: LW the lane count (4 or 8), LA the four-lane type
+ * of the sums with LAOP(name) its operations, LACC(s, t) adding the LW-lane
+ * terms t into the sums s, LDEC(s, t) subtracting them, LAMAX(s, t) the
+ * same for the max, LMASK the mask type, LSET(E, a) the vector of E(q, a)
+ * for q = 0 .. LW - 1, LHOT(g) the declaration of g[8], the fields of
+ * this iteration's neighbours' records (sph_force_hot) by place H_field,
+ * LGATHER(arr) the vector of arr[j] over the iteration's neighbours j,
+ * LFLUIDM(m) the vector of m where j is fluid, +0 where not, LINDEX
+ * what these two need once per iteration, and LCUT the row cut (cut_row).
  */
 
 #define LT FL
@@ -33,8 +51,8 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     return;
   }
   uint32_t *restrict nb = w->rows + (size_t)sph_thread() * w->rows_stride;
-  const size_t cnt = cut_row(hot, l, fp, i, nb, F);
-  for (size_t k = cnt; k < cnt + 3 && cnt > 0; k++)
+  const size_t cnt = LCUT(hot, l, fp, i, nb, F);
+  for (size_t k = cnt; k < cnt + LW - 1 && cnt > 0; k++)
     nb[k] = nb[cnt - 1]; /* padding lanes */
   const sph_force_hot qi = hot[i];
   const int fluid = kind[i] == SPH_KIND_FLUID;
@@ -51,17 +69,24 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const double eta = fp->eta * h0;
   const LT eta2 = LOP(all)(eta * eta), nalpha = LOP(all)(-fp->alpha), beta = LOP(all)(fp->beta);
   const LT nu4 = LOP(all)(4.0 * fp->mu / fp->eos.rho0);
-  const LT lane = LOP(set)(0.0, 1.0, 2.0, 3.0), n = LOP(all)((double)cnt);
-  LT drho = zero, ax = zero, ay = zero, xs = zero, ys = zero, sig = zero, dd = zero;
+#define E_LANE(q, a) ((double)(q))
+  const LT lane = LSET(E_LANE, 0), n = LOP(all)((double)cnt);
+#undef E_LANE
+  const LA azero = LAOP(all)(0.0);
+  LA drho = azero, ax = azero, ay = azero, xs = azero, ys = azero, sig = azero, dd = azero;
   const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy, *restrict ddm = w->ddm;
   const int diffuses = (F & F_DDIFF) && ddm[i] != 0.0; /* not next to a wall (diffusion.h) */
   const LT cxi = LOP(all)((F & F_DDIFF) ? ddcx[i] : 0.0);
   const LT cyi = LOP(all)((F & F_DDIFF) ? ddcy[i] : 0.0);
-  for (size_t k = 0; k < cnt; k += 4) {
-    const size_t j0 = nb[k], j1 = nb[k + 1], j2 = nb[k + 2], j3 = nb[k + 3];
-    const sph_force_hot *restrict a = &hot[j0], *restrict b = &hot[j1];
-    const sph_force_hot *restrict c_ = &hot[j2], *restrict d = &hot[j3];
-#define GATHER(field) LOP(set)(a->field, b->field, c_->field, d->field)
+  const int dd_uniform = w->dd_uniform; /* c_j = c_i: the same sums without reading c_j */
+  const LT cxx = LOP(add)(cxi, cxi), cyy = LOP(add)(cyi, cyi);
+  for (size_t k = 0; k < cnt; k += LW) {
+    const uint32_t *restrict jk = nb + k; /* this iteration's neighbours */
+#define E_HOT(q, field) hot[jk[q]].field
+#define E_ARR(q, arr) arr[jk[q]]
+    LINDEX;  /* (v8z: the eight indices in one register) */
+    LHOT(g); /* the neighbours' packed records, g[H_field] */
+#define GATHER(field) g[H_##field]
     LT dx = LOP(sub)(xi, GATHER(x));
     if (F & F_PERIODIC) /* minimum image, as sep_x */
       dx = LOP(sel)(LOP(lt)(hper, dx), LOP(sub)(dx, per),
@@ -69,7 +94,7 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     const LT dy = LOP(sub)(yi, GATHER(y));
     const LT r2 = LOP(add)(LOP(mul)(dx, dx), LOP(mul)(dy, dy));
     /* the padding lanes past the row's end repeat its last pair, masked out */
-    const LT in = LOP(lt)(LOP(add)(LOP(all)((double)k), lane), n);
+    const LMASK in = LOP(lt)(LOP(add)(LOP(all)((double)k), lane), n);
     /* 1/r2 and sqrt(r2) side by side: a shorter chain than 1/sqrt(r2) */
     const LT inv_r2 = LOP(div)(one, r2), r = LOP(sqrt)(r2), inv_r = LOP(mul)(r, inv_r2);
     LT wij, f;
@@ -82,9 +107,9 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     const LT gx = LOP(mul)(f, dx), gy = LOP(mul)(f, dy);
     const LT dvx = LOP(sub)(vxi, GATHER(vx)), dvy = LOP(sub)(vyi, GATHER(vy));
     const LT mj = GATHER(m);
-    drho = LOP(add)(drho, LTERM(continuity)(mj, dvx, dvy, gx, gy));
+    LACC(drho, LTERM(continuity)(mj, dvx, dvy, gx, gy));
     const LT vdotr = LOP(add)(LOP(mul)(dvx, dx), LOP(mul)(dvy, dy));
-    sig = LOP(max)(LOP(and)(in, LTERM(signal)(hh, vdotr, inv_r2)), sig);
+    LAMAX(sig, LOP(and)(in, LTERM(signal)(hh, vdotr, inv_r2)));
     if (!fluid) continue; /* a wall particle needs no pair terms */
     LT pij = LOP(add)(pri, GATHER(prho2));
     LT inv_rb = zero;
@@ -95,9 +120,9 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     LT pax, pay;
     LTERM(pressure_force)(LOP(mul)(mj, pij), gx, gy, &pax, &pay);
     if (F & F_STRESS) {
-      const LT txx = LOP(add)(LOP(all)(sxx[i]), LOP(set)(sxx[j0], sxx[j1], sxx[j2], sxx[j3]));
-      const LT txy = LOP(add)(LOP(all)(sxy[i]), LOP(set)(sxy[j0], sxy[j1], sxy[j2], sxy[j3]));
-      const LT tyy = LOP(add)(LOP(all)(syy[i]), LOP(set)(syy[j0], syy[j1], syy[j2], syy[j3]));
+      const LT txx = LOP(add)(LOP(all)(sxx[i]), LGATHER(sxx));
+      const LT txy = LOP(add)(LOP(all)(sxy[i]), LGATHER(sxy));
+      const LT tyy = LOP(add)(LOP(all)(syy[i]), LGATHER(syy));
       LT sx, sy;
       LTERM(stress_force)(mj, txx, txy, tyy, gx, gy, &sx, &sy);
       pax = LOP(add)(pax, sx);
@@ -108,47 +133,46 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
       pax = LOP(add)(pax, LOP(mul)(c, dvx));
       pay = LOP(add)(pay, LOP(mul)(c, dvy));
     }
-    ax = LOP(add)(ax, pax);
-    ay = LOP(add)(ay, pay);
+    LACC(ax, pax);
+    LACC(ay, pay);
     LT mx = zero; /* m_j of fluid neighbours, 0 for the others */
-    if (F & F_XSPH)
-      mx = LOP(set)(
-          kind[j0] == SPH_KIND_FLUID ? a->m : 0.0, kind[j1] == SPH_KIND_FLUID ? b->m : 0.0,
-          kind[j2] == SPH_KIND_FLUID ? c_->m : 0.0, kind[j3] == SPH_KIND_FLUID ? d->m : 0.0);
+    if (F & F_XSPH) mx = LFLUIDM(g[H_m]);
     if ((F & F_DDIFF) && diffuses) { /* over the neighbours that diffuse (diffusion.h) */
       const LT rhoj = GATHER(rho);
-      const LT cx = LOP(add)(cxi, LOP(set)(ddcx[j0], ddcx[j1], ddcx[j2], ddcx[j3]));
-      const LT cy = LOP(add)(cyi, LOP(set)(ddcy[j0], ddcy[j1], ddcy[j2], ddcy[j3]));
+      const LT cx = dd_uniform ? cxx : LOP(add)(cxi, LGATHER(ddcx));
+      const LT cy = dd_uniform ? cyy : LOP(add)(cyi, LGATHER(ddcy));
       const LT psi = LTERM(diffusion_psi)(rhoi, rhoj, dx, dy, cx, cy);
-      const LT mdd = LOP(set)(ddm[j0], ddm[j1], ddm[j2], ddm[j3]);
-      dd = LOP(add)(dd, LTERM(diffusion)(psi, f, mdd, rhoj));
+      const LT mdd = LGATHER(ddm);
+      LACC(dd, LTERM(diffusion)(psi, f, mdd, rhoj));
     }
     if (F & F_XSPH) { /* over fluid neighbours */
       const LT c = LTERM(xsph_factor)(mx, inv_rb, wij);
-      xs = LOP(sub)(xs, LOP(mul)(c, dvx));
-      ys = LOP(sub)(ys, LOP(mul)(c, dvy));
+      LDEC(xs, LOP(mul)(c, dvx));
+      LDEC(ys, LOP(mul)(c, dvy));
     }
 #undef GATHER
+#undef E_ARR
+#undef E_HOT
   }
   double lv[4];
-  LOP(store)(lv, drho);
+  LAOP(store)(lv, drho);
   p->drho[i] = (lv[0] + lv[1]) + (lv[2] + lv[3]);
   if (F & F_DDIFF) { /* as the scalar loop: the scaled sum added last */
-    LOP(store)(lv, dd);
+    LAOP(store)(lv, dd);
     p->drho[i] += ((lv[0] + lv[1]) + (lv[2] + lv[3])) * diffusion_scale(fp, F);
   }
-  LOP(store)(lv, sig);
+  LAOP(store)(lv, sig);
   const double s01 = lv[0] > lv[1] ? lv[0] : lv[1], s23 = lv[2] > lv[3] ? lv[2] : lv[3];
   w->sigma[i] = s01 > s23 ? s01 : s23;
   if (fluid) {
-    LOP(store)(lv, ax);
+    LAOP(store)(lv, ax);
     p->ax[i] = ((lv[0] + lv[1]) + (lv[2] + lv[3])) + fp->gx;
-    LOP(store)(lv, ay);
+    LAOP(store)(lv, ay);
     p->ay[i] = ((lv[0] + lv[1]) + (lv[2] + lv[3])) + fp->gy;
     if (F & F_XSPH) {
-      LOP(store)(lv, xs);
+      LAOP(store)(lv, xs);
       p->xsx[i] = fp->xsph * ((lv[0] + lv[1]) + (lv[2] + lv[3]));
-      LOP(store)(lv, ys);
+      LAOP(store)(lv, ys);
       p->xsy[i] = fp->xsph * ((lv[0] + lv[1]) + (lv[2] + lv[3]));
     }
   } else {

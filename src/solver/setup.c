@@ -31,13 +31,14 @@ static double sph_skin_fraction(void) {
 }
 
 /* The interaction loop: the default, or the one the test hook
- * SPH_TEST_LANES names (portable, avx or scalar; doc/testing.md), for the
+ * SPH_TEST_LANES names (portable, avx, avx512 or scalar; doc/testing.md), for the
  * tests that compare the loops through whole runs. */
 static sph_force_loop sph_test_loop(void) {
   const char *e = getenv("SPH_TEST_LANES");
   if (!e) return SPH_LOOP_AUTO;
   if (strcmp(e, "portable") == 0) return SPH_LOOP_LANES;
   if (strcmp(e, "avx") == 0) return SPH_LOOP_LANES_AVX;
+  if (strcmp(e, "avx512") == 0) return SPH_LOOP_LANES_AVX512;
   if (strcmp(e, "scalar") == 0) return SPH_LOOP_SCALAR;
   return SPH_LOOP_AUTO;
 }
