@@ -33,8 +33,9 @@
  * 3. The AVX-512 operations themselves (where the processor has AVX-512):
  *    every v8z operation gives v1's bits in each of its eight lanes, on
  *    values that include signed zeros, infinities, ties of min and max and
- *    subnormals; the record transpose puts field f of record q in lane q of
- *    vector f; v8z_lo / v8z_hi are lanes 0-3 and 4-7.
+ *    subnormals; the record transposes (v8z and, with AVX2, v4x) put field f
+ *    of record q in lane q of vector f; v8z_lo / v8z_hi are lanes 0-3 and
+ *    4-7.
  */
 #include "config.h"
 
@@ -713,7 +714,37 @@ static __attribute__((target("avx512f"))) unsigned v8z_mismatches(const double *
 }
 #endif
 
+#ifdef SPH_LANES_AVX
+/* Mismatches of the AVX2 record transpose (four records, eight fields). */
+static __attribute__((target("avx2"))) unsigned v4x_transpose_mismatches(void) {
+  double rec[4][8];
+  const double *r[4];
+  for (int q = 0; q < 4; q++) {
+    for (int f = 0; f < 8; f++)
+      rec[q][f] = 10.0 * q + f + 0.125;
+    r[q] = rec[q];
+  }
+  v4x out[8];
+  v4x_transpose8(r, out);
+  unsigned bad = 0;
+  for (int f = 0; f < 8; f++) {
+    double lanes[4];
+    v4x_store(lanes, out[f]);
+    for (int q = 0; q < 4; q++)
+      if (memcmp(&lanes[q], &rec[q][f], sizeof lanes[q]) != 0) bad++;
+  }
+  return bad;
+}
+#endif
+
 static void test_v8z_operations(void) {
+#ifdef SPH_LANES_AVX
+  if (sph_force_loop_available(SPH_LOOP_LANES_AVX)) {
+    const unsigned tb = v4x_transpose_mismatches();
+    printf("\n  v4x: %u mismatches in the record transpose", tb);
+    CU_ASSERT(tb == 0);
+  }
+#endif
   if (!sph_force_loop_available(SPH_LOOP_LANES_AVX512)) {
     printf("\n  (no AVX-512F on this processor: its operations are not checked)");
     return;

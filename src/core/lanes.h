@@ -184,6 +184,22 @@ SPH_AVX2 v4x v4x_and(v4x a, v4x b) { return _mm256_and_pd(a, b); }
 SPH_AVX2 v4x v4x_sel(v4x m, v4x a, v4x b) { return _mm256_blendv_pd(b, a, m); }
 SPH_AVX2 void v4x_store(double *o, v4x a) { _mm256_storeu_pd(o, a); }
 
+/* Four records of eight doubles, r[q][0..7], turned into eight vectors:
+ * out[f] lane q = r[q][f]. Eight loads and 16 shuffles (two 4 x 4
+ * transposes) in place of 32 single-element moves. */
+SPH_AVX2 void v4x_transpose8(const double *const r[4], v4x out[8]) {
+  for (int h = 0; h < 8; h += 4) {
+    const v4x a = _mm256_loadu_pd(r[0] + h), b = _mm256_loadu_pd(r[1] + h);
+    const v4x c = _mm256_loadu_pd(r[2] + h), d = _mm256_loadu_pd(r[3] + h);
+    const v4x t0 = _mm256_unpacklo_pd(a, b), t1 = _mm256_unpackhi_pd(a, b); /* a0 b0 a2 b2 */
+    const v4x t2 = _mm256_unpacklo_pd(c, d), t3 = _mm256_unpackhi_pd(c, d);
+    out[h] = _mm256_permute2f128_pd(t0, t2, 0x20); /* a0 b0 c0 d0 */
+    out[h + 2] = _mm256_permute2f128_pd(t0, t2, 0x31);
+    out[h + 1] = _mm256_permute2f128_pd(t1, t3, 0x20);
+    out[h + 3] = _mm256_permute2f128_pd(t1, t3, 0x31);
+  }
+}
+
 /* ---- v8z: eight doubles in one AVX-512 register ----------------------------------- */
 
 /* AVX-512F only (abs and neg through the integer logic: the floating-point

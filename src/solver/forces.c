@@ -68,7 +68,8 @@ static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
                      (void **)&w->sxx,  (void **)&w->sxy,   (void **)&w->syy, (void **)&w->wpow,
                      (void **)&w->wfx,  (void **)&w->wfy,   (void **)&w->lxx, (void **)&w->lxy,
                      (void **)&w->lyy,  (void **)&w->gvx,   (void **)&w->gvy, (void **)&w->ddcx,
-                     (void **)&w->ddcy, (void **)&w->dd,    (void **)&w->lj,  (void **)&w->ddm};
+                     (void **)&w->ddcy, (void **)&w->dd,    (void **)&w->lj,  (void **)&w->ddm,
+                     (void **)&w->fm};
   enum { N_ARRAYS = sizeof arrays / sizeof arrays[0] };
   size_t size[N_ARRAYS];
   size[0] = sizeof *w->hot;
@@ -488,6 +489,7 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
                         sph_force_work *w, sph_error *err) {
   const long n = (long)p->n;
   if (work_reserve(w, p->n, err)) return -1;
+  const int xsph = (sph_interact_terms(fp) & F_XSPH) != 0;
 #pragma omp parallel if (n > SPH_OMP_MIN)
   {
     size_t lo, hi; /* the slices of the interaction loop */
@@ -497,6 +499,7 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
       w->cs[i] = cs;
       w->hot[i] = (sph_force_hot){
           p->x[i], p->y[i], p->vx[i], p->vy[i], rho, p->p[i] / (rho * rho), cs, p->mass[i]};
+      if (xsph) w->fm[i] = p->kind[i] == SPH_KIND_FLUID ? p->mass[i] : 0.0;
     }
   }
   const size_t stride = (size_t)l->maxcount + 8, /* + padding lanes */

@@ -296,12 +296,13 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
                                       ? 1
                                       : -1];
 
-/* The four-lane flavours: the sums are the flavour's own vectors, and the
- * neighbours' fields are gathered one at a time (the compiler drops those
- * a term set does not read). */
+/* The four-lane flavours: the sums are the flavour's own vectors. The
+ * portable flavour gathers the neighbours' fields one at a time (the
+ * compiler drops those a term set does not read), the AVX2 flavour loads
+ * the four records whole and transposes them (v4x_transpose8). */
 #define LW 4
 #define LCUT cut_row
-#define LHOT(g)                                                                                    \
+#define LHOT_SET(g)                                                                                \
   LT g[8];                                                                                         \
   g[H_x] = LSET(E_HOT, x);                                                                         \
   g[H_y] = LSET(E_HOT, y);                                                                         \
@@ -311,10 +312,7 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
   g[H_prho2] = LSET(E_HOT, prho2);                                                                 \
   g[H_cs] = LSET(E_HOT, cs);                                                                       \
   g[H_m] = LSET(E_HOT, m)
-#define LINDEX
 #define LGATHER(arr) LSET(E_ARR, arr)
-#define E_FLUIDM(q, m) (kind[jk[q]] == SPH_KIND_FLUID ? hot[jk[q]].m : 0.0)
-#define LFLUIDM(gm) LSET(E_FLUIDM, m)
 #define LA FL
 #define LAOP(name) SPH_PT_XGLUE(FL, name)
 #define LMASK SPH_PT_XGLUE(FL, mask)
@@ -324,24 +322,30 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
 #define LSET(E, a) LAOP(set)(E(0, a), E(1, a), E(2, a), E(3, a))
 
 #define FL v4e
+#define LHOT(g) LHOT_SET(g)
 #define LOOP_ATTR static inline __attribute__((always_inline))
 #include "solver/interact_lanes.h"
 #undef LOOP_ATTR
+#undef LHOT
 #undef FL
 
 #ifdef SPH_LANES_AVX
 #define FL v4x
+#define LHOT(g)                                                                                    \
+  v4x g[8];                                                                                        \
+  {                                                                                                \
+    const double *const r_[4] = {&hot[jk[0]].x, &hot[jk[1]].x, &hot[jk[2]].x, &hot[jk[3]].x};      \
+    v4x_transpose8(r_, g);                                                                         \
+  }
 #define LOOP_ATTR static inline __attribute__((always_inline, target("avx2")))
 #include "solver/interact_lanes.h"
 #undef LOOP_ATTR
+#undef LHOT
 #undef FL
 #endif
 
-#undef LFLUIDM
-#undef E_FLUIDM
 #undef LGATHER
-#undef LINDEX
-#undef LHOT
+#undef LHOT_SET
 #undef LCUT
 #undef LSET
 #undef LAMAX
@@ -383,10 +387,7 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
                                  &hot[jk[4]].x, &hot[jk[5]].x, &hot[jk[6]].x, &hot[jk[7]].x};      \
     v8z_transpose8(r_, g);                                                                         \
   }
-#define LINDEX
 #define LGATHER(arr) LSET(E_ARR, arr)
-#define E_FLUIDM(q, m) (kind[jk[q]] == SPH_KIND_FLUID ? hot[jk[q]].m : 0.0)
-#define LFLUIDM(gm) LSET(E_FLUIDM, m)
 
 #define FL v8z
 #define LOOP_ATTR static inline __attribute__((always_inline, target("avx512f")))
@@ -394,9 +395,7 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
 #undef LOOP_ATTR
 #undef FL
 
-#undef LFLUIDM
 #undef LGATHER
-#undef LINDEX
 #undef LHOT
 #undef LCUT
 #undef LSET

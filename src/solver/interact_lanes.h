@@ -31,8 +31,7 @@
  * for q = 0 .. LW - 1, LHOT(g) the declaration of g[8], the fields of
  * this iteration's neighbours' records (sph_force_hot) by place H_field,
  * LGATHER(arr) the vector of arr[j] over the iteration's neighbours j,
- * LFLUIDM(m) the vector of m where j is fluid, +0 where not, LINDEX
- * what these two need once per iteration, and LCUT the row cut (cut_row).
+ * and LCUT the row cut (cut_row).
  */
 
 #define LT FL
@@ -76,6 +75,8 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   LA drho = azero, ax = azero, ay = azero, xs = azero, ys = azero, sig = azero, dd = azero;
   const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy, *restrict ddm = w->ddm;
   const int diffuses = (F & F_DDIFF) && ddm[i] != 0.0; /* not next to a wall (diffusion.h) */
+  const double *restrict fm = w->fm;                   /* m_j of fluid j, 0 for the others */
+  const int mdd_is_mx = (F & F_XSPH) && !fp->mdbc;     /* then ddm = fm (diffusion.c) */
   const LT cxi = LOP(all)((F & F_DDIFF) ? ddcx[i] : 0.0);
   const LT cyi = LOP(all)((F & F_DDIFF) ? ddcy[i] : 0.0);
   const int dd_uniform = w->dd_uniform; /* c_j = c_i: the same sums without reading c_j */
@@ -84,7 +85,6 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     const uint32_t *restrict jk = nb + k; /* this iteration's neighbours */
 #define E_HOT(q, field) hot[jk[q]].field
 #define E_ARR(q, arr) arr[jk[q]]
-    LINDEX;  /* (v8z: the eight indices in one register) */
     LHOT(g); /* the neighbours' packed records, g[H_field] */
 #define GATHER(field) g[H_##field]
     LT dx = LOP(sub)(xi, GATHER(x));
@@ -136,13 +136,13 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     LACC(ax, pax);
     LACC(ay, pay);
     LT mx = zero; /* m_j of fluid neighbours, 0 for the others */
-    if (F & F_XSPH) mx = LFLUIDM(g[H_m]);
+    if (F & F_XSPH) mx = LGATHER(fm);
     if ((F & F_DDIFF) && diffuses) { /* over the neighbours that diffuse (diffusion.h) */
       const LT rhoj = GATHER(rho);
       const LT cx = dd_uniform ? cxx : LOP(add)(cxi, LGATHER(ddcx));
       const LT cy = dd_uniform ? cyy : LOP(add)(cyi, LGATHER(ddcy));
       const LT psi = LTERM(diffusion_psi)(rhoi, rhoj, dx, dy, cx, cy);
-      const LT mdd = LGATHER(ddm);
+      const LT mdd = mdd_is_mx ? mx : LGATHER(ddm); /* the same masses without mdbc walls */
       LACC(dd, LTERM(diffusion)(psi, f, mdd, rhoj));
     }
     if (F & F_XSPH) { /* over fluid neighbours */
