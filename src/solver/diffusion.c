@@ -73,9 +73,9 @@ static double diffusion_mass(const sph_particles *restrict p, const sph_nlist *r
 void sph_diffusion_prepare(const sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                            sph_force_work *w) {
   const long n = (long)p->n;
-  double cx = 0.0, cy = 0.0; /* the same c_i everywhere but for antuono */
+  double cx = 0.0,
+         cy = 0.0; /* the same c_i everywhere but for antuono (the lane loops rely on it) */
   if (fp->diffusion == SPH_DIFFUSION_NONE) return;
-  w->dd_uniform = fp->diffusion != SPH_DIFFUSION_ANTUONO; /* the loops read c_i once then */
 #pragma omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)
   for (long i = 0; i < n; i++)
     w->ddm[i] = diffusion_mass(p, l, fp, (size_t)i);

@@ -445,12 +445,10 @@ int sph_force_loop_available(sph_force_loop loop) {
   return 0;
 }
 
-/* The lane table of a loop that can run here (NULL otherwise); AUTO is the
- * widest the processor has. */
+/* The lane table of a lane loop that can run here (pick_variant checks);
+ * AUTO is the widest the processor has. */
 static const interact_fn *lane_table(sph_force_loop loop) {
-  if (!sph_force_loop_available(loop)) return NULL;
   switch (loop) {
-  case SPH_LOOP_SCALAR: return NULL;
   case SPH_LOOP_LANES: return VARIANT_TABLE;
 #ifdef SPH_LANES_AVX
   case SPH_LOOP_LANES_AVX: return VARIANT_TABLE_AVX;
@@ -486,10 +484,10 @@ static interact_fn pick_variant(unsigned F, sph_force_loop loop, int scalar) {
  * buffer per thread, and the interaction loop's slices (the list's, with
  * stealing). */
 static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
-                        sph_force_work *w, sph_error *err) {
+                        sph_force_work *w, const unsigned F, sph_error *err) {
   const long n = (long)p->n;
   if (work_reserve(w, p->n, err)) return -1;
-  const int xsph = (sph_interact_terms(fp) & F_XSPH) != 0;
+  const int xsph = (F & F_XSPH) != 0;
 #pragma omp parallel if (n > SPH_OMP_MIN)
   {
     size_t lo, hi; /* the slices of the interaction loop */
@@ -574,7 +572,7 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
   const unsigned F = sph_interact_terms(fp);
   const interact_fn run = pick_variant(F, fp->loop, fp->free_slip || fp->mirror);
   if (!run) return sph_error_set(err, "forces: the interaction loop asked for cannot run here");
-  if (prepare_pass(p, l, fp, w, err)) return -1;
+  if (prepare_pass(p, l, fp, w, F, err)) return -1;
   if ((F & F_STRESS) && stress_pass(p, l, fp, w, err)) return -1;
   if (F & F_DDIFF) sph_diffusion_prepare(p, l, fp, w);
   run(p, l, fp, w);

@@ -154,7 +154,6 @@ typedef struct sph_force_work {
   double *lxx, *lxy, *lyy; /* kernel-gradient correction M^-1 of the strain-rate pass */
   double *gvx, *gvy;       /* velocity in the strain-rate pass (extrapolated on no-slip walls) */
   double *ddcx, *ddcy;     /* density diffusion: the model's vector c_i (solver/diffusion.h) */
-  int dd_uniform;          /* ... the same c_i at every particle (all models but antuono) */
   double *ddm;             /* density diffusion: the mass a particle diffuses with (0: none) */
   double *fm;              /* XSPH: the mass of a fluid particle, 0 for the others */
   double *dd;              /* density diffusion D_i of the last pass (fluid; with the ledger) */

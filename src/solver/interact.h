@@ -301,7 +301,6 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
  * compiler drops those a term set does not read), the AVX2 flavour loads
  * the four records whole and transposes them (v4x_transpose8). */
 #define LW 4
-#define LCUT cut_row
 #define LHOT_SET(g)                                                                                \
   LT g[8];                                                                                         \
   g[H_x] = LSET(E_HOT, x);                                                                         \
@@ -312,7 +311,6 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
   g[H_prho2] = LSET(E_HOT, prho2);                                                                 \
   g[H_cs] = LSET(E_HOT, cs);                                                                       \
   g[H_m] = LSET(E_HOT, m)
-#define LGATHER(arr) LSET(E_ARR, arr)
 #define LA FL
 #define LAOP(name) SPH_PT_XGLUE(FL, name)
 #define LMASK SPH_PT_XGLUE(FL, mask)
@@ -344,9 +342,7 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
 #undef FL
 #endif
 
-#undef LGATHER
 #undef LHOT_SET
-#undef LCUT
 #undef LSET
 #undef LAMAX
 #undef LDEC
@@ -360,7 +356,6 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
  * into four-lane sums, lanes 0-3 first (the four-lane loop's order). */
 #ifdef SPH_LANES_AVX512
 #define LW 8
-#define LCUT cut_row
 #define LA v4x
 #define LAOP(name) v4x_##name
 #define LMASK v8z_mask
@@ -387,7 +382,6 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
                                  &hot[jk[4]].x, &hot[jk[5]].x, &hot[jk[6]].x, &hot[jk[7]].x};      \
     v8z_transpose8(r_, g);                                                                         \
   }
-#define LGATHER(arr) LSET(E_ARR, arr)
 
 #define FL v8z
 #define LOOP_ATTR static inline __attribute__((always_inline, target("avx512f")))
@@ -395,9 +389,7 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
 #undef LOOP_ATTR
 #undef FL
 
-#undef LGATHER
 #undef LHOT
-#undef LCUT
 #undef LSET
 #undef LAMAX
 #undef LDEC

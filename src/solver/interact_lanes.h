@@ -28,10 +28,9 @@
  * of the sums with LAOP(name) its operations, LACC(s, t) adding the LW-lane
  * terms t into the sums s, LDEC(s, t) subtracting them, LAMAX(s, t) the
  * same for the max, LMASK the mask type, LSET(E, a) the vector of E(q, a)
- * for q = 0 .. LW - 1, LHOT(g) the declaration of g[8], the fields of
- * this iteration's neighbours' records (sph_force_hot) by place H_field,
- * LGATHER(arr) the vector of arr[j] over the iteration's neighbours j,
- * and LCUT the row cut (cut_row).
+ * for q = 0 .. LW - 1 (E_ARR(q, arr) gives arr[j] of the iteration's q-th
+ * neighbour j), and LHOT(g) the declaration of g[8], the fields of this
+ * iteration's neighbours' records (sph_force_hot) by place H_field.
  */
 
 #define LT FL
@@ -50,7 +49,7 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     return;
   }
   uint32_t *restrict nb = w->rows + (size_t)sph_thread() * w->rows_stride;
-  const size_t cnt = LCUT(hot, l, fp, i, nb, F);
+  const size_t cnt = cut_row(hot, l, fp, i, nb, F);
   for (size_t k = cnt; k < cnt + LW - 1 && cnt > 0; k++)
     nb[k] = nb[cnt - 1]; /* padding lanes */
   const sph_force_hot qi = hot[i];
@@ -79,7 +78,9 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const int mdd_is_mx = (F & F_XSPH) && !fp->mdbc;     /* then ddm = fm (diffusion.c) */
   const LT cxi = LOP(all)((F & F_DDIFF) ? ddcx[i] : 0.0);
   const LT cyi = LOP(all)((F & F_DDIFF) ? ddcy[i] : 0.0);
-  const int dd_uniform = w->dd_uniform; /* c_j = c_i: the same sums without reading c_j */
+  /* c_j = c_i at every particle but with antuono (diffusion.c): the same sums without reading c_j
+   */
+  const int dd_uniform = fp->diffusion != SPH_DIFFUSION_ANTUONO;
   const LT cxx = LOP(add)(cxi, cxi), cyy = LOP(add)(cyi, cyi);
   for (size_t k = 0; k < cnt; k += LW) {
     const uint32_t *restrict jk = nb + k; /* this iteration's neighbours */
@@ -120,9 +121,9 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     LT pax, pay;
     LTERM(pressure_force)(LOP(mul)(mj, pij), gx, gy, &pax, &pay);
     if (F & F_STRESS) {
-      const LT txx = LOP(add)(LOP(all)(sxx[i]), LGATHER(sxx));
-      const LT txy = LOP(add)(LOP(all)(sxy[i]), LGATHER(sxy));
-      const LT tyy = LOP(add)(LOP(all)(syy[i]), LGATHER(syy));
+      const LT txx = LOP(add)(LOP(all)(sxx[i]), LSET(E_ARR, sxx));
+      const LT txy = LOP(add)(LOP(all)(sxy[i]), LSET(E_ARR, sxy));
+      const LT tyy = LOP(add)(LOP(all)(syy[i]), LSET(E_ARR, syy));
       LT sx, sy;
       LTERM(stress_force)(mj, txx, txy, tyy, gx, gy, &sx, &sy);
       pax = LOP(add)(pax, sx);
@@ -136,13 +137,13 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     LACC(ax, pax);
     LACC(ay, pay);
     LT mx = zero; /* m_j of fluid neighbours, 0 for the others */
-    if (F & F_XSPH) mx = LGATHER(fm);
+    if (F & F_XSPH) mx = LSET(E_ARR, fm);
     if ((F & F_DDIFF) && diffuses) { /* over the neighbours that diffuse (diffusion.h) */
       const LT rhoj = GATHER(rho);
-      const LT cx = dd_uniform ? cxx : LOP(add)(cxi, LGATHER(ddcx));
-      const LT cy = dd_uniform ? cyy : LOP(add)(cyi, LGATHER(ddcy));
+      const LT cx = dd_uniform ? cxx : LOP(add)(cxi, LSET(E_ARR, ddcx));
+      const LT cy = dd_uniform ? cyy : LOP(add)(cyi, LSET(E_ARR, ddcy));
       const LT psi = LTERM(diffusion_psi)(rhoi, rhoj, dx, dy, cx, cy);
-      const LT mdd = mdd_is_mx ? mx : LGATHER(ddm); /* the same masses without mdbc walls */
+      const LT mdd = mdd_is_mx ? mx : LSET(E_ARR, ddm); /* the same masses without mdbc walls */
       LACC(dd, LTERM(diffusion)(psi, f, mdd, rhoj));
     }
     if (F & F_XSPH) { /* over fluid neighbours */
