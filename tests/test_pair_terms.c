@@ -375,8 +375,8 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
 /* ---- the library's loops ------------------------------------------------------------ */
 
 /* One main pass with the loop asked for; the rates by particle id. */
-static void run_loop(const sph_particles *p0, const sph_force_params *fp0, sph_force_loop loop,
-                     rates *o) {
+static void run_loop_tau(const sph_particles *p0, const sph_force_params *fp0, sph_force_loop loop,
+                         rates *o, double *tau[6]) {
   sph_error err;
   sph_particles p;
   CU_ASSERT_FATAL(sph_particles_init(&p, p0->n, &err) == 0);
@@ -415,11 +415,21 @@ static void run_loop(const sph_particles *p0, const sph_force_params *fp0, sph_f
                           p.du[i],   w.sigma[i], w.wpow[i], w.wfx[i], w.wfy[i]};
     for (int k = 0; k < 10; k++)
       o->f[k][id] = v[k];
+    if (tau) { /* tau / rho^2 of the strain-rate pass, and L with the correction */
+      const double t[6] = {w.sxx[i], w.sxy[i], w.syy[i], w.lxx[i], w.lxy[i], w.lyy[i]};
+      for (int k = 0; k < 6; k++)
+        tau[k][id] = (k < 3 || fp.gradient_correction) ? t[k] : 0.0;
+    }
   }
   sph_force_work_free(&w);
   sph_nlist_free(&l);
   sph_grid_free(&g);
   sph_particles_free(&p);
+}
+
+static void run_loop(const sph_particles *p0, const sph_force_params *fp0, sph_force_loop loop,
+                     rates *o) {
+  run_loop_tau(p0, fp0, loop, o, NULL);
 }
 
 /* Whether field k is an output of the term set F. */
@@ -477,7 +487,10 @@ static void test_oracle_every_term_set(void) {
         const size_t bytes = n * sizeof(double);
         if (avx) CU_ASSERT(memcmp(r[1].f[k], r[2].f[k], bytes) == 0);    /* lane flavours */
         if (avx512) CU_ASSERT(memcmp(r[1].f[k], r[3].f[k], bytes) == 0); /* 8 lanes as 4 */
-        if ((F & (32 | 64)) || fp.free_slip || fp.mirror) /* the lanes defer to the scalar loop */
+        /* where the lanes defer to the scalar loop (but for the strain-rate pass of the
+         * stress, which runs in lanes unless h is per particle) */
+        const int strain_in_lanes = (F & 4) && !(F & 32);
+        if (((F & 32) || fp.free_slip || fp.mirror) && !strain_in_lanes)
           CU_ASSERT(memcmp(r[0].f[k], r[1].f[k], bytes) == 0);
       }
       for (int m = 0; m < 4; m++)
@@ -490,6 +503,70 @@ static void test_oracle_every_term_set(void) {
          "scalar %.2e, lanes %.2e, AVX2 lanes %.2e, AVX-512 lanes %.2e (tolerance %.0e)",
          worst[0], worst[1], worst[2], worst[3], TOL);
   CU_ASSERT(bad == 0);
+}
+
+/* The strain-rate pass (tau / rho^2 and the correction's L) in every lane
+ * flavour bitwise, and within TOL of the scalar pass, with and without the
+ * kernel-gradient correction, the wall particles' extrapolated velocities,
+ * periodicity, for both kernels, the stress tensor and SPS. */
+static void test_strain_rate_lanes(void) {
+  const int avx = sph_force_loop_available(SPH_LOOP_LANES_AVX);
+  const int avx512 = sph_force_loop_available(SPH_LOOP_LANES_AVX512);
+  const sph_force_loop loops[4] = {SPH_LOOP_SCALAR, SPH_LOOP_LANES, SPH_LOOP_LANES_AVX,
+                                   SPH_LOOP_LANES_AVX512};
+  double worst = 0.0;
+  unsigned cases = 0, bad = 0;
+  for (unsigned c = 0; c < 32; c++) {
+    const unsigned F = 4u | ((c & 1) ? 16u : 0u) | ((c & 16) ? 8u : 0u); /* 12: SPS */
+    sph_force_params fp;
+    params_for(F, c, &fp);
+    fp.free_slip = fp.mirror = 0;
+    fp.kernel = (c & 2) ? SPH_KERNEL_WENDLAND_C2 : SPH_KERNEL_CUBIC_SPLINE;
+    fp.gradient_correction = (c & 4) != 0;
+    fp.no_slip = (c & 8) != 0; /* the walls' extrapolated velocities (wall_velocity.h) */
+    sph_particles p;
+    make_set(&p, 1000 + c, fp.periodic, 0, 0, &fp.eos);
+    for (size_t k = 0; k < p.n; k++) /* no mirror particles without mirror walls */
+      if (p.kind[k] == SPH_KIND_MIRROR) p.kind[k] = SPH_KIND_WALL;
+    for (size_t k = 0; k < p.n; k++)
+      if (fp.no_slip && p.kind[k] == SPH_KIND_WALL) p.flags[k] |= SPH_FLAG_NO_SLIP;
+    const size_t n = p.n;
+    double *tau[4][6];
+    rates r[4];
+    for (int m = 0; m < 4; m++) {
+      rates_alloc(&r[m], n);
+      for (int k = 0; k < 6; k++)
+        tau[m][k] = calloc(n, sizeof(double));
+      if ((m == 2 && !avx) || (m == 3 && !avx512)) continue;
+      run_loop_tau(&p, &fp, loops[m], &r[m], tau[m]);
+    }
+    for (int k = 0; k < 6; k++) {
+      double d = 0.0, s = 0.0;
+      for (size_t i = 0; i < n; i++) {
+        d = fmax(d, fabs(tau[1][k][i] - tau[0][k][i]));
+        s = fmax(s, fabs(tau[0][k][i]));
+      }
+      const double e = s > 0.0 ? d / s : d;
+      worst = fmax(worst, e);
+      if (!(e <= TOL) && bad++ < 10) printf("\n  strain case %u: field %d off by %.3g", c, k, e);
+      const size_t bytes = n * sizeof(double);
+      if (avx) CU_ASSERT(memcmp(tau[1][k], tau[2][k], bytes) == 0);
+      if (avx512) CU_ASSERT(memcmp(tau[1][k], tau[3][k], bytes) == 0);
+    }
+    for (int m = 0; m < 4; m++) {
+      rates_free(&r[m]);
+      for (int k = 0; k < 6; k++)
+        free(tau[m][k]);
+    }
+    sph_particles_free(&p);
+    cases++;
+  }
+  printf("\n  %u strain-rate cases (correction, extrapolated wall velocities, periodic, both "
+         "kernels, SPS): lane flavours bitwise, worst relative difference from the scalar pass "
+         "%.2e (tolerance %.0e)",
+         cases, worst, TOL);
+  CU_ASSERT(bad == 0);
+  CU_ASSERT(worst > 0.0); /* the lane pass is not the scalar one */
 }
 
 /* ---- symmetry and flavour agreement of each term -------------------------------- */
@@ -771,6 +848,8 @@ int main(void) {
   CU_TestInfo tests[] = {
       {"the 256 term sets: scalar, lane, AVX2 and AVX-512 loops against the all-pairs oracle",
        test_oracle_every_term_set},
+      {"the strain-rate pass: lane flavours bitwise, the scalar pass within tolerance",
+       test_strain_rate_lanes},
       {"each term antisymmetric or symmetric in the pair, and bitwise in every lane",
        test_pair_symmetry},
       {"the AVX-512 operations bitwise v1 in every lane; the record transpose",

@@ -19,8 +19,10 @@
  *     the 3x3 cells, and the list outlives many passes (sim.c);
  *   - the fields a neighbour reads are packed in one 64-byte record per
  *     particle (sph_force_hot), refreshed at every pass;
- *   - the common variants (no per-particle h, no energy ledger) run the
- *     lane loop (interact_lanes.h), AVX2 where the processor has it;
+ *   - every variant but per-particle h, free-slip walls and mirror
+ *     particles runs the lane loop (interact_lanes.h), AVX-512 or AVX2
+ *     where the processor has it, the energy ledger included; so does the
+ *     strain-rate pass of the viscous stress (strain_lanes.h);
  *   - the step rule's max of c + sigma is reduced inside the pass.
  *
  * The viscous stress needs the strain rate of both particles of a pair, so
@@ -90,13 +92,6 @@ void sph_forces_pressure(sph_particles *p, const sph_eos *eos) {
 
 /* The neighbour row of i in the list l: j = nb[0], ..., nb[cnt - 1]. */
 /* ---- the strain-rate pass (paper A eq. 13-14) ------------------------------------ */
-
-/* Runtime options of the strain-rate pass (not bits of F: the loop is not
- * hot enough to need a variant each). */
-typedef struct strain_opts {
-  const double *gvx, *gvy; /* velocity of wall particles in the viscous terms, or NULL */
-  double *lxx, *lxy, *lyy; /* kernel-gradient correction L = M^-1 out, or NULL (off) */
-} strain_opts;
 
 static inline __attribute__((always_inline)) void
 strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
@@ -186,6 +181,31 @@ static void strain_list(const sph_particles *p, const sph_nlist *l, const sph_fo
   default: strain_all_48(p, l, fp, exx, exy, eyy, o); break;
   }
 }
+
+/* The strain-rate pass in a lane flavour over the main pass's cut-row
+ * buffers (prepare_pass), F a literal (0 or F_PERIODIC). */
+typedef void (*strain_fn)(const sph_particles *, const sph_nlist *, const sph_force_params *,
+                          sph_force_work *, double *, double *, double *, const strain_opts *);
+#define STRAIN_LANES(k, FL, ATTR)                                                                  \
+  ATTR void strain_##FL##_##k(const sph_particles *p, const sph_nlist *l,                          \
+                              const sph_force_params *fp, sph_force_work *w, double *exx,          \
+                              double *exy, double *eyy, const strain_opts *o) {                    \
+    const long n = (long)p->n;                                                                     \
+    _Pragma("omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)") for (long i = 0;       \
+                                                                                 i < n; i++)       \
+        strain_##FL(w->hot, l, fp, w->rows + (size_t)sph_thread() * w->rows_stride, (size_t)i, o,  \
+                    exx, exy, eyy, k);                                                             \
+  }
+STRAIN_LANES(0, v4e, static)
+STRAIN_LANES(16, v4e, static)
+#ifdef SPH_LANES_AVX
+STRAIN_LANES(0, v4x, static __attribute__((target("avx2"))))
+STRAIN_LANES(16, v4x, static __attribute__((target("avx2"))))
+#endif
+#ifdef SPH_LANES_AVX512
+STRAIN_LANES(0, v8z, static __attribute__((target("avx512f"))))
+STRAIN_LANES(16, v8z, static __attribute__((target("avx512f"))))
+#endif
 
 /* The kernel's reach: 2 h, or 2 max h with per-particle h. */
 static double kernel_reach(const sph_particles *p, const sph_force_params *fp) {
@@ -278,9 +298,9 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
     w->cs_sigma_max = mx;                                                                          \
   }
 
-/* The scalar loop for all 256 term sets; the lane loops only for the 64
- * sets without F_SCALAR_ONLY (bits 0-4 and 7: F = 0..31, 128..159), the
- * others fall back to the scalar loop (pick_variant). */
+/* The scalar loop for all 256 term sets; the lane loops only for the 128
+ * sets without F_SCALAR_ONLY (per-particle h: F = 0..31, 64..95, 128..159,
+ * 192..223), the others fall back to the scalar loop (pick_variant). */
 #define VARIANT_S(k) VARIANT_FL(k, v1, interact_scalar, static)
 #if defined(SPH_LANES_AVX512)
 #define VARIANT_L(k)                                                                               \
@@ -331,10 +351,18 @@ VARIANTS8(VARIANT_L, 0, 1, 2, 3, 4, 5, 6, 7)
 VARIANTS8(VARIANT_L, 8, 9, 10, 11, 12, 13, 14, 15)
 VARIANTS8(VARIANT_L, 16, 17, 18, 19, 20, 21, 22, 23)
 VARIANTS8(VARIANT_L, 24, 25, 26, 27, 28, 29, 30, 31)
+VARIANTS8(VARIANT_L, 64, 65, 66, 67, 68, 69, 70, 71)
+VARIANTS8(VARIANT_L, 72, 73, 74, 75, 76, 77, 78, 79)
+VARIANTS8(VARIANT_L, 80, 81, 82, 83, 84, 85, 86, 87)
+VARIANTS8(VARIANT_L, 88, 89, 90, 91, 92, 93, 94, 95)
 VARIANTS8(VARIANT_L, 128, 129, 130, 131, 132, 133, 134, 135)
 VARIANTS8(VARIANT_L, 136, 137, 138, 139, 140, 141, 142, 143)
 VARIANTS8(VARIANT_L, 144, 145, 146, 147, 148, 149, 150, 151)
 VARIANTS8(VARIANT_L, 152, 153, 154, 155, 156, 157, 158, 159)
+VARIANTS8(VARIANT_L, 192, 193, 194, 195, 196, 197, 198, 199)
+VARIANTS8(VARIANT_L, 200, 201, 202, 203, 204, 205, 206, 207)
+VARIANTS8(VARIANT_L, 208, 209, 210, 211, 212, 213, 214, 215)
+VARIANTS8(VARIANT_L, 216, 217, 218, 219, 220, 221, 222, 223)
 
 typedef void (*interact_fn)(sph_particles *, const sph_nlist *, const sph_force_params *,
                             sph_force_work *);
@@ -375,26 +403,34 @@ static const interact_fn VARIANT_TABLE_SCALAR[256] = {
     FN8(interact_scalar_, 240, 241, 242, 243, 244, 245, 246, 247),
     FN8(interact_scalar_, 248, 249, 250, 251, 252, 253, 254, 255),
 };
-/* A lane loop's 64 variants, in the order of lane_index(F). */
+/* A lane loop's 128 variants, in the order of lane_index(F). */
 #define LANE_TABLE(P)                                                                              \
   {                                                                                                \
     FN8(P, 0, 1, 2, 3, 4, 5, 6, 7), FN8(P, 8, 9, 10, 11, 12, 13, 14, 15),                          \
         FN8(P, 16, 17, 18, 19, 20, 21, 22, 23), FN8(P, 24, 25, 26, 27, 28, 29, 30, 31),            \
+        FN8(P, 64, 65, 66, 67, 68, 69, 70, 71), FN8(P, 72, 73, 74, 75, 76, 77, 78, 79),            \
+        FN8(P, 80, 81, 82, 83, 84, 85, 86, 87), FN8(P, 88, 89, 90, 91, 92, 93, 94, 95),            \
         FN8(P, 128, 129, 130, 131, 132, 133, 134, 135),                                            \
         FN8(P, 136, 137, 138, 139, 140, 141, 142, 143),                                            \
         FN8(P, 144, 145, 146, 147, 148, 149, 150, 151),                                            \
         FN8(P, 152, 153, 154, 155, 156, 157, 158, 159),                                            \
+        FN8(P, 192, 193, 194, 195, 196, 197, 198, 199),                                            \
+        FN8(P, 200, 201, 202, 203, 204, 205, 206, 207),                                            \
+        FN8(P, 208, 209, 210, 211, 212, 213, 214, 215),                                            \
+        FN8(P, 216, 217, 218, 219, 220, 221, 222, 223),                                            \
   }
-static const interact_fn VARIANT_TABLE[64] = LANE_TABLE(interact_all_);
+static const interact_fn VARIANT_TABLE[128] = LANE_TABLE(interact_all_);
 #ifdef SPH_LANES_AVX
-static const interact_fn VARIANT_TABLE_AVX[64] = LANE_TABLE(interact_avx_);
+static const interact_fn VARIANT_TABLE_AVX[128] = LANE_TABLE(interact_avx_);
 #endif
 #ifdef SPH_LANES_AVX512
-static const interact_fn VARIANT_TABLE_AVX512[64] = LANE_TABLE(interact_avx512_);
+static const interact_fn VARIANT_TABLE_AVX512[128] = LANE_TABLE(interact_avx512_);
 #endif
 
 /* The place of a term set without F_SCALAR_ONLY in a lane table. */
-static unsigned lane_index(unsigned F) { return (F & 31u) | ((F & F_DDIFF) ? 32u : 0u); }
+static unsigned lane_index(unsigned F) {
+  return (F & 31u) | ((F & F_LEDGER) ? 32u : 0u) | ((F & F_DDIFF) ? 64u : 0u);
+}
 
 #ifdef SPH_LANES_AVX
 /* Whether the processor has AVX2 (asked once). */
@@ -445,25 +481,36 @@ int sph_force_loop_available(sph_force_loop loop) {
   return 0;
 }
 
-/* The lane table of a lane loop that can run here (pick_variant checks);
+/* The lane flavour of a lane loop that can run here (pick_variant checks);
  * AUTO is the widest the processor has. */
-static const interact_fn *lane_table(sph_force_loop loop) {
+typedef enum { FLAVOUR_NONE, FLAVOUR_V4E, FLAVOUR_V4X, FLAVOUR_V8Z } lane_flavour;
+static lane_flavour flavour_of(sph_force_loop loop) {
   switch (loop) {
-  case SPH_LOOP_LANES: return VARIANT_TABLE;
-#ifdef SPH_LANES_AVX
-  case SPH_LOOP_LANES_AVX: return VARIANT_TABLE_AVX;
-#endif
-#ifdef SPH_LANES_AVX512
-  case SPH_LOOP_LANES_AVX512: return VARIANT_TABLE_AVX512;
-#endif
+  case SPH_LOOP_LANES: return FLAVOUR_V4E;
+  case SPH_LOOP_LANES_AVX: return FLAVOUR_V4X;
+  case SPH_LOOP_LANES_AVX512: return FLAVOUR_V8Z;
   case SPH_LOOP_AUTO:
 #ifdef SPH_LANES_AVX512
-    if (cpu_has_avx512()) return VARIANT_TABLE_AVX512;
+    if (cpu_has_avx512()) return FLAVOUR_V8Z;
 #endif
 #ifdef SPH_LANES_AVX
-    if (cpu_has_avx2()) return VARIANT_TABLE_AVX;
+    if (cpu_has_avx2()) return FLAVOUR_V4X;
 #endif
-    return VARIANT_TABLE;
+    return FLAVOUR_V4E;
+  default: return FLAVOUR_NONE;
+  }
+}
+
+/* The lane table of a lane loop that can run here. */
+static const interact_fn *lane_table(sph_force_loop loop) {
+  switch (flavour_of(loop)) {
+  case FLAVOUR_V4E: return VARIANT_TABLE;
+#ifdef SPH_LANES_AVX
+  case FLAVOUR_V4X: return VARIANT_TABLE_AVX;
+#endif
+#ifdef SPH_LANES_AVX512
+  case FLAVOUR_V8Z: return VARIANT_TABLE_AVX512;
+#endif
   default: return NULL;
   }
 }
@@ -471,13 +518,32 @@ static const interact_fn *lane_table(sph_force_loop loop) {
 /* The variant of the main pass for the term set F in the loop asked for:
  * SPH_LOOP_AUTO is the widest lanes the processor has (AVX-512, AVX2, else
  * the portable lanes; all give the same bits); each lane loop falls back to
- * the scalar loop for per-particle h and the energy ledger, and every loop
- * for free-slip walls (`scalar`). NULL if that loop cannot run here. */
+ * the scalar loop for per-particle h, and every loop for free-slip walls
+ * and mirror particles (`scalar`). NULL if that loop cannot run here. */
 static interact_fn pick_variant(unsigned F, sph_force_loop loop, int scalar) {
   if (!sph_force_loop_available(loop)) return NULL;
   if (scalar || loop == SPH_LOOP_SCALAR || (F & F_SCALAR_ONLY)) return VARIANT_TABLE_SCALAR[F];
   const interact_fn *table = lane_table(loop);
   return table ? table[lane_index(F)] : NULL;
+}
+
+/* The strain-rate pass's lane loop for fp: the flavour of the main pass's
+ * lane loop as fp->loop asks for it (also where the main pass runs the
+ * scalar loop for the walls), NULL for the scalar loop
+ * (asked for, or per-particle h). */
+static strain_fn strain_lanes(const sph_force_params *fp) {
+  if (fp->var_h || fp->loop == SPH_LOOP_SCALAR) return NULL;
+  const int per = fp->periodic;
+  switch (flavour_of(fp->loop)) {
+  case FLAVOUR_V4E: return per ? strain_v4e_16 : strain_v4e_0;
+#ifdef SPH_LANES_AVX
+  case FLAVOUR_V4X: return per ? strain_v4x_16 : strain_v4x_0;
+#endif
+#ifdef SPH_LANES_AVX512
+  case FLAVOUR_V8Z: return per ? strain_v8z_16 : strain_v8z_0;
+#endif
+  default: return NULL;
+  }
 }
 
 /* Per pass: the packed state of every particle (w->hot, w->cs), a cut-row
@@ -487,7 +553,7 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
                         sph_force_work *w, const unsigned F, sph_error *err) {
   const long n = (long)p->n;
   if (work_reserve(w, p->n, err)) return -1;
-  const int xsph = (F & F_XSPH) != 0;
+  const int fm = (F & (F_XSPH | F_LEDGER)) != 0; /* the lane loop reads the fluid masses */
 #pragma omp parallel if (n > SPH_OMP_MIN)
   {
     size_t lo, hi; /* the slices of the interaction loop */
@@ -497,7 +563,7 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
       w->cs[i] = cs;
       w->hot[i] = (sph_force_hot){
           p->x[i], p->y[i], p->vx[i], p->vy[i], rho, p->p[i] / (rho * rho), cs, p->mass[i]};
-      if (xsph) w->fm[i] = p->kind[i] == SPH_KIND_FLUID ? p->mass[i] : 0.0;
+      if (fm) w->fm[i] = p->kind[i] == SPH_KIND_FLUID ? p->mass[i] : 0.0;
     }
   }
   const size_t stride = (size_t)l->maxcount + 8, /* + padding lanes */
@@ -522,7 +588,11 @@ static int stress_pass(const sph_particles *p, const sph_nlist *l, const sph_for
   const long n = (long)p->n;
   strain_opts o;
   if (strain_setup(p, fp, w, &o, err)) return -1;
-  strain_list(p, l, fp, w->sxx, w->sxy, w->syy, &o);
+  const strain_fn lanes = strain_lanes(fp);
+  if (lanes)
+    lanes(p, l, fp, w, w->sxx, w->sxy, w->syy, &o);
+  else
+    strain_list(p, l, fp, w->sxx, w->sxy, w->syy, &o);
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
   for (long i = 0; i < n; i++) {
     const double rho = p->rho[i];

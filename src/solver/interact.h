@@ -8,13 +8,14 @@
  * use (DESIGN rule 4). Two loops evaluate the same terms of
  * src/physics/pair_terms.h:
  *   interact_one    the scalar loop, one pair after the other in row order:
- *                   every term set (the only one for per-particle h, the
- *                   energy ledger, whose wall particles also take heat, and
- *                   free-slip walls);
+ *                   every term set (the only one for per-particle h,
+ *                   free-slip walls and mirror particles);
  *   interact_FL     the lane loop, four pairs at a time (interact_lanes.h,
  *                   instantiated here for v4e and, on x86-64, v4x), or
  *                   eight at a time into the same four-lane sums (v8z,
  *                   AVX-512 on x86-64: the same bits as v4e and v4x).
+ * The strain-rate pass of the viscous stress has its lane loop here too
+ * (strain_FL, strain_lanes.h), over the same cut rows.
  * Each sum runs over the row in increasing storage index (the lane loop:
  * per lane, then (l0 + l1) + (l2 + l3)), so results do not depend on the
  * thread count, the schedule or the age of the neighbour list.
@@ -47,7 +48,7 @@ enum {
 };
 
 /* The lane loop serves the term sets without these (the scalar loop runs them). */
-#define F_SCALAR_ONLY (F_VARH | F_LEDGER)
+#define F_SCALAR_ONLY F_VARH
 
 /* The term set a pass with these parameters needs. */
 static inline unsigned sph_interact_terms(const sph_force_params *fp) {
@@ -62,6 +63,13 @@ static inline unsigned sph_interact_terms(const sph_force_params *fp) {
   if (fp->diffusion != SPH_DIFFUSION_NONE) F |= F_DDIFF;
   return F;
 }
+
+/* Runtime options of the strain-rate pass (forces.c, strain_lanes.h; not
+ * bits of F: the pass is light enough to test them once per particle). */
+typedef struct strain_opts {
+  const double *gvx, *gvy; /* velocity of wall particles in the viscous terms, or NULL */
+  double *lxx, *lxy, *lyy; /* kernel-gradient correction L = M^-1 out, or NULL (off) */
+} strain_opts;
 
 /* The neighbour row of i in the list l: j = row_[0], ..., row_[len_ - 1]. */
 #define ROW(l, i, row_, len_)                                                                      \
@@ -323,6 +331,7 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
 #define LHOT(g) LHOT_SET(g)
 #define LOOP_ATTR static inline __attribute__((always_inline))
 #include "solver/interact_lanes.h"
+#include "solver/strain_lanes.h"
 #undef LOOP_ATTR
 #undef LHOT
 #undef FL
@@ -337,6 +346,7 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
   }
 #define LOOP_ATTR static inline __attribute__((always_inline, target("avx2")))
 #include "solver/interact_lanes.h"
+#include "solver/strain_lanes.h"
 #undef LOOP_ATTR
 #undef LHOT
 #undef FL
@@ -386,6 +396,7 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
 #define FL v8z
 #define LOOP_ATTR static inline __attribute__((always_inline, target("avx512f")))
 #include "solver/interact_lanes.h"
+#include "solver/strain_lanes.h"
 #undef LOOP_ATTR
 #undef FL
 

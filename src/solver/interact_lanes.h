@@ -7,14 +7,21 @@
  * runner_doiact_functions_hydro.h); it defines interact_FL. No include
  * guard on purpose.
  *
- * It serves the term sets without per-particle h and the energy ledger
- * (those run interact_one, the scalar loop): the row is first cut to the
- * pairs inside the support (cut_row), padded to a multiple of the width
+ * It serves the term sets without per-particle h (those run interact_one,
+ * the scalar loop, as do free-slip walls and mirror particles): the row is
+ * first cut to the pairs inside the support (cut_row), padded to a multiple of the width
  * with its last pair, masked out; then each of four lanes takes entries k,
  * k + 4, ... and keeps its own partial sums, added as (l0 + l1) + (l2 + l3)
  * at the end: a fixed order, whatever the machine's vector width. The
  * terms are those of src/physics/pair_terms.h, evaluated pair for pair with
  * the operations of the scalar loop.
+ *
+ * With the energy ledger (F_LEDGER) the loop also sums each particle's
+ * half of the pairs' heat (a dynamic wall particle its half of the heat of
+ * its pairs with fluid), the power of wall particles' forces on fluid and
+ * the walls' force, as interact_one does: the neighbour's kind is read as
+ * a mask (fm_j > 0: fluid), a repulsive wall or mirror neighbour takes no
+ * heat (passive_heat; kind and flag read only where such walls exist).
  *
  * The eight-lane flavour (v8z, AVX-512) evaluates the pairs k .. k + 7 at
  * once and adds them into four-lane sums, first its lanes 0-3 (entries
@@ -46,6 +53,8 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   if (kind[i] == SPH_KIND_MIRROR || (p->flags[i] & SPH_FLAG_REPULSIVE)) {
     p->drho[i] = p->ax[i] = p->ay[i] = 0.0;
     w->sigma[i] = 0.0;
+    if (F & F_LEDGER) p->du[i] = w->wpow[i] = w->wfx[i] = w->wfy[i] = 0.0;
+    if ((F & F_DDIFF) && (F & F_LEDGER)) w->dd[i] = 0.0;
     return;
   }
   uint32_t *restrict nb = w->rows + (size_t)sph_thread() * w->rows_stride;
@@ -72,6 +81,10 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
 #undef E_LANE
   const LA azero = LAOP(all)(0.0);
   LA drho = azero, ax = azero, ay = azero, xs = azero, ys = azero, sig = azero, dd = azero;
+  LA du = azero, wpow = azero, wfx = azero, wfy = azero; /* energy and momentum ledger */
+  const uint8_t *restrict flags = p->flags;
+  /* neighbours that take no heat: repulsive wall particles and mirror particles */
+  const int passive = (F & F_LEDGER) && (fp->repulsive || fp->mirror);
   const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy, *restrict ddm = w->ddm;
   const int diffuses = (F & F_DDIFF) && ddm[i] != 0.0; /* not next to a wall (diffusion.h) */
   const double *restrict fm = w->fm;                   /* m_j of fluid j, 0 for the others */
@@ -111,7 +124,10 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     LACC(drho, LTERM(continuity)(mj, dvx, dvy, gx, gy));
     const LT vdotr = LOP(add)(LOP(mul)(dvx, dx), LOP(mul)(dvy, dy));
     LAMAX(sig, LOP(and)(in, LTERM(signal)(hh, vdotr, inv_r2)));
-    if (!fluid) continue; /* a wall particle needs no pair terms */
+    if (!fluid && !(F & F_LEDGER)) continue; /* a wall particle needs no pair terms */
+    /* with the ledger: m_j of fluid neighbours (0 for walls) as their kind */
+    const LT fmj = (F & (F_XSPH | F_LEDGER)) ? LSET(E_ARR, fm) : zero;
+    const LMASK fluid_j = LOP(lt)(zero, fmj);
     LT pij = LOP(add)(pri, GATHER(prho2));
     LT inv_rb = zero;
     if (F & (F_AV | F_XSPH)) inv_rb = LTERM(inv_rho_mean)(rhoi, GATHER(rho));
@@ -119,7 +135,10 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
       pij = LOP(add)(pij, LTERM(artificial_viscosity)(vdotr, hh, r2, eta2, ci, GATHER(cs), nalpha,
                                                       beta, inv_rb));
     LT pax, pay;
-    LTERM(pressure_force)(LOP(mul)(mj, pij), gx, gy, &pax, &pay);
+    const LT mp = LOP(mul)(mj, pij);
+    LTERM(pressure_force)(mp, gx, gy, &pax, &pay);
+    LT heat = zero; /* this particle's half of the pair's heat (energy ledger) */
+    if (F & F_LEDGER) heat = LTERM(pressure_heat)(mp, dvx, dvy, gx, gy);
     if (F & F_STRESS) {
       const LT txx = LOP(add)(LOP(all)(sxx[i]), LSET(E_ARR, sxx));
       const LT txy = LOP(add)(LOP(all)(sxy[i]), LSET(E_ARR, sxy));
@@ -128,16 +147,41 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
       LTERM(stress_force)(mj, txx, txy, tyy, gx, gy, &sx, &sy);
       pax = LOP(add)(pax, sx);
       pay = LOP(add)(pay, sy);
+      if (F & F_LEDGER)
+        heat = LOP(sub)(heat, LTERM(stress_heat)(mj, txx, txy, tyy, dvx, dvy, gx, gy));
     }
     if (F & F_MORRIS) {
       const LT c = LTERM(morris_factor)(mj, nu4, f, r2, rhoi, GATHER(rho), eta2);
       pax = LOP(add)(pax, LOP(mul)(c, dvx));
       pay = LOP(add)(pay, LOP(mul)(c, dvy));
+      if (F & F_LEDGER) heat = LOP(sub)(heat, LTERM(morris_heat)(c, dvx, dvy));
+    }
+    if (F & F_LEDGER) {
+      LT vwx = GATHER(vx), vwy = GATHER(vy); /* a wall neighbour's velocity */
+      if (passive) { /* a repulsive wall or mirror neighbour: i takes the whole heat */
+#define E_PAS(q, a)                                                                                \
+  ((kind[jk[q]] == SPH_KIND_MIRROR || (flags[jk[q]] & SPH_FLAG_REPULSIVE)) ? 1.0 : 0.0)
+#define E_WV(q, a) (kind[jk[q]] == SPH_KIND_WALL ? hot[jk[q]].a : 0.0) /* a mirror's: at rest */
+        const LMASK pas = LOP(lt)(zero, LSET(E_PAS, 0));
+        vwx = LSET(E_WV, vx);
+        vwy = LSET(E_WV, vy);
+#undef E_WV
+#undef E_PAS
+        heat = LOP(sel)(pas, LTERM(passive_heat)(pax, pay, vxi, vyi, vwx, vwy), heat);
+      }
+      /* a wall particle: its half of the heat of its pairs with fluid only */
+      LACC(du, fluid ? heat : LOP(and)(fluid_j, heat));
+      if (!fluid) continue;
+      /* the power of wall particles' forces on i, per unit mass of i, and
+       * the force of walls and mirror particles: external to the fluid */
+      const LT wx = LOP(sel)(fluid_j, zero, pax), wy = LOP(sel)(fluid_j, zero, pay);
+      LACC(wpow, LTERM(wall_power)(wx, wy, vwx, vwy));
+      LACC(wfx, wx);
+      LACC(wfy, wy);
     }
     LACC(ax, pax);
     LACC(ay, pay);
-    LT mx = zero; /* m_j of fluid neighbours, 0 for the others */
-    if (F & F_XSPH) mx = LSET(E_ARR, fm);
+    const LT mx = fmj;               /* m_j of fluid neighbours, 0 for the others */
     if ((F & F_DDIFF) && diffuses) { /* over the neighbours that diffuse (diffusion.h) */
       const LT rhoj = GATHER(rho);
       const LT cx = dd_uniform ? cxx : LOP(add)(cxi, LSET(E_ARR, ddcx));
@@ -160,7 +204,19 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   p->drho[i] = (lv[0] + lv[1]) + (lv[2] + lv[3]);
   if (F & F_DDIFF) { /* as the scalar loop: the scaled sum added last */
     LAOP(store)(lv, dd);
-    p->drho[i] += ((lv[0] + lv[1]) + (lv[2] + lv[3])) * diffusion_scale(fp, F);
+    const double dds = ((lv[0] + lv[1]) + (lv[2] + lv[3])) * diffusion_scale(fp, F);
+    p->drho[i] += dds;
+    if (F & F_LEDGER) w->dd[i] = dds;
+  }
+  if (F & F_LEDGER) {
+    LAOP(store)(lv, du);
+    p->du[i] = (lv[0] + lv[1]) + (lv[2] + lv[3]);
+    LAOP(store)(lv, wpow);
+    w->wpow[i] = (lv[0] + lv[1]) + (lv[2] + lv[3]);
+    LAOP(store)(lv, wfx);
+    w->wfx[i] = (lv[0] + lv[1]) + (lv[2] + lv[3]);
+    LAOP(store)(lv, wfy);
+    w->wfy[i] = (lv[0] + lv[1]) + (lv[2] + lv[3]);
   }
   LAOP(store)(lv, sig);
   const double s01 = lv[0] > lv[1] ? lv[0] : lv[1], s23 = lv[2] > lv[3] ? lv[2] : lv[3];
