@@ -19,8 +19,8 @@
  *     the 3x3 cells, and the list outlives many passes (sim.c);
  *   - the fields a neighbour reads are packed in one 64-byte record per
  *     particle (sph_force_hot), refreshed at every pass;
- *   - every variant but per-particle h, free-slip walls and mirror
- *     particles runs the lane loop (interact_lanes.h), AVX-512 or AVX2
+ *   - every variant but per-particle h and mirror particles runs the
+ *     lane loop (interact_lanes.h), AVX-512 or AVX2
  *     where the processor has it, the energy ledger included; so does the
  *     strain-rate pass of the viscous stress (strain_lanes.h);
  *   - the step rule's max of c + sigma is reduced inside the pass.
@@ -518,8 +518,8 @@ static const interact_fn *lane_table(sph_force_loop loop) {
 /* The variant of the main pass for the term set F in the loop asked for:
  * SPH_LOOP_AUTO is the widest lanes the processor has (AVX-512, AVX2, else
  * the portable lanes; all give the same bits); each lane loop falls back to
- * the scalar loop for per-particle h, and every loop for free-slip walls
- * and mirror particles (`scalar`). NULL if that loop cannot run here. */
+ * the scalar loop for per-particle h, and every loop for mirror particles
+ * (`scalar`). NULL if that loop cannot run here. */
 static interact_fn pick_variant(unsigned F, sph_force_loop loop, int scalar) {
   if (!sph_force_loop_available(loop)) return NULL;
   if (scalar || loop == SPH_LOOP_SCALAR || (F & F_SCALAR_ONLY)) return VARIANT_TABLE_SCALAR[F];
@@ -529,7 +529,7 @@ static interact_fn pick_variant(unsigned F, sph_force_loop loop, int scalar) {
 
 /* The strain-rate pass's lane loop for fp: the flavour of the main pass's
  * lane loop as fp->loop asks for it (also where the main pass runs the
- * scalar loop for the walls), NULL for the scalar loop
+ * scalar loop for mirror walls), NULL for the scalar loop
  * (asked for, or per-particle h). */
 static strain_fn strain_lanes(const sph_force_params *fp) {
   if (fp->var_h || fp->loop == SPH_LOOP_SCALAR) return NULL;
@@ -640,7 +640,7 @@ static void check_rates(const sph_particles *p, const sph_force_work *w, unsigne
 int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                         sph_force_work *w, sph_error *err) {
   const unsigned F = sph_interact_terms(fp);
-  const interact_fn run = pick_variant(F, fp->loop, fp->free_slip || fp->mirror);
+  const interact_fn run = pick_variant(F, fp->loop, fp->mirror);
   if (!run) return sph_error_set(err, "forces: the interaction loop asked for cannot run here");
   if (prepare_pass(p, l, fp, w, F, err)) return -1;
   if ((F & F_STRESS) && stress_pass(p, l, fp, w, err)) return -1;

@@ -8,8 +8,8 @@
  * use (DESIGN rule 4). Two loops evaluate the same terms of
  * src/physics/pair_terms.h:
  *   interact_one    the scalar loop, one pair after the other in row order:
- *                   every term set (the only one for per-particle h,
- *                   free-slip walls and mirror particles);
+ *                   every term set (the only one for per-particle h and
+ *                   mirror particles);
  *   interact_FL     the lane loop, four pairs at a time (interact_lanes.h,
  *                   instantiated here for v4e and, on x86-64, v4x), or
  *                   eight at a time into the same four-lane sums (v8z,

@@ -8,10 +8,9 @@
  * guard on purpose.
  *
  * It serves the term sets without per-particle h (those run interact_one,
- * the scalar loop, as do free-slip walls and mirror particles): the row is
- * first cut to the pairs inside the support (cut_row), padded to a multiple of the width
- * with its last pair, masked out; then each of four lanes takes entries k,
- * k + 4, ... and keeps its own partial sums, added as (l0 + l1) + (l2 + l3)
+ * the scalar loop, as do mirror particles): the row is first cut to the pairs inside the support
+ * (cut_row), padded to a multiple of the width with its last pair, masked out; then each of four
+ * lanes takes entries k, k + 4, ... and keeps its own partial sums, added as (l0 + l1) + (l2 + l3)
  * at the end: a fixed order, whatever the machine's vector width. The
  * terms are those of src/physics/pair_terms.h, evaluated pair for pair with
  * the operations of the scalar loop.
@@ -22,6 +21,9 @@
  * the walls' force, as interact_one does: the neighbour's kind is read as
  * a mask (fm_j > 0: fluid), a repulsive wall or mirror neighbour takes no
  * heat (passive_heat; kind and flag read only where such walls exist).
+ * On a free-slip wall the pressure and artificial-viscosity force of a
+ * fluid-wall pair act along the wall particle's normal (normal_part), as in
+ * interact_one; the wall flags are read only where such walls exist.
  *
  * The eight-lane flavour (v8z, AVX-512) evaluates the pairs k .. k + 7 at
  * once and adds them into four-lane sums, first its lanes 0-3 (entries
@@ -85,6 +87,9 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const uint8_t *restrict flags = p->flags;
   /* neighbours that take no heat: repulsive wall particles and mirror particles */
   const int passive = (F & F_LEDGER) && (fp->repulsive || fp->mirror);
+  /* free-slip walls: a predicted branch per iteration (i's own flag for a wall i) */
+  const int slip = fp->free_slip;
+  const int slip_i = slip && kind[i] == SPH_KIND_WALL && (flags[i] & SPH_FLAG_FREE_SLIP);
   const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy, *restrict ddm = w->ddm;
   const int diffuses = (F & F_DDIFF) && ddm[i] != 0.0; /* not next to a wall (diffusion.h) */
   const double *restrict fm = w->fm;                   /* m_j of fluid j, 0 for the others */
@@ -136,9 +141,28 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
                                                       beta, inv_rb));
     LT pax, pay;
     const LT mp = LOP(mul)(mj, pij);
-    LTERM(pressure_force)(mp, gx, gy, &pax, &pay);
+    LT pgx = gx, pgy = gy; /* the kernel gradient of the pressure and Pi_ij terms */
+    if (slip) {            /* a fluid-wall pair on a free-slip wall: its normal part */
+      LT ngx, ngy;
+      if (fluid) { /* the pair's wall particle is j (offsets of 1 where unused: finite) */
+#define E_FS(q, a)                                                                                 \
+  ((kind[jk[q]] == SPH_KIND_WALL && (flags[jk[q]] & SPH_FLAG_FREE_SLIP)) ? 1.0 : 0.0)
+#define E_M(q, arr) (E_FS(q, 0) != 0.0 ? arr[jk[q]] : 1.0)
+        const LMASK fs = LOP(lt)(zero, LSET(E_FS, 0));
+        LTERM(normal_part)(gx, gy, LSET(E_M, p->mx), LSET(E_M, p->my), &ngx, &ngy);
+#undef E_M
+#undef E_FS
+        pgx = LOP(sel)(fs, ngx, gx);
+        pgy = LOP(sel)(fs, ngy, gy);
+      } else if (slip_i) { /* i is the pair's wall particle */
+        LTERM(normal_part)(gx, gy, LOP(all)(p->mx[i]), LOP(all)(p->my[i]), &ngx, &ngy);
+        pgx = ngx;
+        pgy = ngy;
+      }
+    }
+    LTERM(pressure_force)(mp, pgx, pgy, &pax, &pay);
     LT heat = zero; /* this particle's half of the pair's heat (energy ledger) */
-    if (F & F_LEDGER) heat = LTERM(pressure_heat)(mp, dvx, dvy, gx, gy);
+    if (F & F_LEDGER) heat = LTERM(pressure_heat)(mp, dvx, dvy, pgx, pgy);
     if (F & F_STRESS) {
       const LT txx = LOP(add)(LOP(all)(sxx[i]), LSET(E_ARR, sxx));
       const LT txy = LOP(add)(LOP(all)(sxy[i]), LSET(E_ARR, sxy));
