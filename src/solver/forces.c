@@ -135,23 +135,8 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
       div += ux * gx + uy * gy;
     }
   }
-  if (correct) { /* grad v = G M^-1 where M is invertible (Bonet and Lok 1999) */
-    double axx, axy, ayy;
-    sph_gradient_correction(mxx, mxy, myy, &axx, &axy, &ayy);
-    o->lxx[i] = axx;
-    o->lxy[i] = axy;
-    o->lyy[i] = ayy;
-    const double cxx = gxx * axx + gxy * axy, cxy = gxx * axy + gxy * ayy;
-    const double cyx = gyx * axx + gyy * axy, cyy = gyx * axy + gyy * ayy;
-    sxx = 2.0 * cxx;
-    syy = 2.0 * cyy;
-    sxy = cyx + cxy;
-    div = cxx + cyy;
-  }
-  /* the deviatoric part as the paper writes it (its 2/3 is the 3-D factor) */
-  exx[i] = sxx - (2.0 / 3.0) * div;
-  eyy[i] = syy - (2.0 / 3.0) * div;
-  exy[i] = sxy;
+  const double sums[4] = {sxx, sxy, syy, div}, gm[7] = {gxx, gxy, gyx, gyy, mxx, mxy, myy};
+  strain_finish(o, i, sums, gm, exx, exy, eyy);
 }
 
 /* One function per variant, with F a literal inside the parallel region

@@ -71,6 +71,35 @@ typedef struct strain_opts {
   double *lxx, *lxy, *lyy; /* kernel-gradient correction L = M^-1 out, or NULL (off) */
 } strain_opts;
 
+/* The end of the strain-rate pass for particle i (strain_one in forces.c,
+ * strain_FL in strain_lanes.h), from its sums: without the correction
+ * s = (2 u_x g_x, u_y g_x + u_x g_y, 2 u_y g_y, u . g) over the row; with it
+ * G = (gxx, gxy, gyx, gyy) and the moment M = (mxx, mxy, myy), grad v =
+ * G M^-1 where M is invertible (Bonet and Lok 1999), L = M^-1 stored. Then
+ * eps_i, the deviatoric part as paper A writes it (its 2/3 is the 3-D
+ * factor). */
+static inline void strain_finish(const strain_opts *o, size_t i, const double s[4],
+                                 const double gm[7], double *exx, double *exy, double *eyy) {
+  double sxx = s[0], sxy = s[1], syy = s[2], div = s[3];
+  if (o->lxx) {
+    double axx, axy, ayy;
+    sph_gradient_correction(gm[4], gm[5], gm[6], &axx, &axy, &ayy);
+    o->lxx[i] = axx;
+    o->lxy[i] = axy;
+    o->lyy[i] = ayy;
+    const double gxx = gm[0], gxy = gm[1], gyx = gm[2], gyy = gm[3];
+    const double cxx = gxx * axx + gxy * axy, cxy = gxx * axy + gxy * ayy;
+    const double cyx = gyx * axx + gyy * axy, cyy = gyx * axy + gyy * ayy;
+    sxx = 2.0 * cxx;
+    syy = 2.0 * cyy;
+    sxy = cyx + cxy;
+    div = cxx + cyy;
+  }
+  exx[i] = sxx - (2.0 / 3.0) * div;
+  eyy[i] = syy - (2.0 / 3.0) * div;
+  exy[i] = sxy;
+}
+
 /* The neighbour row of i in the list l: j = row_[0], ..., row_[len_ - 1]. */
 #define ROW(l, i, row_, len_)                                                                      \
   const uint32_t *restrict row_ = (l)->nb + (l)->start[i];                                         \

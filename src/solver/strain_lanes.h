@@ -101,33 +101,17 @@ LOOP_ATTR void SPH_PT_XGLUE(strain,
   }
   double lv[4];
 #define LANES_SUM(s) (LAOP(store)(lv, s), (lv[0] + lv[1]) + (lv[2] + lv[3]))
-  double txx, txy, tyy, tdiv;
-  if (correct) { /* grad v = G M^-1 where M is invertible (Bonet and Lok 1999) */
-    const double cgxx = LANES_SUM(gxx), cgxy = LANES_SUM(gxy);
-    const double cgyx = LANES_SUM(gyx), cgyy = LANES_SUM(gyy);
-    const double cmxx = LANES_SUM(mxx), cmxy = LANES_SUM(mxy), cmyy = LANES_SUM(myy);
-    double axx, axy, ayy;
-    sph_gradient_correction(cmxx, cmxy, cmyy, &axx, &axy, &ayy);
-    o->lxx[i] = axx;
-    o->lxy[i] = axy;
-    o->lyy[i] = ayy;
-    const double cxx = cgxx * axx + cgxy * axy, cxy = cgxx * axy + cgxy * ayy;
-    const double cyx = cgyx * axx + cgyy * axy, cyy = cgyx * axy + cgyy * ayy;
-    txx = 2.0 * cxx;
-    tyy = 2.0 * cyy;
-    txy = cyx + cxy;
-    tdiv = cxx + cyy;
+  double sums[4] = {0.0, 0.0, 0.0, 0.0}, gm[7] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  if (correct) {
+    gm[0] = LANES_SUM(gxx), gm[1] = LANES_SUM(gxy), gm[2] = LANES_SUM(gyx);
+    gm[3] = LANES_SUM(gyy), gm[4] = LANES_SUM(mxx), gm[5] = LANES_SUM(mxy);
+    gm[6] = LANES_SUM(myy);
   } else {
-    txx = LANES_SUM(sxx);
-    tyy = LANES_SUM(syy);
-    txy = LANES_SUM(sxy);
-    tdiv = LANES_SUM(div);
+    sums[0] = LANES_SUM(sxx), sums[1] = LANES_SUM(sxy), sums[2] = LANES_SUM(syy);
+    sums[3] = LANES_SUM(div);
   }
 #undef LANES_SUM
-  /* the deviatoric part as strain_one writes it */
-  exx[i] = txx - (2.0 / 3.0) * tdiv;
-  eyy[i] = tyy - (2.0 / 3.0) * tdiv;
-  exy[i] = txy;
+  strain_finish(o, i, sums, gm, exx, exy, eyy);
 }
 
 #undef LTERM
