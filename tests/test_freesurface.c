@@ -13,8 +13,9 @@
  * touching arcs in every rotation, and a lattice whose
  * particles sit on cell edges at equal and tangent distances, in shuffled
  * storage orders and with 1..3 threads. Every configuration is detected
- * four ways, which must agree flag for flag: from the grid with the cheap
- * certificates, from the grid by the arc test alone (exact_only), and from
+ * five ways, which must agree flag for flag: from the grid with the cheap
+ * certificates, from the grid by the arc test alone (exact_only), with the
+ * interior certificate four neighbours at a time (AVX2) and one at a time, and from
  * the rows of a neighbour list without and with a skin. The certificates
  * are also tested alone, on random disc sets drawn at their edges.
  *
@@ -157,6 +158,14 @@ static size_t detect(const cloud *c, const size_t *order, double f, double cell,
   rc = sph_freesurface_detect_list(&p, &l, &fp, &n_list, &err);
   if (rc) fprintf(stderr, "detect_list: %s\n", err.msg);
   CU_ASSERT_FATAL(rc == 0);
+  for (size_t i = 0; i < p.n; i++)
+    differ += p.flags[i] != first[i];
+  /* the interior certificate one neighbour at a time (without AVX2) */
+  sph_freesurface_params one = fp;
+  one.scalar = 1;
+  size_t n_one = 0;
+  CU_ASSERT_FATAL(sph_freesurface_detect_list(&p, &l, &one, &n_one, &err) == 0);
+  CU_ASSERT_EQUAL(n_one, count);
   for (size_t i = 0; i < p.n; i++)
     differ += p.flags[i] != first[i];
   if (c->period <= 0.0 || c->period >= 3.0 * 1.5 * cell) {
@@ -944,6 +953,63 @@ static int lattice_neighbours(int top, double R, double *ox, double *oy, double 
   return n;
 }
 
+/* The interior certificate four candidates at a time (AVX2) gives the
+ * bits of the one-at-a-time scan on every set: random clouds, lattice
+ * points on the axes and diagonals (the cones' centres), points on the
+ * cones' edges |dy| = tan(22.5 deg) |dx| and at the wide bound d = 2 GAMMA R,
+ * across a periodic seam, with 0..40 candidates (so every tail length).
+ * The flags cannot see a permutation of the cones' bits (eight held cones
+ * stay eight): this compares the bits themselves. */
+static void test_cones_simd(void) {
+  enum { M = 40, NX = 2 * M };
+  double x[NX], y[NX];
+  uint32_t cand[M];
+  const double R = 1.3, t = 0.41421356237309505, w = 2.0 * 0.7071 * R;
+  unsigned sets = 0, bad = 0, full = 0;
+  for (unsigned s = 0; s < 4000; s++) {
+    const size_t m = s % (M + 1);
+    const double period = (s % 5 == 4) ? 6.0 : 0.0;
+    const double xi = period > 0.0 ? 0.3 * uniform() : 3.0, yi = 2.0;
+    for (size_t k = 0; k < m; k++) {
+      double dx, dy;
+      switch ((s + k) % 4) {
+      case 0: /* a random point within 2R */
+        dx = (2.0 * uniform() - 1.0) * 2.0 * R, dy = (2.0 * uniform() - 1.0) * 2.0 * R;
+        break;
+      case 1: /* a lattice neighbour */
+        dx = (double)((int)(3.0 * uniform()) - 1), dy = (double)((int)(3.0 * uniform()) - 1);
+        break;
+      case 2: /* on a cone's edge */
+        dx = (uniform() < 0.5 ? -1.0 : 1.0) * (0.5 + uniform());
+        dy = (uniform() < 0.5 ? -t : t) * dx;
+        if (uniform() < 0.5) {
+          const double u = dx;
+          dx = dy, dy = u;
+        }
+        break;
+      default: /* at the wide bound, on an axis or a diagonal */
+        dx = (uniform() < 0.5 ? -w : w) * (uniform() < 0.5 ? 1.0 : 0.7071067811865476);
+        dy = (uniform() < 0.5 ? 0.0 : dx);
+        break;
+      }
+      const size_t j = (k * 7 + s) % NX; /* candidates in scattered storage */
+      x[j] = period > 0.0 ? fmod(xi + dx + period, period) : xi + dx;
+      y[j] = yi + dy;
+      cand[k] = (uint32_t)j;
+    }
+    const unsigned a = sph_freesurface_cones_equal(x, y, cand, m, xi, yi, period, R, 1);
+    const unsigned b = sph_freesurface_cones_equal(x, y, cand, m, xi, yi, period, R, 0);
+    if (a != b && bad++ < 5) printf("\n  set %u: scalar cones %02x, four at a time %02x", s, a, b);
+    full += a == 0xFFu;
+    sets++;
+  }
+  printf("\n  %u candidate sets, %u with all eight cones held: the two scans agree bit for bit "
+         "(%u differ)",
+         sets, full, bad);
+  CU_ASSERT(bad == 0);
+  CU_ASSERT(full > 100 && full < sets - 100); /* both outcomes exercised */
+}
+
 static void test_certificates(void) {
   const double R = 1.3; /* h = 1.3 dx, dx = 1 */
   double ox[8], oy[8], rr[8];
@@ -1023,23 +1089,25 @@ int main(int argc, char **argv) {
       return 2;
     }
   }
-  CU_TestInfo tests[] = {{"disc rules", test_disc_rules},
-                         {"arc union: wrap-around, touching, gaps", test_arcs_basic},
-                         {"arc union: independent of order", test_arcs_order},
-                         {"arc union against sampling", test_arcs_random},
-                         {"square block: the outer ring", test_square_block},
-                         {"block with a hole: ring and rim", test_hole},
-                         {"walls cover, never flagged", test_walls},
-                         {"hexagonal lattice", test_hexagonal},
-                         {"isolated particle, pairs, coincident", test_isolated_and_pairs},
-                         {"touching arcs in every rotation", test_touching_rotations},
-                         {"touching arcs, exact in floating point", test_touching_exact},
-                         {"cell edges, tangent and coincident", test_degenerate_lattice},
-                         {"random cloud against brute force", test_random_cloud},
-                         {"the cheap certificates never contradict the arcs", test_certificates},
-                         {"periodic in x", test_periodic},
-                         {"errors", test_errors},
-                         {"h* = k h on the surface", test_apply_h},
-                         CU_TEST_INFO_NULL};
+  CU_TestInfo tests[] = {
+      {"disc rules", test_disc_rules},
+      {"arc union: wrap-around, touching, gaps", test_arcs_basic},
+      {"arc union: independent of order", test_arcs_order},
+      {"arc union against sampling", test_arcs_random},
+      {"square block: the outer ring", test_square_block},
+      {"block with a hole: ring and rim", test_hole},
+      {"walls cover, never flagged", test_walls},
+      {"hexagonal lattice", test_hexagonal},
+      {"isolated particle, pairs, coincident", test_isolated_and_pairs},
+      {"touching arcs in every rotation", test_touching_rotations},
+      {"touching arcs, exact in floating point", test_touching_exact},
+      {"cell edges, tangent and coincident", test_degenerate_lattice},
+      {"random cloud against brute force", test_random_cloud},
+      {"the cheap certificates never contradict the arcs", test_certificates},
+      {"the interior certificate four at a time: the bits of one at a time", test_cones_simd},
+      {"periodic in x", test_periodic},
+      {"errors", test_errors},
+      {"h* = k h on the surface", test_apply_h},
+      CU_TEST_INFO_NULL};
   return sph_test_main("freesurface", tests);
 }

@@ -184,6 +184,113 @@ int sph_freesurface_point_open(const double *dx, const double *dy, const double 
   return 1;
 }
 
+#if defined(__GNUC__) && defined(__x86_64__)
+#define SPH_FS_AVX2 1
+#include <immintrin.h>
+/* The interior certificate for equal radii (cone_held_equal over the
+ * candidates), four neighbours at a time with AVX2: the held cones' bits
+ * (0xFF as soon as all eight are held). Each lane forms d^2, |dy| <= t |dx|, ... with the scalar
+ * operations (no fused multiply-add), so every neighbour holds the cone it
+ * holds there; the held set is an OR, the same in any order, and so are
+ * the flags (test_freesurface runs both). The cone of a lane is picked by
+ * blends from the four tests (cone_of's table as selections). */
+__attribute__((target("avx2"))) static unsigned
+cones_held_equal_avx2(const double *restrict x, const double *restrict y,
+                      const uint32_t *restrict cand, size_t m, double xi, double yi, double period,
+                      double lo2, double hi2) {
+  const __m256d vxi = _mm256_set1_pd(xi), vyi = _mm256_set1_pd(yi);
+  const __m256d vlo = _mm256_set1_pd(lo2), vhi = _mm256_set1_pd(hi2);
+  const __m256d tan = _mm256_set1_pd(TAN_22_5), zero = _mm256_setzero_pd();
+  const __m256d sign = _mm256_set1_pd(-0.0);
+  const __m256d per = _mm256_set1_pd(period), hp = _mm256_set1_pd(0.5 * period);
+  const __m256d nhp = _mm256_set1_pd(-0.5 * period);
+#define CONE(c) _mm256_castsi256_pd(_mm256_set1_epi64x(c))
+  const __m256d c0 = CONE(0), c1 = CONE(1), c2 = CONE(2), c3 = CONE(3), c4 = CONE(4);
+  const __m256d c5 = CONE(5), c6 = CONE(6), c7 = CONE(7);
+#undef CONE
+  const __m256i one = _mm256_set1_epi64x(1);
+  __m256i acc = _mm256_setzero_si256();
+  unsigned held = 0;
+  size_t k = 0;
+  for (; k + 4 <= m; k += 4) {
+    const uint32_t j0 = cand[k], j1 = cand[k + 1], j2 = cand[k + 2], j3 = cand[k + 3];
+    __m256d dx = _mm256_sub_pd(_mm256_set_pd(x[j3], x[j2], x[j1], x[j0]), vxi);
+    if (period > 0.0) /* the minimum image, as sph_grid_min_image */
+      dx = _mm256_blendv_pd(
+          _mm256_blendv_pd(dx, _mm256_add_pd(dx, per), _mm256_cmp_pd(dx, nhp, _CMP_LT_OQ)),
+          _mm256_sub_pd(dx, per), _mm256_cmp_pd(dx, hp, _CMP_GT_OQ));
+    const __m256d dy = _mm256_sub_pd(_mm256_set_pd(y[j3], y[j2], y[j1], y[j0]), vyi);
+    const __m256d d2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+    const __m256d wide =
+        _mm256_and_pd(_mm256_cmp_pd(d2, vlo, _CMP_GE_OQ), _mm256_cmp_pd(d2, vhi, _CMP_LE_OQ));
+    const __m256d ax = _mm256_andnot_pd(sign, dx), ay = _mm256_andnot_pd(sign, dy);
+    const __m256d nx = _mm256_cmp_pd(ay, _mm256_mul_pd(tan, ax), _CMP_LE_OQ);
+    const __m256d ny = _mm256_cmp_pd(ax, _mm256_mul_pd(tan, ay), _CMP_LE_OQ);
+    const __m256d sx = _mm256_cmp_pd(dx, zero, _CMP_LT_OQ),
+                  sy = _mm256_cmp_pd(dy, zero, _CMP_LT_OQ);
+    /* cone_of: near the x axis 0 or 4 (by dx < 0), else near the y axis 2
+     * or 6 (by dy < 0), else the diagonals 1, 3, 7, 5 */
+    const __m256d diag =
+        _mm256_blendv_pd(_mm256_blendv_pd(c1, c7, sy), _mm256_blendv_pd(c3, c5, sy), sx);
+    const __m256d cone = _mm256_blendv_pd(_mm256_blendv_pd(diag, _mm256_blendv_pd(c2, c6, sy), ny),
+                                          _mm256_blendv_pd(c0, c4, sx), nx);
+    const __m256i bits = _mm256_sllv_epi64(one, _mm256_castpd_si256(cone));
+    acc = _mm256_or_si256(acc, _mm256_and_si256(bits, _mm256_castpd_si256(wide)));
+    const __m128i h2 = _mm_or_si128(_mm256_castsi256_si128(acc), _mm256_extracti128_si256(acc, 1));
+    held = (unsigned)_mm_cvtsi128_si64(_mm_or_si128(h2, _mm_unpackhi_epi64(h2, h2)));
+    if (held == 0xFFu) return held;
+  }
+  for (; k < m; k++) {
+    const size_t j = cand[k];
+    held |= cone_held_equal(sph_grid_min_image(x[j] - xi, period), y[j] - yi, lo2, hi2);
+  }
+  return held;
+}
+
+/* Whether the processor has AVX2 (asked once). */
+static int fs_has_avx2(void) {
+  static int value = -1;
+  int v = value;
+  if (v < 0) {
+    __builtin_cpu_init();
+    v = __builtin_cpu_supports("avx2") ? 1 : 0;
+    value = v;
+  }
+  return v;
+}
+#endif
+
+/* The interior certificate for equal radii over the candidates cand[]
+ * (positions x, y; particle i at xi, yi, radius ri): the held cones' bits,
+ * 0xFF as soon as all eight are held; four neighbours at a time if simd. */
+static unsigned cones_equal(const double *x, const double *y, const uint32_t *cand, size_t m,
+                            double xi, double yi, double period, double ri, int simd) {
+  const double lo2 = (D_MIN * D_MIN) * (ri * ri), hi2 = (4.0 * GAMMA * GAMMA) * (ri * ri);
+#ifdef SPH_FS_AVX2
+  if (simd) return cones_held_equal_avx2(x, y, cand, m, xi, yi, period, lo2, hi2);
+#else
+  (void)simd;
+#endif
+  unsigned held = 0;
+  for (size_t k = 0; k < m && held != 0xFFu; k++) {
+    const size_t j = cand[k];
+    held |= cone_held_equal(sph_grid_min_image(x[j] - xi, period), y[j] - yi, lo2, hi2);
+  }
+  return held;
+}
+
+unsigned sph_freesurface_cones_equal(const double *x, const double *y, const uint32_t *cand,
+                                     size_t m, double xi, double yi, double period, double ri,
+                                     int scalar) {
+#ifdef SPH_FS_AVX2
+  const int simd = !scalar && fs_has_avx2();
+#else
+  const int simd = 0;
+  (void)scalar;
+#endif
+  return cones_equal(x, y, cand, m, xi, yi, period, ri, simd);
+}
+
 /* ---- one particle ------------------------------------------------------------ */
 
 /* 1 if some arc of the circle of particle i is uncovered, over the m
@@ -191,18 +298,13 @@ int sph_freesurface_point_open(const double *dx, const double *dy, const double 
  * itself may be among them): the two certificates first, unless
  * exact_only, then the arc test. buf holds at least m arcs. */
 static int uncovered(const sph_particles *p, size_t i, const uint32_t *cand, size_t m, double f,
-                     double period, int exact_only, int equal_h, sph_arc *buf) {
+                     double period, int exact_only, int equal_h, int simd, sph_arc *buf) {
   const double xi = p->x[i], yi = p->y[i], ri = f * p->h[i];
   if (!exact_only) {
-    unsigned held = 0;
     if (equal_h) { /* every particle has this h: no radius to load */
-      const double lo2 = (D_MIN * D_MIN) * (ri * ri), hi2 = (4.0 * GAMMA * GAMMA) * (ri * ri);
-      for (size_t k = 0; k < m; k++) {
-        const size_t j = cand[k];
-        held |= cone_held_equal(sph_grid_min_image(p->x[j] - xi, period), p->y[j] - yi, lo2, hi2);
-        if (held == 0xFFu) return 0;
-      }
+      if (cones_equal(p->x, p->y, cand, m, xi, yi, period, ri, simd) == 0xFFu) return 0;
     } else {
+      unsigned held = 0;
       for (size_t k = 0; k < m; k++) {
         const size_t j = cand[k];
         held |= cone_held(sph_grid_min_image(p->x[j] - xi, period), p->y[j] - yi, ri, f * p->h[j]);
@@ -303,10 +405,17 @@ static int check_list(const sph_particles *p, const sph_nlist *l, double f, doub
 }
 
 /* The flags of every particle from the candidates the grid g (or, if g is
- * NULL, the list l) gives each; equal_h: every particle has the same h. */
+ * NULL, the list l) gives each; equal_h: every particle has the same h;
+ * scalar: the interior certificate one neighbour at a time even with AVX2. */
 static int detect(sph_particles *p, const sph_grid *g, const sph_nlist *l, double f, double period,
-                  int exact_only, int equal_h, size_t *count, sph_error *err) {
+                  int exact_only, int equal_h, int scalar, size_t *count, sph_error *err) {
   const long n = (long)p->n;
+#ifdef SPH_FS_AVX2
+  const int simd = !scalar && fs_has_avx2(); /* the interior certificate four at a time */
+#else
+  const int simd = 0;
+  (void)scalar;
+#endif
   size_t flagged = 0;
   int oom = 0;
 #pragma omp parallel if (n > SPH_OMP_MIN) reduction(+ : flagged) reduction(| : oom)
@@ -345,7 +454,7 @@ static int detect(sph_particles *p, const sph_grid *g, const sph_nlist *l, doubl
               for (size_t j = lo[k]; j < hi[k]; j++)
                 cand[m++] = (uint32_t)j;
           }
-          bit = uncovered(p, i, row, need, f, period, exact_only, equal_h, buf)
+          bit = uncovered(p, i, row, need, f, period, exact_only, equal_h, simd, buf)
                     ? SPH_FLAG_FREE_SURFACE
                     : 0u;
         }
@@ -372,7 +481,7 @@ static int detect_checked(sph_particles *p, const sph_grid *g, const sph_nlist *
   if (p->n == 0) return count ? (*count = 0, 0) : 0;
   if (g ? check_grid(p, g, f, period, hmax, err) : check_list(p, l, f, period, hmax, err))
     return -1;
-  return detect(p, g, l, f, period, fp->exact_only, hmin == hmax, count, err);
+  return detect(p, g, l, f, period, fp->exact_only, hmin == hmax, fp->scalar, count, err);
 }
 
 int sph_freesurface_detect(sph_particles *p, const sph_grid *g, const sph_freesurface_params *fp,

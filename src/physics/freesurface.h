@@ -71,11 +71,13 @@ typedef struct sph_freesurface_params {
   double period;        /* x period of a periodic grid (px1 - px0); 0 if the grid is not */
   int exact_only;       /* 1: the arc test on every particle, without the certificates (the
                            oracle of the tests; the flags are the same) */
+  int scalar;           /* 1: the interior certificate one neighbour at a time even where the
+                           processor has AVX2 (tests, SPH_TEST_LANES; the flags are the same) */
 } sph_freesurface_params;
 
 /* Paper A: the circle of radius h_i; not periodic. */
 #define SPH_FREESURFACE_DEFAULTS                                                                   \
-  { .radius_factor = 1.0, .period = 0.0, .exact_only = 0 }
+  { .radius_factor = 1.0, .period = 0.0, .exact_only = 0, .scalar = 0 }
 
 /* A closed arc [lo, hi] of a circle, angles in radians measured
  * counter-clockwise from +x. */
@@ -111,6 +113,15 @@ int sph_freesurface_arcs_cover(sph_arc *arcs, size_t n);
  * then the arcs leave a gap around it and arcs_cover is 0. Offsets closer
  * than 1e-3 ri, and radii more than a factor 1000 from ri, do not count
  * for cones_cover. */
+/* The interior certificate as detection runs it for equal radii ri: the
+ * candidates cand[0..m-1] of the positions x, y around (xi, yi) (x
+ * periodic with period > 0), the bits of the cones held (bit c: cone c,
+ * counter-clockwise from +x), 0xFF as soon as all eight are held; four
+ * candidates at a time where the processor has AVX2 unless scalar (the
+ * same bits; for the tests). */
+unsigned sph_freesurface_cones_equal(const double *x, const double *y, const uint32_t *cand,
+                                     size_t m, double xi, double yi, double period, double ri,
+                                     int scalar);
 int sph_freesurface_cones_cover(const double *dx, const double *dy, const double *rj, size_t n,
                                 double ri);
 int sph_freesurface_point_open(const double *dx, const double *dy, const double *rj, size_t n,

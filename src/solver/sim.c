@@ -62,10 +62,12 @@ static void update_h(sph_sim *s) {
  * variable h). */
 static int free_surface(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
-  const sph_freesurface_params fp = {.radius_factor = c->fs_radius_factor,
-                                     .period =
-                                         c->periodic ? c->periodic_x[1] - c->periodic_x[0] : 0.0,
-                                     .exact_only = 0};
+  const sph_freesurface_params fp = {
+      .radius_factor = c->fs_radius_factor,
+      .period = c->periodic ? c->periodic_x[1] - c->periodic_x[0] : 0.0,
+      .exact_only = 0,
+      /* the portable and scalar loops: no AVX2 here either */
+      .scalar = s->fp.loop == SPH_LOOP_SCALAR || s->fp.loop == SPH_LOOP_LANES};
   const int hstar = c->fs_h_factor > 0.0;
   if (hstar) sph_freesurface_apply_h(&s->p, c->h, 1.0);
   if (sph_freesurface_detect_list(&s->p, &s->nl, &fp, &s->n_surface, err)) return -1;
