@@ -166,6 +166,19 @@ SPH_LANE_INLINE void v4e_store(double *o, v4e a) {
 #define SPH_LANES_AVX 1
 #include <immintrin.h>
 #define SPH_AVX2 static inline __attribute__((always_inline, target("avx2")))
+
+/* Whether the processor has AVX2 (asked once per file that calls it; the
+ * same value whichever thread stores it). */
+static inline int sph_cpu_has_avx2(void) {
+  static int value = -1;
+  int v = value;
+  if (v < 0) {
+    __builtin_cpu_init();
+    v = __builtin_cpu_supports("avx2") ? 1 : 0;
+    value = v;
+  }
+  return v;
+}
 typedef __m256d v4x;
 typedef v4x v4x_mask;
 SPH_AVX2 v4x v4x_set(double a, double b, double c, double d) { return _mm256_set_pd(d, c, b, a); }
@@ -207,6 +220,19 @@ SPH_AVX2 void v4x_transpose8(const double *const r[4], v4x out[8]) {
  * width: vaddpd, ..., vmaxpd/vminpd (the maxpd/minpd rule), vcmppd LT_OS. */
 #define SPH_LANES_AVX512 1
 #define SPH_AVX512 static inline __attribute__((always_inline, target("avx512f")))
+
+/* Whether the processor has AVX-512F (asked once per file; valgrind's
+ * emulated processor says no). */
+static inline int sph_cpu_has_avx512(void) {
+  static int value = -1;
+  int v = value;
+  if (v < 0) {
+    __builtin_cpu_init();
+    v = __builtin_cpu_supports("avx512f") ? 1 : 0;
+    value = v;
+  }
+  return v;
+}
 typedef __m512d v8z;
 typedef __mmask8 v8z_mask;
 SPH_AVX512 v8z v8z_set(double a0, double a1, double a2, double a3, double a4, double a5, double a6,

@@ -33,6 +33,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "core/lanes.h"
 #include "physics/kernel.h"
 
 #define TWO_PI (2.0 * SPH_PI)
@@ -184,9 +185,7 @@ int sph_freesurface_point_open(const double *dx, const double *dy, const double 
   return 1;
 }
 
-#if defined(__GNUC__) && defined(__x86_64__)
-#define SPH_FS_AVX2 1
-#include <immintrin.h>
+#ifdef SPH_LANES_AVX
 /* The interior certificate for equal radii (cone_held_equal over the
  * candidates), four neighbours at a time with AVX2: the held cones' bits
  * (0xFF as soon as all eight are held). Each lane forms d^2, |dy| <= t |dx|, ... with the scalar
@@ -247,18 +246,18 @@ cones_held_equal_avx2(const double *restrict x, const double *restrict y,
   return held;
 }
 
-/* Whether the processor has AVX2 (asked once). */
-static int fs_has_avx2(void) {
-  static int value = -1;
-  int v = value;
-  if (v < 0) {
-    __builtin_cpu_init();
-    v = __builtin_cpu_supports("avx2") ? 1 : 0;
-    value = v;
-  }
-  return v;
-}
 #endif
+
+/* Whether the interior certificate runs four neighbours at a time: AVX2
+ * here, and not asked to scan one at a time. */
+static int use_simd(int scalar) {
+#ifdef SPH_LANES_AVX
+  return !scalar && sph_cpu_has_avx2();
+#else
+  (void)scalar;
+  return 0;
+#endif
+}
 
 /* The interior certificate for equal radii over the candidates cand[]
  * (positions x, y; particle i at xi, yi, radius ri): the held cones' bits,
@@ -266,7 +265,7 @@ static int fs_has_avx2(void) {
 static unsigned cones_equal(const double *x, const double *y, const uint32_t *cand, size_t m,
                             double xi, double yi, double period, double ri, int simd) {
   const double lo2 = (D_MIN * D_MIN) * (ri * ri), hi2 = (4.0 * GAMMA * GAMMA) * (ri * ri);
-#ifdef SPH_FS_AVX2
+#ifdef SPH_LANES_AVX
   if (simd) return cones_held_equal_avx2(x, y, cand, m, xi, yi, period, lo2, hi2);
 #else
   (void)simd;
@@ -282,13 +281,7 @@ static unsigned cones_equal(const double *x, const double *y, const uint32_t *ca
 unsigned sph_freesurface_cones_equal(const double *x, const double *y, const uint32_t *cand,
                                      size_t m, double xi, double yi, double period, double ri,
                                      int scalar) {
-#ifdef SPH_FS_AVX2
-  const int simd = !scalar && fs_has_avx2();
-#else
-  const int simd = 0;
-  (void)scalar;
-#endif
-  return cones_equal(x, y, cand, m, xi, yi, period, ri, simd);
+  return cones_equal(x, y, cand, m, xi, yi, period, ri, use_simd(scalar));
 }
 
 /* ---- one particle ------------------------------------------------------------ */
@@ -410,12 +403,7 @@ static int check_list(const sph_particles *p, const sph_nlist *l, double f, doub
 static int detect(sph_particles *p, const sph_grid *g, const sph_nlist *l, double f, double period,
                   int exact_only, int equal_h, int scalar, size_t *count, sph_error *err) {
   const long n = (long)p->n;
-#ifdef SPH_FS_AVX2
-  const int simd = !scalar && fs_has_avx2(); /* the interior certificate four at a time */
-#else
-  const int simd = 0;
-  (void)scalar;
-#endif
+  const int simd = use_simd(scalar); /* the interior certificate four at a time */
   size_t flagged = 0;
   int oom = 0;
 #pragma omp parallel if (n > SPH_OMP_MIN) reduction(+ : flagged) reduction(| : oom)

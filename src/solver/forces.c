@@ -417,34 +417,6 @@ static unsigned lane_index(unsigned F) {
   return (F & 31u) | ((F & F_LEDGER) ? 32u : 0u) | ((F & F_DDIFF) ? 64u : 0u);
 }
 
-#ifdef SPH_LANES_AVX
-/* Whether the processor has AVX2 (asked once). */
-static int cpu_has_avx2(void) {
-  static int value = -1;
-  int v = value;
-  if (v < 0) {
-    __builtin_cpu_init();
-    v = __builtin_cpu_supports("avx2") ? 1 : 0;
-    value = v; /* the same value whichever thread stores it */
-  }
-  return v;
-}
-#endif
-#ifdef SPH_LANES_AVX512
-/* Whether the processor has AVX-512F (asked once; valgrind's emulated
- * processor says no, so the AVX2 loop runs there). */
-static int cpu_has_avx512(void) {
-  static int value = -1;
-  int v = value;
-  if (v < 0) {
-    __builtin_cpu_init();
-    v = __builtin_cpu_supports("avx512f") ? 1 : 0;
-    value = v;
-  }
-  return v;
-}
-#endif
-
 int sph_force_loop_available(sph_force_loop loop) {
   switch (loop) {
   case SPH_LOOP_AUTO:
@@ -452,13 +424,13 @@ int sph_force_loop_available(sph_force_loop loop) {
   case SPH_LOOP_LANES: return 1;
   case SPH_LOOP_LANES_AVX:
 #ifdef SPH_LANES_AVX
-    return cpu_has_avx2();
+    return sph_cpu_has_avx2();
 #else
     return 0;
 #endif
   case SPH_LOOP_LANES_AVX512:
 #ifdef SPH_LANES_AVX512
-    return cpu_has_avx512();
+    return sph_cpu_has_avx512();
 #else
     return 0;
 #endif
@@ -476,10 +448,10 @@ static lane_flavour flavour_of(sph_force_loop loop) {
   case SPH_LOOP_LANES_AVX512: return FLAVOUR_V8Z;
   case SPH_LOOP_AUTO:
 #ifdef SPH_LANES_AVX512
-    if (cpu_has_avx512()) return FLAVOUR_V8Z;
+    if (sph_cpu_has_avx512()) return FLAVOUR_V8Z;
 #endif
 #ifdef SPH_LANES_AVX
-    if (cpu_has_avx2()) return FLAVOUR_V4X;
+    if (sph_cpu_has_avx2()) return FLAVOUR_V4X;
 #endif
     return FLAVOUR_V4E;
   default: return FLAVOUR_NONE;
