@@ -293,17 +293,18 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
       /* a mirror particle's no-slip velocity in the viscous terms */
       const int img = fp->mirror && p->kind[j] == SPH_KIND_MIRROR;
       const double ux = img ? p->vx[i] - p->vxh[j] : vx, uy = img ? p->vy[i] - p->vyh[j] : vy;
-      const double ur = ux * dx + uy * dy;
+      /* a free-slip wall: the pressure and Pi_ij along its normal (here the y
+       * axis), Pi_ij of the normal relative velocity */
+      const size_t b = fluid ? j : i;
+      const int slip =
+          fp->free_slip && p->kind[b] == SPH_KIND_WALL && (p->flags[b] & SPH_FLAG_FREE_SLIP);
+      const double ur = slip ? uy * dy : ux * dx + uy * dy;
       double P = p->p[i] / (rhoi * rhoi) + p->p[j] / (rhoj * rhoj);
       if ((fp->alpha != 0 || fp->beta != 0) && ur < 0) { /* A eq. 15-16 */
         const double eta = fp->eta * hij, mu = hij * ur / (r * r + eta * eta);
         const double cbar = 0.5 * (ci + sph_eos_sound_speed(&fp->eos, rhoj));
         P += (-fp->alpha * cbar * mu + fp->beta * mu * mu) / (0.5 * (rhoi + rhoj));
       }
-      /* a free-slip wall: the pressure and Pi_ij along its normal (here the y axis) */
-      const size_t b = fluid ? j : i;
-      const int slip =
-          fp->free_slip && p->kind[b] == SPH_KIND_WALL && (p->flags[b] & SPH_FLAG_FREE_SLIP);
       const double px = slip ? 0.0 : gx;
       double fx = -mj * P * px, fy = -mj * P * gy; /* A eq. 11 */
       du += 0.5 * mj * P * (vx * px + vy * gy);    /* A eq. 28 */
@@ -646,6 +647,11 @@ static void test_pair_symmetry(void) {
       normal_part_v1(hx, hy, mx, my, &ox, &oy);
       CU_ASSERT(same(nx, -ox) && same(ny, -oy));
       CU_ASSERT(fabs(nx * my - ny * mx) <= 1e-12 * (fabs(gx) + fabs(gy)) * (fabs(mx) + fabs(my)));
+      /* the normal relative velocity's v . r: symmetric, and blind to a slide along the wall */
+      CU_ASSERT(same(normal_vdotr_v1(dvx, dvy, dx, dy, mx, my),
+                     normal_vdotr_v1(evx, evy, ex, ey, mx, my)));
+      CU_ASSERT(fabs(normal_vdotr_v1(-my, mx, dx, dy, mx, my)) <=
+                1e-15 * (fabs(mx) + fabs(my)) * (fabs(dx) + fabs(dy)));
     }
     { /* the Lennard-Jones potential: zero at r0, its slope minus the force */
       const double r0 = 1.2 * h, e = 1e-6 * r;

@@ -77,6 +77,18 @@ PT_ATTR void PT(normal_part)(T gx, T gy, T mx, T my, T *ngx, T *ngy) {
   *ngy = MUL(s, my);
 }
 
+/* v_ij . r_ij as the artificial viscosity of a fluid-wall pair on a
+ * free-slip wall reads it: with v_ij's normal part only, (v' . r_ij) with
+ * v' = normal_part(v_ij). Its switch (mu_ij = 0 unless approaching) then
+ * answers whether the pair closes along the normal: the fluid sliding
+ * along the wall is neither pushed off it (the pairs ahead, approaching
+ * along the slide, would take Pi_ij > 0 and those behind none) nor braked. */
+PT_ATTR T PT(normal_vdotr)(T vx, T vy, T dx, T dy, T mx, T my) {
+  T nvx, nvy;
+  PT(normal_part)(vx, vy, mx, my, &nvx, &nvy);
+  return ADD(MUL(nvx, dx), MUL(nvy, dy));
+}
+
 /* The time-step rule's signal term, paper B §2.6: |h_ij v_ij . r_ij| / r^2. */
 PT_ATTR T PT(signal)(T hij, T vdotr, T inv_r2) { return MUL(ABS(MUL(hij, vdotr)), inv_r2); }
 

@@ -200,17 +200,18 @@ static inline __attribute__((always_inline)) void interact_one(sph_particles *re
     double pij = pri + qj->prho2;
     double inv_rb = 0.0;
     if (F & (F_AV | F_XSPH)) inv_rb = inv_rho_mean_v1(rhoi, qj->rho);
+    /* a fluid-wall pair on a free-slip wall: the pressure and Pi_ij along the
+     * normal, Pi_ij of the normal relative velocity (normal_vdotr) */
+    const size_t b = fluid ? j : i; /* the pair's wall particle, if any */
+    const int slip_pair = slip && kind[b] == SPH_KIND_WALL && (flags[b] & SPH_FLAG_FREE_SLIP);
     if (F & F_AV) {
       const double eta = eta_f * hij;
-      pij += artificial_viscosity_v1(vvdotr, hij, r2, eta * eta, ci, qj->cs, nalpha, beta, inv_rb);
+      const double avr = slip_pair ? normal_vdotr_v1(vvx, vvy, dx, dy, p->mx[b], p->my[b]) : vvdotr;
+      pij += artificial_viscosity_v1(avr, hij, r2, eta * eta, ci, qj->cs, nalpha, beta, inv_rb);
     }
     const double mp = mj * pij;
-    double pgx = gx, pgy = gy;        /* the kernel gradient of the pressure and Pi_ij terms */
-    if (slip) {                       /* a fluid-wall pair on a free-slip wall: its normal part */
-      const size_t b = fluid ? j : i; /* the pair's wall particle, if any */
-      if (kind[b] == SPH_KIND_WALL && (flags[b] & SPH_FLAG_FREE_SLIP))
-        normal_part_v1(gx, gy, p->mx[b], p->my[b], &pgx, &pgy);
-    }
+    double pgx = gx, pgy = gy; /* the kernel gradient of the pressure and Pi_ij terms */
+    if (slip_pair) normal_part_v1(gx, gy, p->mx[b], p->my[b], &pgx, &pgy);
     double pax, pay;
     pressure_force_v1(mp, pgx, pgy, &pax, &pay);
     double heat = 0.0; /* this particle's half of the pair's heat (energy ledger) */

@@ -136,30 +136,37 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     LT pij = LOP(add)(pri, GATHER(prho2));
     LT inv_rb = zero;
     if (F & (F_AV | F_XSPH)) inv_rb = LTERM(inv_rho_mean)(rhoi, GATHER(rho));
-    if (F & F_AV)
-      pij = LOP(add)(pij, LTERM(artificial_viscosity)(vdotr, hh, r2, eta2, ci, GATHER(cs), nalpha,
-                                                      beta, inv_rb));
-    LT pax, pay;
-    const LT mp = LOP(mul)(mj, pij);
-    LT pgx = gx, pgy = gy; /* the kernel gradient of the pressure and Pi_ij terms */
-    if (slip) {            /* a fluid-wall pair on a free-slip wall: its normal part */
-      LT ngx, ngy;
+    /* a fluid-wall pair on a free-slip wall: the pressure and Pi_ij along the
+     * wall particle's normal (normal_part), Pi_ij of the normal relative
+     * velocity (normal_vdotr); fs the lanes of such pairs */
+    LT pgx = gx, pgy = gy, avr = vdotr;
+    if (slip && (fluid || slip_i)) {
+      LT wmx, wmy, ngx, ngy;
+      LMASK fs;
       if (fluid) { /* the pair's wall particle is j (offsets of 1 where unused: finite) */
 #define E_FS(q, a)                                                                                 \
   ((kind[jk[q]] == SPH_KIND_WALL && (flags[jk[q]] & SPH_FLAG_FREE_SLIP)) ? 1.0 : 0.0)
 #define E_M(q, arr) (E_FS(q, 0) != 0.0 ? arr[jk[q]] : 1.0)
-        const LMASK fs = LOP(lt)(zero, LSET(E_FS, 0));
-        LTERM(normal_part)(gx, gy, LSET(E_M, p->mx), LSET(E_M, p->my), &ngx, &ngy);
+        fs = LOP(lt)(zero, LSET(E_FS, 0));
+        wmx = LSET(E_M, p->mx);
+        wmy = LSET(E_M, p->my);
 #undef E_M
 #undef E_FS
-        pgx = LOP(sel)(fs, ngx, gx);
-        pgy = LOP(sel)(fs, ngy, gy);
-      } else if (slip_i) { /* i is the pair's wall particle */
-        LTERM(normal_part)(gx, gy, LOP(all)(p->mx[i]), LOP(all)(p->my[i]), &ngx, &ngy);
-        pgx = ngx;
-        pgy = ngy;
+      } else { /* i is the pair's wall particle */
+        fs = LOP(lt)(zero, one);
+        wmx = LOP(all)(p->mx[i]);
+        wmy = LOP(all)(p->my[i]);
       }
+      LTERM(normal_part)(gx, gy, wmx, wmy, &ngx, &ngy);
+      pgx = LOP(sel)(fs, ngx, gx);
+      pgy = LOP(sel)(fs, ngy, gy);
+      if (F & F_AV) avr = LOP(sel)(fs, LTERM(normal_vdotr)(dvx, dvy, dx, dy, wmx, wmy), vdotr);
     }
+    if (F & F_AV)
+      pij = LOP(add)(pij, LTERM(artificial_viscosity)(avr, hh, r2, eta2, ci, GATHER(cs), nalpha,
+                                                      beta, inv_rb));
+    LT pax, pay;
+    const LT mp = LOP(mul)(mj, pij);
     LTERM(pressure_force)(mp, pgx, pgy, &pax, &pay);
     LT heat = zero; /* this particle's half of the pair's heat (energy ledger) */
     if (F & F_LEDGER) heat = LTERM(pressure_heat)(mp, dvx, dvy, pgx, pgy);
