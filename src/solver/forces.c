@@ -56,6 +56,8 @@
 void sph_force_work_free(sph_force_work *w) {
   free(w->block);
   free(w->rows);
+  free(w->keep);
+  free(w->keepn);
   sph_steal_free(&w->steal);
   sph_wall_velocity_work_free(&w->wv);
   *w = (sph_force_work){0};
@@ -167,8 +169,9 @@ static void strain_list(const sph_particles *p, const sph_nlist *l, const sph_fo
   }
 }
 
-/* The strain-rate pass in a lane flavour over the main pass's cut-row
- * buffers (prepare_pass), F a literal (0 or F_PERIODIC). */
+/* The strain-rate pass in a lane flavour, F a literal (0 or F_PERIODIC):
+ * each row cut into the kept rows (w->keep, keep_rows), which the main pass
+ * of the same evaluation then reads instead of cutting its rows again. */
 typedef void (*strain_fn)(const sph_particles *, const sph_nlist *, const sph_force_params *,
                           sph_force_work *, double *, double *, double *, const strain_opts *);
 #define STRAIN_LANES(k, FL, ATTR)                                                                  \
@@ -178,8 +181,9 @@ typedef void (*strain_fn)(const sph_particles *, const sph_nlist *, const sph_fo
     const long n = (long)p->n;                                                                     \
     _Pragma("omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)") for (long i = 0;       \
                                                                                  i < n; i++)       \
-        strain_##FL(w->hot, l, fp, w->rows + (size_t)sph_thread() * w->rows_stride, (size_t)i, o,  \
-                    exx, exy, eyy, k);                                                             \
+        strain_##FL(w->hot, l, fp, w->keep + l->start[i] + SPH_KEEP_PAD * (size_t)i, w->keepn + i, \
+                    (size_t)i, o, exx, exy, eyy, k);                                               \
+    w->keep_valid = 1;                                                                             \
   }
 STRAIN_LANES(0, v4e, static)
 STRAIN_LANES(16, v4e, static)
@@ -532,8 +536,31 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
     w->rows_cap = need;
   }
   w->rows_stride = stride;
+  w->keep_valid = 0;
   if (sph_steal_reset(&w->steal, l->cost, p->n, sph_team_size(p->n)))
     return sph_error_set(err, "forces: out of memory for the thread slices");
+  return 0;
+}
+
+/* Room for every particle's cut row, padded (w->keep, keepn): as much as
+ * the list holds plus SPH_KEEP_PAD entries per particle. */
+static int keep_rows(const sph_particles *p, const sph_nlist *l, sph_force_work *w,
+                     sph_error *err) {
+  const size_t need = l->start[p->n] + SPH_KEEP_PAD * p->n;
+  if (need > w->keep_cap) {
+    const size_t cap = need + need / 4;
+    uint32_t *a = realloc(w->keep, cap * sizeof *a);
+    if (!a) return sph_error_set(err, "forces: out of memory for the kept neighbour rows");
+    w->keep = a;
+    w->keep_cap = cap;
+  }
+  if (p->n > w->keepn_cap) {
+    const size_t cap = p->n + p->n / 4 + 16;
+    uint32_t *a = realloc(w->keepn, cap * sizeof *a);
+    if (!a) return sph_error_set(err, "forces: out of memory for the kept neighbour rows");
+    w->keepn = a;
+    w->keepn_cap = cap;
+  }
   return 0;
 }
 
@@ -546,6 +573,7 @@ static int stress_pass(const sph_particles *p, const sph_nlist *l, const sph_for
   strain_opts o;
   if (strain_setup(p, fp, w, &o, err)) return -1;
   const strain_fn lanes = strain_lanes(fp);
+  if (lanes && keep_rows(p, l, w, err)) return -1;
   if (lanes)
     lanes(p, l, fp, w, w->sxx, w->sxy, w->syy, &o);
   else

@@ -140,6 +140,9 @@ typedef struct sph_force_hot {
   double m;     /* mass */
 } sph_force_hot;
 
+/* Padding after each kept row: room for the widest lane loop's padding lanes. */
+#define SPH_KEEP_PAD 8
+
 /* Per-particle quantities of a pass (storage order). */
 typedef struct sph_force_work {
   size_t cap;
@@ -162,6 +165,12 @@ typedef struct sph_force_work {
   double cs_sigma_max; /* max over the particles of cs + sigma (the step rule) */
   uint32_t *rows;      /* per thread: a neighbour row cut to the support */
   size_t rows_stride, rows_cap;
+  /* With the stress tensor in lanes: every particle's row cut by the
+   * strain-rate pass, kept for the main pass of the same evaluation (row i
+   * at keep + start[i] + SPH_KEEP_PAD i, padded; keepn[i] pairs) */
+  uint32_t *keep, *keepn;
+  size_t keep_cap, keepn_cap;
+  int keep_valid;  /* set by the strain-rate pass, cleared by each new pass */
   sph_steal steal; /* the interaction loop's slices (parallel.h) */
 } sph_force_work;
 

@@ -59,10 +59,17 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     if ((F & F_DDIFF) && (F & F_LEDGER)) w->dd[i] = 0.0;
     return;
   }
-  uint32_t *restrict nb = w->rows + (size_t)sph_thread() * w->rows_stride;
-  const size_t cnt = cut_row(hot, l, fp, i, nb, F);
-  for (size_t k = cnt; k < cnt + LW - 1 && cnt > 0; k++)
-    nb[k] = nb[cnt - 1]; /* padding lanes */
+  uint32_t *restrict nb;
+  size_t cnt;
+  if ((F & F_STRESS) && w->keep_valid) { /* the strain-rate pass's cut row, padded */
+    nb = w->keep + l->start[i] + SPH_KEEP_PAD * i;
+    cnt = w->keepn[i];
+  } else {
+    nb = w->rows + (size_t)sph_thread() * w->rows_stride;
+    cnt = cut_row(hot, l, fp, i, nb, F);
+    for (size_t k = cnt; k < cnt + LW - 1 && cnt > 0; k++)
+      nb[k] = nb[cnt - 1]; /* padding lanes */
+  }
   const sph_force_hot qi = hot[i];
   const int fluid = kind[i] == SPH_KIND_FLUID;
   const double h0 = fp->h, inv_h0 = 1.0 / h0;

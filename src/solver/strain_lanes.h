@@ -30,11 +30,13 @@
 LOOP_ATTR void SPH_PT_XGLUE(strain,
                             FL)(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
                                 const sph_force_params *restrict fp, uint32_t *restrict nb,
-                                size_t i, const strain_opts *restrict o, double *restrict exx,
-                                double *restrict exy, double *restrict eyy, const unsigned F) {
+                                uint32_t *restrict nbn, size_t i, const strain_opts *restrict o,
+                                double *restrict exx, double *restrict exy, double *restrict eyy,
+                                const unsigned F) {
   const size_t cnt = cut_row(hot, l, fp, i, nb, F);
-  for (size_t k = cnt; k < cnt + LW - 1 && cnt > 0; k++)
-    nb[k] = nb[cnt - 1]; /* padding lanes */
+  for (size_t k = cnt; k < cnt + SPH_KEEP_PAD - 1 && cnt > 0; k++)
+    nb[k] = nb[cnt - 1]; /* padding lanes, for any lane loop that reads the row after */
+  *nbn = (uint32_t)cnt;
   const double *restrict gvx = o->gvx, *restrict gvy = o->gvy;
   const int ghosts = gvx != NULL, correct = o->lxx != NULL;
   const sph_force_hot qi = hot[i];
