@@ -9,7 +9,8 @@
  *
  * It serves the term sets without per-particle h (those run interact_one,
  * the scalar loop, as do mirror particles): the row is first cut to the pairs inside the support
- * (cut_row), padded to a multiple of the width with its last pair, masked out; then each of four
+ * (cut_row; with the stress terms the strain-rate pass has cut it already and kept it, w->keep),
+ * padded to a multiple of the width with its last pair, masked out; then each of four
  * lanes takes entries k, k + 4, ... and keeps its own partial sums, added as (l0 + l1) + (l2 + l3)
  * at the end: a fixed order, whatever the machine's vector width. The
  * terms are those of src/physics/pair_terms.h, evaluated pair for pair with
@@ -22,8 +23,9 @@
  * a mask (fm_j > 0: fluid), a repulsive wall or mirror neighbour takes no
  * heat (passive_heat; kind and flag read only where such walls exist).
  * On a free-slip wall the pressure and artificial-viscosity force of a
- * fluid-wall pair act along the wall particle's normal (normal_part), as in
- * interact_one; the wall flags are read only where such walls exist.
+ * fluid-wall pair act along the wall particle's normal (normal_part), and the
+ * artificial viscosity reads the normal relative velocity (normal_vdotr), as
+ * in interact_one; the wall flags are read only where such walls exist.
  *
  * The eight-lane flavour (v8z, AVX-512) evaluates the pairs k .. k + 7 at
  * once and adds them into four-lane sums, first its lanes 0-3 (entries
