@@ -57,7 +57,6 @@ void sph_force_work_free(sph_force_work *w) {
   free(w->block);
   free(w->rows);
   free(w->keep);
-  free(w->keepn);
   sph_steal_free(&w->steal);
   sph_wall_velocity_work_free(&w->wv);
   *w = (sph_force_work){0};
@@ -73,12 +72,13 @@ static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
                      (void **)&w->wfx,  (void **)&w->wfy,   (void **)&w->lxx, (void **)&w->lxy,
                      (void **)&w->lyy,  (void **)&w->gvx,   (void **)&w->gvy, (void **)&w->ddcx,
                      (void **)&w->ddcy, (void **)&w->dd,    (void **)&w->lj,  (void **)&w->ddm,
-                     (void **)&w->fm};
+                     (void **)&w->fm,   (void **)&w->keepn};
   enum { N_ARRAYS = sizeof arrays / sizeof arrays[0] };
   size_t size[N_ARRAYS];
   size[0] = sizeof *w->hot;
-  for (size_t k = 1; k < N_ARRAYS; k++)
+  for (size_t k = 1; k < N_ARRAYS - 1; k++)
     size[k] = sizeof(double);
+  size[N_ARRAYS - 1] = sizeof *w->keepn;
   if (sph_arrays_regrow(&w->block, cap, w->cap, N_ARRAYS, size, arrays))
     return sph_error_set(err, "forces: out of memory for %zu particles", n);
   w->cap = cap;
@@ -542,25 +542,18 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
   return 0;
 }
 
-/* Room for every particle's cut row, padded (w->keep, keepn): as much as
- * the list holds plus SPH_KEEP_PAD entries per particle. */
+/* Room for every particle's cut row, padded (w->keep; their lengths go to
+ * w->keepn, a per-particle array of work_reserve): as much as the list
+ * holds plus SPH_KEEP_PAD entries per particle. */
 static int keep_rows(const sph_particles *p, const sph_nlist *l, sph_force_work *w,
                      sph_error *err) {
   const size_t need = l->start[p->n] + SPH_KEEP_PAD * p->n;
-  if (need > w->keep_cap) {
-    const size_t cap = need + need / 4;
-    uint32_t *a = realloc(w->keep, cap * sizeof *a);
-    if (!a) return sph_error_set(err, "forces: out of memory for the kept neighbour rows");
-    w->keep = a;
-    w->keep_cap = cap;
-  }
-  if (p->n > w->keepn_cap) {
-    const size_t cap = p->n + p->n / 4 + 16;
-    uint32_t *a = realloc(w->keepn, cap * sizeof *a);
-    if (!a) return sph_error_set(err, "forces: out of memory for the kept neighbour rows");
-    w->keepn = a;
-    w->keepn_cap = cap;
-  }
+  if (need <= w->keep_cap) return 0;
+  const size_t cap = need + need / 4;
+  uint32_t *a = realloc(w->keep, cap * sizeof *a);
+  if (!a) return sph_error_set(err, "forces: out of memory for the kept neighbour rows");
+  w->keep = a;
+  w->keep_cap = cap;
   return 0;
 }
 

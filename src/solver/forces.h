@@ -159,6 +159,7 @@ typedef struct sph_force_work {
   double *ddcx, *ddcy;     /* density diffusion: the model's vector c_i (solver/diffusion.h) */
   double *ddm;             /* density diffusion: the mass a particle diffuses with (0: none) */
   double *fm;              /* XSPH: the mass of a fluid particle, 0 for the others */
+  uint32_t *keepn;         /* the pairs of each kept row (below) */
   double *dd;              /* density diffusion D_i of the last pass (fluid; with the ledger) */
   double *lj;              /* repulsive walls' potential energy per unit mass (with the ledger) */
   sph_wall_velocity_work wv;
@@ -168,8 +169,8 @@ typedef struct sph_force_work {
   /* With the stress tensor in lanes: every particle's row cut by the
    * strain-rate pass, kept for the main pass of the same evaluation (row i
    * at keep + start[i] + SPH_KEEP_PAD i, padded; keepn[i] pairs) */
-  uint32_t *keep, *keepn;
-  size_t keep_cap, keepn_cap;
+  uint32_t *keep;
+  size_t keep_cap;
   int keep_valid;  /* set by the strain-rate pass, cleared by each new pass */
   sph_steal steal; /* the interaction loop's slices (parallel.h) */
 } sph_force_work;
