@@ -33,6 +33,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include "core/particles.h"
 #include "neighbours/grid.h"
@@ -344,6 +346,75 @@ static void test_permute_carries_fields(void) {
   sph_particles_free(&p);
 }
 
+/* Pages of [a, a + bytes) resident in memory (mincore). */
+static size_t resident_pages(const void *a, size_t bytes) {
+  const size_t page = (size_t)sysconf(_SC_PAGESIZE);
+  const uintptr_t lo = (uintptr_t)a / page * page,
+                  hi = ((uintptr_t)a + bytes + page - 1) / page * page;
+  const size_t n = (hi - lo) / page;
+  unsigned char *v = malloc(n);
+  CU_ASSERT_FATAL(v != NULL);
+  CU_ASSERT_FATAL(mincore((void *)lo, hi - lo, v) == 0);
+  size_t r = 0;
+  for (size_t k = 0; k < n; k++)
+    r += v[k] & 1u;
+  free(v);
+  return r;
+}
+
+/* A store limited to the arrays in use (particles.h, SPH_ARRAYS_*): the
+ * other groups stay zero through growth and permutation, and their pages
+ * are never touched (out of the resident set); a group turned on later
+ * starts from zeros, the rest positions from the present ones, and is
+ * carried from then on. */
+static void test_unused_groups_untouched(void) {
+  enum { N = 200000 };
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 16, &err) == 0);
+  CU_ASSERT_EQUAL(p.live, SPH_ARRAYS_ALL); /* by default every group, as before */
+  CU_ASSERT_FATAL(sph_particles_limit(&p, 0) == 0);
+  for (int i = 0; i < N; i++) /* grows 14 times */
+    CU_ASSERT_FATAL(sph_particles_add(&p, i, -i, 0, 0, 1000, 1, 0.01, SPH_KIND_FLUID, &err) == i);
+  CU_ASSERT(sph_particles_limit(&p, SPH_ARRAYS_ALL) == -1); /* only while empty */
+  size_t *perm = malloc(N * sizeof *perm);
+  double *work = malloc(N * sizeof *work);
+  CU_ASSERT_FATAL(perm && work);
+  for (size_t i = 0; i < N; i++)
+    perm[i] = (size_t)N - 1 - i;
+  sph_particles_permute(&p, perm, work);
+  const size_t bytes = N * sizeof(double);
+  /* pages every one of which the store wrote */
+  CU_ASSERT(resident_pages(p.x, bytes) * (size_t)sysconf(_SC_PAGESIZE) >= bytes);
+  double *const unused[] = {p.u, p.u0, p.du, p.vxh, p.vyh, p.rhoh, p.uh, p.xr, p.yr, p.mx, p.my};
+  size_t touched = 0;
+  for (size_t k = 0; k < sizeof unused / sizeof *unused; k++)
+    touched += resident_pages(unused[k], bytes);
+  CU_ASSERT_EQUAL(touched, 0);
+  int ok = 1;
+  for (int i = 0; i < N; i++)
+    ok &= p.x[i] == N - 1 - i && p.id[i] == N - 1 - i;
+  CU_ASSERT(ok);
+  /* rest positions on: the present positions, then carried by a permutation */
+  sph_particles_use(&p, SPH_ARRAYS_REST | SPH_ARRAYS_HEAT);
+  CU_ASSERT_EQUAL(p.live, SPH_ARRAYS_REST | SPH_ARRAYS_HEAT);
+  for (size_t i = 0; i < N; i++) {
+    perm[i] = (size_t)N - 1 - i;
+    p.u[i] = 0.5 * (double)i;
+  }
+  sph_particles_permute(&p, perm, work);
+  ok = 1;
+  for (int i = 0; i < N; i++)
+    ok &= p.x[i] == i && p.xr[i] == i && p.yr[i] == -i && p.u[i] == 0.5 * (N - 1 - i);
+  CU_ASSERT(ok);
+  /* the groups still off are still untouched (not read here either: mincore
+   * counts a page read from the kernel's zero page as present) */
+  CU_ASSERT_EQUAL(resident_pages(p.vxh, bytes) + resident_pages(p.mx, bytes), 0);
+  free(perm);
+  free(work);
+  sph_particles_free(&p);
+}
+
 /* The list of p (built on a sorted or a binned grid) against brute force
  * with radius support + skin: same pairs, rows in increasing storage index,
  * stored compactly (each row as long as its count, no slot unused). */
@@ -545,6 +616,7 @@ int main(void) {
       {"counting sort: the same order on teams of 1 to 3 threads", test_sort_any_team},
       {"particles on cell edges and at exactly 2h", test_cell_edges},
       {"permutation carries every field", test_permute_carries_fields},
+      {"arrays a store does not use stay zero and untouched", test_unused_groups_untouched},
       {"periodic grid, period of exactly 3 cells, against brute force", test_periodic_three_cells},
       {"periodic grid, longer periods, against brute force", test_periodic_long},
       {"periodic grid refuses a period under 3 cells", test_periodic_too_short},

@@ -181,14 +181,14 @@ static void test_arrays_regrow(void) {
   void *block = NULL;
   void **const field[] = {(void **)&a, (void **)&b};
   const size_t size[] = {sizeof *a, sizeof *b};
-  CU_ASSERT_FATAL(sph_arrays_regrow(&block, 10, 0, 2, size, field) == 0);
+  CU_ASSERT_FATAL(sph_arrays_regrow(&block, 10, 0, 2, size, field, NULL) == 0);
   CU_ASSERT_PTR_NOT_NULL_FATAL(block);
   for (int i = 0; i < 10; i++) {
     a[i] = 0.5 * i;
     b[i] = -i;
   }
   void *old = block;
-  CU_ASSERT_FATAL(sph_arrays_regrow(&block, 1000, 10, 2, size, field) == 0);
+  CU_ASSERT_FATAL(sph_arrays_regrow(&block, 1000, 10, 2, size, field, NULL) == 0);
   CU_ASSERT(block != old);
   int kept = 1, zero = 1;
   for (int i = 0; i < 10; i++)
@@ -202,8 +202,16 @@ static void test_arrays_regrow(void) {
   /* out of memory: -1 and nothing changed */
   double *a0 = a;
   old = block;
-  CU_ASSERT(sph_arrays_regrow(&block, SIZE_MAX / 4, 10, 2, size, field) == -1);
+  CU_ASSERT(sph_arrays_regrow(&block, SIZE_MAX / 4, 10, 2, size, field, NULL) == -1);
   CU_ASSERT(block == old && a == a0 && a[9] == 4.5);
+  /* a skipped array is not copied: it comes zero, the other keeps its values */
+  const unsigned char skip[] = {0, 1};
+  CU_ASSERT_FATAL(sph_arrays_regrow(&block, 2000, 10, 2, size, field, skip) == 0);
+  kept = zero = 1;
+  for (int i = 0; i < 10; i++)
+    kept &= a[i] == 0.5 * i, zero &= b[i] == 0;
+  CU_ASSERT(kept);
+  CU_ASSERT(zero);
   free(block);
 }
 

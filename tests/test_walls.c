@@ -515,8 +515,39 @@ static void test_wall_through_fluid(void) {
   sph_case_free(&c);
 }
 
+/* Each case's store keeps only the optional arrays its scheme and walls use
+ * (particles.h, doc/memory.md): the shipped dam break none. */
+static void test_arrays_in_use(void) {
+  const struct {
+    const char *case_file, *set;
+    unsigned live;
+  } runs[] = {
+      {"cases/martin_moyce_coarse.yaml", NULL, 0},
+      {"cases/martin_moyce_coarse.yaml", "output.energy=true", SPH_ARRAYS_HEAT},
+      {"cases/martin_moyce_coarse.yaml", "numerics.integrator=leapfrog", SPH_ARRAYS_HALF_STEP},
+      {"cases/martin_moyce_coarse.yaml", "geometry.tank.boundary=mdbc", SPH_ARRAYS_OFFSET},
+      {"cases/martin_moyce_coarse.yaml",
+       "geometry.tank={x: [0.0, 0.2286], y: [0.0, 0.17145], boundary: mirror}",
+       SPH_ARRAYS_HALF_STEP},
+      {"tests/data/piston.yaml", "output.energy=false", SPH_ARRAYS_REST},
+  };
+  for (size_t k = 0; k < sizeof runs / sizeof *runs; k++) {
+    sph_case c;
+    sph_sim *s;
+    const char *sets[] = {runs[k].set};
+    CU_ASSERT_FATAL(sph_test_open_sim(runs[k].case_file, sets, runs[k].set ? 1 : 0, &c, &s) == 0);
+    const unsigned live = sph_sim_particles(s)->live;
+    printf("\n  %s%s%s: groups %u (expected %u)", runs[k].case_file, runs[k].set ? " with " : "",
+           runs[k].set ? runs[k].set : "", live, runs[k].live);
+    CU_ASSERT_EQUAL(live, runs[k].live);
+    sph_sim_free(s);
+    sph_case_free(&c);
+  }
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
+      {"each case keeps only the optional arrays it uses", test_arrays_in_use},
       {"a wall through the fluid: the fluid inside it is not made", test_wall_through_fluid},
       {"dynamic walls hold still water", test_dynamic},
       {"fixed_layers walls hold still water", test_fixed_layers},

@@ -44,14 +44,14 @@ void *sph_arrays_block(size_t cap, size_t count, const size_t *size, void **star
 }
 
 int sph_arrays_regrow(void **block, size_t cap, size_t keep, size_t count, const size_t *size,
-                      void **const *field) {
+                      void **const *field, const unsigned char *skip) {
   enum { MAX_ARRAYS = 64 };
   void *start[MAX_ARRAYS];
   if (count > MAX_ARRAYS) return -1;
   void *fresh = sph_arrays_block(cap, count, size, start);
   if (!fresh) return -1;
   for (size_t k = 0; k < count; k++) {
-    if (keep) memcpy(start[k], *field[k], keep * size[k]);
+    if (keep && !(skip && skip[k])) memcpy(start[k], *field[k], keep * size[k]);
     *field[k] = start[k];
   }
   free(*block);

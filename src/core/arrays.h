@@ -27,9 +27,11 @@ void *sph_arrays_block(size_t cap, size_t count, const size_t *size, void **star
 
 /* Moves a set of arrays to a new block of cap elements each: *field[k]
  * (size[k] bytes per element) points into the new block, with the first
- * `keep` elements copied from where it pointed; the old *block is freed
- * and replaced. Returns 0, or -1 when out of memory (nothing changed). */
+ * `keep` elements copied from where it pointed, unless skip (NULL for none)
+ * has skip[k] nonzero: such an array (one known to hold only zeros) is left
+ * zero and untouched in the new block. The old *block is freed and
+ * replaced. Returns 0, or -1 when out of memory (nothing changed). */
 int sph_arrays_regrow(void **block, size_t cap, size_t keep, size_t count, const size_t *size,
-                      void **const *field);
+                      void **const *field, const unsigned char *skip);
 
 #endif

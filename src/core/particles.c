@@ -19,34 +19,43 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Every array of the store, with its element size, for allocation and
- * permutation written once. */
+/* Every array of the store, with the group it belongs to (0: always
+ * live), for allocation and permutation written once. */
 /* (left as written: clang-format 14 does not settle on one layout of it) */
 /* clang-format off */
+#define HEAT SPH_ARRAYS_HEAT
+#define HALF SPH_ARRAYS_HALF_STEP
+#define REST SPH_ARRAYS_REST
+#define OFFSET SPH_ARRAYS_OFFSET
 #define SPH_PARTICLE_DOUBLES(X) \
-  X(x) X(y) X(vx) X(vy) X(rho) X(p) X(mass) X(h) X(u) \
-  X(x0) X(y0) X(vx0) X(vy0) X(rho0) X(u0) \
-  X(ax) X(ay) X(drho) X(du) X(xsx) X(xsy) \
-  X(vxh) X(vyh) X(rhoh) X(uh) X(xr) X(yr) X(mx) X(my)
+  X(x, 0) X(y, 0) X(vx, 0) X(vy, 0) X(rho, 0) X(p, 0) X(mass, 0) X(h, 0) X(u, HEAT) \
+  X(x0, 0) X(y0, 0) X(vx0, 0) X(vy0, 0) X(rho0, 0) X(u0, HEAT) \
+  X(ax, 0) X(ay, 0) X(drho, 0) X(du, HEAT) X(xsx, 0) X(xsy, 0) \
+  X(vxh, HALF) X(vyh, HALF) X(rhoh, HALF) X(uh, HALF) X(xr, REST) X(yr, REST) \
+  X(mx, OFFSET) X(my, OFFSET)
 /* clang-format on */
-#define SPH_PARTICLE_OTHERS(X) X(kind) X(body) X(id) X(flags)
-#define SPH_PARTICLE_ONE(f) +1
+#define SPH_PARTICLE_OTHERS(X) X(kind, 0) X(body, 0) X(id, 0) X(flags, 0)
+#define SPH_PARTICLE_ONE(f, g) +1
 enum {
   SPH_PARTICLE_ARRAYS =
       0 SPH_PARTICLE_DOUBLES(SPH_PARTICLE_ONE) SPH_PARTICLE_OTHERS(SPH_PARTICLE_ONE)
 };
 
+/* Whether an array of group g is in use. */
+static inline int live(const sph_particles *p, unsigned g) { return !g || (p->live & g); }
+
 /* The block of arrays is reallocated whole (arrays.h: staggered starts) and
- * the first p->cap entries of every array copied over. */
+ * the first p->cap entries of every live array copied over. */
 static int grow(sph_particles *p, size_t cap, sph_error *err) {
   size_t size[SPH_PARTICLE_ARRAYS];
   void **field[SPH_PARTICLE_ARRAYS];
+  unsigned char skip[SPH_PARTICLE_ARRAYS];
   size_t k = 0;
-#define LIST(f) size[k] = sizeof *p->f, field[k++] = (void **)&p->f;
+#define LIST(f, g) size[k] = sizeof *p->f, skip[k] = !live(p, g), field[k++] = (void **)&p->f;
   SPH_PARTICLE_DOUBLES(LIST)
   SPH_PARTICLE_OTHERS(LIST)
 #undef LIST
-  if (sph_arrays_regrow(&p->block, cap, p->cap, k, size, field))
+  if (sph_arrays_regrow(&p->block, cap, p->cap, k, size, field, skip))
     return sph_error_set(err, "out of memory for %zu particles", cap);
   p->cap = cap;
   return 0;
@@ -54,6 +63,7 @@ static int grow(sph_particles *p, size_t cap, sph_error *err) {
 
 int sph_particles_init(sph_particles *p, size_t cap, sph_error *err) {
   memset(p, 0, sizeof *p);
+  p->live = SPH_ARRAYS_ALL;
   if (cap < 16) cap = 16;
   if (grow(p, cap, err)) {
     sph_particles_free(p);
@@ -74,15 +84,33 @@ long sph_particles_add(sph_particles *p, double x, double y, double vx, double v
   p->p[i] = 0.0;
   p->mass[i] = mass;
   p->h[i] = h;
-  p->u[i] = 0.0;
+  if (p->live & SPH_ARRAYS_HEAT) p->u[i] = 0.0;
   p->kind[i] = kind;
   p->body[i] = -1;
-  p->xr[i] = x;
-  p->yr[i] = y;
-  p->mx[i] = p->my[i] = 0.0;
+  if (p->live & SPH_ARRAYS_REST) {
+    p->xr[i] = x;
+    p->yr[i] = y;
+  }
+  if (p->live & SPH_ARRAYS_OFFSET) p->mx[i] = p->my[i] = 0.0;
   p->id[i] = (int64_t)i;
   p->flags[i] = 0;
   return (long)i;
+}
+
+int sph_particles_limit(sph_particles *p, unsigned groups) {
+  if (p->n) return -1;
+  p->live = groups & SPH_ARRAYS_ALL;
+  return 0;
+}
+
+void sph_particles_use(sph_particles *p, unsigned groups) {
+  const unsigned on = groups & SPH_ARRAYS_ALL & ~p->live;
+  if (on & SPH_ARRAYS_REST)
+    for (size_t i = 0; i < p->n; i++) {
+      p->xr[i] = p->x[i];
+      p->yr[i] = p->y[i];
+    }
+  p->live |= on;
 }
 
 void sph_particles_free(sph_particles *p) {
@@ -102,8 +130,8 @@ void sph_particles_permute(sph_particles *p, const size_t *perm, void *work) {
   if (n == 0) return;
   const long ln = (long)n;
   /* one parallel region; each field's gather and copy-back split by index */
-#define PERMUTE(field)                                                                             \
-  {                                                                                                \
+#define PERMUTE(field, g)                                                                          \
+  if (live(p, g)) {                                                                                \
     __typeof__(p->field) tmp = work;                                                               \
     _Pragma("omp for schedule(static)") for (long i = 0; i < ln; i++) tmp[i] = p->field[perm[i]];  \
     _Pragma("omp for schedule(static)") for (long i = 0; i < ln; i++) p->field[i] = tmp[i];        \
@@ -115,3 +143,7 @@ void sph_particles_permute(sph_particles *p, const size_t *perm, void *work) {
   }
 #undef PERMUTE
 }
+#undef HEAT
+#undef HALF
+#undef REST
+#undef OFFSET

@@ -37,10 +37,25 @@ enum {
                              viscosity pair forces act along the wall's normal (pair_terms.h) */
 };
 
+/* Groups of arrays a case may not use (doc/memory.md). Until a group is
+ * live its arrays hold zeros, nothing writes them, and they are neither
+ * copied when the store grows nor permuted when it is sorted: their pages
+ * stay out of the resident set. Code that writes a group turns it on first
+ * (sph_particles_use). */
+enum {
+  SPH_ARRAYS_HEAT = 1,      /* u, u0, du: the energy ledger's heat */
+  SPH_ARRAYS_HALF_STEP = 2, /* vxh, vyh, rhoh, uh: the leap-frog's half step; the velocity
+                               mirror particles carry */
+  SPH_ARRAYS_REST = 4,      /* xr, yr: the rest positions of moving walls' particles */
+  SPH_ARRAYS_OFFSET = 8,    /* mx, my: offsets of mdbc, no-slip and free-slip wall particles */
+  SPH_ARRAYS_ALL = 15
+};
+
 typedef struct sph_particles {
-  size_t n;    /* particles in use */
-  size_t cap;  /* allocated length of every array */
-  void *block; /* the one allocation holding every array (particles.c) */
+  size_t n;      /* particles in use */
+  size_t cap;    /* allocated length of every array */
+  void *block;   /* the one allocation holding every array (particles.c) */
+  unsigned live; /* SPH_ARRAYS_* groups in use; the others hold zeros */
   /* state */
   double *x, *y;   /* position (m) */
   double *vx, *vy; /* velocity (m/s) */
@@ -63,8 +78,16 @@ typedef struct sph_particles {
                                     wall face (src/walls/wall_velocity.h) */
 } sph_particles;
 
-/* Allocates room for cap particles (all arrays zeroed); n = 0. */
+/* Allocates room for cap particles (all arrays zeroed); n = 0; every
+ * group live. */
 int sph_particles_init(sph_particles *p, size_t cap, sph_error *err);
+/* Declares, while the store is empty (n = 0), the only groups in use so
+ * far; returns -1 (nothing changed) once particles exist. */
+int sph_particles_limit(sph_particles *p, unsigned groups);
+/* Turns groups on: a group that was off starts from zeros, except the
+ * rest positions, which start at the present positions (as if set when
+ * each particle was made). */
+void sph_particles_use(sph_particles *p, unsigned groups);
 /* Appends one particle (state arrays set, rates zero); grows if needed.
  * Returns its storage index, or -1 (with err) on allocation failure. */
 long sph_particles_add(sph_particles *p, double x, double y, double vx, double vy, double rho,

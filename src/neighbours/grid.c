@@ -42,7 +42,7 @@ static int reserve(sph_grid *g, size_t n, size_t cells, sph_error *err) {
     void **const arrays[] = {(void **)&g->cx, (void **)&g->cy, (void **)&g->key, (void **)&g->perm,
                              &g->work};
     const size_t size[] = {sizeof *g->cx, sizeof *g->cy, sizeof *g->key, sizeof *g->perm, 8};
-    if (sph_arrays_regrow(&g->block, cap, 0, 5, size, arrays))
+    if (sph_arrays_regrow(&g->block, cap, 0, 5, size, arrays, NULL))
       return sph_error_set(err, "grid: out of memory for %zu particles", n);
     g->cap_particles = cap;
   }
@@ -294,7 +294,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
                              (void **)&l->yref,  (void **)&l->idref, (void **)&l->cost};
     const size_t size[] = {sizeof *l->start, sizeof *l->count, sizeof *l->xref,
                            sizeof *l->yref,  sizeof *l->idref, sizeof *l->cost};
-    if (sph_arrays_regrow(&l->block, cap, 0, 6, size, arrays))
+    if (sph_arrays_regrow(&l->block, cap, 0, 6, size, arrays, NULL))
       return sph_error_set(err, "grid: out of memory for the neighbour list of %zu particles", n);
     l->cap_n = cap;
   }

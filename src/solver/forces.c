@@ -79,7 +79,7 @@ static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
   for (size_t k = 1; k < N_ARRAYS - 1; k++)
     size[k] = sizeof(double);
   size[N_ARRAYS - 1] = sizeof *w->keepn;
-  if (sph_arrays_regrow(&w->block, cap, w->cap, N_ARRAYS, size, arrays))
+  if (sph_arrays_regrow(&w->block, cap, w->cap, N_ARRAYS, size, arrays, NULL))
     return sph_error_set(err, "forces: out of memory for %zu particles", n);
   w->cap = cap;
   return 0;

@@ -22,6 +22,7 @@ static inline __attribute__((always_inline)) void stage(sph_particles *p, double
                                                         const int save, const int finish) {
   const long n = (long)p->n;
   const double hdt = 0.5 * dt;
+  const int heat = (p->live & SPH_ARRAYS_HEAT) != 0; /* without the ledger u stays 0 */
 #pragma omp parallel if (n > SPH_OMP_MIN)
   {
     size_t lo, hi;
@@ -33,16 +34,16 @@ static inline __attribute__((always_inline)) void stage(sph_particles *p, double
         p->vx0[i] = p->vx[i];
         p->vy0[i] = p->vy[i];
         p->rho0[i] = p->rho[i];
-        p->u0[i] = p->u[i];
+        if (heat) p->u0[i] = p->u[i];
       }
       double rho = p->rho0[i] + hdt * p->drho[i];
-      double u = p->u0[i] + hdt * p->du[i];
-      if (finish) {
-        rho = 2.0 * rho - p->rho0[i];
-        u = 2.0 * u - p->u0[i];
-      }
+      if (finish) rho = 2.0 * rho - p->rho0[i];
       p->rho[i] = rho;
-      p->u[i] = u;
+      if (heat) {
+        double u = p->u0[i] + hdt * p->du[i];
+        if (finish) u = 2.0 * u - p->u0[i];
+        p->u[i] = u;
+      }
       p->p[i] = sph_eos_pressure(eos, rho);
       if (p->kind[i] != SPH_KIND_FLUID) continue;
       double ux = p->vx[i], uy = p->vy[i]; /* dr/dt uses the velocity of the evaluated state */
@@ -77,6 +78,7 @@ void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const s
                        const size_t *cost) {
   const long n = (long)p->n;
   const double kick = first ? 0.5 * dt : dt, hdt = 0.5 * dt;
+  const int heat = (p->live & SPH_ARRAYS_HEAT) != 0; /* without the ledger u stays 0 */
 #pragma omp parallel if (n > SPH_OMP_MIN)
   {
     size_t lo, hi;
@@ -87,14 +89,16 @@ void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const s
       p->vx0[i] = p->vx[i];
       p->vy0[i] = p->vy[i];
       p->rho0[i] = p->rho[i];
-      p->u0[i] = p->u[i];
       const double rh = (first ? p->rho[i] : p->rhoh[i]) + kick * p->drho[i];
       p->rhoh[i] = rh;
       p->rho[i] = rh + hdt * p->drho[i];
       p->p[i] = sph_eos_pressure(eos, p->rho[i]);
-      const double uh = (first ? p->u[i] : p->uh[i]) + kick * p->du[i];
-      p->uh[i] = uh;
-      p->u[i] = uh + hdt * p->du[i];
+      if (heat) {
+        p->u0[i] = p->u[i];
+        const double uh = (first ? p->u[i] : p->uh[i]) + kick * p->du[i];
+        p->uh[i] = uh;
+        p->u[i] = uh + hdt * p->du[i];
+      }
       if (p->kind[i] != SPH_KIND_FLUID) continue;
       const double vxh = (first ? p->vx[i] : p->vxh[i]) + kick * p->ax[i];
       const double vyh = (first ? p->vy[i] : p->vyh[i]) + kick * p->ay[i];

@@ -125,9 +125,9 @@ static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particl
     p->rho[k] = q->rho[i];
     p->p[k] = q->p[i];
     p->h[k] = q->h[i];
-    p->u[k] = q->u[i];
+    if (p->live & SPH_ARRAYS_HEAT) p->u[k] = q->u[i];
     p->flags[k] = (uint8_t)((p->flags[k] & ~SPH_FLAG_FREE_SURFACE) | (q->flags[i] & 1u));
-    if (rd->vxh) {
+    if (rd->vxh && (p->live & SPH_ARRAYS_HALF_STEP)) {
       p->vxh[k] = rd->vxh[k];
       p->vyh[k] = rd->vyh[k];
       p->rhoh[k] = rd->rhoh[k];

@@ -79,10 +79,14 @@ static void move_particle(sph_particles *p, size_t to, size_t from) {
   p->kind[to] = p->kind[from];
   p->flags[to] = p->flags[from];
   p->body[to] = p->body[from];
-  p->xr[to] = p->xr[from];
-  p->yr[to] = p->yr[from];
-  p->mx[to] = p->mx[from];
-  p->my[to] = p->my[from];
+  if (p->live & SPH_ARRAYS_REST) {
+    p->xr[to] = p->xr[from];
+    p->yr[to] = p->yr[from];
+  }
+  if (p->live & SPH_ARRAYS_OFFSET) {
+    p->mx[to] = p->mx[from];
+    p->my[to] = p->my[from];
+  }
 }
 
 /* Walls drawn through fluid (issue 21, D5), by a documented rule
@@ -179,7 +183,7 @@ static void dedupe_periodic(sph_sim *s) {
             (fabs(p->x[j] - p->x[i]) < tol || fabs(fabs(p->x[j] - p->x[i]) - L) < tol);
     if (dup) continue;
     if (kept != i) move_particle(p, kept, i);
-    p->xr[kept] = p->x[kept]; /* the rest position is the wrapped one */
+    if (p->live & SPH_ARRAYS_REST) p->xr[kept] = p->x[kept]; /* the rest position: wrapped */
     p->id[kept] = (int64_t)kept;
     kept++;
   }
@@ -303,6 +307,11 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   if (c->variable_h) s->fp.var_h = 1;
   s->fp.loop = sph_test_loop();
   if (sph_particles_init(&s->p, 1024, err)) goto fail;
+  /* the optional arrays the scheme needs from the start; the walls turn on
+   * what theirs need (doc/memory.md) */
+  const unsigned heat = c->energy ? SPH_ARRAYS_HEAT : 0u;
+  const unsigned half = c->integrator == SPH_INTEGRATOR_LEAPFROG ? SPH_ARRAYS_HALF_STEP : 0u;
+  sph_particles_limit(&s->p, heat | half);
   if (add_fluid(s, err)) goto fail;
   if (sph_walls_create(&s->walls, &s->p, &c->tank, c->walls, c->n_walls, c->dx, c->rho0, c->h,
                        SPH_CUBIC_SUPPORT * c->h * (c->fs_h_factor > 1.0 ? c->fs_h_factor : 1.0),

@@ -38,8 +38,13 @@ int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, 
       const long idx = sph_particles_add(p, x, y, 0.0, 0.0, rho, mass, h, SPH_KIND_WALL, err);
       if (idx < 0) return -1;
       p->flags[idx] = flags;
-      p->mx[idx] = -2.0 * depth * nx;
-      p->my[idx] = -2.0 * depth * ny;
+      /* the offsets' readers: mdbc, no-slip and free-slip walls */
+      if (flags & (SPH_FLAG_NO_SLIP | SPH_FLAG_MDBC | SPH_FLAG_FREE_SLIP))
+        sph_particles_use(p, SPH_ARRAYS_OFFSET);
+      if (p->live & SPH_ARRAYS_OFFSET) {
+        p->mx[idx] = -2.0 * depth * nx;
+        p->my[idx] = -2.0 * depth * ny;
+      }
     }
   }
   return 0;
@@ -111,6 +116,7 @@ long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lin
                     double rho0, sph_error *err) {
   const size_t n = p->n;
   long added = 0;
+  sph_particles_use(p, SPH_ARRAYS_HALF_STEP); /* the images' no-slip velocity */
   for (size_t i = 0; i < n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     int near[SPH_MIRROR_MAX_LINES], nn = 0;

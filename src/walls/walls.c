@@ -73,6 +73,7 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
       return -1;
     if (ws->motion.kind != SPH_MOTION_NONE) {
       w->moving = 1;
+      sph_particles_use(p, SPH_ARRAYS_REST);
       for (size_t i = first; i < p->n; i++)
         p->body[i] = (int32_t)k;
     }
