@@ -171,9 +171,10 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
   }
   const double fx = periodic ? floor((px1 - px0) / cell) : floor((xmax - xmin) / cell) + 1.0;
   const double fy = floor((ymax - ymin) / cell) + 1.0;
-  if (fx * fy > (double)max_cells)
-    return sph_error_set(err, "grid: particles spread over %.0f x %.0f cells (limit %zu)", fx, fy,
-                         max_cells);
+  if (fx * fy > (double)max_cells || fx > INT32_MAX || fy > INT32_MAX)
+    return sph_error_set(
+        err, "grid: particles spread over %.0f x %.0f cells (limit %zu, and 2^31 - 1 a side)", fx,
+        fy, max_cells);
   g->transposed = transposed;
   g->x0 = xmin;
   g->y0 = ymin;
@@ -203,8 +204,8 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
 #pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN)
   for (long i = 0; i < ln; i++) {
     const size_t k = p ? key[perm[i]] : key[i];
-    g->cx[i] = (long)(k % nx);
-    g->cy[i] = (long)(k / nx);
+    g->cx[i] = (int32_t)(k % nx);
+    g->cy[i] = (int32_t)(k / nx);
   }
   g->sorted = p != NULL;
   if (SPH_DEBUG) {

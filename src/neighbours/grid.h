@@ -22,17 +22,18 @@
 #include "core/particles.h"
 
 typedef struct sph_grid {
-  int transposed; /* rows run along y (a box wider than tall, not periodic):
-                     below, read x as y and y as x */
-  double x0, y0;  /* lower-left corner of cell (0, 0) */
-  double cell;    /* cell side (rows); columns are cellx wide */
-  double cellx;   /* column width: = cell, or period/nx when periodic in x */
-  int periodic;   /* columns wrap around (periodic in x) */
-  int sorted;     /* the store is in cell order (sph_grid_build*); 0 after
-                     sph_grid_bin: cell c holds perm[start[c]] .. perm[start[c+1]-1] */
-  long nx, ny;    /* cells per row, rows */
-  size_t *start;  /* nx*ny + 1 offsets into the sorted store */
-  long *cx, *cy;  /* cell coordinates of the particle at each storage index */
+  int transposed;   /* rows run along y (a box wider than tall, not periodic):
+                       below, read x as y and y as x */
+  double x0, y0;    /* lower-left corner of cell (0, 0) */
+  double cell;      /* cell side (rows); columns are cellx wide */
+  double cellx;     /* column width: = cell, or period/nx when periodic in x */
+  int periodic;     /* columns wrap around (periodic in x) */
+  int sorted;       /* the store is in cell order (sph_grid_build*); 0 after
+                       sph_grid_bin: cell c holds perm[start[c]] .. perm[start[c+1]-1] */
+  long nx, ny;      /* cells per row, rows */
+  size_t *start;    /* nx*ny + 1 offsets into the sorted store */
+  int32_t *cx, *cy; /* cell coordinates of the particle at each storage index (nx, ny
+                       below 2^31: the build checks) */
   size_t cap_cells, cap_particles;
   size_t *key, *perm, *count; /* scratch */
   size_t *hist, cap_hist;     /* scratch: one count per cell per thread */
