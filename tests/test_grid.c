@@ -323,6 +323,29 @@ static void test_periodic_too_short(void) {
   sph_particles_free(&p);
 }
 
+/* Cell coordinates are 32-bit: a grid of 2^31 cells or more along a side
+ * is refused before anything is allocated, however many cells are
+ * allowed; one just under the bound in cells is not refused for its side. */
+static void test_grid_side_bound(void) {
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 16, &err) == 0);
+  sph_particles_add(&p, 0.0, 0.0, 0, 0, 1000, 1, 0.1, SPH_KIND_FLUID, &err);
+  sph_particles_add(&p, 2147483648.0, 0.0, 0, 0, 1000, 1, 0.1, SPH_KIND_FLUID, &err);
+  sph_grid g;
+  sph_grid_init(&g);
+  err.msg[0] = 0;
+  CU_ASSERT(sph_grid_build(&g, &p, 1.0, SIZE_MAX, &err) != 0); /* 2^31 + 1 cells a side */
+  CU_ASSERT(strstr(err.msg, "2^31 - 1 a side") != NULL);
+  CU_ASSERT(g.nx == 0);  /* nothing built */
+  p.x[1] = 2147483645.0; /* 2^31 - 2 cells: within the side's bound, over max_cells */
+  err.msg[0] = 0;
+  CU_ASSERT(sph_grid_build(&g, &p, 1.0, 1u << 20, &err) != 0);
+  CU_ASSERT(strstr(err.msg, "limit 1048576") != NULL);
+  sph_grid_free(&g);
+  sph_particles_free(&p);
+}
+
 static void test_permute_carries_fields(void) {
   sph_particles p;
   sph_error err;
@@ -615,6 +638,7 @@ int main(void) {
       {"grid neighbours equal brute force (random sets)", test_random_sets},
       {"counting sort: the same order on teams of 1 to 3 threads", test_sort_any_team},
       {"particles on cell edges and at exactly 2h", test_cell_edges},
+      {"a grid of 2^31 cells a side is refused", test_grid_side_bound},
       {"permutation carries every field", test_permute_carries_fields},
       {"arrays a store does not use stay zero and untouched", test_unused_groups_untouched},
       {"periodic grid, period of exactly 3 cells, against brute force", test_periodic_three_cells},
