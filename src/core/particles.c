@@ -113,6 +113,14 @@ void sph_particles_use(sph_particles *p, unsigned groups) {
   p->live |= on;
 }
 
+void sph_particles_move(sph_particles *p, size_t to, size_t from) {
+#define MOVE(field, g)                                                                             \
+  if (live(p, g)) p->field[to] = p->field[from];
+  SPH_PARTICLE_DOUBLES(MOVE)
+  SPH_PARTICLE_OTHERS(MOVE)
+#undef MOVE
+}
+
 void sph_particles_free(sph_particles *p) {
   free(p->block);
   memset(p, 0, sizeof *p);

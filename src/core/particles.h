@@ -92,6 +92,9 @@ void sph_particles_use(sph_particles *p, unsigned groups);
  * Returns its storage index, or -1 (with err) on allocation failure. */
 long sph_particles_add(sph_particles *p, double x, double y, double vx, double vy, double rho,
                        double mass, double h, int32_t kind, sph_error *err);
+/* Copies particle `from` to storage index `to`: every live array (id
+ * included: renumber after, if the ids must stay 0..n-1). */
+void sph_particles_move(sph_particles *p, size_t to, size_t from);
 void sph_particles_free(sph_particles *p);
 /* Counts of each kind. */
 size_t sph_particles_count_kind(const sph_particles *p, int32_t kind);

@@ -66,29 +66,6 @@ static int add_fluid(sph_sim *s, sph_error *err) {
   return 0;
 }
 
-/* Particle `from` of a store being made moves to `to` (to < from): the
- * fields set at creation. */
-static void move_particle(sph_particles *p, size_t to, size_t from) {
-  p->x[to] = p->x[from];
-  p->y[to] = p->y[from];
-  p->vx[to] = p->vx[from];
-  p->vy[to] = p->vy[from];
-  p->rho[to] = p->rho[from];
-  p->mass[to] = p->mass[from];
-  p->h[to] = p->h[from];
-  p->kind[to] = p->kind[from];
-  p->flags[to] = p->flags[from];
-  p->body[to] = p->body[from];
-  if (p->live & SPH_ARRAYS_REST) {
-    p->xr[to] = p->xr[from];
-    p->yr[to] = p->yr[from];
-  }
-  if (p->live & SPH_ARRAYS_OFFSET) {
-    p->mx[to] = p->mx[from];
-    p->my[to] = p->my[from];
-  }
-}
-
 /* Walls drawn through fluid (issue 21, D5), by a documented rule
  * (doc/case-files.md): a fluid particle closer than
  * SPH_WALL_CLEARANCE dx to a wall particle is not made. Wall particles are
@@ -155,7 +132,7 @@ static long remove_fluid_in_walls(sph_sim *s) {
       removed++;
       continue;
     }
-    if (kept != i) move_particle(p, kept, i);
+    if (kept != i) sph_particles_move(p, kept, i);
     p->id[kept] = (int64_t)kept;
     kept++;
   }
@@ -182,7 +159,7 @@ static void dedupe_periodic(sph_sim *s) {
       dup = p->kind[j] == SPH_KIND_WALL && fabs(p->y[j] - p->y[i]) < tol &&
             (fabs(p->x[j] - p->x[i]) < tol || fabs(fabs(p->x[j] - p->x[i]) - L) < tol);
     if (dup) continue;
-    if (kept != i) move_particle(p, kept, i);
+    if (kept != i) sph_particles_move(p, kept, i);
     if (p->live & SPH_ARRAYS_REST) p->xr[kept] = p->x[kept]; /* the rest position: wrapped */
     p->id[kept] = (int64_t)kept;
     kept++;

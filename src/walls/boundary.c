@@ -23,6 +23,10 @@ int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, 
   long count = (long)floor(len / dx + 0.5);
   if (count < 1) count = 1;
   const double sp = len / (double)count;
+  /* the offsets' readers: mdbc, no-slip and free-slip walls */
+  if (flags & (SPH_FLAG_NO_SLIP | SPH_FLAG_MDBC | SPH_FLAG_FREE_SLIP))
+    sph_particles_use(p, SPH_ARRAYS_OFFSET);
+  const int offsets = (p->live & SPH_ARRAYS_OFFSET) != 0;
   for (int k = 0; k < layers; k++) {
     const double off = (stagger ? 0.5 : 1.0) * dx * (double)k;
     const int odd = stagger && k % 2;
@@ -38,10 +42,7 @@ int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, 
       const long idx = sph_particles_add(p, x, y, 0.0, 0.0, rho, mass, h, SPH_KIND_WALL, err);
       if (idx < 0) return -1;
       p->flags[idx] = flags;
-      /* the offsets' readers: mdbc, no-slip and free-slip walls */
-      if (flags & (SPH_FLAG_NO_SLIP | SPH_FLAG_MDBC | SPH_FLAG_FREE_SLIP))
-        sph_particles_use(p, SPH_ARRAYS_OFFSET);
-      if (p->live & SPH_ARRAYS_OFFSET) {
+      if (offsets) {
         p->mx[idx] = -2.0 * depth * nx;
         p->my[idx] = -2.0 * depth * ny;
       }
