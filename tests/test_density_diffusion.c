@@ -12,8 +12,9 @@
  *     hydrostatic density gradient itself, so its tank drifts away from
  *     hydrostatic (shown: its error grows past the others'); antuono and
  *     fourtakas hold it within 2 % (the pressure-noise bound of
- *     bench/results/pressure_noise.md; measured 0.35 % and 0.27 %, no
- *     diffusion 0.69 %, Molteni-Colagrossi 2.03 %).
+ *     bench/results/pressure_noise.md; measured 0.36 % and 0.26 %, no
+ *     diffusion 0.72 %, Molteni-Colagrossi 0.95 %: 2.03 % before its
+ *     pairs with the dynamic wall particles diffused too).
  * The oracle of every term set is tests/test_pair_terms.c; thread-count
  * determinism with diffusion on is in tests/test_determinism.c.
  */

@@ -216,6 +216,8 @@ static void oracle_stress(const sph_particles *p, const sph_force_params *fp, do
   }
 }
 
+static int oracle_diffuses(const sph_particles *p, const sph_force_params *fp, size_t i);
+
 /* The density diffusion's c_i (physics/density_diffusion.h): 0, half the
  * renormalised density gradient over every neighbour, or rho0 g / (2 c0^2). */
 static void oracle_diffusion_c(const sph_particles *p, const sph_force_params *fp, double *cx,
@@ -226,7 +228,7 @@ static void oracle_diffusion_c(const sph_particles *p, const sph_force_params *f
       cx[i] = 0.5 * fp->eos.rho0 * fp->gx / (fp->eos.c0 * fp->eos.c0);
       cy[i] = 0.5 * fp->eos.rho0 * fp->gy / (fp->eos.c0 * fp->eos.c0);
     }
-    if (fp->diffusion != SPH_DIFFUSION_ANTUONO || p->kind[i] != SPH_KIND_FLUID) continue;
+    if (fp->diffusion != SPH_DIFFUSION_ANTUONO || !oracle_diffuses(p, fp, i)) continue;
     double g[2] = {0, 0}, M[2][2] = {{0, 0}, {0, 0}}; /* Antuono et al. 2010 eq. (6) */
     for (size_t j = 0; j < p->n; j++) {
       double dx, dy, r, hij, w, gx, gy;
@@ -249,9 +251,12 @@ static void oracle_diffusion_c(const sph_particles *p, const sph_force_params *f
   }
 }
 
-/* Whether fluid particle i diffuses: no mdbc wall particle in its support
- * (solver/diffusion.h). */
+/* Whether particle i diffuses (solver/diffusion.h): fluid with no mdbc wall
+ * particle in its support; with fp->wall_diffusion a wall particle that is
+ * neither mdbc nor repulsive (a dynamic one; it diffuses with fluid only). */
 static int oracle_diffuses(const sph_particles *p, const sph_force_params *fp, size_t i) {
+  if (p->kind[i] == SPH_KIND_WALL)
+    return fp->wall_diffusion && !(p->flags[i] & (SPH_FLAG_MDBC | SPH_FLAG_REPULSIVE));
   if (p->kind[i] != SPH_KIND_FLUID) return 0;
   for (size_t j = 0; j < p->n; j++) {
     double dx, dy, r, hij, w, gx, gy;
@@ -289,6 +294,13 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
       const double vg = vx * gx + vy * gy, vr = vx * dx + vy * dy;
       drho += mj * vg;                           /* B eq. 2 */
       sig = fmax(sig, fabs(hij * vr) / (r * r)); /* B §2.6 */
+      /* density_diffusion.h, diffusion.h: fluid with fluid, a dynamic wall
+       * with fluid */
+      if (fp->diffusion && dif[i] && dif[j] && (fluid || p->kind[j] == SPH_KIND_FLUID)) {
+        const double psi = 2.0 * ((rhoj - rhoi) + (dcx[i] + dcx[j]) * dx + (dcy[i] + dcy[j]) * dy);
+        const double rji_gw = -(dx * gx + dy * gy); /* r_ji . grad_i W_ij */
+        drho += fp->diffusion_delta * hij * fp->eos.c0 * psi * rji_gw / (r * r) * mj / rhoj;
+      }
       if (!fluid && !(fp->ledger && p->kind[j] == SPH_KIND_FLUID)) continue;
       /* a mirror particle's no-slip velocity in the viscous terms */
       const int img = fp->mirror && p->kind[j] == SPH_KIND_MIRROR;
@@ -336,11 +348,6 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
       if (p->kind[j] == SPH_KIND_FLUID) { /* B eq. 6 */
         xs -= mj / (0.5 * (rhoi + rhoj)) * vx * w;
         ys -= mj / (0.5 * (rhoi + rhoj)) * vy * w;
-      }
-      if (fp->diffusion && dif[i] && dif[j]) { /* density_diffusion.h, diffusion.h */
-        const double psi = 2.0 * ((rhoj - rhoi) + (dcx[i] + dcx[j]) * dx + (dcy[i] + dcy[j]) * dy);
-        const double rji_gw = -(dx * gx + dy * gy); /* r_ji . grad_i W_ij */
-        drho += fp->diffusion_delta * hij * fp->eos.c0 * psi * rji_gw / (r * r) * mj / rhoj;
       }
     }
     if (fluid) {
@@ -463,8 +470,13 @@ static void test_oracle_every_term_set(void) {
       params_for(F, seed, &fp);
       sph_particles p;
       make_set(&p, F * 3 + seed, (F & 16) != 0, (F & 32) != 0, fp.free_slip, &fp.eos);
-      for (size_t k = 0; k < p.n; k++) /* as the set-up does: some walls are mdbc */
+      for (size_t k = 0; k < p.n; k++) { /* as the set-up does: some walls are mdbc, */
         if (p.flags[k] & SPH_FLAG_MDBC) fp.mdbc = 1;
+        /* and some dynamic walls take part in the diffusion */
+        if (fp.diffusion && fp.diffusion != SPH_DIFFUSION_ANTUONO && p.kind[k] == SPH_KIND_WALL &&
+            !(p.flags[k] & (SPH_FLAG_MDBC | SPH_FLAG_REPULSIVE)))
+          fp.wall_diffusion = 1;
+      }
       const size_t n = p.n;
       rates o, r[4];
       rates_alloc(&o, n);

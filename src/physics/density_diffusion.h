@@ -4,7 +4,8 @@
  * removes the high-frequency noise of the density (and so of the pressure)
  * of weakly-compressible SPH (numerics.density_diffusion).
  *
- * Every model adds to drho_i/dt, for fluid i, over fluid neighbours j:
+ * Every model adds to drho_i/dt, for fluid i, over fluid neighbours j (and
+ * the dynamic wall pairs below):
  *
  *   D_i = delta h c0 sum_j psi_ij (r_ji . grad_i W_ij) / |r_ij|^2  V_j,
  *         V_j = m_j / rho_j, r_ji = x_j - x_i,
@@ -34,9 +35,12 @@
  * B)^(1/gamma) - 1] to first order (the next term is below 1e-4 of it for a pair 2h apart at c0 =
  * 10 sqrt(g H)).
  *
- * Only fluid pairs diffuse (wall particles' densities carry the boundary
- * condition, not the flow's noise), so the term moves density within the
- * fluid: sum_i V_i D_i = 0 to round-off (the pair sum is antisymmetric).
+ * Fluid pairs diffuse, and the pairs of fluid with dynamic and
+ * fixed_layers wall particles (whose continuity density would otherwise keep
+ * what an impact left while water stays near them; src/solver/diffusion.h);
+ * never wall with wall, nor mdbc, repulsive or mirror particles. The term
+ * moves density among the particles that take part: sum_i V_i D_i = 0 to
+ * round-off (the pair sum is antisymmetric).
  * It changes no velocity, so momentum is untouched; its effect on energy is
  * the ledger's diffusion_energy column, the time integral of
  * sum_i m_i (p_i / rho_i^2) D_i (src/solver/ledger.h).

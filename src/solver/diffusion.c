@@ -50,12 +50,28 @@ static void half_gradient(const sph_particles *restrict p, const sph_nlist *rest
   *cy = 0.5 * (axy * gx + ayy * gy);
 }
 
-/* The mass with which fluid particle i takes part in the diffusion: m_i
- * where no mdbc wall particle lies inside its support, 0 where one does
- * (and for every particle that is not fluid). */
+int sph_diffusion_wall_takes_part(int32_t kind, uint8_t flags) {
+  return kind == SPH_KIND_WALL && !(flags & (SPH_FLAG_MDBC | SPH_FLAG_REPULSIVE));
+}
+
+int sph_diffusion_walls(const sph_particles *p, const sph_force_params *fp) {
+  /* antuono's c_i is a density gradient, which a wall particle has no
+   * fluid-side estimate of: its walls keep out (diffusion.h) */
+  if (fp->diffusion == SPH_DIFFUSION_NONE || fp->diffusion == SPH_DIFFUSION_ANTUONO) return 0;
+  for (size_t i = 0; i < p->n; i++)
+    if (sph_diffusion_wall_takes_part(p->kind[i], p->flags[i])) return 1;
+  return 0;
+}
+
+/* The mass with which particle i takes part in the diffusion: a fluid
+ * particle m_i where no mdbc wall particle lies inside its support, 0
+ * where one does; a dynamic or fixed_layers wall particle m_i (its pairs
+ * with fluid diffuse, diffusion.h); every other particle 0. */
 static double diffusion_mass(const sph_particles *restrict p, const sph_nlist *restrict l,
                              const sph_force_params *restrict fp, size_t i) {
-  if (p->kind[i] != SPH_KIND_FLUID) return 0.0;
+  if (p->kind[i] != SPH_KIND_FLUID)
+    return fp->wall_diffusion && sph_diffusion_wall_takes_part(p->kind[i], p->flags[i]) ? p->mass[i]
+                                                                                        : 0.0;
   if (!fp->mdbc) return p->mass[i]; /* no mdbc wall: no scan (a term that is off costs nothing) */
   const double period = fp->periodic ? fp->period : 0.0, half = 0.5 * period;
   const unsigned F = fp->periodic ? F_PERIODIC : 0u;

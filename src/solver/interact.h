@@ -162,7 +162,7 @@ static inline __attribute__((always_inline)) void interact_one(sph_particles *re
   double dd = 0.0;                                   /* density diffusion */
   const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy, *restrict ddm = w->ddm;
   const double cxi = (F & F_DDIFF) ? ddcx[i] : 0.0, cyi = (F & F_DDIFF) ? ddcy[i] : 0.0;
-  const int diffuses = (F & F_DDIFF) && ddm[i] != 0.0; /* not next to a wall (diffusion.h) */
+  const int diffuses = (F & F_DDIFF) && ddm[i] != 0.0; /* diffusion.h */
   ROW(l, i, nb, cnt)
   for (size_t k = 0; k < cnt; k++) {
     const size_t j = nb[k];
@@ -187,6 +187,13 @@ static inline __attribute__((always_inline)) void interact_one(sph_particles *re
     const double vdotr = dvx * dx + dvy * dy;
     const double s = signal_v1(hij, vdotr, inv_r2);
     sig = s > sig ? s : sig;
+    /* a wall particle that diffuses: its pairs with fluid that diffuses
+     * (diffusion.h), summed in the order of the fluid rows' */
+    if ((F & F_DDIFF) && !fluid && diffuses && kind[j] == SPH_KIND_FLUID && ddm[j] != 0.0) {
+      const double psi = diffusion_psi_v1(rhoi, qj->rho, dx, dy, cxi + ddcx[j], cyi + ddcy[j]);
+      const double d = diffusion_v1(psi, f, ddm[j], qj->rho);
+      dd += (F & F_VARH) ? hij * d : d;
+    }
     /* a wall particle needs the pair terms only for its share of the heat */
     if (!fluid && !((F & F_LEDGER) && kind[j] == SPH_KIND_FLUID)) continue;
     /* the relative velocity of the viscous terms: a mirror particle's is

@@ -100,9 +100,10 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const int slip = fp->free_slip;
   const int slip_i = slip && kind[i] == SPH_KIND_WALL && (flags[i] & SPH_FLAG_FREE_SLIP);
   const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy, *restrict ddm = w->ddm;
-  const int diffuses = (F & F_DDIFF) && ddm[i] != 0.0; /* not next to a wall (diffusion.h) */
+  const int diffuses = (F & F_DDIFF) && ddm[i] != 0.0; /* diffusion.h */
   const double *restrict fm = w->fm;                   /* m_j of fluid j, 0 for the others */
-  const int mdd_is_mx = (F & F_XSPH) && !fp->mdbc;     /* then ddm = fm (diffusion.c) */
+  /* then ddm = fm (diffusion.c): only fluid diffuses, all of it */
+  const int mdd_is_mx = (F & F_XSPH) && !fp->mdbc && !fp->wall_diffusion;
   const LT cxi = LOP(all)((F & F_DDIFF) ? ddcx[i] : 0.0);
   const LT cyi = LOP(all)((F & F_DDIFF) ? ddcy[i] : 0.0);
   /* c_j = c_i at every particle but with antuono (diffusion.c): the same sums without reading c_j
@@ -138,7 +139,16 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     LACC(drho, LTERM(continuity)(mj, dvx, dvy, gx, gy));
     const LT vdotr = LOP(add)(LOP(mul)(dvx, dx), LOP(mul)(dvy, dy));
     LAMAX(sig, LOP(and)(in, LTERM(signal)(hh, vdotr, inv_r2)));
-    if (!fluid && !(F & F_LEDGER)) continue; /* a wall particle needs no pair terms */
+    if ((F & F_DDIFF) && !fluid && diffuses) { /* a wall that diffuses: with fluid j only */
+      const LT rhoj = GATHER(rho);
+      const LT cx = dd_uniform ? cxx : LOP(add)(cxi, LSET(E_ARR, ddcx));
+      const LT cy = dd_uniform ? cyy : LOP(add)(cyi, LSET(E_ARR, ddcy));
+      const LT psi = LTERM(diffusion_psi)(rhoi, rhoj, dx, dy, cx, cy);
+#define E_WDD(q, a) (kind[jk[q]] == SPH_KIND_FLUID ? a[jk[q]] : 0.0)
+      LACC(dd, LTERM(diffusion)(psi, f, LSET(E_WDD, ddm), rhoj));
+#undef E_WDD
+    }
+    if (!fluid && !(F & F_LEDGER)) continue; /* a wall particle needs no other pair terms */
     /* with the ledger: m_j of fluid neighbours (0 for walls) as their kind */
     const LT fmj = (F & (F_XSPH | F_LEDGER)) ? LSET(E_ARR, fm) : zero;
     const LMASK fluid_j = LOP(lt)(zero, fmj);

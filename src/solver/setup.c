@@ -22,6 +22,7 @@
 
 #include "physics/eos.h"
 #include "physics/kernel.h"
+#include "solver/diffusion.h"
 #include "solver/sim_internal.h"
 
 static double sph_skin_fraction(void) {
@@ -300,6 +301,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.no_slip = s->walls.no_slip;
   s->fp.free_slip = s->walls.free_slip;
   s->fp.mdbc = s->walls.mdbc;
+  s->fp.wall_diffusion = sph_diffusion_walls(&s->p, &s->fp);
   s->fp.mirror = s->walls.n_mirror > 0;
   s->fp.repulsive = s->walls.repulsive;
   s->ledger.repulsion = c->energy && s->walls.repulsive;
