@@ -113,7 +113,10 @@ static void test_mdbc(void) {
 
 /* density diffusion: the antuono model's gradient pass and the pair term
  * (lane loop), and fourtakas with the energy ledger (scalar loop, the
- * diffusion_energy column) on the wet bed */
+ * diffusion_energy column) on the wet bed, whose fixed_layers walls and
+ * gate diffuse with the fluid (solver/diffusion.h; the dynamic walls' rows
+ * in the lane loop: test_three_threads, test_wendland and the coarse dam
+ * break of the other tests, whose case runs fourtakas) */
 static void test_density_diffusion(void) {
   same_on_1_and_2_threads("cases/martin_moyce_coarse.yaml",
                           "--set time.end=0.2 --set time.stop=none "
