@@ -41,8 +41,8 @@ int sph_diffusion_walls(const sph_particles *p, const sph_force_params *fp);
  * it instead of keeping what an impact left; without them the coarse dam
  * break's floor read 6.3 times the load of the settled water on it two
  * seconds later and the water stood 1.33 dx above the floor's face (with
- * them 1.0 and 0.8 dx, tests/test_walls). Pairs diffuse only where
- * both masses are not zero, so the fluid next to an mdbc wall keeps the
+ * them 1.0 and 0.8 dx, tests/test_walls). The fluid next to an mdbc
+ * wall (mass 0) keeps the
  * density the continuity equation gives it, as DualSPHysics' Fourtakas
  * term does next to any boundary (its DensityDT 2): a particle pressed
  * onto an mdbc floor is held off it by its own compression, which the

@@ -187,9 +187,9 @@ static inline __attribute__((always_inline)) void interact_one(sph_particles *re
     const double vdotr = dvx * dx + dvy * dy;
     const double s = signal_v1(hij, vdotr, inv_r2);
     sig = s > sig ? s : sig;
-    /* a wall particle that diffuses: its pairs with fluid that diffuses
-     * (diffusion.h), summed in the order of the fluid rows' */
-    if ((F & F_DDIFF) && !fluid && diffuses && kind[j] == SPH_KIND_FLUID && ddm[j] != 0.0) {
+    /* the density diffusion (diffusion.h): pairs where both diffuse and one
+     * is fluid (a wall particle's row: its fluid neighbours only) */
+    if ((F & F_DDIFF) && diffuses && ddm[j] != 0.0 && (fluid || kind[j] == SPH_KIND_FLUID)) {
       const double psi = diffusion_psi_v1(rhoi, qj->rho, dx, dy, cxi + ddcx[j], cyi + ddcy[j]);
       const double d = diffusion_v1(psi, f, ddm[j], qj->rho);
       dd += (F & F_VARH) ? hij * d : d;
@@ -248,11 +248,6 @@ static inline __attribute__((always_inline)) void interact_one(sph_particles *re
     if (!fluid) continue;
     ax += pax;
     ay += pay;
-    if ((F & F_DDIFF) && diffuses && ddm[j] != 0.0) {
-      const double psi = diffusion_psi_v1(rhoi, qj->rho, dx, dy, cxi + ddcx[j], cyi + ddcy[j]);
-      const double d = diffusion_v1(psi, f, ddm[j], qj->rho);
-      dd += (F & F_VARH) ? hij * d : d;
-    }
     /* power of a (moving) wall particle's force on i, per unit mass of i */
     if ((F & F_LEDGER) && kind[j] == SPH_KIND_WALL) wpow += wall_power_v1(pax, pay, qj->vx, qj->vy);
     /* force of walls and mirror particles on i: external to the fluid */

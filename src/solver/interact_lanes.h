@@ -139,14 +139,17 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     LACC(drho, LTERM(continuity)(mj, dvx, dvy, gx, gy));
     const LT vdotr = LOP(add)(LOP(mul)(dvx, dx), LOP(mul)(dvy, dy));
     LAMAX(sig, LOP(and)(in, LTERM(signal)(hh, vdotr, inv_r2)));
-    if ((F & F_DDIFF) && !fluid && diffuses) { /* a wall that diffuses: with fluid j only */
+    if ((F & F_DDIFF) && diffuses) { /* over the neighbours that diffuse (diffusion.h) */
       const LT rhoj = GATHER(rho);
       const LT cx = dd_uniform ? cxx : LOP(add)(cxi, LSET(E_ARR, ddcx));
       const LT cy = dd_uniform ? cyy : LOP(add)(cyi, LSET(E_ARR, ddcy));
       const LT psi = LTERM(diffusion_psi)(rhoi, rhoj, dx, dy, cx, cy);
+      /* the masses they diffuse with: a wall particle's row its fluid
+       * neighbours' only; without mdbc and diffusing walls ddm = fm */
 #define E_WDD(q, a) (kind[jk[q]] == SPH_KIND_FLUID ? a[jk[q]] : 0.0)
-      LACC(dd, LTERM(diffusion)(psi, f, LSET(E_WDD, ddm), rhoj));
+      const LT mdd = !fluid ? LSET(E_WDD, ddm) : mdd_is_mx ? LSET(E_ARR, fm) : LSET(E_ARR, ddm);
 #undef E_WDD
+      LACC(dd, LTERM(diffusion)(psi, f, mdd, rhoj));
     }
     if (!fluid && !(F & F_LEDGER)) continue; /* a wall particle needs no other pair terms */
     /* with the ledger: m_j of fluid neighbours (0 for walls) as their kind */
@@ -231,16 +234,8 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     }
     LACC(ax, pax);
     LACC(ay, pay);
-    const LT mx = fmj;               /* m_j of fluid neighbours, 0 for the others */
-    if ((F & F_DDIFF) && diffuses) { /* over the neighbours that diffuse (diffusion.h) */
-      const LT rhoj = GATHER(rho);
-      const LT cx = dd_uniform ? cxx : LOP(add)(cxi, LSET(E_ARR, ddcx));
-      const LT cy = dd_uniform ? cyy : LOP(add)(cyi, LSET(E_ARR, ddcy));
-      const LT psi = LTERM(diffusion_psi)(rhoi, rhoj, dx, dy, cx, cy);
-      const LT mdd = mdd_is_mx ? mx : LSET(E_ARR, ddm); /* the same masses without mdbc walls */
-      LACC(dd, LTERM(diffusion)(psi, f, mdd, rhoj));
-    }
-    if (F & F_XSPH) { /* over fluid neighbours */
+    const LT mx = fmj; /* m_j of fluid neighbours, 0 for the others */
+    if (F & F_XSPH) {  /* over fluid neighbours */
       const LT c = LTERM(xsph_factor)(mx, inv_rb, wij);
       LDEC(xs, LOP(mul)(c, dvx));
       LDEC(ys, LOP(mul)(c, dvy));
