@@ -19,6 +19,7 @@
 #include <time.h>
 
 #include "case/case.h"
+#include "physics/shifting.h"
 #include "testutil.h"
 
 /* The smallest valid case: every optional key left to its default. */
@@ -482,6 +483,31 @@ static void test_unknown_choice(void) {
             NULL, 0, &c);
   CU_ASSERT_EQUAL(c.diffusion, SPH_DIFFUSION_FOURTAKAS);
   CU_ASSERT_EQUAL(c.diffusion_delta, 0.05);
+  sph_case_free(&c);
+  /* particle shifting (src/physics/shifting.h) */
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  shifting: {coefficient: 0}\n"),
+             "t.yaml:6: numerics.shifting.coefficient: expected a number in (0, 10], got '0'");
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  shifting: {A: 2}\n"),
+             "t.yaml:6: numerics.shifting.A: unknown key (valid keys in 'numerics.shifting': "
+             "coefficient)");
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  shifting: true\n"),
+             "t.yaml:6: numerics.shifting: expected a mapping, got 'true'");
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  shifting: {}\n  smoothing_length: variable\n"),
+             "t.yaml:6: numerics.shifting: cannot be combined with numerics.smoothing_length: "
+             "variable");
+  const char *mirror[] = {"geometry.tank={x: [0, 1], y: [0, 1], boundary: mirror}"};
+  expect_err_set(edit(MINIMAL, 5, "  dx: 0.01\n  shifting: {}\n"), mirror, 1,
+                 "t.yaml:6: numerics.shifting: needs wall particles to count the wall as full, and "
+                 "mirror walls have none (use boundary: mdbc or dynamic)");
+  expect_ok(edit(MINIMAL, 5, "  dx: 0.01\n  shifting: {}\n"), NULL, 0, &c);
+  CU_ASSERT_EQUAL(c.shifting, 1);
+  CU_ASSERT_EQUAL(c.shifting_coefficient, SPH_SHIFTING_COEFFICIENT_DEFAULT);
+  sph_case_free(&c);
+  expect_ok(edit(MINIMAL, 5, "  dx: 0.01\n  shifting: {coefficient: 4}\n"), NULL, 0, &c);
+  CU_ASSERT_EQUAL(c.shifting_coefficient, 4.0);
+  sph_case_free(&c);
+  expect_ok(MINIMAL, NULL, 0, &c);
+  CU_ASSERT_EQUAL(c.shifting, 0);
   sph_case_free(&c);
   expect_ok(edit(MINIMAL, 5, "  dx: 0.01\n  kernel: \"cubic_spline\"\n"), NULL, 0, &c);
   CU_ASSERT_EQUAL(c.kernel, SPH_KERNEL_CUBIC_SPLINE);

@@ -18,7 +18,9 @@
  *   - coarse dam break with the Wendland kernel, the stress tensor, the
  *     MLS filter and a pressure probe;
  *   - density diffusion: antuono (its gradient pass) on the coarse dam
- *     break, fourtakas with the energy ledger on the wet bed.
+ *     break, fourtakas with the energy ledger on the wet bed;
+ *   - particle shifting with the ledger on free-slip mdbc walls, and on
+ *     the periodic inclined plane.
  * Every file of the two output directories (snapshots, XDMF index,
  * diagnostics.csv, gauges.csv, probes.csv) must be identical.
  */
@@ -126,6 +128,20 @@ static void test_density_diffusion(void) {
                           "--set 'numerics.density_diffusion={model: fourtakas, delta: 0.1}'");
 }
 
+/* particle shifting (physics/shifting.h): its pass over the kept list, the
+ * walls' keep-off after it and the ledger's shifting_drift, through the
+ * impact on a free-slip mdbc wall; and on a periodic grid (the minimum
+ * image in its sums) with the leap-frog */
+static void test_shifting(void) {
+  same_on_1_and_2_threads("cases/martin_moyce_coarse.yaml",
+                          "--set time.end=0.2 --set time.stop=none --set 'geometry.tank={x: [0.0, "
+                          "0.2286], y: [0.0, 0.17145], boundary: mdbc, free_slip: true}' "
+                          "--set 'numerics.shifting={coefficient: 2}' --set output.energy=true");
+  same_on_1_and_2_threads("cases/inclined_plane.yaml",
+                          "--set time.end=0.05 --set time.output_interval=0.01 "
+                          "--set 'numerics.shifting={coefficient: 2}'");
+}
+
 /* the Wendland kernel in the pair loop, the strain-rate pass, the MLS
  * filter and the probes */
 static void test_wendland(void) {
@@ -141,6 +157,7 @@ int main(void) {
       {"Wendland kernel, stress tensor, MLS filter, probes", test_wendland},
       {"density diffusion: antuono, fourtakas with the ledger", test_density_diffusion},
       {"mdbc walls through an impact", test_mdbc},
+      {"particle shifting, also periodic", test_shifting},
       {"wet bed: viscosity, ledger, moving gate", test_wet_bed},
       {"SPS turbulence", test_sps},
       {"mirror walls and the MLS filter", test_mirror_filter},

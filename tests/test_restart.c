@@ -8,9 +8,9 @@
  * leap-frog (half-step values, first step), the paper B, CFL and fixed
  * step rules, an MLS and a Shepard filter (step counter), a moving gate
  * (its phase), variable h and h* on the free surface, XSPH, Morris and SPS
- * viscosity, dynamic, repulsive and mirror walls, periodic x, the energy
- * ledger (its integrals), wave gauges (their levels at t = 0) and
- * free-surface flags read from the kept neighbour list. Each is run
+ * viscosity, dynamic, repulsive and mirror walls, periodic x, particle
+ * shifting, the energy ledger (its integrals, shifting's drift among them), wave gauges (their
+ * levels at t = 0) and free-surface flags read from the kept neighbour list. Each is run
  * uninterrupted; then
  *   - restarted from snap_0002 (restart_fs: snap_0003) into a fresh
  *     directory (1 thread): every

@@ -31,6 +31,7 @@
 #include "case/case.h"
 
 #include "physics/density_diffusion.h"
+#include "physics/shifting.h"
 
 #include "physics/filter.h"
 #include "walls/wavemaker.h"
@@ -194,8 +195,9 @@ typedef struct ctx {
   size_t len;
   const char *const *set; /* the overrides */
   sph_error *err;
-  const node *dx_node;   /* numerics.dx, for the cross-checks */
-  const node *stop_node; /* time.stop if given */
+  const node *dx_node;       /* numerics.dx, for the cross-checks */
+  const node *stop_node;     /* time.stop if given */
+  const node *shifting_node; /* numerics.shifting if given */
 } ctx;
 
 /* "origin[:line]: key: message"; the origin of a --set node is the --set. */
@@ -820,10 +822,12 @@ static const char *const c0_keys[] = {"factor", "height", "speed", NULL};
 static const char *const visc_keys[] = {"alpha", "beta", "eta", NULL};
 static const char *const numerics_keys[] = {
     "dx",        "h_factor",       "kernel",        "integrator",        "smoothing_length",
-    "time_step", "density_filter", "density_limit", "density_diffusion", NULL};
+    "time_step", "density_filter", "density_limit", "density_diffusion", "shifting",
+    NULL};
 static const char *const dt_keys[] = {"rule", "factor", "dt", NULL};
 static const char *const filter_keys[] = {"kind", "every", NULL};
 static const char *const diffusion_keys[] = {"model", "delta", NULL};
+static const char *const shifting_keys[] = {"coefficient", NULL};
 static const char *const time_keys[] = {"end", "output_interval", "output_times", "stop", NULL};
 static const char *const geometry_keys[] = {"tank", "fluid", "walls", "periodic_x", "domain", NULL};
 static const char *const tank_keys[] = {
@@ -872,6 +876,7 @@ static void set_defaults(sph_case *c) {
   c->filter_every = 30;
   c->diffusion = SPH_DIFFUSION_NONE;
   c->diffusion_delta = SPH_DIFFUSION_DELTA_DEFAULT;
+  c->shifting_coefficient = SPH_SHIFTING_COEFFICIENT_DEFAULT;
   c->sps_cs = 0.12;
   c->sps_ci = 0.00066;
 }
@@ -1054,6 +1059,16 @@ static int read_numerics(ctx *x, const node *m, sph_case *c) {
         get_number(x, f, "numerics.density_diffusion", "delta", 0, &delta, &c->diffusion_delta) < 0)
       return -1;
     c->diffusion = (sph_diffusion_kind)model;
+  }
+  static const range shift = {0, 10, '(', ']', NULL};
+  rc = get_section(x, m, p, "shifting", 0, shifting_keys, &f);
+  if (rc < 0) return -1;
+  if (rc > 0) {
+    c->shifting = 1;
+    x->shifting_node = find(m, "shifting")->val;
+    if (get_number(x, f, "numerics.shifting", "coefficient", 0, &shift, &c->shifting_coefficient) <
+        0)
+      return -1;
   }
   return get_number(x, m, p, "density_limit", 0, &limit, &c->density_limit) < 0 ? -1 : 0;
 }
@@ -1572,6 +1587,18 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
       if (c->fluid[i].surface - c->fluid[i].y0 > H) H = c->fluid[i].surface - c->fluid[i].y0;
     c->repulsion = 5.0 * sqrt(c->gravity[0] * c->gravity[0] + c->gravity[1] * c->gravity[1]) * H;
   }
+  if (c->shifting && c->variable_h)
+    return fail_at(x, x->shifting_node, "numerics.shifting",
+                   "cannot be combined with numerics.smoothing_length: variable");
+  if (c->shifting) {
+    int mirror = c->tank.present && c->tank.boundary == SPH_BOUNDARY_MIRROR;
+    for (size_t i = 0; i < c->n_walls; i++)
+      mirror |= c->walls[i].boundary == SPH_BOUNDARY_MIRROR;
+    if (mirror)
+      return fail_at(x, x->shifting_node, "numerics.shifting",
+                     "needs wall particles to count the wall as full, and mirror walls have none "
+                     "(use boundary: mdbc or dynamic)");
+  }
   if (c->stop == SPH_STOP_FRONT_AT_WALL && !c->tank.present)
     return fail_at(x, x->stop_node, "time.stop", "'front_at_wall' needs a geometry.tank");
   int rc = get_section(x, root, "", "free_surface", 0, fs_keys, &s);
@@ -1660,7 +1687,8 @@ static int parse_into(ctx *x, const char *text, size_t len, size_t n_set, sph_ca
 
 int sph_case_parse(const char *text, size_t len, const char *origin, const char *const *set,
                    size_t n_set, sph_case *c, sph_error *err) {
-  ctx x = {origin ? origin : "<text>", text ? text : "", text ? len : 0, set, err, NULL, NULL};
+  ctx x = {
+      origin ? origin : "<text>", text ? text : "", text ? len : 0, set, err, NULL, NULL, NULL};
   memset(c, 0, sizeof *c);
   for (size_t i = 0; i < n_set; i++)
     if (!set || !set[i]) return sph_error_set(err, "%s: an empty --set override", x.origin);
@@ -1889,6 +1917,7 @@ char *sph_case_describe(const sph_case *c) {
   sb_add(&b, "numerics.density_filter.every: %d\n", c->filter_every);
   sb_add(&b, "numerics.density_diffusion.model: %s\n", sph_diffusion_name(c->diffusion));
   sb_add(&b, "numerics.density_diffusion.delta: %.17g\n", c->diffusion_delta);
+  if (c->shifting) sb_add(&b, "numerics.shifting.coefficient: %.17g\n", c->shifting_coefficient);
   sb_add(&b, "numerics.density_limit: %.17g\n", c->density_limit);
   sb_add(&b, "time.end: %.17g\n", c->t_end);
   sb_add(&b, "time.output_interval: %.17g\n", c->output_interval);

@@ -103,6 +103,8 @@ typedef struct sph_case {
   int filter_every;               /* steps between filter applications, default 30 */
   sph_diffusion_kind diffusion;   /* numerics.density_diffusion.model, default none */
   double diffusion_delta;         /* numerics.density_diffusion.delta, default 0.1 */
+  int shifting;                /* numerics.shifting given (src/physics/shifting.h), default off */
+  double shifting_coefficient; /* numerics.shifting.coefficient A, default 2 */
 
   /* time */
   double t_end;           /* required */

@@ -32,6 +32,7 @@ static const column_units table[] = {
     {"internal", "J/m"},
     {"boundary_work", "J/m"},
     {"xsph_drift", "J/m"},
+    {"shifting_drift", "J/m"},
     {"total_energy", "J/m"},
     {"energy_deviation", ""},
     {"fluid_energy_deviation", ""},

@@ -445,6 +445,9 @@ static int write_restart(writer *w, const sph_snapshot_restart *r, size_t n) {
   if (rc == 0 && r->has_diffusion)
     rc = put_numbers(w, g, "/restart", "ledger_diffusion", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
                      &r->ledger_diffusion, 1);
+  if (rc == 0 && r->has_shifting)
+    rc = put_numbers(w, g, "/restart", "ledger_shifting", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                     &r->ledger_shifting, 1);
   if (rc == 0 && r->n_levels > 0)
     rc = put_numbers(w, g, "/restart", "gauge_levels", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, r->levels,
                      r->n_levels);
@@ -950,6 +953,15 @@ static int read_restart_array(const sph_snapshot *s, hid_t g, const char *name, 
   return rc;
 }
 
+/* An optional one-number attribute of /restart: 0 when absent. */
+static int get_optional_number(const sph_snapshot *s, hid_t g, const char *name, double *out,
+                               sph_error *err) {
+  *out = 0.0;
+  const htri_t there = H5Aexists(g, name);
+  if (there < 0) return h5_fail(err, s->path, "cannot look for attribute \"%s\" on /restart", name);
+  return there > 0 ? get_numbers_of(s, g, "/restart", name, H5T_NATIVE_DOUBLE, out, 1, err) : 0;
+}
+
 static int read_restart(const sph_snapshot *s, hid_t g, sph_snapshot_restart_data *r,
                         sph_error *err) {
   int64_t format = 0;
@@ -962,12 +974,8 @@ static int read_restart(const sph_snapshot *s, hid_t g, sph_snapshot_restart_dat
       get_numbers_of(s, g, "/restart", "first_step", H5T_NATIVE_INT64, &r->first_step, 1, err) ||
       get_numbers_of(s, g, "/restart", "ledger", H5T_NATIVE_DOUBLE, r->ledger, 4, err))
     return -1;
-  const htri_t has_diffusion = H5Aexists(g, "ledger_diffusion");
-  if (has_diffusion < 0)
-    return h5_fail(err, s->path, "cannot look for attribute \"ledger_diffusion\" on /restart");
-  r->ledger_diffusion = 0.0;
-  if (has_diffusion > 0 && get_numbers_of(s, g, "/restart", "ledger_diffusion", H5T_NATIVE_DOUBLE,
-                                          &r->ledger_diffusion, 1, err))
+  if (get_optional_number(s, g, "ledger_diffusion", &r->ledger_diffusion, err) ||
+      get_optional_number(s, g, "ledger_shifting", &r->ledger_shifting, err))
     return -1;
   if (r->output_index < 0 || r->output_index > 99999999)
     return sph_error_set(err,

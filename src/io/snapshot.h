@@ -49,9 +49,9 @@ typedef struct sph_snapshot_meta {
  *     the leap-frog's first step is done), ledger (4 values: wall work, XSPH
  *     drift, impulse x, impulse y; see ledger in sim.c), ledger_diffusion
  *     (the density diffusion's energy; only in runs with density diffusion,
- *     0 when absent), gauge_levels (each gauge's level at t = 0; absent
- *     without gauges);
- *   datasets (in storage order, not id order): order (int64: the id of the
+ *     0 when absent), ledger_shifting (particle shifting's potential-energy
+ *     drift; only in runs with shifting, 0 when absent), gauge_levels (each gauge's level at t = 0;
+ * absent without gauges); datasets (in storage order, not id order): order (int64: the id of the
  *     particle at each storage index: the within-cell order the neighbour
  *     sums run in), and with the leap-frog vxh, vyh, rhoh, uh (float64: the
  *     half-step values).
@@ -63,6 +63,8 @@ typedef struct sph_snapshot_restart {
   double ledger[4];
   int has_diffusion; /* write ledger_diffusion */
   double ledger_diffusion;
+  int has_shifting; /* write ledger_shifting */
+  double ledger_shifting;
   size_t n_levels;
   const double *levels;
   const int64_t *order;
@@ -122,6 +124,7 @@ typedef struct sph_snapshot_restart_data {
   int64_t first_step;
   double ledger[4];
   double ledger_diffusion; /* 0 when the attribute is absent */
+  double ledger_shifting;  /* 0 when the attribute is absent */
   size_t n_levels;
   double *levels;
   size_t count;

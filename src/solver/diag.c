@@ -51,19 +51,22 @@ void sph_diag_compute(const sph_particles *p, double floor_y, double band, const
   row->n_surface = -1;
   row->ledger = 0;
   row->diffusion = 0;
+  row->shifting = 0;
   row->repulsion = 0;
 }
 
-int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion, int repulsion) {
-  return fprintf(
-             f,
-             "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential%s%s%s%s\n",
-             free_surface ? ",n_free_surface" : "",
-             ledger ? ",internal,boundary_work,xsph_drift,total_energy,energy_deviation,"
-                      "fluid_energy_deviation,momentum_residual_x,momentum_residual_y"
-                    : "",
-             ledger && diffusion ? ",diffusion_energy" : "",
-             ledger && repulsion ? ",wall_potential" : "") < 0;
+int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion, int repulsion,
+                          int shifting) {
+  return fprintf(f,
+                 "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential%s%s%s%"
+                 "s%s\n",
+                 free_surface ? ",n_free_surface" : "",
+                 ledger ? ",internal,boundary_work,xsph_drift,total_energy,energy_deviation,"
+                          "fluid_energy_deviation,momentum_residual_x,momentum_residual_y"
+                        : "",
+                 ledger && diffusion ? ",diffusion_energy" : "",
+                 ledger && repulsion ? ",wall_potential" : "",
+                 ledger && shifting ? ",shifting_drift" : "") < 0;
 }
 
 int sph_diag_write_row(FILE *f, const sph_diag_row *r) {
@@ -78,5 +81,6 @@ int sph_diag_write_row(FILE *f, const sph_diag_row *r) {
     return 1;
   if (r->ledger && r->diffusion && fprintf(f, ",%.17g", r->diffusion_energy) < 0) return 1;
   if (r->ledger && r->repulsion && fprintf(f, ",%.17g", r->wall_potential) < 0) return 1;
+  if (r->ledger && r->shifting && fprintf(f, ",%.17g", r->shifting_drift) < 0) return 1;
   return fputc('\n', f) == EOF;
 }

@@ -46,10 +46,13 @@ typedef struct sph_diag_row {
   double xsph_drift;       /* change of potential energy caused by the XSPH correction */
   int diffusion;           /* write diffusion_energy */
   double diffusion_energy; /* elastic energy added by the density diffusion (ledger.h) */
+  int shifting;            /* write shifting_drift */
+  double shifting_drift;   /* change of potential energy caused by particle shifting (ledger.h) */
   int repulsion;           /* write wall_potential */
   double wall_potential;   /* Lennard-Jones potential energy of repulsive walls (ledger.h) */
-  double total; /* kinetic + potential + internal + wall_potential - boundary_work - xsph_drift */
-  double deviation;       /* (total - E0) / E0, E0 the initial total */
+  double total;     /* kinetic + potential + internal + wall_potential - boundary_work - xsph_drift
+                       - shifting_drift */
+  double deviation; /* (total - E0) / E0, E0 the initial total */
   double fluid_deviation; /* the fluid's own kinetic + potential + internal against its start */
   /* momentum balance: P - P0 - integral of the external force (walls,
    * mirror particles, body force) on the fluid; zero but for round-off and
@@ -67,7 +70,8 @@ double sph_diag_surface_at(const sph_particles *p, double x, double half, double
 void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[2],
                       sph_diag_row *row);
 /* CSV header line and rows. Return non-zero on a write error. */
-int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion, int repulsion);
+int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion, int repulsion,
+                          int shifting);
 int sph_diag_write_row(FILE *f, const sph_diag_row *row);
 
 #ifdef __cplusplus

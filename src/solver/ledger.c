@@ -40,6 +40,10 @@ void sph_ledger_advance(sph_ledger *lg, double dt) {
   lg->impulse_y += dt * lg->force_y;
 }
 
+void sph_ledger_add_shift(sph_ledger *lg, const double moved[2], const double gravity[2]) {
+  lg->drift_shifting -= gravity[0] * moved[0] + gravity[1] * moved[1];
+}
+
 void sph_ledger_add_kick(sph_ledger *lg, const double kick[4], const double gravity[2]) {
   lg->work_wall -= gravity[0] * kick[0] + gravity[1] * kick[1];
   lg->impulse_x += kick[2];
@@ -61,11 +65,12 @@ void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, sph_diag_row 
   row->internal = u;
   row->boundary_work = lg->work_wall;
   row->xsph_drift = lg->drift_xsph;
+  row->shifting_drift = lg->drift_shifting;
   row->diffusion_energy = lg->work_diffusion;
   row->repulsion = lg->repulsion;
   row->wall_potential = lg->repulsion ? lg->wall_potential : 0.0;
-  row->total =
-      row->kinetic + row->potential + u + row->wall_potential - lg->work_wall - lg->drift_xsph;
+  row->total = row->kinetic + row->potential + u + row->wall_potential - lg->work_wall -
+               lg->drift_xsph - lg->drift_shifting;
   row->deviation = lg->e0 != 0.0 ? (row->total - lg->e0) / lg->e0 : 0.0;
   const double ef = row->kinetic + row->potential + sph_ledger_fluid_internal(p);
   row->fluid_deviation = lg->e0_fluid != 0.0 ? (ef - lg->e0_fluid) / lg->e0_fluid : 0.0;

@@ -20,7 +20,7 @@
  * at the last interaction pass, and their time integrals work_wall,
  * drift_xsph, the impulse and work_diffusion. With these
  *   total     = kinetic + potential + internal + wall_potential
- *               - work_wall - drift_xsph
+ *               - work_wall - drift_xsph - drift_shifting
  *   deviation = (total - total_0) / total_0
  * closes to round-off for a conservative scheme, and the momentum residual
  * p - p_0 - impulse closes to round-off. The density diffusion moves no
@@ -55,6 +55,7 @@ typedef struct sph_ledger {
   double force_x, force_y;
   /* their time integrals */
   double work_wall, drift_xsph, work_diffusion;
+  double drift_shifting; /* potential energy of particle shifting's moves (physics/shifting.h) */
   double impulse_x, impulse_y;
   /* the initial state */
   double e0, e0_fluid; /* total, and the fluid's own kinetic + potential + internal */
@@ -78,6 +79,12 @@ void sph_ledger_advance(sph_ledger *lg, double dt);
  * m dvy): the lift's potential energy -g . sum m dr is the walls' work, the
  * velocity change their impulse. */
 void sph_ledger_add_kick(sph_ledger *lg, const double kick[4], const double gravity[2]);
+
+/* What particle shifting did to the fluid in a step (physics/shifting.h:
+ * moved = sum m dx, m dy over the fluid): a move no force pays for, whose
+ * potential energy -g . moved is booked as drift_shifting (the
+ * diagnostics' shifting_drift column), as the XSPH correction's is. */
+void sph_ledger_add_shift(sph_ledger *lg, const double moved[2], const double gravity[2]);
 
 /* sum over fluid particles of m_i u_i */
 double sph_ledger_fluid_internal(const sph_particles *p);

@@ -36,6 +36,8 @@ int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t outpu
   sph_ledger_save(&s->ledger, r.ledger);
   r.has_diffusion = s->fp.diffusion != SPH_DIFFUSION_NONE;
   r.ledger_diffusion = s->ledger.work_diffusion;
+  r.has_shifting = s->c->shifting;
+  r.ledger_shifting = s->ledger.drift_shifting;
   r.n_levels = n_levels;
   r.levels = levels;
   r.order = s->p.id;
@@ -140,6 +142,7 @@ static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particl
   s->first_step = (int)rd->first_step;
   sph_ledger_restore(&s->ledger, rd->ledger);
   s->ledger.work_diffusion = rd->ledger_diffusion;
+  s->ledger.drift_shifting = rd->ledger_shifting;
   const int st = sph_sim_check_state(s, err);
   if (st) return st;
   return sph_sim_pass(s, err); /* the rates, flags and step-rule inputs of this state */

@@ -249,7 +249,7 @@ static char *csv_header(const sph_case *c, int what) {
   } else {
     bad = sph_diag_write_header(m, sph_case_needs_free_surface(c), c->energy,
                                 c->diffusion != SPH_DIFFUSION_NONE,
-                                sph_case_has_boundary(c, SPH_BOUNDARY_REPULSIVE)) != 0;
+                                sph_case_has_boundary(c, SPH_BOUNDARY_REPULSIVE), c->shifting) != 0;
   }
   if (fclose(m) || bad) {
     free(buf);

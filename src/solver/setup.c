@@ -323,6 +323,14 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
     sph_error_set(err, "case %s: no particles", c->name);
     goto fail;
   }
+  if (c->shifting) { /* the store's size is fixed: shifting takes no mirror walls (case.c) */
+    s->shift_x = malloc(s->p.n * sizeof *s->shift_x);
+    s->shift_y = malloc(s->p.n * sizeof *s->shift_y);
+    if (!s->shift_x || !s->shift_y) {
+      sph_error_set(err, "out of memory");
+      goto fail;
+    }
+  }
   init_wall_density(s);
   sph_forces_pressure(&s->p, &s->fp.eos);
   set_boxes(s);
@@ -353,6 +361,8 @@ void sph_sim_free(sph_sim *s) {
   sph_nlist_free(&s->nl);
   sph_force_work_free(&s->work);
   sph_wall_velocity_work_free(&s->mdbc_work);
+  free(s->shift_x);
+  free(s->shift_y);
   free(s->parameters);
   free(s);
 }

@@ -33,6 +33,7 @@
 #include "physics/filter.h"
 #include "physics/freesurface.h"
 #include "physics/kernel.h"
+#include "physics/shifting.h"
 #include "solver/forces.h"
 #include "solver/integrate.h"
 #include "walls/boundary.h"
@@ -310,6 +311,31 @@ static void keep_off_mirrors(sph_sim *s, int half_step) {
     sph_ledger_add_kick(&s->ledger, kick, s->c->gravity);
 }
 
+/* Particle shifting (physics/shifting.h) of the step's end state, on a
+ * neighbour list of it; then the mirror lines and tank faces keep the
+ * fluid off again (a shift toward a face is reflected as a step's move
+ * would be), and periodic particles wrap. */
+static int shift_particles(sph_sim *s, double dt, sph_error *err) {
+  const sph_case *c = s->c;
+  sph_particles *p = &s->p;
+  if (neighbours(s, err)) return -1;
+  const sph_shifting_params sp = {c->shifting_coefficient, c->h, c->dx, c->kernel,
+                                  c->periodic ? s->fp.period : 0.0};
+  sph_shifting_compute(p, &s->nl, &sp, dt, s->shift_x, s->shift_y);
+  double moved[2] = {0.0, 0.0};
+  for (size_t i = 0; i < p->n; i++) { /* serial: the sums in storage order */
+    if (p->kind[i] != SPH_KIND_FLUID) continue;
+    p->x[i] += s->shift_x[i];
+    p->y[i] += s->shift_y[i];
+    moved[0] += p->mass[i] * s->shift_x[i];
+    moved[1] += p->mass[i] * s->shift_y[i];
+  }
+  if (s->fp.ledger) sph_ledger_add_shift(&s->ledger, moved, c->gravity);
+  keep_off_mirrors(s, c->integrator == SPH_INTEGRATOR_LEAPFROG);
+  wrap_periodic(s);
+  return 0;
+}
+
 int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   const sph_case *c = s->c;
   const int xsph = c->xsph != 0.0;
@@ -361,6 +387,7 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   /* rates (and flags) of the new state: the next step starts from them,
    * and a snapshot of this state carries flags that belong to it */
   s->resort = s->steps % SPH_RESORT_EVERY == 0;
+  if (c->shifting && shift_particles(s, dt, err)) return -1;
   return sph_sim_pass(s, err);
 }
 
@@ -380,6 +407,7 @@ void sph_sim_diag(const sph_sim *s, sph_diag_row *row) {
   if (s->c->energy) {
     sph_ledger_fill(&s->ledger, &s->p, row);
     row->diffusion = s->c->diffusion != SPH_DIFFUSION_NONE;
+    row->shifting = s->c->shifting;
   }
   row->time = s->t;
   row->step = s->steps;

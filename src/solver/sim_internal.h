@@ -46,6 +46,7 @@ struct sph_sim {
   sph_force_work work;
   sph_wall_velocity_work mdbc_work; /* the mDBC walls' fits (walls/wall_velocity.h) */
   sph_force_params fp;
+  double *shift_x, *shift_y; /* particle shifting's displacements (numerics.shifting), or NULL */
   double t, last_dt;
   double t_saved; /* time of the state saved at the start of the last step */
   long steps;
