@@ -498,7 +498,7 @@ static void test_unknown_choice(void) {
   const char *mirror[] = {"geometry.tank={x: [0, 1], y: [0, 1], boundary: mirror}"};
   expect_err_set(edit(MINIMAL, 5, "  dx: 0.01\n  shifting: {}\n"), mirror, 1,
                  "t.yaml:6: numerics.shifting: needs wall particles to count the wall as full, and "
-                 "mirror walls have none (use boundary: mdbc or dynamic)");
+                 "mirror walls have none (use boundary: mdbc)");
   expect_ok(edit(MINIMAL, 5, "  dx: 0.01\n  shifting: {}\n"), NULL, 0, &c);
   CU_ASSERT_EQUAL(c.shifting, 1);
   CU_ASSERT_EQUAL(c.shifting_coefficient, SPH_SHIFTING_COEFFICIENT_DEFAULT);

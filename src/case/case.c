@@ -1597,7 +1597,7 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
     if (mirror)
       return fail_at(x, x->shifting_node, "numerics.shifting",
                      "needs wall particles to count the wall as full, and mirror walls have none "
-                     "(use boundary: mdbc or dynamic)");
+                     "(use boundary: mdbc)");
   }
   if (c->stop == SPH_STOP_FRONT_AT_WALL && !c->tank.present)
     return fail_at(x, x->stop_node, "time.stop", "'front_at_wall' needs a geometry.tank");
