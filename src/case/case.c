@@ -1590,15 +1590,10 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
   if (c->shifting && c->variable_h)
     return fail_at(x, x->shifting_node, "numerics.shifting",
                    "cannot be combined with numerics.smoothing_length: variable");
-  if (c->shifting) {
-    int mirror = c->tank.present && c->tank.boundary == SPH_BOUNDARY_MIRROR;
-    for (size_t i = 0; i < c->n_walls; i++)
-      mirror |= c->walls[i].boundary == SPH_BOUNDARY_MIRROR;
-    if (mirror)
-      return fail_at(x, x->shifting_node, "numerics.shifting",
-                     "needs wall particles to count the wall as full, and mirror walls have none "
-                     "(use boundary: mdbc)");
-  }
+  if (c->shifting && sph_case_has_boundary(c, SPH_BOUNDARY_MIRROR))
+    return fail_at(x, x->shifting_node, "numerics.shifting",
+                   "needs wall particles to count the wall as full, and mirror walls have none "
+                   "(use boundary: mdbc)");
   if (c->stop == SPH_STOP_FRONT_AT_WALL && !c->tank.present)
     return fail_at(x, x->stop_node, "time.stop", "'front_at_wall' needs a geometry.tank");
   int rc = get_section(x, root, "", "free_surface", 0, fs_keys, &s);

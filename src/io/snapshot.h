@@ -50,8 +50,9 @@ typedef struct sph_snapshot_meta {
  *     drift, impulse x, impulse y; see ledger in sim.c), ledger_diffusion
  *     (the density diffusion's energy; only in runs with density diffusion,
  *     0 when absent), ledger_shifting (particle shifting's potential-energy
- *     drift; only in runs with shifting, 0 when absent), gauge_levels (each gauge's level at t = 0;
- * absent without gauges); datasets (in storage order, not id order): order (int64: the id of the
+ *     drift; only in runs with shifting, 0 when absent), gauge_levels
+ *     (each gauge's level at t = 0; absent without gauges);
+ *   datasets (in storage order, not id order): order (int64: the id of the
  *     particle at each storage index: the within-cell order the neighbour
  *     sums run in), and with the leap-frog vxh, vyh, rhoh, uh (float64: the
  *     half-step values).

@@ -15,7 +15,6 @@
 void sph_shifting_sums_of(const sph_particles *p, const sph_nlist *l, const sph_shifting_params *sp,
                           size_t i, sph_shifting_sums *s) {
   const double h = sp->h, inv_h = 1.0 / h, support = SPH_CUBIC_SUPPORT * h;
-  const double period = sp->period, half = 0.5 * period;
   double w_dx, dw_dx;
   sph_kernel_w_dw(sp->kernel, sp->dx, h, &w_dx, &dw_dx);
   const double inv_wdx = 1.0 / w_dx;
@@ -23,14 +22,8 @@ void sph_shifting_sums_of(const sph_particles *p, const sph_nlist *l, const sph_
   double gx = 0.0, gy = 0.0, tgx = 0.0, tgy = 0.0, div = 0.0;
   for (size_t k = 0; k < l->count[i]; k++) {
     const size_t j = row[k];
-    double dx = p->x[i] - p->x[j];
+    const double dx = sph_grid_min_image(p->x[i] - p->x[j], sp->period);
     const double dy = p->y[i] - p->y[j];
-    if (period > 0.0) {
-      if (dx > half)
-        dx -= period;
-      else if (dx < -half)
-        dx += period;
-    }
     const double r2 = dx * dx + dy * dy;
     if (r2 == 0.0 || r2 >= support * support) continue;
     const double r = sqrt(r2);
