@@ -7,8 +7,10 @@
  * The physics of a pair is written once, in src/physics/pair_terms.h; the
  * loops that sum it over a neighbour row are in src/solver/interact.h (the
  * scalar loop and the four-lane loop). Here each loop is instantiated for
- * every combination of terms F (DESIGN rule 4: a case pays only for what
- * it switches on), F a literal inside its parallel region. Particles are
+ * every combination of the terms that weigh on it (interact.h,
+ * F_COMPILED_SCALAR and F_COMPILED_LANES: DESIGN rule 4, a case pays only
+ * for what it switches on), those bits a literal inside its parallel
+ * region; the light terms are a predicted branch per pair. Particles are
  * processed in parallel, each writing only its own rates, so results are
  * bitwise independent of the thread count, the schedule and the age of
  * the list.
@@ -141,32 +143,28 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
   strain_finish(o, i, sums, gm, exx, exy, eyy);
 }
 
-/* One function per variant, with F a literal inside the parallel region
- * (OpenMP outlines the region before inlining, so a constant must be
- * spelled out there to reach the loop). */
+/* One function per variant, with F_VARH a literal inside the parallel
+ * region (OpenMP outlines the region before inlining, so a constant must be
+ * spelled out there to reach the loop); periodicity is a branch per pair. */
 #define STRAIN_VARIANT(k)                                                                          \
   static void strain_all_##k(const sph_particles *p, const sph_nlist *l,                           \
                              const sph_force_params *fp, double *exx, double *exy, double *eyy,    \
                              const strain_opts *o) {                                               \
     const long n = (long)p->n;                                                                     \
+    const unsigned F = (k) | (fp->periodic ? F_PERIODIC : 0u);                                     \
     _Pragma("omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)") for (long i = 0;       \
                                                                                  i < n; i++)       \
-        strain_one(p, l, fp, (size_t)i, exx, exy, eyy, o, k);                                      \
+        strain_one(p, l, fp, (size_t)i, exx, exy, eyy, o, F);                                      \
   }
 STRAIN_VARIANT(0)
-STRAIN_VARIANT(16)
 STRAIN_VARIANT(32)
-STRAIN_VARIANT(48)
 
 static void strain_list(const sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                         double *exx, double *exy, double *eyy, const strain_opts *o) {
-  const unsigned F = (fp->periodic ? F_PERIODIC : 0) | (fp->var_h ? F_VARH : 0);
-  switch (F) {
-  case 0: strain_all_0(p, l, fp, exx, exy, eyy, o); break;
-  case F_PERIODIC: strain_all_16(p, l, fp, exx, exy, eyy, o); break;
-  case F_VARH: strain_all_32(p, l, fp, exx, exy, eyy, o); break;
-  default: strain_all_48(p, l, fp, exx, exy, eyy, o); break;
-  }
+  if (fp->var_h)
+    strain_all_32(p, l, fp, exx, exy, eyy, o);
+  else
+    strain_all_0(p, l, fp, exx, exy, eyy, o);
 }
 
 /* The strain-rate pass in a lane flavour, F a literal (0 or F_PERIODIC):
@@ -267,9 +265,9 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
 #define PARTICLE_v4x(p, l, fp, w, i, k) interact_v4x(p, l, fp, w, i, k)
 #define PARTICLE_v8z(p, l, fp, w, i, k) interact_v8z(p, l, fp, w, i, k)
 
-/* One function per combination of terms and flavour, F a literal in its
- * parallel region (see STRAIN_VARIANT). */
-#define VARIANT_FL(k, FL, NAME, ATTR)                                                              \
+/* One function per combination of compiled bits and flavour, k a literal
+ * in its parallel region (see STRAIN_VARIANT). */
+#define VARIANT_FL(k, FL, NAME, ATTR, BITS)                                                        \
   ATTR void NAME##_##k(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,           \
                        sph_force_work *w) {                                                        \
     const long n = (long)p->n;                                                                     \
@@ -278,7 +276,7 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
       size_t lo, hi; /* slices of equal cost, with stealing (parallel.h) */                        \
       while (sph_steal_next(&w->steal, SPH_STEAL_GRAIN, &lo, &hi))                                 \
         for (size_t i = lo; i < hi; i++) {                                                         \
-          PARTICLE_##FL(p, l, fp, w, i, k);                                                        \
+          PARTICLE_##FL(p, l, fp, w, i, BITS(k));                                                  \
           const double c = w->cs[i] + w->sigma[i];                                                 \
           if (c > mx) mx = c;                                                                      \
         }                                                                                          \
@@ -287,138 +285,79 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
     w->cs_sigma_max = mx;                                                                          \
   }
 
-/* The scalar loop for all 256 term sets; the lane loops only for the 128
- * sets without F_SCALAR_ONLY (per-particle h: F = 0..31, 64..95, 128..159,
- * 192..223), the others fall back to the scalar loop (pick_variant). */
-#define VARIANT_S(k) VARIANT_FL(k, v1, interact_scalar, static)
-#if defined(SPH_LANES_AVX512)
-#define VARIANT_L(k)                                                                               \
-  VARIANT_FL(k, v4e, interact_all, static)                                                         \
-  VARIANT_FL(k, v4x, interact_avx, static __attribute__((target("avx2"))))                         \
-  VARIANT_FL(k, v8z, interact_avx512, static __attribute__((target("avx512f"))))
-#elif defined(SPH_LANES_AVX)
-#define VARIANT_L(k)                                                                               \
-  VARIANT_FL(k, v4e, interact_all, static)                                                         \
-  VARIANT_FL(k, v4x, interact_avx, static __attribute__((target("avx2"))))
-#else
-#define VARIANT_L(k) VARIANT_FL(k, v4e, interact_all, static)
+/* The scalar loop for every combination of F_COMPILED_SCALAR's bits, the
+ * lane loops for every combination of F_COMPILED_LANES' (interact.h): the
+ * variant number k's bit b is the mask's b-th lowest bit, so that k is
+ * variant_index(F) (the tables below). Per-particle h runs the scalar loop
+ * (pick_variant). */
+#define K_OF(k, b, B) (((k) & (1u << (b))) ? (B) : 0u)
+#define SCALAR_F(k)                                                                                \
+  (K_OF(k, 0, F_SCALAR_BIT0) | K_OF(k, 1, F_SCALAR_BIT1) | K_OF(k, 2, F_SCALAR_BIT2) |             \
+   K_OF(k, 3, F_SCALAR_BIT3) | K_OF(k, 4, F_SCALAR_BIT4) | K_OF(k, 5, F_SCALAR_BIT5))
+#define LANE_F(k)                                                                                  \
+  (K_OF(k, 0, F_LANE_BIT0) | K_OF(k, 1, F_LANE_BIT1) | K_OF(k, 2, F_LANE_BIT2) |                   \
+   K_OF(k, 3, F_LANE_BIT3) | K_OF(k, 4, F_LANE_BIT4) | K_OF(k, 5, F_LANE_BIT5))
+#define PORTABLE_F(k)                                                                              \
+  (K_OF(k, 0, F_PORTABLE_BIT0) | K_OF(k, 1, F_PORTABLE_BIT1) | K_OF(k, 2, F_PORTABLE_BIT2) |       \
+   K_OF(k, 3, F_PORTABLE_BIT3) | K_OF(k, 4, F_PORTABLE_BIT4) | K_OF(k, 5, F_PORTABLE_BIT5))
+#define EIGHT(V, a, b, c, d, e, f, g, h) V(a) V(b) V(c) V(d) V(e) V(f) V(g) V(h)
+#define SETS1(V) V(0)
+#define SETS2(V) V(0) V(1)
+#define SETS4(V) SETS2(V) V(2) V(3)
+#define SETS8(V) EIGHT(V, 0, 1, 2, 3, 4, 5, 6, 7)
+#define SETS16(V) SETS8(V) EIGHT(V, 8, 9, 10, 11, 12, 13, 14, 15)
+#define SETS24(V) SETS16(V) EIGHT(V, 16, 17, 18, 19, 20, 21, 22, 23)
+#define SETS32(V) SETS24(V) EIGHT(V, 24, 25, 26, 27, 28, 29, 30, 31)
+#define SETS40(V) SETS32(V) EIGHT(V, 32, 33, 34, 35, 36, 37, 38, 39)
+#define SETS48(V) SETS40(V) EIGHT(V, 40, 41, 42, 43, 44, 45, 46, 47)
+#define SETS56(V) SETS48(V) EIGHT(V, 48, 49, 50, 51, 52, 53, 54, 55)
+#define SETS64(V) SETS56(V) EIGHT(V, 56, 57, 58, 59, 60, 61, 62, 63)
+#define SETS_GLUE(n) SETS##n
+#define SETS_N(n) SETS_GLUE(n)
+#define SCALAR_SETS(V) SETS_N(N_SCALAR_SETS)(V)
+#define LANE_SETS(V) SETS_N(N_LANE_SETS)(V)
+#define PORTABLE_SETS(V) SETS_N(N_PORTABLE_SETS)(V)
+
+#define VARIANT_S(k) VARIANT_FL(k, v1, interact_scalar, static, SCALAR_F)
+#define VARIANT_V4E(k) VARIANT_FL(k, v4e, interact_all, static, PORTABLE_F)
+#define VARIANT_V4X(k)                                                                             \
+  VARIANT_FL(k, v4x, interact_avx, static __attribute__((target("avx2"))), LANE_F)
+#define VARIANT_V8Z(k)                                                                             \
+  VARIANT_FL(k, v8z, interact_avx512, static __attribute__((target("avx512f"))), LANE_F)
+SCALAR_SETS(VARIANT_S)
+PORTABLE_SETS(VARIANT_V4E)
+#ifdef SPH_LANES_AVX
+LANE_SETS(VARIANT_V4X)
 #endif
-#define VARIANTS8(V, a, b, c, d, e, f, g, h) V(a) V(b) V(c) V(d) V(e) V(f) V(g) V(h)
-VARIANTS8(VARIANT_S, 0, 1, 2, 3, 4, 5, 6, 7)
-VARIANTS8(VARIANT_S, 8, 9, 10, 11, 12, 13, 14, 15)
-VARIANTS8(VARIANT_S, 16, 17, 18, 19, 20, 21, 22, 23)
-VARIANTS8(VARIANT_S, 24, 25, 26, 27, 28, 29, 30, 31)
-VARIANTS8(VARIANT_S, 32, 33, 34, 35, 36, 37, 38, 39)
-VARIANTS8(VARIANT_S, 40, 41, 42, 43, 44, 45, 46, 47)
-VARIANTS8(VARIANT_S, 48, 49, 50, 51, 52, 53, 54, 55)
-VARIANTS8(VARIANT_S, 56, 57, 58, 59, 60, 61, 62, 63)
-VARIANTS8(VARIANT_S, 64, 65, 66, 67, 68, 69, 70, 71)
-VARIANTS8(VARIANT_S, 72, 73, 74, 75, 76, 77, 78, 79)
-VARIANTS8(VARIANT_S, 80, 81, 82, 83, 84, 85, 86, 87)
-VARIANTS8(VARIANT_S, 88, 89, 90, 91, 92, 93, 94, 95)
-VARIANTS8(VARIANT_S, 96, 97, 98, 99, 100, 101, 102, 103)
-VARIANTS8(VARIANT_S, 104, 105, 106, 107, 108, 109, 110, 111)
-VARIANTS8(VARIANT_S, 112, 113, 114, 115, 116, 117, 118, 119)
-VARIANTS8(VARIANT_S, 120, 121, 122, 123, 124, 125, 126, 127)
-VARIANTS8(VARIANT_S, 128, 129, 130, 131, 132, 133, 134, 135)
-VARIANTS8(VARIANT_S, 136, 137, 138, 139, 140, 141, 142, 143)
-VARIANTS8(VARIANT_S, 144, 145, 146, 147, 148, 149, 150, 151)
-VARIANTS8(VARIANT_S, 152, 153, 154, 155, 156, 157, 158, 159)
-VARIANTS8(VARIANT_S, 160, 161, 162, 163, 164, 165, 166, 167)
-VARIANTS8(VARIANT_S, 168, 169, 170, 171, 172, 173, 174, 175)
-VARIANTS8(VARIANT_S, 176, 177, 178, 179, 180, 181, 182, 183)
-VARIANTS8(VARIANT_S, 184, 185, 186, 187, 188, 189, 190, 191)
-VARIANTS8(VARIANT_S, 192, 193, 194, 195, 196, 197, 198, 199)
-VARIANTS8(VARIANT_S, 200, 201, 202, 203, 204, 205, 206, 207)
-VARIANTS8(VARIANT_S, 208, 209, 210, 211, 212, 213, 214, 215)
-VARIANTS8(VARIANT_S, 216, 217, 218, 219, 220, 221, 222, 223)
-VARIANTS8(VARIANT_S, 224, 225, 226, 227, 228, 229, 230, 231)
-VARIANTS8(VARIANT_S, 232, 233, 234, 235, 236, 237, 238, 239)
-VARIANTS8(VARIANT_S, 240, 241, 242, 243, 244, 245, 246, 247)
-VARIANTS8(VARIANT_S, 248, 249, 250, 251, 252, 253, 254, 255)
-VARIANTS8(VARIANT_L, 0, 1, 2, 3, 4, 5, 6, 7)
-VARIANTS8(VARIANT_L, 8, 9, 10, 11, 12, 13, 14, 15)
-VARIANTS8(VARIANT_L, 16, 17, 18, 19, 20, 21, 22, 23)
-VARIANTS8(VARIANT_L, 24, 25, 26, 27, 28, 29, 30, 31)
-VARIANTS8(VARIANT_L, 64, 65, 66, 67, 68, 69, 70, 71)
-VARIANTS8(VARIANT_L, 72, 73, 74, 75, 76, 77, 78, 79)
-VARIANTS8(VARIANT_L, 80, 81, 82, 83, 84, 85, 86, 87)
-VARIANTS8(VARIANT_L, 88, 89, 90, 91, 92, 93, 94, 95)
-VARIANTS8(VARIANT_L, 128, 129, 130, 131, 132, 133, 134, 135)
-VARIANTS8(VARIANT_L, 136, 137, 138, 139, 140, 141, 142, 143)
-VARIANTS8(VARIANT_L, 144, 145, 146, 147, 148, 149, 150, 151)
-VARIANTS8(VARIANT_L, 152, 153, 154, 155, 156, 157, 158, 159)
-VARIANTS8(VARIANT_L, 192, 193, 194, 195, 196, 197, 198, 199)
-VARIANTS8(VARIANT_L, 200, 201, 202, 203, 204, 205, 206, 207)
-VARIANTS8(VARIANT_L, 208, 209, 210, 211, 212, 213, 214, 215)
-VARIANTS8(VARIANT_L, 216, 217, 218, 219, 220, 221, 222, 223)
+#ifdef SPH_LANES_AVX512
+LANE_SETS(VARIANT_V8Z)
+#endif
 
 typedef void (*interact_fn)(sph_particles *, const sph_nlist *, const sph_force_params *,
                             sph_force_work *);
-/* The variants of one flavour (prefix P) for the term sets a, ..., h. */
-#define FN8(P, a, b, c, d, e, f, g, h) P##a, P##b, P##c, P##d, P##e, P##f, P##g, P##h
-/* The scalar loop's 256 variants in the order of F. */
-static const interact_fn VARIANT_TABLE_SCALAR[256] = {
-    FN8(interact_scalar_, 0, 1, 2, 3, 4, 5, 6, 7),
-    FN8(interact_scalar_, 8, 9, 10, 11, 12, 13, 14, 15),
-    FN8(interact_scalar_, 16, 17, 18, 19, 20, 21, 22, 23),
-    FN8(interact_scalar_, 24, 25, 26, 27, 28, 29, 30, 31),
-    FN8(interact_scalar_, 32, 33, 34, 35, 36, 37, 38, 39),
-    FN8(interact_scalar_, 40, 41, 42, 43, 44, 45, 46, 47),
-    FN8(interact_scalar_, 48, 49, 50, 51, 52, 53, 54, 55),
-    FN8(interact_scalar_, 56, 57, 58, 59, 60, 61, 62, 63),
-    FN8(interact_scalar_, 64, 65, 66, 67, 68, 69, 70, 71),
-    FN8(interact_scalar_, 72, 73, 74, 75, 76, 77, 78, 79),
-    FN8(interact_scalar_, 80, 81, 82, 83, 84, 85, 86, 87),
-    FN8(interact_scalar_, 88, 89, 90, 91, 92, 93, 94, 95),
-    FN8(interact_scalar_, 96, 97, 98, 99, 100, 101, 102, 103),
-    FN8(interact_scalar_, 104, 105, 106, 107, 108, 109, 110, 111),
-    FN8(interact_scalar_, 112, 113, 114, 115, 116, 117, 118, 119),
-    FN8(interact_scalar_, 120, 121, 122, 123, 124, 125, 126, 127),
-    FN8(interact_scalar_, 128, 129, 130, 131, 132, 133, 134, 135),
-    FN8(interact_scalar_, 136, 137, 138, 139, 140, 141, 142, 143),
-    FN8(interact_scalar_, 144, 145, 146, 147, 148, 149, 150, 151),
-    FN8(interact_scalar_, 152, 153, 154, 155, 156, 157, 158, 159),
-    FN8(interact_scalar_, 160, 161, 162, 163, 164, 165, 166, 167),
-    FN8(interact_scalar_, 168, 169, 170, 171, 172, 173, 174, 175),
-    FN8(interact_scalar_, 176, 177, 178, 179, 180, 181, 182, 183),
-    FN8(interact_scalar_, 184, 185, 186, 187, 188, 189, 190, 191),
-    FN8(interact_scalar_, 192, 193, 194, 195, 196, 197, 198, 199),
-    FN8(interact_scalar_, 200, 201, 202, 203, 204, 205, 206, 207),
-    FN8(interact_scalar_, 208, 209, 210, 211, 212, 213, 214, 215),
-    FN8(interact_scalar_, 216, 217, 218, 219, 220, 221, 222, 223),
-    FN8(interact_scalar_, 224, 225, 226, 227, 228, 229, 230, 231),
-    FN8(interact_scalar_, 232, 233, 234, 235, 236, 237, 238, 239),
-    FN8(interact_scalar_, 240, 241, 242, 243, 244, 245, 246, 247),
-    FN8(interact_scalar_, 248, 249, 250, 251, 252, 253, 254, 255),
-};
-/* A lane loop's 128 variants, in the order of lane_index(F). */
-#define LANE_TABLE(P)                                                                              \
-  {                                                                                                \
-    FN8(P, 0, 1, 2, 3, 4, 5, 6, 7), FN8(P, 8, 9, 10, 11, 12, 13, 14, 15),                          \
-        FN8(P, 16, 17, 18, 19, 20, 21, 22, 23), FN8(P, 24, 25, 26, 27, 28, 29, 30, 31),            \
-        FN8(P, 64, 65, 66, 67, 68, 69, 70, 71), FN8(P, 72, 73, 74, 75, 76, 77, 78, 79),            \
-        FN8(P, 80, 81, 82, 83, 84, 85, 86, 87), FN8(P, 88, 89, 90, 91, 92, 93, 94, 95),            \
-        FN8(P, 128, 129, 130, 131, 132, 133, 134, 135),                                            \
-        FN8(P, 136, 137, 138, 139, 140, 141, 142, 143),                                            \
-        FN8(P, 144, 145, 146, 147, 148, 149, 150, 151),                                            \
-        FN8(P, 152, 153, 154, 155, 156, 157, 158, 159),                                            \
-        FN8(P, 192, 193, 194, 195, 196, 197, 198, 199),                                            \
-        FN8(P, 200, 201, 202, 203, 204, 205, 206, 207),                                            \
-        FN8(P, 208, 209, 210, 211, 212, 213, 214, 215),                                            \
-        FN8(P, 216, 217, 218, 219, 220, 221, 222, 223),                                            \
-  }
-static const interact_fn VARIANT_TABLE[128] = LANE_TABLE(interact_all_);
+#define FN_SCALAR(k) interact_scalar_##k,
+#define FN_V4E(k) interact_all_##k,
+#define FN_V4X(k) interact_avx_##k,
+#define FN_V8Z(k) interact_avx512_##k,
+static const interact_fn VARIANT_TABLE_SCALAR[N_SCALAR_SETS] = {SCALAR_SETS(FN_SCALAR)};
+static const interact_fn VARIANT_TABLE[N_PORTABLE_SETS] = {PORTABLE_SETS(FN_V4E)};
 #ifdef SPH_LANES_AVX
-static const interact_fn VARIANT_TABLE_AVX[128] = LANE_TABLE(interact_avx_);
+static const interact_fn VARIANT_TABLE_AVX[N_LANE_SETS] = {LANE_SETS(FN_V4X)};
 #endif
 #ifdef SPH_LANES_AVX512
-static const interact_fn VARIANT_TABLE_AVX512[128] = LANE_TABLE(interact_avx512_);
+static const interact_fn VARIANT_TABLE_AVX512[N_LANE_SETS] = {LANE_SETS(FN_V8Z)};
 #endif
 
-/* The place of a term set without F_SCALAR_ONLY in a lane table. */
-static unsigned lane_index(unsigned F) {
-  return (F & 31u) | ((F & F_LEDGER) ? 32u : 0u) | ((F & F_DDIFF) ? 64u : 0u);
+/* The place of F's compiled bits (those of mask) in a table: the bits of
+ * mask taken from F and packed, lowest first. */
+static unsigned variant_index(unsigned F, unsigned mask) {
+  unsigned idx = 0, out = 1;
+  for (unsigned b = 1; b != 0 && b <= mask; b <<= 1)
+    if (mask & b) {
+      if (F & b) idx |= out;
+      out <<= 1;
+    }
+  return idx;
 }
 
 int sph_force_loop_available(sph_force_loop loop) {
@@ -462,15 +401,16 @@ static lane_flavour flavour_of(sph_force_loop loop) {
   }
 }
 
-/* The lane table of a lane loop that can run here. */
-static const interact_fn *lane_table(sph_force_loop loop) {
+/* The variant of a lane loop that can run here for the term set F (NULL:
+ * none), from its flavour's table by the bits it is compiled for. */
+static interact_fn lane_variant(sph_force_loop loop, unsigned F) {
   switch (flavour_of(loop)) {
-  case FLAVOUR_V4E: return VARIANT_TABLE;
+  case FLAVOUR_V4E: return VARIANT_TABLE[variant_index(F, F_COMPILED_PORTABLE)];
 #ifdef SPH_LANES_AVX
-  case FLAVOUR_V4X: return VARIANT_TABLE_AVX;
+  case FLAVOUR_V4X: return VARIANT_TABLE_AVX[variant_index(F, F_COMPILED_LANES)];
 #endif
 #ifdef SPH_LANES_AVX512
-  case FLAVOUR_V8Z: return VARIANT_TABLE_AVX512;
+  case FLAVOUR_V8Z: return VARIANT_TABLE_AVX512[variant_index(F, F_COMPILED_LANES)];
 #endif
   default: return NULL;
   }
@@ -483,9 +423,9 @@ static const interact_fn *lane_table(sph_force_loop loop) {
  * (`scalar`). NULL if that loop cannot run here. */
 static interact_fn pick_variant(unsigned F, sph_force_loop loop, int scalar) {
   if (!sph_force_loop_available(loop)) return NULL;
-  if (scalar || loop == SPH_LOOP_SCALAR || (F & F_SCALAR_ONLY)) return VARIANT_TABLE_SCALAR[F];
-  const interact_fn *table = lane_table(loop);
-  return table ? table[lane_index(F)] : NULL;
+  if (scalar || loop == SPH_LOOP_SCALAR || (F & F_SCALAR_ONLY))
+    return VARIANT_TABLE_SCALAR[variant_index(F, F_COMPILED_SCALAR)];
+  return lane_variant(loop, F);
 }
 
 /* The strain-rate pass's lane loop for fp: the flavour of the main pass's
@@ -621,6 +561,7 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
   const interact_fn run = pick_variant(F, fp->loop, fp->mirror);
   if (!run) return sph_error_set(err, "forces: the interaction loop asked for cannot run here");
   if (prepare_pass(p, l, fp, w, F, err)) return -1;
+  w->terms = F;
   if ((F & F_STRESS) && stress_pass(p, l, fp, w, err)) return -1;
   if (F & F_DDIFF) sph_diffusion_prepare(p, l, fp, w);
   run(p, l, fp, w);

@@ -51,8 +51,11 @@
  * With extrapolated wall velocities (wall_velocity.h) the strain-rate pass
  * reads the wall particles' ghost velocities.
  *
- * Each term a case does not use is compiled out of the loop it runs (the
- * loop is instantiated for every combination of terms, DESIGN rule 4).
+ * The terms that weigh most on the loop (the stress tensor, the energy
+ * ledger, density diffusion; per-particle h in the scalar loop) are
+ * compiled out of the loop a case runs when it does not use them (one
+ * function per combination, DESIGN rule 4); the light ones are a branch
+ * per pair (interact.h, F_COMPILED_SCALAR and F_COMPILED_LANES).
  */
 #ifndef SPH_FORCES_H
 #define SPH_FORCES_H
@@ -166,6 +169,7 @@ typedef struct sph_force_work {
   double *lj;              /* repulsive walls' potential energy per unit mass (with the ledger) */
   sph_wall_velocity_work wv;
   double cs_sigma_max; /* max over the particles of cs + sigma (the step rule) */
+  unsigned terms;      /* the pass's term set (interact.h: the bits a loop tests at run time) */
   uint32_t *rows;      /* per thread: a neighbour row cut to the support */
   size_t rows_stride, rows_cap;
   /* With the stress tensor in lanes: every particle's row cut by the

@@ -50,6 +50,59 @@ enum {
 /* The lane loop serves the term sets without these (the scalar loop runs them). */
 #define F_SCALAR_ONLY F_VARH
 
+/* The bits each loop is compiled for, every combination its own function
+ * (forces.c), listed lowest first (BITk; 0u: unused): those that weigh on
+ * the inner loop, measured on the shipped cases (bench/results/loops.md).
+ * A bit left out is read from the pass's term set (w->terms) and tested
+ * per pair, the same operations in the same order, so the same results;
+ * it costs the loop the registers its constants hold (1.5 % more
+ * instructions for periodicity, about 4 % for the ledger or Morris' term).
+ *   scalar loop   per-particle h and mirror walls only (the lanes run the
+ *                 rest): the stress, per-particle h, the ledger, diffusion
+ *   lane loops    every term but periodicity (a row's cut is compiled for
+ *                 both, interact_lanes.h)
+ *   portable      on x86-64 the portable lanes are the fallback of
+ *                 processors without AVX2: the heavy terms only */
+#define F_SCALAR_BIT0 F_STRESS
+#define F_SCALAR_BIT1 F_VARH
+#define F_SCALAR_BIT2 F_LEDGER
+#define F_SCALAR_BIT3 F_DDIFF
+#define F_SCALAR_BIT4 0u
+#define F_SCALAR_BIT5 0u
+#define N_SCALAR_SETS 16 /* 2^(the bits above that are not 0u) */
+#define F_LANE_BIT0 F_AV
+#define F_LANE_BIT1 F_XSPH
+#define F_LANE_BIT2 F_STRESS
+#define F_LANE_BIT3 F_MORRIS
+#define F_LANE_BIT4 F_LEDGER
+#define F_LANE_BIT5 F_DDIFF
+#define N_LANE_SETS 64
+#ifdef SPH_LANES_AVX
+#define F_PORTABLE_BIT0 F_STRESS
+#define F_PORTABLE_BIT1 F_LEDGER
+#define F_PORTABLE_BIT2 F_DDIFF
+#define F_PORTABLE_BIT3 0u
+#define F_PORTABLE_BIT4 0u
+#define F_PORTABLE_BIT5 0u
+#define N_PORTABLE_SETS 8
+#else
+#define F_PORTABLE_BIT0 F_LANE_BIT0
+#define F_PORTABLE_BIT1 F_LANE_BIT1
+#define F_PORTABLE_BIT2 F_LANE_BIT2
+#define F_PORTABLE_BIT3 F_LANE_BIT3
+#define F_PORTABLE_BIT4 F_LANE_BIT4
+#define F_PORTABLE_BIT5 F_LANE_BIT5
+#define N_PORTABLE_SETS N_LANE_SETS
+#endif
+#define F_BITS_OF(P) (P##_BIT0 | P##_BIT1 | P##_BIT2 | P##_BIT3 | P##_BIT4 | P##_BIT5)
+#define F_COMPILED_SCALAR F_BITS_OF(F_SCALAR)
+#define F_COMPILED_LANES F_BITS_OF(F_LANE)
+#define F_COMPILED_PORTABLE F_BITS_OF(F_PORTABLE)
+
+/* The term set a loop evaluates: the bits of mask from the literal Fc
+ * (folded by the compiler), the others from the pass's set Fr. */
+#define SPH_TERMS(Fc, mask, Fr) (((Fc) & (mask)) | ((Fr) & ~(unsigned)(mask)))
+
 /* The term set a pass with these parameters needs. */
 static inline unsigned sph_interact_terms(const sph_force_params *fp) {
   unsigned F = 0;
@@ -125,12 +178,13 @@ static inline double diffusion_scale(const sph_force_params *fp, const unsigned 
   return -2.0 * fp->diffusion_delta * fp->eos.c0 * ((F & F_VARH) ? 1.0 : fp->h);
 }
 
-/* The scalar loop: every term set. */
+/* The scalar loop: every term set; Fc the compiled bits (F_COMPILED_SCALAR). */
 static inline __attribute__((always_inline)) void interact_one(sph_particles *restrict p,
                                                                const sph_nlist *restrict l,
                                                                const sph_force_params *restrict fp,
                                                                sph_force_work *restrict w, size_t i,
-                                                               const unsigned F) {
+                                                               const unsigned Fc) {
+  const unsigned F = SPH_TERMS(Fc, F_COMPILED_SCALAR, w->terms);
   const sph_force_hot *restrict hot = w->hot;
   const double *restrict h = p->h;
   const double *restrict sxx = w->sxx, *restrict sxy = w->sxy, *restrict syy = w->syy;
@@ -360,16 +414,19 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
 #define LSET(E, a) LAOP(set)(E(0, a), E(1, a), E(2, a), E(3, a))
 
 #define FL v4e
+#define LBITS F_COMPILED_PORTABLE
 #define LHOT(g) LHOT_SET(g)
 #define LOOP_ATTR static inline __attribute__((always_inline))
 #include "solver/interact_lanes.h"
 #include "solver/strain_lanes.h"
 #undef LOOP_ATTR
 #undef LHOT
+#undef LBITS
 #undef FL
 
 #ifdef SPH_LANES_AVX
 #define FL v4x
+#define LBITS F_COMPILED_LANES
 #define LHOT(g)                                                                                    \
   v4x g[8];                                                                                        \
   {                                                                                                \
@@ -381,6 +438,7 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
 #include "solver/strain_lanes.h"
 #undef LOOP_ATTR
 #undef LHOT
+#undef LBITS
 #undef FL
 #endif
 
@@ -426,10 +484,12 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
   }
 
 #define FL v8z
+#define LBITS F_COMPILED_LANES
 #define LOOP_ATTR static inline __attribute__((always_inline, target("avx512f")))
 #include "solver/interact_lanes.h"
 #include "solver/strain_lanes.h"
 #undef LOOP_ATTR
+#undef LBITS
 #undef FL
 
 #undef LHOT

@@ -40,8 +40,10 @@
  * terms t into the sums s, LDEC(s, t) subtracting them, LAMAX(s, t) the
  * same for the max, LMASK the mask type, LSET(E, a) the vector of E(q, a)
  * for q = 0 .. LW - 1 (E_ARR(q, arr) gives arr[j] of the iteration's q-th
- * neighbour j), and LHOT(g) the declaration of g[8], the fields of this
- * iteration's neighbours' records (sph_force_hot) by place H_field.
+ * neighbour j), LHOT(g) the declaration of g[8], the fields of this
+ * iteration's neighbours' records (sph_force_hot) by place H_field, and
+ * LBITS the bits of F the flavour is compiled for (interact.h); the others
+ * come from the pass's term set.
  */
 
 #define LT FL
@@ -50,7 +52,8 @@
 
 LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_nlist *restrict l,
                                           const sph_force_params *restrict fp,
-                                          sph_force_work *restrict w, size_t i, const unsigned F) {
+                                          sph_force_work *restrict w, size_t i, const unsigned Fc) {
+  const unsigned F = SPH_TERMS(Fc, LBITS, w->terms);
   const sph_force_hot *restrict hot = w->hot;
   const double *restrict sxx = w->sxx, *restrict sxy = w->sxy, *restrict syy = w->syy;
   const int32_t *restrict kind = p->kind;
@@ -68,7 +71,8 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     cnt = w->keepn[i];
   } else {
     nb = w->rows + (size_t)sph_thread() * w->rows_stride;
-    cnt = cut_row(hot, l, fp, i, nb, F);
+    /* the cut compiled for both: periodic or not (a predicted branch per row) */
+    cnt = (F & F_PERIODIC) ? cut_row(hot, l, fp, i, nb, F_PERIODIC) : cut_row(hot, l, fp, i, nb, 0);
     for (size_t k = cnt; k < cnt + LW - 1 && cnt > 0; k++)
       nb[k] = nb[cnt - 1]; /* padding lanes */
   }
