@@ -66,7 +66,7 @@ typedef struct sph_particles {
   double *u;       /* thermal energy per unit mass (J/kg) */
   int32_t *kind;   /* SPH_KIND_* */
   int64_t *id;     /* 0..n-1, fixed at creation */
-  uint8_t *flags;  /* per-particle flags (bit 0: free surface) */
+  uint8_t *flags;  /* per-particle flags, SPH_FLAG_* (free surface, wall models) */
   /* state at the start of the step (predictor-corrector), and rates */
   double *x0, *y0, *vx0, *vy0, *rho0, *u0;
   double *ax, *ay, *drho, *du;   /* dv/dt, drho/dt, du/dt */
