@@ -80,29 +80,6 @@ const char *sph_viscosity_name(sph_viscosity_kind v) {
   return choice_name(viscosity_names, (int)v);
 }
 
-/* A counter-based generator (the splitmix64 finaliser applied to the
- * seed, block and lattice indices in turn): each particle's draw depends
- * on its own indices only, never on the order particles are made in. */
-static uint64_t mix64(uint64_t z) {
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-void sph_fluid_jitter(const sph_fluid_block *fb, size_t block, long i, long j, double dx, double *x,
-                      double *y) {
-  if (!(fb->jitter > 0.0)) return;
-  uint64_t h = mix64((uint64_t)(uint32_t)fb->seed);
-  h = mix64(h ^ (uint64_t)block);
-  h = mix64(h ^ (uint64_t)j);
-  h = mix64(h ^ (uint64_t)i);
-  const uint64_t h2 = mix64(h);
-  const double u1 = (double)(h >> 11) * 0x1.0p-53, u2 = (double)(h2 >> 11) * 0x1.0p-53;
-  *x += fb->jitter * dx * (2.0 * u1 - 1.0);
-  *y += fb->jitter * dx * (2.0 * u2 - 1.0);
-}
-
 int sph_case_needs_free_surface(const sph_case *c) {
   return c->output_free_surface || c->fs_h_factor > 0.0;
 }

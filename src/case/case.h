@@ -57,13 +57,6 @@ typedef struct sph_fluid_block {
   int seed;        /* seed of the jitter, default 1 */
 } sph_fluid_block;
 
-/* Adds the block's seeded jitter (if any) to the lattice position (x, y) of
- * its particle (i, j); block is the block's index in the case. The draw
- * depends only on (seed, block, i, j), so it is the same on every run and
- * platform and for any creation order. */
-void sph_fluid_jitter(const sph_fluid_block *fb, size_t block, long i, long j, double dx, double *x,
-                      double *y);
-
 const char *sph_probe_kind_name(sph_probe_kind k);
 
 typedef struct sph_case {

@@ -44,6 +44,33 @@ static sph_force_loop sph_test_loop(void) {
   return SPH_LOOP_AUTO;
 }
 
+/* A counter-based generator (the splitmix64 finaliser applied to the
+ * seed, block and lattice indices in turn): each particle's draw depends
+ * on its own indices only, never on the order particles are made in. */
+static uint64_t mix64(uint64_t z) {
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+/* Adds the block's seeded jitter (if any) to the lattice position (x, y) of
+ * its particle (i, j); block is the block's index in the case. The draw
+ * depends only on (seed, block, i, j), so it is the same on every run and
+ * platform and for any creation order. */
+static void fluid_jitter(const sph_fluid_block *fb, size_t block, long i, long j, double dx,
+                         double *x, double *y) {
+  if (!(fb->jitter > 0.0)) return;
+  uint64_t h = mix64((uint64_t)(uint32_t)fb->seed);
+  h = mix64(h ^ (uint64_t)block);
+  h = mix64(h ^ (uint64_t)j);
+  h = mix64(h ^ (uint64_t)i);
+  const uint64_t h2 = mix64(h);
+  const double u1 = (double)(h >> 11) * 0x1.0p-53, u2 = (double)(h2 >> 11) * 0x1.0p-53;
+  *x += fb->jitter * dx * (2.0 * u1 - 1.0);
+  *y += fb->jitter * dx * (2.0 * u2 - 1.0);
+}
+
 static int add_fluid(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   const double dx = c->dx, mass = c->rho0 * dx * dx;
@@ -56,7 +83,7 @@ static int add_fluid(sph_sim *s, sph_error *err) {
       for (long i = 0; i < nx; i++) {
         double x = fb->x0 + ((double)i + 0.5) * dx;
         double y = fb->y0 + ((double)j + 0.5) * dx;
-        sph_fluid_jitter(fb, b, i, j, dx, &x, &y); /* perturbed start, if asked for */
+        fluid_jitter(fb, b, i, j, dx, &x, &y); /* perturbed start, if asked for */
         double rho = c->rho0;
         if (fb->hydrostatic) rho = sph_eos_density(&s->fp.eos, c->rho0 * gmag * (fb->surface - y));
         if (sph_particles_add(&s->p, x, y, fb->vx, fb->vy, rho, mass, c->h, SPH_KIND_FLUID, err) <

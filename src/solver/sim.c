@@ -393,13 +393,11 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
 
 double sph_sim_time(const sph_sim *s) { return s->t; }
 long sph_sim_steps(const sph_sim *s) { return s->steps; }
-double sph_sim_last_dt(const sph_sim *s) { return s->last_dt; }
 const sph_case *sph_sim_case(const sph_sim *s) { return s->c; }
 sph_particles *sph_sim_particles(sph_sim *s) { return &s->p; }
 double sph_sim_floor(const sph_sim *s) { return s->floor_y; }
 size_t sph_sim_fluid_removed(const sph_sim *s) { return s->fluid_removed; }
 void sph_sim_domain(const sph_sim *s, double box[4]) { memcpy(box, s->domain, 4 * sizeof *box); }
-void sph_sim_view(const sph_sim *s, double box[4]) { memcpy(box, s->view, 4 * sizeof *box); }
 
 void sph_sim_diag(const sph_sim *s, sph_diag_row *row) {
   sph_diag_compute(&s->p, s->floor_y, 2.0 * s->c->dx, s->c->gravity, row);

@@ -48,7 +48,6 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err);
 
 double sph_sim_time(const sph_sim *s);
 long sph_sim_steps(const sph_sim *s);
-double sph_sim_last_dt(const sph_sim *s);
 const sph_case *sph_sim_case(const sph_sim *s);
 /* The particles (storage order changes at every step; use id for identity). */
 sph_particles *sph_sim_particles(sph_sim *s);
@@ -61,8 +60,6 @@ double sph_sim_floor(const sph_sim *s);
 size_t sph_sim_fluid_removed(const sph_sim *s);
 /* The domain box x0, x1, y0, y1: a particle leaving it is a blow-up. */
 void sph_sim_domain(const sph_sim *s, double box[4]);
-/* The view box (the tank with its walls, or the particles' initial box). */
-void sph_sim_view(const sph_sim *s, double box[4]);
 /* Diagnostics of the current state. */
 void sph_sim_diag(const sph_sim *s, sph_diag_row *row);
 /* Writes the current state as a snapshot (atomically). */
