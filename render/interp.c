@@ -5,39 +5,38 @@
  * Particles go into square cells of side 2 max h (a counting sort, stable,
  * so each cell keeps id order); a point visits the 3 x 3 cells around its
  * own. Wall particles count with the volume of their number density (see
- * below), fluid particles with m / rho. Kernels (2-D normalisation, support 2h), as in
- * src/physics/kernel.h: cubic spline (paper A eq. 8)  W = 10/(7 pi h^2) [1 - 3/2 q^2 + 3/4 q^3],
- *                                 10/(7 pi h^2) (2 - q)^3 / 4 for 1 <= q < 2
- *   Wendland C2 (Wendland 1995)   W = 7/(4 pi h^2) (1 - q/2)^4 (2q + 1)
+ * below), fluid particles with m / rho. The kernels are the solver's own
+ * (src/core/kernel_shape.h: the cubic spline of paper A eq. 8 and the
+ * Wendland C2 kernel, support 2h), the one the snapshot names.
  */
 #include "config.h"
 
 #include "interp.h"
+
+#include "core/kernel_shape.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 double rinterp_w(int k, double r, double h) {
-  const double q = r / h;
-  if (q >= 2.0) return 0.0;
-  if (k == RKERNEL_WENDLAND_C2) {
-    const double t = 1.0 - 0.5 * q;
-    return 7.0 / (4.0 * M_PI * h * h) * t * t * t * t * (2.0 * q + 1.0);
-  }
-  const double sigma = 10.0 / (7.0 * M_PI * h * h);
-  if (q < 1.0) return sigma * (1.0 - 1.5 * q * q + 0.75 * q * q * q);
-  const double t = 2.0 - q;
-  return sigma * 0.25 * t * t * t;
+  double w, dw;
+  sph_shape_w_dw(k == RKERNEL_WENDLAND_C2 ? SPH_SHAPE_WENDLAND_C2 : SPH_SHAPE_CUBIC_SPLINE, r, h,
+                 &w, &dw);
+  return w;
 }
 
-int rinterp_kernel_of(const char *parameters) {
-  const char *k = parameters ? strstr(parameters, "numerics.kernel:") : NULL;
-  if (!k) return RKERNEL_CUBIC;
-  k += strlen("numerics.kernel:");
-  while (*k == ' ')
-    k++;
-  return strncmp(k, "wendland_c2", 11) == 0 ? RKERNEL_WENDLAND_C2 : RKERNEL_CUBIC;
+int rinterp_kernel_of(const sph_snapshot *s) {
+  const int k = sph_shape_of_name(sph_snapshot_text(s, "kernel"));
+  if (k >= 0) return k == SPH_SHAPE_WENDLAND_C2 ? RKERNEL_WENDLAND_C2 : RKERNEL_CUBIC;
+  /* a snapshot written before the kernel attribute: its parameter listing */
+  const char *parameters = sph_snapshot_text(s, "parameters");
+  const char *p = parameters ? strstr(parameters, "numerics.kernel:") : NULL;
+  if (!p) return RKERNEL_CUBIC;
+  p += strlen("numerics.kernel:");
+  while (*p == ' ')
+    p++;
+  return strncmp(p, "wendland_c2", 11) == 0 ? RKERNEL_WENDLAND_C2 : RKERNEL_CUBIC;
 }
 
 int rinterp_is_fluid(double sf) { return sf >= 0.5; }

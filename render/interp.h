@@ -27,6 +27,7 @@
 #include <stddef.h>
 
 #include "core/error.h"
+#include "io/snapshot.h"
 
 enum { RKERNEL_CUBIC = 0, RKERNEL_WENDLAND_C2 = 1 };
 
@@ -52,9 +53,10 @@ int rinterp_field(const rinterp_in *in, const rinterp_grid *g, double *f, double
 
 /* Whether a point with fluid kernel sum sf is inside the fluid (above). */
 int rinterp_is_fluid(double sf);
-/* The kernel of a snapshot's `parameters` text ("numerics.kernel: ..."),
- * the cubic spline if it names none. */
-int rinterp_kernel_of(const char *parameters);
+/* The kernel of a snapshot: its `kernel` attribute, or in a snapshot
+ * written before it had one, the `numerics.kernel` line of its
+ * `parameters`; the cubic spline if neither names one. */
+int rinterp_kernel_of(const sph_snapshot *s);
 /* W(r, h) of kernel k in 2-D. */
 double rinterp_w(int k, double r, double h);
 

@@ -157,7 +157,7 @@ int rsnap_load_volumes(rsnap *s, sph_error *err) {
   if (!rc) rc = read_into(ss, s->path, "rho", rho, why, err);
   for (size_t i = 0; !rc && i < s->n; i++)
     s->vol[i] = rho[i] > 0.0 ? s->vol[i] / rho[i] : 0.0;
-  if (!rc) s->kernel = rinterp_kernel_of(sph_snapshot_text(ss, "parameters"));
+  if (!rc) s->kernel = rinterp_kernel_of(ss);
   free(rho);
   sph_snapshot_close(ss);
   if (rc) {

@@ -428,9 +428,38 @@ static void test_interp(void) {
            "outline at %.2f to %.2f (20 exact)",
            kernel, worst_f, worst_s, edge, st.ymin, st.ymax);
   }
-  CU_ASSERT_EQUAL(rinterp_kernel_of("numerics.kernel: wendland_c2\n"), RKERNEL_WENDLAND_C2);
-  CU_ASSERT_EQUAL(rinterp_kernel_of("numerics.kernel: cubic_spline\n"), RKERNEL_CUBIC);
-  CU_ASSERT_EQUAL(rinterp_kernel_of(NULL), RKERNEL_CUBIC);
+  /* the kernel a snapshot names: its kernel attribute, else (a snapshot
+   * written before it had one) its parameters' numerics.kernel line */
+  struct {
+    const char *kernel, *parameters;
+    int want;
+  } named[] = {{"wendland_c2", NULL, RKERNEL_WENDLAND_C2},
+               {"cubic_spline", "numerics.kernel: wendland_c2\n", RKERNEL_CUBIC},
+               {NULL, "numerics.kernel: wendland_c2\n", RKERNEL_WENDLAND_C2},
+               {NULL, "numerics.kernel: cubic_spline\n", RKERNEL_CUBIC},
+               {NULL, NULL, RKERNEL_CUBIC}};
+  for (size_t c = 0; c < sizeof named / sizeof named[0]; c++) {
+    sph_particles p;
+    sph_error err;
+    char path[4200];
+    snprintf(path, sizeof path, "%s/kernel_%zu.h5", tmp, c);
+    CU_ASSERT_EQUAL_FATAL(sph_particles_init(&p, 4, &err), 0);
+    sph_particles_add(&p, 0.0, 0.0, 0, 0, 1000, 0.1, 0.013, SPH_KIND_FLUID, &err);
+    sph_snapshot_meta m;
+    memset(&m, 0, sizeof m);
+    m.case_name = "kernel";
+    m.kernel = named[c].kernel;
+    m.parameters = named[c].parameters;
+    m.dx = 0.01;
+    m.h = 0.013;
+    m.rho0 = 1000;
+    CU_ASSERT_EQUAL(sph_snapshot_write(path, &m, &p, &err), 0);
+    sph_particles_free(&p);
+    sph_snapshot *ss = NULL;
+    CU_ASSERT_EQUAL_FATAL(sph_snapshot_open(path, &ss, &err), 0);
+    CU_ASSERT_EQUAL(rinterp_kernel_of(ss), named[c].want);
+    sph_snapshot_close(ss);
+  }
 }
 
 static double luminance(const uint8_t c[3]) {

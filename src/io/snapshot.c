@@ -49,7 +49,7 @@
 
 /* The string attributes of "/" the reader keeps (snapshot.h). */
 static const char *const TEXTS[] = {"case_name", "case_text",      "overrides", "parameters",
-                                    "version",   "configure_args", "compiler"};
+                                    "version",   "configure_args", "compiler",  "kernel"};
 #define N_TEXTS (sizeof TEXTS / sizeof TEXTS[0])
 
 static hid_t file_type(field_type t) {
@@ -230,7 +230,8 @@ static int write_header(writer *w, const sph_snapshot_meta *meta, size_t n) {
                                 or_empty(meta->parameters),
                                 sph_version(),
                                 sph_configure_args(),
-                                sph_compiler()};
+                                sph_compiler(),
+                                or_empty(meta->kernel)};
   for (size_t i = 0; i < N_TEXTS; i++)
     if (put_text(w, w->file, "/", TEXTS[i], texts[i])) return -1;
   if (put_double(w, "dx", meta->dx) || put_double(w, "h", meta->h) ||

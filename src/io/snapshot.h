@@ -37,6 +37,7 @@ typedef struct sph_snapshot_meta {
   const char *case_text;  /* may be NULL: stored as "" */
   const char *overrides;  /* may be NULL */
   const char *parameters; /* resolved parameters and choices, "key: value" lines; may be NULL */
+  const char *kernel;     /* the smoothing kernel's name (numerics.kernel); may be NULL */
   double dx, h, rho0;
   double view[4];                             /* x0, x1, y0, y1 */
   int free_surface;                           /* write the free_surface field (flags bit 0) */

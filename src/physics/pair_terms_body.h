@@ -25,9 +25,10 @@
 #define MIN OP(min)
 #define MAX OP(max)
 
-/* The 2-D cubic spline (paper A eq. 8, paper B §2.1; src/physics/kernel.h)
+/* The cubic spline (paper A eq. 8, paper B §2.1; src/core/kernel_shape.h)
  * in the loops' form: W_ij and F_ij = (1/r) dW/dr for 0 < r < 2h, from
- * 1/r, 1/h, sigma = 10/(7 pi h^2) and sigma/h. Both branches of the spline
+ * 1/r, 1/h, the normalisation sigma (sph_kernel_norm: 10/(7 pi h^2) in 2-D)
+ * and sigma/h. Both branches of the spline
  * are one expression (no unpredictable branch): with t = 2 - q and
  * a = max(1 - q, 0), W = sigma [t^3/4 - a^3], dW/dq = sigma [3 a^2 - 3/4 t^2]. */
 PT_ATTR void PT(cubic_w_f)(T r, T inv_r, T inv_h, T sigma, T sigma_h, T *w, T *f) {
@@ -37,8 +38,9 @@ PT_ATTR void PT(cubic_w_f)(T r, T inv_r, T inv_h, T sigma, T sigma_h, T *w, T *f
   *f = MUL(MUL(sigma_h, SUB(MUL(ALL(3.0), MUL(a, a)), MUL(ALL(0.75), MUL(t, t)))), inv_r);
 }
 
-/* The 2-D Wendland C2 kernel (Wendland 1995; src/physics/kernel.h) in the
- * loops' form, the same arguments as cubic_w_f with sigma = 7/(4 pi h^2):
+/* The Wendland C2 kernel (Wendland 1995; src/core/kernel_shape.h) in the
+ * loops' form, the same arguments as cubic_w_f with its sigma (7/(4 pi h^2)
+ * in 2-D):
  * with t = 1 - q/2 (0 < q < 2), W = sigma t^4 (2q + 1) and
  * dW/dq = -5 sigma q t^3, so F = (1/r) dW/dr = -5 (sigma/h) (1/h) t^3 (no 1/r). */
 PT_ATTR void PT(wendland_w_f)(T r, T inv_r, T inv_h, T sigma, T sigma_h, T *w, T *f) {

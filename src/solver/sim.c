@@ -421,6 +421,7 @@ void sph_sim_fill_meta(const sph_sim *s, sph_snapshot_meta *m, double t, long st
   m->case_text = s->c->text;
   m->overrides = s->c->overrides;
   m->parameters = s->parameters;
+  m->kernel = sph_kernel_name(s->c->kernel);
   m->dx = s->c->dx;
   m->h = s->c->h;
   m->rho0 = s->c->rho0;
