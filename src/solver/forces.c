@@ -22,7 +22,7 @@
  *   - the fields a neighbour reads are packed in one 64-byte record per
  *     particle (sph_force_hot), refreshed at every pass;
  *   - every variant but per-particle h and mirror particles runs the
- *     lane loop (interact_lanes.h), AVX-512 or AVX2
+ *     lane loop (interact_row.h), AVX-512 or AVX2
  *     where the processor has it, the energy ledger included; so does the
  *     strain-rate pass of the viscous stress (strain_lanes.h);
  *   - the step rule's max of c + sigma is reduced inside the pass.
@@ -260,7 +260,7 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
 }
 
 /* One particle of the main pass in a flavour. */
-#define PARTICLE_v1(p, l, fp, w, i, k) interact_one(p, l, fp, w, i, k)
+#define PARTICLE_v1(p, l, fp, w, i, k) interact_v1(p, l, fp, w, i, k)
 #define PARTICLE_v4e(p, l, fp, w, i, k) interact_v4e(p, l, fp, w, i, k)
 #define PARTICLE_v4x(p, l, fp, w, i, k) interact_v4x(p, l, fp, w, i, k)
 #define PARTICLE_v8z(p, l, fp, w, i, k) interact_v8z(p, l, fp, w, i, k)

@@ -3,17 +3,16 @@
  * interact.h - the loops of the main interaction pass, for one particle i
  * over its neighbour row (internal to src/solver/forces.c).
  *
- * The terms in use are a bit set F, a constant at every call site, so each
- * of the 256 combinations compiles to a loop without the terms it does not
- * use (DESIGN rule 4). Two loops evaluate the same terms of
- * src/physics/pair_terms.h:
- *   interact_one    the scalar loop, one pair after the other in row order:
+ * The terms in use are a bit set F; the bits that weigh on a loop are a
+ * constant at its call sites (F_COMPILED_*, below), so it compiles without
+ * the terms it does not use (DESIGN rule 4). One body, interact_row.h,
+ * written once, is instantiated here in every arithmetic flavour:
+ *   interact_v1     the scalar loop, one pair after the other in row order:
  *                   every term set (the only one for per-particle h and
  *                   mirror particles);
- *   interact_FL     the lane loop, four pairs at a time (interact_lanes.h,
- *                   instantiated here for v4e and, on x86-64, v4x), or
- *                   eight at a time into the same four-lane sums (v8z,
- *                   AVX-512 on x86-64: the same bits as v4e and v4x).
+ *   interact_v4e,   the lane loops, four pairs at a time (portable; AVX2 on
+ *   interact_v4x    x86-64), or eight at a time into the same four-lane sums
+ *   interact_v8z    (AVX-512 on x86-64: the same bits as v4e and v4x).
  * The strain-rate pass of the viscous stress has its lane loop here too
  * (strain_FL, strain_lanes.h), over the same cut rows.
  * Each sum runs over the row in increasing storage index (the lane loop:
@@ -60,7 +59,7 @@ enum {
  *   scalar loop   per-particle h and mirror walls only (the lanes run the
  *                 rest): the stress, per-particle h, the ledger, diffusion
  *   lane loops    every term but periodicity (a row's cut is compiled for
- *                 both, interact_lanes.h)
+ *                 both, interact_row.h)
  *   portable      on x86-64 the portable lanes are the fallback of
  *                 processors without AVX2: the heavy terms only */
 #define F_SCALAR_BIT0 F_STRESS
@@ -171,173 +170,17 @@ static inline __attribute__((always_inline)) double sep_x(double xi, double xj, 
   return d;
 }
 
-/* The factor of the density diffusion's pair sum (interact_one, interact_FL):
+/* The largest of a lane loop's four maxima, (l0 max l1) max (l2 max l3). */
+static inline double lanes_max4(const double lv[4]) {
+  const double s01 = lv[0] > lv[1] ? lv[0] : lv[1], s23 = lv[2] > lv[3] ? lv[2] : lv[3];
+  return s01 > s23 ? s01 : s23;
+}
+
+/* The factor of the density diffusion's pair sum (interact_FL):
  * -2 delta c0 h, with h the smoothing length (1 with per-particle h: the
  * loop multiplies each pair by its h_ij). */
 static inline double diffusion_scale(const sph_force_params *fp, const unsigned F) {
   return -2.0 * fp->diffusion_delta * fp->eos.c0 * ((F & F_VARH) ? 1.0 : fp->h);
-}
-
-/* The scalar loop: every term set; Fc the compiled bits (F_COMPILED_SCALAR). */
-static inline __attribute__((always_inline)) void interact_one(sph_particles *restrict p,
-                                                               const sph_nlist *restrict l,
-                                                               const sph_force_params *restrict fp,
-                                                               sph_force_work *restrict w, size_t i,
-                                                               const unsigned Fc) {
-  const unsigned F = SPH_TERMS(Fc, F_COMPILED_SCALAR, w->terms);
-  const sph_force_hot *restrict hot = w->hot;
-  const double *restrict h = p->h;
-  const double *restrict sxx = w->sxx, *restrict sxy = w->sxy, *restrict syy = w->syy;
-  const int32_t *restrict kind = p->kind;
-  const uint8_t *restrict flags = p->flags;
-  /* loop invariants: one predicted branch per pair each */
-  const int slip = fp->free_slip, mirror = fp->mirror;
-  const double *restrict vxh = p->vxh, *restrict vyh = p->vyh; /* mirror: no-slip velocity */
-  const double period = fp->period, half = 0.5 * fp->period;
-  const double nu4 = 4.0 * fp->mu / fp->eos.rho0;
-  const double nalpha = -fp->alpha, beta = fp->beta, eta_f = fp->eta;
-  if (kind[i] == SPH_KIND_MIRROR || (p->flags[i] & SPH_FLAG_REPULSIVE)) {
-    p->drho[i] = p->ax[i] = p->ay[i] = 0.0;
-    w->sigma[i] = 0.0;
-    if (F & F_LEDGER) p->du[i] = w->wpow[i] = w->wfx[i] = w->wfy[i] = 0.0;
-    if ((F & F_DDIFF) && (F & F_LEDGER)) w->dd[i] = 0.0;
-    return;
-  }
-  const sph_force_hot qi = hot[i];
-  const double xi = qi.x, yi = qi.y, vxi = qi.vx, vyi = qi.vy;
-  const double rhoi = qi.rho, pri = qi.prho2, ci = qi.cs;
-  const int fluid = kind[i] == SPH_KIND_FLUID;
-  /* fixed h: 1/h, 4h^2 and the kernel's sigma once per particle (F_VARH: per pair) */
-  const double h0 = fp->h, inv_h0 = 1.0 / h0, supp0 = 4.0 * h0 * h0;
-  const int wendland = fp->kernel == SPH_KERNEL_WENDLAND_C2;
-  const double sigma0 = sph_kernel_sigma(fp->kernel, inv_h0);
-  double drho = 0.0, ax = 0.0, ay = 0.0, xs = 0.0, ys = 0.0, sig = 0.0;
-  double du = 0.0, wpow = 0.0, wfx = 0.0, wfy = 0.0; /* energy and momentum ledger */
-  double dd = 0.0;                                   /* density diffusion */
-  const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy, *restrict ddm = w->ddm;
-  const double cxi = (F & F_DDIFF) ? ddcx[i] : 0.0, cyi = (F & F_DDIFF) ? ddcy[i] : 0.0;
-  const int diffuses = (F & F_DDIFF) && ddm[i] != 0.0; /* diffusion.h */
-  ROW(l, i, nb, cnt)
-  for (size_t k = 0; k < cnt; k++) {
-    const size_t j = nb[k];
-    const sph_force_hot *restrict qj = &hot[j];
-    const double dx = sep_x(xi, qj->x, period, half, F), dy = yi - qj->y;
-    const double r2 = dx * dx + dy * dy;
-    const double hij = (F & F_VARH) ? 0.5 * (h[i] + h[j]) : h0;
-    const double supp = (F & F_VARH) ? 4.0 * hij * hij : supp0;
-    if (r2 >= supp || r2 == 0.0) continue; /* outside the support, or coincident */
-    const double inv_r2 = 1.0 / r2, r = sqrt(r2), inv_r = r * inv_r2;
-    const double inv_h = (F & F_VARH) ? 1.0 / hij : inv_h0;
-    const double sigma = (F & F_VARH) ? sph_kernel_sigma(fp->kernel, inv_h) : sigma0;
-    double wij, f; /* W_ij and (1/r) dW/dr: grad_i W_ij = f (dx, dy) */
-    if (wendland)  /* the same for every pair: a branch the processor predicts */
-      wendland_w_f_v1(r, inv_r, inv_h, sigma, sigma * inv_h, &wij, &f);
-    else
-      cubic_w_f_v1(r, inv_r, inv_h, sigma, sigma * inv_h, &wij, &f);
-    const double gx = f * dx, gy = f * dy;
-    const double dvx = vxi - qj->vx, dvy = vyi - qj->vy;
-    const double mj = qj->m;
-    drho += continuity_v1(mj, dvx, dvy, gx, gy);
-    const double vdotr = dvx * dx + dvy * dy;
-    const double s = signal_v1(hij, vdotr, inv_r2);
-    sig = s > sig ? s : sig;
-    /* the density diffusion (diffusion.h): pairs where both diffuse and one
-     * is fluid (a wall particle's row: its fluid neighbours only) */
-    if ((F & F_DDIFF) && diffuses && ddm[j] != 0.0 && (fluid || kind[j] == SPH_KIND_FLUID)) {
-      const double psi = diffusion_psi_v1(rhoi, qj->rho, dx, dy, cxi + ddcx[j], cyi + ddcy[j]);
-      const double d = diffusion_v1(psi, f, ddm[j], qj->rho);
-      dd += (F & F_VARH) ? hij * d : d;
-    }
-    /* a wall particle needs the pair terms only for its share of the heat */
-    if (!fluid && !((F & F_LEDGER) && kind[j] == SPH_KIND_FLUID)) continue;
-    /* the relative velocity of the viscous terms: a mirror particle's is
-     * its no-slip velocity (boundary.h), the continuity's its reflected one */
-    double vvx = dvx, vvy = dvy, vvdotr = vdotr;
-    if (mirror && kind[j] == SPH_KIND_MIRROR) {
-      vvx = vxi - vxh[j];
-      vvy = vyi - vyh[j];
-      vvdotr = vvx * dx + vvy * dy;
-    }
-    double pij = pri + qj->prho2;
-    double inv_rb = 0.0;
-    if (F & (F_AV | F_XSPH)) inv_rb = inv_rho_mean_v1(rhoi, qj->rho);
-    /* a fluid-wall pair on a free-slip wall: the pressure and Pi_ij along the
-     * normal, Pi_ij of the normal relative velocity (normal_vdotr) */
-    const size_t b = fluid ? j : i; /* the pair's wall particle, if any */
-    const int slip_pair = slip && kind[b] == SPH_KIND_WALL && (flags[b] & SPH_FLAG_FREE_SLIP);
-    if (F & F_AV) {
-      const double eta = eta_f * hij;
-      const double avr = slip_pair ? normal_vdotr_v1(vvx, vvy, dx, dy, p->mx[b], p->my[b]) : vvdotr;
-      pij += artificial_viscosity_v1(avr, hij, r2, eta * eta, ci, qj->cs, nalpha, beta, inv_rb);
-    }
-    const double mp = mj * pij;
-    double pgx = gx, pgy = gy; /* the kernel gradient of the pressure and Pi_ij terms */
-    if (slip_pair) normal_part_v1(gx, gy, p->mx[b], p->my[b], &pgx, &pgy);
-    double pax, pay;
-    pressure_force_v1(mp, pgx, pgy, &pax, &pay);
-    double heat = 0.0; /* this particle's half of the pair's heat (energy ledger) */
-    if (F & F_LEDGER) heat += pressure_heat_v1(mp, dvx, dvy, pgx, pgy);
-    if (F & F_STRESS) {
-      const double txx = sxx[i] + sxx[j], txy = sxy[i] + sxy[j], tyy = syy[i] + syy[j];
-      double sx, sy;
-      stress_force_v1(mj, txx, txy, tyy, gx, gy, &sx, &sy);
-      pax += sx;
-      pay += sy;
-      if (F & F_LEDGER) heat -= stress_heat_v1(mj, txx, txy, tyy, dvx, dvy, gx, gy);
-    }
-    if (F & F_MORRIS) {
-      const double eta = eta_f * hij;
-      const double c = morris_factor_v1(mj, nu4, f, r2, rhoi, qj->rho, eta * eta);
-      pax += c * vvx;
-      pay += c * vvy;
-      if (F & F_LEDGER) heat -= morris_heat_v1(c, dvx, dvy);
-    }
-    /* a neighbour that takes no heat (a mirror particle, a repulsive wall
-     * particle): i takes the whole of it, all its pair force's work on i
-     * but what a moving wall particle puts in (wall_power, boundary work) */
-    if ((F & F_LEDGER) && (kind[j] == SPH_KIND_MIRROR || (flags[j] & SPH_FLAG_REPULSIVE)))
-      heat = passive_heat_v1(pax, pay, vxi, vyi, kind[j] == SPH_KIND_WALL ? qj->vx : 0.0,
-                             kind[j] == SPH_KIND_WALL ? qj->vy : 0.0);
-    du += heat;
-    if (!fluid) continue;
-    ax += pax;
-    ay += pay;
-    /* power of a (moving) wall particle's force on i, per unit mass of i */
-    if ((F & F_LEDGER) && kind[j] == SPH_KIND_WALL) wpow += wall_power_v1(pax, pay, qj->vx, qj->vy);
-    /* force of walls and mirror particles on i: external to the fluid */
-    if ((F & F_LEDGER) && kind[j] != SPH_KIND_FLUID) {
-      wfx += pax;
-      wfy += pay;
-    }
-    if (F & F_XSPH) { /* over fluid neighbours */
-      const double c = xsph_factor_v1(kind[j] == SPH_KIND_FLUID ? mj : 0.0, inv_rb, wij);
-      xs -= c * dvx;
-      ys -= c * dvy;
-    }
-  }
-  if (F & F_DDIFF) {
-    dd *= diffusion_scale(fp, F);
-    drho += dd;
-    if (F & F_LEDGER) w->dd[i] = dd;
-  }
-  p->drho[i] = drho;
-  w->sigma[i] = sig;
-  if (F & F_LEDGER) {
-    p->du[i] = du;
-    w->wpow[i] = wpow;
-    w->wfx[i] = wfx;
-    w->wfy[i] = wfy;
-  }
-  if (fluid) {
-    p->ax[i] = ax + fp->gx;
-    p->ay[i] = ay + fp->gy;
-    if (F & F_XSPH) {
-      p->xsx[i] = fp->xsph * xs;
-      p->xsy[i] = fp->xsph * ys;
-    }
-  } else {
-    p->ax[i] = p->ay[i] = 0.0;
-  }
 }
 
 /* The row of i cut to the pairs inside the support (not coincident), in
@@ -390,11 +233,8 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
                                       ? 1
                                       : -1];
 
-/* The four-lane flavours: the sums are the flavour's own vectors. The
- * portable flavour gathers the neighbours' fields one at a time (the
- * compiler drops those a term set does not read), the AVX2 flavour loads
- * the four records whole and transposes them (v4x_transpose8). */
-#define LW 4
+/* The scalar flavour: one pair at a time in row order, every term set (the
+ * only one for per-particle h and mirror particles), its sums plain doubles. */
 #define LHOT_SET(g)                                                                                \
   LT g[8];                                                                                         \
   g[H_x] = LSET(E_HOT, x);                                                                         \
@@ -405,6 +245,35 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
   g[H_prho2] = LSET(E_HOT, prho2);                                                                 \
   g[H_cs] = LSET(E_HOT, cs);                                                                       \
   g[H_m] = LSET(E_HOT, m)
+#define LW 1
+#define LA v1
+#define LAOP(name) v1_##name
+#define LMASK v1_mask
+#define LACC(s, t) s = LAOP(add)(s, t)
+#define LDEC(s, t) s = LAOP(sub)(s, t)
+#define LAMAX(s, t) s = LAOP(max)(t, s)
+#define LSET(E, a) E(0, a)
+#define FL v1
+#define LBITS F_COMPILED_SCALAR
+#define LOOP_ATTR static inline __attribute__((always_inline))
+#include "solver/interact_row.h"
+#undef LOOP_ATTR
+#undef LBITS
+#undef FL
+#undef LSET
+#undef LAMAX
+#undef LDEC
+#undef LACC
+#undef LMASK
+#undef LAOP
+#undef LA
+#undef LW
+
+/* The four-lane flavours: the sums are the flavour's own vectors. The
+ * portable flavour gathers the neighbours' fields one at a time (the
+ * compiler drops those a term set does not read), the AVX2 flavour loads
+ * the four records whole and transposes them (v4x_transpose8). */
+#define LW 4
 #define LA FL
 #define LAOP(name) SPH_PT_XGLUE(FL, name)
 #define LMASK SPH_PT_XGLUE(FL, mask)
@@ -414,10 +283,10 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
 #define LSET(E, a) LAOP(set)(E(0, a), E(1, a), E(2, a), E(3, a))
 
 #define FL v4e
-#define LBITS F_COMPILED_PORTABLE
+#define LBITS (F_COMPILED_PORTABLE | F_SCALAR_ONLY) /* per-particle h: never here */
 #define LHOT(g) LHOT_SET(g)
 #define LOOP_ATTR static inline __attribute__((always_inline))
-#include "solver/interact_lanes.h"
+#include "solver/interact_row.h"
 #include "solver/strain_lanes.h"
 #undef LOOP_ATTR
 #undef LHOT
@@ -426,7 +295,7 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
 
 #ifdef SPH_LANES_AVX
 #define FL v4x
-#define LBITS F_COMPILED_LANES
+#define LBITS (F_COMPILED_LANES | F_SCALAR_ONLY)
 #define LHOT(g)                                                                                    \
   v4x g[8];                                                                                        \
   {                                                                                                \
@@ -434,7 +303,7 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
     v4x_transpose8(r_, g);                                                                         \
   }
 #define LOOP_ATTR static inline __attribute__((always_inline, target("avx2")))
-#include "solver/interact_lanes.h"
+#include "solver/interact_row.h"
 #include "solver/strain_lanes.h"
 #undef LOOP_ATTR
 #undef LHOT
@@ -484,9 +353,9 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
   }
 
 #define FL v8z
-#define LBITS F_COMPILED_LANES
+#define LBITS (F_COMPILED_LANES | F_SCALAR_ONLY)
 #define LOOP_ATTR static inline __attribute__((always_inline, target("avx512f")))
-#include "solver/interact_lanes.h"
+#include "solver/interact_row.h"
 #include "solver/strain_lanes.h"
 #undef LOOP_ATTR
 #undef LBITS

@@ -5,7 +5,7 @@
  * (src/core/lanes.h), with LOOP_ATTR its attributes: the lane form of
  * strain_one in src/solver/forces.c. An ordinary C body included once per
  * flavour by src/solver/interact.h, with the same macros as
- * interact_lanes.h (LW, LA, LAOP, LACC, LMASK, LSET, LHOT); it defines
+ * interact_row.h (LW, LA, LAOP, LACC, LMASK, LSET, LHOT); it defines
  * strain_FL. No include guard on purpose.
  *
  * As the main pass's lane loop: the row is cut to the pairs inside the

@@ -1,49 +1,56 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
- * interact_lanes.h - the main pass for one particle, four neighbours at a
- * time, in the arithmetic flavour FL (v4e, v4x or v8z of src/core/lanes.h),
- * with LOOP_ATTR its attributes. An ordinary C body included once per
- * flavour by src/solver/interact.h (templates by include, as SWIFT's
- * runner_doiact_functions_hydro.h); it defines interact_FL. No include
- * guard on purpose.
+ * interact_row.h - the main pass for one particle i over its neighbour
+ * row, written once for every arithmetic flavour FL of src/core/lanes.h:
+ * v1 (the scalar loop, one pair at a time), v4e and v4x (four pairs at a
+ * time) and v8z (eight), with LOOP_ATTR their attributes. An ordinary C
+ * body included once per flavour by src/solver/interact.h (templates by
+ * include, as SWIFT's runner_doiact_functions_hydro.h); it defines
+ * interact_FL. No include guard on purpose. Which term applies to which
+ * pair (fluid and wall rows, mirror, repulsive and free-slip neighbours,
+ * the ledger's passive heat) is spelled out here and nowhere else; the
+ * terms themselves are src/physics/pair_terms.h.
  *
- * It serves the term sets without per-particle h (those run interact_one,
- * the scalar loop, as do mirror particles): the row is first cut to the pairs inside the support
- * (cut_row; with the stress terms the strain-rate pass has cut it already and kept it, w->keep),
- * padded to a multiple of the width with its last pair, masked out; then each of four
- * lanes takes entries k, k + 4, ... and keeps its own partial sums, added as (l0 + l1) + (l2 + l3)
- * at the end: a fixed order, whatever the machine's vector width. The
- * terms are those of src/physics/pair_terms.h, evaluated pair for pair with
- * the operations of the scalar loop.
+ * The row: with per-particle h (the scalar loop only, F_VARH) the whole
+ * neighbour row, each pair outside its own support skipped; otherwise the
+ * row cut to the pairs inside the support (cut_row; with the stress terms
+ * the strain-rate pass has cut it already and kept it, w->keep), padded to
+ * a multiple of the width with its last pair, masked out. Each of the
+ * lanes takes entries k, k + 4, ... and keeps its own partial sums, added
+ * as (l0 + l1) + (l2 + l3) at the end (the scalar loop: one sum, in row
+ * order): a fixed order, whatever the machine's vector width. Each lane
+ * does, pair for pair, the operations of the scalar loop. Mirror
+ * particles (their no-slip velocity in the viscous terms) run the scalar
+ * loop only.
  *
  * With the energy ledger (F_LEDGER) the loop also sums each particle's
  * half of the pairs' heat (a dynamic wall particle its half of the heat of
  * its pairs with fluid), the power of wall particles' forces on fluid and
- * the walls' force, as interact_one does: the neighbour's kind is read as
- * a mask (fm_j > 0: fluid), a repulsive wall or mirror neighbour takes no
- * heat (passive_heat; kind and flag read only where such walls exist).
- * On a free-slip wall the pressure and artificial-viscosity force of a
- * fluid-wall pair act along the wall particle's normal (normal_part), and the
- * artificial viscosity reads the normal relative velocity (normal_vdotr), as
- * in interact_one; the wall flags are read only where such walls exist.
+ * the walls' force: the neighbour's kind is read as a mask (fm_j > 0:
+ * fluid), a repulsive wall or mirror neighbour takes no heat (passive_heat;
+ * kind and flag read only where such walls exist). On a free-slip wall the
+ * pressure and artificial-viscosity force of a fluid-wall pair act along
+ * the wall particle's normal (normal_part), and the artificial viscosity
+ * reads the normal relative velocity (normal_vdotr); the wall flags are
+ * read only where such walls exist. A masked term is +0 or -0, which
+ * leaves a sum as it is (a sum that starts at +0 is never -0 under
+ * round-to-nearest), so masking a pair and skipping it give the same bits.
  *
  * The eight-lane flavour (v8z, AVX-512) evaluates the pairs k .. k + 7 at
  * once and adds them into four-lane sums, first its lanes 0-3 (entries
  * k .. k + 3), then its lanes 4-7 (k + 4 .. k + 7): each four-lane sum sees
  * the same terms in the same order as in the four-lane loop, so the two
- * give the same bits (tests/test_pair_terms.c). A padding half past the
- * row's end adds masked terms, +0 or -0, which leave a sum as it is (a sum
- * that starts at +0 is never -0 under round-to-nearest).
+ * give the same bits (tests/test_pair_terms.c).
  *
- * Set by the includer: LW the lane count (4 or 8), LA the four-lane type
- * of the sums with LAOP(name) its operations, LACC(s, t) adding the LW-lane
- * terms t into the sums s, LDEC(s, t) subtracting them, LAMAX(s, t) the
- * same for the max, LMASK the mask type, LSET(E, a) the vector of E(q, a)
- * for q = 0 .. LW - 1 (E_ARR(q, arr) gives arr[j] of the iteration's q-th
- * neighbour j), LHOT(g) the declaration of g[8], the fields of this
- * iteration's neighbours' records (sph_force_hot) by place H_field, and
- * LBITS the bits of F the flavour is compiled for (interact.h); the others
- * come from the pass's term set.
+ * Set by the includer: LW the lane count (1, 4 or 8), LA the type of the
+ * sums with LAOP(name) its operations, LACC(s, t) adding the LW-lane terms
+ * t into the sums s, LDEC(s, t) subtracting them, LAMAX(s, t) the same for
+ * the max, LMASK the mask type, LSET(E, a) the vector of E(q, a) for
+ * q = 0 .. LW - 1 (E_ARR(q, arr) gives arr[j] of the iteration's q-th
+ * neighbour j), LHOT(g) (LW > 1) the declaration of g[8], the fields of
+ * this iteration's neighbours' records (sph_force_hot) by place H_field,
+ * and LBITS the bits of F the flavour is compiled for (interact.h; those
+ * it never sees included); the others come from the pass's term set.
  */
 
 #define LT FL
@@ -64,20 +71,29 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     if ((F & F_DDIFF) && (F & F_LEDGER)) w->dd[i] = 0.0;
     return;
   }
-  uint32_t *restrict nb;
+  const uint32_t *restrict nb;
   size_t cnt;
-  if ((F & F_STRESS) && w->keep_valid) { /* the strain-rate pass's cut row, padded */
+  if (F & F_VARH) { /* (the scalar loop only) the whole row: the support is per pair */
+    nb = l->nb + l->start[i];
+    cnt = l->count[i];
+  } else if ((F & F_STRESS) && w->keep_valid) { /* the strain-rate pass's cut row, padded */
     nb = w->keep + l->start[i] + SPH_KEEP_PAD * i;
     cnt = w->keepn[i];
   } else {
-    nb = w->rows + (size_t)sph_thread() * w->rows_stride;
+    uint32_t *restrict cut = w->rows + (size_t)sph_thread() * w->rows_stride;
     /* the cut compiled for both: periodic or not (a predicted branch per row) */
-    cnt = (F & F_PERIODIC) ? cut_row(hot, l, fp, i, nb, F_PERIODIC) : cut_row(hot, l, fp, i, nb, 0);
+    cnt =
+        (F & F_PERIODIC) ? cut_row(hot, l, fp, i, cut, F_PERIODIC) : cut_row(hot, l, fp, i, cut, 0);
     for (size_t k = cnt; k < cnt + LW - 1 && cnt > 0; k++)
-      nb[k] = nb[cnt - 1]; /* padding lanes */
+      cut[k] = cut[cnt - 1]; /* padding lanes */
+    nb = cut;
   }
   const sph_force_hot qi = hot[i];
   const int fluid = kind[i] == SPH_KIND_FLUID;
+#if LW == 1
+  const double *restrict h = p->h; /* per-particle h */
+  const int mirror = fp->mirror;   /* mirror particles' no-slip velocity */
+#endif
   const double h0 = fp->h, inv_h0 = 1.0 / h0;
   const int wendland = fp->kernel == SPH_KERNEL_WENDLAND_C2;
   const double sigma0 = sph_kernel_sigma(fp->kernel, inv_h0);
@@ -91,9 +107,11 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const double eta = fp->eta * h0;
   const LT eta2 = LOP(all)(eta * eta), nalpha = LOP(all)(-fp->alpha), beta = LOP(all)(fp->beta);
   const LT nu4 = LOP(all)(4.0 * fp->mu / fp->eos.rho0);
+#if LW > 1
 #define E_LANE(q, a) ((double)(q))
   const LT lane = LSET(E_LANE, 0), n = LOP(all)((double)cnt);
 #undef E_LANE
+#endif
   const LA azero = LAOP(all)(0.0);
   LA drho = azero, ax = azero, ay = azero, xs = azero, ys = azero, sig = azero, dd = azero;
   LA du = azero, wpow = azero, wfx = azero, wfy = azero; /* energy and momentum ledger */
@@ -118,23 +136,46 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     const uint32_t *restrict jk = nb + k; /* this iteration's neighbours */
 #define E_HOT(q, field) hot[jk[q]].field
 #define E_ARR(q, arr) arr[jk[q]]
+#if LW == 1
+    const sph_force_hot *restrict qj = &hot[jk[0]]; /* read field by field, as needed */
+#define GATHER(field) qj->field
+#else
     LHOT(g); /* the neighbours' packed records, g[H_field] */
 #define GATHER(field) g[H_##field]
+#endif
     LT dx = LOP(sub)(xi, GATHER(x));
     if (F & F_PERIODIC) /* minimum image, as sep_x */
       dx = LOP(sel)(LOP(lt)(hper, dx), LOP(sub)(dx, per),
                     LOP(sel)(LOP(lt)(dx, nper), LOP(add)(dx, per), dx));
     const LT dy = LOP(sub)(yi, GATHER(y));
     const LT r2 = LOP(add)(LOP(mul)(dx, dx), LOP(mul)(dy, dy));
+    /* the pair's smoothing length and what follows from it */
+    LT hij = hh, inv_hij = inv_h, sig_ij = sigma, sig_h_ij = sigma_h, eta2_ij = eta2;
+#if LW == 1
+    if (F & F_VARH) { /* per-particle h: h_ij the pair's mean; outside its support, skip */
+      const double hm = 0.5 * (h[i] + h[jk[0]]);
+      if (r2 >= 4.0 * hm * hm || r2 == 0.0) continue;
+      const double e = fp->eta * hm;
+      hij = hm;
+      inv_hij = 1.0 / hm;
+      sig_ij = sph_kernel_sigma(fp->kernel, inv_hij);
+      sig_h_ij = sig_ij * inv_hij;
+      eta2_ij = e * e;
+    }
+#endif
     /* the padding lanes past the row's end repeat its last pair, masked out */
+#if LW == 1
+    const LMASK in = 1; /* no padding */
+#else
     const LMASK in = LOP(lt)(LOP(add)(LOP(all)((double)k), lane), n);
+#endif
     /* 1/r2 and sqrt(r2) side by side: a shorter chain than 1/sqrt(r2) */
     const LT inv_r2 = LOP(div)(one, r2), r = LOP(sqrt)(r2), inv_r = LOP(mul)(r, inv_r2);
     LT wij, f;
     if (wendland) /* the same for every pair: a branch the processor predicts */
-      LTERM(wendland_w_f)(r, inv_r, inv_h, sigma, sigma_h, &wij, &f);
+      LTERM(wendland_w_f)(r, inv_r, inv_hij, sig_ij, sig_h_ij, &wij, &f);
     else
-      LTERM(cubic_w_f)(r, inv_r, inv_h, sigma, sigma_h, &wij, &f);
+      LTERM(cubic_w_f)(r, inv_r, inv_hij, sig_ij, sig_h_ij, &wij, &f);
     wij = LOP(and)(in, wij);
     f = LOP(and)(in, f);
     const LT gx = LOP(mul)(f, dx), gy = LOP(mul)(f, dy);
@@ -142,7 +183,7 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     const LT mj = GATHER(m);
     LACC(drho, LTERM(continuity)(mj, dvx, dvy, gx, gy));
     const LT vdotr = LOP(add)(LOP(mul)(dvx, dx), LOP(mul)(dvy, dy));
-    LAMAX(sig, LOP(and)(in, LTERM(signal)(hh, vdotr, inv_r2)));
+    LAMAX(sig, LOP(and)(in, LTERM(signal)(hij, vdotr, inv_r2)));
     if ((F & F_DDIFF) && diffuses) { /* over the neighbours that diffuse (diffusion.h) */
       const LT rhoj = GATHER(rho);
       const LT cx = dd_uniform ? cxx : LOP(add)(cxi, LSET(E_ARR, ddcx));
@@ -153,19 +194,31 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
 #define E_WDD(q, a) (kind[jk[q]] == SPH_KIND_FLUID ? a[jk[q]] : 0.0)
       const LT mdd = !fluid ? LSET(E_WDD, ddm) : mdd_is_mx ? LSET(E_ARR, fm) : LSET(E_ARR, ddm);
 #undef E_WDD
-      LACC(dd, LTERM(diffusion)(psi, f, mdd, rhoj));
+      const LT d = LTERM(diffusion)(psi, f, mdd, rhoj);
+      LACC(dd, (F & F_VARH) ? LOP(mul)(hij, d) : d); /* per-particle h: h_ij in the sum */
     }
     if (!fluid && !(F & F_LEDGER)) continue; /* a wall particle needs no other pair terms */
     /* with the ledger: m_j of fluid neighbours (0 for walls) as their kind */
     const LT fmj = (F & (F_XSPH | F_LEDGER)) ? LSET(E_ARR, fm) : zero;
     const LMASK fluid_j = LOP(lt)(zero, fmj);
+    /* the relative velocity of the viscous terms: a mirror particle's is its
+     * no-slip velocity (boundary.h; the scalar loop only), the continuity's
+     * its reflected one */
+    LT vvx = dvx, vvy = dvy, vvdotr = vdotr;
+#if LW == 1
+    if (mirror && kind[jk[0]] == SPH_KIND_MIRROR) {
+      vvx = vxi - p->vxh[jk[0]];
+      vvy = vyi - p->vyh[jk[0]];
+      vvdotr = vvx * dx + vvy * dy;
+    }
+#endif
     LT pij = LOP(add)(pri, GATHER(prho2));
     LT inv_rb = zero;
     if (F & (F_AV | F_XSPH)) inv_rb = LTERM(inv_rho_mean)(rhoi, GATHER(rho));
     /* a fluid-wall pair on a free-slip wall: the pressure and Pi_ij along the
      * wall particle's normal (normal_part), Pi_ij of the normal relative
      * velocity (normal_vdotr); fs the lanes of such pairs */
-    LT pgx = gx, pgy = gy, avr = vdotr;
+    LT pgx = gx, pgy = gy, avr = vvdotr;
     if (slip && (fluid || slip_i)) {
       LT wmx, wmy, ngx, ngy;
       LMASK fs;
@@ -186,10 +239,10 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
       LTERM(normal_part)(gx, gy, wmx, wmy, &ngx, &ngy);
       pgx = LOP(sel)(fs, ngx, gx);
       pgy = LOP(sel)(fs, ngy, gy);
-      if (F & F_AV) avr = LOP(sel)(fs, LTERM(normal_vdotr)(dvx, dvy, dx, dy, wmx, wmy), vdotr);
+      if (F & F_AV) avr = LOP(sel)(fs, LTERM(normal_vdotr)(vvx, vvy, dx, dy, wmx, wmy), vvdotr);
     }
     if (F & F_AV)
-      pij = LOP(add)(pij, LTERM(artificial_viscosity)(avr, hh, r2, eta2, ci, GATHER(cs), nalpha,
+      pij = LOP(add)(pij, LTERM(artificial_viscosity)(avr, hij, r2, eta2_ij, ci, GATHER(cs), nalpha,
                                                       beta, inv_rb));
     LT pax, pay;
     const LT mp = LOP(mul)(mj, pij);
@@ -208,9 +261,9 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
         heat = LOP(sub)(heat, LTERM(stress_heat)(mj, txx, txy, tyy, dvx, dvy, gx, gy));
     }
     if (F & F_MORRIS) {
-      const LT c = LTERM(morris_factor)(mj, nu4, f, r2, rhoi, GATHER(rho), eta2);
-      pax = LOP(add)(pax, LOP(mul)(c, dvx));
-      pay = LOP(add)(pay, LOP(mul)(c, dvy));
+      const LT c = LTERM(morris_factor)(mj, nu4, f, r2, rhoi, GATHER(rho), eta2_ij);
+      pax = LOP(add)(pax, LOP(mul)(c, vvx));
+      pay = LOP(add)(pay, LOP(mul)(c, vvy));
       if (F & F_LEDGER) heat = LOP(sub)(heat, LTERM(morris_heat)(c, dvx, dvy));
     }
     if (F & F_LEDGER) {
@@ -248,44 +301,43 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
 #undef E_ARR
 #undef E_HOT
   }
+  /* the lanes' sums, (l0 + l1) + (l2 + l3); the scalar loop's own */
+#if LW == 1
+#define LSUM(v) (v)
+#define LMAXALL(v) (v)
+#else
+#define LSUM(v) (LAOP(store)(lv, v), (lv[0] + lv[1]) + (lv[2] + lv[3]))
+#define LMAXALL(v) (LAOP(store)(lv, v), lanes_max4(lv))
+#endif
   double lv[4];
-  LAOP(store)(lv, drho);
-  p->drho[i] = (lv[0] + lv[1]) + (lv[2] + lv[3]);
-  if (F & F_DDIFF) { /* as the scalar loop: the scaled sum added last */
-    LAOP(store)(lv, dd);
-    const double dds = ((lv[0] + lv[1]) + (lv[2] + lv[3])) * diffusion_scale(fp, F);
+  (void)lv;
+  p->drho[i] = LSUM(drho);
+  if (F & F_DDIFF) { /* the scaled sum added last */
+    const double dds = LSUM(dd) * diffusion_scale(fp, F);
     p->drho[i] += dds;
     if (F & F_LEDGER) w->dd[i] = dds;
   }
   if (F & F_LEDGER) {
-    LAOP(store)(lv, du);
-    p->du[i] = (lv[0] + lv[1]) + (lv[2] + lv[3]);
-    LAOP(store)(lv, wpow);
-    w->wpow[i] = (lv[0] + lv[1]) + (lv[2] + lv[3]);
-    LAOP(store)(lv, wfx);
-    w->wfx[i] = (lv[0] + lv[1]) + (lv[2] + lv[3]);
-    LAOP(store)(lv, wfy);
-    w->wfy[i] = (lv[0] + lv[1]) + (lv[2] + lv[3]);
+    p->du[i] = LSUM(du);
+    w->wpow[i] = LSUM(wpow);
+    w->wfx[i] = LSUM(wfx);
+    w->wfy[i] = LSUM(wfy);
   }
-  LAOP(store)(lv, sig);
-  const double s01 = lv[0] > lv[1] ? lv[0] : lv[1], s23 = lv[2] > lv[3] ? lv[2] : lv[3];
-  w->sigma[i] = s01 > s23 ? s01 : s23;
+  w->sigma[i] = LMAXALL(sig);
   if (fluid) {
-    LAOP(store)(lv, ax);
-    p->ax[i] = ((lv[0] + lv[1]) + (lv[2] + lv[3])) + fp->gx;
-    LAOP(store)(lv, ay);
-    p->ay[i] = ((lv[0] + lv[1]) + (lv[2] + lv[3])) + fp->gy;
+    p->ax[i] = LSUM(ax) + fp->gx;
+    p->ay[i] = LSUM(ay) + fp->gy;
     if (F & F_XSPH) {
-      LAOP(store)(lv, xs);
-      p->xsx[i] = fp->xsph * ((lv[0] + lv[1]) + (lv[2] + lv[3]));
-      LAOP(store)(lv, ys);
-      p->xsy[i] = fp->xsph * ((lv[0] + lv[1]) + (lv[2] + lv[3]));
+      p->xsx[i] = fp->xsph * LSUM(xs);
+      p->xsy[i] = fp->xsph * LSUM(ys);
     }
   } else {
     p->ax[i] = p->ay[i] = 0.0;
   }
 }
 
+#undef LMAXALL
+#undef LSUM
 #undef LTERM
 #undef LOP
 #undef LT
