@@ -342,7 +342,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
       for (size_t i = lo; i < hi; i++) {
         const uint32_t c = fill_any(g, x, y, i, r2max, period, scratch, sorted);
         uint32_t *restrict row = l->nb + l->start[i];
-        memcpy(row, scratch, c * sizeof *row);
+        if (c) memcpy(row, scratch, c * sizeof *row); /* l->nb is NULL when no row has any */
         /* increasing storage index: already so on a sorted grid that is not
          * periodic (rows below, same, above in key order); otherwise an
          * insertion sort, linear on nearly sorted rows */
