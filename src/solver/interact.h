@@ -62,6 +62,34 @@ enum {
  *                 both, interact_row.h)
  *   portable      on x86-64 the portable lanes are the fallback of
  *                 processors without AVX2: the heavy terms only */
+#if defined(SPH_SANITIZERS) || defined(SPH_FEW_VARIANTS)
+/* A checking build (./configure --enable-sanitizers, or -DSPH_FEW_VARIANTS):
+ * one loop per flavour (the scalar loop two, for per-particle h), every
+ * other bit read at run time. The same body and the same results; what a
+ * sanitizer checks is the code, not its speed, and it compiles the 152
+ * variants in about 7 minutes, these in one (bench/results/loops.md). */
+#define F_SCALAR_BIT0 F_VARH
+#define F_SCALAR_BIT1 0u
+#define F_SCALAR_BIT2 0u
+#define F_SCALAR_BIT3 0u
+#define F_SCALAR_BIT4 0u
+#define F_SCALAR_BIT5 0u
+#define N_SCALAR_SETS 2
+#define F_LANE_BIT0 0u
+#define F_LANE_BIT1 0u
+#define F_LANE_BIT2 0u
+#define F_LANE_BIT3 0u
+#define F_LANE_BIT4 0u
+#define F_LANE_BIT5 0u
+#define N_LANE_SETS 1
+#define F_PORTABLE_BIT0 0u
+#define F_PORTABLE_BIT1 0u
+#define F_PORTABLE_BIT2 0u
+#define F_PORTABLE_BIT3 0u
+#define F_PORTABLE_BIT4 0u
+#define F_PORTABLE_BIT5 0u
+#define N_PORTABLE_SETS 1
+#else
 #define F_SCALAR_BIT0 F_STRESS
 #define F_SCALAR_BIT1 F_VARH
 #define F_SCALAR_BIT2 F_LEDGER
@@ -92,6 +120,7 @@ enum {
 #define F_PORTABLE_BIT4 F_LANE_BIT4
 #define F_PORTABLE_BIT5 F_LANE_BIT5
 #define N_PORTABLE_SETS N_LANE_SETS
+#endif
 #endif
 #define F_BITS_OF(P) (P##_BIT0 | P##_BIT1 | P##_BIT2 | P##_BIT3 | P##_BIT4 | P##_BIT5)
 #define F_COMPILED_SCALAR F_BITS_OF(F_SCALAR)
