@@ -383,8 +383,13 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
 /* ---- the library's loops ------------------------------------------------------------ */
 
 /* One main pass with the loop asked for; the rates by particle id. */
-static void run_loop_tau(const sph_particles *p0, const sph_force_params *fp0, sph_force_loop loop,
-                         rates *o, double *tau[6]) {
+/* One pass of the loop asked for over a copy of p0 into o (and tau / rho^2
+ * and L into tau); with `choose`, the start-up choice of lane loop first
+ * (sph_forces_fastest_loop: *chosen, *ratio): the rates are those of its
+ * last evaluation, or where it chose nothing (and evaluated nothing), of
+ * one evaluation after it. */
+static void run_pass(const sph_particles *p0, const sph_force_params *fp0, sph_force_loop loop,
+                     rates *o, double *tau[6], int choose, sph_force_loop *chosen, double *ratio) {
   sph_error err;
   sph_particles p;
   CU_ASSERT_FATAL(sph_particles_init(&p, p0->n, &err) == 0);
@@ -416,7 +421,11 @@ static void run_loop_tau(const sph_particles *p0, const sph_force_params *fp0, s
                   0);
   sph_force_work w;
   memset(&w, 0, sizeof w);
-  CU_ASSERT_FATAL(sph_forces_evaluate(&p, &l, &fp, &w, &err) == 0);
+  int rc_pass = choose ? sph_forces_fastest_loop(&p, &l, &fp, &w, chosen, ratio, &err) : 0;
+  /* nothing measured: no evaluation either */
+  if (rc_pass == 0 && (!choose || *chosen == fp.loop))
+    rc_pass = sph_forces_evaluate(&p, &l, &fp, &w, &err);
+  CU_ASSERT_FATAL(rc_pass == 0);
   for (size_t i = 0; i < p.n; i++) {
     const size_t id = (size_t)p.id[i];
     const double v[10] = {p.drho[i], p.ax[i],    p.ay[i],   p.xsx[i], p.xsy[i],
@@ -433,6 +442,11 @@ static void run_loop_tau(const sph_particles *p0, const sph_force_params *fp0, s
   sph_nlist_free(&l);
   sph_grid_free(&g);
   sph_particles_free(&p);
+}
+
+static void run_loop_tau(const sph_particles *p0, const sph_force_params *fp0, sph_force_loop loop,
+                         rates *o, double *tau[6]) {
+  run_pass(p0, fp0, loop, o, tau, 0, NULL, NULL);
 }
 
 static void run_loop(const sph_particles *p0, const sph_force_params *fp0, sph_force_loop loop,
@@ -862,6 +876,42 @@ static void test_v8z_operations(void) {
 #endif
 }
 
+/* The start-up choice of lane loop: an available loop, the same rates as
+ * the default loop's to the bit, nothing chosen where there is nothing to
+ * choose from (one lane loop, per-particle h, mirror walls). */
+static void test_fastest_loop(void) {
+  const unsigned sets[3] = {1 | 2 | 128, 1 | 4 | 64, 1 | 32};
+  for (int c = 0; c < 3; c++) {
+    sph_force_params fp;
+    params_for(sets[c], 3 * (unsigned)c, &fp); /* seed 0, 3, 6: no mirror walls */
+    sph_particles p0;
+    make_set(&p0, 3 * (unsigned)c, 0, (sets[c] & 32) != 0, 0, &fp.eos);
+    rates a, b;
+    rates_alloc(&a, p0.n);
+    rates_alloc(&b, p0.n);
+    sph_force_loop chosen = SPH_LOOP_SCALAR;
+    double ratio = 0.0;
+    run_pass(&p0, &fp, SPH_LOOP_AUTO, &a, NULL, 1, &chosen, &ratio);
+    run_loop(&p0, &fp, SPH_LOOP_AUTO, &b);
+    const int both = sph_force_loop_available(SPH_LOOP_LANES_AVX) &&
+                     sph_force_loop_available(SPH_LOOP_LANES_AVX512);
+    if (both && !fp.var_h) {
+      CU_ASSERT(chosen == SPH_LOOP_LANES_AVX || chosen == SPH_LOOP_LANES_AVX512);
+      CU_ASSERT(ratio > 0.0 && isfinite(ratio));
+      printf("\n  term set %u: %s chosen, AVX2 / AVX-512 time %.2f", sets[c],
+             chosen == SPH_LOOP_LANES_AVX ? "AVX2" : "AVX-512", ratio);
+    } else {
+      CU_ASSERT_EQUAL(chosen, SPH_LOOP_AUTO);
+      CU_ASSERT_EQUAL(ratio, 1.0);
+    }
+    for (int k = 0; k < 10; k++)
+      CU_ASSERT(memcmp(a.f[k], b.f[k], p0.n * sizeof(double)) == 0);
+    rates_free(&a);
+    rates_free(&b);
+    sph_particles_free(&p0);
+  }
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
       {"the 256 term sets: scalar, lane, AVX2 and AVX-512 loops against the all-pairs oracle",
@@ -872,6 +922,7 @@ int main(void) {
        test_pair_symmetry},
       {"the AVX-512 operations bitwise v1 in every lane; the record transpose",
        test_v8z_operations},
+      {"the start-up choice of lane loop: available, the same bits", test_fastest_loop},
       CU_TEST_INFO_NULL,
   };
   return sph_test_main("pair terms", tests);

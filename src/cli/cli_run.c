@@ -217,6 +217,12 @@ static void print_banner(const run_args *a, const sph_case *c, sph_sim *s, int n
   const size_t nf = sph_particles_count_kind(p, SPH_KIND_FLUID);
   printf("  particles %zu (fluid %zu, wall %zu), threads %d, output %s\n", p->n, nf, p->n - nf,
          nthreads, a->outdir);
+  double ratio = 1.0;
+  const char *loop = sph_sim_loop(s, &ratio);
+  if (ratio != 1.0)
+    printf("  interaction loop: %s (the AVX2 loop took %.2f times the AVX-512 loop's time at "
+           "start-up)\n",
+           loop, ratio);
   if (sph_sim_fluid_removed(s))
     printf("  %zu fluid particles not made: closer than dx/2 to a wall particle (a wall drawn "
            "through the fluid)\n",

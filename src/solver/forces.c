@@ -41,6 +41,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "core/arrays.h"
 #include "core/check.h"
@@ -538,6 +539,38 @@ static int stress_pass(const sph_particles *p, const sph_nlist *l, const sph_for
     w->sxy[i] = txy;
     w->syy[i] = tyy;
   }
+  return 0;
+}
+
+static double seconds_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int sph_forces_fastest_loop(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
+                            sph_force_work *w, sph_force_loop *loop, double *ratio,
+                            sph_error *err) {
+  *loop = fp->loop;
+  *ratio = 1.0;
+  if (fp->loop != SPH_LOOP_AUTO || fp->var_h || fp->mirror) return 0; /* scalar there */
+  if (!sph_force_loop_available(SPH_LOOP_LANES_AVX) ||
+      !sph_force_loop_available(SPH_LOOP_LANES_AVX512))
+    return 0; /* one lane loop: nothing to choose */
+  const sph_force_loop loops[2] = {SPH_LOOP_LANES_AVX512, SPH_LOOP_LANES_AVX};
+  double best[2] = {INFINITY, INFINITY};
+  sph_force_params q = *fp;
+  for (int round = 0; round < SPH_FASTEST_ROUNDS; round++) /* interleaved: A B A B ... */
+    for (int k = 0; k < 2; k++) {
+      q.loop = loops[k];
+      const double t0 = seconds_now();
+      if (sph_forces_evaluate(p, l, &q, w, err)) return -1;
+      const double t = seconds_now() - t0;
+      if (t < best[k]) best[k] = t;
+    }
+  *ratio = best[0] > 0.0 ? best[1] / best[0] : 1.0; /* AVX2 time over AVX-512 time */
+  /* the eight lanes unless the four are faster by a clear margin */
+  *loop = *ratio < 1.0 - SPH_FASTEST_MARGIN ? SPH_LOOP_LANES_AVX : SPH_LOOP_LANES_AVX512;
   return 0;
 }
 

@@ -194,6 +194,25 @@ void sph_forces_pressure(sph_particles *p, const sph_eos *eos);
 int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                         sph_force_work *w, sph_error *err);
 
+/* Rounds of the start-up choice of lane loop, and the margin by which the
+ * AVX2 loop must be faster to be chosen over the AVX-512 one. */
+#define SPH_FASTEST_ROUNDS 3
+#define SPH_FASTEST_MARGIN 0.03
+
+/* The lane loop (*loop) a run with fp->loop = SPH_LOOP_AUTO should use on
+ * this processor: where both the AVX2 and the AVX-512 loops can run, each
+ * evaluates the pass on p SPH_FASTEST_ROUNDS times, interleaved, and the
+ * AVX2 loop is chosen if its fastest time is under (1 - margin) times the
+ * AVX-512 loop's (some processors run AVX-512 divisions and square roots
+ * at half the rate, or lower their clock for it). *ratio gets AVX2 time /
+ * AVX-512 time (1 where nothing was measured). Both loops give the same
+ * bits, so the choice moves run time only; the pass's rates are left as
+ * one evaluation leaves them. Otherwise *loop = fp->loop (SPH_LOOP_AUTO
+ * where a single lane loop can run, or for per-particle h and mirror
+ * walls). Non-zero if an evaluation failed. */
+int sph_forces_fastest_loop(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
+                            sph_force_work *w, sph_force_loop *loop, double *ratio, sph_error *err);
+
 /* The strain-rate tensor of paper A eq. (13)-(14) at every particle, for
  * tests and output: eps_xx, eps_xy, eps_yy (each n values); with fp's
  * gradient correction and extrapolated wall velocities when set. */

@@ -344,6 +344,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
    * support is 2 k h whichever particles carry k h; only mirror particles
    * (made anew at every pass) and paper B's variable h (whose largest h
    * moves with the density) rebuild it at every pass */
+  s->lane_ratio = 1.0;
   if (!s->walls.n_mirror && !c->variable_h)
     s->skin = sph_skin_fraction() * SPH_CUBIC_SUPPORT * c->h;
   if (s->p.n == 0) {
@@ -369,6 +370,12 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   sph_walls_move(&s->walls, &s->p, 0.0);
   s->resort = 1;
   if (sph_sim_pass(s, err)) goto fail; /* rates and flags of the initial state */
+  /* the faster lane loop on this processor (the same bits; mirror walls
+   * run the scalar loop, and their particles are gone after the pass) */
+  s->lane_ratio = 1.0;
+  if (!s->walls.n_mirror &&
+      sph_forces_fastest_loop(&s->p, &s->nl, &s->fp, &s->work, &s->fp.loop, &s->lane_ratio, err))
+    goto fail;
   if (c->energy) {
     sph_diag_row row;
     sph_sim_diag(s, &row);

@@ -48,7 +48,8 @@ struct sph_sim {
   sph_force_params fp;
   double *shift_x, *shift_y; /* particle shifting's displacements (numerics.shifting), or NULL */
   double t, last_dt;
-  double t_saved; /* time of the state saved at the start of the last step */
+  double lane_ratio; /* AVX2 / AVX-512 time of the start-up pass (forces.h), 1 if not measured */
+  double t_saved;    /* time of the state saved at the start of the last step */
   long steps;
   double floor_y;
   double domain[4];
