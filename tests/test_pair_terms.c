@@ -638,7 +638,10 @@ static void test_pair_symmetry(void) {
     const double dvx = vxi - vxj, dvy = vyi - vyj, evx = vxj - vxi, evy = vyj - vyi;
     const double vr = dvx * dx + dvy * dy, ur = evx * ex + evy * ey;
     CU_ASSERT(same(vr, ur));
-    CU_ASSERT(same(continuity_v1(m, dvx, dvy, gx, gy), continuity_v1(m, evx, evy, hx, hy)));
+    /* the pair terms' vectors and tensors, from i's side and from j's */
+    const vec_v1 gv = {{gx, gy}}, hv = {{hx, hy}}, dv = {{dvx, dvy}}, ev = {{evx, evy}};
+    const vec_v1 rv = {{dx, dy}}, qv = {{ex, ey}};
+    CU_ASSERT(same(continuity_v1(m, dv, gv), continuity_v1(m, ev, hv)));
     CU_ASSERT(same(signal_v1(h, vr, inv_r2), signal_v1(h, ur, inv_r2)));
     const double eta2 = 0.01 * h * h, irb = inv_rho_mean_v1(rhoi, rhoj);
     CU_ASSERT(same(irb, inv_rho_mean_v1(rhoj, rhoi)));
@@ -646,37 +649,34 @@ static void test_pair_symmetry(void) {
     const double pi_ji = artificial_viscosity_v1(ur, h, q2, eta2, cj, ci, -0.08, 0.5, irb);
     CU_ASSERT(same(pi_ij, pi_ji));
     const double mp = m * ((s[0] + s[1]) + pi_ij), mq = m * ((s[1] + s[0]) + pi_ji);
-    double ax, ay, bx, by;
-    pressure_force_v1(mp, gx, gy, &ax, &ay);
-    pressure_force_v1(mq, hx, hy, &bx, &by);
-    CU_ASSERT(same(ax, -bx) && same(ay, -by));
-    CU_ASSERT(same(pressure_heat_v1(mp, dvx, dvy, gx, gy), pressure_heat_v1(mq, evx, evy, hx, hy)));
+    vec_v1 a = pressure_force_v1(mp, gv), b = pressure_force_v1(mq, hv);
+    CU_ASSERT(same(a.c[0], -b.c[0]) && same(a.c[1], -b.c[1]));
+    CU_ASSERT(same(pressure_heat_v1(mp, dv, gv), pressure_heat_v1(mq, ev, hv)));
     const double txx = s[0] + s[3], txy = s[1] + s[4], tyy = s[2] + s[5];
     const double uxx = s[3] + s[0], uxy = s[4] + s[1], uyy = s[5] + s[2];
-    stress_force_v1(m, txx, txy, tyy, gx, gy, &ax, &ay);
-    stress_force_v1(m, uxx, uxy, uyy, hx, hy, &bx, &by);
-    CU_ASSERT(same(ax, -bx) && same(ay, -by));
-    CU_ASSERT(same(stress_heat_v1(m, txx, txy, tyy, dvx, dvy, gx, gy),
-                   stress_heat_v1(m, uxx, uxy, uyy, evx, evy, hx, hy)));
+    const sym_v1 tv = {{txx, txy, tyy}}, uv = {{uxx, uxy, uyy}};
+    a = stress_force_v1(m, tv, gv);
+    b = stress_force_v1(m, uv, hv);
+    CU_ASSERT(same(a.c[0], -b.c[0]) && same(a.c[1], -b.c[1]));
+    CU_ASSERT(same(stress_heat_v1(m, tv, dv, gv), stress_heat_v1(m, uv, ev, hv)));
     const double c = morris_factor_v1(m, 2e-4, f, r2, rhoi, rhoj, eta2);
     CU_ASSERT(same(c, morris_factor_v1(m, 2e-4, f, q2, rhoj, rhoi, eta2)));
     CU_ASSERT(same(c * dvx, -(c * evx)) && same(c * dvy, -(c * evy)));
-    CU_ASSERT(same(morris_heat_v1(c, dvx, dvy), morris_heat_v1(c, evx, evy)));
+    CU_ASSERT(same(morris_heat_v1(c, dv), morris_heat_v1(c, ev)));
     const double xf = xsph_factor_v1(m, irb, w);
     CU_ASSERT(same(xf * dvx, -(xf * evx)));
     const double lj = lennard_jones_v1(5.0, 1.2 * h, r2);
     CU_ASSERT(same(lj * dx, -(lj * ex)) && same(lj, lennard_jones_v1(5.0, 1.2 * h, q2)));
     { /* a free-slip wall's normal part: antisymmetric, and along the normal */
       const double mx = s[2] * DX, my = s[3] * DX;
-      double nx, ny, ox, oy;
-      normal_part_v1(gx, gy, mx, my, &nx, &ny);
-      normal_part_v1(hx, hy, mx, my, &ox, &oy);
-      CU_ASSERT(same(nx, -ox) && same(ny, -oy));
+      const vec_v1 mv = {{mx, my}}, slide = {{-my, mx}};
+      const vec_v1 n = normal_part_v1(gv, mv), o = normal_part_v1(hv, mv);
+      const double nx = n.c[0], ny = n.c[1];
+      CU_ASSERT(same(nx, -o.c[0]) && same(ny, -o.c[1]));
       CU_ASSERT(fabs(nx * my - ny * mx) <= 1e-12 * (fabs(gx) + fabs(gy)) * (fabs(mx) + fabs(my)));
       /* the normal relative velocity's v . r: symmetric, and blind to a slide along the wall */
-      CU_ASSERT(same(normal_vdotr_v1(dvx, dvy, dx, dy, mx, my),
-                     normal_vdotr_v1(evx, evy, ex, ey, mx, my)));
-      CU_ASSERT(fabs(normal_vdotr_v1(-my, mx, dx, dy, mx, my)) <=
+      CU_ASSERT(same(normal_vdotr_v1(dv, rv, mv), normal_vdotr_v1(ev, qv, mv)));
+      CU_ASSERT(fabs(normal_vdotr_v1(slide, rv, mv)) <=
                 1e-15 * (fabs(mx) + fabs(my)) * (fabs(dx) + fabs(dy)));
     }
     { /* the Lennard-Jones potential: zero at r0, its slope minus the force */
@@ -690,16 +690,19 @@ static void test_pair_symmetry(void) {
       }
     }
     const double ccx = s[0] * 1e3, ccy = s[1] * 1e3; /* c_i + c_j of the diffusion */
-    const double psi = diffusion_psi_v1(rhoi, rhoj, dx, dy, ccx, ccy);
-    CU_ASSERT(same(psi, -diffusion_psi_v1(rhoj, rhoi, ex, ey, ccx, ccy)));
+    const vec_v1 cc = {{ccx, ccy}};
+    const double psi = diffusion_psi_v1(rhoi, rhoj, rv, cc);
+    CU_ASSERT(same(psi, -diffusion_psi_v1(rhoj, rhoi, qv, cc)));
     checked++;
 
     /* the lane flavours: four different pairs at once (scaled copies) */
     const double k4[4] = {1.0, 0.9, 0.8, 0.7};
 #define V4(e) v4e_set((e)*k4[0], (e)*k4[1], (e)*k4[2], (e)*k4[3])
 #define S(e) ((e)*k4[q])
-    LANES_AGREE(continuity_v1(S(m), S(dvx), S(dvy), S(gx), S(gy)),
-                continuity_v4e(V4(m), V4(dvx), V4(dvy), V4(gx), V4(gy)));
+#define S2(a, b) ((vec_v1){{S(a), S(b)}})
+#define V42(a, b) ((vec_v4e){{V4(a), V4(b)}})
+    LANES_AGREE(continuity_v1(S(m), S2(dvx, dvy), S2(gx, gy)),
+                continuity_v4e(V4(m), V42(dvx, dvy), V42(gx, gy)));
     LANES_AGREE(signal_v1(S(h), S(vr), S(inv_r2)), signal_v4e(V4(h), V4(vr), V4(inv_r2)));
     LANES_AGREE(
         artificial_viscosity_v1(S(vr), S(h), S(r2), S(eta2), S(ci), S(cj), -0.08, 0.5, S(irb)),
@@ -709,10 +712,11 @@ static void test_pair_symmetry(void) {
         morris_factor_v1(S(m), 2e-4, S(f), S(r2), S(rhoi), S(rhoj), S(eta2)),
         morris_factor_v4e(V4(m), v4e_all(2e-4), V4(f), V4(r2), V4(rhoi), V4(rhoj), V4(eta2)));
     LANES_AGREE(
-        stress_heat_v1(S(m), S(txx), S(txy), S(tyy), S(dvx), S(dvy), S(gx), S(gy)),
-        stress_heat_v4e(V4(m), V4(txx), V4(txy), V4(tyy), V4(dvx), V4(dvy), V4(gx), V4(gy)));
-    LANES_AGREE(diffusion_psi_v1(S(rhoi), S(rhoj), S(dx), S(dy), S(ccx), S(ccy)),
-                diffusion_psi_v4e(V4(rhoi), V4(rhoj), V4(dx), V4(dy), V4(ccx), V4(ccy)));
+        stress_heat_v1(S(m), ((sym_v1){{S(txx), S(txy), S(tyy)}}), S2(dvx, dvy), S2(gx, gy)),
+        stress_heat_v4e(V4(m), ((sym_v4e){{V4(txx), V4(txy), V4(tyy)}}), V42(dvx, dvy),
+                        V42(gx, gy)));
+    LANES_AGREE(diffusion_psi_v1(S(rhoi), S(rhoj), S2(dx, dy), S2(ccx, ccy)),
+                diffusion_psi_v4e(V4(rhoi), V4(rhoj), V42(dx, dy), V42(ccx, ccy)));
     LANES_AGREE(diffusion_v1(S(psi), S(f), S(m), S(rhoj)),
                 diffusion_v4e(V4(psi), V4(f), V4(m), V4(rhoj)));
     { /* the Wendland kernel at four radii */
@@ -746,6 +750,8 @@ static void test_pair_symmetry(void) {
       for (int q = 0; q < 4; q++)
         CU_ASSERT(same(wl[q], wq[q]) && same(fl[q], fq[q]));
     }
+#undef V42
+#undef S2
 #undef S
 #undef V4
   }

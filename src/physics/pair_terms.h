@@ -27,6 +27,7 @@
 #ifndef SPH_PAIR_TERMS_H
 #define SPH_PAIR_TERMS_H
 
+#include "core/dim.h"
 #include "core/lanes.h"
 
 #define SPH_PT_GLUE(a, b) a##_##b

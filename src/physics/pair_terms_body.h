@@ -24,6 +24,81 @@
 #define ABS OP(abs)
 #define MIN OP(min)
 #define MAX OP(max)
+#define VEC PT(vec)
+#define SYM PT(sym)
+
+/* A vector (a separation, a velocity, a kernel gradient) and a symmetric
+ * tensor (xx, xy, yy in 2-D; xx, xy, xz, yy, yz, zz in 3-D) of the
+ * flavour's numbers, SPH_DIM components (src/core/dim.h). */
+typedef struct {
+  T c[SPH_DIM];
+} VEC;
+typedef struct {
+  T c[SPH_SYM];
+} SYM;
+
+/* The helpers below spell their components out (no loop over the axes:
+ * the compiler then keeps a vector's components in registers). */
+
+/* a . b, the components added in axis order. */
+PT_ATTR T PT(dot)(VEC a, VEC b) {
+#if SPH_DIM == 2
+  return ADD(MUL(a.c[0], b.c[0]), MUL(a.c[1], b.c[1]));
+#else
+  return ADD(ADD(MUL(a.c[0], b.c[0]), MUL(a.c[1], b.c[1])), MUL(a.c[2], b.c[2]));
+#endif
+}
+
+/* s a. */
+PT_ATTR VEC PT(scale)(T s, VEC a) {
+#if SPH_DIM == 2
+  const VEC r = {{MUL(s, a.c[0]), MUL(s, a.c[1])}};
+#else
+  const VEC r = {{MUL(s, a.c[0]), MUL(s, a.c[1]), MUL(s, a.c[2])}};
+#endif
+  return r;
+}
+
+/* a - b. */
+PT_ATTR VEC PT(minus)(VEC a, VEC b) {
+#if SPH_DIM == 2
+  const VEC r = {{SUB(a.c[0], b.c[0]), SUB(a.c[1], b.c[1])}};
+#else
+  const VEC r = {{SUB(a.c[0], b.c[0]), SUB(a.c[1], b.c[1]), SUB(a.c[2], b.c[2])}};
+#endif
+  return r;
+}
+
+/* t g, t symmetric: row d is sum_e t_de g_e, e in axis order. */
+PT_ATTR VEC PT(sym_times)(SYM t, VEC g) {
+#if SPH_DIM == 2 /* t = (xx, xy, yy) */
+  const VEC r = {{ADD(MUL(t.c[0], g.c[0]), MUL(t.c[1], g.c[1])),
+                  ADD(MUL(t.c[1], g.c[0]), MUL(t.c[2], g.c[1]))}};
+#else /* t = (xx, xy, xz, yy, yz, zz) */
+  const VEC r = {{ADD(ADD(MUL(t.c[0], g.c[0]), MUL(t.c[1], g.c[1])), MUL(t.c[2], g.c[2])),
+                  ADD(ADD(MUL(t.c[1], g.c[0]), MUL(t.c[3], g.c[1])), MUL(t.c[4], g.c[2])),
+                  ADD(ADD(MUL(t.c[2], g.c[0]), MUL(t.c[4], g.c[1])), MUL(t.c[5], g.c[2]))}};
+#endif
+  return r;
+}
+
+/* t : sym(u v^T) (twice its off-diagonal part): in storage order,
+ * t_aa u_a v_a and t_ab (u_a v_b + u_b v_a), added left to right. */
+PT_ATTR T PT(sym_contract)(SYM t, VEC u, VEC v) {
+#define SPH_PT_DIAG(k, a) MUL(MUL(t.c[k], u.c[a]), v.c[a])
+#define SPH_PT_OFF(k, a, b) MUL(t.c[k], ADD(MUL(u.c[a], v.c[b]), MUL(u.c[b], v.c[a])))
+#if SPH_DIM == 2
+  const T s = ADD(ADD(SPH_PT_DIAG(0, 0), SPH_PT_OFF(1, 0, 1)), SPH_PT_DIAG(2, 1));
+#else
+  const T s = ADD(ADD(ADD(ADD(ADD(SPH_PT_DIAG(0, 0), SPH_PT_OFF(1, 0, 1)), SPH_PT_OFF(2, 0, 2)),
+                          SPH_PT_DIAG(3, 1)),
+                      SPH_PT_OFF(4, 1, 2)),
+                  SPH_PT_DIAG(5, 2));
+#endif
+#undef SPH_PT_OFF
+#undef SPH_PT_DIAG
+  return s;
+}
 
 /* The cubic spline (paper A eq. 8, paper B §2.1; src/core/kernel_shape.h)
  * in the loops' form: W_ij and F_ij = (1/r) dW/dr for 0 < r < 2h, from
@@ -52,14 +127,12 @@ PT_ATTR void PT(wendland_w_f)(T r, T inv_r, T inv_h, T sigma, T sigma_h, T *w, T
 }
 
 /* Continuity, paper B eq. (2), paper A eq. (12): m_j v_ij . grad_i W_ij. */
-PT_ATTR T PT(continuity)(T mj, T dvx, T dvy, T gx, T gy) {
-  return MUL(mj, ADD(MUL(dvx, gx), MUL(dvy, gy)));
-}
+PT_ATTR T PT(continuity)(T mj, VEC dv, VEC g) { return MUL(mj, PT(dot)(dv, g)); }
 
 /* Density diffusion (src/physics/density_diffusion.h): the bracket of
  * psi_ij / 2 = (rho_j - rho_i) + c_ij . r_ij, given c_ij = c_i + c_j. */
-PT_ATTR T PT(diffusion_psi)(T rhoi, T rhoj, T dx, T dy, T cx, T cy) {
-  return ADD(SUB(rhoj, rhoi), ADD(MUL(cx, dx), MUL(cy, dy)));
+PT_ATTR T PT(diffusion_psi)(T rhoi, T rhoj, VEC r, VEC c) {
+  return ADD(SUB(rhoj, rhoi), PT(dot)(c, r));
 }
 
 /* Its pair sum F_ij psi_ij m_j / rho_j; the loop scales the sum by
@@ -73,10 +146,8 @@ PT_ATTR T PT(diffusion)(T psi, T f, T mj, T rhoj) { return DIV(MUL(MUL(f, psi), 
  * viscosity force -mp g' and their heat then act along the normal only,
  * so the wall neither drags the fluid along its face nor, moving along
  * it, does work on it; the continuity term keeps g. */
-PT_ATTR void PT(normal_part)(T gx, T gy, T mx, T my, T *ngx, T *ngy) {
-  const T s = DIV(ADD(MUL(gx, mx), MUL(gy, my)), ADD(MUL(mx, mx), MUL(my, my)));
-  *ngx = MUL(s, mx);
-  *ngy = MUL(s, my);
+PT_ATTR VEC PT(normal_part)(VEC g, VEC m) {
+  return PT(scale)(DIV(PT(dot)(g, m), PT(dot)(m, m)), m);
 }
 
 /* v_ij . r_ij as the artificial viscosity of a fluid-wall pair on a
@@ -85,11 +156,7 @@ PT_ATTR void PT(normal_part)(T gx, T gy, T mx, T my, T *ngx, T *ngy) {
  * answers whether the pair closes along the normal: the fluid sliding
  * along the wall is neither pushed off it (the pairs ahead, approaching
  * along the slide, would take Pi_ij > 0 and those behind none) nor braked. */
-PT_ATTR T PT(normal_vdotr)(T vx, T vy, T dx, T dy, T mx, T my) {
-  T nvx, nvy;
-  PT(normal_part)(vx, vy, mx, my, &nvx, &nvy);
-  return ADD(MUL(nvx, dx), MUL(nvy, dy));
-}
+PT_ATTR T PT(normal_vdotr)(VEC v, VEC r, VEC m) { return PT(dot)(PT(normal_part)(v, m), r); }
 
 /* The time-step rule's signal term, paper B §2.6: |h_ij v_ij . r_ij| / r^2. */
 PT_ATTR T PT(signal)(T hij, T vdotr, T inv_r2) { return MUL(ABS(MUL(hij, vdotr)), inv_r2); }
@@ -111,34 +178,23 @@ PT_ATTR T PT(artificial_viscosity)(T vdotr, T hij, T r2, T eta2, T ci, T cj, T n
 /* Pressure (and Pi_ij) force on i per unit mass, paper A eq. (11), paper B
  * eq. (3): -m_j (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) grad_i W_ij, given
  * mp = m_j (prho2_i + prho2_j + Pi_ij). Antisymmetric in the pair. */
-PT_ATTR void PT(pressure_force)(T mp, T gx, T gy, T *ax, T *ay) {
-  const T nmp = NEG(mp);
-  *ax = MUL(nmp, gx);
-  *ay = MUL(nmp, gy);
-}
+PT_ATTR VEC PT(pressure_force)(T mp, VEC g) { return PT(scale)(NEG(mp), g); }
 
 /* The heat of the pressure pair term, paper A eq. (28) with the artificial
  * viscosity's share: du_i/dt += 1/2 mp v_ij . grad_i W_ij (energy ledger). */
-PT_ATTR T PT(pressure_heat)(T mp, T dvx, T dvy, T gx, T gy) {
-  return MUL(MUL(ALL(0.5), mp), ADD(MUL(dvx, gx), MUL(dvy, gy)));
-}
+PT_ATTR T PT(pressure_heat)(T mp, VEC dv, VEC g) { return MUL(MUL(ALL(0.5), mp), PT(dot)(dv, g)); }
 
 /* Viscous stress force, paper A eq. (11) (and the SPS stress of paper B
  * eq. 4, src/physics/turbulence.h): m_j sum_b (tau_i^ab/rho_i^2 +
  * tau_j^ab/rho_j^2) dW_ij/dx_i^b, given the pair sums txx = sxx_i + sxx_j,
  * txy, tyy of tau / rho^2. */
-PT_ATTR void PT(stress_force)(T mj, T txx, T txy, T tyy, T gx, T gy, T *ax, T *ay) {
-  *ax = MUL(mj, ADD(MUL(txx, gx), MUL(txy, gy)));
-  *ay = MUL(mj, ADD(MUL(txy, gx), MUL(tyy, gy)));
-}
+PT_ATTR VEC PT(stress_force)(T mj, SYM t, VEC g) { return PT(scale)(mj, PT(sym_times)(t, g)); }
 
 /* The viscous dissipation of the stress pair, the discrete form of paper A
  * eq. (29) that balances the pair's work exactly: the amount subtracted
  * from du_i/dt, 1/2 m_j tau_ij : (v_ij grad_i W_ij). */
-PT_ATTR T PT(stress_heat)(T mj, T txx, T txy, T tyy, T dvx, T dvy, T gx, T gy) {
-  const T s = ADD(ADD(MUL(MUL(txx, dvx), gx), MUL(txy, ADD(MUL(dvx, gy), MUL(dvy, gx)))),
-                  MUL(MUL(tyy, dvy), gy));
-  return MUL(MUL(ALL(0.5), mj), s);
+PT_ATTR T PT(stress_heat)(T mj, SYM t, VEC dv, VEC g) {
+  return MUL(MUL(ALL(0.5), mj), PT(sym_contract)(t, dv, g));
 }
 
 /* Morris' laminar viscosity, paper B eq. (4): the factor c of
@@ -149,9 +205,7 @@ PT_ATTR T PT(morris_factor)(T mj, T nu4, T f, T r2, T rhoi, T rhoj, T eta2) {
 }
 
 /* Its dissipation, subtracted from du_i/dt: 1/2 c |v_ij|^2. */
-PT_ATTR T PT(morris_heat)(T c, T dvx, T dvy) {
-  return MUL(MUL(ALL(0.5), c), ADD(MUL(dvx, dvx), MUL(dvy, dvy)));
-}
+PT_ATTR T PT(morris_heat)(T c, VEC dv) { return MUL(MUL(ALL(0.5), c), PT(dot)(dv, dv)); }
 
 /* XSPH, paper B eq. (6): the factor m_j W_ij / rho_ij of
  * dr_i/dt = v_i + eps sum_j (m_j / rho_ij) (v_j - v_i) W_ij, with mj = 0
@@ -164,13 +218,11 @@ PT_ATTR T PT(xsph_factor)(T mj, T inv_rb, T wij) { return MUL(MUL(mj, inv_rb), w
  * i, less what the moving wall puts in, -a_ij . (v_i - v_j). Then the
  * fluid's kinetic energy lost to the pair is all in i's internal energy,
  * and the balance closes without a partner's half (method.md). */
-PT_ATTR T PT(passive_heat)(T ax, T ay, T vxi, T vyi, T vxj, T vyj) {
-  return NEG(ADD(MUL(ax, SUB(vxi, vxj)), MUL(ay, SUB(vyi, vyj))));
-}
+PT_ATTR T PT(passive_heat)(VEC a, VEC vi, VEC vj) { return NEG(PT(dot)(a, PT(minus)(vi, vj))); }
 
 /* The power of a wall particle j's pair force (ax, ay) on fluid i, per unit
  * mass of i (energy ledger, the boundary work of paper A §5). */
-PT_ATTR T PT(wall_power)(T ax, T ay, T vxj, T vyj) { return ADD(MUL(ax, vxj), MUL(ay, vyj)); }
+PT_ATTR T PT(wall_power)(VEC a, VEC vj) { return PT(dot)(a, vj); }
 
 /* Lennard-Jones wall force of a repulsive wall particle within r0, paper A
  * eq. (21)-(22): the factor D [(r0/r)^12 - (r0/r)^4] / r^2 of r_ij. */
@@ -187,6 +239,8 @@ PT_ATTR T PT(lennard_jones_potential)(T d, T r0, T r2) {
   return MUL(d, ADD(SUB(DIV(q12, ALL(12.0)), DIV(q4, ALL(4.0))), DIV(ALL(1.0), ALL(6.0))));
 }
 
+#undef SYM
+#undef VEC
 #undef MAX
 #undef MIN
 #undef ABS

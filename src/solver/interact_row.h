@@ -56,6 +56,8 @@
 #define LT FL
 #define LOP(name) SPH_PT_XGLUE(FL, name)
 #define LTERM(name) SPH_PT_XGLUE(name, FL)
+#define LVEC SPH_PT_XGLUE(vec, FL) /* vectors and symmetric tensors of the pair terms */
+#define LSYM SPH_PT_XGLUE(sym, FL)
 
 LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_nlist *restrict l,
                                           const sph_force_params *restrict fp,
@@ -181,14 +183,16 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     const LT gx = LOP(mul)(f, dx), gy = LOP(mul)(f, dy);
     const LT dvx = LOP(sub)(vxi, GATHER(vx)), dvy = LOP(sub)(vyi, GATHER(vy));
     const LT mj = GATHER(m);
-    LACC(drho, LTERM(continuity)(mj, dvx, dvy, gx, gy));
+    const LVEC rv = {{dx, dy}}, gw = {{gx, gy}}, dv = {{dvx, dvy}}; /* r_ij, grad_i W_ij, v_ij */
+    LACC(drho, LTERM(continuity)(mj, dv, gw));
     const LT vdotr = LOP(add)(LOP(mul)(dvx, dx), LOP(mul)(dvy, dy));
     LAMAX(sig, LOP(and)(in, LTERM(signal)(hij, vdotr, inv_r2)));
     if ((F & F_DDIFF) && diffuses) { /* over the neighbours that diffuse (diffusion.h) */
       const LT rhoj = GATHER(rho);
       const LT cx = dd_uniform ? cxx : LOP(add)(cxi, LSET(E_ARR, ddcx));
       const LT cy = dd_uniform ? cyy : LOP(add)(cyi, LSET(E_ARR, ddcy));
-      const LT psi = LTERM(diffusion_psi)(rhoi, rhoj, dx, dy, cx, cy);
+      const LVEC c = {{cx, cy}};
+      const LT psi = LTERM(diffusion_psi)(rhoi, rhoj, rv, c);
       /* the masses they diffuse with: a wall particle's row its fluid
        * neighbours' only; without mdbc and diffusing walls ddm = fm */
 #define E_WDD(q, a) (kind[jk[q]] == SPH_KIND_FLUID ? a[jk[q]] : 0.0)
@@ -220,7 +224,7 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
      * velocity (normal_vdotr); fs the lanes of such pairs */
     LT pgx = gx, pgy = gy, avr = vvdotr;
     if (slip && (fluid || slip_i)) {
-      LT wmx, wmy, ngx, ngy;
+      LT wmx, wmy;
       LMASK fs;
       if (fluid) { /* the pair's wall particle is j (offsets of 1 where unused: finite) */
 #define E_FS(q, a)                                                                                 \
@@ -236,35 +240,35 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
         wmx = LOP(all)(p->mx[i]);
         wmy = LOP(all)(p->my[i]);
       }
-      LTERM(normal_part)(gx, gy, wmx, wmy, &ngx, &ngy);
-      pgx = LOP(sel)(fs, ngx, gx);
-      pgy = LOP(sel)(fs, ngy, gy);
-      if (F & F_AV) avr = LOP(sel)(fs, LTERM(normal_vdotr)(vvx, vvy, dx, dy, wmx, wmy), vvdotr);
+      const LVEC wm = {{wmx, wmy}}, ng = LTERM(normal_part)(gw, wm);
+      pgx = LOP(sel)(fs, ng.c[0], gx);
+      pgy = LOP(sel)(fs, ng.c[1], gy);
+      const LVEC vv = {{vvx, vvy}};
+      if (F & F_AV) avr = LOP(sel)(fs, LTERM(normal_vdotr)(vv, rv, wm), vvdotr);
     }
     if (F & F_AV)
       pij = LOP(add)(pij, LTERM(artificial_viscosity)(avr, hij, r2, eta2_ij, ci, GATHER(cs), nalpha,
                                                       beta, inv_rb));
-    LT pax, pay;
     const LT mp = LOP(mul)(mj, pij);
-    LTERM(pressure_force)(mp, pgx, pgy, &pax, &pay);
+    const LVEC pg = {{pgx, pgy}}, pa = LTERM(pressure_force)(mp, pg);
+    LT pax = pa.c[0], pay = pa.c[1];
     LT heat = zero; /* this particle's half of the pair's heat (energy ledger) */
-    if (F & F_LEDGER) heat = LTERM(pressure_heat)(mp, dvx, dvy, pgx, pgy);
+    if (F & F_LEDGER) heat = LTERM(pressure_heat)(mp, dv, pg);
     if (F & F_STRESS) {
       const LT txx = LOP(add)(LOP(all)(sxx[i]), LSET(E_ARR, sxx));
       const LT txy = LOP(add)(LOP(all)(sxy[i]), LSET(E_ARR, sxy));
       const LT tyy = LOP(add)(LOP(all)(syy[i]), LSET(E_ARR, syy));
-      LT sx, sy;
-      LTERM(stress_force)(mj, txx, txy, tyy, gx, gy, &sx, &sy);
-      pax = LOP(add)(pax, sx);
-      pay = LOP(add)(pay, sy);
-      if (F & F_LEDGER)
-        heat = LOP(sub)(heat, LTERM(stress_heat)(mj, txx, txy, tyy, dvx, dvy, gx, gy));
+      const LSYM t = {{txx, txy, tyy}};
+      const LVEC sv = LTERM(stress_force)(mj, t, gw);
+      pax = LOP(add)(pax, sv.c[0]);
+      pay = LOP(add)(pay, sv.c[1]);
+      if (F & F_LEDGER) heat = LOP(sub)(heat, LTERM(stress_heat)(mj, t, dv, gw));
     }
     if (F & F_MORRIS) {
       const LT c = LTERM(morris_factor)(mj, nu4, f, r2, rhoi, GATHER(rho), eta2_ij);
       pax = LOP(add)(pax, LOP(mul)(c, vvx));
       pay = LOP(add)(pay, LOP(mul)(c, vvy));
-      if (F & F_LEDGER) heat = LOP(sub)(heat, LTERM(morris_heat)(c, dvx, dvy));
+      if (F & F_LEDGER) heat = LOP(sub)(heat, LTERM(morris_heat)(c, dv));
     }
     if (F & F_LEDGER) {
       LT vwx = GATHER(vx), vwy = GATHER(vy); /* a wall neighbour's velocity */
@@ -277,7 +281,8 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
         vwy = LSET(E_WV, vy);
 #undef E_WV
 #undef E_PAS
-        heat = LOP(sel)(pas, LTERM(passive_heat)(pax, pay, vxi, vyi, vwx, vwy), heat);
+        const LVEC a = {{pax, pay}}, vi = {{vxi, vyi}}, vw = {{vwx, vwy}};
+        heat = LOP(sel)(pas, LTERM(passive_heat)(a, vi, vw), heat);
       }
       /* a wall particle: its half of the heat of its pairs with fluid only */
       LACC(du, fluid ? heat : LOP(and)(fluid_j, heat));
@@ -285,7 +290,8 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
       /* the power of wall particles' forces on i, per unit mass of i, and
        * the force of walls and mirror particles: external to the fluid */
       const LT wx = LOP(sel)(fluid_j, zero, pax), wy = LOP(sel)(fluid_j, zero, pay);
-      LACC(wpow, LTERM(wall_power)(wx, wy, vwx, vwy));
+      const LVEC wa = {{wx, wy}}, vw = {{vwx, vwy}};
+      LACC(wpow, LTERM(wall_power)(wa, vw));
       LACC(wfx, wx);
       LACC(wfy, wy);
     }
@@ -338,6 +344,8 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
 
 #undef LMAXALL
 #undef LSUM
+#undef LSYM
+#undef LVEC
 #undef LTERM
 #undef LOP
 #undef LT

@@ -33,7 +33,8 @@ void sph_repulsion_add(sph_particles *p, const sph_nlist *l, double d, double r0
       ax += f * dx;
       ay += f * dy;
       if (lg) {
-        pw += wall_power_v1(f * dx, f * dy, p->vx[j], p->vy[j]);
+        const vec_v1 a = {{f * dx, f * dy}}, vj = {{p->vx[j], p->vy[j]}};
+        pw += wall_power_v1(a, vj);
         phi += lennard_jones_potential_v1(d, r0, r2);
       }
     }
