@@ -26,10 +26,11 @@
 /* h^-d: the factor a kernel's normalisation takes from the smoothing
  * length, as products left to right ((1/h) (1/h) in 2-D). */
 static inline double sph_pow_dim(double a, double inv_h) {
-  double s = a;
-  for (int d = 0; d < SPH_DIM; d++)
-    s *= inv_h;
-  return s;
+#if SPH_DIM == 2
+  return a * inv_h * inv_h;
+#else
+  return a * inv_h * inv_h * inv_h;
+#endif
 }
 
 #endif

@@ -35,15 +35,17 @@ enum { SPH_SHAPE_CUBIC_SPLINE = 0, SPH_SHAPE_WENDLAND_C2 = 1 };
 /* Support radius in units of h. */
 #define SPH_KERNEL_SUPPORT 2.0
 
-/* C_d of each kernel (rows) for d = 2 and 3 (columns). */
+/* C_d of each kernel for d = 2 and 3, and the one of this build's dimension. */
 #define SPH_CUBIC_C2 (10.0 / (7.0 * SPH_PI))
 #define SPH_CUBIC_C3 (1.0 / SPH_PI)
 #define SPH_WENDLAND_C2_C2 (7.0 / (4.0 * SPH_PI))
 #define SPH_WENDLAND_C2_C3 (21.0 / (16.0 * SPH_PI))
 static inline double sph_kernel_c(int kind) {
-  static const double C[2][2] = {{SPH_CUBIC_C2, SPH_CUBIC_C3},
-                                 {SPH_WENDLAND_C2_C2, SPH_WENDLAND_C2_C3}};
-  return C[kind == SPH_SHAPE_WENDLAND_C2][SPH_DIM - 2];
+#if SPH_DIM == 2
+  return kind == SPH_SHAPE_WENDLAND_C2 ? SPH_WENDLAND_C2_C2 : SPH_CUBIC_C2;
+#else
+  return kind == SPH_SHAPE_WENDLAND_C2 ? SPH_WENDLAND_C2_C3 : SPH_CUBIC_C3;
+#endif
 }
 
 /* sigma_d = C_d / h^d at 1/h. */
