@@ -528,12 +528,12 @@ static int stress_pass(const sph_particles *p, const sph_nlist *l, const sph_for
       tyy += c / rho;
     }
     if (o.lxx) { /* sym(tau L): the divergence with the corrected gradient */
-      const double axx = w->lxx[i], axy = w->lxy[i], ayy = w->lyy[i];
-      const double bxx = txx * axx + txy * axy, byy = txy * axy + tyy * ayy;
-      const double bxy = 0.5 * ((txx * axy + txy * ayy) + (txy * axx + tyy * axy));
-      txx = bxx;
-      txy = bxy;
-      tyy = byy;
+      const double t[SPH_SYM] = {txx, txy, tyy}, a[SPH_SYM] = {w->lxx[i], w->lxy[i], w->lyy[i]};
+      double b[SPH_SYM];
+      sph_sym_product(t, a, b);
+      txx = b[SPH_XX];
+      txy = b[SPH_XY];
+      tyy = b[SPH_YY];
     }
     w->sxx[i] = txx;
     w->sxy[i] = txy;

@@ -62,6 +62,7 @@
 
 #include "core/parallel.h"
 #include "core/particles.h"
+#include "core/tensor.h"
 #include "neighbours/grid.h"
 #include "physics/density_diffusion.h"
 #include "physics/eos.h"
@@ -76,13 +77,10 @@
  * strain-rate pass and the renormalised density gradient (diffusion.c). */
 static inline void sph_gradient_correction(double mxx, double mxy, double myy, double *axx,
                                            double *axy, double *ayy) {
-  const double det = mxx * myy - mxy * mxy;
-  *axx = 1.0, *axy = 0.0, *ayy = 1.0;
-  if (det > SPH_GRADIENT_CORRECTION_MIN_DET && mxx > 0.0) {
-    *axx = myy / det;
-    *axy = -mxy / det;
-    *ayy = mxx / det;
-  }
+  const double m[SPH_SYM] = {mxx, mxy, myy};
+  double a[SPH_SYM];
+  sph_sym_inverse_or_identity(m, SPH_GRADIENT_CORRECTION_MIN_DET, a);
+  *axx = a[SPH_XX], *axy = a[SPH_XY], *ayy = a[SPH_YY];
 }
 
 /* Which loop evaluates the main pass (src/solver/interact.h). Every loop
