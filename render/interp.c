@@ -13,22 +13,19 @@
 
 #include "interp.h"
 
-#include "core/kernel_shape.h"
-
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 double rinterp_w(int k, double r, double h) {
   double w, dw;
-  sph_shape_w_dw(k == RKERNEL_WENDLAND_C2 ? SPH_SHAPE_WENDLAND_C2 : SPH_SHAPE_CUBIC_SPLINE, r, h,
-                 &w, &dw);
+  sph_shape_w_dw(k, r, h, &w, &dw);
   return w;
 }
 
 int rinterp_kernel_of(const sph_snapshot *s) {
   const int k = sph_shape_of_name(sph_snapshot_text(s, "kernel"));
-  if (k >= 0) return k == SPH_SHAPE_WENDLAND_C2 ? RKERNEL_WENDLAND_C2 : RKERNEL_CUBIC;
+  if (k >= 0) return k;
   /* a snapshot written before the kernel attribute: its parameter listing */
   const char *parameters = sph_snapshot_text(s, "parameters");
   const char *p = parameters ? strstr(parameters, "numerics.kernel:") : NULL;

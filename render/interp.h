@@ -27,9 +27,10 @@
 #include <stddef.h>
 
 #include "core/error.h"
+#include "core/kernel_shape.h"
 #include "io/snapshot.h"
 
-enum { RKERNEL_CUBIC = 0, RKERNEL_WENDLAND_C2 = 1 };
+enum { RKERNEL_CUBIC = SPH_SHAPE_CUBIC_SPLINE, RKERNEL_WENDLAND_C2 = SPH_SHAPE_WENDLAND_C2 };
 
 typedef struct rinterp_in {
   size_t n;

@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * kernel_shape.h - the smoothing kernels, written once: their shapes W(q)
- * and dW/dq with q = r / h, and their normalisation per dimension as a
- * table (the pattern of SWIFT's kernel_hydro.h). Everything that evaluates
+ * and dW/dq with q = r / h, and their normalisation constant for each
+ * dimension (the pattern of SWIFT's kernel_hydro.h). Everything that evaluates
  * a kernel takes it from here: the solver's passes and probes through
  * src/physics/kernel.h, the renderer's interpolation (render/interp.c),
  * and, for the normalisation, the interaction loops, whose branch-free

@@ -417,6 +417,16 @@ static interact_fn lane_variant(sph_force_loop loop, unsigned F) {
   }
 }
 
+const char *sph_force_loop_name(const sph_force_params *fp) {
+  if (fp->mirror || fp->var_h || fp->loop == SPH_LOOP_SCALAR) return "scalar"; /* pick_variant */
+  switch (flavour_of(fp->loop)) {
+  case FLAVOUR_V4E: return "portable lanes";
+  case FLAVOUR_V4X: return "AVX2 lanes";
+  case FLAVOUR_V8Z: return "AVX-512 lanes";
+  default: return "none";
+  }
+}
+
 /* The variant of the main pass for the term set F in the loop asked for:
  * SPH_LOOP_AUTO is the widest lanes the processor has (AVX-512, AVX2, else
  * the portable lanes; all give the same bits); each lane loop falls back to

@@ -51,11 +51,11 @@
  * With extrapolated wall velocities (wall_velocity.h) the strain-rate pass
  * reads the wall particles' ghost velocities.
  *
- * The terms that weigh most on the loop (the stress tensor, the energy
- * ledger, density diffusion; per-particle h in the scalar loop) are
- * compiled out of the loop a case runs when it does not use them (one
- * function per combination, DESIGN rule 4); the light ones are a branch
- * per pair (interact.h, F_COMPILED_SCALAR and F_COMPILED_LANES).
+ * The terms that weigh on a loop are compiled out of it when a case does
+ * not use them (one function per combination, DESIGN rule 4): in the lane
+ * loops every term but periodicity, in the scalar loop the stress, the
+ * ledger, diffusion and per-particle h; the others are a branch per pair
+ * (interact.h, F_COMPILED_SCALAR and F_COMPILED_LANES).
  */
 #ifndef SPH_FORCES_H
 #define SPH_FORCES_H
@@ -191,6 +191,11 @@ void sph_forces_pressure(sph_particles *p, const sph_eos *eos);
  * w->cs_sigma_max. Needs p->p current. */
 int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                         sph_force_work *w, sph_error *err);
+
+/* The loop the main pass runs with fp, as the run reports it: "scalar"
+ * (asked for, per-particle h, mirror walls), "portable lanes", "AVX2
+ * lanes" or "AVX-512 lanes" (SPH_LOOP_AUTO: the widest the processor has). */
+const char *sph_force_loop_name(const sph_force_params *fp);
 
 /* Rounds of the start-up choice of lane loop, and the margin by which the
  * AVX2 loop must be faster to be chosen over the AVX-512 one. */

@@ -264,16 +264,6 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
 
 /* The scalar flavour: one pair at a time in row order, every term set (the
  * only one for per-particle h and mirror particles), its sums plain doubles. */
-#define LHOT_SET(g)                                                                                \
-  LT g[8];                                                                                         \
-  g[H_x] = LSET(E_HOT, x);                                                                         \
-  g[H_y] = LSET(E_HOT, y);                                                                         \
-  g[H_vx] = LSET(E_HOT, vx);                                                                       \
-  g[H_vy] = LSET(E_HOT, vy);                                                                       \
-  g[H_rho] = LSET(E_HOT, rho);                                                                     \
-  g[H_prho2] = LSET(E_HOT, prho2);                                                                 \
-  g[H_cs] = LSET(E_HOT, cs);                                                                       \
-  g[H_m] = LSET(E_HOT, m)
 #define LW 1
 #define LA v1
 #define LAOP(name) v1_##name
@@ -302,6 +292,16 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
  * portable flavour gathers the neighbours' fields one at a time (the
  * compiler drops those a term set does not read), the AVX2 flavour loads
  * the four records whole and transposes them (v4x_transpose8). */
+#define LHOT_SET(g)                                                                                \
+  LT g[8];                                                                                         \
+  g[H_x] = LSET(E_HOT, x);                                                                         \
+  g[H_y] = LSET(E_HOT, y);                                                                         \
+  g[H_vx] = LSET(E_HOT, vx);                                                                       \
+  g[H_vy] = LSET(E_HOT, vy);                                                                       \
+  g[H_rho] = LSET(E_HOT, rho);                                                                     \
+  g[H_prho2] = LSET(E_HOT, prho2);                                                                 \
+  g[H_cs] = LSET(E_HOT, cs);                                                                       \
+  g[H_m] = LSET(E_HOT, m)
 #define LW 4
 #define LA FL
 #define LAOP(name) SPH_PT_XGLUE(FL, name)

@@ -344,7 +344,6 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
    * support is 2 k h whichever particles carry k h; only mirror particles
    * (made anew at every pass) and paper B's variable h (whose largest h
    * moves with the density) rebuild it at every pass */
-  s->lane_ratio = 1.0;
   if (!s->walls.n_mirror && !c->variable_h)
     s->skin = sph_skin_fraction() * SPH_CUBIC_SUPPORT * c->h;
   if (s->p.n == 0) {

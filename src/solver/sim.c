@@ -396,14 +396,7 @@ long sph_sim_steps(const sph_sim *s) { return s->steps; }
 const sph_case *sph_sim_case(const sph_sim *s) { return s->c; }
 const char *sph_sim_loop(const sph_sim *s, double *ratio) {
   *ratio = s->lane_ratio;
-  switch (s->fp.loop) {
-  case SPH_LOOP_LANES_AVX512: return "AVX-512 lanes";
-  case SPH_LOOP_LANES_AVX: return "AVX2 lanes";
-  case SPH_LOOP_LANES: return "portable lanes";
-  case SPH_LOOP_SCALAR: return "scalar";
-  case SPH_LOOP_AUTO: break;
-  }
-  return "the widest lanes";
+  return sph_force_loop_name(&s->fp);
 }
 sph_particles *sph_sim_particles(sph_sim *s) { return &s->p; }
 double sph_sim_floor(const sph_sim *s) { return s->floor_y; }

@@ -61,8 +61,7 @@ size_t sph_sim_fluid_removed(const sph_sim *s);
 /* The domain box x0, x1, y0, y1: a particle leaving it is a blow-up. */
 void sph_sim_domain(const sph_sim *s, double box[4]);
 /* The interaction loop the run uses ("AVX-512 lanes", "AVX2 lanes",
- * "portable lanes", "scalar", or "the widest lanes" where one was not
- * measured); *ratio gets the AVX2 loop's time over the AVX-512 loop's at
+ * "portable lanes" or "scalar"); *ratio gets the AVX2 loop's time over the AVX-512 loop's at
  * start-up, 1 where they were not both measured (forces.h). All give the
  * same results. */
 const char *sph_sim_loop(const sph_sim *s, double *ratio);
