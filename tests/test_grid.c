@@ -369,6 +369,42 @@ static void test_permute_carries_fields(void) {
   sph_particles_free(&p);
 }
 
+/* Each per-axis field of the store is reachable by name and by axis, the
+ * same arrays, after the store has grown and been permuted. */
+static void test_fields_by_axis(void) {
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 4, &err) == 0);
+  for (int i = 0; i < 100; i++) /* grows from 16 */
+    CU_ASSERT_FATAL(sph_particles_add(&p, i, -i, 2 * i, 3 * i, 1000, 1, 0.5, 0, &err) == i);
+  size_t perm[100];
+  for (int i = 0; i < 100; i++)
+    perm[i] = (size_t)(99 - i);
+  double work[100];
+  sph_particles_permute(&p, perm, work);
+  CU_ASSERT_EQUAL(SPH_STORE_DIM, 2);
+  double *const by_name[][2] = {{p.x, p.y},     {p.vx, p.vy},   {p.x0, p.y0},
+                                {p.vx0, p.vy0}, {p.ax, p.ay},   {p.vxh, p.vyh},
+                                {p.xr, p.yr},   {p.xsx, p.xsy}, {p.mx, p.my}};
+  double *const *const by_axis[] = {p.pos,  p.vel,  p.pos0, p.vel0,         p.acc,
+                                    p.velh, p.rest, p.xsph, p.mirror_offset};
+  enum { FIELDS = sizeof by_axis / sizeof by_axis[0] };
+  CU_ASSERT_EQUAL(sizeof by_name / sizeof by_name[0], FIELDS);
+  for (int f = 0; f < FIELDS; f++) {
+    CU_ASSERT(by_name[f][0] != NULL && by_name[f][0] != by_name[f][1]);
+    CU_ASSERT(by_axis[f][SPH_AXIS_X] == by_name[f][0]);
+    CU_ASSERT(by_axis[f][SPH_AXIS_Y] == by_name[f][1]);
+  }
+  for (int i = 0; i < 100; i++) {
+    const int o = 99 - i;
+    CU_ASSERT(p.pos[SPH_AXIS_X][i] == o && p.pos[SPH_AXIS_Y][i] == -o);
+    CU_ASSERT(p.vel[SPH_AXIS_X][i] == 2 * o && p.vel[SPH_AXIS_Y][i] == 3 * o);
+  }
+  p.acc[SPH_AXIS_Y][7] = 42.0; /* a write by axis is read by name */
+  CU_ASSERT(p.ay[7] == 42.0);
+  sph_particles_free(&p);
+}
+
 /* Pages of [a, a + bytes) resident in memory (mincore). */
 static size_t resident_pages(const void *a, size_t bytes) {
   const size_t page = (size_t)sysconf(_SC_PAGESIZE);
@@ -640,6 +676,7 @@ int main(void) {
       {"particles on cell edges and at exactly 2h", test_cell_edges},
       {"a grid of 2^31 cells a side is refused", test_grid_side_bound},
       {"permutation carries every field", test_permute_carries_fields},
+      {"per-axis fields by name and by axis: the same arrays", test_fields_by_axis},
       {"arrays a store does not use stay zero and untouched", test_unused_groups_untouched},
       {"periodic grid, period of exactly 3 cells, against brute force", test_periodic_three_cells},
       {"periodic grid, longer periods, against brute force", test_periodic_long},

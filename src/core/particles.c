@@ -14,6 +14,7 @@
 #include "core/particles.h"
 
 #include "core/arrays.h"
+#include "core/dim.h"
 #include "core/parallel.h"
 
 #include <stdlib.h>
@@ -40,6 +41,9 @@ enum {
   SPH_PARTICLE_ARRAYS =
       0 SPH_PARTICLE_DOUBLES(SPH_PARTICLE_ONE) SPH_PARTICLE_OTHERS(SPH_PARTICLE_ONE)
 };
+
+/* The store's axes are the solver's. */
+typedef char sph_store_dim_check[SPH_STORE_DIM == SPH_DIM ? 1 : -1];
 
 /* Whether an array of group g is in use. */
 static inline int live(const sph_particles *p, unsigned g) { return !g || (p->live & g); }
@@ -106,10 +110,9 @@ int sph_particles_limit(sph_particles *p, unsigned groups) {
 void sph_particles_use(sph_particles *p, unsigned groups) {
   const unsigned on = groups & SPH_ARRAYS_ALL & ~p->live;
   if (on & SPH_ARRAYS_REST)
-    for (size_t i = 0; i < p->n; i++) {
-      p->xr[i] = p->x[i];
-      p->yr[i] = p->y[i];
-    }
+    for (int d = 0; d < SPH_STORE_DIM; d++)
+      for (size_t i = 0; i < p->n; i++)
+        p->rest[d][i] = p->pos[d][i];
   p->live |= on;
 }
 

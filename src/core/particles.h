@@ -51,31 +51,60 @@ enum {
   SPH_ARRAYS_ALL = 15
 };
 
+/* The store's axes: a per-axis field is two arrays, reachable by name
+ * (x, y) or by axis (pos[SPH_AXIS_X], pos[SPH_AXIS_Y]; the same pointers).
+ * SPH_STORE_DIM is the solver's dimension (core/dim.h's SPH_DIM). */
+#define SPH_STORE_DIM 2
+enum { SPH_AXIS_X = 0, SPH_AXIS_Y = 1 };
+
+/* A per-axis field: names a and b for the axes, arr[axis] for both (an
+ * anonymous union, C11 and a GNU C99 extension; __extension__ keeps
+ * -pedantic quiet). */
+#if defined(__GNUC__)
+#define SPH_AXES(arr, a, b)                                                                        \
+  __extension__ union {                                                                            \
+    __extension__ struct { double *a, *b; };                                                       \
+    double *arr[SPH_STORE_DIM];                                                                    \
+  }
+#else
+#define SPH_AXES(arr, a, b)                                                                        \
+  union {                                                                                          \
+    struct {                                                                                       \
+      double *a, *b;                                                                               \
+    };                                                                                             \
+    double *arr[SPH_STORE_DIM];                                                                    \
+  }
+#endif
+
 typedef struct sph_particles {
   size_t n;      /* particles in use */
   size_t cap;    /* allocated length of every array */
   void *block;   /* the one allocation holding every array (particles.c) */
   unsigned live; /* SPH_ARRAYS_* groups in use; the others hold zeros */
   /* state */
-  double *x, *y;   /* position (m) */
-  double *vx, *vy; /* velocity (m/s) */
-  double *rho;     /* density (kg/m^3) */
-  double *p;       /* pressure (Pa), from the equation of state */
-  double *mass;    /* mass (kg) */
-  double *h;       /* smoothing length (m) */
-  double *u;       /* thermal energy per unit mass (J/kg) */
-  int32_t *kind;   /* SPH_KIND_* */
-  int64_t *id;     /* 0..n-1, fixed at creation */
-  uint8_t *flags;  /* per-particle flags, SPH_FLAG_* (free surface, wall models) */
+  SPH_AXES(pos, x, y);   /* position (m) */
+  SPH_AXES(vel, vx, vy); /* velocity (m/s) */
+  double *rho;           /* density (kg/m^3) */
+  double *p;             /* pressure (Pa), from the equation of state */
+  double *mass;          /* mass (kg) */
+  double *h;             /* smoothing length (m) */
+  double *u;             /* thermal energy per unit mass (J/kg) */
+  int32_t *kind;         /* SPH_KIND_* */
+  int64_t *id;           /* 0..n-1, fixed at creation */
+  uint8_t *flags;        /* per-particle flags, SPH_FLAG_* (free surface, wall models) */
   /* state at the start of the step (predictor-corrector), and rates */
-  double *x0, *y0, *vx0, *vy0, *rho0, *u0;
-  double *ax, *ay, *drho, *du;   /* dv/dt, drho/dt, du/dt */
-  double *vxh, *vyh, *rhoh, *uh; /* leap-frog: velocity, density, energy at the half step */
-  double *xr, *yr;               /* rest position of a wall particle (moving walls) */
-  int32_t *body;                 /* index of the moving wall a particle belongs to, or -1 */
-  double *xsx, *xsy;             /* XSPH velocity correction */
-  double *mx, *my;               /* wall particle: offset to its mirror point across the
-                                    wall face (src/walls/wall_velocity.h) */
+  SPH_AXES(pos0, x0, y0);
+  SPH_AXES(vel0, vx0, vy0);
+  double *rho0, *u0;
+  SPH_AXES(acc, ax, ay);    /* dv/dt */
+  double *drho, *du;        /* drho/dt, du/dt */
+  SPH_AXES(velh, vxh, vyh); /* leap-frog: velocity at the half step */
+  double *rhoh, *uh;        /* leap-frog: density, energy at the half step */
+  SPH_AXES(rest, xr, yr);   /* rest position of a wall particle (moving walls) */
+  int32_t *body;            /* index of the moving wall a particle belongs to, or -1 */
+  SPH_AXES(xsph, xsx, xsy); /* XSPH velocity correction */
+  /* wall particle: offset to its mirror point across the wall face (walls/wall_velocity.h) */
+  SPH_AXES(mirror_offset, mx, my);
 } sph_particles;
 
 /* Allocates room for cap particles (all arrays zeroed); n = 0; every

@@ -442,10 +442,10 @@ int sph_sim_write_snapshot(const sph_sim *s, const char *path, sph_error *err) {
 int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err) {
   /* a view of the store whose state arrays are the saved ones */
   sph_particles v = s->p;
-  v.x = s->p.x0;
-  v.y = s->p.y0;
-  v.vx = s->p.vx0;
-  v.vy = s->p.vy0;
+  for (int d = 0; d < SPH_STORE_DIM; d++) {
+    v.pos[d] = s->p.pos0[d];
+    v.vel[d] = s->p.vel0[d];
+  }
   v.rho = s->p.rho0;
   v.u = s->p.u0;
   v.p = s->work.prho2; /* scratch: pressure of the saved state */
