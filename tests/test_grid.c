@@ -634,15 +634,16 @@ static void test_list_fresh(void) {
   sph_particles_free(&p);
 }
 
-/* A run gives the same bytes for any skin of the neighbour list, and with
- * every flavour of the interaction's lane loop (the default, AVX-512 where
- * the processor has it, against AVX2 and the portable lanes,
+/* A run gives the same bytes for any skin of the neighbour list, with the
+ * run-time loop instead of the one compiled for the case's term set, and
+ * with every flavour of the interaction's lane loop (the default, AVX-512
+ * where the processor has it, against AVX2 and the portable lanes,
  * src/solver/forces.c). */
 static void test_run_any_skin(void) {
-  enum { N = 5 };
+  enum { N = 6 };
   char *d[N] = {0};
-  const char *env[N] = {"SPH_TEST_SKIN=0.05", "SPH_TEST_SKIN=0.15", "SPH_TEST_SKIN=0.4",
-                        "SPH_TEST_LANES=portable", "SPH_TEST_LANES=avx"};
+  const char *env[N] = {"SPH_TEST_SKIN=0.05", "SPH_TEST_SKIN=0.15",      "SPH_TEST_SKIN=0.4",
+                        "SPH_TEST_RUNTIME=1", "SPH_TEST_LANES=portable", "SPH_TEST_LANES=avx"};
   const int avx = sph_force_loop_available(SPH_LOOP_LANES_AVX);
   const int k_end = avx ? N : N - 1;
   if (!avx) printf("\n  (no AVX2 on this processor: the AVX2 lanes are not compared)");
@@ -683,7 +684,8 @@ int main(void) {
       {"periodic grid refuses a period under 3 cells", test_periodic_too_short},
       {"neighbour list equals brute force (sorted, binned, periodic)", test_list_brute_force},
       {"neighbour list: fresh within skin/2, stale beyond or reordered", test_list_fresh},
-      {"a run is byte-identical for any skin and every lane flavour", test_run_any_skin},
+      {"a run is byte-identical for any skin, the run-time loop and every lane flavour",
+       test_run_any_skin},
       CU_TEST_INFO_NULL};
   return sph_test_main("grid", tests);
 }

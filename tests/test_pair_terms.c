@@ -501,6 +501,17 @@ static void test_oracle_every_term_set(void) {
         rates_alloc(&r[m], n);
         if ((m == 2 && !avx) || (m == 3 && !avx512)) continue;
         run_loop(&p, &fp, loops[m], &r[m]);
+        /* the flavour's run-time loop: the bytes of the loop compiled for F */
+        rates rt;
+        rates_alloc(&rt, n);
+        sph_force_params fr = fp;
+        fr.runtime_terms = 1;
+        run_loop(&p, &fr, loops[m], &rt);
+        for (int k = 0; k < 10; k++)
+          if (field_used(k, F) && memcmp(rt.f[k], r[m].f[k], n * sizeof(double)) != 0 && bad++ < 10)
+            printf("\n  F = %u, set %u, loop %d: the run-time loop's %s differs", F, seed, m,
+                   FIELD[k]);
+        rates_free(&rt);
         for (int k = 0; k < 10; k++) {
           if (!field_used(k, F)) continue;
           const double e = rel_err(&r[m], &o, k, n);
@@ -920,7 +931,8 @@ static void test_fastest_loop(void) {
 
 int main(void) {
   CU_TestInfo tests[] = {
-      {"the 256 term sets: scalar, lane, AVX2 and AVX-512 loops against the all-pairs oracle",
+      {"the 256 term sets: scalar, lane, AVX2 and AVX-512 loops against the all-pairs oracle, "
+       "the run-time loops bitwise the compiled ones",
        test_oracle_every_term_set},
       {"the strain-rate pass: lane flavours bitwise, the scalar pass within tolerance",
        test_strain_rate_lanes},

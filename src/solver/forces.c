@@ -6,11 +6,11 @@
  *
  * The physics of a pair is written once, in src/physics/pair_terms.h; the
  * loops that sum it over a neighbour row are in src/solver/interact.h (the
- * scalar loop and the four-lane loop). Here each loop is instantiated for
- * every combination of the terms that weigh on it (interact.h,
- * F_COMPILED_SCALAR and F_COMPILED_LANES: DESIGN rule 4, a case pays only
- * for what it switches on), those bits a literal inside its parallel
- * region; the light terms are a predicted branch per pair. Particles are
+ * scalar loop and the lane loops). Here each loop is instantiated for the
+ * term sets the shipped cases run, for the combinations of the terms that
+ * weigh most, and once with every term read at run time (interact.h,
+ * LANE_LOOPS: DESIGN rule 4, a shipped case pays only for what it
+ * switches on), each its Fc a literal inside its parallel region. Particles are
  * processed in parallel, each writing only its own rates, so results are
  * bitwise independent of the thread count, the schedule and the age of
  * the list.
@@ -266,18 +266,19 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
 #define PARTICLE_v4x(p, l, fp, w, i, k) interact_v4x(p, l, fp, w, i, k)
 #define PARTICLE_v8z(p, l, fp, w, i, k) interact_v8z(p, l, fp, w, i, k)
 
-/* One function per combination of compiled bits and flavour, k a literal
- * in its parallel region (see STRAIN_VARIANT). */
-#define VARIANT_FL(k, FL, NAME, ATTR, BITS)                                                        \
-  ATTR void NAME##_##k(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,           \
-                       sph_force_work *w) {                                                        \
+/* One function per flavour and loop Fc (interact.h: LANE_LOOPS,
+ * SCALAR_LOOPS, PORTABLE_LOOPS), Fc a literal in its parallel region (see
+ * STRAIN_VARIANT). */
+#define VARIANT_FL(NAME, FL, ATTR, Fc)                                                             \
+  ATTR void NAME(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,                 \
+                 sph_force_work *w) {                                                              \
     const long n = (long)p->n;                                                                     \
     double mx = 0.0; /* max of cs + sigma: exact in any order */                                   \
     _Pragma("omp parallel if (n > SPH_OMP_MIN) reduction(max : mx)") {                             \
       size_t lo, hi; /* slices of equal cost, with stealing (parallel.h) */                        \
       while (sph_steal_next(&w->steal, SPH_STEAL_GRAIN, &lo, &hi))                                 \
         for (size_t i = lo; i < hi; i++) {                                                         \
-          PARTICLE_##FL(p, l, fp, w, i, BITS(k));                                                  \
+          PARTICLE_##FL(p, l, fp, w, i, (Fc));                                                     \
           const double c = w->cs[i] + w->sigma[i];                                                 \
           if (c > mx) mx = c;                                                                      \
         }                                                                                          \
@@ -286,79 +287,52 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
     w->cs_sigma_max = mx;                                                                          \
   }
 
-/* The scalar loop for every combination of F_COMPILED_SCALAR's bits, the
- * lane loops for every combination of F_COMPILED_LANES' (interact.h): the
- * variant number k's bit b is the mask's b-th lowest bit, so that k is
- * variant_index(F) (the tables below). Per-particle h runs the scalar loop
- * (pick_variant). */
-#define K_OF(k, b, B) (((k) & (1u << (b))) ? (B) : 0u)
-#define SCALAR_F(k)                                                                                \
-  (K_OF(k, 0, F_SCALAR_BIT0) | K_OF(k, 1, F_SCALAR_BIT1) | K_OF(k, 2, F_SCALAR_BIT2) |             \
-   K_OF(k, 3, F_SCALAR_BIT3) | K_OF(k, 4, F_SCALAR_BIT4) | K_OF(k, 5, F_SCALAR_BIT5))
-#define LANE_F(k)                                                                                  \
-  (K_OF(k, 0, F_LANE_BIT0) | K_OF(k, 1, F_LANE_BIT1) | K_OF(k, 2, F_LANE_BIT2) |                   \
-   K_OF(k, 3, F_LANE_BIT3) | K_OF(k, 4, F_LANE_BIT4) | K_OF(k, 5, F_LANE_BIT5))
-#define PORTABLE_F(k)                                                                              \
-  (K_OF(k, 0, F_PORTABLE_BIT0) | K_OF(k, 1, F_PORTABLE_BIT1) | K_OF(k, 2, F_PORTABLE_BIT2) |       \
-   K_OF(k, 3, F_PORTABLE_BIT3) | K_OF(k, 4, F_PORTABLE_BIT4) | K_OF(k, 5, F_PORTABLE_BIT5))
-#define EIGHT(V, a, b, c, d, e, f, g, h) V(a) V(b) V(c) V(d) V(e) V(f) V(g) V(h)
-#define SETS1(V) V(0)
-#define SETS2(V) V(0) V(1)
-#define SETS4(V) SETS2(V) V(2) V(3)
-#define SETS8(V) EIGHT(V, 0, 1, 2, 3, 4, 5, 6, 7)
-#define SETS16(V) SETS8(V) EIGHT(V, 8, 9, 10, 11, 12, 13, 14, 15)
-#define SETS24(V) SETS16(V) EIGHT(V, 16, 17, 18, 19, 20, 21, 22, 23)
-#define SETS32(V) SETS24(V) EIGHT(V, 24, 25, 26, 27, 28, 29, 30, 31)
-#define SETS40(V) SETS32(V) EIGHT(V, 32, 33, 34, 35, 36, 37, 38, 39)
-#define SETS48(V) SETS40(V) EIGHT(V, 40, 41, 42, 43, 44, 45, 46, 47)
-#define SETS56(V) SETS48(V) EIGHT(V, 48, 49, 50, 51, 52, 53, 54, 55)
-#define SETS64(V) SETS56(V) EIGHT(V, 56, 57, 58, 59, 60, 61, 62, 63)
-#define SETS_GLUE(n) SETS##n
-#define SETS_N(n) SETS_GLUE(n)
-#define SCALAR_SETS(V) SETS_N(N_SCALAR_SETS)(V)
-#define LANE_SETS(V) SETS_N(N_LANE_SETS)(V)
-#define PORTABLE_SETS(V) SETS_N(N_PORTABLE_SETS)(V)
-
-#define VARIANT_S(k) VARIANT_FL(k, v1, interact_scalar, static, SCALAR_F)
-#define VARIANT_V4E(k) VARIANT_FL(k, v4e, interact_all, static, PORTABLE_F)
-#define VARIANT_V4X(k)                                                                             \
-  VARIANT_FL(k, v4x, interact_avx, static __attribute__((target("avx2"))), LANE_F)
-#define VARIANT_V8Z(k)                                                                             \
-  VARIANT_FL(k, v8z, interact_avx512, static __attribute__((target("avx512f"))), LANE_F)
-SCALAR_SETS(VARIANT_S)
-PORTABLE_SETS(VARIANT_V4E)
+#define AVX2_ATTR static __attribute__((target("avx2")))
+#define AVX512_ATTR static __attribute__((target("avx512f")))
+#define VARIANT_S(k, Fc) VARIANT_FL(interact_scalar_##k, v1, static, Fc)
+#define VARIANT_V4E(k, Fc) VARIANT_FL(interact_all_##k, v4e, static, Fc)
+#define VARIANT_V4X(k, Fc) VARIANT_FL(interact_avx_##k, v4x, AVX2_ATTR, Fc)
+#define VARIANT_V8Z(k, Fc) VARIANT_FL(interact_avx512_##k, v8z, AVX512_ATTR, Fc)
+SCALAR_LOOPS(VARIANT_S)
+PORTABLE_LOOPS(VARIANT_V4E)
 #ifdef SPH_LANES_AVX
-LANE_SETS(VARIANT_V4X)
+LANE_LOOPS(VARIANT_V4X)
 #endif
 #ifdef SPH_LANES_AVX512
-LANE_SETS(VARIANT_V8Z)
+LANE_LOOPS(VARIANT_V8Z)
 #endif
 
+/* Each flavour's loops by their Fc. */
 typedef void (*interact_fn)(sph_particles *, const sph_nlist *, const sph_force_params *,
                             sph_force_work *);
-#define FN_SCALAR(k) interact_scalar_##k,
-#define FN_V4E(k) interact_all_##k,
-#define FN_V4X(k) interact_avx_##k,
-#define FN_V8Z(k) interact_avx512_##k,
-static const interact_fn VARIANT_TABLE_SCALAR[N_SCALAR_SETS] = {SCALAR_SETS(FN_SCALAR)};
-static const interact_fn VARIANT_TABLE[N_PORTABLE_SETS] = {PORTABLE_SETS(FN_V4E)};
+typedef struct variant {
+  unsigned fc; /* the loop's Fc (interact.h) */
+  interact_fn fn;
+} variant;
+#define ENTRY_S(k, Fc) {(Fc), interact_scalar_##k},
+#define ENTRY_V4E(k, Fc) {(Fc), interact_all_##k},
+#define ENTRY_V4X(k, Fc) {(Fc), interact_avx_##k},
+#define ENTRY_V8Z(k, Fc) {(Fc), interact_avx512_##k},
+static const variant TABLE_SCALAR[] = {SCALAR_LOOPS(ENTRY_S)};
+static const variant TABLE_V4E[] = {PORTABLE_LOOPS(ENTRY_V4E)};
 #ifdef SPH_LANES_AVX
-static const interact_fn VARIANT_TABLE_AVX[N_LANE_SETS] = {LANE_SETS(FN_V4X)};
+static const variant TABLE_V4X[] = {LANE_LOOPS(ENTRY_V4X)};
 #endif
 #ifdef SPH_LANES_AVX512
-static const interact_fn VARIANT_TABLE_AVX512[N_LANE_SETS] = {LANE_SETS(FN_V8Z)};
+static const variant TABLE_V8Z[] = {LANE_LOOPS(ENTRY_V8Z)};
 #endif
+#define FIND(table, F, runtime) find_variant(table, sizeof table / sizeof table[0], F, runtime)
 
-/* The place of F's compiled bits (those of mask) in a table: the bits of
- * mask taken from F and packed, lowest first. */
-static unsigned variant_index(unsigned F, unsigned mask) {
-  unsigned idx = 0, out = 1;
-  for (unsigned b = 1; b != 0 && b <= mask; b <<= 1)
-    if (mask & b) {
-      if (F & b) idx |= out;
-      out <<= 1;
-    }
-  return idx;
+/* The loop of a table for the term set F (interact.h): the one compiled
+ * for F, else F's axes loop, else the run-time loop for F's per-particle
+ * h; with `runtime` set, the first is skipped (the tests compare it with
+ * the others). NULL if the table has none of them. */
+static interact_fn find_variant(const variant *t, size_t n, unsigned F, int runtime) {
+  const unsigned want[3] = {F, F_RUNTIME | F_AXES_FIXED | (F & F_AXES), F_RUNTIME | (F & F_VARH)};
+  for (int w = runtime ? 1 : 0; w < 3; w++)
+    for (size_t k = 0; k < n; k++)
+      if (t[k].fc == want[w]) return t[k].fn;
+  return NULL;
 }
 
 int sph_force_loop_available(sph_force_loop loop) {
@@ -403,15 +377,15 @@ static lane_flavour flavour_of(sph_force_loop loop) {
 }
 
 /* The variant of a lane loop that can run here for the term set F (NULL:
- * none), from its flavour's table by the bits it is compiled for. */
-static interact_fn lane_variant(sph_force_loop loop, unsigned F) {
+ * none), from its flavour's table (find_variant). */
+static interact_fn lane_variant(sph_force_loop loop, unsigned F, int runtime) {
   switch (flavour_of(loop)) {
-  case FLAVOUR_V4E: return VARIANT_TABLE[variant_index(F, F_COMPILED_PORTABLE)];
+  case FLAVOUR_V4E: return FIND(TABLE_V4E, F, runtime);
 #ifdef SPH_LANES_AVX
-  case FLAVOUR_V4X: return VARIANT_TABLE_AVX[variant_index(F, F_COMPILED_LANES)];
+  case FLAVOUR_V4X: return FIND(TABLE_V4X, F, runtime);
 #endif
 #ifdef SPH_LANES_AVX512
-  case FLAVOUR_V8Z: return VARIANT_TABLE_AVX512[variant_index(F, F_COMPILED_LANES)];
+  case FLAVOUR_V8Z: return FIND(TABLE_V8Z, F, runtime);
 #endif
   default: return NULL;
   }
@@ -431,12 +405,13 @@ const char *sph_force_loop_name(const sph_force_params *fp) {
  * SPH_LOOP_AUTO is the widest lanes the processor has (AVX-512, AVX2, else
  * the portable lanes; all give the same bits); each lane loop falls back to
  * the scalar loop for per-particle h, and every loop for mirror particles
- * (`scalar`). NULL if that loop cannot run here. */
-static interact_fn pick_variant(unsigned F, sph_force_loop loop, int scalar) {
+ * (`scalar`); `runtime` asks for the flavour's run-time loop even where F
+ * has a loop of its own. NULL if that loop cannot run here. */
+static interact_fn pick_variant(unsigned F, sph_force_loop loop, int scalar, int runtime) {
   if (!sph_force_loop_available(loop)) return NULL;
   if (scalar || loop == SPH_LOOP_SCALAR || (F & F_SCALAR_ONLY))
-    return VARIANT_TABLE_SCALAR[variant_index(F, F_COMPILED_SCALAR)];
-  return lane_variant(loop, F);
+    return FIND(TABLE_SCALAR, F, runtime);
+  return lane_variant(loop, F, runtime);
 }
 
 /* The strain-rate pass's lane loop for fp: the flavour of the main pass's
@@ -601,7 +576,7 @@ static void check_rates(const sph_particles *p, const sph_force_work *w, unsigne
 int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                         sph_force_work *w, sph_error *err) {
   const unsigned F = sph_interact_terms(fp);
-  const interact_fn run = pick_variant(F, fp->loop, fp->mirror);
+  const interact_fn run = pick_variant(F, fp->loop, fp->mirror, fp->runtime_terms);
   if (!run) return sph_error_set(err, "forces: the interaction loop asked for cannot run here");
   if (prepare_pass(p, l, fp, w, F, err)) return -1;
   w->terms = F;

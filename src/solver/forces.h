@@ -51,11 +51,10 @@
  * With extrapolated wall velocities (wall_velocity.h) the strain-rate pass
  * reads the wall particles' ghost velocities.
  *
- * The terms that weigh on a loop are compiled out of it when a case does
- * not use them (one function per combination, DESIGN rule 4): in the lane
- * loops every term but periodicity, in the scalar loop the stress, the
- * ledger, diffusion and per-particle h; the others are a branch per pair
- * (interact.h, F_COMPILED_SCALAR and F_COMPILED_LANES).
+ * The term sets the shipped cases run have loops of their own, the terms
+ * they do not use compiled out (DESIGN rule 4); every other set runs a
+ * loop that tests its terms per pair (interact.h, LANE_SETS, SCALAR_SETS
+ * and F_RUNTIME).
  */
 #ifndef SPH_FORCES_H
 #define SPH_FORCES_H
@@ -128,6 +127,8 @@ typedef struct sph_force_params {
   double px0;              /* periodic: the period starts at x = px0 */
   double sps_cs, sps_ci, sps_delta;
   sph_force_loop loop;          /* default SPH_LOOP_AUTO */
+  int runtime_terms;            /* the run-time loop even for a term set compiled on its own
+                                   (tests and benchmarks; interact.h, F_RUNTIME) */
   sph_kernel_kind kernel;       /* the smoothing kernel; default (0) the cubic spline */
   sph_diffusion_kind diffusion; /* density diffusion (physics/density_diffusion.h); NONE = off */
   double diffusion_delta;       /* its delta */

@@ -3,10 +3,11 @@
  * interact.h - the loops of the main interaction pass, for one particle i
  * over its neighbour row (internal to src/solver/forces.c).
  *
- * The terms in use are a bit set F; the bits that weigh on a loop are a
- * constant at its call sites (F_COMPILED_*, below), so it compiles without
- * the terms it does not use (DESIGN rule 4). One body, interact_row.h,
- * written once, is instantiated here in every arithmetic flavour:
+ * The terms in use are a bit set F; a loop compiled for a set has it as a
+ * constant at its call sites (LANE_LOOPS, SCALAR_LOOPS, below), so it
+ * compiles without the terms it does not use (DESIGN rule 4). One body,
+ * interact_row.h, written once, is instantiated here in every arithmetic
+ * flavour:
  *   interact_v1     the scalar loop, one pair after the other in row order:
  *                   every term set (the only one for per-particle h and
  *                   mirror particles);
@@ -46,86 +47,83 @@ enum {
   F_DDIFF = 128    /* density diffusion (physics/density_diffusion.h) */
 };
 
-/* The lane loop serves the term sets without these (the scalar loop runs them). */
+/* The lane loops serve the term sets without these (the scalar loop runs them). */
 #define F_SCALAR_ONLY F_VARH
 
-/* The bits each loop is compiled for, every combination its own function
- * (forces.c), listed lowest first (BITk; 0u: unused): those that weigh on
- * the inner loop, measured on the shipped cases (bench/results/loops.md).
- * A bit left out is read from the pass's term set (w->terms) and tested
- * per pair, the same operations in the same order, so the same results;
- * it costs the loop the registers its constants hold (1.5 % more
- * instructions for periodicity, about 4 % for the ledger or Morris' term).
- *   scalar loop   per-particle h and mirror walls only (the lanes run the
- *                 rest): the stress, per-particle h, the ledger, diffusion
- *   lane loops    every term but periodicity (a row's cut is compiled for
- *                 both, interact_row.h)
- *   portable      on x86-64 the portable lanes are the fallback of
- *                 processors without AVX2: the heavy terms only */
+/* The loops each flavour is compiled for (forces.c), three kinds, each
+ * named by a literal Fc that its parallel region passes down:
+ *   a set        Fc = the term set, every bit a literal: the sets the
+ *                shipped cases run, listed by a profile of each
+ *                (bench/results/loops.md), so that a case pays only for
+ *                what it switches on (DESIGN rule 4);
+ *   an axes loop Fc = F_RUNTIME | F_AXES_FIXED | (bits of F_AXES): the
+ *                lane loops for every combination of the terms that weigh
+ *                most on the loop (the axes: AV, XSPH, the stress,
+ *                diffusion), the lighter ones (Morris, the ledger,
+ *                periodicity) read from the pass's term set (w->terms)
+ *                and tested per pair;
+ *   run-time     Fc = F_RUNTIME, with or without F_VARH: every bit but
+ *                per-particle h read at run time.
+ * A term set runs its own loop if it has one, else its axes loop, else
+ * the run-time loop (forces.c, find_variant). A bit read at run time
+ * gives the same operations in the same order (-ffp-contract=off), so the
+ * same results; it costs the registers its constants hold and a branch
+ * (bench/results/loops.md: 4-7 % in the axes loops, 9-11 % in the
+ * scalar run-time loop, instructions on the shipped cases). Which loops:
+ *   lane loops   the sets AV (hydrostatic tank, linear wave), AV + XSPH
+ *                (Lobovsky), AV + stress + periodicity (inclined plane),
+ *                AV + XSPH + diffusion (Martin & Moyce), AV + stress +
+ *                Morris (SPS dam break), AV + XSPH + stress + ledger
+ *                (wet-bed dam break); the 16 axes loops
+ *   scalar loop  per-particle h and mirror walls only (the lanes run the
+ *                rest): the sets AV + XSPH + h (plunging breaker), AV +
+ *                XSPH + stress + Morris + h (plunging breaker with SPS);
+ *                the run-time loop for per-particle h and for uniform h
+ *   portable     on x86-64 the fallback of processors without AVX2: the
+ *                run-time loop only; elsewhere as the lane loops
+ * A checking build (./configure --enable-sanitizers, or -DSPH_FEW_VARIANTS)
+ * compiles the run-time loops only: the same body and the same results;
+ * what a sanitizer checks is the code, not its speed.
+ * Each list entry is V(name, Fc). */
+#define F_RUNTIME 256u    /* not a term: a loop that reads bits at run time */
+#define F_AXES_FIXED 512u /* not a term: with F_RUNTIME, the axes are literals */
+#define F_AXES (F_AV | F_XSPH | F_STRESS | F_DDIFF)
+
+#define AXES_BITS(k)                                                                               \
+  (((k)&1 ? F_AV : 0u) | ((k)&2 ? F_XSPH : 0u) | ((k)&4 ? F_STRESS : 0u) | ((k)&8 ? F_DDIFF : 0u))
+#define AXES_LOOP(V, k) V(a##k, F_RUNTIME | F_AXES_FIXED | AXES_BITS(k))
 #if defined(SPH_SANITIZERS) || defined(SPH_FEW_VARIANTS)
-/* A checking build (./configure --enable-sanitizers, or -DSPH_FEW_VARIANTS):
- * one loop per flavour (the scalar loop two, for per-particle h), every
- * other bit read at run time. The same body and the same results; what a
- * sanitizer checks is the code, not its speed, and it compiles the 152
- * variants in about 7 minutes, these in one (bench/results/loops.md). */
-#define F_SCALAR_BIT0 F_VARH
-#define F_SCALAR_BIT1 0u
-#define F_SCALAR_BIT2 0u
-#define F_SCALAR_BIT3 0u
-#define F_SCALAR_BIT4 0u
-#define F_SCALAR_BIT5 0u
-#define N_SCALAR_SETS 2
-#define F_LANE_BIT0 0u
-#define F_LANE_BIT1 0u
-#define F_LANE_BIT2 0u
-#define F_LANE_BIT3 0u
-#define F_LANE_BIT4 0u
-#define F_LANE_BIT5 0u
-#define N_LANE_SETS 1
-#define F_PORTABLE_BIT0 0u
-#define F_PORTABLE_BIT1 0u
-#define F_PORTABLE_BIT2 0u
-#define F_PORTABLE_BIT3 0u
-#define F_PORTABLE_BIT4 0u
-#define F_PORTABLE_BIT5 0u
-#define N_PORTABLE_SETS 1
+#define LANE_LOOPS(V) V(r, F_RUNTIME)
+#define SCALAR_LOOPS(V) V(r, F_RUNTIME) V(h, F_RUNTIME | F_VARH)
 #else
-#define F_SCALAR_BIT0 F_STRESS
-#define F_SCALAR_BIT1 F_VARH
-#define F_SCALAR_BIT2 F_LEDGER
-#define F_SCALAR_BIT3 F_DDIFF
-#define F_SCALAR_BIT4 0u
-#define F_SCALAR_BIT5 0u
-#define N_SCALAR_SETS 16 /* 2^(the bits above that are not 0u) */
-#define F_LANE_BIT0 F_AV
-#define F_LANE_BIT1 F_XSPH
-#define F_LANE_BIT2 F_STRESS
-#define F_LANE_BIT3 F_MORRIS
-#define F_LANE_BIT4 F_LEDGER
-#define F_LANE_BIT5 F_DDIFF
-#define N_LANE_SETS 64
+/* clang-format off */
+#define LANE_LOOPS(V)                                                                              \
+  AXES_LOOP(V, 0)  AXES_LOOP(V, 1)  AXES_LOOP(V, 2)  AXES_LOOP(V, 3)                               \
+  AXES_LOOP(V, 4)  AXES_LOOP(V, 5)  AXES_LOOP(V, 6)  AXES_LOOP(V, 7)                               \
+  AXES_LOOP(V, 8)  AXES_LOOP(V, 9)  AXES_LOOP(V, 10) AXES_LOOP(V, 11)                              \
+  AXES_LOOP(V, 12) AXES_LOOP(V, 13) AXES_LOOP(V, 14) AXES_LOOP(V, 15)                              \
+  V(s1, F_AV)                                                                                      \
+  V(s2, F_AV | F_XSPH)                                                                             \
+  V(s3, F_AV | F_STRESS | F_PERIODIC)                                                              \
+  V(s4, F_AV | F_XSPH | F_DDIFF)                                                                   \
+  V(s5, F_AV | F_STRESS | F_MORRIS)                                                                \
+  V(s6, F_AV | F_XSPH | F_STRESS | F_LEDGER)
+/* clang-format on */
+#define SCALAR_LOOPS(V)                                                                            \
+  V(r, F_RUNTIME)                                                                                  \
+  V(h, F_RUNTIME | F_VARH)                                                                         \
+  V(s1, F_VARH | F_AV | F_XSPH)                                                                    \
+  V(s2, F_VARH | F_AV | F_XSPH | F_STRESS | F_MORRIS)
+#endif
 #ifdef SPH_LANES_AVX
-#define F_PORTABLE_BIT0 F_STRESS
-#define F_PORTABLE_BIT1 F_LEDGER
-#define F_PORTABLE_BIT2 F_DDIFF
-#define F_PORTABLE_BIT3 0u
-#define F_PORTABLE_BIT4 0u
-#define F_PORTABLE_BIT5 0u
-#define N_PORTABLE_SETS 8
+#define PORTABLE_LOOPS(V) V(r, F_RUNTIME)
 #else
-#define F_PORTABLE_BIT0 F_LANE_BIT0
-#define F_PORTABLE_BIT1 F_LANE_BIT1
-#define F_PORTABLE_BIT2 F_LANE_BIT2
-#define F_PORTABLE_BIT3 F_LANE_BIT3
-#define F_PORTABLE_BIT4 F_LANE_BIT4
-#define F_PORTABLE_BIT5 F_LANE_BIT5
-#define N_PORTABLE_SETS N_LANE_SETS
+#define PORTABLE_LOOPS(V) LANE_LOOPS(V)
 #endif
-#endif
-#define F_BITS_OF(P) (P##_BIT0 | P##_BIT1 | P##_BIT2 | P##_BIT3 | P##_BIT4 | P##_BIT5)
-#define F_COMPILED_SCALAR F_BITS_OF(F_SCALAR)
-#define F_COMPILED_LANES F_BITS_OF(F_LANE)
-#define F_COMPILED_PORTABLE F_BITS_OF(F_PORTABLE)
+
+/* The bits a loop Fc takes as literals (above). */
+#define F_LITERAL(Fc)                                                                              \
+  (!((Fc)&F_RUNTIME) ? 0xffu : ((Fc)&F_AXES_FIXED) ? (unsigned)(F_VARH | F_AXES) : (unsigned)F_VARH)
 
 /* The term set a loop evaluates: the bits of mask from the literal Fc
  * (folded by the compiler), the others from the pass's set Fr. */
@@ -273,11 +271,9 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
 #define LAMAX(s, t) s = LAOP(max)(t, s)
 #define LSET(E, a) E(0, a)
 #define FL v1
-#define LBITS F_COMPILED_SCALAR
 #define LOOP_ATTR static inline __attribute__((always_inline))
 #include "solver/interact_row.h"
 #undef LOOP_ATTR
-#undef LBITS
 #undef FL
 #undef LSET
 #undef LAMAX
@@ -312,19 +308,16 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
 #define LSET(E, a) LAOP(set)(E(0, a), E(1, a), E(2, a), E(3, a))
 
 #define FL v4e
-#define LBITS (F_COMPILED_PORTABLE | F_SCALAR_ONLY) /* per-particle h: never here */
 #define LHOT(g) LHOT_SET(g)
 #define LOOP_ATTR static inline __attribute__((always_inline))
 #include "solver/interact_row.h"
 #include "solver/strain_lanes.h"
 #undef LOOP_ATTR
 #undef LHOT
-#undef LBITS
 #undef FL
 
 #ifdef SPH_LANES_AVX
 #define FL v4x
-#define LBITS (F_COMPILED_LANES | F_SCALAR_ONLY)
 #define LHOT(g)                                                                                    \
   v4x g[8];                                                                                        \
   {                                                                                                \
@@ -336,7 +329,6 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
 #include "solver/strain_lanes.h"
 #undef LOOP_ATTR
 #undef LHOT
-#undef LBITS
 #undef FL
 #endif
 
@@ -382,12 +374,10 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
   }
 
 #define FL v8z
-#define LBITS (F_COMPILED_LANES | F_SCALAR_ONLY)
 #define LOOP_ATTR static inline __attribute__((always_inline, target("avx512f")))
 #include "solver/interact_row.h"
 #include "solver/strain_lanes.h"
 #undef LOOP_ATTR
-#undef LBITS
 #undef FL
 
 #undef LHOT

@@ -48,9 +48,10 @@
  * the max, LMASK the mask type, LSET(E, a) the vector of E(q, a) for
  * q = 0 .. LW - 1 (E_ARR(q, arr) gives arr[j] of the iteration's q-th
  * neighbour j), LHOT(g) (LW > 1) the declaration of g[8], the fields of
- * this iteration's neighbours' records (sph_force_hot) by place H_field,
- * and LBITS the bits of F the flavour is compiled for (interact.h; those
- * it never sees included); the others come from the pass's term set.
+ * this iteration's neighbours' records (sph_force_hot) by place H_field.
+ * Fc, a literal at every call, is the term set the loop is compiled for,
+ * or F_RUNTIME (interact.h, F_LITERAL): the bits it does not fix come
+ * from the pass's term set.
  */
 
 #define LT FL
@@ -62,7 +63,7 @@
 LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_nlist *restrict l,
                                           const sph_force_params *restrict fp,
                                           sph_force_work *restrict w, size_t i, const unsigned Fc) {
-  const unsigned F = SPH_TERMS(Fc, LBITS, w->terms);
+  const unsigned F = SPH_TERMS(Fc, F_LITERAL(Fc), w->terms);
   const sph_force_hot *restrict hot = w->hot;
   const double *restrict sxx = w->sxx, *restrict sxy = w->sxy, *restrict syy = w->syy;
   const int32_t *restrict kind = p->kind;

@@ -311,6 +311,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.diffusion_delta = c->diffusion_delta;
   if (c->variable_h) s->fp.var_h = 1;
   s->fp.loop = sph_test_loop();
+  s->fp.runtime_terms = getenv("SPH_TEST_RUNTIME") != NULL; /* doc/testing.md */
   if (sph_particles_init(&s->p, 1024, err)) goto fail;
   /* the optional arrays the scheme needs from the start; the walls turn on
    * what theirs need (doc/memory.md) */
