@@ -53,8 +53,8 @@
  *
  * The term sets the shipped cases run have loops of their own, the terms
  * they do not use compiled out (DESIGN rule 4); every other set runs a
- * loop that tests its terms per pair (interact.h, LANE_SETS, SCALAR_SETS
- * and F_RUNTIME).
+ * loop compiled for its heaviest terms that tests the others per pair
+ * (interact.h, LANE_LOOPS and SCALAR_LOOPS).
  */
 #ifndef SPH_FORCES_H
 #define SPH_FORCES_H
