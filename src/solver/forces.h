@@ -127,8 +127,9 @@ typedef struct sph_force_params {
   double px0;              /* periodic: the period starts at x = px0 */
   double sps_cs, sps_ci, sps_delta;
   sph_force_loop loop;          /* default SPH_LOOP_AUTO */
-  int runtime_terms;            /* the run-time loop even for a term set compiled on its own
-                                   (tests and benchmarks; interact.h, F_RUNTIME) */
+  int runtime_terms;            /* the loop a term set falls back to (its axes loop or the
+                                   run-time loop) even where it has its own (tests and
+                                   benchmarks; interact.h, LANE_LOOPS) */
   sph_kernel_kind kernel;       /* the smoothing kernel; default (0) the cubic spline */
   sph_diffusion_kind diffusion; /* density diffusion (physics/density_diffusion.h); NONE = off */
   double diffusion_delta;       /* its delta */
