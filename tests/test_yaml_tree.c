@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "case/yaml_tree.h"
+#include "core/error.h"
 #include "testutil.h"
 
 /* A context for text under the origin "t.yaml" with the overrides set. */
@@ -243,8 +244,25 @@ static void test_got(void) {
   sph_yaml_free(m);
 }
 
+/* Every message is one line of valid UTF-8 (core/error.c; issue 39, D8):
+ * control bytes become spaces, a byte that is not UTF-8 becomes \xNN,
+ * while UTF-8 (two, three and four bytes) passes as it is. */
+static void test_message_text(void) {
+  sph_error err;
+  sph_error_set(&err, "%s: got '%s'", "caf\xe9.yaml",
+                "a\nb\x7f\xc3\xa9\xe2\x82\xac\xf0\x9f\x8c\x8a\xff");
+  CU_ASSERT_STRING_EQUAL(err.msg,
+                         "caf\\xe9.yaml: got 'a b \xc3\xa9\xe2\x82\xac\xf0\x9f\x8c\x8a\\xff'");
+  /* sequences cut short, overlong forms and surrogates are not UTF-8 */
+  sph_error_set(&err, "%s", "\xc3|\xe2\x82|\xc0\xaf|\xed\xa0\x80|\xf4\x90\x80\x80");
+  CU_ASSERT_STRING_EQUAL(err.msg, "\\xc3|\\xe2\\x82|\\xc0\\xaf|\\xed\\xa0\\x80|"
+                                  "\\xf4\\x90\\x80\\x80");
+  if (strchr(err.msg, '\n')) CU_FAIL("a newline in a message");
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
+      {"messages: one line of UTF-8, other bytes as \\xNN", test_message_text},
       {"the tree: kinds, order, lines, plain or quoted", test_tree},
       {"refused: duplicates, aliases, tags, documents, keys, depth, syntax", test_refused},
       {"overrides: replace, add, refuse", test_overrides},
