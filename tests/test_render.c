@@ -582,6 +582,17 @@ static void test_csv(void) {
   fclose(fp);
   CU_ASSERT_NOT_EQUAL(sph_csv_read(bad, &t, &err), 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "bad.csv:2"));
+  /* bounded (issue 39, D4): a stream without newlines stops at the line
+   * bound, an endless table at the cell bound, each with its message */
+  CU_ASSERT_NOT_EQUAL(sph_csv_read("/dev/zero", &t, &err), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "/dev/zero:1: a line longer than 1024 KiB"));
+  char *fifo = path_in(tmp, "endless.csv"), cmd[8192];
+  CU_ASSERT_FATAL(mkfifo(fifo, 0600) == 0);
+  snprintf(cmd, sizeof cmd, "(yes 1,2 > '%s' 2>/dev/null &)", fifo);
+  CU_ASSERT_FATAL(system(cmd) == 0);
+  CU_ASSERT_NOT_EQUAL(sph_csv_read(fifo, &t, &err), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "more than 33554432 cells"));
+  printf("\n  %s", err.msg);
 }
 
 static void test_inputs(void) {

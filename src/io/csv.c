@@ -58,10 +58,15 @@ static int is_skipped(const char *line) {
 }
 
 /* Reads one line of any length into *buf; 0 at end of file. */
-static int read_line(FILE *fp, char **buf, size_t *cap) {
+/* One line into *buf (grown as needed), without its newline (or \r\n):
+ * 1, 0 at the end of the file, -1 out of memory, -2 a line longer than
+ * SPH_CSV_MAX_LINE. *total counts the bytes read. */
+static int read_line(FILE *fp, char **buf, size_t *cap, size_t *total) {
   size_t n = 0;
   int c;
   while ((c = fgetc(fp)) != EOF && c != '\n') {
+    if (n >= SPH_CSV_MAX_LINE) return -2;
+    (*total)++;
     if (n + 2 > *cap) {
       size_t nc = *cap ? 2 * *cap : 256;
       char *b = realloc(*buf, nc);
@@ -101,11 +106,16 @@ int sph_csv_read(const char *path, sph_csv *t, sph_error *err) {
   if (!fp) return sph_error_set(err, "%s: cannot open: %s", path, strerror(errno));
   t->path = strdup(path);
   char *line = NULL, **cells = NULL;
-  size_t cap = 0, rows_cap = 0;
+  size_t cap = 0, rows_cap = 0, total = 0;
   long lineno = 0;
   int rc = 0, got;
-  while ((got = read_line(fp, &line, &cap)) > 0) {
+  while ((got = read_line(fp, &line, &cap, &total)) > 0) {
     lineno++;
+    if ((total += 1) > SPH_CSV_MAX_BYTES) { /* the newline */
+      rc = sph_error_set(err, "%s:%ld: larger than %u MiB: not a table this reader takes", path,
+                         lineno, SPH_CSV_MAX_BYTES >> 20);
+      break;
+    }
     if (is_skipped(line)) continue;
     if (!t->names) {
       /* the header: count the cells first, then keep their names */
@@ -140,8 +150,14 @@ int sph_csv_read(const char *path, sph_csv *t, sph_error *err) {
                          n, t->ncol);
       break;
     }
+    if ((t->nrow + 1) * t->ncol > SPH_CSV_MAX_CELLS) {
+      rc = sph_error_set(err, "%s:%ld: more than %u cells: not a table this reader takes", path,
+                         lineno, SPH_CSV_MAX_CELLS);
+      break;
+    }
     if (t->nrow == rows_cap) {
       rows_cap = rows_cap ? 2 * rows_cap : 64;
+      if (rows_cap * t->ncol > SPH_CSV_MAX_CELLS) rows_cap = SPH_CSV_MAX_CELLS / t->ncol;
       double *d = realloc(t->data, rows_cap * t->ncol * sizeof *d);
       if (!d) {
         rc = sph_error_set(err, "%s: out of memory", path);
@@ -159,7 +175,10 @@ int sph_csv_read(const char *path, sph_csv *t, sph_error *err) {
     if (rc) break;
     t->nrow++;
   }
-  if (got < 0 && !rc) rc = sph_error_set(err, "%s: out of memory", path);
+  if (got == -2 && !rc)
+    rc = sph_error_set(err, "%s:%ld: a line longer than %u KiB: not a table this reader takes",
+                       path, lineno + 1, SPH_CSV_MAX_LINE >> 10);
+  if (got == -1 && !rc) rc = sph_error_set(err, "%s: out of memory", path);
   if (!rc && ferror(fp)) rc = sph_error_set(err, "%s: read error", path);
   if (!rc && !t->names) rc = sph_error_set(err, "%s: no header row (the file is empty)", path);
   fclose(fp);

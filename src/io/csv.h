@@ -23,8 +23,16 @@ typedef struct sph_csv {
   double *data; /* nrow * ncol values, row-major; an empty cell or "nan" is NaN */
 } sph_csv;
 
+/* The reader's bounds (a stream without newlines, /dev/zero, or without
+ * end must not fill the memory): a line of at most 1 MiB, a file of at
+ * most 1 GiB and a table of at most 2^25 cells (256 MiB of values; a
+ * diagnostics.csv of a million steps holds about 2 10^7). */
+#define SPH_CSV_MAX_LINE (1u << 20)
+#define SPH_CSV_MAX_BYTES (1u << 30)
+#define SPH_CSV_MAX_CELLS (1u << 25)
+
 /* Reads path. Errors name the file and line (and the column for a cell
- * that is not a number). */
+ * that is not a number, or the bound a file exceeds). */
 int sph_csv_read(const char *path, sph_csv *out, sph_error *err);
 void sph_csv_free(sph_csv *t);
 /* Index of the named column, or -1 with an error listing the columns. */
