@@ -390,6 +390,11 @@ static void test_bad_lists(void) {
   expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\n  walls:\n    - {from: [1, 2], to: [1, 2]}\n"),
              "t.yaml:14: geometry.walls[0].to: expected a point different from 'from', got "
              "[1, 2]");
+  /* a wall shorter than dx (issue 39, D7): its particles would sit on one another */
+  expect_err(
+      edit(MINIMAL, 12, "      y: [0, 0.5]\n  walls:\n    - {from: [0, 0], to: [0, 1e-12]}\n"),
+      "t.yaml:14: geometry.walls[0].to: the wall from [0, 0] is 1e-12 m long, shorter than "
+      "numerics.dx = 0.01 m: expected a wall at least dx long");
   expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\n  walls: {from: [1, 2]}\n"),
              "t.yaml:13: geometry.walls: expected a list of mappings, got a mapping");
 }
@@ -475,6 +480,11 @@ static void test_unknown_choice(void) {
              "molteni_colagrossi, antuono, fourtakas)");
   expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  density_diffusion: {model: antuono, delta: 0}\n"),
              "t.yaml:6: numerics.density_diffusion.delta: expected a number in (0, 1], got '0'");
+  /* a delta without a model, as a viscosity without one (issue 39, D8) */
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  density_diffusion: {model: none, delta: 0.1}\n"),
+             "t.yaml:6: numerics.density_diffusion.delta: only used with a density-diffusion "
+             "model (model is 'none'; --set 'numerics.density_diffusion={model: none}' replaces "
+             "the whole mapping)");
   expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  density_diffusion: {model: antuono, d: 0.1}\n"),
              "t.yaml:6: numerics.density_diffusion.d: unknown key (valid keys in "
              "'numerics.density_diffusion': model, delta)");
@@ -495,6 +505,13 @@ static void test_unknown_choice(void) {
   expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  shifting: {}\n  smoothing_length: variable\n"),
              "t.yaml:6: numerics.shifting: cannot be combined with numerics.smoothing_length: "
              "variable");
+  /* a c0 that overflows is blamed on the --set that gave it (issue 39, D8) */
+  const char *huge[] = {"physics.sound_speed.factor=1e308"};
+  expect_err_set(edit(MINIMAL, 3, "  sound_speed: {factor: 10, speed: 2}\n"), huge, 1,
+                 "--set physics.sound_speed.factor=1e308: physics.sound_speed.factor: the "
+                 "resulting c0 = 1e+308*2 is not finite");
+  expect_err(edit(MINIMAL, 3, "  sound_speed: {factor: 1e308, speed: 2}\n"),
+             "t.yaml:3: physics.sound_speed: the resulting c0 = 1e+308*2 is not finite");
   const char *mirror[] = {"geometry.tank={x: [0, 1], y: [0, 1], boundary: mirror}"};
   expect_err_set(edit(MINIMAL, 5, "  dx: 0.01\n  shifting: {}\n"), mirror, 1,
                  "t.yaml:6: numerics.shifting: needs wall particles to count the wall as full, and "

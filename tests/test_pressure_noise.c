@@ -63,7 +63,8 @@ static void noise(const sph_particles *p, double h, double unit, double *spike, 
 static void dam_break(int res, const char *model, double *spike, double *rms) {
   char dx[64], dd[96];
   snprintf(dx, sizeof dx, "numerics.dx=%.17g", 0.05715 / res);
-  snprintf(dd, sizeof dd, "numerics.density_diffusion.model=%s", model);
+  /* the whole mapping: a delta without a model is refused */
+  snprintf(dd, sizeof dd, "numerics.density_diffusion={model: %s}", model);
   const char *sets[] = {dx, dd, "time.output_interval=0.005"};
   sph_case c;
   sph_sim *s;

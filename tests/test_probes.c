@@ -170,12 +170,30 @@ static void test_case_errors(void) {
   expect_err("  probes:\n    - {name: a, kind: gauge, x: 0}\n",
              "t.yaml:10: output.probes[0].kind: unknown choice 'gauge' (valid: pressure, level, "
              "velocity)");
-  expect_err("  probes:\n    - {name: a, kind: level, x: 0}\n    - {name: a, kind: level, x: 1}\n",
-             "t.yaml:11: output.probes[1].name: expected a name of its own, got 'a' (the name of "
-             "output.probes[0])");
+  expect_err(
+      "  probes:\n    - {name: a, kind: level, x: 0}\n    - {name: a, kind: level, x: 0.5}\n",
+      "t.yaml:11: output.probes[1].name: expected a name of its own, got 'a' (the name of "
+      "output.probes[0])");
   expect_err("  probes:\n    - {name: a b, kind: level, x: 0}\n",
              "t.yaml:10: output.probes[0].name: expected a name of 1 to 64 characters from "
              "[A-Za-z0-9_.-], got 'a b'");
+  /* out of the water's reach (issue 39, D6): the domain's default for this
+   * block is x [-0.302, 0.802] y [-0.302, 1.802] */
+  expect_err("  probes:\n    - {name: a, kind: pressure, at: [5, -3]}\n",
+             "t.yaml:10: output.probes[0].at: (5, -3) is outside the domain, x [-0.302, 0.802] "
+             "y [-0.302, 1.802] (geometry.domain, or its default from the geometry): the water "
+             "cannot reach it");
+  expect_err("  probes:\n    - {name: a, kind: level, x: -100}\n",
+             "t.yaml:10: output.probes[0].x: x = -100 is outside the domain, x [-0.302, 0.802] "
+             "y [-0.302, 1.802] (geometry.domain, or its default from the geometry): the water "
+             "cannot reach it");
+  expect_err("  probes:\n    - {name: a, kind: pressure, at: [0.5, 0], diameter: 1e300}\n",
+             "t.yaml:10: output.probes[0].diameter: expected a number in [0, 2.104], got "
+             "'1e300'");
+  expect_err("  gauges: [0.2, -100]\n",
+             "t.yaml:9: output.gauges[1]: x = -100 is outside the domain, x [-0.302, 0.802] "
+             "y [-0.302, 1.802] (geometry.domain, or its default from the geometry): the water "
+             "cannot reach it");
   expect_err("  probe_interval: 0.1\n",
              "t.yaml:9: output.probe_interval: expected output.probes alongside it");
   expect_err("  probe_interval: 2\n  probes:\n    - {name: a, kind: velocity, at: [0, 0]}\n",

@@ -227,9 +227,19 @@ static int read_sound_speed(const ctx *x, const node *m, sph_case *c) {
                               "c0 = factor*sqrt(2|g|*height) needs a non-zero physics.gravity");
     c->sound_speed = factor * sqrt(2.0 * g * height);
   }
-  if (!isfinite(c->sound_speed))
-    return sph_yaml_fail_at(&x->t, t, kp, "the resulting c0 = %g*%g is not finite", factor,
+  if (!isfinite(c->sound_speed)) {
+    /* blame where the numbers came from: a --set that gave one of them,
+     * else the mapping's line in the file (issue 39, D8) */
+    const node *f = sph_yaml_find(t, "factor")->val,
+               *o = sph_yaml_find(t, has_s ? "speed" : "height")->val, *at = t;
+    const char *ak = kp;
+    if (f->src != SPH_YAML_FROM_FILE)
+      at = f, ak = "physics.sound_speed.factor";
+    else if (o->src != SPH_YAML_FROM_FILE)
+      at = o, ak = has_s ? "physics.sound_speed.speed" : "physics.sound_speed.height";
+    return sph_yaml_fail_at(&x->t, at, ak, "the resulting c0 = %g*%g is not finite", factor,
                             has_s ? speed : height);
+  }
   return 0;
 }
 
@@ -260,7 +270,8 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
     if (has_mu < 0) return -1;
     if (has_mu && c->viscosity == SPH_VISCOSITY_NONE)
       return sph_yaml_fail_at(&x->t, sph_yaml_find(v, "mu")->val, "physics.viscosity.mu",
-                              "only used with a viscosity model (model is 'none')");
+                              "only used with a viscosity model (model is 'none'; --set "
+                              "'physics.viscosity={model: none}' replaces the whole mapping)");
     int has_gc = sph_yaml_get_bool(&x->t, v, vp, "gradient_correction", &c->gradient_correction);
     if (has_gc < 0) return -1;
     if (has_gc && c->gradient_correction && c->viscosity != SPH_VISCOSITY_STRESS_TENSOR)
@@ -352,10 +363,17 @@ static int read_numerics(ctx *x, const node *m, sph_case *c) {
   if (rc > 0) {
     int model = (int)c->diffusion;
     if (sph_yaml_get_choice(&x->t, f, "numerics.density_diffusion", "model",
-                            sph_diffusion_kind_names, &model) < 0 ||
-        sph_yaml_get_number(&x->t, f, "numerics.density_diffusion", "delta", 0, &delta,
-                            &c->diffusion_delta) < 0)
+                            sph_diffusion_kind_names, &model) < 0)
       return -1;
+    const int has_delta = sph_yaml_get_number(&x->t, f, "numerics.density_diffusion", "delta", 0,
+                                              &delta, &c->diffusion_delta);
+    if (has_delta < 0) return -1;
+    if (has_delta && model == SPH_DIFFUSION_NONE) /* as physics.viscosity.mu */
+      return sph_yaml_fail_at(&x->t, sph_yaml_find(f, "delta")->val,
+                              "numerics.density_diffusion.delta",
+                              "only used with a density-diffusion model (model is 'none'; --set "
+                              "'numerics.density_diffusion={model: none}' replaces the whole "
+                              "mapping)");
     c->diffusion = (sph_diffusion_kind)model;
   }
   static const range shift = {0, 10, '(', ']', NULL};
@@ -692,6 +710,15 @@ static int read_wall(const ctx *x, const node *m, const char *p, const sph_case 
     return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "to")->val, kp,
                             "expected a point different from 'from', got [%g, %g]", to[0], to[1]);
   }
+  const double len = hypot(to[0] - from[0], to[1] - from[1]);
+  if (c->dx > 0.0 && !(len >= c->dx)) { /* issue 39, D7: particles on top of one another */
+    char kp[SPH_YAML_KEYLEN];
+    sph_yaml_join(kp, sizeof kp, p, "to");
+    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "to")->val, kp,
+                            "the wall from [%g, %g] is %g m long, shorter than numerics.dx = %g m: "
+                            "expected a wall at least dx long",
+                            from[0], from[1], len, c->dx);
+  }
   w->x0 = from[0];
   w->y0 = from[1];
   w->x1 = to[0];
@@ -803,8 +830,8 @@ int sph_case_check_size(const sph_case *c, double max, sph_error *err) {
     snprintf(where, sizeof where, "--set numerics.dx");
   return sph_error_set(err,
                        "%s: %g makes about %.3g particles (fluid %.3g, walls %.3g), about %.3g "
-                       "GB; the bound is %.0f particles (%s; sph run --max-particles N changes "
-                       "it): expected a larger dx",
+                       "GB; the bound is %.0f particles (%s; --max-particles N changes it): "
+                       "expected a larger dx",
                        where, c->dx, n, c->est_fluid, c->est_wall, n * SPH_BYTES_PER_PARTICLE / 1e9,
                        max,
                        max >= SPH_MAX_PARTICLES_HARD ? "what 32-bit indices reach"
@@ -812,8 +839,58 @@ int sph_case_check_size(const sph_case *c, double max, sph_error *err) {
                                                      : "half this machine's memory");
 }
 
-/* One entry of output.probes (p its key, output.probes[i]). */
-static int read_probe(const ctx *x, const node *m, const char *p, sph_probe *pr) {
+/* The domain the water can reach, from the case alone: geometry.domain,
+ * else the box of the tank's inner faces, the walls and the fluid blocks,
+ * widened as the run widens its particles' box (solver/setup.c,
+ * doc/case-files.md's geometry.domain); the probes and gauges must lie in
+ * it (issue 39, D6). */
+static void reach_box(const sph_case *c, double box[4]) {
+  if (c->domain_set) {
+    memcpy(box, c->domain, 4 * sizeof *box);
+    return;
+  }
+  double bb[4] = {INFINITY, -INFINITY, INFINITY, -INFINITY};
+#define GROW(xa, xb, ya, yb)                                                                       \
+  do {                                                                                             \
+    bb[0] = fmin(bb[0], fmin(xa, xb));                                                             \
+    bb[1] = fmax(bb[1], fmax(xa, xb));                                                             \
+    bb[2] = fmin(bb[2], fmin(ya, yb));                                                             \
+    bb[3] = fmax(bb[3], fmax(ya, yb));                                                             \
+  } while (0)
+  if (c->tank.present) GROW(c->tank.x0, c->tank.x1, c->tank.y0, c->tank.y1);
+  for (size_t i = 0; i < c->n_walls; i++)
+    GROW(c->walls[i].x0, c->walls[i].x1, c->walls[i].y0, c->walls[i].y1);
+  for (size_t i = 0; i < c->n_fluid; i++)
+    GROW(c->fluid[i].x0, c->fluid[i].x1, c->fluid[i].y0, c->fluid[i].y1);
+#undef GROW
+  const double w = bb[1] - bb[0], hgt = bb[3] - bb[2];
+  if (c->periodic) {
+    const double L = c->periodic_x[1] - c->periodic_x[0];
+    box[0] = c->periodic_x[0] - L;
+    box[1] = c->periodic_x[1] + L;
+    box[2] = bb[2] - hgt - 4.0 * c->h;
+    box[3] = bb[3] + 2.0 * hgt + 4.0 * c->h;
+  } else {
+    const double m = 0.5 * (w > hgt ? w : hgt) + 4.0 * c->h;
+    box[0] = bb[0] - m;
+    box[1] = bb[1] + m;
+    box[2] = bb[2] - m;
+    box[3] = bb[3] + 2.0 * hgt + m;
+  }
+}
+
+/* A probe's or gauge's place outside box (the node t at key k): the error. */
+static int outside_reach(const ctx *x, const node *t, const char *k, const char *what,
+                         const double box[4]) {
+  return sph_yaml_fail_at(&x->t, t, k,
+                          "%s is outside the domain, x [%g, %g] y [%g, %g] (geometry.domain, "
+                          "or its default from the geometry): the water cannot reach it",
+                          what, box[0], box[1], box[2], box[3]);
+}
+
+/* One entry of output.probes (p its key, output.probes[i]), inside box. */
+static int read_probe(const ctx *x, const node *m, const char *p, const double box[4],
+                      sph_probe *pr) {
   const node *t;
   char kp[SPH_YAML_KEYLEN], b[96];
   if (m->kind != SPH_YAML_MAP)
@@ -837,14 +914,26 @@ static int read_probe(const ctx *x, const node *m, const char *p, sph_probe *pr)
       return sph_yaml_fail_at(&x->t, t, kp, "not a key of a %s probe", probe_kind_names[kind]);
   if (level) {
     if (sph_yaml_get_number(&x->t, m, p, "x", 1, &SPH_YAML_ANY, &pr->x) < 0) return -1;
+    if (!(pr->x >= box[0] && pr->x <= box[1])) {
+      sph_yaml_lookup(&x->t, m, p, "x", 1, &t, kp);
+      sph_yaml_bprintf(b, sizeof b, "x = %g", pr->x);
+      return outside_reach(x, t, kp, b, box);
+    }
     return 0;
   }
   double v[2] = {0, 0};
   if (sph_yaml_get_pair(&x->t, m, p, "at", 1, 0, v) < 0) return -1;
   pr->x = v[0];
   pr->y = v[1];
+  if (!(v[0] >= box[0] && v[0] <= box[1] && v[1] >= box[2] && v[1] <= box[3])) {
+    sph_yaml_lookup(&x->t, m, p, "at", 1, &t, kp);
+    sph_yaml_bprintf(b, sizeof b, "(%g, %g)", v[0], v[1]);
+    return outside_reach(x, t, kp, b, box);
+  }
   if (pressure) {
-    static const range dia = {0, 0, '[', 0, NULL};
+    /* a face no wider than the domain */
+    const double side = fmax(box[1] - box[0], box[3] - box[2]);
+    const range dia = {0, side, '[', ']', NULL};
     int along = 0;
     if (sph_yaml_get_number(&x->t, m, p, "diameter", 0, &dia, &pr->diameter) < 0 ||
         sph_yaml_get_choice(&x->t, m, p, "along", along_names, &along) < 0)
@@ -870,9 +959,11 @@ static int read_probes(const ctx *x, const node *s, sph_case *c) {
     return sph_yaml_fail_at(&x->t, t, kp, "expected at most 1000 probes, got %zu", t->n);
   if (!(c->probes = calloc(t->n, sizeof *c->probes))) return sph_yaml_oom(&x->t);
   c->n_probes = t->n;
+  double box[4];
+  reach_box(c, box);
   for (size_t i = 0; i < t->n; i++) {
     sph_yaml_bprintf(kp, sizeof kp, "output.probes[%zu]", i);
-    if (read_probe(x, t->items[i], kp, &c->probes[i])) return -1;
+    if (read_probe(x, t->items[i], kp, box, &c->probes[i])) return -1;
     for (size_t k = 0; k < i; k++)
       if (strcmp(c->probes[k].name, c->probes[i].name) == 0) {
         char nk[SPH_YAML_KEYLEN];
@@ -963,10 +1054,16 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
                               sph_yaml_got(gl, b, sizeof b));
     if (!(c->gauges = calloc(gl->n, sizeof *c->gauges))) return sph_yaml_oom(&x->t);
     c->n_gauges = gl->n;
+    double box[4];
+    reach_box(c, box);
     for (size_t i = 0; i < gl->n; i++) {
       char ik[SPH_YAML_KEYLEN];
       sph_yaml_bprintf(ik, sizeof ik, "output.gauges[%zu]", i);
       if (sph_yaml_read_number(&x->t, gl->items[i], ik, &SPH_YAML_ANY, &c->gauges[i])) return -1;
+      if (!(c->gauges[i] >= box[0] && c->gauges[i] <= box[1])) {
+        sph_yaml_bprintf(b, sizeof b, "x = %g", c->gauges[i]);
+        return outside_reach(x, gl->items[i], ik, b, box);
+      }
     }
   }
   if (rc >= 0 && s && read_probes(x, s, c)) return -1;
