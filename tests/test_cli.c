@@ -7,10 +7,13 @@
  */
 #include "config.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/particles.h"
+#include "io/snapshot.h"
 #include "testutil.h"
 
 static char *tmp;
@@ -62,6 +65,22 @@ static void test_bad_input(void) {
   snprintf(args, sizeof args, "run '%s/nope.yaml' -o '%s/o1'", tmp, tmp);
   CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
   CU_ASSERT(strstr(out, "nope.yaml") != NULL);
+  /* a bare name: ./cases/NAME.yaml, as in the source tree (issue 39, D11) */
+  char cmd[16384];
+  write_file("byname.yaml", GOOD);
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && mkdir -p cases && mv byname.yaml cases/ && '%s' run -q byname -o o_byname "
+           "> byname.log 2>&1",
+           tmp, sph_test_build("src/sph"));
+  CU_ASSERT_EQUAL(sph_test_system(cmd), 0);
+  snprintf(cmd, sizeof cmd, "cd '%s' && '%s' run -q no_such_name > byname2.log 2>&1", tmp,
+           sph_test_build("src/sph"));
+  CU_ASSERT_EQUAL(sph_test_system(cmd), 1);
+  snprintf(cmd, sizeof cmd,
+           "grep -q 'no_such_name: no such case file here, no case of that name in ./cases or in' "
+           "'%s/byname2.log'",
+           tmp);
+  CU_ASSERT_EQUAL(sph_test_system(cmd), 0);
   /* unknown key, on line 3 */
   write_file("badkey.yaml", "name: x\nphysics:\n  sound_sped: 10\n");
   snprintf(args, sizeof args, "run '%s/badkey.yaml' -o '%s/o2'", tmp, tmp);
@@ -76,6 +95,16 @@ static void test_bad_input(void) {
   /* bad options */
   snprintf(args, sizeof args, "run '%s/good.yaml' --threads 0", tmp);
   CU_ASSERT_EQUAL(sph(args, out, sizeof out), 2);
+  /* bounds are named (issue 39, D8) */
+  snprintf(args, sizeof args, "run '%s/good.yaml' --threads 100000", tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 2);
+  CU_ASSERT(strstr(out, "--threads: expected a whole number from 1 to 4096, got '100000'") != NULL);
+  char many[512] = "";
+  for (int k = 0; k < 35; k++)
+    snprintf(many + strlen(many), sizeof many - strlen(many), "%s%d", k ? "," : "", 100 + k);
+  snprintf(args, sizeof args, "audit '%s/good.yaml' --particles %s", tmp, many);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 2);
+  CU_ASSERT(strstr(out, "--particles: expected 1 to 32 whole numbers") != NULL);
   snprintf(args, sizeof args, "run '%s/good.yaml' --bogus", tmp);
   CU_ASSERT_EQUAL(sph(args, out, sizeof out), 2);
   snprintf(args, sizeof args, "run '%s/good.yaml' --set novalue", tmp);
@@ -123,6 +152,14 @@ static void test_resource_bound(void) {
     CU_ASSERT(!dir_exists(name));
   }
   CU_ASSERT(strstr(out, "good.yaml:6: numerics.dx: 0.01 makes about") != NULL);
+  /* sph audit has the bound too, the option its message names (issue 39, D8) */
+  snprintf(args, sizeof args,
+           "audit '%s/good.yaml' -q -o '%s/big_audit' -p 1000 --max-particles 100", tmp, tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  CU_ASSERT(strstr(out, "the bound asked for; --max-particles N changes it") != NULL);
+  snprintf(args, sizeof args, "audit --help");
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "--max-particles N") != NULL);
   snprintf(args, sizeof args, "run '%s/good.yaml' --max-particles 0", tmp);
   CU_ASSERT_EQUAL(sph(args, out, sizeof out), 2);
   snprintf(args, sizeof args, "run '%s/good.yaml' --max-particles 1e12", tmp);
@@ -135,6 +172,17 @@ static void test_resource_bound(void) {
   const char *plan = strstr(out, "setting up about "), *made = strstr(out, "  particles ");
   CU_ASSERT(plan != NULL && made != NULL && plan < made);
   CU_ASSERT(plan != NULL && strstr(plan, "memory about") != NULL);
+  /* in the unit that reads (issue 39, D11): GB, not 2.4e+05 MB */
+  snprintf(args, sizeof args,
+           "run '%s/good.yaml' -o '%s/gb' --max-particles 100 --set numerics.dx=0.000025", tmp,
+           tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1); /* refused after the plan, before the set-up */
+  const char *gb = strstr(out, "memory about ");
+  double amount = 0.0;
+  char unit[3] = "";
+  CU_ASSERT(gb != NULL && sscanf(gb, "memory about %lf %2s", &amount, unit) == 2);
+  CU_ASSERT(amount > 4.0 && amount < 5.0 && strcmp(unit, "GB") == 0);
+  if (strcmp(unit, "GB")) printf("\n  %s", out);
   /* a blow-up at a fixed step names the step the rule would have taken */
   snprintf(args, sizeof args,
            "run '%s/good.yaml' -o '%s/fixed' --set numerics.time_step.rule=fixed "
@@ -146,7 +194,7 @@ static void test_resource_bound(void) {
 }
 
 static void test_good_run_and_info(void) {
-  char out[65536], args[8192];
+  char out[65536], args[8192], path_huge[4200];
   write_file("good.yaml", GOOD);
   snprintf(args, sizeof args, "run '%s/good.yaml' -o '%s/run' --set time.end=0.003", tmp, tmp);
   int st = sph(args, out, sizeof out);
@@ -159,6 +207,28 @@ static void test_good_run_and_info(void) {
   CU_ASSERT_EQUAL(st, 0);
   CU_ASSERT(strstr(out, "tiny") != NULL);
   CU_ASSERT(strstr(out, "rho") != NULL);
+  /* the mean of finite values near 1e308 is finite (issue 39, D8) */
+  {
+    sph_particles p;
+    sph_error err;
+    CU_ASSERT_FATAL(sph_particles_init(&p, 4, &err) == 0);
+    const double xs[3] = {1e308, 1.5e308, 1.7e308};
+    for (int k = 0; k < 3; k++)
+      CU_ASSERT_FATAL(sph_particles_add(&p, xs[k], 0, 0, 0, 1000, 0.1, 0.013, 0, &err) == k);
+    sph_snapshot_meta m;
+    memset(&m, 0, sizeof m);
+    m.case_name = "huge";
+    snprintf(path_huge, sizeof path_huge, "%s/huge.h5", tmp);
+    CU_ASSERT_FATAL(sph_snapshot_write(path_huge, &m, &p, &err) == 0);
+    sph_particles_free(&p);
+    snprintf(args, sizeof args, "info '%s'", path_huge);
+    CU_ASSERT_EQUAL(sph(args, out, sizeof out), 0);
+    const char *x = strstr(out, "\n  x ");
+    double lo = 0, hi = 0, mean = 0;
+    CU_ASSERT(x != NULL && sscanf(x, " x %lf %lf %lf", &lo, &hi, &mean) == 3);
+    CU_ASSERT(lo == 1e308 && hi == 1.7e308 && fabs(mean / 1.4e308 - 1.0) < 1e-9);
+    if (!x || !(fabs(mean / 1.4e308 - 1.0) < 1e-9)) printf("\n%s", out);
+  }
   /* diagnostics: a header and one row per output time (0, 1, 2, 3 ms) */
   char path[4096];
   snprintf(path, sizeof path, "%s/run/diagnostics.csv", tmp);

@@ -4,7 +4,7 @@
  *
  * The `sph` program is started (fork/exec) on a case that would run for
  * minutes, and signalled once its third snapshot exists:
- *   - SIGINT and SIGTERM: the run ends after the current step with exit
+ *   - SIGINT, SIGTERM and SIGHUP: the run ends after the current step with exit
  *     status 4, a message naming the signal and the final snapshot, and
  *     that snapshot is complete (opens, every field reads, all values
  *     finite, time past the last regular output) and listed in the XDMF
@@ -87,6 +87,10 @@ static int wait_for(const char *path, pid_t pid) {
   return 0;
 }
 
+static const char *signal_name(int sig) {
+  return sig == SIGINT ? "SIGINT" : sig == SIGHUP ? "SIGHUP" : "SIGTERM";
+}
+
 static char *slurp(const char *path) {
   static char buf[65536];
   buf[0] = 0;
@@ -116,8 +120,9 @@ static void interrupt_with(int sig, const char *name) {
   if (!WIFEXITED(st) || WEXITSTATUS(st) != 4) printf("\n%s\n", msg);
   CU_ASSERT_FATAL(WIFEXITED(st));
   CU_ASSERT_EQUAL_FATAL(WEXITSTATUS(st), 4);
-  CU_ASSERT(strstr(msg, sig == SIGINT ? "interrupted by SIGINT" : "interrupted by SIGTERM") !=
-            NULL);
+  char said[64];
+  snprintf(said, sizeof said, "interrupted by %s", signal_name(sig));
+  CU_ASSERT(strstr(msg, said) != NULL);
   CU_ASSERT(strstr(msg, "final snapshot") != NULL);
   CU_ASSERT(strstr(msg, "--restart") != NULL);
   /* the final snapshot is the last one; it is complete and indexed */
@@ -257,6 +262,73 @@ static void test_disk_full(void) {
 
 static void test_sigint(void) { interrupt_with(SIGINT, "sigint"); }
 static void test_sigterm(void) { interrupt_with(SIGTERM, "sigterm"); }
+/* a closed terminal or ssh session: as SIGTERM (issue 39, D5) */
+static void test_sighup(void) { interrupt_with(SIGHUP, "sighup"); }
+
+/* Two runs into one output directory (issue 39, D1): the second, of
+ * another case, fails at once with exit 1 and one line naming the
+ * directory and the first run's pid, and writes nothing there; the first
+ * runs on and ends as it would have (here by SIGTERM: exit 4, a complete
+ * final snapshot, its own diagnostics). A lock file left by a run that
+ * was killed (SIGKILL) holds nothing: the next run into that directory
+ * goes ahead. */
+static void test_one_run_per_directory(void) {
+  char dir[4200], path[4300], log[4300], cmd[16384];
+  snprintf(dir, sizeof dir, "%s/shared", tmp);
+  const pid_t pid = start(dir, NULL);
+  CU_ASSERT_FATAL(pid > 0);
+  snprintf(path, sizeof path, "%s/snap_0002.h5", dir);
+  const int started = wait_for(path, pid);
+  if (!started) kill(pid, SIGKILL);
+  CU_ASSERT_FATAL(started);
+  snprintf(log, sizeof log, "%s.second.log", dir);
+  snprintf(cmd, sizeof cmd, "'%s' run -q '%s' -o '%s' --set time.end=0.1 > '%s' 2>&1",
+           sph_test_build("src/sph"), sph_test_src("cases/hydrostatic_tank.yaml"), dir, log);
+  const int second = sph_test_system(cmd);
+  char want[4400];
+  snprintf(want, sizeof want,
+           "sph run: output directory %s is in use by another run (pid %ld); wait for it to end "
+           "or choose another with -o\n",
+           dir, (long)pid);
+  const char *msg = slurp(log);
+  if (second != 1 || strcmp(msg, want)) printf("\n  the second run: exit %d: %s", second, msg);
+  CU_ASSERT_EQUAL(second, 1);
+  CU_ASSERT_STRING_EQUAL(msg, want);
+  CU_ASSERT_FATAL(kill(pid, SIGTERM) == 0);
+  int st = 0;
+  CU_ASSERT_FATAL(waitpid(pid, &st, 0) == pid);
+  CU_ASSERT(WIFEXITED(st) && WEXITSTATUS(st) == 4);
+  int last = -1; /* its final snapshot is complete: the first run's own */
+  for (int i = 0; i < 10000; i++) {
+    snprintf(path, sizeof path, "%s/snap_%04d.h5", dir, i);
+    if (!exists(path)) break;
+    last = i;
+  }
+  CU_ASSERT_FATAL(last >= 2);
+  snprintf(path, sizeof path, "%s/snap_%04d.h5", dir, last);
+  size_t n = 0;
+  double t = 0.0;
+  CU_ASSERT(snapcmp_complete(path, &n, &t) && n > 100 && t >= 0.01);
+  snprintf(path, sizeof path, "%s/.sph-lock", dir);
+  CU_ASSERT(!exists(path)); /* the first run removed its lock when it ended */
+
+  /* a run killed outright leaves its lock file, which holds nothing */
+  char killed[4200];
+  snprintf(killed, sizeof killed, "%s/killed", tmp);
+  const pid_t k = start(killed, NULL);
+  CU_ASSERT_FATAL(k > 0);
+  snprintf(path, sizeof path, "%s/snap_0001.h5", killed);
+  const int k_started = wait_for(path, k);
+  kill(k, SIGKILL);
+  waitpid(k, &st, 0);
+  CU_ASSERT_FATAL(k_started);
+  snprintf(path, sizeof path, "%s/.sph-lock", killed);
+  CU_ASSERT(exists(path));
+  snprintf(cmd, sizeof cmd, "'%s' run -q '%s' -o '%s' --set time.end=0.01 > '%s.next.log' 2>&1",
+           sph_test_build("src/sph"), case_file(), killed, killed);
+  CU_ASSERT_EQUAL(sph_test_system(cmd), 0);
+  CU_ASSERT(!exists(path));
+}
 
 /* kill -9 at several moments while a snapshot is written every few steps */
 static void test_sigkill_never_tears(void) {
@@ -298,6 +370,9 @@ int main(void) {
                          {"SIGTERM during set-up: exit 4, nothing written", test_setup_sigterm},
                          {"a full disk: exit 1, one line, snapshots kept", test_disk_full},
                          {"SIGINT: final snapshot, exit 4, bitwise restart", test_sigint},
+                         {"SIGHUP: as SIGTERM", test_sighup},
+                         {"one run per output directory; a killed run's lock holds nothing",
+                          test_one_run_per_directory},
                          {"SIGTERM: final snapshot, exit 4, bitwise restart", test_sigterm},
                          {"SIGKILL never leaves a torn snap_*.h5", test_sigkill_never_tears},
                          CU_TEST_INFO_NULL};

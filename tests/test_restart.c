@@ -25,11 +25,15 @@
  *   - restarted from snap_0000 (the leap-frog's first step still to do).
  * Bad restarts fail with exit status 1 and a message naming the file and
  * the cause: other parameters (naming the first differing key), another
- * case, a snapshot without a restart record, a missing file; time.end may
- * change (a run is extended).
+ * case, a snapshot without a restart record, a missing file, a clock out
+ * of range (time.end before the snapshot, a time that is not finite or
+ * negative, a negative step); time.end may change (a run is extended).
  */
 #include "config.h"
 
+#include <hdf5.h>
+#include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -258,6 +262,88 @@ static void test_bad_restarts(void) {
   CU_ASSERT(strstr(out, "--restart SNAPSHOT") != NULL);
 }
 
+/* Sets the double attribute `name` of a snapshot's root (time, dt) or,
+ * with is_int, the int64 one (step). */
+static void set_attribute(const char *path, const char *name, double v, int is_int) {
+  const hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+  CU_ASSERT_FATAL(f >= 0);
+  const hid_t a = H5Aopen(f, name, H5P_DEFAULT);
+  CU_ASSERT_FATAL(a >= 0);
+  const int64_t iv = (int64_t)v;
+  CU_ASSERT(is_int ? H5Awrite(a, H5T_NATIVE_INT64, &iv) >= 0
+                   : H5Awrite(a, H5T_NATIVE_DOUBLE, &v) >= 0);
+  H5Aclose(a);
+  H5Fclose(f);
+}
+
+/* The restart's clock (issue 39, D2 and D3): time.end before the
+ * snapshot's time is refused before any file is touched (restarting in
+ * place used to cut diagnostics.csv to the earlier time and leave the
+ * later snapshots); a snapshot whose time is NaN, negative or 1e308 (which
+ * used to hang the run counting outputs up to it), or whose step is
+ * negative, is refused with its file named and nothing written. */
+static void test_restart_clock(void) {
+  full_run("restart_pc");
+  char args[32768], out[65536], dir[4200], a[4300], b[4300];
+  snprintf(dir, sizeof dir, "%s/clock", tmp);
+  snprintf(args, sizeof args, "rm -rf '%s' && cp -r '%s/restart_pc.full' '%s'", dir, tmp, dir);
+  CU_ASSERT_FATAL(sph_test_system(args) == 0);
+  snprintf(args, sizeof args, "run -q --restart '%s/snap_0005.h5' -o '%s' --set time.end=0.01", dir,
+           dir);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  if (!strstr(out, "is not before time.end = 0.01 s")) printf("\n  %s", out);
+  CU_ASSERT(strstr(out, "snap_0005.h5: its time 0.02 s is not before time.end = 0.01 s") != NULL);
+  const char *files[] = {"diagnostics.csv", "snapshots.xmf", "snap_0007.h5"};
+  for (int i = 0; i < 3; i++) { /* untouched */
+    snprintf(a, sizeof a, "%s/restart_pc.full/%s", tmp, files[i]);
+    snprintf(b, sizeof b, "%s/%s", dir, files[i]);
+    CU_ASSERT_EQUAL(snapcmp_files(a, b), 0);
+  }
+  /* a restart's closing line counts, and rates, this run's steps (issue
+   * 39, D11): the snapshot's step plus this run's is the total */
+  snprintf(args, sizeof args, "run --restart '%s/restart_pc.full/snap_0005.h5' -o '%s/clock2'", tmp,
+           tmp);
+  CU_ASSERT_EQUAL_FATAL(sph(args, out, sizeof out), 0);
+  long total = -1, mine = -1;
+  const char *end = strstr(out, ": step ");
+  CU_ASSERT_FATAL(end != NULL);
+  CU_ASSERT(sscanf(end, ": step %ld, %ld steps in this run", &total, &mine) == 2);
+  snprintf(a, sizeof a, "%s/restart_pc.full/snap_0005.h5", tmp);
+  sph_snapshot *snap;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_snapshot_open(a, &snap, &err) == 0);
+  const long step5 = (long)sph_snapshot_step(snap);
+  sph_snapshot_close(snap);
+  CU_ASSERT(step5 > 0 && mine > 0 && total == step5 + mine);
+  /* hand-edited clocks */
+  const struct {
+    const char *attr;
+    double v;
+    int is_int;
+    const char *says;
+  } bad[] = {{"time", NAN, 0, "its time nan is not a finite time >= 0"},
+             {"time", -1.0, 0, "its time -1 is not a finite time >= 0"},
+             {"time", 1e308, 0, "is not before time.end"},
+             {"step", -5.0, 1, "its step -5"}};
+  for (int i = 0; i < 4; i++) {
+    char edited[4300], outdir[4300];
+    snprintf(edited, sizeof edited, "%s/edited%d.h5", tmp, i);
+    snprintf(outdir, sizeof outdir, "%s/edited%d.out", tmp, i);
+    snprintf(args, sizeof args, "cp '%s/restart_pc.full/snap_0002.h5' '%s'", tmp, edited);
+    CU_ASSERT_FATAL(sph_test_system(args) == 0);
+    set_attribute(edited, bad[i].attr, bad[i].v, bad[i].is_int);
+    snprintf(args, sizeof args, "run -q --restart '%s' -o '%s'", edited, outdir);
+    const int st = sph(args, out, sizeof out);
+    if (st != 1 || !strstr(out, bad[i].says))
+      printf("\n  %s = %g: exit %d: %s", bad[i].attr, bad[i].v, st, out);
+    CU_ASSERT_EQUAL(st, 1);
+    CU_ASSERT(strstr(out, edited) != NULL && strstr(out, bad[i].says) != NULL);
+    FILE *f = fopen(outdir, "r");
+    CU_ASSERT(f == NULL); /* nothing written, not even the directory */
+    if (f) fclose(f);
+  }
+}
+
 int main(void) {
   tmp = sph_test_tmpdir();
   CU_TestInfo tests[] = {
@@ -269,6 +355,8 @@ int main(void) {
       {"restart in the run's directory: CSV and XDMF as uninterrupted", test_pc_in_place},
       {"mirror, periodic: restart in place", test_mirror_in_place},
       {"bad restarts fail clearly; time.end may change", test_bad_restarts},
+      {"the restart's clock: time.end before it, NaN, negative, 1e308 and step -5 refused",
+       test_restart_clock},
       CU_TEST_INFO_NULL};
   int rc = sph_test_main("restart", tests);
   sph_test_rmtree(tmp);

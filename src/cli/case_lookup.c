@@ -4,6 +4,7 @@
  * installed example cases by name (see cli.h, sph_cli_find_case).
  *
  * `sph run martin_moyce` in a directory without such a file runs
+ * ./cases/martin_moyce.yaml if there is one (the source tree), else
  * <datadir>/sph/cases/martin_moyce.yaml, the case `make install` put there;
  * SPH_CASES_DIR (environment) names another directory of cases. A path
  * that names a file always wins, so a case of one's own is never shadowed.
@@ -56,21 +57,25 @@ static void list_cases(const char *dir, char *out, size_t n) {
   }
 }
 
+/* dir/NAME.yaml (or dir/NAME if it ends in .yaml) into buf, if it exists. */
+static int in_dir(const char *dir, const char *arg, char *buf, size_t n) {
+  const size_t len = strlen(arg);
+  const int has_ext = len > 5 && !strcmp(arg + len - 5, ".yaml");
+  return snprintf(buf, n, "%s/%s%s", dir, arg, has_ext ? "" : ".yaml") < (int)n && exists(buf);
+}
+
 const char *sph_cli_find_case(const char *arg, char *buf, size_t n, char *why, size_t nw) {
   if (exists(arg)) return arg;
   const char *dir = sph_cli_cases_dir();
-  if (!strchr(arg, '/')) {
-    const size_t len = strlen(arg);
-    const int has_ext = len > 5 && !strcmp(arg + len - 5, ".yaml");
-    if (snprintf(buf, n, "%s/%s%s", dir, arg, has_ext ? "" : ".yaml") < (int)n && exists(buf))
-      return buf;
-  }
+  /* a bare name: ./cases (a source tree, or a project laid out like it),
+   * then the installed cases */
+  if (!strchr(arg, '/') && (in_dir("cases", arg, buf, n) || in_dir(dir, arg, buf, n))) return buf;
   char cases[4096];
   list_cases(dir, cases, sizeof cases);
   if (strchr(arg, '/'))
     snprintf(why, nw, "%s: no such case file", arg);
   else
-    snprintf(why, nw, "%s: no such case file here, and no case of that name in %s (%s%s)", arg, dir,
-             cases[0] ? "installed cases: " : "none installed there", cases);
+    snprintf(why, nw, "%s: no such case file here, no case of that name in ./cases or in %s (%s%s)",
+             arg, dir, cases[0] ? "installed cases: " : "none installed there", cases);
   return NULL;
 }

@@ -19,6 +19,7 @@ int sph_cli_info(int argc, char **argv);
 int sph_cli_profile(int argc, char **argv);
 int sph_cli_audit(int argc, char **argv);
 int sph_cli_face(int argc, char **argv);
+int sph_cli_new(int argc, char **argv);
 
 /* Shared by the commands that take snapshot files: checks the options
  * (only --help / -h, and "--"), counts the files. Returns 0 to go on, -1
@@ -47,6 +48,9 @@ int sph_cli_is_one_of(const char *arg, const char *const *names);
 /* --threads VALUE: a whole number from 1 to 4096 into *threads; 0, or -1
  * with the message "CMD: --threads: ..." printed. */
 int sph_cli_parse_threads(const char *cmd, const char *value, int *threads);
+/* --max-particles VALUE: a count from 1 to SPH_MAX_PARTICLES_HARD into
+ * *max; 0, or -1 with the message "CMD: --max-particles: ..." printed. */
+int sph_cli_parse_max_particles(const char *cmd, const char *value, double *max);
 /* Sets the OpenMP thread count (threads > 0; 0 keeps the default) and
  * returns the count in force; without OpenMP, 1 (with a note on stderr
  * when more were asked for and quiet is 0). */
@@ -58,6 +62,20 @@ void sph_cli_print_listing(FILE *f, const char *listing, const char *indent);
 
 /* mkdir -p: creates path and its parents; 0, or -1 with errno set. */
 int sph_cli_make_dirs(const char *path);
+
+/* One run per output directory (outdir_lock.c): a record lock on
+ * DIR/.sph-lock, dropped by the kernel when the holder ends. */
+typedef struct sph_cli_lock {
+  int fd;
+  char path[4200];
+} sph_cli_lock;
+/* Takes DIR's lock (DIR exists): 0, held until sph_cli_dir_unlock; 1 if
+ * another process holds it (*holder its pid); -1 with errno set. */
+int sph_cli_dir_lock(const char *dir, sph_cli_lock *lk, long *holder);
+/* Removes the lock file and releases the lock (nothing if not held). */
+void sph_cli_dir_unlock(sph_cli_lock *lk);
+/* The pid of the process holding DIR's lock, or 0; creates nothing. */
+long sph_cli_dir_holder(const char *dir);
 
 /* The case CASE names on the command line (case_lookup.c): CASE itself if
  * it is a file; else, for a bare name (no '/'), NAME.yaml (or NAME) in the

@@ -91,10 +91,23 @@ int sph_cli_parse_threads(const char *cmd, const char *value, int *threads) {
   char *end;
   const long t = strtol(value, &end, 10);
   if (*end || end == value || t < 1 || t > 4096) {
-    fprintf(stderr, "%s: --threads: expected a whole number >= 1, got '%s'\n", cmd, value);
+    fprintf(stderr, "%s: --threads: expected a whole number from 1 to 4096, got '%s'\n", cmd,
+            value);
     return -1;
   }
   *threads = (int)t;
+  return 0;
+}
+
+int sph_cli_parse_max_particles(const char *cmd, const char *value, double *max) {
+  char *end;
+  const double n = strtod(value, &end);
+  if (end == value || *end || !(n >= 1.0) || !(n <= SPH_MAX_PARTICLES_HARD)) {
+    fprintf(stderr, "%s: --max-particles: expected a count from 1 to %.0f, got '%s'\n", cmd,
+            SPH_MAX_PARTICLES_HARD, value);
+    return -1;
+  }
+  *max = n;
   return 0;
 }
 

@@ -46,7 +46,8 @@
 
 static void audit_usage(FILE *f) {
   fprintf(f, "usage: sph audit CASE --particles N1,N2,... [--times t1,t2,...] [-o DIR]\n"
-             "                 [--reference FILE] [--threads N] [--set key=value]... [--quiet]\n"
+             "                 [--reference FILE] [--threads N] [--max-particles N]\n"
+             "                 [--set key=value]... [--quiet]\n"
              "\n"
              "Runs CASE once per fluid-particle count with the energy ledger on and prints\n"
              "the relative deviation of the total energy from its initial value against\n"
@@ -63,6 +64,7 @@ static void audit_usage(FILE *f) {
              "                        deviation: CSV columns particles,time,deviation_pct\n"
              "                        (paper A's: tests/data/paper_a_table4.csv)\n"
              "  -t, --threads N       OpenMP threads\n"
+             "      --max-particles N the bound on each run's particle count, as for sph run\n"
              "  -s, --set K=V         case override, as for sph run\n"
              "  -q, --quiet           no progress lines\n");
 }
@@ -142,7 +144,8 @@ typedef struct audit_args {
   const char *case_path, *outdir, *reference;
   double counts[MAX_RUNS], times[MAX_TIMES];
   int ncounts, ntimes, threads, quiet;
-  const char **sets; /* the user's --set overrides, then the audit's own */
+  double max_particles; /* --max-particles; 0: the default bound */
+  const char **sets;    /* the user's --set overrides, then the audit's own */
   size_t n_set;
 } audit_args;
 
@@ -275,9 +278,9 @@ static int audit_option(audit_args *a, int argc, char **argv, int *i) {
       if (a->counts[k] < 4 || a->counts[k] != floor(a->counts[k])) a->ncounts = -1;
     if (a->ncounts <= 0) {
       fprintf(stderr,
-              "sph audit: --particles: expected whole numbers >= 4 separated by "
+              "sph audit: --particles: expected 1 to %d whole numbers >= 4 separated by "
               "commas, got '%s'\n",
-              v);
+              MAX_RUNS, v);
       return 2;
     }
   } else if (!strcmp(o, "-T") || !strcmp(o, "--times")) {
@@ -286,9 +289,9 @@ static int audit_option(audit_args *a, int argc, char **argv, int *i) {
       if (!(a->times[k] > (k ? a->times[k - 1] : 0.0))) a->ntimes = -1;
     if (a->ntimes <= 0) {
       fprintf(stderr,
-              "sph audit: --times: expected increasing positive times separated by "
+              "sph audit: --times: expected 1 to %d increasing positive times separated by "
               "commas, got '%s'\n",
-              v);
+              MAX_TIMES, v);
       return 2;
     }
   } else if (!strcmp(o, "-o") || !strcmp(o, "--output")) {
@@ -297,6 +300,8 @@ static int audit_option(audit_args *a, int argc, char **argv, int *i) {
     a->reference = v;
   } else if (!strcmp(o, "-t") || !strcmp(o, "--threads")) {
     if (sph_cli_parse_threads("sph audit", v, &a->threads)) return 2;
+  } else if (!strcmp(o, "--max-particles")) {
+    if (sph_cli_parse_max_particles("sph audit", v, &a->max_particles)) return 2;
   } else {
     if (!strchr(v, '=')) {
       fprintf(stderr, "sph audit: --set: expected key=value, got '%s'\n", v);
@@ -309,9 +314,9 @@ static int audit_option(audit_args *a, int argc, char **argv, int *i) {
 
 /* The command line into a; -1 after --help (printed), 0, or 2. */
 static int parse_audit_args(int argc, char **argv, audit_args *a) {
-  static const char *const with_value[] = {"-p", "--particles", "-T", "--times",   "-o", "--output",
-                                           "-r", "--reference", "-t", "--threads", "-s", "--set",
-                                           NULL};
+  static const char *const with_value[] = {
+      "-p",          "--particles", "-T",        "--times", "-o",    "--output",        "-r",
+      "--reference", "-t",          "--threads", "-s",      "--set", "--max-particles", NULL};
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
@@ -378,6 +383,7 @@ static int audit_run(const audit_args *a, int r, long got, double dx, audit_row 
     fprintf(stderr, "sph audit: %s\n", err.msg);
     return 1;
   }
+  c.max_particles = a->max_particles;
   char dir[4096], name[64];
   snprintf(name, sizeof name, "n%ld", got);
   sph_sim *s = NULL;

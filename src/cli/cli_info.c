@@ -37,23 +37,38 @@ typedef struct field_stats {
   int nan; /* a NaN was seen */
 } field_stats;
 
-/* min, max and mean of v[0..n-1]; the sum is compensated (Neumaier). */
-static field_stats stats_of(const double *v, size_t n) {
-  field_stats st = {0.0, 0.0, 0.0, 0};
+/* The compensated (Neumaier) sum of v[0..n-1] / scale. */
+static double sum_of(const double *v, size_t n, double scale) {
   double sum = 0.0, carry = 0.0;
   for (size_t i = 0; i < n; i++) {
-    double x = v[i];
-    if (isnan(x)) {
-      st.nan = 1;
-      break;
-    }
-    if (i == 0 || x < st.min) st.min = x;
-    if (i == 0 || x > st.max) st.max = x;
-    double t = sum + x;
+    const double x = v[i] / scale, t = sum + x;
     carry += fabs(sum) >= fabs(x) ? (sum - t) + x : (x - t) + sum;
     sum = t;
   }
-  st.mean = n ? (sum + carry) / (double)n : 0.0;
+  return sum + carry;
+}
+
+/* min, max and mean of v[0..n-1]; the sum is compensated (Neumaier), and
+ * scaled by the largest magnitude where it would overflow (finite values
+ * near 1e308: issue 39, D8). */
+static field_stats stats_of(const double *v, size_t n) {
+  field_stats st = {0.0, 0.0, 0.0, 0};
+  for (size_t i = 0; i < n; i++) {
+    const double x = v[i];
+    if (isnan(x)) {
+      st.nan = 1;
+      return st;
+    }
+    if (i == 0 || x < st.min) st.min = x;
+    if (i == 0 || x > st.max) st.max = x;
+  }
+  if (!n) return st;
+  const double sum = sum_of(v, n, 1.0);
+  const double big = fmax(fabs(st.min), fabs(st.max));
+  if (isfinite(sum) || !isfinite(big))
+    st.mean = sum / (double)n;
+  else
+    st.mean = sum_of(v, n, big) / (double)n * big;
   return st;
 }
 

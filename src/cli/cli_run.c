@@ -121,14 +121,7 @@ static int parse_run_args(int argc, char **argv, run_args *a) {
       } else if (!strcmp(o, "-t") || !strcmp(o, "--threads")) {
         if (sph_cli_parse_threads("sph run", v, &a->threads)) return 2;
       } else if (!strcmp(o, "--max-particles")) {
-        char *end;
-        const double n = strtod(v, &end);
-        if (end == v || *end || !(n >= 1.0) || !(n <= SPH_MAX_PARTICLES_HARD)) {
-          fprintf(stderr, "sph run: --max-particles: expected a count from 1 to %.0f, got '%s'\n",
-                  SPH_MAX_PARTICLES_HARD, v);
-          return 2;
-        }
-        a->max_particles = n;
+        if (sph_cli_parse_max_particles("sph run", v, &a->max_particles)) return 2;
       } else if (!strchr(v, '=')) {
         fprintf(stderr, "sph run: --set: expected key=value, got '%s'\n", v);
         return 2;
@@ -200,11 +193,16 @@ static int load_run_case(run_args *a, sph_case *c, char *snapdir, size_t n) {
 static void print_plan(const run_args *a, const sph_case *c) {
   const double max = c->max_particles > 0.0 ? c->max_particles : sph_case_default_max();
   const double n = c->est_fluid + c->est_wall;
+  const double bytes = n * SPH_BYTES_PER_PARTICLE;
+  const double unit = bytes < 1e9 ? 1e6 : bytes < 1e12 ? 1e9 : 1e12;
   printf("%s: case %s (%s)\n", sph_version(), c->name, a->case_path);
-  printf("  setting up about %.0f particles (fluid %.0f, walls at most %.0f): memory about %.3g MB "
+  printf("  setting up about %.0f particles (fluid %.0f, walls at most %.0f): memory about %.3g %s "
          "(%.0f bytes per particle); at most %.0f particles allowed\n",
-         n, c->est_fluid, c->est_wall, n * SPH_BYTES_PER_PARTICLE / 1e6, SPH_BYTES_PER_PARTICLE,
-         max);
+         n, c->est_fluid, c->est_wall, bytes / unit,
+         unit == 1e6   ? "MB"
+         : unit == 1e9 ? "GB"
+                       : "TB",
+         SPH_BYTES_PER_PARTICLE, max);
   fflush(stdout);
 }
 
@@ -239,6 +237,8 @@ static void print_banner(const run_args *a, const sph_case *c, sph_sim *s, int n
   fflush(stdout);
 }
 
+/* SIGINT, SIGTERM and SIGHUP (a closed terminal or ssh session) end the
+ * run after the current step with a final snapshot (doc/cli.md). */
 static void install_signals(void) {
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
@@ -246,6 +246,20 @@ static void install_signals(void) {
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
+  sigaction(SIGHUP, &sa, NULL);
+}
+
+static const char *signal_name(int sig) {
+  return sig == SIGTERM ? "SIGTERM" : sig == SIGHUP ? "SIGHUP" : "SIGINT";
+}
+
+/* A run already writing into dir: says so; 1. */
+static int dir_in_use(const char *dir, long holder) {
+  fprintf(stderr,
+          "sph run: output directory %s is in use by another run (pid %ld); wait for it to end "
+          "or choose another with -o\n",
+          dir, holder);
+  return 1;
 }
 
 /* The message of how the run ended; its exit status. */
@@ -258,7 +272,7 @@ static int report_end(const sph_run_result *r, const sph_sim *s, const sph_error
     fprintf(stderr,
             "sph run: interrupted by %s at t = %.9g s (step %ld); final snapshot %s\n"
             "sph run: continue with: sph run --restart %s -o %s\n",
-            interrupted == SIGTERM ? "SIGTERM" : "SIGINT", sph_sim_time(s), r->steps,
+            signal_name(interrupted), sph_sim_time(s), r->steps,
             r->last_snapshot[0] ? r->last_snapshot : "(none)",
             r->last_snapshot[0] ? r->last_snapshot : "SNAPSHOT", outdir);
     return 4;
@@ -283,16 +297,24 @@ static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
   sph_run_options opt = {a->outdir, on_progress, &pc, &interrupted, NULL, NULL};
   sph_run_result r;
   sph_error err = {{0}};
+  const long steps0 = sph_sim_steps(s); /* a restart's steps before this run */
   const double w0 = sph_wall_seconds();
   sph_run_resume(s, &opt, a->restart ? rd : NULL, &r, &err);
   const double wall = sph_wall_seconds() - w0;
   sph_progress_done(&pc.bar);
   const int status = report_end(&r, s, &err, a->outdir);
   if (!a->quiet && status != 1) {
+    /* the rate of this run's own steps (a restart's began at steps0) */
     const double n = (double)sph_sim_particles((sph_sim *)s)->n;
-    const double ps = wall > 0 ? n * (double)r.steps / wall : 0.0;
-    printf("%s at t = %.9g s: %ld steps, %zu outputs, %.2f s wall, %.3g particle-steps/s\n",
-           sph_run_status_name(r.status), sph_sim_time(s), r.steps, r.outputs, wall, ps);
+    const long mine = r.steps - steps0;
+    const double ps = wall > 0 ? n * (double)mine / wall : 0.0;
+    if (steps0 > 0)
+      printf("%s at t = %.9g s: step %ld, %ld steps in this run, %zu outputs, %.2f s wall, %.3g "
+             "particle-steps/s\n",
+             sph_run_status_name(r.status), sph_sim_time(s), r.steps, mine, r.outputs, wall, ps);
+    else
+      printf("%s at t = %.9g s: %ld steps, %zu outputs, %.2f s wall, %.3g particle-steps/s\n",
+             sph_run_status_name(r.status), sph_sim_time(s), r.steps, r.outputs, wall, ps);
   }
   return status;
 }
@@ -301,7 +323,7 @@ static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
  * 21, D11). */
 static int setup_interrupted(void) {
   fprintf(stderr, "sph run: interrupted by %s during set-up; nothing written\n",
-          interrupted == SIGTERM ? "SIGTERM" : "SIGINT");
+          signal_name(interrupted));
   return 4;
 }
 
@@ -341,6 +363,12 @@ int sph_cli_run(int argc, char **argv) {
   sph_error err = {{0}};
   sph_sim *s = NULL;
   sph_snapshot_restart_data rd;
+  sph_cli_lock lock = {-1, {0}};
+  long holder = sph_cli_dir_holder(a.outdir); /* at once, before the set-up */
+  if (holder) {
+    sph_case_free(&c);
+    return dir_in_use(a.outdir, holder);
+  }
   status = 1;
   if (!a.quiet) print_plan(&a, &c);
   setup_pause();
@@ -357,8 +385,16 @@ int sph_cli_run(int argc, char **argv) {
     fprintf(stderr, "sph run: cannot create output directory %s: %s\n", a.outdir, strerror(errno));
     if (a.restart) sph_snapshot_restart_free(&rd);
   } else {
-    if (!a.quiet) print_banner(&a, &c, s, nthreads);
-    status = run_sim(&a, &c, s, &rd);
+    const int locked = sph_cli_dir_lock(a.outdir, &lock, &holder);
+    if (locked == 1)
+      status = dir_in_use(a.outdir, holder);
+    else if (locked)
+      fprintf(stderr, "sph run: cannot lock output directory %s: %s\n", a.outdir, strerror(errno));
+    else {
+      if (!a.quiet) print_banner(&a, &c, s, nthreads);
+      status = run_sim(&a, &c, s, &rd);
+    }
+    sph_cli_dir_unlock(&lock);
     if (a.restart) sph_snapshot_restart_free(&rd);
   }
   sph_sim_free(s);

@@ -34,6 +34,9 @@ static void usage(FILE *f) {
              "  face SNAPSHOT...\n"
              "                 front-face angle of a breaking wave, and when it first stands\n"
              "                 vertical (paper B 4.3)\n"
+             "  new NAME [-o FILE]\n"
+             "                 write NAME.yaml, a case to start from: every key set or shown\n"
+             "                 with its default and range, runs as written\n"
              "\n"
              "options:\n"
              "  -h, --help     show this help (also: sph COMMAND --help)\n"
@@ -131,8 +134,10 @@ int main(int argc, char **argv) {
   if (!strcmp(cmd, "profile")) return sph_cli_profile(argc - 1, argv + 1);
   if (!strcmp(cmd, "audit")) return sph_cli_audit(argc - 1, argv + 1);
   if (!strcmp(cmd, "face")) return sph_cli_face(argc - 1, argv + 1);
-  fprintf(stderr,
-          "sph: unknown command '%s' (valid: run, info, audit, profile, face; see sph --help)\n",
-          cmd);
+  if (!strcmp(cmd, "new")) return sph_cli_new(argc - 1, argv + 1);
+  fprintf(
+      stderr,
+      "sph: unknown command '%s' (valid: run, info, audit, profile, face, new; see sph --help)\n",
+      cmd);
   return 2;
 }

@@ -88,6 +88,24 @@ static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particl
                          "only time.end may change on a restart",
                          path, params ? "first difference: " : "no parameters attribute", (int)dlen,
                          diff ? diff : "");
+  /* the clock: a hand-edited or damaged header must not run from t = NaN,
+   * from a negative time or step, or past time.end (which would cut the
+   * output files of the run it continues before finding nothing to do) */
+  const double t = sph_snapshot_time(snap), dt = sph_snapshot_dt(snap);
+  const double step = (double)sph_snapshot_step(snap);
+  if (!isfinite(t) || t < 0.0)
+    return sph_error_set(err, "%s: its time %g is not a finite time >= 0", path, t);
+  if (!(t < s->c->t_end))
+    return sph_error_set(err,
+                         "%s: its time %.9g s is not before time.end = %.9g s: nothing to run "
+                         "(--set time.end=... past it to continue)",
+                         path, t, s->c->t_end);
+  if (!(step >= 0.0) || !(isfinite(dt) && dt >= 0.0) || rd->output_index < 0 ||
+      (rd->first_step != 0 && rd->first_step != 1))
+    return sph_error_set(err,
+                         "%s: its step %.0f, time step %g, output index %lld or first-step flag "
+                         "%lld is out of range (step, dt, index >= 0; the flag 0 or 1)",
+                         path, step, dt, (long long)rd->output_index, (long long)rd->first_step);
   const int leapfrog = s->c->integrator == SPH_INTEGRATOR_LEAPFROG;
   if (leapfrog && !rd->first_step && !rd->vxh)
     return sph_error_set(err,

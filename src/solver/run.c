@@ -334,6 +334,20 @@ static int open_outputs(sph_sim *s, outputs *out, const sph_snapshot_restart_dat
   return 0;
 }
 
+/* The smallest k >= 1 with k * interval > t (interval > 0, t finite and
+ * below time.end, as the restart checks): found from t / interval and
+ * corrected by a step or two, the same k the count from 1 up gives,
+ * without counting to a time far past the first outputs. */
+static long first_multiple_after(double interval, double t) {
+  const double q = floor(t / interval);
+  long k = q < 1.0 ? 1 : q < 1e15 ? (long)q : (long)1e15;
+  while (k > 1 && (double)(k - 1) * interval > t)
+    k--;
+  while ((double)k * interval <= t)
+    k++;
+  return k;
+}
+
 int sph_run(sph_sim *s, const sph_run_options *o, sph_run_result *r, sph_error *err) {
   return sph_run_resume(s, o, NULL, r, err);
 }
@@ -374,8 +388,7 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
   long k = 1;   /* next multiple of output_interval */
   size_t j = 0; /* next of time.output_times */
   if (c->output_interval > 0.0)
-    while ((double)k * c->output_interval <= sph_sim_time(s) + same)
-      k++;
+    k = first_multiple_after(c->output_interval, sph_sim_time(s) + same);
   while (j < c->n_output_times && c->output_times[j] <= sph_sim_time(s) + same)
     j++;
   for (;;) {

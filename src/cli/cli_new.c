@@ -1,0 +1,226 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * cli_new.c - `sph new NAME`: a case file to start from.
+ *
+ * Writes NAME.yaml: a small dam break (the Martin & Moyce column of
+ * cases/martin_moyce_coarse.yaml, a = 0.05715 m, dx = a/20) that runs as
+ * written in a few seconds, with every key of the case schema
+ * (doc/case-files.md) either set or shown commented out with its default
+ * and its range. tests/check_new holds it to that: the file runs, and
+ * every key the schema tables of doc/case-files.md list appears in it.
+ */
+#include "config.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli/cli.h"
+
+/* The case after its name line (the name comes from the command line). */
+static const char *const TEMPLATE =
+    "description: \"a dam break to start from: the column of Martin & Moyce (1952), a = 0.05715 "
+    "m\"\n"
+    "# Every key of a case file is below, set or commented out with its\n"
+    "# default and range (doc/case-files.md says more about each). Run it with\n"
+    "#   sph run NAME.yaml          and render it with   sph-render out/NAME\n"
+    "\n"
+    "physics:\n"
+    "  rho0: 1000                 # kg/m^3, > 0 (default 1000)\n"
+    "  gravity: [0, -9.81]        # m/s^2 (default [0, -9.81])\n"
+    "  # body_force: [0, -9.81]   # the same under its general name; not with gravity\n"
+    "  # c0: a number (m/s), or factor*sqrt(2|g| height), or factor*speed (all > 0)\n"
+    "  sound_speed: {factor: 10, height: 0.1143}\n"
+    "  # sound_speed: {factor: 10, speed: 1.5}\n"
+    "  artificial_viscosity:      # Monaghan's, paper A eq. (15)-(16)\n"
+    "    alpha: 0.3               # >= 0 (default 0)\n"
+    "    beta: 0                  # >= 0 (default 0)\n"
+    "    eta: 0.1                 # > 0 (default 0.1)\n"
+    "  viscosity:                 # laminar viscosity\n"
+    "    model: none              # none (default), stress_tensor, morris\n"
+    "    # mu: 1.0e-3             # Pa s, > 0: required with a model, an error without\n"
+    "    # gradient_correction: false  # stress_tensor only (default false)\n"
+    "  turbulence:\n"
+    "    model: none              # none (default), sps\n"
+    "    # cs: 0.12               # sps: Smagorinsky C_s, > 0 (default 0.12)\n"
+    "    # ci: 0.00066            # sps: C_I, >= 0 (default 0.00066)\n"
+    "  # repulsion: 5.6           # repulsive walls' D (J/kg), > 0 (default 5 |g| H)\n"
+    "  xsph: 0.5                  # XSPH epsilon, [0, 1] (default 0: off)\n"
+    "\n"
+    "numerics:\n"
+    "  dx: 0.0028575              # m, > 0, smaller than every fluid block (required)\n"
+    "  h_factor: 1.3              # h = h_factor dx, [0.5, 4] (default 1.3)\n"
+    "  smoothing_length: constant # constant (default), variable\n"
+    "  kernel: cubic_spline       # cubic_spline (default), wendland_c2\n"
+    "  integrator: predictor_corrector  # predictor_corrector (default), leapfrog\n"
+    "  time_step:\n"
+    "    rule: paper_b            # paper_b (default), cfl, fixed\n"
+    "    factor: 0.3              # (0, 1] (default 0.3); unused by fixed\n"
+    "    # dt: 1.0e-5             # s, > 0: fixed only (required there)\n"
+    "  density_filter:\n"
+    "    kind: none               # none (default), mls, shepard\n"
+    "    every: 30                # steps, 1..1000000 (default 30)\n"
+    "  density_diffusion:\n"
+    "    model: fourtakas         # none (default), molteni_colagrossi, antuono, fourtakas\n"
+    "    delta: 0.1               # (0, 1] (default 0.1); only with a model\n"
+    "  # shifting:                # particle shifting (default off)\n"
+    "  #   coefficient: 2         # (0, 10] (default 2)\n"
+    "  density_limit: 0.3         # stop when |rho/rho0 - 1| exceeds it, (0, 1) (default 0.3)\n"
+    "\n"
+    "time:\n"
+    "  end: 0.5                   # s, > 0 (required)\n"
+    "  output_interval: 0.01      # s, end/100000 to end (required unless output_times)\n"
+    "  # output_times: [0.1, 0.2] # further output times (s), increasing\n"
+    "  stop: front_at_wall        # none (default), front_at_wall (needs a tank)\n"
+    "\n"
+    "geometry:\n"
+    "  tank:                      # a rectangular tank (default none)\n"
+    "    x: [0, 0.2286]           # inner faces of the side walls (m), x0 < x1\n"
+    "    y: [0, 0.2]              # the floor and the top of the walls (m), y0 < y1\n"
+    "    boundary: dynamic        # dynamic (default), fixed_layers, repulsive, mirror, mdbc\n"
+    "    layers: 2                # 1..8 (default 2, 3 for mdbc; none for mirror)\n"
+    "    stagger: true            # layers dx/2 apart and staggered (default true; false for "
+    "mdbc)\n"
+    "    extrapolated_velocity: false  # no slip on the face (stress_tensor or sps only)\n"
+    "    free_slip: false         # forces along the wall's normal only (default false)\n"
+    "  fluid:                     # rectangular blocks (at least one)\n"
+    "    - x: [0, 0.05715]\n"
+    "      y: [0, 0.1143]\n"
+    "      velocity: [0, 0]       # m/s (default [0, 0])\n"
+    "      hydrostatic: true      # start from the hydrostatic density (default true)\n"
+    "      surface: 0.1143        # the hydrostatic start's surface, >= y1 (default y1)\n"
+    "      jitter: 0              # a perturbed start, [0, 0.5) dx (default 0)\n"
+    "      # seed: 1              # the jitter's seed, 0..2147483647 (default 1)\n"
+    "  walls: []                  # extra straight walls (default none), e.g. a gate:\n"
+    "  #  - from: [0.06, 0]       # start point (m); the fluid is on the right, seen from it\n"
+    "  #    to: [0.06, 0.15]      # end point (m)\n"
+    "  #    boundary: dynamic     # as the tank's\n"
+    "  #    layers: 2\n"
+    "  #    stagger: true\n"
+    "  #    extrapolated_velocity: false\n"
+    "  #    free_slip: false\n"
+    "  #    motion:               # none (default), translate, piston, flap\n"
+    "  #      type: translate\n"
+    "  #      velocity: [0, 1.5]  # translate: m/s\n"
+    "  #      start: 0            # translate: s, >= 0 (default 0)\n"
+    "  #      stop: 0.1           # translate: s, > start (default never)\n"
+    "  #      # piston and flap: period (s, > 0), stroke or wave_height (m, > 0),\n"
+    "  #      # depth (m, > 0), ramp (s, >= 0; default one period), hinge [x, y] (flap)\n"
+    "  #      # period: 1.0\n"
+    "  #      # stroke: 0.05\n"
+    "  #      # wave_height: 0.03\n"
+    "  #      # depth: 0.1\n"
+    "  #      # ramp: 1.0\n"
+    "  #      # hinge: [0.06, 0]\n"
+    "  # periodic_x: [0, 1]       # periodic in x (no tank then), x1 - x0 >= 6 h\n"
+    "  # domain:                  # leaving it stops the run (default: the geometry's box\n"
+    "  #   x: [-0.1, 0.33]        # widened, doc/case-files.md)\n"
+    "  #   y: [-0.1, 0.6]\n"
+    "\n"
+    "free_surface:                # detection, paper A section 7\n"
+    "  radius_factor: 1           # [0.5, 1] (default 1)\n"
+    "  # h_factor: 2              # h* = k h on the surface, [1, 4] (default off)\n"
+    "\n"
+    "output:\n"
+    "  snapshots: true            # HDF5 snapshots at the output times (default true)\n"
+    "  free_surface: false        # the free_surface field (default false)\n"
+    "  energy: false              # the energy ledger's columns (default false)\n"
+    "  # gauges: [0.1]            # wave gauges at these x (m): gauges.csv\n"
+    "  probes:                    # probes.csv; at most 1000\n"
+    "    - name: P1               # [A-Za-z0-9_.-], unique\n"
+    "      kind: pressure         # pressure, level, velocity\n"
+    "      at: [0.2286, 0.003]    # the point (m); on the right wall's face here\n"
+    "      diameter: 0            # the face's width (m; pressure only, default 0: a point)\n"
+    "      along: y               # y (default; a wall sensor), x (a floor sensor)\n"
+    "    - name: H1\n"
+    "      kind: level\n"
+    "      x: 0.1                 # a level gauge's x (m)\n"
+    "  probe_interval: 0.001      # s, 0 (every step, default) to time.end\n";
+
+static void new_usage(FILE *f) {
+  fprintf(f, "usage: sph new NAME [-o FILE]\n"
+             "\n"
+             "Writes a case file to start from, NAME.yaml (or FILE): a small dam break\n"
+             "that runs as written, with every key of a case file set or shown commented\n"
+             "out with its default and range. It will not overwrite a file.\n"
+             "\n"
+             "  -o, --output FILE  where to write it (default NAME.yaml)\n");
+}
+
+/* Whether name is a case name: 1 to 64 characters from [A-Za-z0-9_.-]. */
+static int valid_name(const char *name) {
+  const size_t n = strlen(name);
+  if (n == 0 || n > 64) return 0;
+  for (size_t i = 0; i < n; i++) {
+    const char c = name[i];
+    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+          c == '.' || c == '-'))
+      return 0;
+  }
+  return 1;
+}
+
+int sph_cli_new(int argc, char **argv) {
+  const char *name = NULL, *out = NULL;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
+      new_usage(stdout);
+      return 0;
+    }
+    if (!strcmp(argv[i], "-o") || !strcmp(argv[i], "--output")) {
+      if (i + 1 >= argc) {
+        fprintf(stderr, "sph new: option %s needs a value\n", argv[i]);
+        return 2;
+      }
+      out = argv[++i];
+    } else if (argv[i][0] == '-' && argv[i][1]) {
+      fprintf(stderr, "sph new: unknown option '%s'\n", argv[i]);
+      new_usage(stderr);
+      return 2;
+    } else if (name) {
+      fprintf(stderr, "sph new: one NAME only, got '%s' and '%s'\n", name, argv[i]);
+      return 2;
+    } else {
+      name = argv[i];
+    }
+  }
+  if (!name) {
+    new_usage(stderr);
+    return 2;
+  }
+  if (!valid_name(name)) {
+    fprintf(stderr, "sph new: NAME: expected 1 to 64 characters from [A-Za-z0-9_.-], got '%s'\n",
+            name);
+    return 2;
+  }
+  char path[4200];
+  if (!out) {
+    snprintf(path, sizeof path, "%s.yaml", name);
+    out = path;
+  }
+  /* never over an existing file: O_EXCL */
+  const int fd = open(out, O_WRONLY | O_CREAT | O_EXCL, 0644);
+  if (fd < 0) {
+    fprintf(stderr, "sph new: cannot create %s: %s\n", out,
+            errno == EEXIST ? "it exists (choose another name or -o FILE)" : strerror(errno));
+    return 1;
+  }
+  FILE *f = fdopen(fd, "w");
+  int bad = f == NULL;
+  if (f) {
+    bad |= fprintf(f, "name: %s\n", name) < 0;
+    bad |= fputs(TEMPLATE, f) < 0;
+    bad |= fclose(f) != 0;
+  } else {
+    close(fd);
+  }
+  if (bad) {
+    fprintf(stderr, "sph new: cannot write %s: %s\n", out, strerror(errno));
+    unlink(out);
+    return 1;
+  }
+  printf("sph new: wrote %s; run it with: sph run %s\n", out, out);
+  return 0;
+}
