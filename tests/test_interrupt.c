@@ -103,16 +103,24 @@ static char *slurp(const char *path) {
   return buf;
 }
 
-static void interrupt_with(int sig, const char *name) {
-  char dir[4200], path[4300], log[4300];
-  snprintf(dir, sizeof dir, "%s/%s", tmp, name);
-  snprintf(log, sizeof log, "%s.log", dir);
+/* A run into dir, once its third snapshot exists (a failed test if it
+ * never does); its pid. */
+static pid_t start_running(const char *dir) {
+  char path[4300];
   const pid_t pid = start(dir, NULL);
   CU_ASSERT_FATAL(pid > 0);
   snprintf(path, sizeof path, "%s/snap_0002.h5", dir);
   const int started = wait_for(path, pid);
   if (!started) kill(pid, SIGKILL);
   CU_ASSERT_FATAL(started);
+  return pid;
+}
+
+static void interrupt_with(int sig, const char *name) {
+  char dir[4200], path[4300], log[4300];
+  snprintf(dir, sizeof dir, "%s/%s", tmp, name);
+  snprintf(log, sizeof log, "%s.log", dir);
+  const pid_t pid = start_running(dir);
   CU_ASSERT_FATAL(kill(pid, sig) == 0);
   int st = 0;
   CU_ASSERT_FATAL(waitpid(pid, &st, 0) == pid);
@@ -275,12 +283,7 @@ static void test_sighup(void) { interrupt_with(SIGHUP, "sighup"); }
 static void test_one_run_per_directory(void) {
   char dir[4200], path[4300], log[4300], cmd[16384];
   snprintf(dir, sizeof dir, "%s/shared", tmp);
-  const pid_t pid = start(dir, NULL);
-  CU_ASSERT_FATAL(pid > 0);
-  snprintf(path, sizeof path, "%s/snap_0002.h5", dir);
-  const int started = wait_for(path, pid);
-  if (!started) kill(pid, SIGKILL);
-  CU_ASSERT_FATAL(started);
+  const pid_t pid = start_running(dir);
   snprintf(log, sizeof log, "%s.second.log", dir);
   snprintf(cmd, sizeof cmd, "'%s' run -q '%s' -o '%s' --set time.end=0.1 > '%s' 2>&1",
            sph_test_build("src/sph"), sph_test_src("cases/hydrostatic_tank.yaml"), dir, log);
