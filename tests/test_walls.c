@@ -595,8 +595,43 @@ static void test_arrays_in_use(void) {
   }
 }
 
+/* Walls that cross or meet (issue 39, D7): a segment's particles closer
+ * than dx/2 to an earlier wall's are not made and counted, so no two wall
+ * particles are closer than dx/2 (they were 0.1 dx apart); the ids stay a
+ * permutation. Two crossing segments and one ending on the tank floor. */
+static void test_crossing_walls(void) {
+  const char *sets[] = {
+      "geometry.walls=[{from: [0.1, 0.0], to: [0.2, 0.1]}, "
+      "{from: [0.2, 0.0], to: [0.1, 0.1]}, {from: [0.15, 0.0], to: [0.15, 0.05]}]"};
+  sph_case c;
+  sph_sim *s;
+  CU_ASSERT_FATAL(sph_test_open_sim("cases/martin_moyce_coarse.yaml", sets, 1, &c, &s) == 0);
+  const sph_particles *p = sph_sim_particles(s);
+  double dmin = INFINITY;
+  for (size_t i = 0; i < p->n; i++)
+    for (size_t j = i + 1; j < p->n && p->kind[i] == SPH_KIND_WALL; j++)
+      if (p->kind[j] == SPH_KIND_WALL)
+        dmin = fmin(dmin, hypot(p->x[i] - p->x[j], p->y[i] - p->y[j]));
+  const size_t dropped = sph_sim_walls_dropped(s);
+  printf("\n  crossing walls: %zu wall particles not made; closest pair %.3f dx", dropped,
+         dmin / c.dx);
+  CU_ASSERT(dropped > 0);
+  CU_ASSERT(dmin >= 0.5 * c.dx);
+  char *seen = calloc(p->n, 1);
+  int perm = seen != NULL;
+  for (size_t i = 0; perm && i < p->n; i++) {
+    perm = p->id[i] >= 0 && (size_t)p->id[i] < p->n && !seen[p->id[i]];
+    if (perm) seen[p->id[i]] = 1;
+  }
+  CU_ASSERT(perm);
+  free(seen);
+  sph_sim_free(s);
+  sph_case_free(&c);
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
+      {"walls that cross or meet: no two wall particles closer than dx/2", test_crossing_walls},
       {"each case keeps only the optional arrays it uses", test_arrays_in_use},
       {"a wall through the fluid: the fluid inside it is not made", test_wall_through_fluid},
       {"dynamic walls hold still water", test_dynamic},

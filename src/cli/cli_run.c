@@ -225,6 +225,10 @@ static void print_banner(const run_args *a, const sph_case *c, sph_sim *s, int n
     printf("  %zu fluid particles not made: closer than dx/2 to a wall particle (a wall drawn "
            "through the fluid)\n",
            sph_sim_fluid_removed(s));
+  if (sph_sim_walls_dropped(s))
+    printf("  %zu wall particles not made: closer than dx/2 to an earlier wall's (walls that "
+           "meet or cross)\n",
+           sph_sim_walls_dropped(s));
   if (a->restart)
     printf("  restarting from %s at t = %.9g s, step %ld\n", a->restart, sph_sim_time(s),
            sph_sim_steps(s));

@@ -401,6 +401,7 @@ const char *sph_sim_loop(const sph_sim *s, double *ratio) {
 sph_particles *sph_sim_particles(sph_sim *s) { return &s->p; }
 double sph_sim_floor(const sph_sim *s) { return s->floor_y; }
 size_t sph_sim_fluid_removed(const sph_sim *s) { return s->fluid_removed; }
+size_t sph_sim_walls_dropped(const sph_sim *s) { return s->walls.n_dropped; }
 void sph_sim_domain(const sph_sim *s, double box[4]) { memcpy(box, s->domain, 4 * sizeof *box); }
 
 void sph_sim_diag(const sph_sim *s, sph_diag_row *row) {

@@ -58,6 +58,9 @@ double sph_sim_floor(const sph_sim *s);
  * particle lies closer than dx/2 (a wall drawn through the fluid;
  * doc/case-files.md). */
 size_t sph_sim_fluid_removed(const sph_sim *s);
+/* Wall particles of a geometry.walls segment not made: closer than dx/2 to
+ * a particle of an earlier wall (the tank or a segment before it). */
+size_t sph_sim_walls_dropped(const sph_sim *s);
 /* The domain box x0, x1, y0, y1: a particle leaving it is a blow-up. */
 void sph_sim_domain(const sph_sim *s, double box[4]);
 /* The interaction loop the run uses ("AVX-512 lanes", "AVX2 lanes",

@@ -6,6 +6,8 @@
  */
 #include "config.h"
 
+#include <math.h>
+
 #include "core/parallel.h"
 
 #include "walls/walls.h"
@@ -24,10 +26,44 @@ static int is_dbc(sph_boundary_kind b) {
   return b == SPH_BOUNDARY_DYNAMIC || b == SPH_BOUNDARY_FIXED_LAYERS;
 }
 
+/* Drops the particles [first, p->n) that lie closer than dx/2 to one of
+ * [from, first), the walls made before (issue 39, D7: crossing walls made
+ * pairs 0.1 dx apart); the others move down, their ids their new indices.
+ * Returns how many were dropped. Only the earlier particles inside the new
+ * ones' box, widened by dx/2, are compared. */
+static size_t drop_overlaps(sph_particles *p, size_t from, size_t first, double dx) {
+  const double d = 0.5 * dx, d2 = d * d;
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  for (size_t i = first; i < p->n; i++) {
+    x0 = fmin(x0, p->x[i]), x1 = fmax(x1, p->x[i]);
+    y0 = fmin(y0, p->y[i]), y1 = fmax(y1, p->y[i]);
+  }
+  size_t kept = first, dropped = 0;
+  for (size_t i = first; i < p->n; i++) {
+    int near = 0;
+    for (size_t j = from; j < first && !near; j++) {
+      const double xj = p->x[j], yj = p->y[j];
+      if (xj < x0 - d || xj > x1 + d || yj < y0 - d || yj > y1 + d) continue;
+      const double ex = p->x[i] - xj, ey = p->y[i] - yj;
+      near = ex * ex + ey * ey < d2;
+    }
+    if (near) {
+      dropped++;
+      continue;
+    }
+    if (kept != i) sph_particles_move(p, kept, i);
+    p->id[kept] = (int64_t)kept;
+    kept++;
+  }
+  p->n = kept;
+  return dropped;
+}
+
 int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
                      const sph_wall_segment *segments, size_t n_segments, double dx, double rho0,
                      double h, double mirror_reach, sph_error *err) {
   const double wall_mass = rho0 * dx * dx;
+  const size_t walls_from = p->n; /* the fluid's particles come first */
   *w = (sph_walls){0};
   w->mirror_reach = mirror_reach;
   w->segments = segments;
@@ -71,6 +107,7 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
                                  rho0, wall_mass, h,
                                  wall_flags(ws->boundary, ws->extrapolated, ws->free_slip), err))
       return -1;
+    w->n_dropped += drop_overlaps(p, walls_from, first, dx);
     if (ws->motion.kind != SPH_MOTION_NONE) {
       w->moving = 1;
       sph_particles_use(p, SPH_ARRAYS_REST);
