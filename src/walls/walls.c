@@ -7,6 +7,7 @@
 #include "config.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 #include "core/parallel.h"
 
@@ -29,22 +30,30 @@ static int is_dbc(sph_boundary_kind b) {
 /* Drops the particles [first, p->n) that lie closer than dx/2 to one of
  * [from, first), the walls made before (issue 39, D7: crossing walls made
  * pairs 0.1 dx apart); the others move down, their ids their new indices.
- * Returns how many were dropped. Only the earlier particles inside the new
- * ones' box, widened by dx/2, are compared. */
-static size_t drop_overlaps(sph_particles *p, size_t from, size_t first, double dx) {
+ * Returns how many were dropped, or -1 out of memory. Only the earlier
+ * particles inside the new ones' box, widened by dx/2, are compared. */
+static long drop_overlaps(sph_particles *p, size_t from, size_t first, double dx) {
   const double d = 0.5 * dx, d2 = d * d;
   double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
   for (size_t i = first; i < p->n; i++) {
-    x0 = fmin(x0, p->x[i]), x1 = fmax(x1, p->x[i]);
-    y0 = fmin(y0, p->y[i]), y1 = fmax(y1, p->y[i]);
+    x0 = fmin(x0, p->x[i] - d), x1 = fmax(x1, p->x[i] + d);
+    y0 = fmin(y0, p->y[i] - d), y1 = fmax(y1, p->y[i] + d);
   }
-  size_t kept = first, dropped = 0;
+  size_t m = 0;
+  for (size_t j = from; j < first; j++)
+    m += p->x[j] >= x0 && p->x[j] <= x1 && p->y[j] >= y0 && p->y[j] <= y1;
+  if (m == 0) return 0;
+  size_t *near_box = malloc(m * sizeof *near_box);
+  if (!near_box) return -1;
+  m = 0;
+  for (size_t j = from; j < first; j++)
+    if (p->x[j] >= x0 && p->x[j] <= x1 && p->y[j] >= y0 && p->y[j] <= y1) near_box[m++] = j;
+  size_t kept = first;
+  long dropped = 0;
   for (size_t i = first; i < p->n; i++) {
     int near = 0;
-    for (size_t j = from; j < first && !near; j++) {
-      const double xj = p->x[j], yj = p->y[j];
-      if (xj < x0 - d || xj > x1 + d || yj < y0 - d || yj > y1 + d) continue;
-      const double ex = p->x[i] - xj, ey = p->y[i] - yj;
+    for (size_t k = 0; k < m && !near; k++) {
+      const double ex = p->x[i] - p->x[near_box[k]], ey = p->y[i] - p->y[near_box[k]];
       near = ex * ex + ey * ey < d2;
     }
     if (near) {
@@ -56,6 +65,7 @@ static size_t drop_overlaps(sph_particles *p, size_t from, size_t first, double 
     kept++;
   }
   p->n = kept;
+  free(near_box);
   return dropped;
 }
 
@@ -107,7 +117,9 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
                                  rho0, wall_mass, h,
                                  wall_flags(ws->boundary, ws->extrapolated, ws->free_slip), err))
       return -1;
-    w->n_dropped += drop_overlaps(p, walls_from, first, dx);
+    const long dropped = drop_overlaps(p, walls_from, first, dx);
+    if (dropped < 0) return sph_error_set(err, "out of memory");
+    w->n_dropped += (size_t)dropped;
     if (ws->motion.kind != SPH_MOTION_NONE) {
       w->moving = 1;
       sph_particles_use(p, SPH_ARRAYS_REST);
