@@ -67,10 +67,10 @@ static pid_t start(const char *dir, const char *extra) {
       close(fd);
     }
     if (extra)
-      execl(prog, "sph", "run", "-q", case_file(), "-o", dir, "--set", "time.end=5", "--set", extra,
+      execl(prog, prog, "run", "-q", case_file(), "-o", dir, "--set", "time.end=5", "--set", extra,
             (char *)NULL);
     else
-      execl(prog, "sph", "run", "-q", case_file(), "-o", dir, "--set", "time.end=5", (char *)NULL);
+      execl(prog, prog, "run", "-q", case_file(), "-o", dir, "--set", "time.end=5", (char *)NULL);
     _exit(127);
   }
   return pid;
@@ -133,6 +133,11 @@ static void interrupt_with(int sig, const char *name) {
   CU_ASSERT(strstr(msg, said) != NULL);
   CU_ASSERT(strstr(msg, "final snapshot") != NULL);
   CU_ASSERT(strstr(msg, "--restart") != NULL);
+  /* the command to continue names the program as it was started (issue 39, D11) */
+  char again[4400];
+  snprintf(again, sizeof again, "continue with: %s run --restart", sph_test_build("src/sph"));
+  if (!strstr(msg, again)) printf("\n  want '%s' in: %s", again, msg);
+  CU_ASSERT(strstr(msg, again) != NULL);
   /* the final snapshot is the last one; it is complete and indexed */
   int last = -1;
   for (int k = 0; k < 10000; k++) {

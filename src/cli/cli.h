@@ -14,6 +14,11 @@
 
 #include "sph.h"
 
+/* The program as the user started it, for messages that print a command
+ * to run next (main.c): argv[0] if it holds a '/', with a libtool
+ * build's ".libs/" (and "lt-") taken out, else "sph". */
+extern const char *sph_cli_program;
+
 int sph_cli_run(int argc, char **argv);
 int sph_cli_info(int argc, char **argv);
 int sph_cli_profile(int argc, char **argv);

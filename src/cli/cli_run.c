@@ -275,9 +275,9 @@ static int report_end(const sph_run_result *r, const sph_sim *s, const sph_error
   case SPH_RUN_INTERRUPTED:
     fprintf(stderr,
             "sph run: interrupted by %s at t = %.9g s (step %ld); final snapshot %s\n"
-            "sph run: continue with: sph run --restart %s -o %s\n",
+            "sph run: continue with: %s run --restart %s -o %s\n",
             signal_name(interrupted), sph_sim_time(s), r->steps,
-            r->last_snapshot[0] ? r->last_snapshot : "(none)",
+            r->last_snapshot[0] ? r->last_snapshot : "(none)", sph_cli_program,
             r->last_snapshot[0] ? r->last_snapshot : "SNAPSHOT", outdir);
     return 4;
   case SPH_RUN_BLOWUP:

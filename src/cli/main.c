@@ -112,8 +112,25 @@ static void choose_wait_policy(int argc, char **argv) {
 #endif
 }
 
+const char *sph_cli_program = "sph";
+
+/* sph_cli_program from argv[0] (cli.h). */
+static void set_program(const char *arg0) {
+  static char buf[4096];
+  if (!arg0 || !strchr(arg0, '/') || strlen(arg0) >= sizeof buf) return;
+  snprintf(buf, sizeof buf, "%s", arg0);
+  char *libs = strstr(buf, "/.libs/");
+  if (libs) { /* a libtool build: the wrapper script beside .libs */
+    const char *name = libs + strlen("/.libs/");
+    if (!strncmp(name, "lt-", 3)) name += 3;
+    memmove(libs + 1, name, strlen(name) + 1);
+  }
+  sph_cli_program = buf;
+}
+
 int main(int argc, char **argv) {
   choose_wait_policy(argc, argv);
+  set_program(argv[0]);
   if (argc < 2) {
     usage(stderr);
     return 2;
