@@ -127,6 +127,12 @@ static void test_tank(void) {
   const long n = sph_test_csv(path, "#0,#1,#2,#3,#4,#5,#6", col);
   CU_ASSERT_FATAL(n > 0);
   CU_ASSERT(n == 31); /* t = 0, then every 0.01 s to 0.3 s */
+  /* on the interval itself, not at the first step past it (issue 39, D11) */
+  double off = 0.0;
+  for (long r = 0; r < n; r++)
+    off = fmax(off, fabs(col[0][r] - (double)r * 0.01));
+  CU_ASSERT(off < 1e-12);
+  if (!(off < 1e-12)) printf("\n  probe rows off the interval by up to %g s", off);
   const double rgh = 1000.0 * 9.81 * 0.1, want[3] = {0.08, 0.05, 0.1};
   double worst = 0.0, vmax = 0.0;
   for (long r = n / 2; r < n; r++) { /* settled: the second half */

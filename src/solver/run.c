@@ -402,7 +402,14 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
       next = (double)k * c->output_interval;
     if (j < c->n_output_times && c->output_times[j] < next) next = c->output_times[j];
     if (c->t_end - next <= same) next = c->t_end;
-    int st = sph_sim_step(s, next, err);
+    /* a probe row's time is landed on too, so that probes.csv's rows fall on
+     * the interval (issue 39, D11); one closer than `same` to the output is it */
+    double target = next;
+    if (out.probes && c->probe_interval > 0.0) {
+      const double pt = (double)out.probe_k * c->probe_interval;
+      if (pt > t && pt < next - same) target = pt;
+    }
+    int st = sph_sim_step(s, target, err);
     if (o->progress) o->progress(o->progress_ctx, s);
     if (st == SPH_BLOWUP) {
       r->status = SPH_RUN_BLOWUP;
