@@ -302,6 +302,13 @@ static void test_one_run_per_directory(void) {
   if (second != 1 || strcmp(msg, want)) printf("\n  the second run: exit %d: %s", second, msg);
   CU_ASSERT_EQUAL(second, 1);
   CU_ASSERT_STRING_EQUAL(msg, want);
+  /* sph audit takes the directory the same way */
+  snprintf(cmd, sizeof cmd, "'%s' audit -q '%s' -p 100 -o '%s' > '%s' 2>&1",
+           sph_test_build("src/sph"), sph_test_src("cases/hydrostatic_tank.yaml"), dir, log);
+  CU_ASSERT_EQUAL(sph_test_system(cmd), 1);
+  snprintf(want, sizeof want, "sph audit: output directory %s is in use by another run (pid %ld)",
+           dir, (long)pid);
+  CU_ASSERT(strstr(slurp(log), want) != NULL);
   CU_ASSERT_FATAL(kill(pid, SIGTERM) == 0);
   int st = 0;
   CU_ASSERT_FATAL(waitpid(pid, &st, 0) == pid);
