@@ -529,6 +529,18 @@ static void test_mirror_dam_break_runs(void) {
   sph_case_free(&c);
 }
 
+/* Whether the store's ids are a permutation of 0..n-1. */
+static int ids_a_permutation(const sph_particles *p) {
+  char *seen = calloc(p->n, 1);
+  int perm = seen != NULL;
+  for (size_t i = 0; perm && i < p->n; i++) {
+    perm = p->id[i] >= 0 && (size_t)p->id[i] < p->n && !seen[p->id[i]];
+    if (perm) seen[p->id[i]] = 1;
+  }
+  free(seen);
+  return perm;
+}
+
 /* A wall drawn through the fluid (issue 21, D5): the fluid particles closer
  * than dx/2 to a wall particle are not made (doc/case-files.md), the count
  * is reported, and no fluid particle is left that close. */
@@ -548,14 +560,7 @@ static void test_wall_through_fluid(void) {
       if (p->kind[j] == SPH_KIND_WALL)
         dmin = fmin(dmin, hypot(p->x[i] - p->x[j], p->y[i] - p->y[j]));
   CU_ASSERT(dmin >= 0.5 * c.dx);
-  char *seen = calloc(p->n, 1); /* ids renumbered: a permutation of 0..n-1 */
-  int perm = seen != NULL;
-  for (size_t i = 0; perm && i < p->n; i++) {
-    perm = p->id[i] >= 0 && (size_t)p->id[i] < p->n && !seen[p->id[i]];
-    if (perm) seen[p->id[i]] = 1;
-  }
-  CU_ASSERT(perm);
-  free(seen);
+  CU_ASSERT(ids_a_permutation(p)); /* ids renumbered */
   sph_sim_free(s);
   sph_case_free(&c);
   /* the shipped case itself loses none */
@@ -617,14 +622,7 @@ static void test_crossing_walls(void) {
          dmin / c.dx);
   CU_ASSERT(dropped > 0);
   CU_ASSERT(dmin >= 0.5 * c.dx);
-  char *seen = calloc(p->n, 1);
-  int perm = seen != NULL;
-  for (size_t i = 0; perm && i < p->n; i++) {
-    perm = p->id[i] >= 0 && (size_t)p->id[i] < p->n && !seen[p->id[i]];
-    if (perm) seen[p->id[i]] = 1;
-  }
-  CU_ASSERT(perm);
-  free(seen);
+  CU_ASSERT(ids_a_permutation(p));
   sph_sim_free(s);
   sph_case_free(&c);
 }
