@@ -52,9 +52,10 @@ void rcli_usage(FILE *fp) {
         "                          than 4 pixels then grow to cover their particle's cell)\n"
         "  --disc-size METRES      disc diameter when the snapshot has no dx\n"
         "  --smooth                the field as its SPH interpolation on the pixels\n"
-        "                          (Shepard-normalised, blank outside the fluid) instead of\n"
-        "                          particle discs\n"
-        "  --outline               draw the free surface as a line (with or without --smooth)\n"
+        "                          (Shepard-normalised, blank outside the fluid): the default\n"
+        "                          for every field but free_surface and kind\n"
+        "  --outline               draw the free surface as a line (default with --smooth)\n"
+        "  --discs                 particle discs instead (the default for free_surface, kind)\n"
         "  --walls grey|field|none how to draw wall particles (default grey)\n"
         "  --bare                  particles only: no axes, labels or colour bar\n"
         "  --no-colorbar           no colour bar\n"
@@ -218,6 +219,7 @@ static void defaults(roptions *o) {
   o->overlay_tol = 0.0005;
   o->legend = RLEGEND_TOP_LEFT;
   o->samples = RCANVAS_DEFAULT_SAMPLES;
+  o->smooth = o->outline = -1; /* unset: from the field (rcli_parse) */
 }
 
 typedef struct args {
@@ -449,6 +451,8 @@ static int snapshot_option(args *a, roptions *o, int *compare, int *panels, sph_
     o->smooth = 1;
   } else if (is(a, "--outline")) {
     o->outline = 1;
+  } else if (is(a, "--discs")) {
+    o->smooth = 0;
   } else if (is(a, "--bare")) {
     o->bare = 1;
   } else if (is(a, "--no-colorbar")) {
@@ -573,5 +577,11 @@ int rcli_parse(int argc, char **argv, roptions *o, sph_error *err) {
     o->mode = RMODE_COMPARE;
   else if (panels)
     o->mode = RMODE_PANELS;
+  /* the default look of a fluid field in a frame, panel or comparison: its
+   * SPH interpolation with the free surface outlined (issue 39, D10);
+   * flags and kinds stay discs, which --discs asks for anywhere */
+  const int fluid_field = strcmp(o->field, "free_surface") != 0 && strcmp(o->field, "kind") != 0;
+  if (o->smooth < 0) o->smooth = !plot && fluid_field;
+  if (o->outline < 0) o->outline = o->smooth;
   return check(o, err);
 }

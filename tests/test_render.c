@@ -684,7 +684,7 @@ static void oracle_style(const char *map, double lo, double hi, rcolormap *m, rf
 }
 
 static void test_frame_exact(void) {
-  CU_ASSERT_EQUAL_FATAL(render("--size 640x360 --range 0:1 --background 203040 --jobs 1 "
+  CU_ASSERT_EQUAL_FATAL(render("--discs --size 640x360 --range 0:1 --background 203040 --jobs 1 "
                                "--compression 9 run/snap_0001.h5 -o speed.png"),
                         0);
   int w, h;
@@ -772,7 +772,7 @@ static void test_backend_egl(void) {
 #ifdef HAVE_EGL
   /* the surfaceless EGL back end draws the same image as OSMesa (exact on
    * llvmpipe), so it is held to the OSMesa golden image, never written */
-  CU_ASSERT_EQUAL_FATAL(render("--size 640x360 --range 0:1 --background 203040 --jobs 1 "
+  CU_ASSERT_EQUAL_FATAL(render("--discs --size 640x360 --range 0:1 --background 203040 --jobs 1 "
                                "--backend egl run/snap_0001.h5 -o egl.png"),
                         0);
   check_golden(path_in(tmp, "egl.png"), "fixture_speed.png", 0);
@@ -785,7 +785,7 @@ static void test_backend_egl(void) {
 static void test_panels_overlay(void) {
   char args[8192];
   snprintf(args, sizeof args,
-           "--panels 2x1 --field vx --range -1:1 --jobs 1 --compression 9 --size 800 "
+           "--discs --panels 2x1 --field vx --range -1:1 --jobs 1 --compression 9 --size 800 "
            "--overlay '%s' --overlay-time time --overlay-style line --overlay-label reference "
            "run -o panels.png",
            sph_test_src("tests/data/render/overlay.csv"));
@@ -960,13 +960,13 @@ static void test_antialias(void) {
   CU_ASSERT_EQUAL_FATAL(mkdir(dir, 0777), 0);
   /* 240 px over 0.24 m: 1000 px/m; d = 0.00108 m is 1.08 px */
   CU_ASSERT_EQUAL_FATAL(write_lattice(lat, 0.00108, 222, 129), 0);
-  CU_ASSERT_EQUAL_FATAL(render("--bare --size 240x140 --range 0:1 --samples 1 --disc-scale 1 "
-                               "--jobs 1 lattice/snap_0000.h5 -o aliased.png"),
+  CU_ASSERT_EQUAL_FATAL(render("--discs --bare --size 240x140 --range 0:1 --samples 1 "
+                               "--disc-scale 1 --jobs 1 lattice/snap_0000.h5 -o aliased.png"),
                         0);
-  CU_ASSERT_EQUAL_FATAL(render("--bare --size 240x140 --range 0:1 --jobs 1 "
+  CU_ASSERT_EQUAL_FATAL(render("--discs --bare --size 240x140 --range 0:1 --jobs 1 "
                                "lattice/snap_0000.h5 -o smooth.png"),
                         0);
-  CU_ASSERT_EQUAL_FATAL(render("--bare --size 240x140 --range 0:1 --jobs 2 "
+  CU_ASSERT_EQUAL_FATAL(render("--discs --bare --size 240x140 --range 0:1 --jobs 2 "
                                "lattice/snap_0000.h5 -o smooth2.png"),
                         0);
   CU_ASSERT_TRUE(same_bytes(path_in(tmp, "smooth.png"), path_in(tmp, "smooth2.png")));
@@ -984,6 +984,27 @@ static void test_antialias(void) {
   CU_ASSERT(mb < 0.5);
   free(a);
   free(b);
+}
+
+/* The default look (issue 39, D10): a fluid field is drawn as its SPH
+ * interpolation with the free surface outlined (the bytes of --smooth
+ * --outline), a flag or kind field as discs (the bytes of --discs), and
+ * --discs gives the discs of a fluid field. */
+static void test_default_look(void) {
+  const char *base = "--size 320x180 --range 0:1 --jobs 1 run/snap_0001.h5 -o ";
+  char cmd[1024];
+  const char *variants[][2] = {{"", "look_default.png"},
+                               {"--smooth --outline ", "look_smooth.png"},
+                               {"--discs ", "look_discs.png"},
+                               {"--field kind ", "look_kind.png"},
+                               {"--field kind --discs ", "look_kind_discs.png"}};
+  for (int k = 0; k < 5; k++) {
+    snprintf(cmd, sizeof cmd, "%s%s%s", variants[k][0], base, variants[k][1]);
+    CU_ASSERT_EQUAL_FATAL(render(cmd), 0);
+  }
+  CU_ASSERT_TRUE(same_bytes(path_in(tmp, "look_default.png"), path_in(tmp, "look_smooth.png")));
+  CU_ASSERT_FALSE(same_bytes(path_in(tmp, "look_default.png"), path_in(tmp, "look_discs.png")));
+  CU_ASSERT_TRUE(same_bytes(path_in(tmp, "look_kind.png"), path_in(tmp, "look_kind_discs.png")));
 }
 
 /* The interpolated view (--smooth) of the fixture at t = 0, whose vx is
@@ -1219,6 +1240,7 @@ int main(void) {
       {"plot mode, golden", test_plot},
       {"plot mode, logarithmic axes", test_plot_log},
       {"anti-aliasing: no moire", test_antialias},
+      {"the default look: a fluid field smooth and outlined, flags as discs", test_default_look},
       {"interpolated view and outline", test_smooth},
       {"plots as SVG and PDF", test_vector_plot},
       {"output names and extensions", test_output_names},
