@@ -95,17 +95,31 @@ fail:
   return sph_error_set(err, "%s/probes.csv: write failed: %s", o->dir, strerror(errno));
 }
 
+/* The smallest k >= 1 with k * interval > t (interval > 0, t >= 0 finite,
+ * as the restart checks): found from t / interval and corrected by a step
+ * or two, the same k the count from 1 up gives, without counting to a time
+ * far past the first multiples (a restart late in a run; issue 39, D3).
+ * The output times and the probe rows both take their next index here. */
+static long first_multiple_after(double interval, double t) {
+  const double q = floor(t / interval);
+  long k = q < 1.0 ? 1 : q < 1e15 ? (long)q : (long)1e15;
+  while (k > 1 && (double)(k - 1) * interval > t)
+    k--;
+  while ((double)k * interval <= t)
+    k++;
+  return k;
+}
+
 /* After a step: the probes' row when one is due (every step with interval
- * 0, else at the first step ending at or past k * interval, k counted in
- * integers so that no row is merged or skipped), then the next k. */
+ * 0, else at the step that ends on k * interval, where the run lands one;
+ * k counted in integers so that no row is merged or skipped), then the
+ * next k. */
 static int probe_step(sph_sim *s, outputs *o, sph_error *err) {
   if (!o->probes) return 0;
   const double iv = sph_sim_case(s)->probe_interval, t = sph_sim_time(s);
   if (iv > 0.0 && t < (double)o->probe_k * iv) return 0;
   if (write_probes(s, o, err)) return -1;
-  if (iv > 0.0)
-    while ((double)o->probe_k * iv <= t)
-      o->probe_k++;
+  if (iv > 0.0) o->probe_k = first_multiple_after(iv, t);
   return 0;
 }
 
@@ -321,9 +335,10 @@ static int open_outputs(sph_sim *s, outputs *out, const sph_snapshot_restart_dat
      * already has it */
     const double iv = c->probe_interval, t = sph_sim_time(s);
     out->probe_k = 0;
-    if (iv > 0.0)
-      while ((double)out->probe_k * iv < t || (rd && kept_probes && (double)out->probe_k * iv == t))
-        out->probe_k++;
+    if (iv > 0.0) {
+      out->probe_k = first_multiple_after(iv, t); /* the first past t */
+      if (!(rd && kept_probes) && (double)(out->probe_k - 1) * iv == t) out->probe_k--; /* t's */
+    }
   }
   if (rd) {
     /* a file that lacks the restart time's row gets it */
@@ -332,20 +347,6 @@ static int open_outputs(sph_sim *s, outputs *out, const sph_snapshot_restart_dat
     if (c->snapshots && list_earlier(out, (size_t)rd->output_index, err)) return -1;
   }
   return 0;
-}
-
-/* The smallest k >= 1 with k * interval > t (interval > 0, t finite and
- * below time.end, as the restart checks): found from t / interval and
- * corrected by a step or two, the same k the count from 1 up gives,
- * without counting to a time far past the first outputs. */
-static long first_multiple_after(double interval, double t) {
-  const double q = floor(t / interval);
-  long k = q < 1.0 ? 1 : q < 1e15 ? (long)q : (long)1e15;
-  while (k > 1 && (double)(k - 1) * interval > t)
-    k--;
-  while ((double)k * interval <= t)
-    k++;
-  return k;
 }
 
 int sph_run(sph_sim *s, const sph_run_options *o, sph_run_result *r, sph_error *err) {
@@ -429,9 +430,7 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
     if (probe_step(s, &out, err)) goto io_error;
     const int at_output = sph_sim_time(s) == next;
     if (at_output) {
-      if (c->output_interval > 0.0)
-        while ((double)k * c->output_interval <= next + same)
-          k++;
+      if (c->output_interval > 0.0) k = first_multiple_after(c->output_interval, next + same);
       while (j < c->n_output_times && c->output_times[j] <= next + same)
         j++;
       if (write_output(s, &out, r, err)) goto io_error;
