@@ -25,6 +25,7 @@
 
 #include "case/case.h"
 #include "case/choices.h"
+#include "case/domain.h"
 #include "case/yaml_tree.h"
 
 #include "physics/density_diffusion.h"
@@ -839,16 +840,11 @@ int sph_case_check_size(const sph_case *c, double max, sph_error *err) {
                                                      : "half this machine's memory");
 }
 
-/* The domain the water can reach, from the case alone: geometry.domain,
- * else the box of the tank's inner faces, the walls and the fluid blocks,
- * widened as the run widens its particles' box (solver/setup.c,
- * doc/case-files.md's geometry.domain); the probes and gauges must lie in
- * it (issue 39, D6). */
+/* The domain the water can reach, from the case alone: the domain the run
+ * takes (domain.h) around the box of the tank's inner faces, the walls and
+ * the fluid blocks instead of the particles'; the probes and gauges must
+ * lie in it (issue 39, D6). */
 static void reach_box(const sph_case *c, double box[4]) {
-  if (c->domain_set) {
-    memcpy(box, c->domain, 4 * sizeof *box);
-    return;
-  }
   double bb[4] = {INFINITY, -INFINITY, INFINITY, -INFINITY};
 #define GROW(xa, xb, ya, yb)                                                                       \
   do {                                                                                             \
@@ -863,20 +859,7 @@ static void reach_box(const sph_case *c, double box[4]) {
   for (size_t i = 0; i < c->n_fluid; i++)
     GROW(c->fluid[i].x0, c->fluid[i].x1, c->fluid[i].y0, c->fluid[i].y1);
 #undef GROW
-  const double w = bb[1] - bb[0], hgt = bb[3] - bb[2];
-  if (c->periodic) {
-    const double L = c->periodic_x[1] - c->periodic_x[0];
-    box[0] = c->periodic_x[0] - L;
-    box[1] = c->periodic_x[1] + L;
-    box[2] = bb[2] - hgt - 4.0 * c->h;
-    box[3] = bb[3] + 2.0 * hgt + 4.0 * c->h;
-  } else {
-    const double m = 0.5 * (w > hgt ? w : hgt) + 4.0 * c->h;
-    box[0] = bb[0] - m;
-    box[1] = bb[1] + m;
-    box[2] = bb[2] - m;
-    box[3] = bb[3] + 2.0 * hgt + m;
-  }
+  sph_case_domain_around(c, bb, box);
 }
 
 /* A probe's or gauge's place outside box (the node t at key k): the error. */

@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "case/domain.h"
 #include "physics/eos.h"
 #include "physics/kernel.h"
 #include "solver/diffusion.h"
@@ -253,24 +254,7 @@ static void set_boxes(sph_sim *s) {
     for (size_t b = 0; b < c->n_fluid; b++)
       if (c->fluid[b].y0 < s->floor_y) s->floor_y = c->fluid[b].y0;
   }
-  if (c->domain_set) {
-    memcpy(s->domain, c->domain, sizeof s->domain);
-  } else if (c->periodic) { /* x wraps: only a runaway beyond a period is an error */
-    const double L = c->periodic_x[1] - c->periodic_x[0], hgt = bb[3] - bb[2];
-    s->domain[0] = c->periodic_x[0] - L;
-    s->domain[1] = c->periodic_x[1] + L;
-    s->domain[2] = bb[2] - hgt - 4.0 * c->h;
-    s->domain[3] = bb[3] + 2.0 * hgt + 4.0 * c->h;
-  } else {
-    /* the particles' box, widened by half its size sideways and below, and
-     * by twice its height above (splashes rise, nothing should fall far) */
-    const double w = bb[1] - bb[0], hgt = bb[3] - bb[2];
-    const double m = 0.5 * (w > hgt ? w : hgt) + 4.0 * c->h;
-    s->domain[0] = bb[0] - m;
-    s->domain[1] = bb[1] + m;
-    s->domain[2] = bb[2] - m;
-    s->domain[3] = bb[3] + 2.0 * hgt + m;
-  }
+  sph_case_domain_around(c, bb, s->domain);
 }
 
 int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
