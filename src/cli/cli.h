@@ -81,6 +81,12 @@ int sph_cli_dir_lock(const char *dir, sph_cli_lock *lk, long *holder);
 void sph_cli_dir_unlock(sph_cli_lock *lk);
 /* The pid of the process holding DIR's lock, or 0; creates nothing. */
 long sph_cli_dir_holder(const char *dir);
+/* "CMD: output directory DIR is in use by another run (pid HOLDER); ..."
+ * on stderr; 1 (the exit status). */
+int sph_cli_dir_busy(const char *cmd, const char *dir, long holder);
+/* sph_cli_dir_lock with its failures said on stderr as CMD's: 0 held, 1
+ * not (the exit status). */
+int sph_cli_dir_take(const char *cmd, const char *dir, sph_cli_lock *lk);
 
 /* The case CASE names on the command line (case_lookup.c): CASE itself if
  * it is a file; else, for a bare name (no '/'), NAME.yaml (or NAME) in the

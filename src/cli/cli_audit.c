@@ -551,21 +551,10 @@ int sph_cli_audit(int argc, char **argv) {
       a.outdir = defdir;
     }
     sph_cli_lock lock = {-1, {0}};
-    long holder = 0;
-    int locked = -1;
     if (sph_cli_make_dirs(a.outdir)) {
       fprintf(stderr, "sph audit: cannot create %s: %s\n", a.outdir, strerror(errno));
       status = 1;
-    } else if ((locked = sph_cli_dir_lock(a.outdir, &lock, &holder)) != 0) {
-      /* one run per directory, as sph run (outdir_lock.c) */
-      if (locked == 1)
-        fprintf(stderr,
-                "sph audit: output directory %s is in use by another run (pid %ld); wait for it "
-                "to end or choose another with -o\n",
-                a.outdir, holder);
-      else
-        fprintf(stderr, "sph audit: cannot lock output directory %s: %s\n", a.outdir,
-                strerror(errno));
+    } else if (sph_cli_dir_take("sph audit", a.outdir, &lock)) { /* one run per directory */
       status = 1;
     } else {
       static reference ref; /* large: not on the stack */

@@ -257,15 +257,6 @@ static const char *signal_name(int sig) {
   return sig == SIGTERM ? "SIGTERM" : sig == SIGHUP ? "SIGHUP" : "SIGINT";
 }
 
-/* A run already writing into dir: says so; 1. */
-static int dir_in_use(const char *dir, long holder) {
-  fprintf(stderr,
-          "sph run: output directory %s is in use by another run (pid %ld); wait for it to end "
-          "or choose another with -o\n",
-          dir, holder);
-  return 1;
-}
-
 /* The message of how the run ended; its exit status. */
 static int report_end(const sph_run_result *r, const sph_sim *s, const sph_error *err,
                       const char *outdir) {
@@ -368,10 +359,10 @@ int sph_cli_run(int argc, char **argv) {
   sph_sim *s = NULL;
   sph_snapshot_restart_data rd;
   sph_cli_lock lock = {-1, {0}};
-  long holder = sph_cli_dir_holder(a.outdir); /* at once, before the set-up */
+  const long holder = sph_cli_dir_holder(a.outdir); /* at once, before the set-up */
   if (holder) {
     sph_case_free(&c);
-    return dir_in_use(a.outdir, holder);
+    return sph_cli_dir_busy("sph run", a.outdir, holder);
   }
   status = 1;
   if (!a.quiet) print_plan(&a, &c);
@@ -389,12 +380,7 @@ int sph_cli_run(int argc, char **argv) {
     fprintf(stderr, "sph run: cannot create output directory %s: %s\n", a.outdir, strerror(errno));
     if (a.restart) sph_snapshot_restart_free(&rd);
   } else {
-    const int locked = sph_cli_dir_lock(a.outdir, &lock, &holder);
-    if (locked == 1)
-      status = dir_in_use(a.outdir, holder);
-    else if (locked)
-      fprintf(stderr, "sph run: cannot lock output directory %s: %s\n", a.outdir, strerror(errno));
-    else {
+    if (sph_cli_dir_take("sph run", a.outdir, &lock) == 0) {
       if (!a.quiet) print_banner(&a, &c, s, nthreads);
       status = run_sim(&a, &c, s, &rd);
     }

@@ -95,3 +95,22 @@ void sph_cli_dir_unlock(sph_cli_lock *lk) {
   close(lk->fd);
   lk->fd = -1;
 }
+
+int sph_cli_dir_busy(const char *cmd, const char *dir, long holder) {
+  fprintf(stderr,
+          "%s: output directory %s is in use by another run (pid %ld); wait for it to end or "
+          "choose another with -o\n",
+          cmd, dir, holder);
+  return 1;
+}
+
+int sph_cli_dir_take(const char *cmd, const char *dir, sph_cli_lock *lk) {
+  long holder = 0;
+  const int rc = sph_cli_dir_lock(dir, lk, &holder);
+  if (rc == 1) return sph_cli_dir_busy(cmd, dir, holder);
+  if (rc) {
+    fprintf(stderr, "%s: cannot lock output directory %s: %s\n", cmd, dir, strerror(errno));
+    return 1;
+  }
+  return 0;
+}
