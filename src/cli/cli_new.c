@@ -6,14 +6,16 @@
  * cases/martin_moyce_coarse.yaml, a = 0.05715 m, dx = a/20) that runs as
  * written in a few seconds, with every key of the case schema
  * (doc/case-files.md) either set or shown commented out with its default
- * and its range. tests/check_new holds it to that: the file runs, and
- * every key the schema tables of doc/case-files.md list appears in it.
+ * and its range. The case reader parses the text before it is written (the
+ * name's rule is its). tests/check_new holds it to that: the file runs,
+ * and every key the schema tables of doc/case-files.md list appears in it.
  */
 #include "config.h"
 
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -149,17 +151,13 @@ static void new_usage(FILE *f) {
              "  -o, --output FILE  where to write it (default NAME.yaml)\n");
 }
 
-/* Whether name is a case name: 1 to 64 characters from [A-Za-z0-9_.-]. */
-static int valid_name(const char *name) {
-  const size_t n = strlen(name);
-  if (n == 0 || n > 64) return 0;
-  for (size_t i = 0; i < n; i++) {
-    const char c = name[i];
-    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
-          c == '.' || c == '-'))
-      return 0;
-  }
-  return 1;
+/* The case file for name: its name line, then TEMPLATE; NULL if out of
+ * memory. */
+static char *case_text(const char *name) {
+  const size_t n = strlen("name: \n") + strlen(name) + strlen(TEMPLATE) + 1;
+  char *text = malloc(n);
+  if (text) snprintf(text, n, "name: %s\n%s", name, TEMPLATE);
+  return text;
 }
 
 int sph_cli_new(int argc, char **argv) {
@@ -190,32 +188,46 @@ int sph_cli_new(int argc, char **argv) {
     new_usage(stderr);
     return 2;
   }
-  if (!valid_name(name)) {
-    fprintf(stderr, "sph new: NAME: expected 1 to 64 characters from [A-Za-z0-9_.-], got '%s'\n",
-            name);
-    return 2;
-  }
   char path[4200];
   if (!out) {
     snprintf(path, sizeof path, "%s.yaml", name);
     out = path;
+  }
+  /* the case reader checks what is written, the name's rule included */
+  char *text = case_text(name);
+  if (!text) {
+    fprintf(stderr, "sph new: out of memory\n");
+    return 1;
+  }
+  sph_case c;
+  sph_error err;
+  int rc = sph_case_parse(text, strlen(text), out, NULL, 0, &c, &err);
+  if (rc == 0 && strcmp(c.name, name) != 0)
+    rc = sph_error_set(&err, "%s: NAME '%s' reads as the name '%s': not a case name", out, name,
+                       c.name);
+  sph_case_free(&c);
+  if (rc) {
+    fprintf(stderr, "sph new: %s\n", err.msg);
+    free(text);
+    return 2;
   }
   /* never over an existing file: O_EXCL */
   const int fd = open(out, O_WRONLY | O_CREAT | O_EXCL, 0644);
   if (fd < 0) {
     fprintf(stderr, "sph new: cannot create %s: %s\n", out,
             errno == EEXIST ? "it exists (choose another name or -o FILE)" : strerror(errno));
+    free(text);
     return 1;
   }
   FILE *f = fdopen(fd, "w");
   int bad = f == NULL;
   if (f) {
-    bad |= fprintf(f, "name: %s\n", name) < 0;
-    bad |= fputs(TEMPLATE, f) < 0;
+    bad |= fputs(text, f) < 0;
     bad |= fclose(f) != 0;
   } else {
     close(fd);
   }
+  free(text);
   if (bad) {
     fprintf(stderr, "sph new: cannot write %s: %s\n", out, strerror(errno));
     unlink(out);
