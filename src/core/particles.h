@@ -59,22 +59,17 @@ enum { SPH_AXIS_X = 0, SPH_AXIS_Y = 1 };
 
 /* A per-axis field: names a and b for the axes, arr[axis] for both (an
  * anonymous union, C11 and a GNU C99 extension; __extension__ keeps
- * -pedantic quiet). */
+ * -pedantic quiet where the compiler has it). */
 #if defined(__GNUC__)
-#define SPH_AXES(arr, a, b)                                                                        \
-  __extension__ union {                                                                            \
-    __extension__ struct { double *a, *b; };                                                       \
-    double *arr[SPH_STORE_DIM];                                                                    \
-  }
+#define SPH_ANONYMOUS __extension__
 #else
+#define SPH_ANONYMOUS
+#endif
 #define SPH_AXES(arr, a, b)                                                                        \
-  union {                                                                                          \
-    struct {                                                                                       \
-      double *a, *b;                                                                               \
-    };                                                                                             \
+  SPH_ANONYMOUS union {                                                                            \
+    SPH_ANONYMOUS struct { double *a, *b; };                                                       \
     double *arr[SPH_STORE_DIM];                                                                    \
   }
-#endif
 
 typedef struct sph_particles {
   size_t n;      /* particles in use */
