@@ -91,7 +91,7 @@ static const char *const TOP_KEYS =
     "name, description, physics, numerics, time, geometry, free_surface, output";
 static const char *const PHYSICS_KEYS =
     "rho0, gravity, body_force, sound_speed, artificial_viscosity, viscosity, turbulence, "
-    "repulsion, xsph";
+    "repulsion, xsph, riemann";
 
 /* MINIMAL with line `line` (1-based) replaced by `repl` (which may hold
  * several lines, or be "" to delete it). Returns one of two static buffers. */
@@ -847,6 +847,35 @@ static void test_describe(void) {
   sph_case_free(&a);
 }
 
+/* physics.riemann: off by default, on with its mapping (the default limiter 3),
+ * the limiter checked, and in the description only when on. */
+static void test_riemann(void) {
+  sph_case c;
+  expect_ok(MINIMAL, NULL, 0, &c);
+  CU_ASSERT_EQUAL(c.riemann, 0);
+  char *d = sph_case_describe(&c);
+  CU_ASSERT_PTR_NULL(strstr(d, "riemann"));
+  free(d);
+  sph_case_free(&c);
+  expect_ok(edit(MINIMAL, 3, "  sound_speed: 20\n  riemann: {}\n"), NULL, 0, &c);
+  CU_ASSERT_EQUAL(c.riemann, 1);
+  CU_ASSERT_EQUAL(c.riemann_limiter, 3.0);
+  sph_case_free(&c);
+  const char *set[] = {"physics.riemann.limiter=1.5"};
+  expect_ok(MINIMAL, set, 1, &c);
+  CU_ASSERT_EQUAL(c.riemann, 1);
+  CU_ASSERT_EQUAL(c.riemann_limiter, 1.5);
+  d = sph_case_describe(&c);
+  CU_ASSERT_PTR_NOT_NULL(strstr(d, "\nphysics.riemann.limiter: 1.5\n"));
+  free(d);
+  sph_case_free(&c);
+  expect_err(edit(MINIMAL, 3, "  sound_speed: 20\n  riemann: {limiter: -1}\n"),
+             "t.yaml:4: physics.riemann.limiter: expected a number >= 0, got '-1'");
+  expect_err(
+      edit(MINIMAL, 3, "  sound_speed: 20\n  riemann: {eta: 1}\n"),
+      "t.yaml:4: physics.riemann.eta: unknown key (valid keys in 'physics.riemann': limiter)");
+}
+
 static void test_names(void) {
   CU_ASSERT_STRING_EQUAL(sph_kernel_name(SPH_KERNEL_CUBIC_SPLINE), "cubic_spline");
   CU_ASSERT_STRING_EQUAL(sph_integrator_name(SPH_INTEGRATOR_PREDICTOR_CORRECTOR),
@@ -882,6 +911,7 @@ int main(void) {
                          {"--set errors", test_set_errors},
                          {"free after failure", test_free_after_failure},
                          {"describe", test_describe},
+                         {"physics.riemann", test_riemann},
                          {"choice names", test_names},
                          CU_TEST_INFO_NULL};
   return sph_test_main("case", tests);

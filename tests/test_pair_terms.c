@@ -3,9 +3,10 @@
  * test_pair_terms.c - the pair terms are written once and every loop that
  * sums them agrees (src/physics/pair_terms.h, src/solver/interact.h).
  *
- * 1. Oracle: for each of the 256 term sets F (artificial viscosity, XSPH,
+ * 1. Oracle: for each of the 512 term sets F (artificial viscosity, XSPH,
  *    stress tensor, Morris, periodic, per-particle h, energy ledger,
  *    density diffusion: Molteni-Colagrossi, Antuono, Fourtakas by set;
+ *    the Riemann-solver pressure and continuity term;
  *    the cubic spline and the Wendland C2 kernel alternating) and
  *    three random particle sets (fluid on a jittered lattice with random
  *    velocities and densities; dynamic, moving, repulsive and mirror wall
@@ -130,6 +131,7 @@ static void params_for(unsigned F, unsigned seed, sph_force_params *fp) {
   if (F & 32) fp->var_h = 1;
   if (F & 64) fp->ledger = 1;
   if (F & 128) fp->diffusion = DIFFUSION[seed % 3], fp->diffusion_delta = 0.1;
+  if (F & 256) fp->riemann = 1, fp->riemann_limiter = 3.0;
   /* the kernel alternates with the set: both in every term set */
   fp->kernel = ((F + seed) & 1) ? SPH_KERNEL_WENDLAND_C2 : SPH_KERNEL_CUBIC_SPLINE;
   fp->repulsive = 1;
@@ -301,6 +303,12 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
         const double rji_gw = -(dx * gx + dy * gy); /* r_ji . grad_i W_ij */
         drho += fp->diffusion_delta * hij * fp->eos.c0 * psi * rji_gw / (r * r) * mj / rhoj;
       }
+      /* the Riemann scheme's continuity term (pair_terms.h), between fluid particles */
+      if (fp->riemann && fluid && p->kind[j] == SPH_KIND_FLUID) {
+        const double jump = (p->p[i] - p->p[j]) - fp->eos.rho0 * (fp->gx * dx + fp->gy * dy);
+        const double dwdr = (gx * dx + gy * dy) / r;
+        drho += rhoi * mj / rhoj * jump * dwdr / (fp->eos.rho0 * fp->eos.c0);
+      }
       if (!fluid && !(fp->ledger && p->kind[j] == SPH_KIND_FLUID)) continue;
       /* a mirror particle's no-slip velocity in the viscous terms */
       const int img = fp->mirror && p->kind[j] == SPH_KIND_MIRROR;
@@ -312,6 +320,13 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
           fp->free_slip && p->kind[b] == SPH_KIND_WALL && (p->flags[b] & SPH_FLAG_FREE_SLIP);
       const double ur = slip ? uy * dy : ux * dx + uy * dy;
       double P = p->p[i] / (rhoi * rhoi) + p->p[j] / (rhoj * rhoj);
+      if (fp->riemann) { /* Zhang et al. 2017: the interface pressure, the closing speed along
+                          * the line of centres (a wall with a normal: the normal one) */
+        const int nrm = p->kind[b] == SPH_KIND_WALL && (p->flags[b] & SPH_WALL_NORMAL);
+        const double closing = -(nrm ? vy * dy : vr) / r, c0 = fp->eos.c0;
+        const double beta = fmin(fp->riemann_limiter * fmax(closing, 0.0) / c0, 1.0);
+        P = (p->p[i] + p->p[j] + beta * fp->eos.rho0 * c0 * closing) / (rhoi * rhoj);
+      }
       if ((fp->alpha != 0 || fp->beta != 0) && ur < 0) { /* A eq. 15-16 */
         const double eta = fp->eta * hij, mu = hij * ur / (r * r + eta * eta);
         const double cbar = 0.5 * (ci + sph_eos_sound_speed(&fp->eos, rhoj));
@@ -478,7 +493,7 @@ static void test_oracle_every_term_set(void) {
   if (!avx512) printf("\n  (no AVX-512F on this processor: the eight-lane loop is not compared)");
   double worst[4] = {0, 0, 0, 0}; /* scalar, lanes, avx, avx512 against the oracle */
   unsigned bad = 0;
-  for (unsigned F = 0; F < 256; F++)
+  for (unsigned F = 0; F < 512; F++)
     for (unsigned seed = 0; seed < 3; seed++) {
       sph_force_params fp;
       params_for(F, seed, &fp);
@@ -536,7 +551,7 @@ static void test_oracle_every_term_set(void) {
       rates_free(&o);
       sph_particles_free(&p);
     }
-  printf("\n  256 term sets x 3 sets (density diffusion: the three models by set): worst relative "
+  printf("\n  512 term sets x 3 sets (density diffusion: the three models by set): worst relative "
          "difference from the all-pairs oracle: "
          "scalar %.2e, lanes %.2e, AVX2 lanes %.2e, AVX-512 lanes %.2e (tolerance %.0e)",
          worst[0], worst[1], worst[2], worst[3], TOL);
@@ -700,6 +715,24 @@ static void test_pair_symmetry(void) {
         CU_ASSERT(fabs(slope + force) <= 1e-5 * fabs(force) + 1e-9);
       }
     }
+    { /* the Riemann pressure: symmetric; dissipative only for a closing pair, and then
+       * quadratic in the closing speed below c0 / eta (Zhang et al. 2017) */
+      const double z0 = 1000.0 * 20.0, kc = 3.0 / 20.0, pi_ = s[4] * 1e4, pj_ = s[5] * 1e4;
+      const double cl = -vr * inv_r, cm = -ur * inv_r;
+      const double P = riemann_pressure_v1(pi_, pj_, rhoi, rhoj, cl, z0, kc);
+      CU_ASSERT(same(P, riemann_pressure_v1(pj_, pi_, rhoj, rhoi, cm, z0, kc)));
+      const double central = (pi_ + pj_) / (rhoi * rhoj), extra = P - central;
+      if (cl <= 0) CU_ASSERT(extra == 0.0);
+      if (cl > 0)
+        CU_ASSERT(fabs(extra - 3.0 * 1000.0 * cl * cl / (rhoi * rhoj)) <=
+                  1e-9 * fabs(central) + 1e-12 * extra);
+      /* its continuity term: antisymmetric where the densities are equal, zero for a
+       * hydrostatic jump */
+      const double d = riemann_density_v1(rhoi, m, rhoi, pi_ - pj_, f, r, 1 / z0);
+      CU_ASSERT(same(d, -riemann_density_v1(rhoi, m, rhoi, pj_ - pi_, f, r, 1 / z0)));
+      CU_ASSERT(riemann_density_v1(rhoi, m, rhoj, 0.0, f, r, 1 / z0) == 0.0);
+      if (pi_ > pj_) CU_ASSERT(d < 0); /* density moves down the jump */
+    }
     const double ccx = s[0] * 1e3, ccy = s[1] * 1e3; /* c_i + c_j of the diffusion */
     const vec_v1 cc = {{ccx, ccy}};
     const double psi = diffusion_psi_v1(rhoi, rhoj, rv, cc);
@@ -728,6 +761,13 @@ static void test_pair_symmetry(void) {
                         V42(gx, gy)));
     LANES_AGREE(diffusion_psi_v1(S(rhoi), S(rhoj), S2(dx, dy), S2(ccx, ccy)),
                 diffusion_psi_v4e(V4(rhoi), V4(rhoj), V42(dx, dy), V42(ccx, ccy)));
+    LANES_AGREE(riemann_pressure_v1(S(s[4] * 1e4), S(s[5] * 1e4), S(rhoi), S(rhoj), S(-vr * inv_r),
+                                    2e4, 0.15),
+                riemann_pressure_v4e(V4(s[4] * 1e4), V4(s[5] * 1e4), V4(rhoi), V4(rhoj),
+                                     V4(-vr * inv_r), v4e_all(2e4), v4e_all(0.15)));
+    LANES_AGREE(riemann_density_v1(S(rhoi), S(m), S(rhoj), S(s[4] * 1e4), S(f), S(r), 5e-5),
+                riemann_density_v4e(V4(rhoi), V4(m), V4(rhoj), V4(s[4] * 1e4), V4(f), V4(r),
+                                    v4e_all(5e-5)));
     LANES_AGREE(diffusion_v1(S(psi), S(f), S(m), S(rhoj)),
                 diffusion_v4e(V4(psi), V4(f), V4(m), V4(rhoj)));
     { /* the Wendland kernel at four radii */

@@ -107,9 +107,11 @@ static const char *const fs_keys[] = {"radius_factor", "h_factor", NULL};
 static const char *const laminar_keys[] = {"model", "mu", "gradient_correction", NULL};
 static const char *const physics_keys[] = {
     "rho0",      "gravity",    "body_force", "sound_speed", "artificial_viscosity",
-    "viscosity", "turbulence", "repulsion",  "xsph",        NULL};
+    "viscosity", "turbulence", "repulsion",  "xsph",        "riemann",
+    NULL};
 static const char *const c0_keys[] = {"factor", "height", "speed", NULL};
 static const char *const visc_keys[] = {"alpha", "beta", "eta", NULL};
+static const char *const riemann_keys[] = {"limiter", NULL};
 static const char *const numerics_keys[] = {
     "dx",        "h_factor",       "kernel",        "integrator",        "smoothing_length",
     "time_step", "density_filter", "density_limit", "density_diffusion", "shifting",
@@ -151,6 +153,8 @@ static void set_defaults(sph_case *c) {
   c->beta = 0.0;
   c->eta = 0.1;
   c->xsph = 0.0;
+  c->riemann = 0;
+  c->riemann_limiter = 3.0;
   c->h_factor = 1.3;
   c->kernel = SPH_KERNEL_CUBIC_SPLINE;
   c->integrator = SPH_INTEGRATOR_PREDICTOR_CORRECTOR;
@@ -299,6 +303,14 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
     if (sph_yaml_get_number(&x->t, v, vp, "alpha", 0, &SPH_YAML_NONNEG, &c->alpha) < 0) return -1;
     if (sph_yaml_get_number(&x->t, v, vp, "beta", 0, &SPH_YAML_NONNEG, &c->beta) < 0) return -1;
     if (sph_yaml_get_number(&x->t, v, vp, "eta", 0, &SPH_YAML_POS, &c->eta) < 0) return -1;
+  }
+  rc = sph_yaml_get_section(&x->t, m, p, "riemann", 0, riemann_keys, &v);
+  if (rc < 0) return -1;
+  if (rc > 0) {
+    c->riemann = 1;
+    if (sph_yaml_get_number(&x->t, v, "physics.riemann", "limiter", 0, &SPH_YAML_NONNEG,
+                            &c->riemann_limiter) < 0)
+      return -1;
   }
   return sph_yaml_get_number(&x->t, m, p, "xsph", 0, &SPH_YAML_UNIT, &c->xsph) < 0 ? -1 : 0;
 }

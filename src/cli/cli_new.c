@@ -50,6 +50,8 @@ static const char *const TEMPLATE =
     "    # ci: 0.00066            # sps: C_I, >= 0 (default 0.00066)\n"
     "  # repulsion: 5.6           # repulsive walls' D (J/kg), > 0 (default 5 |g| H)\n"
     "  xsph: 0.5                  # XSPH epsilon, [0, 1] (default 0: off)\n"
+    "  # riemann:                 # Riemann-solver pressure, Zhang et al. 2017 (default off)\n"
+    "  #   limiter: 3             # its dissipation limiter, >= 0 (default 3)\n"
     "\n"
     "numerics:\n"
     "  dx: 0.0028575              # m, > 0, smaller than every fluid block (required)\n"

@@ -36,6 +36,9 @@ enum {
   SPH_FLAG_FREE_SLIP = 16 /* a wall particle of a free-slip wall: its pressure and artificial-
                              viscosity pair forces act along the wall's normal (pair_terms.h) */
 };
+/* The flags of wall particles that carry their mirror offset (mx, my: twice their depth along
+ * the wall's normal, boundary.h). */
+#define SPH_WALL_NORMAL (SPH_FLAG_NO_SLIP | SPH_FLAG_MDBC | SPH_FLAG_FREE_SLIP)
 
 /* Groups of arrays a case may not use (doc/memory.md). Until a group is
  * live its arrays hold zeros, nothing writes them, and they are neither

@@ -175,6 +175,37 @@ PT_ATTR T PT(artificial_viscosity)(T vdotr, T hij, T r2, T eta2, T ci, T cj, T n
   return MUL(ADD(MUL(MUL(nalpha, cbar), mu), MUL(MUL(beta, mu), mu)), inv_rb);
 }
 
+/* The pressure term of the Riemann-solver scheme, Zhang, Hu & Adams (2017)
+ * (ZH17 in doc/method.md): the pair's interface pressure from the
+ * linearised (acoustic) Riemann problem along the line of centres,
+ *   p* = (p_i + p_j)/2 + 1/2 beta rho0 c0 dU,  beta = min(eta max(dU, 0)/c0, 1),
+ * dU = U_L - U_R = -v_ij . r_ij / r the speed at which the pair closes
+ * (positive approaching), as the momentum equation's pair factor
+ * P_ij = 2 p* / (rho_i rho_j) of dv_i/dt = -sum_j m_j P_ij grad_i W_ij.
+ * The limiter beta keeps the dissipation to closing pairs and makes it
+ * quadratic in dU below c0/eta (3 rho0 dU^2 / 2 at eta = 3), so that slow
+ * flow sees almost none and an impact the acoustic impedance's; given
+ * z0 = rho0 c0 and kc = eta / c0. Symmetric in the pair (the force
+ * antisymmetric), and its work on the pair is the ledger's heat through
+ * pressure_heat like any P_ij. */
+PT_ATTR T PT(riemann_pressure)(T pi, T pj, T rhoi, T rhoj, T du, T z0, T kc) {
+  const T beta = MIN(MUL(kc, MAX(du, ALL(0.0))), ALL(1.0));
+  return DIV(ADD(ADD(pi, pj), MUL(MUL(beta, z0), du)), MUL(rhoi, rhoj));
+}
+
+/* The continuity term of the Riemann-solver scheme, Zhang, Hu & Adams
+ * (2017): the share of 2 rho_i V_j (v_i - v*) . grad_i W_ij
+ * that the pressure jump puts in the interface velocity v* (its part
+ * (p_i - p_j) / (2 rho0 c0) along the line of centres), with the hydrostatic
+ * jump rho0 g . r_ij taken out, as Fourtakas et al. (2019) take it out of
+ * the density difference, so that water at rest feels none:
+ *   rho_i (m_j / rho_j) [(p_i - p_j) - rho0 g . r_ij] (dW/dr) / (rho0 c0),
+ * given jump = the bracket, f = F_ij (dW/dr = F_ij r) and
+ * inv_z0 = 1 / (rho0 c0). dW/dr < 0: density moves down the jump. */
+PT_ATTR T PT(riemann_density)(T rhoi, T mj, T rhoj, T jump, T f, T r, T inv_z0) {
+  return MUL(DIV(MUL(rhoi, mj), rhoj), MUL(MUL(jump, MUL(f, r)), inv_z0));
+}
+
 /* Pressure (and Pi_ij) force on i per unit mass, paper A eq. (11), paper B
  * eq. (3): -m_j (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) grad_i W_ij, given
  * mp = m_j (prho2_i + prho2_j + Pi_ij). Antisymmetric in the pair. */

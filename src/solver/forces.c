@@ -440,7 +440,7 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
                         sph_force_work *w, const unsigned F, sph_error *err) {
   const long n = (long)p->n;
   if (work_reserve(w, p->n, err)) return -1;
-  const int fm = (F & (F_XSPH | F_LEDGER)) != 0; /* the lane loop reads the fluid masses */
+  const int fm = (F & (F_XSPH | F_LEDGER | F_RIEMANN)) != 0; /* the loops read the fluid masses */
 #pragma omp parallel if (n > SPH_OMP_MIN)
   {
     size_t lo, hi; /* the slices of the interaction loop */

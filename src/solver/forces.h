@@ -133,6 +133,9 @@ typedef struct sph_force_params {
   sph_kernel_kind kernel;       /* the smoothing kernel; default (0) the cubic spline */
   sph_diffusion_kind diffusion; /* density diffusion (physics/density_diffusion.h); NONE = off */
   double diffusion_delta;       /* its delta */
+  int riemann;                  /* Riemann-solver pressure (pair_terms.h, riemann_pressure) in
+                                   place of p_i/rho_i^2 + p_j/rho_j^2 */
+  double riemann_limiter;       /* its limiter eta: beta = min(eta max(dU, 0) / c0, 1) */
 } sph_force_params;
 
 /* The fields a neighbour reads, packed in one cache line per particle

@@ -44,7 +44,8 @@ enum {
   F_PERIODIC = 16, /* minimum image in x */
   F_VARH = 32,     /* per-particle smoothing length */
   F_LEDGER = 64,   /* energy ledger: du/dt and the power of moving walls */
-  F_DDIFF = 128    /* density diffusion (physics/density_diffusion.h) */
+  F_DDIFF = 128,   /* density diffusion (physics/density_diffusion.h) */
+  F_RIEMANN = 256  /* Riemann-solver pressure (Zhang et al. 2017) in place of p/rho^2 */
 };
 
 /* The lane loops serve the term sets without these (the scalar loop runs them). */
@@ -59,7 +60,7 @@ enum {
  *   an axes loop Fc = F_RUNTIME | F_AXES_FIXED | (bits of F_AXES): the
  *                lane loops for every combination of the terms that weigh
  *                most on the loop (the axes: AV, XSPH, the stress,
- *                diffusion), the lighter ones (Morris, the ledger,
+ *                diffusion), the lighter ones (Morris, the Riemann pressure, the ledger,
  *                periodicity) read from the pass's term set (w->terms)
  *                and tested per pair;
  *   run-time     Fc = F_RUNTIME, with or without F_VARH: every bit but
@@ -85,8 +86,8 @@ enum {
  * compiles the run-time loops only: the same body and the same results;
  * what a sanitizer checks is the code, not its speed.
  * Each list entry is V(name, Fc). */
-#define F_RUNTIME 256u    /* not a term: a loop that reads bits at run time */
-#define F_AXES_FIXED 512u /* not a term: with F_RUNTIME, the axes are literals */
+#define F_RUNTIME 1024u    /* not a term: a loop that reads bits at run time */
+#define F_AXES_FIXED 2048u /* not a term: with F_RUNTIME, the axes are literals */
 #define F_AXES (F_AV | F_XSPH | F_STRESS | F_DDIFF)
 
 #define AXES_BITS(k)                                                                               \
@@ -123,7 +124,9 @@ enum {
 
 /* The bits a loop Fc takes as literals (above). */
 #define F_LITERAL(Fc)                                                                              \
-  (!((Fc)&F_RUNTIME) ? 0xffu : ((Fc)&F_AXES_FIXED) ? (unsigned)(F_VARH | F_AXES) : (unsigned)F_VARH)
+  (!((Fc)&F_RUNTIME)     ? 0x1ffu                                                                  \
+   : ((Fc)&F_AXES_FIXED) ? (unsigned)(F_VARH | F_AXES)                                             \
+                         : (unsigned)F_VARH)
 
 /* The term set a loop evaluates: the bits of mask from the literal Fc
  * (folded by the compiler), the others from the pass's set Fr. */
@@ -140,6 +143,7 @@ static inline unsigned sph_interact_terms(const sph_force_params *fp) {
   if (fp->var_h) F |= F_VARH;
   if (fp->ledger) F |= F_LEDGER;
   if (fp->diffusion != SPH_DIFFUSION_NONE) F |= F_DDIFF;
+  if (fp->riemann) F |= F_RIEMANN;
   return F;
 }
 

@@ -110,6 +110,12 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const double eta = fp->eta * h0;
   const LT eta2 = LOP(all)(eta * eta), nalpha = LOP(all)(-fp->alpha), beta = LOP(all)(fp->beta);
   const LT nu4 = LOP(all)(4.0 * fp->mu / fp->eos.rho0);
+  /* the Riemann pressure: p_i, rho0 c0 and eta / c0 */
+  const LT pi = LOP(all)(qi.prho2 * qi.rho * qi.rho);
+  const LT rz0 = LOP(all)(fp->eos.rho0 * fp->eos.c0);
+  const LT rkc = LOP(all)(fp->riemann_limiter / fp->eos.c0);
+  const LT rinv_z0 = LOP(all)(1.0 / (fp->eos.rho0 * fp->eos.c0));
+  const LT hgx = LOP(all)(fp->eos.rho0 * fp->gx), hgy = LOP(all)(fp->eos.rho0 * fp->gy);
 #if LW > 1
 #define E_LANE(q, a) ((double)(q))
   const LT lane = LSET(E_LANE, 0), n = LOP(all)((double)cnt);
@@ -118,12 +124,18 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const LA azero = LAOP(all)(0.0);
   LA drho = azero, ax = azero, ay = azero, xs = azero, ys = azero, sig = azero, dd = azero;
   LA du = azero, wpow = azero, wfx = azero, wfy = azero; /* energy and momentum ledger */
+  LA rd = azero;                                         /* the Riemann continuity term */
   const uint8_t *restrict flags = p->flags;
   /* neighbours that take no heat: repulsive wall particles and mirror particles */
   const int passive = (F & F_LEDGER) && (fp->repulsive || fp->mirror);
   /* free-slip walls: a predicted branch per iteration (i's own flag for a wall i) */
   const int slip = fp->free_slip;
   const int slip_i = slip && kind[i] == SPH_KIND_WALL && (flags[i] & SPH_FLAG_FREE_SLIP);
+  /* the Riemann pressure's closing speed on walls with a normal (mdbc, no-slip and free-slip
+   * walls: SPH_WALL_NORMAL): the normal part of v_ij, so that the wall's dissipation stops the
+   * fluid going through it but does not brake it along it (no-slip is the viscous terms') */
+  const int rnorm = (F & F_RIEMANN) && (fp->mdbc || fp->no_slip || slip);
+  const int rnorm_i = rnorm && kind[i] == SPH_KIND_WALL && (flags[i] & SPH_WALL_NORMAL);
   const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy, *restrict ddm = w->ddm;
   const int diffuses = (F & F_DDIFF) && ddm[i] != 0.0; /* diffusion.h */
   const double *restrict fm = w->fm;                   /* m_j of fluid j, 0 for the others */
@@ -204,7 +216,7 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     }
     if (!fluid && !(F & F_LEDGER)) continue; /* a wall particle needs no other pair terms */
     /* with the ledger: m_j of fluid neighbours (0 for walls) as their kind */
-    const LT fmj = (F & (F_XSPH | F_LEDGER)) ? LSET(E_ARR, fm) : zero;
+    const LT fmj = (F & (F_XSPH | F_LEDGER | F_RIEMANN)) ? LSET(E_ARR, fm) : zero;
     const LMASK fluid_j = LOP(lt)(zero, fmj);
     /* the relative velocity of the viscous terms: a mirror particle's is its
      * no-slip velocity (boundary.h; the scalar loop only), the continuity's
@@ -217,35 +229,54 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
       vvdotr = vvx * dx + vvy * dy;
     }
 #endif
-    LT pij = LOP(add)(pri, GATHER(prho2));
     LT inv_rb = zero;
     if (F & (F_AV | F_XSPH)) inv_rb = LTERM(inv_rho_mean)(rhoi, GATHER(rho));
     /* a fluid-wall pair on a free-slip wall: the pressure and Pi_ij along the
      * wall particle's normal (normal_part), Pi_ij of the normal relative
-     * velocity (normal_vdotr); fs the lanes of such pairs */
-    LT pgx = gx, pgy = gy, avr = vvdotr;
-    if (slip && (fluid || slip_i)) {
+     * velocity (normal_vdotr); fs the lanes of such pairs. With the Riemann
+     * pressure, the closing speed of a pair with a wall particle that has a
+     * normal is the normal one too (rnorm: the lanes fn) */
+    LT pgx = gx, pgy = gy, avr = vvdotr, rvr = vdotr;
+    if ((slip || rnorm) && (fluid || slip_i || rnorm_i)) {
       LT wmx, wmy;
-      LMASK fs;
+      LMASK fs, fn;
       if (fluid) { /* the pair's wall particle is j (offsets of 1 where unused: finite) */
-#define E_FS(q, a)                                                                                 \
-  ((kind[jk[q]] == SPH_KIND_WALL && (flags[jk[q]] & SPH_FLAG_FREE_SLIP)) ? 1.0 : 0.0)
-#define E_M(q, arr) (E_FS(q, 0) != 0.0 ? arr[jk[q]] : 1.0)
-        fs = LOP(lt)(zero, LSET(E_FS, 0));
+#define E_FS(q, a) ((kind[jk[q]] == SPH_KIND_WALL && (flags[jk[q]] & (a))) ? 1.0 : 0.0)
+#define E_M(q, arr) (E_FS(q, SPH_WALL_NORMAL) != 0.0 ? arr[jk[q]] : 1.0)
+        fs = LOP(lt)(zero, LSET(E_FS, SPH_FLAG_FREE_SLIP));
+        fn = rnorm ? LOP(lt)(zero, LSET(E_FS, SPH_WALL_NORMAL)) : fs;
         wmx = LSET(E_M, p->mx);
         wmy = LSET(E_M, p->my);
 #undef E_M
 #undef E_FS
       } else { /* i is the pair's wall particle */
-        fs = LOP(lt)(zero, one);
+        fs = LOP(lt)(zero, LOP(all)(slip_i ? 1.0 : 0.0));
+        fn = LOP(lt)(zero, LOP(all)(rnorm_i ? 1.0 : 0.0));
         wmx = LOP(all)(p->mx[i]);
         wmy = LOP(all)(p->my[i]);
       }
-      const LVEC wm = {{wmx, wmy}}, ng = LTERM(normal_part)(gw, wm);
-      pgx = LOP(sel)(fs, ng.c[0], gx);
-      pgy = LOP(sel)(fs, ng.c[1], gy);
-      const LVEC vv = {{vvx, vvy}};
-      if (F & F_AV) avr = LOP(sel)(fs, LTERM(normal_vdotr)(vv, rv, wm), vvdotr);
+      const LVEC wm = {{wmx, wmy}};
+      if (slip) {
+        const LVEC ng = LTERM(normal_part)(gw, wm);
+        pgx = LOP(sel)(fs, ng.c[0], gx);
+        pgy = LOP(sel)(fs, ng.c[1], gy);
+        const LVEC vv = {{vvx, vvy}};
+        if (F & F_AV) avr = LOP(sel)(fs, LTERM(normal_vdotr)(vv, rv, wm), vvdotr);
+      }
+      if (rnorm) rvr = LOP(sel)(fn, LTERM(normal_vdotr)(dv, rv, wm), vdotr);
+    }
+    LT pij;
+    if (F & F_RIEMANN) { /* the interface pressure; the closing speed from v_ij (a
+                          * mirror's reflected velocity, a wall's normal part) */
+      const LT rhoj = GATHER(rho), pj = LOP(mul)(LOP(mul)(GATHER(prho2), rhoj), rhoj);
+      const LT close = LOP(neg)(LOP(mul)(rvr, inv_r));
+      pij = LTERM(riemann_pressure)(pi, pj, rhoi, rhoj, close, rz0, rkc);
+      if (fluid) { /* its continuity term, between fluid particles only */
+        const LT jump = LOP(sub)(LOP(sub)(pi, pj), LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy)));
+        LACC(rd, LOP(and)(fluid_j, LTERM(riemann_density)(rhoi, mj, rhoj, jump, f, r, rinv_z0)));
+      }
+    } else {
+      pij = LOP(add)(pri, GATHER(prho2));
     }
     if (F & F_AV)
       pij = LOP(add)(pij, LTERM(artificial_viscosity)(avr, hij, r2, eta2_ij, ci, GATHER(cs), nalpha,
@@ -319,8 +350,10 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   double lv[4];
   (void)lv;
   p->drho[i] = LSUM(drho);
-  if (F & F_DDIFF) { /* the scaled sum added last */
-    const double dds = LSUM(dd) * diffusion_scale(fp, F);
+  double dds = 0.0; /* the density's dissipative rates, added last */
+  if (F & F_DDIFF) dds = LSUM(dd) * diffusion_scale(fp, F);
+  if (F & F_RIEMANN) dds += LSUM(rd);
+  if (F & (F_DDIFF | F_RIEMANN)) {
     p->drho[i] += dds;
     if (F & F_LEDGER) w->dd[i] = dds;
   }

@@ -272,6 +272,8 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.beta = c->beta;
   s->fp.eta = c->eta;
   s->fp.xsph = c->xsph;
+  s->fp.riemann = c->riemann;
+  s->fp.riemann_limiter = c->riemann_limiter;
   s->fp.gx = c->gravity[0];
   s->fp.gy = c->gravity[1];
   s->fp.viscosity = c->viscosity;

@@ -186,7 +186,7 @@ int sph_sim_pass(sph_sim *s, sph_error *err) {
     s->dt_paper_b = sph_dt_paper_b(&s->work, c->h, c->dt_factor);
     if (s->fp.ledger)
       sph_ledger_rates(&s->ledger, &s->p, &s->work, c->gravity, c->xsph != 0.0,
-                       c->diffusion != SPH_DIFFUSION_NONE);
+                       c->diffusion != SPH_DIFFUSION_NONE || c->riemann);
   }
   if (s->walls.n_mirror) sph_mirror_remove(&s->p, s->grid.perm, s->grid.work);
   return rc;

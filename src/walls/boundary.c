@@ -24,8 +24,7 @@ int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, 
   if (count < 1) count = 1;
   const double sp = len / (double)count;
   /* the offsets' readers: mdbc, no-slip and free-slip walls */
-  if (flags & (SPH_FLAG_NO_SLIP | SPH_FLAG_MDBC | SPH_FLAG_FREE_SLIP))
-    sph_particles_use(p, SPH_ARRAYS_OFFSET);
+  if (flags & SPH_WALL_NORMAL) sph_particles_use(p, SPH_ARRAYS_OFFSET);
   const int offsets = (p->live & SPH_ARRAYS_OFFSET) != 0;
   for (int k = 0; k < layers; k++) {
     const double off = (stagger ? 0.5 : 1.0) * dx * (double)k;
