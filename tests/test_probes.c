@@ -15,6 +15,10 @@
  *     header and a row every probe_interval; wall sensors at two depths and
  *     a floor sensor read rho0 g (H - y) within 1 % of rho0 g H, the level
  *     gauge H within dx/2, the velocity probe stays below 1 mm/s;
+ *   - the sensor's low-pass response (sph_probe_low_pass): a step input
+ *     gives 1 - exp(-2 pi fc t) whatever the steps (1e-12), a sine at the
+ *     cut-off comes out at 1/sqrt(2) of its amplitude (1 %); in probes.csv
+ *     the filtered column follows the raw one, which it leaves unchanged;
  *   - case errors name the probe's key.
  * Restart safety of probes.csv is in tests/test_restart.c.
  */
@@ -152,6 +156,72 @@ static void test_tank(void) {
   free(dir);
 }
 
+/* The first-order low-pass: exact for a step on any partition of time; the
+ * amplitude of a sine at the cut-off 1/sqrt(2); and in a run, its column
+ * beside an unchanged raw column. */
+static void test_low_pass(void) {
+  const double fc = 100.0, pi = 3.14159265358979323846;
+  double y = 0.0, t = 0.0, worst = 0.0;
+  for (int k = 0; k < 2000; k++) { /* steps of 1 to 10 us */
+    const double dt = 1e-6 * (1 + (k * 7919) % 10);
+    y = sph_probe_low_pass(y, 1.0, dt, fc);
+    t += dt;
+    worst = fmax(worst, fabs(y - (1.0 - exp(-2.0 * pi * fc * t))));
+  }
+  CU_ASSERT(worst < 1e-12);
+  double amp = 0.0;
+  y = 0.0;
+  for (int k = 1; k <= 100000; k++) { /* 0.1 s at 1 us: 10 periods, the last 5 settled */
+    const double tk = 1e-6 * k;
+    y = sph_probe_low_pass(y, sin(2.0 * pi * fc * tk), 1e-6, fc);
+    if (tk > 0.05) amp = fmax(amp, fabs(y));
+  }
+  printf("\n  low-pass: step within %.1e, amplitude at the cut-off %.4f (1/sqrt 2 = 0.7071)", worst,
+         amp);
+  CU_ASSERT(fabs(amp - sqrt(0.5)) < 0.01 * sqrt(0.5));
+
+  char *dir = sph_test_tmpdir();
+  char args[8192], out[16384], path[4200];
+  for (int lp = 0; lp < 2; lp++) {
+    snprintf(args, sizeof args,
+             "run -q '%s' -o '%s/run%d' --set time.end=0.05 --set output.snapshots=false "
+             "--set 'output.probes=[{name: P1, kind: pressure, at: [0.2, 0.02]%s}, "
+             "{name: H1, kind: level, x: 0.1}]'",
+             sph_test_src("cases/hydrostatic_tank.yaml"), dir, lp, lp ? ", low_pass: 50" : "");
+    const int st = sph_test_sph(args, dir, out, sizeof out);
+    if (st) printf("\n%s\n", out);
+    CU_ASSERT_FATAL(st == 0);
+  }
+  snprintf(path, sizeof path, "%s/run1/probes.csv", dir);
+  FILE *f = fopen(path, "r");
+  CU_ASSERT_FATAL(f != NULL);
+  char header[512] = "";
+  CU_ASSERT(fgets(header, sizeof header, f) != NULL);
+  fclose(f);
+  CU_ASSERT_STRING_EQUAL(header, "time,P1 (Pa),P1_low_pass (Pa),H1 (m)\n");
+  double *a[4], *b[3];
+  const long n = sph_test_csv(path, "#0,#1,#2,#3", a);
+  snprintf(path, sizeof path, "%s/run0/probes.csv", dir);
+  const long m = sph_test_csv(path, "#0,#1,#2", b);
+  CU_ASSERT_FATAL(n > 2 && n == m);
+  int same = 1;
+  double yy = a[1][0]; /* the filter starts at the first reading */
+  double off = 0.0;
+  for (long r = 0; r < n; r++) {
+    same &= a[0][r] == b[0][r] && a[1][r] == b[1][r] && a[3][r] == b[2][r];
+    if (r > 0) yy = sph_probe_low_pass(yy, a[1][r], a[0][r] - a[0][r - 1], 50.0);
+    off = fmax(off, fabs(yy - a[2][r]));
+  }
+  CU_ASSERT(same);       /* the raw columns as without the filter */
+  CU_ASSERT(off == 0.0); /* the filtered one: the filter of the raw series, bit for bit */
+  for (int k = 0; k < 4; k++)
+    free(a[k]);
+  for (int k = 0; k < 3; k++)
+    free(b[k]);
+  sph_test_rmtree(dir);
+  free(dir);
+}
+
 static void expect_err(const char *probes, const char *want) {
   char text[2048];
   snprintf(text, sizeof text,
@@ -200,6 +270,10 @@ static void test_case_errors(void) {
              "t.yaml:9: output.gauges[1]: x = -100 is outside the domain, x [-0.302, 0.802] "
              "y [-0.302, 1.802] (geometry.domain, or its default from the geometry): the water "
              "cannot reach it");
+  expect_err("  probes:\n    - {name: a, kind: level, x: 0, low_pass: 100}\n",
+             "t.yaml:10: output.probes[0].low_pass: not a key of a level probe");
+  expect_err("  probes:\n    - {name: a, kind: pressure, at: [0, 0], low_pass: 0}\n",
+             "t.yaml:10: output.probes[0].low_pass: expected a positive number, got '0'");
   expect_err("  probe_interval: 0.1\n",
              "t.yaml:9: output.probe_interval: expected output.probes alongside it");
   expect_err("  probe_interval: 2\n  probes:\n    - {name: a, kind: velocity, at: [0, 0]}\n",
@@ -210,6 +284,7 @@ static void test_case_errors(void) {
 int main(void) {
   CU_TestInfo tests[] = {{"readings on a hydrostatic lattice", test_lattice},
                          {"hydrostatic tank: probes.csv against rho0 g (H - y)", test_tank},
+                         {"a sensor's low-pass response", test_low_pass},
                          {"case errors", test_case_errors},
                          CU_TEST_INFO_NULL};
   return sph_test_main("probes", tests);

@@ -10,7 +10,8 @@
  * (its phase), variable h and h* on the free surface, XSPH, Morris and SPS
  * viscosity, dynamic, repulsive and mirror walls, periodic x, particle
  * shifting, the energy ledger (its integrals, shifting's drift among them), wave gauges (their
- * levels at t = 0) and free-surface flags read from the kept neighbour list. Each is run
+ * levels at t = 0), the pressure probes' low-pass filters (their outputs) and free-surface flags
+ * read from the kept neighbour list. Each is run
  * uninterrupted; then
  *   - restarted from snap_0002 (restart_fs: snap_0003) into a fresh
  *     directory (1 thread): every

@@ -10,13 +10,27 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "core/kernel_shape.h"
 #include "physics/kernel.h"
 
-int sph_probe_columns(const sph_probe *q) { return q->kind == SPH_PROBE_VELOCITY ? 2 : 1; }
+int sph_probe_columns(const sph_probe *q) {
+  return q->kind == SPH_PROBE_VELOCITY || (q->kind == SPH_PROBE_PRESSURE && q->low_pass > 0.0) ? 2
+                                                                                               : 1;
+}
+
+double sph_probe_low_pass(double y, double x, double dt, double cutoff) {
+  const double a = -expm1(-2.0 * SPH_PI * cutoff * dt);
+  return y + a * (x - y);
+}
 
 void sph_probe_header(const sph_probe *q, char *buf, size_t len) {
   switch (q->kind) {
-  case SPH_PROBE_PRESSURE: snprintf(buf, len, ",%s (Pa)", q->name); break;
+  case SPH_PROBE_PRESSURE:
+    if (q->low_pass > 0.0)
+      snprintf(buf, len, ",%s (Pa),%s_low_pass (Pa)", q->name, q->name);
+    else
+      snprintf(buf, len, ",%s (Pa)", q->name);
+    break;
   case SPH_PROBE_LEVEL: snprintf(buf, len, ",%s (m)", q->name); break;
   case SPH_PROBE_VELOCITY: snprintf(buf, len, ",%s_vx (m/s),%s_vy (m/s)", q->name, q->name); break;
   }

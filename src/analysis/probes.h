@@ -18,6 +18,10 @@
  *             SPH_PROBE_WET_SUM (a tenth of a full neighbourhood; half a
  *             neighbourhood is what a point on a wall face sees) is dry and
  *             reads 0: spray passing the sensor is not a pressure.
+ *             With `low_pass` (Hz) the sensor's response too: a
+ *             first-order low-pass filter of the reading at that cut-off
+ *             (sph_probe_low_pass), in a column of its own beside the raw
+ *             one, so that a comparison says which it used.
  *   level     the water depth at x above the bed: the highest fluid particle
  *             centre within dx of x, plus dx/2 (the top of its cell), less
  *             the floor; 0 where no fluid is. Always finite.
@@ -53,18 +57,27 @@ typedef struct sph_probe {
   double x, y;     /* the point (pressure, velocity); x of a level gauge */
   double diameter; /* pressure: the width of the sensor's face (m); 0 = a point */
   int along_x;     /* pressure: the face spans x (a sensor in a floor); default y */
+  double low_pass; /* pressure: the cut-off (Hz) of the sensor's first-order response, 0 = none */
 } sph_probe;
 
-/* The number of CSV columns of a probe (velocity: 2, else 1). */
+/* The number of CSV columns of a probe: velocity 2, a pressure probe with
+ * low_pass 2 (raw, filtered), else 1. */
 int sph_probe_columns(const sph_probe *q);
-/* The header of its columns, "name (Pa)" or "name_vx (m/s),name_vy (m/s)",
- * written to buf with a leading comma. */
+/* The header of its columns, "name (Pa)", "name (Pa),name_low_pass (Pa)"
+ * or "name_vx (m/s),name_vy (m/s)", written to buf with a leading comma. */
 void sph_probe_header(const sph_probe *q, char *buf, size_t len);
 /* Its reading on the particles p (with the kernel, h the smoothing length,
  * dx the particle spacing, floor_y the bed's height, g the gravity) into
- * out[0..columns-1]. */
+ * out[0] (out[1]: a velocity probe's vy); a low-pass column is
+ * sph_probe_low_pass's, from the series of readings. */
 void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind kernel, double h,
                     double dx, double floor_y, const double g[2], double *out);
+/* One step of a first-order low-pass filter (time constant
+ * tau = 1 / (2 pi cutoff)) from its output y at the previous reading to the
+ * reading x a time dt later, the reading held over the interval (exact for
+ * a piecewise-constant input): y + (1 - exp(-dt / tau)) (x - y). A series
+ * starts with y = its first reading. */
+double sph_probe_low_pass(double y, double x, double dt, double cutoff);
 
 #ifdef __cplusplus
 }

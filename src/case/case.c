@@ -139,7 +139,8 @@ const char *const sph_case_h_names[] = {"constant", "variable", NULL};
 static const char *const domain_keys[] = {"x", "y", NULL};
 static const char *const output_keys[] = {"snapshots", "free_surface",   "energy", "gauges",
                                           "probes",    "probe_interval", NULL};
-static const char *const probe_keys[] = {"name", "kind", "at", "x", "diameter", "along", NULL};
+static const char *const probe_keys[] = {"name",     "kind",  "at",       "x",
+                                         "diameter", "along", "low_pass", NULL};
 static const char *const probe_kind_names[] = {"pressure", "level", "velocity", NULL};
 static const char *const along_names[] = {"y", "x", NULL};
 
@@ -902,9 +903,9 @@ static int read_probe(const ctx *x, const node *m, const char *p, const double b
   pr->kind = (sph_probe_kind)kind;
   const int level = pr->kind == SPH_PROBE_LEVEL, pressure = pr->kind == SPH_PROBE_PRESSURE;
   /* the keys each kind takes */
-  static const char *const only[] = {"at", "x", "diameter", "along"};
-  const int allowed[3][4] = {{1, 0, 1, 1}, {0, 1, 0, 0}, {1, 0, 0, 0}};
-  for (int k = 0; k < 4; k++)
+  static const char *const only[] = {"at", "x", "diameter", "along", "low_pass"};
+  const int allowed[3][5] = {{1, 0, 1, 1, 1}, {0, 1, 0, 0, 0}, {1, 0, 0, 0, 0}};
+  for (int k = 0; k < 5; k++)
     if (!allowed[kind][k] && sph_yaml_lookup(&x->t, m, p, only[k], 0, &t, kp) > 0)
       return sph_yaml_fail_at(&x->t, t, kp, "not a key of a %s probe", probe_kind_names[kind]);
   if (level) {
@@ -931,7 +932,8 @@ static int read_probe(const ctx *x, const node *m, const char *p, const double b
     const range dia = {0, side, '[', ']', NULL};
     int along = 0;
     if (sph_yaml_get_number(&x->t, m, p, "diameter", 0, &dia, &pr->diameter) < 0 ||
-        sph_yaml_get_choice(&x->t, m, p, "along", along_names, &along) < 0)
+        sph_yaml_get_choice(&x->t, m, p, "along", along_names, &along) < 0 ||
+        sph_yaml_get_number(&x->t, m, p, "low_pass", 0, &SPH_YAML_POS, &pr->low_pass) < 0)
       return -1;
     pr->along_x = along;
   }

@@ -138,6 +138,7 @@ static const char *const TEMPLATE =
     "      at: [0.2286, 0.003]    # the point (m); on the right wall's face here\n"
     "      diameter: 0            # the face's width (m; pressure only, default 0: a point)\n"
     "      along: y               # y (default; a wall sensor), x (a floor sensor)\n"
+    "      # low_pass: 1000         # Hz: also the sensor's first-order response (pressure only)\n"
     "    - name: H1\n"
     "      kind: level\n"
     "      x: 0.1                 # a level gauge's x (m)\n"

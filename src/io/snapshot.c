@@ -452,6 +452,9 @@ static int write_restart(writer *w, const sph_snapshot_restart *r, size_t n) {
   if (rc == 0 && r->n_levels > 0)
     rc = put_numbers(w, g, "/restart", "gauge_levels", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, r->levels,
                      r->n_levels);
+  if (rc == 0 && r->n_filters > 0)
+    rc = put_numbers(w, g, "/restart", "probe_filters", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                     r->filters, r->n_filters);
   if (rc == 0 && !r->order)
     rc = sph_error_set(w->err, "%s: restart record without the storage order", w->path);
   if (rc == 0) rc = write_raw(w, g, "order", H5T_STD_I64LE, H5T_NATIVE_INT64, r->order, n);
@@ -995,6 +998,16 @@ static int read_restart(const sph_snapshot *s, hid_t g, sph_snapshot_restart_dat
                        err))
       return -1;
   }
+  long long nf = attribute_length(s, g, "probe_filters", err);
+  if (nf < 0) return -1;
+  if (nf > 0) {
+    r->filters = malloc((size_t)nf * sizeof *r->filters);
+    if (!r->filters) return sph_error_set(err, "%s: out of memory", s->path);
+    r->n_filters = (size_t)nf;
+    if (get_numbers_of(s, g, "/restart", "probe_filters", H5T_NATIVE_DOUBLE, r->filters,
+                       r->n_filters, err))
+      return -1;
+  }
   r->count = s->count;
   void *a = NULL;
   if (read_restart_array(s, g, "order", 1, H5T_NATIVE_INT64, sizeof(int64_t), &a, err)) return -1;
@@ -1051,6 +1064,7 @@ int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *
 
 void sph_snapshot_restart_free(sph_snapshot_restart_data *r) {
   free(r->levels);
+  free(r->filters);
   free(r->order);
   free(r->vxh);
   free(r->vyh);

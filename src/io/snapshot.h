@@ -52,7 +52,10 @@ typedef struct sph_snapshot_meta {
  *     (the density diffusion's energy; only in runs with density diffusion,
  *     0 when absent), ledger_shifting (particle shifting's potential-energy
  *     drift; only in runs with shifting, 0 when absent), gauge_levels
- *     (each gauge's level at t = 0; absent without gauges);
+ *     (each gauge's level at t = 0; absent without gauges), probe_filters
+ *     (the probes' low-pass filters: each probe's output, then the time of
+ *     the last probe row and the rows seen; absent where no probe has a
+ *     filter, and a resumed run's filters then start afresh);
  *   datasets (in storage order, not id order): order (int64: the id of the
  *     particle at each storage index: the within-cell order the neighbour
  *     sums run in), and with the leap-frog vxh, vyh, rhoh, uh (float64: the
@@ -69,6 +72,8 @@ typedef struct sph_snapshot_restart {
   double ledger_shifting;
   size_t n_levels;
   const double *levels;
+  size_t n_filters;
+  const double *filters;
   const int64_t *order;
   const double *vxh, *vyh, *rhoh, *uh;
 } sph_snapshot_restart;
@@ -129,6 +134,8 @@ typedef struct sph_snapshot_restart_data {
   double ledger_shifting;  /* 0 when the attribute is absent */
   size_t n_levels;
   double *levels;
+  size_t n_filters;
+  double *filters; /* NULL when absent */
   size_t count;
   int64_t *order;
   double *vxh, *vyh, *rhoh, *uh;

@@ -26,7 +26,8 @@
  * that wrote the snapshot. */
 
 int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t output_index,
-                               const double *levels, size_t n_levels, sph_error *err) {
+                               const double *levels, size_t n_levels, const double *filters,
+                               size_t n_filters, sph_error *err) {
   sph_snapshot_meta m;
   sph_sim_fill_meta(s, &m, s->t, s->steps);
   sph_snapshot_restart r;
@@ -40,6 +41,8 @@ int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t outpu
   r.ledger_shifting = s->ledger.drift_shifting;
   r.n_levels = n_levels;
   r.levels = levels;
+  r.n_filters = n_filters;
+  r.filters = filters;
   r.order = s->p.id;
   if (s->c->integrator == SPH_INTEGRATOR_LEAPFROG) {
     r.vxh = s->p.vxh;

@@ -39,6 +39,9 @@ typedef struct outputs {
   double *still; /* each gauge's level at t = 0 */
   FILE *probes;  /* probes.csv, when the case has probes */
   long probe_k;  /* the next probe row is due at probe_k * probe_interval */
+  double *lp;    /* per probe: its low-pass output at the last row (probes.h) */
+  double lp_t;   /* the time of the last probe row */
+  int lp_rows;   /* probe rows the filters have seen */
   size_t index;  /* number of the next snapshot file, snap_<index>.h5 */
   size_t n, cap; /* snapshots listed in the XDMF index */
   char **names;
@@ -50,6 +53,7 @@ static void outputs_free(outputs *o) {
   if (o->gauges) fclose(o->gauges);
   if (o->probes) fclose(o->probes);
   free(o->still);
+  free(o->lp);
   for (size_t i = 0; i < o->n; i++)
     free(o->names[i]);
   free(o->names);
@@ -78,14 +82,45 @@ fail:
   return sph_error_set(err, "%s/gauges.csv: write failed: %s", o->dir, strerror(errno));
 }
 
-/* One row of probes.csv: time, then each probe's reading (probes.h). */
+/* Whether some probe of c has a low-pass filter. */
+static int has_low_pass(const sph_case *c) {
+  for (size_t k = 0; k < c->n_probes; k++)
+    if (c->probes[k].kind == SPH_PROBE_PRESSURE && c->probes[k].low_pass > 0.0) return 1;
+  return 0;
+}
+
+/* The low-pass filters of the probes that have one, past a row of time t
+ * with the probes' raw readings raw[k] (probes.h). Their state goes into
+ * every snapshot's restart record after the row of its time, so a resumed
+ * run continues them with the same bits (a row written again at that time
+ * has dt = 0 and changes nothing). */
+static void low_pass_row(outputs *o, const sph_case *c, double t, const double *raw) {
+  for (size_t k = 0; k < c->n_probes; k++) {
+    const double fc = c->probes[k].low_pass;
+    if (c->probes[k].kind != SPH_PROBE_PRESSURE || !(fc > 0.0)) continue;
+    o->lp[k] = o->lp_rows ? sph_probe_low_pass(o->lp[k], raw[k], t - o->lp_t, fc) : raw[k];
+  }
+  o->lp_t = t;
+  o->lp_rows++;
+}
+
+/* One row of probes.csv: time, then each probe's reading (probes.h), a
+ * pressure probe's low-pass output after its raw reading. */
 static int write_probes(sph_sim *s, outputs *o, sph_error *err) {
   const sph_case *c = sph_sim_case(s);
   const sph_particles *p = sph_sim_particles(s);
-  if (fprintf(o->probes, "%.17g", sph_sim_time(s)) < 0) goto fail;
+  const double t = sph_sim_time(s);
+  double *raw = o->lp + c->n_probes, *vy = raw + c->n_probes; /* this row's readings */
   for (size_t k = 0; k < c->n_probes; k++) {
-    double v[2];
+    double v[2] = {0.0, 0.0};
     sph_probe_read(&c->probes[k], p, c->kernel, c->h, c->dx, sph_sim_floor(s), c->gravity, v);
+    raw[k] = v[0];
+    vy[k] = v[1];
+  }
+  low_pass_row(o, c, t, raw);
+  if (fprintf(o->probes, "%.17g", t) < 0) goto fail;
+  for (size_t k = 0; k < c->n_probes; k++) {
+    const double v[2] = {raw[k], c->probes[k].kind == SPH_PROBE_VELOCITY ? vy[k] : o->lp[k]};
     for (int m = 0; m < sph_probe_columns(&c->probes[k]); m++)
       if (fprintf(o->probes, ",%.17g", v[m]) < 0) goto fail;
   }
@@ -161,8 +196,14 @@ static int write_output(sph_sim *s, outputs *o, sph_run_result *r, sph_error *er
   char name[64], path[4096];
   snprintf(name, sizeof name, "snap_%04zu.h5", o->index);
   snprintf(path, sizeof path, "%s/%s", o->dir, name);
-  if (sph_sim_write_run_snapshot(s, path, (int64_t)o->index, o->still, sph_sim_case(s)->n_gauges,
-                                 err))
+  /* the probes' filters: outputs, then the last row's time and whether there was one */
+  const sph_case *c = sph_sim_case(s);
+  const size_t nf = has_low_pass(c) ? c->n_probes + 2 : 0;
+  if (nf) {
+    o->lp[c->n_probes] = o->lp_t;
+    o->lp[c->n_probes + 1] = o->lp_rows ? 1.0 : 0.0;
+  }
+  if (sph_sim_write_run_snapshot(s, path, (int64_t)o->index, o->still, c->n_gauges, o->lp, nf, err))
     return -1;
   o->index++;
   if (list_snapshot(o, name, sph_sim_time(s), err)) return -1;
@@ -330,7 +371,15 @@ static int open_outputs(sph_sim *s, outputs *out, const sph_snapshot_restart_dat
     if (!(out->gauges = open_run_csv(out, c, 1, t_keep, &kept_gauges, err))) return -1;
   }
   if (c->n_probes) {
+    /* the filters' outputs, then room for a row's readings (write_probes) */
+    if (!(out->lp = calloc(3 * c->n_probes, sizeof *out->lp)))
+      return sph_error_set(err, "out of memory");
     if (!(out->probes = open_run_csv(out, c, 2, t_keep, &kept_probes, err))) return -1;
+    if (rd && rd->n_filters == c->n_probes + 2 && has_low_pass(c)) { /* snapshot.h */
+      memcpy(out->lp, rd->filters, c->n_probes * sizeof *out->lp);
+      out->lp_t = rd->filters[c->n_probes];
+      out->lp_rows = rd->filters[c->n_probes + 1] > 0.0;
+    }
     /* the first row due: the current time's, unless a resumed run's file
      * already has it */
     const double iv = c->probe_interval, t = sph_sim_time(s);

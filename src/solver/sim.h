@@ -79,7 +79,8 @@ int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err);
 /* Restart (sph run --restart). sph_sim_write_run_snapshot writes the
  * current state like sph_sim_write_snapshot plus the restart record
  * (snapshot.h: the storage order, the leap-frog's half-step values, the
- * ledger's integrals, and the run's own output_index and gauge levels).
+ * ledger's integrals, and the run's own output_index, gauge levels and
+ * probe filters: n_filters values, none when 0).
  * sph_sim_restore takes a sim freshly made by sph_sim_create from the same
  * case (only time.end may differ: the snapshot's "parameters" must match)
  * and puts it in the state of the snapshot at path, so that the steps that
@@ -87,7 +88,8 @@ int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err);
  * snapshot's restart record (free it with sph_snapshot_restart_free);
  * errors name the file and what does not match. */
 int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t output_index,
-                               const double *levels, size_t n_levels, sph_error *err);
+                               const double *levels, size_t n_levels, const double *filters,
+                               size_t n_filters, sph_error *err);
 int sph_sim_restore(sph_sim *s, const char *path, sph_snapshot_restart_data *rd, sph_error *err);
 
 #ifdef __cplusplus
