@@ -70,18 +70,19 @@ void sph_force_work_free(sph_force_work *w) {
 static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
   if (n <= w->cap) return 0;
   const size_t cap = n + n / 4 + 16;
-  void **arrays[] = {(void **)&w->hot,  (void **)&w->prho2, (void **)&w->cs,  (void **)&w->sigma,
-                     (void **)&w->sxx,  (void **)&w->sxy,   (void **)&w->syy, (void **)&w->wpow,
-                     (void **)&w->wfx,  (void **)&w->wfy,   (void **)&w->lxx, (void **)&w->lxy,
-                     (void **)&w->lyy,  (void **)&w->gvx,   (void **)&w->gvy, (void **)&w->ddcx,
-                     (void **)&w->ddcy, (void **)&w->dd,    (void **)&w->lj,  (void **)&w->ddm,
-                     (void **)&w->fm,   (void **)&w->keepn};
+  void **arrays[] = {(void **)&w->hot,  (void **)&w->prho2, (void **)&w->cs,   (void **)&w->sigma,
+                     (void **)&w->sxx,  (void **)&w->sxy,   (void **)&w->syy,  (void **)&w->wpow,
+                     (void **)&w->wfx,  (void **)&w->wfy,   (void **)&w->lxx,  (void **)&w->lxy,
+                     (void **)&w->lyy,  (void **)&w->gvx,   (void **)&w->gvy,  (void **)&w->ddcx,
+                     (void **)&w->ddcy, (void **)&w->dd,    (void **)&w->lj,   (void **)&w->ddm,
+                     (void **)&w->fm,   (void **)&w->keepn, (void **)&w->nwall};
   enum { N_ARRAYS = sizeof arrays / sizeof arrays[0] };
   size_t size[N_ARRAYS];
   size[0] = sizeof *w->hot;
-  for (size_t k = 1; k < N_ARRAYS - 1; k++)
+  for (size_t k = 1; k < N_ARRAYS - 2; k++)
     size[k] = sizeof(double);
-  size[N_ARRAYS - 1] = sizeof *w->keepn;
+  size[N_ARRAYS - 2] = sizeof *w->keepn;
+  size[N_ARRAYS - 1] = sizeof *w->nwall;
   if (sph_arrays_regrow(&w->block, cap, w->cap, N_ARRAYS, size, arrays, NULL))
     return sph_error_set(err, "forces: out of memory for %zu particles", n);
   w->cap = cap;
@@ -441,6 +442,8 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
   const long n = (long)p->n;
   if (work_reserve(w, p->n, err)) return -1;
   const int fm = (F & (F_XSPH | F_LEDGER | F_RIEMANN)) != 0; /* the loops read the fluid masses */
+  /* the Riemann pressure's rows that meet a wall with a normal (interact_row.h, rnorm) */
+  const int nwall = (F & F_RIEMANN) && (fp->mdbc || fp->no_slip || fp->free_slip);
 #pragma omp parallel if (n > SPH_OMP_MIN)
   {
     size_t lo, hi; /* the slices of the interaction loop */
@@ -451,8 +454,16 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
       w->hot[i] = (sph_force_hot){
           p->x[i], p->y[i], p->vx[i], p->vy[i], rho, p->p[i] / (rho * rho), cs, p->mass[i]};
       if (fm) w->fm[i] = p->kind[i] == SPH_KIND_FLUID ? p->mass[i] : 0.0;
+      if (nwall) w->nwall[i] = 0;
     }
   }
+  if (nwall) /* from the walls' rows (the list is symmetric): few, and no two writers */
+    for (size_t i = 0; i < p->n; i++) {
+      if (p->kind[i] != SPH_KIND_WALL || !(p->flags[i] & SPH_WALL_NORMAL)) continue;
+      const uint32_t *row = l->nb + l->start[i];
+      for (size_t k = 0; k < l->count[i]; k++)
+        w->nwall[row[k]] = 1;
+    }
   const size_t stride = (size_t)l->maxcount + 8, /* + padding lanes */
       need = stride * (size_t)sph_max_threads();
   if (need > w->rows_cap) {

@@ -168,6 +168,8 @@ typedef struct sph_force_work {
   double *ddm;             /* density diffusion: the mass a particle diffuses with (0: none) */
   double *fm;              /* XSPH: the mass of a fluid particle, 0 for the others */
   uint32_t *keepn;         /* the pairs of each kept row (below) */
+  uint32_t *nwall;         /* Riemann pressure: 1 where the particle's list row holds a wall
+                              particle with a normal (SPH_WALL_NORMAL), else 0 (prepare_pass) */
   double *dd;              /* density diffusion D_i of the last pass (fluid; with the ledger) */
   double *lj;              /* repulsive walls' potential energy per unit mass (with the ledger) */
   sph_wall_velocity_work wv;

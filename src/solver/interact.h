@@ -75,7 +75,9 @@ enum {
  *                (Lobovsky), AV + stress + periodicity (inclined plane),
  *                AV + XSPH + diffusion (Martin & Moyce), AV + stress +
  *                Morris (SPS dam break), AV + XSPH + stress + ledger
- *                (wet-bed dam break); the 16 axes loops
+ *                (wet-bed dam break), the Riemann pressure alone
+ *                (physics.riemann, bench/results/lobovsky.md); the 16 axes
+ *                loops
  *   scalar loop  per-particle h and mirror walls only (the lanes run the
  *                rest): the sets AV + XSPH + h (plunging breaker), AV +
  *                XSPH + stress + Morris + h (plunging breaker with SPS);
@@ -108,7 +110,8 @@ enum {
   V(s3, F_AV | F_STRESS | F_PERIODIC)                                                              \
   V(s4, F_AV | F_XSPH | F_DDIFF)                                                                   \
   V(s5, F_AV | F_STRESS | F_MORRIS)                                                                \
-  V(s6, F_AV | F_XSPH | F_STRESS | F_LEDGER)
+  V(s6, F_AV | F_XSPH | F_STRESS | F_LEDGER)                                                       \
+  V(s7, F_RIEMANN)
 /* clang-format on */
 #define SCALAR_LOOPS(V)                                                                            \
   V(r, F_RUNTIME)                                                                                  \
