@@ -49,12 +49,11 @@ typedef struct sph_snapshot_meta {
  *   attributes: format (1), output_index (k of snap_k), first_step (1 until
  *     the leap-frog's first step is done), ledger (4 values: wall work, XSPH
  *     drift, impulse x, impulse y; see ledger in sim.c), ledger_diffusion
- *     (the density diffusion's energy; only in runs with density diffusion,
- *     0 when absent), ledger_shifting (particle shifting's potential-energy
- *     drift; only in runs with shifting, 0 when absent), gauge_levels
- *     (each gauge's level at t = 0; absent without gauges), probe_filters
- *     (the probes' low-pass filters: each probe's output, then the time of
- *     the last probe row and the rows seen; absent where no probe has a
+ *     (the density diffusion's energy, with the Riemann continuity term's; only in runs with
+ * density diffusion or physics.riemann, 0 when absent), ledger_shifting (particle shifting's
+ * potential-energy drift; only in runs with shifting, 0 when absent), gauge_levels (each gauge's
+ * level at t = 0; absent without gauges), probe_filters (the probes' low-pass filters: each probe's
+ * output, then the time of the last probe row and the rows seen; absent where no probe has a
  *     filter, and a resumed run's filters then start afresh);
  *   datasets (in storage order, not id order): order (int64: the id of the
  *     particle at each storage index: the within-cell order the neighbour

@@ -35,7 +35,7 @@ int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t outpu
   r.output_index = output_index;
   r.first_step = s->first_step;
   sph_ledger_save(&s->ledger, r.ledger);
-  r.has_diffusion = s->fp.diffusion != SPH_DIFFUSION_NONE;
+  r.has_diffusion = s->fp.diffusion != SPH_DIFFUSION_NONE || s->fp.riemann;
   r.ledger_diffusion = s->ledger.work_diffusion;
   r.has_shifting = s->c->shifting;
   r.ledger_shifting = s->ledger.drift_shifting;

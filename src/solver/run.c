@@ -303,7 +303,7 @@ static char *csv_header(const sph_case *c, int what) {
     bad = bad || fputc('\n', m) == EOF;
   } else {
     bad = sph_diag_write_header(m, sph_case_needs_free_surface(c), c->energy,
-                                c->diffusion != SPH_DIFFUSION_NONE,
+                                c->diffusion != SPH_DIFFUSION_NONE || c->riemann,
                                 sph_case_has_boundary(c, SPH_BOUNDARY_REPULSIVE), c->shifting) != 0;
   }
   if (fclose(m) || bad) {

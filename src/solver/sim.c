@@ -409,7 +409,7 @@ void sph_sim_diag(const sph_sim *s, sph_diag_row *row) {
   row->n_surface = s->detect ? (long)s->n_surface : -1;
   if (s->c->energy) {
     sph_ledger_fill(&s->ledger, &s->p, row);
-    row->diffusion = s->c->diffusion != SPH_DIFFUSION_NONE;
+    row->diffusion = s->c->diffusion != SPH_DIFFUSION_NONE || s->c->riemann;
     row->shifting = s->c->shifting;
   }
   row->time = s->t;
