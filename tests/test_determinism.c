@@ -20,7 +20,9 @@
  *   - density diffusion: antuono (its gradient pass) on the coarse dam
  *     break, fourtakas with the energy ledger on the wet bed;
  *   - particle shifting with the ledger on free-slip mdbc walls, and on
- *     the periodic inclined plane.
+ *     the periodic inclined plane;
+ *   - the Riemann-solver pressure on mdbc walls with the ledger and a
+ *     low-pass probe.
  * Every file of the two output directories (snapshots, XDMF index,
  * diagnostics.csv, gauges.csv, probes.csv) must be identical.
  */
@@ -142,6 +144,21 @@ static void test_shifting(void) {
                           "--set 'numerics.shifting={coefficient: 2}'");
 }
 
+/* the Riemann-solver pressure (physics.riemann): its own lane loop, the walls'
+ * normal closing speed in the rows that meet an mdbc wall (w->nwall), its
+ * continuity term with the ledger, a probe's low-pass filter, through the
+ * impact on the right wall */
+static void test_riemann(void) {
+  same_on_1_and_2_threads("cases/martin_moyce_coarse.yaml",
+                          "--set time.end=0.2 --set time.stop=none --set 'geometry.tank={x: [0.0, "
+                          "0.2286], y: [0.0, 0.17145], boundary: mdbc}' "
+                          "--set physics.artificial_viscosity.alpha=0 --set physics.xsph=0 "
+                          "--set 'numerics.density_diffusion={model: none}' "
+                          "--set physics.riemann.limiter=3 --set output.energy=true "
+                          "--set 'output.probes=[{name: P, kind: pressure, at: [0.2286, 0.005], "
+                          "low_pass: 500}]'");
+}
+
 /* the Wendland kernel in the pair loop, the strain-rate pass, the MLS
  * filter and the probes */
 static void test_wendland(void) {
@@ -157,6 +174,7 @@ int main(void) {
       {"Wendland kernel, stress tensor, MLS filter, probes", test_wendland},
       {"density diffusion: antuono, fourtakas with the ledger", test_density_diffusion},
       {"mdbc walls through an impact", test_mdbc},
+      {"the Riemann pressure through an impact, with the ledger", test_riemann},
       {"particle shifting, also periodic", test_shifting},
       {"wet bed: viscosity, ledger, moving gate", test_wet_bed},
       {"SPS turbulence", test_sps},
