@@ -30,22 +30,26 @@
 
 void rcli_usage(FILE *fp) {
   fputs("usage: sph-render [OPTIONS] SNAPSHOT|RUN_DIR... -o OUT\n"
-        "       sph-render --panels CxR [OPTIONS] SNAPSHOT|RUN_DIR... -o FIGURE.png\n"
+        "       sph-render --panels CxR [OPTIONS] SNAPSHOT|RUN_DIR... -o FIGURE.png|.svg|.pdf\n"
         "       sph-render --compare [OPTIONS] RUN_DIR RUN_DIR... -o OUT\n"
         "       sph-render plot [OPTIONS] FILE.csv [--points FILE.csv]... -o PLOT.png|.svg|.pdf\n"
         "\n"
         "Renders SPH snapshots (HDF5, as written by `sph run`) to PNG images off screen.\n"
         "A directory stands for its snap_*.h5 files. OUT is a directory (one\n"
-        "frame_NNNN.png per snapshot, numbered like the input) or, for one image, a .png.\n"
+        "frame_NNNN.png per snapshot, numbered like the input) or, for one image, a .png\n"
+        "file, or an .svg or .pdf file (vector, through cairo).\n"
         "\n"
         "Snapshot options:\n"
-        "  -o, --output PATH       output directory or .png file (required)\n"
+        "  -o, --output PATH       output directory, or one .png, .svg or .pdf file (required)\n"
         "  --field NAME            colour by speed (default), pressure, density, vx, vy,\n"
         "                          free_surface, kind, or any field of the file\n"
         "  --cmap NAME             viridis (default), coolwarm (default for vx, vy), gray\n"
         "  --range MIN:MAX         fixed colour range (default: over all inputs, fluid only)\n"
         "  --size W[xH]            image size in pixels (frames: 1280x720; figures: 640 per\n"
-        "                          panel column, height from the view's aspect)\n"
+        "                          panel column, height from the view's aspect), or in cm,\n"
+        "                          mm or in (8.5cm: a journal's column; SVG and PDF in\n"
+        "                          points, a PNG at --dpi, the text scaled to match)\n"
+        "  --dpi N                 pixels per inch of a PNG sized in cm, mm or in (300)\n"
         "  --view X0:X1:Y0:Y1      world window in metres (default: the case's tank)\n"
         "  --background RRGGBB     background colour (default ffffff; also white, black)\n"
         "  --disc-scale F          particle disc diameter = F * dx (default 1; discs smaller\n"
@@ -152,17 +156,74 @@ static int parse_range(const char *opt, const char *s, double r[2], sph_error *e
   return 0;
 }
 
-/* "WxH" or "W" (height automatic). */
-static int parse_size(const char *opt, const char *s, int *w, int *h, sph_error *err) {
+/* One side of --size with its unit: inches per unit of a "cm", "mm" or
+ * "in" suffix (*per_in), or 0 for pixels. */
+static int parse_side(const char *s, double *v, double *inches) {
+  static const struct {
+    const char *suffix;
+    double inches;
+  } units[] = {{"cm", 1.0 / 2.54}, {"mm", 1.0 / 25.4}, {"in", 1.0}};
+  char *end;
+  errno = 0;
+  *v = strtod(s, &end);
+  if (end == s || errno == ERANGE || !isfinite(*v) || !(*v > 0.0)) return -1;
+  *inches = 0.0;
+  if (*end == '\0') return 0;
+  for (size_t k = 0; k < sizeof units / sizeof units[0]; k++)
+    if (strcmp(end, units[k].suffix) == 0) {
+      *inches = units[k].inches;
+      return 0;
+    }
+  return -1;
+}
+
+/* "WxH" or "W" (height automatic): pixels (whole numbers, 16 to 16384), or
+ * both sides in cm, mm or in (o->size_in, turned into pixels or points by
+ * resolve_size once the output is known). */
+static int parse_size(const char *opt, const char *s, roptions *o, sph_error *err) {
   char buf[64];
-  snprintf(buf, sizeof buf, "%s", s);
+  const char *form = "expected W or WxH: pixels (16 to 16384), or lengths in cm, mm or in "
+                     "(e.g. 8.5cm or 8.5cmx6cm)";
+  if (snprintf(buf, sizeof buf, "%s", s) >= (int)sizeof buf)
+    return sph_error_set(err, "%s: '%s': %s", opt, s, form);
   char *x = strchr(buf, 'x');
   if (x) *x = '\0';
-  if (parse_int(opt, buf, 16, 16384, w, err) != 0)
-    return sph_error_set(err, "%s: '%s': expected W or WxH, 16 to 16384 pixels", opt, s);
-  *h = 0;
-  if (x && parse_int(opt, x + 1, 16, 16384, h, err) != 0)
-    return sph_error_set(err, "%s: '%s': expected W or WxH, 16 to 16384 pixels", opt, s);
+  double w, h = 0.0, uw, uh = 0.0;
+  if (parse_side(buf, &w, &uw) || (x && parse_side(x + 1, &h, &uh)) || (x && (uw > 0) != (uh > 0)))
+    return sph_error_set(err, "%s: '%s': %s", opt, s, form);
+  o->size_in[0] = o->size_in[1] = 0.0;
+  o->width = o->height = 0;
+  if (uw > 0.0) {
+    o->size_in[0] = w * uw;
+    o->size_in[1] = h * uh;
+    return 0;
+  }
+  if (parse_int(opt, buf, 16, 16384, &o->width, err) != 0 ||
+      (x && parse_int(opt, x + 1, 16, 16384, &o->height, err) != 0))
+    return sph_error_set(err, "%s: '%s': %s", opt, s, form);
+  return 0;
+}
+
+/* A --size in cm, mm or in as pixels (a PNG, at o->dpi) or points (SVG
+ * and PDF, 72 per inch), and the font scale that goes with it unless
+ * --font-scale is given: glyphs 7 units high per scale step, so scale 1 in
+ * points and dpi / 72 in pixels print capitals about 2.5 mm high. */
+static int resolve_size(roptions *o, sph_error *err) {
+  if (!(o->size_in[0] > 0.0)) return 0;
+  const int vector = o->output && rcanvas_vector_kind(o->output);
+  const double per_in = vector ? 72.0 : (double)o->dpi;
+  const double w = o->size_in[0] * per_in, h = o->size_in[1] * per_in;
+  if (!(w >= 16.0 && w <= 16384.0) || (h > 0.0 && !(h >= 16.0 && h <= 16384.0)))
+    return sph_error_set(err,
+                         "--size: %.4g x %.4g in is %.0f x %.0f %s: each side must be 16 to "
+                         "16384",
+                         o->size_in[0], o->size_in[1], w, h, vector ? "points" : "pixels");
+  o->width = (int)lround(w);
+  o->height = h > 0.0 ? (int)lround(h) : 0;
+  if (o->font_scale == 0) {
+    const long sc = vector ? 1 : lround(per_in / 72.0);
+    o->font_scale = (int)(sc < 1 ? 1 : sc > 16 ? 16 : sc);
+  }
   return 0;
 }
 
@@ -219,6 +280,7 @@ static void defaults(roptions *o) {
   o->overlay_tol = 0.0005;
   o->legend = RLEGEND_TOP_LEFT;
   o->samples = RCANVAS_DEFAULT_SAMPLES;
+  o->dpi = 300;
   o->smooth = o->outline = -1; /* unset: from the field (rcli_parse) */
 }
 
@@ -258,7 +320,7 @@ static const char *extension(const char *path) {
 }
 
 /* What -o may name: a plot is a .png, .svg or .pdf file; snapshot images
- * are PNG files in a directory, or one .png. Any other extension is
+ * are PNG files in a directory, or one .png, .svg or .pdf figure. Any other extension is
  * refused rather than taken for a directory's name (an existing directory
  * or a path ending in '/' is always a directory). */
 static int check_output(const roptions *o, sph_error *err) {
@@ -270,15 +332,10 @@ static int check_output(const roptions *o, sph_error *err) {
     return sph_error_set(err, "-o %s: a plot is written as .png, .svg or .pdf%s%s%s", o->output,
                          ext[0] ? " (not " : "", ext, ext[0] ? ")" : "");
   }
-  if (rcanvas_vector_kind(o->output))
+  if (ext[0] && !rinputs_is_png(o->output) && !rcanvas_vector_kind(o->output) && !is_dir)
     return sph_error_set(err,
-                         "-o %s: snapshot images are PNG (.png or a directory); SVG and PDF "
-                         "are for `sph-render plot`",
-                         o->output);
-  if (ext[0] && !rinputs_is_png(o->output) && !is_dir)
-    return sph_error_set(err,
-                         "-o %s: unknown extension '%s': give a .png file or a directory "
-                         "(end the name with '/' if a directory's name has a dot)",
+                         "-o %s: unknown extension '%s': give a .png, .svg or .pdf file or a "
+                         "directory (end the name with '/' if a directory's name has a dot)",
                          o->output, ext);
   return 0;
 }
@@ -322,7 +379,10 @@ static int common_option(args *a, roptions *o, sph_error *err) {
     if (parse_int(a->name, v, 1, 256, &o->jobs, err) != 0) return -1;
   } else if (is(a, "--size")) {
     VALUE_P();
-    if (parse_size(a->name, v, &o->width, &o->height, err) != 0) return -1;
+    if (parse_size(a->name, v, o, err) != 0) return -1;
+  } else if (is(a, "--dpi")) {
+    VALUE_P();
+    if (parse_int(a->name, v, 10, 2400, &o->dpi, err) != 0) return -1;
   } else if (is(a, "--font-scale")) {
     VALUE_P();
     if (parse_int(a->name, v, 1, 16, &o->font_scale, err) != 0) return -1;
@@ -583,5 +643,6 @@ int rcli_parse(int argc, char **argv, roptions *o, sph_error *err) {
   const int fluid_field = strcmp(o->field, "free_surface") != 0 && strcmp(o->field, "kind") != 0;
   if (o->smooth < 0) o->smooth = !plot && fluid_field;
   if (o->outline < 0) o->outline = o->smooth;
+  if (resolve_size(o, err) != 0) return -1;
   return check(o, err);
 }

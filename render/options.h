@@ -37,6 +37,9 @@ typedef struct roptions {
   const char *backend;
   int jobs;          /* 0: one per processor */
   int width, height; /* 0: the mode's default; height 0 with width: automatic */
+  double size_in[2]; /* --size in cm, mm or in: width and height in inches (height 0:
+                        automatic), turned into width and height by rcli_parse; 0: pixels */
+  int dpi;           /* a PNG's pixels per inch for a --size in cm, mm or in (default 300) */
   int font_scale;    /* 0: automatic */
   int samples;       /* sub-pixels per pixel and axis (anti-aliasing), 1 to 4 */
   int compression;

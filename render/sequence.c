@@ -102,14 +102,17 @@ static int check_unique_outputs(const plan *p, sph_error *err) {
   return 0;
 }
 
+/* Whether -o names one image file (PNG, SVG or PDF) rather than a directory. */
+static int one_file(const char *path) { return rinputs_is_png(path) || rcanvas_vector_kind(path); }
+
 static int plan_frames(plan *p, rinputs *in, sph_error *err) {
   const roptions *o = p->o;
-  int single = rinputs_is_png(o->output);
+  int single = one_file(o->output);
   /* --times: the nearest snapshot to each time, each at most once */
   size_t n = o->n_times > 0 ? (size_t)o->n_times : in->n;
   if (o->n_times > 0 && rinputs_times(in, err) != 0) return -1;
   if (single && n != 1)
-    return sph_error_set(err, "-o %s names one PNG but there are %zu snapshots: give a directory",
+    return sph_error_set(err, "-o %s names one image but there are %zu snapshots: give a directory",
                          o->output, n);
   p->outdir = single ? NULL : o->output;
   for (size_t i = 0; i < n; i++) {
@@ -130,8 +133,10 @@ static int plan_frames(plan *p, rinputs *in, sph_error *err) {
 
 static int plan_panels(plan *p, rinputs *in, sph_error *err) {
   const roptions *o = p->o;
-  if (!rinputs_is_png(o->output))
-    return sph_error_set(err, "--panels writes one figure: -o must name a .png file, not '%s'",
+  if (!one_file(o->output))
+    return sph_error_set(err,
+                         "--panels writes one figure: -o must name a .png, .svg or .pdf file, "
+                         "not '%s'",
                          o->output);
   int max = o->cols * o->rows;
   rtask *t = add_task(p, err);
@@ -168,7 +173,7 @@ static int plan_compare(plan *p, rinputs *runs, int n_runs, sph_error *err) {
     tol = isfinite(sp) ? 0.5 * sp : INFINITY;
   }
   size_t n_times = o->n_times > 0 ? (size_t)o->n_times : first->n;
-  int single = rinputs_is_png(o->output);
+  int single = one_file(o->output);
   p->outdir = single ? NULL : o->output;
   for (size_t i = 0; i < n_times; i++) {
     size_t i0 = o->n_times > 0 ? rinputs_nearest(first, o->times[i]) : i;
@@ -367,10 +372,18 @@ static int run_task(void *ctx, void *wp, size_t i, sph_error *err) {
       snprintf(pa->note, sizeof pa->note, "%s", when);
     }
   }
-  if (rc == 0) rc = rfigure_draw(w->canvas, &p->layout, &p->style, panels, t->n, err);
-  if (rc == 0) rc = rcanvas_read_rgb(w->canvas, w->rgb, err);
-  if (rc == 0)
-    rc = rpng_write(t->output, w->rgb, p->layout.width, p->layout.height, p->o->compression, err);
+  if (rc == 0 && rcanvas_vector_kind(t->output)) { /* SVG or PDF: cairo draws the same figure */
+    rcanvas *vc = NULL;
+    rc = rcanvas_create_vector(t->output, p->layout.width, p->layout.height, &vc, err);
+    if (rc == 0) rc = rfigure_draw(vc, &p->layout, &p->style, panels, t->n, err);
+    if (rc == 0) rc = rcanvas_finish(vc, err);
+    rcanvas_destroy(vc);
+  } else if (rc == 0) {
+    rc = rfigure_draw(w->canvas, &p->layout, &p->style, panels, t->n, err);
+    if (rc == 0) rc = rcanvas_read_rgb(w->canvas, w->rgb, err);
+    if (rc == 0)
+      rc = rpng_write(t->output, w->rgb, p->layout.width, p->layout.height, p->o->compression, err);
+  }
   if (rc == 0 && p->o->verbose) fprintf(stderr, "wrote %s\n", t->output);
   for (int k = 0; k < loaded; k++)
     rsnap_free(&snaps[k]);

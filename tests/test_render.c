@@ -1100,9 +1100,74 @@ static void test_vector_plot(void) {
   CU_ASSERT_EQUAL(sph_test_system(cmd), 0);
 }
 
+/* Snapshot figures as SVG and PDF (issue 39, point 10): one snapshot and a
+ * panel figure through cairo, the interpolated field as an embedded image
+ * and the discs, text and outline as vector shapes; a page of the layout's
+ * size in points (1280 x 720 for a frame), or of a --size in cm, mm or in
+ * (8.5 cm = 241 pt); the same bytes on a second run; well-formed XML. A
+ * PNG with a --size in cm is drawn at --dpi (default 300: 8.5 cm = 1004
+ * pixels, 150: 502) with its text scaled to match; bad sizes are refused
+ * with what was expected. */
+static void test_vector_figures(void) {
+  for (int run = 0; run < 2; run++) {
+    char args[1024];
+    snprintf(args, sizeof args,
+             "--jobs 1 run/snap_0001.h5 -o fig%d.svg && '%s' --jobs 1 --size 8.5cm "
+             "run/snap_0001.h5 -o fig%d.pdf && '%s' --jobs 1 --panels 2x1 --size 17cm "
+             "run/snap_0000.h5 run/snap_0001.h5 -o panels%d.svg",
+             run, renderer(), run, renderer(), run);
+    CU_ASSERT_EQUAL_FATAL(render(args), 0);
+  }
+  CU_ASSERT_TRUE(same_bytes(path_in(tmp, "fig0.svg"), path_in(tmp, "fig1.svg")));
+  CU_ASSERT_TRUE(same_bytes(path_in(tmp, "fig0.pdf"), path_in(tmp, "fig1.pdf")));
+  CU_ASSERT_TRUE(same_bytes(path_in(tmp, "panels0.svg"), path_in(tmp, "panels1.svg")));
+  CU_ASSERT_EQUAL(count_files(tmp, ".tmp"), 0);
+  char *svg = sph_test_read_file(path_in(tmp, "fig0.svg"), NULL);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(svg);
+  CU_ASSERT_PTR_NOT_NULL(strstr(svg, "width=\"1280pt\" height=\"720pt\""));
+  CU_ASSERT_PTR_NOT_NULL(strstr(svg, "<image"));          /* the interpolated field */
+  CU_ASSERT_PTR_NOT_NULL(strstr(svg, "id=\"glyph0-1\"")); /* the labels as glyphs */
+  free(svg);
+  svg = sph_test_read_file(path_in(tmp, "panels0.svg"), NULL);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(svg);
+  CU_ASSERT_PTR_NOT_NULL(strstr(svg, "width=\"482pt\"")); /* 17 cm */
+  free(svg);
+  const char *pdf = path_in(tmp, "fig0.pdf");
+  CU_ASSERT_TRUE(file_has(pdf, "%PDF-"));
+  CU_ASSERT_TRUE(file_has(pdf, "/MediaBox [ 0 0 241 "));
+  CU_ASSERT_TRUE(file_has(pdf, "%%EOF"));
+  char cmd[8400];
+  snprintf(cmd, sizeof cmd,
+           "python3 -c 'import sys, xml.etree.ElementTree as E; "
+           "r = E.parse(sys.argv[1]).getroot(); sys.exit(0 if r.tag.endswith(\"svg\") else 1)' "
+           "'%s'",
+           path_in(tmp, "panels0.svg"));
+  CU_ASSERT_EQUAL(sph_test_system(cmd), 0);
+  /* a PNG of a physical size: pixels at --dpi */
+  char args[1024];
+  snprintf(args, sizeof args,
+           "--jobs 1 --size 8.5cm run/snap_0001.h5 -o col300.png && '%s' --jobs 1 --size 85mm "
+           "--dpi 150 run/snap_0001.h5 -o col150.png",
+           renderer());
+  CU_ASSERT_EQUAL_FATAL(render(args), 0);
+  int w = 0, h = 0;
+  uint8_t *img = read_png(path_in(tmp, "col300.png"), &w, &h);
+  CU_ASSERT(img != NULL && w == 1004);
+  free(img);
+  img = read_png(path_in(tmp, "col150.png"), &w, &h);
+  CU_ASSERT(img != NULL && w == 502);
+  free(img);
+  CU_ASSERT_NOT_EQUAL(render("--size 8.5cmx6 run/snap_0001.h5 -o bad.png"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "lengths in cm, mm or in"));
+  CU_ASSERT_NOT_EQUAL(render("--size 300in run/snap_0001.h5 -o bad.png"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "each side must be 16 to 16384"));
+  CU_ASSERT_FALSE(exists(path_in(tmp, "bad.png")));
+}
+
 /* What -o may name: a plot's extension picks its format and any other is
- * refused; snapshot images are PNG, so .pdf or .svg there is an error,
- * not a directory named one.pdf/; a directory whose name has a dot is
+ * refused; a snapshot figure is a .png, .svg or .pdf file (several
+ * snapshots into one such file is an error), any other extension is
+ * refused, not taken for a directory; a directory whose name has a dot is
  * taken with a trailing slash or when it exists. */
 static void test_output_names(void) {
   char args[8192];
@@ -1111,8 +1176,8 @@ static void test_output_names(void) {
   CU_ASSERT_NOT_EQUAL(render(args), 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), ".png, .svg or .pdf"));
   CU_ASSERT_FALSE(exists(path_in(tmp, "plot.eps")));
-  CU_ASSERT_NOT_EQUAL(render("run/snap_0001.h5 -o one.pdf"), 0);
-  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "sph-render plot"));
+  CU_ASSERT_NOT_EQUAL(render("run -o one.pdf"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "names one image but there are"));
   CU_ASSERT_FALSE(exists(path_in(tmp, "one.pdf")));
   CU_ASSERT_NOT_EQUAL(render("run/snap_0001.h5 -o one.jpg"), 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "unknown extension '.jpg'"));
@@ -1243,6 +1308,7 @@ int main(void) {
       {"the default look: a fluid field smooth and outlined, flags as discs", test_default_look},
       {"interpolated view and outline", test_smooth},
       {"plots as SVG and PDF", test_vector_plot},
+      {"snapshot figures as SVG and PDF, sizes in cm", test_vector_figures},
       {"output names and extensions", test_output_names},
       {"missing font", test_font_missing},
       {"bad input: missing file", test_missing_file},
