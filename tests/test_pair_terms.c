@@ -294,8 +294,8 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
       const double mj = p->mass[j], rhoj = p->rho[j];
       const double vx = p->vx[i] - p->vx[j], vy = p->vy[i] - p->vy[j];
       const double vg = vx * gx + vy * gy, vr = vx * dx + vy * dy;
-      drho += mj * vg;                           /* B eq. 2 */
-      sig = fmax(sig, fabs(hij * vr) / (r * r)); /* B §2.6 */
+      if (fluid || p->kind[j] == SPH_KIND_FLUID) drho += mj * vg; /* B eq. 2; a wall: fluid j */
+      sig = fmax(sig, fabs(hij * vr) / (r * r));                  /* B §2.6 */
       /* density_diffusion.h, diffusion.h: fluid with fluid, a dynamic wall
        * with fluid */
       if (fp->diffusion && dif[i] && dif[j] && (fluid || p->kind[j] == SPH_KIND_FLUID)) {

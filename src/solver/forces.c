@@ -441,7 +441,6 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
                         sph_force_work *w, const unsigned F, sph_error *err) {
   const long n = (long)p->n;
   if (work_reserve(w, p->n, err)) return -1;
-  const int fm = (F & (F_XSPH | F_LEDGER | F_RIEMANN)) != 0; /* the loops read the fluid masses */
   /* the Riemann pressure's rows that meet a wall with a normal (interact_row.h, rnorm) */
   const int nwall = (F & F_RIEMANN) && (fp->mdbc || fp->no_slip || fp->free_slip);
 #pragma omp parallel if (n > SPH_OMP_MIN)
@@ -453,7 +452,8 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
       w->cs[i] = cs;
       w->hot[i] = (sph_force_hot){
           p->x[i], p->y[i], p->vx[i], p->vy[i], rho, p->p[i] / (rho * rho), cs, p->mass[i]};
-      if (fm) w->fm[i] = p->kind[i] == SPH_KIND_FLUID ? p->mass[i] : 0.0;
+      /* every loop reads the fluid masses (a wall row's continuity, XSPH, the ledger) */
+      w->fm[i] = p->kind[i] == SPH_KIND_FLUID ? p->mass[i] : 0.0;
       if (nwall) w->nwall[i] = 0;
     }
   }

@@ -6,7 +6,8 @@
  * the summation order is fixed by the sorted store).
  *
  * Terms (paper A = dam-break paper, paper B = breaking-wave paper):
- *   continuity       drho_i/dt = sum_j m_j (v_i - v_j) . grad_i W_ij      (B eq. 2, A eq. 12)
+ *   continuity       drho_i/dt = sum_j m_j (v_i - v_j) . grad_i W_ij      (B eq. 2, A eq. 12),
+ *                    over fluid neighbours only for a wall particle i
  *   momentum         dv_i/dt = -sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) grad_i W_ij + g
  *                                                                         (A eq. 11, B eq. 3)
  *   art. viscosity   Pi_ij = (-alpha c_ij mu_ij + beta mu_ij^2)/rho_ij if v_ij.r_ij < 0, else 0
@@ -166,7 +167,7 @@ typedef struct sph_force_work {
   double *gvx, *gvy;       /* velocity in the strain-rate pass (extrapolated on no-slip walls) */
   double *ddcx, *ddcy;     /* density diffusion: the model's vector c_i (solver/diffusion.h) */
   double *ddm;             /* density diffusion: the mass a particle diffuses with (0: none) */
-  double *fm;              /* XSPH: the mass of a fluid particle, 0 for the others */
+  double *fm;              /* the mass of a fluid particle, 0 for the others (every pass) */
   uint32_t *keepn;         /* the pairs of each kept row (below) */
   uint32_t *nwall;         /* Riemann pressure: 1 where the particle's list row holds a wall
                               particle with a normal (SPH_WALL_NORMAL), else 0 (prepare_pass) */

@@ -198,7 +198,14 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     const LT dvx = LOP(sub)(vxi, GATHER(vx)), dvy = LOP(sub)(vyi, GATHER(vy));
     const LT mj = GATHER(m);
     const LVEC rv = {{dx, dy}}, gw = {{gx, gy}}, dv = {{dvx, dvy}}; /* r_ij, grad_i W_ij, v_ij */
-    LACC(drho, LTERM(continuity)(mj, dv, gw));
+    if (fluid) {
+      LACC(drho, LTERM(continuity)(mj, dv, gw));
+    } else { /* a wall particle's density follows its fluid neighbours only: the walls
+              * next to it are the same body, or another wall moving past it (a flap
+              * at its hinge compressed its own corner to 1.3 rho0) */
+      const LMASK fj = LOP(lt)(zero, LSET(E_ARR, fm));
+      LACC(drho, LOP(and)(fj, LTERM(continuity)(mj, dv, gw)));
+    }
     const LT vdotr = LOP(add)(LOP(mul)(dvx, dx), LOP(mul)(dvy, dy));
     LAMAX(sig, LOP(and)(in, LTERM(signal)(hij, vdotr, inv_r2)));
     if ((F & F_DDIFF) && diffuses) { /* over the neighbours that diffuse (diffusion.h) */
