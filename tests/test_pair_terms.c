@@ -137,6 +137,7 @@ static void params_for(unsigned F, unsigned seed, sph_force_params *fp) {
   fp->repulsive = 1;
   fp->lj_d = 5.0;
   fp->lj_r0 = DX;
+  fp->moving_walls = 1; /* row 2 moves */
   fp->free_slip = seed % 3 == 1;
   fp->mirror = seed % 3 == 2;
 }

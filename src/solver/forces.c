@@ -441,6 +441,9 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
                         sph_force_work *w, const unsigned F, sph_error *err) {
   const long n = (long)p->n;
   if (work_reserve(w, p->n, err)) return -1;
+  /* the loops read the fluid masses: XSPH, the ledger, the Riemann terms, and a wall row's
+   * continuity where walls move (interact_row.h) */
+  const int fm = (F & (F_XSPH | F_LEDGER | F_RIEMANN)) || fp->moving_walls || fp->mirror;
   /* the Riemann pressure's rows that meet a wall with a normal (interact_row.h, rnorm) */
   const int nwall = (F & F_RIEMANN) && (fp->mdbc || fp->no_slip || fp->free_slip);
 #pragma omp parallel if (n > SPH_OMP_MIN)
@@ -452,8 +455,7 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
       w->cs[i] = cs;
       w->hot[i] = (sph_force_hot){
           p->x[i], p->y[i], p->vx[i], p->vy[i], rho, p->p[i] / (rho * rho), cs, p->mass[i]};
-      /* every loop reads the fluid masses (a wall row's continuity, XSPH, the ledger) */
-      w->fm[i] = p->kind[i] == SPH_KIND_FLUID ? p->mass[i] : 0.0;
+      if (fm) w->fm[i] = p->kind[i] == SPH_KIND_FLUID ? p->mass[i] : 0.0;
       if (nwall) w->nwall[i] = 0;
     }
   }

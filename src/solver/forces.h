@@ -121,6 +121,9 @@ typedef struct sph_force_params {
   int no_slip;             /* some wall particles carry SPH_FLAG_NO_SLIP (wall_velocity.h) */
   int free_slip;           /* some wall particles carry SPH_FLAG_FREE_SLIP: the scalar loop */
   int mdbc;                /* some wall particles carry SPH_FLAG_MDBC (diffusion.c) */
+  int moving_walls;        /* some wall particles move: a wall row's continuity then skips
+                              its wall (and mirror) neighbours, as with mirror walls; for
+                              walls at rest each such pair adds +-0 */
   int wall_diffusion;      /* density diffusion on and some dynamic or fixed_layers wall
                               particles, which take part in it (diffusion.h) */
   int mirror;              /* mirror walls: their particles' no-slip velocity in vxh, vyh, the

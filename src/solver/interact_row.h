@@ -111,11 +111,13 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const LT eta2 = LOP(all)(eta * eta), nalpha = LOP(all)(-fp->alpha), beta = LOP(all)(fp->beta);
   const LT nu4 = LOP(all)(4.0 * fp->mu / fp->eos.rho0);
   /* the Riemann pressure: p_i, rho0 c0 and eta / c0 */
-  const LT pi = LOP(all)(qi.prho2 * qi.rho * qi.rho);
-  const LT rz0 = LOP(all)(fp->eos.rho0 * fp->eos.c0);
-  const LT rkc = LOP(all)(fp->riemann_limiter / fp->eos.c0);
-  const LT rinv_z0 = LOP(all)(1.0 / (fp->eos.rho0 * fp->eos.c0));
-  const LT hgx = LOP(all)(fp->eos.rho0 * fp->gx), hgy = LOP(all)(fp->eos.rho0 * fp->gy);
+  const int riem = (F & F_RIEMANN) != 0; /* (the constants only where it is on) */
+  const LT pi = LOP(all)(riem ? qi.prho2 * qi.rho * qi.rho : 0.0);
+  const LT rz0 = LOP(all)(riem ? fp->eos.rho0 * fp->eos.c0 : 0.0);
+  const LT rkc = LOP(all)(riem ? fp->riemann_limiter / fp->eos.c0 : 0.0);
+  const LT rinv_z0 = LOP(all)(riem ? 1.0 / (fp->eos.rho0 * fp->eos.c0) : 0.0);
+  const LT hgx = LOP(all)(riem ? fp->eos.rho0 * fp->gx : 0.0);
+  const LT hgy = LOP(all)(riem ? fp->eos.rho0 * fp->gy : 0.0);
 #if LW > 1
 #define E_LANE(q, a) ((double)(q))
   const LT lane = LSET(E_LANE, 0), n = LOP(all)((double)cnt);
@@ -198,7 +200,7 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     const LT dvx = LOP(sub)(vxi, GATHER(vx)), dvy = LOP(sub)(vyi, GATHER(vy));
     const LT mj = GATHER(m);
     const LVEC rv = {{dx, dy}}, gw = {{gx, gy}}, dv = {{dvx, dvy}}; /* r_ij, grad_i W_ij, v_ij */
-    if (fluid) {
+    if (fluid || !(fp->moving_walls || fp->mirror)) { /* walls at rest: their pairs add +-0 */
       LACC(drho, LTERM(continuity)(mj, dv, gw));
     } else { /* a wall particle's density follows its fluid neighbours only: the walls
               * next to it are the same body, or another wall moving past it (a flap

@@ -315,6 +315,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.no_slip = s->walls.no_slip;
   s->fp.free_slip = s->walls.free_slip;
   s->fp.mdbc = s->walls.mdbc;
+  s->fp.moving_walls = s->walls.moving;
   s->fp.wall_diffusion = sph_diffusion_walls(&s->p, &s->fp);
   s->fp.mirror = s->walls.n_mirror > 0;
   s->fp.repulsive = s->walls.repulsive;
