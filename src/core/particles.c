@@ -124,6 +124,21 @@ void sph_particles_move(sph_particles *p, size_t to, size_t from) {
 #undef MOVE
 }
 
+size_t sph_particles_drop_if(sph_particles *p, size_t first,
+                             int (*drop)(const void *ctx, const sph_particles *p, size_t i),
+                             const void *ctx) {
+  size_t kept = first;
+  for (size_t i = first; i < p->n; i++) {
+    if (drop(ctx, p, i)) continue;
+    if (kept != i) sph_particles_move(p, kept, i);
+    p->id[kept] = (int64_t)kept;
+    kept++;
+  }
+  const size_t removed = p->n - kept;
+  p->n = kept;
+  return removed;
+}
+
 void sph_particles_free(sph_particles *p) {
   free(p->block);
   memset(p, 0, sizeof *p);

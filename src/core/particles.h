@@ -122,6 +122,14 @@ long sph_particles_add(sph_particles *p, double x, double y, double vx, double v
 /* Copies particle `from` to storage index `to`: every live array (id
  * included: renumber after, if the ids must stay 0..n-1). */
 void sph_particles_move(sph_particles *p, size_t to, size_t from);
+/* Removes the particles i >= first for which drop(ctx, p, i) is true; the
+ * others move down in order (sph_particles_move), each id from `first` on
+ * renumbered to its new index. drop sees particle i where it was made and
+ * every particle after it unmoved (only slots up to i are written before
+ * it is asked). Returns how many were removed. */
+size_t sph_particles_drop_if(sph_particles *p, size_t first,
+                             int (*drop)(const void *ctx, const sph_particles *p, size_t i),
+                             const void *ctx);
 void sph_particles_free(sph_particles *p);
 /* Counts of each kind. */
 size_t sph_particles_count_kind(const sph_particles *p, int32_t kind);

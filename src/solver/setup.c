@@ -102,6 +102,34 @@ static int add_fluid(sph_sim *s, sph_error *err) {
  * eight around it. Ids are renumbered in order. Returns how many were
  * removed, or -1 out of memory. */
 #define SPH_WALL_CLEARANCE 0.5
+
+/* The wall particles binned in cells of dx from (x0, y0), nx columns (nxd x
+ * nyd cells), cell c's at idx[start[c] .. start[c + 1] - 1]; and the test:
+ * fluid particle i closer than sqrt(d2) to one in its cell or the eight
+ * around it. */
+typedef struct wall_bins {
+  double x0, y0, dx, d2;
+  size_t nx;
+  double nxd, nyd;
+  const size_t *start, *idx;
+} wall_bins;
+static int fluid_in_wall(const void *ctx, const sph_particles *p, size_t i) {
+  const wall_bins *b = ctx;
+  if (p->kind[i] != SPH_KIND_FLUID) return 0;
+  const double cx = floor((p->x[i] - b->x0) / b->dx), cy = floor((p->y[i] - b->y0) / b->dx);
+  for (double ry = cy - 1; ry <= cy + 1; ry++)
+    for (double rx = cx - 1; rx <= cx + 1; rx++) {
+      if (rx < 0 || ry < 0 || rx >= b->nxd || ry >= b->nyd) continue;
+      const size_t c = (size_t)ry * b->nx + (size_t)rx;
+      for (size_t k = b->start[c]; k < b->start[c + 1]; k++) {
+        const size_t j = b->idx[k];
+        const double ex = p->x[i] - p->x[j], ey = p->y[i] - p->y[j];
+        if (ex * ex + ey * ey < b->d2) return 1;
+      }
+    }
+  return 0;
+}
+
 static long remove_fluid_in_walls(sph_sim *s) {
   sph_particles *p = &s->p;
   const double dx = s->c->dx, d2 = (SPH_WALL_CLEARANCE * dx) * (SPH_WALL_CLEARANCE * dx);
@@ -140,32 +168,8 @@ static long remove_fluid_in_walls(sph_sim *s) {
       idx[start[c] + fill[c]++] = i;
     }
 #undef CELL_OF
-  size_t kept = 0;
-  long removed = 0;
-  for (size_t i = 0; i < p->n; i++) {
-    int near = 0;
-    if (p->kind[i] == SPH_KIND_FLUID) {
-      const double cx = floor((p->x[i] - x0) / dx), cy = floor((p->y[i] - y0) / dx);
-      for (double ry = cy - 1; ry <= cy + 1 && !near; ry++)
-        for (double rx = cx - 1; rx <= cx + 1 && !near; rx++) {
-          if (rx < 0 || ry < 0 || rx >= nxd || ry >= nyd) continue;
-          const size_t c = (size_t)ry * nx + (size_t)rx;
-          for (size_t k = start[c]; k < start[c + 1] && !near; k++) {
-            const size_t j = idx[k];
-            const double ex = p->x[i] - p->x[j], ey = p->y[i] - p->y[j];
-            near = ex * ex + ey * ey < d2;
-          }
-        }
-    }
-    if (near) {
-      removed++;
-      continue;
-    }
-    if (kept != i) sph_particles_move(p, kept, i);
-    p->id[kept] = (int64_t)kept;
-    kept++;
-  }
-  p->n = kept;
+  const wall_bins b = {x0, y0, dx, d2, nx, nxd, nyd, start, idx};
+  const long removed = (long)sph_particles_drop_if(p, 0, fluid_in_wall, &b);
   free(start);
   free(idx);
   free(fill);

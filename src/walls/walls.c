@@ -32,6 +32,21 @@ static int is_dbc(sph_boundary_kind b) {
  * pairs 0.1 dx apart); the others move down, their ids their new indices.
  * Returns how many were dropped, or -1 out of memory. Only the earlier
  * particles inside the new ones' box, widened by dx/2, are compared. */
+/* drop_overlaps' test: particle i closer than sqrt(d2) to one of near[0 .. m - 1]. */
+typedef struct overlap {
+  const size_t *near;
+  size_t m;
+  double d2;
+} overlap;
+static int overlaps(const void *ctx, const sph_particles *p, size_t i) {
+  const overlap *o = ctx;
+  for (size_t k = 0; k < o->m; k++) {
+    const double ex = p->x[i] - p->x[o->near[k]], ey = p->y[i] - p->y[o->near[k]];
+    if (ex * ex + ey * ey < o->d2) return 1;
+  }
+  return 0;
+}
+
 static long drop_overlaps(sph_particles *p, size_t from, size_t first, double dx) {
   const double d = 0.5 * dx, d2 = d * d;
   double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
@@ -48,23 +63,8 @@ static long drop_overlaps(sph_particles *p, size_t from, size_t first, double dx
   m = 0;
   for (size_t j = from; j < first; j++)
     if (p->x[j] >= x0 && p->x[j] <= x1 && p->y[j] >= y0 && p->y[j] <= y1) near_box[m++] = j;
-  size_t kept = first;
-  long dropped = 0;
-  for (size_t i = first; i < p->n; i++) {
-    int near = 0;
-    for (size_t k = 0; k < m && !near; k++) {
-      const double ex = p->x[i] - p->x[near_box[k]], ey = p->y[i] - p->y[near_box[k]];
-      near = ex * ex + ey * ey < d2;
-    }
-    if (near) {
-      dropped++;
-      continue;
-    }
-    if (kept != i) sph_particles_move(p, kept, i);
-    p->id[kept] = (int64_t)kept;
-    kept++;
-  }
-  p->n = kept;
+  const overlap o = {near_box, m, d2};
+  const long dropped = (long)sph_particles_drop_if(p, first, overlaps, &o);
   free(near_box);
   return dropped;
 }
