@@ -966,6 +966,21 @@ static int get_optional_number(const sph_snapshot *s, hid_t g, const char *name,
   return there > 0 ? get_numbers_of(s, g, "/restart", name, H5T_NATIVE_DOUBLE, out, 1, err) : 0;
 }
 
+/* An optional attribute of /restart holding doubles: malloc'd into *out
+ * (*n values), or NULL and 0 where it is absent. */
+static int get_optional_doubles(const sph_snapshot *s, hid_t g, const char *name, double **out,
+                                size_t *n, sph_error *err) {
+  *out = NULL;
+  *n = 0;
+  const long long len = attribute_length(s, g, name, err);
+  if (len < 0) return -1;
+  if (len == 0) return 0;
+  if (!(*out = malloc((size_t)len * sizeof **out)))
+    return sph_error_set(err, "%s: out of memory", s->path);
+  *n = (size_t)len;
+  return get_numbers_of(s, g, "/restart", name, H5T_NATIVE_DOUBLE, *out, *n, err);
+}
+
 static int read_restart(const sph_snapshot *s, hid_t g, sph_snapshot_restart_data *r,
                         sph_error *err) {
   int64_t format = 0;
@@ -988,26 +1003,9 @@ static int read_restart(const sph_snapshot *s, hid_t g, sph_snapshot_restart_dat
   if (r->first_step != 0 && r->first_step != 1)
     return sph_error_set(err, "%s: attribute \"first_step\" on /restart is %lld, expected 0 or 1",
                          s->path, (long long)r->first_step);
-  long long nl = attribute_length(s, g, "gauge_levels", err);
-  if (nl < 0) return -1;
-  if (nl > 0) {
-    r->levels = malloc((size_t)nl * sizeof *r->levels);
-    if (!r->levels) return sph_error_set(err, "%s: out of memory", s->path);
-    r->n_levels = (size_t)nl;
-    if (get_numbers_of(s, g, "/restart", "gauge_levels", H5T_NATIVE_DOUBLE, r->levels, r->n_levels,
-                       err))
-      return -1;
-  }
-  long long nf = attribute_length(s, g, "probe_filters", err);
-  if (nf < 0) return -1;
-  if (nf > 0) {
-    r->filters = malloc((size_t)nf * sizeof *r->filters);
-    if (!r->filters) return sph_error_set(err, "%s: out of memory", s->path);
-    r->n_filters = (size_t)nf;
-    if (get_numbers_of(s, g, "/restart", "probe_filters", H5T_NATIVE_DOUBLE, r->filters,
-                       r->n_filters, err))
-      return -1;
-  }
+  if (get_optional_doubles(s, g, "gauge_levels", &r->levels, &r->n_levels, err) ||
+      get_optional_doubles(s, g, "probe_filters", &r->filters, &r->n_filters, err))
+    return -1;
   r->count = s->count;
   void *a = NULL;
   if (read_restart_array(s, g, "order", 1, H5T_NATIVE_INT64, sizeof(int64_t), &a, err)) return -1;
