@@ -13,9 +13,12 @@
 #include "core/kernel_shape.h"
 #include "physics/kernel.h"
 
+int sph_probe_filtered(const sph_probe *q) {
+  return q->kind == SPH_PROBE_PRESSURE && q->low_pass > 0.0;
+}
+
 int sph_probe_columns(const sph_probe *q) {
-  return q->kind == SPH_PROBE_VELOCITY || (q->kind == SPH_PROBE_PRESSURE && q->low_pass > 0.0) ? 2
-                                                                                               : 1;
+  return q->kind == SPH_PROBE_VELOCITY || sph_probe_filtered(q) ? 2 : 1;
 }
 
 double sph_probe_low_pass(double y, double x, double dt, double cutoff) {
@@ -26,7 +29,7 @@ double sph_probe_low_pass(double y, double x, double dt, double cutoff) {
 void sph_probe_header(const sph_probe *q, char *buf, size_t len) {
   switch (q->kind) {
   case SPH_PROBE_PRESSURE:
-    if (q->low_pass > 0.0)
+    if (sph_probe_filtered(q))
       snprintf(buf, len, ",%s (Pa),%s_low_pass (Pa)", q->name, q->name);
     else
       snprintf(buf, len, ",%s (Pa)", q->name);

@@ -60,6 +60,8 @@ typedef struct sph_probe {
   double low_pass; /* pressure: the cut-off (Hz) of the sensor's first-order response, 0 = none */
 } sph_probe;
 
+/* Whether q has a sensor response (a pressure probe with low_pass > 0). */
+int sph_probe_filtered(const sph_probe *q);
 /* The number of CSV columns of a probe: velocity 2, a pressure probe with
  * low_pass 2 (raw, filtered), else 1. */
 int sph_probe_columns(const sph_probe *q);

@@ -193,11 +193,12 @@ char *sph_case_describe(const sph_case *c) {
       sb_add(&b, " x %.17g\n", q->x);
     else if (q->kind == SPH_PROBE_VELOCITY)
       sb_add(&b, " at [%.17g, %.17g]\n", q->x, q->y);
-    else
-      sb_add(&b, " at [%.17g, %.17g] diameter %.17g along %s%s", q->x, q->y, q->diameter,
-             q->along_x ? "x" : "y", q->low_pass > 0.0 ? "" : "\n");
-    if (q->kind == SPH_PROBE_PRESSURE && q->low_pass > 0.0)
-      sb_add(&b, " low_pass %.17g\n", q->low_pass);
+    else {
+      sb_add(&b, " at [%.17g, %.17g] diameter %.17g along %s", q->x, q->y, q->diameter,
+             q->along_x ? "x" : "y");
+      if (sph_probe_filtered(q)) sb_add(&b, " low_pass %.17g", q->low_pass);
+      sb_add(&b, "\n");
+    }
   }
   if (c->n_probes) sb_add(&b, "output.probe_interval: %.17g\n", c->probe_interval);
   if (b.failed) {

@@ -445,7 +445,7 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
    * continuity where walls move (interact_row.h) */
   const int fm = (F & (F_XSPH | F_LEDGER | F_RIEMANN)) || fp->moving_walls || fp->mirror;
   /* the Riemann pressure's rows that meet a wall with a normal (interact_row.h, rnorm) */
-  const int nwall = (F & F_RIEMANN) && (fp->mdbc || fp->no_slip || fp->free_slip);
+  const int nwall = (F & F_RIEMANN) && sph_force_wall_normals(fp);
 #pragma omp parallel if (n > SPH_OMP_MIN)
   {
     size_t lo, hi; /* the slices of the interaction loop */

@@ -142,6 +142,13 @@ typedef struct sph_force_params {
   double riemann_limiter;       /* its limiter eta: beta = min(eta max(dU, 0) / c0, 1) */
 } sph_force_params;
 
+/* Whether some wall particles carry their normal (SPH_WALL_NORMAL: mdbc,
+ * no-slip and free-slip walls), which the Riemann pressure's closing speed
+ * reads (interact_row.h, forces.c). */
+static inline int sph_force_wall_normals(const sph_force_params *fp) {
+  return fp->mdbc || fp->no_slip || fp->free_slip;
+}
+
 /* The fields a neighbour reads, packed in one cache line per particle
  * (storage order), so that walking a neighbour row touches one line per
  * neighbour instead of one per field. */

@@ -136,7 +136,7 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   /* the Riemann pressure's closing speed on walls with a normal (mdbc, no-slip and free-slip
    * walls: SPH_WALL_NORMAL): the normal part of v_ij, so that the wall's dissipation stops the
    * fluid going through it but does not brake it along it (no-slip is the viscous terms') */
-  const int rnorm = (F & F_RIEMANN) && (fp->mdbc || fp->no_slip || slip) &&
+  const int rnorm = (F & F_RIEMANN) && sph_force_wall_normals(fp) &&
                     (kind[i] != SPH_KIND_FLUID || w->nwall[i]); /* a row that meets one */
   const int rnorm_i = rnorm && kind[i] == SPH_KIND_WALL && (flags[i] & SPH_WALL_NORMAL);
   const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy, *restrict ddm = w->ddm;

@@ -85,7 +85,7 @@ fail:
 /* Whether some probe of c has a low-pass filter. */
 static int has_low_pass(const sph_case *c) {
   for (size_t k = 0; k < c->n_probes; k++)
-    if (c->probes[k].kind == SPH_PROBE_PRESSURE && c->probes[k].low_pass > 0.0) return 1;
+    if (sph_probe_filtered(&c->probes[k])) return 1;
   return 0;
 }
 
@@ -96,9 +96,9 @@ static int has_low_pass(const sph_case *c) {
  * has dt = 0 and changes nothing). */
 static void low_pass_row(outputs *o, const sph_case *c, double t, const double *raw) {
   for (size_t k = 0; k < c->n_probes; k++) {
-    const double fc = c->probes[k].low_pass;
-    if (c->probes[k].kind != SPH_PROBE_PRESSURE || !(fc > 0.0)) continue;
-    o->lp[k] = o->lp_rows ? sph_probe_low_pass(o->lp[k], raw[k], t - o->lp_t, fc) : raw[k];
+    const sph_probe *q = &c->probes[k];
+    if (!sph_probe_filtered(q)) continue;
+    o->lp[k] = o->lp_rows ? sph_probe_low_pass(o->lp[k], raw[k], t - o->lp_t, q->low_pass) : raw[k];
   }
   o->lp_t = t;
   o->lp_rows++;
