@@ -120,15 +120,20 @@ static void test_piston_work(void) {
   CU_ASSERT(fabs(b.deviation) < 1e-4);
 }
 
+/* The energy box in a tank of wall model `model`, with one more --set
+ * `extra` (or none), to its end. */
+static int run_box(const char *model, const char *extra, sph_diag_row *a, sph_diag_row *b) {
+  char set[128];
+  snprintf(set, sizeof set, "geometry.tank={x: [0.0, 0.2], y: [0.0, 0.2], boundary: %s}", model);
+  const char *sets[] = {set, extra};
+  return run_case("tests/data/energy_box.yaml", sets, extra ? 2 : 1, a, b);
+}
+
 static void test_every_wall_model(void) {
   static const char *const models[] = {"dynamic", "fixed_layers", "repulsive", "mirror", "mdbc"};
   for (size_t k = 0; k < sizeof models / sizeof models[0]; k++) {
-    char set[128];
-    snprintf(set, sizeof set, "geometry.tank={x: [0.0, 0.2], y: [0.0, 0.2], boundary: %s}",
-             models[k]);
-    const char *sets[] = {set};
     sph_diag_row a, b;
-    CU_ASSERT_FATAL(run_case("tests/data/energy_box.yaml", sets, 1, &a, &b) == 0);
+    CU_ASSERT_FATAL(run_box(models[k], NULL, &a, &b) == 0);
     printf("\n  %-12s |dE/E0| at t = %.2f s: %.2e (kinetic %.3g J)", models[k], b.time,
            fabs(b.deviation), b.kinetic);
     CU_ASSERT(b.kinetic > 0.1 * a.potential); /* the column did collapse */
@@ -144,12 +149,8 @@ static void test_every_wall_model(void) {
 static void test_riemann_booked(void) {
   static const char *const models[] = {"mdbc", "dynamic"};
   for (size_t k = 0; k < sizeof models / sizeof models[0]; k++) {
-    char set[128];
-    snprintf(set, sizeof set, "geometry.tank={x: [0.0, 0.2], y: [0.0, 0.2], boundary: %s}",
-             models[k]);
-    const char *sets[] = {set, "physics.riemann.limiter=3"};
     sph_diag_row a, b;
-    CU_ASSERT_FATAL(run_case("tests/data/energy_box.yaml", sets, 2, &a, &b) == 0);
+    CU_ASSERT_FATAL(run_box(models[k], "physics.riemann.limiter=3", &a, &b) == 0);
     printf("\n  Riemann, %-7s |dE/E0| at t = %.2f s: %.2e, continuity term's energy %.3g J",
            models[k], b.time, fabs(b.deviation), b.diffusion_energy);
     CU_ASSERT(b.kinetic > 0.1 * a.potential);
@@ -165,12 +166,8 @@ static void test_riemann_booked(void) {
 static void test_shifting_booked(void) {
   static const char *const models[] = {"mdbc", "dynamic"};
   for (size_t k = 0; k < sizeof models / sizeof models[0]; k++) {
-    char set[128];
-    snprintf(set, sizeof set, "geometry.tank={x: [0.0, 0.2], y: [0.0, 0.2], boundary: %s}",
-             models[k]);
-    const char *sets[] = {set, "numerics.shifting={coefficient: 2}"};
     sph_diag_row a, b;
-    CU_ASSERT_FATAL(run_case("tests/data/energy_box.yaml", sets, 2, &a, &b) == 0);
+    CU_ASSERT_FATAL(run_box(models[k], "numerics.shifting={coefficient: 2}", &a, &b) == 0);
     printf("\n  %-8s with shifting: |dE/E0| at t = %.2f s: %.2e, shifting_drift %.3e of E0",
            models[k], b.time, fabs(b.deviation), b.shifting_drift / a.total);
     CU_ASSERT(b.shifting && !a.shifting == 0);

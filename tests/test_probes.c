@@ -105,6 +105,16 @@ static void test_lattice(void) {
   sph_particles_free(&p);
 }
 
+/* The first line of the file at path into buf; 0 if it cannot be read. */
+static int first_line(const char *path, char *buf, size_t size) {
+  FILE *f = fopen(path, "r");
+  buf[0] = '\0';
+  if (!f) return 0;
+  const int ok = fgets(buf, (int)size, f) != NULL;
+  fclose(f);
+  return ok;
+}
+
 static void test_tank(void) {
   char *dir = sph_test_tmpdir();
   char args[8192], out[16384], path[4200];
@@ -121,11 +131,8 @@ static void test_tank(void) {
   if (st) printf("\n%s\n", out);
   CU_ASSERT_FATAL(st == 0);
   snprintf(path, sizeof path, "%s/run/probes.csv", dir);
-  FILE *f = fopen(path, "r");
-  CU_ASSERT_FATAL(f != NULL);
-  char header[512] = "";
-  CU_ASSERT(fgets(header, sizeof header, f) != NULL);
-  fclose(f);
+  char header[512];
+  CU_ASSERT_FATAL(first_line(path, header, sizeof header));
   CU_ASSERT_STRING_EQUAL(header, "time,P1 (Pa),P2 (Pa),Pf (Pa),H1 (m),V1_vx (m/s),V1_vy (m/s)\n");
   double *col[7];
   const long n = sph_test_csv(path, "#0,#1,#2,#3,#4,#5,#6", col);
@@ -193,11 +200,8 @@ static void test_low_pass(void) {
     CU_ASSERT_FATAL(st == 0);
   }
   snprintf(path, sizeof path, "%s/run1/probes.csv", dir);
-  FILE *f = fopen(path, "r");
-  CU_ASSERT_FATAL(f != NULL);
-  char header[512] = "";
-  CU_ASSERT(fgets(header, sizeof header, f) != NULL);
-  fclose(f);
+  char header[512];
+  CU_ASSERT_FATAL(first_line(path, header, sizeof header));
   CU_ASSERT_STRING_EQUAL(header, "time,P1 (Pa),P1_low_pass (Pa),H1 (m)\n");
   double *a[4], *b[3];
   const long n = sph_test_csv(path, "#0,#1,#2,#3", a);

@@ -151,6 +151,17 @@ static int file_has(const char *path, const char *needle) {
   return found;
 }
 
+/* Whether python3's XML parser reads path as an SVG document. */
+static int svg_parses(const char *path) {
+  char cmd[8400];
+  snprintf(cmd, sizeof cmd,
+           "python3 -c 'import sys, xml.etree.ElementTree as E; "
+           "r = E.parse(sys.argv[1]).getroot(); sys.exit(0 if r.tag.endswith(\"svg\") else 1)' "
+           "'%s'",
+           path);
+  return sph_test_system(cmd) == 0;
+}
+
 static int same_bytes(const char *a, const char *b) {
   char cmd[9000];
   snprintf(cmd, sizeof cmd, "cmp -s '%s' '%s'", a, b);
@@ -1091,13 +1102,7 @@ static void test_vector_plot(void) {
   CU_ASSERT_TRUE(file_has(pdf, "/MediaBox [ 0 0 500 300 ]"));
   CU_ASSERT_TRUE(file_has(pdf, "DejaVuSans")); /* the embedded font subset */
   CU_ASSERT_TRUE(file_has(pdf, "%%EOF"));
-  char cmd[8400];
-  snprintf(cmd, sizeof cmd,
-           "python3 -c 'import sys, xml.etree.ElementTree as E; "
-           "r = E.parse(sys.argv[1]).getroot(); sys.exit(0 if r.tag.endswith(\"svg\") else 1)' "
-           "'%s'",
-           path_in(tmp, "plot0.svg"));
-  CU_ASSERT_EQUAL(sph_test_system(cmd), 0);
+  CU_ASSERT_TRUE(svg_parses(path_in(tmp, "plot0.svg")));
 }
 
 /* Snapshot figures as SVG and PDF (issue 39, point 10): one snapshot and a
@@ -1136,13 +1141,7 @@ static void test_vector_figures(void) {
   CU_ASSERT_TRUE(file_has(pdf, "%PDF-"));
   CU_ASSERT_TRUE(file_has(pdf, "/MediaBox [ 0 0 241 "));
   CU_ASSERT_TRUE(file_has(pdf, "%%EOF"));
-  char cmd[8400];
-  snprintf(cmd, sizeof cmd,
-           "python3 -c 'import sys, xml.etree.ElementTree as E; "
-           "r = E.parse(sys.argv[1]).getroot(); sys.exit(0 if r.tag.endswith(\"svg\") else 1)' "
-           "'%s'",
-           path_in(tmp, "panels0.svg"));
-  CU_ASSERT_EQUAL(sph_test_system(cmd), 0);
+  CU_ASSERT_TRUE(svg_parses(path_in(tmp, "panels0.svg")));
   /* a PNG of a physical size: pixels at --dpi */
   char args[1024];
   snprintf(args, sizeof args,
