@@ -13,10 +13,6 @@
 #include "core/kernel_shape.h"
 #include "physics/kernel.h"
 
-int sph_probe_filtered(const sph_probe *q) {
-  return q->kind == SPH_PROBE_PRESSURE && q->low_pass > 0.0;
-}
-
 int sph_probe_columns(const sph_probe *q) {
   return q->kind == SPH_PROBE_VELOCITY || sph_probe_filtered(q) ? 2 : 1;
 }

@@ -61,7 +61,9 @@ typedef struct sph_probe {
 } sph_probe;
 
 /* Whether q has a sensor response (a pressure probe with low_pass > 0). */
-int sph_probe_filtered(const sph_probe *q);
+static inline int sph_probe_filtered(const sph_probe *q) {
+  return q->kind == SPH_PROBE_PRESSURE && q->low_pass > 0.0;
+}
 /* The number of CSV columns of a probe: velocity 2, a pressure probe with
  * low_pass 2 (raw, filtered), else 1. */
 int sph_probe_columns(const sph_probe *q);

@@ -125,9 +125,12 @@ enum {
 #define PORTABLE_LOOPS(V) LANE_LOOPS(V)
 #endif
 
+/* Every term bit (the last one doubled, less 1). */
+#define F_TERMS (2u * F_RIEMANN - 1u)
+
 /* The bits a loop Fc takes as literals (above). */
 #define F_LITERAL(Fc)                                                                              \
-  (!((Fc)&F_RUNTIME)     ? 0x1ffu                                                                  \
+  (!((Fc)&F_RUNTIME)     ? F_TERMS                                                                 \
    : ((Fc)&F_AXES_FIXED) ? (unsigned)(F_VARH | F_AXES)                                             \
                          : (unsigned)F_VARH)
 
