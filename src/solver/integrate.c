@@ -89,10 +89,18 @@ void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const s
       p->vx0[i] = p->vx[i];
       p->vy0[i] = p->vy[i];
       p->rho0[i] = p->rho[i];
-      const double rh = (first ? p->rho[i] : p->rhoh[i]) + kick * p->drho[i];
-      p->rhoh[i] = rh;
-      p->rho[i] = rh + hdt * p->drho[i];
-      p->p[i] = sph_eos_pressure(eos, p->rho[i]);
+      if (p->flags[i] & SPH_FLAG_MDBC) {
+        /* an mdbc wall's density is the fluid's, extrapolated at every pass
+         * (wall_velocity.h), not a state: integrated from t = 0 its half-step
+         * value drifted to 1.3 rho0 on the Lobovsky floor and stopped the run
+         * as a blow-up although the pass never used it */
+        p->rhoh[i] = p->rho[i];
+      } else {
+        const double rh = (first ? p->rho[i] : p->rhoh[i]) + kick * p->drho[i];
+        p->rhoh[i] = rh;
+        p->rho[i] = rh + hdt * p->drho[i];
+        p->p[i] = sph_eos_pressure(eos, p->rho[i]);
+      }
       if (heat) {
         p->u0[i] = p->u[i];
         const double uh = (first ? p->u[i] : p->uh[i]) + kick * p->du[i];
