@@ -16,7 +16,8 @@ front_golden() {
   {
     echo "# golden: surge front of cases/$2.yaml at every output time"
     echo "# made by: make golden ($("$sph" --version | head -n 1)); compared within 0.05 dx by tests/$3.c"
-    awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i == "time") t = i; if ($i == "front_x") f = i }
+    awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) { n = $i; sub(/ \(.*\)$/, "", n)  # "time (s)": time
+                         if (n == "time") t = i; if (n == "front_x") f = i }
                        print "time,front_x"; next }
              { print $t "," $f }' "$1/diagnostics.csv"
   } > "$4.tmp"

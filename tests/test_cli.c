@@ -237,8 +237,8 @@ static void test_good_run_and_info(void) {
   char line[4096];
   int lines = 0;
   CU_ASSERT(fgets(line, sizeof line, f) != NULL);
-  CU_ASSERT_STRING_EQUAL(line, "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,"
-                               "potential\n");
+  CU_ASSERT_STRING_EQUAL(line, "time (s),step,dt (s),n_fluid,front_x (m),mass (kg/m),momentum_x "
+                               "(kg/s),momentum_y (kg/s),kinetic (J/m),potential (J/m)\n");
   while (fgets(line, sizeof line, f))
     lines++;
   fclose(f);

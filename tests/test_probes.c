@@ -133,7 +133,8 @@ static void test_tank(void) {
   snprintf(path, sizeof path, "%s/run/probes.csv", dir);
   char header[512];
   CU_ASSERT_FATAL(first_line(path, header, sizeof header));
-  CU_ASSERT_STRING_EQUAL(header, "time,P1 (Pa),P2 (Pa),Pf (Pa),H1 (m),V1_vx (m/s),V1_vy (m/s)\n");
+  CU_ASSERT_STRING_EQUAL(header,
+                         "time (s),P1 (Pa),P2 (Pa),Pf (Pa),H1 (m),V1_vx (m/s),V1_vy (m/s)\n");
   double *col[7];
   const long n = sph_test_csv(path, "#0,#1,#2,#3,#4,#5,#6", col);
   CU_ASSERT_FATAL(n > 0);
@@ -202,7 +203,7 @@ static void test_low_pass(void) {
   snprintf(path, sizeof path, "%s/run1/probes.csv", dir);
   char header[512];
   CU_ASSERT_FATAL(first_line(path, header, sizeof header));
-  CU_ASSERT_STRING_EQUAL(header, "time,P1 (Pa),P1_low_pass (Pa),H1 (m)\n");
+  CU_ASSERT_STRING_EQUAL(header, "time (s),P1 (Pa),P1_low_pass (Pa),H1 (m)\n");
   double *a[4], *b[3];
   const long n = sph_test_csv(path, "#0,#1,#2,#3", a);
   snprintf(path, sizeof path, "%s/run0/probes.csv", dir);

@@ -588,6 +588,23 @@ static void test_csv(void) {
   CU_ASSERT_NOT_EQUAL(sph_csv_read(bad, &t, &err), 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "bad.csv:5"));
   CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "'b'"));
+  /* a header with units (the convention of every CSV sph writes): the
+   * bare name finds its column, the full name too, a prefix does not */
+  fp = fopen(bad, "w");
+  CU_ASSERT_PTR_NOT_NULL_FATAL(fp);
+  fputs("time (s),step,kinetic (J/m),kinetic_x\n0,1,2,3\n", fp);
+  fclose(fp);
+  CU_ASSERT_EQUAL_FATAL(sph_csv_read(bad, &t, &err), 0);
+  CU_ASSERT_EQUAL(sph_csv_column(&t, "time", &err), 0);
+  CU_ASSERT_EQUAL(sph_csv_column(&t, "step", &err), 1);
+  CU_ASSERT_EQUAL(sph_csv_column(&t, "kinetic", &err), 2);
+  CU_ASSERT_EQUAL(sph_csv_column(&t, "kinetic (J/m)", &err), 2);
+  CU_ASSERT_EQUAL(sph_csv_column(&t, "kinetic_x", &err), 3);
+  CU_ASSERT_EQUAL(sph_csv_column(&t, "kin", &err), -1);
+  CU_ASSERT_EQUAL(sph_csv_column(&t, "time (", &err), -1);
+  CU_ASSERT_EQUAL(sph_csv_eval(&t, "time+kinetic", v, &err), 0);
+  CU_ASSERT_DOUBLE_EQUAL(v[0], 2.0, 1e-15);
+  sph_csv_free(&t);
   fp = fopen(bad, "w");
   fputs("a,b\n1,2,3\n", fp);
   fclose(fp);

@@ -479,8 +479,12 @@ static int write_report(const char *outdir, const char *name, const audit_row *r
   char path[4096];
   FILE *f = path_join(path, sizeof path, outdir, "audit.csv") ? NULL : fopen(path, "w");
   if (f) {
-    fprintf(f, "particles,dx,time,energy_deviation,fluid_energy_deviation,wall_work,wall_heat,"
-               "mass_drift,momentum_drift\n");
+    static const char *const cols[] = {
+        "particles", "dx",        "time",       "energy_deviation", "fluid_energy_deviation",
+        "wall_work", "wall_heat", "mass_drift", "momentum_drift"};
+    for (size_t k = 0; k < sizeof cols / sizeof cols[0]; k++)
+      sph_csv_put_column(f, cols[k], k == 0);
+    fputc('\n', f);
     for (int r = 0; r < nr; r++)
       for (int k = 0; k < nt; k++)
         fprintf(f, "%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", rows[r].particles,

@@ -202,6 +202,14 @@ void sph_csv_free(sph_csv *t) {
 int sph_csv_column(const sph_csv *t, const char *name, sph_error *err) {
   for (size_t k = 0; k < t->ncol; k++)
     if (strcmp(t->names[k], name) == 0) return (int)k;
+  const size_t n = strlen(name);
+  for (size_t k = 0; k < t->ncol; k++) { /* "kinetic" for "kinetic (J/m)" */
+    const char *c = t->names[k];
+    const size_t len = strlen(c);
+    if (n > 0 && len > n + 3 && strncmp(c, name, n) == 0 && c[n] == ' ' && c[n + 1] == '(' &&
+        c[len - 1] == ')')
+      return (int)k;
+  }
   char list[512] = "";
   size_t used = 0;
   for (size_t k = 0; k < t->ncol && used + 4 < sizeof list; k++) {

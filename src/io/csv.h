@@ -9,6 +9,7 @@
 #define SPH_CSV_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "core/error.h"
 
@@ -35,14 +36,22 @@ typedef struct sph_csv {
  * that is not a number, or the bound a file exceeds). */
 int sph_csv_read(const char *path, sph_csv *out, sph_error *err);
 void sph_csv_free(sph_csv *t);
-/* Index of the named column, or -1 with an error listing the columns. */
+/* Index of the named column, or -1 with an error listing the columns. A
+ * column whose header carries its units matches its bare name too:
+ * "kinetic" finds "kinetic (J/m)" (an exact match comes first). */
 int sph_csv_column(const sph_csv *t, const char *name, sph_error *err);
 /* The units of a column of the CSV files sph writes (diagnostics.csv,
  * gauges.csv, probes.csv, audit.csv), as their documentation gives them:
  * "s", "m", "J/m", ..., "" for counts and ratios, NULL for a name it does
- * not know. A header that carries its own units ("P1 (Pa)") is not looked
- * up: the units are in the name. */
+ * not know. The bare name: a header's "P1 (Pa)" is not looked up, the
+ * units are in it. */
 const char *sph_csv_units(const char *column);
+/* Writes one column of a header sph writes, after a comma unless first:
+ * "name (units)" with the units of sph_csv_units, the bare name for counts
+ * and ratios (units "") and names it does not know. Every CSV file sph
+ * writes follows this one convention, as probes.csv's "P1 (Pa)" does;
+ * 0, or -1 on a write error. */
+int sph_csv_put_column(FILE *f, const char *name, int first);
 /* Fills out (nrow values) with a column expression: a column name, or
  * several joined by '+' (their sum, e.g. "kinetic+potential"). */
 int sph_csv_eval(const sph_csv *t, const char *expr, double *out, sph_error *err);

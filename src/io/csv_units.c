@@ -10,6 +10,7 @@
 
 #include "io/csv.h"
 
+#include <stdio.h>
 #include <string.h>
 
 typedef struct column_units {
@@ -54,4 +55,12 @@ const char *sph_csv_units(const char *column) {
     if (strcmp(table[i].name, column) == 0) return table[i].units;
   if (strncmp(column, "eta_", 4) == 0) return "m"; /* gauges.csv: eta_<x> */
   return NULL;
+}
+
+int sph_csv_put_column(FILE *f, const char *name, int first) {
+  const char *u = sph_csv_units(name);
+  const char *sep = first ? "" : ",";
+  return (u && u[0] ? fprintf(f, "%s%s (%s)", sep, name, u) : fprintf(f, "%s%s", sep, name)) < 0
+             ? -1
+             : 0;
 }

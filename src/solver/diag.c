@@ -7,6 +7,7 @@
 #include "solver/diag.h"
 
 #include "core/parallel.h"
+#include "io/csv.h"
 
 #include <math.h>
 
@@ -55,18 +56,38 @@ void sph_diag_compute(const sph_particles *p, double floor_y, double band, const
   row->repulsion = 0;
 }
 
+/* Writes the names of a NULL-terminated list as header columns. */
+static int put_columns(FILE *f, const char *const *names, int first) {
+  for (; *names; names++, first = 0)
+    if (sph_csv_put_column(f, *names, first)) return -1;
+  return 0;
+}
+
 int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion, int repulsion,
                           int shifting) {
-  return fprintf(f,
-                 "time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential%s%s%s%"
-                 "s%s\n",
-                 free_surface ? ",n_free_surface" : "",
-                 ledger ? ",internal,boundary_work,xsph_drift,total_energy,energy_deviation,"
-                          "fluid_energy_deviation,momentum_residual_x,momentum_residual_y"
-                        : "",
-                 ledger && diffusion ? ",diffusion_energy" : "",
-                 ledger && repulsion ? ",wall_potential" : "",
-                 ledger && shifting ? ",shifting_drift" : "") < 0;
+  static const char *const base[] = {"time",    "step",      "dt",         "n_fluid",
+                                     "front_x", "mass",      "momentum_x", "momentum_y",
+                                     "kinetic", "potential", NULL};
+  static const char *const surface[] = {"n_free_surface", NULL};
+  static const char *const ledger_cols[] = {"internal",
+                                            "boundary_work",
+                                            "xsph_drift",
+                                            "total_energy",
+                                            "energy_deviation",
+                                            "fluid_energy_deviation",
+                                            "momentum_residual_x",
+                                            "momentum_residual_y",
+                                            NULL};
+  static const char *const diffusion_cols[] = {"diffusion_energy", NULL};
+  static const char *const repulsion_cols[] = {"wall_potential", NULL};
+  static const char *const shifting_cols[] = {"shifting_drift", NULL};
+  int bad = put_columns(f, base, 1);
+  if (!bad && free_surface) bad = put_columns(f, surface, 0);
+  if (!bad && ledger) bad = put_columns(f, ledger_cols, 0);
+  if (!bad && ledger && diffusion) bad = put_columns(f, diffusion_cols, 0);
+  if (!bad && ledger && repulsion) bad = put_columns(f, repulsion_cols, 0);
+  if (!bad && ledger && shifting) bad = put_columns(f, shifting_cols, 0);
+  return bad || fputc('\n', f) == EOF;
 }
 
 int sph_diag_write_row(FILE *f, const sph_diag_row *r) {

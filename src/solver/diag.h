@@ -3,7 +3,9 @@
  * diag.h - diagnostics: the surge front and the conserved quantities of the
  * fluid, one CSV row per output time (diagnostics.csv).
  *
- * Columns: time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential
+ * Columns: time,step,dt,n_fluid,front_x,mass,momentum_x,momentum_y,kinetic,potential,
+ * each with its units in the header as sph_csv_put_column writes them
+ * ("time (s)", "step", ...):
  *   front_x    largest x of fluid particles within `band` (2 dx) of the floor
  *   mass       sum of fluid masses (exact: masses never change)
  *   momentum   sum of m v over fluid particles

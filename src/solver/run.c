@@ -27,6 +27,7 @@
 #include <string.h>
 
 #include "analysis/probes.h"
+#include "io/csv.h"
 #include "io/snapshot.h"
 #include "solver/sim_internal.h"
 
@@ -289,7 +290,7 @@ static char *csv_header(const sph_case *c, int what) {
   if (!m) return NULL;
   int bad;
   if (what == 2) {
-    bad = fprintf(m, "time") < 0;
+    bad = sph_csv_put_column(m, "time", 1) != 0;
     for (size_t k = 0; !bad && k < c->n_probes; k++) {
       char col[200];
       sph_probe_header(&c->probes[k], col, sizeof col);
@@ -297,9 +298,12 @@ static char *csv_header(const sph_case *c, int what) {
     }
     bad = bad || fputc('\n', m) == EOF;
   } else if (what == 1) {
-    bad = fprintf(m, "time") < 0;
-    for (size_t g = 0; !bad && g < c->n_gauges; g++)
-      bad = fprintf(m, ",eta_%.6g", c->gauges[g]) < 0;
+    bad = sph_csv_put_column(m, "time", 1) != 0;
+    for (size_t g = 0; !bad && g < c->n_gauges; g++) {
+      char col[64];
+      snprintf(col, sizeof col, "eta_%.6g", c->gauges[g]);
+      bad = sph_csv_put_column(m, col, 0) != 0;
+    }
     bad = bad || fputc('\n', m) == EOF;
   } else {
     bad = sph_diag_write_header(m, sph_case_needs_free_surface(c), c->energy,
