@@ -228,9 +228,22 @@ static int stop_condition(sph_sim *s) {
   return sph_run_stop_measure(s, &now, &stop) && now >= stop;
 }
 
+/* Whether two header lines name the same columns, the units after the
+ * names aside: a run written before the headers gave units ("time,step")
+ * resumes into today's ("time (s),step"). */
+static int same_columns(const char *a, const char *b) {
+  for (;;) {
+    if (a[0] == ' ' && a[1] == '(') a += strcspn(a, ",\n");
+    if (b[0] == ' ' && b[1] == '(') b += strcspn(b, ",\n");
+    if (*a != *b) return 0;
+    if (!*a) return 1;
+    a++, b++;
+  }
+}
+
 /* Opens a CSV file of the run for writing: a new file gets the header;
- * on a resumed run (t_keep >= 0) an existing file with the same header
- * keeps its rows of time <= t_keep (the rest is dropped: rewritten
+ * on a resumed run (t_keep >= 0) an existing file with the same columns
+ * (same_columns) keeps its rows of time <= t_keep (the rest is dropped: rewritten
  * through a temporary file and renamed) and is opened for appending.
  * *kept_last tells whether a row of time t_keep was kept. */
 static FILE *open_csv(const char *path, const char *header, double t_keep, int *kept_last,
@@ -250,7 +263,7 @@ static FILE *open_csv(const char *path, const char *header, double t_keep, int *
     char *line = NULL;
     size_t cap = 0;
     ssize_t len = getline(&line, &cap, old);
-    if (len > 0 && strcmp(line, header) == 0) {
+    if (len > 0 && same_columns(line, header)) {
       while (!bad && (len = getline(&line, &cap, old)) > 0) {
         if (line[len - 1] != '\n') break; /* a torn last row */
         char *end;
