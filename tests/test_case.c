@@ -286,6 +286,76 @@ static void test_sound_speed(void) {
              "t.yaml:3: physics.sound_speed: required key is missing");
 }
 
+/* numerics.scheme: a named set of defaults, read before the other keys; a
+ * key the case gives wins; the tank's wall model defaults to mdbc. */
+static void test_schemes(void) {
+  const char *tank = "geometry:\n  tank: {x: [0, 2], y: [0, 1]}\n";
+  char text[8192];
+  sph_case c, d;
+  snprintf(text, sizeof text, "%s",
+           edit(edit(MINIMAL, 9, tank), 5, "  dx: 0.01\n  scheme: riemann\n"));
+  expect_ok(text, NULL, 0, &c);
+  CU_ASSERT_EQUAL(c.scheme, SPH_SCHEME_RIEMANN);
+  CU_ASSERT_EQUAL(c.riemann, 1);
+  CU_ASSERT_EQUAL(c.riemann_limiter, 3.0);
+  CU_ASSERT_EQUAL(c.alpha, 0.0);
+  CU_ASSERT_EQUAL(c.xsph, 0.0);
+  CU_ASSERT_EQUAL(c.diffusion, SPH_DIFFUSION_NONE);
+  CU_ASSERT_EQUAL(c.viscosity, SPH_VISCOSITY_NONE);
+  CU_ASSERT_EQUAL(c.tank.boundary, SPH_BOUNDARY_MDBC);
+  CU_ASSERT_EQUAL(c.tank.layers, 3);
+  char *s = sph_case_describe(&c);
+  CU_ASSERT_PTR_NOT_NULL(s && strstr(s, "numerics.scheme: riemann\n"));
+  free(s);
+  /* the same case written out key by key is the same case */
+  const char *keys[] = {"physics.riemann={limiter: 3}", "physics.artificial_viscosity.alpha=0",
+                        "geometry.tank.boundary=mdbc"};
+  expect_ok(edit(MINIMAL, 9, tank), keys, 3, &d);
+  CU_ASSERT_EQUAL(d.riemann, c.riemann);
+  CU_ASSERT_EQUAL(d.alpha, c.alpha);
+  CU_ASSERT_EQUAL(d.tank.boundary, c.tank.boundary);
+  CU_ASSERT_EQUAL(d.tank.layers, c.tank.layers);
+  CU_ASSERT_EQUAL(d.tank.stagger, c.tank.stagger);
+  sph_case_free(&c);
+  sph_case_free(&d);
+  /* delta-SPH, and the case's own keys over the scheme's */
+  const char *set[] = {"numerics.scheme=delta_sph"};
+  expect_ok(edit(MINIMAL, 9, tank), set, 1, &c);
+  CU_ASSERT_EQUAL(c.scheme, SPH_SCHEME_DELTA_SPH);
+  CU_ASSERT_EQUAL(c.riemann, 0);
+  CU_ASSERT_EQUAL(c.alpha, 0.02);
+  CU_ASSERT_EQUAL(c.diffusion, SPH_DIFFUSION_ANTUONO);
+  CU_ASSERT_EQUAL(c.diffusion_delta, 0.1);
+  CU_ASSERT_EQUAL(c.viscosity, SPH_VISCOSITY_MORRIS);
+  CU_ASSERT_EQUAL(c.mu, 1.0e-3);
+  CU_ASSERT_EQUAL(c.tank.boundary, SPH_BOUNDARY_MDBC);
+  sph_case_free(&c);
+  const char *own[] = {"numerics.scheme=delta_sph", "physics.artificial_viscosity.alpha=0.1",
+                       "physics.viscosity={mu: 0.002}", "numerics.density_diffusion={delta: 0.2}",
+                       "geometry.tank.boundary=dynamic"};
+  expect_ok(edit(MINIMAL, 9, tank), own, 5, &c);
+  CU_ASSERT_EQUAL(c.alpha, 0.1);
+  CU_ASSERT_EQUAL(c.viscosity, SPH_VISCOSITY_MORRIS);
+  CU_ASSERT_EQUAL(c.mu, 0.002);
+  CU_ASSERT_EQUAL(c.diffusion, SPH_DIFFUSION_ANTUONO);
+  CU_ASSERT_EQUAL(c.diffusion_delta, 0.2);
+  CU_ASSERT_EQUAL(c.tank.boundary, SPH_BOUNDARY_DYNAMIC);
+  sph_case_free(&c);
+  /* none is the built-in defaults; a wall segment keeps its own default */
+  const char *none[] = {"numerics.scheme=none"};
+  expect_ok(edit(MINIMAL, 9, tank), none, 1, &c);
+  CU_ASSERT_EQUAL(c.scheme, SPH_SCHEME_NONE);
+  CU_ASSERT_EQUAL(c.tank.boundary, SPH_BOUNDARY_DYNAMIC);
+  CU_ASSERT_EQUAL(c.riemann, 0);
+  s = sph_case_describe(&c);
+  CU_ASSERT_PTR_NOT_NULL(s && !strstr(s, "numerics.scheme") ? s : NULL);
+  free(s);
+  sph_case_free(&c);
+  expect_err(
+      edit(MINIMAL, 5, "  dx: 0.01\n  scheme: sphysics\n"),
+      "t.yaml:6: numerics.scheme: unknown choice 'sphysics' (valid: none, riemann, delta_sph)");
+}
+
 static void test_time_step_rules(void) {
   sph_case c;
   expect_ok(edit(MINIMAL, 5, "  dx: 0.01\n  time_step: {rule: fixed, dt: 1.0e-4}\n"), NULL, 0, &c);
@@ -894,6 +964,7 @@ int main(void) {
                          {"complete case: every value", test_full_case},
                          {"sound speed: value, factor*height, factor*speed", test_sound_speed},
                          {"time step rules", test_time_step_rules},
+                         {"numerics.scheme: defaults a case's keys override", test_schemes},
                          {"load from a file with overrides", test_load_file},
                          {"unknown key", test_unknown_key},
                          {"wrong type", test_wrong_type},

@@ -66,6 +66,7 @@ typedef struct ctx {
 static const char *const kernel_names[] = {"cubic_spline", "wendland_c2", NULL};
 static const char *const integrator_names[] = {"predictor_corrector", "leapfrog", NULL};
 static const char *const dt_rule_names[] = {"paper_b", "cfl", "fixed", NULL};
+static const char *const scheme_names[] = {"none", "riemann", "delta_sph", NULL};
 static const char *const boundary_names[] = {"dynamic", "fixed_layers", "repulsive",
                                              "mirror",  "mdbc",         NULL};
 static const char *const viscosity_names[] = {"none", "stress_tensor", "morris", NULL};
@@ -83,6 +84,7 @@ const char *sph_integrator_name(sph_integrator_kind k) {
 }
 const char *sph_dt_rule_name(sph_dt_rule r) { return choice_name(dt_rule_names, (int)r); }
 const char *sph_boundary_name(sph_boundary_kind b) { return choice_name(boundary_names, (int)b); }
+const char *sph_scheme_name(sph_scheme_kind s) { return choice_name(scheme_names, (int)s); }
 const char *sph_stop_name(sph_stop_kind s) { return choice_name(stop_names, (int)s); }
 const char *sph_viscosity_name(sph_viscosity_kind v) {
   return choice_name(viscosity_names, (int)v);
@@ -112,10 +114,18 @@ static const char *const physics_keys[] = {
 static const char *const c0_keys[] = {"factor", "height", "speed", NULL};
 static const char *const visc_keys[] = {"alpha", "beta", "eta", NULL};
 static const char *const riemann_keys[] = {"limiter", NULL};
-static const char *const numerics_keys[] = {
-    "dx",        "h_factor",       "kernel",        "integrator",        "smoothing_length",
-    "time_step", "density_filter", "density_limit", "density_diffusion", "shifting",
-    NULL};
+static const char *const numerics_keys[] = {"dx",
+                                            "h_factor",
+                                            "kernel",
+                                            "integrator",
+                                            "smoothing_length",
+                                            "time_step",
+                                            "density_filter",
+                                            "density_limit",
+                                            "density_diffusion",
+                                            "shifting",
+                                            "scheme",
+                                            NULL};
 static const char *const dt_keys[] = {"rule", "factor", "dt", NULL};
 static const char *const filter_keys[] = {"kind", "every", NULL};
 static const char *const diffusion_keys[] = {"model", "delta", NULL};
@@ -145,6 +155,42 @@ static const char *const probe_kind_names[] = {"pressure", "level", "velocity", 
 static const char *const along_names[] = {"y", "x", NULL};
 
 const char *sph_probe_kind_name(sph_probe_kind k) { return choice_name(probe_kind_names, (int)k); }
+
+/* The defaults of numerics.scheme s (doc/method.md, Schemes), on top of
+ * set_defaults: what a case gets for every key it leaves out. */
+static void scheme_defaults(sph_case *c, sph_scheme_kind s) {
+  c->scheme = s;
+  switch (s) {
+  case SPH_SCHEME_NONE: break;
+  case SPH_SCHEME_RIEMANN: /* Zhang, Hu & Adams 2017 (ZH17) */
+    c->alpha = 0.0;
+    c->xsph = 0.0;
+    c->riemann = 1;
+    c->riemann_limiter = 3.0;
+    c->diffusion = SPH_DIFFUSION_NONE;
+    break;
+  case SPH_SCHEME_DELTA_SPH: /* delta-SPH, MA11 with AC10's diffusion (doc/method.md) */
+    c->alpha = 0.02;
+    c->xsph = 0.0;
+    c->diffusion = SPH_DIFFUSION_ANTUONO;
+    c->diffusion_delta = 0.1;
+    c->viscosity = SPH_VISCOSITY_MORRIS;
+    c->mu = 1.0e-3; /* water at 20 C */
+    break;
+  }
+}
+
+/* numerics.scheme, read before every other key so that its defaults are in
+ * place when they are read (a key the case gives wins over the scheme). A
+ * numerics that is not a mapping is left to read_numerics to refuse. */
+static int read_scheme(const ctx *x, const node *root, sph_case *c) {
+  const sph_yaml_entry *n = sph_yaml_find(root, "numerics");
+  if (!n || n->val->kind != SPH_YAML_MAP) return 0;
+  int s = (int)SPH_SCHEME_NONE;
+  if (sph_yaml_get_choice(&x->t, n->val, "numerics", "scheme", scheme_names, &s) < 0) return -1;
+  scheme_defaults(c, (sph_scheme_kind)s);
+  return 0;
+}
 
 static void set_defaults(sph_case *c) {
   c->rho0 = 1000.0;
@@ -268,10 +314,11 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
   if (rc < 0) return -1;
   if (rc > 0) {
     const char *vp = "physics.viscosity";
-    int model = (int)SPH_VISCOSITY_NONE;
+    int model = (int)c->viscosity; /* none, or the scheme's */
     if (sph_yaml_get_choice(&x->t, v, vp, "model", viscosity_names, &model) < 0) return -1;
     c->viscosity = (sph_viscosity_kind)model;
-    int has_mu = sph_yaml_get_number(&x->t, v, vp, "mu", c->viscosity != SPH_VISCOSITY_NONE,
+    int has_mu = sph_yaml_get_number(&x->t, v, vp, "mu",
+                                     c->viscosity != SPH_VISCOSITY_NONE && !(c->mu > 0.0),
                                      &SPH_YAML_POS, &c->mu);
     if (has_mu < 0) return -1;
     if (has_mu && c->viscosity == SPH_VISCOSITY_NONE)
@@ -514,7 +561,8 @@ static int read_tank(const ctx *x, const node *m, sph_case *c) {
   const char *p = "geometry.tank";
   const node *t;
   double v[2];
-  int b = (int)SPH_BOUNDARY_DYNAMIC;
+  /* a scheme's tank carries the fluid's pressure (mdbc); without one, dynamic */
+  int b = c->scheme != SPH_SCHEME_NONE ? (int)SPH_BOUNDARY_MDBC : (int)SPH_BOUNDARY_DYNAMIC;
   int rc = sph_yaml_get_section(&x->t, m, "geometry", "tank", 0, tank_keys, &t);
   if (rc <= 0) return rc;
   c->tank.present = 1;
@@ -1098,6 +1146,7 @@ static int parse_into(ctx *x, const char *text, size_t len, size_t n_set, sph_ca
   for (size_t i = 0; rc == 0 && i < n_set; i++)
     rc = sph_yaml_apply_set(&x->t, root, (int)i);
   set_defaults(c);
+  if (rc == 0) rc = read_scheme(x, root, c);
   if (rc == 0) rc = read_case(x, root, c);
   sph_yaml_free(root);
   if (rc) return rc;

@@ -36,6 +36,14 @@ typedef enum {
   SPH_DT_FIXED = 2    /* a constant step from the case */
 } sph_dt_rule;
 typedef enum { SPH_STOP_NONE = 0, SPH_STOP_FRONT_AT_WALL = 1 } sph_stop_kind;
+/* numerics.scheme: a named set of defaults for the dissipation, diffusion
+ * and tank wall model (doc/method.md, Schemes); the keys a case gives win. */
+typedef enum {
+  SPH_SCHEME_NONE = 0,      /* the built-in defaults, key by key */
+  SPH_SCHEME_RIEMANN = 1,   /* Zhang et al. 2017: Riemann pressure, limiter 3, mdbc tank */
+  SPH_SCHEME_DELTA_SPH = 2, /* Marrone et al. 2011: alpha 0.02, antuono 0.1, Morris, mdbc */
+} sph_scheme_kind;
+const char *sph_scheme_name(sph_scheme_kind s);
 
 /* Names of the choices, for messages and snapshots ("cubic_spline", ...). */
 const char *sph_kernel_name(sph_kernel_kind k);
@@ -84,10 +92,11 @@ typedef struct sph_case {
                               default 5 |g| H, H the deepest fluid block */
 
   /* numerics */
-  double dx;       /* initial particle spacing (required) */
-  double h_factor; /* h = h_factor * dx, default 1.3 */
-  double h;        /* derived: h_factor * dx (h0 when variable) */
-  int variable_h;  /* h = h0 (rho0/rho)^(1/2), paper B §2.1; default constant */
+  sph_scheme_kind scheme; /* numerics.scheme, default none */
+  double dx;              /* initial particle spacing (required) */
+  double h_factor;        /* h = h_factor * dx, default 1.3 */
+  double h;               /* derived: h_factor * dx (h0 when variable) */
+  int variable_h;         /* h = h0 (rho0/rho)^(1/2), paper B §2.1; default constant */
   sph_kernel_kind kernel;
   sph_integrator_kind integrator;
   sph_dt_rule dt_rule;            /* default paper_b */

@@ -54,6 +54,8 @@ static const char *const TEMPLATE =
     "  #   limiter: 3             # its dissipation limiter, >= 0 (default 3)\n"
     "\n"
     "numerics:\n"
+    "  # scheme: none             # a named set of defaults for the keys left out: none\n"
+    "  #                          # (default), riemann, delta_sph (doc/method.md, Schemes)\n"
     "  dx: 0.0028575              # m, > 0, smaller than every fluid block (required)\n"
     "  h_factor: 1.3              # h = h_factor dx, [0.5, 4] (default 1.3)\n"
     "  smoothing_length: constant # constant (default), variable\n"
