@@ -304,6 +304,7 @@ static void test_schemes(void) {
   CU_ASSERT_EQUAL(c.viscosity, SPH_VISCOSITY_NONE);
   CU_ASSERT_EQUAL(c.tank.boundary, SPH_BOUNDARY_MDBC);
   CU_ASSERT_EQUAL(c.tank.layers, 3);
+  CU_ASSERT_STRING_EQUAL(c.scheme_kept, ""); /* the case gives none of the scheme's keys */
   char *s = sph_case_describe(&c);
   CU_ASSERT_PTR_NOT_NULL(s && strstr(s, "numerics.scheme: riemann\n"));
   free(s);
@@ -340,6 +341,10 @@ static void test_schemes(void) {
   CU_ASSERT_EQUAL(c.diffusion, SPH_DIFFUSION_ANTUONO);
   CU_ASSERT_EQUAL(c.diffusion_delta, 0.2);
   CU_ASSERT_EQUAL(c.tank.boundary, SPH_BOUNDARY_DYNAMIC);
+  /* the start-up listing names them: a mixture is never silent */
+  CU_ASSERT_STRING_EQUAL(c.scheme_kept, "physics.artificial_viscosity.alpha, "
+                                        "numerics.density_diffusion, physics.viscosity, "
+                                        "geometry.tank.boundary");
   sph_case_free(&c);
   /* none is the built-in defaults; a wall segment keeps its own default */
   const char *none[] = {"numerics.scheme=none"};

@@ -180,16 +180,61 @@ static void scheme_defaults(sph_case *c, sph_scheme_kind s) {
   }
 }
 
+/* Whether the dotted key (mappings down from root) is in the tree. */
+static int has_key(const node *root, const char *dotted) {
+  char part[64];
+  const node *m = root;
+  for (const char *p = dotted; m && m->kind == SPH_YAML_MAP;) {
+    const size_t len = strcspn(p, ".");
+    if (len >= sizeof part) return 0;
+    memcpy(part, p, len);
+    part[len] = '\0';
+    const sph_yaml_entry *e = sph_yaml_find(m, part);
+    if (!e) return 0;
+    if (!p[len]) return 1;
+    m = e->val;
+    p += len + 1;
+  }
+  return 0;
+}
+
+/* The keys of scheme s's set that the case gives itself, joined by ", "
+ * into c->scheme_kept (the start-up listing says they keep the case's
+ * values: a scheme on a case with its own numerics is a mixture). */
+static int note_kept_keys(const ctx *x, const node *root, sph_case *c) {
+  static const char *const riemann[] = {
+      "physics.riemann",        "physics.artificial_viscosity.alpha",
+      "physics.xsph",           "numerics.density_diffusion",
+      "geometry.tank.boundary", NULL};
+  static const char *const delta[] = {"physics.artificial_viscosity.alpha",
+                                      "physics.xsph",
+                                      "numerics.density_diffusion",
+                                      "physics.viscosity",
+                                      "geometry.tank.boundary",
+                                      NULL};
+  const char *const *keys = c->scheme == SPH_SCHEME_RIEMANN     ? riemann
+                            : c->scheme == SPH_SCHEME_DELTA_SPH ? delta
+                                                                : NULL;
+  char buf[512] = "";
+  for (size_t k = 0; keys && keys[k]; k++)
+    if (has_key(root, keys[k]))
+      sph_yaml_bprintf(buf + strlen(buf), sizeof buf - strlen(buf), "%s%s", buf[0] ? ", " : "",
+                       keys[k]);
+  c->scheme_kept = sph_yaml_dup(buf, strlen(buf));
+  return c->scheme_kept ? 0 : sph_yaml_oom(&x->t);
+}
+
 /* numerics.scheme, read before every other key so that its defaults are in
  * place when they are read (a key the case gives wins over the scheme). A
  * numerics that is not a mapping is left to read_numerics to refuse. */
 static int read_scheme(const ctx *x, const node *root, sph_case *c) {
   const sph_yaml_entry *n = sph_yaml_find(root, "numerics");
-  if (!n || n->val->kind != SPH_YAML_MAP) return 0;
   int s = (int)SPH_SCHEME_NONE;
-  if (sph_yaml_get_choice(&x->t, n->val, "numerics", "scheme", scheme_names, &s) < 0) return -1;
+  if (n && n->val->kind == SPH_YAML_MAP &&
+      sph_yaml_get_choice(&x->t, n->val, "numerics", "scheme", scheme_names, &s) < 0)
+    return -1;
   scheme_defaults(c, (sph_scheme_kind)s);
-  return 0;
+  return note_kept_keys(x, root, c);
 }
 
 static void set_defaults(sph_case *c) {
@@ -1228,6 +1273,7 @@ void sph_case_free(sph_case *c) {
   free(c->path);
   free(c->text);
   free(c->overrides);
+  free(c->scheme_kept);
   free(c->fluid);
   free(c->walls);
   free(c->output_times);

@@ -93,6 +93,8 @@ typedef struct sph_case {
 
   /* numerics */
   sph_scheme_kind scheme; /* numerics.scheme, default none */
+  char *scheme_kept;      /* the keys of the scheme's set the case gives itself (they keep the
+                             case's values), joined by ", "; "" if none or no scheme */
   double dx;              /* initial particle spacing (required) */
   double h_factor;        /* h = h_factor * dx, default 1.3 */
   double h;               /* derived: h_factor * dx (h0 when variable) */
