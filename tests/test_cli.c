@@ -285,6 +285,58 @@ static void test_output_times_merge(void) {
 
 /* A case that must blow up: fluid dropped onto the floor with a sound
  * speed far too low for the impact, and a strict density limit. */
+/* numerics.scheme is its keys: a run with `scheme: delta_sph` (and one
+ * with riemann) writes the same diagnostics, byte for byte, as the same
+ * case with the scheme's keys written out; the start-up listing names the
+ * scheme's keys a case gives itself. */
+static void test_scheme_is_its_keys(void) {
+  static const struct {
+    const char *scheme, *keys;
+  } cases[] = {
+      {"riemann", "  riemann: {limiter: 3}\n"},
+      {"delta_sph",
+       "  artificial_viscosity: {alpha: 0.02}\n  viscosity: {model: morris, mu: 0.001}\n"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+    char text[2048], out[65536], args[8192], a[4200], b[4200];
+    snprintf(text, sizeof text,
+             "name: s\nphysics:\n  sound_speed: 10\nnumerics:\n  scheme: %s\n  dx: 0.01\n"
+             "time:\n  end: 0.01\n  output_interval: 0.005\ngeometry:\n"
+             "  tank: {x: [0, 0.1], y: [0, 0.1]}\n  fluid:\n    - {x: [0, 0.05], y: [0, 0.05]}\n",
+             cases[k].scheme);
+    write_file("scheme.yaml", text);
+    snprintf(text, sizeof text,
+             "name: s\nphysics:\n  sound_speed: 10\n%snumerics:\n  dx: 0.01\n%s"
+             "time:\n  end: 0.01\n  output_interval: 0.005\ngeometry:\n"
+             "  tank: {x: [0, 0.1], y: [0, 0.1], boundary: mdbc}\n  fluid:\n"
+             "    - {x: [0, 0.05], y: [0, 0.05]}\n",
+             cases[k].keys, k ? "  density_diffusion: {model: antuono, delta: 0.1}\n" : "");
+    write_file("keys.yaml", text);
+    snprintf(args, sizeof args, "run -q '%s/scheme.yaml' -o '%s/scheme_%zu'", tmp, tmp, k);
+    CU_ASSERT_EQUAL(sph(args, out, sizeof out), 0);
+    snprintf(args, sizeof args, "run -q '%s/keys.yaml' -o '%s/keys_%zu'", tmp, tmp, k);
+    CU_ASSERT_EQUAL(sph(args, out, sizeof out), 0);
+    snprintf(a, sizeof a, "%s/scheme_%zu/diagnostics.csv", tmp, k);
+    snprintf(b, sizeof b, "%s/keys_%zu/diagnostics.csv", tmp, k);
+    size_t la = 0, lb = 0;
+    char *da = sph_test_read_file(a, &la), *db = sph_test_read_file(b, &lb);
+    CU_ASSERT_FATAL(da != NULL && db != NULL);
+    CU_ASSERT(la > 100 && la == lb && memcmp(da, db, la) == 0);
+    if (!(la == lb && memcmp(da, db, la) == 0))
+      printf("\n  %s: %s and %s differ", cases[k].scheme, a, b);
+    free(da);
+    free(db);
+  }
+  /* a case with its own numerics under a scheme: the listing says which keys it keeps */
+  write_file("good.yaml", GOOD);
+  char out[65536], args[8192];
+  snprintf(args, sizeof args, "run '%s/good.yaml' -o '%s/mixed' --set numerics.scheme=riemann", tmp,
+           tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(out, "numerics.scheme riemann: the case gives its own "
+                                     "physics.artificial_viscosity.alpha (kept"));
+}
+
 static void test_blowup_stops_cleanly(void) {
   char out[65536], args[8192];
   write_file("good.yaml", GOOD);
@@ -311,6 +363,7 @@ int main(void) {
       {"a short run, diagnostics rows, sph info", test_good_run_and_info},
       {"an output time listed twice (interval and list) is one output", test_output_times_merge},
       {"a blow-up stops with a message and keeps snapshots", test_blowup_stops_cleanly},
+      {"numerics.scheme runs as its keys written out, bit for bit", test_scheme_is_its_keys},
       CU_TEST_INFO_NULL};
   int rc = sph_test_main("cli", tests);
   sph_test_rmtree(tmp);
