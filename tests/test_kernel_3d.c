@@ -45,17 +45,11 @@ static void body_dimension(void) {
   CU_ASSERT_EQUAL(c, kind == SPH_SHAPE_WENDLAND_C2 ? 21.0 / (16.0 * SPH_PI) : 1.0 / SPH_PI);
 }
 
+static double radial3(double r) { return kw(r) * r * r; } /* W r^2, the 3-D radial integrand */
+
 static void body_normalisation(void) {
   /* 4 pi int_0^2h W(r) r^2 dr by Simpson's rule */
-  const int m = 2000;
-  const double dr = 2.0 * H / m;
-  double acc = 0.0;
-  for (int k = 0; k <= m; k++) {
-    const double r = k * dr;
-    const double wgt = (k == 0 || k == m) ? 1.0 : (k % 2 ? 4.0 : 2.0);
-    acc += wgt * kw(r) * r * r;
-  }
-  const double radial = 4.0 * SPH_PI * acc * dr / 3.0;
+  const double radial = 4.0 * SPH_PI * sph_test_simpson(radial3, 0.0, 2.0 * H, 2000);
   /* the midpoint sum over the cube [-2h, 2h]^3 at spacing h/40 */
   const int n = 40;
   const double d = H / n;

@@ -106,6 +106,16 @@ double sph_test_median(const double *v, int n) {
   return m;
 }
 
+double sph_test_simpson(double (*f)(double), double a, double b, int m) {
+  const double d = (b - a) / m;
+  double acc = 0.0;
+  for (int k = 0; k <= m; k++) {
+    const double wgt = (k == 0 || k == m) ? 1.0 : (k % 2 ? 4.0 : 2.0);
+    acc += wgt * f(a + k * d);
+  }
+  return acc * d / 3.0;
+}
+
 char *sph_test_read_file(const char *path, size_t *len) {
   FILE *f = fopen(path, "rb");
   if (!f) return NULL;

@@ -37,6 +37,8 @@ int sph_test_sph(const char *args, const char *dir, char *out, size_t len);
 
 /* The median of n values (sorts a copy; n > 0). */
 double sph_test_median(const double *v, int n);
+/* Simpson's rule for the integral of f over [a, b] with m (even) intervals. */
+double sph_test_simpson(double (*f)(double), double a, double b, int m);
 
 /* The whole file at path, malloc'd and NUL-terminated (free it), or NULL;
  * its length in bytes in *len unless len is NULL (binary files too). */
