@@ -127,9 +127,7 @@ static void test_tank(void) {
            "{name: Pf, kind: pressure, at: [0.1, 0.0], along: x, diameter: 0.01}, "
            "{name: H1, kind: level, x: 0.1}, {name: V1, kind: velocity, at: [0.1, 0.05]}]'",
            sph_test_src("cases/hydrostatic_tank.yaml"), dir);
-  const int st = sph_test_sph(args, dir, out, sizeof out);
-  if (st) printf("\n%s\n", out);
-  CU_ASSERT_FATAL(st == 0);
+  CU_ASSERT_EQUAL_FATAL(sph_test_sph_ok(args, dir, out, sizeof out), 0);
   snprintf(path, sizeof path, "%s/run/probes.csv", dir);
   char header[512];
   CU_ASSERT_FATAL(first_line(path, header, sizeof header));
@@ -196,9 +194,7 @@ static void test_low_pass(void) {
              "--set 'output.probes=[{name: P1, kind: pressure, at: [0.2, 0.02]%s}, "
              "{name: H1, kind: level, x: 0.1}]'",
              sph_test_src("cases/hydrostatic_tank.yaml"), dir, lp, lp ? ", low_pass: 50" : "");
-    const int st = sph_test_sph(args, dir, out, sizeof out);
-    if (st) printf("\n%s\n", out);
-    CU_ASSERT_FATAL(st == 0);
+    CU_ASSERT_EQUAL_FATAL(sph_test_sph_ok(args, dir, out, sizeof out), 0);
   }
   snprintf(path, sizeof path, "%s/run1/probes.csv", dir);
   char header[512];

@@ -50,6 +50,10 @@ static char *tmp;
 static int sph(const char *args, char *out, size_t len) {
   return sph_test_sph(args, tmp, out, len);
 }
+/* The same for a run that should succeed (its output printed if not). */
+static int sph_ok(const char *args, char *out, size_t len) {
+  return sph_test_sph_ok(args, tmp, out, len);
+}
 
 static const char *case_file(const char *name) {
   static char buf[4096];
@@ -64,9 +68,7 @@ static const char *case_file(const char *name) {
 static int full_run(const char *name) {
   char args[32768], out[65536];
   snprintf(args, sizeof args, "run -q '%s' -o '%s/%s.full'", case_file(name), tmp, name);
-  const int st = sph(args, out, sizeof out);
-  if (st) printf("\n%s\n", out);
-  CU_ASSERT_EQUAL_FATAL(st, 0);
+  CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
   int n = 0;
   for (;; n++) {
     char path[4300];
@@ -98,9 +100,7 @@ static void restart_fresh(const char *name, int k) {
   snprintf(dir, sizeof dir, "%s/%s.from%d", tmp, name, k);
   snprintf(args, sizeof args, "run -q --threads 1 --restart '%s/%s.full/snap_%04d.h5' '%s' -o '%s'",
            tmp, name, k, case_file(name), dir);
-  const int st = sph(args, out, sizeof out);
-  if (st) printf("\n%s\n", out);
-  CU_ASSERT_EQUAL_FATAL(st, 0);
+  CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
   same_snapshots(name, dir, k + 1, n);
   /* the restart snapshot itself is not rewritten */
   char path[4300];
@@ -173,9 +173,7 @@ static void restart_in_place(const char *name, int k, int short_form, int old_he
   else
     snprintf(args, sizeof args, "run -q --restart '%s/snap_%04d.h5' '%s' -o '%s'", dir, k,
              case_file(name), dir);
-  const int st = sph(args, out, sizeof out);
-  if (st) printf("\n%s\n", out);
-  CU_ASSERT_EQUAL_FATAL(st, 0);
+  CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
   same_snapshots(name, dir, 0, n);
   const char *files[] = {"diagnostics.csv", "gauges.csv", "probes.csv", "snapshots.xmf"};
   for (int i = 0; i < 4; i++) {
@@ -259,9 +257,7 @@ static void test_bad_restarts(void) {
            "run -q --restart '%s/restart_pc.full/snap_0007.h5' '%s' -o '%s/longer' "
            "--set time.end=0.04",
            tmp, case_file("restart_pc"), tmp);
-  const int st = sph(args, out, sizeof out);
-  if (st) printf("\n%s\n", out);
-  CU_ASSERT_EQUAL(st, 0);
+  CU_ASSERT_EQUAL(sph_ok(args, out, sizeof out), 0);
   size_t n = 0;
   double t = 0.0;
   snprintf(snap, sizeof snap, "%s/longer/snap_0009.h5", tmp);
@@ -313,7 +309,7 @@ static void test_restart_clock(void) {
    * 39, D11): the snapshot's step plus this run's is the total */
   snprintf(args, sizeof args, "run --restart '%s/restart_pc.full/snap_0005.h5' -o '%s/clock2'", tmp,
            tmp);
-  CU_ASSERT_EQUAL_FATAL(sph(args, out, sizeof out), 0);
+  CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
   long total = -1, mine = -1;
   const char *end = strstr(out, ": step ");
   CU_ASSERT_FATAL(end != NULL);

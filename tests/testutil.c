@@ -91,6 +91,12 @@ int sph_test_sph(const char *args, const char *dir, char *out, size_t len) {
   return st;
 }
 
+int sph_test_sph_ok(const char *args, const char *dir, char *out, size_t len) {
+  const int st = sph_test_sph(args, dir, out, len);
+  if (st) printf("\n  sph %s: exit %d\n%s\n", args, st, out);
+  return st;
+}
+
 static int cmp_double(const void *a, const void *b) {
   const double x = *(const double *)a, y = *(const double *)b;
   return (x > y) - (x < y);

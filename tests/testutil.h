@@ -34,6 +34,10 @@ int sph_test_system(const char *cmd);
  * stdout and stderr captured in DIR/sph.log and returned in out (len
  * bytes, truncated, NUL-terminated); returns the exit status. */
 int sph_test_sph(const char *args, const char *dir, char *out, size_t len);
+/* sph_test_sph for a run that should succeed: prints the command and its
+ * output when the exit status is not 0, and returns the status (the caller
+ * asserts it, so the failure names the caller's line). */
+int sph_test_sph_ok(const char *args, const char *dir, char *out, size_t len);
 
 /* The median of n values (sorts a copy; n > 0). */
 double sph_test_median(const double *v, int n);
