@@ -481,9 +481,8 @@ static int write_report(const char *outdir, const char *name, const audit_row *r
   if (f) {
     static const char *const cols[] = {
         "particles", "dx",        "time",       "energy_deviation", "fluid_energy_deviation",
-        "wall_work", "wall_heat", "mass_drift", "momentum_drift"};
-    for (size_t k = 0; k < sizeof cols / sizeof cols[0]; k++)
-      sph_csv_put_column(f, cols[k], k == 0);
+        "wall_work", "wall_heat", "mass_drift", "momentum_drift",   NULL};
+    sph_csv_put_columns(f, cols, 1);
     fputc('\n', f);
     for (int r = 0; r < nr; r++)
       for (int k = 0; k < nt; k++)

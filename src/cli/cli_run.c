@@ -232,7 +232,7 @@ static void print_banner(const run_args *a, const sph_case *c, sph_sim *s, int n
   if (a->restart)
     printf("  restarting from %s at t = %.9g s, step %ld\n", a->restart, sph_sim_time(s),
            sph_sim_steps(s));
-  if (c->scheme != SPH_SCHEME_NONE && c->scheme_kept && c->scheme_kept[0])
+  if (c->scheme_kept && c->scheme_kept[0]) /* "" without a scheme */
     printf("  numerics.scheme %s: the case gives its own %s (kept: they replace the scheme's)\n",
            sph_scheme_name(c->scheme), c->scheme_kept);
   char *d = sph_case_describe(c);

@@ -199,6 +199,13 @@ void sph_csv_free(sph_csv *t) {
   memset(t, 0, sizeof *t);
 }
 
+size_t sph_csv_bare_length(const char *column, size_t len) {
+  if (len < 4 || column[len - 1] != ')') return len;
+  for (size_t k = 1; k + 2 < len; k++)
+    if (column[k] == ' ' && column[k + 1] == '(') return k;
+  return len;
+}
+
 int sph_csv_column(const sph_csv *t, const char *name, sph_error *err) {
   for (size_t k = 0; k < t->ncol; k++)
     if (strcmp(t->names[k], name) == 0) return (int)k;
@@ -206,8 +213,7 @@ int sph_csv_column(const sph_csv *t, const char *name, sph_error *err) {
   for (size_t k = 0; k < t->ncol; k++) { /* "kinetic" for "kinetic (J/m)" */
     const char *c = t->names[k];
     const size_t len = strlen(c);
-    if (n > 0 && len > n + 3 && strncmp(c, name, n) == 0 && c[n] == ' ' && c[n + 1] == '(' &&
-        c[len - 1] == ')')
+    if (n > 0 && n < len && sph_csv_bare_length(c, len) == n && strncmp(c, name, n) == 0)
       return (int)k;
   }
   char list[512] = "";

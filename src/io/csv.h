@@ -52,6 +52,12 @@ const char *sph_csv_units(const char *column);
  * writes follows this one convention, as probes.csv's "P1 (Pa)" does;
  * 0, or -1 on a write error. */
 int sph_csv_put_column(FILE *f, const char *name, int first);
+/* sph_csv_put_column for each name of a NULL-terminated list, the first
+ * after a comma unless first; 0, or -1 on a write error. */
+int sph_csv_put_columns(FILE *f, const char *const *names, int first);
+/* The length of a header column's name (the column is len bytes) without
+ * the units it carries: "kinetic (J/m)" -> 7; len for a column without. */
+size_t sph_csv_bare_length(const char *column, size_t len);
 /* Fills out (nrow values) with a column expression: a column name, or
  * several joined by '+' (their sum, e.g. "kinetic+potential"). */
 int sph_csv_eval(const sph_csv *t, const char *expr, double *out, sph_error *err);

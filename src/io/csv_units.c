@@ -57,6 +57,12 @@ const char *sph_csv_units(const char *column) {
   return NULL;
 }
 
+int sph_csv_put_columns(FILE *f, const char *const *names, int first) {
+  for (; *names; names++, first = 0)
+    if (sph_csv_put_column(f, *names, first)) return -1;
+  return 0;
+}
+
 int sph_csv_put_column(FILE *f, const char *name, int first) {
   const char *u = sph_csv_units(name);
   const char *sep = first ? "" : ",";

@@ -56,13 +56,6 @@ void sph_diag_compute(const sph_particles *p, double floor_y, double band, const
   row->repulsion = 0;
 }
 
-/* Writes the names of a NULL-terminated list as header columns. */
-static int put_columns(FILE *f, const char *const *names, int first) {
-  for (; *names; names++, first = 0)
-    if (sph_csv_put_column(f, *names, first)) return -1;
-  return 0;
-}
-
 int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion, int repulsion,
                           int shifting) {
   static const char *const base[] = {"time",    "step",      "dt",         "n_fluid",
@@ -81,12 +74,12 @@ int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion, 
   static const char *const diffusion_cols[] = {"diffusion_energy", NULL};
   static const char *const repulsion_cols[] = {"wall_potential", NULL};
   static const char *const shifting_cols[] = {"shifting_drift", NULL};
-  int bad = put_columns(f, base, 1);
-  if (!bad && free_surface) bad = put_columns(f, surface, 0);
-  if (!bad && ledger) bad = put_columns(f, ledger_cols, 0);
-  if (!bad && ledger && diffusion) bad = put_columns(f, diffusion_cols, 0);
-  if (!bad && ledger && repulsion) bad = put_columns(f, repulsion_cols, 0);
-  if (!bad && ledger && shifting) bad = put_columns(f, shifting_cols, 0);
+  int bad = sph_csv_put_columns(f, base, 1);
+  if (!bad && free_surface) bad = sph_csv_put_columns(f, surface, 0);
+  if (!bad && ledger) bad = sph_csv_put_columns(f, ledger_cols, 0);
+  if (!bad && ledger && diffusion) bad = sph_csv_put_columns(f, diffusion_cols, 0);
+  if (!bad && ledger && repulsion) bad = sph_csv_put_columns(f, repulsion_cols, 0);
+  if (!bad && ledger && shifting) bad = sph_csv_put_columns(f, shifting_cols, 0);
   return bad || fputc('\n', f) == EOF;
 }
 

@@ -233,11 +233,12 @@ static int stop_condition(sph_sim *s) {
  * resumes into today's ("time (s),step"). */
 static int same_columns(const char *a, const char *b) {
   for (;;) {
-    if (a[0] == ' ' && a[1] == '(') a += strcspn(a, ",\n");
-    if (b[0] == ' ' && b[1] == '(') b += strcspn(b, ",\n");
-    if (*a != *b) return 0;
-    if (!*a) return 1;
-    a++, b++;
+    const size_t la = strcspn(a, ",\n"), lb = strcspn(b, ",\n");
+    const size_t n = sph_csv_bare_length(a, la);
+    if (n != sph_csv_bare_length(b, lb) || memcmp(a, b, n) != 0 || a[la] != b[lb]) return 0;
+    if (a[la] != ',') return 1; /* both lines end here */
+    a += la + 1;
+    b += lb + 1;
   }
 }
 
