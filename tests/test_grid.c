@@ -70,15 +70,15 @@ static void check_against_brute_force(sph_particles *p, double support) {
     x0 = fmin(x0, p->x[i]), x1 = fmax(x1, p->x[i]);
     y0 = fmin(y0, p->y[i]), y1 = fmax(y1, p->y[i]);
   }
-  CU_ASSERT_EQUAL(g.transposed, x1 - x0 > y1 - y0);
+  CU_ASSERT_EQUAL(g.axis[0], x1 - x0 > y1 - y0 ? SPH_AXIS_Y : SPH_AXIS_X);
   const double s2 = support * support;
   int64_t *a = malloc(p->n * sizeof *a), *b = malloc(p->n * sizeof *b);
   size_t mismatches = 0, pairs = 0;
   for (size_t i = 0; i < p->n; i++) {
     size_t na = 0, nb = 0;
-    size_t lo[3], hi[3];
+    size_t lo[SPH_GRID_ROWS], hi[SPH_GRID_ROWS];
     sph_grid_ranges(&g, i, lo, hi);
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < SPH_GRID_ROWS; k++)
       for (size_t j = lo[k]; j < hi[k]; j++) {
         const double dx = p->x[i] - p->x[j], dy = p->y[i] - p->y[j];
         if (j != i && dx * dx + dy * dy < s2) a[na++] = p->id[j];
@@ -97,7 +97,8 @@ static void check_against_brute_force(sph_particles *p, double support) {
   /* cell order, and stable: ids increase within each cell when the store
    * started in id order */
   for (size_t i = 1; i < p->n; i++) {
-    const long ca = g.cy[i - 1] * g.nx + g.cx[i - 1], cb = g.cy[i] * g.nx + g.cx[i];
+    const long ca = g.cell_of[1][i - 1] * g.ncell[0] + g.cell_of[0][i - 1],
+               cb = g.cell_of[1][i] * g.ncell[0] + g.cell_of[0][i];
     CU_ASSERT(ca <= cb);
   }
   free(a);
@@ -153,9 +154,9 @@ static void test_cell_edges(void) {
   sph_grid_build(&g, &p, support * (1 + 1e-9), 1u << 20, &err);
   for (size_t i = 0; i < p.n; i++) {
     if (p.id[i] != 15 * 30 + 15) continue;
-    size_t lo[3], hi[3], cnt = 0;
+    size_t lo[SPH_GRID_ROWS], hi[SPH_GRID_ROWS], cnt = 0;
     sph_grid_ranges(&g, i, lo, hi);
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < SPH_GRID_ROWS; k++)
       for (size_t j = lo[k]; j < hi[k]; j++) {
         const double dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j];
         if (j != i && dx * dx + dy * dy < support * support) cnt++;
@@ -190,7 +191,7 @@ static size_t check_periodic(sph_particles *p, double support, double cell, doub
   if (rc) printf("\n%s\n", err.msg);
   CU_ASSERT_FATAL(rc == 0);
   CU_ASSERT(g.periodic);
-  CU_ASSERT(g.nx >= 3 && g.cellx >= cell);
+  CU_ASSERT(g.ncell[0] >= 3 && g.cellx >= cell);
   const double period = px1 - px0, s2 = support * support;
   int64_t *a = malloc(p->n * sizeof *a), *b = malloc(p->n * sizeof *b);
   unsigned char *seen = calloc(p->n, 1);
@@ -223,9 +224,10 @@ static size_t check_periodic(sph_particles *p, double support, double cell, doub
   CU_ASSERT_EQUAL(duplicates, 0);
   /* cell order with the columns of the period */
   for (size_t i = 0; i < p->n; i++)
-    CU_ASSERT(g.cx[i] >= 0 && g.cx[i] < g.nx);
+    CU_ASSERT(g.cell_of[0][i] >= 0 && g.cell_of[0][i] < g.ncell[0]);
   for (size_t i = 1; i < p->n; i++)
-    CU_ASSERT(g.cy[i - 1] * g.nx + g.cx[i - 1] <= g.cy[i] * g.nx + g.cx[i]);
+    CU_ASSERT(g.cell_of[1][i - 1] * g.ncell[0] + g.cell_of[0][i - 1] <=
+              g.cell_of[1][i] * g.ncell[0] + g.cell_of[0][i]);
   free(a);
   free(b);
   free(seen);
@@ -279,7 +281,7 @@ static void test_periodic_three_cells(void) {
     sph_grid g;
     sph_grid_init(&g);
     CU_ASSERT_FATAL(sph_grid_build_periodic(&g, &p, cell, px0, px1, 1u << 20, &err) == 0);
-    CU_ASSERT_EQUAL(g.nx, 3);
+    CU_ASSERT_EQUAL(g.ncell[0], 3);
     CU_ASSERT_EQUAL(g.cellx, cell);
     sph_grid_free(&g);
     CU_ASSERT(check_periodic(&p, support, cell, px0, px1) > 0);
@@ -301,7 +303,7 @@ static void test_periodic_long(void) {
     sph_grid g;
     sph_grid_init(&g);
     CU_ASSERT_FATAL(sph_grid_build_periodic(&g, &p, cell, px0, px1, 1u << 20, &err) == 0);
-    CU_ASSERT(g.nx > 3);
+    CU_ASSERT(g.ncell[0] > 3);
     sph_grid_free(&g);
     CU_ASSERT(check_periodic(&p, support, cell, px0, px1) > 0);
     sph_particles_free(&p);
@@ -337,8 +339,8 @@ static void test_grid_side_bound(void) {
   err.msg[0] = 0;
   CU_ASSERT(sph_grid_build(&g, &p, 1.0, SIZE_MAX, &err) != 0); /* 2^31 + 1 cells a side */
   CU_ASSERT(strstr(err.msg, "2^31 - 1 a side") != NULL);
-  CU_ASSERT(g.nx == 0);  /* nothing built */
-  p.x[1] = 2147483645.0; /* 2^31 - 2 cells: within the side's bound, over max_cells */
+  CU_ASSERT(g.ncell[0] == 0); /* nothing built */
+  p.x[1] = 2147483645.0;      /* 2^31 - 2 cells: within the side's bound, over max_cells */
   err.msg[0] = 0;
   CU_ASSERT(sph_grid_build(&g, &p, 1.0, 1u << 20, &err) != 0);
   CU_ASSERT(strstr(err.msg, "limit 1048576") != NULL);
@@ -559,7 +561,7 @@ static void test_sort_any_team(void) {
 #ifdef _OPENMP
   omp_set_num_threads(2);
 #endif
-  const size_t cells = (size_t)g[0].nx * (size_t)g[0].ny;
+  const size_t cells = sph_grid_cells(&g[0]);
   CU_ASSERT_FATAL(cells < N);
   int ordered = 1;
   for (size_t c = 0; c < cells; c++)
@@ -612,7 +614,7 @@ static void test_list_fresh(void) {
     }
   CU_ASSERT_EQUAL(missing, 0);
   const double x5 = p.x[5];
-  p.x[5] = l.xref[5] + 0.51 * skin;
+  p.x[5] = l.ref[0][5] + 0.51 * skin;
   CU_ASSERT(!sph_nlist_fresh(&l, &p));
   p.x[5] = x5;
   CU_ASSERT(sph_nlist_fresh(&l, &p));

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
- * testutil.c - CUnit runner and file helpers shared by the test programs.
+ * testutil.c - file, process and CSV helpers shared by the test programs
+ * (the CUnit runner is testmain.c).
  */
 #include "config.h"
 
@@ -8,31 +9,11 @@
 
 #include "io/csv.h"
 
-#include <CUnit/Basic.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
-
-int sph_test_main(const char *suite, CU_TestInfo *tests) {
-  CU_SuiteInfo suites[] = {{suite, NULL, NULL, NULL, NULL, tests}, CU_SUITE_INFO_NULL};
-  if (CU_initialize_registry() != CUE_SUCCESS) return 2;
-  if (CU_register_suites(suites) != CUE_SUCCESS) {
-    fprintf(stderr, "%s: cannot register suite: %s\n", suite, CU_get_error_msg());
-    CU_cleanup_registry();
-    return 2;
-  }
-  CU_basic_set_mode(CU_BRM_VERBOSE);
-  CU_basic_run_tests();
-  unsigned failed = CU_get_number_of_failures();
-  unsigned tests_failed = CU_get_number_of_tests_failed();
-  unsigned ran = CU_get_number_of_tests_run();
-  CU_cleanup_registry();
-  printf("%s: %u passed, %u failed\n", suite, ran - tests_failed, tests_failed);
-  if (ran == 0) return 1; /* a suite that runs nothing is a failure */
-  return failed ? 1 : 0;
-}
 
 /* A ring of buffers, so that a few results can be used in one call. */
 static const char *join(const char *env, const char *rel) {

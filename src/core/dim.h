@@ -4,8 +4,9 @@
  *
  * The solver is written for SPH_DIM dimensions and compiled once per
  * dimension (as SWIFT's dimension.h fixes it at configure time), so loops
- * over the axes unroll and a 2-D build pays nothing for a third axis. Today
- * every build is 2-D; the 3-D build is the next step (doc/method.md).
+ * over the axes unroll and a 2-D build pays nothing for a third axis. The
+ * 2-D build is the library sph runs; the 3-D build (src/libsph3.la) holds
+ * the sources made dimension-neutral so far (doc/dimensions.md).
  *
  *   SPH_DIM    2 (or 3)
  *   SPH_SYM    the independent components of a symmetric tensor: 3 in 2-D
@@ -22,6 +23,35 @@
 #endif
 
 #define SPH_SYM (SPH_DIM * (SPH_DIM + 1) / 2)
+
+/* Code written once for both dimensions:
+ *   SPH_XYZ(x, y, z)  the components of a vector: x, y in 2-D (z is not
+ *                     even read), x, y, z in 3-D, as in {{SPH_XYZ(dx, dy, dz)}}
+ *   SPH_IF3(...)      its argument in 3-D, nothing in 2-D: the statements
+ *                     of the third axis */
+#if SPH_DIM == 2
+#define SPH_XYZ(x, y, z) x, y
+#define SPH_IF3(...)
+#else
+#define SPH_XYZ(x, y, z) x, y, z
+#define SPH_IF3(...) __VA_ARGS__
+#endif
+
+/* A field with a name per axis and an array of SPH_DIM (an anonymous
+ * union, C11 and a GNU C99 extension; __extension__ keeps -pedantic quiet
+ * where the compiler has it): SPH_COMPONENTS(double, g, gx, gy, gz) is
+ * g[0], g[1] (, g[2]) under the names gx, gy (, gz); SPH_AXES (particles.h)
+ * the same for arrays. */
+#if defined(__GNUC__)
+#define SPH_ANONYMOUS __extension__
+#else
+#define SPH_ANONYMOUS
+#endif
+#define SPH_COMPONENTS(type, arr, a, b, c)                                                         \
+  SPH_ANONYMOUS union {                                                                            \
+    SPH_ANONYMOUS struct { type SPH_XYZ(a, b, c); };                                               \
+    type arr[SPH_DIM];                                                                             \
+  }
 
 /* h^-d: the factor a kernel's normalisation takes from the smoothing
  * length, as products left to right ((1/h) (1/h) in 2-D). */

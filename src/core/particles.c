@@ -33,7 +33,13 @@
   X(x0, 0) X(y0, 0) X(vx0, 0) X(vy0, 0) X(rho0, 0) X(u0, HEAT) \
   X(ax, 0) X(ay, 0) X(drho, 0) X(du, HEAT) X(xsx, 0) X(xsy, 0) \
   X(vxh, HALF) X(vyh, HALF) X(rhoh, HALF) X(uh, HALF) X(xr, REST) X(yr, REST) \
-  X(mx, OFFSET) X(my, OFFSET)
+  X(mx, OFFSET) X(my, OFFSET) SPH_PARTICLE_DOUBLES_Z(X)
+#if SPH_DIM == 2
+#define SPH_PARTICLE_DOUBLES_Z(X)
+#else
+#define SPH_PARTICLE_DOUBLES_Z(X) \
+  X(z, 0) X(vz, 0) X(z0, 0) X(vz0, 0) X(az, 0) X(xsz, 0) X(vzh, HALF) X(zr, REST) X(mz, OFFSET)
+#endif
 /* clang-format on */
 #define SPH_PARTICLE_OTHERS(X) X(kind, 0) X(body, 0) X(id, 0) X(flags, 0)
 #define SPH_PARTICLE_ONE(f, g) +1
@@ -76,14 +82,14 @@ int sph_particles_init(sph_particles *p, size_t cap, sph_error *err) {
   return 0;
 }
 
-long sph_particles_add(sph_particles *p, double x, double y, double vx, double vy, double rho,
-                       double mass, double h, int32_t kind, sph_error *err) {
+long sph_particles_add_at(sph_particles *p, const double x[SPH_DIM], const double v[SPH_DIM],
+                          double rho, double mass, double h, int32_t kind, sph_error *err) {
   if (p->n == p->cap && grow(p, p->cap ? 2 * p->cap : 16, err)) return -1;
   size_t i = p->n++;
-  p->x[i] = x;
-  p->y[i] = y;
-  p->vx[i] = vx;
-  p->vy[i] = vy;
+  for (int d = 0; d < SPH_DIM; d++) {
+    p->pos[d][i] = x[d];
+    p->vel[d][i] = v[d];
+  }
   p->rho[i] = rho;
   p->p[i] = 0.0;
   p->mass[i] = mass;
@@ -91,15 +97,24 @@ long sph_particles_add(sph_particles *p, double x, double y, double vx, double v
   if (p->live & SPH_ARRAYS_HEAT) p->u[i] = 0.0;
   p->kind[i] = kind;
   p->body[i] = -1;
-  if (p->live & SPH_ARRAYS_REST) {
-    p->xr[i] = x;
-    p->yr[i] = y;
-  }
-  if (p->live & SPH_ARRAYS_OFFSET) p->mx[i] = p->my[i] = 0.0;
+  if (p->live & SPH_ARRAYS_REST)
+    for (int d = 0; d < SPH_DIM; d++)
+      p->rest[d][i] = x[d];
+  if (p->live & SPH_ARRAYS_OFFSET)
+    for (int d = 0; d < SPH_DIM; d++)
+      p->mirror_offset[d][i] = 0.0;
   p->id[i] = (int64_t)i;
   p->flags[i] = 0;
   return (long)i;
 }
+
+#if SPH_DIM == 2
+long sph_particles_add(sph_particles *p, double x, double y, double vx, double vy, double rho,
+                       double mass, double h, int32_t kind, sph_error *err) {
+  const double at[2] = {x, y}, v[2] = {vx, vy};
+  return sph_particles_add_at(p, at, v, rho, mass, h, kind, err);
+}
+#endif
 
 int sph_particles_limit(sph_particles *p, unsigned groups) {
   if (p->n) return -1;

@@ -16,6 +16,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/dim.h"
 #include "core/error.h"
 
 #ifdef __cplusplus
@@ -54,25 +55,28 @@ enum {
   SPH_ARRAYS_ALL = 15
 };
 
-/* The store's axes: a per-axis field is two arrays, reachable by name
- * (x, y) or by axis (pos[SPH_AXIS_X], pos[SPH_AXIS_Y]; the same pointers).
- * SPH_STORE_DIM is the solver's dimension (core/dim.h's SPH_DIM). */
-#define SPH_STORE_DIM 2
-enum { SPH_AXIS_X = 0, SPH_AXIS_Y = 1 };
+/* The store's axes: a per-axis field is SPH_DIM arrays (core/dim.h), reachable
+ * by name (x, y and, in 3-D, z) or by axis (pos[SPH_AXIS_X], ...; the same
+ * pointers). A program built on the 3-D library defines SPH_DIM 3 before
+ * including this header. */
+#define SPH_STORE_DIM SPH_DIM
+enum { SPH_AXIS_X = 0, SPH_AXIS_Y = 1, SPH_AXIS_Z = 2 };
 
-/* A per-axis field: names a and b for the axes, arr[axis] for both (an
- * anonymous union, C11 and a GNU C99 extension; __extension__ keeps
- * -pedantic quiet where the compiler has it). */
-#if defined(__GNUC__)
-#define SPH_ANONYMOUS __extension__
-#else
-#define SPH_ANONYMOUS
-#endif
-#define SPH_AXES(arr, a, b)                                                                        \
+/* A per-axis field: names a, b (and c in 3-D) for the axes, arr[axis] for
+ * all (an anonymous union: core/dim.h). */
+#if SPH_DIM == 2
+#define SPH_AXES(arr, a, b, c)                                                                     \
   SPH_ANONYMOUS union {                                                                            \
     SPH_ANONYMOUS struct { double *a, *b; };                                                       \
     double *arr[SPH_STORE_DIM];                                                                    \
   }
+#else
+#define SPH_AXES(arr, a, b, c)                                                                     \
+  SPH_ANONYMOUS union {                                                                            \
+    SPH_ANONYMOUS struct { double *a, *b, *c; };                                                   \
+    double *arr[SPH_STORE_DIM];                                                                    \
+  }
+#endif
 
 typedef struct sph_particles {
   size_t n;      /* particles in use */
@@ -80,29 +84,29 @@ typedef struct sph_particles {
   void *block;   /* the one allocation holding every array (particles.c) */
   unsigned live; /* SPH_ARRAYS_* groups in use; the others hold zeros */
   /* state */
-  SPH_AXES(pos, x, y);   /* position (m) */
-  SPH_AXES(vel, vx, vy); /* velocity (m/s) */
-  double *rho;           /* density (kg/m^3) */
-  double *p;             /* pressure (Pa), from the equation of state */
-  double *mass;          /* mass (kg) */
-  double *h;             /* smoothing length (m) */
-  double *u;             /* thermal energy per unit mass (J/kg) */
-  int32_t *kind;         /* SPH_KIND_* */
-  int64_t *id;           /* 0..n-1, fixed at creation */
-  uint8_t *flags;        /* per-particle flags, SPH_FLAG_* (free surface, wall models) */
+  SPH_AXES(pos, x, y, z);    /* position (m) */
+  SPH_AXES(vel, vx, vy, vz); /* velocity (m/s) */
+  double *rho;               /* density (kg/m^3) */
+  double *p;                 /* pressure (Pa), from the equation of state */
+  double *mass;              /* mass (kg) */
+  double *h;                 /* smoothing length (m) */
+  double *u;                 /* thermal energy per unit mass (J/kg) */
+  int32_t *kind;             /* SPH_KIND_* */
+  int64_t *id;               /* 0..n-1, fixed at creation */
+  uint8_t *flags;            /* per-particle flags, SPH_FLAG_* (free surface, wall models) */
   /* state at the start of the step (predictor-corrector), and rates */
-  SPH_AXES(pos0, x0, y0);
-  SPH_AXES(vel0, vx0, vy0);
+  SPH_AXES(pos0, x0, y0, z0);
+  SPH_AXES(vel0, vx0, vy0, vz0);
   double *rho0, *u0;
-  SPH_AXES(acc, ax, ay);    /* dv/dt */
-  double *drho, *du;        /* drho/dt, du/dt */
-  SPH_AXES(velh, vxh, vyh); /* leap-frog: velocity at the half step */
-  double *rhoh, *uh;        /* leap-frog: density, energy at the half step */
-  SPH_AXES(rest, xr, yr);   /* rest position of a wall particle (moving walls) */
-  int32_t *body;            /* index of the moving wall a particle belongs to, or -1 */
-  SPH_AXES(xsph, xsx, xsy); /* XSPH velocity correction */
+  SPH_AXES(acc, ax, ay, az);     /* dv/dt */
+  double *drho, *du;             /* drho/dt, du/dt */
+  SPH_AXES(velh, vxh, vyh, vzh); /* leap-frog: velocity at the half step */
+  double *rhoh, *uh;             /* leap-frog: density, energy at the half step */
+  SPH_AXES(rest, xr, yr, zr);    /* rest position of a wall particle (moving walls) */
+  int32_t *body;                 /* index of the moving wall a particle belongs to, or -1 */
+  SPH_AXES(xsph, xsx, xsy, xsz); /* XSPH velocity correction */
   /* wall particle: offset to its mirror point across the wall face (walls/wall_velocity.h) */
-  SPH_AXES(mirror_offset, mx, my);
+  SPH_AXES(mirror_offset, mx, my, mz);
 } sph_particles;
 
 /* Allocates room for cap particles (all arrays zeroed); n = 0; every
@@ -115,10 +119,16 @@ int sph_particles_limit(sph_particles *p, unsigned groups);
  * rest positions, which start at the present positions (as if set when
  * each particle was made). */
 void sph_particles_use(sph_particles *p, unsigned groups);
-/* Appends one particle (state arrays set, rates zero); grows if needed.
- * Returns its storage index, or -1 (with err) on allocation failure. */
+/* Appends one particle at x with velocity v (state arrays set, rates
+ * zero); grows if needed. Returns its storage index, or -1 (with err) on
+ * allocation failure. */
+long sph_particles_add_at(sph_particles *p, const double x[SPH_DIM], const double v[SPH_DIM],
+                          double rho, double mass, double h, int32_t kind, sph_error *err);
+#if SPH_DIM == 2
+/* The same at (x, y) with velocity (vx, vy). */
 long sph_particles_add(sph_particles *p, double x, double y, double vx, double vy, double rho,
                        double mass, double h, int32_t kind, sph_error *err);
+#endif
 /* Copies particle `from` to storage index `to`: every live array (id
  * included: renumber after, if the ids must stay 0..n-1). */
 void sph_particles_move(sph_particles *p, size_t to, size_t from);

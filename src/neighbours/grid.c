@@ -39,10 +39,14 @@ void sph_grid_free(sph_grid *g) {
 static int reserve(sph_grid *g, size_t n, size_t cells, sph_error *err) {
   if (n > g->cap_particles) {
     const size_t cap = n + n / 4 + 16;
-    void **const arrays[] = {(void **)&g->cx, (void **)&g->cy, (void **)&g->key, (void **)&g->perm,
-                             &g->work};
-    const size_t size[] = {sizeof *g->cx, sizeof *g->cy, sizeof *g->key, sizeof *g->perm, 8};
-    if (sph_arrays_regrow(&g->block, cap, 0, 5, size, arrays, NULL))
+    void **arrays[SPH_DIM + 3];
+    size_t size[SPH_DIM + 3], k = 0;
+    for (int d = 0; d < SPH_DIM; d++)
+      size[k] = sizeof *g->cell_of[d], arrays[k++] = (void **)&g->cell_of[d];
+    size[k] = sizeof *g->key, arrays[k++] = (void **)&g->key;
+    size[k] = sizeof *g->perm, arrays[k++] = (void **)&g->perm;
+    size[k] = 8, arrays[k++] = &g->work;
+    if (sph_arrays_regrow(&g->block, cap, 0, k, size, arrays, NULL))
       return sph_error_set(err, "grid: out of memory for %zu particles", n);
     g->cap_particles = cap;
   }
@@ -116,96 +120,134 @@ static int counting_sort(sph_grid *g, size_t n, size_t cells, sph_error *err) {
   return 0;
 }
 
-/* The shared build: bounding box in y (and in x unless periodic), keys,
- * stable counting sort, and the permutation of the store (p != NULL) or
- * only the cell lists in g->perm (p == NULL, the store read through q). */
+/* The grid's directions (grid.h): the store's axes in increasing extent,
+ * ties in axis order, x first when periodic. */
+static void choose_directions(const double ext[SPH_DIM], int periodic, int axis[SPH_DIM]) {
+  for (int d = 0; d < SPH_DIM; d++)
+    axis[d] = d;
+  for (int d = periodic ? 2 : 1; d < SPH_DIM; d++) { /* insertion sort: stable */
+    const int a = axis[d];
+    int k = d;
+    for (; k > (periodic ? 1 : 0) && ext[axis[k - 1]] > ext[a]; k--)
+      axis[k] = axis[k - 1];
+    axis[k] = a;
+  }
+}
+
+/* The shared build: bounding box (along all axes but a periodic x), the
+ * directions, keys, stable counting sort, and the permutation of the store
+ * (p != NULL) or only the cell lists in g->perm (p == NULL, the store read
+ * through q). */
 static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double cell, int periodic,
                  double px0, double px1, size_t max_cells, sph_error *err) {
   if (p) q = p;
   const size_t n = q->n;
   if (!(cell > 0.0)) return sph_error_set(err, "grid: cell size must be positive");
-  double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+  double lo[SPH_DIM], hi[SPH_DIM];
   const long ln = (long)n;
+  for (int d = 0; d < SPH_DIM; d++) {
+    const double *restrict x = q->pos[d];
+    double a = INFINITY, b = -INFINITY;
 #pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN) reduction(min                      \
-                                                                          : xmin, ymin)            \
-    reduction(max                                                                                  \
-              : xmax, ymax)
-  for (long i = 0; i < ln; i++) {
-    if (q->x[i] < xmin) xmin = q->x[i];
-    if (q->x[i] > xmax) xmax = q->x[i];
-    if (q->y[i] < ymin) ymin = q->y[i];
-    if (q->y[i] > ymax) ymax = q->y[i];
+                                                                          : a) reduction(max       \
+                                                                                         : b)
+    for (long i = 0; i < ln; i++) {
+      if (x[i] < a) a = x[i];
+      if (x[i] > b) b = x[i];
+    }
+    if (n == 0) a = b = 0.0;
+    if (!isfinite(a) || !isfinite(b))
+      return sph_error_set(err, "grid: particle position is not finite");
+    lo[d] = a, hi[d] = b;
   }
-  if (n == 0) xmin = xmax = ymin = ymax = 0.0;
-  if (!isfinite(xmin) || !isfinite(xmax) || !isfinite(ymin) || !isfinite(ymax))
-    return sph_error_set(err, "grid: particle position is not finite");
-  /* Rows of cells run along the longer side of the particles' box (along
-   * x unless the box is wider than tall and not periodic: then along y,
-   * and "x" below is y). A sorted store is in row order, and threads take
-   * contiguous slices of it, so the boundary between two slices is a row:
-   * across the shorter side, with the fewest particles near it. */
-  const int transposed = !periodic && xmax - xmin > ymax - ymin;
-  const double *restrict qx = transposed ? q->y : q->x, *restrict qy = transposed ? q->x : q->y;
-  if (transposed) {
-    double t = xmin;
-    xmin = ymin;
-    ymin = t;
-    t = xmax;
-    xmax = ymax;
-    ymax = t;
-  }
+  double ext[SPH_DIM];
+  for (int d = 0; d < SPH_DIM; d++)
+    ext[d] = hi[d] - lo[d];
+  int axis[SPH_DIM];
+  choose_directions(ext, periodic, axis);
   double cellx = cell;
+  double first = lo[axis[0]], f[SPH_DIM];
   if (periodic) {
     /* between the two stages of a step particles may stand up to one step's
      * travel outside the period; further is an error */
-    if (xmin < px0 - (px1 - px0) || xmax >= px1 + (px1 - px0))
+    if (lo[0] < px0 - (px1 - px0) || hi[0] >= px1 + (px1 - px0))
       return sph_error_set(err, "grid: a particle is more than a period outside [%g, %g)", px0,
                            px1);
     const double ncol = floor((px1 - px0) / cell);
     if (ncol < 3)
       return sph_error_set(err, "grid: the period %g holds fewer than 3 cells of %g", px1 - px0,
                            cell);
-    xmin = px0;
-    xmax = px1;
+    first = px0;
     cellx = (px1 - px0) / ncol;
+    f[0] = ncol;
+  } else
+    f[0] = floor(ext[axis[0]] / cell) + 1.0;
+  double total = f[0];
+  int too_long = f[0] > INT32_MAX;
+  for (int d = 1; d < SPH_DIM; d++) {
+    f[d] = floor(ext[axis[d]] / cell) + 1.0;
+    total *= f[d];
+    too_long |= f[d] > INT32_MAX;
   }
-  const double fx = periodic ? floor((px1 - px0) / cell) : floor((xmax - xmin) / cell) + 1.0;
-  const double fy = floor((ymax - ymin) / cell) + 1.0;
-  if (fx * fy > (double)max_cells || fx > INT32_MAX || fy > INT32_MAX)
+  if (total > (double)max_cells || too_long)
+#if SPH_DIM == 2
     return sph_error_set(
-        err, "grid: particles spread over %.0f x %.0f cells (limit %zu, and 2^31 - 1 a side)", fx,
-        fy, max_cells);
-  g->transposed = transposed;
-  g->x0 = xmin;
-  g->y0 = ymin;
+        err, "grid: particles spread over %.0f x %.0f cells (limit %zu, and 2^31 - 1 a side)", f[0],
+        f[1], max_cells);
+#else
+    return sph_error_set(
+        err,
+        "grid: particles spread over %.0f x %.0f x %.0f cells (limit %zu, and 2^31 - 1 a side)",
+        f[0], f[1], f[2], max_cells);
+#endif
+  for (int d = 0; d < SPH_DIM; d++) {
+    g->axis[d] = axis[d];
+    g->lo[d] = d ? lo[axis[d]] : first;
+    g->ncell[d] = (long)f[d];
+  }
   g->cell = cell;
   g->cellx = cellx;
   g->periodic = periodic;
-  g->nx = (long)fx;
-  g->ny = (long)fy;
-  const size_t cells = (size_t)g->nx * (size_t)g->ny;
+  const size_t cells = sph_grid_cells(g);
   if (reserve(g, n, cells, err)) return -1;
 
   const double inv = 1.0 / cell, invx = 1.0 / cellx;
+  const double *restrict qx = q->pos[axis[0]], *restrict qy = q->pos[axis[1]];
+  const double x0 = g->lo[0], y0 = g->lo[1];
+  const long nx = g->ncell[0], ny = g->ncell[1];
+#if SPH_DIM == 3
+  const double *restrict qz = q->pos[axis[2]];
+  const double z0 = g->lo[2];
+  const long nz = g->ncell[2];
+#endif
 #pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN)
   for (long i = 0; i < ln; i++) {
-    long cx = (long)floor((qx[i] - xmin) * invx);
-    long cy = (long)((qy[i] - ymin) * inv);
-    if (periodic) cx = ((cx % g->nx) + g->nx) % g->nx;
-    if (cx >= g->nx) cx = g->nx - 1;
-    if (cy >= g->ny) cy = g->ny - 1;
-    g->key[i] = (size_t)cy * (size_t)g->nx + (size_t)cx;
+    long cx = (long)floor((qx[i] - x0) * invx);
+    long cy = (long)((qy[i] - y0) * inv);
+    if (periodic) cx = ((cx % nx) + nx) % nx;
+    if (cx >= nx) cx = nx - 1;
+    if (cy >= ny) cy = ny - 1;
+#if SPH_DIM == 2
+    g->key[i] = (size_t)cy * (size_t)nx + (size_t)cx;
+#else
+    long cz = (long)((qz[i] - z0) * inv);
+    if (cz >= nz) cz = nz - 1;
+    g->key[i] = ((size_t)cz * (size_t)ny + (size_t)cy) * (size_t)nx + (size_t)cx;
+#endif
   }
   if (counting_sort(g, n, cells, err)) return -1;
   /* the cell of each storage index: binned only, the particle's own key;
    * sorted, the key of the particle moved there */
   if (p) sph_particles_permute(p, g->perm, g->work);
-  const size_t *restrict key = g->key, *restrict perm = g->perm, nx = (size_t)g->nx;
+  const size_t *restrict key = g->key, *restrict perm = g->perm;
 #pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN)
   for (long i = 0; i < ln; i++) {
-    const size_t k = p ? key[perm[i]] : key[i];
-    g->cx[i] = (int32_t)(k % nx);
-    g->cy[i] = (int32_t)(k / nx);
+    size_t k = p ? key[perm[i]] : key[i];
+    for (int d = 0; d < SPH_DIM - 1; d++) {
+      g->cell_of[d][i] = (int32_t)(k % (size_t)g->ncell[d]);
+      k /= (size_t)g->ncell[d];
+    }
+    g->cell_of[SPH_DIM - 1][i] = (int32_t)k;
   }
   g->sorted = p != NULL;
   if (SPH_DEBUG) {
@@ -244,21 +286,31 @@ void sph_nlist_free(sph_nlist *l) {
  * order (positions, or storage indices through perm when the grid is only
  * binned), into row (with row NULL: only counted); returns how many. The
  * row needs room for all i's candidates: each is written before the test
- * that keeps it. */
+ * that keeps it. x holds the store's axes (x, y, z). */
 static inline __attribute__((always_inline)) uint32_t
-fill_row(const sph_grid *g, const double *restrict x, const double *restrict y, size_t i,
-         double r2max, double period, uint32_t *restrict row, const int sorted) {
+fill_row(const sph_grid *g, const double *const restrict *x, size_t i, double r2max, double period,
+         uint32_t *restrict row, const int sorted) {
   size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES];
   sph_grid_ranges_all(g, i, lo, hi);
   const size_t *restrict perm = g->perm;
-  const double xi = x[i], yi = y[i];
+  const double *restrict px = x[0], *restrict py = x[1];
+  const double xi = px[i], yi = py[i];
+#if SPH_DIM == 3
+  const double *restrict pz = x[2];
+  const double zi = pz[i];
+#endif
   uint32_t c = 0;
   for (int k = 0; k < SPH_GRID_RANGES; k++)
     for (size_t pos = lo[k]; pos < hi[k]; pos++) {
       const size_t j = sorted ? pos : perm[pos];
-      const double dx = sph_grid_min_image(xi - x[j], period), dy = yi - y[j];
+      const double dx = sph_grid_min_image(xi - px[j], period), dy = yi - py[j];
+#if SPH_DIM == 2
+      const double r2 = dx * dx + dy * dy;
+#else
+      const double dz = zi - pz[j], r2 = dx * dx + dy * dy + dz * dz;
+#endif
       if (row) row[c] = (uint32_t)j; /* kept only if the next line counts it: no branch */
-      c += (uint32_t)((dx * dx + dy * dy < r2max) & (j != i));
+      c += (uint32_t)((r2 < r2max) & (j != i));
     }
   return c;
 }
@@ -267,15 +319,15 @@ fill_row(const sph_grid *g, const double *restrict x, const double *restrict y, 
  * of its own, free of tests that do not change along it (inlined where
  * row is a literal NULL, so the counting loop writes nothing). */
 static inline __attribute__((always_inline)) uint32_t
-fill_any(const sph_grid *g, const double *restrict x, const double *restrict y, size_t i,
-         double r2max, double period, uint32_t *restrict row, int sorted) {
-  if (sorted && period <= 0.0) return fill_row(g, x, y, i, r2max, 0.0, row, 1);
-  if (sorted) return fill_row(g, x, y, i, r2max, period, row, 1);
-  if (period <= 0.0) return fill_row(g, x, y, i, r2max, 0.0, row, 0);
-  return fill_row(g, x, y, i, r2max, period, row, 0);
+fill_any(const sph_grid *g, const double *const restrict *x, size_t i, double r2max, double period,
+         uint32_t *restrict row, int sorted) {
+  if (sorted && period <= 0.0) return fill_row(g, x, i, r2max, 0.0, row, 1);
+  if (sorted) return fill_row(g, x, i, r2max, period, row, 1);
+  if (period <= 0.0) return fill_row(g, x, i, r2max, 0.0, row, 0);
+  return fill_row(g, x, i, r2max, period, row, 0);
 }
 
-/* The candidates of particle i: the particles of its 3 x 3 cells. */
+/* The candidates of particle i: the particles of its 3 x 3 (x 3) cells. */
 static size_t candidates(const sph_grid *g, size_t i) {
   size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES], c = 0;
   sph_grid_ranges_all(g, i, lo, hi);
@@ -291,11 +343,15 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   if (n > UINT32_MAX) return sph_error_set(err, "grid: %zu particles is too many for a list", n);
   if (n + 1 > l->cap_n) { /* every row array is rewritten below: nothing to keep */
     const size_t cap = n + 1 + n / 4 + 16;
-    void **const arrays[] = {(void **)&l->start, (void **)&l->count, (void **)&l->xref,
-                             (void **)&l->yref,  (void **)&l->idref, (void **)&l->cost};
-    const size_t size[] = {sizeof *l->start, sizeof *l->count, sizeof *l->xref,
-                           sizeof *l->yref,  sizeof *l->idref, sizeof *l->cost};
-    if (sph_arrays_regrow(&l->block, cap, 0, 6, size, arrays, NULL))
+    void **arrays[SPH_DIM + 4];
+    size_t size[SPH_DIM + 4], k = 0;
+    size[k] = sizeof *l->start, arrays[k++] = (void **)&l->start;
+    size[k] = sizeof *l->count, arrays[k++] = (void **)&l->count;
+    for (int d = 0; d < SPH_DIM; d++)
+      size[k] = sizeof *l->ref[d], arrays[k++] = (void **)&l->ref[d];
+    size[k] = sizeof *l->idref, arrays[k++] = (void **)&l->idref;
+    size[k] = sizeof *l->cost, arrays[k++] = (void **)&l->cost;
+    if (sph_arrays_regrow(&l->block, cap, 0, k, size, arrays, NULL))
       return sph_error_set(err, "grid: out of memory for the neighbour list of %zu particles", n);
     l->cap_n = cap;
   }
@@ -308,7 +364,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
    * candidates (fill_row writes every candidate before its test) and
    * copies it in place. */
   const double radius = support + skin, r2max = radius * radius;
-  const double *restrict x = p->x, *restrict y = p->y;
+  const double *const *x = (const double *const *)p->pos;
   const int sorted = g->sorted;
   const long ln = (long)n;
   size_t cmax = 0; /* the most candidates of any particle: the scratch row */
@@ -317,7 +373,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   for (long li = 0; li < ln; li++) {
     const size_t c = candidates(g, (size_t)li);
     if (c > cmax) cmax = c;
-    l->start[li + 1] = fill_any(g, x, y, (size_t)li, r2max, period, NULL, sorted);
+    l->start[li + 1] = fill_any(g, x, (size_t)li, r2max, period, NULL, sorted);
   }
   for (size_t i = 0; i < n; i++)
     l->start[i + 1] += l->start[i]; /* exact: integers */
@@ -340,7 +396,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     if (!scratch) oom = 1;
     while (scratch && sph_steal_next(&l->steal, SPH_NLIST_STEAL_GRAIN, &lo, &hi))
       for (size_t i = lo; i < hi; i++) {
-        const uint32_t c = fill_any(g, x, y, i, r2max, period, scratch, sorted);
+        const uint32_t c = fill_any(g, x, i, r2max, period, scratch, sorted);
         uint32_t *restrict row = l->nb + l->start[i];
         if (c) memcpy(row, scratch, c * sizeof *row); /* l->nb is NULL when no row has any */
         /* increasing storage index: already so on a sorted grid that is not
@@ -355,8 +411,8 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
             row[b] = v;
           }
         l->count[i] = c;
-        l->xref[i] = x[i];
-        l->yref[i] = y[i];
+        for (int d = 0; d < SPH_DIM; d++)
+          l->ref[d][i] = x[d][i];
         l->idref[i] = p->id[i];
         if (c > mc) mc = c;
       }
@@ -386,7 +442,10 @@ int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p) {
   if (!l->valid || l->n != p->n) return 0;
   const long n = (long)p->n;
   const double *restrict x = p->x, *restrict y = p->y;
-  const double *restrict xr = l->xref, *restrict yr = l->yref;
+  const double *restrict xr = l->ref[0], *restrict yr = l->ref[1];
+#if SPH_DIM == 3
+  const double *restrict z = p->z, *restrict zr = l->ref[2];
+#endif
   const int64_t *restrict id = p->id, *restrict idr = l->idref;
   const double period = l->period;
   double d2 = 0.0;
@@ -397,7 +456,11 @@ int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p) {
     sph_slice(l->cost, p->n, &lo, &hi);
     for (size_t i = lo; i < hi; i++) {
       const double dx = sph_grid_min_image(x[i] - xr[i], period), dy = y[i] - yr[i];
+#if SPH_DIM == 2
       const double d = dx * dx + dy * dy;
+#else
+      const double dz = z[i] - zr[i], d = dx * dx + dy * dy + dz * dz;
+#endif
       if (d > d2) d2 = d;
       moved |= id[i] != idr[i];
     }
@@ -414,7 +477,7 @@ int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p) {
 static char check_msg[256];
 
 const char *sph_grid_check(const sph_grid *g, size_t n) {
-  const size_t cells = (size_t)g->nx * (size_t)g->ny, nx = (size_t)g->nx;
+  const size_t cells = sph_grid_cells(g);
   if (g->start[0] != 0 || g->start[cells] != n) {
     snprintf(check_msg, sizeof check_msg, "grid: cell offsets span %zu..%zu, not 0..%zu",
              g->start[0], g->start[cells], n);
@@ -427,7 +490,11 @@ const char *sph_grid_check(const sph_grid *g, size_t n) {
     }
     for (size_t pos = g->start[c]; pos < g->start[c + 1]; pos++) {
       const size_t i = g->sorted ? pos : g->perm[pos];
-      if (i >= n || (size_t)g->cy[i] * nx + (size_t)g->cx[i] != c) {
+      size_t key = 0;
+      if (i < n)
+        for (int d = SPH_DIM - 1; d >= 0; d--)
+          key = key * (size_t)g->ncell[d] + (size_t)g->cell_of[d][i];
+      if (i >= n || key != c) {
         snprintf(check_msg, sizeof check_msg,
                  "grid: position %zu of cell %zu holds particle %zu of another cell", pos, c, i);
         return check_msg;
@@ -455,9 +522,14 @@ const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double s
     size_t k = 0;
     for (size_t j = 0; j < n; j++) {
       const double dx = sph_grid_min_image(p->x[i] - p->x[j], l->period), dy = p->y[i] - p->y[j];
+#if SPH_DIM == 2
+      const double r2ij = dx * dx + dy * dy;
+#else
+      const double dz = p->z[i] - p->z[j], r2ij = dx * dx + dy * dy + dz * dz;
+#endif
       while (k < l->count[i] && row[k] < j)
         k++;
-      if (j == i || !(dx * dx + dy * dy < r2)) continue;
+      if (j == i || !(r2ij < r2)) continue;
       if (k == l->count[i] || row[k] != j) {
         snprintf(check_msg, sizeof check_msg,
                  "neighbour list: row %zu lacks particle %zu within the support", i, j);

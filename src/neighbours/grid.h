@@ -2,14 +2,14 @@
 /*
  * grid.h - the cell-linked list ("dynamic grid" of paper A §2).
  *
- * Square cells of side >= the smoothing radius cover the particles' bounding
- * box. Building the grid sorts the particle store by cell with a stable
- * counting sort (row-major cell key), so particles of a cell are contiguous
- * and, within a cell, keep their previous relative order: the neighbour
- * order of every particle is a function of the state alone, never of the
- * thread count. The neighbours of a particle are the particles of the 3x3
- * block of cells around its own; because a row of three cells is one
- * contiguous range, a neighbour walk is three index ranges.
+ * Square (cubic) cells of side >= the smoothing radius cover the particles'
+ * bounding box. Building the grid sorts the particle store by cell with a
+ * stable counting sort (row-major cell key), so particles of a cell are
+ * contiguous and, within a cell, keep their previous relative order: the
+ * neighbour order of every particle is a function of the state alone, never
+ * of the thread count. The neighbours of a particle are the particles of the
+ * 3x3 (3x3x3) block of cells around its own; because a row of three cells is
+ * one contiguous range, a neighbour walk is three (nine) index ranges.
  */
 #ifndef SPH_GRID_H
 #define SPH_GRID_H
@@ -17,29 +17,48 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/dim.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/particles.h"
 
+/* The grid's directions: direction 0 runs along a row of cells (consecutive
+ * keys), direction SPH_DIM - 1 is the slowest. Each is one of the store's
+ * axes (axis[k]): the axes in increasing extent of the particles' box, ties
+ * in axis order, so rows run along the shortest side and the threads'
+ * slices of the sorted store (whole rows, planes in 3-D) meet across the
+ * longest; a grid periodic in x has x as direction 0 (its rows wrap). In 2-D
+ * that is rows along x unless the box is wider than tall. */
 typedef struct sph_grid {
-  int transposed;   /* rows run along y (a box wider than tall, not periodic):
-                       below, read x as y and y as x */
-  double x0, y0;    /* lower-left corner of cell (0, 0) */
-  double cell;      /* cell side (rows); columns are cellx wide */
-  double cellx;     /* column width: = cell, or period/nx when periodic in x */
-  int periodic;     /* columns wrap around (periodic in x) */
-  int sorted;       /* the store is in cell order (sph_grid_build*); 0 after
-                       sph_grid_bin: cell c holds perm[start[c]] .. perm[start[c+1]-1] */
-  long nx, ny;      /* cells per row, rows */
-  size_t *start;    /* nx*ny + 1 offsets into the sorted store */
-  int32_t *cx, *cy; /* cell coordinates of the particle at each storage index (nx, ny
-                       below 2^31: the build checks) */
+  int axis[SPH_DIM];   /* the store axis (SPH_AXIS_*) of each direction */
+  double lo[SPH_DIM];  /* the lower corner of cell 0 along each direction */
+  double cell;         /* cell side */
+  double cellx;        /* cell width along direction 0: = cell, or period/ncell[0] when periodic */
+  int periodic;        /* direction 0 (then x) wraps around */
+  int sorted;          /* the store is in cell order (sph_grid_build*); 0 after
+                          sph_grid_bin: cell c holds perm[start[c]] .. perm[start[c+1]-1] */
+  long ncell[SPH_DIM]; /* cells along each direction */
+  size_t *start;       /* cells + 1 offsets into the sorted store */
+  int32_t *cell_of[SPH_DIM]; /* the cell coordinate along each direction of the particle at each
+                                storage index (each ncell below 2^31: the build checks) */
   size_t cap_cells, cap_particles;
   size_t *key, *perm, *count; /* scratch */
   size_t *hist, cap_hist;     /* scratch: one count per cell per thread */
   void *work;                 /* scratch for permutation (8 bytes per particle) */
-  void *block;                /* the one allocation of cx, cy, key, perm, work (arrays.h) */
+  void *block;                /* the one allocation of cell_of, key, perm, work (arrays.h) */
 } sph_grid;
+
+/* The number of cells. */
+static inline size_t sph_grid_cells(const sph_grid *g) {
+  size_t c = 1;
+  for (int k = 0; k < SPH_DIM; k++)
+    c *= (size_t)g->ncell[k];
+  return c;
+}
+/* The period of a grid periodic in x, 0 if it is not. */
+static inline double sph_grid_period(const sph_grid *g) {
+  return g->periodic ? g->cellx * (double)g->ncell[0] : 0.0;
+}
 
 void sph_grid_init(sph_grid *g);
 void sph_grid_free(sph_grid *g);
@@ -61,29 +80,57 @@ int sph_grid_build_periodic(sph_grid *g, sph_particles *p, double cell, double p
 int sph_grid_bin(sph_grid *g, const sph_particles *p, double cell, int periodic, double px0,
                  double px1, size_t max_cells, sph_error *err);
 
-/* The three contiguous index ranges [lo[k], hi[k]) holding the neighbour
- * candidates of the particle stored at index i (rows below, same, above,
- * each spanning three cells) in a grid that is not periodic. Rows outside
- * the grid give empty ranges. */
-static inline void sph_grid_ranges(const sph_grid *g, size_t i, size_t lo[3], size_t hi[3]) {
-  const long cx = g->cx[i], cy = g->cy[i];
+/* The rows of cells around a particle's cell: 3 in 2-D (below, same,
+ * above along direction 1), 9 in 3-D (direction 2 outer, direction 1 inner),
+ * in increasing key order. */
+#if SPH_DIM == 2
+#define SPH_GRID_ROWS 3
+#else
+#define SPH_GRID_ROWS 9
+#endif
+/* The key of the first cell (along direction 0) of row r around the cell
+ * c (its coordinates along each direction) of a grid of n cells along each
+ * direction, or -1 when that row is outside the grid. */
+static inline long sph_grid_row(const long c[SPH_DIM], const long n[SPH_DIM], int r) {
+#if SPH_DIM == 2
+  const long y = c[1] - 1 + r;
+  if (y < 0 || y >= n[1]) return -1;
+  return y * n[0];
+#else
+  const long y = c[1] - 1 + r % 3, z = c[2] - 1 + r / 3;
+  if (y < 0 || y >= n[1] || z < 0 || z >= n[2]) return -1;
+  return (z * n[1] + y) * n[0];
+#endif
+}
+/* The cell coordinates of the particle at storage index i, and the grid's
+ * cells per direction, as the row walks take them. */
+static inline void sph_grid_cell_at(const sph_grid *g, size_t i, long c[SPH_DIM], long n[SPH_DIM]) {
+  for (int d = 0; d < SPH_DIM; d++)
+    c[d] = g->cell_of[d][i], n[d] = g->ncell[d];
+}
+
+/* The SPH_GRID_ROWS contiguous index ranges [lo[k], hi[k]) holding the
+ * neighbour candidates of the particle stored at index i (each row spanning
+ * three cells) in a grid that is not periodic. Rows outside the grid give
+ * empty ranges. */
+static inline void sph_grid_ranges(const sph_grid *g, size_t i, size_t lo[SPH_GRID_ROWS],
+                                   size_t hi[SPH_GRID_ROWS]) {
+  long c[SPH_DIM], n[SPH_DIM];
+  sph_grid_cell_at(g, i, c, n);
+  const long cx = c[0], nx = n[0];
   const long xa = cx > 0 ? cx - 1 : 0;
-  const long xb = cx + 1 < g->nx ? cx + 1 : g->nx - 1;
-  for (int k = 0; k < 3; k++) {
-    const long y = cy - 1 + k;
-    if (y < 0 || y >= g->ny) {
+  const long xb = cx + 1 < nx ? cx + 1 : nx - 1;
+  for (int k = 0; k < SPH_GRID_ROWS; k++) {
+    const long row = sph_grid_row(c, n, k);
+    if (row < 0) {
       lo[k] = hi[k] = 0;
       continue;
     }
-    lo[k] = g->start[y * g->nx + xa];
-    hi[k] = g->start[y * g->nx + xb + 1];
+    lo[k] = g->start[row + xa];
+    hi[k] = g->start[row + xb + 1];
   }
 }
 
-/* Any grid, periodic or not: up to SPH_GRID_RANGES contiguous index ranges [lo[k], hi[k]) holding
- * the neighbour candidates of the particle stored at index i: per row (below, same, above) one
- * range of three cells, or two when the row wraps around a periodic seam. Unused and out-of-grid
- * ranges are empty. */
 /* x_i - x_j = d as the minimum image in a domain periodic in x over
  * `period` (period > 0); d unchanged when period is 0. The one helper of
  * the grid, the filters, free-surface detection and the repulsive force. */
@@ -97,16 +144,21 @@ static inline double sph_grid_min_image(double d, double period) {
   return d;
 }
 
-#define SPH_GRID_RANGES 6
+/* Any grid, periodic or not: up to SPH_GRID_RANGES contiguous index ranges [lo[k], hi[k]) holding
+ * the neighbour candidates of the particle stored at index i: per row one range of three cells,
+ * or two when the row wraps around a periodic seam. Unused and out-of-grid ranges are empty. */
+#define SPH_GRID_RANGES (2 * SPH_GRID_ROWS)
 static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SPH_GRID_RANGES],
                                        size_t hi[SPH_GRID_RANGES]) {
-  const long cx = g->cx[i], cy = g->cy[i], nx = g->nx;
+  long c[SPH_DIM], n[SPH_DIM];
+  sph_grid_cell_at(g, i, c, n);
+  const long cx = c[0], nx = n[0];
   for (int k = 0; k < SPH_GRID_RANGES; k++)
     lo[k] = hi[k] = 0;
-  for (int r = 0; r < 3; r++) {
-    const long y = cy - 1 + r;
-    if (y < 0 || y >= g->ny) continue;
-    const size_t *row = g->start + y * nx;
+  for (int r = 0; r < SPH_GRID_ROWS; r++) {
+    const long first = sph_grid_row(c, n, r);
+    if (first < 0) continue;
+    const size_t *row = g->start + first;
     if (!g->periodic || nx <= 3) { /* nx <= 3 periodic: the whole row, once */
       const long xa = g->periodic ? 0 : (cx > 0 ? cx - 1 : 0);
       const long xb = g->periodic ? nx - 1 : (cx + 1 < nx ? cx + 1 : nx - 1);
@@ -162,17 +214,17 @@ static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SP
 #define SPH_NLIST_STEAL_GRAIN 32
 
 typedef struct sph_nlist {
-  int valid;           /* built, and the store not reordered since */
-  size_t n;            /* particles at the build */
-  double radius;       /* list radius: support + skin */
-  double skin;         /* radius - support */
-  double period;       /* > 0: minimum image in x with this period */
-  size_t *start;       /* n + 1 offsets into nb; compact rows: start[i+1] - start[i] = count[i] */
-  uint32_t *count;     /* neighbours of each particle */
-  uint32_t maxcount;   /* the longest row */
-  uint32_t *nb;        /* neighbour storage indices */
-  double *xref, *yref; /* positions at the build */
-  int64_t *idref;      /* ids at the build (a reordered store is detected) */
+  int valid;            /* built, and the store not reordered since */
+  size_t n;             /* particles at the build */
+  double radius;        /* list radius: support + skin */
+  double skin;          /* radius - support */
+  double period;        /* > 0: minimum image in x with this period */
+  size_t *start;        /* n + 1 offsets into nb; compact rows: start[i+1] - start[i] = count[i] */
+  uint32_t *count;      /* neighbours of each particle */
+  uint32_t maxcount;    /* the longest row */
+  uint32_t *nb;         /* neighbour storage indices */
+  double *ref[SPH_DIM]; /* positions at the build */
+  int64_t *idref;       /* ids at the build (a reordered store is detected) */
   size_t cap_n, cap_nb;
   size_t *cost;    /* n + 1: prefix sums of the particles' costs (SPH_NLIST_ROW_COST), the split of
                       the loops over the store among threads (parallel.h) */

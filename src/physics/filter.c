@@ -85,9 +85,7 @@ void sph_filter_params_default(sph_filter_params *fp, double h) {
 static inline void neighbour_ranges(const sph_grid *g, size_t i, size_t *lo, size_t *hi) {
   sph_grid_ranges_all(g, i, lo, hi);
 }
-static inline double grid_period(const sph_grid *g) {
-  return g->periodic ? g->cellx * (double)g->nx : 0.0;
-}
+static inline double grid_period(const sph_grid *g) { return sph_grid_period(g); }
 
 /* The kernel moments of one particle: A (upper triangle, positions in
  * units of h_a) and M = sum m_b W_ab P_ab. The Shepard filter uses a00 and

@@ -360,12 +360,11 @@ static int check_particles(const sph_particles *p, double f, double period, doub
  * discs and, if periodic, the period given. */
 static int check_grid(const sph_particles *p, const sph_grid *g, double f, double period,
                       double hmax, sph_error *err) {
-  if (!g->start || !g->cx || !g->cy || g->nx <= 0 || g->ny <= 0 ||
-      g->start[(size_t)g->nx * (size_t)g->ny] != p->n)
+  if (!g->start || !g->cell_of[0] || g->ncell[0] <= 0 || g->start[sph_grid_cells(g)] != p->n)
     return sph_error_set(err, "free surface: the grid was not built on these %zu particles", p->n);
-  if (g->periodic && !(fabs(period - g->cellx * (double)g->nx) <= 1e-9 * period))
+  if (g->periodic && !(fabs(period - sph_grid_period(g)) <= 1e-9 * period))
     return sph_error_set(err, "free surface: the grid is periodic over %g, the period given is %g",
-                         g->cellx * (double)g->nx, period);
+                         sph_grid_period(g), period);
   if (!g->periodic && period != 0.0)
     return sph_error_set(err, "free surface: a period (%g) is given but the grid is not periodic",
                          period);
