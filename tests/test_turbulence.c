@@ -80,7 +80,8 @@ static void lattice_stress(field_fn f, double *txx, double *txy, double *tyy) {
   sph_force_params fp = {0};
   fp.h = h;
   double *e = malloc(3 * p.n * sizeof *e);
-  CU_ASSERT_FATAL(sph_forces_strain_rate(&p, &g, &fp, e, e + p.n, e + 2 * p.n, &err) == 0);
+  double *const eps[SPH_SYM] = {e, e + p.n, e + 2 * p.n};
+  CU_ASSERT_FATAL(sph_forces_strain_rate(&p, &g, &fp, eps, &err) == 0);
   size_t c = 0;
   for (size_t i = 0; i < p.n; i++)
     if (hypot(p.x[i], p.y[i]) < hypot(p.x[c], p.y[c])) c = i;

@@ -167,7 +167,8 @@ static lattice_result lattice_strain(velocity_fn f, int periodic, int correct, d
   double *exx = malloc(p.n * sizeof *exx), *exy = malloc(p.n * sizeof *exy),
          *eyy = malloc(p.n * sizeof *eyy);
   CU_ASSERT_FATAL(exx && exy && eyy);
-  CU_ASSERT_FATAL(sph_forces_strain_rate(&p, &g, &fp, exx, exy, eyy, &err) == 0);
+  double *const eps[SPH_SYM] = {exx, exy, eyy};
+  CU_ASSERT_FATAL(sph_forces_strain_rate(&p, &g, &fp, eps, &err) == 0);
   const double edge = 2.0 * HL + 1e-9;
   for (size_t i = 0; i < p.n; i++) {
     const double dxl = p.x[i] - x0, dyl = p.y[i] - x0, span = NL * DXL;

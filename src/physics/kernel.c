@@ -21,15 +21,3 @@ double sph_kernel_w(sph_kernel_kind k, double r, double h) {
   sph_kernel_w_dw(k, r, h, &w, &dw);
   return w;
 }
-
-void sph_cubic_grad(double dx, double dy, double h, double *gx, double *gy) {
-  double r = sqrt(dx * dx + dy * dy);
-  if (r == 0.0) {
-    *gx = *gy = 0.0;
-    return;
-  }
-  double w, dw;
-  sph_cubic_w_dw(r, h, &w, &dw);
-  *gx = dw * dx / r;
-  *gy = dw * dy / r;
-}

@@ -69,9 +69,5 @@ static inline void sph_kernel_w_f(sph_kernel_kind k, double r, double inv_r, dou
 double sph_cubic_w(double r, double h);
 /* W of the kernel k. */
 double sph_kernel_w(sph_kernel_kind k, double r, double h);
-/* The gradient of W_ij with respect to x_i: (dW/dr) (x_i - x_j)/r; zero at
- * r = 0. Antisymmetric in the pair by construction: swapping i and j negates
- * dx and dy exactly. */
-void sph_cubic_grad(double dx, double dy, double h, double *gx, double *gy);
 
 #endif

@@ -19,18 +19,24 @@
  * mirror particles complete the support as they do for the strain rate),
  * L_i = I where det L_i^-1 <= SPH_GRADIENT_CORRECTION_MIN_DET. */
 static void half_gradient(const sph_particles *restrict p, const sph_nlist *restrict l,
-                          const sph_force_params *restrict fp, size_t i, double *cx, double *cy) {
+                          const sph_force_params *restrict fp, size_t i, double c[SPH_DIM]) {
   const double *restrict x = p->x, *restrict y = p->y, *restrict h = p->h;
   const double *restrict m = p->mass, *restrict rho = p->rho;
   const double period = fp->periodic ? fp->period : 0.0, half = 0.5 * period;
   const unsigned F = fp->periodic ? F_PERIODIC : 0u;
   const double xi = x[i], yi = y[i], rhoi = rho[i];
   double gx = 0.0, gy = 0.0, mxx = 0.0, mxy = 0.0, myy = 0.0;
+  SPH_IF3(const double *restrict z = p->z; const double zi = z[i];
+          double gz = 0.0, mxz = 0.0, myz = 0.0, mzz = 0.0;)
   ROW(l, i, nb, cnt)
   for (size_t k = 0; k < cnt; k++) {
     const size_t j = nb[k];
     const double dx = sep_x(xi, x[j], period, half, F), dy = yi - y[j];
+#if SPH_DIM == 2
     const double r2 = dx * dx + dy * dy;
+#else
+    const double dz = zi - z[j], r2 = dx * dx + dy * dy + dz * dz;
+#endif
     const double hij = fp->var_h ? 0.5 * (h[i] + h[j]) : fp->h;
     if (r2 >= 4.0 * hij * hij || r2 == 0.0) continue;
     const double r = sqrt(r2);
@@ -43,11 +49,23 @@ static void half_gradient(const sph_particles *restrict p, const sph_nlist *rest
     mxx -= dx * fv * dx; /* r_ji = -(dx, dy) */
     mxy -= dx * fv * dy;
     myy -= dy * fv * dy;
+    SPH_IF3(gz += drho * fv * dz; mxz -= dx * fv * dz; myz -= dy * fv * dz; mzz -= dz * fv * dz;)
   }
-  double axx, axy, ayy;
-  sph_gradient_correction(mxx, mxy, myy, &axx, &axy, &ayy);
-  *cx = 0.5 * (axx * gx + axy * gy);
-  *cy = 0.5 * (axy * gx + ayy * gy);
+#if SPH_DIM == 2
+  const double mm[SPH_SYM] = {mxx, mxy, myy};
+  double a[SPH_SYM];
+  sph_gradient_correction(mm, a);
+  const double axx = a[SPH_XX], axy = a[SPH_XY], ayy = a[SPH_YY];
+  c[0] = 0.5 * (axx * gx + axy * gy);
+  c[1] = 0.5 * (axy * gx + ayy * gy);
+#else
+  const double mm[SPH_SYM] = {mxx, mxy, mxz, myy, myz, mzz}, gg[3] = {gx, gy, gz};
+  double a[SPH_SYM];
+  sph_gradient_correction(mm, a);
+  for (int r = 0; r < 3; r++)
+    c[r] = 0.5 * ((a[sph_sym_index(r, 0)] * gg[0] + a[sph_sym_index(r, 1)] * gg[1]) +
+                  a[sph_sym_index(r, 2)] * gg[2]);
+#endif
 }
 
 int sph_diffusion_wall_takes_part(int32_t kind, uint8_t flags) {
@@ -81,7 +99,12 @@ static double diffusion_mass(const sph_particles *restrict p, const sph_nlist *r
     if (!(p->flags[j] & SPH_FLAG_MDBC)) continue;
     const double dx = sep_x(p->x[i], p->x[j], period, half, F), dy = p->y[i] - p->y[j];
     const double hij = fp->var_h ? 0.5 * (p->h[i] + p->h[j]) : fp->h;
+#if SPH_DIM == 2
     if (dx * dx + dy * dy < 4.0 * hij * hij) return 0.0;
+#else
+    const double dz = p->z[i] - p->z[j];
+    if (dx * dx + dy * dy + dz * dz < 4.0 * hij * hij) return 0.0;
+#endif
   }
   return p->mass[i];
 }
@@ -89,8 +112,8 @@ static double diffusion_mass(const sph_particles *restrict p, const sph_nlist *r
 void sph_diffusion_prepare(const sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                            sph_force_work *w) {
   const long n = (long)p->n;
-  double cx = 0.0,
-         cy = 0.0; /* the same c_i everywhere but for antuono (the lane loops rely on it) */
+  double c[SPH_DIM] = {0.0}; /* the same c_i everywhere but for antuono (the lane loops rely on
+                                it) */
   if (fp->diffusion == SPH_DIFFUSION_NONE) return;
 #pragma omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)
   for (long i = 0; i < n; i++)
@@ -99,24 +122,30 @@ void sph_diffusion_prepare(const sph_particles *p, const sph_nlist *l, const sph
   case SPH_DIFFUSION_NONE: return;
   case SPH_DIFFUSION_FOURTAKAS: {
     const double k = 0.5 * fp->eos.rho0 / (fp->eos.c0 * fp->eos.c0);
-    cx = k * fp->gx;
-    cy = k * fp->gy;
+#pragma GCC unroll 3
+    for (int d = 0; d < SPH_DIM; d++)
+      c[d] = k * fp->g[d];
     break;
   }
   case SPH_DIFFUSION_ANTUONO:
 #pragma omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)
     for (long i = 0; i < n; i++) {
-      if (p->kind[i] == SPH_KIND_FLUID)
-        half_gradient(p, l, fp, (size_t)i, &w->ddcx[i], &w->ddcy[i]);
-      else
-        w->ddcx[i] = w->ddcy[i] = 0.0;
+      double ci[SPH_DIM] = {0.0};
+      if (p->kind[i] == SPH_KIND_FLUID) half_gradient(p, l, fp, (size_t)i, ci);
+#pragma GCC unroll 3
+      for (int d = 0; d < SPH_DIM; d++)
+        w->ddc[d][i] = ci[d];
     }
     return;
   case SPH_DIFFUSION_MOLTENI: break;
   }
+  double *restrict const ddcx = w->ddcx, *restrict const ddcy = w->ddcy;
+  const double cx = c[0], cy = c[1];
+  SPH_IF3(double *restrict const ddcz = w->ddcz; const double cz = c[2];)
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
   for (long i = 0; i < n; i++) {
-    w->ddcx[i] = cx;
-    w->ddcy[i] = cy;
+    ddcx[i] = cx;
+    ddcy[i] = cy;
+    SPH_IF3(ddcz[i] = cz;)
   }
 }

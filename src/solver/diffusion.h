@@ -28,7 +28,7 @@ int sph_diffusion_wall_takes_part(int32_t kind, uint8_t flags);
  * (2.03 % without the walls' pairs). */
 int sph_diffusion_walls(const sph_particles *p, const sph_force_params *fp);
 
-/* Fills w->ddcx, w->ddcy (n values, storage order) with the model's c_i:
+/* Fills w->ddc[axis] (n values each, storage order) with the model's c_i:
  * zero (molteni_colagrossi), (rho0 / (2 c0^2)) g (fourtakas), or half the
  * renormalised density gradient (antuono: a pass over the list l, fluid
  * particles only, wall and mirror particles get 0); and w->ddm with

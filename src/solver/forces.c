@@ -70,12 +70,43 @@ void sph_force_work_free(sph_force_work *w) {
 static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
   if (n <= w->cap) return 0;
   const size_t cap = n + n / 4 + 16;
-  void **arrays[] = {(void **)&w->hot,  (void **)&w->prho2, (void **)&w->cs,   (void **)&w->sigma,
-                     (void **)&w->sxx,  (void **)&w->sxy,   (void **)&w->syy,  (void **)&w->wpow,
-                     (void **)&w->wfx,  (void **)&w->wfy,   (void **)&w->lxx,  (void **)&w->lxy,
-                     (void **)&w->lyy,  (void **)&w->gvx,   (void **)&w->gvy,  (void **)&w->ddcx,
-                     (void **)&w->ddcy, (void **)&w->dd,    (void **)&w->lj,   (void **)&w->ddm,
-                     (void **)&w->fm,   (void **)&w->keepn, (void **)&w->nwall};
+  void **arrays[] = {
+    (void **)&w->hot,
+    (void **)&w->prho2,
+    (void **)&w->cs,
+    (void **)&w->sigma,
+    (void **)&w->sxx,
+    (void **)&w->sxy,
+    (void **)&w->syy,
+    (void **)&w->wpow,
+    (void **)&w->wfx,
+    (void **)&w->wfy,
+    (void **)&w->lxx,
+    (void **)&w->lxy,
+    (void **)&w->lyy,
+    (void **)&w->gvx,
+    (void **)&w->gvy,
+    (void **)&w->ddcx,
+    (void **)&w->ddcy,
+    (void **)&w->dd,
+    (void **)&w->lj,
+    (void **)&w->ddm,
+#if SPH_DIM == 3 /* the third axis's and the tensors' other components */
+    (void **)&w->sxz,
+    (void **)&w->syz,
+    (void **)&w->szz,
+    (void **)&w->wfz,
+    (void **)&w->lxz,
+    (void **)&w->lyz,
+    (void **)&w->lzz,
+    (void **)&w->gvz,
+    (void **)&w->ddcz,
+    (void **)&w->sdiv,
+#endif
+    (void **)&w->fm,
+    (void **)&w->keepn,
+    (void **)&w->nwall
+  };
   enum { N_ARRAYS = sizeof arrays / sizeof arrays[0] };
   size_t size[N_ARRAYS];
   size[0] = sizeof *w->hot;
@@ -101,10 +132,10 @@ void sph_forces_pressure(sph_particles *p, const sph_eos *eos) {
 
 static inline __attribute__((always_inline)) void
 strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
-           const sph_force_params *restrict fp, size_t i, double *exx, double *exy, double *eyy,
-           const strain_opts *o, const unsigned F) {
+           const sph_force_params *restrict fp, size_t i, double *const *eps, const strain_opts *o,
+           const unsigned F) {
   const double *restrict x = p->x, *restrict y = p->y, *restrict h = p->h;
-  const double *restrict vx = o->gvx ? o->gvx : p->vx, *restrict vy = o->gvy ? o->gvy : p->vy;
+  const double *restrict vx = o->gv ? o->gv[0] : p->vx, *restrict vy = o->gv ? o->gv[1] : p->vy;
   const double *restrict m = p->mass, *restrict rho = p->rho;
   const double period = fp->period, half = 0.5 * fp->period;
   const double xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
@@ -112,12 +143,20 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
   /* with the correction: G_ab = sum_j V_j (v_j - v_i)_a (grad_i W_ij)_b and
    * M_ab = sum_j V_j (x_j - x_i)_a (grad_i W_ij)_b */
   double gxx = 0.0, gxy = 0.0, gyx = 0.0, gyy = 0.0, mxx = 0.0, mxy = 0.0, myy = 0.0;
-  const int correct = o->lxx != NULL;
+  SPH_IF3(const double *restrict z = p->z, *restrict vz = o->gv ? o->gv[2] : p->vz;
+          const double zi = z[i], vzi = vz[i]; double sxz = 0.0, syz = 0.0, szz = 0.0;
+          double gxz = 0.0, gyz = 0.0, gzx = 0.0, gzy = 0.0, gzz = 0.0, mxz = 0.0, myz = 0.0;
+          double mzz = 0.0;)
+  const int correct = o->l != NULL;
   ROW(l, i, nb, cnt)
   for (size_t k = 0; k < cnt; k++) {
     const size_t j = nb[k];
     const double dx = sep_x(xi, x[j], period, half, F), dy = yi - y[j];
+#if SPH_DIM == 2
     const double r2 = dx * dx + dy * dy;
+#else
+    const double dz = zi - z[j], r2 = dx * dx + dy * dy + dz * dz;
+#endif
     const double hij = (F & F_VARH) ? 0.5 * (h[i] + h[j]) : fp->h;
     if (r2 >= 4.0 * hij * hij || r2 == 0.0) continue;
     const double r = sqrt(r2);
@@ -126,6 +165,7 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
     const double f = dw / r * (m[j] / rho[j]);
     const double gx = f * dx, gy = f * dy;           /* V_j grad_i W_ij */
     const double ux = vx[j] - vxi, uy = vy[j] - vyi; /* v_ji */
+    SPH_IF3(const double gz = f * dz, uz = vz[j] - vzi;)
     if (correct) {
       gxx += ux * gx;
       gxy += ux * gy;
@@ -134,15 +174,31 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
       mxx -= dx * gx;
       mxy -= dx * gy;
       myy -= dy * gy;
+      SPH_IF3(gxz += ux * gz; gyz += uy * gz; gzx += uz * gx; gzy += uz * gy; gzz += uz * gz;
+              mxz -= dx * gz; myz -= dy * gz; mzz -= dz * gz;)
     } else {
       sxx += 2.0 * ux * gx;
       syy += 2.0 * uy * gy;
       sxy += uy * gx + ux * gy;
+#if SPH_DIM == 2
       div += ux * gx + uy * gy;
+#else
+      szz += 2.0 * uz * gz;
+      sxz += uz * gx + ux * gz;
+      syz += uz * gy + uy * gz;
+      div += ux * gx + uy * gy + uz * gz;
+#endif
     }
   }
-  const double sums[4] = {sxx, sxy, syy, div}, gm[7] = {gxx, gxy, gyx, gyy, mxx, mxy, myy};
-  strain_finish(o, i, sums, gm, exx, exy, eyy);
+#if SPH_DIM == 2
+  const double sums[STRAIN_SUMS] = {sxx, sxy, syy, div};
+  const double gm[STRAIN_GM] = {gxx, gxy, gyx, gyy, mxx, mxy, myy};
+#else
+  const double sums[STRAIN_SUMS] = {sxx, sxy, sxz, syy, syz, szz, div};
+  const double gm[STRAIN_GM] = {gxx, gxy, gxz, gyx, gyy, gyz, gzx, gzy,
+                                gzz, mxx, mxy, mxz, myy, myz, mzz};
+#endif
+  strain_finish(o, i, sums, gm, eps);
 }
 
 /* One function per variant, with F_VARH a literal inside the parallel
@@ -150,39 +206,39 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
  * spelled out there to reach the loop); periodicity is a branch per pair. */
 #define STRAIN_VARIANT(k)                                                                          \
   static void strain_all_##k(const sph_particles *p, const sph_nlist *l,                           \
-                             const sph_force_params *fp, double *exx, double *exy, double *eyy,    \
+                             const sph_force_params *fp, double *const *eps,                       \
                              const strain_opts *o) {                                               \
     const long n = (long)p->n;                                                                     \
     const unsigned F = (k) | (fp->periodic ? F_PERIODIC : 0u);                                     \
     _Pragma("omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)") for (long i = 0;       \
                                                                                  i < n; i++)       \
-        strain_one(p, l, fp, (size_t)i, exx, exy, eyy, o, F);                                      \
+        strain_one(p, l, fp, (size_t)i, eps, o, F);                                                \
   }
 STRAIN_VARIANT(0)
 STRAIN_VARIANT(32)
 
 static void strain_list(const sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
-                        double *exx, double *exy, double *eyy, const strain_opts *o) {
+                        double *const *eps, const strain_opts *o) {
   if (fp->var_h)
-    strain_all_32(p, l, fp, exx, exy, eyy, o);
+    strain_all_32(p, l, fp, eps, o);
   else
-    strain_all_0(p, l, fp, exx, exy, eyy, o);
+    strain_all_0(p, l, fp, eps, o);
 }
 
 /* The strain-rate pass in a lane flavour, F a literal (0 or F_PERIODIC):
  * each row cut into the kept rows (w->keep, keep_rows), which the main pass
  * of the same evaluation then reads instead of cutting its rows again. */
 typedef void (*strain_fn)(const sph_particles *, const sph_nlist *, const sph_force_params *,
-                          sph_force_work *, double *, double *, double *, const strain_opts *);
+                          sph_force_work *, double *const *, const strain_opts *);
 #define STRAIN_LANES(k, FL, ATTR)                                                                  \
   ATTR void strain_##FL##_##k(const sph_particles *p, const sph_nlist *l,                          \
-                              const sph_force_params *fp, sph_force_work *w, double *exx,          \
-                              double *exy, double *eyy, const strain_opts *o) {                    \
+                              const sph_force_params *fp, sph_force_work *w, double *const *eps,   \
+                              const strain_opts *o) {                                              \
     const long n = (long)p->n;                                                                     \
     _Pragma("omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)") for (long i = 0;       \
                                                                                  i < n; i++)       \
         strain_##FL(w->hot, l, fp, w->keep + l->start[i] + SPH_KEEP_PAD * (size_t)i, w->keepn + i, \
-                    (size_t)i, o, exx, exy, eyy, k);                                               \
+                    (size_t)i, o, eps, k);                                                         \
     w->keep_valid = 1;                                                                             \
   }
 STRAIN_LANES(0, v4e, static)
@@ -206,10 +262,10 @@ static double kernel_reach(const sph_particles *p, const sph_force_params *fp) {
 }
 
 /* The velocities the strain-rate pass reads, no-slip walls extrapolated. */
-static int wall_ghosts(const sph_particles *p, const sph_force_params *fp, double *gvx, double *gvy,
+static int wall_ghosts(const sph_particles *p, const sph_force_params *fp, double *const *gv,
                        sph_wall_velocity_work *wv, sph_error *err) {
-  return sph_wall_velocity(p, kernel_reach(p, fp), fp->px0, fp->periodic ? fp->period : 0.0, gvx,
-                           gvy, wv, err);
+  return sph_wall_velocity(p, kernel_reach(p, fp), fp->px0, fp->periodic ? fp->period : 0.0, gv[0],
+                           gv[1], wv, err); /* (2-D only so far: it says so in 3-D) */
 }
 
 /* The options of the strain-rate pass as fp asks for them, into w's arrays:
@@ -218,35 +274,28 @@ static int wall_ghosts(const sph_particles *p, const sph_force_params *fp, doubl
 static int strain_setup(const sph_particles *p, const sph_force_params *fp, sph_force_work *w,
                         strain_opts *o, sph_error *err) {
   *o = (strain_opts){0};
-  if (fp->gradient_correction) {
-    o->lxx = w->lxx;
-    o->lxy = w->lxy;
-    o->lyy = w->lyy;
-  }
+  if (fp->gradient_correction) o->l = w->l;
+  SPH_IF3(if (fp->sps) o->div = w->sdiv;)
   if (fp->no_slip) {
-    if (wall_ghosts(p, fp, w->gvx, w->gvy, &w->wv, err)) return -1;
-    o->gvx = w->gvx;
-    o->gvy = w->gvy;
+    if (wall_ghosts(p, fp, w->gv, &w->wv, err)) return -1;
+    o->gv = (const double *const *)w->gv;
   }
   if (fp->mirror) { /* mirror particles: their no-slip velocity (boundary.h) */
     if (!fp->no_slip)
-      for (size_t i = 0; i < p->n; i++) {
-        w->gvx[i] = p->vx[i];
-        w->gvy[i] = p->vy[i];
-      }
+      for (size_t i = 0; i < p->n; i++)
+        for (int d = 0; d < SPH_DIM; d++)
+          w->gv[d][i] = p->vel[d][i];
     for (size_t i = 0; i < p->n; i++)
-      if (p->kind[i] == SPH_KIND_MIRROR) {
-        w->gvx[i] = p->vxh[i];
-        w->gvy[i] = p->vyh[i];
-      }
-    o->gvx = w->gvx;
-    o->gvy = w->gvy;
+      if (p->kind[i] == SPH_KIND_MIRROR)
+        for (int d = 0; d < SPH_DIM; d++)
+          w->gv[d][i] = p->velh[d][i];
+    o->gv = (const double *const *)w->gv;
   }
   return 0;
 }
 
 int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_force_params *fp,
-                           double *exx, double *exy, double *eyy, sph_error *err) {
+                           double *const eps[SPH_SYM], sph_error *err) {
   sph_nlist l;
   sph_nlist_init(&l);
   sph_force_work w = {0};
@@ -255,7 +304,7 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
       sph_nlist_build(&l, g, p, kernel_reach(p, fp), 0.0, fp->periodic ? fp->period : 0.0, err);
   if (rc == 0) rc = work_reserve(&w, p->n, err);
   if (rc == 0) rc = strain_setup(p, fp, &w, &o, err);
-  if (rc == 0) strain_list(p, &l, fp, exx, exy, eyy, &o);
+  if (rc == 0) strain_list(p, &l, fp, eps, &o);
   sph_force_work_free(&w);
   sph_nlist_free(&l);
   return rc;
@@ -453,8 +502,10 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
     for (size_t i = lo; i < hi; i++) {
       const double rho = p->rho[i], cs = sph_eos_sound_speed(&fp->eos, rho);
       w->cs[i] = cs;
-      w->hot[i] = (sph_force_hot){
-          p->x[i], p->y[i], p->vx[i], p->vy[i], rho, p->p[i] / (rho * rho), cs, p->mass[i]};
+      w->hot[i] = (sph_force_hot){p->x[i],  p->y[i],
+                                  p->vx[i], p->vy[i],
+                                  rho,      p->p[i] / (rho * rho),
+                                  cs,       p->mass[i] SPH_IF3(, p->z[i], p->vz[i])};
       if (fm) w->fm[i] = p->kind[i] == SPH_KIND_FLUID ? p->mass[i] : 0.0;
       if (nwall) w->nwall[i] = 0;
     }
@@ -507,35 +558,53 @@ static int stress_pass(const sph_particles *p, const sph_nlist *l, const sph_for
   const strain_fn lanes = strain_lanes(fp);
   if (lanes && keep_rows(p, l, w, err)) return -1;
   if (lanes)
-    lanes(p, l, fp, w, w->sxx, w->sxy, w->syy, &o);
+    lanes(p, l, fp, w, w->s, &o);
   else
-    strain_list(p, l, fp, w->sxx, w->sxy, w->syy, &o);
+    strain_list(p, l, fp, w->s, &o);
+  double *restrict const sxx = w->sxx, *restrict const sxy = w->sxy, *restrict const syy = w->syy;
+  SPH_IF3(double *restrict const sxz = w->sxz, *restrict const syz = w->syz;
+          double *restrict const szz = w->szz; const double *restrict const sdiv = w->sdiv;)
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
   for (long i = 0; i < n; i++) {
     const double rho = p->rho[i];
-    const double exx = w->sxx[i], exy = w->sxy[i], eyy = w->syy[i];
     const double lam = fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR ? fp->mu / (rho * rho) : 0.0;
-    double txx = lam * exx, txy = lam * exy, tyy = lam * eyy;
+    const double exx = sxx[i], exy = sxy[i], eyy = syy[i];
+#if SPH_DIM == 2
+    double t[SPH_SYM] = {lam * exx, lam * exy, lam * eyy};
+#else
+    const double exz = sxz[i], eyz = syz[i], ezz = szz[i];
+    double t[SPH_SYM] = {lam * exx, lam * exy, lam * exz, lam * eyy, lam * eyz, lam * ezz};
+#endif
     if (fp->sps) {
-      /* S from eps (eps_xx = 2 S_xx - (2/3) div, div = S_xx + S_yy) */
-      double a, b, c;
-      sph_sps_stress(0.5 * (2.0 * exx + eyy), 0.5 * exy, 0.5 * (2.0 * eyy + exx), fp->sps_cs,
-                     fp->sps_ci, fp->sps_delta, &a, &b, &c);
-      txx += a / rho;
-      txy += b / rho;
-      tyy += c / rho;
+      /* S from eps = 2 S - (2/3) tr S I: in 2-D from eps alone (div = S_xx + S_yy =
+       * (3/2) tr eps), in 3-D with the pass's div v (there tr eps = 0) */
+#if SPH_DIM == 2
+      const double S[SPH_SYM] = {0.5 * (2.0 * exx + eyy), 0.5 * exy, 0.5 * (2.0 * eyy + exx)};
+#else
+      const double d = (2.0 / 3.0) * sdiv[i];
+      const double S[SPH_SYM] = {0.5 * (exx + d), 0.5 * exy, 0.5 * exz,
+                                 0.5 * (eyy + d), 0.5 * eyz, 0.5 * (ezz + d)};
+#endif
+      double a[SPH_SYM];
+      sph_sps_stress_sym(S, fp->sps_cs, fp->sps_ci, fp->sps_delta, a);
+#pragma GCC unroll 6
+      for (int k = 0; k < SPH_SYM; k++)
+        t[k] += a[k] / rho;
     }
-    if (o.lxx) { /* sym(tau L): the divergence with the corrected gradient */
-      const double t[SPH_SYM] = {txx, txy, tyy}, a[SPH_SYM] = {w->lxx[i], w->lxy[i], w->lyy[i]};
-      double b[SPH_SYM];
+    if (o.l) { /* sym(tau L): the divergence with the corrected gradient */
+      double a[SPH_SYM], b[SPH_SYM];
+#pragma GCC unroll 6
+      for (int k = 0; k < SPH_SYM; k++)
+        a[k] = o.l[k][i];
       sph_sym_product(t, a, b);
-      txx = b[SPH_XX];
-      txy = b[SPH_XY];
-      tyy = b[SPH_YY];
+#pragma GCC unroll 6
+      for (int k = 0; k < SPH_SYM; k++)
+        t[k] = b[k];
     }
-    w->sxx[i] = txx;
-    w->sxy[i] = txy;
-    w->syy[i] = tyy;
+    sxx[i] = t[SPH_XX];
+    sxy[i] = t[SPH_XY];
+    syy[i] = t[SPH_YY];
+    SPH_IF3(sxz[i] = t[SPH_XZ]; syz[i] = t[SPH_YZ]; szz[i] = t[SPH_ZZ];)
   }
   return 0;
 }
@@ -576,10 +645,11 @@ int sph_forces_fastest_loop(sph_particles *p, const sph_nlist *l, const sph_forc
  * a term or a loop, not a blow-up: the state it read was checked). */
 static void check_rates(const sph_particles *p, const sph_force_work *w, unsigned F) {
   for (size_t i = 0; i < p->n; i++) {
-    int ok =
-        isfinite(p->drho[i]) && isfinite(p->ax[i]) && isfinite(p->ay[i]) && isfinite(w->sigma[i]);
-    if ((F & F_XSPH) && p->kind[i] == SPH_KIND_FLUID)
-      ok &= isfinite(p->xsx[i]) && isfinite(p->xsy[i]);
+    int ok = isfinite(p->drho[i]) && isfinite(w->sigma[i]);
+    for (int d = 0; d < SPH_DIM; d++) {
+      ok &= isfinite(p->acc[d][i]);
+      if ((F & F_XSPH) && p->kind[i] == SPH_KIND_FLUID) ok &= isfinite(p->xsph[d][i]);
+    }
     if (F & F_LEDGER) ok &= isfinite(p->du[i]) && isfinite(w->wpow[i]);
     SPH_INVARIANT(ok, "particle %zu (id %lld) has a rate that is not finite after a pass", i,
                   (long long)p->id[i]);
@@ -598,7 +668,7 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
   run(p, l, fp, w);
   if (SPH_DEBUG) check_rates(p, w, F);
   if (fp->repulsive) {
-    const sph_repulsion_ledger lg = {w->wfx, w->wfy, w->wpow, w->lj};
+    const sph_repulsion_ledger lg = {w->wf, w->wpow, w->lj};
     sph_repulsion_add(p, l, fp->lj_d, fp->lj_r0, fp->periodic ? fp->period : 0.0,
                       (F & F_LEDGER) ? &lg : NULL);
   }

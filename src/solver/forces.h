@@ -71,16 +71,12 @@
 
 #define SPH_GRADIENT_CORRECTION_MIN_DET 0.8
 
-/* L = M^-1 of the symmetric moment M = [mxx mxy; mxy myy] where M is
- * invertible enough (det M > SPH_GRADIENT_CORRECTION_MIN_DET, mxx > 0),
- * else L = I (see above): the kernel-gradient correction of the
- * strain-rate pass and the renormalised density gradient (diffusion.c). */
-static inline void sph_gradient_correction(double mxx, double mxy, double myy, double *axx,
-                                           double *axy, double *ayy) {
-  const double m[SPH_SYM] = {mxx, mxy, myy};
-  double a[SPH_SYM];
+/* L = M^-1 of the symmetric moment M where M is invertible enough
+ * (det M > SPH_GRADIENT_CORRECTION_MIN_DET, M positive definite), else
+ * L = I (see above): the kernel-gradient correction of the strain-rate pass
+ * and the renormalised density gradient (diffusion.c). */
+static inline void sph_gradient_correction(const double m[SPH_SYM], double a[SPH_SYM]) {
   sph_sym_inverse_or_identity(m, SPH_GRADIENT_CORRECTION_MIN_DET, a);
-  *axx = a[SPH_XX], *axy = a[SPH_XY], *ayy = a[SPH_YY];
 }
 
 /* Which loop evaluates the main pass (src/solver/interact.h). Every loop
@@ -108,7 +104,7 @@ typedef struct sph_force_params {
   double alpha, beta; /* artificial viscosity; both 0 = off */
   double eta;         /* eta = eta_f * h_ij */
   double xsph;        /* XSPH epsilon; 0 = off */
-  double gx, gy;      /* body force per unit mass */
+  SPH_COMPONENTS(double, g, gx, gy, gz); /* body force per unit mass */
   sph_viscosity_kind viscosity;
   double mu;               /* dynamic viscosity (Pa s) */
   int periodic;            /* minimum image in x */
@@ -157,6 +153,9 @@ typedef struct sph_force_hot {
   double prho2; /* p / rho^2 */
   double cs;    /* sound speed */
   double m;     /* mass */
+#if SPH_DIM == 3
+  double z, vz; /* the third axis after the first eight (the lane loops transpose those) */
+#endif
 } sph_force_hot;
 
 /* Padding after each kept row: room for the widest lane loop's padding lanes. */
@@ -165,24 +164,28 @@ typedef struct sph_force_hot {
 /* Per-particle quantities of a pass (storage order). */
 typedef struct sph_force_work {
   size_t cap;
-  void *block;             /* the one allocation of the arrays below (arrays.h) */
-  sph_force_hot *hot;      /* packed copy of the state read from neighbours */
-  double *prho2;           /* scratch of n doubles (p / rho^2 lives in hot) */
-  double *cs;              /* sound speed */
-  double *sigma;           /* max_j |h v_ij.r_ij / r_ij^2| */
-  double *sxx, *sxy, *syy; /* tau / rho^2 (stress-tensor viscosity only) */
-  double *wpow;            /* ledger: sum over wall neighbours j of a_ij . v_j (fluid i) */
-  double *wfx, *wfy;       /* ledger: sum over wall and mirror neighbours j of a_ij (fluid i) */
-  double *lxx, *lxy, *lyy; /* kernel-gradient correction M^-1 of the strain-rate pass */
-  double *gvx, *gvy;       /* velocity in the strain-rate pass (extrapolated on no-slip walls) */
-  double *ddcx, *ddcy;     /* density diffusion: the model's vector c_i (solver/diffusion.h) */
-  double *ddm;             /* density diffusion: the mass a particle diffuses with (0: none) */
-  double *fm;              /* the mass of a fluid particle, 0 for the others (every pass) */
-  uint32_t *keepn;         /* the pairs of each kept row (below) */
-  uint32_t *nwall;         /* Riemann pressure: 1 where the particle's list row holds a wall
-                              particle with a normal (SPH_WALL_NORMAL), else 0 (prepare_pass) */
-  double *dd;              /* density diffusion D_i of the last pass (fluid; with the ledger) */
-  double *lj;              /* repulsive walls' potential energy per unit mass (with the ledger) */
+  void *block;                 /* the one allocation of the arrays below (arrays.h) */
+  sph_force_hot *hot;          /* packed copy of the state read from neighbours */
+  double *prho2;               /* scratch of n doubles (p / rho^2 lives in hot) */
+  double *cs;                  /* sound speed */
+  double *sigma;               /* max_j |h v_ij.r_ij / r_ij^2| */
+  SPH_SYM_ARRAYS(s, s);        /* tau / rho^2 (stress-tensor viscosity only): sxx, sxy, syy */
+  double *wpow;                /* ledger: sum over wall neighbours j of a_ij . v_j (fluid i) */
+  SPH_AXES(wf, wfx, wfy, wfz); /* ledger: sum over wall and mirror neighbours j of a_ij (fluid i) */
+  SPH_SYM_ARRAYS(l, l);        /* kernel-gradient correction M^-1 of the strain-rate pass */
+  SPH_AXES(gv, gvx, gvy,
+           gvz); /* velocity in the strain-rate pass (extrapolated on no-slip walls) */
+  SPH_AXES(ddc, ddcx, ddcy, ddcz); /* density diffusion: the model's vector c_i (diffusion.h) */
+#if SPH_DIM == 3
+  double *sdiv; /* the strain pass's div v, which the 3-D SPS closure reads (tr eps = 0) */
+#endif
+  double *ddm;     /* density diffusion: the mass a particle diffuses with (0: none) */
+  double *fm;      /* the mass of a fluid particle, 0 for the others (every pass) */
+  uint32_t *keepn; /* the pairs of each kept row (below) */
+  uint32_t *nwall; /* Riemann pressure: 1 where the particle's list row holds a wall
+                      particle with a normal (SPH_WALL_NORMAL), else 0 (prepare_pass) */
+  double *dd;      /* density diffusion D_i of the last pass (fluid; with the ledger) */
+  double *lj;      /* repulsive walls' potential energy per unit mass (with the ledger) */
   sph_wall_velocity_work wv;
   double cs_sigma_max; /* max over the particles of cs + sigma (the step rule) */
   unsigned terms;      /* the pass's term set (interact.h: the bits a loop tests at run time) */
@@ -235,9 +238,10 @@ int sph_forces_fastest_loop(sph_particles *p, const sph_nlist *l, const sph_forc
                             sph_force_work *w, sph_force_loop *loop, double *ratio, sph_error *err);
 
 /* The strain-rate tensor of paper A eq. (13)-(14) at every particle, for
- * tests and output: eps_xx, eps_xy, eps_yy (each n values); with fp's
- * gradient correction and extrapolated wall velocities when set. */
+ * tests and output: eps[SPH_XX], eps[SPH_XY], ... (each n values,
+ * core/tensor.h); with fp's gradient correction and extrapolated wall
+ * velocities when set. */
 int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_force_params *fp,
-                           double *exx, double *exy, double *eyy, sph_error *err);
+                           double *const eps[SPH_SYM], sph_error *err);
 
 #endif

@@ -156,26 +156,34 @@ static inline unsigned sph_interact_terms(const sph_force_params *fp) {
 /* Runtime options of the strain-rate pass (forces.c, strain_lanes.h; not
  * bits of F: the pass is light enough to test them once per particle). */
 typedef struct strain_opts {
-  const double *gvx, *gvy; /* velocity of wall particles in the viscous terms, or NULL */
-  double *lxx, *lxy, *lyy; /* kernel-gradient correction L = M^-1 out, or NULL (off) */
+  const double *const *gv; /* velocity of wall particles in the viscous terms (gv[axis]), or NULL */
+  double *const *l;        /* kernel-gradient correction L = M^-1 out (l[SPH_XX], ...), or NULL */
+  double *div;             /* div v out (the 3-D SPS closure), or NULL */
 } strain_opts;
 
+/* The sums of the strain-rate pass: without the correction s = the
+ * symmetric 2 sym(u (x) g) (SPH_SYM components, core/tensor.h) and u . g
+ * (s[SPH_SYM]); with it G = sum u (x) g (row-major, SPH_DIM^2) and the moment
+ * M (SPH_SYM, after G). */
+#define STRAIN_SUMS (SPH_SYM + 1)
+#define STRAIN_GM (SPH_DIM * SPH_DIM + SPH_SYM)
+
 /* The end of the strain-rate pass for particle i (strain_one in forces.c,
- * strain_FL in strain_lanes.h), from its sums: without the correction
- * s = (2 u_x g_x, u_y g_x + u_x g_y, 2 u_y g_y, u . g) over the row; with it
- * G = (gxx, gxy, gyx, gyy) and the moment M = (mxx, mxy, myy), grad v =
- * G M^-1 where M is invertible (Bonet and Lok 1999), L = M^-1 stored. Then
- * eps_i, the deviatoric part as paper A writes it (its 2/3 is the 3-D
- * factor). */
-static inline void strain_finish(const strain_opts *o, size_t i, const double s[4],
-                                 const double gm[7], double *exx, double *exy, double *eyy) {
+ * strain_FL in strain_lanes.h), from its sums: without the correction as
+ * summed; with it grad v = G M^-1 where M is invertible (Bonet and Lok
+ * 1999), L = M^-1 stored. Then eps_i, the deviatoric part as paper A
+ * writes it (its 2/3 is the 3-D factor). */
+static inline void strain_finish(const strain_opts *o, size_t i, const double s[STRAIN_SUMS],
+                                 const double gm[STRAIN_GM], double *const eps[SPH_SYM]) {
+#if SPH_DIM == 2
   double sxx = s[0], sxy = s[1], syy = s[2], div = s[3];
-  if (o->lxx) {
-    double axx, axy, ayy;
-    sph_gradient_correction(gm[4], gm[5], gm[6], &axx, &axy, &ayy);
-    o->lxx[i] = axx;
-    o->lxy[i] = axy;
-    o->lyy[i] = ayy;
+  if (o->l) {
+    double a[SPH_SYM];
+    sph_gradient_correction(gm + 4, a);
+    const double axx = a[SPH_XX], axy = a[SPH_XY], ayy = a[SPH_YY];
+    o->l[SPH_XX][i] = axx;
+    o->l[SPH_XY][i] = axy;
+    o->l[SPH_YY][i] = ayy;
     const double gxx = gm[0], gxy = gm[1], gyx = gm[2], gyy = gm[3];
     const double cxx = gxx * axx + gxy * axy, cxy = gxx * axy + gxy * ayy;
     const double cyx = gyx * axx + gyy * axy, cyy = gyx * axy + gyy * ayy;
@@ -184,9 +192,34 @@ static inline void strain_finish(const strain_opts *o, size_t i, const double s[
     sxy = cyx + cxy;
     div = cxx + cyy;
   }
-  exx[i] = sxx - (2.0 / 3.0) * div;
-  eyy[i] = syy - (2.0 / 3.0) * div;
-  exy[i] = sxy;
+  eps[SPH_XX][i] = sxx - (2.0 / 3.0) * div;
+  eps[SPH_YY][i] = syy - (2.0 / 3.0) * div;
+  eps[SPH_XY][i] = sxy;
+#else
+  double t[SPH_SYM], div = s[SPH_SYM];
+  for (int k = 0; k < SPH_SYM; k++)
+    t[k] = s[k];
+  if (o->l) {
+    double a[SPH_SYM], c[3][3]; /* c = G L */
+    sph_gradient_correction(gm + 9, a);
+    for (int k = 0; k < SPH_SYM; k++)
+      o->l[k][i] = a[k];
+    for (int r = 0; r < 3; r++)
+      for (int q = 0; q < 3; q++)
+        c[r][q] = (gm[3 * r] * a[sph_sym_index(0, q)] + gm[3 * r + 1] * a[sph_sym_index(1, q)]) +
+                  gm[3 * r + 2] * a[sph_sym_index(2, q)];
+    for (int r = 0; r < 3; r++)
+      for (int q = r; q < 3; q++)
+        t[sph_sym_index(r, q)] = r == q ? 2.0 * c[r][r] : c[q][r] + c[r][q];
+    div = (c[0][0] + c[1][1]) + c[2][2];
+  }
+  for (int r = 0; r < 3; r++)
+    for (int q = r; q < 3; q++) {
+      const int k = sph_sym_index(r, q);
+      eps[k][i] = r == q ? t[k] - (2.0 / 3.0) * div : t[k];
+    }
+  if (o->div) o->div[i] = div;
+#endif
 }
 
 /* The neighbour row of i in the list l: j = row_[0], ..., row_[len_ - 1]. */
@@ -229,11 +262,13 @@ cut_row(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
   const sph_force_hot qi = hot[i];
   const double h0 = fp->h;
   const v2 xi = v2_all(qi.x), yi = v2_all(qi.y), zero = v2_all(0.0);
+  SPH_IF3(const v2 zi = v2_all(qi.z);)
   const v2 per = v2_all(fp->period), hper = v2_all(0.5 * fp->period);
   const v2 nper = v2_all(-0.5 * fp->period);
   size_t cnt = 0;
   ROW(l, i, row, len)
   const double xs0 = qi.x, ys0 = qi.y, s0 = 4.0 * h0 * h0;
+  SPH_IF3(const double zs0 = qi.z;)
   const double period = fp->period, hp = 0.5 * fp->period;
   const v2 sv = v2_all(s0);
   size_t k = 0;
@@ -243,7 +278,12 @@ cut_row(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
     if (F & F_PERIODIC)
       dx = v2_sel(v2_lt(hper, dx), v2_sub(dx, per), v2_sel(v2_lt(dx, nper), v2_add(dx, per), dx));
     const v2 dy = v2_sub(yi, v2_set(hot[j0].y, hot[j1].y));
+#if SPH_DIM == 2
     const v2 r2 = v2_add(v2_mul(dx, dx), v2_mul(dy, dy));
+#else
+    const v2 dz = v2_sub(zi, v2_set(hot[j0].z, hot[j1].z));
+    const v2 r2 = v2_add(v2_add(v2_mul(dx, dx), v2_mul(dy, dy)), v2_mul(dz, dz));
+#endif
     const unsigned m = v2_bits2(v2_and(v2_lt(r2, sv), v2_lt(zero, r2)));
     nb[cnt] = j0; /* kept only if counted: no branch */
     cnt += m & 1u;
@@ -253,7 +293,11 @@ cut_row(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
   if (k < len) {
     const size_t j = row[k];
     const double dx = sep_x(xs0, hot[j].x, period, hp, F), dy = ys0 - hot[j].y;
+#if SPH_DIM == 2
     const double r2 = dx * dx + dy * dy;
+#else
+    const double dz = zs0 - hot[j].z, r2 = dx * dx + dy * dy + dz * dz;
+#endif
     nb[cnt] = (uint32_t)j;
     cnt += (size_t)((r2 < s0) & (r2 > 0.0));
   }
@@ -262,13 +306,23 @@ cut_row(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
 
 /* The fields of a packed record (sph_force_hot) by their place, for the
  * loops that load whole records and transpose them (v8z_transpose8). */
-enum { H_x, H_y, H_vx, H_vy, H_rho, H_prho2, H_cs, H_m };
+enum { H_x, H_y, H_vx, H_vy, H_rho, H_prho2, H_cs, H_m, H_z, H_vz };
+#define H_FIELDS (SPH_DIM == 2 ? 8 : 10)
 typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(double) &&
                                    offsetof(sph_force_hot, rho) == H_rho * sizeof(double) &&
                                    offsetof(sph_force_hot, m) == H_m * sizeof(double) &&
-                                   sizeof(sph_force_hot) == 8 * sizeof(double))
+                                   sizeof(sph_force_hot) == H_FIELDS * sizeof(double))
                                       ? 1
                                       : -1];
+/* The third axis's fields of a record, gathered one at a time (the
+ * transposes take the first eight). */
+#if SPH_DIM == 3
+#define LHOT_Z(g)                                                                                  \
+  g[H_z] = LSET(E_HOT, z);                                                                         \
+  g[H_vz] = LSET(E_HOT, vz)
+#else
+#define LHOT_Z(g) (void)0
+#endif
 
 /* The scalar flavour: one pair at a time in row order, every term set (the
  * only one for per-particle h and mirror particles), its sums plain doubles. */
@@ -299,7 +353,7 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
  * compiler drops those a term set does not read), the AVX2 flavour loads
  * the four records whole and transposes them (v4x_transpose8). */
 #define LHOT_SET(g)                                                                                \
-  LT g[8];                                                                                         \
+  LT g[H_FIELDS];                                                                                  \
   g[H_x] = LSET(E_HOT, x);                                                                         \
   g[H_y] = LSET(E_HOT, y);                                                                         \
   g[H_vx] = LSET(E_HOT, vx);                                                                       \
@@ -307,7 +361,8 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
   g[H_rho] = LSET(E_HOT, rho);                                                                     \
   g[H_prho2] = LSET(E_HOT, prho2);                                                                 \
   g[H_cs] = LSET(E_HOT, cs);                                                                       \
-  g[H_m] = LSET(E_HOT, m)
+  g[H_m] = LSET(E_HOT, m);                                                                         \
+  LHOT_Z(g)
 #define LW 4
 #define LA FL
 #define LAOP(name) SPH_PT_XGLUE(FL, name)
@@ -329,11 +384,12 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
 #ifdef SPH_LANES_AVX
 #define FL v4x
 #define LHOT(g)                                                                                    \
-  v4x g[8];                                                                                        \
+  v4x g[H_FIELDS];                                                                                 \
   {                                                                                                \
     const double *const r_[4] = {&hot[jk[0]].x, &hot[jk[1]].x, &hot[jk[2]].x, &hot[jk[3]].x};      \
     v4x_transpose8(r_, g);                                                                         \
-  }
+  }                                                                                                \
+  LHOT_Z(g)
 #define LOOP_ATTR static inline __attribute__((always_inline, target("avx2")))
 #include "solver/interact_row.h"
 #include "solver/strain_lanes.h"
@@ -376,12 +432,13 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
   } while (0)
 #define LSET(E, a) v8z_set(E(0, a), E(1, a), E(2, a), E(3, a), E(4, a), E(5, a), E(6, a), E(7, a))
 #define LHOT(g)                                                                                    \
-  v8z g[8];                                                                                        \
+  v8z g[H_FIELDS];                                                                                 \
   {                                                                                                \
     const double *const r_[8] = {&hot[jk[0]].x, &hot[jk[1]].x, &hot[jk[2]].x, &hot[jk[3]].x,       \
                                  &hot[jk[4]].x, &hot[jk[5]].x, &hot[jk[6]].x, &hot[jk[7]].x};      \
     v8z_transpose8(r_, g);                                                                         \
-  }
+  }                                                                                                \
+  LHOT_Z(g)
 
 #define FL v8z
 #define LOOP_ATTR static inline __attribute__((always_inline, target("avx512f")))

@@ -66,11 +66,14 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const unsigned F = SPH_TERMS(Fc, F_LITERAL(Fc), w->terms);
   const sph_force_hot *restrict hot = w->hot;
   const double *restrict sxx = w->sxx, *restrict sxy = w->sxy, *restrict syy = w->syy;
+  SPH_IF3(const double *restrict sxz = w->sxz, *restrict syz = w->syz, *restrict szz = w->szz;)
   const int32_t *restrict kind = p->kind;
   if (kind[i] == SPH_KIND_MIRROR || (p->flags[i] & SPH_FLAG_REPULSIVE)) {
     p->drho[i] = p->ax[i] = p->ay[i] = 0.0;
+    SPH_IF3(p->az[i] = 0.0;)
     w->sigma[i] = 0.0;
     if (F & F_LEDGER) p->du[i] = w->wpow[i] = w->wfx[i] = w->wfy[i] = 0.0;
+    SPH_IF3(if (F & F_LEDGER) w->wfz[i] = 0.0;)
     if ((F & F_DDIFF) && (F & F_LEDGER)) w->dd[i] = 0.0;
     return;
   }
@@ -101,6 +104,7 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const int wendland = fp->kernel == SPH_KERNEL_WENDLAND_C2;
   const double sigma0 = sph_kernel_sigma(fp->kernel, inv_h0);
   const LT xi = LOP(all)(qi.x), yi = LOP(all)(qi.y), vxi = LOP(all)(qi.vx), vyi = LOP(all)(qi.vy);
+  SPH_IF3(const LT zi = LOP(all)(qi.z), vzi = LOP(all)(qi.vz);)
   const LT rhoi = LOP(all)(qi.rho), pri = LOP(all)(qi.prho2), ci = LOP(all)(qi.cs);
   const LT hh = LOP(all)(h0), inv_h = LOP(all)(inv_h0), one = LOP(all)(1.0);
   const LT zero = LOP(all)(0.0);
@@ -118,6 +122,7 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const LT rinv_z0 = LOP(all)(riem ? 1.0 / (fp->eos.rho0 * fp->eos.c0) : 0.0);
   const LT hgx = LOP(all)(riem ? fp->eos.rho0 * fp->gx : 0.0);
   const LT hgy = LOP(all)(riem ? fp->eos.rho0 * fp->gy : 0.0);
+  SPH_IF3(const LT hgz = LOP(all)(riem ? fp->eos.rho0 * fp->gz : 0.0);)
 #if LW > 1
 #define E_LANE(q, a) ((double)(q))
   const LT lane = LSET(E_LANE, 0), n = LOP(all)((double)cnt);
@@ -127,6 +132,7 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   LA drho = azero, ax = azero, ay = azero, xs = azero, ys = azero, sig = azero, dd = azero;
   LA du = azero, wpow = azero, wfx = azero, wfy = azero; /* energy and momentum ledger */
   LA rd = azero;                                         /* the Riemann continuity term */
+  SPH_IF3(LA az = azero, zs = azero, wfz = azero;)
   const uint8_t *restrict flags = p->flags;
   /* neighbours that take no heat: repulsive wall particles and mirror particles */
   const int passive = (F & F_LEDGER) && (fp->repulsive || fp->mirror);
@@ -140,16 +146,19 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
                     (kind[i] != SPH_KIND_FLUID || w->nwall[i]); /* a row that meets one */
   const int rnorm_i = rnorm && kind[i] == SPH_KIND_WALL && (flags[i] & SPH_WALL_NORMAL);
   const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy, *restrict ddm = w->ddm;
+  SPH_IF3(const double *restrict ddcz = w->ddcz;)
   const int diffuses = (F & F_DDIFF) && ddm[i] != 0.0; /* diffusion.h */
   const double *restrict fm = w->fm;                   /* m_j of fluid j, 0 for the others */
   /* then ddm = fm (diffusion.c): only fluid diffuses, all of it */
   const int mdd_is_mx = (F & F_XSPH) && !fp->mdbc && !fp->wall_diffusion;
   const LT cxi = LOP(all)((F & F_DDIFF) ? ddcx[i] : 0.0);
   const LT cyi = LOP(all)((F & F_DDIFF) ? ddcy[i] : 0.0);
+  SPH_IF3(const LT czi = LOP(all)((F & F_DDIFF) ? ddcz[i] : 0.0);)
   /* c_j = c_i at every particle but with antuono (diffusion.c): the same sums without reading c_j
    */
   const int dd_uniform = fp->diffusion != SPH_DIFFUSION_ANTUONO;
   const LT cxx = LOP(add)(cxi, cxi), cyy = LOP(add)(cyi, cyi);
+  SPH_IF3(const LT czz = LOP(add)(czi, czi);)
   for (size_t k = 0; k < cnt; k += LW) {
     const uint32_t *restrict jk = nb + k; /* this iteration's neighbours */
 #define E_HOT(q, field) hot[jk[q]].field
@@ -166,7 +175,12 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
       dx = LOP(sel)(LOP(lt)(hper, dx), LOP(sub)(dx, per),
                     LOP(sel)(LOP(lt)(dx, nper), LOP(add)(dx, per), dx));
     const LT dy = LOP(sub)(yi, GATHER(y));
+#if SPH_DIM == 2
     const LT r2 = LOP(add)(LOP(mul)(dx, dx), LOP(mul)(dy, dy));
+#else
+    const LT dz = LOP(sub)(zi, GATHER(z));
+    const LT r2 = LOP(add)(LOP(add)(LOP(mul)(dx, dx), LOP(mul)(dy, dy)), LOP(mul)(dz, dz));
+#endif
     /* the pair's smoothing length and what follows from it */
     LT hij = hh, inv_hij = inv_h, sig_ij = sigma, sig_h_ij = sigma_h, eta2_ij = eta2;
 #if LW == 1
@@ -198,8 +212,10 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     f = LOP(and)(in, f);
     const LT gx = LOP(mul)(f, dx), gy = LOP(mul)(f, dy);
     const LT dvx = LOP(sub)(vxi, GATHER(vx)), dvy = LOP(sub)(vyi, GATHER(vy));
+    SPH_IF3(const LT gz = LOP(mul)(f, dz), dvz = LOP(sub)(vzi, GATHER(vz));)
     const LT mj = GATHER(m);
-    const LVEC rv = {{dx, dy}}, gw = {{gx, gy}}, dv = {{dvx, dvy}}; /* r_ij, grad_i W_ij, v_ij */
+    const LVEC rv = {{SPH_XYZ(dx, dy, dz)}}, gw = {{SPH_XYZ(gx, gy, gz)}}; /* r_ij, grad_i W_ij */
+    const LVEC dv = {{SPH_XYZ(dvx, dvy, dvz)}};                            /* v_ij */
     if (fluid || !(fp->moving_walls || fp->mirror)) { /* walls at rest: their pairs add +-0 */
       LACC(drho, LTERM(continuity)(mj, dv, gw));
     } else { /* a wall particle's density follows its fluid neighbours only: the walls
@@ -208,13 +224,18 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
       const LMASK fj = LOP(lt)(zero, LSET(E_ARR, fm));
       LACC(drho, LOP(and)(fj, LTERM(continuity)(mj, dv, gw)));
     }
+#if SPH_DIM == 2
     const LT vdotr = LOP(add)(LOP(mul)(dvx, dx), LOP(mul)(dvy, dy));
+#else
+    const LT vdotr = LOP(add)(LOP(add)(LOP(mul)(dvx, dx), LOP(mul)(dvy, dy)), LOP(mul)(dvz, dz));
+#endif
     LAMAX(sig, LOP(and)(in, LTERM(signal)(hij, vdotr, inv_r2)));
     if ((F & F_DDIFF) && diffuses) { /* over the neighbours that diffuse (diffusion.h) */
       const LT rhoj = GATHER(rho);
       const LT cx = dd_uniform ? cxx : LOP(add)(cxi, LSET(E_ARR, ddcx));
       const LT cy = dd_uniform ? cyy : LOP(add)(cyi, LSET(E_ARR, ddcy));
-      const LVEC c = {{cx, cy}};
+      SPH_IF3(const LT cz = dd_uniform ? czz : LOP(add)(czi, LSET(E_ARR, ddcz));)
+      const LVEC c = {{SPH_XYZ(cx, cy, cz)}};
       const LT psi = LTERM(diffusion_psi)(rhoi, rhoj, rv, c);
       /* the masses they diffuse with: a wall particle's row its fluid
        * neighbours' only; without mdbc and diffusing walls ddm = fm */
@@ -232,11 +253,17 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
      * no-slip velocity (boundary.h; the scalar loop only), the continuity's
      * its reflected one */
     LT vvx = dvx, vvy = dvy, vvdotr = vdotr;
+    SPH_IF3(LT vvz = dvz;)
 #if LW == 1
     if (mirror && kind[jk[0]] == SPH_KIND_MIRROR) {
       vvx = vxi - p->vxh[jk[0]];
       vvy = vyi - p->vyh[jk[0]];
+#if SPH_DIM == 2
       vvdotr = vvx * dx + vvy * dy;
+#else
+      vvz = vzi - p->vzh[jk[0]];
+      vvdotr = vvx * dx + vvy * dy + vvz * dz;
+#endif
     }
 #endif
     LT inv_rb = zero;
@@ -247,8 +274,10 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
      * pressure, the closing speed of a pair with a wall particle that has a
      * normal is the normal one too (rnorm: the lanes fn) */
     LT pgx = gx, pgy = gy, avr = vvdotr, rvr = vdotr;
+    SPH_IF3(LT pgz = gz;)
     if ((slip || rnorm) && (fluid || slip_i || rnorm_i)) {
       LT wmx, wmy;
+      SPH_IF3(LT wmz;)
       LMASK fs, fn;
       if (fluid) { /* the pair's wall particle is j (offsets of 1 where unused: finite) */
 #define E_FS(q, a) ((kind[jk[q]] == SPH_KIND_WALL && (flags[jk[q]] & (a))) ? 1.0 : 0.0)
@@ -257,6 +286,7 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
         fn = rnorm ? LOP(lt)(zero, LSET(E_FS, SPH_WALL_NORMAL)) : fs;
         wmx = LSET(E_M, p->mx);
         wmy = LSET(E_M, p->my);
+        SPH_IF3(wmz = LSET(E_M, p->mz);)
 #undef E_M
 #undef E_FS
       } else { /* i is the pair's wall particle */
@@ -264,13 +294,15 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
         fn = LOP(lt)(zero, LOP(all)(rnorm_i ? 1.0 : 0.0));
         wmx = LOP(all)(p->mx[i]);
         wmy = LOP(all)(p->my[i]);
+        SPH_IF3(wmz = LOP(all)(p->mz[i]);)
       }
-      const LVEC wm = {{wmx, wmy}};
+      const LVEC wm = {{SPH_XYZ(wmx, wmy, wmz)}};
       if (slip) {
         const LVEC ng = LTERM(normal_part)(gw, wm);
         pgx = LOP(sel)(fs, ng.c[0], gx);
         pgy = LOP(sel)(fs, ng.c[1], gy);
-        const LVEC vv = {{vvx, vvy}};
+        SPH_IF3(pgz = LOP(sel)(fs, ng.c[2], gz);)
+        const LVEC vv = {{SPH_XYZ(vvx, vvy, vvz)}};
         if (F & F_AV) avr = LOP(sel)(fs, LTERM(normal_vdotr)(vv, rv, wm), vvdotr);
       }
       if (rnorm) rvr = LOP(sel)(fn, LTERM(normal_vdotr)(dv, rv, wm), vdotr);
@@ -282,7 +314,12 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
       const LT close = LOP(neg)(LOP(mul)(rvr, inv_r));
       pij = LTERM(riemann_pressure)(pi, pj, rhoi, rhoj, close, rz0, rkc);
       if (fluid) { /* its continuity term, between fluid particles only */
+#if SPH_DIM == 2
         const LT jump = LOP(sub)(LOP(sub)(pi, pj), LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy)));
+#else
+        const LT hg = LOP(add)(LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy)), LOP(mul)(hgz, dz));
+        const LT jump = LOP(sub)(LOP(sub)(pi, pj), hg);
+#endif
         LACC(rd, LOP(and)(fluid_j, LTERM(riemann_density)(rhoi, mj, rhoj, jump, f, r, rinv_z0)));
       }
     } else {
@@ -292,28 +329,39 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
       pij = LOP(add)(pij, LTERM(artificial_viscosity)(avr, hij, r2, eta2_ij, ci, GATHER(cs), nalpha,
                                                       beta, inv_rb));
     const LT mp = LOP(mul)(mj, pij);
-    const LVEC pg = {{pgx, pgy}}, pa = LTERM(pressure_force)(mp, pg);
+    const LVEC pg = {{SPH_XYZ(pgx, pgy, pgz)}}, pa = LTERM(pressure_force)(mp, pg);
     LT pax = pa.c[0], pay = pa.c[1];
+    SPH_IF3(LT paz = pa.c[2];)
     LT heat = zero; /* this particle's half of the pair's heat (energy ledger) */
     if (F & F_LEDGER) heat = LTERM(pressure_heat)(mp, dv, pg);
     if (F & F_STRESS) {
       const LT txx = LOP(add)(LOP(all)(sxx[i]), LSET(E_ARR, sxx));
       const LT txy = LOP(add)(LOP(all)(sxy[i]), LSET(E_ARR, sxy));
       const LT tyy = LOP(add)(LOP(all)(syy[i]), LSET(E_ARR, syy));
+#if SPH_DIM == 2
       const LSYM t = {{txx, txy, tyy}};
+#else
+      const LT txz = LOP(add)(LOP(all)(sxz[i]), LSET(E_ARR, sxz));
+      const LT tyz = LOP(add)(LOP(all)(syz[i]), LSET(E_ARR, syz));
+      const LT tzz = LOP(add)(LOP(all)(szz[i]), LSET(E_ARR, szz));
+      const LSYM t = {{txx, txy, txz, tyy, tyz, tzz}};
+#endif
       const LVEC sv = LTERM(stress_force)(mj, t, gw);
       pax = LOP(add)(pax, sv.c[0]);
       pay = LOP(add)(pay, sv.c[1]);
+      SPH_IF3(paz = LOP(add)(paz, sv.c[2]);)
       if (F & F_LEDGER) heat = LOP(sub)(heat, LTERM(stress_heat)(mj, t, dv, gw));
     }
     if (F & F_MORRIS) {
       const LT c = LTERM(morris_factor)(mj, nu4, f, r2, rhoi, GATHER(rho), eta2_ij);
       pax = LOP(add)(pax, LOP(mul)(c, vvx));
       pay = LOP(add)(pay, LOP(mul)(c, vvy));
+      SPH_IF3(paz = LOP(add)(paz, LOP(mul)(c, vvz));)
       if (F & F_LEDGER) heat = LOP(sub)(heat, LTERM(morris_heat)(c, dv));
     }
     if (F & F_LEDGER) {
       LT vwx = GATHER(vx), vwy = GATHER(vy); /* a wall neighbour's velocity */
+      SPH_IF3(LT vwz = GATHER(vz);)
       if (passive) { /* a repulsive wall or mirror neighbour: i takes the whole heat */
 #define E_PAS(q, a)                                                                                \
   ((kind[jk[q]] == SPH_KIND_MIRROR || (flags[jk[q]] & SPH_FLAG_REPULSIVE)) ? 1.0 : 0.0)
@@ -321,9 +369,11 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
         const LMASK pas = LOP(lt)(zero, LSET(E_PAS, 0));
         vwx = LSET(E_WV, vx);
         vwy = LSET(E_WV, vy);
+        SPH_IF3(vwz = LSET(E_WV, vz);)
 #undef E_WV
 #undef E_PAS
-        const LVEC a = {{pax, pay}}, vi = {{vxi, vyi}}, vw = {{vwx, vwy}};
+        const LVEC a = {{SPH_XYZ(pax, pay, paz)}}, vi = {{SPH_XYZ(vxi, vyi, vzi)}};
+        const LVEC vw = {{SPH_XYZ(vwx, vwy, vwz)}};
         heat = LOP(sel)(pas, LTERM(passive_heat)(a, vi, vw), heat);
       }
       /* a wall particle: its half of the heat of its pairs with fluid only */
@@ -332,18 +382,22 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
       /* the power of wall particles' forces on i, per unit mass of i, and
        * the force of walls and mirror particles: external to the fluid */
       const LT wx = LOP(sel)(fluid_j, zero, pax), wy = LOP(sel)(fluid_j, zero, pay);
-      const LVEC wa = {{wx, wy}}, vw = {{vwx, vwy}};
+      SPH_IF3(const LT wz = LOP(sel)(fluid_j, zero, paz);)
+      const LVEC wa = {{SPH_XYZ(wx, wy, wz)}}, vw = {{SPH_XYZ(vwx, vwy, vwz)}};
       LACC(wpow, LTERM(wall_power)(wa, vw));
       LACC(wfx, wx);
       LACC(wfy, wy);
+      SPH_IF3(LACC(wfz, wz);)
     }
     LACC(ax, pax);
     LACC(ay, pay);
+    SPH_IF3(LACC(az, paz);)
     const LT mx = fmj; /* m_j of fluid neighbours, 0 for the others */
     if (F & F_XSPH) {  /* over fluid neighbours */
       const LT c = LTERM(xsph_factor)(mx, inv_rb, wij);
       LDEC(xs, LOP(mul)(c, dvx));
       LDEC(ys, LOP(mul)(c, dvy));
+      SPH_IF3(LDEC(zs, LOP(mul)(c, dvz));)
     }
 #undef GATHER
 #undef E_ARR
@@ -372,17 +426,21 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     w->wpow[i] = LSUM(wpow);
     w->wfx[i] = LSUM(wfx);
     w->wfy[i] = LSUM(wfy);
+    SPH_IF3(w->wfz[i] = LSUM(wfz);)
   }
   w->sigma[i] = LMAXALL(sig);
   if (fluid) {
     p->ax[i] = LSUM(ax) + fp->gx;
     p->ay[i] = LSUM(ay) + fp->gy;
+    SPH_IF3(p->az[i] = LSUM(az) + fp->gz;)
     if (F & F_XSPH) {
       p->xsx[i] = fp->xsph * LSUM(xs);
       p->xsy[i] = fp->xsph * LSUM(ys);
+      SPH_IF3(p->xsz[i] = fp->xsph * LSUM(zs);)
     }
   } else {
     p->ax[i] = p->ay[i] = 0.0;
+    SPH_IF3(p->az[i] = 0.0;)
   }
 }
 

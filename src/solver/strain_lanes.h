@@ -19,8 +19,9 @@
  * (V_j / r formed in one division: the bits differ from strain_one's):
  *   without the correction  2 u_x g_x, 2 u_y g_y, u_y g_x + u_x g_y, u . g;
  *   with it (Bonet and Lok 1999)  G = sum u (x) g and M = -sum (x_i - x_j) (x) g.
- * The velocities are the records' (sph_force_hot) or, with extrapolated
- * wall velocities or mirror particles, the arrays gvx, gvy.
+ * (in 3-D with the z terms after the others). The velocities are the
+ * records' (sph_force_hot) or, with extrapolated wall velocities or mirror
+ * particles, the arrays gv[axis].
  */
 
 #define LT FL
@@ -31,20 +32,21 @@ LOOP_ATTR void SPH_PT_XGLUE(strain,
                             FL)(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
                                 const sph_force_params *restrict fp, uint32_t *restrict nb,
                                 uint32_t *restrict nbn, size_t i, const strain_opts *restrict o,
-                                double *restrict exx, double *restrict exy, double *restrict eyy,
-                                const unsigned F) {
+                                double *const *restrict eps, const unsigned F) {
   const size_t cnt = cut_row(hot, l, fp, i, nb, F);
   for (size_t k = cnt; k < cnt + SPH_KEEP_PAD - 1 && cnt > 0; k++)
     nb[k] = nb[cnt - 1]; /* padding lanes, for any lane loop that reads the row after */
   *nbn = (uint32_t)cnt;
-  const double *restrict gvx = o->gvx, *restrict gvy = o->gvy;
-  const int ghosts = gvx != NULL, correct = o->lxx != NULL;
+  const int ghosts = o->gv != NULL, correct = o->l != NULL;
+  const double *restrict gvx = ghosts ? o->gv[0] : NULL, *restrict gvy = ghosts ? o->gv[1] : NULL;
+  SPH_IF3(const double *restrict gvz = ghosts ? o->gv[2] : NULL;)
   const sph_force_hot qi = hot[i];
   const double h0 = fp->h, inv_h0 = 1.0 / h0;
   const int wendland = fp->kernel == SPH_KERNEL_WENDLAND_C2;
   const double sigma0 = sph_kernel_sigma(fp->kernel, inv_h0);
   const LT xi = LOP(all)(qi.x), yi = LOP(all)(qi.y);
   const LT vxi = LOP(all)(ghosts ? gvx[i] : qi.vx), vyi = LOP(all)(ghosts ? gvy[i] : qi.vy);
+  SPH_IF3(const LT zi = LOP(all)(qi.z), vzi = LOP(all)(ghosts ? gvz[i] : qi.vz);)
   const LT inv_h = LOP(all)(inv_h0), one = LOP(all)(1.0), two = LOP(all)(2.0);
   const LT sigma = LOP(all)(sigma0), sigma_h = LOP(all)(sigma0 * inv_h0);
   const LT per = LOP(all)(fp->period), hper = LOP(all)(0.5 * fp->period);
@@ -56,6 +58,8 @@ LOOP_ATTR void SPH_PT_XGLUE(strain,
   LA sxx = azero, sxy = azero, syy = azero, div = azero; /* without the correction */
   LA gxx = azero, gxy = azero, gyx = azero, gyy = azero; /* with it: G and M */
   LA mxx = azero, mxy = azero, myy = azero;
+  SPH_IF3(LA sxz = azero, syz = azero, szz = azero; LA gxz = azero, gyz = azero, gzx = azero;
+          LA gzy = azero, gzz = azero, mxz = azero, myz = azero, mzz = azero;)
   for (size_t k = 0; k < cnt; k += LW) {
     const uint32_t *restrict jk = nb + k; /* this iteration's neighbours */
 #define E_HOT(q, field) hot[jk[q]].field
@@ -66,7 +70,12 @@ LOOP_ATTR void SPH_PT_XGLUE(strain,
       dx = LOP(sel)(LOP(lt)(hper, dx), LOP(sub)(dx, per),
                     LOP(sel)(LOP(lt)(dx, nper), LOP(add)(dx, per), dx));
     const LT dy = LOP(sub)(yi, g[H_y]);
+#if SPH_DIM == 2
     const LT r2 = LOP(add)(LOP(mul)(dx, dx), LOP(mul)(dy, dy));
+#else
+    const LT dz = LOP(sub)(zi, g[H_z]);
+    const LT r2 = LOP(add)(LOP(add)(LOP(mul)(dx, dx), LOP(mul)(dy, dy)), LOP(mul)(dz, dz));
+#endif
     const LMASK in = LOP(lt)(LOP(add)(LOP(all)((double)k), lane), n);
     /* F_ij V_j in one division: the cubic spline's factor without its 1/r
      * (inv_r = 1) times m_j / (r rho_j); Wendland's F_ij has no 1/r */
@@ -84,6 +93,8 @@ LOOP_ATTR void SPH_PT_XGLUE(strain,
     const LT gx = LOP(mul)(f, dx), gy = LOP(mul)(f, dy); /* V_j grad_i W_ij */
     const LT vxj = ghosts ? LSET(E_ARR, gvx) : g[H_vx], vyj = ghosts ? LSET(E_ARR, gvy) : g[H_vy];
     const LT ux = LOP(sub)(vxj, vxi), uy = LOP(sub)(vyj, vyi); /* v_ji */
+    SPH_IF3(const LT gz = LOP(mul)(f, dz); const LT vzj = ghosts ? LSET(E_ARR, gvz) : g[H_vz];
+            const LT uz = LOP(sub)(vzj, vzi);)
     if (correct) {
       LACC(gxx, LOP(mul)(ux, gx));
       LACC(gxy, LOP(mul)(ux, gy));
@@ -92,28 +103,51 @@ LOOP_ATTR void SPH_PT_XGLUE(strain,
       LDEC(mxx, LOP(mul)(dx, gx));
       LDEC(mxy, LOP(mul)(dx, gy));
       LDEC(myy, LOP(mul)(dy, gy));
+      SPH_IF3(LACC(gxz, LOP(mul)(ux, gz)); LACC(gyz, LOP(mul)(uy, gz)); LACC(gzx, LOP(mul)(uz, gx));
+              LACC(gzy, LOP(mul)(uz, gy)); LACC(gzz, LOP(mul)(uz, gz)); LDEC(mxz, LOP(mul)(dx, gz));
+              LDEC(myz, LOP(mul)(dy, gz)); LDEC(mzz, LOP(mul)(dz, gz));)
     } else {
       LACC(sxx, LOP(mul)(LOP(mul)(two, ux), gx));
       LACC(syy, LOP(mul)(LOP(mul)(two, uy), gy));
       LACC(sxy, LOP(add)(LOP(mul)(uy, gx), LOP(mul)(ux, gy)));
+#if SPH_DIM == 2
       LACC(div, LOP(add)(LOP(mul)(ux, gx), LOP(mul)(uy, gy)));
+#else
+      LACC(szz, LOP(mul)(LOP(mul)(two, uz), gz));
+      LACC(sxz, LOP(add)(LOP(mul)(uz, gx), LOP(mul)(ux, gz)));
+      LACC(syz, LOP(add)(LOP(mul)(uz, gy), LOP(mul)(uy, gz)));
+      LACC(div, LOP(add)(LOP(add)(LOP(mul)(ux, gx), LOP(mul)(uy, gy)), LOP(mul)(uz, gz)));
+#endif
     }
 #undef E_ARR
 #undef E_HOT
   }
   double lv[4];
 #define LANES_SUM(s) (LAOP(store)(lv, s), (lv[0] + lv[1]) + (lv[2] + lv[3]))
-  double sums[4] = {0.0, 0.0, 0.0, 0.0}, gm[7] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  double sums[STRAIN_SUMS] = {0.0}, gm[STRAIN_GM] = {0.0};
   if (correct) {
+#if SPH_DIM == 2
     gm[0] = LANES_SUM(gxx), gm[1] = LANES_SUM(gxy), gm[2] = LANES_SUM(gyx);
     gm[3] = LANES_SUM(gyy), gm[4] = LANES_SUM(mxx), gm[5] = LANES_SUM(mxy);
     gm[6] = LANES_SUM(myy);
+#else
+    const LA gs[STRAIN_GM] = {gxx, gxy, gxz, gyx, gyy, gyz, gzx, gzy,
+                              gzz, mxx, mxy, mxz, myy, myz, mzz};
+    for (int k = 0; k < STRAIN_GM; k++)
+      gm[k] = LANES_SUM(gs[k]);
+#endif
   } else {
+#if SPH_DIM == 2
     sums[0] = LANES_SUM(sxx), sums[1] = LANES_SUM(sxy), sums[2] = LANES_SUM(syy);
     sums[3] = LANES_SUM(div);
+#else
+    const LA ss[STRAIN_SUMS] = {sxx, sxy, sxz, syy, syz, szz, div};
+    for (int k = 0; k < STRAIN_SUMS; k++)
+      sums[k] = LANES_SUM(ss[k]);
+#endif
   }
 #undef LANES_SUM
-  strain_finish(o, i, sums, gm, exx, exy, eyy);
+  strain_finish(o, i, sums, gm, eps);
 }
 
 #undef LTERM

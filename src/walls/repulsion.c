@@ -22,27 +22,36 @@ void sph_repulsion_add(sph_particles *p, const sph_nlist *l, double d, double r0
     const uint32_t *nb = l->nb + l->start[i];
     const size_t cnt = l->count[i];
     double ax = 0.0, ay = 0.0, pw = 0.0, phi = 0.0;
+    SPH_IF3(double az = 0.0;)
     for (size_t k = 0; k < cnt; k++) {
       const size_t j = nb[k];
       if (!(p->flags[j] & SPH_FLAG_REPULSIVE)) continue;
       const double dx = sph_grid_min_image(p->x[i] - p->x[j], period);
       const double dy = p->y[i] - p->y[j];
+#if SPH_DIM == 2
       const double r2 = dx * dx + dy * dy;
+#else
+      const double dz = p->z[i] - p->z[j], r2 = dx * dx + dy * dy + dz * dz;
+#endif
       if (r2 >= r0 * r0 || r2 == 0.0) continue;
       const double f = lennard_jones_v1(d, r0, r2);
       ax += f * dx;
       ay += f * dy;
+      SPH_IF3(az += f * dz;)
       if (lg) {
-        const vec_v1 a = {{f * dx, f * dy}}, vj = {{p->vx[j], p->vy[j]}};
+        const vec_v1 a = {{SPH_XYZ(f * dx, f * dy, f * dz)}};
+        const vec_v1 vj = {{SPH_XYZ(p->vx[j], p->vy[j], p->vz[j])}};
         pw += wall_power_v1(a, vj);
         phi += lennard_jones_potential_v1(d, r0, r2);
       }
     }
     p->ax[i] += ax;
     p->ay[i] += ay;
+    SPH_IF3(p->az[i] += az;)
     if (lg) {
-      lg->wfx[i] += ax;
-      lg->wfy[i] += ay;
+      lg->wf[0][i] += ax;
+      lg->wf[1][i] += ay;
+      SPH_IF3(lg->wf[2][i] += az;)
       lg->wpow[i] += pw;
       lg->phi[i] = phi;
     }

@@ -14,13 +14,14 @@
 
 /* What the energy ledger needs of the force (NULL arrays: not wanted):
  * per fluid particle, the sums over its repulsive neighbours of the force
- * per unit mass (added to wfx, wfy), of its power a_ij . v_j (added to
+ * per unit mass (added to wf[axis]), of its power a_ij . v_j (added to
  * wpow: a moving wall's work) and the potential energy per unit mass
  * D [(r0/r)^12 / 12 - (r0/r)^4 / 4 + 1/6] (set in phi, 0 at r0) whose
  * gradient the force is, so that kinetic + potential + this energy is
  * conserved by the force of walls at rest. */
 typedef struct sph_repulsion_ledger {
-  double *wfx, *wfy, *wpow, *phi;
+  double *const *wf; /* wf[axis] */
+  double *wpow, *phi;
 } sph_repulsion_ledger;
 
 /* Adds the force of every repulsive wall particle within r0 to the

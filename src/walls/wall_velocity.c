@@ -200,6 +200,10 @@ static int bin_fluid(const sph_particles *p, double support, double px0, double 
 
 int sph_wall_velocity(const sph_particles *p, double support, double px0, double period,
                       double *gvx, double *gvy, sph_wall_velocity_work *w, sph_error *err) {
+#if SPH_DIM == 3 /* the fit below is the 2-D one (three unknowns) */
+  (void)p, (void)support, (void)px0, (void)period, (void)gvx, (void)gvy, (void)w;
+  return sph_error_set(err, "wall velocity: extrapolated wall velocities are 2-D only so far");
+#endif
   const size_t n = p->n;
   for (size_t i = 0; i < n; i++) {
     gvx[i] = p->vx[i];
@@ -225,6 +229,10 @@ int sph_wall_velocity(const sph_particles *p, double support, double px0, double
 
 int sph_wall_mdbc_density(sph_particles *p, double support, double px0, double period, double rho0,
                           sph_wall_velocity_work *w, sph_error *err) {
+#if SPH_DIM == 3 /* the fit below is the 2-D one (three unknowns) */
+  (void)p, (void)support, (void)px0, (void)period, (void)rho0, (void)w;
+  return sph_error_set(err, "wall velocity: mdbc wall densities are 2-D only so far");
+#endif
   layout g;
   const int rc = bin_fluid(p, support, px0, period, &g, w, err);
   if (rc < 0) return -1;

@@ -1,0 +1,406 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * test_forces_3d.c - the interaction passes as the 3-D build compiles them
+ * (built with -DSPH_DIM=3, linked with src/libsph3.la; doc/dimensions.md).
+ * The 2-D passes are checked term by term against an oracle by
+ * test_pair_terms; here every check has a 3-D answer of its own:
+ *
+ * - the symmetric tensors: the 3x3 inverse (m a = I, a singular or
+ *   indefinite moment gives the identity) and sym(t a) against the product
+ *   written out; the SPS closure of a pure shear in the xz plane against
+ *   its closed form;
+ * - a cubic lattice at rest, uniform pressure: no force inside but gravity
+ *   (0, 0, -g), and no density change;
+ * - a linear velocity field along each axis in turn: the continuity
+ *   equation gives -rho0 du_a/dx_a inside the lattice (within the lattice's
+ *   kernel moment, 3 %), nothing from the other axes;
+ * - the hydrostatic lattice, p = rho0 g (H - z) through the equation of
+ *   state: the pressure force balances gravity inside within 3 % of g, with
+ *   no horizontal force;
+ * - the strain rate with the kernel-gradient correction (Bonet and Lok) on
+ *   a lattice jittered by 0.1 dx: a shear u = (gamma z, 0, 0) and a
+ *   stretch w = a z exactly (1e-9) (at 0.2 dx some interior moments fall
+ *   under SPH_GRADIENT_CORRECTION_MIN_DET, a determinant, so a product of
+ *   three eigenvalues in 3-D, and keep L = I);
+ * - a jittered block with random velocities, artificial viscosity, Morris
+ *   viscosity, XSPH and density diffusion: linear momentum sums to zero;
+ *   with the energy ledger, the heat balances the internal forces' work
+ *   (sum m (v . a + du) = 0) to round-off;
+ * - the same pass in the scalar loop, the portable lanes, AVX2 and AVX-512
+ *   lanes (where the processor has them): the lane loops bitwise equal,
+ *   the scalar loop within round-off; the run-time loop bitwise equal to
+ *   the set's own; one and two threads bitwise equal.
+ */
+#include "config.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/particles.h"
+#include "core/tensor.h"
+#include "neighbours/grid.h"
+#include "physics/turbulence.h"
+#include "solver/forces.h"
+#include "testutil.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#if SPH_DIM != 3
+#error "test_forces_3d is built with -DSPH_DIM=3"
+#endif
+
+static const double RHO0 = 1000.0, DX = 0.01, C0 = 20.0, G = 9.81;
+enum { NL = 11 }; /* lattice points per side */
+
+static unsigned long long rng = 88172645463325252ULL;
+static double uniform(void) {
+  rng ^= rng << 13;
+  rng ^= rng >> 7;
+  rng ^= rng << 17;
+  return (double)(rng >> 11) / 9007199254740992.0;
+}
+
+/* A cube of NL^3 fluid particles on the lattice of spacing DX (jittered by
+ * up to jitter DX), velocity vel(x) (NULL: at rest). */
+static void lattice(sph_particles *p, double jitter, void (*vel)(const double x[3], double v[3])) {
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(p, 16, &err) == 0);
+  for (int k = 0; k < NL; k++)
+    for (int j = 0; j < NL; j++)
+      for (int i = 0; i < NL; i++) {
+        double x[3] = {i * DX, j * DX, k * DX}, v[3] = {0.0, 0.0, 0.0};
+        for (int d = 0; d < 3; d++)
+          x[d] += jitter * DX * (2.0 * uniform() - 1.0);
+        if (vel) vel(x, v);
+        CU_ASSERT_FATAL(sph_particles_add_at(p, x, v, RHO0, RHO0 * DX * DX * DX, 1.3 * DX,
+                                             SPH_KIND_FLUID, &err) >= 0);
+      }
+}
+
+/* Inside the lattice: at least two smoothing lengths from every face. */
+static int inside(const sph_particles *p, size_t i) {
+  for (int d = 0; d < 3; d++) {
+    const double x = p->pos[d][i];
+    if (x < 2.6 * DX || x > (NL - 1) * DX - 2.6 * DX) return 0;
+  }
+  return 1;
+}
+
+static sph_force_params params(void) {
+  sph_force_params fp;
+  memset(&fp, 0, sizeof fp);
+  fp.eos = sph_eos_tait(RHO0, C0);
+  fp.h = 1.3 * DX;
+  fp.eta = 0.1;
+  fp.loop = SPH_LOOP_AUTO;
+  return fp;
+}
+
+/* One pass on p (its store sorted by the grid first); non-zero on failure. */
+static int evaluate(sph_particles *p, const sph_force_params *fp) {
+  sph_grid g;
+  sph_grid_init(&g);
+  sph_nlist l;
+  sph_nlist_init(&l);
+  sph_error err;
+  sph_force_work w;
+  memset(&w, 0, sizeof w);
+  int rc = sph_grid_build(&g, p, 2.0 * fp->h * (1.0 + 1e-9), 1u << 24, &err);
+  if (rc == 0) rc = sph_nlist_build(&l, &g, p, 2.0 * fp->h, 0.0, 0.0, &err);
+  if (rc == 0) {
+    sph_forces_pressure(p, &fp->eos);
+    rc = sph_forces_evaluate(p, &l, fp, &w, &err);
+  }
+  if (rc) fprintf(stderr, "evaluate: %s\n", err.msg);
+  sph_force_work_free(&w);
+  sph_nlist_free(&l);
+  sph_grid_free(&g);
+  return rc;
+}
+
+static void test_tensors(void) {
+  const double m[SPH_SYM] = {2.0, 0.3, -0.2, 1.5, 0.4, 1.1};
+  double a[SPH_SYM];
+  CU_ASSERT_FATAL(sph_sym_inverse_or_identity(m, 0.1, a) == 1);
+  for (int r = 0; r < 3; r++)
+    for (int q = 0; q < 3; q++) {
+      double s = 0.0;
+      for (int k = 0; k < 3; k++)
+        s += m[sph_sym_index(r, k)] * a[sph_sym_index(k, q)];
+      CU_ASSERT_DOUBLE_EQUAL(s, r == q ? 1.0 : 0.0, 1e-12);
+    }
+  const double singular[SPH_SYM] = {1.0, 1.0, 0.0, 1.0, 0.0, 1.0};     /* det 0 */
+  const double indefinite[SPH_SYM] = {-1.0, 0.0, 0.0, -1.0, 0.0, 1.0}; /* det 1 */
+  for (int c = 0; c < 2; c++) {
+    CU_ASSERT(sph_sym_inverse_or_identity(c ? indefinite : singular, 0.1, a) == 0);
+    for (int k = 0; k < SPH_SYM; k++)
+      CU_ASSERT_EQUAL(a[k], (k == SPH_XX || k == SPH_YY || k == SPH_ZZ) ? 1.0 : 0.0);
+  }
+  /* sym(t a) against t a written out */
+  const double t[SPH_SYM] = {0.7, -0.1, 0.25, 0.3, 0.05, -0.4};
+  double b[SPH_SYM];
+  sph_sym_product(t, m, b);
+  for (int r = 0; r < 3; r++)
+    for (int q = r; q < 3; q++) {
+      double rq = 0.0, qr = 0.0;
+      for (int k = 0; k < 3; k++) {
+        rq += t[sph_sym_index(r, k)] * m[sph_sym_index(k, q)];
+        qr += t[sph_sym_index(q, k)] * m[sph_sym_index(k, r)];
+      }
+      CU_ASSERT_DOUBLE_EQUAL(b[sph_sym_index(r, q)], 0.5 * (rq + qr), 1e-15);
+    }
+  /* SPS of a pure shear dv_x/dz = gamma: S_xz = gamma / 2, |S| = gamma */
+  const double gamma = 3.0, cs = 0.12, ci = 0.00066, delta = 0.01;
+  const double S[SPH_SYM] = {0.0, 0.0, 0.5 * gamma, 0.0, 0.0, 0.0};
+  double tau[SPH_SYM];
+  CU_ASSERT_DOUBLE_EQUAL(sph_strain_norm_sym(S), gamma, 1e-15);
+  sph_sps_stress_sym(S, cs, ci, delta, tau);
+  const double nut = cs * delta * cs * delta * gamma, iso = (2.0 / 3.0) * ci * delta * delta * 9.0;
+  CU_ASSERT_DOUBLE_EQUAL(tau[SPH_XZ], nut * gamma, 1e-18);
+  CU_ASSERT_DOUBLE_EQUAL(tau[SPH_XX], -iso, 1e-18);
+  CU_ASSERT_DOUBLE_EQUAL(tau[SPH_ZZ], -iso, 1e-18);
+  CU_ASSERT_EQUAL(tau[SPH_XY], 0.0);
+  CU_ASSERT_EQUAL(tau[SPH_YZ], 0.0);
+}
+
+static void test_rest(void) {
+  sph_particles p;
+  lattice(&p, 0.0, NULL);
+  for (size_t i = 0; i < p.n; i++)
+    p.rho[i] = 1.01 * RHO0; /* a uniform pressure */
+  sph_force_params fp = params();
+  fp.alpha = 0.1;
+  fp.gz = -G;
+  CU_ASSERT_FATAL(evaluate(&p, &fp) == 0);
+  size_t bad = 0, n = 0;
+  for (size_t i = 0; i < p.n; i++) {
+    if (!inside(&p, i)) continue;
+    n++;
+    bad += fabs(p.ax[i]) > 1e-9 || fabs(p.ay[i]) > 1e-9 || fabs(p.az[i] + G) > 1e-9 ||
+           fabs(p.drho[i]) > 1e-9;
+  }
+  CU_ASSERT(n >= 27);
+  CU_ASSERT_EQUAL(bad, 0);
+  sph_particles_free(&p);
+}
+
+static int axis_of_field;
+static void linear_field(const double x[3], double v[3]) {
+  v[axis_of_field] = 2.0 * x[axis_of_field];
+}
+
+static void test_continuity(void) {
+  for (int a = 0; a < 3; a++) {
+    axis_of_field = a;
+    sph_particles p;
+    lattice(&p, 0.0, linear_field);
+    sph_force_params fp = params();
+    CU_ASSERT_FATAL(evaluate(&p, &fp) == 0);
+    double worst = 0.0;
+    for (size_t i = 0; i < p.n; i++)
+      if (inside(&p, i)) worst = fmax(worst, fabs(p.drho[i] / (-RHO0 * 2.0) - 1.0));
+    CU_ASSERT(worst < 0.03);
+    printf("\n    continuity along axis %d: largest error %.2e", a, worst);
+    sph_particles_free(&p);
+  }
+}
+
+static void test_hydrostatic(void) {
+  sph_particles p;
+  lattice(&p, 0.0, NULL);
+  const double H = (NL - 1) * DX + 0.5 * DX;
+  sph_force_params fp = params();
+  fp.gz = -G;
+  for (size_t i = 0; i < p.n; i++)
+    p.rho[i] = sph_eos_density(&fp.eos, RHO0 * G * (H - p.z[i]));
+  CU_ASSERT_FATAL(evaluate(&p, &fp) == 0);
+  double worst = 0.0, side = 0.0;
+  for (size_t i = 0; i < p.n; i++) {
+    if (!inside(&p, i)) continue;
+    worst = fmax(worst, fabs(p.az[i]));
+    side = fmax(side, fmax(fabs(p.ax[i]), fabs(p.ay[i])));
+  }
+  printf("\n    hydrostatic: |a_z| up to %.3g g, |a_x|, |a_y| up to %.2g", worst / G, side);
+  CU_ASSERT(worst < 0.03 * G);
+  CU_ASSERT(side < 1e-9);
+  sph_particles_free(&p);
+}
+
+/* eps of the field vel with the gradient correction, at every particle. */
+static void strain_of(void (*vel)(const double x[3], double v[3]), double *eps[SPH_SYM],
+                      sph_particles *p) {
+  lattice(p, 0.1, vel);
+  sph_force_params fp = params();
+  fp.gradient_correction = 1;
+  sph_grid g;
+  sph_grid_init(&g);
+  sph_error err;
+  CU_ASSERT_FATAL(sph_grid_build(&g, p, 2.0 * fp.h * (1.0 + 1e-9), 1u << 24, &err) == 0);
+  for (int k = 0; k < SPH_SYM; k++)
+    eps[k] = malloc(p->n * sizeof *eps[k]);
+  CU_ASSERT_FATAL(sph_forces_strain_rate(p, &g, &fp, eps, &err) == 0);
+  sph_grid_free(&g);
+}
+static void shear(const double x[3], double v[3]) { v[0] = 1.5 * x[2]; }
+static void stretch(const double x[3], double v[3]) { v[2] = 0.8 * x[2]; }
+
+static void test_strain_rate(void) {
+  for (int c = 0; c < 2; c++) {
+    sph_particles p;
+    double *eps[SPH_SYM];
+    strain_of(c ? stretch : shear, eps, &p);
+    /* shear: eps_xz = 1.5, the others 0; stretch: div = 0.8, eps_zz = 2 (0.8) - (2/3) 0.8,
+     * eps_xx = eps_yy = -(2/3) 0.8 */
+    double want[SPH_SYM] = {0.0};
+    if (c)
+      want[SPH_ZZ] = 1.6 - 0.8 * 2.0 / 3.0, want[SPH_XX] = want[SPH_YY] = -0.8 * 2.0 / 3.0;
+    else
+      want[SPH_XZ] = 1.5;
+    double worst = 0.0;
+    for (size_t i = 0; i < p.n; i++)
+      if (inside(&p, i))
+        for (int k = 0; k < SPH_SYM; k++)
+          worst = fmax(worst, fabs(eps[k][i] - want[k]));
+    printf("\n    %s: largest error %.2e", c ? "stretch" : "shear", worst);
+    CU_ASSERT(worst < 1e-9);
+    for (int k = 0; k < SPH_SYM; k++)
+      free(eps[k]);
+    sph_particles_free(&p);
+  }
+}
+
+static void random_velocity(const double x[3], double v[3]) {
+  (void)x;
+  for (int d = 0; d < 3; d++)
+    v[d] = 0.5 * (2.0 * uniform() - 1.0);
+}
+
+/* A jittered block with random velocities and densities under the terms
+ * of fp; the momentum sum and the ledger's balance. */
+static void check_balances(sph_force_params fp) {
+  sph_particles p;
+  lattice(&p, 0.2, random_velocity);
+  for (size_t i = 0; i < p.n; i++)
+    p.rho[i] = RHO0 * (1.0 + 0.01 * (2.0 * uniform() - 1.0));
+  CU_ASSERT_FATAL(evaluate(&p, &fp) == 0);
+  double mom[3] = {0.0, 0.0, 0.0}, scale = 0.0, work = 0.0, heat = 0.0, wscale = 0.0;
+  for (size_t i = 0; i < p.n; i++)
+    for (int d = 0; d < 3; d++) {
+      mom[d] += p.mass[i] * p.acc[d][i];
+      scale += fabs(p.mass[i] * p.acc[d][i]);
+      work += p.mass[i] * p.vel[d][i] * p.acc[d][i];
+      wscale += fabs(p.mass[i] * p.vel[d][i] * p.acc[d][i]);
+    }
+  for (size_t i = 0; i < p.n && fp.ledger; i++)
+    heat += p.mass[i] * p.du[i];
+  CU_ASSERT(scale > 0.0);
+  for (int d = 0; d < 3; d++)
+    CU_ASSERT(fabs(mom[d]) < 1e-12 * scale);
+  if (fp.ledger) {
+    printf("\n    work %.6g, heat %.6g, sum %.3g", work, heat, work + heat);
+    CU_ASSERT(fabs(work + heat) < 1e-12 * wscale); /* the heat balances the work */
+  }
+  sph_particles_free(&p);
+}
+
+static void test_balances(void) {
+  sph_force_params fp = params();
+  fp.alpha = 0.3;
+  fp.beta = 0.1;
+  fp.viscosity = SPH_VISCOSITY_MORRIS;
+  fp.mu = 1e-2;
+  fp.xsph = 0.5;
+  fp.diffusion = SPH_DIFFUSION_MOLTENI;
+  fp.diffusion_delta = 0.1;
+  check_balances(fp);
+  fp.ledger = 1;
+  fp.xsph = 0.0;
+  fp.diffusion = SPH_DIFFUSION_NONE;
+  check_balances(fp);
+  fp.viscosity = SPH_VISCOSITY_STRESS_TENSOR; /* the 3x3 stress tensor */
+  check_balances(fp);
+  fp.riemann = 1; /* the Riemann pressure */
+  fp.riemann_limiter = 3.0;
+  fp.alpha = fp.beta = 0.0;
+  check_balances(fp);
+}
+
+/* The pass of fp on a jittered block: the rates, for comparison. */
+static void rates(sph_force_params fp, double *out) {
+  sph_particles p;
+  rng = 12345;
+  lattice(&p, 0.2, random_velocity);
+  for (size_t i = 0; i < p.n; i++)
+    p.rho[i] = RHO0 * (1.0 + 0.01 * (2.0 * uniform() - 1.0));
+  CU_ASSERT_FATAL(evaluate(&p, &fp) == 0);
+  for (size_t i = 0; i < p.n; i++) {
+    const size_t k = (size_t)p.id[i] * 7;
+    out[k] = p.drho[i];
+    for (int d = 0; d < 3; d++)
+      out[k + 1 + d] = p.acc[d][i], out[k + 4 + d] = p.xsph[d][i];
+  }
+  sph_particles_free(&p);
+}
+
+static void test_loops_agree(void) {
+  const size_t n = (size_t)NL * NL * NL * 7;
+  double *ref = calloc(n, sizeof *ref), *got = calloc(n, sizeof *got);
+  const sph_force_loop loops[4] = {SPH_LOOP_SCALAR, SPH_LOOP_LANES, SPH_LOOP_LANES_AVX,
+                                   SPH_LOOP_LANES_AVX512};
+  for (int set = 0; set < 3; set++) {
+    sph_force_params fp = params();
+    fp.alpha = 0.2;
+    fp.gz = -G;
+    if (set >= 1) fp.xsph = 0.5, fp.diffusion = SPH_DIFFUSION_ANTUONO, fp.diffusion_delta = 0.1;
+    if (set >= 2)
+      fp.viscosity = SPH_VISCOSITY_STRESS_TENSOR, fp.mu = 1e-3, fp.sps = 1, fp.sps_cs = 0.12,
+      fp.sps_ci = 0.00066, fp.sps_delta = DX, fp.gradient_correction = 1;
+    fp.loop = SPH_LOOP_LANES;
+    rates(fp, ref);
+    for (int k = 0; k < 4; k++) {
+      if (!sph_force_loop_available(loops[k])) {
+        printf("\n    (lane loop %d cannot run on this processor)", (int)loops[k]);
+        continue;
+      }
+      fp.loop = loops[k];
+      rates(fp, got);
+      if (loops[k] == SPH_LOOP_SCALAR) {
+        double worst = 0.0, mag = 0.0;
+        for (size_t q = 0; q < n; q++)
+          worst = fmax(worst, fabs(got[q] - ref[q])), mag = fmax(mag, fabs(ref[q]));
+        CU_ASSERT(worst <= 1e-11 * mag);
+      } else {
+        CU_ASSERT(memcmp(got, ref, n * sizeof *ref) == 0);
+      }
+    }
+    fp.loop = SPH_LOOP_LANES; /* the run-time loop: the same bits as the set's own */
+    fp.runtime_terms = 1;
+    rates(fp, got);
+    CU_ASSERT(memcmp(got, ref, n * sizeof *ref) == 0);
+#ifdef _OPENMP
+    fp.runtime_terms = 0;
+    omp_set_num_threads(1);
+    rates(fp, got);
+    omp_set_num_threads(2);
+    CU_ASSERT(memcmp(got, ref, n * sizeof *ref) == 0);
+#endif
+  }
+  free(ref);
+  free(got);
+}
+
+int main(void) {
+  CU_TestInfo tests[] = {
+      {"3x3 symmetric inverse and product; SPS of a shear in 3-D", test_tensors},
+      {"3-D lattice at rest: gravity alone, no density change", test_rest},
+      {"3-D continuity of a linear field along each axis", test_continuity},
+      {"3-D hydrostatic lattice: pressure balances gravity along z", test_hydrostatic},
+      {"3-D strain rate with the gradient correction: exact for linear fields", test_strain_rate},
+      {"3-D momentum sums to zero; the ledger's heat balances the work", test_balances},
+      {"3-D scalar, lane flavours, run-time loop and thread counts agree", test_loops_agree},
+      CU_TEST_INFO_NULL};
+  return sph_test_main("forces_3d", tests);
+}
