@@ -29,7 +29,11 @@
  * - the same pass in the scalar loop, the portable lanes, AVX2 and AVX-512
  *   lanes (where the processor has them): the lane loops bitwise equal,
  *   the scalar loop within round-off; the run-time loop bitwise equal to
- *   the set's own; one and two threads bitwise equal.
+ *   the set's own; one and two threads bitwise equal;
+ * - the integrators (predictor-corrector and leap-frog, with XSPH) move
+ *   along z exactly as along x: a particle's state with its x and z
+ *   components exchanged comes out exchanged, bit for bit; the CFL step
+ *   reads |v| with v_z.
  */
 #include "config.h"
 
@@ -42,6 +46,7 @@
 #include "neighbours/grid.h"
 #include "physics/turbulence.h"
 #include "solver/forces.h"
+#include "solver/integrate.h"
 #include "testutil.h"
 
 #ifdef _OPENMP
@@ -392,6 +397,49 @@ static void test_loops_agree(void) {
   free(got);
 }
 
+/* One particle per integrator stage, twice: state (a, b, c) and (c, b, a). */
+static void test_integrators(void) {
+  const sph_eos eos = sph_eos_tait(RHO0, C0);
+  for (int scheme = 0; scheme < 3; scheme++) {
+    sph_particles p;
+    sph_error err;
+    CU_ASSERT_FATAL(sph_particles_init(&p, 4, &err) == 0);
+    const double x[2][3] = {{0.1, 0.2, 0.7}, {0.7, 0.2, 0.1}};
+    const double v[2][3] = {{1.5, -0.25, 3.0}, {3.0, -0.25, 1.5}};
+    const double a[2][3] = {{0.3, 0.0, -9.81}, {-9.81, 0.0, 0.3}};
+    const double xs[2][3] = {{0.01, 0.02, -0.03}, {-0.03, 0.02, 0.01}};
+    for (int k = 0; k < 2; k++) {
+      sph_particles_add_at(&p, x[k], v[k], 1001.0, 1.0, 0.013, SPH_KIND_FLUID, &err);
+      for (int d = 0; d < 3; d++)
+        p.acc[d][k] = a[k][d], p.xsph[d][k] = xs[k][d];
+      p.drho[k] = 0.5;
+    }
+    const size_t cost[3] = {0, 1, 2};
+    for (int step = 0; step < 3; step++)
+      if (scheme == 0) {
+        sph_pc_half(&p, 1e-3, 1, &eos, cost);
+        sph_pc_finish(&p, 1e-3, 1, &eos, cost);
+      } else {
+        sph_leapfrog_step(&p, 1e-3, step == 0, scheme == 2, &eos, cost);
+      }
+    for (int d = 0; d < 3; d++) {
+      CU_ASSERT_EQUAL(p.pos[d][0], p.pos[2 - d][1]);
+      CU_ASSERT_EQUAL(p.vel[d][0], p.vel[2 - d][1]);
+    }
+    CU_ASSERT(p.z[0] != x[0][2] && p.vz[0] != v[0][2]); /* z moved */
+    CU_ASSERT_EQUAL(p.rho[0], p.rho[1]);
+    sph_particles_free(&p);
+  }
+  /* the CFL step: c + |v| with |v| = 5 from (0, 0, 5) */
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 4, &err) == 0);
+  const double x[3] = {0.0, 0.0, 0.0}, v[3] = {0.0, 0.0, 5.0};
+  sph_particles_add_at(&p, x, v, RHO0, 1.0, 0.01, SPH_KIND_FLUID, &err);
+  CU_ASSERT_DOUBLE_EQUAL(sph_dt_cfl(&p, &eos, 0.01, 0.3), 0.3 * 0.01 / (C0 + 5.0), 1e-15);
+  sph_particles_free(&p);
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
       {"3x3 symmetric inverse and product; SPS of a shear in 3-D", test_tensors},
@@ -401,6 +449,7 @@ int main(void) {
       {"3-D strain rate with the gradient correction: exact for linear fields", test_strain_rate},
       {"3-D momentum sums to zero; the ledger's heat balances the work", test_balances},
       {"3-D scalar, lane flavours, run-time loop and thread counts agree", test_loops_agree},
+      {"3-D integrators move along z as along x, bit for bit", test_integrators},
       CU_TEST_INFO_NULL};
   return sph_test_main("forces_3d", tests);
 }

@@ -33,6 +33,7 @@ static inline __attribute__((always_inline)) void stage(sph_particles *p, double
         p->y0[i] = p->y[i];
         p->vx0[i] = p->vx[i];
         p->vy0[i] = p->vy[i];
+        SPH_IF3(p->z0[i] = p->z[i]; p->vz0[i] = p->vz[i];)
         p->rho0[i] = p->rho[i];
         if (heat) p->u0[i] = p->u[i];
       }
@@ -47,22 +48,27 @@ static inline __attribute__((always_inline)) void stage(sph_particles *p, double
       p->p[i] = sph_eos_pressure(eos, rho);
       if (p->kind[i] != SPH_KIND_FLUID) continue;
       double ux = p->vx[i], uy = p->vy[i]; /* dr/dt uses the velocity of the evaluated state */
+      SPH_IF3(double uz = p->vz[i];)
       if (xsph) {
         ux += p->xsx[i];
         uy += p->xsy[i];
+        SPH_IF3(uz += p->xsz[i];)
       }
       double x = p->x0[i] + hdt * ux, y = p->y0[i] + hdt * uy;
       double vx = p->vx0[i] + hdt * p->ax[i], vy = p->vy0[i] + hdt * p->ay[i];
+      SPH_IF3(double z = p->z0[i] + hdt * uz, vz = p->vz0[i] + hdt * p->az[i];)
       if (finish) {
         x = 2.0 * x - p->x0[i];
         y = 2.0 * y - p->y0[i];
         vx = 2.0 * vx - p->vx0[i];
         vy = 2.0 * vy - p->vy0[i];
+        SPH_IF3(z = 2.0 * z - p->z0[i]; vz = 2.0 * vz - p->vz0[i];)
       }
       p->x[i] = x;
       p->y[i] = y;
       p->vx[i] = vx;
       p->vy[i] = vy;
+      SPH_IF3(p->z[i] = z; p->vz[i] = vz;)
     }
   }
 }
@@ -88,6 +94,7 @@ void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const s
       p->y0[i] = p->y[i];
       p->vx0[i] = p->vx[i];
       p->vy0[i] = p->vy[i];
+      SPH_IF3(p->z0[i] = p->z[i]; p->vz0[i] = p->vz[i];)
       p->rho0[i] = p->rho[i];
       if (p->flags[i] & SPH_FLAG_MDBC) {
         /* an mdbc wall's density is the fluid's, extrapolated at every pass
@@ -111,9 +118,11 @@ void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const s
       const double vxh = (first ? p->vx[i] : p->vxh[i]) + kick * p->ax[i];
       const double vyh = (first ? p->vy[i] : p->vyh[i]) + kick * p->ay[i];
       double ux = vxh, uy = vyh;
+      SPH_IF3(const double vzh = (first ? p->vz[i] : p->vzh[i]) + kick * p->az[i]; double uz = vzh;)
       if (xsph) {
         ux += p->xsx[i];
         uy += p->xsy[i];
+        SPH_IF3(uz += p->xsz[i];)
       }
       p->x[i] += dt * ux;
       p->y[i] += dt * uy;
@@ -121,6 +130,7 @@ void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const s
       p->vyh[i] = vyh;
       p->vx[i] = vxh + hdt * p->ax[i];
       p->vy[i] = vyh + hdt * p->ay[i];
+      SPH_IF3(p->z[i] += dt * uz; p->vzh[i] = vzh; p->vz[i] = vzh + hdt * p->az[i];)
     }
   }
 }
@@ -136,8 +146,12 @@ double sph_dt_cfl(const sph_particles *p, const sph_eos *eos, double h, double f
   double vmax = 0.0;
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : vmax)
   for (long i = 0; i < n; i++) {
-    const double v =
-        sph_eos_sound_speed(eos, p->rho[i]) + sqrt(p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);
+#if SPH_DIM == 2
+    const double v2 = p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i];
+#else
+    const double v2 = p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i] + p->vz[i] * p->vz[i];
+#endif
+    const double v = sph_eos_sound_speed(eos, p->rho[i]) + sqrt(v2);
     if (v > vmax) vmax = v;
   }
   return factor * h / vmax;

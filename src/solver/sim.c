@@ -49,12 +49,16 @@ static double h_max(const sph_sim *s) {
   return h;
 }
 
-/* Paper B §2.1: h = h0 (rho0/rho)^(1/d), d = 2, at every particle. */
+/* Paper B §2.1: h = h0 (rho0/rho)^(1/d) at every particle (d = SPH_DIM). */
 static void update_h(sph_sim *s) {
   if (!s->c->variable_h) return;
   const double h0 = s->c->h, rho0 = s->c->rho0;
   for (size_t i = 0; i < s->p.n; i++)
+#if SPH_DIM == 2
     s->p.h[i] = h0 * sqrt(rho0 / s->p.rho[i]);
+#else
+    s->p.h[i] = h0 * cbrt(rho0 / s->p.rho[i]);
+#endif
 }
 
 /* Paper A §7: flag the free surface (circles of radius factor * h_i), then
