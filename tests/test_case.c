@@ -88,7 +88,7 @@ static const char FULL[] = "# a complete case\n"                           /* 1 
                            "  snapshots: false\n";                         /* 49 */
 
 static const char *const TOP_KEYS =
-    "name, description, physics, numerics, time, geometry, free_surface, output";
+    "name, description, dimension, physics, numerics, time, geometry, free_surface, output";
 static const char *const PHYSICS_KEYS =
     "rho0, gravity, body_force, sound_speed, artificial_viscosity, viscosity, turbulence, "
     "repulsion, xsph, riemann";

@@ -101,10 +101,35 @@ int sph_case_has_boundary(const sph_case *c, sph_boundary_kind b) {
   return has;
 }
 
+/* |g|, its components' squares added in axis order. */
+static double gravity_norm(const sph_case *c) {
+  double g2 = c->gravity[0] * c->gravity[0] + c->gravity[1] * c->gravity[1];
+#if SPH_DIM == 3
+  g2 += c->gravity[2] * c->gravity[2];
+#endif
+  return sqrt(g2);
+}
+
+/* A block's bottom and top along the vertical (y; z in 3-D). */
+static double block_bottom(const sph_fluid_block *f) {
+#if SPH_DIM == 2
+  return f->y0;
+#else
+  return f->z0;
+#endif
+}
+static double block_top(const sph_fluid_block *f) {
+#if SPH_DIM == 2
+  return f->y1;
+#else
+  return f->z1;
+#endif
+}
+
 /* ---- the schema ----------------------------------------------------------- */
 
-static const char *const top_keys[] = {"name",     "description",  "physics", "numerics", "time",
-                                       "geometry", "free_surface", "output",  NULL};
+static const char *const top_keys[] = {"name", "description", "dimension",    "physics", "numerics",
+                                       "time", "geometry",    "free_surface", "output",  NULL};
 static const char *const fs_keys[] = {"radius_factor", "h_factor", NULL};
 static const char *const laminar_keys[] = {"model", "mu", "gradient_correction", NULL};
 static const char *const physics_keys[] = {
@@ -133,9 +158,17 @@ static const char *const shifting_keys[] = {"coefficient", NULL};
 static const char *const time_keys[] = {"end", "output_interval", "output_times", "stop", NULL};
 static const char *const geometry_keys[] = {"tank", "fluid", "walls", "periodic_x", "domain", NULL};
 static const char *const tank_keys[] = {
-    "x", "y", "layers", "boundary", "stagger", "extrapolated_velocity", "free_slip", NULL};
+    "x", "y", "layers", "boundary", "stagger", "extrapolated_velocity", "free_slip",
+#if SPH_DIM == 3
+    "z",
+#endif
+    NULL};
 static const char *const fluid_keys[] = {"x",       "y",      "velocity", "hydrostatic",
-                                         "surface", "jitter", "seed",     NULL};
+                                         "surface", "jitter", "seed",
+#if SPH_DIM == 3
+                                         "z",
+#endif
+                                         NULL};
 static const char *const wall_keys[] = {
     "from",      "to", "layers", "boundary", "motion", "stagger", "extrapolated_velocity",
     "free_slip", NULL};
@@ -146,7 +179,11 @@ const char *const sph_case_motion_names[] = {"none", "translate", "piston", "fla
 static const char *const turbulence_keys[] = {"model", "cs", "ci", NULL};
 static const char *const turbulence_names[] = {"none", "sps", NULL};
 const char *const sph_case_h_names[] = {"constant", "variable", NULL};
-static const char *const domain_keys[] = {"x", "y", NULL};
+static const char *const domain_keys[] = {"x", "y",
+#if SPH_DIM == 3
+                                          "z",
+#endif
+                                          NULL};
 static const char *const output_keys[] = {"snapshots", "free_surface",   "energy", "gauges",
                                           "probes",    "probe_interval", NULL};
 static const char *const probe_keys[] = {"name",     "kind",  "at",       "x",
@@ -239,8 +276,9 @@ static int read_scheme(const ctx *x, const node *root, sph_case *c) {
 
 static void set_defaults(sph_case *c) {
   c->rho0 = 1000.0;
-  c->gravity[0] = 0.0;
-  c->gravity[1] = -9.81;
+  for (int d = 0; d < SPH_DIM; d++)
+    c->gravity[d] = 0.0;
+  c->gravity[SPH_DIM - 1] = -9.81; /* the last axis is up */
   c->alpha = 0.0;
   c->beta = 0.0;
   c->eta = 0.1;
@@ -318,7 +356,7 @@ static int read_sound_speed(const ctx *x, const node *m, sph_case *c) {
   if (has_s) {
     c->sound_speed = factor * speed;
   } else {
-    double g = sqrt(c->gravity[0] * c->gravity[0] + c->gravity[1] * c->gravity[1]);
+    double g = gravity_norm(c);
     if (g == 0)
       return sph_yaml_fail_at(&x->t, sph_yaml_find(t, "height")->val, "physics.sound_speed.height",
                               "c0 = factor*sqrt(2|g|*height) needs a non-zero physics.gravity");
@@ -344,7 +382,7 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
   const char *p = "physics";
   const node *v;
   if (sph_yaml_get_number(&x->t, m, p, "rho0", 0, &SPH_YAML_POS, &c->rho0) < 0) return -1;
-  int has_g = sph_yaml_get_pair(&x->t, m, p, "gravity", 0, 0, c->gravity);
+  int has_g = sph_yaml_get_vector(&x->t, m, p, "gravity", 0, SPH_DIM, c->gravity);
   if (has_g < 0) return -1;
   const node *bf;
   char kp[SPH_YAML_KEYLEN];
@@ -352,7 +390,7 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
     if (has_g)
       return sph_yaml_fail_at(&x->t, bf, kp,
                               "give either physics.gravity or physics.body_force, not both");
-    if (sph_yaml_read_pair(&x->t, bf, kp, 0, c->gravity)) return -1;
+    if (sph_yaml_read_vector(&x->t, bf, kp, SPH_DIM, c->gravity)) return -1;
   }
   if (read_sound_speed(x, m, c)) return -1;
   int rc = sph_yaml_get_section(&x->t, m, p, "viscosity", 0, laminar_keys, &v);
@@ -617,8 +655,23 @@ static int read_tank(const ctx *x, const node *m, sph_case *c) {
   if (sph_yaml_get_pair(&x->t, t, p, "y", 1, 'y', v) < 0) return -1;
   c->tank.y0 = v[0];
   c->tank.y1 = v[1];
+#if SPH_DIM == 3
+  if (sph_yaml_get_pair(&x->t, t, p, "z", 1, 'z', v) < 0) return -1;
+  c->tank.z0 = v[0];
+  c->tank.z1 = v[1];
+#endif
   if (sph_yaml_get_choice(&x->t, t, p, "boundary", boundary_names, &b) < 0) return -1;
   c->tank.boundary = (sph_boundary_kind)b;
+#if SPH_DIM == 3 /* the box's particles: dynamic or fixed layers only so far */
+  if (b != SPH_BOUNDARY_DYNAMIC && b != SPH_BOUNDARY_FIXED_LAYERS) {
+    const sph_yaml_entry *e = sph_yaml_find(t, "boundary");
+    return sph_yaml_fail_at(&x->t, e ? e->val : t, e ? "geometry.tank.boundary" : p,
+                            "expected boundary 'dynamic' or 'fixed_layers' in 3-D, got '%s' "
+                            "(%s): the other wall models are 2-D only so far",
+                            sph_boundary_name(c->tank.boundary),
+                            e ? "given" : "numerics.scheme's default");
+  }
+#endif
   c->tank.layers = default_layers(c->tank.boundary);
   if (sph_yaml_get_int(&x->t, t, p, "layers", 1, 8, &c->tank.layers) < 0) return -1;
   c->tank.stagger = default_stagger(c->tank.boundary);
@@ -640,6 +693,19 @@ static int check_block(const ctx *x, const node *m, const char *p, const sph_cas
         "expected a positive number smaller than the width (%g) and height (%g) of "
         "%s, got %s",
         w, h, p, sph_yaml_got(x->dx_node, b, sizeof b));
+#if SPH_DIM == 3
+  if (!(c->dx < f->z1 - f->z0))
+    return sph_yaml_fail_at(&x->t, x->dx_node, "numerics.dx",
+                            "expected a positive number smaller than the z extent (%g) of %s, "
+                            "got %s",
+                            f->z1 - f->z0, p, sph_yaml_got(x->dx_node, b, sizeof b));
+  if (k->present && (f->z0 < k->z0 || f->z1 > k->z1)) {
+    sph_yaml_join(kp, sizeof kp, p, "z");
+    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "z")->val, kp,
+                            "expected a range inside the tank's inner box [%g, %g], got [%g, %g]",
+                            k->z0, k->z1, f->z0, f->z1);
+  }
+#endif
   if (k->present && (f->x0 < k->x0 || f->x1 > k->x1)) {
     sph_yaml_join(kp, sizeof kp, p, "x");
     return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "x")->val, kp,
@@ -669,15 +735,22 @@ static int read_block(const ctx *x, const node *m, const char *p, const sph_case
   if (sph_yaml_get_pair(&x->t, m, p, "y", 1, 'y', v) < 0) return -1;
   f->y0 = v[0];
   f->y1 = v[1];
-  v[0] = v[1] = 0;
-  if (sph_yaml_get_pair(&x->t, m, p, "velocity", 0, 0, v) < 0) return -1;
-  f->vx = v[0];
-  f->vy = v[1];
+#if SPH_DIM == 3
+  if (sph_yaml_get_pair(&x->t, m, p, "z", 1, 'z', v) < 0) return -1;
+  f->z0 = v[0];
+  f->z1 = v[1];
+#endif
+  double vel[SPH_DIM] = {0.0};
+  if (sph_yaml_get_vector(&x->t, m, p, "velocity", 0, SPH_DIM, vel) < 0) return -1;
+  f->vx = vel[0];
+  f->vy = vel[1];
+  SPH_IF3(f->vz = vel[2];)
   f->hydrostatic = 1;
   if (sph_yaml_get_bool(&x->t, m, p, "hydrostatic", &f->hydrostatic) < 0) return -1;
-  f->surface = f->y1;
-  sph_yaml_bprintf(what, sizeof what, "a number >= the block's y1 (%g)", f->y1);
-  range surface = {f->y1, 0, '[', 0, what};
+  f->surface = block_top(f);
+  sph_yaml_bprintf(what, sizeof what, "a number >= the block's %s (%g)", SPH_DIM == 2 ? "y1" : "z1",
+                   block_top(f));
+  range surface = {block_top(f), 0, '[', 0, what};
   if (sph_yaml_get_number(&x->t, m, p, "surface", 0, &surface, &f->surface) < 0) return -1;
   static const range jitter = {0, 0.5, '[', ')', NULL};
   const int has_jitter = sph_yaml_get_number(&x->t, m, p, "jitter", 0, &jitter, &f->jitter);
@@ -714,6 +787,9 @@ static int read_fluid(const ctx *x, const node *m, sph_case *c) {
       const sph_fluid_block *o = &c->fluid[k];
       const double w = fmin(a->x1, o->x1) - fmax(a->x0, o->x0);
       const double hh = fmin(a->y1, o->y1) - fmax(a->y0, o->y0);
+#if SPH_DIM == 3
+      if (!(fmin(a->z1, o->z1) - fmax(a->z0, o->z0) > 1e-9 * c->dx)) continue;
+#endif
       if (w > 1e-9 * c->dx && hh > 1e-9 * c->dx)
         return sph_yaml_fail_at(
             &x->t, t->items[i], kp,
@@ -886,6 +962,9 @@ static int read_geometry(const ctx *x, const node *m, sph_case *c) {
   if (rc <= 0) return rc;
   c->domain_set = 1;
   if (sph_yaml_get_pair(&x->t, d, "geometry.domain", "x", 1, 'x', &c->domain[0]) < 0) return -1;
+#if SPH_DIM == 3
+  if (sph_yaml_get_pair(&x->t, d, "geometry.domain", "z", 1, 'z', &c->domain[4]) < 0) return -1;
+#endif
   return sph_yaml_get_pair(&x->t, d, "geometry.domain", "y", 1, 'y', &c->domain[2]) < 0 ? -1 : 0;
 }
 
@@ -898,12 +977,22 @@ static void estimate_particles(sph_case *c) {
   double fluid = 0.0, wall = 0.0;
   for (size_t b = 0; b < c->n_fluid; b++) {
     const sph_fluid_block *f = &c->fluid[b];
-    fluid += floor((f->x1 - f->x0) / dx + 1e-9) * floor((f->y1 - f->y0) / dx + 1e-9);
+    fluid += floor((f->x1 - f->x0) / dx + 1e-9) * floor((f->y1 - f->y0) / dx + 1e-9)
+#if SPH_DIM == 3
+             * floor((f->z1 - f->z0) / dx + 1e-9)
+#endif
+        ;
   }
   if (c->tank.present) {
     const sph_tank *k = &c->tank;
+#if SPH_DIM == 2
     const double per_layer = (k->x1 - k->x0 + 2.0 * (k->y1 - k->y0)) / dx + 8.0 * k->layers;
     wall += k->layers * per_layer;
+#else /* the box grown by the layers sideways and below, less the inside */
+    const double L = k->layers, nx = (k->x1 - k->x0) / dx + 1.0, ny = (k->y1 - k->y0) / dx + 1.0;
+    const double nz = (k->z1 - k->z0) / dx + 1.0;
+    wall += (nx + 2.0 * L) * (ny + 2.0 * L) * (nz + L) - nx * ny * nz;
+#endif
   }
   for (size_t i = 0; i < c->n_walls; i++) {
     const sph_wall_segment *w = &c->walls[i];
@@ -950,27 +1039,36 @@ int sph_case_check_size(const sph_case *c, double max, sph_error *err) {
  * takes (domain.h) around the box of the tank's inner faces, the walls and
  * the fluid blocks instead of the particles'; the probes and gauges must
  * lie in it (issue 39, D6). */
-static void reach_box(const sph_case *c, double box[4]) {
-  double bb[4] = {INFINITY, -INFINITY, INFINITY, -INFINITY};
-#define GROW(xa, xb, ya, yb)                                                                       \
+static void reach_box(const sph_case *c, double box[2 * SPH_DIM]) {
+  double bb[2 * SPH_DIM];
+  for (int k = 0; k < 2 * SPH_DIM; k += 2)
+    bb[k] = INFINITY, bb[k + 1] = -INFINITY;
+#define GROW(k, a, b)                                                                              \
   do {                                                                                             \
-    bb[0] = fmin(bb[0], fmin(xa, xb));                                                             \
-    bb[1] = fmax(bb[1], fmax(xa, xb));                                                             \
-    bb[2] = fmin(bb[2], fmin(ya, yb));                                                             \
-    bb[3] = fmax(bb[3], fmax(ya, yb));                                                             \
+    bb[k] = fmin(bb[k], fmin(a, b));                                                               \
+    bb[k + 1] = fmax(bb[k + 1], fmax(a, b));                                                       \
   } while (0)
-  if (c->tank.present) GROW(c->tank.x0, c->tank.x1, c->tank.y0, c->tank.y1);
-  for (size_t i = 0; i < c->n_walls; i++)
-    GROW(c->walls[i].x0, c->walls[i].x1, c->walls[i].y0, c->walls[i].y1);
-  for (size_t i = 0; i < c->n_fluid; i++)
-    GROW(c->fluid[i].x0, c->fluid[i].x1, c->fluid[i].y0, c->fluid[i].y1);
+  if (c->tank.present) {
+    GROW(0, c->tank.x0, c->tank.x1);
+    GROW(2, c->tank.y0, c->tank.y1);
+    SPH_IF3(GROW(4, c->tank.z0, c->tank.z1);)
+  }
+  for (size_t i = 0; i < c->n_walls; i++) {
+    GROW(0, c->walls[i].x0, c->walls[i].x1);
+    GROW(2, c->walls[i].y0, c->walls[i].y1);
+  }
+  for (size_t i = 0; i < c->n_fluid; i++) {
+    GROW(0, c->fluid[i].x0, c->fluid[i].x1);
+    GROW(2, c->fluid[i].y0, c->fluid[i].y1);
+    SPH_IF3(GROW(4, c->fluid[i].z0, c->fluid[i].z1);)
+  }
 #undef GROW
   sph_case_domain_around(c, bb, box);
 }
 
 /* A probe's or gauge's place outside box (the node t at key k): the error. */
 static int outside_reach(const ctx *x, const node *t, const char *k, const char *what,
-                         const double box[4]) {
+                         const double box[2 * SPH_DIM]) {
   return sph_yaml_fail_at(&x->t, t, k,
                           "%s is outside the domain, x [%g, %g] y [%g, %g] (geometry.domain, "
                           "or its default from the geometry): the water cannot reach it",
@@ -978,7 +1076,7 @@ static int outside_reach(const ctx *x, const node *t, const char *k, const char 
 }
 
 /* One entry of output.probes (p its key, output.probes[i]), inside box. */
-static int read_probe(const ctx *x, const node *m, const char *p, const double box[4],
+static int read_probe(const ctx *x, const node *m, const char *p, const double box[2 * SPH_DIM],
                       sph_probe *pr) {
   const node *t;
   char kp[SPH_YAML_KEYLEN], b[96];
@@ -1049,7 +1147,7 @@ static int read_probes(const ctx *x, const node *s, sph_case *c) {
     return sph_yaml_fail_at(&x->t, t, kp, "expected at most 1000 probes, got %zu", t->n);
   if (!(c->probes = calloc(t->n, sizeof *c->probes))) return sph_yaml_oom(&x->t);
   c->n_probes = t->n;
-  double box[4];
+  double box[2 * SPH_DIM];
   reach_box(c, box);
   for (size_t i = 0; i < t->n; i++) {
     sph_yaml_bprintf(kp, sizeof kp, "output.probes[%zu]", i);
@@ -1073,9 +1171,62 @@ static int read_probes(const ctx *x, const node *s, sph_case *c) {
 }
 
 /* Reads every section of the (overridden) tree into c, in schema order. */
+/* The keys a 3-D case may not use yet (doc/dimensions.md): section, key
+ * (NULL: the whole section). */
+static const char *const only_2d[][2] = {{"geometry", "walls"},         {"output", "gauges"},
+                                         {"output", "probes"},          {"output", "free_surface"},
+                                         {"free_surface", NULL},        {"numerics", "shifting"},
+                                         {"numerics", "density_filter"}};
+
+/* The case's dimension: 2 when absent; a case of the other dimension than
+ * this build's is refused (sph runs it with the build of its dimension), and
+ * in 3-D the keys of only_2d are. */
+static int read_dimension(const ctx *x, const node *root, sph_case *c) {
+  int dim = 2;
+  if (sph_yaml_get_int(&x->t, root, "", "dimension", 2, 3, &dim) < 0) return -1;
+  if (dim != SPH_DIM) {
+    const sph_yaml_entry *e = sph_yaml_find(root, "dimension");
+    return sph_yaml_fail_at(&x->t, e ? e->val : root, "dimension",
+                            "this is the %d-D library, the case is %d-D (sph runs it with the "
+                            "%d-D build)",
+                            SPH_DIM, dim, dim);
+  }
+  c->dimension = dim;
+  for (size_t k = 0; SPH_DIM == 3 && k < sizeof only_2d / sizeof only_2d[0]; k++) {
+    const sph_yaml_entry *sec = sph_yaml_find(root, only_2d[k][0]);
+    if (!sec) continue;
+    const sph_yaml_entry *e = only_2d[k][1] && sec->val->kind == SPH_YAML_MAP
+                                  ? sph_yaml_find(sec->val, only_2d[k][1])
+                                  : (only_2d[k][1] ? NULL : sec);
+    if (!e) continue;
+    char kp[SPH_YAML_KEYLEN];
+    if (only_2d[k][1])
+      sph_yaml_join(kp, sizeof kp, only_2d[k][0], only_2d[k][1]);
+    else
+      sph_yaml_join(kp, sizeof kp, "", only_2d[k][0]);
+    return sph_yaml_fail_at(&x->t, e->val, kp, "is 2-D only so far (doc/dimensions.md)");
+  }
+  const sph_yaml_entry *g = sph_yaml_find(root, "geometry");
+  const sph_yaml_entry *t =
+      g && g->val->kind == SPH_YAML_MAP ? sph_yaml_find(g->val, "tank") : NULL;
+  static const char *const tank_2d[] = {"stagger", "extrapolated_velocity", "free_slip"};
+  for (size_t k = 0; SPH_DIM == 3 && t && t->val->kind == SPH_YAML_MAP && k < 3; k++) {
+    const sph_yaml_entry *e = sph_yaml_find(t->val, tank_2d[k]);
+    if (!e) continue;
+    char kp[SPH_YAML_KEYLEN];
+    sph_yaml_join(kp, sizeof kp, "geometry.tank", tank_2d[k]);
+    return sph_yaml_fail_at(&x->t, e->val, kp,
+                            "is 2-D only so far (a 3-D tank's layers are dx apart, "
+                            "doc/dimensions.md)");
+  }
+  return 0;
+}
+
 static int read_case(ctx *x, const node *root, sph_case *c) {
   const node *s;
-  if (sph_yaml_check_keys(&x->t, root, "", top_keys) || read_name(x, root, c)) return -1;
+  if (sph_yaml_check_keys(&x->t, root, "", top_keys) || read_dimension(x, root, c) ||
+      read_name(x, root, c))
+    return -1;
   if (sph_yaml_get_string(&x->t, root, "description", 0, &c->description) < 0) return -1;
   if (c->description && strlen(c->description) > MAX_DESCRIPTION)
     return sph_yaml_fail_at(
@@ -1096,8 +1247,9 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
   if (c->repulsion == 0.0) { /* D = 5 |g| H, paper A eq. (22), H the deepest block */
     double H = 0.0;
     for (size_t i = 0; i < c->n_fluid; i++)
-      if (c->fluid[i].surface - c->fluid[i].y0 > H) H = c->fluid[i].surface - c->fluid[i].y0;
-    c->repulsion = 5.0 * sqrt(c->gravity[0] * c->gravity[0] + c->gravity[1] * c->gravity[1]) * H;
+      if (c->fluid[i].surface - block_bottom(&c->fluid[i]) > H)
+        H = c->fluid[i].surface - block_bottom(&c->fluid[i]);
+    c->repulsion = 5.0 * gravity_norm(c) * H;
   }
   if (c->shifting && c->variable_h)
     return sph_yaml_fail_at(&x->t, x->shifting_node, "numerics.shifting",
@@ -1144,7 +1296,7 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
                               sph_yaml_got(gl, b, sizeof b));
     if (!(c->gauges = calloc(gl->n, sizeof *c->gauges))) return sph_yaml_oom(&x->t);
     c->n_gauges = gl->n;
-    double box[4];
+    double box[2 * SPH_DIM];
     reach_box(c, box);
     for (size_t i = 0; i < gl->n; i++) {
       char ik[SPH_YAML_KEYLEN];
@@ -1220,9 +1372,8 @@ int sph_case_parse(const char *text, size_t len, const char *origin, const char 
   return 0;
 }
 
-int sph_case_load(const char *path, const char *const *set, size_t n_set, sph_case *c,
-                  sph_error *err) {
-  memset(c, 0, sizeof *c);
+/* The whole case file (at most MAX_CASE_BYTES) into *buf (malloc'ed) and *len. */
+static int read_case_file(const char *path, char **buf_out, size_t *len_out, sph_error *err) {
   if (!path) return sph_error_set(err, "no case file given");
   FILE *f = fopen(path, "rb");
   if (!f) return sph_error_set(err, "%s: cannot open the case file: %s", path, strerror(errno));
@@ -1261,9 +1412,39 @@ int sph_case_load(const char *path, const char *const *set, size_t n_set, sph_ca
     free(buf);
     return sph_error_set(err, "%s: cannot read the case file: %s", path, strerror(saved));
   }
+  *buf_out = buf;
+  *len_out = len;
+  return 0;
+}
+
+int sph_case_load(const char *path, const char *const *set, size_t n_set, sph_case *c,
+                  sph_error *err) {
+  memset(c, 0, sizeof *c);
+  char *buf;
+  size_t len;
+  if (read_case_file(path, &buf, &len, err)) return -1;
   int rc = sph_case_parse(buf, len, path, set, n_set, c, err);
   free(buf);
   return rc;
+}
+
+int sph_case_file_dimension(const char *path, const char *const *set, size_t n_set, int *dim,
+                            sph_error *err) {
+  *dim = 2;
+  char *buf;
+  size_t len;
+  if (read_case_file(path, &buf, &len, err)) return -1;
+  ctx x = {{path, buf, len, set, err}, NULL, NULL, NULL};
+  node *root = NULL;
+  int rc = sph_yaml_parse(&x.t, buf, len, SPH_YAML_FROM_FILE, NULL, &root);
+  if (rc == 0 && root->kind == SPH_YAML_MAP) { /* (not a mapping: 2, the full reader says why) */
+    for (size_t i = 0; rc == 0 && i < n_set; i++)
+      rc = sph_yaml_apply_set(&x.t, root, (int)i);
+    if (rc == 0 && sph_yaml_get_int(&x.t, root, "", "dimension", 2, 3, dim) < 0) rc = -1;
+  }
+  if (root) sph_yaml_free(root);
+  free(buf);
+  return rc ? -1 : 0;
 }
 
 void sph_case_free(sph_case *c) {

@@ -18,6 +18,7 @@
 #include <stddef.h>
 
 #include "analysis/probes.h"
+#include "core/dim.h"
 #include "core/error.h"
 #include "physics/models.h"
 #include "walls/wall_types.h"
@@ -57,9 +58,13 @@ const char *sph_viscosity_name(sph_viscosity_kind v);
  * at (x0 + (i + 1/2) dx, y0 + (j + 1/2) dx) inside [x0,x1] x [y0,y1]. */
 typedef struct sph_fluid_block {
   double x0, x1, y0, y1;
-  double vx, vy;   /* initial velocity, default 0 */
-  int hydrostatic; /* initial density from rho0 g (surface - y), default 1 */
-  double surface;  /* free-surface height for the hydrostatic start, default y1 */
+  double vx, vy; /* initial velocity, default 0 */
+#if SPH_DIM == 3 /* a box (z up, doc/dimensions.md) */
+  double z0, z1, vz;
+#endif
+  int hydrostatic; /* initial density from rho0 g (surface - height), default 1 */
+  double surface;  /* free-surface height for the hydrostatic start, default the block's top
+                      (y1; z1 in 3-D) */
   double jitter;   /* perturbed start: each particle moved by up to jitter*dx in x and in y
                       (uniform, seeded), in [0, 0.5); default 0 = on the lattice */
   int seed;        /* seed of the jitter, default 1 */
@@ -73,10 +78,11 @@ typedef struct sph_case {
   char *path;        /* the file it was read from */
   char *text;        /* the file's full text (stored in snapshots) */
   char *overrides;   /* the --set overrides, "k=v" joined by "\n" ("" if none) */
+  int dimension;     /* 2 or 3: SPH_DIM, the build's (a case of the other is refused) */
 
   /* physics */
-  double rho0;        /* reference density, default 1000 */
-  double gravity[2];  /* default (0, -9.81) */
+  double rho0;             /* reference density, default 1000 */
+  double gravity[SPH_DIM]; /* default (0, -9.81); (0, 0, -9.81) in 3-D */
   double sound_speed; /* c0 (m/s), resolved: value, or factor*sqrt(2|g|height), or factor*speed */
   double alpha, beta; /* artificial viscosity, paper A eq. (15)-(16); defaults 0, 0 */
   double eta;         /* eta = eta * h_ij, default 0.1 (eta^2 = 0.01 h^2) */
@@ -125,10 +131,10 @@ typedef struct sph_case {
   sph_fluid_block *fluid; /* at least one block */
   size_t n_walls;
   sph_wall_segment *walls;
-  int periodic;         /* 1 if geometry.periodic_x was given */
-  double periodic_x[2]; /* x0, x1: particles leaving one side re-enter at the other */
-  int domain_set;       /* 1 if geometry.domain was given */
-  double domain[4];     /* x0, x1, y0, y1: leaving it stops the run */
+  int periodic;               /* 1 if geometry.periodic_x was given */
+  double periodic_x[2];       /* x0, x1: particles leaving one side re-enter at the other */
+  int domain_set;             /* 1 if geometry.domain was given */
+  double domain[2 * SPH_DIM]; /* x0, x1, y0, y1 (, z0, z1): leaving it stops the run */
 
   /* free surface (paper A §7) */
   double fs_radius_factor; /* circle radius = factor * h, default 1 */
@@ -167,6 +173,13 @@ double sph_case_default_max(void);
  * numerics.dx (file:line), the count, the memory and the bound. Checked by
  * sph_sim_create before any particle is made (issue 21, D3, D4). */
 int sph_case_check_size(const sph_case *c, double max, sph_error *err);
+
+/* The case file's `dimension` (2 when absent) into *dim, after the
+ * overrides (a --set dimension=3 counts): what `sph` reads to choose the
+ * build that runs the case. Non-zero with err (file, line, key) if the file
+ * cannot be read or the value is not 2 or 3. */
+int sph_case_file_dimension(const char *path, const char *const *set, size_t n_set, int *dim,
+                            sph_error *err);
 
 /* Reads and validates a case file, applying n_set overrides of the form
  * "dotted.key=yaml-value" (e.g. "numerics.dx=0.001"). On failure returns

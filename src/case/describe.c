@@ -79,6 +79,7 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
   if (c->tank.present) {
     sb_pair(b, "geometry.tank.x", c->tank.x0, c->tank.x1);
     sb_pair(b, "geometry.tank.y", c->tank.y0, c->tank.y1);
+    SPH_IF3(sb_pair(b, "geometry.tank.z", c->tank.z0, c->tank.z1);)
     sb_add(b, "geometry.tank.layers: %d\n", c->tank.layers);
     sb_add(b, "geometry.tank.boundary: %s\n", sph_boundary_name(c->tank.boundary));
     /* written only when not the default, so that older records still match */
@@ -93,7 +94,12 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
     sph_yaml_bprintf(k, sizeof k, "geometry.fluid[%zu]", i);
     sb_add(b, "%s.x: [%.17g, %.17g]\n", k, f->x0, f->x1);
     sb_add(b, "%s.y: [%.17g, %.17g]\n", k, f->y0, f->y1);
+#if SPH_DIM == 2
     sb_add(b, "%s.velocity: [%.17g, %.17g]\n", k, f->vx, f->vy);
+#else
+    sb_add(b, "%s.z: [%.17g, %.17g]\n", k, f->z0, f->z1);
+    sb_add(b, "%s.velocity: [%.17g, %.17g, %.17g]\n", k, f->vx, f->vy, f->vz);
+#endif
     sb_add(b, "%s.hydrostatic: %s\n", k, f->hydrostatic ? "true" : "false");
     sb_add(b, "%s.surface: %.17g\n", k, f->surface);
     sb_add(b, "%s.jitter: %.17g\n", k, f->jitter);
@@ -130,6 +136,7 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
   if (c->domain_set) {
     sb_pair(b, "geometry.domain.x", c->domain[0], c->domain[1]);
     sb_pair(b, "geometry.domain.y", c->domain[2], c->domain[3]);
+    SPH_IF3(sb_pair(b, "geometry.domain.z", c->domain[4], c->domain[5]);)
   } else {
     sb_add(b, "geometry.domain: none\n");
   }
@@ -142,7 +149,13 @@ char *sph_case_describe(const sph_case *c) {
   sb_add(&b, "description: ");
   sb_quoted(&b, c->description);
   sb_add(&b, "physics.rho0: %.17g\n", c->rho0);
+#if SPH_DIM == 2
   sb_pair(&b, "physics.gravity", c->gravity[0], c->gravity[1]);
+#else /* (a 2-D case's listing has no dimension line: the records of older runs match) */
+  sb_add(&b, "dimension: 3\n");
+  sb_add(&b, "physics.gravity: [%.17g, %.17g, %.17g]\n", c->gravity[0], c->gravity[1],
+         c->gravity[2]);
+#endif
   sb_add(&b, "physics.sound_speed: %.17g\n", c->sound_speed);
   sb_add(&b, "physics.artificial_viscosity.alpha: %.17g\n", c->alpha);
   sb_add(&b, "physics.artificial_viscosity.beta: %.17g\n", c->beta);

@@ -8,23 +8,31 @@
 
 #include <string.h>
 
-void sph_case_domain_around(const sph_case *c, const double bb[4], double domain[4]) {
+void sph_case_domain_around(const sph_case *c, const double bb[2 * SPH_DIM],
+                            double domain[2 * SPH_DIM]) {
+  enum { UP = 2 * (SPH_DIM - 1) }; /* the vertical axis's lower bound */
   if (c->domain_set) {
-    memcpy(domain, c->domain, 4 * sizeof *domain);
-  } else if (c->periodic) { /* x wraps: only a runaway beyond a period is an error */
-    const double L = c->periodic_x[1] - c->periodic_x[0], hgt = bb[3] - bb[2];
+    memcpy(domain, c->domain, 2 * SPH_DIM * sizeof *domain);
+    return;
+  }
+  /* the box, widened by half its size sideways and below, and by twice
+   * its height above (splashes rise, nothing should fall far) */
+  const double w = bb[1] - bb[0], hgt = bb[UP + 1] - bb[UP];
+  double big = w > hgt ? w : hgt;
+#if SPH_DIM == 3
+  if (bb[3] - bb[2] > big) big = bb[3] - bb[2];
+#endif
+  const double m = 0.5 * big + 4.0 * c->h;
+  for (int k = 0; k < 2 * SPH_DIM; k += 2) {
+    domain[k] = bb[k] - m;
+    domain[k + 1] = bb[k + 1] + m;
+  }
+  domain[UP + 1] = bb[UP + 1] + 2.0 * hgt + m;
+  if (c->periodic) { /* x wraps: only a runaway beyond a period is an error */
+    const double L = c->periodic_x[1] - c->periodic_x[0];
     domain[0] = c->periodic_x[0] - L;
     domain[1] = c->periodic_x[1] + L;
-    domain[2] = bb[2] - hgt - 4.0 * c->h;
-    domain[3] = bb[3] + 2.0 * hgt + 4.0 * c->h;
-  } else {
-    /* the box, widened by half its size sideways and below, and by twice
-     * its height above (splashes rise, nothing should fall far) */
-    const double w = bb[1] - bb[0], hgt = bb[3] - bb[2];
-    const double m = 0.5 * (w > hgt ? w : hgt) + 4.0 * c->h;
-    domain[0] = bb[0] - m;
-    domain[1] = bb[1] + m;
-    domain[2] = bb[2] - m;
-    domain[3] = bb[3] + 2.0 * hgt + m;
+    domain[UP] = bb[UP] - hgt - 4.0 * c->h;
+    domain[UP + 1] = bb[UP + 1] + 2.0 * hgt + 4.0 * c->h;
   }
 }

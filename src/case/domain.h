@@ -11,11 +11,13 @@
 
 #include "case/case.h"
 
-/* The domain x0, x1, y0, y1 of c around the box bb (x0, x1, y0, y1):
- * geometry.domain if given; else, periodic in x, x from x0 - L to x1 + L
- * and y from the box's bottom - its height - 4h to its top + twice its
+/* The domain x0, x1, y0, y1 (, z0, z1) of c around the box bb (the same
+ * layout; the last axis is up): geometry.domain if given; else, periodic in
+ * x, x from x0 - L to x1 + L, the other horizontal axis as below, and the
+ * vertical from the box's bottom - its height - 4h to its top + twice its
  * height + 4h; else the box widened by half its largest side plus 4h on
  * every side and by a further twice its height above. */
-void sph_case_domain_around(const sph_case *c, const double bb[4], double domain[4]);
+void sph_case_domain_around(const sph_case *c, const double bb[2 * SPH_DIM],
+                            double domain[2 * SPH_DIM]);
 
 #endif

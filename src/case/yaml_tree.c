@@ -578,18 +578,24 @@ int sph_yaml_read_choice(const sph_yaml_ctx *x, const sph_yaml_node *t, const ch
                           valid);
 }
 
-/* A list of exactly two numbers; `axis` ('x', 'y') also requires v0 < v1. */
-int sph_yaml_read_pair(const sph_yaml_ctx *x, const sph_yaml_node *t, const char *kp, char axis,
-                       double out[2]) {
+int sph_yaml_read_vector(const sph_yaml_ctx *x, const sph_yaml_node *t, const char *kp, int n,
+                         double *out) {
   char b[96];
-  if (t->kind != SPH_YAML_LIST || t->n != 2)
-    return sph_yaml_fail_at(x, t, kp, "expected a list of 2 numbers, got %s",
+  if (t->kind != SPH_YAML_LIST || t->n != (size_t)n)
+    return sph_yaml_fail_at(x, t, kp, "expected a list of %d numbers, got %s", n,
                             sph_yaml_got(t, b, sizeof b));
-  for (int i = 0; i < 2; i++) {
+  for (int i = 0; i < n; i++) {
     char ik[SPH_YAML_KEYLEN];
     sph_yaml_bprintf(ik, sizeof ik, "%s[%d]", kp, i);
     if (sph_yaml_read_number(x, t->items[i], ik, &SPH_YAML_ANY, &out[i])) return -1;
   }
+  return 0;
+}
+
+/* A list of exactly two numbers; `axis` ('x', 'y', 'z') also requires v0 < v1. */
+int sph_yaml_read_pair(const sph_yaml_ctx *x, const sph_yaml_node *t, const char *kp, char axis,
+                       double out[2]) {
+  if (sph_yaml_read_vector(x, t, kp, 2, out)) return -1;
   if (axis && !(out[0] < out[1]))
     return sph_yaml_fail_at(x, t, kp, "expected [%c0, %c1] with %c0 < %c1, got [%g, %g]", axis,
                             axis, axis, axis, out[0], out[1]);
@@ -673,6 +679,15 @@ int sph_yaml_get_pair(const sph_yaml_ctx *x, const sph_yaml_node *m, const char 
   int rc = sph_yaml_lookup(x, m, path, key, required, &t, kp);
   if (rc <= 0) return rc;
   return sph_yaml_read_pair(x, t, kp, axis, out) ? -1 : 1;
+}
+
+int sph_yaml_get_vector(const sph_yaml_ctx *x, const sph_yaml_node *m, const char *path,
+                        const char *key, int required, int n, double *out) {
+  const sph_yaml_node *t;
+  char kp[SPH_YAML_KEYLEN];
+  int rc = sph_yaml_lookup(x, m, path, key, required, &t, kp);
+  if (rc <= 0) return rc;
+  return sph_yaml_read_vector(x, t, kp, n, out) ? -1 : 1;
 }
 
 /* A mapping-valued key whose own keys are all in `valid`. */

@@ -117,6 +117,9 @@ int sph_yaml_read_bool(const sph_yaml_ctx *x, const sph_yaml_node *t, const char
 int sph_yaml_read_choice(const sph_yaml_ctx *x, const sph_yaml_node *t, const char *kp,
                          const char *const *names, int *out);
 /* A list of exactly two numbers; axis ('x', 'y'; 0: none) also requires v0 < v1. */
+/* A list of exactly n numbers (n <= 8): a vector such as gravity. */
+int sph_yaml_read_vector(const sph_yaml_ctx *x, const sph_yaml_node *t, const char *kp, int n,
+                         double *out);
 int sph_yaml_read_pair(const sph_yaml_ctx *x, const sph_yaml_node *t, const char *kp, char axis,
                        double out[2]);
 
@@ -139,6 +142,8 @@ int sph_yaml_get_bool(const sph_yaml_ctx *x, const sph_yaml_node *m, const char 
                       const char *key, int *out);
 int sph_yaml_get_choice(const sph_yaml_ctx *x, const sph_yaml_node *m, const char *path,
                         const char *key, const char *const *names, int *out);
+int sph_yaml_get_vector(const sph_yaml_ctx *x, const sph_yaml_node *m, const char *path,
+                        const char *key, int required, int n, double *out);
 int sph_yaml_get_pair(const sph_yaml_ctx *x, const sph_yaml_node *m, const char *path,
                       const char *key, int required, char axis, double out[2]);
 /* A mapping-valued key whose own keys are all in valid. */

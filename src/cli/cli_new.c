@@ -29,6 +29,8 @@ static const char *const TEMPLATE =
     "# default and range (doc/case-files.md says more about each). Run it with\n"
     "#   sph run NAME.yaml          and render it with   sph-render out/NAME\n"
     "\n"
+    "dimension: 2                 # 2 or 3 (default 2); 3-D cases: doc/case-files.md\n"
+    "\n"
     "physics:\n"
     "  rho0: 1000                 # kg/m^3, > 0 (default 1000)\n"
     "  gravity: [0, -9.81]        # m/s^2 (default [0, -9.81])\n"

@@ -495,6 +495,11 @@ static int write_file(writer *w, const char *tmp, const sph_snapshot_meta *meta,
 
 int sph_snapshot_write(const char *path, const sph_snapshot_meta *meta, const sph_particles *p,
                        sph_error *err) {
+#if SPH_DIM == 3 /* (the fields, vectors and XDMF geometry are the 2-D ones) */
+  (void)meta, (void)p;
+  return sph_error_set(err, "%s: 3-D snapshots are not written yet (doc/dimensions.md)",
+                       path ? path : "snapshot");
+#endif
   if (!path || !*path) return sph_error_set(err, "snapshot: empty file name");
   if (!p) return sph_error_set(err, "%s: no particles to write", path);
   if (!meta || !meta->case_name)
@@ -890,6 +895,10 @@ static int read_store(const sph_snapshot *s, sph_particles *p, sph_error *err) {
 }
 
 int sph_snapshot_read_particles(const sph_snapshot *s, sph_particles *p, sph_error *err) {
+#if SPH_DIM == 3
+  memset(p, 0, sizeof *p);
+  return sph_error_set(err, "%s: 3-D snapshots are not read yet (doc/dimensions.md)", s->path);
+#endif
   if (sph_particles_init(p, s->count, err)) return -1;
   p->n = s->count;
   h5_quiet q;

@@ -64,7 +64,7 @@ typedef struct sph_snapshot_meta {
 typedef struct sph_snapshot_restart {
   int64_t output_index;
   int64_t first_step;
-  double ledger[4];
+  double ledger[2 + SPH_DIM];
   int has_diffusion; /* write ledger_diffusion */
   double ledger_diffusion;
   int has_shifting; /* write ledger_shifting */
@@ -128,7 +128,7 @@ int sph_snapshot_read_particles(const sph_snapshot *s, sph_particles *p, sph_err
 typedef struct sph_snapshot_restart_data {
   int64_t output_index;
   int64_t first_step;
-  double ledger[4];
+  double ledger[2 + SPH_DIM];
   double ledger_diffusion; /* 0 when the attribute is absent */
   double ledger_shifting;  /* 0 when the attribute is absent */
   size_t n_levels;

@@ -12,26 +12,28 @@
 #include <math.h>
 
 double sph_diag_front(const sph_particles *p, double floor_y, double band) {
-  double front = -INFINITY; /* a maximum: exact in any order */
+  double front = -INFINITY;               /* a maximum: exact in any order */
+  const double *up = p->pos[SPH_DIM - 1]; /* the vertical: y (z in 3-D) */
   const long n = (long)p->n;
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : front)
   for (long i = 0; i < n; i++)
-    if (p->kind[i] == SPH_KIND_FLUID && p->y[i] < floor_y + band && p->x[i] > front)
-      front = p->x[i];
+    if (p->kind[i] == SPH_KIND_FLUID && up[i] < floor_y + band && p->x[i] > front) front = p->x[i];
   return front;
 }
 
 double sph_diag_surface_at(const sph_particles *p, double x, double half, double dx) {
   double top = -INFINITY;
+  const double *up = p->pos[SPH_DIM - 1];
   for (size_t i = 0; i < p->n; i++)
-    if (p->kind[i] == SPH_KIND_FLUID && fabs(p->x[i] - x) < half && p->y[i] > top) top = p->y[i];
+    if (p->kind[i] == SPH_KIND_FLUID && fabs(p->x[i] - x) < half && up[i] > top) top = up[i];
   return top + 0.5 * dx;
 }
 
-void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[2],
+void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[SPH_DIM],
                       sph_diag_row *row) {
   size_t n = 0;
   double mass = 0.0, mx = 0.0, my = 0.0, ke = 0.0, pe = 0.0;
+  SPH_IF3(double mz = 0.0;)
   for (size_t i = 0; i < p->n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     const double m = p->mass[i];
@@ -39,9 +41,16 @@ void sph_diag_compute(const sph_particles *p, double floor_y, double band, const
     mass += m;
     mx += m * p->vx[i];
     my += m * p->vy[i];
+#if SPH_DIM == 2
     ke += 0.5 * m * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);
     pe -= m * (g[0] * p->x[i] + g[1] * (p->y[i] - floor_y));
+#else /* the floor along z, the vertical */
+    mz += m * p->vz[i];
+    ke += 0.5 * m * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i] + p->vz[i] * p->vz[i]);
+    pe -= m * (g[0] * p->x[i] + g[1] * p->y[i] + g[2] * (p->z[i] - floor_y));
+#endif
   }
+  SPH_IF3(row->momentum_z = mz;)
   row->n_fluid = n;
   row->front_x = sph_diag_front(p, floor_y, band);
   row->mass = mass;
@@ -58,19 +67,37 @@ void sph_diag_compute(const sph_particles *p, double floor_y, double band, const
 
 int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion, int repulsion,
                           int shifting) {
-  static const char *const base[] = {"time",    "step",      "dt",         "n_fluid",
-                                     "front_x", "mass",      "momentum_x", "momentum_y",
-                                     "kinetic", "potential", NULL};
+  static const char *const base[] = {
+    "time",
+    "step",
+    "dt",
+    "n_fluid",
+    "front_x",
+    "mass",
+    "momentum_x",
+    "momentum_y",
+#if SPH_DIM == 3
+    "momentum_z",
+#endif
+    "kinetic",
+    "potential",
+    NULL
+  };
   static const char *const surface[] = {"n_free_surface", NULL};
-  static const char *const ledger_cols[] = {"internal",
-                                            "boundary_work",
-                                            "xsph_drift",
-                                            "total_energy",
-                                            "energy_deviation",
-                                            "fluid_energy_deviation",
-                                            "momentum_residual_x",
-                                            "momentum_residual_y",
-                                            NULL};
+  static const char *const ledger_cols[] = {
+    "internal",
+    "boundary_work",
+    "xsph_drift",
+    "total_energy",
+    "energy_deviation",
+    "fluid_energy_deviation",
+    "momentum_residual_x",
+    "momentum_residual_y",
+#if SPH_DIM == 3
+    "momentum_residual_z",
+#endif
+    NULL
+  };
   static const char *const diffusion_cols[] = {"diffusion_energy", NULL};
   static const char *const repulsion_cols[] = {"wall_potential", NULL};
   static const char *const shifting_cols[] = {"shifting_drift", NULL};
@@ -84,15 +111,17 @@ int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion, 
 }
 
 int sph_diag_write_row(FILE *f, const sph_diag_row *r) {
-  if (fprintf(f, "%.17g,%ld,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", r->time, r->step, r->dt,
-              r->n_fluid, r->front_x, r->mass, r->momentum_x, r->momentum_y, r->kinetic,
-              r->potential) < 0)
+  if (fprintf(f, "%.17g,%ld,%.17g,%zu,%.17g,%.17g,%.17g,%.17g", r->time, r->step, r->dt, r->n_fluid,
+              r->front_x, r->mass, r->momentum_x, r->momentum_y) < 0)
     return 1;
+  SPH_IF3(if (fprintf(f, ",%.17g", r->momentum_z) < 0) return 1;)
+  if (fprintf(f, ",%.17g,%.17g", r->kinetic, r->potential) < 0) return 1;
   if (r->n_surface >= 0 && fprintf(f, ",%ld", r->n_surface) < 0) return 1;
   if (r->ledger && fprintf(f, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", r->internal,
                            r->boundary_work, r->xsph_drift, r->total, r->deviation,
                            r->fluid_deviation, r->momentum_residual_x, r->momentum_residual_y) < 0)
     return 1;
+  SPH_IF3(if (r->ledger && fprintf(f, ",%.17g", r->momentum_residual_z) < 0) return 1;)
   if (r->ledger && r->diffusion && fprintf(f, ",%.17g", r->diffusion_energy) < 0) return 1;
   if (r->ledger && r->repulsion && fprintf(f, ",%.17g", r->wall_potential) < 0) return 1;
   if (r->ledger && r->shifting && fprintf(f, ",%.17g", r->shifting_drift) < 0) return 1;

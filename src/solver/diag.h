@@ -40,6 +40,9 @@ typedef struct sph_diag_row {
   long step;
   size_t n_fluid;
   double front_x, mass, momentum_x, momentum_y, kinetic, potential;
+#if SPH_DIM == 3
+  double momentum_z; /* (3-D: a column after momentum_y) */
+#endif
   long n_surface; /* fluid particles on the free surface; -1: detection is off */
   /* energy ledger (columns only when the case sets output.energy) */
   int ledger;
@@ -60,6 +63,9 @@ typedef struct sph_diag_row {
    * mirror particles, body force) on the fluid; zero but for round-off and
    * time integration if momentum is conserved */
   double momentum_residual_x, momentum_residual_y;
+#if SPH_DIM == 3
+  double momentum_residual_z;
+#endif
 } sph_diag_row;
 
 /* Largest x of fluid particles with y < floor_y + band; -inf if none. */
@@ -69,7 +75,7 @@ double sph_diag_front(const sph_particles *p, double floor_y, double band);
  * read as a gauge would. -inf if no fluid particle is there. */
 double sph_diag_surface_at(const sph_particles *p, double x, double half, double dx);
 /* Fills every column but time, step and dt. */
-void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[2],
+void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[SPH_DIM],
                       sph_diag_row *row);
 /* CSV header line and rows. Return non-zero on a write error. */
 int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion, int repulsion,

@@ -11,14 +11,20 @@
 #include "core/check.h"
 
 void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_work *w,
-                      const double gravity[2], int xsph, int diffusion) {
+                      const double gravity[SPH_DIM], int xsph, int diffusion) {
   const double *g = gravity;
   double pw = 0.0, px = 0.0, fx = 0.0, fy = 0.0, pd = 0.0, phi = 0.0;
+  SPH_IF3(double fz = 0.0;)
   for (size_t i = 0; i < p->n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     const double m = p->mass[i];
     pw += m * w->wpow[i];
+#if SPH_DIM == 2
     if (xsph) px -= m * (g[0] * p->xsx[i] + g[1] * p->xsy[i]);
+#else
+    if (xsph) px -= m * (g[0] * p->xsx[i] + g[1] * p->xsy[i] + g[2] * p->xsz[i]);
+    fz += m * (w->wfz[i] + g[2]);
+#endif
     fx += m * (w->wfx[i] + g[0]);
     fy += m * (w->wfy[i] + g[1]);
     if (diffusion) pd += m * w->hot[i].prho2 * w->dd[i];
@@ -30,6 +36,7 @@ void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_wo
   lg->power_xsph = px;
   lg->force_x = fx;
   lg->force_y = fy;
+  SPH_IF3(lg->force_z = fz;)
 }
 
 void sph_ledger_advance(sph_ledger *lg, double dt) {
@@ -38,13 +45,14 @@ void sph_ledger_advance(sph_ledger *lg, double dt) {
   lg->work_diffusion += dt * lg->power_diffusion;
   lg->impulse_x += dt * lg->force_x;
   lg->impulse_y += dt * lg->force_y;
+  SPH_IF3(lg->impulse_z += dt * lg->force_z;)
 }
 
-void sph_ledger_add_shift(sph_ledger *lg, const double moved[2], const double gravity[2]) {
+void sph_ledger_add_shift(sph_ledger *lg, const double moved[2], const double gravity[SPH_DIM]) {
   lg->drift_shifting -= gravity[0] * moved[0] + gravity[1] * moved[1];
 }
 
-void sph_ledger_add_kick(sph_ledger *lg, const double kick[4], const double gravity[2]) {
+void sph_ledger_add_kick(sph_ledger *lg, const double kick[4], const double gravity[SPH_DIM]) {
   lg->work_wall -= gravity[0] * kick[0] + gravity[1] * kick[1];
   lg->impulse_x += kick[2];
   lg->impulse_y += kick[3];
@@ -76,6 +84,7 @@ void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, sph_diag_row 
   row->fluid_deviation = lg->e0_fluid != 0.0 ? (ef - lg->e0_fluid) / lg->e0_fluid : 0.0;
   row->momentum_residual_x = row->momentum_x - lg->p0x - lg->impulse_x;
   row->momentum_residual_y = row->momentum_y - lg->p0y - lg->impulse_y;
+  SPH_IF3(row->momentum_residual_z = row->momentum_z - lg->p0z - lg->impulse_z;)
   /* debug invariants: masses never change, and every total is a number */
   SPH_INVARIANT(lg->m0 == 0.0 || row->mass == lg->m0, "fluid mass %.17g, initially %.17g",
                 row->mass, lg->m0);
@@ -89,6 +98,7 @@ void sph_ledger_start(sph_ledger *lg, const sph_particles *p, const sph_diag_row
   lg->e0_fluid = row->kinetic + row->potential + sph_ledger_fluid_internal(p);
   lg->p0x = row->momentum_x;
   lg->p0y = row->momentum_y;
+  SPH_IF3(lg->p0z = row->momentum_z;)
   lg->m0 = row->mass;
 }
 
@@ -97,6 +107,7 @@ void sph_ledger_save(const sph_ledger *lg, double out[SPH_LEDGER_SAVED]) {
   out[1] = lg->drift_xsph;
   out[2] = lg->impulse_x;
   out[3] = lg->impulse_y;
+  SPH_IF3(out[4] = lg->impulse_z;)
 }
 
 void sph_ledger_restore(sph_ledger *lg, const double in[SPH_LEDGER_SAVED]) {
@@ -104,4 +115,5 @@ void sph_ledger_restore(sph_ledger *lg, const double in[SPH_LEDGER_SAVED]) {
   lg->drift_xsph = in[1];
   lg->impulse_x = in[2];
   lg->impulse_y = in[3];
+  SPH_IF3(lg->impulse_z = in[4];)
 }

@@ -45,7 +45,7 @@
 #include "solver/forces.h"
 
 /* The number of doubles a restart record keeps (sph_ledger_save). */
-#define SPH_LEDGER_SAVED 4
+#define SPH_LEDGER_SAVED (2 + SPH_DIM) /* wall work, XSPH drift, an impulse per axis */
 
 typedef struct sph_ledger {
   /* rates at the last pass */
@@ -53,21 +53,30 @@ typedef struct sph_ledger {
   int repulsion;         /* repulsive walls: wall_potential is part of the total */
   double wall_potential; /* their Lennard-Jones potential energy at the last pass */
   double force_x, force_y;
+#if SPH_DIM == 3
+  double force_z;
+#endif
   /* their time integrals */
   double work_wall, drift_xsph, work_diffusion;
   double drift_shifting; /* potential energy of particle shifting's moves (physics/shifting.h) */
   double impulse_x, impulse_y;
+#if SPH_DIM == 3
+  double impulse_z;
+#endif
   /* the initial state */
   double e0, e0_fluid; /* total, and the fluid's own kinetic + potential + internal */
   double p0x, p0y;     /* fluid momentum */
-  double m0;           /* fluid mass (exact: it never changes) */
+#if SPH_DIM == 3
+  double p0z;
+#endif
+  double m0; /* fluid mass (exact: it never changes) */
 } sph_ledger;
 
 /* The rates of the pass just run (w holds its wpow, wfx, wfy, and dd with
  * density diffusion; p its xsx, xsy when XSPH is on), over the fluid
  * particles of p. */
 void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_work *w,
-                      const double gravity[2], int xsph, int diffusion);
+                      const double gravity[SPH_DIM], int xsph, int diffusion);
 
 /* Integrates the rates over a step of dt (the rates of the pass that
  * drives the step: t^n for the leap-frog, the mid-step for the
@@ -78,13 +87,13 @@ void sph_ledger_advance(sph_ledger *lg, double dt);
  * them (walls.h, sph_walls_keep_off_mirrors: kick = sum m dx, m dy, m dvx,
  * m dvy): the lift's potential energy -g . sum m dr is the walls' work, the
  * velocity change their impulse. */
-void sph_ledger_add_kick(sph_ledger *lg, const double kick[4], const double gravity[2]);
+void sph_ledger_add_kick(sph_ledger *lg, const double kick[4], const double gravity[SPH_DIM]);
 
 /* What particle shifting did to the fluid in a step (physics/shifting.h:
  * moved = sum m dx, m dy over the fluid): a move no force pays for, whose
  * potential energy -g . moved is booked as drift_shifting (the
  * diagnostics' shifting_drift column), as the XSPH correction's is. */
-void sph_ledger_add_shift(sph_ledger *lg, const double moved[2], const double gravity[2]);
+void sph_ledger_add_shift(sph_ledger *lg, const double moved[2], const double gravity[SPH_DIM]);
 
 /* sum over fluid particles of m_i u_i */
 double sph_ledger_fluid_internal(const sph_particles *p);

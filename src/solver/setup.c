@@ -55,42 +55,58 @@ static uint64_t mix64(uint64_t z) {
   return z ^ (z >> 31);
 }
 
-/* Adds the block's seeded jitter (if any) to the lattice position (x, y) of
- * its particle (i, j); block is the block's index in the case. The draw
- * depends only on (seed, block, i, j), so it is the same on every run and
- * platform and for any creation order. */
-static void fluid_jitter(const sph_fluid_block *fb, size_t block, long i, long j, double dx,
-                         double *x, double *y) {
+/* Adds the block's seeded jitter (if any) to the lattice position x of
+ * its particle (i, j) (i, j, k in 3-D); block is the block's index in the
+ * case. The draw depends only on (seed, block, k, j, i), so it is the same on
+ * every run and platform and for any creation order. */
+static void fluid_jitter(const sph_fluid_block *fb, size_t block, long i, long j, long k, double dx,
+                         double x[SPH_DIM]) {
   if (!(fb->jitter > 0.0)) return;
   uint64_t h = mix64((uint64_t)(uint32_t)fb->seed);
   h = mix64(h ^ (uint64_t)block);
+  if (SPH_DIM == 3) h = mix64(h ^ (uint64_t)k);
   h = mix64(h ^ (uint64_t)j);
   h = mix64(h ^ (uint64_t)i);
-  const uint64_t h2 = mix64(h);
-  const double u1 = (double)(h >> 11) * 0x1.0p-53, u2 = (double)(h2 >> 11) * 0x1.0p-53;
-  *x += fb->jitter * dx * (2.0 * u1 - 1.0);
-  *y += fb->jitter * dx * (2.0 * u2 - 1.0);
+  (void)k;
+  uint64_t draw = h;
+  for (int d = 0; d < SPH_DIM; d++) {
+    x[d] += fb->jitter * dx * (2.0 * ((double)(draw >> 11) * 0x1.0p-53) - 1.0);
+    draw = mix64(draw);
+  }
 }
 
 static int add_fluid(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
+#if SPH_DIM == 2
   const double dx = c->dx, mass = c->rho0 * dx * dx;
-  const double gmag = -c->gravity[1] > 0.0 ? -c->gravity[1] : 0.0;
+#else
+  const double dx = c->dx, mass = c->rho0 * dx * dx * dx;
+#endif
+  const double gmag = -c->gravity[SPH_DIM - 1] > 0.0 ? -c->gravity[SPH_DIM - 1] : 0.0;
   for (size_t b = 0; b < c->n_fluid; b++) {
     const sph_fluid_block *fb = &c->fluid[b];
     const long nx = (long)floor((fb->x1 - fb->x0) / dx + 1e-9);
     const long ny = (long)floor((fb->y1 - fb->y0) / dx + 1e-9);
-    for (long j = 0; j < ny; j++)
-      for (long i = 0; i < nx; i++) {
-        double x = fb->x0 + ((double)i + 0.5) * dx;
-        double y = fb->y0 + ((double)j + 0.5) * dx;
-        fluid_jitter(fb, b, i, j, dx, &x, &y); /* perturbed start, if asked for */
-        double rho = c->rho0;
-        if (fb->hydrostatic) rho = sph_eos_density(&s->fp.eos, c->rho0 * gmag * (fb->surface - y));
-        if (sph_particles_add(&s->p, x, y, fb->vx, fb->vy, rho, mass, c->h, SPH_KIND_FLUID, err) <
-            0)
-          return -1;
-      }
+#if SPH_DIM == 2
+    const long nz = 1;
+    const double v[SPH_DIM] = {fb->vx, fb->vy};
+#else
+    const long nz = (long)floor((fb->z1 - fb->z0) / dx + 1e-9);
+    const double v[SPH_DIM] = {fb->vx, fb->vy, fb->vz};
+#endif
+    for (long k = 0; k < nz; k++)
+      for (long j = 0; j < ny; j++)
+        for (long i = 0; i < nx; i++) {
+          double x[SPH_DIM] = {SPH_XYZ(fb->x0 + ((double)i + 0.5) * dx,
+                                       fb->y0 + ((double)j + 0.5) * dx,
+                                       fb->z0 + ((double)k + 0.5) * dx)};
+          fluid_jitter(fb, b, i, j, k, dx, x); /* perturbed start, if asked for */
+          double rho = c->rho0;
+          if (fb->hydrostatic)
+            rho = sph_eos_density(&s->fp.eos, c->rho0 * gmag * (fb->surface - x[SPH_DIM - 1]));
+          if (sph_particles_add_at(&s->p, x, v, rho, mass, c->h, SPH_KIND_FLUID, err) < 0)
+            return -1;
+        }
   }
   return 0;
 }
@@ -103,6 +119,91 @@ static int add_fluid(sph_sim *s, sph_error *err) {
  * removed, or -1 out of memory. */
 #define SPH_WALL_CLEARANCE 0.5
 
+#if SPH_DIM == 3
+/* The 3-D form: the wall particles binned in cells of dx, each fluid
+ * particle tested against the 27 cells around its own. */
+typedef struct wall_bins {
+  double lo[3], dx, d2;
+  size_t n[3];
+  const size_t *start, *idx;
+} wall_bins;
+static long bin_of(const wall_bins *b, const double x[3], const long off[3]) {
+  size_t key = 0;
+  for (int d = 2; d >= 0; d--) {
+    const double c = floor((x[d] - b->lo[d]) / b->dx) + (double)off[d];
+    if (c < 0 || c >= (double)b->n[d]) return -1;
+    key = key * b->n[d] + (size_t)c;
+  }
+  return (long)key;
+}
+static int fluid_in_wall(const void *ctx, const sph_particles *p, size_t i) {
+  const wall_bins *b = ctx;
+  if (p->kind[i] != SPH_KIND_FLUID) return 0;
+  const double x[3] = {p->x[i], p->y[i], p->z[i]};
+  for (long o = 0; o < 27; o++) {
+    const long off[3] = {o % 3 - 1, (o / 3) % 3 - 1, o / 9 - 1};
+    const long c = bin_of(b, x, off);
+    for (size_t k = c < 0 ? 0 : b->start[c]; c >= 0 && k < b->start[c + 1]; k++) {
+      const size_t j = b->idx[k];
+      const double ex = x[0] - p->x[j], ey = x[1] - p->y[j], ez = x[2] - p->z[j];
+      if (ex * ex + ey * ey + ez * ez < b->d2) return 1;
+    }
+  }
+  return 0;
+}
+
+static long remove_fluid_in_walls(sph_sim *s) {
+  sph_particles *p = &s->p;
+  const double dx = s->c->dx, d2 = (SPH_WALL_CLEARANCE * dx) * (SPH_WALL_CLEARANCE * dx);
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  size_t nw = 0;
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_WALL) {
+      for (int d = 0; d < 3; d++)
+        lo[d] = fmin(lo[d], p->pos[d][i]), hi[d] = fmax(hi[d], p->pos[d][i]);
+      nw++;
+    }
+  if (nw == 0) return 0;
+  wall_bins b = {{lo[0], lo[1], lo[2]}, dx, d2, {0, 0, 0}, NULL, NULL};
+  double cells = 1.0;
+  for (int d = 0; d < 3; d++) {
+    const double nd = floor((hi[d] - lo[d]) / dx) + 1.0;
+    cells *= nd;
+    b.n[d] = (size_t)nd;
+  }
+  if (!(cells < 4.0 * (double)p->n + 1e6)) return 0; /* walls far apart: too sparse to bin */
+  const size_t ncell = (size_t)cells;
+  size_t *start = calloc(ncell + 1, sizeof *start), *idx = malloc(nw * sizeof *idx);
+  size_t *fill = calloc(ncell, sizeof *fill);
+  if (!start || !idx || !fill) {
+    free(start);
+    free(idx);
+    free(fill);
+    return -1;
+  }
+  const long here[3] = {0, 0, 0};
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_WALL) {
+      const double x[3] = {p->x[i], p->y[i], p->z[i]};
+      start[bin_of(&b, x, here) + 1]++;
+    }
+  for (size_t c = 0; c < ncell; c++)
+    start[c + 1] += start[c];
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_WALL) {
+      const double x[3] = {p->x[i], p->y[i], p->z[i]};
+      const size_t c = (size_t)bin_of(&b, x, here);
+      idx[start[c] + fill[c]++] = i;
+    }
+  b.start = start;
+  b.idx = idx;
+  const long removed = (long)sph_particles_drop_if(p, 0, fluid_in_wall, &b);
+  free(start);
+  free(idx);
+  free(fill);
+  return removed;
+}
+#else
 /* The wall particles binned in cells of dx from (x0, y0), nx columns (nxd x
  * nyd cells), cell c's at idx[start[c] .. start[c + 1] - 1]; and the test:
  * fluid particle i closer than sqrt(d2) to one in its cell or the eight
@@ -175,6 +276,7 @@ static long remove_fluid_in_walls(sph_sim *s) {
   free(fill);
   return removed;
 }
+#endif
 
 /* Periodic in x: wall particles are wrapped into [x0, x1), and a wall
  * particle that then coincides with an earlier one (a staggered layer that
@@ -190,7 +292,8 @@ static void dedupe_periodic(sph_sim *s) {
     int dup = 0;
     for (size_t j = 0; j < kept && !dup && p->kind[i] == SPH_KIND_WALL; j++)
       dup = p->kind[j] == SPH_KIND_WALL && fabs(p->y[j] - p->y[i]) < tol &&
-            (fabs(p->x[j] - p->x[i]) < tol || fabs(fabs(p->x[j] - p->x[i]) - L) < tol);
+            SPH_IF3(fabs(p->z[j] - p->z[i]) < tol &&)(fabs(p->x[j] - p->x[i]) < tol ||
+                                                      fabs(fabs(p->x[j] - p->x[i]) - L) < tol);
     if (dup) continue;
     if (kept != i) sph_particles_move(p, kept, i);
     if (p->live & SPH_ARRAYS_REST) p->xr[kept] = p->x[kept]; /* the rest position: wrapped */
@@ -203,60 +306,66 @@ static void dedupe_periodic(sph_sim *s) {
 /* Hydrostatic density of the wall particles beside or under a block. */
 static void init_wall_density(sph_sim *s) {
   const sph_case *c = s->c;
-  const double gmag = -c->gravity[1] > 0.0 ? -c->gravity[1] : 0.0;
+  const double gmag = -c->gravity[SPH_DIM - 1] > 0.0 ? -c->gravity[SPH_DIM - 1] : 0.0;
   const double reach = SPH_CUBIC_SUPPORT * c->h;
+  const double *up = s->p.pos[SPH_DIM - 1]; /* the vertical */
   for (size_t i = 0; i < s->p.n; i++) {
     if (s->p.kind[i] != SPH_KIND_WALL || (s->p.flags[i] & SPH_FLAG_REPULSIVE)) continue;
     double depth = 0.0;
     for (size_t b = 0; b < c->n_fluid; b++) {
       const sph_fluid_block *fb = &c->fluid[b];
       if (!fb->hydrostatic || s->p.x[i] < fb->x0 - reach || s->p.x[i] > fb->x1 + reach) continue;
-      const double d = fb->surface - s->p.y[i];
+#if SPH_DIM == 3 /* beside the block in y too */
+      if (s->p.y[i] < fb->y0 - reach || s->p.y[i] > fb->y1 + reach) continue;
+#endif
+      const double d = fb->surface - up[i];
       if (d > depth) depth = d;
     }
     if (depth > 0.0) s->p.rho[i] = sph_eos_density(&s->fp.eos, c->rho0 * gmag * depth);
   }
 }
 
-static void bounding_box(const sph_particles *p, double box[4]) {
-  box[0] = box[2] = INFINITY;
-  box[1] = box[3] = -INFINITY;
-  for (size_t i = 0; i < p->n; i++) {
-    if (p->x[i] < box[0]) box[0] = p->x[i];
-    if (p->x[i] > box[1]) box[1] = p->x[i];
-    if (p->y[i] < box[2]) box[2] = p->y[i];
-    if (p->y[i] > box[3]) box[3] = p->y[i];
+static void bounding_box(const sph_particles *p, double box[2 * SPH_DIM]) {
+  for (int d = 0; d < SPH_DIM; d++) {
+    box[2 * d] = INFINITY;
+    box[2 * d + 1] = -INFINITY;
+    for (size_t i = 0; i < p->n; i++) {
+      if (p->pos[d][i] < box[2 * d]) box[2 * d] = p->pos[d][i];
+      if (p->pos[d][i] > box[2 * d + 1]) box[2 * d + 1] = p->pos[d][i];
+    }
   }
 }
 
 static void set_boxes(sph_sim *s) {
   const sph_case *c = s->c;
-  double bb[4];
+  enum { UP = 2 * (SPH_DIM - 1) }; /* the vertical's lower bound in a box */
+  double bb[2 * SPH_DIM];
   bounding_box(&s->p, bb);
   if (c->tank.present) { /* a mirror tank has no wall particles: take its faces */
-    if (c->tank.x0 < bb[0]) bb[0] = c->tank.x0;
-    if (c->tank.x1 > bb[1]) bb[1] = c->tank.x1;
-    if (c->tank.y0 < bb[2]) bb[2] = c->tank.y0;
-    if (c->tank.y1 > bb[3]) bb[3] = c->tank.y1;
-  }
-  if (c->periodic) {
-    s->view[0] = c->periodic_x[0];
-    s->view[1] = c->periodic_x[1];
-    s->view[2] = bb[2];
-    s->view[3] = bb[3];
-  }
-  if (c->tank.present) {
+    const double face[2 * SPH_DIM] = {c->tank.x0, c->tank.x1, c->tank.y0,
+                                      c->tank.y1 SPH_IF3(, c->tank.z0, c->tank.z1)};
+    for (int k = 0; k < 2 * SPH_DIM; k += 2) {
+      if (face[k] < bb[k]) bb[k] = face[k];
+      if (face[k + 1] > bb[k + 1]) bb[k + 1] = face[k + 1];
+    }
     const double wall = 0.5 * c->dx * (double)(c->tank.layers + 1);
-    s->view[0] = c->tank.x0 - wall;
-    s->view[1] = c->tank.x1 + wall;
-    s->view[2] = c->tank.y0 - wall;
-    s->view[3] = c->tank.y1;
-    s->floor_y = c->tank.y0;
+    for (int k = 0; k < 2 * SPH_DIM; k += 2) {
+      s->view[k] = face[k] - wall;
+      s->view[k + 1] = face[k + 1] + wall;
+    }
+    s->view[UP + 1] = face[UP + 1];
+    s->floor_y = face[UP];
   } else {
     memcpy(s->view, bb, sizeof bb);
     s->floor_y = INFINITY;
-    for (size_t b = 0; b < c->n_fluid; b++)
-      if (c->fluid[b].y0 < s->floor_y) s->floor_y = c->fluid[b].y0;
+    for (size_t b = 0; b < c->n_fluid; b++) {
+#if SPH_DIM == 2
+      const double bottom = c->fluid[b].y0;
+#else
+      const double bottom = c->fluid[b].z0;
+#endif
+      if (bottom < s->floor_y) s->floor_y = bottom;
+    }
   }
   sph_case_domain_around(c, bb, s->domain);
 }
@@ -278,8 +387,8 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.xsph = c->xsph;
   s->fp.riemann = c->riemann;
   s->fp.riemann_limiter = c->riemann_limiter;
-  s->fp.gx = c->gravity[0];
-  s->fp.gy = c->gravity[1];
+  for (int d = 0; d < SPH_DIM; d++)
+    s->fp.g[d] = c->gravity[d];
   s->fp.viscosity = c->viscosity;
   s->fp.mu = c->mu;
   s->fp.periodic = c->periodic;

@@ -242,6 +242,11 @@ static inline const char *bad_particle(const sph_particles *p, size_t i, double 
   if (p->kind[i] == SPH_KIND_FLUID &&
       (p->x[i] < d[0] || p->x[i] > d[1] || p->y[i] < d[2] || p->y[i] > d[3]))
     return "particle left the domain";
+#if SPH_DIM == 3
+  if (!isfinite(p->z[i]) || !isfinite(p->vz[i])) return "state is not finite (NaN or Inf)";
+  if (p->kind[i] == SPH_KIND_FLUID && (p->z[i] < d[4] || p->z[i] > d[5]))
+    return "particle left the domain";
+#endif
   return NULL;
 }
 
@@ -255,6 +260,11 @@ static inline int surely_good(const sph_particles *p, size_t i, double rlo, doub
   const double x = p->x[i], y = p->y[i], rho = p->rho[i];
   const double z = (x - x) + (y - y) + (p->vx[i] - p->vx[i]) + (p->vy[i] - p->vy[i]) + (rho - rho) +
                    (p->p[i] - p->p[i]);
+#if SPH_DIM == 3
+  const double zz = p->z[i], vz = p->vz[i];
+  if (!((zz - zz) + (vz - vz) == 0.0) || (p->kind[i] == SPH_KIND_FLUID && (zz < d[4] || zz > d[5])))
+    return 0;
+#endif
   return z == 0.0 && rho > rlo && rho < rhi &&
          (p->kind[i] != SPH_KIND_FLUID || !(x < d[0] || x > d[1] || y < d[2] || y > d[3]));
 }
@@ -406,7 +416,9 @@ sph_particles *sph_sim_particles(sph_sim *s) { return &s->p; }
 double sph_sim_floor(const sph_sim *s) { return s->floor_y; }
 size_t sph_sim_fluid_removed(const sph_sim *s) { return s->fluid_removed; }
 size_t sph_sim_walls_dropped(const sph_sim *s) { return s->walls.n_dropped; }
-void sph_sim_domain(const sph_sim *s, double box[4]) { memcpy(box, s->domain, 4 * sizeof *box); }
+void sph_sim_domain(const sph_sim *s, double box[2 * SPH_DIM]) {
+  memcpy(box, s->domain, 2 * SPH_DIM * sizeof *box);
+}
 
 void sph_sim_diag(const sph_sim *s, sph_diag_row *row) {
   sph_diag_compute(&s->p, s->floor_y, 2.0 * s->c->dx, s->c->gravity, row);

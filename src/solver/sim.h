@@ -61,8 +61,9 @@ size_t sph_sim_fluid_removed(const sph_sim *s);
 /* Wall particles of a geometry.walls segment not made: closer than dx/2 to
  * a particle of an earlier wall (the tank or a segment before it). */
 size_t sph_sim_walls_dropped(const sph_sim *s);
-/* The domain box x0, x1, y0, y1: a particle leaving it is a blow-up. */
-void sph_sim_domain(const sph_sim *s, double box[4]);
+/* The domain box x0, x1, y0, y1 (, z0, z1 in 3-D): a particle leaving it is
+ * a blow-up. */
+void sph_sim_domain(const sph_sim *s, double box[2 * SPH_DIM]);
 /* The interaction loop the run uses ("AVX-512 lanes", "AVX2 lanes",
  * "portable lanes" or "scalar"); *ratio gets the AVX2 loop's time over the AVX-512 loop's at
  * start-up, 1 where they were not both measured (forces.h). All give the

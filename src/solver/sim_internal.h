@@ -51,9 +51,9 @@ struct sph_sim {
   double lane_ratio; /* AVX2 / AVX-512 time of the start-up pass (forces.h), 1 if not measured */
   double t_saved;    /* time of the state saved at the start of the last step */
   long steps;
-  double floor_y;
-  double domain[4];
-  double view[4];
+  double floor_y;             /* the floor's height (y; z in 3-D) */
+  double domain[2 * SPH_DIM]; /* x0, x1, y0, y1 (, z0, z1): leaving it is a blow-up */
+  double view[2 * SPH_DIM];
   char *parameters; /* sph_case_describe */
 };
 

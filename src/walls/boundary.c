@@ -15,6 +15,11 @@
 int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, double by,
                              int layers, int stagger, int extend, double dx, double rho,
                              double mass, double h, uint8_t flags, sph_error *err) {
+#if SPH_DIM == 3
+  (void)p, (void)ax, (void)ay, (void)bx, (void)by, (void)layers, (void)stagger, (void)extend;
+  (void)dx, (void)rho, (void)mass, (void)h, (void)flags;
+  return sph_error_set(err, "wall segments are 2-D only so far");
+#else
   const double lx = bx - ax, ly = by - ay;
   const double len = sqrt(lx * lx + ly * ly);
   if (!(len > 0.0)) return sph_error_set(err, "wall segment has zero length");
@@ -48,8 +53,35 @@ int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, 
     }
   }
   return 0;
+#endif
 }
 
+#if SPH_DIM == 3
+/* The 3-D tank: every lattice point x0 + (i + 1/2) dx, ... of the box grown by
+ * `layers` spacings sideways and below (up to z1 above) that lies outside the
+ * inner box: layers dx apart behind each face, edges and corners filled. */
+int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double rho, double mass,
+                          double h, uint8_t flags, sph_error *err) {
+  if (flags & SPH_WALL_NORMAL)
+    return sph_error_set(err, "mdbc, no-slip and free-slip tanks are 2-D only so far");
+  const int L = t->layers;
+  const long nx = (long)floor((t->x1 - t->x0) / dx + 0.5),
+             ny = (long)floor((t->y1 - t->y0) / dx + 0.5);
+  const long nz = (long)floor((t->z1 - t->z0) / dx + 0.5);
+  const double v[3] = {0.0, 0.0, 0.0};
+  for (long k = -L; k < nz; k++)
+    for (long j = -L; j < ny + L; j++)
+      for (long i = -L; i < nx + L; i++) {
+        if (k >= 0 && j >= 0 && j < ny && i >= 0 && i < nx) continue; /* inside */
+        const double x[3] = {t->x0 + ((double)i + 0.5) * dx, t->y0 + ((double)j + 0.5) * dx,
+                             t->z0 + ((double)k + 0.5) * dx};
+        const long idx = sph_particles_add_at(p, x, v, rho, mass, h, SPH_KIND_WALL, err);
+        if (idx < 0) return -1;
+        p->flags[idx] = flags;
+      }
+  return 0;
+}
+#else
 int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double rho, double mass,
                           double h, uint8_t flags, sph_error *err) {
   const double e = 0.5 * dx;
@@ -70,6 +102,7 @@ int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double
     return -1;
   return 0;
 }
+#endif
 
 /* ---- mirror particles ------------------------------------------------------------ */
 
@@ -93,6 +126,7 @@ sph_mirror_line sph_mirror_segment_line(double ax, double ay, double bx, double 
 /* The image of fluid particle i at (x, y): its velocity reflected in the
  * line(s), (vx, vy), and its no-slip velocity -v_i in vxh, vyh; its
  * density, and pressure, never below rho0 and 0. */
+#if SPH_DIM == 2
 static long add_image(sph_particles *p, size_t i, double x, double y, double vx, double vy,
                       double rho0, sph_error *err) {
   const int tension = p->rho[i] < rho0;
@@ -111,9 +145,14 @@ static void reflect_velocity(double nx, double ny, double *vx, double *vy) {
   *vx -= 2.0 * vn * nx;
   *vy -= 2.0 * vn * ny;
 }
+#endif
 
 long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lines, double reach,
                     double rho0, sph_error *err) {
+#if SPH_DIM == 3
+  (void)p, (void)lines, (void)n_lines, (void)reach, (void)rho0;
+  return sph_error_set(err, "mirror walls are 2-D only so far");
+#else
   const size_t n = p->n;
   long added = 0;
   sph_particles_use(p, SPH_ARRAYS_HALF_STEP); /* the images' no-slip velocity */
@@ -150,6 +189,7 @@ long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lin
       }
   }
   return added;
+#endif
 }
 
 void sph_mirror_remove(sph_particles *p, size_t *perm, void *work) {

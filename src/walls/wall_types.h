@@ -9,6 +9,7 @@
 #ifndef SPH_WALL_TYPES_H
 #define SPH_WALL_TYPES_H
 
+#include "core/dim.h"
 #include "walls/wavemaker.h"
 
 #ifdef __cplusplus
@@ -25,10 +26,15 @@ typedef enum {
 } sph_boundary_kind;
 
 /* A rectangular tank: inner faces at x0 (left), x1 (right), y0 (floor); the
- * side walls rise to y1. Wall particles sit outside the inner faces. */
+ * side walls rise to y1. Wall particles sit outside the inner faces. In 3-D
+ * (core/dim.h) a box: faces at x0, x1, y0, y1 (front, back), the floor at
+ * z0, the walls rising to z1. */
 typedef struct sph_tank {
   int present;
   double x0, x1, y0, y1;
+#if SPH_DIM == 3
+  double z0, z1;
+#endif
   int layers;                 /* wall layers, default 2 (staggered) */
   sph_boundary_kind boundary; /* default dynamic */
   int stagger;                /* layers dx/2 apart and staggered (default), or dx apart */

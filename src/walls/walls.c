@@ -72,7 +72,11 @@ static long drop_overlaps(sph_particles *p, size_t from, size_t first, double dx
 int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
                      const sph_wall_segment *segments, size_t n_segments, double dx, double rho0,
                      double h, double mirror_reach, sph_error *err) {
+#if SPH_DIM == 2
   const double wall_mass = rho0 * dx * dx;
+#else
+  const double wall_mass = rho0 * dx * dx * dx;
+#endif
   const size_t walls_from = p->n; /* the fluid's particles come first */
   *w = (sph_walls){0};
   w->mirror_reach = mirror_reach;
@@ -92,9 +96,11 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
                                 wall_flags(tank->boundary, tank->extrapolated, tank->free_slip),
                                 err))
         return -1;
-      /* the faces, along their length only: fluid above a side wall's top
-       * is outside the tank */
+        /* the faces, along their length only: fluid above a side wall's top
+         * is outside the tank */
+#if SPH_DIM == 2 /* (3-D: no faces to keep particles off yet, doc/dimensions.md) */
       w->n_face = sph_mirror_tank_lines(tank, 0.0, w->face);
+#endif
       w->face_reach = (tank->stagger ? 0.5 : 1.0) * dx * (double)tank->layers;
     }
     if (tank->boundary == SPH_BOUNDARY_REPULSIVE) w->repulsive = 1;
