@@ -580,6 +580,19 @@ static void test_broken_contents(void) {
   CU_ASSERT_PTR_NULL(sph_snapshot_text(s, "version")); /* optional */
   sph_snapshot_close(s);
 
+  /* a 3-D snapshot (its "dimension" 3) is refused by the 2-D library, by name */
+  CU_ASSERT_FATAL(sph_snapshot_write(path, &m, &p, &err) == 0);
+  f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+  CU_ASSERT_FATAL(f >= 0);
+  const int64_t three = 3;
+  sp = H5Screate(H5S_SCALAR);
+  a = H5Acreate2(f, "dimension", H5T_STD_I64LE, sp, H5P_DEFAULT, H5P_DEFAULT);
+  CU_ASSERT(a >= 0 && H5Awrite(a, H5T_NATIVE_INT64, &three) >= 0);
+  H5Aclose(a);
+  H5Sclose(sp);
+  H5Fclose(f);
+  expect_open_failure(path, "a 3-D snapshot");
+
   sph_particles_free(&p);
   free(path);
   sph_test_rmtree(dir);

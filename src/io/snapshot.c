@@ -237,7 +237,11 @@ static int write_header(writer *w, const sph_snapshot_meta *meta, size_t n) {
   if (put_double(w, "dx", meta->dx) || put_double(w, "h", meta->h) ||
       put_double(w, "rho0", meta->rho0))
     return -1;
-  return put_numbers(w, w->file, "/", "view", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, meta->view, 4);
+#if SPH_DIM == 3 /* (absent: 2, as every file written before 3-D ones existed) */
+  if (put_int64(w, "dimension", 3)) return -1;
+#endif
+  return put_numbers(w, w->file, "/", "view", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, meta->view,
+                     2 * SPH_DIM);
 }
 
 /* pos[k] = storage index of the particle with id k; checks that id is a
@@ -355,9 +359,10 @@ static int write_particles(writer *w, const sph_particles *p, int free_surface, 
   return rc;
 }
 
-/* The group /vectors: position (n x 2: x, y) and velocity (n x 3: vx, vy,
- * 0), the values of /particles/x, y, vx, vy in the same (id) order, as the
- * readers that take vectors want them: the XDMF index's XY geometry and
+/* The group /vectors: position (n x 2: x, y; n x 3 in 3-D) and velocity
+ * (n x 3: vx, vy, 0; vx, vy, vz in 3-D), the values of /particles/x, y, vx,
+ * vy (z, vz) in the same (id) order, as the readers that take vectors want
+ * them: the XDMF index's XY (XYZ) geometry and
  * velocity vector (ParaView's glyphs need three components; meshio reads
  * one dataset per geometry). Chunked and checksummed like the fields. */
 static int write_vectors(writer *w, const sph_particles *p, const size_t *pos) {
@@ -370,17 +375,21 @@ static int write_vectors(writer *w, const sph_particles *p, const size_t *pos) {
   int rc = g < 0 ? h5_fail(w->err, w->path, "cannot create group /vectors") : 0;
   static const char *const name[2] = {"position", "velocity"};
   static const char *const units[2] = {"m", "m/s"};
+#if SPH_DIM == 2
   static const char *const what[2] = {"position (x, y): /particles/x and y as one array",
                                       "velocity (vx, vy, 0): /particles/vx and vy as one "
                                       "array, z = 0"};
+#else
+  static const char *const what[2] = {"position (x, y, z): /particles/x, y and z as one array",
+                                      "velocity (vx, vy, vz): /particles/vx, vy and vz as one "
+                                      "array"};
+#endif
   for (int v = 0; rc == 0 && v < 2; v++) {
-    const hsize_t cols = v == 0 ? 2 : 3;
-    const double *a = v == 0 ? p->x : p->vx, *b = v == 0 ? p->y : p->vy;
-    for (size_t k = 0; k < n; k++) {
-      buf[k * cols] = a[pos[k]];
-      buf[k * cols + 1] = b[pos[k]];
-      if (cols == 3) buf[k * cols + 2] = 0.0;
-    }
+    const hsize_t cols = v == 0 ? SPH_DIM : 3;
+    double *const *src = v == 0 ? p->pos : p->vel;
+    for (size_t k = 0; k < n; k++)
+      for (hsize_t d = 0; d < cols; d++)
+        buf[k * cols + d] = d < SPH_DIM ? src[d][pos[k]] : 0.0;
     char where[64];
     snprintf(where, sizeof where, "/vectors/%s", name[v]);
     hsize_t dims[2] = {n, cols};
@@ -442,7 +451,8 @@ static int write_restart(writer *w, const sph_snapshot_restart *r, size_t n) {
                        &r->output_index, 1) ||
            put_numbers(w, g, "/restart", "first_step", H5T_STD_I64LE, H5T_NATIVE_INT64,
                        &r->first_step, 1) ||
-           put_numbers(w, g, "/restart", "ledger", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, r->ledger, 4);
+           put_numbers(w, g, "/restart", "ledger", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, r->ledger,
+                       2 + SPH_DIM);
   if (rc == 0 && r->has_diffusion)
     rc = put_numbers(w, g, "/restart", "ledger_diffusion", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
                      &r->ledger_diffusion, 1);
@@ -458,9 +468,9 @@ static int write_restart(writer *w, const sph_snapshot_restart *r, size_t n) {
   if (rc == 0 && !r->order)
     rc = sph_error_set(w->err, "%s: restart record without the storage order", w->path);
   if (rc == 0) rc = write_raw(w, g, "order", H5T_STD_I64LE, H5T_NATIVE_INT64, r->order, n);
-  const char *names[4] = {"vxh", "vyh", "rhoh", "uh"};
-  const double *half[4] = {r->vxh, r->vyh, r->rhoh, r->uh};
-  for (int k = 0; rc == 0 && k < 4; k++)
+  const char *names[] = {"vxh", "vyh", "rhoh", "uh", SPH_IF3("vzh")};
+  const double *half[] = {r->vxh, r->vyh, r->rhoh, r->uh, SPH_IF3(r->vzh)};
+  for (int k = 0; rc == 0 && k < (int)(sizeof half / sizeof half[0]); k++)
     if (half[k]) rc = write_raw(w, g, names[k], H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, half[k], n);
   close_id(g);
   return rc ? -1 : 0;
@@ -495,11 +505,6 @@ static int write_file(writer *w, const char *tmp, const sph_snapshot_meta *meta,
 
 int sph_snapshot_write(const char *path, const sph_snapshot_meta *meta, const sph_particles *p,
                        sph_error *err) {
-#if SPH_DIM == 3 /* (the fields, vectors and XDMF geometry are the 2-D ones) */
-  (void)meta, (void)p;
-  return sph_error_set(err, "%s: 3-D snapshots are not written yet (doc/dimensions.md)",
-                       path ? path : "snapshot");
-#endif
   if (!path || !*path) return sph_error_set(err, "snapshot: empty file name");
   if (!p) return sph_error_set(err, "%s: no particles to write", path);
   if (!meta || !meta->case_name)
@@ -666,6 +671,15 @@ static int read_header(sph_snapshot *s, sph_error *err) {
     return sph_error_set(err, "%s: attribute \"particle_count\" on / is negative (%lld)", s->path,
                          (long long)count);
   s->count = (size_t)count;
+  int64_t dim = 2; /* absent: a 2-D file */
+  const htri_t has_dim = H5Aexists(s->file, "dimension");
+  if (has_dim < 0) return h5_fail(err, s->path, "cannot look for attribute \"dimension\"");
+  if (has_dim > 0 && get_numbers(s, "dimension", H5T_NATIVE_INT64, &dim, 1, err)) return -1;
+  if (dim != SPH_DIM)
+    return sph_error_set(err,
+                         "%s: a %lld-D snapshot; this program reads %d-D ones (3-D snapshots are "
+                         "not drawn yet: doc/dimensions.md)",
+                         s->path, (long long)dim, SPH_DIM);
   for (size_t i = 0; i < N_TEXTS; i++)
     if (get_text(s, TEXTS[i], i == 0, &s->text[i], err)) return -1;
   return 0;
@@ -895,10 +909,6 @@ static int read_store(const sph_snapshot *s, sph_particles *p, sph_error *err) {
 }
 
 int sph_snapshot_read_particles(const sph_snapshot *s, sph_particles *p, sph_error *err) {
-#if SPH_DIM == 3
-  memset(p, 0, sizeof *p);
-  return sph_error_set(err, "%s: 3-D snapshots are not read yet (doc/dimensions.md)", s->path);
-#endif
   if (sph_particles_init(p, s->count, err)) return -1;
   p->n = s->count;
   h5_quiet q;
@@ -1000,7 +1010,7 @@ static int read_restart(const sph_snapshot *s, hid_t g, sph_snapshot_restart_dat
   if (get_numbers_of(s, g, "/restart", "output_index", H5T_NATIVE_INT64, &r->output_index, 1,
                      err) ||
       get_numbers_of(s, g, "/restart", "first_step", H5T_NATIVE_INT64, &r->first_step, 1, err) ||
-      get_numbers_of(s, g, "/restart", "ledger", H5T_NATIVE_DOUBLE, r->ledger, 4, err))
+      get_numbers_of(s, g, "/restart", "ledger", H5T_NATIVE_DOUBLE, r->ledger, 2 + SPH_DIM, err))
     return -1;
   if (get_optional_number(s, g, "ledger_diffusion", &r->ledger_diffusion, err) ||
       get_optional_number(s, g, "ledger_shifting", &r->ledger_shifting, err))
@@ -1034,17 +1044,19 @@ static int read_restart(const sph_snapshot *s, hid_t g, sph_snapshot_restart_dat
     seen[id] = 1;
   }
   free(seen);
-  const char *names[4] = {"vxh", "vyh", "rhoh", "uh"};
-  double **half[4] = {&r->vxh, &r->vyh, &r->rhoh, &r->uh};
+  const char *names[] = {"vxh", "vyh", "rhoh", "uh", SPH_IF3("vzh")};
+  double **half[] = {&r->vxh, &r->vyh, &r->rhoh, &r->uh, SPH_IF3(&r->vzh)};
+  enum { N_HALF = sizeof half / sizeof half[0] };
   int present = 0;
-  for (int k = 0; k < 4; k++) {
+  for (int k = 0; k < N_HALF; k++) {
     if (read_restart_array(s, g, names[k], 0, H5T_NATIVE_DOUBLE, sizeof(double), &a, err))
       return -1;
     *half[k] = a;
     present += a != NULL;
   }
-  if (present != 0 && present != 4)
-    return sph_error_set(err, "%s: group /restart has only some of vxh, vyh, rhoh, uh", s->path);
+  if (present != 0 && present != N_HALF)
+    return sph_error_set(err, "%s: group /restart has only some of vxh, vyh, rhoh, uh%s", s->path,
+                         SPH_DIM == 3 ? ", vzh" : "");
   return 0;
 }
 
@@ -1075,6 +1087,7 @@ void sph_snapshot_restart_free(sph_snapshot_restart_data *r) {
   free(r->order);
   free(r->vxh);
   free(r->vyh);
+  SPH_IF3(free(r->vzh);)
   free(r->rhoh);
   free(r->uh);
   memset(r, 0, sizeof *r);

@@ -39,7 +39,7 @@ typedef struct sph_snapshot_meta {
   const char *parameters; /* resolved parameters and choices, "key: value" lines; may be NULL */
   const char *kernel;     /* the smoothing kernel's name (numerics.kernel); may be NULL */
   double dx, h, rho0;
-  double view[4];                             /* x0, x1, y0, y1 */
+  double view[2 * SPH_DIM];                   /* x0, x1, y0, y1 (, z0, z1) */
   int free_surface;                           /* write the free_surface field (flags bit 0) */
   const struct sph_snapshot_restart *restart; /* the /restart group, or NULL for none */
 } sph_snapshot_meta;
@@ -75,6 +75,9 @@ typedef struct sph_snapshot_restart {
   const double *filters;
   const int64_t *order;
   const double *vxh, *vyh, *rhoh, *uh;
+#if SPH_DIM == 3
+  const double *vzh;
+#endif
 } sph_snapshot_restart;
 
 /* Writes p (any storage order) to path in id order, atomically. */
@@ -138,6 +141,9 @@ typedef struct sph_snapshot_restart_data {
   size_t count;
   int64_t *order;
   double *vxh, *vyh, *rhoh, *uh;
+#if SPH_DIM == 3
+  double *vzh;
+#endif
 } sph_snapshot_restart_data;
 int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *r, sph_error *err);
 void sph_snapshot_restart_free(sph_snapshot_restart_data *r);

@@ -33,9 +33,17 @@ static inline int field_bytes(field_type t) {
 /* In writing order; free_surface (last) only when asked for. */
 static const field_spec FIELDS[] = {
     {"x", FT_F64, offsetof(sph_particles, x), "m", "position, x coordinate"},
+#if SPH_DIM == 2
     {"y", FT_F64, offsetof(sph_particles, y), "m", "position, y coordinate (up)"},
     {"vx", FT_F64, offsetof(sph_particles, vx), "m/s", "velocity, x component"},
     {"vy", FT_F64, offsetof(sph_particles, vy), "m/s", "velocity, y component"},
+#else /* z up */
+    {"y", FT_F64, offsetof(sph_particles, y), "m", "position, y coordinate"},
+    {"z", FT_F64, offsetof(sph_particles, z), "m", "position, z coordinate (up)"},
+    {"vx", FT_F64, offsetof(sph_particles, vx), "m/s", "velocity, x component"},
+    {"vy", FT_F64, offsetof(sph_particles, vy), "m/s", "velocity, y component"},
+    {"vz", FT_F64, offsetof(sph_particles, vz), "m/s", "velocity, z component"},
+#endif
     {"rho", FT_F64, offsetof(sph_particles, rho), "kg/m^3", "density"},
     {"p", FT_F64, offsetof(sph_particles, p), "Pa", "pressure from the equation of state"},
     {"mass", FT_F64, offsetof(sph_particles, mass), "kg", "particle mass"},
@@ -49,6 +57,6 @@ static const field_spec FIELDS[] = {
 #define N_FIELDS (sizeof FIELDS / sizeof FIELDS[0])
 #define FREE_SURFACE_FIELD (N_FIELDS - 1)
 
-#define ID_FIELD 10
+#define ID_FIELD (SPH_DIM == 2 ? 10 : 12)
 
 #endif

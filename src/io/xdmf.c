@@ -86,8 +86,10 @@ static void put_grid(FILE *f, const char *h5, double time, size_t n, int free_su
           n);
   put_item(f, "          ", h5, &FIELDS[ID_FIELD], n); /* vertex i is point id[i] = i */
   fputs("        </Topology>\n", f);
-  fputs("        <Geometry GeometryType=\"XY\">\n", f);
-  put_vector(f, "          ", h5, "position", n, 2);
+  fputs(SPH_DIM == 2 ? "        <Geometry GeometryType=\"XY\">\n"
+                     : "        <Geometry GeometryType=\"XYZ\">\n",
+        f);
+  put_vector(f, "          ", h5, "position", n, SPH_DIM);
   fputs("        </Geometry>\n", f);
   fputs("        <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n", f);
   put_vector(f, "          ", h5, "velocity", n, 3);

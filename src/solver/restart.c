@@ -47,6 +47,7 @@ int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t outpu
   if (s->c->integrator == SPH_INTEGRATOR_LEAPFROG) {
     r.vxh = s->p.vxh;
     r.vyh = s->p.vyh;
+    SPH_IF3(r.vzh = s->p.vzh;)
     r.rhoh = s->p.rhoh;
     r.uh = s->p.uh;
   }
@@ -145,6 +146,7 @@ static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particl
     p->y[k] = q->y[i];
     p->vx[k] = q->vx[i];
     p->vy[k] = q->vy[i];
+    SPH_IF3(p->z[k] = q->z[i]; p->vz[k] = q->vz[i];)
     p->rho[k] = q->rho[i];
     p->p[k] = q->p[i];
     p->h[k] = q->h[i];
@@ -153,6 +155,7 @@ static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particl
     if (rd->vxh && (p->live & SPH_ARRAYS_HALF_STEP)) {
       p->vxh[k] = rd->vxh[k];
       p->vyh[k] = rd->vyh[k];
+      SPH_IF3(p->vzh[k] = rd->vzh[k];)
       p->rhoh[k] = rd->rhoh[k];
       p->uh[k] = rd->uh[k];
     }
