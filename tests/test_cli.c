@@ -335,6 +335,42 @@ static void test_scheme_is_its_keys(void) {
                                      "physics.artificial_viscosity.alpha (kept"));
 }
 
+/* One program, both dimensions: a case with dimension: 3 is handed to the
+ * 3-D build (sph-3d) with the same command line; its run writes 3-D
+ * snapshots (z, v_z, XYZ) and 3-D diagnostics; sph info hands a 3-D
+ * snapshot over the same way; without the 3-D program the run says so. */
+static void test_three_dimensions(void) {
+  char out[65536], args[8192], path[4200];
+  CU_ASSERT_EQUAL(sph("--version", out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "dimensions: 2 (this program), 3 (") != NULL);
+  CU_ASSERT(strstr(out, "not found") == NULL);
+  snprintf(args, sizeof args,
+           "run '%s' -o '%s/run3' --set time.end=0.004 --set time.output_interval=0.002",
+           sph_test_src("cases/hydrostatic_3d.yaml"), tmp);
+  CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "dimension: 3") != NULL &&
+            strstr(out, "geometry.tank.z: [0, 0.15]") != NULL);
+  snprintf(args, sizeof args, "info '%s/run3/snap_0002.h5'", tmp);
+  CU_ASSERT_EQUAL(sph_ok(args, out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "\n  z ") != NULL && strstr(out, "\n  vz ") != NULL);
+  CU_ASSERT(strstr(out, "(fluid 2000, wall 2712)") != NULL);
+  snprintf(path, sizeof path, "%s/run3/diagnostics.csv", tmp);
+  char *d = sph_test_read_file(path, NULL);
+  CU_ASSERT_PTR_NOT_NULL(d && strstr(d, "momentum_y (kg m/s),momentum_z (kg m/s),kinetic (J),"));
+  free(d);
+  snprintf(path, sizeof path, "%s/run3/snapshots.xmf", tmp);
+  d = sph_test_read_file(path, NULL);
+  CU_ASSERT_PTR_NOT_NULL(d && strstr(d, "GeometryType=\"XYZ\""));
+  free(d);
+  /* no 3-D program: one line that says so */
+  snprintf(args, sizeof args, "run '%s' -o '%s/run3b'", sph_test_src("cases/hydrostatic_3d.yaml"),
+           tmp);
+  setenv("SPH_TWIN", "/nonexistent/sph-3d", 1);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  unsetenv("SPH_TWIN");
+  CU_ASSERT(strstr(out, "is a 3-D case and the 3-D program (sph-3d) is not installed") != NULL);
+}
+
 static void test_blowup_stops_cleanly(void) {
   char out[65536], args[8192];
   write_file("good.yaml", GOOD);
@@ -356,6 +392,7 @@ int main(void) {
   tmp = sph_test_tmpdir();
   CU_TestInfo tests[] = {
       {"help, version, unknown command", test_help_and_version},
+      {"a 3-D case and a 3-D snapshot go to the 3-D build", test_three_dimensions},
       {"bad input gives a clear error and non-zero exit", test_bad_input},
       {"the particle count is bounded before the set-up", test_resource_bound},
       {"a short run, diagnostics rows, sph info", test_good_run_and_info},

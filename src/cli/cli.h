@@ -19,6 +19,17 @@
  * build's ".libs/" (and "lt-") taken out, else "sph". */
 extern const char *sph_cli_program;
 
+/* The command line as main() received it (twin.c hands it on). */
+extern char **sph_cli_argv;
+/* The program built for the other dimension (twin.c), or NULL. */
+const char *sph_cli_twin(void);
+/* If the case file's dimension (with the overrides) is not this build's,
+ * runs the other build with the same arguments (it does not return unless
+ * that fails: 1, message printed); 0 where this build runs the case. */
+int sph_cli_hand_over(const char *cmd, const char *case_path, const char *const *set, size_t n_set);
+/* The same for a snapshot file (its attribute "dimension"). */
+int sph_cli_hand_over_snapshot(const char *cmd, const char *path);
+
 int sph_cli_run(int argc, char **argv);
 int sph_cli_info(int argc, char **argv);
 int sph_cli_profile(int argc, char **argv);

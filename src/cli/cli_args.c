@@ -22,13 +22,17 @@
 
 int sph_cli_each_snapshot(const char *cmd, int argc, char **argv,
                           int (*fn)(const char *path, void *ctx, sph_error *err), void *ctx) {
-  int status = 0, dashdash = 0;
+  int status = 0, dashdash = 0, first = 1;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
     if (!dashdash && strcmp(a, "--") == 0) {
       dashdash = 1;
       continue;
     }
+    /* the first file decides the build: a snapshot of the other dimension
+     * hands the whole command line to it (twin.c) */
+    if (first && sph_cli_hand_over_snapshot(cmd, a)) return 1;
+    first = 0;
     sph_error err;
     if (fn(a, ctx, &err)) {
       fflush(stdout); /* keep stdout and stderr in order on a terminal */

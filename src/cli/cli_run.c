@@ -159,11 +159,13 @@ static int load_run_case(run_args *a, sph_case *c, char *snapdir, size_t n) {
       return 1;
     }
     a->case_path = path;
+    if (sph_cli_hand_over("run", a->case_path, a->sets, a->n_set)) return 1;
     if (sph_case_load(a->case_path, a->sets, a->n_set, c, &err) == 0) return 0;
     fprintf(stderr, "sph run: %s\n", err.msg);
     sph_case_free(c);
     return 1;
   }
+  if (sph_cli_hand_over_snapshot("run", a->restart)) return 1;
   sph_snapshot *snap;
   int rc = sph_snapshot_open(a->restart, &snap, &err);
   if (rc == 0) {

@@ -16,7 +16,8 @@
 static void usage(FILE *f) {
   fprintf(f, "usage: sph COMMAND [options]\n"
              "\n"
-             "Deterministic weakly-compressible SPH solver for 2-D free-surface flows.\n"
+             "Deterministic weakly-compressible SPH solver for free-surface flows in 2-D\n"
+             "and 3-D (a case's dimension: 3 runs in the 3-D build, sph-3d).\n"
              "\n"
              "commands:\n"
              "  run CASE [-o DIR] [--threads N] [--set key=value]... [--quiet]\n"
@@ -130,6 +131,7 @@ static void set_program(const char *arg0) {
 
 int main(int argc, char **argv) {
   choose_wait_policy(argc, argv);
+  sph_cli_argv = argv;
   set_program(argv[0]);
   if (argc < 2) {
     usage(stderr);
@@ -142,8 +144,11 @@ int main(int argc, char **argv) {
   }
   if (!strcmp(cmd, "--version")) {
     const char *args = sph_configure_args();
-    printf("%s\nconfigured with: %s\nbuild: %s\ncompiler: %s\n", sph_version(),
-           *args ? args : "(no options: the defaults)", sph_build_features(), sph_compiler());
+    const char *twin = sph_cli_twin();
+    printf("%s\nconfigured with: %s\nbuild: %s\ncompiler: %s\ndimensions: %d (this program), "
+           "%d (%s)\n",
+           sph_version(), *args ? args : "(no options: the defaults)", sph_build_features(),
+           sph_compiler(), SPH_DIM, SPH_DIM == 2 ? 3 : 2, twin ? twin : "not found");
     return 0;
   }
   if (!strcmp(cmd, "run")) return sph_cli_run(argc - 1, argv + 1);

@@ -3,12 +3,27 @@
  * csv_units.c - the units of the columns sph writes (see csv.h), from the
  * tables of doc/snapshot-format.md (diagnostics.csv, gauges.csv) and
  * doc/cli.md (audit.csv). Quantities of a 2-D run are per metre of depth:
- * mass kg/m, energies J/m, momenta kg/s. A test reads the headers the
+ * mass kg/m, energies J/m, momenta kg/s in 2-D (per unit depth; kg, J and
+ * kg m/s in 3-D). A test reads the headers the
  * solver writes and checks that every column is here.
  */
 #include "config.h"
 
 #include "io/csv.h"
+
+#include "core/dim.h"
+
+/* A 2-D run's sums are per unit depth (kg/m, J/m, kg/s); a 3-D run's are
+ * whole (kg, J, kg m/s). */
+#if SPH_DIM == 2
+#define MASS_UNITS "kg/m"
+#define ENERGY_UNITS "J/m"
+#define MOMENTUM_UNITS "kg/s"
+#else
+#define MASS_UNITS "kg"
+#define ENERGY_UNITS "J"
+#define MOMENTUM_UNITS "kg m/s"
+#endif
 
 #include <stdio.h>
 #include <string.h>
@@ -24,23 +39,25 @@ static const column_units table[] = {
     {"dt", "s"},
     {"n_fluid", ""},
     {"front_x", "m"},
-    {"mass", "kg/m"},
-    {"momentum_x", "kg/s"},
-    {"momentum_y", "kg/s"},
-    {"kinetic", "J/m"},
-    {"potential", "J/m"},
+    {"mass", MASS_UNITS},
+    {"momentum_x", MOMENTUM_UNITS},
+    {"momentum_y", MOMENTUM_UNITS},
+    {"momentum_z", MOMENTUM_UNITS},
+    {"kinetic", ENERGY_UNITS},
+    {"potential", ENERGY_UNITS},
     {"n_free_surface", ""},
-    {"internal", "J/m"},
-    {"boundary_work", "J/m"},
-    {"xsph_drift", "J/m"},
-    {"shifting_drift", "J/m"},
-    {"total_energy", "J/m"},
+    {"internal", ENERGY_UNITS},
+    {"boundary_work", ENERGY_UNITS},
+    {"xsph_drift", ENERGY_UNITS},
+    {"shifting_drift", ENERGY_UNITS},
+    {"total_energy", ENERGY_UNITS},
     {"energy_deviation", ""},
     {"fluid_energy_deviation", ""},
-    {"momentum_residual_x", "kg/s"},
-    {"momentum_residual_y", "kg/s"},
-    {"diffusion_energy", "J/m"},
-    {"wall_potential", "J/m"},
+    {"momentum_residual_x", MOMENTUM_UNITS},
+    {"momentum_residual_y", MOMENTUM_UNITS},
+    {"momentum_residual_z", MOMENTUM_UNITS},
+    {"diffusion_energy", ENERGY_UNITS},
+    {"wall_potential", ENERGY_UNITS},
     /* audit.csv (deviations, work and heat in units of E0) */
     {"particles", ""},
     {"dx", "m"},

@@ -787,6 +787,28 @@ static void release(sph_snapshot *s) {
   free(s);
 }
 
+int sph_snapshot_file_dimension(const char *path, int *dim, sph_error *err) {
+  *dim = 2;
+  h5_quiet q;
+  quiet_begin(&q);
+  const hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  int rc = 0;
+  if (f < 0) {
+    rc = sph_error_set(err, "%s: cannot open as an HDF5 snapshot", path);
+  } else if (H5Aexists(f, "dimension") > 0) {
+    int64_t d = 2;
+    const hid_t a = H5Aopen(f, "dimension", H5P_DEFAULT);
+    if (a < 0 || H5Aread(a, H5T_NATIVE_INT64, &d) < 0)
+      rc = sph_error_set(err, "%s: cannot read attribute \"dimension\"", path);
+    else
+      *dim = (int)d;
+    if (a >= 0) H5Aclose(a);
+  }
+  if (f >= 0) H5Fclose(f);
+  quiet_end(&q);
+  return rc;
+}
+
 int sph_snapshot_open(const char *path, sph_snapshot **out, sph_error *err) {
   *out = NULL;
   if (!path || !*path) return sph_error_set(err, "snapshot: empty file name");

@@ -93,6 +93,12 @@ int sph_xdmf_write(const char *xmf_path, size_t n_snap, const char *const *h5_na
 /* Reading. */
 typedef struct sph_snapshot sph_snapshot;
 
+/* The dimension a snapshot file was written in (its attribute "dimension";
+ * 2 when absent, as in every 2-D file) into *dim, without reading the rest:
+ * what the command line reads to hand a file to the build of its dimension.
+ * Non-zero with err if the file cannot be opened as HDF5. */
+int sph_snapshot_file_dimension(const char *path, int *dim, sph_error *err);
+
 /* Opens a snapshot and reads its header; errors name the file (and the
  * missing attribute or dataset). */
 int sph_snapshot_open(const char *path, sph_snapshot **out, sph_error *err);
