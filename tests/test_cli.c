@@ -345,7 +345,8 @@ static void test_three_dimensions(void) {
   CU_ASSERT(strstr(out, "dimensions: 2 (this program), 3 (") != NULL);
   CU_ASSERT(strstr(out, "not found") == NULL);
   snprintf(args, sizeof args,
-           "run '%s' -o '%s/run3' --set time.end=0.004 --set time.output_interval=0.002",
+           "run '%s' -o '%s/run3' --set time.end=0.004 --set time.output_interval=0.002 "
+           "--set output.probe_interval=0.002",
            sph_test_src("cases/hydrostatic_3d.yaml"), tmp);
   CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
   CU_ASSERT(strstr(out, "dimension: 3") != NULL &&
@@ -357,6 +358,11 @@ static void test_three_dimensions(void) {
   snprintf(path, sizeof path, "%s/run3/diagnostics.csv", tmp);
   char *d = sph_test_read_file(path, NULL);
   CU_ASSERT_PTR_NOT_NULL(d && strstr(d, "momentum_y (kg m/s),momentum_z (kg m/s),kinetic (J),"));
+  free(d);
+  snprintf(path, sizeof path, "%s/run3/probes.csv", tmp);
+  d = sph_test_read_file(path, NULL);
+  CU_ASSERT_PTR_NOT_NULL(d && strstr(d, "P_centre (Pa),P_corner (Pa),H_centre (m),V_mid_vx (m/s),"
+                                        "V_mid_vy (m/s),V_mid_vz (m/s)\n"));
   free(d);
   snprintf(path, sizeof path, "%s/run3/snapshots.xmf", tmp);
   d = sph_test_read_file(path, NULL);

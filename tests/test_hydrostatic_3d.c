@@ -106,7 +106,12 @@ static void test_reader(void) {
   refused("dimension=2", "dimension");
   refused("physics.gravity=[0, -9.81]", "physics.gravity");
   refused("geometry.walls=[{from: [0, 0], to: [1, 0]}]", "geometry.walls");
-  refused("output.probes=[{name: P1, kind: pressure, at: [0.1, 0.0]}]", "output.probes");
+  refused("output.gauges=[0.1]", "output.gauges");
+  refused("output.probes=[{name: P1, kind: pressure, at: [0.1, 0.05, 0.0]}]",
+          "output.probes[0].normal"); /* a 3-D sensor needs its face's normal */
+  refused("output.probes=[{name: P1, kind: pressure, at: [0.1, 0.0, 0.0], normal: [0, 0, 0]}]",
+          "output.probes[0].normal");
+  refused("output.probes=[{name: H1, kind: level, x: 0.1}]", "output.probes[0].x");
   refused("free_surface={radius_factor: 1}", "free_surface");
   refused("geometry.tank.stagger=false", "geometry.tank.stagger");
   refused("geometry.tank.boundary=mdbc", "geometry.tank.boundary");
@@ -129,6 +134,9 @@ static void test_reader(void) {
   sph_test_rmtree(dir);
   free(dir);
 }
+
+/* The probes' readings at the end of the last run (run()). */
+static double probe_read[3][3];
 
 /* Runs CASE3 to t = 1 s; the particles' state by id into out (x, y, z, vx,
  * vy, vz, p: 7 per particle), their count into *n. */
@@ -154,6 +162,16 @@ static void run(double **out, size_t *n) {
     o[6] = p->kind[i] == SPH_KIND_FLUID ? p->p[i] : NAN;
   }
   printf("\n    %zu particles, %ld steps", p->n, sph_sim_steps(s));
+  /* the 3-D probes on the final state: a floor sensor (normal up, 20 mm), a
+   * level gauge at the centre, a velocity probe mid-depth */
+  sph_probe q[3];
+  memset(q, 0, sizeof q);
+  q[0].kind = SPH_PROBE_PRESSURE, q[0].x = 0.1, q[0].y = 0.05, q[0].z = 0.0, q[0].diameter = 0.02;
+  q[0].normal[2] = 1.0;
+  q[1].kind = SPH_PROBE_LEVEL, q[1].x = 0.1, q[1].y = 0.05;
+  q[2].kind = SPH_PROBE_VELOCITY, q[2].x = 0.1, q[2].y = 0.05, q[2].z = 0.05;
+  for (int k = 0; k < 3; k++)
+    sph_probe_read(&q[k], p, c.kernel, c.h, c.dx, sph_sim_floor(s), c.gravity, probe_read[k]);
   sph_sim_free(s);
   sph_case_free(&c);
 }
@@ -205,6 +223,16 @@ static void test_still_water(void) {
   CU_ASSERT(fabs(mean_inside) < 0.01);
   CU_ASSERT(worst < 0.03);
   CU_ASSERT(vmax < 0.02 * sqrt(g * H));
+  /* the probes: the floor sensor reads what the lowest layer carries (+1.8 %, the
+   * lattice's SPH gradient: doc/dimensions.md), within 3 %; the level H within
+   * dx/2; the velocity at rest */
+  printf("\n    probes: floor %.2f Pa (%+.2f %% of rho0 g H), level %.5f m, |v| %.2g m/s",
+         probe_read[0][0], 100.0 * (probe_read[0][0] / (rho0 * g * H) - 1.0), probe_read[1][0],
+         fabs(probe_read[2][0]) + fabs(probe_read[2][1]) + fabs(probe_read[2][2]));
+  CU_ASSERT(fabs(probe_read[0][0] / (rho0 * g * H) - 1.0) < 0.03);
+  CU_ASSERT(fabs(probe_read[1][0] - H) < 0.5 * dx);
+  CU_ASSERT(fabs(probe_read[2][0]) + fabs(probe_read[2][1]) + fabs(probe_read[2][2]) <
+            0.02 * sqrt(g * H));
 #ifdef _OPENMP
   omp_set_num_threads(1);
   run(&b, &m);

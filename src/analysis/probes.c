@@ -14,7 +14,7 @@
 #include "physics/kernel.h"
 
 int sph_probe_columns(const sph_probe *q) {
-  return q->kind == SPH_PROBE_VELOCITY || sph_probe_filtered(q) ? 2 : 1;
+  return q->kind == SPH_PROBE_VELOCITY ? SPH_DIM : sph_probe_filtered(q) ? 2 : 1;
 }
 
 double sph_probe_low_pass(double y, double x, double dt, double cutoff) {
@@ -31,64 +31,122 @@ void sph_probe_header(const sph_probe *q, char *buf, size_t len) {
       snprintf(buf, len, ",%s (Pa)", q->name);
     break;
   case SPH_PROBE_LEVEL: snprintf(buf, len, ",%s (m)", q->name); break;
-  case SPH_PROBE_VELOCITY: snprintf(buf, len, ",%s_vx (m/s),%s_vy (m/s)", q->name, q->name); break;
+  case SPH_PROBE_VELOCITY:
+#if SPH_DIM == 2
+    snprintf(buf, len, ",%s_vx (m/s),%s_vy (m/s)", q->name, q->name);
+#else
+    snprintf(buf, len, ",%s_vx (m/s),%s_vy (m/s),%s_vz (m/s)", q->name, q->name, q->name);
+#endif
+    break;
   }
 }
 
-/* Shepard-normalised averages of p (each particle's carried to the point
- * along the hydrostatic gradient: p_j + rho_j g . (x - x_j)), vx and vy
- * over the fluid at (x, y); returns 0 where the point is dry (out
- * untouched). */
-static int shepard_at(const sph_particles *p, sph_kernel_kind kernel, double x, double y, double h,
-                      const double g[2], double out[3]) {
+/* The Shepard-normalised pressure (carried along g) and velocity at the
+ * point x: out[0] the pressure, out[1 ..] the velocity. 0 where dry. */
+static int shepard_at(const sph_particles *p, sph_kernel_kind kernel, const double x[SPH_DIM],
+                      double h, const double g[SPH_DIM], double out[1 + SPH_DIM]) {
   const double reach = 2.0 * h;
   double den = 0.0, sp = 0.0, svx = 0.0, svy = 0.0;
+  SPH_IF3(double svz = 0.0;)
   for (size_t j = 0; j < p->n; j++) {
     if (p->kind[j] != SPH_KIND_FLUID) continue;
-    const double dx = x - p->x[j], dy = y - p->y[j];
+    const double dx = x[0] - p->x[j], dy = x[1] - p->y[j];
     if (fabs(dx) >= reach || fabs(dy) >= reach) continue;
-    const double w = sph_kernel_w(kernel, sqrt(dx * dx + dy * dy), h) * (p->mass[j] / p->rho[j]);
+#if SPH_DIM == 2
+    const double r = sqrt(dx * dx + dy * dy), gd = g[0] * dx + g[1] * dy;
+#else
+    const double dz = x[2] - p->z[j];
+    if (fabs(dz) >= reach) continue;
+    const double r = sqrt(dx * dx + dy * dy + dz * dz), gd = g[0] * dx + g[1] * dy + g[2] * dz;
+#endif
+    const double w = sph_kernel_w(kernel, r, h) * (p->mass[j] / p->rho[j]);
     den += w;
-    sp += w * (p->p[j] + p->rho[j] * (g[0] * dx + g[1] * dy));
+    sp += w * (p->p[j] + p->rho[j] * gd);
     svx += w * p->vx[j];
     svy += w * p->vy[j];
+    SPH_IF3(svz += w * p->vz[j];)
   }
   if (!(den >= SPH_PROBE_WET_SUM)) return 0;
   out[0] = sp / den;
   out[1] = svx / den;
   out[2] = svy / den;
+  SPH_IF3(out[3] = svz / den;)
   return 1;
 }
 
+#if SPH_DIM == 3
+/* Two unit vectors across the unit normal n, and n's: a right-handed set. */
+static void across(const double n[3], double t1[3], double t2[3]) {
+  const double a[3] = {fabs(n[0]) < 0.9 ? 1.0 : 0.0, fabs(n[0]) < 0.9 ? 0.0 : 1.0, 0.0};
+  t1[0] = a[1] * n[2] - a[2] * n[1]; /* a x n */
+  t1[1] = a[2] * n[0] - a[0] * n[2];
+  t1[2] = a[0] * n[1] - a[1] * n[0];
+  const double l = sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+  for (int d = 0; d < 3; d++)
+    t1[d] /= l;
+  t2[0] = n[1] * t1[2] - n[2] * t1[1]; /* n x t1 */
+  t2[1] = n[2] * t1[0] - n[0] * t1[2];
+  t2[2] = n[0] * t1[1] - n[1] * t1[0];
+}
+#endif
+
+/* The k-th of a pressure sensor's n face points (n = 1: its centre). */
+static void face_point(const sph_probe *q, int k, int n, double x[SPH_DIM]) {
+#if SPH_DIM == 2
+  const double s = n > 1 ? ((double)k / (n - 1) - 0.5) * q->diameter : 0.0;
+  x[0] = q->x + (q->along_x ? s : 0.0);
+  x[1] = q->y + (q->along_x ? 0.0 : s);
+#else
+  double t1[3], t2[3];
+  across(q->normal, t1, t2);
+  const double r = 0.5 * q->diameter / sqrt(2.0);
+  const double a = k == 0 || n == 1 ? 0.0 : (k % 2 ? r : -r);
+  const double *t = k <= 2 ? t1 : t2;
+  const double c[3] = {q->x, q->y, q->z};
+  for (int d = 0; d < 3; d++)
+    x[d] = c[d] + a * t[d];
+#endif
+}
+
 void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind kernel, double h,
-                    double dx, double floor_y, const double g[2], double *out) {
-  double v[3];
+                    double dx, double floor_y, const double g[SPH_DIM], double *out) {
+  double v[1 + SPH_DIM], at[SPH_DIM];
   switch (q->kind) {
   case SPH_PROBE_PRESSURE: {
     const int n = q->diameter > 0.0 ? SPH_PROBE_FACE_POINTS : 1;
     double sum = 0.0;
     for (int k = 0; k < n; k++) {
-      const double s = n > 1 ? ((double)k / (n - 1) - 0.5) * q->diameter : 0.0;
-      const double x = q->x + (q->along_x ? s : 0.0), y = q->y + (q->along_x ? 0.0 : s);
-      if (shepard_at(p, kernel, x, y, h, g, v)) sum += v[0];
+      face_point(q, k, n, at);
+      if (shepard_at(p, kernel, at, h, g, v)) sum += v[0];
     }
     out[0] = sum / n;
     break;
   }
   case SPH_PROBE_LEVEL: {
     double top = -INFINITY;
-    for (size_t j = 0; j < p->n; j++)
-      if (p->kind[j] == SPH_KIND_FLUID && fabs(p->x[j] - q->x) < dx && p->y[j] > top) top = p->y[j];
+    const double *up = p->pos[SPH_DIM - 1];
+    for (size_t j = 0; j < p->n; j++) {
+      if (p->kind[j] != SPH_KIND_FLUID) continue;
+#if SPH_DIM == 2
+      const int near = fabs(p->x[j] - q->x) < dx;
+#else
+      const double ex = p->x[j] - q->x, ey = p->y[j] - q->y;
+      const int near = ex * ex + ey * ey < dx * dx;
+#endif
+      if (near && up[j] > top) top = up[j];
+    }
     const double depth = top + 0.5 * dx - floor_y;
     out[0] = isfinite(depth) && depth > 0.0 ? depth : 0.0;
     break;
   }
-  case SPH_PROBE_VELOCITY:
-    out[0] = out[1] = 0.0;
-    if (shepard_at(p, kernel, q->x, q->y, h, g, v)) {
-      out[0] = v[1];
-      out[1] = v[2];
-    }
+  case SPH_PROBE_VELOCITY: {
+    const double c[SPH_DIM] = {SPH_XYZ(q->x, q->y, q->z)};
+    for (int d = 0; d < SPH_DIM; d++)
+      out[d] = 0.0;
+    if (shepard_at(p, kernel, c, h, g, v))
+      for (int d = 0; d < SPH_DIM; d++)
+        out[d] = v[1 + d];
     break;
+  }
   }
 }

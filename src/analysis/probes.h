@@ -27,6 +27,12 @@
  *             the floor; 0 where no fluid is. Always finite.
  *   velocity  vx and vy, Shepard-normalised as the pressure, at a point; 0
  *             where dry.
+ * In 3-D (core/dim.h; z up) a pressure sensor is a disc on a wall face,
+ * given by its centre, its normal and its diameter: its face points are the
+ * centre and four points at R/sqrt(2) from it (the circle that halves the
+ * disc's area) along two directions across the normal; a level gauge is the
+ * vertical line at (x, y), read from the particles within dx of it
+ * horizontally; a velocity probe reads vx, vy, vz.
  * Each reads the particles alone, serially in storage order: the same bits
  * for any thread count and across a restart.
  */
@@ -54,9 +60,13 @@ typedef enum {
 typedef struct sph_probe {
   char name[65]; /* [A-Za-z0-9_.-], 1 to 64 characters, unique in a case */
   sph_probe_kind kind;
-  double x, y;     /* the point (pressure, velocity); x of a level gauge */
+  double x, y; /* the point (pressure, velocity); x of a level gauge ((x, y) in 3-D) */
+#if SPH_DIM == 3
+  double z;         /* the point's height (pressure, velocity) */
+  double normal[3]; /* pressure: the unit normal of the sensor's face */
+#endif
   double diameter; /* pressure: the width of the sensor's face (m); 0 = a point */
-  int along_x;     /* pressure: the face spans x (a sensor in a floor); default y */
+  int along_x;     /* pressure (2-D): the face spans x (a sensor in a floor); default y */
   double low_pass; /* pressure: the cut-off (Hz) of the sensor's first-order response, 0 = none */
 } sph_probe;
 
@@ -64,18 +74,18 @@ typedef struct sph_probe {
 static inline int sph_probe_filtered(const sph_probe *q) {
   return q->kind == SPH_PROBE_PRESSURE && q->low_pass > 0.0;
 }
-/* The number of CSV columns of a probe: velocity 2, a pressure probe with
- * low_pass 2 (raw, filtered), else 1. */
+/* The number of CSV columns of a probe: velocity 2 (3 in 3-D), a pressure
+ * probe with low_pass 2 (raw, filtered), else 1. */
 int sph_probe_columns(const sph_probe *q);
 /* The header of its columns, "name (Pa)", "name (Pa),name_low_pass (Pa)"
  * or "name_vx (m/s),name_vy (m/s)", written to buf with a leading comma. */
 void sph_probe_header(const sph_probe *q, char *buf, size_t len);
 /* Its reading on the particles p (with the kernel, h the smoothing length,
  * dx the particle spacing, floor_y the bed's height, g the gravity) into
- * out[0] (out[1]: a velocity probe's vy); a low-pass column is
+ * out[0] (a velocity probe: out[0 .. SPH_DIM - 1]); a low-pass column is
  * sph_probe_low_pass's, from the series of readings. */
 void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind kernel, double h,
-                    double dx, double floor_y, const double g[2], double *out);
+                    double dx, double floor_y, const double g[SPH_DIM], double *out);
 /* One step of a first-order low-pass filter (time constant
  * tau = 1 / (2 pi cutoff)) from its output y at the previous reading to the
  * reading x a time dt later, the reading held over the interval (exact for

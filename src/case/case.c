@@ -187,7 +187,11 @@ static const char *const domain_keys[] = {"x", "y",
 static const char *const output_keys[] = {"snapshots", "free_surface",   "energy", "gauges",
                                           "probes",    "probe_interval", NULL};
 static const char *const probe_keys[] = {"name",     "kind",  "at",       "x",
-                                         "diameter", "along", "low_pass", NULL};
+                                         "diameter", "along", "low_pass",
+#if SPH_DIM == 3
+                                         "normal",
+#endif
+                                         NULL};
 static const char *const probe_kind_names[] = {"pressure", "level", "velocity", NULL};
 static const char *const along_names[] = {"y", "x", NULL};
 
@@ -1093,12 +1097,60 @@ static int read_probe(const ctx *x, const node *m, const char *p, const double b
     return -1;
   pr->kind = (sph_probe_kind)kind;
   const int level = pr->kind == SPH_PROBE_LEVEL, pressure = pr->kind == SPH_PROBE_PRESSURE;
-  /* the keys each kind takes */
-  static const char *const only[] = {"at", "x", "diameter", "along", "low_pass"};
-  const int allowed[3][5] = {{1, 0, 1, 1, 1}, {0, 1, 0, 0, 0}, {1, 0, 0, 0, 0}};
-  for (int k = 0; k < 5; k++)
+  /* the keys each kind takes (3-D: a level gauge is at (x, y), a pressure
+   * sensor has a normal instead of along) */
+  static const char *const only[] = {"at", "x", "diameter", "along", "low_pass", "normal"};
+#if SPH_DIM == 2
+  const int allowed[3][6] = {{1, 0, 1, 1, 1, 0}, {0, 1, 0, 0, 0, 0}, {1, 0, 0, 0, 0, 0}};
+#else
+  const int allowed[3][6] = {{1, 0, 1, 0, 1, 1}, {1, 0, 0, 0, 0, 0}, {1, 0, 0, 0, 0, 0}};
+#endif
+  for (int k = 0; k < 6; k++)
     if (!allowed[kind][k] && sph_yaml_lookup(&x->t, m, p, only[k], 0, &t, kp) > 0)
       return sph_yaml_fail_at(&x->t, t, kp, "not a key of a %s probe", probe_kind_names[kind]);
+#if SPH_DIM == 3
+  if (level) { /* the vertical line at (x, y) */
+    double at[2];
+    if (sph_yaml_get_vector(&x->t, m, p, "at", 1, 2, at) < 0) return -1;
+    pr->x = at[0];
+    pr->y = at[1];
+    if (!(at[0] >= box[0] && at[0] <= box[1] && at[1] >= box[2] && at[1] <= box[3])) {
+      sph_yaml_lookup(&x->t, m, p, "at", 1, &t, kp);
+      sph_yaml_bprintf(b, sizeof b, "(%g, %g)", at[0], at[1]);
+      return outside_reach(x, t, kp, b, box);
+    }
+    return 0;
+  }
+  double at[3];
+  if (sph_yaml_get_vector(&x->t, m, p, "at", 1, 3, at) < 0) return -1;
+  pr->x = at[0];
+  pr->y = at[1];
+  pr->z = at[2];
+  if (!(at[0] >= box[0] && at[0] <= box[1] && at[1] >= box[2] && at[1] <= box[3] &&
+        at[2] >= box[4] && at[2] <= box[5])) {
+    sph_yaml_lookup(&x->t, m, p, "at", 1, &t, kp);
+    sph_yaml_bprintf(b, sizeof b, "(%g, %g, %g)", at[0], at[1], at[2]);
+    return outside_reach(x, t, kp, b, box);
+  }
+  if (pressure) {
+    const double side = fmax(fmax(box[1] - box[0], box[3] - box[2]), box[5] - box[4]);
+    const range dia = {0, side, '[', ']', NULL};
+    if (sph_yaml_get_number(&x->t, m, p, "diameter", 0, &dia, &pr->diameter) < 0 ||
+        sph_yaml_get_number(&x->t, m, p, "low_pass", 0, &SPH_YAML_POS, &pr->low_pass) < 0 ||
+        sph_yaml_get_vector(&x->t, m, p, "normal", 1, 3, pr->normal) < 0)
+      return -1;
+    const double *nv = pr->normal;
+    const double len = sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
+    if (!(len > 0.0) || !isfinite(len)) {
+      sph_yaml_lookup(&x->t, m, p, "normal", 1, &t, kp);
+      return sph_yaml_fail_at(&x->t, t, kp, "expected a non-zero vector, got [%g, %g, %g]", nv[0],
+                              nv[1], nv[2]);
+    }
+    for (int d = 0; d < 3; d++)
+      pr->normal[d] /= len;
+  }
+  return 0;
+#endif
   if (level) {
     if (sph_yaml_get_number(&x->t, m, p, "x", 1, &SPH_YAML_ANY, &pr->x) < 0) return -1;
     if (!(pr->x >= box[0] && pr->x <= box[1])) {
@@ -1173,10 +1225,9 @@ static int read_probes(const ctx *x, const node *s, sph_case *c) {
 /* Reads every section of the (overridden) tree into c, in schema order. */
 /* The keys a 3-D case may not use yet (doc/dimensions.md): section, key
  * (NULL: the whole section). */
-static const char *const only_2d[][2] = {{"geometry", "walls"},         {"output", "gauges"},
-                                         {"output", "probes"},          {"output", "free_surface"},
-                                         {"free_surface", NULL},        {"numerics", "shifting"},
-                                         {"numerics", "density_filter"}};
+static const char *const only_2d[][2] = {
+    {"geometry", "walls"},  {"output", "gauges"},     {"output", "free_surface"},
+    {"free_surface", NULL}, {"numerics", "shifting"}, {"numerics", "density_filter"}};
 
 /* The case's dimension: 2 when absent; a case of the other dimension than
  * this build's is refused (sph runs it with the build of its dimension), and

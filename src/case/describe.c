@@ -203,6 +203,15 @@ char *sph_case_describe(const sph_case *c) {
   for (size_t i = 0; i < c->n_probes; i++) {
     const sph_probe *q = &c->probes[i];
     sb_add(&b, "output.probes[%zu]: %s %s", i, q->name, sph_probe_kind_name(q->kind));
+#if SPH_DIM == 3
+    if (q->kind == SPH_PROBE_LEVEL)
+      sb_add(&b, " at [%.17g, %.17g]\n", q->x, q->y);
+    else if (q->kind == SPH_PROBE_VELOCITY)
+      sb_add(&b, " at [%.17g, %.17g, %.17g]\n", q->x, q->y, q->z);
+    else {
+      sb_add(&b, " at [%.17g, %.17g, %.17g] diameter %.17g normal [%.17g, %.17g, %.17g]", q->x,
+             q->y, q->z, q->diameter, q->normal[0], q->normal[1], q->normal[2]);
+#else
     if (q->kind == SPH_PROBE_LEVEL)
       sb_add(&b, " x %.17g\n", q->x);
     else if (q->kind == SPH_PROBE_VELOCITY)
@@ -210,6 +219,7 @@ char *sph_case_describe(const sph_case *c) {
     else {
       sb_add(&b, " at [%.17g, %.17g] diameter %.17g along %s", q->x, q->y, q->diameter,
              q->along_x ? "x" : "y");
+#endif
       if (sph_probe_filtered(q)) sb_add(&b, " low_pass %.17g", q->low_pass);
       sb_add(&b, "\n");
     }

@@ -111,17 +111,21 @@ static int write_probes(sph_sim *s, outputs *o, sph_error *err) {
   const sph_case *c = sph_sim_case(s);
   const sph_particles *p = sph_sim_particles(s);
   const double t = sph_sim_time(s);
-  double *raw = o->lp + c->n_probes, *vy = raw + c->n_probes; /* this row's readings */
+  /* this row's readings: raw (a velocity's vx), then a velocity's vy (, vz) */
+  double *raw = o->lp + c->n_probes, *vy = raw + c->n_probes;
+  SPH_IF3(double *vz = vy + c->n_probes;)
   for (size_t k = 0; k < c->n_probes; k++) {
-    double v[2] = {0.0, 0.0};
+    double v[SPH_DIM] = {0.0};
     sph_probe_read(&c->probes[k], p, c->kernel, c->h, c->dx, sph_sim_floor(s), c->gravity, v);
     raw[k] = v[0];
     vy[k] = v[1];
+    SPH_IF3(vz[k] = v[2];)
   }
   low_pass_row(o, c, t, raw);
   if (fprintf(o->probes, "%.17g", t) < 0) goto fail;
   for (size_t k = 0; k < c->n_probes; k++) {
-    const double v[2] = {raw[k], c->probes[k].kind == SPH_PROBE_VELOCITY ? vy[k] : o->lp[k]};
+    const int vel = c->probes[k].kind == SPH_PROBE_VELOCITY;
+    const double v[SPH_DIM] = {SPH_XYZ(raw[k], vel ? vy[k] : o->lp[k], vz[k])};
     for (int m = 0; m < sph_probe_columns(&c->probes[k]); m++)
       if (fprintf(o->probes, ",%.17g", v[m]) < 0) goto fail;
   }
@@ -390,7 +394,7 @@ static int open_outputs(sph_sim *s, outputs *out, const sph_snapshot_restart_dat
   }
   if (c->n_probes) {
     /* the filters' outputs, then room for a row's readings (write_probes) */
-    if (!(out->lp = calloc(3 * c->n_probes, sizeof *out->lp)))
+    if (!(out->lp = calloc((2 + SPH_DIM) * c->n_probes, sizeof *out->lp)))
       return sph_error_set(err, "out of memory");
     if (!(out->probes = open_run_csv(out, c, 2, t_keep, &kept_probes, err))) return -1;
     if (rd && rd->n_filters == c->n_probes + 2 && has_low_pass(c)) { /* snapshot.h */
