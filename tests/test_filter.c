@@ -36,12 +36,7 @@
 
 static unsigned long long rng;
 static void seed(unsigned long long s) { rng = s * 2654435761ULL + 88172645463325252ULL; }
-static double uniform(void) {
-  rng ^= rng << 13;
-  rng ^= rng >> 7;
-  rng ^= rng << 17;
-  return (double)(rng >> 11) / 9007199254740992.0;
-}
+static double uniform(void) { return sph_test_uniform(&rng); }
 
 static const double DX = 0.01; /* lattice spacing (m) */
 static const double H = 0.013; /* 1.3 dx, paper B */

@@ -61,12 +61,7 @@ static const double RHO0 = 1000.0, DX = 0.01, C0 = 20.0, G = 9.81;
 enum { NL = 11 }; /* lattice points per side */
 
 static unsigned long long rng = 88172645463325252ULL;
-static double uniform(void) {
-  rng ^= rng << 13;
-  rng ^= rng >> 7;
-  rng ^= rng << 17;
-  return (double)(rng >> 11) / 9007199254740992.0;
-}
+static double uniform(void) { return sph_test_uniform(&rng); }
 
 /* A cube of NL^3 fluid particles on the lattice of spacing DX (jittered by
  * up to jitter DX), velocity vel(x) (NULL: at rest). */

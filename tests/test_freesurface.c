@@ -45,12 +45,7 @@
 static int regen; /* --regen: write the golden files instead of comparing */
 
 static unsigned long long rng = 0x9E3779B97F4A7C15ULL;
-static double uniform(void) {
-  rng ^= rng << 13;
-  rng ^= rng >> 7;
-  rng ^= rng << 17;
-  return (double)(rng >> 11) / 9007199254740992.0;
-}
+static double uniform(void) { return sph_test_uniform(&rng); }
 
 /* ---- configurations ------------------------------------------------------ */
 

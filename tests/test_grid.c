@@ -46,12 +46,7 @@
 #endif
 
 static unsigned long long rng = 88172645463325252ULL;
-static double uniform(void) {
-  rng ^= rng << 13;
-  rng ^= rng >> 7;
-  rng ^= rng << 17;
-  return (double)(rng >> 11) / 9007199254740992.0;
-}
+static double uniform(void) { return sph_test_uniform(&rng); }
 
 static int cmp_i64(const void *a, const void *b) {
   int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;

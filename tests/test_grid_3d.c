@@ -39,12 +39,7 @@
 #endif
 
 static unsigned long long rng = 88172645463325252ULL;
-static double uniform(void) {
-  rng ^= rng << 13;
-  rng ^= rng >> 7;
-  rng ^= rng << 17;
-  return (double)(rng >> 11) / 9007199254740992.0;
-}
+static double uniform(void) { return sph_test_uniform(&rng); }
 
 /* A store of n particles uniform in the box [0, L[0]] x [0, L[1]] x [0, L[2]]
  * shifted by (-0.3, 2, 0.7). */

@@ -166,3 +166,10 @@ size_t sph_test_csv2(const char *path, const char *names, double *a, double *b, 
   free(c[1]);
   return k;
 }
+
+double sph_test_uniform(unsigned long long *s) {
+  *s ^= *s << 13;
+  *s ^= *s >> 7;
+  *s ^= *s << 17;
+  return (double)(*s >> 11) / 9007199254740992.0;
+}

@@ -39,6 +39,10 @@ int sph_test_sph(const char *args, const char *dir, char *out, size_t len);
  * asserts it, so the failure names the caller's line). */
 int sph_test_sph_ok(const char *args, const char *dir, char *out, size_t len);
 
+/* A uniform draw in [0, 1) from the xorshift64 state *s (advanced): the
+ * tests' one generator, the same sequence on every platform. */
+double sph_test_uniform(unsigned long long *s);
+
 /* The median of n values (sorts a copy; n > 0). */
 double sph_test_median(const double *v, int n);
 /* Simpson's rule for the integral of f over [a, b] with m (even) intervals. */

@@ -119,17 +119,19 @@ static int add_fluid(sph_sim *s, sph_error *err) {
  * removed, or -1 out of memory. */
 #define SPH_WALL_CLEARANCE 0.5
 
-#if SPH_DIM == 3
-/* The 3-D form: the wall particles binned in cells of dx, each fluid
- * particle tested against the 27 cells around its own. */
+/* The wall particles binned in cells of dx from lo, n[d] cells along axis
+ * d, cell c's at idx[start[c] .. start[c + 1] - 1]; and the test: fluid
+ * particle i closer than sqrt(d2) to one in its cell or the 3^SPH_DIM - 1
+ * around it. */
 typedef struct wall_bins {
-  double lo[3], dx, d2;
-  size_t n[3];
+  double lo[SPH_DIM], dx, d2;
+  size_t n[SPH_DIM];
   const size_t *start, *idx;
 } wall_bins;
-static long bin_of(const wall_bins *b, const double x[3], const long off[3]) {
+/* The cell of x moved by off cells along each axis, or -1 outside the bins. */
+static long bin_of(const wall_bins *b, const double x[SPH_DIM], const long off[SPH_DIM]) {
   size_t key = 0;
-  for (int d = 2; d >= 0; d--) {
+  for (int d = SPH_DIM - 1; d >= 0; d--) {
     const double c = floor((x[d] - b->lo[d]) / b->dx) + (double)off[d];
     if (c < 0 || c >= (double)b->n[d]) return -1;
     key = key * b->n[d] + (size_t)c;
@@ -139,14 +141,20 @@ static long bin_of(const wall_bins *b, const double x[3], const long off[3]) {
 static int fluid_in_wall(const void *ctx, const sph_particles *p, size_t i) {
   const wall_bins *b = ctx;
   if (p->kind[i] != SPH_KIND_FLUID) return 0;
-  const double x[3] = {p->x[i], p->y[i], p->z[i]};
-  for (long o = 0; o < 27; o++) {
-    const long off[3] = {o % 3 - 1, (o / 3) % 3 - 1, o / 9 - 1};
+  const double x[SPH_DIM] = {SPH_XYZ(p->x[i], p->y[i], p->z[i])};
+  const long around = SPH_DIM == 2 ? 9 : 27;
+  for (long o = 0; o < around; o++) {
+    const long off[SPH_DIM] = {SPH_XYZ(o % 3 - 1, (o / 3) % 3 - 1, o / 9 - 1)};
     const long c = bin_of(b, x, off);
     for (size_t k = c < 0 ? 0 : b->start[c]; c >= 0 && k < b->start[c + 1]; k++) {
       const size_t j = b->idx[k];
-      const double ex = x[0] - p->x[j], ey = x[1] - p->y[j], ez = x[2] - p->z[j];
-      if (ex * ex + ey * ey + ez * ez < b->d2) return 1;
+      const double ex = x[0] - p->x[j], ey = x[1] - p->y[j];
+#if SPH_DIM == 2
+      const double r2 = ex * ex + ey * ey;
+#else
+      const double ez = x[2] - p->z[j], r2 = ex * ex + ey * ey + ez * ez;
+#endif
+      if (r2 < b->d2) return 1;
     }
   }
   return 0;
@@ -155,20 +163,26 @@ static int fluid_in_wall(const void *ctx, const sph_particles *p, size_t i) {
 static long remove_fluid_in_walls(sph_sim *s) {
   sph_particles *p = &s->p;
   const double dx = s->c->dx, d2 = (SPH_WALL_CLEARANCE * dx) * (SPH_WALL_CLEARANCE * dx);
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  double lo[SPH_DIM], hi[SPH_DIM];
+  for (int d = 0; d < SPH_DIM; d++)
+    lo[d] = INFINITY, hi[d] = -INFINITY;
   size_t nw = 0;
   for (size_t i = 0; i < p->n; i++)
     if (p->kind[i] == SPH_KIND_WALL) {
-      for (int d = 0; d < 3; d++)
+      for (int d = 0; d < SPH_DIM; d++)
         lo[d] = fmin(lo[d], p->pos[d][i]), hi[d] = fmax(hi[d], p->pos[d][i]);
       nw++;
     }
   if (nw == 0) return 0;
-  wall_bins b = {{lo[0], lo[1], lo[2]}, dx, d2, {0, 0, 0}, NULL, NULL};
+  wall_bins b;
+  memset(&b, 0, sizeof b);
+  b.dx = dx;
+  b.d2 = d2;
   double cells = 1.0;
-  for (int d = 0; d < 3; d++) {
+  for (int d = 0; d < SPH_DIM; d++) {
     const double nd = floor((hi[d] - lo[d]) / dx) + 1.0;
     cells *= nd;
+    b.lo[d] = lo[d];
     b.n[d] = (size_t)nd;
   }
   if (!(cells < 4.0 * (double)p->n + 1e6)) return 0; /* walls far apart: too sparse to bin */
@@ -181,17 +195,17 @@ static long remove_fluid_in_walls(sph_sim *s) {
     free(fill);
     return -1;
   }
-  const long here[3] = {0, 0, 0};
+  const long here[SPH_DIM] = {0};
   for (size_t i = 0; i < p->n; i++)
     if (p->kind[i] == SPH_KIND_WALL) {
-      const double x[3] = {p->x[i], p->y[i], p->z[i]};
+      const double x[SPH_DIM] = {SPH_XYZ(p->x[i], p->y[i], p->z[i])};
       start[bin_of(&b, x, here) + 1]++;
     }
   for (size_t c = 0; c < ncell; c++)
     start[c + 1] += start[c];
   for (size_t i = 0; i < p->n; i++)
     if (p->kind[i] == SPH_KIND_WALL) {
-      const double x[3] = {p->x[i], p->y[i], p->z[i]};
+      const double x[SPH_DIM] = {SPH_XYZ(p->x[i], p->y[i], p->z[i])};
       const size_t c = (size_t)bin_of(&b, x, here);
       idx[start[c] + fill[c]++] = i;
     }
@@ -203,80 +217,6 @@ static long remove_fluid_in_walls(sph_sim *s) {
   free(fill);
   return removed;
 }
-#else
-/* The wall particles binned in cells of dx from (x0, y0), nx columns (nxd x
- * nyd cells), cell c's at idx[start[c] .. start[c + 1] - 1]; and the test:
- * fluid particle i closer than sqrt(d2) to one in its cell or the eight
- * around it. */
-typedef struct wall_bins {
-  double x0, y0, dx, d2;
-  size_t nx;
-  double nxd, nyd;
-  const size_t *start, *idx;
-} wall_bins;
-static int fluid_in_wall(const void *ctx, const sph_particles *p, size_t i) {
-  const wall_bins *b = ctx;
-  if (p->kind[i] != SPH_KIND_FLUID) return 0;
-  const double cx = floor((p->x[i] - b->x0) / b->dx), cy = floor((p->y[i] - b->y0) / b->dx);
-  for (double ry = cy - 1; ry <= cy + 1; ry++)
-    for (double rx = cx - 1; rx <= cx + 1; rx++) {
-      if (rx < 0 || ry < 0 || rx >= b->nxd || ry >= b->nyd) continue;
-      const size_t c = (size_t)ry * b->nx + (size_t)rx;
-      for (size_t k = b->start[c]; k < b->start[c + 1]; k++) {
-        const size_t j = b->idx[k];
-        const double ex = p->x[i] - p->x[j], ey = p->y[i] - p->y[j];
-        if (ex * ex + ey * ey < b->d2) return 1;
-      }
-    }
-  return 0;
-}
-
-static long remove_fluid_in_walls(sph_sim *s) {
-  sph_particles *p = &s->p;
-  const double dx = s->c->dx, d2 = (SPH_WALL_CLEARANCE * dx) * (SPH_WALL_CLEARANCE * dx);
-  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-  size_t nw = 0;
-  for (size_t i = 0; i < p->n; i++)
-    if (p->kind[i] == SPH_KIND_WALL) {
-      x0 = fmin(x0, p->x[i]), x1 = fmax(x1, p->x[i]);
-      y0 = fmin(y0, p->y[i]), y1 = fmax(y1, p->y[i]);
-      nw++;
-    }
-  if (nw == 0) return 0;
-  const double nxd = floor((x1 - x0) / dx) + 1.0, nyd = floor((y1 - y0) / dx) + 1.0;
-  if (!(nxd * nyd < 4.0 * (double)p->n + 1e6)) return 0; /* walls far apart: too sparse to bin */
-  const size_t nx = (size_t)nxd, ny = (size_t)nyd, ncell = nx * ny;
-  size_t *start = calloc(ncell + 1, sizeof *start), *idx = malloc(nw * sizeof *idx);
-  if (!start || !idx) {
-    free(start);
-    free(idx);
-    return -1;
-  }
-#define CELL_OF(X, Y) ((size_t)floor(((Y)-y0) / dx) * nx + (size_t)floor(((X)-x0) / dx))
-  for (size_t i = 0; i < p->n; i++)
-    if (p->kind[i] == SPH_KIND_WALL) start[CELL_OF(p->x[i], p->y[i]) + 1]++;
-  for (size_t c = 0; c < ncell; c++)
-    start[c + 1] += start[c];
-  size_t *fill = calloc(ncell, sizeof *fill);
-  if (!fill) {
-    free(start);
-    free(idx);
-    return -1;
-  }
-  for (size_t i = 0; i < p->n; i++)
-    if (p->kind[i] == SPH_KIND_WALL) {
-      const size_t c = CELL_OF(p->x[i], p->y[i]);
-      idx[start[c] + fill[c]++] = i;
-    }
-#undef CELL_OF
-  const wall_bins b = {x0, y0, dx, d2, nx, nxd, nyd, start, idx};
-  const long removed = (long)sph_particles_drop_if(p, 0, fluid_in_wall, &b);
-  free(start);
-  free(idx);
-  free(fill);
-  return removed;
-}
-#endif
 
 /* Periodic in x: wall particles are wrapped into [x0, x1), and a wall
  * particle that then coincides with an earlier one (a staggered layer that
