@@ -93,11 +93,60 @@ static inline double grid_period(const sph_grid *g) { return sph_grid_period(g);
 typedef struct moments {
   double a00, a01, a02, a11, a12, a22;
   double m0, m1, m2;
+#if SPH_DIM == 3 /* the z row of A (a03, a13, a23, a33) and M's m3 */
+  double a03, a13, a23, a33, m3;
+#endif
 } moments;
 
 /* beta . M with beta = A^-1 e_0 (first row of cofactors over det A); on a
  * near-singular A (see the header comment) the Shepard value, and *fell
  * is set. */
+#if SPH_DIM == 3
+/* The 3-D form: A is 4x4; beta = A^-1 e_0 by Gaussian elimination with
+ * partial pivoting on a copy, and the test det(A) / (tr(A)/4)^4 < det_min
+ * (the same measure: the eigenvalues' geometric over arithmetic mean, to
+ * the fourth). */
+static double mls_value(const moments *s, double det_min, int *fell) {
+  double a[4][5] = {{s->a00, s->a01, s->a02, s->a03, 1.0},
+                    {s->a01, s->a11, s->a12, s->a13, 0.0},
+                    {s->a02, s->a12, s->a22, s->a23, 0.0},
+                    {s->a03, s->a13, s->a23, s->a33, 0.0}};
+  const double t = (s->a00 + s->a11 + s->a22 + s->a33) / 4.0;
+  double det = 1.0;
+  for (int c = 0; c < 4; c++) {
+    int piv = c;
+    for (int r = c + 1; r < 4; r++)
+      if (fabs(a[r][c]) > fabs(a[piv][c])) piv = r;
+    if (piv != c) {
+      for (int k = 0; k < 5; k++) {
+        const double tmp = a[c][k];
+        a[c][k] = a[piv][k];
+        a[piv][k] = tmp;
+      }
+      det = -det;
+    }
+    det *= a[c][c];
+    if (a[c][c] == 0.0) break;
+    for (int r = c + 1; r < 4; r++) {
+      const double f = a[r][c] / a[c][c];
+      for (int k = c; k < 5; k++)
+        a[r][k] -= f * a[c][k];
+    }
+  }
+  if (!(det > det_min * t * t * t * t)) {
+    *fell = 1;
+    return s->m0 / s->a00;
+  }
+  double beta[4];
+  for (int r = 3; r >= 0; r--) {
+    double v = a[r][4];
+    for (int k = r + 1; k < 4; k++)
+      v -= a[r][k] * beta[k];
+    beta[r] = v / a[r][r];
+  }
+  return ((beta[0] * s->m0 + beta[1] * s->m1) + beta[2] * s->m2) + beta[3] * s->m3;
+}
+#else
 static double mls_value(const moments *s, double det_min, int *fell) {
   const double c00 = s->a11 * s->a22 - s->a12 * s->a12;
   const double c01 = s->a02 * s->a12 - s->a01 * s->a22;
@@ -110,6 +159,7 @@ static double mls_value(const moments *s, double det_min, int *fell) {
   }
   return (c00 * s->m0 + c01 * s->m1 + c02 * s->m2) / det;
 }
+#endif
 
 /* The new density of particle a. MLS and VARH are constants at each call
  * site; *fell is set when MLS falls back to Shepard. */
@@ -122,17 +172,23 @@ filter_one(const sph_particles *restrict p, const sph_grid *restrict g,
   const int32_t *restrict kind = p->kind;
   const int same = fp->same_kind_only;
   const double xa = x[a], ya = y[a];
+  SPH_IF3(const double *restrict z = p->z; const double za = z[a];)
   const double ha = VARH ? hh[a] : fp->h;
   const double inv_ha = 1.0 / ha;
   const double s2 = (SPH_CUBIC_SUPPORT * ha) * (SPH_CUBIC_SUPPORT * ha);
-  moments s = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  moments s;
+  memset(&s, 0, sizeof s);
   size_t lo[NRANGES], hi[NRANGES];
   neighbour_ranges(g, a, lo, hi);
   for (int k = 0; k < NRANGES; k++) {
     for (size_t b = lo[k]; b < hi[k]; b++) {
       if (same && kind[b] != kind[a]) continue;
       const double dx = sph_grid_min_image(xa - x[b], period), dy = ya - y[b];
+#if SPH_DIM == 2
       const double r2 = dx * dx + dy * dy;
+#else
+      const double dz = za - z[b], r2 = dx * dx + dy * dy + dz * dz;
+#endif
       const double hab = VARH ? 0.5 * (ha + hh[b]) : ha;
       if (VARH) {
         const double sab = SPH_CUBIC_SUPPORT * hab;
@@ -154,6 +210,8 @@ filter_one(const sph_particles *restrict p, const sph_grid *restrict g,
         s.a22 += vw * v * v;
         s.m1 += mw * u;
         s.m2 += mw * v;
+        SPH_IF3(const double q = dz * inv_ha; s.a03 += vw * q; s.a13 += vw * u * q;
+                s.a23 += vw * v * q; s.a33 += vw * q * q; s.m3 += mw * q;)
       }
     }
   }

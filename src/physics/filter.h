@@ -51,8 +51,9 @@ typedef struct sph_filter_params {
   int same_kind_only; /* 1: neighbours of the particle's own kind only; default 0 */
   /* MLS falls back to the Shepard value for a particle whose moment matrix
    * A (positions in units of h_a) has det(A) / (tr(A)/3)^3 below this
-   * (a number in [0, 1]: 0 for a singular A, 1 for A proportional to the
-   * identity). Default SPH_FILTER_MLS_DET_MIN. */
+   * (det(A) / (tr(A)/4)^4 in 3-D, where A is 4x4; a number in [0, 1]: 0 for
+   * a singular A, 1 for A proportional to the identity). Default
+   * SPH_FILTER_MLS_DET_MIN. */
   double mls_det_min;
   sph_kernel_kind kernel; /* the case's kernel; default the cubic spline */
 } sph_filter_params;
