@@ -124,7 +124,7 @@ void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind 
   }
   case SPH_PROBE_LEVEL: {
     double top = -INFINITY;
-    const double *up = p->pos[SPH_DIM - 1];
+    const double *up = p->pos[SPH_UP];
     for (size_t j = 0; j < p->n; j++) {
       if (p->kind[j] != SPH_KIND_FLUID) continue;
 #if SPH_DIM == 2

@@ -282,7 +282,7 @@ static void set_defaults(sph_case *c) {
   c->rho0 = 1000.0;
   for (int d = 0; d < SPH_DIM; d++)
     c->gravity[d] = 0.0;
-  c->gravity[SPH_DIM - 1] = -9.81; /* the last axis is up */
+  c->gravity[SPH_UP] = -9.81; /* the last axis is up */
   c->alpha = 0.0;
   c->beta = 0.0;
   c->eta = 0.1;

@@ -10,7 +10,7 @@
 
 void sph_case_domain_around(const sph_case *c, const double bb[2 * SPH_DIM],
                             double domain[2 * SPH_DIM]) {
-  enum { UP = 2 * (SPH_DIM - 1) }; /* the vertical axis's lower bound */
+  enum { UP = 2 * SPH_UP }; /* the vertical axis's lower bound */
   if (c->domain_set) {
     memcpy(domain, c->domain, 2 * SPH_DIM * sizeof *domain);
     return;

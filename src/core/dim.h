@@ -37,6 +37,20 @@
 #define SPH_IF3(...) __VA_ARGS__
 #endif
 
+/* The squared length of a separation given by its components, added in
+ * axis order (the 2-D build's operations; dz is read in 3-D only, so in 2-D
+ * it need not exist). */
+#if SPH_DIM == 2
+#define SPH_NORM2(dx, dy, dz) ((dx) * (dx) + (dy) * (dy))
+#else
+#define SPH_NORM2(dx, dy, dz) ((dx) * (dx) + (dy) * (dy) + (dz) * (dz))
+#endif
+
+/* The vertical axis: y in 2-D, z in 3-D (the last one; doc/dimensions.md).
+ * In a box of 2 * SPH_DIM bounds (x0, x1, y0, y1, ...) its lower bound is at
+ * 2 * SPH_UP. */
+#define SPH_UP (SPH_DIM - 1)
+
 /* A field with a name per axis and an array of SPH_DIM (an anonymous
  * union, C11 and a GNU C99 extension; __extension__ keeps -pedantic quiet
  * where the compiler has it): SPH_COMPONENTS(double, g, gx, gy, gz) is

@@ -660,6 +660,14 @@ static int get_text(const sph_snapshot *s, const char *name, int required, char 
   return get_text_of(s, s->file, "/", name, required, out, err);
 }
 
+/* The file's attribute "dimension" into *dim: 2 when absent (every 2-D file). */
+static int read_dimension(const sph_snapshot *s, int64_t *dim, sph_error *err) {
+  *dim = 2;
+  const htri_t has_dim = H5Aexists(s->file, "dimension");
+  if (has_dim < 0) return h5_fail(err, s->path, "cannot look for attribute \"dimension\"");
+  return has_dim > 0 && get_numbers(s, "dimension", H5T_NATIVE_INT64, dim, 1, err) ? -1 : 0;
+}
+
 static int read_header(sph_snapshot *s, sph_error *err) {
   int64_t count;
   if (get_numbers(s, "time", H5T_NATIVE_DOUBLE, &s->time, 1, err) ||
@@ -671,10 +679,8 @@ static int read_header(sph_snapshot *s, sph_error *err) {
     return sph_error_set(err, "%s: attribute \"particle_count\" on / is negative (%lld)", s->path,
                          (long long)count);
   s->count = (size_t)count;
-  int64_t dim = 2; /* absent: a 2-D file */
-  const htri_t has_dim = H5Aexists(s->file, "dimension");
-  if (has_dim < 0) return h5_fail(err, s->path, "cannot look for attribute \"dimension\"");
-  if (has_dim > 0 && get_numbers(s, "dimension", H5T_NATIVE_INT64, &dim, 1, err)) return -1;
+  int64_t dim;
+  if (read_dimension(s, &dim, err)) return -1;
   if (dim != SPH_DIM)
     return sph_error_set(err,
                          "%s: a %lld-D snapshot; this program reads %d-D ones (3-D snapshots are "
@@ -791,20 +797,14 @@ int sph_snapshot_file_dimension(const char *path, int *dim, sph_error *err) {
   *dim = 2;
   h5_quiet q;
   quiet_begin(&q);
-  const hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-  int rc = 0;
-  if (f < 0) {
-    rc = sph_error_set(err, "%s: cannot open as an HDF5 snapshot", path);
-  } else if (H5Aexists(f, "dimension") > 0) {
-    int64_t d = 2;
-    const hid_t a = H5Aopen(f, "dimension", H5P_DEFAULT);
-    if (a < 0 || H5Aread(a, H5T_NATIVE_INT64, &d) < 0)
-      rc = sph_error_set(err, "%s: cannot read attribute \"dimension\"", path);
-    else
-      *dim = (int)d;
-    if (a >= 0) H5Aclose(a);
-  }
-  if (f >= 0) H5Fclose(f);
+  sph_snapshot s = {0};
+  s.path = (char *)path; /* (read only: the messages name it) */
+  s.file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  int64_t d = 2;
+  int rc = s.file < 0 ? sph_error_set(err, "%s: cannot open as an HDF5 snapshot", path)
+                      : read_dimension(&s, &d, err);
+  if (rc == 0) *dim = (int)d;
+  if (s.file >= 0) H5Fclose(s.file);
   quiet_end(&q);
   return rc;
 }

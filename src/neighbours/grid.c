@@ -304,11 +304,8 @@ fill_row(const sph_grid *g, const double *const restrict *x, size_t i, double r2
     for (size_t pos = lo[k]; pos < hi[k]; pos++) {
       const size_t j = sorted ? pos : perm[pos];
       const double dx = sph_grid_min_image(xi - px[j], period), dy = yi - py[j];
-#if SPH_DIM == 2
-      const double r2 = dx * dx + dy * dy;
-#else
-      const double dz = zi - pz[j], r2 = dx * dx + dy * dy + dz * dz;
-#endif
+      SPH_IF3(const double dz = zi - pz[j];)
+      const double r2 = SPH_NORM2(dx, dy, dz);
       if (row) row[c] = (uint32_t)j; /* kept only if the next line counts it: no branch */
       c += (uint32_t)((r2 < r2max) & (j != i));
     }
@@ -456,11 +453,8 @@ int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p) {
     sph_slice(l->cost, p->n, &lo, &hi);
     for (size_t i = lo; i < hi; i++) {
       const double dx = sph_grid_min_image(x[i] - xr[i], period), dy = y[i] - yr[i];
-#if SPH_DIM == 2
-      const double d = dx * dx + dy * dy;
-#else
-      const double dz = z[i] - zr[i], d = dx * dx + dy * dy + dz * dz;
-#endif
+      SPH_IF3(const double dz = z[i] - zr[i];)
+      const double d = SPH_NORM2(dx, dy, dz);
       if (d > d2) d2 = d;
       moved |= id[i] != idr[i];
     }
@@ -522,11 +516,8 @@ const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double s
     size_t k = 0;
     for (size_t j = 0; j < n; j++) {
       const double dx = sph_grid_min_image(p->x[i] - p->x[j], l->period), dy = p->y[i] - p->y[j];
-#if SPH_DIM == 2
-      const double r2ij = dx * dx + dy * dy;
-#else
-      const double dz = p->z[i] - p->z[j], r2ij = dx * dx + dy * dy + dz * dz;
-#endif
+      SPH_IF3(const double dz = p->z[i] - p->z[j];)
+      const double r2ij = SPH_NORM2(dx, dy, dz);
       while (k < l->count[i] && row[k] < j)
         k++;
       if (j == i || !(r2ij < r2)) continue;

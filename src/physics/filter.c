@@ -184,11 +184,8 @@ filter_one(const sph_particles *restrict p, const sph_grid *restrict g,
     for (size_t b = lo[k]; b < hi[k]; b++) {
       if (same && kind[b] != kind[a]) continue;
       const double dx = sph_grid_min_image(xa - x[b], period), dy = ya - y[b];
-#if SPH_DIM == 2
-      const double r2 = dx * dx + dy * dy;
-#else
-      const double dz = za - z[b], r2 = dx * dx + dy * dy + dz * dz;
-#endif
+      SPH_IF3(const double dz = za - z[b];)
+      const double r2 = SPH_NORM2(dx, dy, dz);
       const double hab = VARH ? 0.5 * (ha + hh[b]) : ha;
       if (VARH) {
         const double sab = SPH_CUBIC_SUPPORT * hab;

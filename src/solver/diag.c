@@ -12,8 +12,8 @@
 #include <math.h>
 
 double sph_diag_front(const sph_particles *p, double floor_y, double band) {
-  double front = -INFINITY;               /* a maximum: exact in any order */
-  const double *up = p->pos[SPH_DIM - 1]; /* the vertical: y (z in 3-D) */
+  double front = -INFINITY;          /* a maximum: exact in any order */
+  const double *up = p->pos[SPH_UP]; /* the vertical: y (z in 3-D) */
   const long n = (long)p->n;
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : front)
   for (long i = 0; i < n; i++)
@@ -23,7 +23,7 @@ double sph_diag_front(const sph_particles *p, double floor_y, double band) {
 
 double sph_diag_surface_at(const sph_particles *p, double x, double half, double dx) {
   double top = -INFINITY;
-  const double *up = p->pos[SPH_DIM - 1];
+  const double *up = p->pos[SPH_UP];
   for (size_t i = 0; i < p->n; i++)
     if (p->kind[i] == SPH_KIND_FLUID && fabs(p->x[i] - x) < half && up[i] > top) top = up[i];
   return top + 0.5 * dx;

@@ -32,11 +32,8 @@ static void half_gradient(const sph_particles *restrict p, const sph_nlist *rest
   for (size_t k = 0; k < cnt; k++) {
     const size_t j = nb[k];
     const double dx = sep_x(xi, x[j], period, half, F), dy = yi - y[j];
-#if SPH_DIM == 2
-    const double r2 = dx * dx + dy * dy;
-#else
-    const double dz = zi - z[j], r2 = dx * dx + dy * dy + dz * dz;
-#endif
+    SPH_IF3(const double dz = zi - z[j];)
+    const double r2 = SPH_NORM2(dx, dy, dz);
     const double hij = fp->var_h ? 0.5 * (h[i] + h[j]) : fp->h;
     if (r2 >= 4.0 * hij * hij || r2 == 0.0) continue;
     const double r = sqrt(r2);
@@ -99,12 +96,8 @@ static double diffusion_mass(const sph_particles *restrict p, const sph_nlist *r
     if (!(p->flags[j] & SPH_FLAG_MDBC)) continue;
     const double dx = sep_x(p->x[i], p->x[j], period, half, F), dy = p->y[i] - p->y[j];
     const double hij = fp->var_h ? 0.5 * (p->h[i] + p->h[j]) : fp->h;
-#if SPH_DIM == 2
-    if (dx * dx + dy * dy < 4.0 * hij * hij) return 0.0;
-#else
-    const double dz = p->z[i] - p->z[j];
-    if (dx * dx + dy * dy + dz * dz < 4.0 * hij * hij) return 0.0;
-#endif
+    SPH_IF3(const double dz = p->z[i] - p->z[j];)
+    if (SPH_NORM2(dx, dy, dz) < 4.0 * hij * hij) return 0.0;
   }
   return p->mass[i];
 }

@@ -152,11 +152,8 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
   for (size_t k = 0; k < cnt; k++) {
     const size_t j = nb[k];
     const double dx = sep_x(xi, x[j], period, half, F), dy = yi - y[j];
-#if SPH_DIM == 2
-    const double r2 = dx * dx + dy * dy;
-#else
-    const double dz = zi - z[j], r2 = dx * dx + dy * dy + dz * dz;
-#endif
+    SPH_IF3(const double dz = zi - z[j];)
+    const double r2 = SPH_NORM2(dx, dy, dz);
     const double hij = (F & F_VARH) ? 0.5 * (h[i] + h[j]) : fp->h;
     if (r2 >= 4.0 * hij * hij || r2 == 0.0) continue;
     const double r = sqrt(r2);

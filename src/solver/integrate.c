@@ -146,11 +146,7 @@ double sph_dt_cfl(const sph_particles *p, const sph_eos *eos, double h, double f
   double vmax = 0.0;
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : vmax)
   for (long i = 0; i < n; i++) {
-#if SPH_DIM == 2
-    const double v2 = p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i];
-#else
-    const double v2 = p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i] + p->vz[i] * p->vz[i];
-#endif
+    const double v2 = SPH_NORM2(p->vx[i], p->vy[i], p->vz[i]);
     const double v = sph_eos_sound_speed(eos, p->rho[i]) + sqrt(v2);
     if (v > vmax) vmax = v;
   }

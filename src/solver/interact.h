@@ -293,11 +293,8 @@ cut_row(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
   if (k < len) {
     const size_t j = row[k];
     const double dx = sep_x(xs0, hot[j].x, period, hp, F), dy = ys0 - hot[j].y;
-#if SPH_DIM == 2
-    const double r2 = dx * dx + dy * dy;
-#else
-    const double dz = zs0 - hot[j].z, r2 = dx * dx + dy * dy + dz * dz;
-#endif
+    SPH_IF3(const double dz = zs0 - hot[j].z;)
+    const double r2 = SPH_NORM2(dx, dy, dz);
     nb[cnt] = (uint32_t)j;
     cnt += (size_t)((r2 < s0) & (r2 > 0.0));
   }

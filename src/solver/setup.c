@@ -67,12 +67,17 @@ static void fluid_jitter(const sph_fluid_block *fb, size_t block, long i, long j
   if (SPH_DIM == 3) h = mix64(h ^ (uint64_t)k);
   h = mix64(h ^ (uint64_t)j);
   h = mix64(h ^ (uint64_t)i);
-  (void)k;
   uint64_t draw = h;
   for (int d = 0; d < SPH_DIM; d++) {
     x[d] += fb->jitter * dx * (2.0 * ((double)(draw >> 11) * 0x1.0p-53) - 1.0);
     draw = mix64(draw);
   }
+}
+
+/* The downward component of gravity (0 if it points up): the weight of a
+ * hydrostatic start. */
+static double gravity_down(const sph_case *c) {
+  return -c->gravity[SPH_UP] > 0.0 ? -c->gravity[SPH_UP] : 0.0;
 }
 
 static int add_fluid(sph_sim *s, sph_error *err) {
@@ -82,7 +87,7 @@ static int add_fluid(sph_sim *s, sph_error *err) {
 #else
   const double dx = c->dx, mass = c->rho0 * dx * dx * dx;
 #endif
-  const double gmag = -c->gravity[SPH_DIM - 1] > 0.0 ? -c->gravity[SPH_DIM - 1] : 0.0;
+  const double gmag = gravity_down(c);
   for (size_t b = 0; b < c->n_fluid; b++) {
     const sph_fluid_block *fb = &c->fluid[b];
     const long nx = (long)floor((fb->x1 - fb->x0) / dx + 1e-9);
@@ -103,7 +108,7 @@ static int add_fluid(sph_sim *s, sph_error *err) {
           fluid_jitter(fb, b, i, j, k, dx, x); /* perturbed start, if asked for */
           double rho = c->rho0;
           if (fb->hydrostatic)
-            rho = sph_eos_density(&s->fp.eos, c->rho0 * gmag * (fb->surface - x[SPH_DIM - 1]));
+            rho = sph_eos_density(&s->fp.eos, c->rho0 * gmag * (fb->surface - x[SPH_UP]));
           if (sph_particles_add_at(&s->p, x, v, rho, mass, c->h, SPH_KIND_FLUID, err) < 0)
             return -1;
         }
@@ -128,13 +133,18 @@ typedef struct wall_bins {
   size_t n[SPH_DIM];
   const size_t *start, *idx;
 } wall_bins;
-/* The cell of x moved by off cells along each axis, or -1 outside the bins. */
-static long bin_of(const wall_bins *b, const double x[SPH_DIM], const long off[SPH_DIM]) {
+/* The cell coordinates of x (in cells of the bins, possibly outside them). */
+static void cell_of(const wall_bins *b, const double x[SPH_DIM], double c[SPH_DIM]) {
+  for (int d = 0; d < SPH_DIM; d++)
+    c[d] = floor((x[d] - b->lo[d]) / b->dx);
+}
+/* The key of the cell c moved by off cells along each axis, or -1 outside the bins. */
+static long bin_key(const wall_bins *b, const double c[SPH_DIM], const long off[SPH_DIM]) {
   size_t key = 0;
   for (int d = SPH_DIM - 1; d >= 0; d--) {
-    const double c = floor((x[d] - b->lo[d]) / b->dx) + (double)off[d];
-    if (c < 0 || c >= (double)b->n[d]) return -1;
-    key = key * b->n[d] + (size_t)c;
+    const double cd = c[d] + (double)off[d];
+    if (cd < 0 || cd >= (double)b->n[d]) return -1;
+    key = key * b->n[d] + (size_t)cd;
   }
   return (long)key;
 }
@@ -142,22 +152,29 @@ static int fluid_in_wall(const void *ctx, const sph_particles *p, size_t i) {
   const wall_bins *b = ctx;
   if (p->kind[i] != SPH_KIND_FLUID) return 0;
   const double x[SPH_DIM] = {SPH_XYZ(p->x[i], p->y[i], p->z[i])};
+  double c[SPH_DIM];
+  cell_of(b, x, c); /* once: the 3^SPH_DIM cells around are offsets from it */
   const long around = SPH_DIM == 2 ? 9 : 27;
   for (long o = 0; o < around; o++) {
     const long off[SPH_DIM] = {SPH_XYZ(o % 3 - 1, (o / 3) % 3 - 1, o / 9 - 1)};
-    const long c = bin_of(b, x, off);
-    for (size_t k = c < 0 ? 0 : b->start[c]; c >= 0 && k < b->start[c + 1]; k++) {
+    const long key = bin_key(b, c, off);
+    for (size_t k = key < 0 ? 0 : b->start[key]; key >= 0 && k < b->start[key + 1]; k++) {
       const size_t j = b->idx[k];
       const double ex = x[0] - p->x[j], ey = x[1] - p->y[j];
-#if SPH_DIM == 2
-      const double r2 = ex * ex + ey * ey;
-#else
-      const double ez = x[2] - p->z[j], r2 = ex * ex + ey * ey + ez * ez;
-#endif
+      SPH_IF3(const double ez = x[2] - p->z[j];)
+      const double r2 = SPH_NORM2(ex, ey, ez);
       if (r2 < b->d2) return 1;
     }
   }
   return 0;
+}
+
+/* The key of the cell holding x (a wall particle: inside the bins). */
+static size_t bin_of(const wall_bins *b, const double x[SPH_DIM]) {
+  double c[SPH_DIM];
+  const long here[SPH_DIM] = {0};
+  cell_of(b, x, c);
+  return (size_t)bin_key(b, c, here);
 }
 
 static long remove_fluid_in_walls(sph_sim *s) {
@@ -195,18 +212,17 @@ static long remove_fluid_in_walls(sph_sim *s) {
     free(fill);
     return -1;
   }
-  const long here[SPH_DIM] = {0};
   for (size_t i = 0; i < p->n; i++)
     if (p->kind[i] == SPH_KIND_WALL) {
       const double x[SPH_DIM] = {SPH_XYZ(p->x[i], p->y[i], p->z[i])};
-      start[bin_of(&b, x, here) + 1]++;
+      start[bin_of(&b, x) + 1]++;
     }
   for (size_t c = 0; c < ncell; c++)
     start[c + 1] += start[c];
   for (size_t i = 0; i < p->n; i++)
     if (p->kind[i] == SPH_KIND_WALL) {
       const double x[SPH_DIM] = {SPH_XYZ(p->x[i], p->y[i], p->z[i])};
-      const size_t c = (size_t)bin_of(&b, x, here);
+      const size_t c = bin_of(&b, x);
       idx[start[c] + fill[c]++] = i;
     }
   b.start = start;
@@ -246,9 +262,9 @@ static void dedupe_periodic(sph_sim *s) {
 /* Hydrostatic density of the wall particles beside or under a block. */
 static void init_wall_density(sph_sim *s) {
   const sph_case *c = s->c;
-  const double gmag = -c->gravity[SPH_DIM - 1] > 0.0 ? -c->gravity[SPH_DIM - 1] : 0.0;
+  const double gmag = gravity_down(c);
   const double reach = SPH_CUBIC_SUPPORT * c->h;
-  const double *up = s->p.pos[SPH_DIM - 1]; /* the vertical */
+  const double *up = s->p.pos[SPH_UP]; /* the vertical */
   for (size_t i = 0; i < s->p.n; i++) {
     if (s->p.kind[i] != SPH_KIND_WALL || (s->p.flags[i] & SPH_FLAG_REPULSIVE)) continue;
     double depth = 0.0;
@@ -278,7 +294,7 @@ static void bounding_box(const sph_particles *p, double box[2 * SPH_DIM]) {
 
 static void set_boxes(sph_sim *s) {
   const sph_case *c = s->c;
-  enum { UP = 2 * (SPH_DIM - 1) }; /* the vertical's lower bound in a box */
+  enum { UP = 2 * SPH_UP }; /* the vertical's lower bound in a box */
   double bb[2 * SPH_DIM];
   bounding_box(&s->p, bb);
   if (c->tank.present) { /* a mirror tank has no wall particles: take its faces */

@@ -28,11 +28,8 @@ void sph_repulsion_add(sph_particles *p, const sph_nlist *l, double d, double r0
       if (!(p->flags[j] & SPH_FLAG_REPULSIVE)) continue;
       const double dx = sph_grid_min_image(p->x[i] - p->x[j], period);
       const double dy = p->y[i] - p->y[j];
-#if SPH_DIM == 2
-      const double r2 = dx * dx + dy * dy;
-#else
-      const double dz = p->z[i] - p->z[j], r2 = dx * dx + dy * dy + dz * dz;
-#endif
+      SPH_IF3(const double dz = p->z[i] - p->z[j];)
+      const double r2 = SPH_NORM2(dx, dy, dz);
       if (r2 >= r0 * r0 || r2 == 0.0) continue;
       const double f = lennard_jones_v1(d, r0, r2);
       ax += f * dx;
