@@ -615,6 +615,16 @@ static void test_cross_checks(void) {
   expect_err(edit(MINIMAL, 10, "  tank: {x: [0, 0.8], y: [0, 1]}\n  fluid:\n"),
              "t.yaml:12: geometry.fluid[0].x: expected a range inside the tank's inner box [0, "
              "0.8], got [0, 1]");
+  /* only x wraps in 2-D; a 2-D tank is never periodic */
+  expect_err(edit(MINIMAL, 10, "  periodic_y: [0, 1]\n  fluid:\n"),
+             "t.yaml:10: geometry.periodic_y: is 3-D only: a 2-D case is periodic in x only (y is "
+             "up)");
+  expect_err(edit(MINIMAL, 10, "  periodic_x: [0, 1]\n  tank: {x: [0, 1], y: [0, 1]}\n  fluid:\n"),
+             "t.yaml:10: geometry.periodic_x: a periodic domain cannot have a tank (use "
+             "geometry.walls for the bed)");
+  expect_err(edit(MINIMAL, 10, "  periodic_x: [0, 0.05]\n  fluid:\n"),
+             "t.yaml:10: geometry.periodic_x: expected a period of at least 6 h = 0.078 m, got "
+             "0.05");
 }
 
 static void test_duplicate_key(void) {

@@ -40,7 +40,8 @@ static void test_real_state_passes(void) {
     sph_grid g;
     sph_grid_init(&g);
     const double x0 = -0.01, x1 = 0.24;
-    int rc = periodic ? sph_grid_build_periodic(&g, p, support * 1.000001, x0, x1, 1u << 20, &err)
+    int rc = periodic ? sph_grid_build_periodic(&g, p, support * 1.000001, SPH_AXIS_X, x0, x1,
+                                                1u << 20, &err)
                       : sph_grid_build(&g, p, support * 1.000001, 1u << 20, &err);
     CU_ASSERT_FATAL(rc == 0);
     CU_ASSERT(sph_grid_check(&g, p->n) == NULL);

@@ -454,7 +454,8 @@ static void test_periodic(void) {
     sph_grid g;
     sph_grid_init(&g);
     sph_error err;
-    CU_ASSERT_FATAL(sph_grid_build_periodic(&g, &p, 2 * H, 0.0, 0.2, 1u << 20, &err) == 0);
+    CU_ASSERT_FATAL(sph_grid_build_periodic(&g, &p, 2 * H, SPH_AXIS_X, 0.0, 0.2, 1u << 20, &err) ==
+                    0);
     double *scratch = malloc(p.n * sizeof *scratch);
     CU_ASSERT(sph_filter_apply(k, &p, &g, &fp, scratch, NULL, &err) == 0);
     const double d = max_rel_diff(&p, ref);

@@ -397,6 +397,105 @@ static void test_loops_agree(void) {
   free(got);
 }
 
+/* The rates of fp on the jittered block of rates() made periodic along axis a (period NL DX)
+ * with its coordinates and velocities permuted by perm (axis d of the block becomes axis
+ * perm[d]), read back in the block's own axes; loop: the loop to run. */
+static void periodic_rates(sph_force_params fp, int a, const int perm[3], double *out) {
+  sph_particles p, q;
+  sph_error err;
+  rng = 777;
+  lattice(&p, 0.2, random_velocity);
+  CU_ASSERT_FATAL(sph_particles_init(&q, p.n, &err) == 0);
+  for (size_t i = 0; i < p.n; i++) {
+    double x[3], v[3];
+    for (int d = 0; d < 3; d++)
+      x[perm[d]] = p.pos[d][i], v[perm[d]] = p.vel[d][i];
+    CU_ASSERT_FATAL(sph_particles_add_at(&q, x, v, RHO0 * (1.0 + 0.01 * (2.0 * uniform() - 1.0)),
+                                         p.mass[i], p.h[i], SPH_KIND_FLUID, &err) >= 0);
+  }
+  fp.periodic = 1, fp.paxis = a, fp.period = NL * DX, fp.px0 = 0.0;
+  double g[3] = {0.0, 0.0, 0.0};
+  g[perm[2]] = -G;
+  fp.gx = g[0], fp.gy = g[1], fp.gz = g[2];
+  sph_grid gr;
+  sph_grid_init(&gr);
+  sph_nlist l;
+  sph_nlist_init(&l);
+  sph_force_work w;
+  memset(&w, 0, sizeof w);
+  int rc = sph_grid_build_periodic(&gr, &q, 2.0 * fp.h * (1.0 + 1e-9), a, 0.0, fp.period, 1u << 24,
+                                   &err);
+  if (rc == 0) rc = sph_nlist_build(&l, &gr, &q, 2.0 * fp.h, 0.0, fp.period, &err);
+  if (rc == 0) {
+    sph_forces_pressure(&q, &fp.eos);
+    rc = sph_forces_evaluate(&q, &l, &fp, &w, &err);
+  }
+  if (rc) fprintf(stderr, "periodic_rates: %s\n", err.msg);
+  CU_ASSERT_FATAL(rc == 0);
+  for (size_t i = 0; i < q.n; i++) {
+    const size_t k = (size_t)q.id[i] * 7;
+    out[k] = q.drho[i];
+    for (int d = 0; d < 3; d++)
+      out[k + 1 + d] = q.acc[perm[d]][i], out[k + 4 + d] = q.xsph[perm[d]][i];
+  }
+  sph_force_work_free(&w);
+  sph_nlist_free(&l);
+  sph_grid_free(&gr);
+  sph_particles_free(&q);
+  sph_particles_free(&p);
+}
+
+/* Periodic along y and along z: the block periodic along x with its axes exchanged (x and y,
+ * x and z) gives the same rates as periodic along x, to round-off (the squared distances sum
+ * in another order), with every term that takes a separation (AV, XSPH, Antuono's diffusion,
+ * the stress tensor with its correction and SPS); lane flavours and the run-time loop bitwise
+ * as the scalar loop's 1e-11. Every particle has neighbours across the seam within 2 h. */
+static void test_periodic_axes(void) {
+  const size_t n = (size_t)NL * NL * NL * 7;
+  double *ref = calloc(n, sizeof *ref), *got = calloc(n, sizeof *got);
+  sph_force_params fp = params();
+  fp.alpha = 0.2;
+  fp.xsph = 0.5, fp.diffusion = SPH_DIFFUSION_ANTUONO, fp.diffusion_delta = 0.1;
+  fp.viscosity = SPH_VISCOSITY_STRESS_TENSOR, fp.mu = 1e-3, fp.sps = 1, fp.sps_cs = 0.12,
+  fp.sps_ci = 0.00066, fp.sps_delta = DX, fp.gradient_correction = 1;
+  const int same[3] = {0, 1, 2}, xy[3] = {1, 0, 2}, xz[3] = {2, 1, 0};
+  fp.loop = SPH_LOOP_LANES;
+  periodic_rates(fp, SPH_AXIS_X, same, ref);
+  double mag = 0.0;
+  for (size_t q = 0; q < n; q++)
+    mag = fmax(mag, fabs(ref[q]));
+  const sph_force_loop loops[3] = {SPH_LOOP_SCALAR, SPH_LOOP_LANES, SPH_LOOP_LANES_AVX};
+  for (int a = SPH_AXIS_Y; a <= SPH_AXIS_Z; a++) {
+    double *lanes = calloc(n, sizeof *lanes);
+    fp.loop = SPH_LOOP_LANES;
+    fp.runtime_terms = 0;
+    periodic_rates(fp, a, a == SPH_AXIS_Y ? xy : xz, lanes);
+    double worst = 0.0;
+    for (size_t q = 0; q < n; q++)
+      worst = fmax(worst, fabs(lanes[q] - ref[q]));
+    printf("\n    periodic along %c as along x: largest difference %.2g of %.2g", "xyz"[a], worst,
+           mag);
+    CU_ASSERT(worst <= 1e-11 * mag);
+    for (int k = 0; k < 4; k++) {
+      if (k < 3 && !sph_force_loop_available(loops[k])) continue;
+      fp.loop = k < 3 ? loops[k] : SPH_LOOP_LANES;
+      fp.runtime_terms = k == 3; /* the run-time loop */
+      periodic_rates(fp, a, a == SPH_AXIS_Y ? xy : xz, got);
+      if (k == 0) {
+        double w = 0.0;
+        for (size_t q = 0; q < n; q++)
+          w = fmax(w, fabs(got[q] - lanes[q]));
+        CU_ASSERT(w <= 1e-11 * mag);
+      } else {
+        CU_ASSERT(memcmp(got, lanes, n * sizeof *got) == 0);
+      }
+    }
+    free(lanes);
+  }
+  free(ref);
+  free(got);
+}
+
 static double linear_rho(const double x[3]) {
   return RHO0 * (1.0 + 0.3 * x[0] - 0.2 * x[1] + 0.5 * x[2]);
 }
@@ -490,6 +589,8 @@ int main(void) {
       {"3-D momentum sums to zero; the ledger's heat balances the work", test_balances},
       {"3-D scalar, lane flavours, run-time loop and thread counts agree", test_loops_agree},
       {"3-D integrators move along z as along x, bit for bit", test_integrators},
+      {"3-D periodic along y and z: the rates of periodic along x, axes exchanged",
+       test_periodic_axes},
       {"3-D MLS filter: exact for a linear density; Shepard for a uniform one", test_filters},
       CU_TEST_INFO_NULL};
   return sph_test_main("forces_3d", tests);

@@ -121,7 +121,8 @@ static size_t detect(const cloud *c, const size_t *order, double f, double cell,
   sph_grid g;
   sph_grid_init(&g);
   if (c->period > 0.0)
-    CU_ASSERT_FATAL(sph_grid_build_periodic(&g, &p, cell, 0.0, c->period, 1u << 24, &err) == 0);
+    CU_ASSERT_FATAL(
+        sph_grid_build_periodic(&g, &p, cell, SPH_AXIS_X, 0.0, c->period, 1u << 24, &err) == 0);
   if (c->period <= 0.0) CU_ASSERT_FATAL(sph_grid_build(&g, &p, cell, 1u << 24, &err) == 0);
   sph_freesurface_params fp = {.radius_factor = f, .period = c->period};
   size_t count = 12345, set = 0;
@@ -167,8 +168,8 @@ static size_t detect(const cloud *c, const size_t *order, double f, double cell,
     sph_grid g2;
     sph_grid_init(&g2);
     if (c->period > 0.0)
-      CU_ASSERT_FATAL(
-          sph_grid_build_periodic(&g2, &p, 1.5 * cell, 0.0, c->period, 1u << 24, &err) == 0);
+      CU_ASSERT_FATAL(sph_grid_build_periodic(&g2, &p, 1.5 * cell, SPH_AXIS_X, 0.0, c->period,
+                                              1u << 24, &err) == 0);
     if (c->period <= 0.0) CU_ASSERT_FATAL(sph_grid_build(&g2, &p, 1.5 * cell, 1u << 24, &err) == 0);
     /* the coarser grid reorders the store: compare by id */
     for (size_t i = 0; i < p.n; i++)
@@ -841,7 +842,7 @@ static void test_errors(void) {
   fp.period = 1.0;
   CU_ASSERT_EQUAL(sph_freesurface_detect(&p, &g, &fp, &count, &err), -1);
   CU_ASSERT(strstr(err.msg, "not periodic") != NULL);
-  CU_ASSERT_FATAL(sph_grid_build_periodic(&g, &p, 0.2, 0.0, 1.0, 1u << 20, &err) == 0);
+  CU_ASSERT_FATAL(sph_grid_build_periodic(&g, &p, 0.2, SPH_AXIS_X, 0.0, 1.0, 1u << 20, &err) == 0);
   CU_ASSERT_EQUAL(sph_freesurface_detect(&p, &g, &fp, &count, &err), 0);
   fp.period = 0.0;
   CU_ASSERT_EQUAL(sph_freesurface_detect(&p, &g, &fp, &count, &err), -1);

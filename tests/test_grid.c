@@ -182,7 +182,7 @@ static size_t check_periodic(sph_particles *p, double support, double cell, doub
   sph_grid g;
   sph_grid_init(&g);
   sph_error err;
-  const int rc = sph_grid_build_periodic(&g, p, cell, px0, px1, 1u << 24, &err);
+  const int rc = sph_grid_build_periodic(&g, p, cell, SPH_AXIS_X, px0, px1, 1u << 24, &err);
   if (rc) printf("\n%s\n", err.msg);
   CU_ASSERT_FATAL(rc == 0);
   CU_ASSERT(g.periodic);
@@ -275,7 +275,8 @@ static void test_periodic_three_cells(void) {
     periodic_set(&p, 300 + 100 * (size_t)trial, px0, px1, 1.0, 1.5, cell, support);
     sph_grid g;
     sph_grid_init(&g);
-    CU_ASSERT_FATAL(sph_grid_build_periodic(&g, &p, cell, px0, px1, 1u << 20, &err) == 0);
+    CU_ASSERT_FATAL(sph_grid_build_periodic(&g, &p, cell, SPH_AXIS_X, px0, px1, 1u << 20, &err) ==
+                    0);
     CU_ASSERT_EQUAL(g.ncell[0], 3);
     CU_ASSERT_EQUAL(g.cellx, cell);
     sph_grid_free(&g);
@@ -297,7 +298,8 @@ static void test_periodic_long(void) {
     periodic_set(&p, 800 + 300 * (size_t)trial, px0, px1, -0.2, 8 * cell, cell, support);
     sph_grid g;
     sph_grid_init(&g);
-    CU_ASSERT_FATAL(sph_grid_build_periodic(&g, &p, cell, px0, px1, 1u << 20, &err) == 0);
+    CU_ASSERT_FATAL(sph_grid_build_periodic(&g, &p, cell, SPH_AXIS_X, px0, px1, 1u << 20, &err) ==
+                    0);
     CU_ASSERT(g.ncell[0] > 3);
     sph_grid_free(&g);
     CU_ASSERT(check_periodic(&p, support, cell, px0, px1) > 0);
@@ -314,7 +316,7 @@ static void test_periodic_too_short(void) {
   sph_grid g;
   sph_grid_init(&g);
   err.msg[0] = 0;
-  CU_ASSERT(sph_grid_build_periodic(&g, &p, 0.25, 0.0, 0.7, 1u << 20, &err) != 0);
+  CU_ASSERT(sph_grid_build_periodic(&g, &p, 0.25, SPH_AXIS_X, 0.0, 0.7, 1u << 20, &err) != 0);
   CU_ASSERT(strstr(err.msg, "fewer than 3 cells") != NULL);
   sph_grid_free(&g);
   sph_particles_free(&p);
@@ -485,7 +487,7 @@ static void check_list(sph_particles *p, double support, double skin, double per
   if (binned)
     rc = sph_grid_bin(&g, p, cell, period > 0.0, 0.0, px1, 1u << 24, &err);
   else if (period > 0.0)
-    rc = sph_grid_build_periodic(&g, p, cell, 0.0, px1, 1u << 24, &err);
+    rc = sph_grid_build_periodic(&g, p, cell, SPH_AXIS_X, 0.0, px1, 1u << 24, &err);
   else
     rc = sph_grid_build(&g, p, cell, 1u << 24, &err);
   CU_ASSERT_FATAL(rc == 0);

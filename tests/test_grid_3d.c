@@ -53,12 +53,17 @@ static void random_store(sph_particles *p, size_t n, const double L[3]) {
   }
 }
 
-/* The squared distance of i and j, x taken as the minimum image over period (0: none). */
+/* The axis that wraps in the periodic checks below (x unless a test sets it). */
+static int paxis = SPH_AXIS_X;
+
+/* The squared distance of i and j, the axis paxis taken as the minimum image over period (0:
+ * none). */
 static double dist2(const sph_particles *p, size_t i, size_t j, double period) {
-  double dx = p->x[i] - p->x[j];
-  if (period > 0.0) dx -= period * nearbyint(dx / period);
-  const double dy = p->y[i] - p->y[j], dz = p->z[i] - p->z[j];
-  return dx * dx + dy * dy + dz * dz;
+  double d[3];
+  for (int a = 0; a < 3; a++)
+    d[a] = p->pos[a][i] - p->pos[a][j];
+  if (period > 0.0) d[paxis] -= period * nearbyint(d[paxis] / period);
+  return d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
 }
 
 static int cmp_i64(const void *a, const void *b) {
@@ -80,11 +85,13 @@ static void check_grid(sph_particles *p, double support, double period) {
   sph_grid_init(&g);
   sph_error err;
   const double cell = support * (1.0 + 1e-9);
-  const int rc = period > 0.0 ? sph_grid_build_periodic(&g, p, cell, 0.0, period, 1u << 24, &err)
-                              : sph_grid_build(&g, p, cell, 1u << 24, &err);
+  const int rc = period > 0.0
+                     ? sph_grid_build_periodic(&g, p, cell, paxis, 0.0, period, 1u << 24, &err)
+                     : sph_grid_build(&g, p, cell, 1u << 24, &err);
   CU_ASSERT_FATAL(rc == 0);
   if (period > 0.0) {
-    CU_ASSERT_EQUAL(g.axis[0], SPH_AXIS_X);
+    CU_ASSERT_EQUAL(g.axis[0], paxis);
+    CU_ASSERT_EQUAL(g.periodic, 1 + paxis);
     CU_ASSERT_DOUBLE_EQUAL(sph_grid_period(&g), period, 1e-12);
   }
   double ext[3];
@@ -220,7 +227,9 @@ static void test_periodic(void) {
   sph_grid g;
   sph_grid_init(&g);
   sph_error err;
-  CU_ASSERT(sph_grid_build_periodic(&g, &p, 0.03, -0.3, -0.22, 1u << 20, &err) != 0);
+  CU_ASSERT(sph_grid_build_periodic(&g, &p, 0.03, SPH_AXIS_X, -0.3, -0.22, 1u << 20, &err) != 0);
+  CU_ASSERT(sph_grid_build_periodic(&g, &p, 0.03, 3, -0.3, 0.0, 1u << 20, &err) != 0);
+  CU_ASSERT(strstr(err.msg, "axis") != NULL);
   sph_grid_free(&g);
   sph_particles_free(&p);
 }
@@ -262,9 +271,9 @@ static void check_list(sph_particles *p, double support, double skin, double per
   const double cell = (support + skin) * (1.0 + 1e-9);
   int rc;
   if (binned)
-    rc = sph_grid_bin(&g, p, cell, period > 0.0, 0.0, period, 1u << 24, &err);
+    rc = sph_grid_bin(&g, p, cell, period > 0.0 ? 1 + paxis : 0, 0.0, period, 1u << 24, &err);
   else if (period > 0.0)
-    rc = sph_grid_build_periodic(&g, p, cell, 0.0, period, 1u << 24, &err);
+    rc = sph_grid_build_periodic(&g, p, cell, paxis, 0.0, period, 1u << 24, &err);
   else
     rc = sph_grid_build(&g, p, cell, 1u << 24, &err);
   CU_ASSERT_FATAL(rc == 0);
@@ -344,12 +353,52 @@ static void test_list_fresh(void) {
   sph_particles_free(&p);
 }
 
+/* Periodic along y and along z: the same store shifted into [0, period) along the axis that
+ * wraps, its grid and list against brute force with the minimum image along that axis, the
+ * axis the grid's direction 0 (its rows wrap) whatever the extents. */
+static void test_periodic_yz(void) {
+  for (int a = SPH_AXIS_Y; a <= SPH_AXIS_Z; a++)
+    for (int t = 0; t < 2; t++) {
+      sph_particles p;
+      double L[3] = {0.2, 0.15, 0.1};
+      L[a] = t ? 0.3 : 0.1; /* the periodic axis the longest, then the shortest */
+      random_store(&p, 1500, L);
+      const double shift[3] = {0.3, -2.0, -0.7}; /* random_store's offsets undone */
+      for (size_t i = 0; i < p.n; i++)
+        p.pos[a][i] += shift[a];
+      p.pos[a][0] = L[a] + 0.002, p.pos[a][1] = -0.002, p.pos[a][2] = 0.0;
+      paxis = a;
+      check_grid(&p, 0.03, L[a]);
+      check_list(&p, 0.025, 0.004, L[a], t);
+      /* the list's freshness measures a move across the seam as its minimum image */
+      sph_grid g;
+      sph_grid_init(&g);
+      sph_nlist l;
+      sph_nlist_init(&l);
+      sph_error err;
+      CU_ASSERT_FATAL(
+          sph_grid_build_periodic(&g, &p, 0.03 * (1 + 1e-9), a, 0.0, L[a], 1u << 24, &err) == 0);
+      CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, 0.025, 0.005, L[a], &err) == 0);
+      CU_ASSERT_EQUAL(l.paxis, a);
+      const size_t i = 7;
+      p.pos[a][i] = l.ref[a][i] + (l.ref[a][i] < 0.5 * L[a] ? L[a] : -L[a]) + 0.001;
+      CU_ASSERT(sph_nlist_fresh(&l, &p)); /* moved 0.001 < skin/2 through the seam */
+      p.pos[a][i] += 0.002;
+      CU_ASSERT(!sph_nlist_fresh(&l, &p));
+      paxis = SPH_AXIS_X;
+      sph_nlist_free(&l);
+      sph_grid_free(&g);
+      sph_particles_free(&p);
+    }
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
       {"3-D store: z by name and by axis, set by add_at, carried by permute", test_store_axes},
       {"3-D grid neighbours equal brute force (boxes of every aspect)", test_random_sets},
       {"3-D lattice on cell faces: 6, 18 and 26 neighbours", test_lattice},
       {"3-D grid periodic in x against brute force (minimum image)", test_periodic},
+      {"3-D grid and list periodic in y and in z against brute force", test_periodic_yz},
       {"3-D counting sort: the same order on teams of 1 to 3 threads", test_sort_any_team},
       {"3-D neighbour list equals brute force (sorted, binned, periodic)", test_list},
       {"3-D neighbour list: fresh within skin/2, stale beyond along z", test_list_fresh},

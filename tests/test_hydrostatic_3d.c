@@ -118,6 +118,24 @@ static void test_reader(void) {
   refused("numerics.scheme=riemann", "geometry.tank");
   refused("geometry.tank={x: [0.0, 0.2], y: [0.0, 0.1], z: [0.0, 0.05]}",
           "geometry.fluid[0].z"); /* the block reaches above the tank */
+  /* periodic along y (or x): the tank open along it, its range the period, whole dx */
+  const char *const py[1] = {"geometry.periodic_y=[0.0, 0.1]"};
+  CU_ASSERT_FATAL(parse(CASE3, py, 1, &c, &err) == 0);
+  CU_ASSERT(c.periodic && c.periodic_axis == 1 && c.tank.open_along == 2);
+  d = sph_case_describe(&c);
+  CU_ASSERT_PTR_NOT_NULL(d && strstr(d, "geometry.periodic_y: [0, 0.10000000000000001]\n"));
+  free(d);
+  sph_case_free(&c);
+  refused("geometry.periodic_y=[0.0, 0.09]", "geometry.periodic_y: expected the tank's y range");
+  refused("geometry.periodic_z=[0.0, 0.15]", "geometry.periodic_z: a tank cannot be periodic");
+  const char *const two_axes[2] = {"geometry.periodic_x=[0.0, 0.2]",
+                                   "geometry.periodic_y=[0.0, 0.1]"};
+  CU_ASSERT(parse(CASE3, two_axes, 2, &c, &err) != 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "expected one periodic axis"));
+  const char *const half_dx[2] = {"geometry.tank.y=[0.0, 0.105]", "geometry.periodic_y=[0, 0.105]"};
+  CU_ASSERT(parse(CASE3, half_dx, 2, &c, &err) != 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "whole number of numerics.dx"));
+  printf("\n    %s", err.msg);
   /* the dimension a file says, with --set */
   char *dir = sph_test_tmpdir(), path[4200];
   snprintf(path, sizeof path, "%s/c.yaml", dir);

@@ -428,8 +428,9 @@ static void run_pass(const sph_particles *p0, const sph_force_params *fp0, sph_f
   sph_grid g;
   sph_grid_init(&g);
   const double cell = support * (1.0 + 1e-9);
-  int rc = fp.periodic ? sph_grid_build_periodic(&g, &p, cell, 0.0, fp.period, 1u << 16, &err)
-                       : sph_grid_build(&g, &p, cell, 1u << 16, &err);
+  int rc = fp.periodic
+               ? sph_grid_build_periodic(&g, &p, cell, SPH_AXIS_X, 0.0, fp.period, 1u << 16, &err)
+               : sph_grid_build(&g, &p, cell, 1u << 16, &err);
   CU_ASSERT_FATAL(rc == 0);
   sph_nlist l;
   sph_nlist_init(&l);

@@ -161,7 +161,8 @@ static lattice_result lattice_strain(velocity_fn f, int periodic, int correct, d
   sph_grid g;
   sph_grid_init(&g);
   const double cell = 2.0 * HL * (1.0 + 1e-9);
-  int rc = periodic ? sph_grid_build_periodic(&g, &p, cell, x0, x0 + NL * DXL, 1u << 20, &err)
+  int rc = periodic ? sph_grid_build_periodic(&g, &p, cell, SPH_AXIS_X, x0, x0 + NL * DXL, 1u << 20,
+                                              &err)
                     : sph_grid_build(&g, &p, cell, 1u << 20, &err);
   CU_ASSERT_FATAL(rc == 0);
   double *exx = malloc(p.n * sizeof *exx), *exy = malloc(p.n * sizeof *exy),

@@ -470,7 +470,7 @@ static void test_gate_work(void) {
 /* A particle at (x, y) with velocity (vx, vy) after keep_off_mirrors with
  * the lines of a [0, 1] x [0, 1] tank and d_min = 0.01. */
 static size_t reflect_one(double *x, double *y, double *vx, double *vy) {
-  sph_tank t = {1, 0.0, 1.0, 0.0, 1.0, 2, SPH_BOUNDARY_MIRROR, 1, 0, 0};
+  sph_tank t = {1, 0.0, 1.0, 0.0, 1.0, 2, SPH_BOUNDARY_MIRROR, 1, 0, 0, 0};
   sph_walls w = {0};
   w.mirror_reach = 0.05;
   w.n_mirror = sph_mirror_tank_lines(&t, w.mirror_reach, w.mirror);

@@ -156,7 +156,8 @@ static const char *const filter_keys[] = {"kind", "every", NULL};
 static const char *const diffusion_keys[] = {"model", "delta", NULL};
 static const char *const shifting_keys[] = {"coefficient", NULL};
 static const char *const time_keys[] = {"end", "output_interval", "output_times", "stop", NULL};
-static const char *const geometry_keys[] = {"tank", "fluid", "walls", "periodic_x", "domain", NULL};
+static const char *const geometry_keys[] = {"tank",       "fluid",      "walls",  "periodic_x",
+                                            "periodic_y", "periodic_z", "domain", NULL};
 static const char *const tank_keys[] = {
     "x", "y", "layers", "boundary", "stagger", "extrapolated_velocity", "free_slip",
 #if SPH_DIM == 3
@@ -948,20 +949,62 @@ static int read_walls(const ctx *x, const node *m, sph_case *c) {
   return 0;
 }
 
+/* geometry.periodic_x (in 3-D also periodic_y or periodic_z): the one axis
+ * that wraps. In 2-D without a tank; in 3-D a tank is open along a
+ * periodic x or y (its faces normal to that axis left out), the period
+ * then its range along that axis and a whole number of dx. */
+static int read_periodic(const ctx *x, const node *m, sph_case *c) {
+  static const char *const keys[3] = {"periodic_x", "periodic_y", "periodic_z"};
+  char kp[SPH_YAML_KEYLEN];
+  for (int a = 0; a < 3; a++) {
+    double r[2];
+    const int pr = sph_yaml_get_pair(&x->t, m, "geometry", keys[a], 0, "xyz"[a], r);
+    if (pr < 0) return -1;
+    if (pr == 0) continue;
+    const node *v = sph_yaml_find(m, keys[a])->val;
+    sph_yaml_join(kp, sizeof kp, "geometry", keys[a]);
+    if (a >= SPH_DIM || (SPH_DIM == 2 && a > 0))
+      return sph_yaml_fail_at(&x->t, v, kp,
+                              "is 3-D only: a 2-D case is periodic in x only (y is up)");
+    if (c->periodic)
+      return sph_yaml_fail_at(&x->t, v, kp, "expected one periodic axis, got geometry.%s too",
+                              keys[c->periodic_axis]);
+    c->periodic = 1;
+    c->periodic_axis = a;
+    c->periodic_range[0] = r[0];
+    c->periodic_range[1] = r[1];
+    const double L = r[1] - r[0];
+    if (!(L >= 6.0 * c->h))
+      return sph_yaml_fail_at(&x->t, v, kp, "expected a period of at least 6 h = %g m, got %g",
+                              6.0 * c->h, L);
+    if (!c->tank.present) continue;
+    if (SPH_DIM == 2)
+      return sph_yaml_fail_at(
+          &x->t, v, kp, "a periodic domain cannot have a tank (use geometry.walls for the bed)");
+    if (a == SPH_UP)
+      return sph_yaml_fail_at(&x->t, v, kp,
+                              "a tank cannot be periodic along z: its floor is normal to z");
+    const double t0 = a ? c->tank.y0 : c->tank.x0, t1 = a ? c->tank.y1 : c->tank.x1;
+    if (!(fabs(r[0] - t0) <= 1e-9 * L && fabs(r[1] - t1) <= 1e-9 * L))
+      return sph_yaml_fail_at(&x->t, v, kp,
+                              "expected the tank's %c range [%g, %g] (a tank is open along its "
+                              "periodic axis), got [%g, %g]",
+                              "xyz"[a], t0, t1, r[0], r[1]);
+    const double n = L / c->dx;
+    if (!(fabs(n - floor(n + 0.5)) <= 1e-6 * n))
+      return sph_yaml_fail_at(&x->t, v, kp,
+                              "expected a period of a whole number of numerics.dx = %g m (the "
+                              "lattice continues across the seam), got %g m = %.6g dx",
+                              c->dx, L, n);
+    c->tank.open_along = 1 + a;
+  }
+  return 0;
+}
+
 static int read_geometry(const ctx *x, const node *m, sph_case *c) {
   const node *d;
   if (read_tank(x, m, c) || read_fluid(x, m, c) || read_walls(x, m, c)) return -1;
-  int pr = sph_yaml_get_pair(&x->t, m, "geometry", "periodic_x", 0, 'x', c->periodic_x);
-  if (pr < 0) return -1;
-  c->periodic = pr > 0;
-  if (c->periodic && c->tank.present)
-    return sph_yaml_fail_at(
-        &x->t, sph_yaml_find(m, "periodic_x")->val, "geometry.periodic_x",
-        "a periodic domain cannot have a tank (use geometry.walls for the bed)");
-  if (c->periodic && !(c->periodic_x[1] - c->periodic_x[0] >= 6.0 * c->h))
-    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "periodic_x")->val, "geometry.periodic_x",
-                            "expected a period of at least 6 h = %g m, got %g", 6.0 * c->h,
-                            c->periodic_x[1] - c->periodic_x[0]);
+  if (read_periodic(x, m, c)) return -1;
   int rc = sph_yaml_get_section(&x->t, m, "geometry", "domain", 0, domain_keys, &d);
   if (rc <= 0) return rc;
   c->domain_set = 1;
@@ -1329,12 +1372,12 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
     return sph_yaml_fail(&x->t, SPH_YAML_FROM_FILE, 0, "free_surface.h_factor",
                          "cannot be combined with numerics.smoothing_length: variable");
   if (c->periodic && c->fs_h_factor > 1.0 &&
-      !(c->periodic_x[1] - c->periodic_x[0] >= 6.0 * c->fs_h_factor * c->h))
+      !(c->periodic_range[1] - c->periodic_range[0] >= 6.0 * c->fs_h_factor * c->h))
     return sph_yaml_fail(
         &x->t, SPH_YAML_FROM_FILE, 0, "geometry.periodic_x",
         "expected a period of at least 6 k h = %g m with free_surface.h_factor k = %g, "
         "got %g",
-        6.0 * c->fs_h_factor * c->h, c->fs_h_factor, c->periodic_x[1] - c->periodic_x[0]);
+        6.0 * c->fs_h_factor * c->h, c->fs_h_factor, c->periodic_range[1] - c->periodic_range[0]);
   rc = sph_yaml_get_section(&x->t, root, "", "output", 0, output_keys, &s);
   if (rc > 0) rc = sph_yaml_get_bool(&x->t, s, "output", "snapshots", &c->snapshots);
   if (rc >= 0 && s)

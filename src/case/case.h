@@ -131,8 +131,8 @@ typedef struct sph_case {
   sph_fluid_block *fluid; /* at least one block */
   size_t n_walls;
   sph_wall_segment *walls;
-  int periodic;               /* 1 if geometry.periodic_x was given */
-  double periodic_x[2];       /* x0, x1: particles leaving one side re-enter at the other */
+  int periodic;               /* 1 if geometry.periodic_x (3-D: or _y, _z) was given */
+  double periodic_range[2];   /* its range: particles leaving one side re-enter at the other */
   int domain_set;             /* 1 if geometry.domain was given */
   double domain[2 * SPH_DIM]; /* x0, x1, y0, y1 (, z0, z1): leaving it stops the run */
 
@@ -154,6 +154,8 @@ typedef struct sph_case {
   double est_fluid, est_wall; /* particles the geometry makes at dx, estimated from above */
   size_t dx_line;             /* the line of numerics.dx in the file; 0: from a --set */
   double max_particles;       /* the bound sph_sim_create enforces; 0: sph_case_default_max */
+
+  int periodic_axis; /* geometry.periodic_*: the axis that wraps, 0 (x), 1 (y), 2 (z) */
 } sph_case;
 
 /* Bytes per particle a run needs, as the bound reckons it: measured peak

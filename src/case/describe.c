@@ -132,7 +132,10 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
       sb_add(b, "%s.motion.stop: %.17g\n", k, w->motion.stop);
     }
   }
-  if (c->periodic) sb_pair(b, "geometry.periodic_x", c->periodic_x[0], c->periodic_x[1]);
+  static const char *const periodic_keys[3] = {"geometry.periodic_x", "geometry.periodic_y",
+                                               "geometry.periodic_z"};
+  if (c->periodic)
+    sb_pair(b, periodic_keys[c->periodic_axis], c->periodic_range[0], c->periodic_range[1]);
   if (c->domain_set) {
     sb_pair(b, "geometry.domain.x", c->domain[0], c->domain[1]);
     sb_pair(b, "geometry.domain.y", c->domain[2], c->domain[3]);

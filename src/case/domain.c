@@ -28,10 +28,12 @@ void sph_case_domain_around(const sph_case *c, const double bb[2 * SPH_DIM],
     domain[k + 1] = bb[k + 1] + m;
   }
   domain[UP + 1] = bb[UP + 1] + 2.0 * hgt + m;
-  if (c->periodic) { /* x wraps: only a runaway beyond a period is an error */
-    const double L = c->periodic_x[1] - c->periodic_x[0];
-    domain[0] = c->periodic_x[0] - L;
-    domain[1] = c->periodic_x[1] + L;
+  if (c->periodic) { /* an axis wraps: only a runaway beyond a period is an error */
+    const double L = c->periodic_range[1] - c->periodic_range[0];
+    const int a = 2 * c->periodic_axis;
+    domain[a] = c->periodic_range[0] - L;
+    domain[a + 1] = c->periodic_range[1] + L;
+    if (c->tank.present) return; /* the tank's box above */
     domain[UP] = bb[UP] - hgt - 4.0 * c->h;
     domain[UP + 1] = bb[UP + 1] + 2.0 * hgt + 4.0 * c->h;
   }

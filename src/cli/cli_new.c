@@ -123,6 +123,7 @@ static const char *const TEMPLATE =
     "  #      # ramp: 1.0\n"
     "  #      # hinge: [0.06, 0]\n"
     "  # periodic_x: [0, 1]       # periodic in x (no tank then), x1 - x0 >= 6 h\n"
+    "  # periodic_y: [0, 1]       # 3-D only, as periodic_z: one periodic axis per case\n"
     "  # domain:                  # leaving it stops the run (default: the geometry's box\n"
     "  #   x: [-0.1, 0.33]        # widened, doc/case-files.md)\n"
     "  #   y: [-0.1, 0.6]\n"

@@ -121,10 +121,12 @@ static int counting_sort(sph_grid *g, size_t n, size_t cells, sph_error *err) {
 }
 
 /* The grid's directions (grid.h): the store's axes in increasing extent,
- * ties in axis order, x first when periodic. */
+ * ties in axis order, the periodic axis (periodic - 1) first when periodic. */
 static void choose_directions(const double ext[SPH_DIM], int periodic, int axis[SPH_DIM]) {
+  int k0 = 0;
+  if (periodic) axis[k0++] = periodic - 1;
   for (int d = 0; d < SPH_DIM; d++)
-    axis[d] = d;
+    if (d != periodic - 1) axis[k0++] = d;
   for (int d = periodic ? 2 : 1; d < SPH_DIM; d++) { /* insertion sort: stable */
     const int a = axis[d];
     int k = d;
@@ -134,7 +136,7 @@ static void choose_directions(const double ext[SPH_DIM], int periodic, int axis[
   }
 }
 
-/* The shared build: bounding box (along all axes but a periodic x), the
+/* The shared build: bounding box (along all axes but a periodic one), the
  * directions, keys, stable counting sort, and the permutation of the store
  * (p != NULL) or only the cell lists in g->perm (p == NULL, the store read
  * through q). */
@@ -170,13 +172,15 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
   if (periodic) {
     /* between the two stages of a step particles may stand up to one step's
      * travel outside the period; further is an error */
-    if (lo[0] < px0 - (px1 - px0) || hi[0] >= px1 + (px1 - px0))
+    if (lo[axis[0]] < px0 - (px1 - px0) || hi[axis[0]] >= px1 + (px1 - px0))
       return sph_error_set(err, "grid: a particle is more than a period outside [%g, %g)", px0,
                            px1);
     const double ncol = floor((px1 - px0) / cell);
     if (ncol < 3)
-      return sph_error_set(err, "grid: the period %g holds fewer than 3 cells of %g", px1 - px0,
-                           cell);
+      return sph_error_set(err,
+                           "grid: the period %g holds fewer than 3 cells of %g (the support, the "
+                           "list's skin and a margin): expected a period of at least %g",
+                           px1 - px0, cell, 3.0 * cell);
     first = px0;
     cellx = (px1 - px0) / ncol;
     f[0] = ncol;
@@ -261,13 +265,18 @@ int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells,
   return build(g, p, NULL, cell, 0, 0.0, 0.0, max_cells, err);
 }
 
-int sph_grid_build_periodic(sph_grid *g, sph_particles *p, double cell, double px0, double px1,
-                            size_t max_cells, sph_error *err) {
-  return build(g, p, NULL, cell, 1, px0, px1, max_cells, err);
+int sph_grid_build_periodic(sph_grid *g, sph_particles *p, double cell, int axis, double px0,
+                            double px1, size_t max_cells, sph_error *err) {
+  if (axis < 0 || axis >= SPH_DIM)
+    return sph_error_set(err, "grid: periodic axis %d is not one of the %d axes", axis, SPH_DIM);
+  return build(g, p, NULL, cell, 1 + axis, px0, px1, max_cells, err);
 }
 
 int sph_grid_bin(sph_grid *g, const sph_particles *p, double cell, int periodic, double px0,
                  double px1, size_t max_cells, sph_error *err) {
+  if (periodic < 0 || periodic > SPH_DIM)
+    return sph_error_set(err, "grid: periodic axis %d is not one of the %d axes", periodic - 1,
+                         SPH_DIM);
   return build(g, NULL, p, cell, periodic, px0, px1, max_cells, err);
 }
 
@@ -286,7 +295,7 @@ void sph_nlist_free(sph_nlist *l) {
  * order (positions, or storage indices through perm when the grid is only
  * binned), into row (with row NULL: only counted); returns how many. The
  * row needs room for all i's candidates: each is written before the test
- * that keeps it. x holds the store's axes (x, y, z). */
+ * that keeps it. x holds the store's axes, the periodic one first (grid.h). */
 static inline __attribute__((always_inline)) uint32_t
 fill_row(const sph_grid *g, const double *const restrict *x, size_t i, double r2max, double period,
          uint32_t *restrict row, const int sorted) {
@@ -361,7 +370,14 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
    * candidates (fill_row writes every candidate before its test) and
    * copies it in place. */
   const double radius = support + skin, r2max = radius * radius;
-  const double *const *x = (const double *const *)p->pos;
+  /* the axes with the periodic one first: fill_row takes the minimum image
+   * along its first axis (in 2-D and without periodicity, the store's order) */
+  const int paxis = g->periodic ? g->periodic - 1 : 0;
+  const double *xs[SPH_DIM];
+  xs[0] = p->pos[paxis];
+  for (int d = 0, k = 1; d < SPH_DIM; d++)
+    if (d != paxis) xs[k++] = p->pos[d];
+  const double *const *x = xs;
   const int sorted = g->sorted;
   const long ln = (long)n;
   size_t cmax = 0; /* the most candidates of any particle: the scratch row */
@@ -409,7 +425,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
           }
         l->count[i] = c;
         for (int d = 0; d < SPH_DIM; d++)
-          l->ref[d][i] = x[d][i];
+          l->ref[d][i] = p->pos[d][i];
         l->idref[i] = p->id[i];
         if (c > mc) mc = c;
       }
@@ -426,6 +442,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   l->radius = radius;
   l->skin = skin;
   l->period = period;
+  l->paxis = paxis;
   l->builds++;
   l->valid = 1;
   if (SPH_DEBUG) {
@@ -444,7 +461,6 @@ int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p) {
   const double *restrict z = p->z, *restrict zr = l->ref[2];
 #endif
   const int64_t *restrict id = p->id, *restrict idr = l->idref;
-  const double period = l->period;
   double d2 = 0.0;
   int moved = 0;
 #pragma omp parallel if (n > SPH_OMP_MIN) reduction(max : d2) reduction(| : moved)
@@ -452,8 +468,8 @@ int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p) {
     size_t lo, hi;
     sph_slice(l->cost, p->n, &lo, &hi);
     for (size_t i = lo; i < hi; i++) {
-      const double dx = sph_grid_min_image(x[i] - xr[i], period), dy = y[i] - yr[i];
-      SPH_IF3(const double dz = z[i] - zr[i];)
+      const double dx = sph_nlist_sep(l, 0, x[i], xr[i]), dy = sph_nlist_sep(l, 1, y[i], yr[i]);
+      SPH_IF3(const double dz = sph_nlist_sep(l, 2, z[i], zr[i]);)
       const double d = SPH_NORM2(dx, dy, dz);
       if (d > d2) d2 = d;
       moved |= id[i] != idr[i];
@@ -515,8 +531,9 @@ const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double s
     const uint32_t *row = l->nb + l->start[i];
     size_t k = 0;
     for (size_t j = 0; j < n; j++) {
-      const double dx = sph_grid_min_image(p->x[i] - p->x[j], l->period), dy = p->y[i] - p->y[j];
-      SPH_IF3(const double dz = p->z[i] - p->z[j];)
+      const double dx = sph_nlist_sep(l, 0, p->x[i], p->x[j]);
+      const double dy = sph_nlist_sep(l, 1, p->y[i], p->y[j]);
+      SPH_IF3(const double dz = sph_nlist_sep(l, 2, p->z[i], p->z[j]);)
       const double r2ij = SPH_NORM2(dx, dy, dz);
       while (k < l->count[i] && row[k] < j)
         k++;

@@ -27,14 +27,14 @@
  * axes (axis[k]): the axes in increasing extent of the particles' box, ties
  * in axis order, so rows run along the shortest side and the threads'
  * slices of the sorted store (whole rows, planes in 3-D) meet across the
- * longest; a grid periodic in x has x as direction 0 (its rows wrap). In 2-D
+ * longest; a periodic grid has its periodic axis as direction 0 (its rows wrap). In 2-D
  * that is rows along x unless the box is wider than tall. */
 typedef struct sph_grid {
   int axis[SPH_DIM];   /* the store axis (SPH_AXIS_*) of each direction */
   double lo[SPH_DIM];  /* the lower corner of cell 0 along each direction */
   double cell;         /* cell side */
   double cellx;        /* cell width along direction 0: = cell, or period/ncell[0] when periodic */
-  int periodic;        /* direction 0 (then x) wraps around */
+  int periodic;        /* 0, or 1 + the store axis that wraps around: then direction 0 */
   int sorted;          /* the store is in cell order (sph_grid_build*); 0 after
                           sph_grid_bin: cell c holds perm[start[c]] .. perm[start[c+1]-1] */
   long ncell[SPH_DIM]; /* cells along each direction */
@@ -55,7 +55,7 @@ static inline size_t sph_grid_cells(const sph_grid *g) {
     c *= (size_t)g->ncell[k];
   return c;
 }
-/* The period of a grid periodic in x, 0 if it is not. */
+/* The period of a periodic grid (along its direction 0), 0 if it is not periodic. */
 static inline double sph_grid_period(const sph_grid *g) {
   return g->periodic ? g->cellx * (double)g->ncell[0] : 0.0;
 }
@@ -67,13 +67,14 @@ void sph_grid_free(sph_grid *g);
  * if the bounding box would need more than max_cells cells (particles far
  * apart: the caller's domain check should have caught it). */
 int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells, sph_error *err);
-/* The same for a domain periodic in x over [px0, px1): columns are
- * (px1 - px0)/nx >= cell wide (nx >= 3); a particle outside [px0, px1)
- * (by less than a period) is binned in the column of its periodic image. */
-int sph_grid_build_periodic(sph_grid *g, sph_particles *p, double cell, double px0, double px1,
-                            size_t max_cells, sph_error *err);
+/* The same for a domain periodic along store axis `axis` (SPH_AXIS_X; in
+ * 3-D also Y or Z) over [px0, px1): columns are (px1 - px0)/nx >= cell wide
+ * (nx >= 3); a particle outside [px0, px1) (by less than a period) is
+ * binned in the column of its periodic image. */
+int sph_grid_build_periodic(sph_grid *g, sph_particles *p, double cell, int axis, double px0,
+                            double px1, size_t max_cells, sph_error *err);
 
-/* Bins p by cell like sph_grid_build_periodic (periodic != 0) or
+/* Bins p by cell like sph_grid_build_periodic (periodic = 1 + its axis) or
  * sph_grid_build, without reordering the store: the cell lists are
  * positions into g->perm (the storage indices in cell order, stable), and
  * g->sorted = 0. Only sph_nlist_build reads such a grid. */
@@ -131,9 +132,9 @@ static inline void sph_grid_ranges(const sph_grid *g, size_t i, size_t lo[SPH_GR
   }
 }
 
-/* x_i - x_j = d as the minimum image in a domain periodic in x over
- * `period` (period > 0); d unchanged when period is 0. The one helper of
- * the grid, the filters, free-surface detection and the repulsive force. */
+/* x_i - x_j = d as the minimum image in a domain periodic over `period`
+ * along its axis (period > 0); d unchanged when period is 0. The one helper
+ * of the grid, the filters, free-surface detection and the repulsive force. */
 static inline double sph_grid_min_image(double d, double period) {
   if (period > 0.0) {
     if (d > 0.5 * period)
@@ -215,10 +216,11 @@ static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SP
 
 typedef struct sph_nlist {
   int valid;            /* built, and the store not reordered since */
+  int paxis;            /* the store axis that wraps (the grid's; 0 when none) */
   size_t n;             /* particles at the build */
   double radius;        /* list radius: support + skin */
   double skin;          /* radius - support */
-  double period;        /* > 0: minimum image in x with this period */
+  double period;        /* > 0: minimum image along axis paxis with this period */
   size_t *start;        /* n + 1 offsets into nb; compact rows: start[i+1] - start[i] = count[i] */
   uint32_t *count;      /* neighbours of each particle */
   uint32_t maxcount;    /* the longest row */
@@ -238,8 +240,8 @@ void sph_nlist_free(sph_nlist *l);
 
 /* Builds the list of p from g (built or binned on p's current positions
  * with cells of side >= radius) for pairs closer than radius = support +
- * skin; periodic grids take the minimum image in x with period = the
- * grid's period (px1 - px0). */
+ * skin; periodic grids take the minimum image along their periodic axis
+ * with period = the grid's period (px1 - px0). */
 int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, double support,
                     double skin, double period, sph_error *err);
 
@@ -260,6 +262,16 @@ int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p);
  * `support` (all pairs up to 20 000 particles, a sample of rows above). */
 const char *sph_grid_check(const sph_grid *g, size_t n);
 const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double support);
+
+/* x_i - x_j along store axis a as the list l measures it: the minimum
+ * image along its periodic axis (in 2-D only x wraps). */
+static inline double sph_nlist_sep(const sph_nlist *l, int a, double xi, double xj) {
+#if SPH_DIM == 2
+  return a ? xi - xj : sph_grid_min_image(xi - xj, l->period);
+#else
+  return a == l->paxis ? sph_grid_min_image(xi - xj, l->period) : xi - xj;
+#endif
+}
 
 /* Forgets the list (after the store was reordered). */
 static inline void sph_nlist_invalidate(sph_nlist *l) { l->valid = 0; }

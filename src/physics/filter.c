@@ -79,8 +79,8 @@ void sph_filter_params_default(sph_filter_params *fp, double h) {
   fp->kernel = SPH_KERNEL_CUBIC_SPLINE;
 }
 
-/* Neighbour candidates of particle i (up to SPH_GRID_RANGES ranges: a grid
- * periodic in x wraps around), and the period of the grid (0 if none). */
+/* Neighbour candidates of particle i (up to SPH_GRID_RANGES ranges: a
+ * periodic grid wraps around), and the period of the grid (0 if none). */
 #define NRANGES SPH_GRID_RANGES
 static inline void neighbour_ranges(const sph_grid *g, size_t i, size_t *lo, size_t *hi) {
   sph_grid_ranges_all(g, i, lo, hi);
@@ -165,7 +165,7 @@ static double mls_value(const moments *s, double det_min, int *fell) {
  * site; *fell is set when MLS falls back to Shepard. */
 static inline __attribute__((always_inline)) double
 filter_one(const sph_particles *restrict p, const sph_grid *restrict g,
-           const sph_filter_params *restrict fp, double period, size_t a, const int MLS,
+           const sph_filter_params *restrict fp, const double per[SPH_DIM], size_t a, const int MLS,
            const int VARH, int *fell) {
   const double *restrict x = p->x, *restrict y = p->y;
   const double *restrict m = p->mass, *restrict rho = p->rho, *restrict hh = p->h;
@@ -183,8 +183,13 @@ filter_one(const sph_particles *restrict p, const sph_grid *restrict g,
   for (int k = 0; k < NRANGES; k++) {
     for (size_t b = lo[k]; b < hi[k]; b++) {
       if (same && kind[b] != kind[a]) continue;
-      const double dx = sph_grid_min_image(xa - x[b], period), dy = ya - y[b];
-      SPH_IF3(const double dz = za - z[b];)
+      const double dx = sph_grid_min_image(xa - x[b], per[0]);
+#if SPH_DIM == 2
+      const double dy = ya - y[b];
+#else
+      const double dy = sph_grid_min_image(ya - y[b], per[1]);
+      const double dz = sph_grid_min_image(za - z[b], per[2]);
+#endif
       const double r2 = SPH_NORM2(dx, dy, dz);
       const double hab = VARH ? 0.5 * (ha + hh[b]) : ha;
       if (VARH) {
@@ -221,7 +226,9 @@ filter_one(const sph_particles *restrict p, const sph_grid *restrict g,
 static size_t filter_all(sph_particles *p, const sph_grid *g, const sph_filter_params *fp,
                          double *scratch, const int MLS, const int VARH) {
   const long n = (long)p->n;
-  const double period = grid_period(g);
+  double per[SPH_DIM]; /* the period along each axis: 0 but on the grid's periodic one */
+  for (int d = 0; d < SPH_DIM; d++)
+    per[d] = g->periodic == d + 1 ? grid_period(g) : 0.0;
   const int walls_too = fp->filter_walls;
   size_t fallbacks = 0;
 #pragma omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN) reduction(+ : fallbacks)
@@ -232,7 +239,7 @@ static size_t filter_all(sph_particles *p, const sph_grid *g, const sph_filter_p
       continue;
     }
     int fell = 0;
-    scratch[i] = filter_one(p, g, fp, period, (size_t)i, MLS, VARH, &fell);
+    scratch[i] = filter_one(p, g, fp, per, (size_t)i, MLS, VARH, &fell);
     fallbacks += (size_t)fell;
   }
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)

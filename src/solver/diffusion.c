@@ -22,7 +22,6 @@ static void half_gradient(const sph_particles *restrict p, const sph_nlist *rest
                           const sph_force_params *restrict fp, size_t i, double c[SPH_DIM]) {
   const double *restrict x = p->x, *restrict y = p->y, *restrict h = p->h;
   const double *restrict m = p->mass, *restrict rho = p->rho;
-  const double period = fp->periodic ? fp->period : 0.0, half = 0.5 * period;
   const unsigned F = fp->periodic ? F_PERIODIC : 0u;
   const double xi = x[i], yi = y[i], rhoi = rho[i];
   double gx = 0.0, gy = 0.0, mxx = 0.0, mxy = 0.0, myy = 0.0;
@@ -31,8 +30,8 @@ static void half_gradient(const sph_particles *restrict p, const sph_nlist *rest
   ROW(l, i, nb, cnt)
   for (size_t k = 0; k < cnt; k++) {
     const size_t j = nb[k];
-    const double dx = sep_x(xi, x[j], period, half, F), dy = yi - y[j];
-    SPH_IF3(const double dz = zi - z[j];)
+    const double dx = SEP(fp, 0, xi, x[j], F), dy = SEP(fp, 1, yi, y[j], F);
+    SPH_IF3(const double dz = SEP(fp, 2, zi, z[j], F);)
     const double r2 = SPH_NORM2(dx, dy, dz);
     const double hij = fp->var_h ? 0.5 * (h[i] + h[j]) : fp->h;
     if (r2 >= 4.0 * hij * hij || r2 == 0.0) continue;
@@ -88,15 +87,14 @@ static double diffusion_mass(const sph_particles *restrict p, const sph_nlist *r
     return fp->wall_diffusion && sph_diffusion_wall_takes_part(p->kind[i], p->flags[i]) ? p->mass[i]
                                                                                         : 0.0;
   if (!fp->mdbc) return p->mass[i]; /* no mdbc wall: no scan (a term that is off costs nothing) */
-  const double period = fp->periodic ? fp->period : 0.0, half = 0.5 * period;
   const unsigned F = fp->periodic ? F_PERIODIC : 0u;
   ROW(l, i, nb, cnt)
   for (size_t k = 0; k < cnt; k++) {
     const size_t j = nb[k];
     if (!(p->flags[j] & SPH_FLAG_MDBC)) continue;
-    const double dx = sep_x(p->x[i], p->x[j], period, half, F), dy = p->y[i] - p->y[j];
+    const double dx = SEP(fp, 0, p->x[i], p->x[j], F), dy = SEP(fp, 1, p->y[i], p->y[j], F);
     const double hij = fp->var_h ? 0.5 * (p->h[i] + p->h[j]) : fp->h;
-    SPH_IF3(const double dz = p->z[i] - p->z[j];)
+    SPH_IF3(const double dz = SEP(fp, 2, p->z[i], p->z[j], F);)
     if (SPH_NORM2(dx, dy, dz) < 4.0 * hij * hij) return 0.0;
   }
   return p->mass[i];

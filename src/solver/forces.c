@@ -137,7 +137,7 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
   const double *restrict x = p->x, *restrict y = p->y, *restrict h = p->h;
   const double *restrict vx = o->gv ? o->gv[0] : p->vx, *restrict vy = o->gv ? o->gv[1] : p->vy;
   const double *restrict m = p->mass, *restrict rho = p->rho;
-  const double period = fp->period, half = 0.5 * fp->period;
+  const double period = period_along(fp, 0), half = 0.5 * period_along(fp, 0);
   const double xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
   double sxx = 0.0, sxy = 0.0, syy = 0.0, div = 0.0;
   /* with the correction: G_ab = sum_j V_j (v_j - v_i)_a (grad_i W_ij)_b and
@@ -151,8 +151,8 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
   ROW(l, i, nb, cnt)
   for (size_t k = 0; k < cnt; k++) {
     const size_t j = nb[k];
-    const double dx = sep_x(xi, x[j], period, half, F), dy = yi - y[j];
-    SPH_IF3(const double dz = zi - z[j];)
+    const double dx = sep_x(xi, x[j], period, half, F), dy = SEP(fp, 1, yi, y[j], F);
+    SPH_IF3(const double dz = SEP(fp, 2, zi, z[j], F);)
     const double r2 = SPH_NORM2(dx, dy, dz);
     const double hij = (F & F_VARH) ? 0.5 * (h[i] + h[j]) : fp->h;
     if (r2 >= 4.0 * hij * hij || r2 == 0.0) continue;

@@ -107,7 +107,8 @@ typedef struct sph_force_params {
   SPH_COMPONENTS(double, g, gx, gy, gz); /* body force per unit mass */
   sph_viscosity_kind viscosity;
   double mu;               /* dynamic viscosity (Pa s) */
-  int periodic;            /* minimum image in x */
+  int periodic;            /* minimum image along axis paxis */
+  int paxis;               /* the axis that wraps: 0 (x); in 3-D also 1 (y) or 2 (z) */
   double period;           /* length of the period */
   int repulsive;           /* repulsive wall particles present */
   double lj_d, lj_r0;      /* Lennard-Jones strength D and range r0 */
@@ -124,7 +125,7 @@ typedef struct sph_force_params {
                               particles, which take part in it (diffusion.h) */
   int mirror;              /* mirror walls: their particles' no-slip velocity in vxh, vyh, the
                               scalar loop (boundary.h) */
-  double px0;              /* periodic: the period starts at x = px0 */
+  double px0;              /* periodic: the period starts at px0 along paxis */
   double sps_cs, sps_ci, sps_delta;
   sph_force_loop loop;          /* default SPH_LOOP_AUTO */
   int runtime_terms;            /* the loop a term set falls back to (its axes loop or the

@@ -41,7 +41,7 @@ enum {
   F_XSPH = 2,      /* XSPH velocity correction */
   F_STRESS = 4,    /* viscous stress tensor (paper A) and SPS stress (paper B) */
   F_MORRIS = 8,    /* Morris laminar viscosity, paper B */
-  F_PERIODIC = 16, /* minimum image in x */
+  F_PERIODIC = 16, /* minimum image along the periodic axis */
   F_VARH = 32,     /* per-particle smoothing length */
   F_LEDGER = 64,   /* energy ledger: du/dt and the power of moving walls */
   F_DDIFF = 128,   /* density diffusion (physics/density_diffusion.h) */
@@ -227,7 +227,34 @@ static inline void strain_finish(const strain_opts *o, size_t i, const double s[
   const uint32_t *restrict row_ = (l)->nb + (l)->start[i];                                         \
   const size_t len_ = (l)->count[i];
 
-/* x_i - x_j with the minimum image when periodic. */
+/* The period along axis a: fp->period on the axis that wraps, 0 on the others (sep_x and
+ * LANE_MIN_IMAGE with a period of 0 leave a separation as it is, bit for bit). */
+#if SPH_DIM == 2 /* only x wraps in 2-D: the period as the loops have always read it */
+#define period_along(fp, a) ((fp)->period)
+#else
+#define period_along(fp, a) ((fp)->periodic && (fp)->paxis == (a) ? (fp)->period : 0.0)
+#endif
+
+/* The lane form of sep_x in the flavour of the including loop (LOP): d as its minimum image
+ * over the period per, with hper = per/2 and nper = -per/2. */
+#define LANE_MIN_IMAGE(d, per, hper, nper)                                                         \
+  LOP(sel)(LOP(lt)(hper, d), LOP(sub)(d, per), LOP(sel)(LOP(lt)(d, nper), LOP(add)(d, per), d))
+/* LANE_MIN_IMAGE's constants along x (per, hper, nper) and, in 3-D, along y and z (pery, ...,
+ * nperz), in the flavour of the including loop. */
+#define LANE_PERIOD(name, fp, a)                                                                   \
+  const LT name = LOP(all)(period_along(fp, a)), h##name = LOP(all)(0.5 * period_along(fp, a));    \
+  const LT n##name = LOP(all)(-0.5 * period_along(fp, a))
+#if SPH_DIM == 2
+#define LANE_PERIODS(fp) LANE_PERIOD(per, fp, 0)
+#else
+#define LANE_PERIODS(fp)                                                                           \
+  LANE_PERIOD(per, fp, 0);                                                                         \
+  LANE_PERIOD(pery, fp, 1);                                                                        \
+  LANE_PERIOD(perz, fp, 2)
+#endif
+
+/* x_i - x_j with the minimum image when periodic (any axis: period 0 on one that does not
+ * wrap). */
 static inline __attribute__((always_inline)) double sep_x(double xi, double xj, double period,
                                                           double half, const unsigned F) {
   double d = xi - xj;
@@ -239,6 +266,12 @@ static inline __attribute__((always_inline)) double sep_x(double xi, double xj, 
   }
   return d;
 }
+
+/* x_i - x_j along axis a (a literal) with the minimum image when periodic: in 2-D only x
+ * wraps. */
+#define SEP(fp, a, xi, xj, F)                                                                      \
+  (SPH_DIM == 2 && (a) ? (xi) - (xj)                                                               \
+                       : sep_x(xi, xj, period_along(fp, a), 0.5 * period_along(fp, a), F))
 
 /* The largest of a lane loop's four maxima, (l0 max l1) max (l2 max l3). */
 static inline double lanes_max4(const double lv[4]) {
@@ -263,13 +296,14 @@ cut_row(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
   const double h0 = fp->h;
   const v2 xi = v2_all(qi.x), yi = v2_all(qi.y), zero = v2_all(0.0);
   SPH_IF3(const v2 zi = v2_all(qi.z);)
-  const v2 per = v2_all(fp->period), hper = v2_all(0.5 * fp->period);
-  const v2 nper = v2_all(-0.5 * fp->period);
+  const v2 per = v2_all(period_along(fp, 0)), hper = v2_all(0.5 * period_along(fp, 0));
+  const v2 nper = v2_all(-0.5 * period_along(fp, 0));
+  SPH_IF3(const double py = period_along(fp, 1), pz = period_along(fp, 2);)
   size_t cnt = 0;
   ROW(l, i, row, len)
   const double xs0 = qi.x, ys0 = qi.y, s0 = 4.0 * h0 * h0;
   SPH_IF3(const double zs0 = qi.z;)
-  const double period = fp->period, hp = 0.5 * fp->period;
+  const double period = period_along(fp, 0), hp = 0.5 * period_along(fp, 0);
   const v2 sv = v2_all(s0);
   size_t k = 0;
   for (; k + 1 < len; k += 2) { /* two entries at a time */
@@ -277,11 +311,15 @@ cut_row(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
     v2 dx = v2_sub(xi, v2_set(hot[j0].x, hot[j1].x));
     if (F & F_PERIODIC)
       dx = v2_sel(v2_lt(hper, dx), v2_sub(dx, per), v2_sel(v2_lt(dx, nper), v2_add(dx, per), dx));
-    const v2 dy = v2_sub(yi, v2_set(hot[j0].y, hot[j1].y));
 #if SPH_DIM == 2
+    const v2 dy = v2_sub(yi, v2_set(hot[j0].y, hot[j1].y));
     const v2 r2 = v2_add(v2_mul(dx, dx), v2_mul(dy, dy));
 #else
-    const v2 dz = v2_sub(zi, v2_set(hot[j0].z, hot[j1].z));
+    v2 dy = v2_sub(yi, v2_set(hot[j0].y, hot[j1].y)), dz = v2_sub(zi, v2_set(hot[j0].z, hot[j1].z));
+    if (F & F_PERIODIC) { /* y or z may be the axis that wraps (pairs of scalars: rare rows) */
+      dy = v2_set(sep_x(ys0, hot[j0].y, py, 0.5 * py, F), sep_x(ys0, hot[j1].y, py, 0.5 * py, F));
+      dz = v2_set(sep_x(zs0, hot[j0].z, pz, 0.5 * pz, F), sep_x(zs0, hot[j1].z, pz, 0.5 * pz, F));
+    }
     const v2 r2 = v2_add(v2_add(v2_mul(dx, dx), v2_mul(dy, dy)), v2_mul(dz, dz));
 #endif
     const unsigned m = v2_bits2(v2_and(v2_lt(r2, sv), v2_lt(zero, r2)));
@@ -292,8 +330,13 @@ cut_row(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
   }
   if (k < len) {
     const size_t j = row[k];
-    const double dx = sep_x(xs0, hot[j].x, period, hp, F), dy = ys0 - hot[j].y;
-    SPH_IF3(const double dz = zs0 - hot[j].z;)
+    const double dx = sep_x(xs0, hot[j].x, period, hp, F);
+#if SPH_DIM == 2
+    const double dy = ys0 - hot[j].y;
+#else
+    const double dy = sep_x(ys0, hot[j].y, py, 0.5 * py, F),
+                 dz = sep_x(zs0, hot[j].z, pz, 0.5 * pz, F);
+#endif
     const double r2 = SPH_NORM2(dx, dy, dz);
     nb[cnt] = (uint32_t)j;
     cnt += (size_t)((r2 < s0) & (r2 > 0.0));

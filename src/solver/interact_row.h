@@ -109,8 +109,7 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const LT hh = LOP(all)(h0), inv_h = LOP(all)(inv_h0), one = LOP(all)(1.0);
   const LT zero = LOP(all)(0.0);
   const LT sigma = LOP(all)(sigma0), sigma_h = LOP(all)(sigma0 * inv_h0);
-  const LT per = LOP(all)(fp->period), hper = LOP(all)(0.5 * fp->period);
-  const LT nper = LOP(all)(-0.5 * fp->period);
+  LANE_PERIODS(fp);
   const double eta = fp->eta * h0;
   const LT eta2 = LOP(all)(eta * eta), nalpha = LOP(all)(-fp->alpha), beta = LOP(all)(fp->beta);
   const LT nu4 = LOP(all)(4.0 * fp->mu / fp->eos.rho0);
@@ -172,13 +171,16 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
 #endif
     LT dx = LOP(sub)(xi, GATHER(x));
     if (F & F_PERIODIC) /* minimum image, as sep_x */
-      dx = LOP(sel)(LOP(lt)(hper, dx), LOP(sub)(dx, per),
-                    LOP(sel)(LOP(lt)(dx, nper), LOP(add)(dx, per), dx));
-    const LT dy = LOP(sub)(yi, GATHER(y));
+      dx = LANE_MIN_IMAGE(dx, per, hper, nper);
 #if SPH_DIM == 2
+    const LT dy = LOP(sub)(yi, GATHER(y));
     const LT r2 = LOP(add)(LOP(mul)(dx, dx), LOP(mul)(dy, dy));
 #else
-    const LT dz = LOP(sub)(zi, GATHER(z));
+    LT dy = LOP(sub)(yi, GATHER(y)), dz = LOP(sub)(zi, GATHER(z));
+    if (F & F_PERIODIC) { /* y or z may be the axis that wraps */
+      dy = LANE_MIN_IMAGE(dy, pery, hpery, npery);
+      dz = LANE_MIN_IMAGE(dz, perz, hperz, nperz);
+    }
     const LT r2 = LOP(add)(LOP(add)(LOP(mul)(dx, dx), LOP(mul)(dy, dy)), LOP(mul)(dz, dz));
 #endif
     /* the pair's smoothing length and what follows from it */

@@ -234,25 +234,33 @@ static long remove_fluid_in_walls(sph_sim *s) {
   return removed;
 }
 
-/* Periodic in x: wall particles are wrapped into [x0, x1), and a wall
- * particle that then coincides with an earlier one (a staggered layer that
- * reaches both ends of a period) is dropped. Ids are renumbered in order. */
+/* Periodic: particles are wrapped into [x0, x1) along the periodic axis,
+ * and a wall particle that then coincides with an earlier one (a staggered
+ * layer that reaches both ends of a period) is dropped. Ids are renumbered
+ * in order. */
 static void dedupe_periodic(sph_sim *s) {
   sph_particles *p = &s->p;
-  const double x0 = s->c->periodic_x[0], x1 = s->c->periodic_x[1], L = x1 - x0;
+  const double x0 = s->c->periodic_range[0], x1 = s->c->periodic_range[1], L = x1 - x0;
   const double tol = 1e-9 * L;
+  const int a = s->c->periodic_axis;
   size_t kept = 0;
   for (size_t i = 0; i < p->n; i++) {
-    if (p->x[i] >= x1) p->x[i] -= L;
-    if (p->x[i] < x0) p->x[i] += L;
+    double *restrict x = p->pos[a];
+    if (x[i] >= x1) x[i] -= L;
+    if (x[i] < x0) x[i] += L;
     int dup = 0;
-    for (size_t j = 0; j < kept && !dup && p->kind[i] == SPH_KIND_WALL; j++)
-      dup = p->kind[j] == SPH_KIND_WALL && fabs(p->y[j] - p->y[i]) < tol &&
-            SPH_IF3(fabs(p->z[j] - p->z[i]) < tol &&)(fabs(p->x[j] - p->x[i]) < tol ||
-                                                      fabs(fabs(p->x[j] - p->x[i]) - L) < tol);
+    for (size_t j = 0; j < kept && !dup && p->kind[i] == SPH_KIND_WALL; j++) {
+      if (p->kind[j] != SPH_KIND_WALL) continue;
+      dup = 1;
+      for (int d = 0; d < SPH_DIM; d++) {
+        const double e = fabs(p->pos[d][j] - p->pos[d][i]);
+        dup &= e < tol || (d == a && fabs(e - L) < tol);
+      }
+    }
     if (dup) continue;
     if (kept != i) sph_particles_move(p, kept, i);
-    if (p->live & SPH_ARRAYS_REST) p->xr[kept] = p->x[kept]; /* the rest position: wrapped */
+    if (p->live & SPH_ARRAYS_REST) /* the rest position: wrapped */
+      p->rest[a][kept] = p->pos[a][kept];
     p->id[kept] = (int64_t)kept;
     kept++;
   }
@@ -348,8 +356,9 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.viscosity = c->viscosity;
   s->fp.mu = c->mu;
   s->fp.periodic = c->periodic;
-  s->fp.period = c->periodic ? c->periodic_x[1] - c->periodic_x[0] : 0.0;
-  s->fp.px0 = c->periodic ? c->periodic_x[0] : 0.0;
+  s->fp.period = c->periodic ? c->periodic_range[1] - c->periodic_range[0] : 0.0;
+  s->fp.paxis = c->periodic ? c->periodic_axis : 0;
+  s->fp.px0 = c->periodic ? c->periodic_range[0] : 0.0;
   s->fp.gradient_correction = c->gradient_correction;
   s->fp.var_h = c->fs_h_factor > 0.0;
   s->fp.lj_d = c->repulsion;

@@ -69,7 +69,7 @@ static int free_surface(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   const sph_freesurface_params fp = {
       .radius_factor = c->fs_radius_factor,
-      .period = c->periodic ? c->periodic_x[1] - c->periodic_x[0] : 0.0,
+      .period = c->periodic ? c->periodic_range[1] - c->periodic_range[0] : 0.0,
       .exact_only = 0,
       /* the portable and scalar loops: no AVX2 here either */
       .scalar = s->fp.loop == SPH_LOOP_SCALAR || s->fp.loop == SPH_LOOP_LANES};
@@ -87,15 +87,16 @@ static double support(const sph_sim *s) {
   return r * SPH_CELL_MARGIN;
 }
 
-/* The cell list of the current positions (periodic in x when the case
- * is), cells fitting the support plus the list's skin. At most ~64 cells
+/* The cell list of the current positions (periodic along the case's
+ * periodic axis), cells fitting the support plus the list's skin. At most ~64 cells
  * per particle: far more than any sane domain needs. */
 static int build_grid(sph_sim *s, double cell, sph_error *err) {
   const sph_case *c = s->c;
   const size_t max_cells = 64 * s->p.n + 1024 * 1024;
-  return c->periodic ? sph_grid_build_periodic(&s->grid, &s->p, cell, c->periodic_x[0],
-                                               c->periodic_x[1], max_cells, err)
-                     : sph_grid_build(&s->grid, &s->p, cell, max_cells, err);
+  return c->periodic
+             ? sph_grid_build_periodic(&s->grid, &s->p, cell, c->periodic_axis,
+                                       c->periodic_range[0], c->periodic_range[1], max_cells, err)
+             : sph_grid_build(&s->grid, &s->p, cell, max_cells, err);
 }
 
 /* Steps between sorts of the store when the neighbour list is kept. */
@@ -123,8 +124,8 @@ static int neighbours(sph_sim *s, sph_error *err) {
   s->resort = 0;
   if (s->skin > 0.0 && !resort && sph_nlist_fresh(&s->nl, &s->p)) return 0;
   const double cell = (support(s) + s->skin) * SPH_CELL_MARGIN;
-  const double px0 = c->periodic ? c->periodic_x[0] : 0.0;
-  const double px1 = c->periodic ? c->periodic_x[1] : 0.0;
+  const double px0 = c->periodic ? c->periodic_range[0] : 0.0;
+  const double px1 = c->periodic ? c->periodic_range[1] : 0.0;
   /* Without a skin the cells fit the support. With one, the store is
    * sorted by cells that fit the support plus the default skin, whatever
    * the skin in effect: the storage order (and with it every result) does
@@ -138,8 +139,8 @@ static int neighbours(sph_sim *s, sph_error *err) {
       (support(s) + (s->skin > 0.0 ? SPH_SKIN_DEFAULT * SPH_CUBIC_SUPPORT * c->h : 0.0)) *
       SPH_CELL_MARGIN;
   if ((s->skin == 0.0 || resort) && build_grid(s, sort_cell, err)) return -1;
-  if (s->skin > 0.0 &&
-      sph_grid_bin(&s->grid, &s->p, cell, c->periodic, px0, px1, 64 * s->p.n + 1024 * 1024, err))
+  if (s->skin > 0.0 && sph_grid_bin(&s->grid, &s->p, cell, c->periodic ? 1 + c->periodic_axis : 0,
+                                    px0, px1, 64 * s->p.n + 1024 * 1024, err))
     return -1;
   return sph_nlist_build(&s->nl, &s->grid, &s->p, support(s), s->skin, px1 - px0, err);
 }
@@ -149,9 +150,8 @@ static int neighbours(sph_sim *s, sph_error *err) {
  * reaches beyond the list's support the list is built again. */
 static int dbc_bound(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
-  const long changed =
-      sph_dbc_bound(&s->p, &s->nl, SPH_CUBIC_SUPPORT * h_max(s), c->periodic ? s->fp.period : 0.0,
-                    c->rho0, c->integrator == SPH_INTEGRATOR_LEAPFROG);
+  const long changed = sph_dbc_bound(&s->p, &s->nl, SPH_CUBIC_SUPPORT * h_max(s), c->rho0,
+                                     c->integrator == SPH_INTEGRATOR_LEAPFROG);
   if (!changed || !c->variable_h) return 0;
   update_h(s);
   return SPH_CUBIC_SUPPORT * h_max(s) > s->nl.radius - s->nl.skin ? neighbours(s, err) : 0;
@@ -214,15 +214,16 @@ static int apply_filter(sph_sim *s, sph_error *err) {
   return 0;
 }
 
-/* Periodic in x: particles that crossed a side re-enter at the other. */
+/* Periodic: particles that crossed a side re-enter at the other. */
 static void wrap_periodic(sph_sim *s) {
   if (!s->c->periodic) return;
-  const double x0 = s->c->periodic_x[0], x1 = s->c->periodic_x[1], L = x1 - x0;
+  const double x0 = s->c->periodic_range[0], x1 = s->c->periodic_range[1], L = x1 - x0;
+  double *restrict x = s->p.pos[s->c->periodic_axis];
   for (size_t i = 0; i < s->p.n; i++) {
-    if (s->p.x[i] >= x1)
-      s->p.x[i] -= L;
-    else if (s->p.x[i] < x0)
-      s->p.x[i] += L;
+    if (x[i] >= x1)
+      x[i] -= L;
+    else if (x[i] < x0)
+      x[i] += L;
   }
 }
 

@@ -49,8 +49,7 @@ LOOP_ATTR void SPH_PT_XGLUE(strain,
   SPH_IF3(const LT zi = LOP(all)(qi.z), vzi = LOP(all)(ghosts ? gvz[i] : qi.vz);)
   const LT inv_h = LOP(all)(inv_h0), one = LOP(all)(1.0), two = LOP(all)(2.0);
   const LT sigma = LOP(all)(sigma0), sigma_h = LOP(all)(sigma0 * inv_h0);
-  const LT per = LOP(all)(fp->period), hper = LOP(all)(0.5 * fp->period);
-  const LT nper = LOP(all)(-0.5 * fp->period);
+  LANE_PERIODS(fp);
 #define E_LANE(q, a) ((double)(q))
   const LT lane = LSET(E_LANE, 0), n = LOP(all)((double)cnt);
 #undef E_LANE
@@ -67,13 +66,16 @@ LOOP_ATTR void SPH_PT_XGLUE(strain,
     LHOT(g); /* the neighbours' packed records, g[H_field] */
     LT dx = LOP(sub)(xi, g[H_x]);
     if (F & F_PERIODIC) /* minimum image, as sep_x */
-      dx = LOP(sel)(LOP(lt)(hper, dx), LOP(sub)(dx, per),
-                    LOP(sel)(LOP(lt)(dx, nper), LOP(add)(dx, per), dx));
-    const LT dy = LOP(sub)(yi, g[H_y]);
+      dx = LANE_MIN_IMAGE(dx, per, hper, nper);
 #if SPH_DIM == 2
+    const LT dy = LOP(sub)(yi, g[H_y]);
     const LT r2 = LOP(add)(LOP(mul)(dx, dx), LOP(mul)(dy, dy));
 #else
-    const LT dz = LOP(sub)(zi, g[H_z]);
+    LT dy = LOP(sub)(yi, g[H_y]), dz = LOP(sub)(zi, g[H_z]);
+    if (F & F_PERIODIC) { /* y or z may be the axis that wraps */
+      dy = LANE_MIN_IMAGE(dy, pery, hpery, npery);
+      dz = LANE_MIN_IMAGE(dz, perz, hperz, nperz);
+    }
     const LT r2 = LOP(add)(LOP(add)(LOP(mul)(dx, dx), LOP(mul)(dy, dy)), LOP(mul)(dz, dz));
 #endif
     const LMASK in = LOP(lt)(LOP(add)(LOP(all)((double)k), lane), n);

@@ -59,7 +59,10 @@ int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, 
 #if SPH_DIM == 3
 /* The 3-D tank: every lattice point x0 + (i + 1/2) dx, ... of the box grown by
  * `layers` spacings sideways and below (up to z1 above) that lies outside the
- * inner box: layers dx apart behind each face, edges and corners filled. */
+ * inner box: layers dx apart behind each face, edges and corners filled. A
+ * tank open along x or y (t->open_along) is not grown along that axis: it
+ * has no faces normal to it, and its floor and other walls run across the
+ * period as the lattice does. */
 int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double rho, double mass,
                           double h, uint8_t flags, sph_error *err) {
   if (flags & SPH_WALL_NORMAL)
@@ -69,9 +72,10 @@ int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double
              ny = (long)floor((t->y1 - t->y0) / dx + 0.5);
   const long nz = (long)floor((t->z1 - t->z0) / dx + 0.5);
   const double v[3] = {0.0, 0.0, 0.0};
+  const long Lx = t->open_along == 1 ? 0 : L, Ly = t->open_along == 2 ? 0 : L;
   for (long k = -L; k < nz; k++)
-    for (long j = -L; j < ny + L; j++)
-      for (long i = -L; i < nx + L; i++) {
+    for (long j = -Ly; j < ny + Ly; j++)
+      for (long i = -Lx; i < nx + Lx; i++) {
         if (k >= 0 && j >= 0 && j < ny && i >= 0 && i < nx) continue; /* inside */
         const double x[3] = {t->x0 + ((double)i + 0.5) * dx, t->y0 + ((double)j + 0.5) * dx,
                              t->z0 + ((double)k + 0.5) * dx};

@@ -14,19 +14,20 @@
 #include "core/parallel.h"
 
 /* Whether a fluid particle of i's row lies inside the support. */
-static int fluid_near(const sph_particles *p, const sph_nlist *l, size_t i, double s2,
-                      double period) {
+static int fluid_near(const sph_particles *p, const sph_nlist *l, size_t i, double s2) {
   const uint32_t *row = l->nb + l->start[i];
   for (size_t k = 0; k < l->count[i]; k++) {
     const size_t j = row[k];
     if (p->kind[j] != SPH_KIND_FLUID) continue;
-    const double dx = sph_grid_min_image(p->x[i] - p->x[j], period), dy = p->y[i] - p->y[j];
-    if (dx * dx + dy * dy < s2) return 1;
+    const double dx = sph_nlist_sep(l, 0, p->x[i], p->x[j]);
+    const double dy = sph_nlist_sep(l, 1, p->y[i], p->y[j]);
+    SPH_IF3(const double dz = sph_nlist_sep(l, 2, p->z[i], p->z[j]);)
+    if (SPH_NORM2(dx, dy, dz) < s2) return 1;
   }
   return 0;
 }
 
-long sph_dbc_bound(sph_particles *p, const sph_nlist *l, double support, double period, double rho0,
+long sph_dbc_bound(sph_particles *p, const sph_nlist *l, double support, double rho0,
                    int half_step) {
   const long n = (long)p->n;
   const double s2 = support * support;
@@ -38,7 +39,7 @@ long sph_dbc_bound(sph_particles *p, const sph_nlist *l, double support, double 
       continue;
     const double rho = p->rho[i], rhoh = half_step ? p->rhoh[i] : rho0;
     if (rho == rho0 && rhoh == rho0) continue; /* at rest: nothing to bound */
-    const int near = fluid_near(p, l, i, s2, period);
+    const int near = fluid_near(p, l, i, s2);
     const double b = near && rho > rho0 ? rho : rho0, bh = near && rhoh > rho0 ? rhoh : rho0;
     if (b == rho && bh == rhoh) continue;
     if (b != rho) {

@@ -33,11 +33,11 @@
  * wall (kind SPH_KIND_WALL, neither SPH_FLAG_REPULSIVE nor SPH_FLAG_MDBC):
  * its density (and, when half_step is set, its leap-frog half-step density
  * rhoh) is raised to rho0 where below, and set to rho0 where no fluid
- * particle of the list l is closer than `support` (periodic in x with
- * `period` when > 0); its pressure is then the equation of state's at
+ * particle of the list l is closer than `support` (the minimum image along
+ * the list's periodic axis); its pressure is then the equation of state's at
  * rho0, 0. Per particle, so bitwise the same for any thread count.
  * Returns the number of particles changed. */
-long sph_dbc_bound(sph_particles *p, const sph_nlist *l, double support, double period, double rho0,
+long sph_dbc_bound(sph_particles *p, const sph_nlist *l, double support, double rho0,
                    int half_step);
 
 #endif

@@ -40,6 +40,8 @@ typedef struct sph_tank {
   int stagger;                /* layers dx/2 apart and staggered (default), or dx apart */
   int extrapolated;           /* no-slip: extrapolated wall velocity (src/wall_velocity.h) */
   int free_slip;              /* pressure and artificial viscosity along the faces' normals */
+  int open_along;             /* 3-D: 0, or 1 + the axis (x or y) along which the tank has no
+                                 faces (the case's periodic axis) */
 } sph_tank;
 
 /* Prescribed motion of a wall (a gate): translation at a constant velocity
