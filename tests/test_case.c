@@ -615,6 +615,16 @@ static void test_cross_checks(void) {
   expect_err(edit(MINIMAL, 10, "  tank: {x: [0, 0.8], y: [0, 1]}\n  fluid:\n"),
              "t.yaml:12: geometry.fluid[0].x: expected a range inside the tank's inner box [0, "
              "0.8], got [0, 1]");
+  /* a box obstacle in 2-D: x and y; a z is refused */
+  sph_case c;
+  expect_ok(edit(MINIMAL, 10, "  obstacles: [{x: [0.2, 0.4], y: [0, 0.1], layers: 3}]\n  fluid:\n"),
+            NULL, 0, &c);
+  CU_ASSERT(c.n_obstacles == 1 && c.obstacles[0].hi[1] == 0.1 && c.obstacles[0].layers == 3);
+  sph_case_free(&c);
+  expect_err(
+      edit(MINIMAL, 10, "  obstacles: [{x: [0.2, 0.4], y: [0, 0.1], z: [0, 1]}]\n  fluid:\n"),
+      "t.yaml:10: geometry.obstacles[0].z: unknown key (valid keys in "
+      "'geometry.obstacles[0]': x, y, layers, boundary)");
   /* only x wraps in 2-D; a 2-D tank is never periodic */
   expect_err(edit(MINIMAL, 10, "  periodic_y: [0, 1]\n  fluid:\n"),
              "t.yaml:10: geometry.periodic_y: is 3-D only: a 2-D case is periodic in x only (y is "

@@ -156,8 +156,10 @@ static const char *const filter_keys[] = {"kind", "every", NULL};
 static const char *const diffusion_keys[] = {"model", "delta", NULL};
 static const char *const shifting_keys[] = {"coefficient", NULL};
 static const char *const time_keys[] = {"end", "output_interval", "output_times", "stop", NULL};
-static const char *const geometry_keys[] = {"tank",       "fluid",      "walls",  "periodic_x",
-                                            "periodic_y", "periodic_z", "domain", NULL};
+static const char *const geometry_keys[] = {"tank",       "fluid",      "walls",
+                                            "obstacles",  "periodic_x", "periodic_y",
+                                            "periodic_z", "domain",     NULL};
+static const char *const obstacle_keys[] = {"x", "y", SPH_IF3("z", ) "layers", "boundary", NULL};
 static const char *const tank_keys[] = {
     "x", "y", "layers", "boundary", "stagger", "extrapolated_velocity", "free_slip",
 #if SPH_DIM == 3
@@ -1001,9 +1003,65 @@ static int read_periodic(const ctx *x, const node *m, sph_case *c) {
   return 0;
 }
 
+/* geometry.obstacles[i]: {x, y (, z): ranges at least dx wide, layers (1-8, default 2),
+ * boundary: dynamic (default) or fixed_layers}. */
+static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_case *c,
+                         sph_obstacle *o) {
+  char b[96], kp[SPH_YAML_KEYLEN];
+  if (m->kind != SPH_YAML_MAP)
+    return sph_yaml_fail_at(&x->t, m, p, "expected a mapping, got %s",
+                            sph_yaml_got(m, b, sizeof b));
+  if (sph_yaml_check_keys(&x->t, m, p, obstacle_keys)) return -1;
+  for (int a = 0; a < SPH_DIM; a++) {
+    const char key[2] = {"xyz"[a], 0};
+    double v[2];
+    if (sph_yaml_get_pair(&x->t, m, p, key, 1, key[0], v) < 0) return -1;
+    if (c->dx > 0.0 && !(v[1] - v[0] >= c->dx)) {
+      sph_yaml_join(kp, sizeof kp, p, key);
+      return sph_yaml_fail_at(&x->t, sph_yaml_find(m, key)->val, kp,
+                              "expected a range at least numerics.dx = %g m wide, got [%g, %g]",
+                              c->dx, v[0], v[1]);
+    }
+    o->lo[a] = v[0];
+    o->hi[a] = v[1];
+  }
+  o->layers = 2;
+  if (sph_yaml_get_int(&x->t, m, p, "layers", 1, 8, &o->layers) < 0) return -1;
+  int bnd = SPH_BOUNDARY_DYNAMIC;
+  if (sph_yaml_get_choice(&x->t, m, p, "boundary", boundary_names, &bnd) < 0) return -1;
+  o->boundary = (sph_boundary_kind)bnd;
+  if (bnd != SPH_BOUNDARY_DYNAMIC && bnd != SPH_BOUNDARY_FIXED_LAYERS) {
+    sph_yaml_join(kp, sizeof kp, p, "boundary");
+    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "boundary")->val, kp,
+                            "expected 'dynamic' or 'fixed_layers' (an obstacle is a box of wall "
+                            "particles; the other wall models are not for obstacles yet), got '%s'",
+                            sph_boundary_name(o->boundary));
+  }
+  return 0;
+}
+
+static int read_obstacles(const ctx *x, const node *m, sph_case *c) {
+  const node *t;
+  char kp[SPH_YAML_KEYLEN], b[96];
+  int rc = sph_yaml_lookup(&x->t, m, "geometry", "obstacles", 0, &t, kp);
+  if (rc <= 0) return rc;
+  if (t->kind != SPH_YAML_LIST)
+    return sph_yaml_fail_at(&x->t, t, kp, "expected a list of mappings, got %s",
+                            sph_yaml_got(t, b, sizeof b));
+  if (t->n == 0) return 0;
+  if (!(c->obstacles = calloc(t->n, sizeof *c->obstacles))) return sph_yaml_oom(&x->t);
+  c->n_obstacles = t->n;
+  for (size_t i = 0; i < t->n; i++) {
+    sph_yaml_bprintf(kp, sizeof kp, "geometry.obstacles[%zu]", i);
+    if (read_obstacle(x, t->items[i], kp, c, &c->obstacles[i])) return -1;
+  }
+  return 0;
+}
+
 static int read_geometry(const ctx *x, const node *m, sph_case *c) {
   const node *d;
-  if (read_tank(x, m, c) || read_fluid(x, m, c) || read_walls(x, m, c)) return -1;
+  if (read_tank(x, m, c) || read_fluid(x, m, c) || read_walls(x, m, c) || read_obstacles(x, m, c))
+    return -1;
   if (read_periodic(x, m, c)) return -1;
   int rc = sph_yaml_get_section(&x->t, m, "geometry", "domain", 0, domain_keys, &d);
   if (rc <= 0) return rc;
@@ -1045,6 +1103,12 @@ static void estimate_particles(sph_case *c) {
     const sph_wall_segment *w = &c->walls[i];
     const double len = hypot(w->x1 - w->x0, w->y1 - w->y0);
     wall += w->layers * (len / dx + 2.0);
+  }
+  for (size_t i = 0; i < c->n_obstacles; i++) { /* the whole box, from above */
+    double box = 1.0;
+    for (int a = 0; a < SPH_DIM; a++)
+      box *= floor((c->obstacles[i].hi[a] - c->obstacles[i].lo[a]) / dx + 0.5) + 1.0;
+    wall += box;
   }
   int mirror = c->tank.present && c->tank.boundary == SPH_BOUNDARY_MIRROR;
   for (size_t i = 0; i < c->n_walls; i++)
@@ -1553,6 +1617,7 @@ void sph_case_free(sph_case *c) {
   free(c->scheme_kept);
   free(c->fluid);
   free(c->walls);
+  free(c->obstacles);
   free(c->output_times);
   free(c->gauges);
   free(c->probes);

@@ -155,7 +155,9 @@ typedef struct sph_case {
   size_t dx_line;             /* the line of numerics.dx in the file; 0: from a --set */
   double max_particles;       /* the bound sph_sim_create enforces; 0: sph_case_default_max */
 
-  int periodic_axis; /* geometry.periodic_*: the axis that wraps, 0 (x), 1 (y), 2 (z) */
+  int periodic_axis;  /* geometry.periodic_*: the axis that wraps, 0 (x), 1 (y), 2 (z) */
+  size_t n_obstacles; /* geometry.obstacles: boxes of wall particles */
+  sph_obstacle *obstacles;
 } sph_case;
 
 /* Bytes per particle a run needs, as the bound reckons it: measured peak

@@ -105,6 +105,14 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
     sb_add(b, "%s.jitter: %.17g\n", k, f->jitter);
     sb_add(b, "%s.seed: %d\n", k, f->seed);
   }
+  for (size_t i = 0; i < c->n_obstacles; i++) { /* listed only when there are some */
+    const sph_obstacle *o = &c->obstacles[i];
+    sph_yaml_bprintf(k, sizeof k, "geometry.obstacles[%zu]", i);
+    for (int a = 0; a < SPH_DIM; a++)
+      sb_add(b, "%s.%c: [%.17g, %.17g]\n", k, "xyz"[a], o -> lo[a], o -> hi[a]);
+    sb_add(b, "%s.layers: %d\n", k, o->layers);
+    sb_add(b, "%s.boundary: %s\n", k, sph_boundary_name(o->boundary));
+  }
   if (c->n_walls == 0) sb_add(b, "geometry.walls: []\n");
   for (size_t i = 0; i < c->n_walls; i++) {
     const sph_wall_segment *w = &c->walls[i];

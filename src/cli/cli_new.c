@@ -122,6 +122,8 @@ static const char *const TEMPLATE =
     "  #      # depth: 0.1\n"
     "  #      # ramp: 1.0\n"
     "  #      # hinge: [0.06, 0]\n"
+    "  # obstacles:               # boxes of wall particles (dynamic or fixed_layers)\n"
+    "  #   - {x: [0.3, 0.35], y: [0, 0.05], layers: 2, boundary: dynamic}\n"
     "  # periodic_x: [0, 1]       # periodic in x (no tank then), x1 - x0 >= 6 h\n"
     "  # periodic_y: [0, 1]       # 3-D only, as periodic_z: one periodic axis per case\n"
     "  # domain:                  # leaving it stops the run (default: the geometry's box\n"

@@ -383,7 +383,8 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   const unsigned half = c->integrator == SPH_INTEGRATOR_LEAPFROG ? SPH_ARRAYS_HALF_STEP : 0u;
   sph_particles_limit(&s->p, heat | half);
   if (add_fluid(s, err)) goto fail;
-  if (sph_walls_create(&s->walls, &s->p, &c->tank, c->walls, c->n_walls, c->dx, c->rho0, c->h,
+  if (sph_walls_create(&s->walls, &s->p, &c->tank, c->walls, c->n_walls, c->obstacles,
+                       c->n_obstacles, c->dx, c->rho0, c->h,
                        SPH_CUBIC_SUPPORT * c->h * (c->fs_h_factor > 1.0 ? c->fs_h_factor : 1.0),
                        err)) {
     sph_error ew = *err;

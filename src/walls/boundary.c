@@ -10,6 +10,7 @@
 
 #include "walls/boundary.h"
 
+#include <limits.h>
 #include <math.h>
 
 int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, double by,
@@ -54,6 +55,34 @@ int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, 
   }
   return 0;
 #endif
+}
+
+int sph_boundary_add_box(sph_particles *p, const sph_obstacle *o, double dx, double rho,
+                         double mass, double h, uint8_t flags, sph_error *err) {
+  long n[3] = {1, 1, 1};
+  for (int a = 0; a < SPH_DIM; a++) {
+    n[a] = (long)floor((o->hi[a] - o->lo[a]) / dx + 0.5);
+    if (n[a] < 1) n[a] = 1;
+  }
+  const double v[SPH_DIM] = {0.0};
+  for (long k = 0; k < n[2]; k++)
+    for (long j = 0; j < n[1]; j++)
+      for (long i = 0; i < n[0]; i++) {
+        const long idx3[3] = {i, j, k};
+        long depth = LONG_MAX; /* points to the nearest face */
+        for (int a = 0; a < SPH_DIM; a++) {
+          const long d = idx3[a] < n[a] - 1 - idx3[a] ? idx3[a] : n[a] - 1 - idx3[a];
+          if (d < depth) depth = d;
+        }
+        if (depth >= o->layers) continue; /* inside the shell */
+        double x[SPH_DIM];
+        for (int a = 0; a < SPH_DIM; a++)
+          x[a] = o->lo[a] + ((double)idx3[a] + 0.5) * dx;
+        const long q = sph_particles_add_at(p, x, v, rho, mass, h, SPH_KIND_WALL, err);
+        if (q < 0) return -1;
+        p->flags[q] = flags;
+      }
+  return 0;
 }
 
 #if SPH_DIM == 3

@@ -71,6 +71,15 @@ typedef struct sph_wall_segment {
   int free_slip;     /* as sph_tank */
 } sph_wall_segment;
 
+/* A box obstacle (geometry.obstacles): wall particles on the lattice lo[a] + (i + 1/2) dx
+ * inside the box, so that its faces lie dx/2 outside the outermost particles as the tank's
+ * do, `layers` deep behind every face (solid where the box is thinner). */
+typedef struct sph_obstacle {
+  double lo[SPH_DIM], hi[SPH_DIM]; /* the box's faces */
+  int layers;                      /* default 2, as a 3-D tank's */
+  sph_boundary_kind boundary;      /* dynamic (default) or fixed_layers */
+} sph_obstacle;
+
 #ifdef __cplusplus
 }
 #endif

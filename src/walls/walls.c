@@ -42,7 +42,8 @@ static int overlaps(const void *ctx, const sph_particles *p, size_t i) {
   const overlap *o = ctx;
   for (size_t k = 0; k < o->m; k++) {
     const double ex = p->x[i] - p->x[o->near[k]], ey = p->y[i] - p->y[o->near[k]];
-    if (ex * ex + ey * ey < o->d2) return 1;
+    SPH_IF3(const double ez = p->z[i] - p->z[o->near[k]];)
+    if (SPH_NORM2(ex, ey, ez) < o->d2) return 1;
   }
   return 0;
 }
@@ -50,19 +51,25 @@ static int overlaps(const void *ctx, const sph_particles *p, size_t i) {
 static long drop_overlaps(sph_particles *p, size_t from, size_t first, double dx) {
   const double d = 0.5 * dx, d2 = d * d;
   double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  SPH_IF3(double z0 = INFINITY, z1 = -INFINITY;)
   for (size_t i = first; i < p->n; i++) {
     x0 = fmin(x0, p->x[i] - d), x1 = fmax(x1, p->x[i] + d);
     y0 = fmin(y0, p->y[i] - d), y1 = fmax(y1, p->y[i] + d);
+    SPH_IF3(z0 = fmin(z0, p->z[i] - d), z1 = fmax(z1, p->z[i] + d);)
   }
+#define IN_BOX(j)                                                                                  \
+  (p->x[j] >= x0 && p->x[j] <= x1 && p->y[j] >= y0 &&                                              \
+   p->y[j] <= y1 SPH_IF3(&&p->z[j] >= z0 && p->z[j] <= z1))
   size_t m = 0;
   for (size_t j = from; j < first; j++)
-    m += p->x[j] >= x0 && p->x[j] <= x1 && p->y[j] >= y0 && p->y[j] <= y1;
+    m += IN_BOX(j);
   if (m == 0) return 0;
   size_t *near_box = malloc(m * sizeof *near_box);
   if (!near_box) return -1;
   m = 0;
   for (size_t j = from; j < first; j++)
-    if (p->x[j] >= x0 && p->x[j] <= x1 && p->y[j] >= y0 && p->y[j] <= y1) near_box[m++] = j;
+    if (IN_BOX(j)) near_box[m++] = j;
+#undef IN_BOX
   const overlap o = {near_box, m, d2};
   const long dropped = (long)sph_particles_drop_if(p, first, overlaps, &o);
   free(near_box);
@@ -70,7 +77,8 @@ static long drop_overlaps(sph_particles *p, size_t from, size_t first, double dx
 }
 
 int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
-                     const sph_wall_segment *segments, size_t n_segments, double dx, double rho0,
+                     const sph_wall_segment *segments, size_t n_segments,
+                     const sph_obstacle *obstacles, size_t n_obstacles, double dx, double rho0,
                      double h, double mirror_reach, sph_error *err) {
 #if SPH_DIM == 2
   const double wall_mass = rho0 * dx * dx;
@@ -132,6 +140,16 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
       for (size_t i = first; i < p->n; i++)
         p->body[i] = (int32_t)k;
     }
+  }
+  for (size_t k = 0; k < n_obstacles; k++) { /* boxes: dynamic or fixed_layers (the reader) */
+    const sph_obstacle *o = &obstacles[k];
+    if (is_dbc(o->boundary)) w->dbc = 1;
+    const size_t first = p->n;
+    if (sph_boundary_add_box(p, o, dx, rho0, wall_mass, h, wall_flags(o->boundary, 0, 0), err))
+      return -1;
+    const long dropped = drop_overlaps(p, walls_from, first, dx);
+    if (dropped < 0) return sph_error_set(err, "out of memory");
+    w->n_dropped += (size_t)dropped;
   }
   return 0;
 }

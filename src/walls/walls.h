@@ -39,14 +39,16 @@ typedef struct sph_walls {
   size_t n_dropped; /* a segment's particles not made: closer than dx/2 to an earlier wall's */
 } sph_walls;
 
-/* Adds the wall particles of the tank (if present) and of the segments to
- * p (mass, density rho0, smoothing length h, spacing dx), and records the
- * mirror walls as lines with reach mirror_reach. A moving segment's
- * particles get body = the segment's index. A segment's particle closer
- * than dx/2 to one of an earlier wall (the tank, or a segment before it)
- * is not made, and counted in n_dropped. */
+/* Adds the wall particles of the tank (if present), of the segments and of
+ * the box obstacles to p (mass, density rho0, smoothing length h, spacing
+ * dx), and records the mirror walls as lines with reach mirror_reach. A
+ * moving segment's particles get body = the segment's index. A segment's
+ * or obstacle's particle closer than dx/2 to one of an earlier wall (the
+ * tank, or a segment or obstacle before it) is not made, and counted in
+ * n_dropped. */
 int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
-                     const sph_wall_segment *segments, size_t n_segments, double dx, double rho0,
+                     const sph_wall_segment *segments, size_t n_segments,
+                     const sph_obstacle *obstacles, size_t n_obstacles, double dx, double rho0,
                      double h, double mirror_reach, sph_error *err);
 
 /* Positions and velocities of the moving wall particles at time t: rest
