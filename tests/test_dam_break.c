@@ -49,15 +49,7 @@ static int read_front(const char *path, series *s) {
   return s->n ? 0 : -1;
 }
 
-static double interp(const series *s, double t) {
-  if (t <= s->t[0]) return s->x[0];
-  for (size_t i = 1; i < s->n; i++)
-    if (t <= s->t[i])
-      return s->x[i - 1] + (s->x[i] - s->x[i - 1]) * (t - s->t[i - 1]) / (s->t[i] - s->t[i - 1]);
-  /* after the run stopped: its front had reached the right wall, where it
-   * stays (the run stops when the front is within dx of the wall) */
-  return s->x[s->n - 1];
-}
+static double interp(const series *s, double t) { return sph_test_interp(s->t, s->x, s->n, t); }
 
 static int run(const char *dir, int threads) {
   char cmd[8192];

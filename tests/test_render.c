@@ -1132,7 +1132,7 @@ static void test_vector_plot(void) {
  * with what was expected. */
 static void test_vector_figures(void) {
   for (int run = 0; run < 2; run++) {
-    char args[1024];
+    char args[9216]; /* the renderer's path (up to 4096 bytes) twice */
     snprintf(args, sizeof args,
              "--jobs 1 run/snap_0001.h5 -o fig%d.svg && '%s' --jobs 1 --size 8.5cm "
              "run/snap_0001.h5 -o fig%d.pdf && '%s' --jobs 1 --panels 2x1 --size 17cm "
@@ -1160,7 +1160,7 @@ static void test_vector_figures(void) {
   CU_ASSERT_TRUE(file_has(pdf, "%%EOF"));
   CU_ASSERT_TRUE(svg_parses(path_in(tmp, "panels0.svg")));
   /* a PNG of a physical size: pixels at --dpi */
-  char args[1024];
+  char args[5120]; /* the renderer's path, up to 4096 bytes */
   snprintf(args, sizeof args,
            "--jobs 1 --size 8.5cm run/snap_0001.h5 -o col300.png && '%s' --jobs 1 --size 85mm "
            "--dpi 150 run/snap_0001.h5 -o col150.png",

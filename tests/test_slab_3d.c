@@ -57,13 +57,7 @@ static int read_front(const char *path, const char *cols, series *s) {
   return s->n ? 0 : -1;
 }
 
-static double interp(const series *s, double t) {
-  if (t <= s->t[0]) return s->x[0];
-  for (size_t i = 1; i < s->n; i++)
-    if (t <= s->t[i])
-      return s->x[i - 1] + (s->x[i] - s->x[i - 1]) * (t - s->t[i - 1]) / (s->t[i] - s->t[i - 1]);
-  return s->x[s->n - 1]; /* past the stop: the front stands at the wall */
-}
+static double interp(const series *s, double t) { return sph_test_interp(s->t, s->x, s->n, t); }
 
 /* RMS and largest relative error of the front against the experiment (Z < 3.9). */
 static void against_experiment(const series *s, double *rms, double *emax, int *n, int print) {

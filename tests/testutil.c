@@ -83,6 +83,14 @@ static int cmp_double(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
+double sph_test_interp(const double *t, const double *x, size_t n, double at) {
+  if (n == 0) return NAN;
+  if (at <= t[0]) return x[0];
+  for (size_t i = 1; i < n; i++)
+    if (at <= t[i]) return x[i - 1] + (x[i] - x[i - 1]) * (at - t[i - 1]) / (t[i] - t[i - 1]);
+  return x[n - 1];
+}
+
 double sph_test_median(const double *v, int n) {
   double *c = malloc((size_t)n * sizeof *c);
   if (!c) return NAN;

@@ -45,6 +45,10 @@ double sph_test_uniform(unsigned long long *s);
 
 /* The median of n values (sorts a copy; n > 0). */
 double sph_test_median(const double *v, int n);
+/* The series (t[i], x[i]), i < n, t increasing, at time `at`: linear between samples, x[0]
+ * before the first and x[n - 1] after the last (a dam-break front that stopped at the wall
+ * stays there). */
+double sph_test_interp(const double *t, const double *x, size_t n, double at);
 /* Simpson's rule for the integral of f over [a, b] with m (even) intervals. */
 double sph_test_simpson(double (*f)(double), double a, double b, int m);
 
