@@ -43,9 +43,11 @@
  *   no lanes): drho/dt, dv/dt, XSPH and du/dt of the pass within 1e-12 of
  *   each rate's largest (measured 1.2e-15) for artificial viscosity with
  *   XSPH, with beta and Fourtakas' diffusion, Morris viscosity with
- *   Molteni & Colagrossi's, the Riemann pressure, and the first and last of
- *   these periodic in y, each with both kernels (a wrong Pi_ij denominator
- *   shows as 4e-3);
+ *   Molteni & Colagrossi's, the Riemann pressure, the first and last of
+ *   these periodic in y, and the second to fourth again on two layers of
+ *   dynamic wall particles (a wall's continuity, diffusion and heat with
+ *   fluid neighbours only; no XSPH with walls), each with both kernels (a
+ *   wrong Pi_ij denominator shows as 4e-3);
  * - periodic along y and along z: the rates of the block periodic along x
  *   with its axes exchanged.
  */
@@ -62,6 +64,7 @@
 #include "physics/filter.h"
 #include "physics/kernel.h"
 #include "physics/turbulence.h"
+#include "solver/diffusion.h"
 #include "solver/forces.h"
 #include "solver/integrate.h"
 #include "testutil.h"
@@ -526,9 +529,14 @@ static void oracle3(const sph_particles *p, const sph_force_params *fp, double *
   const double k = 0.5 * fp->eos.rho0 / (fp->eos.c0 * fp->eos.c0); /* Fourtakas' c = k g */
   for (size_t i = 0; i < p->n; i++) {
     const double rhoi = p->rho[i], ci = sph_eos_sound_speed(&fp->eos, rhoi);
+    const int fluid = p->kind[i] == SPH_KIND_FLUID; /* else a dynamic wall particle at rest */
     double drho = 0.0, a[3] = {fp->gx, fp->gy, fp->gz}, xs[3] = {0.0, 0.0, 0.0}, du = 0.0;
+    if (!fluid) a[0] = a[1] = a[2] = 0.0;
     for (size_t j = 0; j < p->n; j++) {
       if (j == i) continue;
+      const int fj = p->kind[j] == SPH_KIND_FLUID;
+      /* a wall particle: its continuity, diffusion and heat with fluid neighbours only */
+      if (!fluid && !fj) continue;
       double d[3], v[3], g[3];
       for (int q = 0; q < 3; q++)
         d[q] = oracle_sep(fp, q, p->pos[q][i], p->pos[q][j]), v[q] = p->vel[q][i] - p->vel[q][j];
@@ -542,7 +550,8 @@ static void oracle3(const sph_particles *p, const sph_force_params *fp, double *
       const double vg = v[0] * g[0] + v[1] * g[1] + v[2] * g[2];
       const double vr = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
       drho += mj * vg;
-      if (fp->diffusion != SPH_DIFFUSION_NONE) {
+      /* walls diffuse with fluid when fp->wall_diffusion (solver/diffusion.h) */
+      if (fp->diffusion != SPH_DIFFUSION_NONE && ((fluid && fj) || fp->wall_diffusion)) {
         double psi = 2.0 * (rhoj - rhoi);
         if (fp->diffusion == SPH_DIFFUSION_FOURTAKAS)
           psi += 2.0 * 2.0 * k * (fp->gx * d[0] + fp->gy * d[1] + fp->gz * d[2]);
@@ -550,10 +559,12 @@ static void oracle3(const sph_particles *p, const sph_force_params *fp, double *
         drho += fp->diffusion_delta * h * fp->eos.c0 * psi * rji_gw / (r * r) * mj / rhoj;
       }
       double P = p->p[i] / (rhoi * rhoi) + p->p[j] / (rhoj * rhoj);
-      if (fp->riemann) {
+      if (fp->riemann && fluid && fj) {
         const double jump =
             (p->p[i] - p->p[j]) - fp->eos.rho0 * (fp->gx * d[0] + fp->gy * d[1] + fp->gz * d[2]);
         drho += rhoi * mj / rhoj * jump * dw / (fp->eos.rho0 * fp->eos.c0); /* dW/dr */
+      }
+      if (fp->riemann) {
         const double closing = -vr / r, c0 = fp->eos.c0;
         const double beta = fmin(fp->riemann_limiter * fmax(closing, 0.0) / c0, 1.0);
         P = (p->p[i] + p->p[j] + beta * fp->eos.rho0 * c0 * closing) / (rhoi * rhoj);
@@ -576,8 +587,9 @@ static void oracle3(const sph_particles *p, const sph_force_params *fp, double *
         du -= 0.5 * c * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
       }
       for (int q = 0; q < 3; q++)
-        xs[q] -= mj / (0.5 * (rhoi + rhoj)) * v[q] * w;
+        xs[q] -= fj ? mj / (0.5 * (rhoi + rhoj)) * v[q] * w : 0.0;
     }
+    if (!fluid) a[0] = a[1] = a[2] = xs[0] = xs[1] = xs[2] = 0.0;
     double *o = out + 8 * (size_t)p->id[i];
     o[0] = drho;
     for (int q = 0; q < 3; q++)
@@ -587,18 +599,20 @@ static void oracle3(const sph_particles *p, const sph_force_params *fp, double *
 }
 
 /* The oracle against the pass (the lane loop; the scalar loop agrees with it to 1e-11,
- * test_loops_agree) for six term sets, both kernels, with and without periodicity along y,
+ * test_loops_agree) for nine term sets, both kernels, with and without periodicity along y
+ * and dynamic wall particles,
  * on a jittered block with random velocities and densities: every rate within 1e-12 of the
  * largest of its kind over the block. */
 static void test_oracle(void) {
-  const size_t n = (size_t)NL * NL * NL;
+  const size_t n = (size_t)NL * NL * (NL + 2);
   double *ref = calloc(8 * n, sizeof *ref);
-  for (int set = 0; set < 12; set++) {
+  for (int set = 0; set < 18; set++) {
     sph_force_params fp = params();
     fp.kernel = set % 2 ? SPH_KERNEL_WENDLAND_C2 : SPH_KERNEL_CUBIC_SPLINE;
     fp.gz = -G;
     fp.ledger = 1;
-    switch (set / 2) {
+    const int walls = set >= 12; /* sets 1, 2 and 3 again on two layers of dynamic walls */
+    switch (walls ? set / 2 - 5 : set / 2) {
     case 0: fp.alpha = 0.3, fp.xsph = 0.5; break;
     case 1: fp.alpha = 0.2, fp.beta = 0.4, fp.diffusion = SPH_DIFFUSION_FOURTAKAS; break;
     case 2:
@@ -618,8 +632,16 @@ static void test_oracle(void) {
     rng = 4242 + (unsigned long long)set;
     lattice(&p, 0.2, random_velocity);
     sph_particles_use(&p, SPH_ARRAYS_HEAT);
+    for (int layer = 1; walls && layer <= 2; layer++) /* below the block, at rest */
+      for (int j = 0; j < NL; j++)
+        for (int i = 0; i < NL; i++) {
+          const double x[3] = {i * DX, j * DX, -layer * DX}, v[3] = {0.0, 0.0, 0.0};
+          CU_ASSERT_FATAL(sph_particles_add_at(&p, x, v, RHO0, RHO0 * DX * DX * DX, 1.3 * DX,
+                                               SPH_KIND_WALL, &err) >= 0);
+        }
     for (size_t i = 0; i < p.n; i++)
       p.rho[i] = RHO0 * (1.0 + 0.01 * (2.0 * uniform() - 1.0));
+    fp.wall_diffusion = sph_diffusion_walls(&p, &fp);
     sph_grid g;
     sph_grid_init(&g);
     sph_nlist l;
@@ -753,7 +775,7 @@ int main(void) {
       {"3-D momentum sums to zero; the ledger's heat balances the work", test_balances},
       {"3-D scalar, lane flavours, run-time loop and thread counts agree", test_loops_agree},
       {"3-D integrators move along z as along x, bit for bit", test_integrators},
-      {"3-D pass against an all-pairs oracle from the equations (six term sets)", test_oracle},
+      {"3-D pass against an all-pairs oracle from the equations (nine term sets)", test_oracle},
       {"3-D periodic along y and z: the rates of periodic along x, axes exchanged",
        test_periodic_axes},
       {"3-D MLS filter: exact for a linear density; Shepard for a uniform one", test_filters},
