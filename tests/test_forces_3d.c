@@ -49,7 +49,12 @@
  *   fluid neighbours only; no XSPH with walls), each with both kernels (a
  *   wrong Pi_ij denominator shows as 4e-3);
  * - periodic along y and along z: the rates of the block periodic along x
- *   with its axes exchanged.
+ *   with its axes exchanged;
+ * - each pair term in 3-D (pair_terms.h with three components) from i's
+ *   side and from j's, on 2000 random pairs: the forces (pressure,
+ *   artificial viscosity, stress with its six components, Morris, XSPH)
+ *   antisymmetric and the scalar terms symmetric, bit for bit, as
+ *   test_pair_terms holds them in 2-D; the four-lane flavour gives v1's bits.
  */
 #include "config.h"
 
@@ -63,6 +68,7 @@
 #include "physics/eos.h"
 #include "physics/filter.h"
 #include "physics/kernel.h"
+#include "physics/pair_terms.h"
 #include "physics/turbulence.h"
 #include "solver/diffusion.h"
 #include "solver/forces.h"
@@ -682,6 +688,129 @@ static void test_oracle(void) {
   free(ref);
 }
 
+/* ---- each pair term in 3-D, from i's side and from j's -------------------------------- */
+
+static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+static double between(double a, double b) { return a + (b - a) * uniform(); }
+
+/* Random pairs within 2h in 3-D, every term evaluated with its inputs formed as a loop forms
+ * them from i's side (x_i - x_j, v_i - v_j) and from j's: the forces exactly antisymmetric
+ * (equal masses), the scalar terms (continuity, signal, Pi_ij, heats, Morris' factor, the
+ * Riemann pressure) exactly symmetric, the diffusion's psi and the Riemann continuity term
+ * antisymmetric; a free-slip wall's normal part antisymmetric and along the normal; and the
+ * portable four-lane flavour gives v1's bits in each lane. */
+static void test_pair_symmetry_3d(void) {
+  rng = 777777;
+  unsigned checked = 0;
+  for (int t = 0; t < 2000; t++) {
+    const double h = DX * between(1.0, 1.5), m = between(0.3, 0.5);
+    double xi[3], xj[3], vi[3], vj[3], s[6];
+    for (int a = 0; a < 3; a++) {
+      xi[a] = between(0, 1), xj[a] = xi[a] + between(-1.2, 1.2) * h;
+      vi[a] = between(-2, 2), vj[a] = between(-2, 2);
+    }
+    for (int a = 0; a < 6; a++)
+      s[a] = between(-1, 1);
+    const double rhoi = between(990, 1010), rhoj = between(990, 1010);
+    const double ci = between(19, 21), cj = between(19, 21);
+    vec_v1 rv, qv, dv, ev;
+    for (int a = 0; a < 3; a++)
+      rv.c[a] = xi[a] - xj[a], qv.c[a] = xj[a] - xi[a], dv.c[a] = vi[a] - vj[a],
+      ev.c[a] = vj[a] - vi[a];
+    const double r2 = SPH_NORM2(rv.c[0], rv.c[1], rv.c[2]),
+                 q2 = SPH_NORM2(qv.c[0], qv.c[1], qv.c[2]);
+    if (!(r2 < 4 * h * h) || r2 == 0) continue;
+    CU_ASSERT(same_bits(r2, q2));
+    const double inv_r2 = 1 / r2, r = sqrt(r2), inv_r = r * inv_r2, inv_h = 1 / h;
+    const double sigma = sph_kernel_sigma(SPH_KERNEL_CUBIC_SPLINE, inv_h);
+    double w, f;
+    cubic_w_f_v1(r, inv_r, inv_h, sigma, sigma * inv_h, &w, &f);
+    vec_v1 gv, hv;
+    for (int a = 0; a < 3; a++)
+      gv.c[a] = f * rv.c[a], hv.c[a] = f * qv.c[a];
+    const double vr = dot_v1(dv, rv), ur = dot_v1(ev, qv);
+    CU_ASSERT(same_bits(vr, ur));
+    CU_ASSERT(same_bits(continuity_v1(m, dv, gv), continuity_v1(m, ev, hv)));
+    CU_ASSERT(same_bits(signal_v1(h, vr, inv_r2), signal_v1(h, ur, inv_r2)));
+    const double eta2 = 0.01 * h * h, irb = inv_rho_mean_v1(rhoi, rhoj);
+    CU_ASSERT(same_bits(irb, inv_rho_mean_v1(rhoj, rhoi)));
+    const double pi_ij = artificial_viscosity_v1(vr, h, r2, eta2, ci, cj, -0.08, 0.5, irb);
+    const double pi_ji = artificial_viscosity_v1(ur, h, q2, eta2, cj, ci, -0.08, 0.5, irb);
+    CU_ASSERT(same_bits(pi_ij, pi_ji));
+    const double mp = m * ((s[0] + s[1]) + pi_ij), mq = m * ((s[1] + s[0]) + pi_ji);
+    vec_v1 a = pressure_force_v1(mp, gv), b = pressure_force_v1(mq, hv);
+    for (int q = 0; q < 3; q++)
+      CU_ASSERT(same_bits(a.c[q], -b.c[q]));
+    CU_ASSERT(same_bits(pressure_heat_v1(mp, dv, gv), pressure_heat_v1(mq, ev, hv)));
+    sym_v1 tv, uv; /* tau_i + tau_j from either side */
+    const double si[6] = {s[0], s[1], s[2], s[3], s[4], s[5]};
+    const double sj[6] = {s[5], s[3], s[1], s[4], s[0], s[2]};
+    for (int k = 0; k < 6; k++)
+      tv.c[k] = si[k] + sj[k], uv.c[k] = sj[k] + si[k];
+    a = stress_force_v1(m, tv, gv);
+    b = stress_force_v1(m, uv, hv);
+    for (int q = 0; q < 3; q++)
+      CU_ASSERT(same_bits(a.c[q], -b.c[q]));
+    CU_ASSERT(same_bits(stress_heat_v1(m, tv, dv, gv), stress_heat_v1(m, uv, ev, hv)));
+    const double c = morris_factor_v1(m, 2e-4, f, r2, rhoi, rhoj, eta2);
+    CU_ASSERT(same_bits(c, morris_factor_v1(m, 2e-4, f, q2, rhoj, rhoi, eta2)));
+    CU_ASSERT(same_bits(morris_heat_v1(c, dv), morris_heat_v1(c, ev)));
+    const double xf = xsph_factor_v1(m, irb, w);
+    for (int q = 0; q < 3; q++)
+      CU_ASSERT(same_bits(xf * dv.c[q], -(xf * ev.c[q])) && same_bits(c * dv.c[q], -(c * ev.c[q])));
+    const double lj = lennard_jones_v1(5.0, 1.2 * h, r2);
+    CU_ASSERT(same_bits(lj, lennard_jones_v1(5.0, 1.2 * h, q2)));
+    { /* a free-slip wall's normal part: antisymmetric, along the normal */
+      const vec_v1 mv = {{s[2] * DX, s[3] * DX, s[4] * DX}};
+      const vec_v1 n = normal_part_v1(gv, mv), o = normal_part_v1(hv, mv);
+      double cross = 0.0;
+      for (int q = 0; q < 3; q++) {
+        CU_ASSERT(same_bits(n.c[q], -o.c[q]));
+        const double cq =
+            n.c[(q + 1) % 3] * mv.c[(q + 2) % 3] - n.c[(q + 2) % 3] * mv.c[(q + 1) % 3];
+        cross = fmax(cross, fabs(cq));
+      }
+      CU_ASSERT(cross <= 1e-12 * sqrt(dot_v1(gv, gv) * dot_v1(mv, mv)));
+    }
+    { /* the Riemann pressure symmetric, its continuity term antisymmetric */
+      const double z0 = 1000.0 * 20.0, kc = 3.0 / 20.0, pi_ = s[4] * 1e4, pj_ = s[5] * 1e4;
+      const double P = riemann_pressure_v1(pi_, pj_, rhoi, rhoj, -vr * inv_r, z0, kc);
+      CU_ASSERT(same_bits(P, riemann_pressure_v1(pj_, pi_, rhoj, rhoi, -ur * inv_r, z0, kc)));
+      const double d = riemann_density_v1(rhoi, m, rhoi, pi_ - pj_, f, r, 1 / z0);
+      CU_ASSERT(same_bits(d, -riemann_density_v1(rhoi, m, rhoi, pj_ - pi_, f, r, 1 / z0)));
+    }
+    const vec_v1 cc = {{s[0] * 1e3, s[1] * 1e3, s[2] * 1e3}}; /* c_i + c_j of the diffusion */
+    CU_ASSERT(
+        same_bits(diffusion_psi_v1(rhoi, rhoj, rv, cc), -diffusion_psi_v1(rhoj, rhoi, qv, cc)));
+    /* the four-lane flavour: scaled copies of the pair in its lanes, v1's bits in each */
+    const double k4[4] = {1.0, 0.9, 0.8, 0.7};
+    vec_v4e g4, d4;
+    for (int q = 0; q < 3; q++) {
+      g4.c[q] = v4e_set(gv.c[q] * k4[0], gv.c[q] * k4[1], gv.c[q] * k4[2], gv.c[q] * k4[3]);
+      d4.c[q] = v4e_set(dv.c[q] * k4[0], dv.c[q] * k4[1], dv.c[q] * k4[2], dv.c[q] * k4[3]);
+    }
+    const v4e m4 = v4e_set(m * k4[0], m * k4[1], m * k4[2], m * k4[3]);
+    double got[4];
+    v4e_store(got, continuity_v4e(m4, d4, g4));
+    for (int q = 0; q < 4; q++) {
+      vec_v1 gq, dq;
+      for (int a2 = 0; a2 < 3; a2++)
+        gq.c[a2] = gv.c[a2] * k4[q], dq.c[a2] = dv.c[a2] * k4[q];
+      CU_ASSERT(same_bits(got[q], continuity_v1(m * k4[q], dq, gq)));
+    }
+    v4e_store(got, pressure_heat_v4e(m4, d4, g4));
+    for (int q = 0; q < 4; q++) {
+      vec_v1 gq, dq;
+      for (int a2 = 0; a2 < 3; a2++)
+        gq.c[a2] = gv.c[a2] * k4[q], dq.c[a2] = dv.c[a2] * k4[q];
+      CU_ASSERT(same_bits(got[q], pressure_heat_v1(m * k4[q], dq, gq)));
+    }
+    checked++;
+  }
+  printf("\n    %u pairs within 2h: every term symmetric or antisymmetric bit for bit", checked);
+  CU_ASSERT(checked > 1000);
+}
+
 static double linear_rho(const double x[3]) {
   return RHO0 * (1.0 + 0.3 * x[0] - 0.2 * x[1] + 0.5 * x[2]);
 }
@@ -776,6 +905,8 @@ int main(void) {
       {"3-D scalar, lane flavours, run-time loop and thread counts agree", test_loops_agree},
       {"3-D integrators move along z as along x, bit for bit", test_integrators},
       {"3-D pass against an all-pairs oracle from the equations (nine term sets)", test_oracle},
+      {"3-D pair terms from i's side and from j's: symmetric, antisymmetric, lanes = v1",
+       test_pair_symmetry_3d},
       {"3-D periodic along y and z: the rates of periodic along x, axes exchanged",
        test_periodic_axes},
       {"3-D MLS filter: exact for a linear density; Shepard for a uniform one", test_filters},
