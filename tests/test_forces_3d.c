@@ -47,9 +47,11 @@
  *   these periodic in y, the second to fourth again on two layers of
  *   dynamic wall particles (a wall's continuity, diffusion and heat with
  *   fluid neighbours only; no XSPH with walls), and Antuono's diffusion
- *   with its 3x3 renormalisation (the oracle inverts by Gauss-Jordan), each
- *   with both kernels (a wrong Pi_ij denominator shows as 4e-3, a wrong
- *   factor in Antuono's c_i as 5e-3);
+ *   with its 3x3 renormalisation (the oracle inverts by Gauss-Jordan), the
+ *   viscous stress tensor (its 3x3 strain rate with paper A's 2/3) and, on
+ *   walls, the stress with SPS and XSPH, each with both kernels (a wrong
+ *   Pi_ij denominator shows as 4e-3, a wrong factor in Antuono's c_i as
+ *   5e-3);
  * - periodic along y and along z: the rates of the block periodic along x
  *   with its axes exchanged;
  * - each pair term in 3-D (pair_terms.h with three components) from i's
@@ -590,10 +592,53 @@ static void oracle_antuono_c(const sph_particles *p, const sph_force_params *fp,
   }
 }
 
+/* tau_i / rho_i^2 at every particle (6 per particle, core/tensor.h's order): mu eps_i / rho_i^2
+ * with paper A eq. (13)-(14), eps = grad v + grad v^T - (2/3) div v I from
+ * (grad v)_ab = sum_j V_j (v_j - v_i)_a (grad_i W_ij)_b over every neighbour, plus the SPS
+ * stress of paper B eq. (4) over rho_i (its closure, physics/turbulence.h, of S = (eps +
+ * (2/3) div v I) / 2). */
+static void oracle_stress3(const sph_particles *p, const sph_force_params *fp, double *tau) {
+  for (size_t i = 0; i < p->n; i++) {
+    double gv[3][3] = {{0.0}}; /* grad v */
+    for (size_t j = 0; j < p->n; j++) {
+      if (j == i) continue;
+      double d[3];
+      for (int q = 0; q < 3; q++)
+        d[q] = oracle_sep(fp, q, p->pos[q][i], p->pos[q][j]);
+      const double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      if (r >= 2.0 * fp->h || r == 0.0) continue;
+      double w, dw;
+      sph_kernel_w_dw(fp->kernel, r, fp->h, &w, &dw);
+      const double V = p->mass[j] / p->rho[j];
+      for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+          gv[a][b] += V * (p->vel[a][j] - p->vel[a][i]) * dw * d[b] / r;
+    }
+    const double div = gv[0][0] + gv[1][1] + gv[2][2], rho = p->rho[i];
+    const double lam = fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR ? fp->mu / (rho * rho) : 0.0;
+    double eps[SPH_SYM], S[SPH_SYM];
+    for (int a = 0; a < 3; a++)
+      for (int b = a; b < 3; b++) {
+        const int k = sph_sym_index(a, b);
+        eps[k] = gv[a][b] + gv[b][a] - (a == b ? 2.0 / 3.0 * div : 0.0);
+        S[k] = 0.5 * (eps[k] + (a == b ? 2.0 / 3.0 * div : 0.0));
+        tau[6 * i + k] = lam * eps[k];
+      }
+    if (fp->sps) {
+      double t[SPH_SYM];
+      sph_sps_stress_sym(S, fp->sps_cs, fp->sps_ci, fp->sps_delta, t);
+      for (int k = 0; k < SPH_SYM; k++)
+        tau[6 * i + k] += t[k] / rho;
+    }
+  }
+}
+
 static void oracle3(const sph_particles *p, const sph_force_params *fp, double *out) {
   const double k = 0.5 * fp->eos.rho0 / (fp->eos.c0 * fp->eos.c0); /* Fourtakas' c = k g */
-  double *ca = calloc(3 * p->n, sizeof *ca);
+  double *ca = calloc(3 * p->n, sizeof *ca), *tau = calloc(6 * p->n, sizeof *tau);
   if (fp->diffusion == SPH_DIFFUSION_ANTUONO) oracle_antuono_c(p, fp, ca);
+  const int stress = fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps;
+  if (stress) oracle_stress3(p, fp, tau);
   for (size_t i = 0; i < p->n; i++) {
     const double rhoi = p->rho[i], ci = sph_eos_sound_speed(&fp->eos, rhoi);
     const int fluid = p->kind[i] == SPH_KIND_FLUID; /* else a dynamic wall particle at rest */
@@ -647,6 +692,17 @@ static void oracle3(const sph_particles *p, const sph_force_params *fp, double *
       for (int q = 0; q < 3; q++)
         a[q] -= mj * P * g[q];
       du += 0.5 * mj * P * vg;
+      if (stress) { /* A eq. 11's stress: m_j (tau_i / rho_i^2 + tau_j / rho_j^2) . grad_i W_ij */
+        double t[3][3];
+        for (int q = 0; q < 3; q++)
+          for (int b = 0; b < 3; b++)
+            t[q][b] = tau[6 * i + sph_sym_index(q, b)] + tau[6 * j + sph_sym_index(q, b)];
+        for (int q = 0; q < 3; q++) {
+          a[q] += mj * (t[q][0] * g[0] + t[q][1] * g[1] + t[q][2] * g[2]);
+          for (int b = 0; b < 3; b++)
+            du -= 0.5 * mj * t[q][b] * v[q] * g[b];
+        }
+      }
       if (fp->viscosity == SPH_VISCOSITY_MORRIS) {
         const double eta = fp->eta * h;
         const double c = mj * 4.0 * fp->mu / fp->eos.rho0 *
@@ -667,24 +723,31 @@ static void oracle3(const sph_particles *p, const sph_force_params *fp, double *
     o[7] = du;
   }
   free(ca);
+  free(tau);
 }
 
 /* The oracle against the pass (the lane loop; the scalar loop agrees with it to 1e-11,
- * test_loops_agree) for ten term sets, both kernels, with and without periodicity along y
+ * test_loops_agree) for twelve term sets, both kernels, with and without periodicity along y
  * and dynamic wall particles,
  * on a jittered block with random velocities and densities: every rate within 1e-12 of the
  * largest of its kind over the block. */
 static void test_oracle(void) {
   const size_t n = (size_t)NL * NL * (NL + 2);
   double *ref = calloc(8 * n, sizeof *ref);
-  for (int set = 0; set < 20; set++) {
+  for (int set = 0; set < 24; set++) {
     sph_force_params fp = params();
     fp.kernel = set % 2 ? SPH_KERNEL_WENDLAND_C2 : SPH_KERNEL_CUBIC_SPLINE;
     fp.gz = -G;
     fp.ledger = 1;
-    const int walls = set >= 12 && set < 18; /* sets 1-3 again on two layers of dynamic walls */
-    switch (walls ? set / 2 - 5 : set / 2) {
+    /* sets 1-3 again on two layers of dynamic walls, and the stress tensor with SPS */
+    const int walls = (set >= 12 && set < 18) || set >= 22;
+    switch (set >= 12 && set < 18 ? set / 2 - 5 : set / 2) {
     case 9: fp.alpha = 0.1, fp.diffusion = SPH_DIFFUSION_ANTUONO; break;
+    case 10: fp.alpha = 0.1, fp.viscosity = SPH_VISCOSITY_STRESS_TENSOR, fp.mu = 0.05; break;
+    case 11:
+      fp.viscosity = SPH_VISCOSITY_STRESS_TENSOR, fp.mu = 0.01, fp.sps = 1, fp.sps_cs = 0.12,
+      fp.sps_ci = 0.00066, fp.sps_delta = DX, fp.xsph = 0.5;
+      break;
     case 0: fp.alpha = 0.3, fp.xsph = 0.5; break;
     case 1: fp.alpha = 0.2, fp.beta = 0.4, fp.diffusion = SPH_DIFFUSION_FOURTAKAS; break;
     case 2:
@@ -970,7 +1033,7 @@ int main(void) {
       {"3-D momentum sums to zero; the ledger's heat balances the work", test_balances},
       {"3-D scalar, lane flavours, run-time loop and thread counts agree", test_loops_agree},
       {"3-D integrators move along z as along x, bit for bit", test_integrators},
-      {"3-D pass against an all-pairs oracle from the equations (ten term sets)", test_oracle},
+      {"3-D pass against an all-pairs oracle from the equations (twelve term sets)", test_oracle},
       {"3-D pair terms from i's side and from j's: symmetric, antisymmetric, lanes = v1",
        test_pair_symmetry_3d},
       {"3-D periodic along y and z: the rates of periodic along x, axes exchanged",
