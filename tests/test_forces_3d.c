@@ -48,10 +48,12 @@
  *   dynamic wall particles (a wall's continuity, diffusion and heat with
  *   fluid neighbours only; no XSPH with walls), and Antuono's diffusion
  *   with its 3x3 renormalisation (the oracle inverts by Gauss-Jordan), the
- *   viscous stress tensor (its 3x3 strain rate with paper A's 2/3) and, on
- *   walls, the stress with SPS and XSPH, each with both kernels (a wrong
- *   Pi_ij denominator shows as 4e-3, a wrong factor in Antuono's c_i as
- *   5e-3);
+ *   viscous stress tensor (its 3x3 strain rate with paper A's 2/3), on
+ *   walls the stress with SPS and XSPH, and the stress with the
+ *   kernel-gradient correction (grad v = G M^-1, the divergence of
+ *   sym(tau L)), each with both kernels (a wrong Pi_ij denominator shows as
+ *   4e-3, a wrong factor in Antuono's c_i as 5e-3, a 1/3 for the 2/3 as
+ *   2e-4, the correction left out of the divergence as 3e-5);
  * - periodic along y and along z: the rates of the block periodic along x
  *   with its axes exchanged;
  * - each pair term in 3-D (pair_terms.h with three components) from i's
@@ -535,6 +537,43 @@ static double oracle_sep(const sph_force_params *fp, int a, double xi, double xj
  * continuity term), dv/dt (A eq. 11 with Monaghan's Pi_ij, A eq. 15-16, or the Riemann
  * interface pressure of Zhang et al. 2017; Morris' viscosity, B eq. 4; gravity), the XSPH
  * correction (B eq. 6) and du/dt (A eq. 28). out: 8 per particle id. */
+/* L = M^-1 by Gauss-Jordan elimination with partial pivoting where M is invertible enough
+ * (positive definite, det M > SPH_GRADIENT_CORRECTION_MIN_DET), else the identity; 1 where it
+ * inverted. */
+static int oracle_inverse3(const double M[3][3], double out[3][3]) {
+  const double det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                     M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                     M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+  const int ok = det > SPH_GRADIENT_CORRECTION_MIN_DET && M[0][0] > 0.0 &&
+                 M[0][0] * M[1][1] - M[0][1] * M[1][0] > 0.0;
+  double L[3][6];
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 6; b++)
+      L[a][b] = b < 3 ? M[a][b] : (b - 3 == a);
+  for (int col = 0; ok && col < 3; col++) {
+    int piv = col;
+    for (int r2 = col + 1; r2 < 3; r2++)
+      if (fabs(L[r2][col]) > fabs(L[piv][col])) piv = r2;
+    for (int b = 0; b < 6; b++) {
+      const double t = L[col][b];
+      L[col][b] = L[piv][b], L[piv][b] = t;
+    }
+    const double inv = 1.0 / L[col][col];
+    for (int b = 0; b < 6; b++)
+      L[col][b] *= inv;
+    for (int r2 = 0; r2 < 3; r2++)
+      if (r2 != col) {
+        const double f = L[r2][col];
+        for (int b = 0; b < 6; b++)
+          L[r2][b] -= f * L[col][b];
+      }
+  }
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++)
+      out[a][b] = ok ? L[a][3 + b] : (a == b);
+  return ok;
+}
+
 /* Antuono et al. (2010) eq. (6): c_i = L_i sum_j (rho_j - rho_i) V_j grad_i W_ij / 2 at each
  * fluid particle, L_i = M_i^-1 with M_ab = sum_j V_j (x_j - x_i)_a (grad_i W_ij)_b (the identity
  * where M is not positive definite with det M > SPH_GRADIENT_CORRECTION_MIN_DET); 0 at walls. */
@@ -559,36 +598,10 @@ static void oracle_antuono_c(const sph_particles *p, const sph_force_params *fp,
           M[a][b] -= V * d[a] * dw * d[b] / r;
       }
     }
-    /* the inverse by Gauss-Jordan elimination, the identity where M is not invertible enough */
-    const double det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
-                       M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
-                       M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
-    const int ok = det > SPH_GRADIENT_CORRECTION_MIN_DET && M[0][0] > 0.0 &&
-                   M[0][0] * M[1][1] - M[0][1] * M[1][0] > 0.0;
-    double L[3][6];
+    double L[3][3];
+    oracle_inverse3(M, L);
     for (int a = 0; a < 3; a++)
-      for (int b = 0; b < 6; b++)
-        L[a][b] = b < 3 ? M[a][b] : (b - 3 == a);
-    for (int col = 0; ok && col < 3; col++) {
-      int piv = col;
-      for (int r2 = col + 1; r2 < 3; r2++)
-        if (fabs(L[r2][col]) > fabs(L[piv][col])) piv = r2;
-      for (int b = 0; b < 6; b++) {
-        const double t = L[col][b];
-        L[col][b] = L[piv][b], L[piv][b] = t;
-      }
-      const double inv = 1.0 / L[col][col];
-      for (int b = 0; b < 6; b++)
-        L[col][b] *= inv;
-      for (int r2 = 0; r2 < 3; r2++)
-        if (r2 != col) {
-          const double f = L[r2][col];
-          for (int b = 0; b < 6; b++)
-            L[r2][b] -= f * L[col][b];
-        }
-    }
-    for (int a = 0; a < 3; a++)
-      c[3 * i + a] = ok ? 0.5 * (L[a][3] * g[0] + L[a][4] * g[1] + L[a][5] * g[2]) : 0.5 * g[a];
+      c[3 * i + a] = 0.5 * (L[a][0] * g[0] + L[a][1] * g[1] + L[a][2] * g[2]);
   }
 }
 
@@ -599,7 +612,7 @@ static void oracle_antuono_c(const sph_particles *p, const sph_force_params *fp,
  * (2/3) div v I) / 2). */
 static void oracle_stress3(const sph_particles *p, const sph_force_params *fp, double *tau) {
   for (size_t i = 0; i < p->n; i++) {
-    double gv[3][3] = {{0.0}}; /* grad v */
+    double gv[3][3] = {{0.0}}, M[3][3] = {{0.0}}; /* grad v, and the moments M */
     for (size_t j = 0; j < p->n; j++) {
       if (j == i) continue;
       double d[3];
@@ -611,8 +624,19 @@ static void oracle_stress3(const sph_particles *p, const sph_force_params *fp, d
       sph_kernel_w_dw(fp->kernel, r, fp->h, &w, &dw);
       const double V = p->mass[j] / p->rho[j];
       for (int a = 0; a < 3; a++)
-        for (int b = 0; b < 3; b++)
+        for (int b = 0; b < 3; b++) {
           gv[a][b] += V * (p->vel[a][j] - p->vel[a][i]) * dw * d[b] / r;
+          M[a][b] -= V * d[a] * dw * d[b] / r;
+        }
+    }
+    double L[3][3] = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
+    if (fp->gradient_correction) { /* Bonet and Lok: grad v = G M^-1 */
+      oracle_inverse3(M, L);
+      double c[3][3];
+      for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+          c[a][b] = gv[a][0] * L[0][b] + gv[a][1] * L[1][b] + gv[a][2] * L[2][b];
+      memcpy(gv, c, sizeof c);
     }
     const double div = gv[0][0] + gv[1][1] + gv[2][2], rho = p->rho[i];
     const double lam = fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR ? fp->mu / (rho * rho) : 0.0;
@@ -629,6 +653,18 @@ static void oracle_stress3(const sph_particles *p, const sph_force_params *fp, d
       sph_sps_stress_sym(S, fp->sps_cs, fp->sps_ci, fp->sps_delta, t);
       for (int k = 0; k < SPH_SYM; k++)
         tau[6 * i + k] += t[k] / rho;
+    }
+    if (fp->gradient_correction) { /* the divergence with the corrected gradient: sym(tau L) */
+      double c[3][3];
+      for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) {
+          c[a][b] = 0.0;
+          for (int q = 0; q < 3; q++)
+            c[a][b] += tau[6 * i + sph_sym_index(a, q)] * L[q][b];
+        }
+      for (int a = 0; a < 3; a++)
+        for (int b = a; b < 3; b++)
+          tau[6 * i + sph_sym_index(a, b)] = a == b ? c[a][a] : 0.5 * (c[a][b] + c[b][a]);
     }
   }
 }
@@ -727,14 +763,14 @@ static void oracle3(const sph_particles *p, const sph_force_params *fp, double *
 }
 
 /* The oracle against the pass (the lane loop; the scalar loop agrees with it to 1e-11,
- * test_loops_agree) for twelve term sets, both kernels, with and without periodicity along y
+ * test_loops_agree) for thirteen term sets, both kernels, with and without periodicity along y
  * and dynamic wall particles,
  * on a jittered block with random velocities and densities: every rate within 1e-12 of the
  * largest of its kind over the block. */
 static void test_oracle(void) {
   const size_t n = (size_t)NL * NL * (NL + 2);
   double *ref = calloc(8 * n, sizeof *ref);
-  for (int set = 0; set < 24; set++) {
+  for (int set = 0; set < 26; set++) {
     sph_force_params fp = params();
     fp.kernel = set % 2 ? SPH_KERNEL_WENDLAND_C2 : SPH_KERNEL_CUBIC_SPLINE;
     fp.gz = -G;
@@ -747,6 +783,10 @@ static void test_oracle(void) {
     case 11:
       fp.viscosity = SPH_VISCOSITY_STRESS_TENSOR, fp.mu = 0.01, fp.sps = 1, fp.sps_cs = 0.12,
       fp.sps_ci = 0.00066, fp.sps_delta = DX, fp.xsph = 0.5;
+      break;
+    case 12:
+      fp.alpha = 0.1, fp.viscosity = SPH_VISCOSITY_STRESS_TENSOR, fp.mu = 0.05;
+      fp.gradient_correction = 1;
       break;
     case 0: fp.alpha = 0.3, fp.xsph = 0.5; break;
     case 1: fp.alpha = 0.2, fp.beta = 0.4, fp.diffusion = SPH_DIFFUSION_FOURTAKAS; break;
@@ -1033,7 +1073,7 @@ int main(void) {
       {"3-D momentum sums to zero; the ledger's heat balances the work", test_balances},
       {"3-D scalar, lane flavours, run-time loop and thread counts agree", test_loops_agree},
       {"3-D integrators move along z as along x, bit for bit", test_integrators},
-      {"3-D pass against an all-pairs oracle from the equations (twelve term sets)", test_oracle},
+      {"3-D pass against an all-pairs oracle from the equations (thirteen term sets)", test_oracle},
       {"3-D pair terms from i's side and from j's: symmetric, antisymmetric, lanes = v1",
        test_pair_symmetry_3d},
       {"3-D periodic along y and z: the rates of periodic along x, axes exchanged",
