@@ -537,6 +537,18 @@ static double oracle_sep(const sph_force_params *fp, int a, double xi, double xj
  * continuity term), dv/dt (A eq. 11 with Monaghan's Pi_ij, A eq. 15-16, or the Riemann
  * interface pressure of Zhang et al. 2017; Morris' viscosity, B eq. 4; gravity), the XSPH
  * correction (B eq. 6) and du/dt (A eq. 28). out: 8 per particle id. */
+/* The pair (i, j) if j != i lies within 2h: d = x_i - x_j (the minimum image), r, W, dW/dr. */
+static int oracle_pair(const sph_particles *p, const sph_force_params *fp, size_t i, size_t j,
+                       double d[3], double *r, double *w, double *dw) {
+  if (j == i) return 0;
+  for (int q = 0; q < 3; q++)
+    d[q] = oracle_sep(fp, q, p->pos[q][i], p->pos[q][j]);
+  *r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (*r >= 2.0 * fp->h || *r == 0.0) return 0;
+  sph_kernel_w_dw(fp->kernel, *r, fp->h, w, dw);
+  return 1;
+}
+
 /* L = M^-1 by Gauss-Jordan elimination with partial pivoting where M is invertible enough
  * (positive definite, det M > SPH_GRADIENT_CORRECTION_MIN_DET), else the identity; 1 where it
  * inverted. */
@@ -583,14 +595,8 @@ static void oracle_antuono_c(const sph_particles *p, const sph_force_params *fp,
     c[3 * i] = c[3 * i + 1] = c[3 * i + 2] = 0.0;
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     for (size_t j = 0; j < p->n; j++) {
-      if (j == i) continue;
-      double d[3];
-      for (int q = 0; q < 3; q++)
-        d[q] = oracle_sep(fp, q, p->pos[q][i], p->pos[q][j]);
-      const double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      if (r >= 2.0 * fp->h || r == 0.0) continue;
-      double w, dw;
-      sph_kernel_w_dw(fp->kernel, r, fp->h, &w, &dw);
+      double d[3], r, w, dw;
+      if (!oracle_pair(p, fp, i, j, d, &r, &w, &dw)) continue;
       const double V = p->mass[j] / p->rho[j];
       for (int a = 0; a < 3; a++) {
         g[a] += (p->rho[j] - p->rho[i]) * V * dw * d[a] / r;
@@ -614,14 +620,8 @@ static void oracle_stress3(const sph_particles *p, const sph_force_params *fp, d
   for (size_t i = 0; i < p->n; i++) {
     double gv[3][3] = {{0.0}}, M[3][3] = {{0.0}}; /* grad v, and the moments M */
     for (size_t j = 0; j < p->n; j++) {
-      if (j == i) continue;
-      double d[3];
-      for (int q = 0; q < 3; q++)
-        d[q] = oracle_sep(fp, q, p->pos[q][i], p->pos[q][j]);
-      const double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      if (r >= 2.0 * fp->h || r == 0.0) continue;
-      double w, dw;
-      sph_kernel_w_dw(fp->kernel, r, fp->h, &w, &dw);
+      double d[3], r, w, dw;
+      if (!oracle_pair(p, fp, i, j, d, &r, &w, &dw)) continue;
       const double V = p->mass[j] / p->rho[j];
       for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++) {
@@ -681,19 +681,14 @@ static void oracle3(const sph_particles *p, const sph_force_params *fp, double *
     double drho = 0.0, a[3] = {fp->gx, fp->gy, fp->gz}, xs[3] = {0.0, 0.0, 0.0}, du = 0.0;
     if (!fluid) a[0] = a[1] = a[2] = 0.0;
     for (size_t j = 0; j < p->n; j++) {
-      if (j == i) continue;
       const int fj = p->kind[j] == SPH_KIND_FLUID;
       /* a wall particle: its continuity, diffusion and heat with fluid neighbours only */
       if (!fluid && !fj) continue;
-      double d[3], v[3], g[3];
+      double d[3], v[3], g[3], r, w, dw;
+      if (!oracle_pair(p, fp, i, j, d, &r, &w, &dw)) continue;
+      const double h = fp->h;
       for (int q = 0; q < 3; q++)
-        d[q] = oracle_sep(fp, q, p->pos[q][i], p->pos[q][j]), v[q] = p->vel[q][i] - p->vel[q][j];
-      const double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), h = fp->h;
-      if (r >= 2.0 * h || r == 0.0) continue;
-      double w, dw;
-      sph_kernel_w_dw(fp->kernel, r, h, &w, &dw);
-      for (int q = 0; q < 3; q++)
-        g[q] = dw * d[q] / r;
+        v[q] = p->vel[q][i] - p->vel[q][j], g[q] = dw * d[q] / r;
       const double mj = p->mass[j], rhoj = p->rho[j];
       const double vg = v[0] * g[0] + v[1] * g[1] + v[2] * g[2];
       const double vr = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
