@@ -51,9 +51,11 @@
  *   viscous stress tensor (its 3x3 strain rate with paper A's 2/3), on
  *   walls the stress with SPS and XSPH, and the stress with the
  *   kernel-gradient correction (grad v = G M^-1, the divergence of
- *   sym(tau L)), each with both kernels (a wrong Pi_ij denominator shows as
- *   4e-3, a wrong factor in Antuono's c_i as 5e-3, a 1/3 for the 2/3 as
- *   2e-4, the correction left out of the divergence as 3e-5);
+ *   sym(tau L)), and per-particle h (h_ij the pair's mean; the scalar loop)
+ *   with AV, XSPH, Fourtakas and Morris on walls, each with both kernels (a
+ *   wrong Pi_ij denominator shows as 4e-3, a wrong factor in Antuono's c_i
+ *   as 5e-3, a 1/3 for the 2/3 as 2e-4, the correction left out of the
+ *   divergence as 3e-5, the larger h in place of the mean as 7e-2);
  * - periodic along y and along z: the rates of the block periodic along x
  *   with its axes exchanged;
  * - each pair term in 3-D (pair_terms.h with three components) from i's
@@ -537,15 +539,22 @@ static double oracle_sep(const sph_force_params *fp, int a, double xi, double xj
  * continuity term), dv/dt (A eq. 11 with Monaghan's Pi_ij, A eq. 15-16, or the Riemann
  * interface pressure of Zhang et al. 2017; Morris' viscosity, B eq. 4; gravity), the XSPH
  * correction (B eq. 6) and du/dt (A eq. 28). out: 8 per particle id. */
-/* The pair (i, j) if j != i lies within 2h: d = x_i - x_j (the minimum image), r, W, dW/dr. */
+/* The pair's smoothing length: h, or with per-particle h the pair's mean (paper B). */
+static double oracle_h(const sph_particles *p, const sph_force_params *fp, size_t i, size_t j) {
+  return fp->var_h ? 0.5 * (p->h[i] + p->h[j]) : fp->h;
+}
+
+/* The pair (i, j) if j != i lies within 2 h_ij: d = x_i - x_j (the minimum image), r, W,
+ * dW/dr. */
 static int oracle_pair(const sph_particles *p, const sph_force_params *fp, size_t i, size_t j,
                        double d[3], double *r, double *w, double *dw) {
   if (j == i) return 0;
   for (int q = 0; q < 3; q++)
     d[q] = oracle_sep(fp, q, p->pos[q][i], p->pos[q][j]);
   *r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  if (*r >= 2.0 * fp->h || *r == 0.0) return 0;
-  sph_kernel_w_dw(fp->kernel, *r, fp->h, w, dw);
+  const double h = oracle_h(p, fp, i, j);
+  if (*r >= 2.0 * h || *r == 0.0) return 0;
+  sph_kernel_w_dw(fp->kernel, *r, h, w, dw);
   return 1;
 }
 
@@ -686,7 +695,7 @@ static void oracle3(const sph_particles *p, const sph_force_params *fp, double *
       if (!fluid && !fj) continue;
       double d[3], v[3], g[3], r, w, dw;
       if (!oracle_pair(p, fp, i, j, d, &r, &w, &dw)) continue;
-      const double h = fp->h;
+      const double h = oracle_h(p, fp, i, j);
       for (int q = 0; q < 3; q++)
         v[q] = p->vel[q][i] - p->vel[q][j], g[q] = dw * d[q] / r;
       const double mj = p->mass[j], rhoj = p->rho[j];
@@ -758,19 +767,19 @@ static void oracle3(const sph_particles *p, const sph_force_params *fp, double *
 }
 
 /* The oracle against the pass (the lane loop; the scalar loop agrees with it to 1e-11,
- * test_loops_agree) for thirteen term sets, both kernels, with and without periodicity along y
+ * test_loops_agree) for fourteen term sets, both kernels, with and without periodicity along y
  * and dynamic wall particles,
  * on a jittered block with random velocities and densities: every rate within 1e-12 of the
  * largest of its kind over the block. */
 static void test_oracle(void) {
   const size_t n = (size_t)NL * NL * (NL + 2);
   double *ref = calloc(8 * n, sizeof *ref);
-  for (int set = 0; set < 26; set++) {
+  for (int set = 0; set < 28; set++) {
     sph_force_params fp = params();
     fp.kernel = set % 2 ? SPH_KERNEL_WENDLAND_C2 : SPH_KERNEL_CUBIC_SPLINE;
     fp.gz = -G;
     fp.ledger = 1;
-    /* sets 1-3 again on two layers of dynamic walls, and the stress tensor with SPS */
+    /* sets 1-3 again on two layers of dynamic walls, and the last three term sets */
     const int walls = (set >= 12 && set < 18) || set >= 22;
     switch (set >= 12 && set < 18 ? set / 2 - 5 : set / 2) {
     case 9: fp.alpha = 0.1, fp.diffusion = SPH_DIFFUSION_ANTUONO; break;
@@ -782,6 +791,10 @@ static void test_oracle(void) {
     case 12:
       fp.alpha = 0.1, fp.viscosity = SPH_VISCOSITY_STRESS_TENSOR, fp.mu = 0.05;
       fp.gradient_correction = 1;
+      break;
+    case 13: /* per-particle h (the scalar loop), on walls */
+      fp.alpha = 0.2, fp.beta = 0.4, fp.xsph = 0.5, fp.var_h = 1;
+      fp.diffusion = SPH_DIFFUSION_FOURTAKAS, fp.viscosity = SPH_VISCOSITY_MORRIS, fp.mu = 0.02;
       break;
     case 0: fp.alpha = 0.3, fp.xsph = 0.5; break;
     case 1: fp.alpha = 0.2, fp.beta = 0.4, fp.diffusion = SPH_DIFFUSION_FOURTAKAS; break;
@@ -809,8 +822,12 @@ static void test_oracle(void) {
           CU_ASSERT_FATAL(sph_particles_add_at(&p, x, v, RHO0, RHO0 * DX * DX * DX, 1.3 * DX,
                                                SPH_KIND_WALL, &err) >= 0);
         }
-    for (size_t i = 0; i < p.n; i++)
+    double hmax = fp.h;
+    for (size_t i = 0; i < p.n; i++) {
       p.rho[i] = RHO0 * (1.0 + 0.01 * (2.0 * uniform() - 1.0));
+      if (fp.var_h) p.h[i] = fp.h * (1.0 + 0.05 * (2.0 * uniform() - 1.0));
+      hmax = fmax(hmax, p.h[i]);
+    }
     fp.wall_diffusion = sph_diffusion_walls(&p, &fp);
     sph_grid g;
     sph_grid_init(&g);
@@ -818,11 +835,11 @@ static void test_oracle(void) {
     sph_nlist_init(&l);
     sph_force_work w;
     memset(&w, 0, sizeof w);
-    const double cell = 2.0 * fp.h * (1.0 + 1e-9);
+    const double cell = 2.0 * hmax * (1.0 + 1e-9);
     int rc = fp.periodic
                  ? sph_grid_build_periodic(&g, &p, cell, fp.paxis, 0.0, fp.period, 1u << 24, &err)
                  : sph_grid_build(&g, &p, cell, 1u << 24, &err);
-    if (rc == 0) rc = sph_nlist_build(&l, &g, &p, 2.0 * fp.h, 0.0, fp.period, &err);
+    if (rc == 0) rc = sph_nlist_build(&l, &g, &p, 2.0 * hmax, 0.0, fp.period, &err);
     if (rc == 0) {
       sph_forces_pressure(&p, &fp.eos);
       rc = sph_forces_evaluate(&p, &l, &fp, &w, &err);
@@ -1068,7 +1085,7 @@ int main(void) {
       {"3-D momentum sums to zero; the ledger's heat balances the work", test_balances},
       {"3-D scalar, lane flavours, run-time loop and thread counts agree", test_loops_agree},
       {"3-D integrators move along z as along x, bit for bit", test_integrators},
-      {"3-D pass against an all-pairs oracle from the equations (thirteen term sets)", test_oracle},
+      {"3-D pass against an all-pairs oracle from the equations (fourteen term sets)", test_oracle},
       {"3-D pair terms from i's side and from j's: symmetric, antisymmetric, lanes = v1",
        test_pair_symmetry_3d},
       {"3-D periodic along y and z: the rates of periodic along x, axes exchanged",
