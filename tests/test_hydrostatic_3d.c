@@ -113,6 +113,9 @@ static void test_reader(void) {
   refused("output.probes=[{name: P1, kind: pressure, at: [0.1, 0.0, 0.0], normal: [0, 0, 0]}]",
           "output.probes[0].normal");
   refused("output.probes=[{name: H1, kind: level, x: 0.1}]", "output.probes[0].x");
+  refused("output.probes=[{name: P1, kind: pressure, at: [0.1, 0.05, 0.0], normal: [0, 0, 1], "
+          "wetted: true}]",
+          "output.probes[0].wetted"); /* a wire gauge is a level probe */
   refused("free_surface={radius_factor: 1}", "free_surface");
   refused("geometry.tank.stagger=false", "geometry.tank.stagger");
   refused("geometry.tank.boundary=mdbc", "geometry.tank.boundary");
@@ -155,7 +158,7 @@ static void test_reader(void) {
 }
 
 /* The probes' readings at the end of the last run (run()). */
-static double probe_read[3][3];
+static double probe_read[4][3];
 
 /* Runs CASE3 to t = 1 s; the particles' state by id into out (x, y, z, vx,
  * vy, vz, p: 7 per particle), their count into *n. */
@@ -183,13 +186,14 @@ static void run(double **out, size_t *n) {
   printf("\n    %zu particles, %ld steps", p->n, sph_sim_steps(s));
   /* the 3-D probes on the final state: a floor sensor (normal up, 20 mm), a
    * level gauge at the centre, a velocity probe mid-depth */
-  sph_probe q[3];
+  sph_probe q[4];
   memset(q, 0, sizeof q);
   q[0].kind = SPH_PROBE_PRESSURE, q[0].x = 0.1, q[0].y = 0.05, q[0].z = 0.0, q[0].diameter = 0.02;
   q[0].normal[2] = 1.0;
   q[1].kind = SPH_PROBE_LEVEL, q[1].x = 0.1, q[1].y = 0.05;
   q[2].kind = SPH_PROBE_VELOCITY, q[2].x = 0.1, q[2].y = 0.05, q[2].z = 0.05;
-  for (int k = 0; k < 3; k++)
+  q[3] = q[1], q[3].wetted = 1; /* the same gauge as a wire: its wetted length */
+  for (int k = 0; k < 4; k++)
     sph_probe_read(&q[k], p, c.kernel, c.h, c.dx, sph_sim_floor(s), c.gravity, probe_read[k]);
   sph_sim_free(s);
   sph_case_free(&c);
@@ -250,6 +254,9 @@ static void test_still_water(void) {
          fabs(probe_read[2][0]) + fabs(probe_read[2][1]) + fabs(probe_read[2][2]));
   CU_ASSERT(fabs(probe_read[0][0] / (rho0 * g * H) - 1.0) < 0.03);
   CU_ASSERT(fabs(probe_read[1][0] - H) < 0.5 * dx);
+  printf("\n    wetted level %.5f m (%+.2f %% of H)", probe_read[3][0],
+         100.0 * (probe_read[3][0] / H - 1.0));
+  CU_ASSERT(fabs(probe_read[3][0] - H) < 0.01 * H);
   CU_ASSERT(fabs(probe_read[2][0]) + fabs(probe_read[2][1]) + fabs(probe_read[2][2]) <
             0.02 * sqrt(g * H));
 #ifdef _OPENMP

@@ -105,6 +105,39 @@ static void test_lattice(void) {
   sph_particles_free(&p);
 }
 
+/* A wire gauge's reading (wetted): still water reads its depth, a jet above it adds its
+ * thickness, not its height, where the highest particle reads the jet's top; dry reads 0. Both
+ * kernels, within 1 % (the lattice's kernel sum; measured in the log). */
+static void test_wetted(void) {
+  const sph_kernel_kind kernels[2] = {SPH_KERNEL_CUBIC_SPLINE, SPH_KERNEL_WENDLAND_C2};
+  for (int k = 0; k < 2; k++) {
+    sph_particles p;
+    sph_error err;
+    lattice(&p);
+    const double g[2] = {0.0, -9.81}, H = NY * DXL;
+    sph_probe q = probe(SPH_PROBE_LEVEL, 0.15, 0.0, 0.0, 0);
+    q.wetted = 1;
+    double still, jet, top, dry;
+    sph_probe_read(&q, &p, kernels[k], 1.3 * DXL, DXL, 0.0, g, &still);
+    for (int j = 0; j < 3; j++) /* a jet 3 dx thick, its top at 0.48 m */
+      for (int i = 10; i < 20; i++)
+        CU_ASSERT_FATAL(sph_particles_add(&p, (i + 0.5) * DXL, 0.45 + (j + 0.5) * DXL, 1.0, 0.0,
+                                          1000.0, 0.1, 1.3 * DXL, SPH_KIND_FLUID, &err) >= 0);
+    sph_probe_read(&q, &p, kernels[k], 1.3 * DXL, DXL, 0.0, g, &jet);
+    q.wetted = 0;
+    sph_probe_read(&q, &p, kernels[k], 1.3 * DXL, DXL, 0.0, g, &top);
+    q.wetted = 1, q.x = 2.0;
+    sph_probe_read(&q, &p, kernels[k], 1.3 * DXL, DXL, 0.0, g, &dry);
+    printf("\n    kernel %d: still water %.5f m (depth %.2f), with a jet %.5f (top reading %.4f)",
+           k, still, H, jet, top);
+    CU_ASSERT(fabs(still - H) < 0.01 * H);
+    CU_ASSERT(fabs(jet - (H + 3 * DXL)) < 0.01 * (H + 3 * DXL));
+    CU_ASSERT(fabs(top - 0.48) < 1e-12);
+    CU_ASSERT(dry == 0.0);
+    sph_particles_free(&p);
+  }
+}
+
 /* The first line of the file at path into buf; 0 if it cannot be read. */
 static int first_line(const char *path, char *buf, size_t size) {
   FILE *f = fopen(path, "r");
@@ -284,6 +317,7 @@ static void test_case_errors(void) {
 
 int main(void) {
   CU_TestInfo tests[] = {{"readings on a hydrostatic lattice", test_lattice},
+                         {"a wire gauge: still water, a jet above it, dry", test_wetted},
                          {"hydrostatic tank: probes.csv against rho0 g (H - y)", test_tank},
                          {"a sensor's low-pass response", test_low_pass},
                          {"case errors", test_case_errors},

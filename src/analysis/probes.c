@@ -43,6 +43,40 @@ void sph_probe_header(const sph_probe *q, char *buf, size_t len) {
 
 /* The Shepard-normalised pressure (carried along g) and velocity at the
  * point x: out[0] the pressure, out[1 ..] the velocity. 0 where dry. */
+/* K(rho) = the integral of W(sqrt(rho^2 + s^2), h) over s: the kernel's weight along a line at
+ * distance rho < 2h from its centre (Simpson's rule, 64 intervals over the chord). */
+static double line_weight(sph_kernel_kind kernel, double rho, double h) {
+  const double half = sqrt(fmax(4.0 * h * h - rho * rho, 0.0));
+  if (!(half > 0.0)) return 0.0;
+  const int n = 64;
+  const double ds = 2.0 * half / n;
+  double sum = 0.0;
+  for (int k = 0; k <= n; k++) {
+    const double s = -half + k * ds, r = sqrt(rho * rho + s * s);
+    double w, dw;
+    sph_kernel_w_dw(kernel, r, h, &w, &dw);
+    sum += (k == 0 || k == n ? 1.0 : (k % 2 ? 4.0 : 2.0)) * w;
+  }
+  return sum * ds / 3.0;
+}
+
+/* A wire gauge's wetted length along the vertical line of a level probe:
+ * sum_j V_j K(rho_j) over the fluid particles within 2h of the line, in storage order. */
+static double wetted_length(const sph_probe *q, const sph_particles *p, sph_kernel_kind kernel,
+                            double h) {
+  double sum = 0.0;
+  for (size_t j = 0; j < p->n; j++) {
+    if (p->kind[j] != SPH_KIND_FLUID) continue;
+#if SPH_DIM == 2
+    const double rho = fabs(p->x[j] - q->x);
+#else
+    const double rho = hypot(p->x[j] - q->x, p->y[j] - q->y);
+#endif
+    if (rho < 2.0 * h) sum += p->mass[j] / p->rho[j] * line_weight(kernel, rho, h);
+  }
+  return sum;
+}
+
 static int shepard_at(const sph_particles *p, sph_kernel_kind kernel, const double x[SPH_DIM],
                       double h, const double g[SPH_DIM], double out[1 + SPH_DIM]) {
   const double reach = 2.0 * h;
@@ -123,6 +157,10 @@ void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind 
     break;
   }
   case SPH_PROBE_LEVEL: {
+    if (q->wetted) {
+      out[0] = wetted_length(q, p, kernel, h);
+      break;
+    }
     double top = -INFINITY;
     const double *up = p->pos[SPH_UP];
     for (size_t j = 0; j < p->n; j++) {

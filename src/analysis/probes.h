@@ -24,7 +24,15 @@
  *             one, so that a comparison says which it used.
  *   level     the water depth at x above the bed: the highest fluid particle
  *             centre within dx of x, plus dx/2 (the top of its cell), less
- *             the floor; 0 where no fluid is. Always finite.
+ *             the floor; 0 where no fluid is. Always finite. With `wetted`
+ *             the wetted length of a wire gauge along the vertical line
+ *             instead: the integral along the line of the fluid's volume
+ *             fraction sum_j V_j W(x - x_j), that is sum_j V_j K(rho_j) with
+ *             rho_j the particle's distance from the line and K(rho) the
+ *             integral of W(sqrt(rho^2 + s^2)) over s (Simpson, 64
+ *             intervals). A column of still water reads its depth (a
+ *             lattice: within the kernel sum's 1-2 %); spray or a jet
+ *             above it adds its own thickness, not its height.
  *   velocity  vx and vy, Shepard-normalised as the pressure, at a point; 0
  *             where dry.
  * In 3-D (core/dim.h; z up) a pressure sensor is a disc on a wall face,
@@ -68,6 +76,7 @@ typedef struct sph_probe {
   double diameter; /* pressure: the width of the sensor's face (m); 0 = a point */
   int along_x;     /* pressure (2-D): the face spans x (a sensor in a floor); default y */
   double low_pass; /* pressure: the cut-off (Hz) of the sensor's first-order response, 0 = none */
+  int wetted;      /* level: the wetted length of a wire gauge instead of the highest particle */
 } sph_probe;
 
 /* Whether q has a sensor response (a pressure probe with low_pass > 0). */

@@ -190,7 +190,7 @@ static const char *const domain_keys[] = {"x", "y",
 static const char *const output_keys[] = {"snapshots", "free_surface",   "energy", "gauges",
                                           "probes",    "probe_interval", NULL};
 static const char *const probe_keys[] = {"name",     "kind",  "at",       "x",
-                                         "diameter", "along", "low_pass",
+                                         "diameter", "along", "low_pass", "wetted",
 #if SPH_DIM == 3
                                          "normal",
 #endif
@@ -1206,15 +1206,17 @@ static int read_probe(const ctx *x, const node *m, const char *p, const double b
   const int level = pr->kind == SPH_PROBE_LEVEL, pressure = pr->kind == SPH_PROBE_PRESSURE;
   /* the keys each kind takes (3-D: a level gauge is at (x, y), a pressure
    * sensor has a normal instead of along) */
-  static const char *const only[] = {"at", "x", "diameter", "along", "low_pass", "normal"};
+  static const char *const only[] = {"at",       "x",      "diameter", "along",
+                                     "low_pass", "normal", "wetted"};
 #if SPH_DIM == 2
-  const int allowed[3][6] = {{1, 0, 1, 1, 1, 0}, {0, 1, 0, 0, 0, 0}, {1, 0, 0, 0, 0, 0}};
+  const int allowed[3][7] = {{1, 0, 1, 1, 1, 0, 0}, {0, 1, 0, 0, 0, 0, 1}, {1, 0, 0, 0, 0, 0, 0}};
 #else
-  const int allowed[3][6] = {{1, 0, 1, 0, 1, 1}, {1, 0, 0, 0, 0, 0}, {1, 0, 0, 0, 0, 0}};
+  const int allowed[3][7] = {{1, 0, 1, 0, 1, 1, 0}, {1, 0, 0, 0, 0, 0, 1}, {1, 0, 0, 0, 0, 0, 0}};
 #endif
-  for (int k = 0; k < 6; k++)
+  for (int k = 0; k < 7; k++)
     if (!allowed[kind][k] && sph_yaml_lookup(&x->t, m, p, only[k], 0, &t, kp) > 0)
       return sph_yaml_fail_at(&x->t, t, kp, "not a key of a %s probe", probe_kind_names[kind]);
+  if (level && sph_yaml_get_bool(&x->t, m, p, "wetted", &pr->wetted) < 0) return -1;
 #if SPH_DIM == 3
   if (level) { /* the vertical line at (x, y) */
     double at[2];

@@ -216,7 +216,7 @@ char *sph_case_describe(const sph_case *c) {
     sb_add(&b, "output.probes[%zu]: %s %s", i, q->name, sph_probe_kind_name(q->kind));
 #if SPH_DIM == 3
     if (q->kind == SPH_PROBE_LEVEL)
-      sb_add(&b, " at [%.17g, %.17g]\n", q->x, q->y);
+      sb_add(&b, " at [%.17g, %.17g]%s\n", q->x, q->y, q->wetted ? " wetted" : "");
     else if (q->kind == SPH_PROBE_VELOCITY)
       sb_add(&b, " at [%.17g, %.17g, %.17g]\n", q->x, q->y, q->z);
     else {
@@ -224,7 +224,7 @@ char *sph_case_describe(const sph_case *c) {
              q->y, q->z, q->diameter, q->normal[0], q->normal[1], q->normal[2]);
 #else
     if (q->kind == SPH_PROBE_LEVEL)
-      sb_add(&b, " x %.17g\n", q->x);
+      sb_add(&b, " x %.17g%s\n", q->x, q->wetted ? " wetted" : "");
     else if (q->kind == SPH_PROBE_VELOCITY)
       sb_add(&b, " at [%.17g, %.17g]\n", q->x, q->y);
     else {

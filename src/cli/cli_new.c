@@ -149,6 +149,7 @@ static const char *const TEMPLATE =
     "    - name: H1\n"
     "      kind: level\n"
     "      x: 0.1                 # a level gauge's x (m)\n"
+    "      # wetted: false          # true: a wire gauge's wetted length, not the top particle\n"
     "  probe_interval: 0.001      # s, 0 (every step, default) to time.end\n";
 
 static void new_usage(FILE *f) {
