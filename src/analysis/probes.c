@@ -41,8 +41,6 @@ void sph_probe_header(const sph_probe *q, char *buf, size_t len) {
   }
 }
 
-/* The Shepard-normalised pressure (carried along g) and velocity at the
- * point x: out[0] the pressure, out[1 ..] the velocity. 0 where dry. */
 /* K(rho) = the integral of W(sqrt(rho^2 + s^2), h) over s: the kernel's weight along a line at
  * distance rho < 2h from its centre (Simpson's rule, 64 intervals over the chord). */
 static double line_weight(sph_kernel_kind kernel, double rho, double h) {
@@ -77,6 +75,8 @@ static double wetted_length(const sph_probe *q, const sph_particles *p, sph_kern
   return sum;
 }
 
+/* The Shepard-normalised pressure (carried along g) and velocity at the
+ * point x: out[0] the pressure, out[1 ..] the velocity. 0 where dry. */
 static int shepard_at(const sph_particles *p, sph_kernel_kind kernel, const double x[SPH_DIM],
                       double h, const double g[SPH_DIM], double out[1 + SPH_DIM]) {
   const double reach = 2.0 * h;

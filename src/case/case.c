@@ -965,7 +965,7 @@ static int read_periodic(const ctx *x, const node *m, sph_case *c) {
     if (pr == 0) continue;
     const node *v = sph_yaml_find(m, keys[a])->val;
     sph_yaml_join(kp, sizeof kp, "geometry", keys[a]);
-    if (a >= SPH_DIM || (SPH_DIM == 2 && a > 0))
+    if (SPH_DIM == 2 && a > 0)
       return sph_yaml_fail_at(&x->t, v, kp,
                               "is 3-D only: a 2-D case is periodic in x only (y is up)");
     if (c->periodic)

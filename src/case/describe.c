@@ -107,9 +107,11 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
   }
   for (size_t i = 0; i < c->n_obstacles; i++) { /* listed only when there are some */
     const sph_obstacle *o = &c->obstacles[i];
+    for (int a = 0; a < SPH_DIM; a++) {
+      sph_yaml_bprintf(k, sizeof k, "geometry.obstacles[%zu].%c", i, "xyz"[a]);
+      sb_pair(b, k, o->lo[a], o->hi[a]);
+    }
     sph_yaml_bprintf(k, sizeof k, "geometry.obstacles[%zu]", i);
-    for (int a = 0; a < SPH_DIM; a++)
-      sb_add(b, "%s.%c: [%.17g, %.17g]\n", k, "xyz"[a], o -> lo[a], o -> hi[a]);
     sb_add(b, "%s.layers: %d\n", k, o->layers);
     sb_add(b, "%s.boundary: %s\n", k, sph_boundary_name(o->boundary));
   }
