@@ -45,6 +45,7 @@
  */
 #include "config.h"
 
+#include "core/linsolve.h"
 #include "core/parallel.h"
 
 #include "physics/filter.h"
@@ -107,43 +108,18 @@ typedef struct moments {
  * (the same measure: the eigenvalues' geometric over arithmetic mean, to
  * the fourth). */
 static double mls_value(const moments *s, double det_min, int *fell) {
-  double a[4][5] = {{s->a00, s->a01, s->a02, s->a03, 1.0},
-                    {s->a01, s->a11, s->a12, s->a13, 0.0},
-                    {s->a02, s->a12, s->a22, s->a23, 0.0},
-                    {s->a03, s->a13, s->a23, s->a33, 0.0}};
+  double a[4][SPH_LINSOLVE_COLS] = {{s->a00, s->a01, s->a02, s->a03, 1.0},
+                                    {s->a01, s->a11, s->a12, s->a13, 0.0},
+                                    {s->a02, s->a12, s->a22, s->a23, 0.0},
+                                    {s->a03, s->a13, s->a23, s->a33, 0.0}};
   const double t = (s->a00 + s->a11 + s->a22 + s->a33) / 4.0;
-  double det = 1.0;
-  for (int c = 0; c < 4; c++) {
-    int piv = c;
-    for (int r = c + 1; r < 4; r++)
-      if (fabs(a[r][c]) > fabs(a[piv][c])) piv = r;
-    if (piv != c) {
-      for (int k = 0; k < 5; k++) {
-        const double tmp = a[c][k];
-        a[c][k] = a[piv][k];
-        a[piv][k] = tmp;
-      }
-      det = -det;
-    }
-    det *= a[c][c];
-    if (a[c][c] == 0.0) break;
-    for (int r = c + 1; r < 4; r++) {
-      const double f = a[r][c] / a[c][c];
-      for (int k = c; k < 5; k++)
-        a[r][k] -= f * a[c][k];
-    }
-  }
+  const double det = sph_linsolve_eliminate(4, 5, a);
   if (!(det > det_min * t * t * t * t)) {
     *fell = 1;
     return s->m0 / s->a00;
   }
   double beta[4];
-  for (int r = 3; r >= 0; r--) {
-    double v = a[r][4];
-    for (int k = r + 1; k < 4; k++)
-      v -= a[r][k] * beta[k];
-    beta[r] = v / a[r][r];
-  }
+  sph_linsolve_back(4, 4, a, beta);
   return ((beta[0] * s->m0 + beta[1] * s->m1) + beta[2] * s->m2) + beta[3] * s->m3;
 }
 #else
