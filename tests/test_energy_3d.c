@@ -7,7 +7,8 @@
  * viscosity, step factor 0.15, 2000 fluid particles) closes its balance
  * kinetic + potential + internal - boundary work within 1e-4 of E0 at
  * t = 0.1 s with each wall model the 3-D build has (dynamic, fixed_layers;
- * measured 8.1e-6), the momentum balance along every axis to round-off, and
+ * measured 8.4e-6; mdbc 4.8e-6, and mdbc free-slip 2.4e-5; the mdbc run
+ * the same bits on one thread and two), the momentum balance along every axis to round-off, and
  * the column falls (kinetic energy above 5 % of the potential energy it had
  * above its final centre of mass).
  */
@@ -22,17 +23,24 @@
 #include "solver/sim.h"
 #include "testutil.h"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #if SPH_DIM != 3
 #error "test_energy_3d is built with -DSPH_DIM=3"
 #endif
 
-static void run_box(const char *model) {
+/* The box with a tank of wall model `model`, and one more --set `extra`
+ * (or NULL); the last diagnostics row into *out (NULL: not wanted). */
+static void run_box(const char *model, const char *extra, sph_diag_row *out) {
   char set[128];
   snprintf(set, sizeof set, "geometry.tank.boundary=%s", model);
-  const char *const sets[1] = {set};
+  const char *const sets[2] = {set, extra};
   sph_case c;
   sph_error err;
-  int rc = sph_case_load(sph_test_src("tests/data/energy_box_3d.yaml"), sets, 1, &c, &err);
+  int rc =
+      sph_case_load(sph_test_src("tests/data/energy_box_3d.yaml"), sets, extra ? 2 : 1, &c, &err);
   if (rc) printf("\n    %s", err.msg);
   CU_ASSERT_FATAL(rc == 0);
   sph_sim *s = NULL;
@@ -46,9 +54,9 @@ static void run_box(const char *model) {
   }
   sph_sim_diag(s, &b);
   const double p = fabs(b.momentum_x) + fabs(b.momentum_y) + fabs(b.momentum_z) + b.mass;
-  printf("\n    %s: %ld steps, |dE/E0| %.2g, momentum residuals %.2g %.2g %.2g, kinetic %.4g J",
-         model, sph_sim_steps(s), fabs(b.deviation), b.momentum_residual_x, b.momentum_residual_y,
-         b.momentum_residual_z, b.kinetic);
+  printf("\n    %s%s%s: %ld steps, |dE/E0| %.2g, momentum residuals %.2g %.2g %.2g, kinetic %.4g J",
+         model, extra ? ", " : "", extra ? extra : "", sph_sim_steps(s), fabs(b.deviation),
+         b.momentum_residual_x, b.momentum_residual_y, b.momentum_residual_z, b.kinetic);
   CU_ASSERT(b.ledger == 1 && a.ledger == 1);
   CU_ASSERT(fabs(b.deviation) <= 1e-4);
   CU_ASSERT(fabs(b.momentum_residual_x) < 1e-12 * p);
@@ -56,16 +64,38 @@ static void run_box(const char *model) {
   CU_ASSERT(fabs(b.momentum_residual_z) < 1e-12 * p);
   CU_ASSERT(b.kinetic > 0.05 * (a.potential - b.potential + b.kinetic));
   CU_ASSERT(b.n_fluid == 2000);
+  if (out) *out = b;
   sph_sim_free(s);
   sph_case_free(&c);
 }
 
-static void test_dynamic(void) { run_box("dynamic"); }
-static void test_fixed_layers(void) { run_box("fixed_layers"); }
+static void test_dynamic(void) { run_box("dynamic", NULL, NULL); }
+static void test_fixed_layers(void) { run_box("fixed_layers", NULL, NULL); }
+
+/* mdbc walls, and free-slip ones; the mdbc run on one thread and on two
+ * gives the same bits (its sums of every particle's energies and momenta) */
+static void test_mdbc(void) {
+  sph_diag_row two, one;
+  run_box("mdbc", NULL, &two);
+  run_box("mdbc", "geometry.tank.free_slip=true", NULL);
+#ifdef _OPENMP
+  omp_set_num_threads(1);
+  run_box("mdbc", NULL, &one);
+  omp_set_num_threads(2);
+  CU_ASSERT(one.kinetic == two.kinetic && one.potential == two.potential &&
+            one.internal == two.internal && one.momentum_x == two.momentum_x &&
+            one.momentum_y == two.momentum_y && one.momentum_z == two.momentum_z &&
+            one.boundary_work == two.boundary_work && one.step == two.step);
+#else
+  (void)one, (void)two;
+#endif
+}
 
 int main(void) {
-  CU_TestInfo tests[] = {{"3-D energy box, dynamic walls: closed within 1e-4", test_dynamic},
-                         {"3-D energy box, fixed layers: closed within 1e-4", test_fixed_layers},
-                         CU_TEST_INFO_NULL};
+  CU_TestInfo tests[] = {
+      {"3-D energy box, dynamic walls: closed within 1e-4", test_dynamic},
+      {"3-D energy box, fixed layers: closed within 1e-4", test_fixed_layers},
+      {"3-D energy box, mdbc walls (and free-slip): closed within 1e-4", test_mdbc},
+      CU_TEST_INFO_NULL};
   return sph_test_main("energy_3d", tests);
 }

@@ -8,8 +8,9 @@
  * - The case reader: a 3-D case reads (gravity (0, 0, -9.81) by default,
  *   the block's surface its z1), the listing says "dimension: 3"; a 2-D
  *   case, a gravity of two components and the keys that are 2-D only so far
- *   (geometry.walls, output.probes, free_surface, a tank's stagger, an mdbc
- *   tank) are refused with the file, line and key; sph_case_file_dimension
+ *   (geometry.walls, free_surface, a tank's stagger, repulsive and mirror
+ *   tanks and obstacles) are refused with the file, line and key; mdbc tanks
+ *   and obstacles, free-slip and no-slip tanks read; sph_case_file_dimension
  *   reads the dimension a --set gives.
  * - Still water 0.1 m deep in a 0.2 x 0.1 m tank at dx = 0.01 m (2000
  *   fluid particles) for 1 s. The pressure as SPH reads a field (the
@@ -118,8 +119,29 @@ static void test_reader(void) {
           "output.probes[0].wetted"); /* a wire gauge is a level probe */
   refused("free_surface={radius_factor: 1}", "free_surface");
   refused("geometry.tank.stagger=false", "geometry.tank.stagger");
-  refused("geometry.tank.boundary=mdbc", "geometry.tank.boundary");
-  refused("numerics.scheme=riemann", "geometry.tank");
+  refused("geometry.tank.boundary=repulsive", "geometry.tank.boundary");
+  refused("geometry.tank.boundary=mirror", "geometry.tank.boundary");
+  refused("geometry.obstacles=[{x: [0.05, 0.1], y: [0.0, 0.05], z: [0.0, 0.05], "
+          "boundary: repulsive}]",
+          "geometry.obstacles[0].boundary");
+  /* walls with a normal: mdbc (a scheme's tank), free-slip, no-slip */
+  static const char *const normal[][2] = {
+      {"geometry.tank.boundary=mdbc", "geometry.tank.free_slip=true"},
+      {"numerics.scheme=riemann", "geometry.obstacles=[{x: [0.05, 0.1], y: [0.0, 0.05], "
+                                  "z: [0.0, 0.05], boundary: mdbc}]"},
+      {"physics.viscosity={model: stress_tensor, mu: 0.001}",
+       "geometry.tank.extrapolated_velocity=true"}};
+  for (size_t k = 0; k < 3; k++) {
+    const int rc = parse(CASE3, normal[k], 2, &c, &err);
+    CU_ASSERT(rc == 0);
+    if (rc) {
+      printf("\n    %s", err.msg);
+      continue;
+    }
+    CU_ASSERT(c.tank.boundary == (k == 2 ? SPH_BOUNDARY_DYNAMIC : SPH_BOUNDARY_MDBC));
+    CU_ASSERT(c.tank.free_slip == (k == 0) && c.tank.extrapolated == (k == 2));
+    sph_case_free(&c);
+  }
   refused("geometry.tank={x: [0.0, 0.2], y: [0.0, 0.1], z: [0.0, 0.05]}",
           "geometry.fluid[0].z"); /* the block reaches above the tank */
   /* periodic along y (or x): the tank open along it, its range the period, whole dx */
@@ -314,12 +336,12 @@ static void test_obstacle(void) {
   /* the particles: 8 x 6 x 4 points, the 4 x 2 x 0 inside the shell left out */
   sph_particles q;
   CU_ASSERT_FATAL(sph_particles_init(&q, 16, &err) == 0);
-  CU_ASSERT_FATAL(sph_boundary_add_box(&q, o, c.dx, 1000.0, 1.0, c.h, 0, &err) == 0);
+  CU_ASSERT_FATAL(sph_boundary_add_box(&q, o, -INFINITY, c.dx, 1000.0, 1.0, c.h, 0, &err) == 0);
   CU_ASSERT_EQUAL(q.n, 8 * 6 * 4);
   sph_obstacle big = *o;
   big.hi[2] = 0.1; /* 8 x 6 x 10: the inside 4 x 2 x 6 left out */
   const size_t before = q.n;
-  CU_ASSERT_FATAL(sph_boundary_add_box(&q, &big, c.dx, 1000.0, 1.0, c.h, 0, &err) == 0);
+  CU_ASSERT_FATAL(sph_boundary_add_box(&q, &big, -INFINITY, c.dx, 1000.0, 1.0, c.h, 0, &err) == 0);
   CU_ASSERT_EQUAL(q.n - before, 8 * 6 * 10 - 4 * 2 * 6);
   size_t outside = 0, off = 0, twice = 0;
   for (size_t i = before; i < q.n; i++) {
@@ -363,7 +385,7 @@ static void test_obstacle(void) {
   refused("geometry.obstacles=[{x: [0.06, 0.065], y: [0.02, 0.08], z: [0.0, 0.04]}]",
           "geometry.obstacles[0].x: expected a range at least numerics.dx");
   refused("geometry.obstacles=[{x: [0.06, 0.14], y: [0.02, 0.08], z: [0.0, 0.04], boundary: "
-          "mdbc}]",
+          "mirror}]",
           "geometry.obstacles[0].boundary");
   refused("geometry.obstacles=[{x: [0.06, 0.14], y: [0.02, 0.08]}]", "geometry.obstacles[0]");
 }

@@ -41,7 +41,10 @@
  * velocity pointing into the fluid; one in front of the line, or beside a
  * segment's ends, is left alone. And the coarse Martin & Moyce dam break
  * with mirror walls runs to its stop condition: it blew up at t = 0.1604 s
- * (a particle on the floor line met its own image, r = 3e-155).
+ * (a particle on the floor line met its own image, r = 3e-155). A box
+ * obstacle is impermeable too: a particle inside it leaves through its
+ * nearest face (not the bottom on the floor), and an mdbc box's particles
+ * mirror out of it.
  */
 #include "config.h"
 
@@ -488,6 +491,52 @@ static size_t reflect_one(double *x, double *y, double *vx, double *vy) {
   return moved;
 }
 
+/* A box obstacle keeps the fluid off (walls.h, sph_walls_keep_off): in 2-D
+ * a particle inside the box x 0.4..0.6, y 0..0.2 grown by d_min = 0.01
+ * leaves through the face it is nearest to, 2 d_min - d in front of it,
+ * its normal velocity turned outwards; never through the bottom, which
+ * stands on the tank's floor; one outside the grown box stays. */
+static void test_obstacle_impermeable(void) {
+  static const double cases[][6] = {
+      /* x, y, vx, vy; x, y after */
+      {0.405, 0.1, 1.0, 0.0, 0.375, 0.1},  /* 0.005 inside the left face: 0.025 before it */
+      {0.5, 0.195, 0.5, -1.0, 0.5, 0.225}, /* under the top */
+      {0.55, 0.02, 0.0, 0.0, 0.67, 0.02},  /* low, nearer the right face than the top: not down */
+      {0.385, 0.1, 1.0, 0.0, 0.385, 0.1},  /* outside the grown box */
+  };
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 8, &err) == 0);
+  for (size_t k = 0; k < 4; k++)
+    CU_ASSERT_FATAL(sph_particles_add(&p, cases[k][0], cases[k][1], cases[k][2], cases[k][3], 1000,
+                                      1, 0.01, SPH_KIND_FLUID, &err) == (long)k);
+  const size_t n_fluid = p.n;
+  sph_tank t = {1, 0.0, 1.0, 0.0, 1.0, 2, SPH_BOUNDARY_DYNAMIC, 1, 0, 0, 0};
+  const sph_obstacle o = {{0.4, 0.0}, {0.6, 0.2}, 2, SPH_BOUNDARY_MDBC};
+  sph_walls w;
+  CU_ASSERT_FATAL(sph_walls_create(&w, &p, &t, NULL, 0, &o, 1, 0.02, 1000, 0.026, 0.0, &err) == 0);
+  /* the mdbc box's particles mirror out of it, through their nearest face */
+  size_t out = 0, box = 0;
+  for (size_t i = n_fluid; i < p.n; i++) {
+    if (!(p.flags[i] & SPH_FLAG_MDBC)) continue;
+    box++;
+    const double gx = p.x[i] + p.mx[i], gy = p.y[i] + p.my[i];
+    out += (gx < 0.4 || gx > 0.6 || gy > 0.2) && gy > 0.0; /* (not through the floor) */
+  }
+  CU_ASSERT(box > 0 && out == box);
+  double kick[4] = {0.0};
+  CU_ASSERT_EQUAL(sph_walls_keep_off(&w, &p, 0.01, 0, kick), 3);
+  for (size_t k = 0; k < 4; k++) {
+    CU_ASSERT(fabs(p.x[k] - cases[k][4]) < 1e-15 && fabs(p.y[k] - cases[k][5]) < 1e-15);
+    if (fabs(p.x[k] - cases[k][4]) > 1e-15 || fabs(p.y[k] - cases[k][5]) > 1e-15)
+      printf("\n  case %zu: at (%.6f, %.6f)", k, p.x[k], p.y[k]);
+  }
+  CU_ASSERT(p.vx[0] == -1.0 && p.vy[1] == 1.0 && p.vx[1] == 0.5 && p.vx[3] == 1.0);
+  CU_ASSERT(fabs(kick[0] - (-0.03 + 0.12)) < 1e-15 && fabs(kick[1] - 0.03) < 1e-15);
+  CU_ASSERT(kick[2] == -2.0 && kick[3] == 2.0);
+  sph_particles_free(&p);
+}
+
 static void test_mirror_lines_impermeable(void) {
   double x = 0.5, y = 0.0, vx = 0.3, vy = -2.0; /* on the floor line, moving down */
   CU_ASSERT(reflect_one(&x, &y, &vx, &vy) == 1);
@@ -687,6 +736,8 @@ int main(void) {
       {"a jet running up a free-slip mdbc wall stays on it", test_runup_free_slip},
       {"with particle shifting it stays within 1 dx of the wall", test_runup_free_slip_shifting},
       {"mirror lines: a particle on or across one is reflected", test_mirror_lines_impermeable},
+      {"a box obstacle: mirror points out of it, a particle inside it put out",
+       test_obstacle_impermeable},
       {"coarse dam break with mirror walls runs to its stop", test_mirror_dam_break_runs},
       CU_TEST_INFO_NULL};
   return sph_test_main("walls", tests);

@@ -669,12 +669,12 @@ static int read_tank(const ctx *x, const node *m, sph_case *c) {
 #endif
   if (sph_yaml_get_choice(&x->t, t, p, "boundary", boundary_names, &b) < 0) return -1;
   c->tank.boundary = (sph_boundary_kind)b;
-#if SPH_DIM == 3 /* the box's particles: dynamic or fixed layers only so far */
-  if (b != SPH_BOUNDARY_DYNAMIC && b != SPH_BOUNDARY_FIXED_LAYERS) {
+#if SPH_DIM == 3 /* the box's particles: dynamic, fixed layers or mdbc so far */
+  if (b != SPH_BOUNDARY_DYNAMIC && b != SPH_BOUNDARY_FIXED_LAYERS && b != SPH_BOUNDARY_MDBC) {
     const sph_yaml_entry *e = sph_yaml_find(t, "boundary");
     return sph_yaml_fail_at(&x->t, e ? e->val : t, e ? "geometry.tank.boundary" : p,
-                            "expected boundary 'dynamic' or 'fixed_layers' in 3-D, got '%s' "
-                            "(%s): the other wall models are 2-D only so far",
+                            "expected boundary 'dynamic', 'fixed_layers' or 'mdbc' in 3-D, got "
+                            "'%s' (%s): the other wall models are 2-D only so far",
                             sph_boundary_name(c->tank.boundary),
                             e ? "given" : "numerics.scheme's default");
   }
@@ -1004,7 +1004,7 @@ static int read_periodic(const ctx *x, const node *m, sph_case *c) {
 }
 
 /* geometry.obstacles[i]: {x, y (, z): ranges at least dx wide, layers (1-8, default 2),
- * boundary: dynamic (default) or fixed_layers}. */
+ * boundary: dynamic (default), fixed_layers or mdbc}. */
 static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_case *c,
                          sph_obstacle *o) {
   char b[96], kp[SPH_YAML_KEYLEN];
@@ -1030,11 +1030,12 @@ static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_c
   int bnd = SPH_BOUNDARY_DYNAMIC;
   if (sph_yaml_get_choice(&x->t, m, p, "boundary", boundary_names, &bnd) < 0) return -1;
   o->boundary = (sph_boundary_kind)bnd;
-  if (bnd != SPH_BOUNDARY_DYNAMIC && bnd != SPH_BOUNDARY_FIXED_LAYERS) {
+  if (bnd != SPH_BOUNDARY_DYNAMIC && bnd != SPH_BOUNDARY_FIXED_LAYERS && bnd != SPH_BOUNDARY_MDBC) {
     sph_yaml_join(kp, sizeof kp, p, "boundary");
     return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "boundary")->val, kp,
-                            "expected 'dynamic' or 'fixed_layers' (an obstacle is a box of wall "
-                            "particles; the other wall models are not for obstacles yet), got '%s'",
+                            "expected 'dynamic', 'fixed_layers' or 'mdbc' (an obstacle is a box of "
+                            "wall particles; the other wall models are not for obstacles yet), "
+                            "got '%s'",
                             sph_boundary_name(o->boundary));
   }
   return 0;
@@ -1371,16 +1372,12 @@ static int read_dimension(const ctx *x, const node *root, sph_case *c) {
   const sph_yaml_entry *g = sph_yaml_find(root, "geometry");
   const sph_yaml_entry *t =
       g && g->val->kind == SPH_YAML_MAP ? sph_yaml_find(g->val, "tank") : NULL;
-  static const char *const tank_2d[] = {"stagger", "extrapolated_velocity", "free_slip"};
-  for (size_t k = 0; SPH_DIM == 3 && t && t->val->kind == SPH_YAML_MAP && k < 3; k++) {
-    const sph_yaml_entry *e = sph_yaml_find(t->val, tank_2d[k]);
-    if (!e) continue;
-    char kp[SPH_YAML_KEYLEN];
-    sph_yaml_join(kp, sizeof kp, "geometry.tank", tank_2d[k]);
-    return sph_yaml_fail_at(&x->t, e->val, kp,
+  const sph_yaml_entry *st =
+      SPH_DIM == 3 && t && t->val->kind == SPH_YAML_MAP ? sph_yaml_find(t->val, "stagger") : NULL;
+  if (st)
+    return sph_yaml_fail_at(&x->t, st->val, "geometry.tank.stagger",
                             "is 2-D only so far (a 3-D tank's layers are dx apart, "
                             "doc/dimensions.md)");
-  }
   return 0;
 }
 

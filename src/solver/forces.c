@@ -261,8 +261,8 @@ static double kernel_reach(const sph_particles *p, const sph_force_params *fp) {
 /* The velocities the strain-rate pass reads, no-slip walls extrapolated. */
 static int wall_ghosts(const sph_particles *p, const sph_force_params *fp, double *const *gv,
                        sph_wall_velocity_work *wv, sph_error *err) {
-  return sph_wall_velocity(p, kernel_reach(p, fp), fp->px0, fp->periodic ? fp->period : 0.0, gv[0],
-                           gv[1], wv, err); /* (2-D only so far: it says so in 3-D) */
+  return sph_wall_velocity(p, kernel_reach(p, fp), fp->px0, fp->periodic ? fp->period : 0.0,
+                           fp->paxis, gv, wv, err);
 }
 
 /* The options of the strain-rate pass as fp asks for them, into w's arrays:

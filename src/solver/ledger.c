@@ -52,10 +52,18 @@ void sph_ledger_add_shift(sph_ledger *lg, const double moved[2], const double gr
   lg->drift_shifting -= gravity[0] * moved[0] + gravity[1] * moved[1];
 }
 
-void sph_ledger_add_kick(sph_ledger *lg, const double kick[4], const double gravity[SPH_DIM]) {
+void sph_ledger_add_kick(sph_ledger *lg, const double kick[2 * SPH_DIM],
+                         const double gravity[SPH_DIM]) {
+#if SPH_DIM == 2
   lg->work_wall -= gravity[0] * kick[0] + gravity[1] * kick[1];
   lg->impulse_x += kick[2];
   lg->impulse_y += kick[3];
+#else
+  lg->work_wall -= gravity[0] * kick[0] + gravity[1] * kick[1] + gravity[2] * kick[2];
+  lg->impulse_x += kick[3];
+  lg->impulse_y += kick[4];
+  lg->impulse_z += kick[5];
+#endif
 }
 
 double sph_ledger_fluid_internal(const sph_particles *p) {

@@ -83,11 +83,12 @@ void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_wo
  * predictor-corrector). */
 void sph_ledger_advance(sph_ledger *lg, double dt);
 
-/* What the mirror lines did to the fluid in a step by moving particles off
- * them (walls.h, sph_walls_keep_off_mirrors: kick = sum m dx, m dy, m dvx,
- * m dvy): the lift's potential energy -g . sum m dr is the walls' work, the
- * velocity change their impulse. */
-void sph_ledger_add_kick(sph_ledger *lg, const double kick[4], const double gravity[SPH_DIM]);
+/* What the mirror lines and tank faces did to the fluid in a step by
+ * moving particles off them (walls.h, sph_walls_keep_off: kick = sum m dr
+ * by axis, then sum m dv by axis): the lift's potential energy -g . sum m dr is the walls' work,
+ * the velocity change their impulse. */
+void sph_ledger_add_kick(sph_ledger *lg, const double kick[2 * SPH_DIM],
+                         const double gravity[SPH_DIM]);
 
 /* What particle shifting did to the fluid in a step (physics/shifting.h:
  * moved = sum m dx, m dy over the fluid): a move no force pays for, whose

@@ -163,7 +163,8 @@ static int mdbc_walls(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   sph_particles *p = &s->p;
   if (sph_wall_mdbc_density(p, SPH_CUBIC_SUPPORT * h_max(s), s->fp.px0,
-                            c->periodic ? s->fp.period : 0.0, c->rho0, &s->mdbc_work, err))
+                            c->periodic ? s->fp.period : 0.0, s->fp.paxis, c->rho0, &s->mdbc_work,
+                            err))
     return -1;
   for (size_t i = 0; i < p->n; i++)
     if (p->flags[i] & SPH_FLAG_MDBC) p->p[i] = sph_eos_pressure(&s->fp.eos, p->rho[i]);
@@ -320,7 +321,7 @@ int sph_sim_check_state(sph_sim *s, sph_error *err) {
  * and the pass does not need it (a particle across a line has no image,
  * one exactly on it skips the coincident pair). */
 static void keep_off_mirrors(sph_sim *s, int half_step) {
-  double kick[4] = {0.0, 0.0, 0.0, 0.0};
+  double kick[2 * SPH_DIM] = {0.0};
   const double d_min = SPH_MIRROR_MIN_DISTANCE * s->c->dx;
   if (sph_walls_keep_off(&s->walls, &s->p, d_min, half_step, kick) && s->fp.ledger)
     sph_ledger_add_kick(&s->ledger, kick, s->c->gravity);

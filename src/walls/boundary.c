@@ -57,23 +57,51 @@ int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, 
 #endif
 }
 
-int sph_boundary_add_box(sph_particles *p, const sph_obstacle *o, double dx, double rho,
-                         double mass, double h, uint8_t flags, sph_error *err) {
+/* The depth of a box obstacle's lattice point idx (n points along each
+ * axis): the points between it and the nearest face, the bottom counted
+ * unless on_floor. */
+static long box_depth(const long idx[3], const long n[3], int on_floor) {
+  long depth = LONG_MAX;
+  for (int a = 0; a < SPH_DIM; a++) {
+    const long below = on_floor && a == SPH_UP ? LONG_MAX : idx[a], above = n[a] - 1 - idx[a];
+    const long d = below < above ? below : above;
+    if (d < depth) depth = d;
+  }
+  return depth;
+}
+
+/* The mirror offset of a box obstacle's particle at lattice index idx:
+ * twice its distance to the nearest face (not the bottom of a box on the
+ * floor), out through that face; through every face that is nearest (an
+ * edge's or a corner's particle mirrors diagonally, out of the box's edge
+ * or corner). */
+static void box_offset(const long idx[3], const long n[3], int on_floor, double dx,
+                       double m[SPH_DIM]) {
+  const long depth = box_depth(idx, n, on_floor);
+  const double dist = 2.0 * ((double)depth + 0.5) * dx;
+  for (int a = 0; a < SPH_DIM; a++) {
+    const long below = on_floor && a == SPH_UP ? LONG_MAX : idx[a], above = n[a] - 1 - idx[a];
+    m[a] = above == depth ? dist : below == depth ? -dist : 0.0; /* (the upper face on a tie) */
+  }
+}
+
+int sph_boundary_add_box(sph_particles *p, const sph_obstacle *o, double floor_level, double dx,
+                         double rho, double mass, double h, uint8_t flags, sph_error *err) {
+  const int on_floor = o->lo[SPH_UP] <= floor_level;
   long n[3] = {1, 1, 1};
   for (int a = 0; a < SPH_DIM; a++) {
     n[a] = (long)floor((o->hi[a] - o->lo[a]) / dx + 0.5);
     if (n[a] < 1) n[a] = 1;
   }
+  /* the offsets' readers: mdbc, no-slip and free-slip walls */
+  if (flags & SPH_WALL_NORMAL) sph_particles_use(p, SPH_ARRAYS_OFFSET);
+  const int offsets = (p->live & SPH_ARRAYS_OFFSET) != 0;
   const double v[SPH_DIM] = {0.0};
   for (long k = 0; k < n[2]; k++)
     for (long j = 0; j < n[1]; j++)
       for (long i = 0; i < n[0]; i++) {
         const long idx3[3] = {i, j, k};
-        long depth = LONG_MAX; /* points to the nearest face */
-        for (int a = 0; a < SPH_DIM; a++) {
-          const long d = idx3[a] < n[a] - 1 - idx3[a] ? idx3[a] : n[a] - 1 - idx3[a];
-          if (d < depth) depth = d;
-        }
+        const long depth = box_depth(idx3, n, 0);
         if (depth >= o->layers) continue; /* inside the shell */
         double x[SPH_DIM];
         for (int a = 0; a < SPH_DIM; a++)
@@ -81,6 +109,12 @@ int sph_boundary_add_box(sph_particles *p, const sph_obstacle *o, double dx, dou
         const long q = sph_particles_add_at(p, x, v, rho, mass, h, SPH_KIND_WALL, err);
         if (q < 0) return -1;
         p->flags[q] = flags;
+        if (offsets) {
+          double m[SPH_DIM];
+          box_offset(idx3, n, on_floor, dx, m);
+          for (int a = 0; a < SPH_DIM; a++)
+            p->mirror_offset[a][q] = m[a];
+        }
       }
   return 0;
 }
@@ -91,17 +125,20 @@ int sph_boundary_add_box(sph_particles *p, const sph_obstacle *o, double dx, dou
  * inner box: layers dx apart behind each face, edges and corners filled. A
  * tank open along x or y (t->open_along) is not grown along that axis: it
  * has no faces normal to it, and its floor and other walls run across the
- * period as the lattice does. */
+ * period as the lattice does. Walls with a normal (mdbc, no-slip,
+ * free-slip) carry their mirror offsets. */
 int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double rho, double mass,
                           double h, uint8_t flags, sph_error *err) {
-  if (flags & SPH_WALL_NORMAL)
-    return sph_error_set(err, "mdbc, no-slip and free-slip tanks are 2-D only so far");
   const int L = t->layers;
   const long nx = (long)floor((t->x1 - t->x0) / dx + 0.5),
              ny = (long)floor((t->y1 - t->y0) / dx + 0.5);
   const long nz = (long)floor((t->z1 - t->z0) / dx + 0.5);
   const double v[3] = {0.0, 0.0, 0.0};
   const long Lx = t->open_along == 1 ? 0 : L, Ly = t->open_along == 2 ? 0 : L;
+  /* the offsets' readers: mdbc, no-slip and free-slip walls */
+  if (flags & SPH_WALL_NORMAL) sph_particles_use(p, SPH_ARRAYS_OFFSET);
+  const int offsets = (p->live & SPH_ARRAYS_OFFSET) != 0;
+  const double lo[3] = {t->x0, t->y0, t->z0}, hi[3] = {t->x1, t->y1, t->z1};
   for (long k = -L; k < nz; k++)
     for (long j = -Ly; j < ny + Ly; j++)
       for (long i = -Lx; i < nx + Lx; i++) {
@@ -111,6 +148,15 @@ int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double
         const long idx = sph_particles_add_at(p, x, v, rho, mass, h, SPH_KIND_WALL, err);
         if (idx < 0) return -1;
         p->flags[idx] = flags;
+        if (!offsets) continue;
+        /* the mirror point through each face the particle lies behind: through
+         * one face behind a wall, diagonally through the edge or corner
+         * behind an edge or a corner */
+        const long at[3] = {i, j, k}, top[3] = {nx, ny, nz};
+        for (int a = 0; a < 3; a++)
+          p->mirror_offset[a][idx] = at[a] < 0         ? 2.0 * (lo[a] - x[a])
+                                     : at[a] >= top[a] ? 2.0 * (hi[a] - x[a])
+                                                       : 0.0;
       }
   return 0;
 }

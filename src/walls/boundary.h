@@ -44,9 +44,12 @@ int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double
 
 /* Adds a box obstacle (wall_types.h): the points lo[a] + (i + 1/2) dx, i = 0 .. n_a - 1 with
  * n_a = round((hi[a] - lo[a]) / dx) (at least 1), that lie fewer than o->layers points from
- * one of the box's faces, in lattice order (the first axis fastest). */
-int sph_boundary_add_box(sph_particles *p, const sph_obstacle *o, double dx, double rho,
-                         double mass, double h, uint8_t flags, sph_error *err);
+ * one of the box's faces, in lattice order (the first axis fastest). Walls with a normal
+ * (flags & SPH_WALL_NORMAL) carry mirror offsets out through the nearest face(s); a box whose
+ * bottom lies at or below floor_level (-INFINITY: none) stands on the floor, and its bottom is not
+ * one of those faces. */
+int sph_boundary_add_box(sph_particles *p, const sph_obstacle *o, double floor_level, double dx,
+                         double rho, double mass, double h, uint8_t flags, sph_error *err);
 
 /* A straight mirror wall (GOST R 57700.6 3.4.5): the line through (px, py)
  * with unit normal (nx, ny) pointing into the fluid, used for particles

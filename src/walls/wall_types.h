@@ -77,7 +77,7 @@ typedef struct sph_wall_segment {
 typedef struct sph_obstacle {
   double lo[SPH_DIM], hi[SPH_DIM]; /* the box's faces */
   int layers;                      /* default 2, as a 3-D tank's */
-  sph_boundary_kind boundary;      /* dynamic (default) or fixed_layers */
+  sph_boundary_kind boundary;      /* dynamic (default), fixed_layers or mdbc */
 } sph_obstacle;
 
 #ifdef __cplusplus

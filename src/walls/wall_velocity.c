@@ -7,6 +7,7 @@
 
 #include "walls/wall_velocity.h"
 
+#include "core/linsolve.h"
 #include "core/parallel.h"
 #include "neighbours/grid.h"
 #include "physics/kernel.h"
@@ -14,8 +15,10 @@
 #include <math.h>
 #include <stdlib.h>
 
-/* The most fields one fit serves (velocity: 2). */
-#define SPH_FIT_MAX 2
+/* The most fields one fit serves (velocity: SPH_DIM), and the unknowns of
+ * a field's linear fit (its value and its gradient). */
+#define SPH_FIT_MAX SPH_DIM
+#define FIT_N (SPH_DIM + 1)
 
 void sph_wall_velocity_work_free(sph_wall_velocity_work *w) {
   free(w->start);
@@ -24,93 +27,61 @@ void sph_wall_velocity_work_free(sph_wall_velocity_work *w) {
   *w = (sph_wall_velocity_work){0};
 }
 
-/* The cell layout: columns of width cx from x0 (nx of them; periodic: the
- * whole period), rows of height cy from y0. */
+/* The cell layout: along each axis a, n[a] cells of width c[a] from o[a];
+ * along the periodic axis (period > 0) the whole period. Cells are
+ * numbered with x fastest, then y (then z). */
 typedef struct layout {
-  double x0, y0, cx, cy, period;
-  long nx, ny;
+  double o[SPH_DIM], c[SPH_DIM], period;
+  long n[SPH_DIM];
+  int paxis;
 } layout;
 
-static long column(const layout *g, double x) {
-  double u = x - g->x0;
-  if (g->period > 0.0) { /* into [0, period) */
+/* The cell along axis a of the coordinate x, clamped to the grid. */
+static long cell_along(const layout *g, int a, double x) {
+  double u = x - g->o[a];
+  if (a == g->paxis && g->period > 0.0) { /* into [0, period) */
     u = fmod(u, g->period);
     if (u < 0.0) u += g->period;
   }
-  long c = (long)floor(u / g->cx);
-  return c < 0 ? 0 : c >= g->nx ? g->nx - 1 : c;
+  long c = (long)floor(u / g->c[a]);
+  return c < 0 ? 0 : c >= g->n[a] ? g->n[a] - 1 : c;
 }
 
-static long row(const layout *g, double y) {
-  long r = (long)floor((y - g->y0) / g->cy);
-  return r < 0 ? 0 : r >= g->ny ? g->ny - 1 : r;
-}
-
-/* The linear moving-least-squares fit, at the point (x, y), of nf fields
- * f[k] (per-particle arrays) over the fluid particles within reach of it:
- * f ~ c0 + c1 (x_j - x) + c2 (y_j - y), weights W(x - x_j, h_j) (exact
- * for a linear field, also where the kernel is cut by the wall or the
- * surface). Fills fit[3 k .. 3 k + 2] with (c0, c1, c2) per field; where
- * the fit's moment matrix is near singular (fewer than three independent
- * neighbours) the Shepard average sum W f / sum W with a zero gradient.
- * fmax (NULL, or nf values set by the caller) is raised to the largest
- * value of each field among those particles. Returns 0 when no fluid
- * particle reaches the point, else 1. */
-static int fit_at(const sph_particles *p, const layout *g, const sph_wall_velocity_work *w,
-                  double x, double y, const double *const *f, int nf, double *fit, double *fmax) {
-  const double fc = floor((y - g->y0) / g->cy);
-  if (fc < -1.0 || fc > (double)g->ny) return 0; /* no row of the grid within reach */
-  const long r0 = row(g, y);
-  long cols[3], nc = 0;
-  const long c0 = column(g, x);
-  if (g->period > 0.0 && g->nx <= 3) {
-    for (long c = 0; c < g->nx; c++)
-      cols[nc++] = c; /* every column, once */
-  } else if (g->period > 0.0) {
-    cols[nc++] = (c0 + g->nx - 1) % g->nx;
-    cols[nc++] = c0;
-    cols[nc++] = (c0 + 1) % g->nx;
-  } else {
-    const double fx = floor((x - g->x0) / g->cx);
-    if (fx < -1.0 || fx > (double)g->nx) return 0;
-    for (long c = c0 - 1; c <= c0 + 1; c++)
-      if (c >= 0 && c < g->nx) cols[nc++] = c;
-  }
-  double sw = 0.0, sf[SPH_FIT_MAX] = {0}, b1[SPH_FIT_MAX] = {0}, b2[SPH_FIT_MAX] = {0};
-  /* linear MLS moments: A = sum W [1 dx dy]^T [1 dx dy], b = sum W f [1 dx dy] */
-  double a01 = 0.0, a02 = 0.0, a11 = 0.0, a12 = 0.0, a22 = 0.0;
-  for (long r = r0 - 1; r <= r0 + 1; r++) {
-    if (r < 0 || r >= g->ny) continue;
-    for (long k = 0; k < nc; k++) {
-      const size_t cell = (size_t)(r * g->nx + cols[k]);
-      for (size_t q = w->start[cell]; q < w->start[cell + 1]; q++) {
-        const size_t j = w->idx[q];
-        const double dx = sph_grid_min_image(x - p->x[j], g->period), dy = y - p->y[j];
-        const double r2 = dx * dx + dy * dy, hj = p->h[j];
-        if (r2 >= SPH_CUBIC_SUPPORT * SPH_CUBIC_SUPPORT * hj * hj) continue;
-        const double wj = sph_cubic_w(sqrt(r2), hj);
-        const double ex = -dx, ey = -dy; /* x_j - x */
-        sw += wj;
-        a01 += wj * ex;
-        a02 += wj * ey;
-        a11 += wj * ex * ex;
-        a12 += wj * ex * ey;
-        a22 += wj * ey * ey;
-        for (int m = 0; m < nf; m++) {
-          if (fmax && f[m][j] > fmax[m]) fmax[m] = f[m][j];
-          sf[m] += wj * f[m][j];
-          b1[m] += wj * ex * f[m][j];
-          b2[m] += wj * ey * f[m][j];
-        }
-      }
+/* The cells along axis a within one cell of the coordinate x, in the
+ * order the sums visit them, into cells[]; their count (0: none within
+ * reach, the point is too far from the fluid). */
+static int cells_near(const layout *g, int a, double x, long cells[3]) {
+  const long n = g->n[a];
+  int nc = 0;
+  if (a == g->paxis && g->period > 0.0) {
+    const long c0 = cell_along(g, a, x);
+    if (n <= 3) {
+      for (long c = 0; c < n; c++)
+        cells[nc++] = c; /* every cell, once */
+    } else {
+      cells[nc++] = (c0 + n - 1) % n;
+      cells[nc++] = c0;
+      cells[nc++] = (c0 + 1) % n;
     }
+    return nc;
   }
-  if (!(sw > 0.0)) return 0;
-  for (int m = 0; m < nf; m++) {
-    fit[3 * m] = sf[m] / sw;
-    fit[3 * m + 1] = fit[3 * m + 2] = 0.0;
-  }
-  /* solve [sw a01 a02; a01 a11 a12; a02 a12 a22] c = b by Cramer's rule */
+  const double f = floor((x - g->o[a]) / g->c[a]);
+  if (f < -1.0 || f > (double)n) return 0;
+  const long c0 = cell_along(g, a, x);
+  for (long c = c0 - 1; c <= c0 + 1; c++)
+    if (c >= 0 && c < n) cells[nc++] = c;
+  return nc;
+}
+
+/* The linear fit's solution from its moments: A (the symmetric moment
+ * matrix, upper triangle used) and b[m] per field; into fit[FIT_N m ..]
+ * where A is regular enough (det A above 1e-3 of the product of its
+ * diagonal: fewer than SPH_DIM + 1 independent neighbours fail it). */
+static void solve_fit(const double A[FIT_N][FIT_N], const double b[SPH_FIT_MAX][FIT_N], int nf,
+                      double *fit) {
+#if SPH_DIM == 2 /* Cramer's rule */
+  const double sw = A[0][0], a01 = A[0][1], a02 = A[0][2], a11 = A[1][1], a12 = A[1][2],
+               a22 = A[2][2];
   const double det =
       sw * (a11 * a22 - a12 * a12) - a01 * (a01 * a22 - a12 * a02) + a02 * (a01 * a12 - a11 * a02);
   const double scale = sw * a11 * a22;
@@ -120,51 +91,134 @@ static int fit_at(const sph_particles *p, const layout *g, const sph_wall_veloci
     const double c11 = sw * a22 - a02 * a02, c12 = -(sw * a12 - a01 * a02),
                  c22 = sw * a11 - a01 * a01;
     for (int m = 0; m < nf; m++) {
-      fit[3 * m] = (c00 * sf[m] + c01 * b1[m] + c02 * b2[m]) / det;
-      fit[3 * m + 1] = (c01 * sf[m] + c11 * b1[m] + c12 * b2[m]) / det;
-      fit[3 * m + 2] = (c02 * sf[m] + c12 * b1[m] + c22 * b2[m]) / det;
+      fit[3 * m] = (c00 * b[m][0] + c01 * b[m][1] + c02 * b[m][2]) / det;
+      fit[3 * m + 1] = (c01 * b[m][0] + c11 * b[m][1] + c12 * b[m][2]) / det;
+      fit[3 * m + 2] = (c02 * b[m][0] + c12 * b[m][1] + c22 * b[m][2]) / det;
     }
   }
+#else /* Gaussian elimination (core/linsolve.h), every field a column */
+  double a[FIT_N][SPH_LINSOLVE_COLS];
+  double scale = 1.0;
+  for (int r = 0; r < FIT_N; r++) {
+    scale *= A[r][r];
+    for (int k = 0; k < FIT_N; k++)
+      a[r][k] = r <= k ? A[r][k] : A[k][r];
+    for (int m = 0; m < nf; m++)
+      a[r][FIT_N + m] = b[m][r];
+  }
+  const double det = sph_linsolve_eliminate(FIT_N, FIT_N + nf, a);
+  if (scale > 0.0 && fabs(det) > 1e-3 * scale)
+    for (int m = 0; m < nf; m++)
+      sph_linsolve_back(FIT_N, FIT_N + m, a, fit + FIT_N * m);
+#endif
+}
+
+/* The linear moving-least-squares fit, at the point x, of nf fields f[k]
+ * (per-particle arrays) over the fluid particles within reach of it:
+ * f ~ c0 + c . (x_j - x), weights W(x - x_j, h_j) (exact for a linear
+ * field, also where the kernel is cut by the wall or the surface). Fills
+ * fit[FIT_N k ..] with (c0, c) per field; where the fit's moment matrix is
+ * near singular (fewer than SPH_DIM + 1 independent neighbours) the
+ * Shepard average sum W f / sum W with a zero gradient. fmax (NULL, or nf
+ * values set by the caller) is raised to the largest value of each field
+ * among those particles. Returns 0 when no fluid particle reaches the
+ * point, else 1. */
+static int fit_at(const sph_particles *p, const layout *g, const sph_wall_velocity_work *w,
+                  const double x[SPH_DIM], const double *const *f, int nf, double *fit,
+                  double *fmax) {
+  long cells[SPH_DIM][3];
+  int nc[3] = {1, 1, 1};
+  for (int a = SPH_DIM - 1; a >= 0; a--) /* (the order of 2-D's first reach test: y, then x) */
+    if ((nc[a] = cells_near(g, a, x[a], cells[a])) == 0) return 0;
+  /* linear MLS moments: A = sum W e e^T, b = sum W f e, e = (1, x_j - x) */
+  double A[FIT_N][FIT_N] = {{0.0}}, b[SPH_FIT_MAX][FIT_N] = {{0.0}};
+  for (int kz = 0; kz < nc[2]; kz++)
+    for (int ky = 0; ky < nc[1]; ky++)
+      for (int kx = 0; kx < nc[0]; kx++) {
+        size_t cell = (size_t)(cells[1][ky] * g->n[0] + cells[0][kx]);
+        SPH_IF3(cell += (size_t)(cells[2][kz] * g->n[0] * g->n[1]);)
+        for (size_t q = w->start[cell]; q < w->start[cell + 1]; q++) {
+          const size_t j = w->idx[q];
+          double e[FIT_N], r2 = 0.0;
+          e[0] = 1.0;
+          for (int a = 0; a < SPH_DIM; a++) {
+            const double d = x[a] - p->pos[a][j];
+            const double da = a == g->paxis ? sph_grid_min_image(d, g->period) : d;
+            r2 += da * da;
+            e[a + 1] = -da; /* x_j - x */
+          }
+          const double hj = p->h[j];
+          if (r2 >= SPH_CUBIC_SUPPORT * SPH_CUBIC_SUPPORT * hj * hj) continue;
+          const double wj = sph_cubic_w(sqrt(r2), hj);
+          A[0][0] += wj;
+          for (int r = 1; r < FIT_N; r++) {
+            A[0][r] += wj * e[r];
+            for (int k = r; k < FIT_N; k++)
+              A[r][k] += wj * e[r] * e[k];
+          }
+          for (int m = 0; m < nf; m++) {
+            const double fj = f[m][j];
+            if (fmax && fj > fmax[m]) fmax[m] = fj;
+            b[m][0] += wj * fj;
+            for (int r = 1; r < FIT_N; r++)
+              b[m][r] += wj * e[r] * fj;
+          }
+        }
+      }
+  if (!(A[0][0] > 0.0)) return 0;
+  for (int m = 0; m < nf; m++) {
+    fit[FIT_N * m] = b[m][0] / A[0][0];
+    for (int r = 1; r < FIT_N; r++)
+      fit[FIT_N * m + r] = 0.0;
+  }
+  solve_fit((const double(*)[FIT_N])A, (const double(*)[FIT_N])b, nf, fit);
   return 1;
 }
 
 /* The fluid particles of p binned by cell into w (cells at least
- * `support` wide, and not many more than particles), the layout into *gp.
+ * `support` wide, and not many more than particles), the layout into *gp;
+ * periodic along axis paxis over [px0, px0 + period) when period > 0.
  * 0, 1 when there is no fluid (nothing to fit), or -1 (err). */
-static int bin_fluid(const sph_particles *p, double support, double px0, double period, layout *gp,
-                     sph_wall_velocity_work *w, sph_error *err) {
+static int bin_fluid(const sph_particles *p, double support, double px0, double period, int paxis,
+                     layout *gp, sph_wall_velocity_work *w, sph_error *err) {
   const size_t n = p->n;
-  double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
+  double lo[SPH_DIM], hi[SPH_DIM];
+  for (int a = 0; a < SPH_DIM; a++)
+    lo[a] = INFINITY, hi[a] = -INFINITY;
   size_t nf = 0;
   for (size_t i = 0; i < n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     nf++;
-    if (p->x[i] < xlo) xlo = p->x[i];
-    if (p->x[i] > xhi) xhi = p->x[i];
-    if (p->y[i] < ylo) ylo = p->y[i];
-    if (p->y[i] > yhi) yhi = p->y[i];
+    for (int a = 0; a < SPH_DIM; a++) {
+      if (p->pos[a][i] < lo[a]) lo[a] = p->pos[a][i];
+      if (p->pos[a][i] > hi[a]) hi[a] = p->pos[a][i];
+    }
   }
   if (nf == 0) return 1; /* no fluid: nothing to fit */
   /* cells at least `support` wide, and not many more than particles */
   double cell = support;
-  *gp = (layout){xlo, ylo, cell, cell, period > 0.0 ? period : 0.0, 1, 1};
-  layout g = *gp;
+  layout g = {.period = period > 0.0 ? period : 0.0, .paxis = paxis};
   for (;;) {
-    g.cy = cell;
-    if (g.period > 0.0) {
-      g.x0 = px0;
-      g.nx = (long)floor(g.period / cell);
-      if (g.nx < 1) g.nx = 1;
-      g.cx = g.period / (double)g.nx;
-    } else {
-      g.cx = cell;
-      g.nx = (long)floor((xhi - xlo) / cell) + 1;
+    double cells = 1.0;
+    for (int a = 0; a < SPH_DIM; a++) {
+      if (a == g.paxis && g.period > 0.0) {
+        g.o[a] = px0;
+        g.n[a] = (long)floor(g.period / cell);
+        if (g.n[a] < 1) g.n[a] = 1;
+        g.c[a] = g.period / (double)g.n[a];
+      } else {
+        g.o[a] = lo[a];
+        g.c[a] = cell;
+        g.n[a] = (long)floor((hi[a] - lo[a]) / cell) + 1;
+      }
+      cells *= (double)g.n[a];
     }
-    g.ny = (long)floor((yhi - ylo) / cell) + 1;
-    if ((double)g.nx * (double)g.ny <= 4.0 * (double)nf + 64.0) break;
+    if (cells <= 4.0 * (double)nf + 64.0) break;
     cell *= 2.0;
   }
-  const size_t cells = (size_t)(g.nx * g.ny);
+  size_t cells = 1;
+  for (int a = 0; a < SPH_DIM; a++)
+    cells *= (size_t)g.n[a];
   if (cells + 1 > w->cap_cells) {
     size_t *a = realloc(w->start, (cells + 1) * sizeof *a);
     if (!a) return sph_error_set(err, "wall velocity: out of memory for %zu cells", cells);
@@ -184,8 +238,11 @@ static int bin_fluid(const sph_particles *p, double support, double px0, double 
     w->start[c] = 0;
   for (size_t i = 0; i < n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
-    w->key[i] = (size_t)(row(&g, p->y[i]) * g.nx + column(&g, p->x[i]));
-    w->start[w->key[i] + 1]++;
+    size_t key = 0;
+    for (int a = SPH_DIM - 1; a >= 0; a--)
+      key = key * (size_t)g.n[a] + (size_t)cell_along(&g, a, p->pos[a][i]);
+    w->key[i] = key;
+    w->start[key + 1]++;
   }
   for (size_t c = 0; c < cells; c++)
     w->start[c + 1] += w->start[c];
@@ -198,43 +255,40 @@ static int bin_fluid(const sph_particles *p, double support, double px0, double 
   return 0;
 }
 
-int sph_wall_velocity(const sph_particles *p, double support, double px0, double period,
-                      double *gvx, double *gvy, sph_wall_velocity_work *w, sph_error *err) {
-#if SPH_DIM == 3 /* the fit below is the 2-D one (three unknowns) */
-  (void)p, (void)support, (void)px0, (void)period, (void)gvx, (void)gvy, (void)w;
-  return sph_error_set(err, "wall velocity: extrapolated wall velocities are 2-D only so far");
-#endif
+/* The mirror point x + m of particle i. */
+static void mirror_point(const sph_particles *p, size_t i, double x[SPH_DIM]) {
+  for (int a = 0; a < SPH_DIM; a++)
+    x[a] = p->pos[a][i] + p->mirror_offset[a][i];
+}
+
+int sph_wall_velocity(const sph_particles *p, double support, double px0, double period, int paxis,
+                      double *const *gv, sph_wall_velocity_work *w, sph_error *err) {
   const size_t n = p->n;
-  for (size_t i = 0; i < n; i++) {
-    gvx[i] = p->vx[i];
-    gvy[i] = p->vy[i];
-  }
+  for (int a = 0; a < SPH_DIM; a++)
+    for (size_t i = 0; i < n; i++)
+      gv[a][i] = p->vel[a][i];
   layout g;
-  const int rc = bin_fluid(p, support, px0, period, &g, w, err);
+  const int rc = bin_fluid(p, support, px0, period, paxis, &g, w, err);
   if (rc) return rc < 0 ? -1 : 0;
-  const double *const fields[2] = {p->vx, p->vy};
+  const double *const fields[SPH_DIM] = {SPH_XYZ(p->vx, p->vy, p->vz)};
   const long nl = (long)n;
 #pragma omp parallel for schedule(dynamic, 256) if (nl > SPH_OMP_MIN)
   for (long li = 0; li < nl; li++) {
     const size_t i = (size_t)li;
     if (!(p->flags[i] & SPH_FLAG_NO_SLIP) || p->kind[i] != SPH_KIND_WALL) continue;
-    double fit[6];
-    if (fit_at(p, &g, w, p->x[i] + p->mx[i], p->y[i] + p->my[i], fields, 2, fit, NULL)) {
-      gvx[i] = 2.0 * p->vx[i] - fit[0];
-      gvy[i] = 2.0 * p->vy[i] - fit[3];
-    }
+    double fit[FIT_N * SPH_DIM], x[SPH_DIM];
+    mirror_point(p, i, x);
+    if (fit_at(p, &g, w, x, fields, SPH_DIM, fit, NULL))
+      for (int a = 0; a < SPH_DIM; a++)
+        gv[a][i] = 2.0 * p->vel[a][i] - fit[FIT_N * a];
   }
   return 0;
 }
 
-int sph_wall_mdbc_density(sph_particles *p, double support, double px0, double period, double rho0,
-                          sph_wall_velocity_work *w, sph_error *err) {
-#if SPH_DIM == 3 /* the fit below is the 2-D one (three unknowns) */
-  (void)p, (void)support, (void)px0, (void)period, (void)rho0, (void)w;
-  return sph_error_set(err, "wall velocity: mdbc wall densities are 2-D only so far");
-#endif
+int sph_wall_mdbc_density(sph_particles *p, double support, double px0, double period, int paxis,
+                          double rho0, sph_wall_velocity_work *w, sph_error *err) {
   layout g;
-  const int rc = bin_fluid(p, support, px0, period, &g, w, err);
+  const int rc = bin_fluid(p, support, px0, period, paxis, &g, w, err);
   if (rc < 0) return -1;
   const double *const fields[1] = {p->rho};
   const long nl = (long)p->n;
@@ -242,9 +296,15 @@ int sph_wall_mdbc_density(sph_particles *p, double support, double px0, double p
   for (long li = 0; li < nl; li++) {
     const size_t i = (size_t)li;
     if (!(p->flags[i] & SPH_FLAG_MDBC) || p->kind[i] != SPH_KIND_WALL) continue;
-    double fit[3], top = -INFINITY, rho = rho0;
-    if (rc == 0 && fit_at(p, &g, w, p->x[i] + p->mx[i], p->y[i] + p->my[i], fields, 1, fit, &top)) {
-      rho = fit[0] - (fit[1] * p->mx[i] + fit[2] * p->my[i]); /* the fit at the wall particle */
+    double fit[FIT_N], x[SPH_DIM], top = -INFINITY, rho = rho0;
+    mirror_point(p, i, x);
+    if (rc == 0 && fit_at(p, &g, w, x, fields, 1, fit, &top)) {
+      /* the fit at the wall particle: rho_g - m . grad rho_g */
+#if SPH_DIM == 2
+      rho = fit[0] - (fit[1] * p->mx[i] + fit[2] * p->my[i]);
+#else
+      rho = fit[0] - (fit[1] * p->mx[i] + fit[2] * p->my[i] + fit[3] * p->mz[i]);
+#endif
       if (rho > top) rho = top; /* no density the fluid around does not have */
     }
     p->rho[i] = rho > rho0 ? rho : rho0; /* a wall pushes, never pulls */

@@ -27,9 +27,11 @@
  * which enter the stress divergence, are those of the continued field too.
  * A mirror point with no fluid within reach leaves the wall velocity.
  *
- * The mirror offset m of each wall particle (particles.h: mx, my) is set
- * when the wall is built (boundary.h); SPH_FLAG_NO_SLIP marks the
- * particles of walls with `extrapolated_velocity: true`.
+ * The mirror offset m of each wall particle (particles.h: mx, my, and mz in
+ * 3-D) is set when the wall is built (boundary.h); SPH_FLAG_NO_SLIP marks
+ * the particles of walls with `extrapolated_velocity: true`. The fit has
+ * SPH_DIM + 1 unknowns (value and gradient): a 3 x 3 system in 2-D (by
+ * Cramer's rule), 4 x 4 in 3-D (core/linsolve.h).
  */
 #ifndef SPH_WALL_VELOCITY_H
 #define SPH_WALL_VELOCITY_H
@@ -40,8 +42,8 @@
 #include "core/error.h"
 #include "core/particles.h"
 
-/* Scratch of the interpolation: the fluid particles binned in square cells
- * of side >= the largest support (kept between calls). */
+/* Scratch of the interpolation: the fluid particles binned in cells of
+ * side >= the largest support (kept between calls). */
 typedef struct sph_wall_velocity_work {
   size_t *start; /* cell offsets into idx */
   uint32_t *idx; /* fluid storage indices by cell, in storage order within a cell */
@@ -51,14 +53,14 @@ typedef struct sph_wall_velocity_work {
 
 void sph_wall_velocity_work_free(sph_wall_velocity_work *w);
 
-/* gvx, gvy (n values each) = the velocity of every particle in the viscous
- * terms: the ghost velocity above for particles flagged SPH_FLAG_NO_SLIP,
- * the particle's own velocity for all others. `support` is the kernel's
- * reach (2 max h); period > 0: the domain is periodic in x over
- * [px0, px0 + period). Deterministic: each sum runs in cell order, storage
- * order within a cell, whatever the thread count. */
-int sph_wall_velocity(const sph_particles *p, double support, double px0, double period,
-                      double *gvx, double *gvy, sph_wall_velocity_work *w, sph_error *err);
+/* gv[a] (SPH_DIM arrays of n values) = the velocity of every particle in
+ * the viscous terms: the ghost velocity above for particles flagged
+ * SPH_FLAG_NO_SLIP, the particle's own velocity for all others. `support`
+ * is the kernel's reach (2 max h); period > 0: the domain is periodic
+ * along axis paxis over [px0, px0 + period). Deterministic: each sum runs
+ * in cell order, storage order within a cell, whatever the thread count. */
+int sph_wall_velocity(const sph_particles *p, double support, double px0, double period, int paxis,
+                      double *const *gv, sph_wall_velocity_work *w, sph_error *err);
 
 /* The modified dynamic boundary condition (mDBC; English, Dominguez,
  * Vacondio, Crespo, Stansby, Lind, Chiapponi and Gomez-Gesteira,
@@ -74,7 +76,7 @@ int sph_wall_velocity(const sph_particles *p, double support, double px0, double
  * a wall pushes the fluid but never pulls it (a wall particle left with a negative pressure held
  * a film of fluid on the dam break's back wall). Sets p->rho of those
  * particles; the caller sets their pressure from the equation of state. */
-int sph_wall_mdbc_density(sph_particles *p, double support, double px0, double period, double rho0,
-                          sph_wall_velocity_work *w, sph_error *err);
+int sph_wall_mdbc_density(sph_particles *p, double support, double px0, double period, int paxis,
+                          double rho0, sph_wall_velocity_work *w, sph_error *err);
 
 #endif

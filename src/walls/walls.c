@@ -76,6 +76,28 @@ static long drop_overlaps(sph_particles *p, size_t from, size_t first, double dx
   return dropped;
 }
 
+#if SPH_DIM == 3
+/* The inner faces of a 3-D tank: the floor and the sides, but for the two
+ * normal to the axis the tank is open along; each spans the tank's inner
+ * box. Into out (room for 5); their number. */
+static size_t tank_planes(const sph_tank *t, sph_wall_plane out[5]) {
+  const double lo[3] = {t->x0, t->y0, t->z0}, hi[3] = {t->x1, t->y1, t->z1};
+  size_t n = 0;
+  for (int a = 0; a < 3; a++) {
+    if (t->open_along == 1 + a) continue;
+    for (int side = 0; side < (a == 2 ? 1 : 2); side++) { /* no lid */
+      sph_wall_plane *f = &out[n++];
+      f->axis = a;
+      f->dir = side ? -1 : 1;
+      f->at = side ? hi[a] : lo[a];
+      for (int b = 0; b < 3; b++)
+        f->lo[b] = lo[b], f->hi[b] = hi[b];
+    }
+  }
+  return n;
+}
+#endif
+
 int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
                      const sph_wall_segment *segments, size_t n_segments,
                      const sph_obstacle *obstacles, size_t n_obstacles, double dx, double rho0,
@@ -106,10 +128,13 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
         return -1;
         /* the faces, along their length only: fluid above a side wall's top
          * is outside the tank */
-#if SPH_DIM == 2 /* (3-D: no faces to keep particles off yet, doc/dimensions.md) */
+#if SPH_DIM == 2
       w->n_face = sph_mirror_tank_lines(tank, 0.0, w->face);
-#endif
       w->face_reach = (tank->stagger ? 0.5 : 1.0) * dx * (double)tank->layers;
+#else /* (a 3-D tank's layers are dx apart) */
+      w->n_plane = tank_planes(tank, w->plane);
+      w->face_reach = dx * (double)tank->layers;
+#endif
     }
     if (tank->boundary == SPH_BOUNDARY_REPULSIVE) w->repulsive = 1;
     if (tank->boundary == SPH_BOUNDARY_MDBC) w->mdbc = 1;
@@ -141,11 +166,20 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
         p->body[i] = (int32_t)k;
     }
   }
-  for (size_t k = 0; k < n_obstacles; k++) { /* boxes: dynamic or fixed_layers (the reader) */
+  w->obstacles = obstacles;
+  w->n_obstacles = n_obstacles;
+#if SPH_DIM == 2
+  w->obstacle_floor = tank->present ? tank->y0 + 0.5 * dx : -INFINITY;
+#else
+  w->obstacle_floor = tank->present ? tank->z0 + 0.5 * dx : -INFINITY;
+#endif
+  for (size_t k = 0; k < n_obstacles; k++) { /* boxes: dynamic, fixed_layers or mdbc (the reader) */
     const sph_obstacle *o = &obstacles[k];
     if (is_dbc(o->boundary)) w->dbc = 1;
+    if (o->boundary == SPH_BOUNDARY_MDBC) w->mdbc = 1;
     const size_t first = p->n;
-    if (sph_boundary_add_box(p, o, dx, rho0, wall_mass, h, wall_flags(o->boundary, 0, 0), err))
+    if (sph_boundary_add_box(p, o, w->obstacle_floor, dx, rho0, wall_mass, h,
+                             wall_flags(o->boundary, 0, 0), err))
       return -1;
     const long dropped = drop_overlaps(p, walls_from, first, dx);
     if (dropped < 0) return sph_error_set(err, "out of memory");
@@ -163,6 +197,60 @@ void sph_walls_move(const sph_walls *w, sph_particles *p, double t) {
   }
 }
 
+/* ---- keeping the fluid off: box obstacles (both dimensions), the 2-D
+ * build's lines, the 3-D build's planes ---- */
+
+/* Whether particle i lies inside obstacle o grown by d_min. */
+static inline int in_box(const sph_obstacle *o, const sph_particles *p, size_t i, double d_min) {
+  for (int a = 0; a < SPH_DIM; a++)
+    if (!(p->pos[a][i] > o->lo[a] - d_min && p->pos[a][i] < o->hi[a] + d_min)) return 0;
+  return 1;
+}
+
+/* Moves particle i to distance 2 d_min - d in front of the plane normal to
+ * axis a (normal dir, d its distance in front now), turns its normal
+ * velocity (and half-step velocity) into the fluid, adds to kick. */
+static void reflect_along(sph_particles *p, size_t i, int a, int dir, double d, double d_min,
+                          int half_step, double *kick) {
+  const double shift = 2.0 * (d_min - d) * (double)dir, m = p->mass[i];
+  p->pos[a][i] += shift;
+  if (kick) kick[a] += m * shift;
+  const double vn = p->vel[a][i] * (double)dir;
+  if (vn < 0.0) {
+    p->vel[a][i] -= 2.0 * vn * (double)dir;
+    if (kick) kick[SPH_DIM + a] -= m * 2.0 * vn * (double)dir;
+  }
+  if (half_step && p->velh[a][i] * (double)dir < 0.0) p->velh[a][i] = -p->velh[a][i];
+}
+
+/* The obstacles on particle i (a fluid one): out of each box grown by
+ * d_min that it is inside, through the face it is nearest to (its
+ * distance in front of each face, negative inside: the largest wins; a
+ * bottom standing on the tank's floor is no way out). The number of
+ * reflections. */
+static size_t keep_off_boxes(const sph_walls *w, sph_particles *p, size_t i, double d_min,
+                             int half_step, double *kick) {
+  size_t moved = 0;
+  for (size_t k = 0; k < w->n_obstacles; k++) {
+    const sph_obstacle *o = &w->obstacles[k];
+    if (!in_box(o, p, i, d_min)) continue;
+    int best_a = -1, best_dir = 0;
+    double best = -INFINITY;
+    for (int a = 0; a < SPH_DIM; a++)
+      for (int dir = -1; dir <= 1; dir += 2) {
+        const double face = dir < 0 ? o->lo[a] : o->hi[a];
+        if (a == SPH_UP && dir < 0 && face <= w->obstacle_floor) continue; /* on the floor */
+        const double d = (p->pos[a][i] - face) * (double)dir;
+        if (d > best) best = d, best_a = a, best_dir = dir;
+      }
+    if (best_a < 0) continue;
+    reflect_along(p, i, best_a, best_dir, best, d_min, half_step, kick);
+    moved++;
+  }
+  return moved;
+}
+
+#if SPH_DIM == 2
 /* Whether (x, y) lies closer than d_min to the wall side of line L (or
  * behind it); reflect() then checks the reach and the segment's ends. */
 static inline int closer(const sph_mirror_line *L, double x, double y, double d_min) {
@@ -205,36 +293,81 @@ static int reflect(const sph_mirror_line *L, sph_particles *p, size_t i, double 
   return 1;
 }
 
-size_t sph_walls_keep_off(const sph_walls *w, sph_particles *p, double d_min, int half_step,
-                          double kick[4]) {
+#else
+/* Particle i's signed distance in front of plane f (negative: behind it). */
+static inline double plane_distance(const sph_wall_plane *f, const sph_particles *p, size_t i) {
+  return (p->pos[f->axis][i] - f->at) * (double)f->dir;
+}
+#endif
+
+/* Whether fluid particle i is near a wall it may have to be kept off. */
+static int near_any(const sph_walls *w, const sph_particles *p, size_t i, double d_min) {
+  int any = 0;
+#if SPH_DIM == 2
+  for (size_t l = 0; l < w->n_mirror; l++)
+    any |= closer(&w->mirror[l], p->x[i], p->y[i], d_min);
+  for (size_t l = 0; l < w->n_face; l++)
+    any |= closer(&w->face[l], p->x[i], p->y[i], d_min);
+#else
+  for (size_t l = 0; l < w->n_plane; l++)
+    any |= plane_distance(&w->plane[l], p, i) < d_min;
+#endif
+  for (size_t k = 0; k < w->n_obstacles; k++)
+    any |= in_box(&w->obstacles[k], p, i, d_min);
+  return any;
+}
+
+/* Every wall on fluid particle i, in a fixed order (the mirror lines, the
+ * tank's faces, the obstacles); the number of reflections. */
+static size_t keep_off_one(const sph_walls *w, sph_particles *p, size_t i, double d_min,
+                           int half_step, double *kick) {
   size_t moved = 0;
-  if (w->n_mirror == 0 && w->n_face == 0) return 0;
-  /* First, in parallel, whether any fluid particle stands closer than
-   * d_min to a line: at most steps none does, and then nothing moves. A
-   * particle closer to no line keeps its position through the loop below
-   * (it reflects off none), so the loop, serial in index order with the
-   * kick's sums in that order, runs only when it has something to do. */
+#if SPH_DIM == 2
+  /* the distance test inline; the rare reflection out of line */
+  for (size_t l = 0; l < w->n_mirror; l++)
+    if (closer(&w->mirror[l], p->x[i], p->y[i], d_min))
+      moved += (size_t)reflect(&w->mirror[l], p, i, d_min, w->mirror_reach, half_step, kick);
+  for (size_t l = 0; l < w->n_face; l++)
+    if (closer(&w->face[l], p->x[i], p->y[i], d_min))
+      moved += (size_t)reflect(&w->face[l], p, i, d_min, w->face_reach, half_step, kick);
+#else
+  for (size_t l = 0; l < w->n_plane; l++) {
+    const sph_wall_plane *f = &w->plane[l];
+    const double d = plane_distance(f, p, i);
+    if (!(d < d_min) || d <= -w->face_reach) continue;
+    int within = 1; /* on the face's span along the other axes */
+    for (int b = 0; b < 3; b++)
+      if (b != f->axis && (p->pos[b][i] < f->lo[b] || p->pos[b][i] > f->hi[b])) within = 0;
+    if (!within) continue;
+    reflect_along(p, i, f->axis, f->dir, d, d_min, half_step, kick);
+    moved++;
+  }
+#endif
+  return moved + keep_off_boxes(w, p, i, d_min, half_step, kick);
+}
+
+size_t sph_walls_keep_off(const sph_walls *w, sph_particles *p, double d_min, int half_step,
+                          double kick[2 * SPH_DIM]) {
+  size_t moved = 0;
+#if SPH_DIM == 2
+  if (w->n_mirror == 0 && w->n_face == 0 && w->n_obstacles == 0) return 0;
+#else
+  if (w->n_plane == 0 && w->n_obstacles == 0) return 0;
+#endif
+  /* First, in parallel, whether any fluid particle stands near a wall: at
+   * most steps none does, and then nothing moves. A particle near no wall
+   * keeps its position through the loop below (it reflects off none), so
+   * the loop, serial in index order with the kick's sums in that order,
+   * runs only when it has something to do. */
   const long n = (long)p->n;
   int any = 0;
 #pragma omp parallel for schedule(static) reduction(| : any) if (n > SPH_OMP_MIN)
   for (long li = 0; li < n; li++) {
     const size_t i = (size_t)li;
-    if (p->kind[i] != SPH_KIND_FLUID) continue;
-    for (size_t l = 0; l < w->n_mirror; l++)
-      any |= closer(&w->mirror[l], p->x[i], p->y[i], d_min);
-    for (size_t l = 0; l < w->n_face; l++)
-      any |= closer(&w->face[l], p->x[i], p->y[i], d_min);
+    if (p->kind[i] == SPH_KIND_FLUID) any |= near_any(w, p, i, d_min);
   }
   if (!any) return 0;
-  for (size_t i = 0; i < p->n; i++) {
-    if (p->kind[i] != SPH_KIND_FLUID) continue;
-    /* the distance test inline; the rare reflection out of line */
-    for (size_t l = 0; l < w->n_mirror; l++)
-      if (closer(&w->mirror[l], p->x[i], p->y[i], d_min))
-        moved += (size_t)reflect(&w->mirror[l], p, i, d_min, w->mirror_reach, half_step, kick);
-    for (size_t l = 0; l < w->n_face; l++)
-      if (closer(&w->face[l], p->x[i], p->y[i], d_min))
-        moved += (size_t)reflect(&w->face[l], p, i, d_min, w->face_reach, half_step, kick);
-  }
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_FLUID) moved += keep_off_one(w, p, i, d_min, half_step, kick);
   return moved;
 }

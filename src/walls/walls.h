@@ -21,6 +21,16 @@
 #include "walls/boundary.h"
 #include "walls/wall_types.h"
 
+#if SPH_DIM == 3
+/* A face of a box of wall particles in 3-D: the plane x[axis] = at, its
+ * normal into the fluid along +axis (dir 1) or -axis (dir -1); a tank's
+ * face spans [lo, hi] along the other axes. */
+typedef struct sph_wall_plane {
+  int axis, dir;
+  double at, lo[3], hi[3];
+} sph_wall_plane;
+#endif
+
 typedef struct sph_walls {
   sph_mirror_line mirror[SPH_MIRROR_MAX_LINES]; /* mirror walls */
   size_t n_mirror;
@@ -36,7 +46,14 @@ typedef struct sph_walls {
   int dbc;           /* some wall particles are dynamic or fixed_layers (dbc.h) */
   const sph_wall_segment *segments; /* the case's segments (their motions), not owned */
   size_t n_segments;
-  size_t n_dropped; /* a segment's particles not made: closer than dx/2 to an earlier wall's */
+#if SPH_DIM == 3
+  sph_wall_plane plane[5]; /* a tank of wall particles: its inner faces (floor, sides) */
+  size_t n_plane;
+#endif
+  const sph_obstacle *obstacles; /* the case's box obstacles, kept off as boxes, not owned */
+  size_t n_obstacles;
+  double obstacle_floor; /* an obstacle face at or below this height stands on the floor */
+  size_t n_dropped;      /* a segment's particles not made: closer than dx/2 to an earlier wall's */
 } sph_walls;
 
 /* Adds the wall particles of the tank (if present), of the segments and of
@@ -75,12 +92,18 @@ void sph_walls_move(const sph_walls *w, sph_particles *p, double t);
  * in 0.9 s (the coarse case run on to 2 s stopped at t = 1.33 s). Dynamic
  * walls, whose density rises as fluid approaches, keep it at their gap:
  * for them this never acts.
+ * In 3-D the tank's faces are planes (a box's floor and sides) treated
+ * the same way. A box obstacle (either dimension) keeps the fluid off as a
+ * box: a fluid particle inside the box grown by d_min is reflected about
+ * the grown box's face it is nearest to (its least penetration), a bottom
+ * standing on the tank's floor excepted.
  * The positions it sets depend on the particle alone: bitwise the same for
  * any thread count. Returns the number of particles reflected; kick (NULL,
- * or 4 sums the caller has set) gains sum m dx, sum m dy, sum m dvx and
- * sum m dvy over them, in storage order (the energy ledger books the lift
- * as the walls' work, the velocity change as their impulse). */
+ * or 2 SPH_DIM sums the caller has set) gains sum m dx, sum m dy (, sum m
+ * dz), then sum m dvx, sum m dvy (, sum m dvz) over them, in storage order
+ * (the energy ledger books the lift as the walls' work, the velocity
+ * change as their impulse). */
 size_t sph_walls_keep_off(const sph_walls *w, sph_particles *p, double d_min, int half_step,
-                          double kick[4]);
+                          double kick[2 * SPH_DIM]);
 
 #endif

@@ -1,0 +1,291 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * test_walls_3d.c - walls in 3-D (built with -DSPH_DIM=3, linked with
+ * src/libsph3.la): the mirror offsets of the box
+ * tank and of box obstacles (src/walls/boundary.h), and the linear
+ * moving-least-squares fit through them (src/walls/wall_velocity.h: the
+ * 4 x 4 system of the 3-D fit) for the ghost velocity and the mdbc density.
+ *
+ * 1. Offsets. A 3-layer mdbc tank 0.1 x 0.06 x 0.05 m at dx = 0.01 m:
+ *    every wall particle's mirror point x + m lies inside the tank, and
+ *    along each axis it is the particle reflected in the face it lies
+ *    behind (the same distance in front of the face), or the particle's
+ *    own coordinate along an axis it does not lie behind: a wall's
+ *    particle mirrors through its face, an edge's through the edge, a
+ *    corner's through the corner. A box obstacle's particles (two layers
+ *    of a 6 x 5 x 4 point box) mirror out of the box through their
+ *    nearest face(s): the mirror point lies outside the box, as far from
+ *    that face as the particle is behind it; standing on the floor, none
+ *    through its bottom.
+ * 2. The fit. Fluid on the tank's lattice (600 particles) carrying a
+ *    density and a velocity linear in x, y and z: every mdbc wall
+ *    particle's density is the field at the particle (a field rising
+ *    upwards, so that mdbc's limits do not act), and every no-slip
+ *    wall particle's ghost velocity 2 v_wall - v(x + m), to 1e-10 of the
+ *    field's scale (the fit is exact for linear fields; a Shepard average
+ *    would be off by about the gradient times dx/2). Edges and corners
+ *    included: their mirror points see a quarter or an eighth of a
+ *    sphere of fluid. Periodic along y (the tank open along y, a field
+ *    independent of y): the same, with the mirror points near the seam
+ *    fitting across it.
+ * 3. Keeping off. sph_walls_keep_off on a tank (open along y) with a box
+ *    obstacle standing on its floor: a fluid particle d in front of a face
+ *    with d < d_min (or behind it, within the wall's thickness) ends
+ *    2 d_min - d in front of it, its normal velocity turned into the fluid
+ *    and its tangential velocity kept; one inside the obstacle grown by
+ *    d_min leaves through the face it is nearest to (never through the
+ *    bottom, which stands on the floor); one above a side wall's top, one
+ *    far behind a wall, and ones clear of every face stay where they are;
+ *    the kick sums m dr and m dv of the moves; the tank's open axis has
+ *    no faces.
+ */
+#include "config.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/particles.h"
+#include "testutil.h"
+#include "walls/boundary.h"
+#include "walls/wall_velocity.h"
+#include "walls/walls.h"
+
+#if SPH_DIM != 3
+#error "test_walls_3d is built with -DSPH_DIM=3"
+#endif
+
+#define DX 0.01
+#define H (1.3 * DX)
+#define RHO0 1000.0
+
+/* The tank of part 1 and 2: x 0..0.1, y 0..0.06, z 0..0.05 (open along y
+ * when open_y). */
+static sph_tank tank(int open_y) {
+  sph_tank t = {0};
+  t.present = 1;
+  t.x0 = 0.0, t.x1 = 0.1, t.y0 = 0.0, t.y1 = 0.06, t.z0 = 0.0, t.z1 = 0.05;
+  t.layers = 3;
+  t.boundary = SPH_BOUNDARY_MDBC;
+  t.open_along = open_y ? 2 : 0;
+  return t;
+}
+
+static void test_tank_offsets(void) {
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 1024, &err) == 0);
+  const sph_tank t = tank(0);
+  CU_ASSERT_FATAL(sph_boundary_add_tank(&p, &t, DX, RHO0, 1e-3, H, SPH_FLAG_MDBC, &err) == 0);
+  const double lo[3] = {t.x0, t.y0, t.z0}, hi[3] = {t.x1, t.y1, t.z1};
+  size_t behind[4] = {0}; /* particles behind 0 (none), 1 (walls), 2 (edges), 3 (corners) faces */
+  double worst = 0.0;
+  int inside = 1;
+  for (size_t i = 0; i < p.n; i++) {
+    int faces = 0;
+    for (int a = 0; a < 3; a++) {
+      const double x = p.pos[a][i], g = x + p.mirror_offset[a][i];
+      double want = x; /* along an axis it is not behind: its own coordinate */
+      if (x < lo[a]) want = 2.0 * lo[a] - x, faces++;
+      if (x > hi[a]) want = 2.0 * hi[a] - x, faces++;
+      worst = fmax(worst, fabs(g - want));
+      if (!(g > lo[a] && (a == 2 || g < hi[a]))) inside = 0;
+    }
+    behind[faces]++;
+  }
+  printf("\n    %zu wall particles: %zu behind one face, %zu an edge, %zu a corner; "
+         "mirror points off by at most %.1e m",
+         p.n, behind[1], behind[2], behind[3], worst);
+  CU_ASSERT_EQUAL(behind[0], 0);
+  CU_ASSERT_EQUAL(behind[3], 4 * 27); /* four lower corners, 3 x 3 x 3 each */
+  CU_ASSERT_EQUAL(behind[2], 4 * 9 * 5 + 2 * 9 * 10 + 2 * 9 * 6); /* vertical, x and y edges */
+  CU_ASSERT(worst < 1e-15);
+  CU_ASSERT(inside);
+  sph_particles_free(&p);
+}
+
+static void test_obstacle_offsets(void) {
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 256, &err) == 0);
+  /* 6 x 5 x 4 lattice points, a shell two deep: its inside 2 x 1 x 0 points, so all of it */
+  const sph_obstacle o = {{0.2, 0.3, 0.0}, {0.26, 0.35, 0.04}, 2, SPH_BOUNDARY_MDBC};
+  CU_ASSERT_FATAL(sph_boundary_add_box(&p, &o, -INFINITY, DX, RHO0, 1e-3, H, SPH_FLAG_MDBC, &err) ==
+                  0);
+  CU_ASSERT_EQUAL(p.n, 6 * 5 * 4);
+  int outside = 1, mirrored = 1;
+  for (size_t i = 0; i < p.n; i++) {
+    double dmin = INFINITY; /* the particle's distance to the box's nearest face */
+    for (int a = 0; a < 3; a++)
+      dmin = fmin(dmin, fmin(p.pos[a][i] - o.lo[a], o.hi[a] - p.pos[a][i]));
+    int out = 0;
+    for (int a = 0; a < 3; a++) {
+      const double g = p.pos[a][i] + p.mirror_offset[a][i];
+      if (g < o.lo[a] || g > o.hi[a]) out = 1;
+      /* along a mirrored axis: as far in front of the nearest face as behind it */
+      if (p.mirror_offset[a][i] != 0.0 &&
+          !(fabs(fabs(p.mirror_offset[a][i]) - 2.0 * dmin) < 1e-15 &&
+            (fabs(g - o.lo[a]) - dmin < 1e-15 || fabs(g - o.hi[a]) - dmin < 1e-15)))
+        mirrored = 0;
+    }
+    if (!out) outside = 0;
+  }
+  CU_ASSERT(outside);
+  CU_ASSERT(mirrored);
+  /* the same box standing on a floor at z = 0: no mirror point below it */
+  const size_t first = p.n;
+  CU_ASSERT_FATAL(sph_boundary_add_box(&p, &o, 0.5 * DX, DX, RHO0, 1e-3, H, SPH_FLAG_MDBC, &err) ==
+                  0);
+  int above = 1;
+  for (size_t i = first; i < p.n; i++)
+    if (!(p.z[i] + p.mz[i] > 0.0)) above = 0;
+  CU_ASSERT(above);
+  sph_particles_free(&p);
+}
+
+/* The linear fields of part 2: density and velocity at x. The density
+ * rises upwards only, so that no wall particle's lies above the fluid's
+ * largest (where mdbc clips it) nor below rho0. */
+static double density_at(const double x[3]) { return 1010.0 + 50.0 * x[2]; }
+static double velocity_at(int d, const double x[3], int periodic) {
+  static const double base[3] = {0.3, -0.2, 0.1},
+                      grad[3][3] = {{1.5, -0.7, 2.0}, {0.4, 1.1, -0.9}, {-1.2, 0.6, 0.8}};
+  double v = base[d];
+  for (int a = 0; a < 3; a++)
+    if (!(periodic && a == 1)) v += grad[d][a] * x[a];
+  return v;
+}
+
+/* The tank (open along y when periodic) with mdbc no-slip walls, fluid on
+ * its lattice up to z = 0.05 carrying the linear fields; fits both and
+ * returns the largest error of the wall densities and of the ghost
+ * velocities (relative to 10 kg/m3 and 0.1 m/s). */
+static void fit_tank(int periodic, double *err_rho, double *err_v) {
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 4096, &err) == 0);
+  for (int k = 0; k < 5; k++)
+    for (int j = 0; j < 6; j++)
+      for (int i = 0; i < 10; i++) {
+        const double x[3] = {(i + 0.5) * DX, (j + 0.5) * DX, (k + 0.5) * DX};
+        double v[3];
+        for (int d = 0; d < 3; d++)
+          v[d] = velocity_at(d, x, periodic);
+        const long q = sph_particles_add_at(&p, x, v, density_at(x), 1e-3, H, SPH_KIND_FLUID, &err);
+        CU_ASSERT_FATAL(q >= 0);
+      }
+  const size_t nf = p.n;
+  const sph_tank t = tank(periodic);
+  CU_ASSERT_FATAL(sph_boundary_add_tank(&p, &t, DX, RHO0, 1e-3, H, SPH_FLAG_MDBC | SPH_FLAG_NO_SLIP,
+                                        &err) == 0);
+  const double period = periodic ? 0.06 : 0.0;
+  sph_wall_velocity_work w = {0};
+  double *g = malloc(3 * p.n * sizeof *g);
+  CU_ASSERT_FATAL(g != NULL);
+  double *const gv[3] = {g, g + p.n, g + 2 * p.n};
+  CU_ASSERT_FATAL(sph_wall_velocity(&p, 2.0 * H, 0.0, period, 1, gv, &w, &err) == 0);
+  CU_ASSERT_FATAL(sph_wall_mdbc_density(&p, 2.0 * H, 0.0, period, 1, RHO0, &w, &err) == 0);
+  *err_rho = *err_v = 0.0;
+  for (size_t i = 0; i < p.n; i++) {
+    const double x[3] = {p.x[i], p.y[i], p.z[i]};
+    if (i < nf) { /* the fluid keeps its own */
+      CU_ASSERT(p.rho[i] == density_at(x));
+      for (int d = 0; d < 3; d++)
+        CU_ASSERT(gv[d][i] == p.vel[d][i]);
+      continue;
+    }
+    *err_rho = fmax(*err_rho, fabs(p.rho[i] - density_at(x)) / 10.0);
+    double m[3];
+    for (int a = 0; a < 3; a++)
+      m[a] = x[a] + p.mirror_offset[a][i];
+    for (int d = 0; d < 3; d++) /* at rest: 2 * 0 - v(mirror point) */
+      *err_v = fmax(*err_v, fabs(gv[d][i] + velocity_at(d, m, periodic)) / 0.1);
+  }
+  printf("\n    %s: %zu wall particles, density off by %.1e, ghost velocity by %.1e (relative)",
+         periodic ? "periodic along y" : "closed tank", p.n - nf, *err_rho, *err_v);
+  free(g);
+  sph_wall_velocity_work_free(&w);
+  sph_particles_free(&p);
+}
+
+static void test_fit_linear(void) {
+  for (int periodic = 0; periodic < 2; periodic++) {
+    double er, ev;
+    fit_tank(periodic, &er, &ev);
+    CU_ASSERT(er < 1e-10);
+    CU_ASSERT(ev < 1e-10);
+  }
+}
+
+/* ---- 3. keeping off ------------------------------------------------------- */
+
+static void test_keep_off(void) {
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 64, &err) == 0);
+  /* the fluid particles first: position, velocity, and where they must end up */
+  const double dm = 0.25 * DX; /* d_min */
+  static const double cases[][9] = {
+      /* x, y, z; vx, vy, vz; x, y, z after */
+      {0.05, 0.03, 0.001, 0.1, 0.2, -0.3, 0.05, 0.03, 2 * 0.0025 - 0.001}, /* near the floor */
+      {0.05, 0.03, -0.004, 0.1, 0.2, 0.3, 0.05, 0.03, 2 * 0.0025 + 0.004}, /* crossed it */
+      {0.0005, 0.03, 0.02, -1.0, 0.0, 0.0, 0.0045, 0.03, 0.02},            /* the side at x0 */
+      {0.0995, 0.03, 0.02, 1.0, 0.0, 0.0, 0.0955, 0.03, 0.02},             /* the side at x1 */
+      {0.0005, 0.03, 0.06, -1.0, 0.0, 0.0, 0.0005, 0.03, 0.06},  /* above the sides' top */
+      {-0.05, 0.03, 0.02, 0.0, 0.0, 0.0, -0.05, 0.03, 0.02},     /* far behind the wall */
+      {0.05, 0.0005, 0.02, 0.0, -1.0, 0.0, 0.05, 0.0005, 0.02},  /* y is open: no face */
+      {0.05, 0.03, 0.03, 0.0, 0.0, 0.0, 0.05, 0.03, 0.03},       /* clear of every face */
+      {0.0605, 0.03, 0.005, 0.5, 0.0, 0.0, 0.0545, 0.03, 0.005}, /* inside the box: out at x */
+      {0.07, 0.03, 0.0195, 0.0, 0.0, -0.5, 0.07, 0.03, 0.0255},  /* just below its top */
+      {0.07, 0.0401, 0.012, 0.0, 0.0, 0.0, 0.07, 0.0399 + 2 * dm, 0.012}, /* out through y */
+  };
+  const size_t nc = sizeof cases / sizeof cases[0];
+  for (size_t k = 0; k < nc; k++) {
+    const long q =
+        sph_particles_add_at(&p, cases[k], cases[k] + 3, RHO0, 1e-3, H, SPH_KIND_FLUID, &err);
+    CU_ASSERT_FATAL(q >= 0);
+  }
+  const sph_tank t = tank(1);
+  /* the box x 0.06..0.08, y 0.02..0.04, z 0..0.02: on the floor */
+  const sph_obstacle o = {{0.06, 0.02, 0.0}, {0.08, 0.04, 0.02}, 2, SPH_BOUNDARY_DYNAMIC};
+  sph_walls w;
+  CU_ASSERT_FATAL(sph_walls_create(&w, &p, &t, NULL, 0, &o, 1, DX, RHO0, H, 0.0, &err) == 0);
+  CU_ASSERT_EQUAL(w.n_plane, 3); /* floor, x0, x1 */
+  double kick[6] = {0.0};
+  const size_t moved = sph_walls_keep_off(&w, &p, dm, 0, kick);
+  CU_ASSERT_EQUAL(moved, 7);
+  double want[6] = {0.0};
+  for (size_t k = 0; k < nc; k++) {
+    int ok = 1;
+    for (int a = 0; a < 3; a++) {
+      const double moved_by = cases[k][6 + a] - cases[k][a];
+      want[a] += p.mass[k] * moved_by;
+      if (fabs(p.pos[a][k] - cases[k][6 + a]) > 1e-15) ok = 0;
+      /* the velocity: the normal component into the fluid where it moved */
+      const double v = cases[k][3 + a];
+      const double expect = moved_by != 0.0 && v * moved_by < 0.0 ? -v : v;
+      want[3 + a] += p.mass[k] * (expect - v);
+      if (p.vel[a][k] != expect) ok = 0;
+    }
+    if (!ok)
+      printf("\n    case %zu: at (%.6f, %.6f, %.6f) v (%g, %g, %g)", k, p.x[k], p.y[k], p.z[k],
+             p.vx[k], p.vy[k], p.vz[k]);
+    CU_ASSERT(ok);
+  }
+  for (int a = 0; a < 6; a++)
+    CU_ASSERT(fabs(kick[a] - want[a]) < 1e-18);
+  /* a second pass moves nothing */
+  CU_ASSERT_EQUAL(sph_walls_keep_off(&w, &p, dm, 0, NULL), 0);
+  sph_particles_free(&p);
+}
+
+int main(void) {
+  CU_TestInfo tests[] = {
+      {"3-D tank: mirror points through faces, edges and corners", test_tank_offsets},
+      {"3-D box obstacle: mirror points out through the nearest faces", test_obstacle_offsets},
+      {"3-D linear fit: mdbc density and ghost velocity exact for linear fields", test_fit_linear},
+      {"3-D keeping off: the tank's faces and a box obstacle", test_keep_off},
+      CU_TEST_INFO_NULL};
+  return sph_test_main("walls_3d", tests);
+}
