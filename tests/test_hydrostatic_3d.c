@@ -8,7 +8,7 @@
  * - The case reader: a 3-D case reads (gravity (0, 0, -9.81) by default,
  *   the block's surface its z1), the listing says "dimension: 3"; a 2-D
  *   case, a gravity of two components and the keys that are 2-D only so far
- *   (geometry.walls, free_surface, a tank's stagger, repulsive and mirror
+ *   (geometry.walls, shifting, a tank's stagger, repulsive and mirror
  *   tanks and obstacles) are refused with the file, line and key; mdbc tanks
  *   and obstacles, free-slip and no-slip tanks read; sph_case_file_dimension
  *   reads the dimension a --set gives.
@@ -117,7 +117,7 @@ static void test_reader(void) {
   refused("output.probes=[{name: P1, kind: pressure, at: [0.1, 0.05, 0.0], normal: [0, 0, 1], "
           "wetted: true}]",
           "output.probes[0].wetted"); /* a wire gauge is a level probe */
-  refused("free_surface={radius_factor: 1}", "free_surface");
+  refused("numerics.shifting={coefficient: 2}", "numerics.shifting");
   refused("geometry.tank.stagger=false", "geometry.tank.stagger");
   refused("geometry.tank.boundary=repulsive", "geometry.tank.boundary");
   refused("geometry.tank.boundary=mirror", "geometry.tank.boundary");

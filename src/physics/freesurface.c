@@ -35,6 +35,7 @@
 
 #include "core/lanes.h"
 #include "physics/kernel.h"
+#include "physics/sphere_cover.h"
 
 #define TWO_PI (2.0 * SPH_PI)
 
@@ -286,6 +287,7 @@ unsigned sph_freesurface_cones_equal(const double *x, const double *y, const uin
 
 /* ---- one particle ------------------------------------------------------------ */
 
+#if SPH_DIM == 2
 /* 1 if some arc of the circle of particle i is uncovered, over the m
  * candidates cand[] (every particle whose disc can overlap circle i; i
  * itself may be among them): the two certificates first, unless
@@ -334,6 +336,59 @@ static int uncovered(const sph_particles *p, size_t i, const uint32_t *cand, siz
   }
   return !sph_freesurface_arcs_cover(buf, a);
 }
+#endif
+
+#if SPH_DIM == 3
+/* Per-thread scratch of the 3-D test, m candidates' worth. */
+typedef struct scratch3 {
+  sph_cap *caps;
+  double *off, *rad;
+} scratch3;
+
+/* The 3-D form of uncovered(): 1 if some part of the sphere of particle i
+ * is uncovered (sphere_cover.h), over the candidates cand[] (the minimum
+ * image along axis paxis when period > 0). Unless exact_only, the
+ * certificates first: the interior one by each cap's nearest direction
+ * as the caps are made (most interior particles stop there), the surface
+ * one, then the interior one by every direction each cap holds; the exact
+ * test decides the rest. */
+static int uncovered_3d(const sph_particles *p, size_t i, const uint32_t *cand, size_t m, double f,
+                        double period, int paxis, int exact_only, scratch3 *w, sph_arc *arcs) {
+  const double ri = f * p->h[i];
+  size_t nb = 0, nc = 0;
+  unsigned long held = 0; /* the interior certificate's directions, as the caps come */
+  double sum[3] = {0.0, 0.0, 0.0};
+  for (size_t k = 0; k < m; k++) {
+    const size_t j = cand[k];
+    if (j == i) continue;
+    double *d = w->off + 3 * nb;
+    for (int a = 0; a < 3; a++) {
+      const double e = p->pos[a][j] - p->pos[a][i];
+      d[a] = a == paxis ? sph_grid_min_image(e, period) : e;
+      sum[a] += d[a];
+    }
+    w->rad[nb] = f * p->h[j];
+    const int r = sph_sphere_cap(d, ri, w->rad[nb], &w->caps[nc]);
+    if (r == SPH_DISC_FULL) return 0;
+    if (r == SPH_DISC_ARC && !exact_only) {
+      held |= sph_sphere_dir_near(&w->caps[nc]);
+      if (held == SPH_SPHERE_DIRS_ALL) return 0; /* covered, whatever the others */
+    }
+    nc += r == SPH_DISC_ARC;
+    nb++;
+  }
+  if (!exact_only) {
+    const double s2 = sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2];
+    if (s2 > 0.0) {
+      const double scale = -ri / sqrt(s2);
+      const double q[3] = {scale * sum[0], scale * sum[1], scale * sum[2]};
+      if (sph_sphere_point_open(w->off, w->rad, nb, ri, q)) return 1;
+    }
+    if (sph_sphere_dirs_cover(w->caps, nc)) return 0; /* every direction each cap holds */
+  }
+  return !sph_sphere_caps_cover(w->caps, nc, arcs);
+}
+#endif
 
 /* Cheap argument checks shared by both searches: the factor, the period
  * and every h; the smallest and largest h in *hmin, *hmax. */
@@ -359,9 +414,12 @@ static int check_particles(const sph_particles *p, double f, double period, doub
 /* A grid that belongs to p, has cells large enough for the largest pair of
  * discs and, if periodic, the period given. */
 static int check_grid(const sph_particles *p, const sph_grid *g, double f, double period,
-                      double hmax, sph_error *err) {
+                      int period_axis, double hmax, sph_error *err) {
   if (!g->start || !g->cell_of[0] || g->ncell[0] <= 0 || g->start[sph_grid_cells(g)] != p->n)
     return sph_error_set(err, "free surface: the grid was not built on these %zu particles", p->n);
+  if (g->periodic && g->periodic != 1 + period_axis)
+    return sph_error_set(err, "free surface: the grid is periodic along axis %d, not %d",
+                         g->periodic - 1, period_axis);
   if (g->periodic && !(fabs(period - sph_grid_period(g)) <= 1e-9 * period))
     return sph_error_set(err, "free surface: the grid is periodic over %g, the period given is %g",
                          sph_grid_period(g), period);
@@ -379,7 +437,7 @@ static int check_grid(const sph_particles *p, const sph_grid *g, double f, doubl
 /* A list built on p, still complete (sph_nlist_fresh) for a support that
  * holds the largest pair of discs, with the period given. */
 static int check_list(const sph_particles *p, const sph_nlist *l, double f, double period,
-                      double hmax, sph_error *err) {
+                      int period_axis, double hmax, sph_error *err) {
   if (!l->valid || l->n != p->n || !sph_nlist_fresh(l, p))
     return sph_error_set(err,
                          "free surface: the neighbour list is not complete for these %zu "
@@ -388,6 +446,9 @@ static int check_list(const sph_particles *p, const sph_nlist *l, double f, doub
   if (!(fabs(l->period - period) <= 1e-9 * period))
     return sph_error_set(err, "free surface: the list's period is %g, the period given is %g",
                          l->period, period);
+  if (period > 0.0 && l->paxis != period_axis)
+    return sph_error_set(err, "free surface: the list is periodic along axis %d, not %d", l->paxis,
+                         period_axis);
   if (2.0 * (f * hmax) > l->radius - l->skin)
     return sph_error_set(err,
                          "free surface: radius factor %g with h up to %g needs a list support of "
@@ -400,7 +461,9 @@ static int check_list(const sph_particles *p, const sph_nlist *l, double f, doub
  * NULL, the list l) gives each; equal_h: every particle has the same h;
  * scalar: the interior certificate one neighbour at a time even with AVX2. */
 static int detect(sph_particles *p, const sph_grid *g, const sph_nlist *l, double f, double period,
-                  int exact_only, int equal_h, int scalar, size_t *count, sph_error *err) {
+                  int paxis, int exact_only, int equal_h, int scalar, size_t *count,
+                  sph_error *err) {
+  (void)paxis; /* (2-D: the period is along x) */
   const long n = (long)p->n;
   const int simd = use_simd(scalar); /* the interior certificate four at a time */
   size_t flagged = 0;
@@ -410,6 +473,9 @@ static int detect(sph_particles *p, const sph_grid *g, const sph_nlist *l, doubl
     sph_arc *buf = NULL;
     uint32_t *cand = NULL;
     size_t cap = 0;
+#if SPH_DIM == 3
+    scratch3 w3 = {NULL, NULL, NULL};
+#endif
 #pragma omp for schedule(dynamic, 256)
     for (long li = 0; li < n; li++) {
       const size_t i = (size_t)li;
@@ -429,7 +495,17 @@ static int detect(sph_particles *p, const sph_grid *g, const sph_nlist *l, doubl
           if (b) buf = b;
           uint32_t *q = g ? realloc(cand, c * sizeof *q) : NULL;
           if (q) cand = q;
-          if (b && (q || !g)) cap = c;
+          int more = b && (q || !g);
+#if SPH_DIM == 3 /* the caps, offsets and radii of the 3-D test */
+          sph_cap *cp = more ? realloc(w3.caps, c * sizeof *cp) : NULL;
+          if (cp) w3.caps = cp;
+          double *op = cp ? realloc(w3.off, 3 * c * sizeof *op) : NULL;
+          if (op) w3.off = op;
+          double *rp = op ? realloc(w3.rad, c * sizeof *rp) : NULL;
+          if (rp) w3.rad = rp;
+          more = rp != NULL;
+#endif
+          if (more) cap = c;
         }
         if (need > cap) {
           oom = 1;
@@ -441,9 +517,16 @@ static int detect(sph_particles *p, const sph_grid *g, const sph_nlist *l, doubl
               for (size_t j = lo[k]; j < hi[k]; j++)
                 cand[m++] = (uint32_t)j;
           }
+#if SPH_DIM == 2
           bit = uncovered(p, i, row, need, f, period, exact_only, equal_h, simd, buf)
                     ? SPH_FLAG_FREE_SURFACE
                     : 0u;
+#else
+          (void)equal_h, (void)simd;
+          bit = uncovered_3d(p, i, row, need, f, period, paxis, exact_only, &w3, buf)
+                    ? SPH_FLAG_FREE_SURFACE
+                    : 0u;
+#endif
         }
       }
       p->flags[i] = (uint8_t)((p->flags[i] & ~SPH_FLAG_FREE_SURFACE) | bit);
@@ -451,6 +534,11 @@ static int detect(sph_particles *p, const sph_grid *g, const sph_nlist *l, doubl
     }
     free(buf);
     free(cand);
+#if SPH_DIM == 3
+    free(w3.caps);
+    free(w3.off);
+    free(w3.rad);
+#endif
   }
   if (oom) return sph_error_set(err, "free surface: out of memory for the arc scratch");
   if (count) *count = flagged;
@@ -466,9 +554,13 @@ static int detect_checked(sph_particles *p, const sph_grid *g, const sph_nlist *
   double hmin = 0.0, hmax = 0.0;
   if (check_particles(p, f, period, &hmin, &hmax, err)) return -1;
   if (p->n == 0) return count ? (*count = 0, 0) : 0;
-  if (g ? check_grid(p, g, f, period, hmax, err) : check_list(p, l, f, period, hmax, err))
+  if (!(fp->paxis >= 0 && fp->paxis < SPH_DIM && (SPH_DIM == 3 || fp->paxis == 0)))
+    return sph_error_set(err, "free surface: no periodic axis %d in %d-D", fp->paxis, SPH_DIM);
+  if (g ? check_grid(p, g, f, period, fp->paxis, hmax, err)
+        : check_list(p, l, f, period, fp->paxis, hmax, err))
     return -1;
-  return detect(p, g, l, f, period, fp->exact_only, hmin == hmax, fp->scalar, count, err);
+  return detect(p, g, l, f, period, fp->paxis, fp->exact_only, hmin == hmax, fp->scalar, count,
+                err);
 }
 
 int sph_freesurface_detect(sph_particles *p, const sph_grid *g, const sph_freesurface_params *fp,

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * freesurface.h - free-surface detection by uncovered arcs (paper A §7,
- * after Dilts).
+ * after Dilts). In 3-D the circle is a sphere and the discs balls: the
+ * same detection with the covering test of sphere_cover.h.
  *
  * Every particle i is a circle of radius R_i = f h_i (f: the radius factor,
  * 1 in paper A). Fluid particle i is on the free surface if some arc of its
@@ -73,11 +74,12 @@ typedef struct sph_freesurface_params {
                            oracle of the tests; the flags are the same) */
   int scalar;           /* 1: the interior certificate one neighbour at a time even where the
                            processor has AVX2 (tests, SPH_TEST_LANES; the flags are the same) */
+  int paxis;            /* the axis of the period: 0 (x); in 3-D also 1 (y) or 2 (z) */
 } sph_freesurface_params;
 
 /* Paper A: the circle of radius h_i; not periodic. */
 #define SPH_FREESURFACE_DEFAULTS                                                                   \
-  { .radius_factor = 1.0, .period = 0.0, .exact_only = 0, .scalar = 0 }
+  { .radius_factor = 1.0, .period = 0.0, .exact_only = 0, .scalar = 0, .paxis = 0 }
 
 /* A closed arc [lo, hi] of a circle, angles in radians measured
  * counter-clockwise from +x. */
