@@ -130,8 +130,15 @@ static int fit_at(const sph_particles *p, const layout *g, const sph_wall_veloci
   int nc[3] = {1, 1, 1};
   for (int a = SPH_DIM - 1; a >= 0; a--) /* (the order of 2-D's first reach test: y, then x) */
     if ((nc[a] = cells_near(g, a, x[a], cells[a])) == 0) return 0;
-  /* linear MLS moments: A = sum W e e^T, b = sum W f e, e = (1, x_j - x) */
-  double A[FIT_N][FIT_N] = {{0.0}}, b[SPH_FIT_MAX][FIT_N] = {{0.0}};
+  /* linear MLS moments: A = sum W e e^T, b = sum W f e, e = (1, x_j - x), in
+   * scalars (the 2-D loop's registers) */
+  double sw = 0.0, a01 = 0.0, a02 = 0.0, a11 = 0.0, a12 = 0.0, a22 = 0.0;
+  double sf[SPH_FIT_MAX] = {0.0}, b1[SPH_FIT_MAX] = {0.0}, b2[SPH_FIT_MAX] = {0.0};
+#if SPH_DIM == 3
+  double a03 = 0.0, a13 = 0.0, a23 = 0.0, a33 = 0.0, b3[SPH_FIT_MAX] = {0.0};
+  double per[3] = {0.0, 0.0, 0.0}; /* the period along each axis (0: none) */
+  per[g->paxis] = g->period;
+#endif
   for (int kz = 0; kz < nc[2]; kz++)
     for (int ky = 0; ky < nc[1]; ky++)
       for (int kx = 0; kx < nc[0]; kx++) {
@@ -139,39 +146,52 @@ static int fit_at(const sph_particles *p, const layout *g, const sph_wall_veloci
         SPH_IF3(cell += (size_t)(cells[2][kz] * g->n[0] * g->n[1]);)
         for (size_t q = w->start[cell]; q < w->start[cell + 1]; q++) {
           const size_t j = w->idx[q];
-          double e[FIT_N], r2 = 0.0;
-          e[0] = 1.0;
-          for (int a = 0; a < SPH_DIM; a++) {
-            const double d = x[a] - p->pos[a][j];
-            const double da = a == g->paxis ? sph_grid_min_image(d, g->period) : d;
-            r2 += da * da;
-            e[a + 1] = -da; /* x_j - x */
-          }
-          const double hj = p->h[j];
+#if SPH_DIM == 2 /* periodic along x only */
+          const double dx = sph_grid_min_image(x[0] - p->x[j], g->period), dy = x[1] - p->y[j];
+#else
+          const double dx = sph_grid_min_image(x[0] - p->x[j], per[0]),
+                       dy = sph_grid_min_image(x[1] - p->y[j], per[1]),
+                       dz = sph_grid_min_image(x[2] - p->z[j], per[2]);
+#endif
+          const double r2 = SPH_NORM2(dx, dy, dz), hj = p->h[j];
           if (r2 >= SPH_CUBIC_SUPPORT * SPH_CUBIC_SUPPORT * hj * hj) continue;
           const double wj = sph_cubic_w(sqrt(r2), hj);
-          A[0][0] += wj;
-          for (int r = 1; r < FIT_N; r++) {
-            A[0][r] += wj * e[r];
-            for (int k = r; k < FIT_N; k++)
-              A[r][k] += wj * e[r] * e[k];
-          }
+          const double ex = -dx, ey = -dy; /* x_j - x */
+          SPH_IF3(const double ez = -dz;)
+          sw += wj;
+          a01 += wj * ex;
+          a02 += wj * ey;
+          a11 += wj * ex * ex;
+          a12 += wj * ex * ey;
+          a22 += wj * ey * ey;
+          SPH_IF3(a03 += wj * ez; a13 += wj * ex * ez; a23 += wj * ey * ez; a33 += wj * ez * ez;)
           for (int m = 0; m < nf; m++) {
-            const double fj = f[m][j];
-            if (fmax && fj > fmax[m]) fmax[m] = fj;
-            b[m][0] += wj * fj;
-            for (int r = 1; r < FIT_N; r++)
-              b[m][r] += wj * e[r] * fj;
+            if (fmax && f[m][j] > fmax[m]) fmax[m] = f[m][j];
+            sf[m] += wj * f[m][j];
+            b1[m] += wj * ex * f[m][j];
+            b2[m] += wj * ey * f[m][j];
+            SPH_IF3(b3[m] += wj * ez * f[m][j];)
           }
         }
       }
-  if (!(A[0][0] > 0.0)) return 0;
+  if (!(sw > 0.0)) return 0;
   for (int m = 0; m < nf; m++) {
-    fit[FIT_N * m] = b[m][0] / A[0][0];
+    fit[FIT_N * m] = sf[m] / sw;
     for (int r = 1; r < FIT_N; r++)
       fit[FIT_N * m + r] = 0.0;
   }
-  solve_fit((const double(*)[FIT_N])A, (const double(*)[FIT_N])b, nf, fit);
+#if SPH_DIM == 2
+  const double A[FIT_N][FIT_N] = {{sw, a01, a02}, {a01, a11, a12}, {a02, a12, a22}};
+#else
+  const double A[FIT_N][FIT_N] = {
+      {sw, a01, a02, a03}, {a01, a11, a12, a13}, {a02, a12, a22, a23}, {a03, a13, a23, a33}};
+#endif
+  double b[SPH_FIT_MAX][FIT_N];
+  for (int m = 0; m < nf; m++) {
+    b[m][0] = sf[m], b[m][1] = b1[m], b[m][2] = b2[m];
+    SPH_IF3(b[m][3] = b3[m];)
+  }
+  solve_fit(A, (const double(*)[FIT_N])b, nf, fit);
   return 1;
 }
 

@@ -301,7 +301,7 @@ static inline double plane_distance(const sph_wall_plane *f, const sph_particles
 #endif
 
 /* Whether fluid particle i is near a wall it may have to be kept off. */
-static int near_any(const sph_walls *w, const sph_particles *p, size_t i, double d_min) {
+static inline int near_any(const sph_walls *w, const sph_particles *p, size_t i, double d_min) {
   int any = 0;
 #if SPH_DIM == 2
   for (size_t l = 0; l < w->n_mirror; l++)
