@@ -38,6 +38,9 @@
  *    far behind a wall, and ones clear of every face stay where they are;
  *    the kick sums m dr and m dv of the moves; the tank's open axis has
  *    no faces.
+ * 4. A repulsive wall particle pushes a fluid particle across the seam of
+ *    a domain periodic along y as it does inside it (the minimum image
+ *    along y; it was along x only).
  */
 #include "config.h"
 
@@ -47,8 +50,10 @@
 #include <string.h>
 
 #include "core/particles.h"
+#include "neighbours/grid.h"
 #include "testutil.h"
 #include "walls/boundary.h"
+#include "walls/repulsion.h"
 #include "walls/wall_velocity.h"
 #include "walls/walls.h"
 
@@ -280,12 +285,57 @@ static void test_keep_off(void) {
   sph_particles_free(&p);
 }
 
+/* ---- 4. repulsive walls across a periodic seam ----------------------------- */
+
+/* The acceleration of a fluid particle at y = yf from a repulsive wall
+ * particle at y = yw, 0.36 dx further along x, on a domain periodic along y
+ * over [0, 0.1), into acc. */
+static void repel(double yf, double yw, double acc[3]) {
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 8, &err) == 0);
+  const double xf[3] = {0.05, yf, 0.05}, xw[3] = {0.05 + 0.0036, yw, 0.05}, v[3] = {0.0};
+  CU_ASSERT_FATAL(sph_particles_add_at(&p, xf, v, RHO0, 1e-3, H, SPH_KIND_FLUID, &err) >= 0);
+  const long w = sph_particles_add_at(&p, xw, v, RHO0, 1e-3, H, SPH_KIND_WALL, &err);
+  CU_ASSERT_FATAL(w >= 0);
+  p.flags[w] = SPH_FLAG_REPULSIVE;
+  sph_grid g;
+  sph_nlist l;
+  sph_grid_init(&g);
+  sph_nlist_init(&l);
+  CU_ASSERT_FATAL(sph_grid_build_periodic(&g, &p, 2.0 * H, SPH_AXIS_Y, 0.0, 0.1, 1u << 20, &err) ==
+                  0);
+  CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, 2.0 * H, 0.0, 0.1, &err) == 0);
+  for (int a = 0; a < 3; a++)
+    p.acc[a][0] = p.acc[a][1] = 0.0;
+  sph_repulsion_add(&p, &l, 1.0, DX, NULL);
+  for (size_t i = 0; i < p.n; i++)
+    if (p.kind[i] == SPH_KIND_FLUID)
+      for (int a = 0; a < 3; a++)
+        acc[a] = p.acc[a][i];
+  sph_nlist_free(&l);
+  sph_grid_free(&g);
+  sph_particles_free(&p);
+}
+
+static void test_repulsion_periodic(void) {
+  double inside[3], across[3];
+  repel(0.05, 0.05 + 0.0048, inside);           /* 0.6 dx apart, both well inside the period */
+  repel(0.0985, 0.0985 + 0.0048 - 0.1, across); /* the same pair across the seam at y = 0.1 */
+  printf("\n    repulsion: (%.6g, %.6g, %.6g) inside, (%.6g, %.6g, %.6g) across the seam",
+         inside[0], inside[1], inside[2], across[0], across[1], across[2]);
+  CU_ASSERT(inside[1] < 0.0 && inside[0] < 0.0); /* pushed away from the wall particle */
+  for (int a = 0; a < 3; a++)
+    CU_ASSERT(fabs(across[a] - inside[a]) <= 1e-9 * fabs(inside[1]));
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
       {"3-D tank: mirror points through faces, edges and corners", test_tank_offsets},
       {"3-D box obstacle: mirror points out through the nearest faces", test_obstacle_offsets},
       {"3-D linear fit: mdbc density and ghost velocity exact for linear fields", test_fit_linear},
       {"3-D keeping off: the tank's faces and a box obstacle", test_keep_off},
+      {"3-D repulsive wall across a periodic seam along y", test_repulsion_periodic},
       CU_TEST_INFO_NULL};
   return sph_test_main("walls_3d", tests);
 }

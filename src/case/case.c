@@ -669,12 +669,12 @@ static int read_tank(const ctx *x, const node *m, sph_case *c) {
 #endif
   if (sph_yaml_get_choice(&x->t, t, p, "boundary", boundary_names, &b) < 0) return -1;
   c->tank.boundary = (sph_boundary_kind)b;
-#if SPH_DIM == 3 /* the box's particles: dynamic, fixed layers or mdbc so far */
-  if (b != SPH_BOUNDARY_DYNAMIC && b != SPH_BOUNDARY_FIXED_LAYERS && b != SPH_BOUNDARY_MDBC) {
+#if SPH_DIM == 3 /* the box's particles: all but mirror walls so far */
+  if (b == SPH_BOUNDARY_MIRROR) {
     const sph_yaml_entry *e = sph_yaml_find(t, "boundary");
     return sph_yaml_fail_at(&x->t, e ? e->val : t, e ? "geometry.tank.boundary" : p,
-                            "expected boundary 'dynamic', 'fixed_layers' or 'mdbc' in 3-D, got "
-                            "'%s' (%s): the other wall models are 2-D only so far",
+                            "expected boundary 'dynamic', 'fixed_layers', 'mdbc' or 'repulsive' in "
+                            "3-D, got '%s' (%s): mirror walls are 2-D only so far",
                             sph_boundary_name(c->tank.boundary),
                             e ? "given" : "numerics.scheme's default");
   }
@@ -1003,8 +1003,8 @@ static int read_periodic(const ctx *x, const node *m, sph_case *c) {
   return 0;
 }
 
-/* geometry.obstacles[i]: {x, y (, z): ranges at least dx wide, layers (1-8, default 2),
- * boundary: dynamic (default), fixed_layers or mdbc}. */
+/* geometry.obstacles[i]: {x, y (, z): ranges at least dx wide, layers (1-8, default 2; 1
+ * for repulsive), boundary: dynamic (default), fixed_layers, mdbc or repulsive}. */
 static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_case *c,
                          sph_obstacle *o) {
   char b[96], kp[SPH_YAML_KEYLEN];
@@ -1025,20 +1025,19 @@ static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_c
     o->lo[a] = v[0];
     o->hi[a] = v[1];
   }
-  o->layers = 2;
-  if (sph_yaml_get_int(&x->t, m, p, "layers", 1, 8, &o->layers) < 0) return -1;
   int bnd = SPH_BOUNDARY_DYNAMIC;
   if (sph_yaml_get_choice(&x->t, m, p, "boundary", boundary_names, &bnd) < 0) return -1;
   o->boundary = (sph_boundary_kind)bnd;
-  if (bnd != SPH_BOUNDARY_DYNAMIC && bnd != SPH_BOUNDARY_FIXED_LAYERS && bnd != SPH_BOUNDARY_MDBC) {
+  if (bnd == SPH_BOUNDARY_MIRROR) {
     sph_yaml_join(kp, sizeof kp, p, "boundary");
     return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "boundary")->val, kp,
-                            "expected 'dynamic', 'fixed_layers' or 'mdbc' (an obstacle is a box of "
-                            "wall particles; the other wall models are not for obstacles yet), "
-                            "got '%s'",
+                            "expected 'dynamic', 'fixed_layers', 'mdbc' or 'repulsive' (an "
+                            "obstacle is a box of wall particles), got '%s'",
                             sph_boundary_name(o->boundary));
   }
-  return 0;
+  o->layers = 2;
+  if (sph_yaml_get_int(&x->t, m, p, "layers", 1, 8, &o->layers) < 0) return -1;
+  return check_layers(x, m, p, o->boundary, &o->layers); /* (repulsive: exactly 1) */
 }
 
 static int read_obstacles(const ctx *x, const node *m, sph_case *c) {

@@ -666,8 +666,7 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
   if (SPH_DEBUG) check_rates(p, w, F);
   if (fp->repulsive) {
     const sph_repulsion_ledger lg = {w->wf, w->wpow, w->lj};
-    sph_repulsion_add(p, l, fp->lj_d, fp->lj_r0, fp->periodic ? fp->period : 0.0,
-                      (F & F_LEDGER) ? &lg : NULL);
+    sph_repulsion_add(p, l, fp->lj_d, fp->lj_r0, (F & F_LEDGER) ? &lg : NULL);
   }
   return 0;
 }

@@ -12,7 +12,7 @@
 #include "core/parallel.h"
 #include "physics/pair_terms.h"
 
-void sph_repulsion_add(sph_particles *p, const sph_nlist *l, double d, double r0, double period,
+void sph_repulsion_add(sph_particles *p, const sph_nlist *l, double d, double r0,
                        const sph_repulsion_ledger *lg) {
   const long n = (long)p->n;
 #pragma omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)
@@ -26,9 +26,9 @@ void sph_repulsion_add(sph_particles *p, const sph_nlist *l, double d, double r0
     for (size_t k = 0; k < cnt; k++) {
       const size_t j = nb[k];
       if (!(p->flags[j] & SPH_FLAG_REPULSIVE)) continue;
-      const double dx = sph_grid_min_image(p->x[i] - p->x[j], period);
-      const double dy = p->y[i] - p->y[j];
-      SPH_IF3(const double dz = p->z[i] - p->z[j];)
+      const double dx = sph_nlist_sep(l, 0, p->x[i], p->x[j]);
+      const double dy = sph_nlist_sep(l, 1, p->y[i], p->y[j]);
+      SPH_IF3(const double dz = sph_nlist_sep(l, 2, p->z[i], p->z[j]);)
       const double r2 = SPH_NORM2(dx, dy, dz);
       if (r2 >= r0 * r0 || r2 == 0.0) continue;
       const double f = lennard_jones_v1(d, r0, r2);

@@ -26,9 +26,9 @@ typedef struct sph_repulsion_ledger {
 
 /* Adds the force of every repulsive wall particle within r0 to the
  * acceleration of each fluid particle, over the neighbour list l (complete
- * for r0); D = d; period > 0 takes the minimum image in x. lg: NULL, or
- * the ledger's sums. */
-void sph_repulsion_add(sph_particles *p, const sph_nlist *l, double d, double r0, double period,
+ * for r0; separations as it measures them, the minimum image along its
+ * periodic axis); D = d. lg: NULL, or the ledger's sums. */
+void sph_repulsion_add(sph_particles *p, const sph_nlist *l, double d, double r0,
                        const sph_repulsion_ledger *lg);
 
 #endif

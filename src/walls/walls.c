@@ -173,10 +173,11 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
 #else
   w->obstacle_floor = tank->present ? tank->z0 + 0.5 * dx : -INFINITY;
 #endif
-  for (size_t k = 0; k < n_obstacles; k++) { /* boxes: dynamic, fixed_layers or mdbc (the reader) */
+  for (size_t k = 0; k < n_obstacles; k++) { /* boxes: any but mirror walls (the reader) */
     const sph_obstacle *o = &obstacles[k];
     if (is_dbc(o->boundary)) w->dbc = 1;
     if (o->boundary == SPH_BOUNDARY_MDBC) w->mdbc = 1;
+    if (o->boundary == SPH_BOUNDARY_REPULSIVE) w->repulsive = 1;
     const size_t first = p->n;
     if (sph_boundary_add_box(p, o, w->obstacle_floor, dx, rho0, wall_mass, h,
                              wall_flags(o->boundary, 0, 0), err))
