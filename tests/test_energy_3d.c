@@ -7,10 +7,10 @@
  * viscosity, step factor 0.15, 2000 fluid particles) closes its balance
  * kinetic + potential + internal - boundary work within 1e-4 of E0 at
  * t = 0.1 s with each wall model the 3-D build has (dynamic, fixed_layers:
- * measured 8.4e-6; repulsive 5.3e-5; mdbc 4.8e-6, and mdbc free-slip
+ * measured 8.4e-6; repulsive 5.3e-5; mirror 1.8e-5; mdbc 4.8e-6, and mdbc free-slip
  * 2.4e-5; the mdbc run the same bits on one thread and two), the momentum
- * balance along every axis to round-off, and the column falls (kinetic energy above 5 % of the potential energy it had
- * above its final centre of mass).
+ * balance along every axis to round-off, and the column falls (kinetic energy above 5 % of the
+ * potential energy it had above its final centre of mass).
  */
 #include "config.h"
 
@@ -72,6 +72,7 @@ static void run_box(const char *model, const char *extra, sph_diag_row *out) {
 static void test_dynamic(void) { run_box("dynamic", NULL, NULL); }
 static void test_fixed_layers(void) { run_box("fixed_layers", NULL, NULL); }
 static void test_repulsive(void) { run_box("repulsive", NULL, NULL); }
+static void test_mirror(void) { run_box("mirror", NULL, NULL); }
 
 /* mdbc walls, and free-slip ones; the mdbc run on one thread and on two
  * gives the same bits (its sums of every particle's energies and momenta) */
@@ -97,6 +98,7 @@ int main(void) {
       {"3-D energy box, dynamic walls: closed within 1e-4", test_dynamic},
       {"3-D energy box, fixed layers: closed within 1e-4", test_fixed_layers},
       {"3-D energy box, repulsive walls: closed within 1e-4", test_repulsive},
+      {"3-D energy box, mirror planes: closed within 1e-4", test_mirror},
       {"3-D energy box, mdbc walls (and free-slip): closed within 1e-4", test_mdbc},
       CU_TEST_INFO_NULL};
   return sph_test_main("energy_3d", tests);

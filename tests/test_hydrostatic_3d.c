@@ -8,9 +8,9 @@
  * - The case reader: a 3-D case reads (gravity (0, 0, -9.81) by default,
  *   the block's surface its z1), the listing says "dimension: 3"; a 2-D
  *   case, a gravity of two components and the keys that are 2-D only so far
- *   (geometry.walls, shifting, a tank's stagger, mirror tanks and
- *   obstacles) are refused with the file, line and key; mdbc and repulsive
- *   tanks and obstacles, free-slip and no-slip tanks read; sph_case_file_dimension
+ *   (geometry.walls, shifting, a tank's stagger, mirror obstacles) are
+ *   refused with the file, line and key; mdbc and repulsive tanks and
+ *   obstacles, free-slip, no-slip and mirror tanks read; sph_case_file_dimension
  *   reads the dimension a --set gives.
  * - Still water 0.1 m deep in a 0.2 x 0.1 m tank at dx = 0.01 m (2000
  *   fluid particles) for 1 s. The pressure as SPH reads a field (the
@@ -119,14 +119,14 @@ static void test_reader(void) {
           "output.probes[0].wetted"); /* a wire gauge is a level probe */
   refused("numerics.shifting={coefficient: 2}", "numerics.shifting");
   refused("geometry.tank.stagger=false", "geometry.tank.stagger");
-  refused("geometry.tank.boundary=mirror", "geometry.tank.boundary");
   refused("geometry.obstacles=[{x: [0.05, 0.1], y: [0.0, 0.05], z: [0.0, 0.05], "
           "boundary: mirror}]",
           "geometry.obstacles[0].boundary");
   refused("geometry.obstacles=[{x: [0.05, 0.1], y: [0.0, 0.05], z: [0.0, 0.05], "
           "boundary: repulsive, layers: 2}]",
           "geometry.obstacles[0].layers: repulsive walls have exactly 1 layer");
-  /* walls with a normal: mdbc (a scheme's tank), free-slip, no-slip; repulsive walls */
+  /* walls with a normal: mdbc (a scheme's tank), free-slip, no-slip; repulsive walls; a
+   * mirror tank */
   static const char *const normal[][2] = {
       {"geometry.tank.boundary=mdbc", "geometry.tank.free_slip=true"},
       {"numerics.scheme=riemann", "geometry.obstacles=[{x: [0.05, 0.1], y: [0.0, 0.05], "
@@ -134,16 +134,18 @@ static void test_reader(void) {
       {"physics.viscosity={model: stress_tensor, mu: 0.001}",
        "geometry.tank.extrapolated_velocity=true"},
       {"geometry.tank.boundary=repulsive", "geometry.obstacles=[{x: [0.05, 0.1], y: [0.0, 0.05], "
-                                           "z: [0.0, 0.05], boundary: repulsive}]"}};
-  for (size_t k = 0; k < 4; k++) {
+                                           "z: [0.0, 0.05], boundary: repulsive}]"},
+      {"geometry.tank.boundary=mirror", "geometry.tank.boundary=mirror"}};
+  for (size_t k = 0; k < 5; k++) {
     const int rc = parse(CASE3, normal[k], 2, &c, &err);
     CU_ASSERT(rc == 0);
     if (rc) {
       printf("\n    %s", err.msg);
       continue;
     }
-    static const sph_boundary_kind want[4] = {SPH_BOUNDARY_MDBC, SPH_BOUNDARY_MDBC,
-                                              SPH_BOUNDARY_DYNAMIC, SPH_BOUNDARY_REPULSIVE};
+    static const sph_boundary_kind want[5] = {SPH_BOUNDARY_MDBC, SPH_BOUNDARY_MDBC,
+                                              SPH_BOUNDARY_DYNAMIC, SPH_BOUNDARY_REPULSIVE,
+                                              SPH_BOUNDARY_MIRROR};
     CU_ASSERT(c.tank.boundary == want[k]);
     CU_ASSERT(c.tank.free_slip == (k == 0) && c.tank.extrapolated == (k == 2));
     if (k == 3) CU_ASSERT(c.tank.layers == 1 && c.obstacles[0].layers == 1);

@@ -41,6 +41,10 @@
  * 4. A repulsive wall particle pushes a fluid particle across the seam of
  *    a domain periodic along y as it does inside it (the minimum image
  *    along y; it was along x only).
+ * 5. Mirror planes: a particle near a corner of a mirror tank gets seven
+ *    images (faces, edges, the corner), positions reflected and velocities
+ *    reversed along those axes, vh = -v; near one face one; above the side
+ *    walls' top within the reach the side's; images hold rho0 and 0 at least.
  */
 #include "config.h"
 
@@ -285,6 +289,59 @@ static void test_keep_off(void) {
   sph_particles_free(&p);
 }
 
+/* ---- 5. mirror planes ------------------------------------------------------ */
+
+/* A 3-D mirror tank (x 0..0.1, y 0..0.06, z 0..0.05, reach 0.02): a fluid
+ * particle near a lower corner gets seven images (three faces, three edges,
+ * the corner), each its position reflected in those planes and its velocity
+ * reversed along their axes, with vh = -v; one near a single face gets one;
+ * one above the side walls' top by less than the reach is mirrored in the
+ * side (the plane spans it), one farther away in none; images never below
+ * rho0 and 0. */
+static void test_mirror_planes(void) {
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 64, &err) == 0);
+  const double corner[3] = {0.004, 0.003, 0.002}, face[3] = {0.05, 0.03, 0.01},
+               above[3] = {0.005, 0.03, 0.06}, far[3] = {0.005, 0.03, 0.08},
+               v[3] = {0.1, -0.2, 0.3};
+  const double *at[4] = {corner, face, above, far};
+  for (int k = 0; k < 4; k++)
+    CU_ASSERT_FATAL(sph_particles_add_at(&p, at[k], v, k == 1 ? 990.0 : 1001.0, 1e-3, H,
+                                         SPH_KIND_FLUID, &err) == k);
+  p.p[0] = 50.0, p.p[1] = -10.0;
+  const sph_tank t = tank(0);
+  sph_wall_plane pl[5];
+  const size_t np = sph_tank_planes(&t, 0.02, pl);
+  CU_ASSERT_EQUAL(np, 5);
+  CU_ASSERT_EQUAL(sph_mirror_add_planes(&p, pl, np, 0.02, RHO0, &err), 7 + 1 + 1);
+  CU_ASSERT_EQUAL(p.n, 4 + 9);
+  const double lo[3] = {0.0, 0.0, 0.0};
+  int seen[8] = {0}, good = 1;
+  for (size_t k = 4; k < 11; k++) { /* the corner's images */
+    unsigned axes = 0;
+    for (int a = 0; a < 3; a++) {
+      const int flipped = p.pos[a][k] != corner[a];
+      axes |= (unsigned)flipped << a;
+      const double want_x = flipped ? 2.0 * lo[a] - corner[a] : corner[a];
+      const double want_v = flipped ? -v[a] : v[a];
+      if (fabs(p.pos[a][k] - want_x) > 1e-17 || p.vel[a][k] != want_v || p.velh[a][k] != -v[a])
+        good = 0;
+    }
+    seen[axes]++;
+    good &= p.kind[k] == SPH_KIND_MIRROR && p.rho[k] == 1001.0 && p.p[k] == 50.0;
+  }
+  CU_ASSERT(good);
+  for (int m = 1; m < 8; m++)
+    CU_ASSERT_EQUAL(seen[m], 1); /* each set of the three planes once */
+  /* the face's image: below the floor, density and pressure not below rho0 and 0 */
+  CU_ASSERT(fabs(p.z[11] + 0.01) < 1e-17 && p.x[11] == 0.05 && p.vz[11] == -0.3);
+  CU_ASSERT(p.rho[11] == RHO0 && p.p[11] == 0.0);
+  /* above the side's top, within the reach: mirrored in the side x = 0 */
+  CU_ASSERT(fabs(p.x[12] + 0.005) < 1e-17 && p.z[12] == 0.06);
+  sph_particles_free(&p);
+}
+
 /* ---- 4. repulsive walls across a periodic seam ----------------------------- */
 
 /* The acceleration of a fluid particle at y = yf from a repulsive wall
@@ -336,6 +393,7 @@ int main(void) {
       {"3-D linear fit: mdbc density and ghost velocity exact for linear fields", test_fit_linear},
       {"3-D keeping off: the tank's faces and a box obstacle", test_keep_off},
       {"3-D repulsive wall across a periodic seam along y", test_repulsion_periodic},
+      {"3-D mirror planes: images through faces, edges and corners", test_mirror_planes},
       CU_TEST_INFO_NULL};
   return sph_test_main("walls_3d", tests);
 }

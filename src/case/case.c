@@ -669,16 +669,6 @@ static int read_tank(const ctx *x, const node *m, sph_case *c) {
 #endif
   if (sph_yaml_get_choice(&x->t, t, p, "boundary", boundary_names, &b) < 0) return -1;
   c->tank.boundary = (sph_boundary_kind)b;
-#if SPH_DIM == 3 /* the box's particles: all but mirror walls so far */
-  if (b == SPH_BOUNDARY_MIRROR) {
-    const sph_yaml_entry *e = sph_yaml_find(t, "boundary");
-    return sph_yaml_fail_at(&x->t, e ? e->val : t, e ? "geometry.tank.boundary" : p,
-                            "expected boundary 'dynamic', 'fixed_layers', 'mdbc' or 'repulsive' in "
-                            "3-D, got '%s' (%s): mirror walls are 2-D only so far",
-                            sph_boundary_name(c->tank.boundary),
-                            e ? "given" : "numerics.scheme's default");
-  }
-#endif
   c->tank.layers = default_layers(c->tank.boundary);
   if (sph_yaml_get_int(&x->t, t, p, "layers", 1, 8, &c->tank.layers) < 0) return -1;
   c->tank.stagger = default_stagger(c->tank.boundary);

@@ -178,9 +178,15 @@ static int mdbc_walls(sph_sim *s, sph_error *err) {
 int sph_sim_pass(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   update_h(s);
+#if SPH_DIM == 2
   if (s->walls.n_mirror && sph_mirror_add(&s->p, s->walls.mirror, s->walls.n_mirror,
                                           s->walls.mirror_reach, c->rho0, err) < 0)
     return -1;
+#else
+  if (s->walls.n_mirror && sph_mirror_add_planes(&s->p, s->walls.plane, s->walls.n_plane,
+                                                 s->walls.mirror_reach, c->rho0, err) < 0)
+    return -1;
+#endif
   int rc = neighbours(s, err);
   if (rc == 0 && s->walls.dbc) rc = dbc_bound(s, err);
   if (rc == 0 && s->detect) rc = free_surface(s, err);

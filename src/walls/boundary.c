@@ -271,6 +271,77 @@ long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lin
 #endif
 }
 
+#if SPH_DIM == 3
+size_t sph_tank_planes(const sph_tank *t, double reach, sph_wall_plane out[5]) {
+  const double lo[3] = {t->x0, t->y0, t->z0}, hi[3] = {t->x1, t->y1, t->z1};
+  size_t n = 0;
+  for (int a = 0; a < 3; a++) {
+    if (t->open_along == 1 + a) continue;
+    for (int side = 0; side < (a == 2 ? 1 : 2); side++) { /* no lid */
+      sph_wall_plane *f = &out[n++];
+      f->axis = a;
+      f->dir = side ? -1 : 1;
+      f->at = side ? hi[a] : lo[a];
+      for (int b = 0; b < 3; b++) {
+        const double grow = b == a || t->open_along == 1 + b ? 0.0 : reach;
+        f->lo[b] = lo[b] - grow, f->hi[b] = hi[b] + grow;
+      }
+    }
+  }
+  return n;
+}
+
+long sph_mirror_add_planes(sph_particles *p, const sph_wall_plane *planes, size_t n_planes,
+                           double reach, double rho0, sph_error *err) {
+  const size_t n = p->n;
+  long added = 0;
+  sph_particles_use(p, SPH_ARRAYS_HALF_STEP); /* the images' no-slip velocity */
+  for (size_t i = 0; i < n; i++) {
+    if (p->kind[i] != SPH_KIND_FLUID) continue;
+    int near[5], nn = 0;
+    double dist[5];
+    for (size_t l = 0; l < n_planes && l < 5; l++) {
+      const sph_wall_plane *f = &planes[l];
+      const double d = (p->pos[f->axis][i] - f->at) * (double)f->dir;
+      if (d < 0.0 || d >= reach) continue;
+      int within = 1;
+      for (int b = 0; b < 3; b++)
+        if (b != f->axis && (p->pos[b][i] < f->lo[b] || p->pos[b][i] > f->hi[b])) within = 0;
+      if (!within) continue;
+      near[nn] = (int)l;
+      dist[nn++] = d;
+    }
+    /* every non-empty set of the near planes with distinct axes: through one
+     * face, an edge (two), a corner (three) */
+    for (unsigned mask = 1; mask < 1u << nn; mask++) {
+      double x[3], v[3];
+      unsigned axes = 0;
+      int ok = 1;
+      for (int a = 0; a < 3; a++)
+        x[a] = p->pos[a][i], v[a] = p->vel[a][i];
+      for (int k = 0; k < nn && ok; k++) {
+        if (!(mask >> k & 1u)) continue;
+        const sph_wall_plane *f = &planes[near[k]];
+        if (axes >> f->axis & 1u) ok = 0;
+        axes |= 1u << f->axis;
+        x[f->axis] -= 2.0 * dist[k] * (double)f->dir;
+        v[f->axis] = -v[f->axis];
+      }
+      if (!ok) continue;
+      const int tension = p->rho[i] < rho0;
+      const long k = sph_particles_add_at(p, x, v, tension ? rho0 : p->rho[i], p->mass[i], p->h[i],
+                                          SPH_KIND_MIRROR, err);
+      if (k < 0) return -1;
+      p->p[k] = tension ? 0.0 : p->p[i];
+      for (int a = 0; a < 3; a++)
+        p->velh[a][k] = -p->vel[a][i];
+      added++;
+    }
+  }
+  return added;
+}
+#endif
+
 void sph_mirror_remove(sph_particles *p, size_t *perm, void *work) {
   size_t kept = 0;
   for (size_t i = 0; i < p->n; i++)

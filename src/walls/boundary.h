@@ -88,6 +88,30 @@ sph_mirror_line sph_mirror_segment_line(double ax, double ay, double bx, double 
  * sources. Returns the number added, or -1. */
 long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lines, double reach,
                     double rho0, sph_error *err);
+#if SPH_DIM == 3
+/* A face of a box tank in 3-D: the plane x[axis] = at, its normal into the
+ * fluid along +axis (dir 1) or -axis (dir -1), spanning [lo, hi] along the
+ * other axes. */
+typedef struct sph_wall_plane {
+  int axis, dir;
+  double at, lo[3], hi[3];
+} sph_wall_plane;
+
+/* The inner faces of a 3-D tank: the floor and the sides, but for the two
+ * normal to the axis the tank is open along; each spans the tank's inner
+ * box grown by `reach` along the other axes (0: the faces as they are).
+ * Into out (room for 5); their number. */
+size_t sph_tank_planes(const sph_tank *t, double reach, sph_wall_plane out[5]);
+
+/* sph_mirror_add with mirror planes (a 3-D mirror tank): a fluid particle
+ * closer than `reach` to a plane in front of it, within its span, gets its
+ * image through it; one near two or three planes of different axes (an
+ * edge, a corner) also the images through each pair and through all three,
+ * their reflected velocity reversed along each of those axes. */
+long sph_mirror_add_planes(sph_particles *p, const sph_wall_plane *planes, size_t n_planes,
+                           double reach, double rho0, sph_error *err);
+#endif
+
 /* Removes every mirror particle, keeping the others in order. perm needs
  * n entries, work n doubles. */
 void sph_mirror_remove(sph_particles *p, size_t *perm, void *work);

@@ -76,28 +76,6 @@ static long drop_overlaps(sph_particles *p, size_t from, size_t first, double dx
   return dropped;
 }
 
-#if SPH_DIM == 3
-/* The inner faces of a 3-D tank: the floor and the sides, but for the two
- * normal to the axis the tank is open along; each spans the tank's inner
- * box. Into out (room for 5); their number. */
-static size_t tank_planes(const sph_tank *t, sph_wall_plane out[5]) {
-  const double lo[3] = {t->x0, t->y0, t->z0}, hi[3] = {t->x1, t->y1, t->z1};
-  size_t n = 0;
-  for (int a = 0; a < 3; a++) {
-    if (t->open_along == 1 + a) continue;
-    for (int side = 0; side < (a == 2 ? 1 : 2); side++) { /* no lid */
-      sph_wall_plane *f = &out[n++];
-      f->axis = a;
-      f->dir = side ? -1 : 1;
-      f->at = side ? hi[a] : lo[a];
-      for (int b = 0; b < 3; b++)
-        f->lo[b] = lo[b], f->hi[b] = hi[b];
-    }
-  }
-  return n;
-}
-#endif
-
 int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
                      const sph_wall_segment *segments, size_t n_segments,
                      const sph_obstacle *obstacles, size_t n_obstacles, double dx, double rho0,
@@ -120,7 +98,13 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
   }
   if (tank->present) {
     if (tank->boundary == SPH_BOUNDARY_MIRROR) {
+#if SPH_DIM == 2
       w->n_mirror += sph_mirror_tank_lines(tank, mirror_reach, w->mirror);
+#else /* mirror planes, kept off as the faces of a particle tank are */
+      w->n_plane = sph_tank_planes(tank, mirror_reach, w->plane);
+      w->n_mirror = w->n_plane;
+      w->face_reach = mirror_reach;
+#endif
     } else {
       if (sph_boundary_add_tank(p, tank, dx, rho0, wall_mass, h,
                                 wall_flags(tank->boundary, tank->extrapolated, tank->free_slip),
@@ -132,7 +116,7 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
       w->n_face = sph_mirror_tank_lines(tank, 0.0, w->face);
       w->face_reach = (tank->stagger ? 0.5 : 1.0) * dx * (double)tank->layers;
 #else /* (a 3-D tank's layers are dx apart) */
-      w->n_plane = tank_planes(tank, w->plane);
+      w->n_plane = sph_tank_planes(tank, 0.0, w->plane);
       w->face_reach = dx * (double)tank->layers;
 #endif
     }

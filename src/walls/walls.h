@@ -21,16 +21,6 @@
 #include "walls/boundary.h"
 #include "walls/wall_types.h"
 
-#if SPH_DIM == 3
-/* A face of a box of wall particles in 3-D: the plane x[axis] = at, its
- * normal into the fluid along +axis (dir 1) or -axis (dir -1); a tank's
- * face spans [lo, hi] along the other axes. */
-typedef struct sph_wall_plane {
-  int axis, dir;
-  double at, lo[3], hi[3];
-} sph_wall_plane;
-#endif
-
 typedef struct sph_walls {
   sph_mirror_line mirror[SPH_MIRROR_MAX_LINES]; /* mirror walls */
   size_t n_mirror;
@@ -47,7 +37,8 @@ typedef struct sph_walls {
   const sph_wall_segment *segments; /* the case's segments (their motions), not owned */
   size_t n_segments;
 #if SPH_DIM == 3
-  sph_wall_plane plane[5]; /* a tank of wall particles: its inner faces (floor, sides) */
+  sph_wall_plane plane[5]; /* the tank's inner faces (floor, sides); a mirror tank's mirror
+                              planes (then n_mirror = n_plane) */
   size_t n_plane;
 #endif
   const sph_obstacle *obstacles; /* the case's box obstacles, kept off as boxes, not owned */
