@@ -73,7 +73,7 @@ static int free_surface(sph_sim *s, sph_error *err) {
       .exact_only = 0,
       /* the portable and scalar loops: no AVX2 here either */
       .scalar = s->fp.loop == SPH_LOOP_SCALAR || s->fp.loop == SPH_LOOP_LANES,
-      .paxis = c->periodic ? c->periodic_axis : 0};
+      .paxis = s->fp.paxis};
   const int hstar = c->fs_h_factor > 0.0;
   if (hstar) sph_freesurface_apply_h(&s->p, c->h, 1.0);
   if (sph_freesurface_detect_list(&s->p, &s->nl, &fp, &s->n_surface, err)) return -1;

@@ -202,21 +202,22 @@ sph_mirror_line sph_mirror_segment_line(double ax, double ay, double bx, double 
   return (sph_mirror_line){ax, ay, ly / len, -lx / len, -len, 0.0};
 }
 
-/* The image of fluid particle i at (x, y): its velocity reflected in the
- * line(s), (vx, vy), and its no-slip velocity -v_i in vxh, vyh; its
+/* The image of fluid particle i at x: its velocity reflected in the
+ * line(s) or plane(s), v, and its no-slip velocity -v_i in velh; its
  * density, and pressure, never below rho0 and 0. */
-#if SPH_DIM == 2
-static long add_image(sph_particles *p, size_t i, double x, double y, double vx, double vy,
+static long add_image(sph_particles *p, size_t i, const double x[SPH_DIM], const double v[SPH_DIM],
                       double rho0, sph_error *err) {
   const int tension = p->rho[i] < rho0;
-  const long k = sph_particles_add(p, x, y, vx, vy, tension ? rho0 : p->rho[i], p->mass[i], p->h[i],
-                                   SPH_KIND_MIRROR, err);
+  const long k = sph_particles_add_at(p, x, v, tension ? rho0 : p->rho[i], p->mass[i], p->h[i],
+                                      SPH_KIND_MIRROR, err);
   if (k < 0) return k;
   p->p[k] = tension ? 0.0 : p->p[i];
-  p->vxh[k] = -p->vx[i];
-  p->vyh[k] = -p->vy[i];
+  for (int a = 0; a < SPH_DIM; a++)
+    p->velh[a][k] = -p->vel[a][i];
   return k;
 }
+
+#if SPH_DIM == 2
 
 /* v reflected in the line with unit normal (nx, ny). */
 static void reflect_velocity(double nx, double ny, double *vx, double *vy) {
@@ -247,9 +248,8 @@ long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lin
       near[nn++] = (int)l;
       double vx = p->vx[i], vy = p->vy[i];
       reflect_velocity(L->nx, L->ny, &vx, &vy);
-      if (add_image(p, i, p->x[i] - 2.0 * d * L->nx, p->y[i] - 2.0 * d * L->ny, vx, vy, rho0, err) <
-          0)
-        return -1;
+      const double at[2] = {p->x[i] - 2.0 * d * L->nx, p->y[i] - 2.0 * d * L->ny}, v[2] = {vx, vy};
+      if (add_image(p, i, at, v, rho0, err) < 0) return -1;
       added++;
     }
     for (int a = 0; a < nn; a++) /* corners: the image through two perpendicular lines */
@@ -263,7 +263,8 @@ long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lin
         double vx = p->vx[i], vy = p->vy[i];
         reflect_velocity(A->nx, A->ny, &vx, &vy);
         reflect_velocity(B->nx, B->ny, &vx, &vy);
-        if (add_image(p, i, x, y, vx, vy, rho0, err) < 0) return -1;
+        const double at[2] = {x, y}, v[2] = {vx, vy};
+        if (add_image(p, i, at, v, rho0, err) < 0) return -1;
         added++;
       }
   }
@@ -328,13 +329,7 @@ long sph_mirror_add_planes(sph_particles *p, const sph_wall_plane *planes, size_
         v[f->axis] = -v[f->axis];
       }
       if (!ok) continue;
-      const int tension = p->rho[i] < rho0;
-      const long k = sph_particles_add_at(p, x, v, tension ? rho0 : p->rho[i], p->mass[i], p->h[i],
-                                          SPH_KIND_MIRROR, err);
-      if (k < 0) return -1;
-      p->p[k] = tension ? 0.0 : p->p[i];
-      for (int a = 0; a < 3; a++)
-        p->velh[a][k] = -p->vel[a][i];
+      if (add_image(p, i, x, v, rho0, err) < 0) return -1;
       added++;
     }
   }
