@@ -8,7 +8,8 @@
  * kinetic + potential + internal - boundary work within 1e-4 of E0 at
  * t = 0.1 s with each wall model the 3-D build has (dynamic, fixed_layers:
  * measured 8.4e-6; repulsive 5.3e-5; mirror 1.8e-5; mdbc 4.8e-6, and mdbc free-slip
- * 2.4e-5; the mdbc run the same bits on one thread and two), the momentum
+ * 2.4e-5; the mdbc run the same bits on one thread and two; mdbc with
+ * particle shifting, its moves booked), the momentum
  * balance along every axis to round-off, and the column falls (kinetic energy above 5 % of the
  * potential energy it had above its final centre of mass).
  */
@@ -74,6 +75,16 @@ static void test_fixed_layers(void) { run_box("fixed_layers", NULL, NULL); }
 static void test_repulsive(void) { run_box("repulsive", NULL, NULL); }
 static void test_mirror(void) { run_box("mirror", NULL, NULL); }
 
+/* particle shifting with mdbc walls: the ledger books its moves'
+ * potential energy (shifting_drift), and the balance still closes */
+static void test_shifting(void) {
+  sph_diag_row b;
+  run_box("mdbc", "numerics.shifting.coefficient=2", &b);
+  printf(", shifting_drift %.3g J", b.shifting_drift);
+  CU_ASSERT(b.shifting == 1);
+  CU_ASSERT(b.shifting_drift != 0.0);
+}
+
 /* mdbc walls, and free-slip ones; the mdbc run on one thread and on two
  * gives the same bits (its sums of every particle's energies and momenta) */
 static void test_mdbc(void) {
@@ -100,6 +111,7 @@ int main(void) {
       {"3-D energy box, repulsive walls: closed within 1e-4", test_repulsive},
       {"3-D energy box, mirror planes: closed within 1e-4", test_mirror},
       {"3-D energy box, mdbc walls (and free-slip): closed within 1e-4", test_mdbc},
+      {"3-D energy box, mdbc walls and shifting: closed within 1e-4", test_shifting},
       CU_TEST_INFO_NULL};
   return sph_test_main("energy_3d", tests);
 }

@@ -8,7 +8,7 @@
  * - The case reader: a 3-D case reads (gravity (0, 0, -9.81) by default,
  *   the block's surface its z1), the listing says "dimension: 3"; a 2-D
  *   case, a gravity of two components and the keys that are 2-D only so far
- *   (geometry.walls, shifting, a tank's stagger, mirror obstacles) are
+ *   (geometry.walls, gauges, a tank's stagger, mirror obstacles) are
  *   refused with the file, line and key; mdbc and repulsive tanks and
  *   obstacles, free-slip, no-slip and mirror tanks read; sph_case_file_dimension
  *   reads the dimension a --set gives.
@@ -117,7 +117,6 @@ static void test_reader(void) {
   refused("output.probes=[{name: P1, kind: pressure, at: [0.1, 0.05, 0.0], normal: [0, 0, 1], "
           "wetted: true}]",
           "output.probes[0].wetted"); /* a wire gauge is a level probe */
-  refused("numerics.shifting={coefficient: 2}", "numerics.shifting");
   refused("geometry.tank.stagger=false", "geometry.tank.stagger");
   refused("geometry.obstacles=[{x: [0.05, 0.1], y: [0.0, 0.05], z: [0.0, 0.05], "
           "boundary: mirror}]",
@@ -126,7 +125,7 @@ static void test_reader(void) {
           "boundary: repulsive, layers: 2}]",
           "geometry.obstacles[0].layers: repulsive walls have exactly 1 layer");
   /* walls with a normal: mdbc (a scheme's tank), free-slip, no-slip; repulsive walls; a
-   * mirror tank */
+   * mirror tank; particle shifting */
   static const char *const normal[][2] = {
       {"geometry.tank.boundary=mdbc", "geometry.tank.free_slip=true"},
       {"numerics.scheme=riemann", "geometry.obstacles=[{x: [0.05, 0.1], y: [0.0, 0.05], "
@@ -135,20 +134,22 @@ static void test_reader(void) {
        "geometry.tank.extrapolated_velocity=true"},
       {"geometry.tank.boundary=repulsive", "geometry.obstacles=[{x: [0.05, 0.1], y: [0.0, 0.05], "
                                            "z: [0.0, 0.05], boundary: repulsive}]"},
-      {"geometry.tank.boundary=mirror", "geometry.tank.boundary=mirror"}};
-  for (size_t k = 0; k < 5; k++) {
+      {"geometry.tank.boundary=mirror", "geometry.tank.boundary=mirror"},
+      {"geometry.tank.boundary=mdbc", "numerics.shifting={coefficient: 2}"}};
+  for (size_t k = 0; k < 6; k++) {
     const int rc = parse(CASE3, normal[k], 2, &c, &err);
     CU_ASSERT(rc == 0);
     if (rc) {
       printf("\n    %s", err.msg);
       continue;
     }
-    static const sph_boundary_kind want[5] = {SPH_BOUNDARY_MDBC, SPH_BOUNDARY_MDBC,
+    static const sph_boundary_kind want[6] = {SPH_BOUNDARY_MDBC,    SPH_BOUNDARY_MDBC,
                                               SPH_BOUNDARY_DYNAMIC, SPH_BOUNDARY_REPULSIVE,
-                                              SPH_BOUNDARY_MIRROR};
+                                              SPH_BOUNDARY_MIRROR,  SPH_BOUNDARY_MDBC};
     CU_ASSERT(c.tank.boundary == want[k]);
     CU_ASSERT(c.tank.free_slip == (k == 0) && c.tank.extrapolated == (k == 2));
     if (k == 3) CU_ASSERT(c.tank.layers == 1 && c.obstacles[0].layers == 1);
+    if (k == 5) CU_ASSERT(c.shifting == 1 && c.shifting_coefficient == 2.0);
     sph_case_free(&c);
   }
   refused("geometry.tank={x: [0.0, 0.2], y: [0.0, 0.1], z: [0.0, 0.05]}",

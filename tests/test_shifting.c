@@ -57,8 +57,7 @@ static void make(lattice *L, int nx, int ny, int walls, double vx, double vy) {
     for (int i = -3; i < nx + 3; i++)
       CU_ASSERT_FATAL(sph_particles_add(&L->p, (i + 0.5) * DX, -(j + 0.5) * DX, 0, 0, RHO,
                                         RHO * DX * DX, H, SPH_KIND_WALL, &err) >= 0);
-  L->sp =
-      (sph_shifting_params){SPH_SHIFTING_COEFFICIENT_DEFAULT, H, DX, SPH_KERNEL_CUBIC_SPLINE, 0.0};
+  L->sp = (sph_shifting_params){SPH_SHIFTING_COEFFICIENT_DEFAULT, H, DX, SPH_KERNEL_CUBIC_SPLINE};
 }
 
 /* The grid and neighbour list of the particles' current positions. */
@@ -85,6 +84,14 @@ static size_t at(const lattice *L, int64_t k) {
   return 0;
 }
 
+/* sph_shifting_displacement into two named components */
+static void shift(const sph_shifting_sums *s, double diffusivity, double *dx, double *dy) {
+  double d[SPH_DIM];
+  sph_shifting_displacement(s, diffusivity, d);
+  *dx = d[0];
+  *dy = d[1];
+}
+
 /* A neighbour's share of grad C: V |grad W| at r = dx. */
 static double share(void) {
   double w, dw;
@@ -105,7 +112,7 @@ static void test_interior_still(void) {
   CU_ASSERT(hypot(s.tgx, s.tgy) <= 1e-9 * share());
   CU_ASSERT(fabs(s.div - 2.0) <= 0.06);
   double dx, dy;
-  sph_shifting_displacement(&s, SPH_SHIFTING_COEFFICIENT_DEFAULT * H * 1.0 * 1e-4, &dx, &dy);
+  shift(&s, SPH_SHIFTING_COEFFICIENT_DEFAULT * H * 1.0 * 1e-4, &dx, &dy);
   CU_ASSERT(hypot(dx, dy) <= 1e-12 * DX);
   drop(&L);
 }
@@ -119,7 +126,7 @@ static void test_clump_pushed_apart(void) {
   const size_t c = at(&L, (int64_t)c0), r = at(&L, (int64_t)c0 + 1);
   const double dt = 1e-4;
   double d[2][2], twice[2], still[2];
-  sph_shifting_compute(&L.p, &L.l, &L.sp, dt, L.p.ax, L.p.ay);
+  sph_shifting_compute(&L.p, &L.l, &L.sp, dt, L.p.acc);
   d[0][0] = L.p.ax[c], d[0][1] = L.p.ay[c], d[1][0] = L.p.ax[r], d[1][1] = L.p.ay[r];
   printf("\n  clumped pair: moves %.3e, %.3e dx (x), %.1e, %.1e dx (y)", d[0][0] / DX, d[1][0] / DX,
          d[0][1] / DX, d[1][1] / DX);
@@ -134,11 +141,11 @@ static void test_clump_pushed_apart(void) {
   CU_ASSERT(fabs(d[0][0] - (-D * s.tgx)) <= 1e-12 * fabs(d[0][0]));
   /* Lind's term pushes a pair closer than dx harder than the plain gradient */
   CU_ASSERT(fabs(s.tgx) > fabs(s.gx));
-  sph_shifting_compute(&L.p, &L.l, &L.sp, 2.0 * dt, L.p.ax, L.p.ay);
+  sph_shifting_compute(&L.p, &L.l, &L.sp, 2.0 * dt, L.p.acc);
   twice[0] = L.p.ax[c], twice[1] = L.p.ay[c];
   CU_ASSERT(twice[0] == 2.0 * d[0][0]);
   L.p.vx[c] = L.p.vy[c] = 0.0;
-  sph_shifting_compute(&L.p, &L.l, &L.sp, dt, L.p.ax, L.p.ay);
+  sph_shifting_compute(&L.p, &L.l, &L.sp, dt, L.p.acc);
   still[0] = L.p.ax[c], still[1] = L.p.ay[c];
   CU_ASSERT(still[0] == 0.0 && still[1] == 0.0);
   drop(&L);
@@ -157,18 +164,18 @@ static void test_surface_tangential(void) {
   sph_shifting_sums_of(&L.p, &L.l, &L.sp, at(&L, (int64_t)top), &s);
   printf("\n  top row: div r %.3f", s.div);
   CU_ASSERT(s.div < SPH_SHIFTING_SURFACE_DIV);
-  sph_shifting_displacement(&s, D, &dx, &dy);
+  shift(&s, D, &dx, &dy);
   CU_ASSERT(hypot(dx, dy) <= 1e-12 * DX);
   /* without the correction it would be pushed out, up */
   sph_shifting_sums bulk = s;
   bulk.div = 2.0;
-  sph_shifting_displacement(&bulk, D, &dx, &dy);
+  shift(&bulk, D, &dx, &dy);
   printf(", uncorrected move up %.3e dx", dy / DX);
   CU_ASSERT(dy > 1e-5 * DX);
   /* the moved one goes back along the surface, nothing along its normal */
   sph_shifting_sums_of(&L.p, &L.l, &L.sp, at(&L, (int64_t)side), &s);
   CU_ASSERT(s.div < SPH_SHIFTING_SURFACE_DIV);
-  sph_shifting_displacement(&s, D, &dx, &dy);
+  shift(&s, D, &dx, &dy);
   const double g = hypot(s.gx, s.gy), nx = -s.gx / g, ny = -s.gy / g;
   printf(", moved surface particle: %.3e dx along, %.1e dx normal", dx / DX,
          (dx * nx + dy * ny) / DX);
@@ -185,7 +192,7 @@ static void test_walls_count(void) {
     sph_shifting_sums s;
     sph_shifting_sums_of(&L.p, &L.l, &L.sp, at(&L, 5), &s); /* the first row's middle */
     double dx, dy;
-    sph_shifting_displacement(&s, SPH_SHIFTING_COEFFICIENT_DEFAULT * H * 1e-4, &dx, &dy);
+    shift(&s, SPH_SHIFTING_COEFFICIENT_DEFAULT * H * 1e-4, &dx, &dy);
     printf("\n  first row, %d wall layers: div r %.3f, |grad C| %.2e of a share", walls, s.div,
            hypot(s.tgx, s.tgy) / share());
     if (walls) {
@@ -207,7 +214,7 @@ static void test_fluid_only(void) {
     L.p.y[i] += 0.2 * DX * sin(78.233 * (double)i);
   }
   build(&L);
-  sph_shifting_compute(&L.p, &L.l, &L.sp, 1e-4, L.p.ax, L.p.ay);
+  sph_shifting_compute(&L.p, &L.l, &L.sp, 1e-4, L.p.acc);
   size_t moved = 0, wrong = 0;
   const double D = SPH_SHIFTING_COEFFICIENT_DEFAULT * H * 1e-4 * sqrt(1.25);
   for (size_t i = 0; i < L.p.n; i++) {
@@ -218,7 +225,7 @@ static void test_fluid_only(void) {
     sph_shifting_sums s;
     double dx, dy;
     sph_shifting_sums_of(&L.p, &L.l, &L.sp, i, &s);
-    sph_shifting_displacement(&s, D, &dx, &dy);
+    shift(&s, D, &dx, &dy);
     wrong += dx != L.p.ax[i] || dy != L.p.ay[i];
     moved += L.p.ax[i] != 0.0;
   }

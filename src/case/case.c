@@ -1324,8 +1324,7 @@ static int read_probes(const ctx *x, const node *s, sph_case *c) {
 /* Reads every section of the (overridden) tree into c, in schema order. */
 /* The keys a 3-D case may not use yet (doc/dimensions.md): section, key
  * (NULL: the whole section). */
-static const char *const only_2d[][2] = {
-    {"geometry", "walls"}, {"output", "gauges"}, {"numerics", "shifting"}};
+static const char *const only_2d[][2] = {{"geometry", "walls"}, {"output", "gauges"}};
 
 /* The case's dimension: 2 when absent; a case of the other dimension than
  * this build's is refused (sph runs it with the build of its dimension), and

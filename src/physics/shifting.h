@@ -20,12 +20,15 @@
  *                      coefficient of Skillen, Lind, Stansby & Rogers
  *                      (2013); A = numerics.shifting.coefficient, 2 by
  *                      default (their range 1-6);
- *   div r_i  = -sum_j r_ij . grad_i W_ij V_j  (Lee et al. 2008: 2 in the
- *                      bulk in 2-D; on a square lattice at h = 1.3 dx 2.02
- *                      inside, 1.28 in the top row of a flat surface).
+ *   div r_i  = -sum_j r_ij . grad_i W_ij V_j  (Lee et al. 2008: the
+ *                      dimension in the bulk; on a square lattice at
+ *                      h = 1.3 dx 2.02 inside, 1.28 in the top row of a flat
+ *                      surface; on a cubic one 2.98 inside, 2.03 in the top
+ *                      layer).
  *
- * Near the free surface (div r_i < SPH_SHIFTING_SURFACE_DIV = 1.5, the 2-D
- * threshold DualSPHysics uses) only dr_i's part along the surface is kept:
+ * Near the free surface (div r_i < SPH_SHIFTING_SURFACE_DIV: 1.5 in 2-D,
+ * 2.75 in 3-D, the thresholds DualSPHysics documents for its ShiftTFS)
+ * only dr_i's part along the surface is kept:
  * the part along n_i = -grad C_i / |grad C_i| (the plain sum, pointing out
  * of the fluid) is removed, Lind et al.'s (2012) free-surface correction;
  * a surface particle would otherwise be pushed out of the fluid.
@@ -55,37 +58,41 @@ extern "C" {
 /* R and n of Lind et al. (2012) */
 #define SPH_SHIFTING_TENSILE 0.2
 #define SPH_SHIFTING_EXPONENT 4
-/* div r below which a particle counts as near the free surface (2-D) */
+/* div r below which a particle counts as near the free surface */
+#if SPH_DIM == 2
 #define SPH_SHIFTING_SURFACE_DIV 1.5
+#else
+#define SPH_SHIFTING_SURFACE_DIV 2.75
+#endif
 
 typedef struct sph_shifting_params {
   double coefficient; /* A */
   double h, dx;       /* smoothing length and particle spacing */
   sph_kernel_kind kernel;
-  double period; /* > 0: minimum image in x with this period */
 } sph_shifting_params;
 
 /* The sums of one particle's row. */
 typedef struct sph_shifting_sums {
-  double gx, gy;   /* grad C_i, unweighted (the normal) */
-  double tgx, tgy; /* grad C_i with Lind's term (the displacement) */
-  double div;      /* div r_i */
+  SPH_COMPONENTS(double, g, gx, gy, gz);     /* grad C_i, unweighted (the normal) */
+  SPH_COMPONENTS(double, tg, tgx, tgy, tgz); /* grad C_i with Lind's term (the displacement) */
+  double div;                                /* div r_i */
 } sph_shifting_sums;
 
-/* The sums of fluid particle i over its row of l (pairs within 2h). */
+/* The sums of fluid particle i over its row of l (pairs within 2h; the
+ * separations as the list measures them, periodic along its axis). */
 void sph_shifting_sums_of(const sph_particles *p, const sph_nlist *l, const sph_shifting_params *sp,
                           size_t i, sph_shifting_sums *s);
 
-/* The displacement of a particle from its sums, its speed and the step:
- * -A h |v| dt grad C, along the surface only where div r < 1.5. */
-void sph_shifting_displacement(const sph_shifting_sums *s, double diffusivity, double *dx,
-                               double *dy);
+/* The displacement d of a particle from its sums and its diffusivity
+ * A h |v| dt: -A h |v| dt grad C, along the surface only where
+ * div r < SPH_SHIFTING_SURFACE_DIV. */
+void sph_shifting_displacement(const sph_shifting_sums *s, double diffusivity, double d[SPH_DIM]);
 
-/* The displacements (dx[i], dy[i]) of every fluid particle of p for a step
- * of dt (0 for other particles), from l (built on p's current positions,
- * radius >= 2h). */
+/* The displacements d[a][i] along every axis a of every fluid particle i of
+ * p for a step of dt (0 for other particles), from l (built on p's current
+ * positions, radius >= 2h). */
 void sph_shifting_compute(const sph_particles *p, const sph_nlist *l, const sph_shifting_params *sp,
-                          double dt, double *dx, double *dy);
+                          double dt, double *const d[SPH_DIM]);
 
 #ifdef __cplusplus
 }

@@ -48,8 +48,10 @@ void sph_ledger_advance(sph_ledger *lg, double dt) {
   SPH_IF3(lg->impulse_z += dt * lg->force_z;)
 }
 
-void sph_ledger_add_shift(sph_ledger *lg, const double moved[2], const double gravity[SPH_DIM]) {
-  lg->drift_shifting -= gravity[0] * moved[0] + gravity[1] * moved[1];
+void sph_ledger_add_shift(sph_ledger *lg, const double moved[SPH_DIM],
+                          const double gravity[SPH_DIM]) {
+  lg->drift_shifting -=
+      gravity[0] * moved[0] + gravity[1] * moved[1] SPH_IF3(+gravity[2] * moved[2]);
 }
 
 void sph_ledger_add_kick(sph_ledger *lg, const double kick[2 * SPH_DIM],

@@ -91,10 +91,11 @@ void sph_ledger_add_kick(sph_ledger *lg, const double kick[2 * SPH_DIM],
                          const double gravity[SPH_DIM]);
 
 /* What particle shifting did to the fluid in a step (physics/shifting.h:
- * moved = sum m dx, m dy over the fluid): a move no force pays for, whose
- * potential energy -g . moved is booked as drift_shifting (the
+ * moved = sum m dr over the fluid, by axis): a move no force pays for,
+ * whose potential energy -g . moved is booked as drift_shifting (the
  * diagnostics' shifting_drift column), as the XSPH correction's is. */
-void sph_ledger_add_shift(sph_ledger *lg, const double moved[2], const double gravity[SPH_DIM]);
+void sph_ledger_add_shift(sph_ledger *lg, const double moved[SPH_DIM],
+                          const double gravity[SPH_DIM]);
 
 /* sum over fluid particles of m_i u_i */
 double sph_ledger_fluid_internal(const sph_particles *p);

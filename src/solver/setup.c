@@ -418,11 +418,12 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
     goto fail;
   }
   if (c->shifting) { /* the store's size is fixed: shifting takes no mirror walls (case.c) */
-    s->shift_x = malloc(s->p.n * sizeof *s->shift_x);
-    s->shift_y = malloc(s->p.n * sizeof *s->shift_y);
-    if (!s->shift_x || !s->shift_y) {
-      sph_error_set(err, "out of memory");
-      goto fail;
+    for (int a = 0; a < SPH_DIM; a++) {
+      s->shift[a] = malloc(s->p.n * sizeof *s->shift[a]);
+      if (!s->shift[a]) {
+        sph_error_set(err, "out of memory");
+        goto fail;
+      }
     }
   }
   init_wall_density(s);
@@ -461,8 +462,8 @@ void sph_sim_free(sph_sim *s) {
   sph_nlist_free(&s->nl);
   sph_force_work_free(&s->work);
   sph_wall_velocity_work_free(&s->mdbc_work);
-  free(s->shift_x);
-  free(s->shift_y);
+  for (int a = 0; a < SPH_DIM; a++)
+    free(s->shift[a]);
   free(s->parameters);
   free(s);
 }

@@ -342,16 +342,15 @@ static int shift_particles(sph_sim *s, double dt, sph_error *err) {
   const sph_case *c = s->c;
   sph_particles *p = &s->p;
   if (neighbours(s, err)) return -1;
-  const sph_shifting_params sp = {c->shifting_coefficient, c->h, c->dx, c->kernel,
-                                  c->periodic ? s->fp.period : 0.0};
-  sph_shifting_compute(p, &s->nl, &sp, dt, s->shift_x, s->shift_y);
-  double moved[2] = {0.0, 0.0};
+  const sph_shifting_params sp = {c->shifting_coefficient, c->h, c->dx, c->kernel};
+  sph_shifting_compute(p, &s->nl, &sp, dt, s->shift);
+  double moved[SPH_DIM] = {0.0};
   for (size_t i = 0; i < p->n; i++) { /* serial: the sums in storage order */
     if (p->kind[i] != SPH_KIND_FLUID) continue;
-    p->x[i] += s->shift_x[i];
-    p->y[i] += s->shift_y[i];
-    moved[0] += p->mass[i] * s->shift_x[i];
-    moved[1] += p->mass[i] * s->shift_y[i];
+    for (int a = 0; a < SPH_DIM; a++) {
+      p->pos[a][i] += s->shift[a][i];
+      moved[a] += p->mass[i] * s->shift[a][i];
+    }
   }
   if (s->fp.ledger) sph_ledger_add_shift(&s->ledger, moved, c->gravity);
   keep_off_mirrors(s, c->integrator == SPH_INTEGRATOR_LEAPFROG);

@@ -46,7 +46,8 @@ struct sph_sim {
   sph_force_work work;
   sph_wall_velocity_work mdbc_work; /* the mDBC walls' fits (walls/wall_velocity.h) */
   sph_force_params fp;
-  double *shift_x, *shift_y; /* particle shifting's displacements (numerics.shifting), or NULL */
+  double
+      *shift[SPH_DIM]; /* particle shifting's displacements by axis (numerics.shifting), or NULL */
   double t, last_dt;
   double lane_ratio; /* AVX2 / AVX-512 time of the start-up pass (forces.h), 1 if not measured */
   double t_saved;    /* time of the state saved at the start of the last step */
