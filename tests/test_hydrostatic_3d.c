@@ -8,10 +8,10 @@
  * - The case reader: a 3-D case reads (gravity (0, 0, -9.81) by default,
  *   the block's surface its z1), the listing says "dimension: 3"; a 2-D
  *   case, a gravity of two components and the keys that are 2-D only so far
- *   (geometry.walls, gauges, a tank's stagger, mirror obstacles) are
- *   refused with the file, line and key; mdbc and repulsive tanks and
- *   obstacles, free-slip, no-slip and mirror tanks read; sph_case_file_dimension
- *   reads the dimension a --set gives.
+ *   (geometry.walls, a tank's stagger, mirror obstacles) are refused with
+ *   the file, line and key; wave gauges are [x, y] pairs inside the domain; mdbc and repulsive
+ * tanks and obstacles, free-slip, no-slip and mirror tanks read; sph_case_file_dimension reads the
+ * dimension a --set gives.
  * - Still water 0.1 m deep in a 0.2 x 0.1 m tank at dx = 0.01 m (2000
  *   fluid particles) for 1 s. The pressure as SPH reads a field (the
  *   particles' own pressure, layer by layer away from the side walls, less
@@ -105,10 +105,21 @@ static void test_reader(void) {
   CU_ASSERT_PTR_NOT_NULL(d && strstr(d, "geometry.fluid[0].z: [0, 0.10000000000000001]\n"));
   free(d);
   sph_case_free(&c);
+  /* wave gauges: vertical lines at (x, y) */
+  const char *const gauges[1] = {"output.gauges=[[0.1, 0.05], [0.15, 0.02]]"};
+  CU_ASSERT_FATAL(parse(CASE3, gauges, 1, &c, &err) == 0);
+  CU_ASSERT(c.n_gauges == 2 && c.gauges[0] == 0.1 && c.gauges[1] == 0.05 && c.gauges[2] == 0.15 &&
+            c.gauges[3] == 0.02);
+  d = sph_case_describe(&c);
+  CU_ASSERT_PTR_NOT_NULL(d && strstr(d, "output.gauges[1]: [0.14999999999999999, 0.02]\n"));
+  free(d);
+  sph_case_free(&c);
   refused("dimension=2", "dimension");
   refused("physics.gravity=[0, -9.81]", "physics.gravity");
   refused("geometry.walls=[{from: [0, 0], to: [1, 0]}]", "geometry.walls");
-  refused("output.gauges=[0.1]", "output.gauges");
+  refused("output.gauges=[0.1]", "output.gauges[0]: expected a list of 2 numbers");
+  refused("output.gauges=[[0.1, 0.05], [0.1, 9.0]]",
+          "output.gauges[1]: y = 9 is outside the domain");
   refused("output.probes=[{name: P1, kind: pressure, at: [0.1, 0.05, 0.0]}]",
           "output.probes[0].normal"); /* a 3-D sensor needs its face's normal */
   refused("output.probes=[{name: P1, kind: pressure, at: [0.1, 0.0, 0.0], normal: [0, 0, 0]}]",

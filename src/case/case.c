@@ -1324,7 +1324,7 @@ static int read_probes(const ctx *x, const node *s, sph_case *c) {
 /* Reads every section of the (overridden) tree into c, in schema order. */
 /* The keys a 3-D case may not use yet (doc/dimensions.md): section, key
  * (NULL: the whole section). */
-static const char *const only_2d[][2] = {{"geometry", "walls"}, {"output", "gauges"}};
+static const char *const only_2d[][2] = {{"geometry", "walls"}};
 
 /* The case's dimension: 2 when absent; a case of the other dimension than
  * this build's is refused (sph runs it with the build of its dimension), and
@@ -1435,21 +1435,27 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
   char gk[SPH_YAML_KEYLEN];
   if (rc >= 0 && s && sph_yaml_lookup(&x->t, s, "output", "gauges", 0, &gl, gk) > 0) {
     char b[96];
+    enum { H = SPH_DIM - 1 }; /* a gauge's horizontal coordinates */
     if (gl->kind != SPH_YAML_LIST || gl->n == 0)
-      return sph_yaml_fail_at(&x->t, gl, gk, "expected a non-empty list of x positions, got %s",
+      return sph_yaml_fail_at(&x->t, gl, gk, "expected a non-empty list of %s, got %s",
+                              H == 1 ? "x positions" : "[x, y] positions",
                               sph_yaml_got(gl, b, sizeof b));
-    if (!(c->gauges = calloc(gl->n, sizeof *c->gauges))) return sph_yaml_oom(&x->t);
+    if (!(c->gauges = calloc(gl->n * H, sizeof *c->gauges))) return sph_yaml_oom(&x->t);
     c->n_gauges = gl->n;
     double box[2 * SPH_DIM];
     reach_box(c, box);
     for (size_t i = 0; i < gl->n; i++) {
       char ik[SPH_YAML_KEYLEN];
+      double *at = c->gauges + i * H;
       sph_yaml_bprintf(ik, sizeof ik, "output.gauges[%zu]", i);
-      if (sph_yaml_read_number(&x->t, gl->items[i], ik, &SPH_YAML_ANY, &c->gauges[i])) return -1;
-      if (!(c->gauges[i] >= box[0] && c->gauges[i] <= box[1])) {
-        sph_yaml_bprintf(b, sizeof b, "x = %g", c->gauges[i]);
-        return outside_reach(x, gl->items[i], ik, b, box);
-      }
+      if (H == 1 ? sph_yaml_read_number(&x->t, gl->items[i], ik, &SPH_YAML_ANY, at)
+                 : sph_yaml_read_vector(&x->t, gl->items[i], ik, H, at))
+        return -1;
+      for (int a = 0; a < H; a++)
+        if (!(at[a] >= box[2 * a] && at[a] <= box[2 * a + 1])) {
+          sph_yaml_bprintf(b, sizeof b, "%c = %g", "xy"[a], at[a]);
+          return outside_reach(x, gl->items[i], ik, b, box);
+        }
     }
   }
   if (rc >= 0 && s && read_probes(x, s, c)) return -1;

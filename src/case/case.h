@@ -144,9 +144,10 @@ typedef struct sph_case {
   int snapshots;           /* write HDF5 snapshots, default 1 */
   int output_free_surface; /* write the free_surface field, default 0 */
   int energy;              /* energy ledger (output.energy), default 0 */
-  size_t n_gauges;         /* output.gauges: wave gauges at these x (gauges.csv) */
-  double *gauges;
-  size_t n_probes; /* output.probes (probes.csv) */
+  size_t n_gauges;         /* output.gauges: wave gauges (gauges.csv) */
+  double *gauges;          /* n_gauges x (SPH_DIM - 1): each gauge's x (2-D), or x, y (3-D: the
+                              vertical line at (x, y)) */
+  size_t n_probes;         /* output.probes (probes.csv) */
   sph_probe *probes;
   double probe_interval; /* output.probe_interval: time between probe rows, 0 = every step */
 

@@ -212,7 +212,11 @@ char *sph_case_describe(const sph_case *c) {
   sb_add(&b, "output.free_surface: %s\n", c->output_free_surface ? "true" : "false");
   sb_add(&b, "output.energy: %s\n", c->energy ? "true" : "false");
   for (size_t i = 0; i < c->n_gauges; i++)
+#if SPH_DIM == 2
     sb_add(&b, "output.gauges[%zu]: %.17g\n", i, c->gauges[i]);
+#else
+    sb_add(&b, "output.gauges[%zu]: [%.17g, %.17g]\n", i, c->gauges[2 * i], c->gauges[2 * i + 1]);
+#endif
   for (size_t i = 0; i < c->n_probes; i++) {
     const sph_probe *q = &c->probes[i];
     sb_add(&b, "output.probes[%zu]: %s %s", i, q->name, sph_probe_kind_name(q->kind));

@@ -29,6 +29,17 @@ double sph_diag_surface_at(const sph_particles *p, double x, double half, double
   return top + 0.5 * dx;
 }
 
+#if SPH_DIM == 3
+double sph_diag_surface_at_xy(const sph_particles *p, double x, double y, double half, double dx) {
+  double top = -INFINITY;
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_FLUID && fabs(p->x[i] - x) < half && fabs(p->y[i] - y) < half &&
+        p->z[i] > top)
+      top = p->z[i];
+  return top + 0.5 * dx;
+}
+#endif
+
 void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[SPH_DIM],
                       sph_diag_row *row) {
   size_t n = 0;

@@ -74,6 +74,11 @@ double sph_diag_front(const sph_particles *p, double floor_y, double band);
  * plus dx/2 (the top of its lattice cell): the free-surface level at x,
  * read as a gauge would. -inf if no fluid particle is there. */
 double sph_diag_surface_at(const sph_particles *p, double x, double half, double dx);
+#if SPH_DIM == 3
+/* The same on the vertical line at (x, y): the highest fluid particle
+ * centre with |x_i - x| < half and |y_i - y| < half, plus dx/2. */
+double sph_diag_surface_at_xy(const sph_particles *p, double x, double y, double half, double dx);
+#endif
 /* Fills every column but time, step and dt. */
 void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[SPH_DIM],
                       sph_diag_row *row);

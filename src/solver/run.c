@@ -63,16 +63,20 @@ static void outputs_free(outputs *o) {
 
 /* One row of gauges.csv: time, then each gauge's elevation above its level
  * at t = 0. The level is the top of the highest fluid particle within dx
- * of the gauge (diag.h), or the case's floor (sph_sim_floor) where no
- * water is: a gauge over a dry bed reads 0 until the water arrives, then
- * the depth, and every value is finite. */
+ * of the gauge (diag.h; in 3-D within dx along x and along y), or the case's floor (sph_sim_floor)
+ * where no water is: a gauge over a dry bed reads 0 until the water arrives, then the depth, and
+ * every value is finite. */
 static int write_gauges(sph_sim *s, outputs *o, sph_error *err) {
   const sph_case *c = sph_sim_case(s);
   const sph_particles *p = sph_sim_particles(s);
   if (!o->gauges) return 0;
   if (fprintf(o->gauges, "%.17g", sph_sim_time(s)) < 0) goto fail;
   for (size_t g = 0; g < c->n_gauges; g++) {
+#if SPH_DIM == 2
     double level = sph_diag_surface_at(p, c->gauges[g], c->dx, c->dx);
+#else
+    double level = sph_diag_surface_at_xy(p, c->gauges[2 * g], c->gauges[2 * g + 1], c->dx, c->dx);
+#endif
     if (!isfinite(level)) level = sph_sim_floor(s); /* dry */
     if (sph_sim_time(s) == 0.0) o->still[g] = level;
     if (fprintf(o->gauges, ",%.17g", level - o->still[g]) < 0) goto fail;
@@ -319,7 +323,11 @@ static char *csv_header(const sph_case *c, int what) {
     bad = sph_csv_put_column(m, "time", 1) != 0;
     for (size_t g = 0; !bad && g < c->n_gauges; g++) {
       char col[64];
+#if SPH_DIM == 2
       snprintf(col, sizeof col, "eta_%.6g", c->gauges[g]);
+#else
+      snprintf(col, sizeof col, "eta_%.6g_%.6g", c->gauges[2 * g], c->gauges[2 * g + 1]);
+#endif
       bad = sph_csv_put_column(m, col, 0) != 0;
     }
     bad = bad || fputc('\n', m) == EOF;
