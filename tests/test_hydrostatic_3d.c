@@ -8,8 +8,11 @@
  * - The case reader: a 3-D case reads (gravity (0, 0, -9.81) by default,
  *   the block's surface its z1), the listing says "dimension: 3"; a 2-D
  *   case, a gravity of two components and the keys that are 2-D only so far
- *   (geometry.walls, a tank's stagger, mirror obstacles) are refused with
- *   the file, line and key; wave gauges are [x, y] pairs inside the domain; mdbc and repulsive
+ *   (a tank's or a wall's stagger, mirror obstacles and wall segments) are
+ *   refused with the file, line and key; wave gauges are [x, y] pairs inside
+ *   the domain; a wall segment is a plate across the flume (from and to in
+ *   the x-z plane, y the tank's range unless given, a velocity of three
+ *   components, a flap's hinge at its lower end); mdbc and repulsive
  * tanks and obstacles, free-slip, no-slip and mirror tanks read; sph_case_file_dimension reads the
  * dimension a --set gives.
  * - Still water 0.1 m deep in a 0.2 x 0.1 m tank at dx = 0.01 m (2000
@@ -116,7 +119,32 @@ static void test_reader(void) {
   sph_case_free(&c);
   refused("dimension=2", "dimension");
   refused("physics.gravity=[0, -9.81]", "physics.gravity");
-  refused("geometry.walls=[{from: [0, 0], to: [1, 0]}]", "geometry.walls");
+  /* wall segments: plates across the flume, from and to in the x-z plane */
+  const char *const plate[1] = {
+      "geometry.walls=[{from: [0.05, 0.0], to: [0.05, 0.1], motion: {type: translate, "
+      "velocity: [0.0, 0.0, 0.5], stop: 0.2}}, {from: [0.1, 0.0], to: [0.15, 0.05], y: [0.02, "
+      "0.08], boundary: mdbc, motion: {type: flap, period: 1.0, stroke: 0.02, depth: 0.1}}]"};
+  CU_ASSERT_FATAL(parse(CASE3, plate, 1, &c, &err) == 0);
+  CU_ASSERT(c.n_walls == 2 && c.walls[0].x0 == 0.05 && c.walls[0].z0 == 0.0 &&
+            c.walls[0].z1 == 0.1 && c.walls[0].y0 == c.tank.y0 && c.walls[0].y1 == c.tank.y1);
+  CU_ASSERT(c.walls[0].motion.vx == 0.0 && c.walls[0].motion.vz == 0.5 && !c.walls[0].stagger);
+  CU_ASSERT(c.walls[1].y0 == 0.02 && c.walls[1].y1 == 0.08 && c.walls[1].layers == 3);
+  /* the flap's hinge: the lower end, (x, z) */
+  CU_ASSERT(c.walls[1].motion.paddle.hinge_x == 0.1 && c.walls[1].motion.paddle.hinge_y == 0.0);
+  d = sph_case_describe(&c);
+  CU_ASSERT_PTR_NOT_NULL(d && strstr(d, "geometry.walls[1].y: [0.02, 0.080000000000000002]\n"));
+  CU_ASSERT_PTR_NOT_NULL(d && strstr(d, "geometry.walls[0].motion.velocity: [0, 0, 0.5]\n"));
+  free(d);
+  sph_case_free(&c);
+  refused("geometry.walls=[{from: [0.05, 0], to: [0.05, 0.1], motion: {type: translate, "
+          "velocity: [0.1, 0]}}]",
+          "geometry.walls[0].motion.velocity: expected a list of 3 numbers");
+  refused("geometry.walls=[{from: [0.05, 0], to: [0.05, 0.1], stagger: true}]",
+          "geometry.walls[0].stagger: is 2-D only so far");
+  refused("geometry.walls=[{from: [0.05, 0], to: [0.05, 0.1], boundary: mirror}]",
+          "geometry.walls[0].boundary: 'mirror' is 2-D only so far");
+  refused("geometry.walls=[{from: [0.05, 0], to: [0.05, 0.1], y: [0.1, 0.0]}]",
+          "geometry.walls[0].y");
   refused("output.gauges=[0.1]", "output.gauges[0]: expected a list of 2 numbers");
   refused("output.gauges=[[0.1, 0.05], [0.1, 9.0]]",
           "output.gauges[1]: y = 9 is outside the domain");

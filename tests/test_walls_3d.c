@@ -45,6 +45,10 @@
  *    images (faces, edges, the corner), positions reflected and velocities
  *    reversed along those axes, vh = -v; near one face one; above the side
  *    walls' top within the reach the side's; images hold rho0 and 0 at least.
+ * 6. Plates across the flume (geometry.walls in 3-D): on the lattice, layers
+ *    dx apart on the segment's left, mirror points through the face.
+ * 7. Moving plates: translation in three components, a piston along x, a
+ *    flap turning about its hinge line along y.
  */
 #include "config.h"
 
@@ -386,6 +390,121 @@ static void test_repulsion_periodic(void) {
     CU_ASSERT(fabs(across[a] - inside[a]) <= 1e-9 * fabs(inside[1]));
 }
 
+/* 6. Plates across the flume (3-D wall segments, geometry.walls): a
+ * vertical gate from (x, z) = (0.05, 0.005) up to (0.05, 0.045) across the
+ * tank's y range and a plate inclined at 45 degrees, two and three layers:
+ * the counts, every particle's y on the fluid's lattice, the layers dx
+ * apart on the segment's left (x right, z up), and the mdbc plate's mirror
+ * points dx/2 + its depth in front of its face, on the fluid's side. */
+static void test_plates(void) {
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 1024, &err) == 0);
+  sph_wall_segment w[2] = {{0}};
+  w[0].x0 = 0.05, w[0].z0 = 0.005, w[0].x1 = 0.05, w[0].z1 = 0.045, w[0].y0 = 0.0, w[0].y1 = 0.06;
+  w[0].layers = 2, w[0].boundary = SPH_BOUNDARY_DYNAMIC;
+  const double r = 0.03 / sqrt(2.0); /* 3 dx long, along (1, 1) / sqrt 2 */
+  w[1].x0 = 0.0, w[1].z0 = 0.0, w[1].x1 = r, w[1].z1 = r, w[1].y0 = 0.01, w[1].y1 = 0.05;
+  w[1].layers = 3, w[1].boundary = SPH_BOUNDARY_MDBC;
+  const size_t n0 = 2 * 5 * 6; /* layers x (4 spacings + 1) x 6 across */
+  CU_ASSERT_FATAL(sph_boundary_add_plate(&p, &w[0], DX, RHO0, 1e-3, H, 0, &err) == 0);
+  CU_ASSERT_EQUAL_FATAL(p.n, n0);
+  CU_ASSERT_FATAL(sph_boundary_add_plate(&p, &w[1], DX, RHO0, 1e-3, H, SPH_FLAG_MDBC, &err) == 0);
+  CU_ASSERT_EQUAL_FATAL(p.n, n0 + 3 * 4 * 4);
+  double worst = 0.0;
+  size_t per_layer[3] = {0};
+  for (size_t i = 0; i < p.n; i++) {
+    const int k = i >= n0;
+    const sph_wall_segment *s = &w[k];
+    const double len = hypot(s->x1 - s->x0, s->z1 - s->z0);
+    const double tx = (s->x1 - s->x0) / len, tz = (s->z1 - s->z0) / len;
+    const double rx = p.x[i] - s->x0, rz = p.z[i] - s->z0;
+    const double left = -tz * rx + tx * rz, along = tx * rx + tz * rz; /* left of A->B */
+    const double layer = left / DX, j = (p.y[i] - s->y0) / DX - 0.5;
+    worst = fmax(worst, fabs(layer - floor(layer + 0.5)));
+    worst = fmax(worst, fabs(j - floor(j + 0.5)));
+    worst = fmax(worst, fabs(along / DX - floor(along / DX + 0.5)));
+    if (!(p.y[i] > s->y0 && p.y[i] < s->y1)) worst = 1.0;
+    if (k == 1) {
+      per_layer[(int)floor(layer + 0.5)]++;
+      /* the mirror point: as far in front of the face (dx/2 right of the segment) as the
+       * particle is behind it, along the face's normal; y unchanged */
+      const double gx = p.x[i] + p.mx[i] - s->x0, gz = p.z[i] + p.mz[i] - s->z0;
+      const double gleft = -tz * gx + tx * gz, galong = tx * gx + tz * gz;
+      worst = fmax(worst, fabs((-0.5 * DX - gleft) - (left + 0.5 * DX)));
+      worst = fmax(worst, fabs(galong - along) + fabs(p.my[i]));
+    }
+  }
+  printf("\n    %zu plate particles, layers of the inclined one %zu %zu %zu; off the lattice or "
+         "the mirror rule by at most %.1e",
+         p.n, per_layer[0], per_layer[1], per_layer[2], worst);
+  CU_ASSERT(worst < 1e-12);
+  CU_ASSERT(per_layer[0] == 16 && per_layer[1] == 16 && per_layer[2] == 16);
+  sph_particles_free(&p);
+}
+
+/* 7. Moving plates: sph_walls_move puts a translated plate at its rest
+ * position plus v (t - start) with v in three components (at rest before
+ * start, stopped after stop), a piston moves along x only, and a flap turns
+ * in the x-z plane about its hinge line along y: y kept, the distance to
+ * the hinge kept, the velocity normal to the radius. */
+static void test_moving_plates(void) {
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 1024, &err) == 0);
+  sph_tank none = {0};
+  sph_wall_segment w[3] = {{0}};
+  for (int k = 0; k < 3; k++) {
+    w[k].x0 = 0.1 * k, w[k].z0 = 0.0, w[k].x1 = 0.1 * k, w[k].z1 = 0.05;
+    w[k].y0 = 0.0, w[k].y1 = 0.03, w[k].layers = 2, w[k].boundary = SPH_BOUNDARY_DYNAMIC;
+  }
+  w[0].motion.kind = SPH_MOTION_TRANSLATE;
+  w[0].motion.vx = 0.5, w[0].motion.vy = -0.25, w[0].motion.vz = 1.0;
+  w[0].motion.start = 0.1, w[0].motion.stop = 0.3;
+  for (int k = 1; k < 3; k++) {
+    w[k].motion.kind = k == 1 ? SPH_MOTION_PISTON : SPH_MOTION_FLAP;
+    sph_paddle *pd = &w[k].motion.paddle;
+    pd->kind = k == 1 ? SPH_PADDLE_PISTON : SPH_PADDLE_FLAP;
+    pd->period = 1.0, pd->stroke = 0.02, pd->depth = 0.04, pd->ramp = 0.0;
+    pd->hinge_x = w[k].x0, pd->hinge_y = 0.0; /* the hinge's height: z */
+    w[k].motion.stop = INFINITY;
+  }
+  sph_walls walls;
+  CU_ASSERT_FATAL(sph_walls_create(&walls, &p, &none, w, 3, NULL, 0, DX, RHO0, H, 0.0, &err) == 0);
+  CU_ASSERT_FATAL(walls.moving && (p.live & SPH_ARRAYS_REST));
+  const double times[4] = {0.05, 0.2, 0.3, 0.42};
+  double worst = 0.0;
+  size_t moved[3] = {0};
+  for (int n = 0; n < 4; n++) {
+    const double t = times[n];
+    sph_walls_move(&walls, &p, t);
+    for (size_t i = 0; i < p.n; i++) {
+      const int k = p.body[i];
+      const double dx = p.x[i] - p.xr[i], dy = p.y[i] - p.yr[i], dz = p.z[i] - p.zr[i];
+      moved[k] += dx != 0.0 || dz != 0.0;
+      if (k == 0) {
+        const double te = t < 0.1 ? 0.0 : (t < 0.3 ? t : 0.3) - 0.1, on = t > 0.1 && t < 0.3;
+        worst = fmax(worst, fabs(dx - 0.5 * te) + fabs(dy + 0.25 * te) + fabs(dz - te));
+        worst = fmax(worst, fabs(p.vx[i] - 0.5 * on) + fabs(p.vy[i] + 0.25 * on) +
+                                fabs(p.vz[i] - 1.0 * on));
+      } else if (k == 1) {
+        worst = fmax(worst, fabs(dy) + fabs(dz) + fabs(p.vy[i]) + fabs(p.vz[i])); /* along x */
+      } else {
+        const double hx = w[2].x0, rx = p.x[i] - hx, rz = p.z[i];
+        const double r0 = hypot(p.xr[i] - hx, p.zr[i]);
+        worst = fmax(worst, fabs(dy) + fabs(p.vy[i]) + fabs(hypot(rx, rz) - r0));
+        worst = fmax(worst, fabs(p.vx[i] * rx + p.vz[i] * rz));
+      }
+    }
+  }
+  printf("\n    moved: translate %zu, piston %zu, flap %zu particle-times; off the laws by %.1e",
+         moved[0], moved[1], moved[2], worst);
+  CU_ASSERT(worst < 1e-14);
+  CU_ASSERT(moved[0] == 3 * 2 * 6 * 3); /* moving or stopped at 0.2, 0.3, 0.42 s */
+  CU_ASSERT(moved[1] > 0 && moved[2] > 0);
+  sph_particles_free(&p);
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
       {"3-D tank: mirror points through faces, edges and corners", test_tank_offsets},
@@ -394,6 +513,8 @@ int main(void) {
       {"3-D keeping off: the tank's faces and a box obstacle", test_keep_off},
       {"3-D repulsive wall across a periodic seam along y", test_repulsion_periodic},
       {"3-D mirror planes: images through faces, edges and corners", test_mirror_planes},
+      {"3-D plates across the flume: lattice, layers and mirror points", test_plates},
+      {"3-D moving plates: translate, piston and flap", test_moving_plates},
       CU_TEST_INFO_NULL};
   return sph_test_main("walls_3d", tests);
 }

@@ -172,9 +172,15 @@ static const char *const fluid_keys[] = {"x",       "y",      "velocity", "hydro
                                          "z",
 #endif
                                          NULL};
-static const char *const wall_keys[] = {
-    "from",      "to", "layers", "boundary", "motion", "stagger", "extrapolated_velocity",
-    "free_slip", NULL};
+static const char *const wall_keys[] = {"from",
+                                        "to",
+                                        "layers",
+                                        "boundary",
+                                        "motion",
+                                        "stagger",
+                                        "extrapolated_velocity",
+                                        "free_slip",
+                                        SPH_IF3("y", ) NULL};
 static const char *const motion_keys[] = {"type",   "velocity", "start",       "stop",
                                           "period", "stroke",   "wave_height", "depth",
                                           "ramp",   "hinge",    NULL};
@@ -614,7 +620,16 @@ static int check_layers(const ctx *x, const node *m, const char *p, sph_boundary
  * hydrostatic load within 3 %, against 42-53 % under it with 2 staggered
  * layers). */
 static int default_layers(sph_boundary_kind b) { return b == SPH_BOUNDARY_MDBC ? 3 : 2; }
-static int default_stagger(sph_boundary_kind b) { return b != SPH_BOUNDARY_MDBC; }
+static int default_stagger(sph_boundary_kind b) { return SPH_DIM == 2 && b != SPH_BOUNDARY_MDBC; }
+
+/* A wall segment's heights at its ends (from, to): y in 2-D, z in 3-D. */
+static double *wall_up(sph_wall_segment *w, int end) {
+#if SPH_DIM == 2
+  return end ? &w->y1 : &w->y0;
+#else
+  return end ? &w->z1 : &w->z0;
+#endif
+}
 
 /* `stagger`, `extrapolated_velocity` and `free_slip` of a wall of
  * particles with a density (dynamic, fixed_layers, mdbc); an error on the
@@ -826,7 +841,8 @@ static int read_paddle(const ctx *x, const node *t, const char *kp, sph_wall_seg
   }
   pd->ramp = pd->period;
   if (sph_yaml_get_number(&x->t, t, kp, "ramp", 0, &SPH_YAML_NONNEG, &pd->ramp) < 0) return -1;
-  double hinge[2] = {w->y0 < w->y1 ? w->x0 : w->x1, w->y0 < w->y1 ? w->y0 : w->y1};
+  const double u0 = *wall_up(w, 0), u1 = *wall_up(w, 1); /* the lower end */
+  double hinge[2] = {u0 < u1 ? w->x0 : w->x1, u0 < u1 ? u0 : u1};
   if (sph_yaml_get_pair(&x->t, t, kp, "hinge", 0, 0, hinge) < 0) return -1;
   pd->hinge_x = hinge[0];
   pd->hinge_y = hinge[1];
@@ -837,7 +853,7 @@ static int read_paddle(const ctx *x, const node *t, const char *kp, sph_wall_seg
   return 0;
 }
 
-/* walls[i].motion: {type: translate, velocity: [vx, vy], start: 0, stop: t} */
+/* walls[i].motion: {type: translate, velocity: [vx, vy(, vz)], start: 0, stop: t} */
 static int read_motion(const ctx *x, const node *m, const char *p, sph_wall_segment *w) {
   const node *t;
   char kp[SPH_YAML_KEYLEN];
@@ -861,10 +877,7 @@ static int read_motion(const ctx *x, const node *m, const char *p, sph_wall_segm
     return sph_yaml_fail_at(&x->t, t, kp, "a mirror wall has no particles to move");
   if (w->motion.kind == SPH_MOTION_PISTON || w->motion.kind == SPH_MOTION_FLAP)
     return read_paddle(x, t, kp, w);
-  double v[2];
-  if (sph_yaml_get_pair(&x->t, t, kp, "velocity", 1, 0, v) < 0) return -1;
-  w->motion.vx = v[0];
-  w->motion.vy = v[1];
+  if (sph_yaml_get_vector(&x->t, t, kp, "velocity", 1, SPH_DIM, w->motion.v) < 0) return -1;
   if (sph_yaml_get_number(&x->t, t, kp, "start", 0, &SPH_YAML_NONNEG, &w->motion.start) < 0)
     return -1;
   char what[96];
@@ -900,11 +913,30 @@ static int read_wall(const ctx *x, const node *m, const char *p, const sph_case 
                             from[0], from[1], len, c->dx);
   }
   w->x0 = from[0];
-  w->y0 = from[1];
+  *wall_up(w, 0) = from[1];
   w->x1 = to[0];
-  w->y1 = to[1];
+  *wall_up(w, 1) = to[1];
+#if SPH_DIM == 3 /* a plate across the flume: its extent along y, the tank's by default */
+  double across[2] = {c->tank.y0, c->tank.y1};
+  if (sph_yaml_get_pair(&x->t, m, p, "y", !c->tank.present, 'y', across) < 0) return -1;
+  w->y0 = across[0];
+  w->y1 = across[1];
+#endif
   if (sph_yaml_get_choice(&x->t, m, p, "boundary", boundary_names, &bnd) < 0) return -1;
   w->boundary = (sph_boundary_kind)bnd;
+  if (SPH_DIM == 3 && w->boundary == SPH_BOUNDARY_MIRROR) {
+    const node *t;
+    char kp[SPH_YAML_KEYLEN];
+    sph_yaml_lookup(&x->t, m, p, "boundary", 0, &t, kp);
+    return sph_yaml_fail_at(&x->t, t, kp, "'mirror' is 2-D only so far for a wall segment");
+  }
+  if (SPH_DIM == 3 && sph_yaml_find(m, "stagger")) {
+    char kp[SPH_YAML_KEYLEN];
+    sph_yaml_join(kp, sizeof kp, p, "stagger");
+    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "stagger")->val, kp,
+                            "is 2-D only so far (a 3-D wall's layers are dx apart, "
+                            "doc/dimensions.md)");
+  }
   w->layers = default_layers(w->boundary);
   if (sph_yaml_get_int(&x->t, m, p, "layers", 1, 8, &w->layers) < 0) return -1;
   if (check_layers(x, m, p, w->boundary, &w->layers)) return -1;
@@ -1091,8 +1123,13 @@ static void estimate_particles(sph_case *c) {
   }
   for (size_t i = 0; i < c->n_walls; i++) {
     const sph_wall_segment *w = &c->walls[i];
+#if SPH_DIM == 2
     const double len = hypot(w->x1 - w->x0, w->y1 - w->y0);
     wall += w->layers * (len / dx + 2.0);
+#else /* across y */
+    const double len = hypot(w->x1 - w->x0, w->z1 - w->z0);
+    wall += w->layers * (len / dx + 2.0) * ((w->y1 - w->y0) / dx + 1.0);
+#endif
   }
   for (size_t i = 0; i < c->n_obstacles; i++) { /* the whole box, from above */
     double box = 1.0;
@@ -1157,6 +1194,7 @@ static void reach_box(const sph_case *c, double box[2 * SPH_DIM]) {
   for (size_t i = 0; i < c->n_walls; i++) {
     GROW(0, c->walls[i].x0, c->walls[i].x1);
     GROW(2, c->walls[i].y0, c->walls[i].y1);
+    SPH_IF3(GROW(4, c->walls[i].z0, c->walls[i].z1);)
   }
   for (size_t i = 0; i < c->n_fluid; i++) {
     GROW(0, c->fluid[i].x0, c->fluid[i].x1);
@@ -1322,13 +1360,10 @@ static int read_probes(const ctx *x, const node *s, sph_case *c) {
 }
 
 /* Reads every section of the (overridden) tree into c, in schema order. */
-/* The keys a 3-D case may not use yet (doc/dimensions.md): section, key
- * (NULL: the whole section). */
-static const char *const only_2d[][2] = {{"geometry", "walls"}};
-
 /* The case's dimension: 2 when absent; a case of the other dimension than
  * this build's is refused (sph runs it with the build of its dimension), and
- * in 3-D the keys of only_2d are. */
+ * in 3-D a tank's `stagger` (a wall segment's, its mirror boundary and a
+ * mirror obstacle are refused where they are read). */
 static int read_dimension(const ctx *x, const node *root, sph_case *c) {
   int dim = 2;
   if (sph_yaml_get_int(&x->t, root, "", "dimension", 2, 3, &dim) < 0) return -1;
@@ -1340,20 +1375,6 @@ static int read_dimension(const ctx *x, const node *root, sph_case *c) {
                             SPH_DIM, dim, dim);
   }
   c->dimension = dim;
-  for (size_t k = 0; SPH_DIM == 3 && k < sizeof only_2d / sizeof only_2d[0]; k++) {
-    const sph_yaml_entry *sec = sph_yaml_find(root, only_2d[k][0]);
-    if (!sec) continue;
-    const sph_yaml_entry *e = only_2d[k][1] && sec->val->kind == SPH_YAML_MAP
-                                  ? sph_yaml_find(sec->val, only_2d[k][1])
-                                  : (only_2d[k][1] ? NULL : sec);
-    if (!e) continue;
-    char kp[SPH_YAML_KEYLEN];
-    if (only_2d[k][1])
-      sph_yaml_join(kp, sizeof kp, only_2d[k][0], only_2d[k][1]);
-    else
-      sph_yaml_join(kp, sizeof kp, "", only_2d[k][0]);
-    return sph_yaml_fail_at(&x->t, e->val, kp, "is 2-D only so far (doc/dimensions.md)");
-  }
   const sph_yaml_entry *g = sph_yaml_find(root, "geometry");
   const sph_yaml_entry *t =
       g && g->val->kind == SPH_YAML_MAP ? sph_yaml_find(g->val, "tank") : NULL;

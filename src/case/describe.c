@@ -119,8 +119,14 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
   for (size_t i = 0; i < c->n_walls; i++) {
     const sph_wall_segment *w = &c->walls[i];
     sph_yaml_bprintf(k, sizeof k, "geometry.walls[%zu]", i);
+#if SPH_DIM == 2
     sb_add(b, "%s.from: [%.17g, %.17g]\n", k, w->x0, w->y0);
     sb_add(b, "%s.to: [%.17g, %.17g]\n", k, w->x1, w->y1);
+#else /* from and to in the x-z plane, across y */
+    sb_add(b, "%s.from: [%.17g, %.17g]\n", k, w->x0, w->z0);
+    sb_add(b, "%s.to: [%.17g, %.17g]\n", k, w->x1, w->z1);
+    sb_add(b, "%s.y: [%.17g, %.17g]\n", k, w->y0, w->y1);
+#endif
     sb_add(b, "%s.layers: %d\n", k, w->layers);
     sb_add(b, "%s.boundary: %s\n", k, sph_boundary_name(w->boundary));
     if (!w->stagger) sb_add(b, "%s.stagger: false\n", k);
@@ -137,7 +143,12 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
     }
     if (w->motion.kind == SPH_MOTION_TRANSLATE) {
       sb_add(b, "%s.motion.type: translate\n", k);
+#if SPH_DIM == 2
       sb_add(b, "%s.motion.velocity: [%.17g, %.17g]\n", k, w->motion.vx, w->motion.vy);
+#else
+      sb_add(b, "%s.motion.velocity: [%.17g, %.17g, %.17g]\n", k, w->motion.vx, w->motion.vy,
+             w->motion.vz);
+#endif
       sb_add(b, "%s.motion.start: %.17g\n", k, w->motion.start);
       sb_add(b, "%s.motion.stop: %.17g\n", k, w->motion.stop);
     }

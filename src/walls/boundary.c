@@ -13,14 +13,10 @@
 #include <limits.h>
 #include <math.h>
 
+#if SPH_DIM == 2
 int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, double by,
                              int layers, int stagger, int extend, double dx, double rho,
                              double mass, double h, uint8_t flags, sph_error *err) {
-#if SPH_DIM == 3
-  (void)p, (void)ax, (void)ay, (void)bx, (void)by, (void)layers, (void)stagger, (void)extend;
-  (void)dx, (void)rho, (void)mass, (void)h, (void)flags;
-  return sph_error_set(err, "wall segments are 2-D only so far");
-#else
   const double lx = bx - ax, ly = by - ay;
   const double len = sqrt(lx * lx + ly * ly);
   if (!(len > 0.0)) return sph_error_set(err, "wall segment has zero length");
@@ -54,8 +50,42 @@ int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, 
     }
   }
   return 0;
-#endif
 }
+#else
+int sph_boundary_add_plate(sph_particles *p, const sph_wall_segment *w, double dx, double rho,
+                           double mass, double h, uint8_t flags, sph_error *err) {
+  const double lx = w->x1 - w->x0, lz = w->z1 - w->z0;
+  const double len = sqrt(lx * lx + lz * lz);
+  if (!(len > 0.0)) return sph_error_set(err, "wall segment has zero length");
+  const double tx = lx / len, tz = lz / len; /* along the wall, in the x-z plane */
+  const double nx = -tz, nz = tx;            /* left normal (x right, z up) */
+  long count = (long)floor(len / dx + 0.5), ny = (long)floor((w->y1 - w->y0) / dx + 0.5);
+  if (count < 1) count = 1;
+  if (ny < 1) ny = 1;
+  const double sp = len / (double)count, sy = (w->y1 - w->y0) / (double)ny;
+  if (flags & SPH_WALL_NORMAL) sph_particles_use(p, SPH_ARRAYS_OFFSET);
+  const int offsets = (p->live & SPH_ARRAYS_OFFSET) != 0;
+  const double v[3] = {0.0, 0.0, 0.0};
+  for (int k = 0; k < w->layers; k++) {
+    const double off = dx * (double)k, depth = 0.5 * dx + off;
+    for (long i = 0; i <= count; i++)
+      for (long j = 0; j < ny; j++) {
+        const double s = (double)i * sp;
+        const double x[3] = {w->x0 + s * tx + off * nx, w->y0 + ((double)j + 0.5) * sy,
+                             w->z0 + s * tz + off * nz};
+        const long idx = sph_particles_add_at(p, x, v, rho, mass, h, SPH_KIND_WALL, err);
+        if (idx < 0) return -1;
+        p->flags[idx] = flags;
+        if (offsets) {
+          p->mx[idx] = -2.0 * depth * nx;
+          p->my[idx] = 0.0;
+          p->mz[idx] = -2.0 * depth * nz;
+        }
+      }
+  }
+  return 0;
+}
+#endif
 
 /* The depth of a box obstacle's lattice point idx (n points along each
  * axis): the points between it and the nearest face, the bottom counted

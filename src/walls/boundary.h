@@ -31,9 +31,24 @@
  * its mirror offset (mx, my): twice its distance to the wall face, which
  * lies dx/2 in front of layer 0 on the right of A->B (the fluid side),
  * along the face's normal into the fluid. */
+#if SPH_DIM == 2
 int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, double by,
                              int layers, int stagger, int extend, double dx, double rho,
                              double mass, double h, uint8_t flags, sph_error *err);
+#else
+/* The 3-D wall segment w (wall_types.h), a plate across the flume: the
+ * segment A = (x0, z0) -> B = (x1, z1) in the x-z plane with its points
+ * spaced len/round(len/dx) along it, each repeated along y at
+ * y0 + (j + 1/2) s_y, j = 0 .. n_y - 1, n_y = round((y1 - y0)/dx) (at least
+ * 1), s_y = (y1 - y0)/n_y (the fluid's lattice across a tank or period of
+ * a whole number of dx); w->layers layers dx apart on the left of A->B
+ * seen with x to the right and z up (the segment's rule in 2-D, unstaggered).
+ * Each particle gets density rho, mass, smoothing length h, `flags`, and
+ * its mirror offset (mx, 0, mz) through the face dx/2 on the right of the
+ * segment. */
+int sph_boundary_add_plate(sph_particles *p, const sph_wall_segment *w, double dx, double rho,
+                           double mass, double h, uint8_t flags, sph_error *err);
+#endif
 
 /* Adds the walls of a rectangular tank whose inner faces are x0, x1 (sides)
  * and y0 (floor), side walls up to y1. The first wall layer lies dx/2

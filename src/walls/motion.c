@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * motion.c - the prescribed motion of wall particles (see motion.h). Each
- * particle keeps its rest position (xr, yr); its position at time t is a
+ * particle keeps its rest position (xr, yr, zr); its position at time t is a
  * function of t alone, never an integral of its velocity, so a wall ends a
  * motion exactly where the case says, on every run and after a restart.
  */
@@ -9,21 +9,21 @@
 
 #include "walls/motion.h"
 
-void sph_motion_point(const sph_motion *m, double t, double xr, double yr, double *x, double *y,
-                      double *vx, double *vy) {
-  *x = xr;
-  *y = yr;
-  *vx = *vy = 0.0;
+void sph_motion_point(const sph_motion *m, double t, const double r[SPH_DIM], double x[SPH_DIM],
+                      double v[SPH_DIM]) {
+  for (int a = 0; a < SPH_DIM; a++) {
+    x[a] = r[a];
+    v[a] = 0.0;
+  }
   if (m->kind == SPH_MOTION_PISTON || m->kind == SPH_MOTION_FLAP) {
-    sph_paddle_point(&m->paddle, t, xr, yr, x, y, vx, vy);
+    sph_paddle_point(&m->paddle, t, r[0], r[SPH_UP], &x[0], &x[SPH_UP], &v[0], &v[SPH_UP]);
     return;
   }
   if (m->kind != SPH_MOTION_TRANSLATE || t <= m->start) return;
   const double te = t < m->stop ? t : m->stop;
-  *x = xr + m->vx * (te - m->start);
-  *y = yr + m->vy * (te - m->start);
-  if (t < m->stop) {
-    *vx = m->vx;
-    *vy = m->vy;
-  }
+  for (int a = 0; a < SPH_DIM; a++)
+    x[a] = r[a] + m->v[a] * (te - m->start);
+  if (t < m->stop)
+    for (int a = 0; a < SPH_DIM; a++)
+      v[a] = m->v[a];
 }

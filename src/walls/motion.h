@@ -9,9 +9,10 @@
 
 #include "walls/wall_types.h"
 
-/* Where a wall point at rest position (xr, yr) is at time t, and its
- * velocity, under the motion m. */
-void sph_motion_point(const sph_motion *m, double t, double xr, double yr, double *x, double *y,
-                      double *vx, double *vy);
+/* Where a wall point at rest position r is at time t (x), and its
+ * velocity (v), under the motion m. A paddle moves in the vertical plane
+ * of x and the up axis (core/dim.h): a 3-D point keeps its y. */
+void sph_motion_point(const sph_motion *m, double t, const double r[SPH_DIM], double x[SPH_DIM],
+                      double v[SPH_DIM]);
 
 #endif

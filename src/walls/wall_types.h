@@ -54,15 +54,21 @@ typedef enum {
 } sph_motion_kind;
 typedef struct sph_motion {
   sph_motion_kind kind;
-  double vx, vy;      /* translate: velocity while moving (m/s) */
+  SPH_COMPONENTS(double, v, vx, vy, vz); /* translate: velocity while moving (m/s) */
   double start, stop; /* translate: time interval of the motion (s); stop may be INFINITY */
   sph_paddle paddle;  /* piston and flap (src/wavemaker.h) */
 } sph_motion;
 
 /* An extra straight wall from (x0,y0) to (x1,y1): particles spaced dx along
- * it, `layers` staggered layers on its left side (seen from start to end). */
+ * it, `layers` staggered layers on its left side (seen from start to end).
+ * In 3-D a plate across the flume: the segment from (x0, z0) to (x1, z1) in
+ * the x-z plane (its left side seen with x to the right and z up), extruded
+ * along y from y0 to y1; its layers dx apart. */
 typedef struct sph_wall_segment {
   double x0, y0, x1, y1;
+#if SPH_DIM == 3
+  double z0, z1;
+#endif
   int layers;
   sph_boundary_kind boundary;
   sph_motion motion; /* default none (fixed) */

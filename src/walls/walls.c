@@ -127,6 +127,7 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
   for (size_t k = 0; k < n_segments; k++) {
     const sph_wall_segment *ws = &segments[k];
     if (ws->boundary == SPH_BOUNDARY_MIRROR) {
+      if (SPH_DIM == 3) return sph_error_set(err, "mirror wall segments are 2-D only so far");
       if (w->n_mirror == SPH_MIRROR_MAX_LINES)
         return sph_error_set(err, "more than %zu mirror walls", w->n_mirror);
       w->mirror[w->n_mirror++] = sph_mirror_segment_line(ws->x0, ws->y0, ws->x1, ws->y1);
@@ -136,10 +137,14 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
     if (ws->boundary == SPH_BOUNDARY_MDBC) w->mdbc = 1;
     if (is_dbc(ws->boundary)) w->dbc = 1;
     const size_t first = p->n;
+    const uint8_t flags = wall_flags(ws->boundary, ws->extrapolated, ws->free_slip);
+#if SPH_DIM == 2
     if (sph_boundary_add_segment(p, ws->x0, ws->y0, ws->x1, ws->y1, ws->layers, ws->stagger, 0, dx,
-                                 rho0, wall_mass, h,
-                                 wall_flags(ws->boundary, ws->extrapolated, ws->free_slip), err))
+                                 rho0, wall_mass, h, flags, err))
       return -1;
+#else
+    if (sph_boundary_add_plate(p, ws, dx, rho0, wall_mass, h, flags, err)) return -1;
+#endif
     const long dropped = drop_overlaps(p, walls_from, first, dx);
     if (dropped < 0) return sph_error_set(err, "out of memory");
     w->n_dropped += (size_t)dropped;
@@ -177,8 +182,14 @@ void sph_walls_move(const sph_walls *w, sph_particles *p, double t) {
   if (!w->moving) return;
   for (size_t i = 0; i < p->n; i++) {
     if (p->body[i] < 0) continue;
-    sph_motion_point(&w->segments[p->body[i]].motion, t, p->xr[i], p->yr[i], &p->x[i], &p->y[i],
-                     &p->vx[i], &p->vy[i]);
+    double r[SPH_DIM], x[SPH_DIM], v[SPH_DIM];
+    for (int a = 0; a < SPH_DIM; a++)
+      r[a] = p->rest[a][i];
+    sph_motion_point(&w->segments[p->body[i]].motion, t, r, x, v);
+    for (int a = 0; a < SPH_DIM; a++) {
+      p->pos[a][i] = x[a];
+      p->vel[a][i] = v[a];
+    }
   }
 }
 
