@@ -37,6 +37,7 @@
 
 #include "canvas_impl.h"
 #include "font.h"
+#include "gl_program.h"
 
 typedef struct vertex {
   float x, y;   /* pixel position, y down */
@@ -99,45 +100,9 @@ static const char *fragment_src =
     "  frag = vec4(v_col.rgb, v_col.a * a);\n"
     "}\n";
 
-static GLuint compile(const rgl *gl, GLenum kind, const char *src, sph_error *err) {
-  GLuint s = gl->CreateShader(kind);
-  gl->ShaderSource(s, 1, &src, NULL);
-  gl->CompileShader(s);
-  GLint ok = 0;
-  gl->GetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[512] = "";
-    gl->GetShaderInfoLog(s, sizeof log, NULL, log);
-    gl->DeleteShader(s);
-    sph_error_set(err, "canvas: shader does not compile: %s", log);
-    return 0;
-  }
-  return s;
-}
-
 static int make_program(glcanvas *c, sph_error *err) {
-  const rgl *gl = c->gl;
-  GLuint vs = compile(gl, GL_VERTEX_SHADER, vertex_src, err);
-  if (!vs) return -1;
-  GLuint fs = compile(gl, GL_FRAGMENT_SHADER, fragment_src, err);
-  if (!fs) {
-    gl->DeleteShader(vs);
-    return -1;
-  }
-  c->prog = gl->CreateProgram();
-  gl->AttachShader(c->prog, vs);
-  gl->AttachShader(c->prog, fs);
-  gl->LinkProgram(c->prog);
-  gl->DeleteShader(vs);
-  gl->DeleteShader(fs);
-  GLint ok = 0;
-  gl->GetProgramiv(c->prog, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[512] = "";
-    gl->GetProgramInfoLog(c->prog, sizeof log, NULL, log);
-    return sph_error_set(err, "canvas: shader program does not link: %s", log);
-  }
-  return 0;
+  c->prog = rgl_program(c->gl, vertex_src, fragment_src, "canvas", err);
+  return c->prog ? 0 : -1;
 }
 
 static const rcanvas_ops gl_ops;

@@ -22,6 +22,7 @@
 
 #include <sys/stat.h>
 
+#include "camera.h"
 #include "core/version.h"
 #include "figure.h"
 #include "gl_context.h"
@@ -51,6 +52,14 @@ void rcli_usage(FILE *fp) {
         "                          points, a PNG at --dpi, the text scaled to match)\n"
         "  --dpi N                 pixels per inch of a PNG sized in cm, mm or in (300)\n"
         "  --view X0:X1:Y0:Y1      world window in metres (default: the case's tank)\n"
+        "  --view NAME             3-D snapshots: iso (default), front, side or top; the\n"
+        "                          camera frames the tank and stays the same for every frame\n"
+        "  --azimuth DEG, --elevation DEG   3-D: the camera's direction (front: 0, 0; side:\n"
+        "                          90, 0; top: 0, 90), replacing the view's\n"
+        "  --distance M, --look-at X:Y:Z    3-D: the camera's distance and target (default:\n"
+        "                          the tank framed, from its centre)\n"
+        "  --fov DEG               3-D: vertical field of view (default 30)\n"
+        "  --ortho                 3-D: orthographic projection\n"
         "  --background RRGGBB     background colour (default ffffff; also white, black)\n"
         "  --disc-scale F          particle disc diameter = F * dx (default 1; discs smaller\n"
         "                          than 4 pixels then grow to cover their particle's cell)\n"
@@ -60,7 +69,7 @@ void rcli_usage(FILE *fp) {
         "                          for every field but free_surface and kind\n"
         "  --outline               draw the free surface as a line (default with --smooth)\n"
         "  --discs                 particle discs instead (the default for free_surface, kind)\n"
-        "  --walls grey|field|none how to draw wall particles (default grey)\n"
+        "  --walls grey|field|none how to draw wall particles (default grey; 3-D: none)\n"
         "  --bare                  particles only: no axes, labels or colour bar\n"
         "  --no-colorbar           no colour bar\n"
         "  --title TEXT            a title line above the figure\n"
@@ -282,6 +291,7 @@ static void defaults(roptions *o) {
   o->samples = RCANVAS_DEFAULT_SAMPLES;
   o->dpi = 300;
   o->smooth = o->outline = -1; /* unset: from the field (rcli_parse) */
+  o->fov = 30.0;
 }
 
 typedef struct args {
@@ -483,10 +493,45 @@ static int snapshot_option(args *a, roptions *o, int *compare, int *panels, sph_
     o->have_range = 1;
   } else if (is(a, "--view")) {
     VALUE_P();
+    double az, el;
+    if (rcamera_named(v, &az, &el) == 0) {
+      o->view3d = v;
+      return 1;
+    }
+    if (isalpha((unsigned char)v[0]))
+      return sph_error_set(err, "--view: unknown view '%s' (3-D: %s; 2-D: X0:X1:Y0:Y1)", v,
+                           rcamera_names());
     if (parse_numbers(a->name, v, ':', o->view, 4, NULL, "X0:X1:Y0:Y1", err) != 0) return -1;
     if (!(o->view[1] > o->view[0]) || !(o->view[3] > o->view[2]))
       return sph_error_set(err, "--view: '%s': need X0 < X1 and Y0 < Y1", v);
     o->have_view = 1;
+  } else if (is(a, "--azimuth") || is(a, "--elevation") || is(a, "--distance") || is(a, "--fov")) {
+    VALUE_P();
+    double x;
+    if (parse_double(a->name, v, &x, err) != 0) return -1;
+    if (is(a, "--azimuth")) {
+      o->azimuth = x;
+      o->have_azimuth = 1;
+    } else if (is(a, "--elevation")) {
+      if (!(x >= -90.0 && x <= 90.0))
+        return sph_error_set(err, "--elevation: '%s': expected -90 to 90 degrees", v);
+      o->elevation = x;
+      o->have_elevation = 1;
+    } else if (is(a, "--distance")) {
+      if (!(x > 0.0)) return sph_error_set(err, "--distance: '%s': expected metres > 0", v);
+      o->distance = x;
+      o->have_distance = 1;
+    } else {
+      if (!(x > 0.0 && x < 180.0))
+        return sph_error_set(err, "--fov: '%s': expected degrees between 0 and 180", v);
+      o->fov = x;
+    }
+  } else if (is(a, "--look-at")) {
+    VALUE_P();
+    if (parse_numbers(a->name, v, ':', o->look_at, 3, NULL, "X:Y:Z", err) != 0) return -1;
+    o->have_look_at = 1;
+  } else if (is(a, "--ortho")) {
+    o->ortho = 1;
   } else if (is(a, "--disc-scale")) {
     VALUE_P();
     if (parse_double(a->name, v, &o->disc_scale, err) != 0) return -1;
@@ -499,6 +544,7 @@ static int snapshot_option(args *a, roptions *o, int *compare, int *panels, sph_
     o->disc_given = 1;
   } else if (is(a, "--walls")) {
     VALUE_P();
+    o->walls_given = 1;
     if (strcmp(v, "grey") == 0 || strcmp(v, "gray") == 0)
       o->walls = RWALLS_GREY;
     else if (strcmp(v, "field") == 0)
@@ -509,10 +555,13 @@ static int snapshot_option(args *a, roptions *o, int *compare, int *panels, sph_
       return sph_error_set(err, "--walls: unknown '%s' (valid: grey, field, none)", v);
   } else if (is(a, "--smooth")) {
     o->smooth = 1;
+    o->smooth_given = 1;
   } else if (is(a, "--outline")) {
     o->outline = 1;
+    o->smooth_given = 1;
   } else if (is(a, "--discs")) {
     o->smooth = 0;
+    o->smooth_given = 1;
   } else if (is(a, "--bare")) {
     o->bare = 1;
   } else if (is(a, "--no-colorbar")) {

@@ -260,17 +260,22 @@ int rfigure_draw(rcanvas *c, const rlayout *L, const rfigure_style *st, const rp
   rcanvas_clear(c, st->bg);
   int s = L->scale;
   for (int k = 0; k < n; k++) {
-    double diameter;
-    if (rfigure_disc_size(st, p[k].snap, &diameter, err) != 0) return -1;
-    rcanvas_clip(c, &L->panel[k].plot);
-    if (draw_particles(c, L, k, st, p[k].snap, diameter, err) != 0) {
+    if (p[k].image) { /* a 3-D view: the image, without axes */
+      rcanvas_image(c, L->panel[k].plot, p[k].iw, p[k].ih, p[k].image);
+      if (L->bare) continue;
+    } else {
+      double diameter;
+      if (rfigure_disc_size(st, p[k].snap, &diameter, err) != 0) return -1;
+      rcanvas_clip(c, &L->panel[k].plot);
+      if (draw_particles(c, L, k, st, p[k].snap, diameter, err) != 0) {
+        rcanvas_clip(c, NULL);
+        return -1;
+      }
+      draw_overlays(c, L, k, st, p[k].snap->time);
       rcanvas_clip(c, NULL);
-      return -1;
+      if (L->bare) continue;
+      if (!L->no_axes) draw_axes(c, L, k, st);
     }
-    draw_overlays(c, L, k, st, p[k].snap->time);
-    rcanvas_clip(c, NULL);
-    if (L->bare) continue;
-    draw_axes(c, L, k, st);
     const rrect *b = &L->panel[k].plot;
     rcanvas_text(c, b->x0, L->panel[k].label_y, p[k].label, s, st->fg, RALIGN_LEFT, RALIGN_TOP, 0);
     if (p[k].note[0])

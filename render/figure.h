@@ -10,6 +10,7 @@
 #define SPH_RENDER_FIGURE_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "canvas.h"
 #include "colormap.h"
@@ -47,6 +48,9 @@ typedef struct rfigure_style {
 
 typedef struct rpanel {
   const rsnap *snap;
+  const uint8_t *image; /* a 3-D view drawn beforehand (spheres.h): RGBA of the plot box's
+                           pixels, iw x ih, drawn in place of discs and axes; NULL in 2-D */
+  int iw, ih;
   char label[160]; /* left of the label line, e.g. "a) t = 0.156 s" */
   char note[160];  /* right of it, e.g. the case name; may be "" */
 } rpanel;

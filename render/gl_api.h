@@ -74,7 +74,12 @@
   X(PFNGLTEXIMAGE2DPROC, TexImage2D)                                                               \
   X(PFNGLTEXPARAMETERIPROC, TexParameteri)                                                         \
   X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                                         \
-  X(PFNGLDRAWARRAYSPROC, DrawArrays)
+  X(PFNGLDRAWARRAYSPROC, DrawArrays)                                                               \
+  X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)                                             \
+  X(PFNGLVERTEXATTRIBDIVISORPROC, VertexAttribDivisor)                                             \
+  X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                                                   \
+  X(PFNGLDEPTHFUNCPROC, DepthFunc)                                                                 \
+  X(PFNGLCLEARDEPTHPROC, ClearDepth)
 
 typedef struct rgl {
 #define RGL_FIELD(type, name) type name;

@@ -9,6 +9,7 @@
  *   right margin                 half the widest x tick label, at least 6s
  *   colour bar column            10s gap + 10s bar + tick + 2s + widest label + 4s + 9s + 4s
  *   title line                   16s
+ * Without axes (a 3-D view) the left, right and bottom margins are 3s.
  * The tick labels set the margins but depend on the plot size, which
  * depends on the margins: the layout is recomputed until the label widths
  * (and the colour bar's tick count) stop changing - after the first guess
@@ -71,6 +72,7 @@ int rlayout_figure(const rlayout_in *in, rlayout *L, sph_error *err) {
   L->rows = in->rows;
   L->cols = in->cols;
   L->bare = in->bare;
+  L->no_axes = in->no_axes && !in->bare;
   L->panels = in->rows * in->cols;
   memcpy(L->view, in->view, sizeof L->view);
 
@@ -78,7 +80,7 @@ int rlayout_figure(const rlayout_in *in, rlayout *L, sph_error *err) {
   int label_h = 0, bottom = 0, left = 0, right = 0, bar_col = 0, title_h = 0;
   if (!in->bare) {
     label_h = 14 * s;
-    bottom = tick + 2 * s + 9 * s + 4 * s + 9 * s + 3 * s;
+    bottom = L->no_axes ? 3 * s : tick + 2 * s + 9 * s + 4 * s + 9 * s + 3 * s;
     if (in->title) title_h = 16 * s;
   }
   double W = in->width;
@@ -86,8 +88,8 @@ int rlayout_figure(const rlayout_in *in, rlayout *L, sph_error *err) {
   int yw = rfont_width("-0.00", s), xw = 0, bar_ticks = 5;
   for (int pass = 0; pass < 4; pass++) {
     if (!in->bare) {
-      left = 3 * s + 9 * s + 4 * s + yw + 2 * s + tick;
-      right = xw / 2 > 6 * s ? xw / 2 : 6 * s;
+      left = L->no_axes ? 3 * s : 3 * s + 9 * s + 4 * s + yw + 2 * s + tick;
+      right = L->no_axes ? 3 * s : xw / 2 > 6 * s ? xw / 2 : 6 * s;
       if (in->colorbar) {
         rticks_make(in->lo, in->hi, bar_ticks, &L->bt);
         bar_col = 10 * s + 10 * s + tick + 2 * s + ticks_width(&L->bt, s) + 4 * s + 9 * s + 4 * s;
@@ -112,6 +114,13 @@ int rlayout_figure(const rlayout_in *in, rlayout *L, sph_error *err) {
     plot_w = fmin(floor(vw * L->px_per_m + 0.5), floor(avail_w));
     plot_h = fmin(floor(vh * L->px_per_m + 0.5), floor(avail_h));
     if (in->bare) break;
+    if (L->no_axes) { /* only the colour bar's ticks, from its height */
+      int nb = (int)(((in->rows - 1) * cell_h + plot_h) / (40.0 * s)) + 1;
+      if (nb < 2) nb = 2;
+      if (nb == bar_ticks) break;
+      bar_ticks = nb;
+      continue;
+    }
     int tx = (int)(plot_w / (60.0 * s)) + 1, ty = (int)(plot_h / (40.0 * s)) + 1;
     rticks_make(in->view[0], in->view[1], tx < 2 ? 2 : tx, &L->xt);
     rticks_make(in->view[2], in->view[3], ty < 2 ? 2 : ty, &L->yt);

@@ -24,6 +24,7 @@ typedef struct rlayout_in {
   double view[4]; /* x0, x1, y0, y1 of the world window */
   int scale;      /* font scale, 0: automatic */
   int bare;       /* nothing but the particles: no margins, axes, labels, bar */
+  int no_axes;    /* no axes (a 3-D view): the label line, the bar and thin margins */
   int colorbar;   /* reserve room for the colour bar (ignored if bare) */
   int title;      /* reserve a title line (ignored if bare) */
   double lo, hi;  /* colour range, for the colour bar's tick labels */
@@ -36,7 +37,7 @@ typedef struct rpanel_box {
 } rpanel_box;
 
 typedef struct rlayout {
-  int width, height, scale, rows, cols, bare;
+  int width, height, scale, rows, cols, bare, no_axes;
   double view[4];
   double px_per_m;   /* pixels per metre, both axes */
   rrect title;       /* empty if none */

@@ -10,6 +10,7 @@
 # Everything but main(), so the test can call the layout and colour code.
 noinst_LTLIBRARIES += render/libsphrender.la
 render_libsphrender_la_SOURCES = \
+	render/camera.c render/camera.h \
 	render/canvas.c render/canvas.h render/canvas_impl.h \
 	render/canvas_cairo.c render/canvas_gl.c \
 	render/cli.c render/cli.h render/options.h \
@@ -21,6 +22,7 @@ render_libsphrender_la_SOURCES = \
 	render/gl_context.c render/gl_context.h \
 	render/gl_context_egl.c \
 	render/gl_context_osmesa.c \
+	render/gl_program.c render/gl_program.h \
 	render/inputs.c render/inputs.h \
 	render/interp.c render/interp.h \
 	render/jobs.c render/jobs.h \
@@ -31,6 +33,7 @@ render_libsphrender_la_SOURCES = \
 	render/png_out.c render/png_out.h \
 	render/sequence.c render/sequence.h \
 	render/snapdata.c render/snapdata.h \
+	render/spheres.c render/spheres.h \
 	render/ticks.c render/ticks.h
 RENDER_CFLAGS = $(AM_CFLAGS) $(OSMESA_CFLAGS) $(EGL_CFLAGS) $(PNG_CFLAGS) $(HDF5_CFLAGS) \
 	$(FREETYPE_CFLAGS) $(CAIRO_CFLAGS)
@@ -52,6 +55,13 @@ tests_test_render_SOURCES = tests/test_render.c
 tests_test_render_CFLAGS = $(RENDER_CFLAGS) $(CUNIT_CFLAGS) -I$(top_srcdir)/render
 tests_test_render_LDADD = tests/libtestutil.la render/libsphrender.la $(RENDER_LIBS) $(CUNIT_LIBS)
 tests_test_render_DEPENDENCIES = tests/libtestutil.la render/libsphrender.la src/libsphio.la
+
+check_PROGRAMS += tests/test_render_3d
+TESTS += tests/test_render_3d
+tests_test_render_3d_SOURCES = tests/test_render_3d.c
+tests_test_render_3d_CFLAGS = $(RENDER_CFLAGS) $(CUNIT_CFLAGS) -I$(top_srcdir)/render
+tests_test_render_3d_LDADD = tests/libtestutil.la render/libsphrender.la $(RENDER_LIBS) $(CUNIT_LIBS)
+tests_test_render_3d_DEPENDENCIES = tests/libtestutil.la render/libsphrender.la src/libsphio.la
 
 # `make frames`: the frames of a run (by default the Martin & Moyce run of
 # the README's main command) into frames/, one PNG per snapshot.

@@ -71,6 +71,15 @@ typedef struct roptions {
   roverlay_opt overlay[16];
   int n_overlays;
   double overlay_tol;
+  int walls_given;  /* --walls given (3-D draws no walls unless asked) */
+  int smooth_given; /* --smooth, --outline or --discs given */
+
+  /* 3-D snapshots: the camera (camera.h) */
+  const char *view3d; /* --view NAME (iso, front, side, top); NULL: iso */
+  int have_azimuth, have_elevation, have_distance, have_look_at;
+  double azimuth, elevation, distance, look_at[3];
+  double fov; /* degrees, default 30 */
+  int ortho;  /* --ortho */
 
   /* plot mode */
   rseries_opt series[ROPT_MAX_LIST];

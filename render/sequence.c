@@ -22,18 +22,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "camera.h"
 #include "colormap.h"
 #include "figure.h"
 #include "font.h"
 #include "gl_context.h"
 #include "inputs.h"
 #include "io/csv.h"
+#include "io/snapshot.h"
 #include "jobs.h"
 #include "label.h"
 #include "layout.h"
 #include "marks.h"
 #include "png_out.h"
 #include "snapdata.h"
+#include "spheres.h"
 
 typedef struct rtask {
   char *output;
@@ -52,6 +55,8 @@ typedef struct plan {
   roverlay overlay[16];
   char bar_label[96];
   const char *outdir; /* made only once the plan is complete; NULL: one file */
+  int dim3;           /* the inputs are 3-D snapshots: drawn as spheres by cam */
+  rcamera cam;
 } plan;
 
 typedef struct worker {
@@ -245,6 +250,15 @@ static int plan_range_and_view(plan *p, double view[4], sph_error *err) {
       rsnap_free(&s);
     }
   }
+  if (p->dim3) { /* no world window: the plot box's aspect, 16:9 for frames, 4:3 for panels */
+    if (o->have_view)
+      return sph_error_set(err, "--view X0:X1:Y0:Y1 is for 2-D snapshots; %s is 3-D (views: %s)",
+                           p->task[0].path[0], rcamera_names());
+    const double a = o->mode == RMODE_FRAMES ? 16.0 / 9.0 : 4.0 / 3.0;
+    view[0] = view[2] = 0.0;
+    view[1] = a;
+    view[3] = 1.0;
+  }
   if (o->have_view) memcpy(view, o->view, 4 * sizeof *view);
   if (isnan(view[0]))
     return sph_error_set(err, "%s: no view window (attribute 'view'); give --view x0:x1:y0:y1",
@@ -269,6 +283,87 @@ static int plan_range_and_view(plan *p, double view[4], sph_error *err) {
   }
   p->style.lo = lo;
   p->style.hi = hi;
+  return 0;
+}
+
+/* The camera of a 3-D plan, the same for every image: the named view (iso
+ * by default) or the given direction, framing the first snapshot's tank
+ * (its attribute view; else its particles' box) in the first panel's plot
+ * box, unless --look-at and --distance say where it is. */
+static int plan_camera(plan *p, sph_error *err) {
+  const roptions *o = p->o;
+  rcamera *c = &p->cam;
+  memset(c, 0, sizeof *c);
+  if (rcamera_named(o->view3d ? o->view3d : "iso", &c->azimuth, &c->elevation) != 0)
+    return sph_error_set(err, "--view: unknown view '%s' (%s)", o->view3d, rcamera_names());
+  if (o->have_azimuth) c->azimuth = o->azimuth;
+  if (o->have_elevation) c->elevation = o->elevation;
+  c->fov = o->fov;
+  c->ortho = o->ortho;
+  rsnap s;
+  if (rsnap_load(p->task[0].path[0], NULL, &s, err) != 0) return -1;
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; k++) {
+    lo[k] = s.box[2 * k];
+    hi[k] = s.box[2 * k + 1];
+  }
+  if (!(hi[0] > lo[0] && hi[1] > lo[1] && hi[2] > lo[2])) { /* the particles' box */
+    for (int k = 0; k < 3; k++)
+      lo[k] = INFINITY, hi[k] = -INFINITY;
+    for (size_t i = 0; i < s.n; i++) {
+      const double q[3] = {s.x[i], s.y[i], s.z[i]};
+      for (int k = 0; k < 3; k++)
+        lo[k] = fmin(lo[k], q[k]), hi[k] = fmax(hi[k], q[k]);
+    }
+  }
+  rsnap_free(&s);
+  if (!(hi[0] >= lo[0])) return sph_error_set(err, "%s: no particles to frame", p->task[0].path[0]);
+  const rrect *b = &p->layout.panel[0].plot;
+  rcamera_frame_box(c, lo, hi, (b->x1 - b->x0) / (b->y1 - b->y0));
+  if (o->have_look_at) memcpy(c->look_at, o->look_at, sizeof c->look_at);
+  if (o->have_distance) c->distance = o->distance;
+  return rcamera_check(c, err);
+}
+
+/* Panel k's 3-D view of snapshot s: its fluid particles (and its walls
+ * with --walls grey or field) as spheres of the discs' diameter, coloured
+ * as discs are, drawn by the worker's context into a malloc'd RGBA image
+ * of the plot box's size. */
+static int draw_3d(const plan *p, worker *w, int k, const rsnap *s, rpanel *pa, sph_error *err) {
+  if (s->dim != 3)
+    return sph_error_set(err, "%s: a 2-D snapshot among 3-D ones: draw them apart", s->path);
+  const rfigure_style *st = &p->style;
+  double diameter;
+  if (rfigure_disc_size(st, s, &diameter, err) != 0) return -1;
+  const int walls = p->o->walls_given && st->walls != RWALLS_NONE;
+  rsphere *sp = malloc((s->n ? s->n : 1) * sizeof *sp);
+  const rrect *b = &p->layout.panel[k].plot;
+  const int iw = (int)(b->x1 - b->x0), ih = (int)(b->y1 - b->y0);
+  uint8_t *img = malloc((size_t)iw * (size_t)ih * 4);
+  if (!sp || !img) {
+    free(sp);
+    free(img);
+    return sph_error_set(err, "%s: out of memory for %zu spheres", s->path, s->n);
+  }
+  size_t n = 0;
+  for (size_t i = 0; i < s->n; i++) {
+    if (s->wall[i] && !walls) continue;
+    rsphere *q = &sp[n++];
+    q->c[0] = (float)s->x[i], q->c[1] = (float)s->y[i], q->c[2] = (float)s->z[i];
+    q->r = (float)(0.5 * diameter);
+    uint8_t rgb[3] = {st->wall.r, st->wall.g, st->wall.b};
+    if (!s->wall[i] || st->walls == RWALLS_FIELD) rfigure_color(st, s->val[i], rgb);
+    q->rgba[0] = rgb[0], q->rgba[1] = rgb[1], q->rgba[2] = rgb[2], q->rgba[3] = 255;
+  }
+  int rc = rspheres_draw(&w->gl->gl, &p->cam, iw, ih, p->o->samples, sp, n, st->bg, img, err);
+  free(sp);
+  if (rc) {
+    free(img);
+    return -1;
+  }
+  pa->image = img;
+  pa->iw = iw;
+  pa->ih = ih;
   return 0;
 }
 
@@ -353,11 +448,16 @@ static int run_task(void *ctx, void *wp, size_t i, sph_error *err) {
       break;
     }
     loaded++;
-    if ((p->o->smooth || p->o->outline) && rsnap_load_volumes(&snaps[k], err) != 0) {
+    rpanel *pa = &panels[k];
+    if (p->dim3) {
+      if (draw_3d(p, w, k, &snaps[k], pa, err) != 0) {
+        rc = -1;
+        break;
+      }
+    } else if ((p->o->smooth || p->o->outline) && rsnap_load_volumes(&snaps[k], err) != 0) {
       rc = -1;
       break;
     }
-    rpanel *pa = &panels[k];
     char when[64];
     rfigure_time_label(snaps[k].time, when, sizeof when);
     pa->snap = &snaps[k];
@@ -385,8 +485,10 @@ static int run_task(void *ctx, void *wp, size_t i, sph_error *err) {
       rc = rpng_write(t->output, w->rgb, p->layout.width, p->layout.height, p->o->compression, err);
   }
   if (rc == 0 && p->o->verbose) fprintf(stderr, "wrote %s\n", t->output);
-  for (int k = 0; k < loaded; k++)
+  for (int k = 0; k < loaded; k++) {
+    free((void *)panels[k].image);
     rsnap_free(&snaps[k]);
+  }
   return rc;
 }
 
@@ -463,6 +565,16 @@ int rsequence_run(const roptions *o, const char *prog, sph_error *err) {
   rlabel_with_units(o->field, units, p.bar_label, sizeof p.bar_label);
   p.style.bar_label = p.bar_label;
 
+  int dim = 2;
+  if (sph_snapshot_file_dimension(p.task[0].path[0], &dim, err) != 0) goto done;
+  p.dim3 = dim == 3;
+  if (p.dim3 && o->smooth_given && (o->smooth == 1 || o->outline == 1)) {
+    sph_error_set(err,
+                  "%s is 3-D: its particles are drawn as spheres (--smooth and --outline "
+                  "draw 2-D snapshots; 3-D slices are not written yet)",
+                  p.task[0].path[0]);
+    goto done;
+  }
   double view[4];
   if (plan_range_and_view(&p, view, err) != 0) goto done;
   if (o->mode == RMODE_COMPARE) {
@@ -484,7 +596,9 @@ int rsequence_run(const roptions *o, const char *prog, sph_error *err) {
   li.title = o->title != NULL;
   li.lo = p.style.lo;
   li.hi = p.style.hi;
+  li.no_axes = p.dim3;
   if (rlayout_figure(&li, &p.layout, err) != 0) goto done;
+  if (p.dim3 && plan_camera(&p, err) != 0) goto done;
 
   if (p.outdir && rinputs_mkdirs(p.outdir, err) != 0) goto done;
   int jobs = o->jobs > 0 ? o->jobs : rjobs_cpus();

@@ -27,8 +27,8 @@ typedef struct field_info {
 } field_info;
 
 static const field_info fields[] = {
-    {"speed", "speed", 0}, {"vx", "vx", 1},       {"vy", "vy", 1},
-    {"pressure", "p", 0},  {"density", "rho", 0},
+    {"speed", "speed", 0}, {"vx", "vx", 1},      {"vy", "vy", 1},
+    {"vz", "vz", 1},       {"pressure", "p", 0}, {"density", "rho", 0},
 };
 
 static const field_info *info(const char *field) {
@@ -50,7 +50,7 @@ static const char *units_dataset(const char *field) {
 int rsnap_units(const char *path, const char *field, char *buf, size_t size, sph_error *err) {
   sph_snapshot *ss = NULL;
   if (size) buf[0] = '\0';
-  if (sph_snapshot_open(path, &ss, err) != 0) return -1;
+  if (sph_snapshot_open_any(path, &ss, err) != 0) return -1;
   sph_snapshot_field_units(ss, units_dataset(field), buf, size);
   sph_snapshot_close(ss);
   return 0;
@@ -83,7 +83,7 @@ static int read_into(const sph_snapshot *ss, const char *path, const char *name,
 
 int rsnap_peek(const char *path, double *time, double view[4], sph_error *err) {
   sph_snapshot *ss = NULL;
-  if (sph_snapshot_open(path, &ss, err) != 0) return -1;
+  if (sph_snapshot_open_any(path, &ss, err) != 0) return -1;
   *time = sph_snapshot_time(ss);
   if (view && sph_snapshot_number(ss, "view", view, 4, NULL) != 0)
     view[0] = view[1] = view[2] = view[3] = NAN;
@@ -94,11 +94,15 @@ int rsnap_peek(const char *path, double *time, double view[4], sph_error *err) {
 int rsnap_load(const char *path, const char *field, rsnap *s, sph_error *err) {
   memset(s, 0, sizeof *s);
   sph_snapshot *ss = NULL;
-  if (sph_snapshot_open(path, &ss, err) != 0) return -1;
+  if (sph_snapshot_open_any(path, &ss, err) != 0) return -1;
   int rc = 0;
   s->path = strdup(path);
   s->time = sph_snapshot_time(ss);
   s->n = sph_snapshot_count(ss);
+  s->dim = sph_snapshot_dimension(ss);
+  if (s->dim != 3 || sph_snapshot_number(ss, "view", s->box, 6, NULL) != 0)
+    for (int k = 0; k < 6; k++)
+      s->box[k] = NAN;
   if (sph_snapshot_number(ss, "dx", &s->dx, 1, NULL) != 0) s->dx = NAN;
   if (sph_snapshot_number(ss, "view", s->view, 4, NULL) != 0)
     s->view[0] = s->view[1] = s->view[2] = s->view[3] = NAN;
@@ -108,25 +112,35 @@ int rsnap_load(const char *path, const char *field, rsnap *s, sph_error *err) {
   size_t n = s->n ? s->n : 1;
   s->x = malloc(n * sizeof *s->x);
   s->y = malloc(n * sizeof *s->y);
+  if (s->dim == 3) s->z = malloc(n * sizeof *s->z);
   s->wall = malloc(n);
   double *tmp = malloc(n * sizeof *tmp);
   if (field) s->val = malloc(n * sizeof *s->val);
-  if (!s->path || !s->x || !s->y || !s->wall || !tmp || (field && !s->val)) {
+  if (!s->path || !s->x || !s->y || (s->dim == 3 && !s->z) || !s->wall || !tmp ||
+      (field && !s->val)) {
     rc = sph_error_set(err, "%s: out of memory for %zu particles", path, s->n);
     goto done;
   }
   if ((rc = read_into(ss, path, "x", s->x, "", err)) != 0) goto done;
   if ((rc = read_into(ss, path, "y", s->y, "", err)) != 0) goto done;
+  if (s->z && (rc = read_into(ss, path, "z", s->z, "", err)) != 0) goto done;
   if ((rc = read_into(ss, path, "kind", tmp, "", err)) != 0) goto done;
   for (size_t i = 0; i < s->n; i++)
     s->wall[i] = tmp[i] != 0.0;
   if (field) {
     if (strcmp(field, "speed") == 0) {
-      const char *why = " (speed is computed from vx and vy)";
+      const char *why = s->dim == 3 ? " (speed is computed from vx, vy and vz)"
+                                    : " (speed is computed from vx and vy)";
       if ((rc = read_into(ss, path, "vx", s->val, why, err)) != 0) goto done;
-      if ((rc = read_into(ss, path, "vy", tmp, why, err)) != 0) goto done;
       for (size_t i = 0; i < s->n; i++)
-        s->val[i] = sqrt(s->val[i] * s->val[i] + tmp[i] * tmp[i]);
+        s->val[i] *= s->val[i];
+      for (int a = 1; a < s->dim; a++) {
+        if ((rc = read_into(ss, path, a == 1 ? "vy" : "vz", tmp, why, err)) != 0) goto done;
+        for (size_t i = 0; i < s->n; i++)
+          s->val[i] += tmp[i] * tmp[i];
+      }
+      for (size_t i = 0; i < s->n; i++)
+        s->val[i] = sqrt(s->val[i]);
     } else {
       const char *ds = rsnap_canonical(field);
       char why[64] = "";
@@ -143,7 +157,7 @@ done:
 
 int rsnap_load_volumes(rsnap *s, sph_error *err) {
   sph_snapshot *ss = NULL;
-  if (sph_snapshot_open(s->path, &ss, err) != 0) return -1;
+  if (sph_snapshot_open_any(s->path, &ss, err) != 0) return -1;
   size_t n = s->n ? s->n : 1;
   const char *why = " (the interpolated view needs h, mass and rho)";
   double *rho = malloc(n * sizeof *rho);
@@ -175,6 +189,7 @@ void rsnap_free(rsnap *s) {
   free(s->path);
   free(s->x);
   free(s->y);
+  free(s->z);
   free(s->val);
   free(s->wall);
   memset(s, 0, sizeof *s);

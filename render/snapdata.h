@@ -5,8 +5,9 @@
  * default view. Read only through src/io/snapshot.h.
  *
  * Field names are the snapshot's dataset names (x y vx vy rho p mass h u
- * kind id free_surface ...) plus "speed" = |v| (derived from vx, vy) and the
- * aliases "pressure" (p) and "density" (rho).
+ * kind id free_surface ...; z and vz in 3-D) plus "speed" = |v| (derived
+ * from vx, vy and, in 3-D, vz) and the aliases "pressure" (p) and
+ * "density" (rho). Snapshots of either dimension are read.
  */
 #ifndef SPH_RENDER_SNAPDATA_H
 #define SPH_RENDER_SNAPDATA_H
@@ -20,11 +21,14 @@ typedef struct rsnap {
   char *path;
   double time;
   size_t n;            /* particles */
+  int dim;             /* 2 or 3 (the file's attribute "dimension") */
   double *x, *y;       /* positions (m) */
+  double *z;           /* 3-D: the vertical position (m); NULL in 2-D */
   double *val;         /* the field, or NULL if none was asked for */
   uint8_t *wall;       /* 1 for wall particles (kind != 0) */
   double dx;           /* particle spacing (attribute dx), NaN if absent */
   double view[4];      /* x0, x1, y0, y1 (attribute view), NaN if absent */
+  double box[6];       /* 3-D: x0, x1, y0, y1, z0, z1 (attribute view), NaN if absent */
   char case_name[128]; /* "" if absent */
   char units[32];      /* the field's `units` attribute ("m/s"), "" if none */
   double *h, *vol;     /* smoothing length, volume m / rho: NULL until rsnap_load_volumes */
@@ -36,7 +40,7 @@ const char *rsnap_canonical(const char *field);
 /* The units of a field as a snapshot's `units` attribute gives them
  * ("m/s"; speed has those of vx), into buf; "" if it has none. */
 int rsnap_units(const char *path, const char *field, char *buf, size_t size, sph_error *err);
-/* Non-zero for fields whose values are signed around zero (vx, vy). */
+/* Non-zero for fields whose values are signed around zero (vx, vy, vz). */
 int rsnap_signed(const char *field);
 
 /* Loads path and, if field is not NULL, that field. Errors name the file

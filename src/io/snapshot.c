@@ -544,6 +544,7 @@ struct sph_snapshot {
   char *text[N_TEXTS]; /* NULL when absent */
   size_t n_fields;
   char **fields; /* dataset names in file order */
+  int dim;       /* its attribute "dimension" (2 when absent) */
 };
 
 static char *dup_string(const char *s) {
@@ -668,7 +669,7 @@ static int read_dimension(const sph_snapshot *s, int64_t *dim, sph_error *err) {
   return has_dim > 0 && get_numbers(s, "dimension", H5T_NATIVE_INT64, dim, 1, err) ? -1 : 0;
 }
 
-static int read_header(sph_snapshot *s, sph_error *err) {
+static int read_header(sph_snapshot *s, int any, sph_error *err) {
   int64_t count;
   if (get_numbers(s, "time", H5T_NATIVE_DOUBLE, &s->time, 1, err) ||
       get_numbers(s, "dt", H5T_NATIVE_DOUBLE, &s->dt, 1, err) ||
@@ -681,11 +682,15 @@ static int read_header(sph_snapshot *s, sph_error *err) {
   s->count = (size_t)count;
   int64_t dim;
   if (read_dimension(s, &dim, err)) return -1;
-  if (dim != SPH_DIM)
+  if (dim != 2 && dim != 3)
+    return sph_error_set(err, "%s: attribute \"dimension\" is %lld, expected 2 or 3", s->path,
+                         (long long)dim);
+  s->dim = (int)dim;
+  if (!any && dim != SPH_DIM)
     return sph_error_set(err,
-                         "%s: a %lld-D snapshot; this program reads %d-D ones (3-D snapshots are "
-                         "not drawn yet: doc/dimensions.md)",
-                         s->path, (long long)dim, SPH_DIM);
+                         "%s: a %lld-D snapshot; this program reads %d-D ones (the %lld-D build "
+                         "does: doc/dimensions.md)",
+                         s->path, (long long)dim, SPH_DIM, (long long)dim);
   for (size_t i = 0; i < N_TEXTS; i++)
     if (get_text(s, TEXTS[i], i == 0, &s->text[i], err)) return -1;
   return 0;
@@ -809,7 +814,7 @@ int sph_snapshot_file_dimension(const char *path, int *dim, sph_error *err) {
   return rc;
 }
 
-int sph_snapshot_open(const char *path, sph_snapshot **out, sph_error *err) {
+static int open_snapshot(const char *path, int any, sph_snapshot **out, sph_error *err) {
   *out = NULL;
   if (!path || !*path) return sph_error_set(err, "snapshot: empty file name");
   sph_snapshot *s = calloc(1, sizeof *s);
@@ -821,12 +826,29 @@ int sph_snapshot_open(const char *path, sph_snapshot **out, sph_error *err) {
   h5_quiet q;
   quiet_begin(&q);
   int rc = open_file(s, err);
-  if (rc == 0) rc = read_header(s, err);
+  if (rc == 0) rc = read_header(s, any, err);
   if (rc == 0) rc = list_fields(s, err);
   if (rc != 0) release(s);
   quiet_end(&q);
   if (rc == 0) *out = s;
   return rc;
+}
+
+int sph_snapshot_open(const char *path, sph_snapshot **out, sph_error *err) {
+  return open_snapshot(path, 0, out, err);
+}
+
+int sph_snapshot_open_any(const char *path, sph_snapshot **out, sph_error *err) {
+  return open_snapshot(path, 1, out, err);
+}
+
+int sph_snapshot_dimension(const sph_snapshot *s) { return s->dim; }
+
+/* The error for reading particles or a restart record of a snapshot of the
+ * other dimension (opened with sph_snapshot_open_any). */
+static int other_dimension(const sph_snapshot *s, sph_error *err) {
+  return sph_error_set(err, "%s: a %d-D snapshot; this library reads %d-D particles", s->path,
+                       s->dim, SPH_DIM);
 }
 
 void sph_snapshot_close(sph_snapshot *s) {
@@ -931,6 +953,7 @@ static int read_store(const sph_snapshot *s, sph_particles *p, sph_error *err) {
 }
 
 int sph_snapshot_read_particles(const sph_snapshot *s, sph_particles *p, sph_error *err) {
+  if (s->dim != SPH_DIM) return other_dimension(s, err);
   if (sph_particles_init(p, s->count, err)) return -1;
   p->n = s->count;
   h5_quiet q;
@@ -1084,6 +1107,7 @@ static int read_restart(const sph_snapshot *s, hid_t g, sph_snapshot_restart_dat
 
 int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *r, sph_error *err) {
   memset(r, 0, sizeof *r);
+  if (s->dim != SPH_DIM) return other_dimension(s, err);
   h5_quiet q;
   quiet_begin(&q);
   int rc = 0;

@@ -100,8 +100,15 @@ typedef struct sph_snapshot sph_snapshot;
 int sph_snapshot_file_dimension(const char *path, int *dim, sph_error *err);
 
 /* Opens a snapshot and reads its header; errors name the file (and the
- * missing attribute or dataset). */
+ * missing attribute or dataset). A snapshot of the other dimension than the
+ * library's is refused. */
 int sph_snapshot_open(const char *path, sph_snapshot **out, sph_error *err);
+/* The same for a snapshot of either dimension: its attributes and fields
+ * read by name (the renderer draws both); reading its particles or its
+ * restart record is refused unless it has the library's dimension. */
+int sph_snapshot_open_any(const char *path, sph_snapshot **out, sph_error *err);
+/* The snapshot's dimension, 2 or 3. */
+int sph_snapshot_dimension(const sph_snapshot *s);
 void sph_snapshot_close(sph_snapshot *s);
 const char *sph_snapshot_path(const sph_snapshot *s);
 double sph_snapshot_time(const sph_snapshot *s);
