@@ -364,6 +364,21 @@ static int draw_3d(const plan *p, worker *w, int k, const rsnap *s, rpanel *pa, 
   pa->image = img;
   pa->iw = iw;
   pa->ih = ih;
+  pa->n_edges = 0;
+  const double *bx = s->box; /* the tank's twelve edges, where they are in front of the eye */
+  for (int e = 0; e < 12 && isfinite(bx[0]); e++) {
+    const int axis = e / 4, o1 = (axis + 1) % 3, o2 = (axis + 2) % 3; /* along axis, at a corner */
+    double a[3], z[3], ax, ay, zx, zy, da, dz;
+    a[o1] = z[o1] = bx[2 * o1 + (e & 1)];
+    a[o2] = z[o2] = bx[2 * o2 + ((e >> 1) & 1)];
+    a[axis] = bx[2 * axis];
+    z[axis] = bx[2 * axis + 1];
+    if (rcamera_project(&p->cam, iw, ih, a, &ax, &ay, &da) != 0 ||
+        rcamera_project(&p->cam, iw, ih, z, &zx, &zy, &dz) != 0)
+      continue;
+    double *q = pa->edges[pa->n_edges++];
+    q[0] = ax, q[1] = ay, q[2] = zx, q[3] = zy;
+  }
   return 0;
 }
 

@@ -18,7 +18,9 @@
  *    shows: depth); the same inputs give the same bytes.
  * 3. sph-render on a 3-D snapshot of cases/hydrostatic_3d.yaml (t = 0):
  *    the front view shows the water as spheres coloured by the field (the
- *    image's plot box holds non-background pixels, its corners do not);
+ *    image's plot box holds non-background pixels, its corners do not) and
+ *    the tank's edges as faint lines (above the water, a column crosses the
+ *    near and the far top edge, a few light pixels);
  *    one and two worker processes, and two runs, give byte-identical
  *    PNGs; every named view renders; --smooth and a 2-D window are
  *    refused with a message naming the file.
@@ -268,6 +270,15 @@ static void test_frames(void) {
     }
   printf("\n    front view: %zu of %d central pixels drawn", coloured, w * h / 4);
   CU_ASSERT(coloured > (size_t)(w * h / 16));
+  /* above the water only the tank's top edges: thin faint lines */
+  int lines = 0, dark = 0;
+  for (int y = (int)(0.08 * h); y < (int)(0.35 * h); y++) {
+    const uint8_t *q = img + ((size_t)y * w + (size_t)(0.35 * w)) * 3;
+    lines += q[0] < 250;
+    dark += q[0] < 100;
+  }
+  printf("; %d edge pixels above the water", lines);
+  CU_ASSERT(lines >= 2 && lines <= 8 && dark == 0);
   free(img);
   CU_ASSERT_EQUAL(render("--view front --size 480x270 --jobs 1 run3/snap_0000.h5 -o f2.png"), 0);
   CU_ASSERT(same_file("f1.png", "f2.png"));
