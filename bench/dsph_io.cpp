@@ -34,74 +34,13 @@
 #include <string>
 #include <vector>
 
-static int make_case(int argc, char **argv) {
+// case (dim 2: rows "x,y,kind,rho", written in the solver's x-z plane) and
+// case3 (dim 3: rows "x,y,z,kind,rho"): the particle file of a case.
+static int make_case(int argc, char **argv, int dim) {
   if (argc != 12) {
     std::fprintf(stderr,
-                 "usage: dsph_io case PARTICLES.csv DIR CASE DP H B RHO0 GAMMA MASSB MASSF\n");
-    return 2;
-  }
-  FILE *f = std::fopen(argv[2], "r");
-  if (!f) {
-    std::perror(argv[2]);
-    return 1;
-  }
-  char line[512];
-  if (!std::fgets(line, sizeof line, f)) {
-    std::fprintf(stderr, "%s: empty\n", argv[2]);
-    return 1;
-  }
-  std::vector<tfloat3> pos;
-  std::vector<tfloat3> vel;
-  std::vector<float> rho;
-  std::vector<unsigned> idp;
-  unsigned nbound = 0;
-  bool fluid_seen = false;
-  tdouble3 lo = TDouble3(1e30), hi = TDouble3(-1e30);
-  while (std::fgets(line, sizeof line, f)) {
-    double x, y, r;
-    int kind;
-    if (std::sscanf(line, "%lf,%lf,%d,%lf", &x, &y, &kind, &r) != 4) {
-      std::fprintf(stderr, "%s: bad row: %s", argv[2], line);
-      return 1;
-    }
-    if (kind != 0) {
-      if (fluid_seen) {
-        std::fprintf(stderr, "%s: boundary rows must come first\n", argv[2]);
-        return 1;
-      }
-      nbound++;
-    } else {
-      fluid_seen = true;
-    }
-    idp.push_back((unsigned)idp.size());
-    pos.push_back(TFloat3((float)x, 0.f, (float)y));
-    vel.push_back(TFloat3(0.f));
-    rho.push_back((float)r);
-    if (x < lo.x) lo.x = x;
-    if (y < lo.z) lo.z = y;
-    if (x > hi.x) hi.x = x;
-    if (y > hi.z) hi.z = y;
-  }
-  std::fclose(f);
-  lo.y = hi.y = 0;
-  const unsigned np = (unsigned)pos.size();
-  JPartDataBi4 pd;
-  pd.ConfigBasic(0, 1, "peers", "sph bench/peers", argv[4], true, 0.0, argv[3]);
-  pd.ConfigParticles(np, nbound, 0, 0, np - nbound, lo, hi);
-  pd.ConfigCtes(std::atof(argv[5]), std::atof(argv[6]), std::atof(argv[7]), std::atof(argv[8]),
-                std::atof(argv[9]), std::atof(argv[10]), std::atof(argv[11]));
-  pd.AddPartInfo(0, 0, np, 0, 0, 0, lo, hi);
-  pd.AddPartData(np, idp.data(), pos.data(), vel.data(), rho.data());
-  pd.SaveFileCase(argv[4]);
-  std::printf("%u particles (%u boundary, %u fluid)\n", np, nbound, np - nbound);
-  return 0;
-}
-
-// case3: the particle file of a 3-D case.
-static int make_case3(int argc, char **argv) {
-  if (argc != 12) {
-    std::fprintf(stderr,
-                 "usage: dsph_io case3 PARTICLES.csv DIR CASE DP H B RHO0 GAMMA MASSB MASSF\n");
+                 "usage: dsph_io %s PARTICLES.csv DIR CASE DP H B RHO0 GAMMA MASSB MASSF\n",
+                 dim == 2 ? "case" : "case3");
     return 2;
   }
   FILE *f = std::fopen(argv[2], "r");
@@ -121,9 +60,11 @@ static int make_case3(int argc, char **argv) {
   bool fluid_seen = false;
   tdouble3 lo = TDouble3(1e30), hi = TDouble3(-1e30);
   while (std::fgets(line, sizeof line, f)) {
-    double x, y, z, r;
+    double x, y = 0.0, z, r;
     int kind;
-    if (std::sscanf(line, "%lf,%lf,%lf,%d,%lf", &x, &y, &z, &kind, &r) != 5) {
+    const int read = dim == 2 ? std::sscanf(line, "%lf,%lf,%d,%lf", &x, &z, &kind, &r)
+                              : std::sscanf(line, "%lf,%lf,%lf,%d,%lf", &x, &y, &z, &kind, &r);
+    if (read != dim + 2) {
       std::fprintf(stderr, "%s: bad row: %s", argv[2], line);
       return 1;
     }
@@ -146,7 +87,8 @@ static int make_case3(int argc, char **argv) {
   std::fclose(f);
   const unsigned np = (unsigned)pos.size();
   JPartDataBi4 pd;
-  pd.ConfigBasic(0, 1, "peers", "sph bench/peers_spheric2", argv[4], false, 0.0, argv[3]);
+  pd.ConfigBasic(0, 1, "peers", dim == 2 ? "sph bench/peers" : "sph bench/peers_spheric2", argv[4],
+                 dim == 2, 0.0, argv[3]);
   pd.ConfigParticles(np, nbound, 0, 0, np - nbound, lo, hi);
   pd.ConfigCtes(std::atof(argv[5]), std::atof(argv[6]), std::atof(argv[7]), std::atof(argv[8]),
                 std::atof(argv[9]), std::atof(argv[10]), std::atof(argv[11]));
@@ -155,6 +97,30 @@ static int make_case3(int argc, char **argv) {
   pd.SaveFileCase(argv[4]);
   std::printf("%u particles (%u boundary, %u fluid)\n", np, nbound, np - nbound);
   return 0;
+}
+
+// Loads DIR/Part_NNNN.bi4 (k = NNNN) into pd; false when there is no such file.
+static bool load_part(const std::string &dir, unsigned k, JPartDataBi4 &pd) {
+  char name[64];
+  std::snprintf(name, sizeof name, "/Part_%04u.bi4", k);
+  FILE *probe = std::fopen((dir + name).c_str(), "rb");
+  if (!probe) return false;
+  std::fclose(probe);
+  pd.LoadFilePart(dir, k);
+  return true;
+}
+
+// The n positions of a loaded part, in single or double precision as written.
+static std::vector<tdouble3> positions(const JPartDataBi4 &pd, unsigned n) {
+  std::vector<tdouble3> p(n);
+  if (pd.Get_PosSimple()) {
+    std::vector<tfloat3> pf(n);
+    pd.Get_Pos(n, pf.data());
+    for (unsigned i = 0; i < n; i++) p[i] = TDouble3(pf[i].x, pf[i].y, pf[i].z);
+  } else {
+    pd.Get_Posd(n, p.data());
+  }
+  return p;
 }
 
 // The cubic spline in 3-D, W(r, h) = 1/(pi h^3) {1 - 3/2 q^2 + 3/4 q^3; 1/4 (2 - q)^3}.
@@ -191,25 +157,13 @@ static int pressures(int argc, char **argv) {
   for (const std::string &n : names) std::printf(",%s", n.c_str());
   std::printf("\n");
   for (unsigned k = 0;; k++) {
-    char name[64];
-    std::snprintf(name, sizeof name, "/Part_%04u.bi4", k);
-    FILE *probe = std::fopen((dir + name).c_str(), "rb");
-    if (!probe) break;
-    std::fclose(probe);
     JPartDataBi4 pd;
-    pd.LoadFilePart(dir, k);
+    if (!load_part(dir, k, pd)) break;
     const unsigned n = pd.Get_Npok();
     std::vector<unsigned> id(n);
-    std::vector<tdouble3> p(n);
     std::vector<float> rho(n);
     pd.Get_Idp(n, id.data());
-    if (pd.Get_PosSimple()) {
-      std::vector<tfloat3> pf(n);
-      pd.Get_Pos(n, pf.data());
-      for (unsigned i = 0; i < n; i++) p[i] = TDouble3(pf[i].x, pf[i].y, pf[i].z);
-    } else {
-      pd.Get_Posd(n, p.data());
-    }
+    const std::vector<tdouble3> p = positions(pd, n);
     pd.Get_Rhop(n, rho.data());
     std::printf("%.9g", pd.Get_TimeStep());
     for (const tdouble3 &a : at) {
@@ -241,28 +195,15 @@ static int fronts(int argc, char **argv) {
   const double top = std::atof(argv[4]) + std::atof(argv[5]);
   std::printf("time,step,front_x\n");
   for (unsigned k = 0;; k++) {
-    char name[64];
-    std::snprintf(name, sizeof name, "/Part_%04u.bi4", k);
-    FILE *probe = std::fopen((dir + name).c_str(), "rb");
-    if (!probe) break;
-    std::fclose(probe);
     JPartDataBi4 pd;
-    pd.LoadFilePart(dir, k);
+    if (!load_part(dir, k, pd)) break;
     const unsigned n = pd.Get_Npok();
     std::vector<unsigned> id(n);
     pd.Get_Idp(n, id.data());
+    const std::vector<tdouble3> p = positions(pd, n);
     double front = -1e30;
-    if (pd.Get_PosSimple()) {
-      std::vector<tfloat3> p(n);
-      pd.Get_Pos(n, p.data());
-      for (unsigned i = 0; i < n; i++)
-        if (id[i] >= nbound && p[i].z < top && p[i].x > front) front = p[i].x;
-    } else {
-      std::vector<tdouble3> p(n);
-      pd.Get_Posd(n, p.data());
-      for (unsigned i = 0; i < n; i++)
-        if (id[i] >= nbound && p[i].z < top && p[i].x > front) front = p[i].x;
-    }
+    for (unsigned i = 0; i < n; i++)
+      if (id[i] >= nbound && p[i].z < top && p[i].x > front) front = p[i].x;
     std::printf("%.9g,%u,%.9g\n", pd.Get_TimeStep(), pd.Get_Step(), front);
   }
   return 0;
@@ -271,9 +212,9 @@ static int fronts(int argc, char **argv) {
 int main(int argc, char **argv) {
   const std::string cmd = argc > 1 ? argv[1] : "";
   try {
-    if (cmd == "case") return make_case(argc, argv);
+    if (cmd == "case") return make_case(argc, argv, 2);
     if (cmd == "front") return fronts(argc, argv);
-    if (cmd == "case3") return make_case3(argc, argv);
+    if (cmd == "case3") return make_case(argc, argv, 3);
     if (cmd == "pressure") return pressures(argc, argv);
   } catch (const std::exception &e) {
     std::fprintf(stderr, "dsph_io: %s\n", e.what());
