@@ -38,6 +38,7 @@
 #include "canvas_impl.h"
 #include "font.h"
 #include "gl_program.h"
+#include "gl_supersample.h"
 
 typedef struct vertex {
   float x, y;   /* pixel position, y down */
@@ -47,10 +48,6 @@ typedef struct vertex {
 } vertex;
 
 enum { MODE_SHAPE = 0, MODE_TEXT = 1, MODE_IMAGE = 2 };
-
-/* The framebuffer may take at most this many bytes (it holds S^2 pixels
- * per image pixel). */
-#define FRAMEBUFFER_BYTES_MAX (1024.0 * 1024.0 * 1024.0)
 
 typedef struct glcanvas {
   struct rcanvas base;
@@ -124,18 +121,9 @@ int rcanvas_gl_create(const rgl *gl, int width, int height, int samples, rcanvas
                       sph_error *err) {
   *out = NULL;
   if (width < 1 || height < 1) return sph_error_set(err, "canvas: bad size %dx%d", width, height);
-  GLint max_rb = 0, max_vp[2] = {0, 0};
-  gl->GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_rb);
-  gl->GetIntegerv(GL_MAX_VIEWPORT_DIMS, max_vp);
-  int lim_x = max_rb < max_vp[0] ? max_rb : max_vp[0];
-  int lim_y = max_rb < max_vp[1] ? max_rb : max_vp[1];
-  if (width > lim_x || height > lim_y)
-    return sph_error_set(err, "image size %dx%d exceeds the driver's limit of %dx%d", width, height,
-                         lim_x, lim_y);
   /* as many sub-pixels as asked for, or as the limits leave room for */
-  while (samples > 1 && ((double)width * samples > lim_x || (double)height * samples > lim_y ||
-                         4.0 * width * height * samples * samples > FRAMEBUFFER_BYTES_MAX))
-    samples--;
+  samples = rgl_fit_samples(gl, width, height, samples, 4.0, err);
+  if (samples < 0) return -1;
   glcanvas *c = calloc(1, sizeof *c);
   if (!c) return sph_error_set(err, "canvas: out of memory");
   c->base.ops = &gl_ops;
@@ -387,34 +375,7 @@ static int gl_read_rgb(rcanvas *base, uint8_t *rgb, sph_error *err) {
   flush(c);
   bind(c);
   gl->Finish();
-  size_t row = (size_t)c->dw * 4;
-  uint8_t *rgba = malloc(row * (size_t)c->dh);
-  if (!rgba) return sph_error_set(err, "canvas: out of memory reading %dx%d pixels", c->dw, c->dh);
-  gl->PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl->ReadPixels(0, 0, c->dw, c->dh, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
-  if (gl->GetError() != GL_NO_ERROR) {
-    free(rgba);
-    return sph_error_set(err, "canvas: glReadPixels failed");
-  }
-  const int S = base->samples, w = base->w, h = base->h;
-  const unsigned n = (unsigned)(S * S);
-  for (int y = 0; y < h; y++) {
-    uint8_t *dst = rgb + (size_t)y * w * 3;
-    for (int x = 0; x < w; x++) {
-      unsigned sum[3] = {0, 0, 0};
-      for (int j = 0; j < S; j++) {
-        /* framebuffer row of sub-pixel row j of image row y (bottom-up) */
-        const uint8_t *src = rgba + (size_t)(c->dh - 1 - (y * S + j)) * row + (size_t)x * S * 4;
-        for (int i = 0; i < S; i++)
-          for (int k = 0; k < 3; k++)
-            sum[k] += src[4 * i + k];
-      }
-      for (int k = 0; k < 3; k++)
-        dst[3 * x + k] = (uint8_t)((sum[k] + n / 2) / n);
-    }
-  }
-  free(rgba);
-  return 0;
+  return rgl_read_averaged(gl, base->w, base->h, base->samples, 3, rgb, "canvas", err);
 }
 
 static const rcanvas_ops gl_ops = {gl_destroy,  gl_clear, gl_clip, gl_rect,     gl_disc, gl_line,

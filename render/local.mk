@@ -23,6 +23,7 @@ render_libsphrender_la_SOURCES = \
 	render/gl_context_egl.c \
 	render/gl_context_osmesa.c \
 	render/gl_program.c render/gl_program.h \
+	render/gl_supersample.c render/gl_supersample.h \
 	render/inputs.c render/inputs.h \
 	render/interp.c render/interp.h \
 	render/jobs.c render/jobs.h \

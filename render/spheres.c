@@ -20,8 +20,7 @@
 #include <stdlib.h>
 
 #include "gl_program.h"
-
-#define FRAMEBUFFER_BYTES_MAX (1024.0 * 1024.0 * 1024.0)
+#include "gl_supersample.h"
 
 static const char *vertex_src =
     "#version 330 core\n"
@@ -91,20 +90,10 @@ static void depth_range(const rcamera *cam, const rsphere *s, size_t n, double *
 int rspheres_draw(const rgl *gl, const rcamera *cam, int w, int h, int samples, const rsphere *s,
                   size_t n, rcolor bg, uint8_t *out, sph_error *err) {
   if (w < 1 || h < 1) return sph_error_set(err, "spheres: bad size %dx%d", w, h);
-  GLint max_rb = 0, max_vp[2] = {0, 0};
-  gl->GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_rb);
-  gl->GetIntegerv(GL_MAX_VIEWPORT_DIMS, max_vp);
-  const int lim_x = max_rb < max_vp[0] ? max_rb : max_vp[0];
-  const int lim_y = max_rb < max_vp[1] ? max_rb : max_vp[1];
-  if (w > lim_x || h > lim_y)
-    return sph_error_set(err, "image size %dx%d exceeds the driver's limit of %dx%d", w, h, lim_x,
-                         lim_y);
-  while (samples > 1 && ((double)w * samples > lim_x || (double)h * samples > lim_y ||
-                         8.0 * w * h * samples * samples > FRAMEBUFFER_BYTES_MAX))
-    samples--;
+  samples = rgl_fit_samples(gl, w, h, samples, 8.0, err); /* colour and depth */
+  if (samples < 0) return -1;
   const int dw = w * samples, dh = h * samples;
   GLuint fbo = 0, rb[2] = {0, 0}, vao = 0, vbo = 0, prog = 0;
-  uint8_t *rgba = NULL;
   int rc = 0;
   gl->GenFramebuffers(1, &fbo);
   gl->BindFramebuffer(GL_FRAMEBUFFER, fbo);
@@ -154,36 +143,12 @@ int rspheres_draw(const rgl *gl, const rcamera *cam, int w, int h, int samples, 
   gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   if (n) gl->DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)n);
   gl->Finish();
-  const size_t row = (size_t)dw * 4;
-  rgba = malloc(row * (size_t)dh);
-  if (!rgba) {
-    rc = sph_error_set(err, "spheres: out of memory reading %dx%d pixels", dw, dh);
-    goto done;
-  }
-  gl->PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl->ReadPixels(0, 0, dw, dh, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
   if (gl->GetError() != GL_NO_ERROR) {
     rc = sph_error_set(err, "spheres: OpenGL error while drawing %zu spheres", n);
     goto done;
   }
-  const unsigned S2 = (unsigned)(samples * samples);
-  for (int y = 0; y < h; y++)
-    for (int x = 0; x < w; x++) {
-      unsigned sum[3] = {0, 0, 0};
-      for (int j = 0; j < samples; j++) {
-        const uint8_t *src =
-            rgba + (size_t)(dh - 1 - (y * samples + j)) * row + (size_t)x * samples * 4;
-        for (int i = 0; i < samples; i++)
-          for (int k = 0; k < 3; k++)
-            sum[k] += src[4 * i + k];
-      }
-      uint8_t *dst = out + ((size_t)y * w + x) * 4;
-      for (int k = 0; k < 3; k++)
-        dst[k] = (uint8_t)((sum[k] + S2 / 2) / S2);
-      dst[3] = 255;
-    }
+  rc = rgl_read_averaged(gl, w, h, samples, 4, out, "spheres", err);
 done:
-  free(rgba);
   gl->Disable(GL_DEPTH_TEST); /* the canvas draws without depth and with blending */
   gl->Enable(GL_BLEND);
   if (vbo) gl->DeleteBuffers(1, &vbo);
