@@ -34,6 +34,7 @@ void rcli_usage(FILE *fp) {
         "       sph-render --panels CxR [OPTIONS] SNAPSHOT|RUN_DIR... -o FIGURE.png|.svg|.pdf\n"
         "       sph-render --compare [OPTIONS] RUN_DIR RUN_DIR... -o OUT\n"
         "       sph-render plot [OPTIONS] FILE.csv [--points FILE.csv]... -o PLOT.png|.svg|.pdf\n"
+        "       sph-render mesh [OPTIONS] SNAPSHOT|RUN_DIR... -o SURFACE.ply|DIR\n"
         "\n"
         "Renders SPH snapshots (HDF5, as written by `sph run`) to PNG images off screen.\n"
         "A directory stands for its snap_*.h5 files. OUT is a directory (one\n"
@@ -60,6 +61,10 @@ void rcli_usage(FILE *fp) {
         "                          the tank framed, from its centre)\n"
         "  --fov DEG               3-D: vertical field of view (default 30)\n"
         "  --ortho                 3-D: orthographic projection\n"
+        "  --surface field|water   3-D: the fluid as its free surface, a lit mesh (marching\n"
+        "                          cubes on the level 1/2 of the SPH kernel sum), coloured\n"
+        "                          by the field or as water, instead of its particles\n"
+        "  --surface-cell M        3-D: the lattice's cell for the surface (default dx/2)\n"
         "  --background RRGGBB     background colour (default ffffff; also white, black)\n"
         "  --disc-scale F          particle disc diameter = F * dx (default 1; discs smaller\n"
         "                          than 4 pixels then grow to cover their particle's cell)\n"
@@ -109,6 +114,11 @@ void rcli_usage(FILE *fp) {
         "  -o PLOT.png|PLOT.svg|PLOT.pdf  the plot as a PNG image, or as SVG or PDF (vector)\n"
         "  --size W[xH] (default 960x640; pixels, or points for SVG and PDF), --background,\n"
         "  --font-scale, --samples, --compression, --backend\n"
+        "\n"
+        "Mesh options (after `mesh`; 3-D snapshots): writes each snapshot's free surface\n"
+        "(as --surface draws it) as a binary PLY file: vertices with outward normals and,\n"
+        "with --field, that field; OUT is one .ply file or a directory of surface_NNNN.ply\n"
+        "  --field NAME, --times T1,T2,..., --surface-cell M, -v\n"
         "\n"
         "  -h, --help, --version\n",
         fp);
@@ -337,6 +347,11 @@ static int check_output(const roptions *o, sph_error *err) {
   const char *ext = extension(o->output);
   struct stat st;
   int is_dir = stat(o->output, &st) == 0 && S_ISDIR(st.st_mode);
+  if (o->mode == RMODE_MESH) {
+    if (!ext[0] || is_dir || strcmp(ext, ".ply") == 0) return 0;
+    return sph_error_set(err, "-o %s: a surface is written as a .ply file or into a directory",
+                         o->output);
+  }
   if (o->mode == RMODE_PLOT) {
     if (rinputs_is_png(o->output) || rcanvas_vector_kind(o->output)) return 0;
     return sph_error_set(err, "-o %s: a plot is written as .png, .svg or .pdf%s%s%s", o->output,
@@ -360,6 +375,16 @@ static int check(const roptions *o, sph_error *err) {
   if (o->n_inputs == 0) return sph_error_set(err, "no snapshots given (see --help)");
   if (o->mode == RMODE_COMPARE && o->n_inputs > ROPT_MAX_LIST)
     return sph_error_set(err, "--compare: too many runs");
+  return 0;
+}
+
+/* The options the mesh mode takes (the others draw images). */
+static int mesh_option(const char *name) {
+  static const char *const names[] = {
+      "-o",     "--output",  "-v",      "--verbose",      "-h",
+      "--help", "--version", "--field", "--surface-cell", "--times"};
+  for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
+    if (strcmp(name, names[k]) == 0) return 1;
   return 0;
 }
 
@@ -484,6 +509,22 @@ static int snapshot_option(args *a, roptions *o, int *compare, int *panels, sph_
   if (is(a, "--field")) {
     VALUE_P();
     o->field = v;
+    o->field_given = 1;
+  } else if (is(a, "--surface")) {
+    VALUE_P();
+    if (strcmp(v, "field") == 0)
+      o->surface = RSURFACE_FIELD;
+    else if (strcmp(v, "water") == 0)
+      o->surface = RSURFACE_WATER;
+    else if (strcmp(v, "none") == 0)
+      o->surface = RSURFACE_NONE;
+    else
+      return sph_error_set(err, "--surface: unknown '%s' (valid: field, water, none)", v);
+  } else if (is(a, "--surface-cell")) {
+    VALUE_P();
+    if (parse_double(a->name, v, &o->surface_cell, err) != 0) return -1;
+    if (!(o->surface_cell > 0.0))
+      return sph_error_set(err, "--surface-cell: '%s': expected metres > 0", v);
   } else if (is(a, "--cmap")) {
     VALUE_P();
     o->cmap = v;
@@ -638,8 +679,11 @@ int rcli_parse(int argc, char **argv, roptions *o, sph_error *err) {
   if (argc > 1 && strcmp(argv[1], "plot") == 0) {
     o->mode = RMODE_PLOT;
     a.i = 2;
+  } else if (argc > 1 && strcmp(argv[1], "mesh") == 0) {
+    o->mode = RMODE_MESH;
+    a.i = 2;
   }
-  int plot = o->mode == RMODE_PLOT;
+  int plot = o->mode == RMODE_PLOT, mesh = o->mode == RMODE_MESH;
   int compare = 0, panels = 0;
   roverlay_opt *ov = NULL;
   rseries_opt *se = NULL;
@@ -668,6 +712,8 @@ int rcli_parse(int argc, char **argv, roptions *o, sph_error *err) {
     } else {
       a.name = arg;
     }
+    if (mesh && !mesh_option(a.name))
+      return sph_error_set(err, "unknown option %s in mesh mode (see --help)", a.name);
     int r = common_option(&a, o, err);
     if (r == 0) {
       r = plot ? plot_option(&a, o, &se, err) : snapshot_option(&a, o, &compare, &panels, err);
@@ -682,6 +728,7 @@ int rcli_parse(int argc, char **argv, roptions *o, sph_error *err) {
   if (compare && panels && o->cols * o->rows < o->n_inputs)
     return sph_error_set(err, "--panels %dx%d is too small for %d runs", o->cols, o->rows,
                          o->n_inputs);
+  if (mesh) return check(o, err);
   if (compare)
     o->mode = RMODE_COMPARE;
   else if (panels)

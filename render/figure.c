@@ -260,17 +260,8 @@ int rfigure_draw(rcanvas *c, const rlayout *L, const rfigure_style *st, const rp
   rcanvas_clear(c, st->bg);
   int s = L->scale;
   for (int k = 0; k < n; k++) {
-    if (p[k].image) { /* a 3-D view: the image and the tank's edges, without axes */
-      const rrect *b = &L->panel[k].plot;
-      rcanvas_image(c, *b, p[k].iw, p[k].ih, p[k].image);
-      rcanvas_clip(c, b);
-      const rcolor edge = {st->fg.r, st->fg.g, st->fg.b, 90};
-      for (int e = 0; e < p[k].n_edges; e++) {
-        const double *q = p[k].edges[e];
-        rcanvas_line(c, b->x0 + q[0], b->y0 + q[1], b->x0 + q[2], b->y0 + q[3],
-                     rlayout_line_width(L), edge);
-      }
-      rcanvas_clip(c, NULL);
+    if (p[k].image) { /* a 3-D view: its image, without axes */
+      rcanvas_image(c, L->panel[k].plot, p[k].iw, p[k].ih, p[k].image);
       if (L->bare) continue;
     } else {
       double diameter;

@@ -48,12 +48,9 @@ typedef struct rfigure_style {
 
 typedef struct rpanel {
   const rsnap *snap;
-  const uint8_t *image; /* a 3-D view drawn beforehand (spheres.h): RGBA of the plot box's
+  const uint8_t *image; /* a 3-D view drawn beforehand (scene3d.h): RGBA of the plot box's
                            pixels, iw x ih, drawn in place of discs and axes; NULL in 2-D */
   int iw, ih;
-  double edges[12][4]; /* 3-D: the tank's edges as pixel segments x0, y0, x1, y1 from the
-                          plot box's top-left corner, drawn over the image */
-  int n_edges;
   char label[160]; /* left of the label line, e.g. "a) t = 0.156 s" */
   char note[160];  /* right of it, e.g. the case name; may be "" */
 } rpanel;

@@ -68,6 +68,7 @@
   X(PFNGLUNIFORM2FPROC, Uniform2f)                                                                 \
   X(PFNGLUNIFORM1FPROC, Uniform1f)                                                                 \
   X(PFNGLUNIFORM1IPROC, Uniform1i)                                                                 \
+  X(PFNGLUNIFORM4FPROC, Uniform4f)                                                                 \
   X(PFNGLGENTEXTURESPROC, GenTextures)                                                             \
   X(PFNGLBINDTEXTUREPROC, BindTexture)                                                             \
   X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                                       \
@@ -76,9 +77,11 @@
   X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                                         \
   X(PFNGLDRAWARRAYSPROC, DrawArrays)                                                               \
   X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)                                             \
+  X(PFNGLDRAWELEMENTSPROC, DrawElements)                                                           \
   X(PFNGLVERTEXATTRIBDIVISORPROC, VertexAttribDivisor)                                             \
   X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                                                   \
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                                                 \
+  X(PFNGLDEPTHMASKPROC, DepthMask)                                                                 \
   X(PFNGLCLEARDEPTHPROC, ClearDepth)
 
 typedef struct rgl {

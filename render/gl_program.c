@@ -51,3 +51,12 @@ GLuint rgl_program(const rgl *gl, const char *vertex_src, const char *fragment_s
   }
   return p;
 }
+
+void rgl_use_camera(const rgl *gl, GLuint prog, const float view[16], const float proj[16],
+                    int ortho) {
+  gl->UseProgram(prog);
+  gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "view"), 1, GL_FALSE, view);
+  gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "proj"), 1, GL_FALSE, proj);
+  const GLint o = gl->GetUniformLocation(prog, "ortho");
+  if (o >= 0) gl->Uniform1i(o, ortho ? 1 : 0);
+}

@@ -2,7 +2,8 @@
 /*
  * gl_program.h - an OpenGL shader program from the sources of its vertex
  * and fragment shaders, with the driver's log in the error when a shader
- * does not compile or the program does not link.
+ * does not compile or the program does not link; the camera's uniforms
+ * the 3-D views' programs share.
  */
 #ifndef SPH_RENDER_GL_PROGRAM_H
 #define SPH_RENDER_GL_PROGRAM_H
@@ -15,5 +16,10 @@
  * on failure. */
 GLuint rgl_program(const rgl *gl, const char *vertex_src, const char *fragment_src, const char *who,
                    sph_error *err);
+
+/* Makes prog current and sets the 3-D views' camera uniforms "view" and
+ * "proj" (column-major 4x4, camera.h) and "ortho" (where prog has it). */
+void rgl_use_camera(const rgl *gl, GLuint prog, const float view[16], const float proj[16],
+                    int ortho);
 
 #endif

@@ -10,6 +10,7 @@
 # Everything but main(), so the test can call the layout and colour code.
 noinst_LTLIBRARIES += render/libsphrender.la
 render_libsphrender_la_SOURCES = \
+	render/atomic_file.c render/atomic_file.h \
 	render/camera.c render/camera.h \
 	render/canvas.c render/canvas.h render/canvas_impl.h \
 	render/canvas_cairo.c render/canvas_gl.c \
@@ -26,15 +27,24 @@ render_libsphrender_la_SOURCES = \
 	render/gl_supersample.c render/gl_supersample.h \
 	render/inputs.c render/inputs.h \
 	render/interp.c render/interp.h \
+	render/interp3d.c render/interp3d.h \
+	render/isosurface.c render/isosurface.h \
 	render/jobs.c render/jobs.h \
 	render/label.c render/label.h \
 	render/layout.c render/layout.h \
+	render/lines_gl.c render/lines_gl.h \
 	render/marks.c render/marks.h \
+	render/mesh_gl.c render/mesh_gl.h \
+	render/mesh_run.c render/mesh_run.h \
+	render/obstacles.c render/obstacles.h \
 	render/plot.c render/plot.h \
+	render/ply_out.c render/ply_out.h \
 	render/png_out.c render/png_out.h \
+	render/scene3d.c render/scene3d.h \
 	render/sequence.c render/sequence.h \
 	render/snapdata.c render/snapdata.h \
 	render/spheres.c render/spheres.h \
+	render/surface.c render/surface.h \
 	render/ticks.c render/ticks.h
 RENDER_CFLAGS = $(AM_CFLAGS) $(OSMESA_CFLAGS) $(EGL_CFLAGS) $(PNG_CFLAGS) $(HDF5_CFLAGS) \
 	$(FREETYPE_CFLAGS) $(CAIRO_CFLAGS)
@@ -63,6 +73,13 @@ tests_test_render_3d_SOURCES = tests/test_render_3d.c
 tests_test_render_3d_CFLAGS = $(RENDER_CFLAGS) $(CUNIT_CFLAGS) -I$(top_srcdir)/render
 tests_test_render_3d_LDADD = tests/libtestutil.la render/libsphrender.la $(RENDER_LIBS) $(CUNIT_LIBS)
 tests_test_render_3d_DEPENDENCIES = tests/libtestutil.la render/libsphrender.la src/libsphio.la
+
+check_PROGRAMS += tests/test_isosurface
+TESTS += tests/test_isosurface
+tests_test_isosurface_SOURCES = tests/test_isosurface.c
+tests_test_isosurface_CFLAGS = $(RENDER_CFLAGS) $(CUNIT_CFLAGS) -I$(top_srcdir)/render
+tests_test_isosurface_LDADD = tests/libtestutil.la render/libsphrender.la $(RENDER_LIBS) $(CUNIT_LIBS)
+tests_test_isosurface_DEPENDENCIES = tests/libtestutil.la render/libsphrender.la src/libsphio.la
 
 # `make frames`: the frames of a run (by default the Martin & Moyce run of
 # the README's main command) into frames/, one PNG per snapshot.

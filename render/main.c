@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * main.c - sph-render: SPH snapshots to PNG frames, figures and plots,
- * off screen (OSMesa or surfaceless EGL).
+ * and 3-D free surfaces to PLY meshes, off screen (OSMesa or surfaceless EGL).
  *
  * Only main decides what to print and the exit status: 0 when every image
  * was written, 1 when anything failed (a bad command line, an unreadable
@@ -14,6 +14,7 @@
 #include <stdio.h>
 
 #include "cli.h"
+#include "mesh_run.h"
 #include "plot.h"
 #include "sequence.h"
 
@@ -29,6 +30,8 @@ int main(int argc, char **argv) {
   }
   if (o.mode == RMODE_PLOT)
     rc = rplot_run(&o, &err);
+  else if (o.mode == RMODE_MESH)
+    rc = rmesh_run(&o, prog, &err);
   else
     rc = rsequence_run(&o, prog, &err);
   if (rc != 0) {

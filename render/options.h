@@ -10,7 +10,11 @@
 
 enum { ROPT_MAX_LIST = 64 };
 
-enum { RMODE_FRAMES, RMODE_PANELS, RMODE_COMPARE, RMODE_PLOT };
+enum { RMODE_FRAMES, RMODE_PANELS, RMODE_COMPARE, RMODE_PLOT, RMODE_MESH };
+
+/* --surface: 3-D fluid as particles, or as its free-surface mesh coloured
+ * by the field or as water. */
+enum { RSURFACE_NONE, RSURFACE_FIELD, RSURFACE_WATER };
 
 /* An --overlay and its modifiers. */
 typedef struct roverlay_opt {
@@ -78,10 +82,14 @@ typedef struct roptions {
   const char *view3d; /* --view NAME (iso, front, side, top); NULL: iso */
   int have_azimuth, have_elevation, have_distance, have_look_at;
   double azimuth, elevation, distance, look_at[3];
-  double fov; /* degrees, default 30 */
-  int ortho;  /* --ortho */
+  double fov;          /* degrees, default 30 */
+  int ortho;           /* --ortho */
+  int surface;         /* RSURFACE_* */
+  double surface_cell; /* --surface-cell (m); 0: half the particle spacing */
+  int field_given;     /* --field given (the mesh mode writes no field without it) */
 
-  /* plot mode */
+  /* plot mode (the mesh mode takes the snapshot modes' inputs, --field,
+   * --times and --surface-cell) */
   rseries_opt series[ROPT_MAX_LIST];
   int n_series;
   const char *xcol, *ycol;

@@ -5,8 +5,7 @@
  * Determinism: the file holds only IHDR, IDAT and IEND - no tIME, no text
  * chunks, no gamma guess - and libpng's row-filter heuristic and zlib are
  * deterministic, so the same pixels and level give the same bytes.
- * Atomicity: write "<path>.tmp", fclose (checked), then rename(2), which
- * replaces the target in one step on POSIX file systems. libpng reports
+ * Atomicity: atomic_file.h. libpng reports
  * errors by longjmp; everything that must be released afterwards lives in
  * variables declared volatile or outside the setjmp frame.
  */
@@ -14,11 +13,10 @@
 
 #include "png_out.h"
 
-#include <errno.h>
 #include <png.h>
 #include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
+
+#include "atomic_file.h"
 
 typedef struct png_failure {
   char msg[256];
@@ -64,35 +62,23 @@ static int encode(FILE *fp, const uint8_t *rgb, int width, int height, int level
   return 0;
 }
 
+typedef struct png_job {
+  const uint8_t *rgb;
+  int width, height, level;
+} png_job;
+
+static int write_png(FILE *fp, const void *ctx, char *why, size_t why_size) {
+  const png_job *j = ctx;
+  png_failure f = {""};
+  if (encode(fp, j->rgb, j->width, j->height, j->level, &f) == 0) return 0;
+  snprintf(why, why_size, "%s", f.msg);
+  return -1;
+}
+
 int rpng_write(const char *path, const uint8_t *rgb, int width, int height, int level,
                sph_error *err) {
   if (level < 0 || level > 9)
     return sph_error_set(err, "%s: PNG compression level %d is not in 0..9", path, level);
-  size_t n = strlen(path);
-  char *tmp = malloc(n + 5);
-  if (!tmp) return sph_error_set(err, "%s: out of memory", path);
-  memcpy(tmp, path, n);
-  memcpy(tmp + n, ".tmp", 5);
-  FILE *fp = fopen(tmp, "wb");
-  if (!fp) {
-    sph_error_set(err, "%s: cannot create: %s", tmp, strerror(errno));
-    free(tmp);
-    return -1;
-  }
-  png_failure f = {""};
-  int rc = encode(fp, rgb, width, height, level, &f);
-  if (fclose(fp) != 0 && rc == 0) {
-    snprintf(f.msg, sizeof f.msg, "%s", strerror(errno));
-    rc = -1;
-  }
-  if (rc == 0 && rename(tmp, path) != 0) {
-    snprintf(f.msg, sizeof f.msg, "cannot rename %s: %s", tmp, strerror(errno));
-    rc = -1;
-  }
-  if (rc != 0) {
-    remove(tmp);
-    sph_error_set(err, "%s: cannot write PNG: %s", path, f.msg);
-  }
-  free(tmp);
-  return rc;
+  const png_job j = {rgb, width, height, level};
+  return ratomic_write(path, "PNG", write_png, &j, err);
 }

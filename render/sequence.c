@@ -34,9 +34,12 @@
 #include "label.h"
 #include "layout.h"
 #include "marks.h"
+#include "obstacles.h"
 #include "png_out.h"
+#include "scene3d.h"
 #include "snapdata.h"
 #include "spheres.h"
+#include "surface.h"
 
 typedef struct rtask {
   char *output;
@@ -57,6 +60,9 @@ typedef struct plan {
   const char *outdir; /* made only once the plan is complete; NULL: one file */
   int dim3;           /* the inputs are 3-D snapshots: drawn as spheres by cam */
   rcamera cam;
+  rmesh boxes;    /* 3-D: the obstacles' faces (obstacles.h) */
+  double tank[6]; /* 3-D: the tank's inner faces, NaN if not listed */
+  uint8_t *boxes_rgba;
 } plan;
 
 typedef struct worker {
@@ -286,6 +292,25 @@ static int plan_range_and_view(plan *p, double view[4], sph_error *err) {
   return 0;
 }
 
+/* The obstacles' boxes of the first snapshot (the case's; they do not
+ * move), as a light grey mesh drawn in every 3-D view, and the tank's
+ * inner faces, whose edges are drawn. */
+static int plan_obstacles(plan *p, sph_error *err) {
+  sph_snapshot *s = NULL;
+  if (sph_snapshot_open_any(p->task[0].path[0], &s, err) != 0) return -1;
+  double box[ROBSTACLES_MAX][6];
+  const char *parameters = sph_snapshot_text(s, "parameters");
+  const int n = robstacles_parse(parameters, box, ROBSTACLES_MAX);
+  if (robstacles_tank(parameters, p->tank) != 0) p->tank[0] = NAN;
+  sph_snapshot_close(s);
+  if (robstacles_mesh((const double(*)[6])box, n, &p->boxes, err) != 0) return -1;
+  p->boxes_rgba = malloc(4 * (p->boxes.nv ? p->boxes.nv : 1));
+  if (!p->boxes_rgba) return sph_error_set(err, "out of memory");
+  for (size_t i = 0; i < 4 * p->boxes.nv; i++)
+    p->boxes_rgba[i] = i % 4 == 3 ? 255 : 200;
+  return 0;
+}
+
 /* The camera of a 3-D plan, the same for every image: the named view (iso
  * by default) or the given direction, framing the first snapshot's tank
  * (its attribute view; else its particles' box) in the first panel's plot
@@ -320,15 +345,42 @@ static int plan_camera(plan *p, sph_error *err) {
   if (!(hi[0] >= lo[0])) return sph_error_set(err, "%s: no particles to frame", p->task[0].path[0]);
   const rrect *b = &p->layout.panel[0].plot;
   rcamera_frame_box(c, lo, hi, (b->x1 - b->x0) / (b->y1 - b->y0));
+  if (plan_obstacles(p, err) != 0) return -1;
   if (o->have_look_at) memcpy(c->look_at, o->look_at, sizeof c->look_at);
   if (o->have_distance) c->distance = o->distance;
   return rcamera_check(c, err);
 }
 
-/* Panel k's 3-D view of snapshot s: its fluid particles (and its walls
- * with --walls grey or field) as spheres of the discs' diameter, coloured
- * as discs are, drawn by the worker's context into a malloc'd RGBA image
- * of the plot box's size. */
+/* The colour of the surface drawn as water (--surface water). */
+static const uint8_t water_rgb[3] = {70, 130, 190};
+
+/* The free surface of s as a mesh and one colour per vertex (the field's,
+ * or water's), for panel views with --surface. */
+static int surface_of(const plan *p, const rsnap *s, rmesh *m, uint8_t **rgba, sph_error *err) {
+  const int by_field = p->o->surface == RSURFACE_FIELD;
+  double cell;
+  if (rsurface_cell(s, p->o->surface_cell, &cell, err) != 0 ||
+      rsurface_of(s, cell, by_field, m, err) != 0)
+    return -1;
+  *rgba = malloc(4 * (m->nv ? m->nv : 1));
+  if (!*rgba) {
+    rmesh_free(m);
+    return sph_error_set(err, "%s: out of memory for %zu vertices", s->path, m->nv);
+  }
+  for (size_t i = 0; i < m->nv; i++) {
+    uint8_t rgb[3] = {water_rgb[0], water_rgb[1], water_rgb[2]};
+    if (by_field) rfigure_color(&p->style, m->val[i], rgb);
+    uint8_t *q = *rgba + 4 * i;
+    q[0] = rgb[0], q[1] = rgb[1], q[2] = rgb[2], q[3] = 255;
+  }
+  return 0;
+}
+
+/* Panel k's 3-D view of snapshot s: its fluid particles as spheres of the
+ * discs' diameter, coloured as discs are, or its free surface as a mesh
+ * (--surface), and its walls as spheres with --walls grey or field, drawn
+ * by the worker's context into a malloc'd RGBA image of the plot box's
+ * size. */
 static int draw_3d(const plan *p, worker *w, int k, const rsnap *s, rpanel *pa, sph_error *err) {
   if (s->dim != 3)
     return sph_error_set(err, "%s: a 2-D snapshot among 3-D ones: draw them apart", s->path);
@@ -336,6 +388,10 @@ static int draw_3d(const plan *p, worker *w, int k, const rsnap *s, rpanel *pa, 
   double diameter;
   if (rfigure_disc_size(st, s, &diameter, err) != 0) return -1;
   const int walls = p->o->walls_given && st->walls != RWALLS_NONE;
+  const int surface = p->o->surface != RSURFACE_NONE;
+  rmesh mesh = {0};
+  uint8_t *mesh_rgba = NULL;
+  if (surface && surface_of(p, s, &mesh, &mesh_rgba, err) != 0) return -1;
   rsphere *sp = malloc((s->n ? s->n : 1) * sizeof *sp);
   const rrect *b = &p->layout.panel[k].plot;
   const int iw = (int)(b->x1 - b->x0), ih = (int)(b->y1 - b->y0);
@@ -343,11 +399,13 @@ static int draw_3d(const plan *p, worker *w, int k, const rsnap *s, rpanel *pa, 
   if (!sp || !img) {
     free(sp);
     free(img);
+    rmesh_free(&mesh);
+    free(mesh_rgba);
     return sph_error_set(err, "%s: out of memory for %zu spheres", s->path, s->n);
   }
   size_t n = 0;
   for (size_t i = 0; i < s->n; i++) {
-    if (s->wall[i] && !walls) continue;
+    if (s->wall[i] ? !walls : surface) continue;
     rsphere *q = &sp[n++];
     q->c[0] = (float)s->x[i], q->c[1] = (float)s->y[i], q->c[2] = (float)s->z[i];
     q->r = (float)(0.5 * diameter);
@@ -355,8 +413,32 @@ static int draw_3d(const plan *p, worker *w, int k, const rsnap *s, rpanel *pa, 
     if (!s->wall[i] || st->walls == RWALLS_FIELD) rfigure_color(st, s->val[i], rgb);
     q->rgba[0] = rgb[0], q->rgba[1] = rgb[1], q->rgba[2] = rgb[2], q->rgba[3] = 255;
   }
-  int rc = rspheres_draw(&w->gl->gl, &p->cam, iw, ih, p->o->samples, sp, n, st->bg, img, err);
+  rscene3d sc = {sp,
+                 n,
+                 {surface ? &mesh : NULL, p->boxes.nt ? &p->boxes : NULL},
+                 {mesh_rgba, p->boxes_rgba},
+                 NULL,
+                 0,
+                 0.0,
+                 {st->fg.r, st->fg.g, st->fg.b, 90}};
+  float edges[12][6]; /* the tank's twelve edges, faint */
+  const double *bx = isfinite(p->tank[0]) ? p->tank : s->box;
+  for (int e = 0; e < 12 && isfinite(bx[0]); e++) {
+    const int axis = e / 4, o1 = (axis + 1) % 3, o2 = (axis + 2) % 3; /* along axis, at a corner */
+    for (int end = 0; end < 2; end++) {
+      float *q = edges[e] + 3 * end;
+      q[o1] = (float)bx[2 * o1 + (e & 1)];
+      q[o2] = (float)bx[2 * o2 + ((e >> 1) & 1)];
+      q[axis] = (float)bx[2 * axis + end];
+    }
+    sc.n_segments++;
+  }
+  sc.segments = edges[0];
+  sc.segment_width = rlayout_line_width(&p->layout);
+  int rc = rscene3d_draw(&w->gl->gl, &p->cam, iw, ih, p->o->samples, &sc, st->bg, img, err);
   free(sp);
+  rmesh_free(&mesh);
+  free(mesh_rgba);
   if (rc) {
     free(img);
     return -1;
@@ -364,21 +446,6 @@ static int draw_3d(const plan *p, worker *w, int k, const rsnap *s, rpanel *pa, 
   pa->image = img;
   pa->iw = iw;
   pa->ih = ih;
-  pa->n_edges = 0;
-  const double *bx = s->box; /* the tank's twelve edges, where they are in front of the eye */
-  for (int e = 0; e < 12 && isfinite(bx[0]); e++) {
-    const int axis = e / 4, o1 = (axis + 1) % 3, o2 = (axis + 2) % 3; /* along axis, at a corner */
-    double a[3], z[3], ax, ay, zx, zy, da, dz;
-    a[o1] = z[o1] = bx[2 * o1 + (e & 1)];
-    a[o2] = z[o2] = bx[2 * o2 + ((e >> 1) & 1)];
-    a[axis] = bx[2 * axis];
-    z[axis] = bx[2 * axis + 1];
-    if (rcamera_project(&p->cam, iw, ih, a, &ax, &ay, &da) != 0 ||
-        rcamera_project(&p->cam, iw, ih, z, &zx, &zy, &dz) != 0)
-      continue;
-    double *q = pa->edges[pa->n_edges++];
-    q[0] = ax, q[1] = ay, q[2] = zx, q[3] = zy;
-  }
   return 0;
 }
 
@@ -465,7 +532,8 @@ static int run_task(void *ctx, void *wp, size_t i, sph_error *err) {
     loaded++;
     rpanel *pa = &panels[k];
     if (p->dim3) {
-      if (draw_3d(p, w, k, &snaps[k], pa, err) != 0) {
+      if ((p->o->surface != RSURFACE_NONE && rsnap_load_volumes(&snaps[k], err) != 0) ||
+          draw_3d(p, w, k, &snaps[k], pa, err) != 0) {
         rc = -1;
         break;
       }
@@ -516,6 +584,8 @@ static void free_plan(plan *p) {
     free(p->overlay[i].y);
     free(p->overlay[i].t);
   }
+  rmesh_free(&p->boxes);
+  free(p->boxes_rgba);
 }
 
 static void default_size(const roptions *o, int cols, int *w, int *h) {
@@ -583,10 +653,16 @@ int rsequence_run(const roptions *o, const char *prog, sph_error *err) {
   int dim = 2;
   if (sph_snapshot_file_dimension(p.task[0].path[0], &dim, err) != 0) goto done;
   p.dim3 = dim == 3;
+  if (!p.dim3 && o->surface != RSURFACE_NONE) {
+    sph_error_set(err,
+                  "%s is 2-D: --surface draws the free surface of 3-D snapshots (2-D: --outline)",
+                  p.task[0].path[0]);
+    goto done;
+  }
   if (p.dim3 && o->smooth_given && (o->smooth == 1 || o->outline == 1)) {
     sph_error_set(err,
-                  "%s is 3-D: its particles are drawn as spheres (--smooth and --outline "
-                  "draw 2-D snapshots; 3-D slices are not written yet)",
+                  "%s is 3-D: its particles are drawn as spheres or its free surface as a mesh "
+                  "(--surface); --smooth and --outline draw 2-D snapshots",
                   p.task[0].path[0]);
     goto done;
   }

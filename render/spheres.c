@@ -9,18 +9,16 @@
  * half field of view at most). The fragment shader intersects the ray
  * through its point (from the eye, or along the view direction when
  * orthographic) with the sphere, discards a miss, shades the hit point and
- * writes its depth.
+ * writes its depth. The frame buffer, the depth range and the read-back
+ * are the scene's (scene3d.c).
  */
 #include "config.h"
 
 #include "spheres.h"
 
-#include <math.h>
 #include <stddef.h>
-#include <stdlib.h>
 
 #include "gl_program.h"
-#include "gl_supersample.h"
 
 static const char *vertex_src =
     "#version 330 core\n"
@@ -67,59 +65,12 @@ static const char *fragment_src =
     "  gl_FragDepth = 0.5 * clip.z / clip.w + 0.5;\n"
     "}\n";
 
-/* The nearest and farthest depth of the spheres in front of the eye. */
-static void depth_range(const rcamera *cam, const rsphere *s, size_t n, double *near_d,
-                        double *far_d) {
-  rcamera_frame f;
-  rcamera_frame_of(cam, &f);
-  double lo = INFINITY, hi = 0.0;
-  for (size_t i = 0; i < n; i++) {
-    const double d = (s[i].c[0] - f.eye[0]) * f.forward[0] + (s[i].c[1] - f.eye[1]) * f.forward[1] +
-                     (s[i].c[2] - f.eye[2]) * f.forward[2];
-    lo = fmin(lo, d - s[i].r);
-    hi = fmax(hi, d + s[i].r);
-  }
-  if (!(hi > 0.0)) hi = cam->distance;
-  if (!(lo < hi)) lo = 0.5 * hi; /* no sphere in front of the eye */
-  *far_d = 1.01 * hi;
-  /* in front of the eye: perspective depth needs near > 0 (a sphere nearer
-   * than far/1e4 is cut) */
-  *near_d = cam->ortho ? fmin(lo, 0.0) - 0.01 * hi : fmax(0.99 * lo, 1e-4 * hi);
-}
-
-int rspheres_draw(const rgl *gl, const rcamera *cam, int w, int h, int samples, const rsphere *s,
-                  size_t n, rcolor bg, uint8_t *out, sph_error *err) {
-  if (w < 1 || h < 1) return sph_error_set(err, "spheres: bad size %dx%d", w, h);
-  samples = rgl_fit_samples(gl, w, h, samples, 8.0, err); /* colour and depth */
-  if (samples < 0) return -1;
-  const int dw = w * samples, dh = h * samples;
-  GLuint fbo = 0, rb[2] = {0, 0}, vao = 0, vbo = 0, prog = 0;
-  int rc = 0;
-  gl->GenFramebuffers(1, &fbo);
-  gl->BindFramebuffer(GL_FRAMEBUFFER, fbo);
-  gl->GenRenderbuffers(2, rb);
-  gl->BindRenderbuffer(GL_RENDERBUFFER, rb[0]);
-  gl->RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, dw, dh);
-  gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
-  gl->BindRenderbuffer(GL_RENDERBUFFER, rb[1]);
-  gl->RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, dw, dh);
-  gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
-  if (gl->CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-    rc = sph_error_set(err, "spheres: cannot make a %dx%d framebuffer with depth", dw, dh);
-    goto done;
-  }
-  if (!(prog = rgl_program(gl, vertex_src, fragment_src, "spheres", err))) {
-    rc = -1;
-    goto done;
-  }
-  double near_d, far_d;
-  depth_range(cam, s, n, &near_d, &far_d);
-  float view[16], proj[16];
-  rcamera_matrices(cam, (double)w / (double)h, near_d, far_d, view, proj);
-  gl->UseProgram(prog);
-  gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "view"), 1, GL_FALSE, view);
-  gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "proj"), 1, GL_FALSE, proj);
-  gl->Uniform1i(gl->GetUniformLocation(prog, "ortho"), cam->ortho ? 1 : 0);
+int rspheres_gl(const rgl *gl, const float view[16], const float proj[16], int ortho,
+                const rsphere *s, size_t n, sph_error *err) {
+  if (!n) return 0;
+  GLuint vao = 0, vbo = 0, prog = rgl_program(gl, vertex_src, fragment_src, "spheres", err);
+  if (!prog) return -1;
+  rgl_use_camera(gl, prog, view, proj, ortho);
   gl->GenVertexArrays(1, &vao);
   gl->BindVertexArray(vao);
   gl->GenBuffers(1, &vbo);
@@ -133,28 +84,11 @@ int rspheres_draw(const rgl *gl, const rcamera *cam, int w, int h, int samples, 
     gl->EnableVertexAttribArray(k);
     gl->VertexAttribDivisor(k, 1);
   }
-  gl->Viewport(0, 0, dw, dh);
-  gl->Disable(GL_SCISSOR_TEST);
-  gl->Disable(GL_BLEND);
-  gl->Enable(GL_DEPTH_TEST);
-  gl->DepthFunc(GL_LESS);
-  gl->ClearColor(bg.r / 255.0f, bg.g / 255.0f, bg.b / 255.0f, 1.0f);
-  gl->ClearDepth(1.0);
-  gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  if (n) gl->DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)n);
-  gl->Finish();
-  if (gl->GetError() != GL_NO_ERROR) {
-    rc = sph_error_set(err, "spheres: OpenGL error while drawing %zu spheres", n);
-    goto done;
-  }
-  rc = rgl_read_averaged(gl, w, h, samples, 4, out, "spheres", err);
-done:
-  gl->Disable(GL_DEPTH_TEST); /* the canvas draws without depth and with blending */
-  gl->Enable(GL_BLEND);
-  if (vbo) gl->DeleteBuffers(1, &vbo);
-  if (vao) gl->DeleteVertexArrays(1, &vao);
-  if (prog) gl->DeleteProgram(prog);
-  gl->DeleteRenderbuffers(2, rb);
-  gl->DeleteFramebuffers(1, &fbo);
-  return rc;
+  gl->DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)n);
+  for (GLuint k = 0; k < 3; k++)
+    gl->VertexAttribDivisor(k, 0);
+  gl->DeleteBuffers(1, &vbo);
+  gl->DeleteVertexArrays(1, &vao);
+  gl->DeleteProgram(prog);
+  return 0;
 }

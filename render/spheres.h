@@ -1,17 +1,13 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
- * spheres.h - particles of a 3-D snapshot as lit spheres, seen by a camera
- * (camera.h), into an RGBA image.
+ * spheres.h - particles of a 3-D snapshot as lit spheres, drawn into a
+ * scene (scene3d.h).
  *
  * Each sphere is a screen-facing quad whose fragments cast their ray onto
  * the sphere (perspective or orthographic), light the hit point (ambient,
  * diffuse and a little specular from a fixed light above-left of the eye)
  * and write its depth, so spheres cut into one another as solid balls do.
- * The image is drawn at samples x samples sub-pixels per pixel and each
- * pixel is the rounded mean of its sub-pixels, in integers. The spheres are
- * drawn in the order given, with a less-than depth test: the image depends
- * only on the inputs and the driver's rasterisation (llvmpipe's is the
- * same in every process and for any thread count).
+ * The spheres are drawn in the order given.
  */
 #ifndef SPH_RENDER_SPHERES_H
 #define SPH_RENDER_SPHERES_H
@@ -19,8 +15,6 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "camera.h"
-#include "canvas.h"
 #include "core/error.h"
 #include "gl_api.h"
 
@@ -31,11 +25,9 @@ typedef struct rsphere {
   uint8_t rgba[4];
 } rsphere;
 
-/* Draws the n spheres over background bg into rgba (w * h * 4 bytes, top
- * row first, alpha 255) with the current context of gl. Fails, naming the
- * limit, if the image at that many samples exceeds the driver's
- * framebuffer size or 1 GiB. */
-int rspheres_draw(const rgl *gl, const rcamera *cam, int w, int h, int samples, const rsphere *s,
-                  size_t n, rcolor bg, uint8_t *rgba, sph_error *err);
+/* Draws the n spheres with the camera's matrices (camera.h) into the
+ * current frame buffer, depth-tested. */
+int rspheres_gl(const rgl *gl, const float view[16], const float proj[16], int ortho,
+                const rsphere *s, size_t n, sph_error *err);
 
 #endif

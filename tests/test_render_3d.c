@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * test_render_3d.c - the renderer's 3-D view (render/camera.h,
- * render/spheres.h) and sph-render on a 3-D snapshot (issue 38).
+ * render/spheres.h, render/mesh_gl.h, render/scene3d.h) and sph-render on
+ * a 3-D snapshot (issue 38). The surface's geometry is test_isosurface's.
  *
  * 1. The camera against hand-computed projections: a point 1 m right of
  *    and 1 m above the target, 10 m from the eye, at a 90-degree field of
@@ -15,7 +16,9 @@
  *    (-0.35, 0.55, 0.75), specular 0.15 at exponent 40: red 214, green and
  *    blue 3, within 2), the background around it exactly; two overlapping
  *    spheres give the same image whichever is drawn first (the nearer one
- *    shows: depth); the same inputs give the same bytes.
+ *    shows: depth); the same inputs give the same bytes. A red square mesh
+ *    facing the eye is lit as the sphere's centre is, seen from behind the
+ *    same, and a sphere before it shows while one behind it does not.
  * 3. sph-render on a 3-D snapshot of cases/hydrostatic_3d.yaml (t = 0):
  *    the front view shows the water as spheres coloured by the field (the
  *    image's plot box holds non-background pixels, its corners do not) and
@@ -24,6 +27,15 @@
  *    one and two worker processes, and two runs, give byte-identical
  *    PNGs; every named view renders; --smooth and a 2-D window are
  *    refused with a message naming the file.
+ * 4. Obstacles: the boxes of a snapshot's parameter listing (an incomplete
+ *    one ignored) and the tank's; their faces a mesh of the boxes' volume
+ *    (to 1e-6) wound along their outward normals.
+ * 5. --surface: the water block as a mesh coloured by pressure, and as
+ *    water on one and two workers (the same bytes); the mesh mode writes
+ *    a PLY file whose header counts match its size (28 bytes a vertex with
+ *    the field, 13 a face), the same bytes twice, a directory of
+ *    surface_NNNN.ply; options that draw, a .obj output, one file for
+ *    many snapshots and an unknown --surface are refused.
  */
 #include "config.h"
 
@@ -35,6 +47,8 @@
 
 #include "camera.h"
 #include "gl_context.h"
+#include "obstacles.h"
+#include "scene3d.h"
 #include "spheres.h"
 #include "testutil.h"
 
@@ -145,6 +159,13 @@ static rgl_context *context(void) {
   return ctx;
 }
 
+/* n spheres alone in a scene, at 3 x 3 samples. */
+static int spheres(rgl_context *ctx, const rcamera *c, int w, int h, const rsphere *s, size_t n,
+                   rcolor bg, uint8_t *out, sph_error *err) {
+  const rscene3d sc = {s, n, {NULL}, {NULL}, NULL, 0, 0.0, {0, 0, 0, 0}};
+  return rscene3d_draw(&ctx->gl, c, w, h, 3, &sc, bg, out, err);
+}
+
 static void test_sphere_shading(void) {
   rgl_context *ctx = context();
   CU_ASSERT_PTR_NOT_NULL_FATAL(ctx);
@@ -153,8 +174,7 @@ static void test_sphere_shading(void) {
   const rsphere s = {{0.0f, 0.0f, 0.0f}, 1.0f, {255, 0, 0, 255}};
   uint8_t *a = malloc(w * h * 4), *b = malloc(w * h * 4);
   sph_error err;
-  CU_ASSERT_FATAL(rspheres_draw(&ctx->gl, &c, w, h, 3, &s, 1, (rcolor){20, 30, 40, 255}, a, &err) ==
-                  0);
+  CU_ASSERT_FATAL(spheres(ctx, &c, w, h, &s, 1, (rcolor){20, 30, 40, 255}, a, &err) == 0);
   const uint8_t *mid = a + ((size_t)50 * w + 50) * 4;
   printf("\n    the sphere's centre: %d %d %d", mid[0], mid[1], mid[2]);
   CU_ASSERT(abs(mid[0] - 214) <= 2 && abs(mid[1] - 3) <= 2 && abs(mid[2] - 3) <= 2);
@@ -165,23 +185,114 @@ static void test_sphere_shading(void) {
   const uint8_t *out = a + ((size_t)50 * w + (size_t)(50 + 1.2 * r_px)) * 4;
   CU_ASSERT(in[0] > 60 && in[2] < 20);                     /* on the sphere */
   CU_ASSERT(out[0] == 20 && out[1] == 30 && out[2] == 40); /* off it */
-  CU_ASSERT_FATAL(rspheres_draw(&ctx->gl, &c, w, h, 3, &s, 1, (rcolor){20, 30, 40, 255}, b, &err) ==
-                  0);
+  CU_ASSERT_FATAL(spheres(ctx, &c, w, h, &s, 1, (rcolor){20, 30, 40, 255}, b, &err) == 0);
   CU_ASSERT(memcmp(a, b, (size_t)w * h * 4) == 0);
   /* depth: a blue sphere in front of a red one shows, in either order */
   const rsphere two[2] = {{{0.5f, 0.0f, 0.0f}, 1.0f, {255, 0, 0, 255}},
                           {{-0.5f, -1.0f, 0.0f}, 1.0f, {0, 0, 255, 255}}};
   const rsphere owt[2] = {two[1], two[0]};
-  CU_ASSERT_FATAL(rspheres_draw(&ctx->gl, &c, w, h, 3, two, 2, (rcolor){0, 0, 0, 255}, a, &err) ==
-                  0);
-  CU_ASSERT_FATAL(rspheres_draw(&ctx->gl, &c, w, h, 3, owt, 2, (rcolor){0, 0, 0, 255}, b, &err) ==
-                  0);
+  CU_ASSERT_FATAL(spheres(ctx, &c, w, h, two, 2, (rcolor){0, 0, 0, 255}, a, &err) == 0);
+  CU_ASSERT_FATAL(spheres(ctx, &c, w, h, owt, 2, (rcolor){0, 0, 0, 255}, b, &err) == 0);
   CU_ASSERT(memcmp(a, b, (size_t)w * h * 4) == 0);
   const uint8_t *front = a + ((size_t)50 * w + 50) * 4; /* where both overlap */
   CU_ASSERT(front[2] > 100 && front[0] < 20);
   free(a);
   free(b);
   rgl_context_destroy(ctx);
+}
+
+/* A red square mesh 2 m wide in the plane y = 0, facing the front view's
+ * eye (normal -y), and spheres with it. */
+static void test_mesh_shading(void) {
+  rgl_context *ctx = context();
+  CU_ASSERT_PTR_NOT_NULL_FATAL(ctx);
+  rcamera c = {{0.0, 0.0, 0.0}, 0.0, 0.0, 10.0, 30.0, 0, 0.0};
+  const int w = 101, h = 101;
+  float p[12] = {-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};
+  float n[12] = {0, -1, 0, 0, -1, 0, 0, -1, 0, 0, -1, 0};
+  uint32_t tri[6] = {0, 1, 2, 0, 2, 3};
+  const rmesh m = {4, 2, p, n, NULL, tri};
+  const uint8_t red[16] = {255, 0, 0, 255, 255, 0, 0, 255, 255, 0, 0, 255, 255, 0, 0, 255};
+  uint8_t *a = malloc(w * h * 4), *b = malloc(w * h * 4);
+  sph_error err;
+  rscene3d sc = {NULL, 0, {&m}, {red}, NULL, 0, 0.0, {0, 0, 0, 0}};
+  CU_ASSERT_FATAL(rscene3d_draw(&ctx->gl, &c, w, h, 3, &sc, (rcolor){20, 30, 40, 255}, a, &err) ==
+                  0);
+  const uint8_t *mid = a + ((size_t)50 * w + 50) * 4;
+  printf("\n    the square's centre: %d %d %d", mid[0], mid[1], mid[2]);
+  /* lit as a sphere's point facing the eye is */
+  CU_ASSERT(abs(mid[0] - 214) <= 2 && abs(mid[1] - 3) <= 2 && abs(mid[2] - 3) <= 2);
+  CU_ASSERT(a[0] == 20 && a[1] == 30 && a[2] == 40); /* a corner: background */
+  /* the square's edge: 1 m at 10 m under a 30-degree view of 101 px */
+  const double half_px = 1.0 / (10.0 * tan(15.0 * M_PI / 180.0)) * 50.5;
+  CU_ASSERT(a[((size_t)50 * w + (size_t)(50 + 0.9 * half_px)) * 4] > 150);
+  CU_ASSERT(a[((size_t)50 * w + (size_t)(50 + 1.1 * half_px)) * 4] == 20);
+  /* seen from behind, the normal turns to the eye: the same shading */
+  for (int k = 0; k < 4; k++)
+    n[3 * k + 1] = 1;
+  CU_ASSERT_FATAL(rscene3d_draw(&ctx->gl, &c, w, h, 3, &sc, (rcolor){20, 30, 40, 255}, b, &err) ==
+                  0);
+  CU_ASSERT(memcmp(a, b, (size_t)w * h * 4) == 0);
+  /* depth between the two: a blue sphere before the square shows, one
+   * behind it does not */
+  rsphere s = {{0.0f, -1.0f, 0.0f}, 0.5f, {0, 0, 255, 255}};
+  sc.spheres = &s;
+  sc.n_spheres = 1;
+  CU_ASSERT_FATAL(rscene3d_draw(&ctx->gl, &c, w, h, 3, &sc, (rcolor){20, 30, 40, 255}, b, &err) ==
+                  0);
+  CU_ASSERT(b[((size_t)50 * w + 50) * 4 + 2] > 100 && b[((size_t)50 * w + 50) * 4] < 20);
+  s.c[1] = 1.0f;
+  CU_ASSERT_FATAL(rscene3d_draw(&ctx->gl, &c, w, h, 3, &sc, (rcolor){20, 30, 40, 255}, b, &err) ==
+                  0);
+  CU_ASSERT(memcmp(a, b, (size_t)w * h * 4) == 0);
+  free(a);
+  free(b);
+  rgl_context_destroy(ctx);
+}
+
+/* Boxes from a snapshot's parameter listing, and their faces as a closed
+ * outward mesh of the boxes' volume. */
+static void test_obstacles(void) {
+  const char *listing = "geometry.tank.x: [0, 3.2200000000000002]\n"
+                        "geometry.tank.y: [0, 1]\n"
+                        "geometry.tank.z: [0, 1]\n"
+                        "geometry.obstacles[0].x: [0.66349999999999998, 0.82450000000000001]\n"
+                        "geometry.obstacles[0].y: [0.29849999999999999, 0.70150000000000001]\n"
+                        "geometry.obstacles[0].z: [0, 0.161]\n"
+                        "geometry.obstacles[0].layers: 2\n"
+                        "geometry.obstacles[1].x: [1, 2]\n"
+                        "geometry.obstacles[1].y: [0, 0.5]\n"
+                        "geometry.obstacles[1].z: [0.25, 0.5]\n"
+                        "geometry.obstacles[2].x: [1, 2]\n"; /* incomplete: not a box */
+  double box[4][6], tank[6];
+  CU_ASSERT_EQUAL_FATAL(robstacles_parse(listing, box, 4), 2);
+  CU_ASSERT(box[0][0] == 0.66349999999999998 && box[0][3] == 0.70150000000000001 &&
+            box[0][4] == 0.0 && box[0][5] == 0.161);
+  CU_ASSERT(box[1][4] == 0.25 && box[1][5] == 0.5);
+  CU_ASSERT_EQUAL(robstacles_parse(listing, box, 1), 1);
+  CU_ASSERT_EQUAL(robstacles_parse(NULL, box, 4), 0);
+  CU_ASSERT(robstacles_tank(listing, tank) == 0 && tank[1] == 3.2200000000000002 && tank[5] == 1.0);
+  CU_ASSERT(robstacles_tank("geometry.tank.x: [0, 1]\n", tank) != 0);
+  rmesh m;
+  sph_error err;
+  CU_ASSERT_FATAL(robstacles_mesh((const double(*)[6])box, 2, &m, &err) == 0);
+  const double want = 0.161 * 0.403 * 0.161 + 1.0 * 0.5 * 0.25;
+  printf("\n    two boxes: %zu triangles, volume %.9f (%.9f)", m.nt, rmesh_volume(&m), want);
+  CU_ASSERT(m.nt == 24 && m.nv == 48);
+  CU_ASSERT(fabs(rmesh_volume(&m) - want) < 1e-6);
+  /* each triangle's winding agrees with its vertices' normal */
+  int agree = 0;
+  for (size_t t = 0; t < m.nt; t++) {
+    const float *a = m.p + 3 * m.tri[3 * t], *b = m.p + 3 * m.tri[3 * t + 1],
+                *c = m.p + 3 * m.tri[3 * t + 2], *n = m.normal + 3 * m.tri[3 * t];
+    const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double x[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                         e1[0] * e2[1] - e1[1] * e2[0]};
+    agree += x[0] * n[0] + x[1] * n[1] + x[2] * n[2] > 0.0;
+  }
+  CU_ASSERT_EQUAL(agree, 24);
+  rmesh_free(&m);
 }
 
 /* ---- sph-render on a 3-D snapshot ---- */
@@ -299,6 +410,78 @@ static void test_frames(void) {
                   0);
 }
 
+/* Reads a PLY file's header: the counts of its elements and whether it
+ * declares property `field`. */
+static int ply_header(const char *name, size_t *nv, size_t *nf, const char *field, int *has) {
+  char path[4200], line[512];
+  snprintf(path, sizeof path, "%s/%s", tmp, name);
+  FILE *fp = fopen(path, "rb");
+  if (!fp) return -1;
+  *nv = *nf = 0;
+  *has = 0;
+  int ok = fgets(line, sizeof line, fp) && strcmp(line, "ply\n") == 0;
+  while (ok && fgets(line, sizeof line, fp) && strcmp(line, "end_header\n") != 0) {
+    sscanf(line, "element vertex %zu", nv);
+    sscanf(line, "element face %zu", nf);
+    char prop[256];
+    if (sscanf(line, "property float %255s", prop) == 1 && strcmp(prop, field) == 0) *has = 1;
+  }
+  fclose(fp);
+  return ok ? 0 : -1;
+}
+
+static void test_surface(void) {
+  CU_ASSERT_FATAL(made);
+  /* the water block as a mesh coloured by pressure: drawn in the middle */
+  int rc = render("--view front --size 480x270 --jobs 1 --surface field --field pressure "
+                  "run3/snap_0000.h5 -o m1.png");
+  if (rc) printf("\n    sph-render: %s", last_err());
+  CU_ASSERT_EQUAL_FATAL(rc, 0);
+  int w, h;
+  char path[4200];
+  snprintf(path, sizeof path, "%s/m1.png", tmp);
+  uint8_t *img = read_png(path, &w, &h);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(img);
+  const uint8_t *mid = img + ((size_t)(h / 2) * w + w / 2) * 3;
+  printf("\n    the surface's middle: %d %d %d", mid[0], mid[1], mid[2]);
+  CU_ASSERT(!(mid[0] == 255 && mid[1] == 255 && mid[2] == 255));
+  free(img);
+  /* water, and the same bytes on one and two workers and again */
+  CU_ASSERT_EQUAL(render("--size 320x180 --jobs 1 --surface water run3 -o ms1"), 0);
+  CU_ASSERT_EQUAL(render("--size 320x180 --jobs 2 --surface water run3 -o ms2"), 0);
+  CU_ASSERT(same_file("ms1/frame_0000.png", "ms2/frame_0000.png"));
+  CU_ASSERT(same_file("ms1/frame_0001.png", "ms2/frame_0001.png"));
+  /* the mesh mode: one file, with the field; a directory, without */
+  rc = render("mesh --field pressure run3/snap_0000.h5 -o s.ply");
+  if (rc) printf("\n    sph-render mesh: %s", last_err());
+  CU_ASSERT_EQUAL_FATAL(rc, 0);
+  size_t nv, nf;
+  int has;
+  CU_ASSERT_FATAL(ply_header("s.ply", &nv, &nf, "p", &has) == 0);
+  printf("; s.ply: %zu vertices, %zu faces", nv, nf);
+  CU_ASSERT(nv > 100 && nf > 100 && has);
+  snprintf(path, sizeof path, "%s/s.ply", tmp);
+  size_t size = 0;
+  char *bytes = sph_test_read_file(path, &size);
+  const char *end = bytes ? strstr(bytes, "end_header\n") : NULL;
+  CU_ASSERT(end && size == (size_t)(end - bytes) + 11 + 28 * nv + 13 * nf);
+  free(bytes);
+  CU_ASSERT_EQUAL(render("mesh --surface-cell 0.02 run3 -o meshes"), 0);
+  CU_ASSERT_FATAL(ply_header("meshes/surface_0001.ply", &nv, &nf, "p", &has) == 0);
+  CU_ASSERT(nv > 10 && !has);
+  CU_ASSERT_EQUAL(render("mesh --field pressure run3/snap_0000.h5 -o s2.ply"), 0);
+  CU_ASSERT(same_file("s.ply", "s2.ply"));
+  /* refusals */
+  CU_ASSERT_NOT_EQUAL(render("mesh --size 100x100 run3 -o x"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "unknown option --size in mesh mode"));
+  CU_ASSERT_NOT_EQUAL(render("mesh run3 -o one.ply"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "give a directory"));
+  CU_ASSERT_NOT_EQUAL(render("mesh run3/snap_0000.h5 -o x.obj"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), ".ply"));
+  CU_ASSERT_NOT_EQUAL(render("--surface glass run3/snap_0000.h5 -o g.png"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "valid: field, water, none"));
+}
+
 static void test_refusals(void) {
   CU_ASSERT_FATAL(made);
   CU_ASSERT_NOT_EQUAL(render("--smooth run3/snap_0000.h5 -o s.png"), 0);
@@ -313,13 +496,17 @@ static void test_refusals(void) {
 
 int main(void) {
   tmp = sph_test_tmpdir();
-  CU_TestInfo tests[] = {{"camera: hand-computed projections", test_projection},
-                         {"camera: the matrices project as the camera does", test_matrices},
-                         {"camera: a box framed on its margin", test_framing},
-                         {"spheres: shading, depth, the same bytes", test_sphere_shading},
-                         {"sph-render: a 3-D snapshot's frames", test_frames},
-                         {"sph-render: 3-D refusals", test_refusals},
-                         CU_TEST_INFO_NULL};
+  CU_TestInfo tests[] = {
+      {"camera: hand-computed projections", test_projection},
+      {"camera: the matrices project as the camera does", test_matrices},
+      {"camera: a box framed on its margin", test_framing},
+      {"spheres: shading, depth, the same bytes", test_sphere_shading},
+      {"surface mesh: shading, both sides, depth with spheres", test_mesh_shading},
+      {"obstacles: boxes from the parameters, closed outward", test_obstacles},
+      {"sph-render: a 3-D snapshot's frames", test_frames},
+      {"sph-render: the free surface, drawn and as PLY", test_surface},
+      {"sph-render: 3-D refusals", test_refusals},
+      CU_TEST_INFO_NULL};
   int rc = sph_test_main("render_3d", tests);
   sph_test_rmtree(tmp);
   free(tmp);
