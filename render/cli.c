@@ -65,6 +65,10 @@ void rcli_usage(FILE *fp) {
         "                          cubes on the level 1/2 of the SPH kernel sum), coloured\n"
         "                          by the field or as water, instead of its particles\n"
         "  --surface-cell M        3-D: the lattice's cell for the surface (default dx/2)\n"
+        "  --slice AXIS=POS[,T]    3-D: the plane AXIS = POS (x, y or z; m) drawn as a 2-D\n"
+        "                          snapshot: the field interpolated on it with the free\n"
+        "                          surface outlined, or with --discs the particles of a\n"
+        "                          slab T thick (default dx)\n"
         "  --background RRGGBB     background colour (default ffffff; also white, black)\n"
         "  --disc-scale F          particle disc diameter = F * dx (default 1; discs smaller\n"
         "                          than 4 pixels then grow to cover their particle's cell)\n"
@@ -520,6 +524,10 @@ static int snapshot_option(args *a, roptions *o, int *compare, int *panels, sph_
       o->surface = RSURFACE_NONE;
     else
       return sph_error_set(err, "--surface: unknown '%s' (valid: field, water, none)", v);
+  } else if (is(a, "--slice")) {
+    VALUE_P();
+    if (rslice_parse(v, &o->slice, err) != 0) return -1;
+    o->have_slice = 1;
   } else if (is(a, "--surface-cell")) {
     VALUE_P();
     if (parse_double(a->name, v, &o->surface_cell, err) != 0) return -1;

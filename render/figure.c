@@ -66,7 +66,7 @@ static void draw_discs(rcanvas *c, const rlayout *L, int k, const rfigure_style 
                        double r, int walls) {
   const rrect *box = &L->panel[k].plot;
   for (size_t i = 0; i < s->n; i++) {
-    if (s->wall[i] != walls) continue;
+    if (s->wall[i] != walls || (s->off && !(fabs(s->off[i]) <= s->slab))) continue;
     double px, py;
     rlayout_to_px(L, k, s->x[i], s->y[i], &px, &py);
     if (px + r + 1 < box->x0 || px - r - 1 > box->x1 || py + r + 1 < box->y0 ||
@@ -110,7 +110,7 @@ static int draw_smooth(rcanvas *c, const rlayout *L, int k, const rfigure_style 
   int rc = 0;
   if (!f || !sf || !sw || !phi || !rgba || !keep)
     rc = sph_error_set(err, "%s: out of memory for a %dx%d interpolated view", s->path, nx, ny);
-  rinterp_in in = {s->n, s->x, s->y, s->h, s->vol, s->val, s->wall, s->kernel};
+  rinterp_in in = {s->n, s->x, s->y, s->h, s->vol, s->val, s->wall, s->kernel, s->off};
   /* the world point of the box's top-left corner (the inverse of rlayout_to_px) */
   double wx0, wy1, cx, cy;
   rlayout_to_px(L, k, 0.0, 0.0, &cx, &cy);
@@ -217,10 +217,12 @@ static void draw_axes(rcanvas *c, const rlayout *L, int k, const rfigure_style *
     rcanvas_text(c, b->x0 - lw - tick - 2 * s, py + 0.5 * lw, buf, s, st->fg, RALIGN_RIGHT,
                  RALIGN_MIDDLE, 0);
   }
-  rcanvas_text(c, 0.5 * (b->x0 + b->x1), b->y1 + lw + tick + 2 * s + 9 * s + 4 * s, "x (m)", s,
-               st->fg, RALIGN_CENTER, RALIGN_TOP, 0);
-  rcanvas_text(c, L->panel[k].cell.x0 + 3 * s, 0.5 * (b->y0 + b->y1), "y (m)", s, st->fg,
-               RALIGN_CENTER, RALIGN_TOP, 1);
+  rcanvas_text(c, 0.5 * (b->x0 + b->x1), b->y1 + lw + tick + 2 * s + 9 * s + 4 * s,
+               st->axis_label[0] ? st->axis_label[0] : "x (m)", s, st->fg, RALIGN_CENTER,
+               RALIGN_TOP, 0);
+  rcanvas_text(c, L->panel[k].cell.x0 + 3 * s, 0.5 * (b->y0 + b->y1),
+               st->axis_label[1] ? st->axis_label[1] : "y (m)", s, st->fg, RALIGN_CENTER,
+               RALIGN_TOP, 1);
 }
 
 static void draw_colorbar(rcanvas *c, const rlayout *L, const rfigure_style *st) {

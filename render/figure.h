@@ -42,8 +42,9 @@ typedef struct rfigure_style {
   int outline;           /* the free surface as a line; both need rsnap_load_volumes */
   const roverlay *overlays;
   int n_overlays;
-  double overlay_tol; /* seconds */
-  const char *title;  /* NULL: none */
+  double overlay_tol;        /* seconds */
+  const char *title;         /* NULL: none */
+  const char *axis_label[2]; /* NULL: "x (m)", "y (m)" (a 3-D slice names its plane's axes) */
 } rfigure_style;
 
 typedef struct rpanel {

@@ -13,6 +13,8 @@
 
 #include "interp.h"
 
+#include "interp3d.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +23,12 @@ double rinterp_w(int k, double r, double h) {
   double w, dw;
   sph_shape_w_dw(k, r, h, &w, &dw);
   return w;
+}
+
+/* W at distance sqrt(r2 + off^2): in 2-D, or on a plane through 3-D. */
+static double kernel_at(const rinterp_in *in, double r2, double off, double h) {
+  return in->off ? rinterp3_w(in->kernel, sqrt(r2 + off * off), h)
+                 : rinterp_w(in->kernel, sqrt(r2), h);
 }
 
 int rinterp_kernel_of(const sph_snapshot *s) {
@@ -117,7 +125,8 @@ int rinterp_field(const rinterp_in *in, const rinterp_grid *g, double *f, double
         for (size_t k = start[bb * cx + aa]; k < start[bb * cx + aa + 1]; k++) {
           const size_t q = order[k];
           const double dx = in->x[i] - in->x[q], dy = in->y[i] - in->y[q];
-          sum += rinterp_w(in->kernel, sqrt(dx * dx + dy * dy), in->h[i]);
+          sum +=
+              kernel_at(in, dx * dx + dy * dy, in->off ? in->off[i] - in->off[q] : 0.0, in->h[i]);
         }
       }
     vol[i] = sum > 0.0 ? 1.0 / sum : 0.0;
@@ -138,8 +147,9 @@ int rinterp_field(const rinterp_in *in, const rinterp_grid *g, double *f, double
             const size_t p = order[k];
             const double dx = px - in->x[p], dy = py - in->y[p];
             const double r2 = dx * dx + dy * dy, h = in->h[p];
-            if (r2 >= 4.0 * h * h) continue;
-            const double vw = vol[p] * rinterp_w(in->kernel, sqrt(r2), h);
+            const double o = in->off ? in->off[p] : 0.0;
+            if (r2 + o * o >= 4.0 * h * h) continue;
+            const double vw = vol[p] * kernel_at(in, r2, o, h);
             if (in->wall[p]) {
               s_w += vw;
             } else {

@@ -20,6 +20,9 @@
  * (walls carry whatever mass and density their model gives them): the
  * free-surface outline is the level S_f = 1/2 away from walls
  * (S_w < RINTERP_WALL_NEAR at every corner of a cell).
+ * On a plane through a 3-D snapshot (a slice) the same sums run over the
+ * particles near the plane, each at its 3-D distance, with the kernel's
+ * 3-D normalisation: the 3-D interpolation at points of the plane.
  */
 #ifndef SPH_RENDER_INTERP_H
 #define SPH_RENDER_INTERP_H
@@ -37,6 +40,8 @@ typedef struct rinterp_in {
   const double *x, *y, *h, *vol, *val; /* per particle; vol = m / rho */
   const unsigned char *wall;           /* 1 for wall particles */
   int kernel;                          /* RKERNEL_* */
+  const double *off; /* a plane through a 3-D snapshot (slice.h): each particle's distance
+                        from it, and the 3-D kernel; NULL in 2-D */
 } rinterp_in;
 
 /* The grid: nx x ny points, point (i, j) at (x0 + (i + 1/2) step,

@@ -27,6 +27,12 @@ static int usable(const rinterp3_in *in, size_t i) {
          isfinite(in->y[i]) && isfinite(in->z[i]) && isfinite(in->h[i]);
 }
 
+double rinterp3_w(int kernel, double r, double h) {
+  double w, dw;
+  sph_shape_w_dw(kernel, r, h, &w, &dw);
+  return w;
+}
+
 size_t rgrid3_points(const rgrid3 *g) {
   return (size_t)g->n[0] * (size_t)g->n[1] * (size_t)g->n[2];
 }

@@ -54,4 +54,7 @@ size_t rgrid3_points(const rgrid3 *g);
  * the result is the same bits on every run. */
 int rinterp3_sum(const rinterp3_in *in, const rgrid3 *g, double *s, double *f, sph_error *err);
 
+/* W(r, h) of kernel (RKERNEL_*) with its 3-D normalisation. */
+double rinterp3_w(int kernel, double r, double h);
+
 #endif

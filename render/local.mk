@@ -42,6 +42,7 @@ render_libsphrender_la_SOURCES = \
 	render/png_out.c render/png_out.h \
 	render/scene3d.c render/scene3d.h \
 	render/sequence.c render/sequence.h \
+	render/slice.c render/slice.h \
 	render/snapdata.c render/snapdata.h \
 	render/spheres.c render/spheres.h \
 	render/surface.c render/surface.h \

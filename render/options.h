@@ -7,6 +7,7 @@
 #define SPH_RENDER_OPTIONS_H
 
 #include "canvas.h"
+#include "slice.h"
 
 enum { ROPT_MAX_LIST = 64 };
 
@@ -87,6 +88,8 @@ typedef struct roptions {
   int surface;         /* RSURFACE_* */
   double surface_cell; /* --surface-cell (m); 0: half the particle spacing */
   int field_given;     /* --field given (the mesh mode writes no field without it) */
+  int have_slice;      /* --slice: 3-D snapshots cut by a plane, drawn as 2-D (slice.h) */
+  rslice slice;
 
   /* plot mode (the mesh mode takes the snapshot modes' inputs, --field,
    * --times and --surface-cell) */

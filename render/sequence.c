@@ -37,6 +37,7 @@
 #include "obstacles.h"
 #include "png_out.h"
 #include "scene3d.h"
+#include "slice.h"
 #include "snapdata.h"
 #include "spheres.h"
 #include "surface.h"
@@ -59,6 +60,7 @@ typedef struct plan {
   char bar_label[96];
   const char *outdir; /* made only once the plan is complete; NULL: one file */
   int dim3;           /* the inputs are 3-D snapshots: drawn as spheres by cam */
+  int sliced;         /* 3-D snapshots cut by o->slice: drawn as 2-D ones */
   rcamera cam;
   rmesh boxes;    /* 3-D: the obstacles' faces (obstacles.h) */
   double tank[6]; /* 3-D: the tank's inner faces, NaN if not listed */
@@ -239,13 +241,18 @@ static int plan_range_and_view(plan *p, double view[4], sph_error *err) {
   for (size_t i = 0; i < p->n_task; i++) {
     for (int k = 0; k < p->task[i].n; k++) {
       const char *path = p->task[i].path[k];
-      if (!need_range) {
+      if (!need_range && !p->sliced) {
         double t;
         if (isnan(view[0]) && !o->have_view && rsnap_peek(path, &t, view, err) != 0) return -1;
         continue;
       }
+      if (!need_range && (!isnan(view[0]) || o->have_view)) continue;
       rsnap s;
       if (rsnap_load(path, o->field, &s, err) != 0) return -1;
+      if (p->sliced && rslice_apply(&o->slice, &s, err) != 0) {
+        rsnap_free(&s);
+        return -1;
+      }
       if (isnan(view[0])) memcpy(view, s.view, 4 * sizeof *view);
       double a = 0.0, b = 0.0;
       if (rsnap_fluid_range(&s, &a, &b) > 0) {
@@ -531,7 +538,13 @@ static int run_task(void *ctx, void *wp, size_t i, sph_error *err) {
     }
     loaded++;
     rpanel *pa = &panels[k];
-    if (p->dim3) {
+    if (p->sliced) { /* the plane's 2-D picture */
+      if (((p->o->smooth || p->o->outline) && rsnap_load_volumes(&snaps[k], err) != 0) ||
+          rslice_apply(&p->o->slice, &snaps[k], err) != 0) {
+        rc = -1;
+        break;
+      }
+    } else if (p->dim3) {
       if ((p->o->surface != RSURFACE_NONE && rsnap_load_volumes(&snaps[k], err) != 0) ||
           draw_3d(p, w, k, &snaps[k], pa, err) != 0) {
         rc = -1;
@@ -545,6 +558,11 @@ static int run_task(void *ctx, void *wp, size_t i, sph_error *err) {
     rfigure_time_label(snaps[k].time, when, sizeof when);
     pa->snap = &snaps[k];
     pa->note[0] = '\0';
+    if (p->sliced) { /* "t = 0.500 s, y = 0.5 m" */
+      const size_t len = strlen(when);
+      snprintf(when + len, sizeof when - len, ", %c = %g m", 'x' + p->o->slice.axis,
+               p->o->slice.pos);
+    }
     if (p->o->mode == RMODE_FRAMES) {
       snprintf(pa->label, sizeof pa->label, "%s", when);
       snprintf(pa->note, sizeof pa->note, "%s", snaps[k].case_name);
@@ -653,6 +671,22 @@ int rsequence_run(const roptions *o, const char *prog, sph_error *err) {
   int dim = 2;
   if (sph_snapshot_file_dimension(p.task[0].path[0], &dim, err) != 0) goto done;
   p.dim3 = dim == 3;
+  if (o->have_slice) {
+    if (!p.dim3) {
+      sph_error_set(err, "%s is 2-D: --slice cuts 3-D snapshots", p.task[0].path[0]);
+      goto done;
+    }
+    if (o->surface != RSURFACE_NONE) {
+      sph_error_set(err, "--slice and --surface: a slice is drawn in 2-D, its outline is the "
+                         "surface's cut");
+      goto done;
+    }
+    p.dim3 = 0;
+    p.sliced = 1;
+    const char *names[3] = {"x (m)", "y (m)", "z (m)"};
+    p.style.axis_label[0] = names[rslice_axis(o->slice.axis, 0)];
+    p.style.axis_label[1] = names[rslice_axis(o->slice.axis, 1)];
+  }
   if (!p.dim3 && o->surface != RSURFACE_NONE) {
     sph_error_set(err,
                   "%s is 2-D: --surface draws the free surface of 3-D snapshots (2-D: --outline)",
@@ -662,7 +696,7 @@ int rsequence_run(const roptions *o, const char *prog, sph_error *err) {
   if (p.dim3 && o->smooth_given && (o->smooth == 1 || o->outline == 1)) {
     sph_error_set(err,
                   "%s is 3-D: its particles are drawn as spheres or its free surface as a mesh "
-                  "(--surface); --smooth and --outline draw 2-D snapshots",
+                  "(--surface); --smooth and --outline draw 2-D snapshots and slices (--slice)",
                   p.task[0].path[0]);
     goto done;
   }

@@ -186,6 +186,7 @@ void rsnap_free(rsnap *s) {
   if (!s) return;
   free(s->h);
   free(s->vol);
+  free(s->off);
   free(s->path);
   free(s->x);
   free(s->y);

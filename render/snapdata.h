@@ -33,6 +33,9 @@ typedef struct rsnap {
   char units[32];      /* the field's `units` attribute ("m/s"), "" if none */
   double *h, *vol;     /* smoothing length, volume m / rho: NULL until rsnap_load_volumes */
   int kernel;          /* the case's kernel (interp.h), with the volumes */
+  double *off;         /* a 3-D slice (slice.h): each particle's distance from the plane,
+                          NULL otherwise */
+  double slab;         /* with off: discs show the particles with |off| <= slab */
 } rsnap;
 
 /* The dataset a field name reads ("pressure" -> "p"); "speed" stays. */

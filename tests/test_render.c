@@ -405,7 +405,7 @@ static void test_interp(void) {
       wall[k] = 0;
     }
   for (int kernel = 0; kernel < 2; kernel++) {
-    rinterp_in in = {NX * NY, x, y, h, vol, val, wall, kernel};
+    rinterp_in in = {NX * NY, x, y, h, vol, val, wall, kernel, NULL};
     /* points every d/4 over [0, 0.4] x [0, 0.25]: row j at y = 0.25 - (j + 1/2) d/4 */
     rinterp_grid g = {160, 100, 0.0, 0.25, 0.25 * d};
     static double f[160 * 100], sf[160 * 100], sw[160 * 100];

@@ -36,6 +36,10 @@
  *    the field, 13 a face), the same bytes twice, a directory of
  *    surface_NNNN.ply; options that draw, a .obj output, one file for
  *    many snapshots and an unknown --surface are refused.
+ * 6. --slice y=0.05 (the interpolated view with the outline): coloured
+ *    water under white air down the middle, the same bytes on one and two
+ *    workers; discs of a slab across z; panels of slices across x; a bad
+ *    axis, a negative thickness and --slice with --surface are refused.
  */
 #include "config.h"
 
@@ -482,6 +486,45 @@ static void test_surface(void) {
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "valid: field, water, none"));
 }
 
+/* --slice: the hydrostatic tank cut across y, interpolated (the water
+ * coloured by pressure up to the level 1/2, white above) and as discs;
+ * the same bytes on one and two workers; refusals. */
+static void test_slices(void) {
+  CU_ASSERT_FATAL(made);
+  int rc = render("--slice y=0.05 --field pressure --size 480x270 --jobs 1 run3 -o sl1");
+  if (rc) printf("\n    sph-render: %s", last_err());
+  CU_ASSERT_EQUAL_FATAL(rc, 0);
+  CU_ASSERT_EQUAL(render("--slice y=0.05 --field pressure --size 480x270 --jobs 2 run3 -o sl2"), 0);
+  CU_ASSERT(same_file("sl1/frame_0000.png", "sl2/frame_0000.png"));
+  CU_ASSERT(same_file("sl1/frame_0001.png", "sl2/frame_0001.png"));
+  int w, h;
+  char path[4200];
+  snprintf(path, sizeof path, "%s/sl1/frame_0000.png", tmp);
+  uint8_t *img = read_png(path, &w, &h);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(img);
+  /* down the middle column: white above the water, coloured below, the
+   * outline between */
+  int first = -1, last = -1;
+  for (int y = 0; y < h; y++) {
+    const uint8_t *q = img + ((size_t)y * w + w / 2 - 40) * 3;
+    const int coloured = !(q[0] == q[1] && q[1] == q[2]);
+    if (coloured && first < 0) first = y;
+    if (coloured) last = y;
+  }
+  printf("\n    slice y = 0.05: the water from row %d to %d of %d", first, last, h);
+  CU_ASSERT(first > 0 && last > first + 20);
+  free(img);
+  CU_ASSERT_EQUAL(render("--slice z=0.05,0.01 --discs --size 320x180 run3/snap_0000.h5 -o d.png"),
+                  0);
+  CU_ASSERT_EQUAL(render("--panels 2x1 --slice x=0.1 --size 640 run3 -o sp.png"), 0);
+  CU_ASSERT_NOT_EQUAL(render("--slice w=0.5 run3/snap_0000.h5 -o x.png"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "expected AXIS=POS[,THICKNESS]"));
+  CU_ASSERT_NOT_EQUAL(render("--slice y=0.5,-1 run3/snap_0000.h5 -o x.png"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "thickness"));
+  CU_ASSERT_NOT_EQUAL(render("--slice y=0.05 --surface water run3/snap_0000.h5 -o x.png"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "--slice and --surface"));
+}
+
 static void test_refusals(void) {
   CU_ASSERT_FATAL(made);
   CU_ASSERT_NOT_EQUAL(render("--smooth run3/snap_0000.h5 -o s.png"), 0);
@@ -505,6 +548,7 @@ int main(void) {
       {"obstacles: boxes from the parameters, closed outward", test_obstacles},
       {"sph-render: a 3-D snapshot's frames", test_frames},
       {"sph-render: the free surface, drawn and as PLY", test_surface},
+      {"sph-render: slices", test_slices},
       {"sph-render: 3-D refusals", test_refusals},
       CU_TEST_INFO_NULL};
   int rc = sph_test_main("render_3d", tests);
