@@ -1234,6 +1234,14 @@ static void test_missing_file(void) {
   CU_ASSERT_NOT_EQUAL(render("run/snap_0009.h5 -o out_missing"), 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "run/snap_0009.h5"));
   no_png_in(path_in(tmp, "out_missing"));
+  /* the 3-D options on a 2-D snapshot */
+  CU_ASSERT_NOT_EQUAL(render("--slice y=0.5 run/snap_0001.h5 -o out_missing"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "is 2-D: --slice cuts 3-D snapshots"));
+  CU_ASSERT_NOT_EQUAL(render("--surface field run/snap_0001.h5 -o out_missing"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "is 2-D: --surface"));
+  CU_ASSERT_NOT_EQUAL(render("mesh run/snap_0001.h5 -o out_missing"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "is 2-D: the mesh mode"));
+  no_png_in(path_in(tmp, "out_missing"));
 }
 
 static void test_missing_field(void) {
