@@ -71,7 +71,7 @@ int rslice_apply(const rslice *sl, rsnap *s, sph_error *err) {
   free(s->x), free(s->y), free(s->z);
   s->x = nu, s->y = nv, s->z = NULL;
   s->off = off;
-  s->slab = half;
+  s->slab = half * (1.0 + 1e-9); /* a layer exactly half the thickness away counts */
   s->n = n;
   if (isfinite(s->box[0])) {
     s->view[0] = s->box[2 * u], s->view[1] = s->box[2 * u + 1];
