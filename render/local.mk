@@ -63,14 +63,14 @@ render_sph_render_DEPENDENCIES = render/libsphrender.la src/libsphio.la
 
 check_PROGRAMS += tests/test_render
 TESTS += tests/test_render
-tests_test_render_SOURCES = tests/test_render.c
+tests_test_render_SOURCES = tests/test_render.c tests/render_testutil.c tests/render_testutil.h
 tests_test_render_CFLAGS = $(RENDER_CFLAGS) $(CUNIT_CFLAGS) -I$(top_srcdir)/render
 tests_test_render_LDADD = tests/libtestutil.la render/libsphrender.la $(RENDER_LIBS) $(CUNIT_LIBS)
 tests_test_render_DEPENDENCIES = tests/libtestutil.la render/libsphrender.la src/libsphio.la
 
 check_PROGRAMS += tests/test_render_3d
 TESTS += tests/test_render_3d
-tests_test_render_3d_SOURCES = tests/test_render_3d.c
+tests_test_render_3d_SOURCES = tests/test_render_3d.c tests/render_testutil.c tests/render_testutil.h
 tests_test_render_3d_CFLAGS = $(RENDER_CFLAGS) $(CUNIT_CFLAGS) -I$(top_srcdir)/render
 tests_test_render_3d_LDADD = tests/libtestutil.la render/libsphrender.la $(RENDER_LIBS) $(CUNIT_LIBS)
 tests_test_render_3d_DEPENDENCIES = tests/libtestutil.la render/libsphrender.la src/libsphio.la
@@ -102,8 +102,10 @@ movie:
 
 # Rewrites golden/render/*.png from the current build (a deliberate act:
 # commit the new images with the reason they changed).
-golden-render: render/sph-render$(EXEEXT) tests/test_render$(EXEEXT)
+golden-render: render/sph-render$(EXEEXT) tests/test_render$(EXEEXT) tests/test_render_3d$(EXEEXT)
 	SPH_SRCDIR='$(abs_top_srcdir)' SPH_BUILDDIR='$(abs_top_builddir)' SPH_RENDER_REGEN=1 \
 	  tests/test_render$(EXEEXT)
+	SPH_SRCDIR='$(abs_top_srcdir)' SPH_BUILDDIR='$(abs_top_builddir)' SPH_RENDER_REGEN=1 \
+	  tests/test_render_3d$(EXEEXT)
 
 .PHONY: frames golden-render movie

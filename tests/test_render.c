@@ -15,13 +15,8 @@
  *  - the same inputs give byte-identical PNGs, run after run and for one
  *    or two worker processes.
  * Golden images (the PNG files in golden/render/) are compared pixel by
- * pixel with a tolerance, because other Mesa drivers than llvmpipe
- * rasterise edges slightly differently: a pixel differs if a channel is off by more than
- * GOLDEN_CHANNEL_TOL; at most GOLDEN_PIXEL_FRACTION of the pixels may
- * differ, and the mean absolute channel difference must stay below
- * GOLDEN_MEAN_TOL. With llvmpipe the images match exactly.
- * Regenerate the golden images (after a deliberate change) with
- * `make golden-render`, which runs this program with SPH_RENDER_REGEN=1.
+ * pixel with a tolerance (tests/render_testutil.h). Regenerate them (after
+ * a deliberate change) with `make golden-render`.
  *
  * Bad inputs: a missing file, a snapshot without the requested field and
  * a corrupt HDF5 file each give a non-zero exit status and a message naming
@@ -30,7 +25,6 @@
 #include "config.h"
 
 #include <math.h>
-#include <png.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -48,13 +42,10 @@
 #include "label.h"
 #include "layout.h"
 #include "marks.h"
+#include "render_testutil.h"
 #include "snapdata.h"
 #include "testutil.h"
 #include "ticks.h"
-
-#define GOLDEN_CHANNEL_TOL 8
-#define GOLDEN_PIXEL_FRACTION 0.002
-#define GOLDEN_MEAN_TOL 0.5
 
 /* The fixture's view and the fixed options every fixture render uses. */
 static const double fixture_view[4] = {-0.02, 0.22, -0.02, 0.12};
@@ -65,11 +56,6 @@ static char snap0[4096]; /* fixture snapshot at t = 0 */
 static char snap1[4096]; /* fixture snapshot at t = 0.1 */
 
 /* ------------------------------------------------------------------ helpers */
-
-static int regen(void) {
-  const char *r = getenv("SPH_RENDER_REGEN");
-  return r && strcmp(r, "1") == 0;
-}
 
 static const char *renderer(void) {
   static char buf[4096];
@@ -110,24 +96,6 @@ static char *path_in(const char *dir, const char *name) {
   k = (k + 1) % 4;
   snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
   return buf[k];
-}
-
-/* Reads a PNG as 8-bit RGB; NULL if it cannot. */
-static uint8_t *read_png(const char *path, int *w, int *h) {
-  png_image img;
-  memset(&img, 0, sizeof img);
-  img.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&img, path)) return NULL;
-  img.format = PNG_FORMAT_RGB;
-  uint8_t *buf = malloc(PNG_IMAGE_SIZE(img));
-  if (!buf || !png_image_finish_read(&img, NULL, buf, 0, NULL)) {
-    free(buf);
-    png_image_free(&img);
-    return NULL;
-  }
-  *w = (int)img.width;
-  *h = (int)img.height;
-  return buf;
 }
 
 /* Whether the file at path holds the bytes of needle (binary-safe: a PDF
@@ -173,53 +141,6 @@ static int count_files(const char *dir, const char *suffix) {
   char cmd[4400];
   snprintf(cmd, sizeof cmd, "exit $(ls -1 '%s' 2>/dev/null | grep -c -- '%s$')", dir, suffix);
   return sph_test_system(cmd);
-}
-
-/* Compares an image with golden/render/<name> within the tolerances above,
- * or, when regenerating and may_regen is set, copies it there. */
-static void check_golden(const char *image, const char *name, int may_regen) {
-  char golden[4096];
-  snprintf(golden, sizeof golden, "%s", sph_test_src("golden/render/"));
-  strncat(golden, name, sizeof golden - strlen(golden) - 1);
-  if (regen() && may_regen) {
-    char cmd[9000];
-    snprintf(cmd, sizeof cmd, "cp '%s' '%s'", image, golden);
-    CU_ASSERT_EQUAL_FATAL(sph_test_system(cmd), 0);
-    printf("\n  regenerated %s\n", golden);
-    return;
-  }
-  int w, h, gw, gh;
-  uint8_t *a = read_png(image, &w, &h);
-  uint8_t *b = read_png(golden, &gw, &gh);
-  CU_ASSERT_PTR_NOT_NULL_FATAL(a);
-  if (!b) {
-    printf("\n  missing golden image %s (make golden-render)\n", golden);
-    free(a);
-    CU_FAIL_FATAL("golden image missing");
-  }
-  CU_ASSERT_EQUAL(w, gw);
-  CU_ASSERT_EQUAL(h, gh);
-  if (w == gw && h == gh) {
-    size_t n = (size_t)w * h, differ = 0;
-    double sum = 0.0;
-    for (size_t i = 0; i < n; i++) {
-      int worst = 0;
-      for (int c = 0; c < 3; c++) {
-        int d = abs((int)a[3 * i + c] - (int)b[3 * i + c]);
-        sum += d;
-        if (d > worst) worst = d;
-      }
-      if (worst > GOLDEN_CHANNEL_TOL) differ++;
-    }
-    double mean = sum / (3.0 * n);
-    if (differ > GOLDEN_PIXEL_FRACTION * n || mean > GOLDEN_MEAN_TOL)
-      printf("\n  %s vs %s: %zu of %zu pixels differ, mean difference %.3f\n", image, golden,
-             differ, n, mean);
-    CU_ASSERT(differ <= GOLDEN_PIXEL_FRACTION * n);
-    CU_ASSERT(mean <= GOLDEN_MEAN_TOL);
-  }
-  free(a);
-  free(b);
 }
 
 /* --------------------------------------------------------------- fixtures */
@@ -716,7 +637,7 @@ static void test_frame_exact(void) {
                                "--compression 9 run/snap_0001.h5 -o speed.png"),
                         0);
   int w, h;
-  uint8_t *img = read_png(path_in(tmp, "speed.png"), &w, &h);
+  uint8_t *img = rtest_read_png(path_in(tmp, "speed.png"), &w, &h);
   CU_ASSERT_PTR_NOT_NULL_FATAL(img);
   CU_ASSERT_EQUAL(w, 640);
   CU_ASSERT_EQUAL(h, 360);
@@ -755,7 +676,7 @@ static void test_frame_exact(void) {
   CU_ASSERT(memcmp(top, m.lut[255], 3) == 0);
   CU_ASSERT(memcmp(bottom, m.lut[0], 3) == 0);
   free(img);
-  check_golden(path_in(tmp, "speed.png"), "fixture_speed.png", 1);
+  rtest_check_golden(path_in(tmp, "speed.png"), "fixture_speed.png", 1);
 }
 
 static void test_frame_bare(void) {
@@ -764,7 +685,7 @@ static void test_frame_bare(void) {
                                "run/snap_0000.h5 -o bare.png"),
                         0);
   int w, h;
-  uint8_t *img = read_png(path_in(tmp, "bare.png"), &w, &h);
+  uint8_t *img = rtest_read_png(path_in(tmp, "bare.png"), &w, &h);
   CU_ASSERT_PTR_NOT_NULL_FATAL(img);
   rlayout L;
   fixture_layout(480, 280, 0.0, 1000.0, 1, &L);
@@ -803,7 +724,7 @@ static void test_backend_egl(void) {
   CU_ASSERT_EQUAL_FATAL(render("--discs --size 640x360 --range 0:1 --background 203040 --jobs 1 "
                                "--backend egl run/snap_0001.h5 -o egl.png"),
                         0);
-  check_golden(path_in(tmp, "egl.png"), "fixture_speed.png", 0);
+  rtest_check_golden(path_in(tmp, "egl.png"), "fixture_speed.png", 0);
 #else
   CU_ASSERT_NOT_EQUAL(render("--backend egl run/snap_0001.h5 -o egl.png"), 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "without EGL"));
@@ -819,12 +740,12 @@ static void test_panels_overlay(void) {
            sph_test_src("tests/data/render/overlay.csv"));
   CU_ASSERT_EQUAL_FATAL(render(args), 0);
   int w, h;
-  uint8_t *img = read_png(path_in(tmp, "panels.png"), &w, &h);
+  uint8_t *img = rtest_read_png(path_in(tmp, "panels.png"), &w, &h);
   CU_ASSERT_PTR_NOT_NULL_FATAL(img);
   CU_ASSERT_EQUAL(w, 800);
   CU_ASSERT_EQUAL(h % 2, 0);
   free(img);
-  check_golden(path_in(tmp, "panels.png"), "fixture_panels.png", 1);
+  rtest_check_golden(path_in(tmp, "panels.png"), "fixture_panels.png", 1);
   /* --times picks the nearest snapshots; more times than panels is an error */
   CU_ASSERT_EQUAL(render("--panels 2x1 --times 0.09,0.01 --jobs 1 run -o t.png"), 0);
   CU_ASSERT_NOT_EQUAL(render("--panels 1x1 --times 0,0.1 run -o t2.png"), 0);
@@ -857,13 +778,13 @@ static void test_plot(void) {
            diag, sph_test_src("tests/data/render/experiment.csv"));
   CU_ASSERT_EQUAL_FATAL(render(args), 0);
   int w, h;
-  uint8_t *img = read_png(path_in(tmp, "plot.png"), &w, &h);
+  uint8_t *img = rtest_read_png(path_in(tmp, "plot.png"), &w, &h);
   CU_ASSERT_PTR_NOT_NULL_FATAL(img);
   CU_ASSERT_EQUAL(w, 640);
   CU_ASSERT_EQUAL(h, 420);
   CU_ASSERT(img[0] == 255 && img[1] == 255 && img[2] == 255);
   free(img);
-  check_golden(path_in(tmp, "plot.png"), "plot.png", 1);
+  rtest_check_golden(path_in(tmp, "plot.png"), "plot.png", 1);
   /* energy deviation of a sum of columns */
   snprintf(args, sizeof args, "plot '%s' --x time --y kinetic+potential --relative -o dev.png",
            sph_test_src("tests/data/render/diagnostics.csv"));
@@ -900,7 +821,7 @@ static void test_plot_log(void) {
            data);
   CU_ASSERT_EQUAL_FATAL(render(args), 0);
   int w, h;
-  uint8_t *img = read_png(path_in(tmp, "log.png"), &w, &h);
+  uint8_t *img = rtest_read_png(path_in(tmp, "log.png"), &w, &h);
   CU_ASSERT_PTR_NOT_NULL_FATAL(img);
   /* the line is series 0's colour (marks.c); find it in three columns a
    * quarter of the box apart and compare the spacing of the rows */
@@ -911,11 +832,11 @@ static void test_plot_log(void) {
   CU_ASSERT(rows[0] > 0 && rows[1] > rows[0] && rows[2] > rows[1]);
   CU_ASSERT(abs((rows[1] - rows[0]) - (rows[2] - rows[1])) <= 2); /* straight */
   free(img);
-  check_golden(path_in(tmp, "log.png"), "plot_log.png", 1);
+  rtest_check_golden(path_in(tmp, "log.png"), "plot_log.png", 1);
   /* a linear y axis over the same data is not straight */
   snprintf(args, sizeof args, "plot '%s' --x n --y err --xlog --size 640x420 -o semilog.png", data);
   CU_ASSERT_EQUAL_FATAL(render(args), 0);
-  img = read_png(path_in(tmp, "semilog.png"), &w, &h);
+  img = rtest_read_png(path_in(tmp, "semilog.png"), &w, &h);
   CU_ASSERT_PTR_NOT_NULL_FATAL(img);
   for (int k = 0; k < 3; k++)
     rows[k] = first_row_of(img, w, h, cols[k], c0.r, c0.g, c0.b);
@@ -999,8 +920,8 @@ static void test_antialias(void) {
                         0);
   CU_ASSERT_TRUE(same_bytes(path_in(tmp, "smooth.png"), path_in(tmp, "smooth2.png")));
   int w, h, w2, h2;
-  uint8_t *a = read_png(path_in(tmp, "aliased.png"), &w, &h);
-  uint8_t *b = read_png(path_in(tmp, "smooth.png"), &w2, &h2);
+  uint8_t *a = rtest_read_png(path_in(tmp, "aliased.png"), &w, &h);
+  uint8_t *b = rtest_read_png(path_in(tmp, "smooth.png"), &w2, &h2);
   CU_ASSERT_PTR_NOT_NULL_FATAL(a);
   CU_ASSERT_PTR_NOT_NULL_FATAL(b);
   /* the lattice ends 0.2398 m x 0.1397 m from the view's corner: blocks
@@ -1048,7 +969,7 @@ static void test_smooth(void) {
                                "--jobs 1 run/snap_0000.h5 -o smooth_view.png"),
                         0);
   int w, h;
-  uint8_t *img = read_png(path_in(tmp, "smooth_view.png"), &w, &h);
+  uint8_t *img = rtest_read_png(path_in(tmp, "smooth_view.png"), &w, &h);
   CU_ASSERT_PTR_NOT_NULL_FATAL(img);
   rcolormap m;
   rfigure_style st;
@@ -1087,7 +1008,7 @@ static void test_smooth(void) {
   CU_ASSERT_EQUAL_FATAL(render("--size 640x360 --field speed --range 0:1 --smooth --outline "
                                "--jobs 1 --compression 9 run/snap_0001.h5 -o smooth_frame.png"),
                         0);
-  check_golden(path_in(tmp, "smooth_frame.png"), "fixture_smooth.png", 1);
+  rtest_check_golden(path_in(tmp, "smooth_frame.png"), "fixture_smooth.png", 1);
 }
 
 /* Plots as SVG and PDF through cairo: a page of the requested size in
@@ -1167,10 +1088,10 @@ static void test_vector_figures(void) {
            renderer());
   CU_ASSERT_EQUAL_FATAL(render(args), 0);
   int w = 0, h = 0;
-  uint8_t *img = read_png(path_in(tmp, "col300.png"), &w, &h);
+  uint8_t *img = rtest_read_png(path_in(tmp, "col300.png"), &w, &h);
   CU_ASSERT(img != NULL && w == 1004);
   free(img);
-  img = read_png(path_in(tmp, "col150.png"), &w, &h);
+  img = rtest_read_png(path_in(tmp, "col150.png"), &w, &h);
   CU_ASSERT(img != NULL && w == 502);
   free(img);
   CU_ASSERT_NOT_EQUAL(render("--size 8.5cmx6 run/snap_0001.h5 -o bad.png"), 0);

@@ -40,11 +40,14 @@
  *    water under white air down the middle, the same bytes on one and two
  *    workers; discs of a slab across z; panels of slices across x; a bad
  *    axis, a negative thickness and --slice with --surface are refused.
+ * 7. Golden images (golden/render/small3d_*.png, tests/render_testutil.h's
+ *    tolerances) of cases/hydrostatic_3d.yaml at dx = 0.02 m after one
+ *    step (250 fluid particles): the fluid as spheres (iso view), the
+ *    surface and the slice y = 0.05 m, coloured by pressure.
  */
 #include "config.h"
 
 #include <math.h>
-#include <png.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,6 +55,7 @@
 #include "camera.h"
 #include "gl_context.h"
 #include "obstacles.h"
+#include "render_testutil.h"
 #include "scene3d.h"
 #include "spheres.h"
 #include "testutil.h"
@@ -323,23 +327,6 @@ static const char *last_err(void) {
   return buf;
 }
 
-static uint8_t *read_png(const char *path, int *w, int *h) {
-  png_image img;
-  memset(&img, 0, sizeof img);
-  img.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&img, path)) return NULL;
-  img.format = PNG_FORMAT_RGB;
-  uint8_t *buf = malloc(PNG_IMAGE_SIZE(img));
-  if (!buf || !png_image_finish_read(&img, NULL, buf, 0, NULL)) {
-    free(buf);
-    png_image_free(&img);
-    return NULL;
-  }
-  *w = (int)img.width;
-  *h = (int)img.height;
-  return buf;
-}
-
 static int same_file(const char *a, const char *b) {
   size_t na, nb;
   char pa[4200], pb[4200];
@@ -354,15 +341,20 @@ static int same_file(const char *a, const char *b) {
 
 static int made;
 
-static void make_snapshot(void) {
+/* Runs cases/hydrostatic_3d.yaml for one step into tmp/dir (with extra
+ * --set arguments); whether it ran. */
+static int run_hydrostatic(const char *dir, const char *sets) {
   char args[8192], out[4096];
   snprintf(args, sizeof args,
-           "run '%s' -o '%s/run3' --quiet --set time.end=0.001 --set time.output_interval=0.001 "
-           "--set output.probe_interval=0.001",
-           sph_test_src("cases/hydrostatic_3d.yaml"), tmp);
-  made = sph_test_sph(args, tmp, out, sizeof out) == 0;
-  if (!made) printf("\n    sph run: %s", out);
+           "run '%s' -o '%s/%s' --quiet --set time.end=0.001 --set time.output_interval=0.001 "
+           "--set output.probe_interval=0.001 %s",
+           sph_test_src("cases/hydrostatic_3d.yaml"), tmp, dir, sets);
+  const int ran = sph_test_sph(args, tmp, out, sizeof out) == 0;
+  if (!ran) printf("\n    sph run: %s", out);
+  return ran;
 }
+
+static void make_snapshot(void) { made = run_hydrostatic("run3", ""); }
 
 static void test_frames(void) {
   make_snapshot();
@@ -373,7 +365,7 @@ static void test_frames(void) {
   int w, h;
   char path[4200];
   snprintf(path, sizeof path, "%s/f1.png", tmp);
-  uint8_t *img = read_png(path, &w, &h);
+  uint8_t *img = rtest_read_png(path, &w, &h);
   CU_ASSERT_PTR_NOT_NULL_FATAL(img);
   CU_ASSERT(w == 480 && h == 270);
   CU_ASSERT(img[0] == 255 && img[1] == 255 && img[2] == 255); /* white corners */
@@ -444,7 +436,7 @@ static void test_surface(void) {
   int w, h;
   char path[4200];
   snprintf(path, sizeof path, "%s/m1.png", tmp);
-  uint8_t *img = read_png(path, &w, &h);
+  uint8_t *img = rtest_read_png(path, &w, &h);
   CU_ASSERT_PTR_NOT_NULL_FATAL(img);
   const uint8_t *mid = img + ((size_t)(h / 2) * w + w / 2) * 3;
   printf("\n    the surface's middle: %d %d %d", mid[0], mid[1], mid[2]);
@@ -500,7 +492,7 @@ static void test_slices(void) {
   int w, h;
   char path[4200];
   snprintf(path, sizeof path, "%s/sl1/frame_0000.png", tmp);
-  uint8_t *img = read_png(path, &w, &h);
+  uint8_t *img = rtest_read_png(path, &w, &h);
   CU_ASSERT_PTR_NOT_NULL_FATAL(img);
   /* down the middle column: white above the water, coloured below, the
    * outline between */
@@ -523,6 +515,26 @@ static void test_slices(void) {
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "thickness"));
   CU_ASSERT_NOT_EQUAL(render("--slice y=0.05 --surface water run3/snap_0000.h5 -o x.png"), 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "--slice and --surface"));
+}
+
+/* Golden images of a small 3-D case (cases/hydrostatic_3d.yaml at dx =
+ * 0.02 m: 250 fluid particles): spheres, the surface, a slice. */
+static void test_golden(void) {
+  CU_ASSERT_FATAL(run_hydrostatic("small", "--set numerics.dx=0.02"));
+  char args[8192];
+  const char *cases[3][2] = {{"--field pressure", "small3d_spheres.png"},
+                             {"--surface field --field pressure", "small3d_surface.png"},
+                             {"--slice y=0.05 --field pressure", "small3d_slice.png"}};
+  for (int k = 0; k < 3; k++) {
+    snprintf(args, sizeof args, "%s --size 480x270 --jobs 1 small/snap_0001.h5 -o g%d.png",
+             cases[k][0], k);
+    const int rc = render(args);
+    if (rc) printf("\n    sph-render %s: %s", cases[k][0], last_err());
+    CU_ASSERT_EQUAL_FATAL(rc, 0);
+    char path[4200];
+    snprintf(path, sizeof path, "%s/g%d.png", tmp, k);
+    rtest_check_golden(path, cases[k][1], 1);
+  }
 }
 
 static void test_refusals(void) {
@@ -549,6 +561,7 @@ int main(void) {
       {"sph-render: a 3-D snapshot's frames", test_frames},
       {"sph-render: the free surface, drawn and as PLY", test_surface},
       {"sph-render: slices", test_slices},
+      {"golden images of a small 3-D case", test_golden},
       {"sph-render: 3-D refusals", test_refusals},
       CU_TEST_INFO_NULL};
   int rc = sph_test_main("render_3d", tests);
