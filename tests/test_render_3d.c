@@ -43,7 +43,9 @@
  * 7. Golden images (golden/render/small3d_*.png, tests/render_testutil.h's
  *    tolerances) of cases/hydrostatic_3d.yaml at dx = 0.02 m after one
  *    step (250 fluid particles): the fluid as spheres (iso view), the
- *    surface and the slice y = 0.05 m, coloured by pressure.
+ *    surface and the slice y = 0.05 m, coloured by pressure; the same run's
+ *    free-surface flags (the top layer yellow, the rest purple); --compare
+ *    of two 3-D runs.
  */
 #include "config.h"
 
@@ -520,7 +522,8 @@ static void test_slices(void) {
 /* Golden images of a small 3-D case (cases/hydrostatic_3d.yaml at dx =
  * 0.02 m: 250 fluid particles): spheres, the surface, a slice. */
 static void test_golden(void) {
-  CU_ASSERT_FATAL(run_hydrostatic("small", "--set numerics.dx=0.02"));
+  CU_ASSERT_FATAL(
+      run_hydrostatic("small", "--set numerics.dx=0.02 --set output.free_surface=true"));
   char args[8192];
   const char *cases[3][2] = {{"--field pressure", "small3d_spheres.png"},
                              {"--surface field --field pressure", "small3d_surface.png"},
@@ -535,6 +538,31 @@ static void test_golden(void) {
     snprintf(path, sizeof path, "%s/g%d.png", tmp, k);
     rtest_check_golden(path, cases[k][1], 1);
   }
+  /* free-surface particles highlighted by their flag: the top layer in the
+   * colour map's top (yellow), the rest in its bottom (purple) */
+  CU_ASSERT_EQUAL_FATAL(
+      render("--field free_surface --size 480x270 --jobs 1 small/snap_0001.h5 -o fs.png"), 0);
+  char path[4200];
+  snprintf(path, sizeof path, "%s/fs.png", tmp);
+  int w, h;
+  uint8_t *img = rtest_read_png(path, &w, &h);
+  CU_ASSERT_PTR_NOT_NULL_FATAL(img);
+  size_t top = 0, rest = 0;
+  for (int y = 0; y < h; y++)
+    for (int x = 0; x < w * 3 / 4; x++) {
+      const uint8_t *q = img + ((size_t)y * w + x) * 3;
+      top += q[0] > 150 && q[1] > 150 && q[2] < 80;
+      rest += q[0] < 90 && q[1] < 40 && q[2] > 50;
+    }
+  printf("\n    free_surface: %zu yellow and %zu purple pixels", top, rest);
+  CU_ASSERT(top > 500 && rest > 500);
+  free(img);
+  /* two runs side by side */
+  CU_ASSERT_EQUAL(render("--compare --surface water --size 640 run3 small -o cmp"), 0);
+  snprintf(path, sizeof path, "%s/cmp/compare_0001.png", tmp);
+  img = rtest_read_png(path, &w, &h);
+  CU_ASSERT_PTR_NOT_NULL(img);
+  free(img);
 }
 
 static void test_refusals(void) {
