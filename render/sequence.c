@@ -383,11 +383,12 @@ static int surface_of(const plan *p, const rsnap *s, rmesh *m, uint8_t **rgba, s
   return 0;
 }
 
-/* Panel k's 3-D view of snapshot s: its fluid particles as spheres of the
- * discs' diameter, coloured as discs are, or its free surface as a mesh
- * (--surface), and its walls as spheres with --walls grey or field, drawn
- * by the worker's context into a malloc'd RGBA image of the plot box's
- * size. */
+/* Panel k's 3-D view of snapshot s: its fluid particles as spheres each of
+ * its own size (the cube root of its volume m / rho, times --disc-scale;
+ * --disc-size fixes one), coloured as discs are, or its free surface as a
+ * mesh (--surface), and its walls as spheres of the discs' diameter with
+ * --walls grey or field, drawn by the worker's context into a malloc'd
+ * RGBA image of the plot box's size. */
 static int draw_3d(const plan *p, worker *w, int k, const rsnap *s, rpanel *pa, sph_error *err) {
   if (s->dim != 3)
     return sph_error_set(err, "%s: a 2-D snapshot among 3-D ones: draw them apart", s->path);
@@ -396,6 +397,7 @@ static int draw_3d(const plan *p, worker *w, int k, const rsnap *s, rpanel *pa, 
   if (rfigure_disc_size(st, s, &diameter, err) != 0) return -1;
   const int walls = p->o->walls_given && st->walls != RWALLS_NONE;
   const int surface = p->o->surface != RSURFACE_NONE;
+  const int own_size = s->vol && !(st->disc_size > 0.0); /* fluid: (m / rho)^(1/3) */
   rmesh mesh = {0};
   uint8_t *mesh_rgba = NULL;
   if (surface && surface_of(p, s, &mesh, &mesh_rgba, err) != 0) return -1;
@@ -416,6 +418,8 @@ static int draw_3d(const plan *p, worker *w, int k, const rsnap *s, rpanel *pa, 
     rsphere *q = &sp[n++];
     q->c[0] = (float)s->x[i], q->c[1] = (float)s->y[i], q->c[2] = (float)s->z[i];
     q->r = (float)(0.5 * diameter);
+    if (own_size && !s->wall[i] && s->vol[i] > 0.0) /* its own volume's cube */
+      q->r = (float)(0.5 * st->disc_scale * cbrt(s->vol[i]));
     uint8_t rgb[3] = {st->wall.r, st->wall.g, st->wall.b};
     if (!s->wall[i] || st->walls == RWALLS_FIELD) rfigure_color(st, s->val[i], rgb);
     q->rgba[0] = rgb[0], q->rgba[1] = rgb[1], q->rgba[2] = rgb[2], q->rgba[3] = 255;
@@ -544,9 +548,8 @@ static int run_task(void *ctx, void *wp, size_t i, sph_error *err) {
         rc = -1;
         break;
       }
-    } else if (p->dim3) {
-      if ((p->o->surface != RSURFACE_NONE && rsnap_load_volumes(&snaps[k], err) != 0) ||
-          draw_3d(p, w, k, &snaps[k], pa, err) != 0) {
+    } else if (p->dim3) { /* the volumes: each sphere's size, the surface */
+      if (rsnap_load_volumes(&snaps[k], err) != 0 || draw_3d(p, w, k, &snaps[k], pa, err) != 0) {
         rc = -1;
         break;
       }
