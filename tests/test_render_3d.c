@@ -31,7 +31,8 @@
  *    one ignored) and the tank's; their faces a mesh of the boxes' volume
  *    (to 1e-6) wound along their outward normals.
  * 5. --surface: the water block as a mesh coloured by pressure, and as
- *    water on one and two workers (the same bytes); the mesh mode writes
+ *    water on one and two workers (the same bytes) and on llvmpipe's one
+ *    and four rasterising threads (LP_NUM_THREADS: the same bytes); the mesh mode writes
  *    a PLY file whose header counts match its size (28 bytes a vertex with
  *    the field, 13 a face), the same bytes twice, a directory of
  *    surface_NNNN.ply; options that draw, a .obj output, one file for
@@ -307,13 +308,17 @@ static void test_obstacles(void) {
 
 /* ---- sph-render on a 3-D snapshot ---- */
 
-static int render(const char *args) {
+/* Runs sph-render with args in tmp, with the environment assignments env
+ * ("" for none) before it; its stderr into tmp/err.txt. */
+static int render_env(const char *env, const char *args) {
   char cmd[16384], *prog = realpath(sph_test_build("render/sph-render"), NULL);
-  snprintf(cmd, sizeof cmd, "cd '%s' && '%s' %s 2> '%s/err.txt'", tmp,
+  snprintf(cmd, sizeof cmd, "cd '%s' && %s '%s' %s 2> '%s/err.txt'", tmp, env,
            prog ? prog : "render/sph-render", args, tmp);
   free(prog);
   return sph_test_system(cmd);
 }
+
+static int render(const char *args) { return render_env("", args); }
 
 static const char *last_err(void) {
   static char buf[8192];
@@ -449,6 +454,14 @@ static void test_surface(void) {
   CU_ASSERT_EQUAL(render("--size 320x180 --jobs 2 --surface water run3 -o ms2"), 0);
   CU_ASSERT(same_file("ms1/frame_0000.png", "ms2/frame_0000.png"));
   CU_ASSERT(same_file("ms1/frame_0001.png", "ms2/frame_0001.png"));
+  /* llvmpipe's rasteriser on one thread and on four: the same bytes */
+  CU_ASSERT_EQUAL(render_env("LP_NUM_THREADS=1", "--size 320x180 --jobs 1 --surface field "
+                                                 "run3/snap_0001.h5 -o lp1.png"),
+                  0);
+  CU_ASSERT_EQUAL(render_env("LP_NUM_THREADS=4", "--size 320x180 --jobs 1 --surface field "
+                                                 "run3/snap_0001.h5 -o lp4.png"),
+                  0);
+  CU_ASSERT(same_file("lp1.png", "lp4.png"));
   /* the mesh mode: one file, with the field; a directory, without */
   rc = render("mesh --field pressure run3/snap_0000.h5 -o s.ply");
   if (rc) printf("\n    sph-render mesh: %s", last_err());
