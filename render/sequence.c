@@ -385,8 +385,8 @@ static int surface_of(const plan *p, const rsnap *s, rmesh *m, uint8_t **rgba, s
 
 /* Panel k's 3-D view of snapshot s: its fluid particles as spheres each of
  * its own size (the cube root of its volume m / rho, times --disc-scale;
- * --disc-size fixes one), coloured as discs are, or its free surface as a
- * mesh (--surface), and its walls as spheres of the discs' diameter with
+ * --disc-size fixes one; grown if small on the image), coloured as discs are, or its free surface
+ * as a mesh (--surface), and its walls as spheres of the discs' diameter with
  * --walls grey or field, drawn by the worker's context into a malloc'd
  * RGBA image of the plot box's size. */
 static int draw_3d(const plan *p, worker *w, int k, const rsnap *s, rpanel *pa, sph_error *err) {
@@ -412,14 +412,21 @@ static int draw_3d(const plan *p, worker *w, int k, const rsnap *s, rpanel *pa, 
     free(mesh_rgba);
     return sph_error_set(err, "%s: out of memory for %zu spheres", s->path, s->n);
   }
+  /* spheres under 4 pixels across at the camera's target grow as 2-D discs
+   * do (figure.h), up to sqrt(2) below 2 pixels, so that a fine run's
+   * particles cover their cells rather than leave the background between
+   * them; --disc-scale or --disc-size turns this off */
+  const double view_h =
+      p->cam.ortho ? p->cam.height : 2.0 * p->cam.distance * tan(0.5 * p->cam.fov * M_PI / 180.0);
+  const double grow = st->grow_small ? rfigure_growth(diameter / view_h * ih) : 1.0;
   size_t n = 0;
   for (size_t i = 0; i < s->n; i++) {
     if (s->wall[i] ? !walls : surface) continue;
     rsphere *q = &sp[n++];
     q->c[0] = (float)s->x[i], q->c[1] = (float)s->y[i], q->c[2] = (float)s->z[i];
-    q->r = (float)(0.5 * diameter);
+    q->r = (float)(0.5 * diameter * grow);
     if (own_size && !s->wall[i] && s->vol[i] > 0.0) /* its own volume's cube */
-      q->r = (float)(0.5 * st->disc_scale * cbrt(s->vol[i]));
+      q->r = (float)(0.5 * st->disc_scale * cbrt(s->vol[i]) * grow);
     uint8_t rgb[3] = {st->wall.r, st->wall.g, st->wall.b};
     if (!s->wall[i] || st->walls == RWALLS_FIELD) rfigure_color(st, s->val[i], rgb);
     q->rgba[0] = rgb[0], q->rgba[1] = rgb[1], q->rgba[2] = rgb[2], q->rgba[3] = 255;
