@@ -697,6 +697,11 @@ int rsequence_run(const roptions *o, const char *prog, sph_error *err) {
     p.style.axis_label[0] = names[rslice_axis(o->slice.axis, 0)];
     p.style.axis_label[1] = names[rslice_axis(o->slice.axis, 1)];
   }
+  if (p.dim3 && o->n_overlays > 0) {
+    sph_error_set(err, "%s is 3-D: --overlay draws on 2-D snapshots and slices (--slice)",
+                  p.task[0].path[0]);
+    goto done;
+  }
   if (!p.dim3 && o->surface != RSURFACE_NONE) {
     sph_error_set(err,
                   "%s is 2-D: --surface draws the free surface of 3-D snapshots (2-D: --outline)",

@@ -586,6 +586,8 @@ static void test_refusals(void) {
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "is for 2-D snapshots"));
   CU_ASSERT_NOT_EQUAL(render("--view diagonal run3/snap_0000.h5 -o s.png"), 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "unknown view 'diagonal'"));
+  CU_ASSERT_NOT_EQUAL(render("--overlay x.csv run3/snap_0000.h5 -o s.png"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "--overlay draws on 2-D snapshots and slices"));
   CU_ASSERT_NOT_EQUAL(render("--fov 200 run3/snap_0000.h5 -o s.png"), 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "--fov"));
 }
