@@ -25,6 +25,10 @@
  *   is not met at this dx, and is read without sensors (probes are 2-D only
  *   so far). The water stays at rest (|v| < 2 % of sqrt(g H)); no particle
  *   is lost and the run is the same bits on one and two threads.
+ * - A wave gauge within dx of a periodic seam reads the particles across it
+ *   (sph_diag_gauge_level): at y = 0.98 and 0.02 of a period [0, 1] each
+ *   line alone reads 0.35 m, across the seam 0.65 m; away from the seam,
+ *   or without a period, it is sph_diag_surface_at_xy's reading bit for bit.
  * - 3-D snapshots: a snapshot written at t = 0.5 s (leap-frog, so the
  *   restart record carries v_z's half step) holds z and v_z with its
  *   "dimension" 3, reads back bit for bit, its /vectors/position is n x 3
@@ -41,6 +45,7 @@
 
 #include "case/case.h"
 #include "io/snapshot.h"
+#include "solver/diag.h"
 #include "solver/sim.h"
 #include "testutil.h"
 #include "walls/boundary.h"
@@ -504,11 +509,54 @@ static void test_snapshots(void) {
   free(dir);
 }
 
+/* A wave gauge at a periodic seam (y periodic over [0, 1], dx = 0.1):
+ * it reads the particles across the seam too, and away from the seam
+ * exactly what sph_diag_surface_at_xy reads. */
+static void test_gauge_seam(void) {
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 8, &err) == 0);
+  const double at[3][3] = {{0.5, 0.95, 0.3}, {0.5, 0.5, 0.1}, {0.5, 0.03, 0.6}};
+  const double v[3] = {0.0, 0.0, 0.0};
+  for (int k = 0; k < 3; k++)
+    CU_ASSERT_FATAL(sph_particles_add_at(&p, at[k], v, 1000.0, 1.0, 0.13, SPH_KIND_FLUID, &err) >=
+                    0);
+  const double range[2] = {0.0, 1.0}, dx = 0.1;
+  const double g0[2] = {0.5, 0.02}, g1[2] = {0.5, 0.5}, g2[2] = {0.5, 0.98}, g3[2] = {0.5, 0.25};
+  /* y = 0.98 reads the particle at 0.95 (0.3 + dx/2) alone, and across the
+   * seam the one at 0.03 (0.6 + dx/2) */
+  const double l2 = sph_diag_gauge_level(&p, g2, dx, dx, 1, range);
+  const double plain2 = sph_diag_surface_at_xy(&p, 0.5, 0.98, dx, dx);
+  /* swap the two heights: y = 0.02 then reads 0.3 + dx/2 alone, 0.6 + dx/2 across */
+  p.z[0] = 0.6;
+  p.z[2] = 0.3;
+  const double l0 = sph_diag_gauge_level(&p, g0, dx, dx, 1, range);
+  const double plain0 = sph_diag_surface_at_xy(&p, 0.5, 0.02, dx, dx);
+  printf("\n    at y = 0.98: %.3f m (the line alone %.3f); at y = 0.02: %.3f m (alone %.3f)", l2,
+         plain2, l0, plain0);
+  CU_ASSERT_DOUBLE_EQUAL(plain2, 0.35, 1e-12);
+  CU_ASSERT_DOUBLE_EQUAL(l2, 0.65, 1e-12);
+  CU_ASSERT_DOUBLE_EQUAL(plain0, 0.35, 1e-12);
+  CU_ASSERT_DOUBLE_EQUAL(l0, 0.65, 1e-12);
+  /* away from the seam, and without a period: the plain reading, bit for bit */
+  CU_ASSERT(sph_diag_gauge_level(&p, g1, dx, dx, 1, range) ==
+            sph_diag_surface_at_xy(&p, 0.5, 0.5, dx, dx));
+  CU_ASSERT(sph_diag_gauge_level(&p, g0, dx, dx, -1, range) ==
+            sph_diag_surface_at_xy(&p, 0.5, 0.02, dx, dx));
+  CU_ASSERT(isinf(sph_diag_gauge_level(&p, g3, dx, dx, 1, range))); /* dry */
+  /* periodic along x: the seam is not near this gauge */
+  CU_ASSERT(sph_diag_gauge_level(&p, g0, dx, dx, 0, range) ==
+            sph_diag_surface_at_xy(&p, 0.5, 0.02, dx, dx));
+  sph_particles_free(&p);
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
+      {"a wave gauge at a periodic seam reads across it", test_gauge_seam},
       {"a 3-D case reads; what is 2-D only is refused by key", test_reader},
       {"a box obstacle: its keys, its particles, still water around it", test_obstacle},
-      {"3-D still water: floor pressure within 1 % of rho0 g H over 1 s", test_still_water},
+      {"3-D still water over 1 s: rho0 g (H - z) within 1 % inside, the floor sensor within 3 %",
+       test_still_water},
       {"3-D snapshots: z and v_z, read back, restart bitwise", test_snapshots},
       CU_TEST_INFO_NULL};
   return sph_test_main("hydrostatic_3d", tests);

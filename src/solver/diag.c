@@ -40,6 +40,36 @@ double sph_diag_surface_at_xy(const sph_particles *p, double x, double y, double
 }
 #endif
 
+/* The line's reading at `at`, its horizontal coordinates. */
+static double line_level(const sph_particles *p, const double at[SPH_DIM - 1], double half,
+                         double dx) {
+#if SPH_DIM == 2
+  return sph_diag_surface_at(p, at[0], half, dx);
+#else
+  return sph_diag_surface_at_xy(p, at[0], at[1], half, dx);
+#endif
+}
+
+double sph_diag_gauge_level(const sph_particles *p, const double at[SPH_DIM - 1], double half,
+                            double dx, int axis, const double range[2]) {
+  double level = line_level(p, at, half, dx);
+  if (axis < 0 || axis >= SPH_DIM - 1) return level; /* no horizontal period */
+  const double period = range[1] - range[0];
+  if (!(period > 0.0)) return level;
+  double image[SPH_DIM - 1];
+  for (int d = 0; d < SPH_DIM - 1; d++)
+    image[d] = at[d];
+  if (at[axis] - range[0] < half) { /* the seam at range[0]: the particles near range[1] */
+    image[axis] = at[axis] + period;
+    level = fmax(level, line_level(p, image, half, dx));
+  }
+  if (range[1] - at[axis] < half) { /* and the other way */
+    image[axis] = at[axis] - period;
+    level = fmax(level, line_level(p, image, half, dx));
+  }
+  return level;
+}
+
 void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[SPH_DIM],
                       sph_diag_row *row) {
   size_t n = 0;

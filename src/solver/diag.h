@@ -79,6 +79,14 @@ double sph_diag_surface_at(const sph_particles *p, double x, double half, double
  * centre with |x_i - x| < half and |y_i - y| < half, plus dx/2. */
 double sph_diag_surface_at_xy(const sph_particles *p, double x, double y, double half, double dx);
 #endif
+/* A wave gauge's level at `at` (x in 2-D, (x, y) in 3-D) as the functions
+ * above read it, in a domain periodic along `axis` over range[0]..range[1]
+ * (axis < 0: none): a gauge within `half` of the seam also reads the
+ * particles across it (the line's image one period away), the highest
+ * counting. A gauge away from the seam reads exactly what the functions
+ * above give. */
+double sph_diag_gauge_level(const sph_particles *p, const double at[SPH_DIM - 1], double half,
+                            double dx, int axis, const double range[2]);
 /* Fills every column but time, step and dt. */
 void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[SPH_DIM],
                       sph_diag_row *row);

@@ -72,11 +72,8 @@ static int write_gauges(sph_sim *s, outputs *o, sph_error *err) {
   if (!o->gauges) return 0;
   if (fprintf(o->gauges, "%.17g", sph_sim_time(s)) < 0) goto fail;
   for (size_t g = 0; g < c->n_gauges; g++) {
-#if SPH_DIM == 2
-    double level = sph_diag_surface_at(p, c->gauges[g], c->dx, c->dx);
-#else
-    double level = sph_diag_surface_at_xy(p, c->gauges[2 * g], c->gauges[2 * g + 1], c->dx, c->dx);
-#endif
+    double level = sph_diag_gauge_level(p, &c->gauges[(SPH_DIM - 1) * g], c->dx, c->dx,
+                                        c->periodic ? c->periodic_axis : -1, c->periodic_range);
     if (!isfinite(level)) level = sph_sim_floor(s); /* dry */
     if (sph_sim_time(s) == 0.0) o->still[g] = level;
     if (fprintf(o->gauges, ",%.17g", level - o->still[g]) < 0) goto fail;
