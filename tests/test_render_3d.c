@@ -39,7 +39,8 @@
  *    many snapshots and an unknown --surface are refused.
  * 6. --slice y=0.05 (the interpolated view with the outline): coloured
  *    water under white air down the middle, the same bytes on one and two
- *    workers; discs of a slab across z; panels of slices across x; a bad
+ *    workers; discs of a slab across z; panels of slices across x; an
+ *    overlay's markers on a slice; a bad
  *    axis, a negative thickness and --slice with --surface are refused.
  * 7. Golden images (golden/render/small3d_*.png, tests/render_testutil.h's
  *    tolerances) of cases/hydrostatic_3d.yaml at dx = 0.02 m after one
@@ -524,6 +525,17 @@ static void test_slices(void) {
   CU_ASSERT_EQUAL(render("--slice z=0.05,0.01 --discs --size 320x180 run3/snap_0000.h5 -o d.png"),
                   0);
   CU_ASSERT_EQUAL(render("--panels 2x1 --slice x=0.1 --size 640 run3 -o sp.png"), 0);
+  /* reference points over a slice, in the plane's coordinates (x, z) */
+  char csv[4200];
+  snprintf(csv, sizeof csv, "%s/ref.csv", tmp);
+  FILE *fp = fopen(csv, "w");
+  CU_ASSERT_PTR_NOT_NULL_FATAL(fp);
+  fputs("x,z\n0.05,0.1\n0.15,0.1\n", fp);
+  fclose(fp);
+  CU_ASSERT_EQUAL(
+      render("--slice y=0.05 --overlay ref.csv --size 480x270 run3/snap_0000.h5 -o ov.png"), 0);
+  CU_ASSERT_EQUAL(render("--slice y=0.05 --size 480x270 run3/snap_0000.h5 -o nov.png"), 0);
+  CU_ASSERT(!same_file("ov.png", "nov.png")); /* the markers are drawn */
   CU_ASSERT_NOT_EQUAL(render("--slice w=0.5 run3/snap_0000.h5 -o x.png"), 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "expected AXIS=POS[,THICKNESS]"));
   CU_ASSERT_NOT_EQUAL(render("--slice y=0.5,-1 run3/snap_0000.h5 -o x.png"), 0);
