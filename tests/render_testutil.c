@@ -14,6 +14,36 @@
 
 #include "testutil.h"
 
+int rtest_render(const char *dir, const char *env, const char *args) {
+  char cmd[16384];
+  snprintf(cmd, sizeof cmd, "cd '%s' && %s '%s' %s 2> '%s/err.txt'", dir, env,
+           sph_test_build("render/sph-render"), args, dir);
+  return sph_test_system(cmd);
+}
+
+const char *rtest_last_err(const char *dir) {
+  static char buf[8192];
+  char path[4200];
+  snprintf(path, sizeof path, "%s/err.txt", dir);
+  buf[0] = '\0';
+  FILE *fp = fopen(path, "r");
+  if (fp) {
+    size_t n = fread(buf, 1, sizeof buf - 1, fp);
+    buf[n] = '\0';
+    fclose(fp);
+  }
+  return buf;
+}
+
+int rtest_same_bytes(const char *a, const char *b) {
+  size_t na, nb;
+  char *x = sph_test_read_file(a, &na), *y = sph_test_read_file(b, &nb);
+  const int same = x && y && na == nb && memcmp(x, y, na) == 0;
+  free(x);
+  free(y);
+  return same;
+}
+
 int rtest_regen(void) {
   const char *r = getenv("SPH_RENDER_REGEN");
   return r && strcmp(r, "1") == 0;

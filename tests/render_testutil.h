@@ -21,6 +21,14 @@
 #define RGOLDEN_PIXEL_FRACTION 0.002
 #define RGOLDEN_MEAN_TOL 0.5
 
+/* Runs sph-render (the build's) in directory dir with args (a shell
+ * fragment), the environment assignments env ("" for none) before it, its
+ * stderr into dir/err.txt; the shell's status. */
+int rtest_render(const char *dir, const char *env, const char *args);
+/* That stderr (dir/err.txt), in a static buffer; "" if none. */
+const char *rtest_last_err(const char *dir);
+/* Whether files a and b hold the same bytes (both readable). */
+int rtest_same_bytes(const char *a, const char *b);
 /* Whether SPH_RENDER_REGEN=1 (regenerate the golden images). */
 int rtest_regen(void);
 /* A PNG as 8-bit RGB (malloc'd), its size in w and h; NULL if unreadable. */

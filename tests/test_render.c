@@ -64,26 +64,10 @@ static const char *renderer(void) {
 }
 
 /* Runs sph-render with args (a shell fragment); stderr goes to tmp/err.txt. */
-static int render(const char *args) {
-  char cmd[16384];
-  snprintf(cmd, sizeof cmd, "cd '%s' && '%s' %s 2> '%s/err.txt'", tmp, renderer(), args, tmp);
-  return sph_test_system(cmd);
-}
+static int render(const char *args) { return rtest_render(tmp, "", args); }
 
 /* The last stderr of render(), in a static buffer. */
-static const char *last_err(void) {
-  static char buf[8192];
-  char path[4200];
-  snprintf(path, sizeof path, "%s/err.txt", tmp);
-  buf[0] = '\0';
-  FILE *fp = fopen(path, "r");
-  if (fp) {
-    size_t n = fread(buf, 1, sizeof buf - 1, fp);
-    buf[n] = '\0';
-    fclose(fp);
-  }
-  return buf;
-}
+static const char *last_err(void) { return rtest_last_err(tmp); }
 
 static int exists(const char *path) {
   struct stat st;
@@ -130,11 +114,7 @@ static int svg_parses(const char *path) {
   return sph_test_system(cmd) == 0;
 }
 
-static int same_bytes(const char *a, const char *b) {
-  char cmd[9000];
-  snprintf(cmd, sizeof cmd, "cmp -s '%s' '%s'", a, b);
-  return sph_test_system(cmd) == 0;
-}
+static int same_bytes(const char *a, const char *b) { return rtest_same_bytes(a, b); }
 
 /* How many files in dir end with suffix. */
 static int count_files(const char *dir, const char *suffix) {

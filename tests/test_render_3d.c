@@ -309,42 +309,18 @@ static void test_obstacles(void) {
 
 /* ---- sph-render on a 3-D snapshot ---- */
 
-/* Runs sph-render with args in tmp, with the environment assignments env
- * ("" for none) before it; its stderr into tmp/err.txt. */
-static int render_env(const char *env, const char *args) {
-  char cmd[16384], *prog = realpath(sph_test_build("render/sph-render"), NULL);
-  snprintf(cmd, sizeof cmd, "cd '%s' && %s '%s' %s 2> '%s/err.txt'", tmp, env,
-           prog ? prog : "render/sph-render", args, tmp);
-  free(prog);
-  return sph_test_system(cmd);
-}
+/* sph-render in tmp (render_testutil.h), with environment assignments
+ * env before it or none, and its last stderr. */
+static int render_env(const char *env, const char *args) { return rtest_render(tmp, env, args); }
+static int render(const char *args) { return rtest_render(tmp, "", args); }
+static const char *last_err(void) { return rtest_last_err(tmp); }
 
-static int render(const char *args) { return render_env("", args); }
-
-static const char *last_err(void) {
-  static char buf[8192];
-  char path[4200];
-  snprintf(path, sizeof path, "%s/err.txt", tmp);
-  buf[0] = '\0';
-  FILE *fp = fopen(path, "r");
-  if (fp) {
-    size_t n = fread(buf, 1, sizeof buf - 1, fp);
-    buf[n] = '\0';
-    fclose(fp);
-  }
-  return buf;
-}
-
+/* Whether tmp/a and tmp/b hold the same bytes. */
 static int same_file(const char *a, const char *b) {
-  size_t na, nb;
   char pa[4200], pb[4200];
   snprintf(pa, sizeof pa, "%s/%s", tmp, a);
   snprintf(pb, sizeof pb, "%s/%s", tmp, b);
-  char *x = sph_test_read_file(pa, &na), *y = sph_test_read_file(pb, &nb);
-  const int same = x && y && na == nb && memcmp(x, y, na) == 0;
-  free(x);
-  free(y);
-  return same;
+  return rtest_same_bytes(pa, pb);
 }
 
 static int made;
