@@ -555,8 +555,10 @@ static int run_task(void *ctx, void *wp, size_t i, sph_error *err) {
         rc = -1;
         break;
       }
-    } else if (p->dim3) { /* the volumes: each sphere's size, the surface */
-      if (rsnap_load_volumes(&snaps[k], err) != 0 || draw_3d(p, w, k, &snaps[k], pa, err) != 0) {
+    } else if (p->dim3) { /* the volumes: each sphere's own size, the surface */
+      const int volumes = p->o->surface != RSURFACE_NONE || !(p->style.disc_size > 0.0);
+      if ((volumes && rsnap_load_volumes(&snaps[k], err) != 0) ||
+          draw_3d(p, w, k, &snaps[k], pa, err) != 0) {
         rc = -1;
         break;
       }
