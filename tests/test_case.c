@@ -971,6 +971,43 @@ static void test_riemann(void) {
       "t.yaml:4: physics.riemann.eta: unknown key (valid keys in 'physics.riemann': limiter)");
 }
 
+/* numerics.gradient_correction: off by default, a boolean, in the description only when on. */
+static void test_corrected_gradient(void) {
+  sph_case c;
+  expect_ok(MINIMAL, NULL, 0, &c);
+  CU_ASSERT_EQUAL(c.corrected_gradient, 0);
+  char *d = sph_case_describe(&c);
+  CU_ASSERT_PTR_NULL(strstr(d, "gradient_correction"));
+  free(d);
+  sph_case_free(&c);
+  expect_ok(edit(MINIMAL, 5, "  dx: 0.01\n  gradient_correction: true\n"), NULL, 0, &c);
+  CU_ASSERT_EQUAL(c.corrected_gradient, 1);
+  d = sph_case_describe(&c);
+  CU_ASSERT_PTR_NOT_NULL(strstr(d, "\nnumerics.gradient_correction: true\n"));
+  free(d);
+  sph_case_free(&c);
+  const char *set[] = {"numerics.gradient_correction=false"};
+  expect_ok(edit(MINIMAL, 5, "  dx: 0.01\n  gradient_correction: true\n"), set, 1, &c);
+  CU_ASSERT_EQUAL(c.corrected_gradient, 0);
+  sph_case_free(&c);
+  /* not with walls whose particles do not tile the wall as the water's lattice does */
+  const char *tank[] = {"geometry.tank={x: [0, 1], y: [0, 1]}"};
+  expect_err_set(edit(MINIMAL, 5, "  dx: 0.01\n  gradient_correction: true\n"), tank, 1,
+                 "t.yaml:6: numerics.gradient_correction: cannot be combined with staggered walls "
+                 "(layers dx/2 apart count the wall's volume twice; give the tank and the walls "
+                 "stagger: false)");
+  const char *rep[] = {"geometry.tank={x: [0, 1], y: [0, 1], boundary: repulsive}"};
+  expect_err_set(edit(MINIMAL, 5, "  dx: 0.01\n  gradient_correction: true\n"), rep, 1,
+                 "t.yaml:6: numerics.gradient_correction: cannot be combined with repulsive walls "
+                 "(their particles carry no pressure; use dynamic or mdbc walls)");
+  const char *lattice[] = {"geometry.tank={x: [0, 1], y: [0, 1], stagger: false}"};
+  expect_ok(edit(MINIMAL, 5, "  dx: 0.01\n  gradient_correction: true\n"), lattice, 1, &c);
+  CU_ASSERT_EQUAL(c.corrected_gradient, 1);
+  sph_case_free(&c);
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  gradient_correction: 1\n"),
+             "t.yaml:6: numerics.gradient_correction: expected true or false, got '1'");
+}
+
 static void test_names(void) {
   CU_ASSERT_STRING_EQUAL(sph_kernel_name(SPH_KERNEL_CUBIC_SPLINE), "cubic_spline");
   CU_ASSERT_STRING_EQUAL(sph_integrator_name(SPH_INTEGRATOR_PREDICTOR_CORRECTOR),
@@ -1008,6 +1045,7 @@ int main(void) {
                          {"free after failure", test_free_after_failure},
                          {"describe", test_describe},
                          {"physics.riemann", test_riemann},
+                         {"numerics.gradient_correction", test_corrected_gradient},
                          {"choice names", test_names},
                          CU_TEST_INFO_NULL};
   return sph_test_main("case", tests);

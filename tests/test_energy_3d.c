@@ -9,8 +9,9 @@
  * t = 0.1 s with each wall model the 3-D build has (dynamic, fixed_layers:
  * measured 8.4e-6; repulsive 5.3e-5; mirror 1.8e-5; mdbc 4.8e-6, and mdbc free-slip
  * 2.4e-5; the mdbc run the same bits on one thread and two; mdbc with
- * particle shifting, its moves booked; a piston plate does the quasi-static
- * work), the momentum
+ * particle shifting, its moves booked; the corrected gradient of the
+ * pressure and continuity on dynamic and mdbc walls; a piston plate does
+ * the quasi-static work), the momentum
  * balance along every axis to round-off, and the column falls (kinetic energy above 5 % of the
  * potential energy it had above its final centre of mass).
  */
@@ -76,6 +77,14 @@ static void test_fixed_layers(void) { run_box("fixed_layers", NULL, NULL); }
 static void test_repulsive(void) { run_box("repulsive", NULL, NULL); }
 static void test_mirror(void) { run_box("mirror", NULL, NULL); }
 
+/* the corrected gradient (numerics.gradient_correction): the continuity takes the pressure's
+ * L_ij grad_i W_ij, so the pressure's work is the internal energy's change, on dynamic and on
+ * mdbc walls */
+static void test_corrected(void) {
+  run_box("dynamic", "numerics.gradient_correction=true", NULL);
+  run_box("mdbc", "numerics.gradient_correction=true", NULL);
+}
+
 /* particle shifting with mdbc walls: the ledger books its moves'
  * potential energy (shifting_drift), and the balance still closes */
 static void test_shifting(void) {
@@ -140,6 +149,8 @@ int main(void) {
       {"3-D energy box, fixed layers: closed within 1e-4", test_fixed_layers},
       {"3-D energy box, repulsive walls: closed within 1e-4", test_repulsive},
       {"3-D energy box, mirror planes: closed within 1e-4", test_mirror},
+      {"3-D energy box, the corrected gradient on dynamic and mdbc walls: closed within 1e-4",
+       test_corrected},
       {"3-D energy box, mdbc walls (and free-slip): closed within 1e-4", test_mdbc},
       {"3-D energy box, mdbc walls and shifting: closed within 1e-4", test_shifting},
       {"3-D piston plate: the quasi-static work, closed within 1e-4", test_piston},

@@ -678,10 +678,31 @@ static void oracle_stress3(const sph_particles *p, const sph_force_params *fp, d
   }
 }
 
+/* L_i = M_i^-1 at every particle (9 per particle, row-major), M over every neighbour as in
+ * oracle_antuono_c (the identity where M is not invertible enough): the corrected gradient's
+ * (Bonet and Lok 1999; numerics.gradient_correction). */
+static void oracle_l3(const sph_particles *p, const sph_force_params *fp, double *l) {
+  for (size_t i = 0; i < p->n; i++) {
+    double M[3][3] = {{0.0}}, L[3][3];
+    for (size_t j = 0; j < p->n; j++) {
+      double d[3], r, w, dw;
+      if (!oracle_pair(p, fp, i, j, d, &r, &w, &dw)) continue;
+      const double V = p->mass[j] / p->rho[j];
+      for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+          M[a][b] -= V * d[a] * dw * d[b] / r;
+    }
+    oracle_inverse3(M, L);
+    memcpy(l + 9 * i, L, sizeof L);
+  }
+}
+
 static void oracle3(const sph_particles *p, const sph_force_params *fp, double *out) {
   const double k = 0.5 * fp->eos.rho0 / (fp->eos.c0 * fp->eos.c0); /* Fourtakas' c = k g */
   double *ca = calloc(3 * p->n, sizeof *ca), *tau = calloc(6 * p->n, sizeof *tau);
+  double *lc = calloc(9 * p->n, sizeof *lc);
   if (fp->diffusion == SPH_DIFFUSION_ANTUONO) oracle_antuono_c(p, fp, ca);
+  if (fp->corrected_gradient) oracle_l3(p, fp, lc);
   const int stress = fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps;
   if (stress) oracle_stress3(p, fp, tau);
   for (size_t i = 0; i < p->n; i++) {
@@ -699,7 +720,16 @@ static void oracle3(const sph_particles *p, const sph_force_params *fp, double *
       for (int q = 0; q < 3; q++)
         v[q] = p->vel[q][i] - p->vel[q][j], g[q] = dw * d[q] / r;
       const double mj = p->mass[j], rhoj = p->rho[j];
-      const double vg = v[0] * g[0] + v[1] * g[1] + v[2] * g[2];
+      /* the pressure's, its Pi_ij's and the continuity's gradient: with the correction
+       * (L_i + L_j) / 2 grad_i W_ij */
+      double cg[3] = {g[0], g[1], g[2]};
+      if (fp->corrected_gradient)
+        for (int q = 0; q < 3; q++) {
+          cg[q] = 0.0;
+          for (int b = 0; b < 3; b++)
+            cg[q] += 0.5 * (lc[9 * i + 3 * q + b] + lc[9 * j + 3 * q + b]) * g[b];
+        }
+      const double vg = v[0] * cg[0] + v[1] * cg[1] + v[2] * cg[2];
       const double vr = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
       drho += mj * vg;
       /* walls diffuse with fluid when fp->wall_diffusion (solver/diffusion.h) */
@@ -730,7 +760,7 @@ static void oracle3(const sph_particles *p, const sph_force_params *fp, double *
         P += (-fp->alpha * cbar * mu + fp->beta * mu * mu) / (0.5 * (rhoi + rhoj));
       }
       for (int q = 0; q < 3; q++)
-        a[q] -= mj * P * g[q];
+        a[q] -= mj * P * cg[q];
       du += 0.5 * mj * P * vg;
       if (stress) { /* A eq. 11's stress: m_j (tau_i / rho_i^2 + tau_j / rho_j^2) . grad_i W_ij */
         double t[3][3];
@@ -764,22 +794,22 @@ static void oracle3(const sph_particles *p, const sph_force_params *fp, double *
   }
   free(ca);
   free(tau);
+  free(lc);
 }
 
 /* The oracle against the pass (the lane loop; the scalar loop agrees with it to 1e-11,
- * test_loops_agree) for fourteen term sets, both kernels, with and without periodicity along y
- * and dynamic wall particles,
- * on a jittered block with random velocities and densities: every rate within 1e-12 of the
- * largest of its kind over the block. */
+ * test_loops_agree) for seventeen term sets (the corrected gradient among them), both kernels, with
+ * and without periodicity along y and dynamic wall particles, on a jittered block with random
+ * velocities and densities: every rate within 1e-12 of the largest of its kind over the block. */
 static void test_oracle(void) {
   const size_t n = (size_t)NL * NL * (NL + 2);
   double *ref = calloc(8 * n, sizeof *ref);
-  for (int set = 0; set < 28; set++) {
+  for (int set = 0; set < 34; set++) {
     sph_force_params fp = params();
     fp.kernel = set % 2 ? SPH_KERNEL_WENDLAND_C2 : SPH_KERNEL_CUBIC_SPLINE;
     fp.gz = -G;
     fp.ledger = 1;
-    /* sets 1-3 again on two layers of dynamic walls, and the last three term sets */
+    /* sets 1-3 again on two layers of dynamic walls, and the last six term sets */
     const int walls = (set >= 12 && set < 18) || set >= 22;
     switch (set >= 12 && set < 18 ? set / 2 - 5 : set / 2) {
     case 9: fp.alpha = 0.1, fp.diffusion = SPH_DIFFUSION_ANTUONO; break;
@@ -795,6 +825,18 @@ static void test_oracle(void) {
     case 13: /* per-particle h (the scalar loop), on walls */
       fp.alpha = 0.2, fp.beta = 0.4, fp.xsph = 0.5, fp.var_h = 1;
       fp.diffusion = SPH_DIFFUSION_FOURTAKAS, fp.viscosity = SPH_VISCOSITY_MORRIS, fp.mu = 0.02;
+      break;
+    case 14: /* the corrected gradient (its own moment pass), on walls */
+      fp.alpha = 0.2, fp.xsph = 0.5, fp.corrected_gradient = 1;
+      fp.diffusion = SPH_DIFFUSION_FOURTAKAS;
+      break;
+    case 15: /* the corrected gradient with the stress's (one L for both), on walls */
+      fp.alpha = 0.1, fp.viscosity = SPH_VISCOSITY_STRESS_TENSOR, fp.mu = 0.05;
+      fp.gradient_correction = 1, fp.corrected_gradient = 1;
+      break;
+    case 16: /* the corrected gradient with the stress uncorrected and per-particle h */
+      fp.alpha = 0.1, fp.viscosity = SPH_VISCOSITY_STRESS_TENSOR, fp.mu = 0.05;
+      fp.corrected_gradient = 1, fp.var_h = 1;
       break;
     case 0: fp.alpha = 0.3, fp.xsph = 0.5; break;
     case 1: fp.alpha = 0.2, fp.beta = 0.4, fp.diffusion = SPH_DIFFUSION_FOURTAKAS; break;
@@ -1080,7 +1122,8 @@ int main(void) {
       {"3-D momentum sums to zero; the ledger's heat balances the work", test_balances},
       {"3-D scalar, lane flavours, run-time loop and thread counts agree", test_loops_agree},
       {"3-D integrators move along z as along x, bit for bit", test_integrators},
-      {"3-D pass against an all-pairs oracle from the equations (fourteen term sets)", test_oracle},
+      {"3-D pass against an all-pairs oracle from the equations (seventeen term sets)",
+       test_oracle},
       {"3-D pair terms from i's side and from j's: symmetric, antisymmetric, lanes = v1",
        test_pair_symmetry_3d},
       {"3-D periodic along y and z: the rates of periodic along x, axes exchanged",

@@ -7,7 +7,9 @@
  *    stress tensor, Morris, periodic, per-particle h, energy ledger,
  *    density diffusion: Molteni-Colagrossi, Antuono, Fourtakas by set;
  *    the Riemann-solver pressure and continuity term;
- *    the cubic spline and the Wendland C2 kernel alternating) and
+ *    the cubic spline and the Wendland C2 kernel alternating; the
+ *    corrected gradient of the pressure and continuity in one of the
+ *    three sets, the oracle inverting each particle's moment itself) and
  *    three random particle sets (fluid on a jittered lattice with random
  *    velocities and densities; dynamic, moving, repulsive and mirror wall
  *    particles below it; periodic in x when F says so, per-particle h
@@ -132,6 +134,8 @@ static void params_for(unsigned F, unsigned seed, sph_force_params *fp) {
   if (F & 64) fp->ledger = 1;
   if (F & 128) fp->diffusion = DIFFUSION[seed % 3], fp->diffusion_delta = 0.1;
   if (F & 256) fp->riemann = 1, fp->riemann_limiter = 3.0;
+  /* the corrected gradient in one set of each term set's three (the others without) */
+  fp->corrected_gradient = (F + seed) % 3 == 0;
   /* the kernel alternates with the set: both in every term set */
   fp->kernel = ((F + seed) & 1) ? SPH_KERNEL_WENDLAND_C2 : SPH_KERNEL_CUBIC_SPLINE;
   fp->repulsive = 1;
@@ -219,6 +223,28 @@ static void oracle_stress(const sph_particles *p, const sph_force_params *fp, do
   }
 }
 
+/* The corrected gradient's L_i = M_i^-1 (Bonet and Lok 1999), M_i = sum_j V_j r_ji (x)
+ * grad_i W_ij over every neighbour, as (xx, xy, yy): the identity where M is not positive
+ * definite with det M > 0.8 (forces.h). */
+static void oracle_l(const sph_particles *p, const sph_force_params *fp, double *l) {
+  for (size_t i = 0; i < p->n; i++) {
+    double mxx = 0, mxy = 0, myy = 0;
+    for (size_t j = 0; j < p->n; j++) {
+      double dx, dy, r, hij, w, gx, gy;
+      if (j == i || !pair(p, fp, i, j, &dx, &dy, &r, &hij, &w, &gx, &gy)) continue;
+      const double vj = p->mass[j] / p->rho[j];
+      mxx -= vj * dx * gx;
+      mxy -= vj * dx * gy;
+      myy -= vj * dy * gy;
+    }
+    const double det = mxx * myy - mxy * mxy;
+    const int ok = det > 0.8 && mxx > 0.0;
+    l[3 * i] = ok ? myy / det : 1.0;
+    l[3 * i + 1] = ok ? -mxy / det : 0.0;
+    l[3 * i + 2] = ok ? mxx / det : 1.0;
+  }
+}
+
 static int oracle_diffuses(const sph_particles *p, const sph_force_params *fp, size_t i);
 
 /* The density diffusion's c_i (physics/density_diffusion.h): 0, half the
@@ -281,6 +307,8 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
          *tyy = calloc(n, sizeof *tyy);
   const int stress = fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps;
   if (stress) oracle_stress(p, fp, txx, txy, tyy);
+  double *lc = calloc(3 * n, sizeof *lc);
+  if (fp->corrected_gradient) oracle_l(p, fp, lc);
   for (size_t i = 0; i < n; i++) {
     for (int k = 0; k < 10; k++)
       o->f[k][i] = 0.0;
@@ -294,7 +322,17 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
       const double du_before_pair = du;
       const double mj = p->mass[j], rhoj = p->rho[j];
       const double vx = p->vx[i] - p->vx[j], vy = p->vy[i] - p->vy[j];
-      const double vg = vx * gx + vy * gy, vr = vx * dx + vy * dy;
+      /* the pressure's, its Pi_ij's and the continuity's gradient: with the correction
+       * (L_i + L_j) / 2 grad_i W_ij (forces.h); the viscous terms keep grad_i W_ij */
+      double cgx = gx, cgy = gy;
+      if (fp->corrected_gradient) {
+        const double lxx = 0.5 * (lc[3 * i] + lc[3 * j]),
+                     lxy = 0.5 * (lc[3 * i + 1] + lc[3 * j + 1]);
+        const double lyy = 0.5 * (lc[3 * i + 2] + lc[3 * j + 2]);
+        cgx = lxx * gx + lxy * gy;
+        cgy = lxy * gx + lyy * gy;
+      }
+      const double vg = vx * cgx + vy * cgy, vr = vx * dx + vy * dy;
       if (fluid || p->kind[j] == SPH_KIND_FLUID) drho += mj * vg; /* B eq. 2; a wall: fluid j */
       sig = fmax(sig, fabs(hij * vr) / (r * r));                  /* B §2.6 */
       /* density_diffusion.h, diffusion.h: fluid with fluid, a dynamic wall
@@ -333,9 +371,9 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
         const double cbar = 0.5 * (ci + sph_eos_sound_speed(&fp->eos, rhoj));
         P += (-fp->alpha * cbar * mu + fp->beta * mu * mu) / (0.5 * (rhoi + rhoj));
       }
-      const double px = slip ? 0.0 : gx;
-      double fx = -mj * P * px, fy = -mj * P * gy; /* A eq. 11 */
-      du += 0.5 * mj * P * (vx * px + vy * gy);    /* A eq. 28 */
+      const double px = slip ? 0.0 : cgx;
+      double fx = -mj * P * px, fy = -mj * P * cgy; /* A eq. 11 */
+      du += 0.5 * mj * P * (vx * px + vy * cgy);    /* A eq. 28 */
       if (stress) {
         const double sxx = txx[i] + txx[j], sxy = txy[i] + txy[j], syy = tyy[i] + tyy[j];
         fx += mj * (sxx * gx + sxy * gy);
@@ -388,6 +426,7 @@ static void oracle(const sph_particles *p, const sph_force_params *fp, rates *o)
     for (int k = 0; k < 10; k++)
       o->f[k][i] = v[k];
   }
+  free(lc);
   free(txx);
   free(txy);
   free(tyy);
@@ -543,8 +582,9 @@ static void test_oracle_every_term_set(void) {
         if (avx) CU_ASSERT(memcmp(r[1].f[k], r[2].f[k], bytes) == 0);    /* lane flavours */
         if (avx512) CU_ASSERT(memcmp(r[1].f[k], r[3].f[k], bytes) == 0); /* 8 lanes as 4 */
         /* where the lanes defer to the scalar loop (but for the strain-rate pass of the
-         * stress, which runs in lanes unless h is per particle) */
-        const int strain_in_lanes = (F & 4) && !(F & 32);
+         * stress and the corrected gradient's moment, which run in lanes unless h is per
+         * particle) */
+        const int strain_in_lanes = ((F & 4) || fp.corrected_gradient) && !(F & 32);
         if (((F & 32) || fp.mirror) && !strain_in_lanes)
           CU_ASSERT(memcmp(r[0].f[k], r[1].f[k], bytes) == 0);
       }
@@ -553,8 +593,8 @@ static void test_oracle_every_term_set(void) {
       rates_free(&o);
       sph_particles_free(&p);
     }
-  printf("\n  512 term sets x 3 sets (density diffusion: the three models by set): worst relative "
-         "difference from the all-pairs oracle: "
+  printf("\n  512 term sets x 3 sets (density diffusion: the three models by set; the corrected "
+         "gradient in one): worst relative difference from the all-pairs oracle: "
          "scalar %.2e, lanes %.2e, AVX2 lanes %.2e, AVX-512 lanes %.2e (tolerance %.0e)",
          worst[0], worst[1], worst[2], worst[3], TOL);
   CU_ASSERT(bad == 0);
@@ -695,6 +735,44 @@ static void test_pair_symmetry(void) {
     CU_ASSERT(same(xf * dvx, -(xf * evx)));
     const double lj = lennard_jones_v1(5.0, 1.2 * h, r2);
     CU_ASSERT(same(lj * dx, -(lj * ex)) && same(lj, lennard_jones_v1(5.0, 1.2 * h, q2)));
+    { /* the corrected gradient: the same L_ij from either side, so antisymmetric, and each
+       * term built on it keeps its symmetry */
+      const sym_v1 li = {{1.0 + 0.1 * s[0], 0.05 * s[1], 1.0 + 0.1 * s[2]}};
+      const sym_v1 lj = {{1.0 + 0.1 * s[3], 0.05 * s[4], 1.0 + 0.1 * s[5]}};
+      const vec_v1 cg = corrected_gradient_v1(li, lj, gv), ch = corrected_gradient_v1(lj, li, hv);
+      CU_ASSERT(same(cg.c[0], -ch.c[0]) && same(cg.c[1], -ch.c[1]));
+      const vec_v1 ca = pressure_force_v1(mp, cg), cb = pressure_force_v1(mq, ch);
+      CU_ASSERT(same(ca.c[0], -cb.c[0]) && same(ca.c[1], -cb.c[1]));
+      CU_ASSERT(same(continuity_v1(m, dv, cg), continuity_v1(m, ev, ch)));
+      CU_ASSERT(same(pressure_heat_v1(mp, dv, cg), pressure_heat_v1(mq, ev, ch)));
+      /* (L_i + L_j) / 2 times g, by hand */
+      const double lxx = 0.5 * (li.c[0] + lj.c[0]), lxy = 0.5 * (li.c[1] + lj.c[1]);
+      const double lyy = 0.5 * (li.c[2] + lj.c[2]);
+      CU_ASSERT(fabs(cg.c[0] - (lxx * gx + lxy * gy)) <= 1e-15 * (fabs(gx) + fabs(gy)));
+      CU_ASSERT(fabs(cg.c[1] - (lxy * gx + lyy * gy)) <= 1e-15 * (fabs(gx) + fabs(gy)));
+      /* L = I leaves the gradient as it is */
+      const sym_v1 id = {{1.0, 0.0, 1.0}};
+      const vec_v1 gi = corrected_gradient_v1(id, id, gv);
+      CU_ASSERT(same(gi.c[0], gx) && same(gi.c[1], gy));
+      for (int k = 0; k < 2; k++) { /* the lanes: four pairs at once */
+        double want[4], got[4];
+        const double k4c[4] = {1.0, 0.9, 0.8, 0.7};
+        vec_v4e g4;
+        for (int e = 0; e < 2; e++)
+          g4.c[e] = v4e_set(gv.c[e] * k4c[0], gv.c[e] * k4c[1], gv.c[e] * k4c[2], gv.c[e] * k4c[3]);
+        sym_v4e l4i, l4j;
+        for (int e = 0; e < 3; e++) {
+          l4i.c[e] = v4e_all(li.c[e]);
+          l4j.c[e] = v4e_all(lj.c[e]);
+        }
+        v4e_store(got, corrected_gradient_v4e(l4i, l4j, g4).c[k]);
+        for (int q = 0; q < 4; q++) {
+          const vec_v1 gq = {{gv.c[0] * k4c[q], gv.c[1] * k4c[q]}};
+          want[q] = corrected_gradient_v1(li, lj, gq).c[k];
+          CU_ASSERT(same(got[q], want[q]));
+        }
+      }
+    }
     { /* a free-slip wall's normal part: antisymmetric, and along the normal */
       const double mx = s[2] * DX, my = s[3] * DX;
       const vec_v1 mv = {{mx, my}}, slide = {{-my, mx}};
@@ -973,7 +1051,7 @@ static void test_fastest_loop(void) {
 
 int main(void) {
   CU_TestInfo tests[] = {
-      {"the 256 term sets: scalar, lane, AVX2 and AVX-512 loops against the all-pairs oracle, "
+      {"the 512 term sets: scalar, lane, AVX2 and AVX-512 loops against the all-pairs oracle, "
        "the run-time loops bitwise the compiled ones",
        test_oracle_every_term_set},
       {"the strain-rate pass: lane flavours bitwise, the scalar pass within tolerance",

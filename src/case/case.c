@@ -59,6 +59,7 @@ typedef struct ctx {
   const node *dx_node;       /* numerics.dx, for the cross-checks */
   const node *stop_node;     /* time.stop if given */
   const node *shifting_node; /* numerics.shifting if given */
+  const node *cgrad_node;    /* numerics.gradient_correction if given */
 } ctx;
 
 /* ---- choices -------------------------------------------------------------- */
@@ -99,6 +100,28 @@ int sph_case_has_boundary(const sph_case *c, sph_boundary_kind b) {
   for (size_t k = 0; k < c->n_walls; k++)
     has |= c->walls[k].boundary == b;
   return has;
+}
+
+/* Why the corrected gradient (numerics.gradient_correction, solver/forces.h)
+ * cannot run with c's walls, or NULL: its moment sums every neighbour's
+ * volume m/rho, so wall particles must tile the wall as the water's lattice
+ * does. Staggered layers dx/2 apart count the wall twice (the 2-D still
+ * tank's floor read +12 % and rising), and repulsive wall particles carry
+ * no pressure. */
+static const char *corrected_gradient_clash(const sph_case *c) {
+  if (!c->corrected_gradient) return NULL;
+  if (sph_case_has_boundary(c, SPH_BOUNDARY_REPULSIVE))
+    return "repulsive walls (their particles carry no pressure; use dynamic or mdbc walls)";
+  for (size_t k = 0; k < c->n_obstacles; k++)
+    if (c->obstacles[k].boundary == SPH_BOUNDARY_REPULSIVE)
+      return "repulsive walls (their particles carry no pressure; use dynamic or mdbc walls)";
+  int staggered = c->tank.present && c->tank.boundary != SPH_BOUNDARY_MIRROR && c->tank.stagger;
+  for (size_t k = 0; k < c->n_walls; k++)
+    staggered |= c->walls[k].boundary != SPH_BOUNDARY_MIRROR && c->walls[k].stagger;
+  if (staggered)
+    return "staggered walls (layers dx/2 apart count the wall's volume twice; give the tank and "
+           "the walls stagger: false)";
+  return NULL;
 }
 
 /* |g|, its components' squares added in axis order. */
@@ -149,6 +172,7 @@ static const char *const numerics_keys[] = {"dx",
                                             "density_limit",
                                             "density_diffusion",
                                             "shifting",
+                                            "gradient_correction",
                                             "scheme",
                                             NULL};
 static const char *const dt_keys[] = {"rule", "factor", "dt", NULL};
@@ -543,6 +567,9 @@ static int read_numerics(ctx *x, const node *m, sph_case *c) {
                             &c->shifting_coefficient) < 0)
       return -1;
   }
+  rc = sph_yaml_get_bool(&x->t, m, p, "gradient_correction", &c->corrected_gradient);
+  if (rc < 0) return -1;
+  if (rc > 0) x->cgrad_node = sph_yaml_find(m, "gradient_correction")->val;
   return sph_yaml_get_number(&x->t, m, p, "density_limit", 0, &limit, &c->density_limit) < 0 ? -1
                                                                                              : 0;
 }
@@ -1424,6 +1451,10 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
         &x->t, x->shifting_node, "numerics.shifting",
         "needs wall particles to count the wall as full, and mirror walls have none "
         "(use boundary: mdbc)");
+  const char *cg_clash = corrected_gradient_clash(c);
+  if (cg_clash)
+    return sph_yaml_fail_at(&x->t, x->cgrad_node, "numerics.gradient_correction",
+                            "cannot be combined with %s", cg_clash);
   if (c->stop == SPH_STOP_FRONT_AT_WALL && !c->tank.present)
     return sph_yaml_fail_at(&x->t, x->stop_node, "time.stop",
                             "'front_at_wall' needs a geometry.tank");
@@ -1530,8 +1561,11 @@ static int parse_into(ctx *x, const char *text, size_t len, size_t n_set, sph_ca
 
 int sph_case_parse(const char *text, size_t len, const char *origin, const char *const *set,
                    size_t n_set, sph_case *c, sph_error *err) {
-  ctx x = {
-      {origin ? origin : "<text>", text ? text : "", text ? len : 0, set, err}, NULL, NULL, NULL};
+  ctx x = {{origin ? origin : "<text>", text ? text : "", text ? len : 0, set, err},
+           NULL,
+           NULL,
+           NULL,
+           NULL};
   memset(c, 0, sizeof *c);
   for (size_t i = 0; i < n_set; i++)
     if (!set || !set[i]) return sph_error_set(err, "%s: an empty --set override", x.t.origin);
@@ -1605,7 +1639,7 @@ int sph_case_file_dimension(const char *path, const char *const *set, size_t n_s
   char *buf;
   size_t len;
   if (read_case_file(path, &buf, &len, err)) return -1;
-  ctx x = {{path, buf, len, set, err}, NULL, NULL, NULL};
+  ctx x = {{path, buf, len, set, err}, NULL, NULL, NULL, NULL};
   node *root = NULL;
   int rc = sph_yaml_parse(&x.t, buf, len, SPH_YAML_FROM_FILE, NULL, &root);
   if (rc == 0 && root->kind == SPH_YAML_MAP) { /* (not a mapping: 2, the full reader says why) */

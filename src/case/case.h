@@ -117,6 +117,9 @@ typedef struct sph_case {
   double diffusion_delta;         /* numerics.density_diffusion.delta, default 0.1 */
   int shifting;                /* numerics.shifting given (src/physics/shifting.h), default off */
   double shifting_coefficient; /* numerics.shifting.coefficient A, default 2 */
+  int corrected_gradient;      /* numerics.gradient_correction: the pressure and continuity
+                                  terms with the kernel-gradient correction (src/solver/forces.h),
+                                  default off */
 
   /* time */
   double t_end;           /* required */

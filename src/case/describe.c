@@ -210,6 +210,7 @@ char *sph_case_describe(const sph_case *c) {
   sb_add(&b, "numerics.density_diffusion.model: %s\n", sph_diffusion_name(c->diffusion));
   sb_add(&b, "numerics.density_diffusion.delta: %.17g\n", c->diffusion_delta);
   if (c->shifting) sb_add(&b, "numerics.shifting.coefficient: %.17g\n", c->shifting_coefficient);
+  if (c->corrected_gradient) sb_add(&b, "numerics.gradient_correction: true\n");
   sb_add(&b, "numerics.density_limit: %.17g\n", c->density_limit);
   sb_add(&b, "time.end: %.17g\n", c->t_end);
   sb_add(&b, "time.output_interval: %.17g\n", c->output_interval);

@@ -75,6 +75,7 @@ static const char *const TEMPLATE =
     "    delta: 0.1               # (0, 1] (default 0.1); only with a model\n"
     "  # shifting:                # particle shifting (default off)\n"
     "  #   coefficient: 2         # (0, 10] (default 2)\n"
+    "  gradient_correction: false # pressure and continuity with L grad W (default false)\n"
     "  density_limit: 0.3         # stop when |rho/rho0 - 1| exceeds it, (0, 1) (default 0.3)\n"
     "\n"
     "time:\n"

@@ -206,6 +206,23 @@ PT_ATTR T PT(riemann_density)(T rhoi, T mj, T rhoj, T jump, T f, T r, T inv_z0) 
   return MUL(DIV(MUL(rhoi, mj), rhoj), MUL(MUL(jump, MUL(f, r)), inv_z0));
 }
 
+/* The pair's corrected kernel gradient, Bonet and Lok (1999) in their
+ * symmetric form: L_ij grad_i W_ij with L_ij = (L_i + L_j) / 2, given each
+ * particle's L = M^-1 (src/solver/forces.h). L_ij is the same for both
+ * particles of the pair, so the terms built on it keep their symmetry: a
+ * pressure force antisymmetric, a continuity term that matches its work. */
+PT_ATTR VEC PT(corrected_gradient)(SYM li, SYM lj, VEC g) {
+#define SPH_PT_MEAN(k) MUL(ALL(0.5), ADD(li.c[k], lj.c[k]))
+#if SPH_DIM == 2
+  const SYM m = {{SPH_PT_MEAN(0), SPH_PT_MEAN(1), SPH_PT_MEAN(2)}};
+#else
+  const SYM m = {{SPH_PT_MEAN(0), SPH_PT_MEAN(1), SPH_PT_MEAN(2), SPH_PT_MEAN(3), SPH_PT_MEAN(4),
+                  SPH_PT_MEAN(5)}};
+#endif
+#undef SPH_PT_MEAN
+  return PT(sym_times)(m, g);
+}
+
 /* Pressure (and Pi_ij) force on i per unit mass, paper A eq. (11), paper B
  * eq. (3): -m_j (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) grad_i W_ij, given
  * mp = m_j (prho2_i + prho2_j + Pi_ij). Antisymmetric in the pair. */

@@ -164,15 +164,17 @@ strain_one(const sph_particles *restrict p, const sph_nlist *restrict l,
     const double ux = vx[j] - vxi, uy = vy[j] - vyi; /* v_ji */
     SPH_IF3(const double gz = f * dz, uz = vz[j] - vzi;)
     if (correct) {
-      gxx += ux * gx;
-      gxy += ux * gy;
-      gyx += uy * gx;
-      gyy += uy * gy;
+      if (!o->moment_only) {
+        gxx += ux * gx;
+        gxy += ux * gy;
+        gyx += uy * gx;
+        gyy += uy * gy;
+        SPH_IF3(gxz += ux * gz; gyz += uy * gz; gzx += uz * gx; gzy += uz * gy; gzz += uz * gz;)
+      }
       mxx -= dx * gx;
       mxy -= dx * gy;
       myy -= dy * gy;
-      SPH_IF3(gxz += ux * gz; gyz += uy * gz; gzx += uz * gx; gzy += uz * gy; gzz += uz * gz;
-              mxz -= dx * gz; myz -= dy * gz; mzz -= dz * gz;)
+      SPH_IF3(mxz -= dx * gz; myz -= dy * gz; mzz -= dz * gz;)
     } else {
       sxx += 2.0 * ux * gx;
       syy += 2.0 * uy * gy;
@@ -544,6 +546,20 @@ static int keep_rows(const sph_particles *p, const sph_nlist *l, sph_force_work 
   return 0;
 }
 
+/* The strain-rate pass with the options o, its strain rate into w->s: in
+ * the lane flavour of fp's loop, its cut rows kept for the main pass
+ * (keep_rows), else the scalar pass. */
+static int strain_run(const sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
+                      sph_force_work *w, const strain_opts *o, sph_error *err) {
+  const strain_fn lanes = strain_lanes(fp);
+  if (lanes && keep_rows(p, l, w, err)) return -1;
+  if (lanes)
+    lanes(p, l, fp, w, w->s, o);
+  else
+    strain_list(p, l, fp, w->s, o);
+  return 0;
+}
+
 /* The strain-rate pass and tau / rho^2 at every particle (w->sxx, sxy,
  * syy): the laminar mu eps of paper A eq. (13)-(14) plus the SPS stress of
  * paper B eq. (4), with the kernel-gradient correction when asked for. */
@@ -551,13 +567,7 @@ static int stress_pass(const sph_particles *p, const sph_nlist *l, const sph_for
                        sph_force_work *w, sph_error *err) {
   const long n = (long)p->n;
   strain_opts o;
-  if (strain_setup(p, fp, w, &o, err)) return -1;
-  const strain_fn lanes = strain_lanes(fp);
-  if (lanes && keep_rows(p, l, w, err)) return -1;
-  if (lanes)
-    lanes(p, l, fp, w, w->s, &o);
-  else
-    strain_list(p, l, fp, w->s, &o);
+  if (strain_setup(p, fp, w, &o, err) || strain_run(p, l, fp, w, &o, err)) return -1;
   double *restrict const sxx = w->sxx, *restrict const sxy = w->sxy, *restrict const syy = w->syy;
   SPH_IF3(double *restrict const sxz = w->sxz, *restrict const syz = w->syz;
           double *restrict const szz = w->szz; const double *restrict const sdiv = w->sdiv;)
@@ -604,6 +614,17 @@ static int stress_pass(const sph_particles *p, const sph_nlist *l, const sph_for
     SPH_IF3(sxz[i] = t[SPH_XZ]; syz[i] = t[SPH_YZ]; szz[i] = t[SPH_ZZ];)
   }
   return 0;
+}
+
+/* L = M^-1 at every particle (w->l) for the corrected gradient (forces.h),
+ * where the stress pass does not give it: the strain-rate pass with the
+ * correction summing its moment M alone (Bonet and Lok 1999; no strain
+ * rate, eps not written). In lanes it keeps the cut rows for the main
+ * pass, as the stress pass does. */
+static int moment_pass(const sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
+                       sph_force_work *w, sph_error *err) {
+  const strain_opts o = {.l = w->l, .moment_only = 1};
+  return strain_run(p, l, fp, w, &o, err);
 }
 
 static double seconds_now(void) {
@@ -660,6 +681,10 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
   if (!run) return sph_error_set(err, "forces: the interaction loop asked for cannot run here");
   if (prepare_pass(p, l, fp, w, F, err)) return -1;
   w->terms = F;
+  /* the corrected gradient's L (the stress's corrected strain rate gives it too) */
+  if ((F & F_CGRAD) && !((F & F_STRESS) && fp->gradient_correction) &&
+      moment_pass(p, l, fp, w, err))
+    return -1;
   if ((F & F_STRESS) && stress_pass(p, l, fp, w, err)) return -1;
   if (F & F_DDIFF) sph_diffusion_prepare(p, l, fp, w);
   run(p, l, fp, w);

@@ -45,7 +45,8 @@ enum {
   F_VARH = 32,     /* per-particle smoothing length */
   F_LEDGER = 64,   /* energy ledger: du/dt and the power of moving walls */
   F_DDIFF = 128,   /* density diffusion (physics/density_diffusion.h) */
-  F_RIEMANN = 256  /* Riemann-solver pressure (Zhang et al. 2017) in place of p/rho^2 */
+  F_RIEMANN = 256, /* Riemann-solver pressure (Zhang et al. 2017) in place of p/rho^2 */
+  F_CGRAD = 512    /* the pressure and continuity with the corrected gradient (forces.h) */
 };
 
 /* The lane loops serve the term sets without these (the scalar loop runs them). */
@@ -126,7 +127,7 @@ enum {
 #endif
 
 /* Every term bit (the last one doubled, less 1). */
-#define F_TERMS (2u * F_RIEMANN - 1u)
+#define F_TERMS (2u * F_CGRAD - 1u)
 
 /* The bits a loop Fc takes as literals (above). */
 #define F_LITERAL(Fc)                                                                              \
@@ -150,6 +151,7 @@ static inline unsigned sph_interact_terms(const sph_force_params *fp) {
   if (fp->ledger) F |= F_LEDGER;
   if (fp->diffusion != SPH_DIFFUSION_NONE) F |= F_DDIFF;
   if (fp->riemann) F |= F_RIEMANN;
+  if (fp->corrected_gradient) F |= F_CGRAD;
   return F;
 }
 
@@ -159,6 +161,8 @@ typedef struct strain_opts {
   const double *const *gv; /* velocity of wall particles in the viscous terms (gv[axis]), or NULL */
   double *const *l;        /* kernel-gradient correction L = M^-1 out (l[SPH_XX], ...), or NULL */
   double *div;             /* div v out (the 3-D SPS closure), or NULL */
+  int moment_only;         /* with l: the moment M alone (no velocity sums), L stored and no
+                              strain rate (the corrected gradient, forces.c moment_pass) */
 } strain_opts;
 
 /* The sums of the strain-rate pass: without the correction s = the
@@ -184,6 +188,7 @@ static inline void strain_finish(const strain_opts *o, size_t i, const double s[
     o->l[SPH_XX][i] = axx;
     o->l[SPH_XY][i] = axy;
     o->l[SPH_YY][i] = ayy;
+    if (o->moment_only) return;
     const double gxx = gm[0], gxy = gm[1], gyx = gm[2], gyy = gm[3];
     const double cxx = gxx * axx + gxy * axy, cxy = gxx * axy + gxy * ayy;
     const double cyx = gyx * axx + gyy * axy, cyy = gyx * axy + gyy * ayy;
@@ -204,6 +209,7 @@ static inline void strain_finish(const strain_opts *o, size_t i, const double s[
     sph_gradient_correction(gm + 9, a);
     for (int k = 0; k < SPH_SYM; k++)
       o->l[k][i] = a[k];
+    if (o->moment_only) return;
     for (int r = 0; r < 3; r++)
       for (int q = 0; q < 3; q++)
         c[r][q] = (gm[3 * r] * a[sph_sym_index(0, q)] + gm[3 * r + 1] * a[sph_sym_index(1, q)]) +

@@ -14,7 +14,8 @@
  * The row: with per-particle h (the scalar loop only, F_VARH) the whole
  * neighbour row, each pair outside its own support skipped; otherwise the
  * row cut to the pairs inside the support (cut_row; with the stress terms
- * the strain-rate pass has cut it already and kept it, w->keep), padded to
+ * or the corrected gradient the strain-rate pass has cut it already and
+ * kept it, w->keep), padded to
  * a multiple of the width with its last pair, masked out. Each of the
  * lanes takes entries k, k + 4, ... and keeps its own partial sums, added
  * as (l0 + l1) + (l2 + l3) at the end (the scalar loop: one sum, in row
@@ -82,7 +83,8 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   if (F & F_VARH) { /* (the scalar loop only) the whole row: the support is per pair */
     nb = l->nb + l->start[i];
     cnt = l->count[i];
-  } else if ((F & F_STRESS) && w->keep_valid) { /* the strain-rate pass's cut row, padded */
+  } else if ((F & (F_STRESS | F_CGRAD)) && w->keep_valid) { /* the strain-rate pass's cut row,
+                                                              padded */
     nb = w->keep + l->start[i] + SPH_KEEP_PAD * i;
     cnt = w->keepn[i];
   } else {
@@ -218,13 +220,30 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     const LT mj = GATHER(m);
     const LVEC rv = {{SPH_XYZ(dx, dy, dz)}}, gw = {{SPH_XYZ(gx, gy, gz)}}; /* r_ij, grad_i W_ij */
     const LVEC dv = {{SPH_XYZ(dvx, dvy, dvz)}};                            /* v_ij */
+    /* the gradient of the pressure, its Pi_ij and the continuity: with F_CGRAD the pair's
+     * corrected one, L_ij grad_i W_ij (forces.h); the viscous terms keep grad_i W_ij */
+    LVEC cg = gw;
+    if (F & F_CGRAD) {
+#define E_L(q, k) w->l[k][jk[q]]
+#if SPH_DIM == 2
+      const LSYM li = {{LOP(all)(w->lxx[i]), LOP(all)(w->lxy[i]), LOP(all)(w->lyy[i])}};
+      const LSYM lj = {{LSET(E_L, SPH_XX), LSET(E_L, SPH_XY), LSET(E_L, SPH_YY)}};
+#else
+      const LSYM li = {{LOP(all)(w->lxx[i]), LOP(all)(w->lxy[i]), LOP(all)(w->lxz[i]),
+                        LOP(all)(w->lyy[i]), LOP(all)(w->lyz[i]), LOP(all)(w->lzz[i])}};
+      const LSYM lj = {{LSET(E_L, SPH_XX), LSET(E_L, SPH_XY), LSET(E_L, SPH_XZ), LSET(E_L, SPH_YY),
+                        LSET(E_L, SPH_YZ), LSET(E_L, SPH_ZZ)}};
+#endif
+#undef E_L
+      cg = LTERM(corrected_gradient)(li, lj, gw);
+    }
     if (fluid || !(fp->moving_walls || fp->mirror)) { /* walls at rest: their pairs add +-0 */
-      LACC(drho, LTERM(continuity)(mj, dv, gw));
+      LACC(drho, LTERM(continuity)(mj, dv, cg));
     } else { /* a wall particle's density follows its fluid neighbours only: the walls
               * next to it are the same body, or another wall moving past it (a flap
               * at its hinge compressed its own corner to 1.3 rho0) */
       const LMASK fj = LOP(lt)(zero, LSET(E_ARR, fm));
-      LACC(drho, LOP(and)(fj, LTERM(continuity)(mj, dv, gw)));
+      LACC(drho, LOP(and)(fj, LTERM(continuity)(mj, dv, cg)));
     }
 #if SPH_DIM == 2
     const LT vdotr = LOP(add)(LOP(mul)(dvx, dx), LOP(mul)(dvy, dy));
@@ -275,8 +294,8 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
      * velocity (normal_vdotr); fs the lanes of such pairs. With the Riemann
      * pressure, the closing speed of a pair with a wall particle that has a
      * normal is the normal one too (rnorm: the lanes fn) */
-    LT pgx = gx, pgy = gy, avr = vvdotr, rvr = vdotr;
-    SPH_IF3(LT pgz = gz;)
+    LT pgx = cg.c[0], pgy = cg.c[1], avr = vvdotr, rvr = vdotr;
+    SPH_IF3(LT pgz = cg.c[2];)
     if ((slip || rnorm) && (fluid || slip_i || rnorm_i)) {
       LT wmx, wmy;
       SPH_IF3(LT wmz;)
@@ -300,10 +319,10 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
       }
       const LVEC wm = {{SPH_XYZ(wmx, wmy, wmz)}};
       if (slip) {
-        const LVEC ng = LTERM(normal_part)(gw, wm);
-        pgx = LOP(sel)(fs, ng.c[0], gx);
-        pgy = LOP(sel)(fs, ng.c[1], gy);
-        SPH_IF3(pgz = LOP(sel)(fs, ng.c[2], gz);)
+        const LVEC ng = LTERM(normal_part)(cg, wm);
+        pgx = LOP(sel)(fs, ng.c[0], cg.c[0]);
+        pgy = LOP(sel)(fs, ng.c[1], cg.c[1]);
+        SPH_IF3(pgz = LOP(sel)(fs, ng.c[2], cg.c[2]);)
         const LVEC vv = {{SPH_XYZ(vvx, vvy, vvz)}};
         if (F & F_AV) avr = LOP(sel)(fs, LTERM(normal_vdotr)(vv, rv, wm), vvdotr);
       }

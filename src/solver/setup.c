@@ -360,6 +360,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.paxis = c->periodic ? c->periodic_axis : 0;
   s->fp.px0 = c->periodic ? c->periodic_range[0] : 0.0;
   s->fp.gradient_correction = c->gradient_correction;
+  s->fp.corrected_gradient = c->corrected_gradient;
   s->fp.var_h = c->fs_h_factor > 0.0;
   s->fp.lj_d = c->repulsion;
   s->fp.lj_r0 = c->dx;

@@ -38,6 +38,7 @@ LOOP_ATTR void SPH_PT_XGLUE(strain,
     nb[k] = nb[cnt - 1]; /* padding lanes, for any lane loop that reads the row after */
   *nbn = (uint32_t)cnt;
   const int ghosts = o->gv != NULL, correct = o->l != NULL;
+  const int gsums = !o->moment_only; /* with the correction: G too */
   const double *restrict gvx = ghosts ? o->gv[0] : NULL, *restrict gvy = ghosts ? o->gv[1] : NULL;
   SPH_IF3(const double *restrict gvz = ghosts ? o->gv[2] : NULL;)
   const sph_force_hot qi = hot[i];
@@ -98,16 +99,20 @@ LOOP_ATTR void SPH_PT_XGLUE(strain,
     SPH_IF3(const LT gz = LOP(mul)(f, dz); const LT vzj = ghosts ? LSET(E_ARR, gvz) : g[H_vz];
             const LT uz = LOP(sub)(vzj, vzi);)
     if (correct) {
-      LACC(gxx, LOP(mul)(ux, gx));
-      LACC(gxy, LOP(mul)(ux, gy));
-      LACC(gyx, LOP(mul)(uy, gx));
-      LACC(gyy, LOP(mul)(uy, gy));
+      if (gsums) {
+        LACC(gxx, LOP(mul)(ux, gx));
+        LACC(gxy, LOP(mul)(ux, gy));
+        LACC(gyx, LOP(mul)(uy, gx));
+        LACC(gyy, LOP(mul)(uy, gy));
+        SPH_IF3(LACC(gxz, LOP(mul)(ux, gz)); LACC(gyz, LOP(mul)(uy, gz));
+                LACC(gzx, LOP(mul)(uz, gx)); LACC(gzy, LOP(mul)(uz, gy));
+                LACC(gzz, LOP(mul)(uz, gz));)
+      }
       LDEC(mxx, LOP(mul)(dx, gx));
       LDEC(mxy, LOP(mul)(dx, gy));
       LDEC(myy, LOP(mul)(dy, gy));
-      SPH_IF3(LACC(gxz, LOP(mul)(ux, gz)); LACC(gyz, LOP(mul)(uy, gz)); LACC(gzx, LOP(mul)(uz, gx));
-              LACC(gzy, LOP(mul)(uz, gy)); LACC(gzz, LOP(mul)(uz, gz)); LDEC(mxz, LOP(mul)(dx, gz));
-              LDEC(myz, LOP(mul)(dy, gz)); LDEC(mzz, LOP(mul)(dz, gz));)
+      SPH_IF3(LDEC(mxz, LOP(mul)(dx, gz)); LDEC(myz, LOP(mul)(dy, gz));
+              LDEC(mzz, LOP(mul)(dz, gz));)
     } else {
       LACC(sxx, LOP(mul)(LOP(mul)(two, ux), gx));
       LACC(syy, LOP(mul)(LOP(mul)(two, uy), gy));
