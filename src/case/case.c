@@ -110,11 +110,11 @@ int sph_case_has_boundary(const sph_case *c, sph_boundary_kind b) {
  * no pressure. */
 static const char *corrected_gradient_clash(const sph_case *c) {
   if (!c->corrected_gradient) return NULL;
-  if (sph_case_has_boundary(c, SPH_BOUNDARY_REPULSIVE))
-    return "repulsive walls (their particles carry no pressure; use dynamic or mdbc walls)";
+  int repulsive = sph_case_has_boundary(c, SPH_BOUNDARY_REPULSIVE);
   for (size_t k = 0; k < c->n_obstacles; k++)
-    if (c->obstacles[k].boundary == SPH_BOUNDARY_REPULSIVE)
-      return "repulsive walls (their particles carry no pressure; use dynamic or mdbc walls)";
+    repulsive |= c->obstacles[k].boundary == SPH_BOUNDARY_REPULSIVE;
+  if (repulsive)
+    return "repulsive walls (their particles carry no pressure; use dynamic or mdbc walls)";
   int staggered = c->tank.present && c->tank.boundary != SPH_BOUNDARY_MIRROR && c->tank.stagger;
   for (size_t k = 0; k < c->n_walls; k++)
     staggered |= c->walls[k].boundary != SPH_BOUNDARY_MIRROR && c->walls[k].stagger;
