@@ -304,7 +304,9 @@ cut_row(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
   SPH_IF3(const v2 zi = v2_all(qi.z);)
   const v2 per = v2_all(period_along(fp, 0)), hper = v2_all(0.5 * period_along(fp, 0));
   const v2 nper = v2_all(-0.5 * period_along(fp, 0));
-  SPH_IF3(const double py = period_along(fp, 1), pz = period_along(fp, 2);)
+  SPH_IF3(const double py = period_along(fp, 1), pz = period_along(fp, 2);
+          const v2 pery = v2_all(py), hpery = v2_all(0.5 * py), npery = v2_all(-0.5 * py);
+          const v2 perz = v2_all(pz), hperz = v2_all(0.5 * pz), nperz = v2_all(-0.5 * pz);)
   size_t cnt = 0;
   ROW(l, i, row, len)
   const double xs0 = qi.x, ys0 = qi.y, s0 = 4.0 * h0 * h0;
@@ -322,9 +324,11 @@ cut_row(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
     const v2 r2 = v2_add(v2_mul(dx, dx), v2_mul(dy, dy));
 #else
     v2 dy = v2_sub(yi, v2_set(hot[j0].y, hot[j1].y)), dz = v2_sub(zi, v2_set(hot[j0].z, hot[j1].z));
-    if (F & F_PERIODIC) { /* y or z may be the axis that wraps (pairs of scalars: rare rows) */
-      dy = v2_set(sep_x(ys0, hot[j0].y, py, 0.5 * py, F), sep_x(ys0, hot[j1].y, py, 0.5 * py, F));
-      dz = v2_set(sep_x(zs0, hot[j0].z, pz, 0.5 * pz, F), sep_x(zs0, hot[j1].z, pz, 0.5 * pz, F));
+    if (F & F_PERIODIC) { /* y or z may be the axis that wraps: sep_x's choice, in both lanes */
+      dy = v2_sel(v2_lt(hpery, dy), v2_sub(dy, pery),
+                  v2_sel(v2_lt(dy, npery), v2_add(dy, pery), dy));
+      dz = v2_sel(v2_lt(hperz, dz), v2_sub(dz, perz),
+                  v2_sel(v2_lt(dz, nperz), v2_add(dz, perz), dz));
     }
     const v2 r2 = v2_add(v2_add(v2_mul(dx, dx), v2_mul(dy, dy)), v2_mul(dz, dz));
 #endif
