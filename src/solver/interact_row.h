@@ -49,7 +49,9 @@
  * the max, LMASK the mask type, LSET(E, a) the vector of E(q, a) for
  * q = 0 .. LW - 1 (E_ARR(q, arr) gives arr[j] of the iteration's q-th
  * neighbour j), LHOT(g) (LW > 1) the declaration of g[8], the fields of
- * this iteration's neighbours' records (sph_force_hot) by place H_field.
+ * this iteration's neighbours' records (sph_force_hot) by place H_field,
+ * LCUT the row cut (cut_row, or cut_row_v4x in the AVX2 and AVX-512
+ * flavours: the same pairs, four entries at a time).
  * Fc, a literal at every call, is the term set the loop is compiled for,
  * or F_RUNTIME (interact.h, F_LITERAL): the bits it does not fix come
  * from the pass's term set.
@@ -90,8 +92,7 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   } else {
     uint32_t *restrict cut = w->rows + (size_t)sph_thread() * w->rows_stride;
     /* the cut compiled for both: periodic or not (a predicted branch per row) */
-    cnt =
-        (F & F_PERIODIC) ? cut_row(hot, l, fp, i, cut, F_PERIODIC) : cut_row(hot, l, fp, i, cut, 0);
+    cnt = (F & F_PERIODIC) ? LCUT(hot, l, fp, i, cut, F_PERIODIC) : LCUT(hot, l, fp, i, cut, 0);
     for (size_t k = cnt; k < cnt + LW - 1 && cnt > 0; k++)
       cut[k] = cut[cnt - 1]; /* padding lanes */
     nb = cut;

@@ -5,11 +5,11 @@
  * (src/core/lanes.h), with LOOP_ATTR its attributes: the lane form of
  * strain_one in src/solver/forces.c. An ordinary C body included once per
  * flavour by src/solver/interact.h, with the same macros as
- * interact_row.h (LW, LA, LAOP, LACC, LMASK, LSET, LHOT); it defines
+ * interact_row.h (LW, LA, LAOP, LACC, LMASK, LSET, LHOT, LCUT); it defines
  * strain_FL. No include guard on purpose.
  *
  * As the main pass's lane loop: the row is cut to the pairs inside the
- * support (cut_row), padded with its last pair, masked out; lane q sums
+ * support (LCUT), padded with its last pair, masked out; lane q sums
  * entries k = q, q + 4, ... and the lanes are added as (l0 + l1) + (l2 + l3),
  * the eight-lane flavour adding its lanes 0-3 before its lanes 4-7, so that
  * every flavour gives the same bits (tests/test_pair_terms.c). Fixed h only
@@ -33,7 +33,7 @@ LOOP_ATTR void SPH_PT_XGLUE(strain,
                                 const sph_force_params *restrict fp, uint32_t *restrict nb,
                                 uint32_t *restrict nbn, size_t i, const strain_opts *restrict o,
                                 double *const *restrict eps, const unsigned F) {
-  const size_t cnt = cut_row(hot, l, fp, i, nb, F);
+  const size_t cnt = LCUT(hot, l, fp, i, nb, F);
   for (size_t k = cnt; k < cnt + SPH_KEEP_PAD - 1 && cnt > 0; k++)
     nb[k] = nb[cnt - 1]; /* padding lanes, for any lane loop that reads the row after */
   *nbn = (uint32_t)cnt;
