@@ -181,6 +181,31 @@ static inline int sph_cpu_has_avx2(void) {
 }
 typedef __m256d v4x;
 typedef v4x v4x_mask;
+/* byte shuffles packing the 32-bit lanes set in a 4-bit mask to the front */
+static const uint8_t v4x_pack32_table[16][16] = {
+    {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3},
+    {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3},
+    {4, 5, 6, 7, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3},
+    {0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 0, 1, 2, 3},
+    {8, 9, 10, 11, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3},
+    {0, 1, 2, 3, 8, 9, 10, 11, 0, 1, 2, 3, 0, 1, 2, 3},
+    {4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 0, 1, 2, 3},
+    {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3},
+    {12, 13, 14, 15, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3},
+    {0, 1, 2, 3, 12, 13, 14, 15, 0, 1, 2, 3, 0, 1, 2, 3},
+    {4, 5, 6, 7, 12, 13, 14, 15, 0, 1, 2, 3, 0, 1, 2, 3},
+    {0, 1, 2, 3, 4, 5, 6, 7, 12, 13, 14, 15, 0, 1, 2, 3},
+    {8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3, 0, 1, 2, 3},
+    {0, 1, 2, 3, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3},
+    {4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3},
+    {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15}};
+
+/* The 32-bit lanes of v whose bits are set in the 4-bit mask m, packed to
+ * the front in lane order (the rest: copies of lane 0): the kept entries of a
+ * row cut or a neighbour list's row, stored four at a time. */
+SPH_AVX2 __m128i v4x_pack32(__m128i v, unsigned m) {
+  return _mm_shuffle_epi8(v, _mm_loadu_si128((const __m128i *)v4x_pack32_table[m]));
+}
 SPH_AVX2 v4x v4x_set(double a, double b, double c, double d) { return _mm256_set_pd(d, c, b, a); }
 SPH_AVX2 v4x v4x_all(double a) { return _mm256_set1_pd(a); }
 SPH_AVX2 v4x v4x_add(v4x a, v4x b) { return _mm256_add_pd(a, b); }

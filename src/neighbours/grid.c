@@ -11,6 +11,7 @@
  */
 #include "config.h"
 
+#include "core/lanes.h"
 #include "core/parallel.h"
 
 #include "neighbours/grid.h"
@@ -321,6 +322,90 @@ fill_row(const sph_grid *g, const double *const restrict *x, size_t i, double r2
   return c;
 }
 
+#ifdef SPH_LANES_AVX
+/* fill_row four candidates at a time (AVX2): each candidate's separation
+ * and r^2 are fill_row's operations in its own lane (the same bits, so the
+ * same rows), the kept indices packed to the front in walk order
+ * (v4x_pack32) and stored four at a time, the count advanced once per four;
+ * a range's last candidates, fewer than four, one at a time as in fill_row.
+ * The row needs room for all i's candidates, as fill_row's. */
+static inline __attribute__((always_inline, target("avx2"))) uint32_t
+fill_row_v4x(const sph_grid *g, const double *const restrict *x, size_t i, double r2max,
+             double period, uint32_t *restrict row, const int sorted) {
+  size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES];
+  sph_grid_ranges_all(g, i, lo, hi);
+  const size_t *restrict perm = g->perm;
+  const double *restrict px = x[0], *restrict py = x[1];
+  const double xi = px[i], yi = py[i];
+  const __m256d xv = _mm256_set1_pd(xi), yv = _mm256_set1_pd(yi), rv = _mm256_set1_pd(r2max);
+  const __m256d per = _mm256_set1_pd(period), hper = _mm256_set1_pd(0.5 * period);
+  const __m256d nper = _mm256_set1_pd(-0.5 * period);
+#if SPH_DIM == 3
+  const double *restrict pz = x[2];
+  const double zi = pz[i];
+  const __m256d zv = _mm256_set1_pd(zi);
+#endif
+  const __m128i iv = _mm_set1_epi32((int)(uint32_t)i), step = _mm_set_epi32(3, 2, 1, 0);
+  uint32_t c = 0;
+  for (int k = 0; k < SPH_GRID_RANGES; k++) {
+    size_t pos = lo[k];
+    for (; pos + 4 <= hi[k]; pos += 4) {
+      __m256d xj, yj;
+      __m128i jv;
+      SPH_IF3(__m256d zj;)
+      if (sorted) {
+        xj = _mm256_loadu_pd(px + pos);
+        yj = _mm256_loadu_pd(py + pos);
+        SPH_IF3(zj = _mm256_loadu_pd(pz + pos);)
+        jv = _mm_add_epi32(_mm_set1_epi32((int)(uint32_t)pos), step);
+      } else {
+        const size_t j0 = perm[pos], j1 = perm[pos + 1], j2 = perm[pos + 2], j3 = perm[pos + 3];
+        xj = _mm256_set_pd(px[j3], px[j2], px[j1], px[j0]);
+        yj = _mm256_set_pd(py[j3], py[j2], py[j1], py[j0]);
+        SPH_IF3(zj = _mm256_set_pd(pz[j3], pz[j2], pz[j1], pz[j0]);)
+        jv = _mm_set_epi32((int)(uint32_t)j3, (int)(uint32_t)j2, (int)(uint32_t)j1,
+                           (int)(uint32_t)j0);
+      }
+      __m256d dx = _mm256_sub_pd(xv, xj);
+      if (period > 0.0) /* sph_grid_min_image in each lane */
+        dx = _mm256_blendv_pd(
+            _mm256_blendv_pd(dx, _mm256_add_pd(dx, per), _mm256_cmp_pd(dx, nper, _CMP_LT_OS)),
+            _mm256_sub_pd(dx, per), _mm256_cmp_pd(dx, hper, _CMP_GT_OS));
+      const __m256d dy = _mm256_sub_pd(yv, yj);
+      __m256d r2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+      SPH_IF3(const __m256d dz = _mm256_sub_pd(zv, zj);
+              r2 = _mm256_add_pd(r2, _mm256_mul_pd(dz, dz));)
+      const unsigned near = (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(r2, rv, _CMP_LT_OS));
+      const unsigned self = (unsigned)_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(jv, iv)));
+      const unsigned m = near & ~self;
+      if (row) _mm_storeu_si128((__m128i *)(row + c), v4x_pack32(jv, m));
+      c += (uint32_t)__builtin_popcount(m);
+    }
+    for (; pos < hi[k]; pos++) {
+      const size_t j = sorted ? pos : perm[pos];
+      const double dx = sph_grid_min_image(xi - px[j], period), dy = yi - py[j];
+      SPH_IF3(const double dz = zi - pz[j];)
+      const double r2 = SPH_NORM2(dx, dy, dz);
+      if (row) row[c] = (uint32_t)j;
+      c += (uint32_t)((r2 < r2max) & (j != i));
+    }
+  }
+  return c;
+}
+
+/* fill_any's choice with fill_row_v4x (a call per row: the build's loops
+ * are compiled for any x86-64) */
+static __attribute__((target("avx2"))) uint32_t fill_any_v4x(const sph_grid *g,
+                                                             const double *const restrict *x,
+                                                             size_t i, double r2max, double period,
+                                                             uint32_t *restrict row, int sorted) {
+  if (sorted && period <= 0.0) return fill_row_v4x(g, x, i, r2max, 0.0, row, 1);
+  if (sorted) return fill_row_v4x(g, x, i, r2max, period, row, 1);
+  if (period <= 0.0) return fill_row_v4x(g, x, i, r2max, 0.0, row, 0);
+  return fill_row_v4x(g, x, i, r2max, period, row, 0);
+}
+#endif
+
 /* fill_row on whichever of the four kinds of grid g is, each with a loop
  * of its own, free of tests that do not change along it (inlined where
  * row is a literal NULL, so the counting loop writes nothing). */
@@ -331,6 +416,18 @@ fill_any(const sph_grid *g, const double *const restrict *x, size_t i, double r2
   if (sorted) return fill_row(g, x, i, r2max, period, row, 1);
   if (period <= 0.0) return fill_row(g, x, i, r2max, 0.0, row, 0);
   return fill_row(g, x, i, r2max, period, row, 0);
+}
+
+/* fill_any, or fill_any_v4x where wide (the processor has AVX2): the same rows. */
+static inline __attribute__((always_inline)) uint32_t
+fill_rows(const sph_grid *g, const double *const restrict *x, size_t i, double r2max, double period,
+          uint32_t *restrict row, int sorted, int wide) {
+#ifdef SPH_LANES_AVX
+  if (wide) return fill_any_v4x(g, x, i, r2max, period, row, sorted);
+#else
+  (void)wide;
+#endif
+  return fill_any(g, x, i, r2max, period, row, sorted);
 }
 
 /* The candidates of particle i: the particles of its 3 x 3 (x 3) cells. */
@@ -379,6 +476,11 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     if (d != paxis) xs[k++] = p->pos[d];
   const double *const *x = xs;
   const int sorted = g->sorted;
+#ifdef SPH_LANES_AVX
+  const int wide = sph_cpu_has_avx2();
+#else
+  const int wide = 0;
+#endif
   const long ln = (long)n;
   size_t cmax = 0; /* the most candidates of any particle: the scratch row */
   l->start[0] = 0;
@@ -386,7 +488,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   for (long li = 0; li < ln; li++) {
     const size_t c = candidates(g, (size_t)li);
     if (c > cmax) cmax = c;
-    l->start[li + 1] = fill_any(g, x, (size_t)li, r2max, period, NULL, sorted);
+    l->start[li + 1] = fill_rows(g, x, (size_t)li, r2max, period, NULL, sorted, wide);
   }
   for (size_t i = 0; i < n; i++)
     l->start[i + 1] += l->start[i]; /* exact: integers */
@@ -409,7 +511,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     if (!scratch) oom = 1;
     while (scratch && sph_steal_next(&l->steal, SPH_NLIST_STEAL_GRAIN, &lo, &hi))
       for (size_t i = lo; i < hi; i++) {
-        const uint32_t c = fill_any(g, x, i, r2max, period, scratch, sorted);
+        const uint32_t c = fill_rows(g, x, i, r2max, period, scratch, sorted, wide);
         uint32_t *restrict row = l->nb + l->start[i];
         if (c) memcpy(row, scratch, c * sizeof *row); /* l->nb is NULL when no row has any */
         /* increasing storage index: already so on a sorted grid that is not

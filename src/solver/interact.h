@@ -383,24 +383,6 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
  * instead were slower on this AMD EPYC (1.09 and 1.04), and an eight-wide
  * cut with AVX-512's compress gained less (0.978). */
 #ifdef SPH_LANES_AVX
-/* byte shuffles packing the 32-bit lanes set in a 4-bit mask to the front */
-static const uint8_t cut_pack4[16][16] = {{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3},
-                                          {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3},
-                                          {4, 5, 6, 7, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3},
-                                          {0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 0, 1, 2, 3},
-                                          {8, 9, 10, 11, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3},
-                                          {0, 1, 2, 3, 8, 9, 10, 11, 0, 1, 2, 3, 0, 1, 2, 3},
-                                          {4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 0, 1, 2, 3},
-                                          {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3},
-                                          {12, 13, 14, 15, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3},
-                                          {0, 1, 2, 3, 12, 13, 14, 15, 0, 1, 2, 3, 0, 1, 2, 3},
-                                          {4, 5, 6, 7, 12, 13, 14, 15, 0, 1, 2, 3, 0, 1, 2, 3},
-                                          {0, 1, 2, 3, 4, 5, 6, 7, 12, 13, 14, 15, 0, 1, 2, 3},
-                                          {8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3, 0, 1, 2, 3},
-                                          {0, 1, 2, 3, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3},
-                                          {4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3},
-                                          {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15}};
-
 /* d as sep_x takes it, in four lanes: the minimum image over per (hper = per/2, nper = -per/2) */
 #define CUT_IMAGE4(d, per, hper, nper)                                                             \
   _mm256_blendv_pd(_mm256_blendv_pd(d, _mm256_add_pd(d, per), _mm256_cmp_pd(d, nper, _CMP_LT_OS)), \
@@ -445,8 +427,7 @@ cut_row_v4x(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
 #endif
     const unsigned m = (unsigned)_mm256_movemask_pd(
         _mm256_and_pd(_mm256_cmp_pd(r2, sv, _CMP_LT_OS), _mm256_cmp_pd(zero, r2, _CMP_LT_OS)));
-    const __m128i packed = _mm_shuffle_epi8(idx, _mm_loadu_si128((const __m128i *)cut_pack4[m]));
-    _mm_storeu_si128((__m128i *)(nb + cnt), packed);
+    _mm_storeu_si128((__m128i *)(nb + cnt), v4x_pack32(idx, m));
     cnt += (size_t)__builtin_popcount(m);
   }
   return cut_row_at(hot, l, fp, i, nb, k, cnt, F);
