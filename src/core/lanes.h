@@ -34,6 +34,15 @@
 #include <stdint.h>
 #include <string.h>
 
+/* The minimum image of a separation d = x_i - x_j over a period per in the
+ * lanes of flavour P (v2, v4x, v8z, ...; P_sel, P_lt, P_sub, P_add), with
+ * hper = per/2 and nper = -per/2: d - per where hper < d, d + per where
+ * d < nper, else d. Lane for lane the scalar rule of sph_grid_min_image
+ * and the loops' sep_x, bit for bit; a period of 0 leaves d as it is. */
+#define SPH_LANE_MIN_IMAGE(P, d, per, hper, nper) SPH_LANE_MIN_IMAGE_(P, d, per, hper, nper)
+#define SPH_LANE_MIN_IMAGE_(P, d, per, hper, nper)                                                 \
+  P##_sel(P##_lt(hper, d), P##_sub(d, per), P##_sel(P##_lt(d, nper), P##_add(d, per), d))
+
 #define SPH_LANE_INLINE static inline __attribute__((always_inline))
 
 /* ---- v1: one double -------------------------------------------------------------- */

@@ -337,22 +337,21 @@ fill_row_v4x(const sph_grid *g, const double *const restrict *x, size_t i, doubl
   const size_t *restrict perm = g->perm;
   const double *restrict px = x[0], *restrict py = x[1];
   const double xi = px[i], yi = py[i];
-  const __m256d xv = _mm256_set1_pd(xi), yv = _mm256_set1_pd(yi), rv = _mm256_set1_pd(r2max);
-  const __m256d per = _mm256_set1_pd(period), hper = _mm256_set1_pd(0.5 * period);
-  const __m256d nper = _mm256_set1_pd(-0.5 * period);
+  const v4x xv = v4x_all(xi), yv = v4x_all(yi), rv = v4x_all(r2max);
+  const v4x per = v4x_all(period), hper = v4x_all(0.5 * period), nper = v4x_all(-0.5 * period);
 #if SPH_DIM == 3
   const double *restrict pz = x[2];
   const double zi = pz[i];
-  const __m256d zv = _mm256_set1_pd(zi);
+  const v4x zv = v4x_all(zi);
 #endif
   const __m128i iv = _mm_set1_epi32((int)(uint32_t)i), step = _mm_set_epi32(3, 2, 1, 0);
   uint32_t c = 0;
   for (int k = 0; k < SPH_GRID_RANGES; k++) {
     size_t pos = lo[k];
     for (; pos + 4 <= hi[k]; pos += 4) {
-      __m256d xj, yj;
+      v4x xj, yj;
       __m128i jv;
-      SPH_IF3(__m256d zj;)
+      SPH_IF3(v4x zj;)
       if (sorted) {
         xj = _mm256_loadu_pd(px + pos);
         yj = _mm256_loadu_pd(py + pos);
@@ -360,22 +359,18 @@ fill_row_v4x(const sph_grid *g, const double *const restrict *x, size_t i, doubl
         jv = _mm_add_epi32(_mm_set1_epi32((int)(uint32_t)pos), step);
       } else {
         const size_t j0 = perm[pos], j1 = perm[pos + 1], j2 = perm[pos + 2], j3 = perm[pos + 3];
-        xj = _mm256_set_pd(px[j3], px[j2], px[j1], px[j0]);
-        yj = _mm256_set_pd(py[j3], py[j2], py[j1], py[j0]);
-        SPH_IF3(zj = _mm256_set_pd(pz[j3], pz[j2], pz[j1], pz[j0]);)
+        xj = v4x_set(px[j0], px[j1], px[j2], px[j3]);
+        yj = v4x_set(py[j0], py[j1], py[j2], py[j3]);
+        SPH_IF3(zj = v4x_set(pz[j0], pz[j1], pz[j2], pz[j3]);)
         jv = _mm_set_epi32((int)(uint32_t)j3, (int)(uint32_t)j2, (int)(uint32_t)j1,
                            (int)(uint32_t)j0);
       }
-      __m256d dx = _mm256_sub_pd(xv, xj);
-      if (period > 0.0) /* sph_grid_min_image in each lane */
-        dx = _mm256_blendv_pd(
-            _mm256_blendv_pd(dx, _mm256_add_pd(dx, per), _mm256_cmp_pd(dx, nper, _CMP_LT_OS)),
-            _mm256_sub_pd(dx, per), _mm256_cmp_pd(dx, hper, _CMP_GT_OS));
-      const __m256d dy = _mm256_sub_pd(yv, yj);
-      __m256d r2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
-      SPH_IF3(const __m256d dz = _mm256_sub_pd(zv, zj);
-              r2 = _mm256_add_pd(r2, _mm256_mul_pd(dz, dz));)
-      const unsigned near = (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(r2, rv, _CMP_LT_OS));
+      v4x dx = v4x_sub(xv, xj);
+      if (period > 0.0) dx = SPH_LANE_MIN_IMAGE(v4x, dx, per, hper, nper);
+      const v4x dy = v4x_sub(yv, yj);
+      v4x r2 = v4x_add(v4x_mul(dx, dx), v4x_mul(dy, dy));
+      SPH_IF3(const v4x dz = v4x_sub(zv, zj); r2 = v4x_add(r2, v4x_mul(dz, dz));)
+      const unsigned near = (unsigned)_mm256_movemask_pd(v4x_lt(r2, rv));
       const unsigned self = (unsigned)_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(jv, iv)));
       const unsigned m = near & ~self;
       if (row) _mm_storeu_si128((__m128i *)(row + c), v4x_pack32(jv, m));

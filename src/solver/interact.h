@@ -243,8 +243,7 @@ static inline void strain_finish(const strain_opts *o, size_t i, const double s[
 
 /* The lane form of sep_x in the flavour of the including loop (LOP): d as its minimum image
  * over the period per, with hper = per/2 and nper = -per/2. */
-#define LANE_MIN_IMAGE(d, per, hper, nper)                                                         \
-  LOP(sel)(LOP(lt)(hper, d), LOP(sub)(d, per), LOP(sel)(LOP(lt)(d, nper), LOP(add)(d, per), d))
+#define LANE_MIN_IMAGE(d, per, hper, nper) SPH_LANE_MIN_IMAGE(FL, d, per, hper, nper)
 /* LANE_MIN_IMAGE's constants along x (per, hper, nper) and, in 3-D, along y and z (pery, ...,
  * nperz), in the flavour of the including loop. */
 #define LANE_PERIOD(name, fp, a)                                                                   \
@@ -318,18 +317,15 @@ cut_row_at(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
   for (; k + 1 < len; k += 2) { /* two entries at a time */
     const uint32_t j0 = row[k], j1 = row[k + 1];
     v2 dx = v2_sub(xi, v2_set(hot[j0].x, hot[j1].x));
-    if (F & F_PERIODIC)
-      dx = v2_sel(v2_lt(hper, dx), v2_sub(dx, per), v2_sel(v2_lt(dx, nper), v2_add(dx, per), dx));
+    if (F & F_PERIODIC) dx = SPH_LANE_MIN_IMAGE(v2, dx, per, hper, nper);
 #if SPH_DIM == 2
     const v2 dy = v2_sub(yi, v2_set(hot[j0].y, hot[j1].y));
     const v2 r2 = v2_add(v2_mul(dx, dx), v2_mul(dy, dy));
 #else
     v2 dy = v2_sub(yi, v2_set(hot[j0].y, hot[j1].y)), dz = v2_sub(zi, v2_set(hot[j0].z, hot[j1].z));
     if (F & F_PERIODIC) { /* y or z may be the axis that wraps: sep_x's choice, in both lanes */
-      dy = v2_sel(v2_lt(hpery, dy), v2_sub(dy, pery),
-                  v2_sel(v2_lt(dy, npery), v2_add(dy, pery), dy));
-      dz = v2_sel(v2_lt(hperz, dz), v2_sub(dz, perz),
-                  v2_sel(v2_lt(dz, nperz), v2_add(dz, perz), dz));
+      dy = SPH_LANE_MIN_IMAGE(v2, dy, pery, hpery, npery);
+      dz = SPH_LANE_MIN_IMAGE(v2, dz, perz, hperz, nperz);
     }
     const v2 r2 = v2_add(v2_add(v2_mul(dx, dx), v2_mul(dy, dy)), v2_mul(dz, dz));
 #endif
@@ -383,50 +379,41 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
  * instead were slower on this AMD EPYC (1.09 and 1.04), and an eight-wide
  * cut with AVX-512's compress gained less (0.978). */
 #ifdef SPH_LANES_AVX
-/* d as sep_x takes it, in four lanes: the minimum image over per (hper = per/2, nper = -per/2) */
-#define CUT_IMAGE4(d, per, hper, nper)                                                             \
-  _mm256_blendv_pd(_mm256_blendv_pd(d, _mm256_add_pd(d, per), _mm256_cmp_pd(d, nper, _CMP_LT_OS)), \
-                   _mm256_sub_pd(d, per), _mm256_cmp_pd(hper, d, _CMP_LT_OS))
-
 static inline __attribute__((always_inline, target("avx2"))) size_t
 cut_row_v4x(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
             const sph_force_params *restrict fp, size_t i, uint32_t *restrict nb,
             const unsigned F) {
   const sph_force_hot qi = hot[i];
   ROW(l, i, row, len)
-  const __m256d xi = _mm256_set1_pd(qi.x), yi = _mm256_set1_pd(qi.y);
-  SPH_IF3(const __m256d zi = _mm256_set1_pd(qi.z);)
-  const __m256d sv = _mm256_set1_pd(4.0 * fp->h * fp->h), zero = _mm256_setzero_pd();
-  const __m256d per = _mm256_set1_pd(period_along(fp, 0));
-  const __m256d hper = _mm256_set1_pd(0.5 * period_along(fp, 0));
-  const __m256d nper = _mm256_set1_pd(-0.5 * period_along(fp, 0));
-  SPH_IF3(const __m256d pery = _mm256_set1_pd(period_along(fp, 1));
-          const __m256d hpery = _mm256_set1_pd(0.5 * period_along(fp, 1));
-          const __m256d npery = _mm256_set1_pd(-0.5 * period_along(fp, 1));
-          const __m256d perz = _mm256_set1_pd(period_along(fp, 2));
-          const __m256d hperz = _mm256_set1_pd(0.5 * period_along(fp, 2));
-          const __m256d nperz = _mm256_set1_pd(-0.5 * period_along(fp, 2));)
+  const v4x xi = v4x_all(qi.x), yi = v4x_all(qi.y);
+  SPH_IF3(const v4x zi = v4x_all(qi.z);)
+  const v4x sv = v4x_all(4.0 * fp->h * fp->h), zero = v4x_all(0.0);
+  const v4x per = v4x_all(period_along(fp, 0)), hper = v4x_all(0.5 * period_along(fp, 0));
+  const v4x nper = v4x_all(-0.5 * period_along(fp, 0));
+  SPH_IF3(const double py = period_along(fp, 1), pz = period_along(fp, 2);
+          const v4x pery = v4x_all(py), hpery = v4x_all(0.5 * py), npery = v4x_all(-0.5 * py);
+          const v4x perz = v4x_all(pz), hperz = v4x_all(0.5 * pz), nperz = v4x_all(-0.5 * pz);)
   size_t k = 0, cnt = 0;
   for (; k + 4 <= len; k += 4) {
     const __m128i idx = _mm_loadu_si128((const __m128i *)(row + k));
     const sph_force_hot *q0 = hot + row[k], *q1 = hot + row[k + 1], *q2 = hot + row[k + 2],
                         *q3 = hot + row[k + 3];
-    __m256d dx = _mm256_sub_pd(xi, _mm256_set_pd(q3->x, q2->x, q1->x, q0->x));
-    __m256d dy = _mm256_sub_pd(yi, _mm256_set_pd(q3->y, q2->y, q1->y, q0->y));
-    if (F & F_PERIODIC) dx = CUT_IMAGE4(dx, per, hper, nper);
+    v4x dx = v4x_sub(xi, v4x_set(q0->x, q1->x, q2->x, q3->x));
+    if (F & F_PERIODIC) dx = SPH_LANE_MIN_IMAGE(v4x, dx, per, hper, nper);
 #if SPH_DIM == 2
-    const __m256d r2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+    const v4x dy = v4x_sub(yi, v4x_set(q0->y, q1->y, q2->y, q3->y));
+    const v4x r2 = v4x_add(v4x_mul(dx, dx), v4x_mul(dy, dy));
 #else
-    __m256d dz = _mm256_sub_pd(zi, _mm256_set_pd(q3->z, q2->z, q1->z, q0->z));
+    v4x dy = v4x_sub(yi, v4x_set(q0->y, q1->y, q2->y, q3->y));
+    v4x dz = v4x_sub(zi, v4x_set(q0->z, q1->z, q2->z, q3->z));
     if (F & F_PERIODIC) {
-      dy = CUT_IMAGE4(dy, pery, hpery, npery);
-      dz = CUT_IMAGE4(dz, perz, hperz, nperz);
+      dy = SPH_LANE_MIN_IMAGE(v4x, dy, pery, hpery, npery);
+      dz = SPH_LANE_MIN_IMAGE(v4x, dz, perz, hperz, nperz);
     }
-    const __m256d r2 = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)),
-                                     _mm256_mul_pd(dz, dz));
+    const v4x r2 = v4x_add(v4x_add(v4x_mul(dx, dx), v4x_mul(dy, dy)), v4x_mul(dz, dz));
 #endif
-    const unsigned m = (unsigned)_mm256_movemask_pd(
-        _mm256_and_pd(_mm256_cmp_pd(r2, sv, _CMP_LT_OS), _mm256_cmp_pd(zero, r2, _CMP_LT_OS)));
+    const unsigned m =
+        (unsigned)_mm256_movemask_pd(v4x_and(v4x_lt(r2, sv), v4x_lt(zero, r2))); /* lane k: bit k */
     _mm_storeu_si128((__m128i *)(nb + cnt), v4x_pack32(idx, m));
     cnt += (size_t)__builtin_popcount(m);
   }
