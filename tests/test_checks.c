@@ -70,24 +70,40 @@ static void test_corruption_caught(void) {
   sph_nlist l;
   sph_nlist_init(&l);
   CU_ASSERT_FATAL(sph_nlist_build(&l, &g, p, support, 0.0, 0.0, &err) == 0);
-  size_t i = 0; /* a particle with at least 3 neighbours */
-  while (l.count[i] < 3)
+  size_t i = 0; /* a particle whose row has at least 2 entries (a 2-D row: plain indices) */
+  while (l.count[i] < 2)
     i++;
-  uint32_t *row = l.nb + l.start[i];
-  uint32_t t = row[0];
-  row[0] = row[1];
-  row[1] = t;
+  uint8_t *first = l.rows + l.off[i]; /* its entries */
+  const size_t esz = 4;
+  uint8_t t[8], swapped[8]; /* entries 0 and 1 swapped */
+  memcpy(t, first, 2 * esz);
+  memcpy(swapped, t + esz, esz);
+  memcpy(swapped + esz, t, esz);
+  memcpy(first, swapped, 2 * esz);
   const char *m = sph_nlist_check(&l, p, support);
   CU_ASSERT(m != NULL && strstr(m, "not sorted") != NULL);
   printf("\n  swapped entries: %s", m ? m : "(not caught)");
-  row[1] = row[0];
-  row[0] = t; /* restored */
+  memcpy(first, t, 2 * esz); /* restored */
   CU_ASSERT(sph_nlist_check(&l, p, support) == NULL);
-  l.count[i]--; /* the last neighbour dropped (it is within the support) */
+  l.count[i]--; /* a row longer than its count */
+  m = sph_nlist_check(&l, p, support);
+  CU_ASSERT(m != NULL && strstr(m, "not its count") != NULL);
+  printf("\n  miscounted row: %s", m ? m : "(not caught)");
+  l.count[i]++;
+  size_t far = 1, len; /* a particle not in row 0, moved next to particle 0: row 0 lacks it */
+  const uint32_t *row0 = sph_nlist_row(&l, 0, &len);
+  for (size_t k = 0; k < len; k++)
+    if (row0[k] == far) far++; /* (the row is in increasing order) */
+  CU_ASSERT_FATAL(far < p->n);
+  const double fx = p->x[far], fy = p->y[far];
+  p->x[far] = p->x[0] + 0.1 * c.h;
+  p->y[far] = p->y[0];
   m = sph_nlist_check(&l, p, support);
   CU_ASSERT(m != NULL && strstr(m, "lacks") != NULL);
-  printf("\n  dropped neighbour: %s", m ? m : "(not caught)");
-  l.count[i]++;
+  printf("\n  missing neighbour: %s", m ? m : "(not caught)");
+  p->x[far] = fx;
+  p->y[far] = fy;
+  CU_ASSERT(sph_nlist_check(&l, p, support) == NULL);
   size_t cell = 0; /* a cell with particles: move its end one back */
   while (g.start[cell + 1] == g.start[cell])
     cell++;

@@ -475,8 +475,8 @@ static void test_unused_groups_untouched(void) {
 
 /* The list of p (built on a sorted or a binned grid) against brute force
  * with radius support + skin: same pairs, rows in increasing storage index,
- * stored compactly (each row as long as its count, no slot unused). */
-static void check_list(sph_particles *p, double support, double skin, double period, int binned) {
+ * as long as their counts; returns the list's bytes per entry. */
+static double check_list(sph_particles *p, double support, double skin, double period, int binned) {
   sph_grid g;
   sph_grid_init(&g);
   sph_nlist l;
@@ -495,7 +495,8 @@ static void check_list(sph_particles *p, double support, double skin, double per
   const double r2 = (support + skin) * (support + skin);
   size_t bad = 0, pairs = 0;
   for (size_t i = 0; i < p->n; i++) {
-    const uint32_t *row = l.nb + l.start[i];
+    size_t len;
+    const uint32_t *row = sph_nlist_row(&l, i, &len);
     size_t k = 0;
     for (size_t j = 0; j < p->n; j++) {
       double dx = p->x[i] - p->x[j];
@@ -507,13 +508,15 @@ static void check_list(sph_particles *p, double support, double skin, double per
       k++;
     }
     if (k != l.count[i]) bad++;
-    if (l.start[i + 1] - l.start[i] != l.count[i]) bad++; /* rows stored compactly */
+    if (len != l.count[i]) bad++;
   }
   CU_ASSERT_EQUAL(bad, 0);
   CU_ASSERT(pairs > 0);
-  CU_ASSERT_EQUAL(l.start[p->n], pairs); /* exactly the pairs: no slot unused */
+  CU_ASSERT_EQUAL(l.pairs, pairs);
+  const double per_entry = (double)l.off[p->n] / (double)l.pairs;
   sph_nlist_free(&l);
   sph_grid_free(&g);
+  return per_entry;
 }
 
 static void random_store(sph_particles *p, size_t n, double L) {
@@ -535,6 +538,13 @@ static void test_list_brute_force(void) {
     check_list(&p, 0.02, 0.003, periodic ? 0.2 : 0.0, !binned);
     sph_particles_free(&p);
   }
+  /* dense rows (a cell holds some 360 particles): 2-D rows are plain
+   * indices, four bytes an entry, no slot unused (grid.h) */
+  sph_particles p;
+  random_store(&p, 2000, 0.2);
+  for (int kind = 0; kind < 3; kind++)
+    CU_ASSERT_EQUAL(check_list(&p, 0.05, 0.01, kind == 2 ? 0.2 : 0.0, kind == 1), 4.0);
+  sph_particles_free(&p);
 }
 
 /* The counting sort on teams of 1 to 3 threads (one histogram per thread
@@ -605,8 +615,10 @@ static void test_list_fresh(void) {
       const double dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j];
       if (j == i || !(dx * dx + dy * dy < support * support)) continue;
       int found = 0;
-      for (size_t k = 0; k < l.count[i]; k++)
-        found |= l.nb[l.start[i] + k] == j;
+      size_t len;
+      const uint32_t *row = sph_nlist_row(&l, i, &len);
+      for (size_t k = 0; k < len; k++)
+        found |= row[k] == j;
       missing += !found;
     }
   CU_ASSERT_EQUAL(missing, 0);

@@ -261,8 +261,9 @@ static void test_sort_any_team(void) {
   sph_particles_free(&p);
 }
 
-/* The list against brute force within support + skin, rows increasing. */
-static void check_list(sph_particles *p, double support, double skin, double period, int binned) {
+/* The list against brute force within support + skin, rows (written out
+ * from their runs, grid.h) increasing; returns the list's bytes per entry. */
+static double check_list(sph_particles *p, double support, double skin, double period, int binned) {
   sph_grid g;
   sph_grid_init(&g);
   sph_nlist l;
@@ -281,7 +282,9 @@ static void check_list(sph_particles *p, double support, double skin, double per
   const double r2 = (support + skin) * (support + skin);
   size_t bad = 0, pairs = 0;
   for (size_t i = 0; i < p->n; i++) {
-    const uint32_t *row = l.nb + l.start[i];
+    size_t len;
+    const uint32_t *row = sph_nlist_row(&l, i, &len);
+    bad += len != l.count[i];
     size_t k = 0;
     for (size_t j = 0; j < p->n; j++) {
       if (j == i || !(dist2(p, i, j, period) < r2)) continue;
@@ -293,10 +296,12 @@ static void check_list(sph_particles *p, double support, double skin, double per
   }
   CU_ASSERT_EQUAL(bad, 0);
   CU_ASSERT(pairs > p->n);
-  CU_ASSERT_EQUAL(l.start[p->n], pairs);
+  CU_ASSERT_EQUAL(l.pairs, pairs);
   CU_ASSERT_PTR_NULL(sph_nlist_check(&l, p, support));
+  const double per_entry = (double)l.off[p->n] / (double)l.pairs;
   sph_nlist_free(&l);
   sph_grid_free(&g);
+  return per_entry;
 }
 
 static void test_list(void) {
@@ -306,9 +311,69 @@ static void test_list(void) {
     random_store(&p, 1500, L);
     for (size_t i = 0; i < p.n; i++)
       p.x[i] += 0.3; /* into [0, 0.2) */
-    check_list(&p, 0.025, 0.004 * t, t >= 2 ? 0.2 : 0.0, t % 2);
+    const double b = check_list(&p, 0.025, 0.004 * t, t >= 2 ? 0.2 : 0.0, t % 2);
+    CU_ASSERT(b > 2.0 && b < 2.5); /* one run a row: two bytes an entry, six a row */
     sph_particles_free(&p);
   }
+  /* every particle every other's neighbour: rows of 599 entries, one run */
+  sph_particles p;
+  const double L[3] = {0.01, 0.01, 0.01};
+  random_store(&p, 600, L);
+  const double b = check_list(&p, 0.05, 0.0, 0.0, 0);
+  CU_ASSERT_DOUBLE_EQUAL(b, (6.0 + 2.0 * 599.0) / 599.0, 1e-12);
+  sph_particles_free(&p);
+}
+
+/* Rows whose entries span more than SPH_NLIST_RUN_MAX storage indices are
+ * split into runs: 70 000 particles on a line 0.1 apart (no neighbours)
+ * but for a cluster of storage indices 0, 1, 2, 40 000 and 69 999 in a
+ * binned grid (the store keeps its order): row 0 is {1, 2, 40000, 69999},
+ * runs {1, 2, 40000} and {69999}; row 69999 is {0, 1, 2, 40000}, one run. */
+static void test_list_runs_split(void) {
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 16, &err) == 0);
+  const size_t n = 70000, near[5] = {0, 1, 2, 40000, 69999};
+  for (size_t i = 0; i < n; i++) {
+    int in = 0;
+    for (int k = 0; k < 5; k++)
+      in |= near[k] == i;
+    const double x[3] = {in ? 0.001 * (double)(i % 7) : 1.0 + 0.1 * (double)i, 1.0, 0.5};
+    const double v[3] = {0.0, 0.0, 0.0};
+    CU_ASSERT_FATAL(sph_particles_add_at(&p, x, v, 1000, 1, 0.01, SPH_KIND_FLUID, &err) >= 0);
+  }
+  sph_grid g;
+  sph_grid_init(&g);
+  sph_nlist l;
+  sph_nlist_init(&l);
+  CU_ASSERT_FATAL(sph_grid_bin(&g, &p, 0.021, 0, 0.0, 0.0, 1u << 24, &err) == 0);
+  CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, 0.02, 0.0, 0.0, &err) == 0);
+  CU_ASSERT_EQUAL(l.pairs, 20);
+  for (int k = 0; k < 5; k++) {
+    size_t len;
+    const uint32_t *row = sph_nlist_row(&l, near[k], &len);
+    CU_ASSERT_EQUAL_FATAL(len, 4);
+    for (size_t q = 0, m = 0; q < 5; q++)
+      if (q != (size_t)k) CU_ASSERT_EQUAL(row[m++], near[q]);
+  }
+  CU_ASSERT_EQUAL(l.off[1] - l.off[0], 2 * 6 + 2 * 4); /* row 0: two runs */
+  CU_ASSERT_EQUAL(l.off[n] - l.off[n - 1], 6 + 2 * 4); /* row 69999: one */
+  /* rows 0, 1, 2 and 40000 reach from 0 or 1 to 69999: two runs each */
+  CU_ASSERT_EQUAL(l.off[n], 4 * (2 * 6 + 2 * 4) + (6 + 2 * 4));
+  CU_ASSERT_PTR_NULL(sph_nlist_check(&l, &p, 0.02));
+  uint16_t o[4], swapped[4]; /* row 69999's offsets, 1 and 2 swapped: caught */
+  uint8_t *run = l.rows + l.off[n - 1] + SPH_NLIST_RUN_HEAD;
+  memcpy(o, run, sizeof o);
+  memcpy(swapped, o, sizeof o);
+  swapped[1] = o[2], swapped[2] = o[1];
+  memcpy(run, swapped, sizeof o);
+  const char *m = sph_nlist_check(&l, &p, 0.02);
+  CU_ASSERT(m != NULL && strstr(m, "not sorted") != NULL);
+  memcpy(run, o, sizeof o);
+  CU_ASSERT_PTR_NULL(sph_nlist_check(&l, &p, 0.02));
+  sph_nlist_free(&l);
+  sph_grid_free(&g);
+  sph_particles_free(&p);
 }
 
 static void test_list_fresh(void) {
@@ -338,8 +403,10 @@ static void test_list_fresh(void) {
     for (size_t j = 0; j < p.n; j++) {
       if (j == i || !(dist2(&p, i, j, 0.0) < support * support)) continue;
       int found = 0;
-      for (size_t k = 0; k < l.count[i]; k++)
-        found |= l.nb[l.start[i] + k] == j;
+      size_t len;
+      const uint32_t *row = sph_nlist_row(&l, i, &len);
+      for (size_t k = 0; k < len; k++)
+        found |= row[k] == j;
       missing += !found;
     }
   CU_ASSERT_EQUAL(missing, 0);
@@ -401,6 +468,7 @@ int main(void) {
       {"3-D grid and list periodic in y and in z against brute force", test_periodic_yz},
       {"3-D counting sort: the same order on teams of 1 to 3 threads", test_sort_any_team},
       {"3-D neighbour list equals brute force (sorted, binned, periodic)", test_list},
+      {"3-D rows spanning more than 65535 indices are split into runs", test_list_runs_split},
       {"3-D neighbour list: fresh within skin/2, stale beyond along z", test_list_fresh},
       CU_TEST_INFO_NULL};
   return sph_test_main("grid_3d", tests);

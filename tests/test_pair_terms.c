@@ -733,8 +733,8 @@ static void test_pair_symmetry(void) {
     CU_ASSERT(same(morris_heat_v1(c, dv), morris_heat_v1(c, ev)));
     const double xf = xsph_factor_v1(m, irb, w);
     CU_ASSERT(same(xf * dvx, -(xf * evx)));
-    const double lj = lennard_jones_v1(5.0, 1.2 * h, r2);
-    CU_ASSERT(same(lj * dx, -(lj * ex)) && same(lj, lennard_jones_v1(5.0, 1.2 * h, q2)));
+    const double ljf = lennard_jones_v1(5.0, 1.2 * h, r2);
+    CU_ASSERT(same(ljf * dx, -(ljf * ex)) && same(ljf, lennard_jones_v1(5.0, 1.2 * h, q2)));
     { /* the corrected gradient: the same L_ij from either side, so antisymmetric, and each
        * term built on it keeps its symmetry */
       const sym_v1 li = {{1.0 + 0.1 * s[0], 0.05 * s[1], 1.0 + 0.1 * s[2]}};

@@ -287,7 +287,8 @@ void sph_nlist_init(sph_nlist *l) { memset(l, 0, sizeof *l); }
 
 void sph_nlist_free(sph_nlist *l) {
   free(l->block);
-  free(l->nb);
+  free(l->rows);
+  free(l->dec);
   sph_steal_free(&l->steal);
   memset(l, 0, sizeof *l);
 }
@@ -434,6 +435,84 @@ static size_t candidates(const sph_grid *g, size_t i) {
   return c;
 }
 
+/* Sorts the c entries of row by insertion: linear on the nearly sorted
+ * rows of a binned or periodic grid. */
+static void sort_row(uint32_t *row, uint32_t c) {
+  for (uint32_t a = 1; a < c; a++) {
+    const uint32_t v = row[a];
+    uint32_t b = a;
+    for (; b > 0 && row[b - 1] > v; b--)
+      row[b] = row[b - 1];
+    row[b] = v;
+  }
+}
+
+/* The entries of a run that starts at row[k] (of c increasing entries):
+ * up to SPH_NLIST_RUN_MAX, all within row[k] + SPH_NLIST_RUN_MAX. */
+static inline uint32_t run_length(const uint32_t *row, uint32_t k, uint32_t c) {
+  uint32_t m = 1;
+  while (k + m < c && m < SPH_NLIST_RUN_MAX && row[k + m] - row[k] <= SPH_NLIST_RUN_MAX)
+    m++;
+  return m;
+}
+
+/* The bytes of the runs (grid.h; in 2-D four an entry) of the c entries of row, increasing
+ * when `in_order`, else in any order: one run when they span at most SPH_NLIST_RUN_MAX (and are
+ * as many at most), else row is sorted first (as fill_sorted would) and its runs counted. */
+static size_t runs_size(uint32_t *row, uint32_t c, int in_order) {
+  if (!SPH_NLIST_RUNS) return 4 * (size_t)c;
+  if (c == 0) return 0;
+  uint32_t lo = row[0], hi = row[c - 1];
+  if (!in_order)
+    for (uint32_t k = 0; k < c; k++) {
+      lo = row[k] < lo ? row[k] : lo;
+      hi = row[k] > hi ? row[k] : hi;
+    }
+  if (hi - lo <= SPH_NLIST_RUN_MAX && c <= SPH_NLIST_RUN_MAX)
+    return SPH_NLIST_RUN_HEAD + 2 * (size_t)c;
+  sort_row(row, c);
+  size_t b = 0;
+  for (uint32_t k = 0; k < c;) {
+    const uint32_t m = run_length(row, k, c);
+    b += SPH_NLIST_RUN_HEAD + 2 * (size_t)m;
+    k += m;
+  }
+  return b;
+}
+
+/* Writes the runs of a row of c increasing entries at out (runs_size bytes). */
+static void runs_write(const uint32_t *row, uint32_t c, uint8_t *restrict out) {
+  if (!SPH_NLIST_RUNS) {
+    memcpy(out, row, 4 * (size_t)c);
+    return;
+  }
+  /* (one run, the common row, without run_length's walk) */
+  const int one = c > 0 && c <= SPH_NLIST_RUN_MAX && row[c - 1] - row[0] <= SPH_NLIST_RUN_MAX;
+  for (uint32_t k = 0; k < c;) {
+    const uint32_t m = one ? c : run_length(row, k, c), base = row[k];
+    const uint16_t m16 = (uint16_t)m;
+    memcpy(out, &m16, sizeof m16);
+    memcpy(out + 2, &base, sizeof base);
+    uint16_t *restrict o = (uint16_t *)(void *)(out + SPH_NLIST_RUN_HEAD); /* 2-byte aligned */
+    for (uint32_t q = 0; q < m; q++)
+      o[q] = (uint16_t)(row[k + q] - base);
+    out += SPH_NLIST_RUN_HEAD + 2 * (size_t)m;
+    k += m;
+  }
+}
+
+/* Row i's entries within sqrt(r2max) in increasing storage index into
+ * row (room for all i's candidates); returns their number. */
+static inline uint32_t fill_sorted(const sph_grid *g, const double *const *x, size_t i,
+                                   double r2max, double period, uint32_t *restrict row, int sorted,
+                                   int wide) {
+  const uint32_t c = fill_rows(g, x, i, r2max, period, row, sorted, wide);
+  /* increasing storage index: already so on a sorted grid that is not
+   * periodic (rows below, same, above in key order) */
+  if (!sorted || period > 0.0) sort_row(row, c);
+  return c;
+}
+
 int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, double support,
                     double skin, double period, sph_error *err) {
   const size_t n = p->n;
@@ -443,7 +522,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     const size_t cap = n + 1 + n / 4 + 16;
     void **arrays[SPH_DIM + 4];
     size_t size[SPH_DIM + 4], k = 0;
-    size[k] = sizeof *l->start, arrays[k++] = (void **)&l->start;
+    size[k] = sizeof *l->off, arrays[k++] = (void **)&l->off;
     size[k] = sizeof *l->count, arrays[k++] = (void **)&l->count;
     for (int d = 0; d < SPH_DIM; d++)
       size[k] = sizeof *l->ref[d], arrays[k++] = (void **)&l->ref[d];
@@ -453,14 +532,13 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
       return sph_error_set(err, "grid: out of memory for the neighbour list of %zu particles", n);
     l->cap_n = cap;
   }
-  /* Rows are stored compactly, each as long as its neighbour count, so
-   * the list holds about 28 slots per particle instead of the ~80
-   * candidates of the 3 x 3 cells (doc/memory.md). A first pass counts
-   * each row without storing it (the same distance test as the fill, so
-   * the same answer), the prefix sums place the rows, and the second pass
-   * fills each row through a scratch row per thread as long as the most
-   * candidates (fill_row writes every candidate before its test) and
-   * copies it in place. */
+  /* Rows are stored compactly: in 3-D as runs (grid.h), about two bytes
+   * an entry, in 2-D four (doc/memory.md). A first pass fills each row (in
+   * 2-D only counts it) into a scratch row per
+   * thread as long as the most candidates (fill_row writes every candidate
+   * before its test) and counts its entries and bytes, the prefix sums
+   * place the rows, and the second pass fills each row again and writes
+   * its runs in place. */
   const double radius = support + skin, r2max = radius * radius;
   /* the axes with the periodic one first: fill_row takes the minimum image
    * along its first axis (in 2-D and without periodicity, the store's order) */
@@ -478,53 +556,68 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
 #endif
   const long ln = (long)n;
   size_t cmax = 0; /* the most candidates of any particle: the scratch row */
-  l->start[0] = 0;
 #pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN) reduction(max : cmax)
   for (long li = 0; li < ln; li++) {
     const size_t c = candidates(g, (size_t)li);
     if (c > cmax) cmax = c;
-    l->start[li + 1] = fill_rows(g, x, (size_t)li, r2max, period, NULL, sorted, wide);
-  }
-  for (size_t i = 0; i < n; i++)
-    l->start[i + 1] += l->start[i]; /* exact: integers */
-  const size_t total = l->start[n];
-  if (total > l->cap_nb) {
-    const size_t cap = total + total / 4 + 64;
-    void *a = realloc(l->nb, cap * sizeof *l->nb);
-    if (!a) return sph_error_set(err, "grid: out of memory for %zu neighbours", total);
-    l->nb = a;
-    l->cap_nb = cap;
   }
   uint32_t mc = 0;
   int oom = 0;
-  if (sph_steal_reset(&l->steal, l->start, n, sph_team_size(n)))
-    return sph_error_set(err, "grid: out of memory for the thread slices");
+  l->off[0] = 0;
 #pragma omp parallel if (ln > SPH_OMP_MIN) reduction(max : mc) reduction(| : oom)
   {
     uint32_t *restrict scratch = malloc((cmax + 1) * sizeof *scratch);
-    size_t lo, hi; /* slices of equal neighbour counts, with stealing (parallel.h) */
+    if (!scratch) oom = 1;
+#pragma omp for schedule(static)
+    for (long li = 0; li < ln; li++) {
+      if (!scratch) continue;
+      /* (in 2-D only counted: four bytes an entry whatever their order) */
+      const uint32_t c =
+          fill_rows(g, x, (size_t)li, r2max, period, SPH_NLIST_RUNS ? scratch : NULL, sorted, wide);
+      l->count[li] = c;
+      l->off[li + 1] = runs_size(scratch, c, sorted && period <= 0.0);
+      if (c > mc) mc = c;
+    }
+    free(scratch);
+  }
+  if (oom) return sph_error_set(err, "grid: out of memory for a scratch row");
+  size_t pairs = 0;
+  for (size_t i = 0; i < n; i++) {
+    l->off[i + 1] += l->off[i]; /* exact: integers */
+    pairs += l->count[i];
+  }
+  const size_t total = l->off[n] + SPH_NLIST_SLACK;
+  if (total > l->cap_rows) {
+    const size_t cap = total + total / 4 + 64;
+    void *a = realloc(l->rows, cap);
+    if (!a) return sph_error_set(err, "grid: out of memory for %zu bytes of neighbours", total);
+    l->rows = a;
+    l->cap_rows = cap;
+  }
+  memset(l->rows + l->off[n], 0, SPH_NLIST_SLACK); /* read, never used, by sph_nlist_decode */
+  const int threads = SPH_NLIST_RUNS ? sph_max_threads() : 0; /* (2-D rows are read in place) */
+  const size_t stride = (size_t)mc + SPH_NLIST_SLACK;
+  if (threads && stride * (size_t)threads > l->dec_stride * (size_t)l->dec_threads) {
+    uint32_t *a = realloc(l->dec, stride * (size_t)threads * sizeof *a);
+    if (!a) return sph_error_set(err, "grid: out of memory for the rows written out");
+    l->dec = a;
+  }
+  l->dec_stride = stride;
+  l->dec_threads = threads;
+  if (sph_steal_reset(&l->steal, l->off, n, sph_team_size(n)))
+    return sph_error_set(err, "grid: out of memory for the thread slices");
+#pragma omp parallel if (ln > SPH_OMP_MIN) reduction(| : oom)
+  {
+    uint32_t *restrict scratch = malloc((cmax + 1) * sizeof *scratch);
+    size_t lo, hi; /* slices of equal row sizes, with stealing (parallel.h) */
     if (!scratch) oom = 1;
     while (scratch && sph_steal_next(&l->steal, SPH_NLIST_STEAL_GRAIN, &lo, &hi))
       for (size_t i = lo; i < hi; i++) {
-        const uint32_t c = fill_rows(g, x, i, r2max, period, scratch, sorted, wide);
-        uint32_t *restrict row = l->nb + l->start[i];
-        if (c) memcpy(row, scratch, c * sizeof *row); /* l->nb is NULL when no row has any */
-        /* increasing storage index: already so on a sorted grid that is not
-         * periodic (rows below, same, above in key order); otherwise an
-         * insertion sort, linear on nearly sorted rows */
-        if (!sorted || period > 0.0)
-          for (uint32_t a = 1; a < c; a++) {
-            const uint32_t v = row[a];
-            uint32_t b = a;
-            for (; b > 0 && row[b - 1] > v; b--)
-              row[b] = row[b - 1];
-            row[b] = v;
-          }
-        l->count[i] = c;
+        const uint32_t c = fill_sorted(g, x, i, r2max, period, scratch, sorted, wide);
+        runs_write(scratch, c, l->rows + l->off[i]);
         for (int d = 0; d < SPH_DIM; d++)
           l->ref[d][i] = p->pos[d][i];
         l->idref[i] = p->id[i];
-        if (c > mc) mc = c;
       }
     free(scratch);
   }
@@ -535,6 +628,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     l->cost[i + 1] = l->cost[i] + SPH_NLIST_ROW_COST +
                      (p->kind[i] == SPH_KIND_FLUID ? l->count[i] : l->count[i] / 2);
   l->maxcount = mc;
+  l->pairs = pairs;
   l->n = n;
   l->radius = radius;
   l->skin = skin;
@@ -614,18 +708,27 @@ const char *sph_grid_check(const sph_grid *g, size_t n) {
 const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double support) {
   const size_t n = p->n;
   const double r2 = support * support;
+  uint32_t *row = malloc(((size_t)l->maxcount + SPH_NLIST_SLACK) * sizeof *row);
+  if (!row) return "neighbour list: no memory to check it";
   for (size_t i = 0; i < n; i++) {
-    const uint32_t *row = l->nb + l->start[i];
+    const uint32_t c = l->count[i] > l->maxcount ? 0 : sph_nlist_decode(l, i, row);
+    if (c != l->count[i]) {
+      snprintf(check_msg, sizeof check_msg,
+               "neighbour list: row %zu holds %u entries, not its count %u", i, c, l->count[i]);
+      free(row);
+      return check_msg;
+    }
     for (uint32_t k = 0; k < l->count[i]; k++)
       if (row[k] >= n || row[k] == i || (k && row[k] <= row[k - 1])) {
         snprintf(check_msg, sizeof check_msg,
                  "neighbour list: row %zu is not sorted or holds %u at entry %u", i, row[k], k);
+        free(row);
         return check_msg;
       }
   }
   const size_t stride = n > 20000 ? n / 2000 : 1;
   for (size_t i = 0; i < n; i += stride) {
-    const uint32_t *row = l->nb + l->start[i];
+    sph_nlist_decode(l, i, row);
     size_t k = 0;
     for (size_t j = 0; j < n; j++) {
       const double dx = sph_nlist_sep(l, 0, p->x[i], p->x[j]);
@@ -638,9 +741,11 @@ const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double s
       if (k == l->count[i] || row[k] != j) {
         snprintf(check_msg, sizeof check_msg,
                  "neighbour list: row %zu lacks particle %zu within the support", i, j);
+        free(row);
         return check_msg;
       }
     }
   }
+  free(row);
   return NULL;
 }

@@ -16,6 +16,12 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
+#include "core/check.h"
 
 #include "core/dim.h"
 #include "core/error.h"
@@ -187,11 +193,19 @@ static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SP
  * For every particle i, the particles j != i that stood closer than
  * `radius` to it when the list was built, in increasing storage index (on
  * a sorted grid that is the grid's walk order, rows below, same, above, so
- * a sum over a row runs in the same order as over the grid's ranges). The
- * row of i is nb[start[i]], ..., nb[start[i] + count[i] - 1].
- * Because a row is in storage order, the pairs of a row inside the support
- * come in the same order whatever the skin and whenever the list was built:
- * a sum over them depends on the state and the storage order only.
+ * a sum over a row runs in the same order as over the grid's ranges).
+ *
+ * A row is stored as runs (bytes rows[off[i]] .. rows[off[i + 1] - 1]):
+ * each run a 16-bit count c (1 .. SPH_NLIST_RUN_MAX), a 32-bit base index b
+ * and c 16-bit offsets o_k, the entries b + o_k (numbers as the processor
+ * stores them); a run holds the next entries of the row as long as they
+ * stay within b + SPH_NLIST_RUN_MAX. A row of a sorted store spans two
+ * rows of cells either side of its own (planes in 3-D), some thousands to
+ * tens of thousands of indices, so it is one run at two bytes an entry, six
+ * more a row: 3-D SPHERIC Test 2 at dx = 0.02 m, 74 entries a row, holds
+ * its list in about 160 bytes a particle where four bytes an entry took
+ * 297. sph_nlist_decode writes row i out as indices (increasing, count[i]
+ * of them); the passes read rows that way.
  *
  * With radius = support + skin the list stays complete for the support
  * (every pair closer than `support` is in it) as long as no particle has
@@ -221,13 +235,17 @@ typedef struct sph_nlist {
   double radius;        /* list radius: support + skin */
   double skin;          /* radius - support */
   double period;        /* > 0: minimum image along axis paxis with this period */
-  size_t *start;        /* n + 1 offsets into nb; compact rows: start[i+1] - start[i] = count[i] */
+  size_t *off;          /* n + 1 byte offsets of the rows' runs in rows */
   uint32_t *count;      /* neighbours of each particle */
   uint32_t maxcount;    /* the longest row */
-  uint32_t *nb;         /* neighbour storage indices */
+  uint8_t *rows;        /* the rows' runs (above), SPH_NLIST_SLACK bytes past the last */
+  size_t pairs;         /* entries in all rows */
   double *ref[SPH_DIM]; /* positions at the build */
   int64_t *idref;       /* ids at the build (a reordered store is detected) */
-  size_t cap_n, cap_nb;
+  size_t cap_n, cap_rows;
+  uint32_t *dec;     /* per thread a row written out (sph_nlist_row): dec_stride entries each */
+  size_t dec_stride; /* maxcount + SPH_NLIST_SLACK */
+  int dec_threads;   /* threads it has room for */
   size_t *cost;    /* n + 1: prefix sums of the particles' costs (SPH_NLIST_ROW_COST), the split of
                       the loops over the store among threads (parallel.h) */
   void *block;     /* the one allocation of start ... cost (arrays.h) */
@@ -271,6 +289,107 @@ static inline double sph_nlist_sep(const sph_nlist *l, int a, double xi, double 
 #else
   return a == l->paxis ? sph_grid_min_image(xi - xj, l->period) : xi - xj;
 #endif
+}
+
+/* Whether rows are stored as runs: in 3-D. A 2-D row holds some 28
+ * entries, and four bytes each, 112 a particle, are a small part of its
+ * memory; reading them through runs cost 2-11 % more instructions on the
+ * shipped 2-D cases (bench/regress), so 2-D rows are plain indices, off[i]
+ * = 4 x the entries before row i. */
+#if SPH_DIM == 3
+#define SPH_NLIST_RUNS 1
+#else
+#define SPH_NLIST_RUNS 0
+#endif
+/* The most entries of a run and the largest offset in it; the bytes of a
+ * run's count and base; bytes past a row that sph_nlist_decode may read,
+ * and entries past a written-out row it may write. */
+#define SPH_NLIST_RUN_MAX 65535u
+#define SPH_NLIST_RUN_HEAD 6
+#define SPH_NLIST_SLACK 16
+
+/* Writes row i of l out as its count[i] storage indices in increasing
+ * order into out, which has room for count[i] + SPH_NLIST_SLACK entries
+ * (the entries past count[i] are scratch); returns how many it wrote
+ * (count[i] in a list that is not corrupt). */
+static inline uint32_t sph_nlist_decode(const sph_nlist *l, size_t i, uint32_t *restrict out) {
+  const uint8_t *restrict s = l->rows + l->off[i], *const e = l->rows + l->off[i + 1];
+  if (!SPH_NLIST_RUNS) {
+    memcpy(out, s, (size_t)(e - s));
+    return (uint32_t)((size_t)(e - s) / 4);
+  }
+  uint32_t n = 0;
+  while (s < e) {
+    uint16_t c16;
+    uint32_t base;
+    memcpy(&c16, s, sizeof c16);
+    memcpy(&base, s + 2, sizeof base);
+    const uint32_t c = c16;
+    s += SPH_NLIST_RUN_HEAD;
+#ifdef __SSE2__ /* eight entries at a time: offsets widened to 32 bits, the base added */
+    const __m128i b = _mm_set1_epi32((int)base), zero = _mm_setzero_si128();
+    for (uint32_t k = 0; k < c; k += 8) {
+      const __m128i v = _mm_loadu_si128((const __m128i *)(const void *)(s + 2 * k));
+      __m128i *o = (__m128i *)(void *)(out + n + k);
+      _mm_storeu_si128(o, _mm_add_epi32(_mm_unpacklo_epi16(v, zero), b));
+      _mm_storeu_si128(o + 1, _mm_add_epi32(_mm_unpackhi_epi16(v, zero), b));
+    }
+#else
+    for (uint32_t k = 0; k < c; k++) {
+      uint16_t o;
+      memcpy(&o, s + 2 * k, sizeof o);
+      out[n + k] = base + o;
+    }
+#endif
+    s += 2 * (size_t)c;
+    n += c;
+  }
+  return n;
+}
+
+/* Row i of l written out (sph_nlist_decode) into the calling thread's
+ * buffer in l (in 2-D the row in place), its length in *cnt: valid until
+ * the same thread's next call. */
+static inline const uint32_t *sph_nlist_row(const sph_nlist *l, size_t i, size_t *cnt) {
+  if (!SPH_NLIST_RUNS) { /* the row in place */
+    *cnt = l->count[i];
+    return (const uint32_t *)(const void *)(l->rows + l->off[i]);
+  }
+  const int t = sph_thread();
+  SPH_INVARIANT(t < l->dec_threads, "neighbour list: thread %d has no row buffer", t);
+  uint32_t *out = l->dec + (size_t)t * l->dec_stride;
+  *cnt = sph_nlist_decode(l, i, out);
+  return out;
+}
+
+/* Row i of l as the loops that cut it read it: its one run in place (o
+ * non-NULL: the entries base + o[k]) or, when it has more, written out
+ * (sph_nlist_row: the entries e[k]); len entries. */
+typedef struct sph_nlist_view {
+  const uint16_t *o;
+  const uint32_t *e;
+  uint32_t base;
+  size_t len;
+} sph_nlist_view;
+static inline sph_nlist_view sph_nlist_view_of(const sph_nlist *l, size_t i) {
+  sph_nlist_view v = {NULL, NULL, 0, l->count[i]};
+  const uint8_t *s = l->rows + l->off[i];
+  if (!SPH_NLIST_RUNS) {
+    v.e = (const uint32_t *)(const void *)s;
+  } else if (l->off[i + 1] - l->off[i] == SPH_NLIST_RUN_HEAD + 2 * v.len) { /* one run (or none) */
+    memcpy(&v.base, s + 2, sizeof v.base);
+    v.o = (const uint16_t *)(const void *)(s + SPH_NLIST_RUN_HEAD); /* rows are 2-byte aligned */
+  } else {
+    v.e = sph_nlist_row(l, i, &v.len);
+  }
+  return v;
+}
+
+/* An offset in entries of row i's place, at least the entries of the rows
+ * before it (a row's bytes are at least twice its entries, four times in
+ * 2-D): rows of entries laid out per particle, as the list's, fit there. */
+static inline size_t sph_nlist_slot(const sph_nlist *l, size_t i) {
+  return l->off[i] / (SPH_NLIST_RUNS ? 2 : 4);
 }
 
 /* Forgets the list (after the store was reordered). */

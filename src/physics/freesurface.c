@@ -510,7 +510,8 @@ static int detect(sph_particles *p, const sph_grid *g, const sph_nlist *l, doubl
         if (need > cap) {
           oom = 1;
         } else {
-          const uint32_t *row = l ? l->nb + l->start[i] : cand;
+          size_t got = need;
+          const uint32_t *row = l ? sph_nlist_row(l, i, &got) : cand;
           if (g) {
             size_t m = 0;
             for (int k = 0; k < SPH_GRID_RANGES; k++)

@@ -18,9 +18,10 @@ void sph_shifting_sums_of(const sph_particles *p, const sph_nlist *l, const sph_
   double w_dx, dw_dx;
   sph_kernel_w_dw(sp->kernel, sp->dx, h, &w_dx, &dw_dx);
   const double inv_wdx = 1.0 / w_dx;
-  const uint32_t *row = l->nb + l->start[i];
+  size_t cnt;
+  const uint32_t *row = sph_nlist_row(l, i, &cnt);
   double g[SPH_DIM] = {0.0}, tg[SPH_DIM] = {0.0}, div = 0.0;
-  for (size_t k = 0; k < l->count[i]; k++) {
+  for (size_t k = 0; k < cnt; k++) {
     const size_t j = row[k];
     double d[SPH_DIM];
     for (int a = 0; a < SPH_DIM; a++)

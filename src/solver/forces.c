@@ -236,8 +236,8 @@ typedef void (*strain_fn)(const sph_particles *, const sph_nlist *, const sph_fo
     const long n = (long)p->n;                                                                     \
     _Pragma("omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)") for (long i = 0;       \
                                                                                  i < n; i++)       \
-        strain_##FL(w->hot, l, fp, w->keep + l->start[i] + SPH_KEEP_PAD * (size_t)i, w->keepn + i, \
-                    (size_t)i, o, eps, k);                                                         \
+        strain_##FL(w->hot, l, fp, w->keep + sph_nlist_slot(l, i) + SPH_KEEP_PAD * (size_t)i,      \
+                    w->keepn + i, (size_t)i, o, eps, k);                                           \
     w->keep_valid = 1;                                                                             \
   }
 STRAIN_LANES(0, v4e, static)
@@ -512,8 +512,9 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
   if (nwall) /* from the walls' rows (the list is symmetric): few, and no two writers */
     for (size_t i = 0; i < p->n; i++) {
       if (p->kind[i] != SPH_KIND_WALL || !(p->flags[i] & SPH_WALL_NORMAL)) continue;
-      const uint32_t *row = l->nb + l->start[i];
-      for (size_t k = 0; k < l->count[i]; k++)
+      size_t cnt;
+      const uint32_t *row = sph_nlist_row(l, i, &cnt);
+      for (size_t k = 0; k < cnt; k++)
         w->nwall[row[k]] = 1;
     }
   const size_t stride = (size_t)l->maxcount + 8, /* + padding lanes */
@@ -532,11 +533,11 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
 }
 
 /* Room for every particle's cut row, padded (w->keep; their lengths go to
- * w->keepn, a per-particle array of work_reserve): as much as the list
- * holds plus SPH_KEEP_PAD entries per particle. */
+ * w->keepn, a per-particle array of work_reserve): row i at the list's
+ * slot of row i (sph_nlist_slot) plus SPH_KEEP_PAD entries per particle. */
 static int keep_rows(const sph_particles *p, const sph_nlist *l, sph_force_work *w,
                      sph_error *err) {
-  const size_t need = l->start[p->n] + SPH_KEEP_PAD * p->n;
+  const size_t need = sph_nlist_slot(l, p->n) + SPH_KEEP_PAD * p->n;
   if (need <= w->keep_cap) return 0;
   const size_t cap = need + need / 4;
   uint32_t *a = realloc(w->keep, cap * sizeof *a);

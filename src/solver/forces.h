@@ -211,7 +211,7 @@ typedef struct sph_force_work {
   size_t rows_stride, rows_cap;
   /* With the stress tensor in lanes: every particle's row cut by the
    * strain-rate pass, kept for the main pass of the same evaluation (row i
-   * at keep + start[i] + SPH_KEEP_PAD i, padded; keepn[i] pairs) */
+   * at keep + sph_nlist_slot(l, i) + SPH_KEEP_PAD i, padded; keepn[i] pairs) */
   uint32_t *keep;
   size_t keep_cap;
   int keep_valid;  /* set by the strain-rate pass, cleared by each new pass */

@@ -228,10 +228,11 @@ static inline void strain_finish(const strain_opts *o, size_t i, const double s[
 #endif
 }
 
-/* The neighbour row of i in the list l: j = row_[0], ..., row_[len_ - 1]. */
+/* The neighbour row of i in the list l: j = row_[0], ..., row_[len_ - 1], written out into the
+ * calling thread's buffer of the list (sph_nlist_row). */
 #define ROW(l, i, row_, len_)                                                                      \
-  const uint32_t *restrict row_ = (l)->nb + (l)->start[i];                                         \
-  const size_t len_ = (l)->count[i];
+  size_t len_;                                                                                     \
+  const uint32_t *restrict row_ = sph_nlist_row((l), (i), &len_);
 
 /* The period along axis a: fp->period on the axis that wraps, 0 on the others (sep_x and
  * LANE_MIN_IMAGE with a period of 0 leave a separation as it is, bit for bit). */
@@ -294,10 +295,12 @@ static inline double diffusion_scale(const sph_force_params *fp, const unsigned 
 /* The row of i cut to the pairs inside the support (not coincident), in
  * row order, into nb; returns their number. Which entry goes to which lane
  * of the lane loop then depends only on the pairs, never on the skin.
- * cut_row_at goes on from entry k of the row with cnt pairs already in nb
- * (the wide cuts below leave it their last entries). */
+ * cut_row_at goes on from entry k of the row v (sph_nlist_view: its one run
+ * in place when one_run, a literal, else written out) with cnt pairs already
+ * in nb (the wide cuts below leave it their last entries). */
+#define VIEW_AT(v, k, one_run) ((one_run) ? (v).base + (v).o[k] : (v).e[k])
 static inline __attribute__((always_inline)) size_t
-cut_row_at(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
+cut_row_at(const sph_force_hot *restrict hot, const sph_nlist_view v, const int one_run,
            const sph_force_params *restrict fp, size_t i, uint32_t *restrict nb, size_t k,
            size_t cnt, const unsigned F) {
   const sph_force_hot qi = hot[i];
@@ -309,13 +312,13 @@ cut_row_at(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
   SPH_IF3(const double py = period_along(fp, 1), pz = period_along(fp, 2);
           const v2 pery = v2_all(py), hpery = v2_all(0.5 * py), npery = v2_all(-0.5 * py);
           const v2 perz = v2_all(pz), hperz = v2_all(0.5 * pz), nperz = v2_all(-0.5 * pz);)
-  ROW(l, i, row, len)
+  const size_t len = v.len;
   const double xs0 = qi.x, ys0 = qi.y, s0 = 4.0 * h0 * h0;
   SPH_IF3(const double zs0 = qi.z;)
   const double period = period_along(fp, 0), hp = 0.5 * period_along(fp, 0);
   const v2 sv = v2_all(s0);
   for (; k + 1 < len; k += 2) { /* two entries at a time */
-    const uint32_t j0 = row[k], j1 = row[k + 1];
+    const uint32_t j0 = VIEW_AT(v, k, one_run), j1 = VIEW_AT(v, k + 1, one_run);
     v2 dx = v2_sub(xi, v2_set(hot[j0].x, hot[j1].x));
     if (F & F_PERIODIC) dx = SPH_LANE_MIN_IMAGE(v2, dx, per, hper, nper);
 #if SPH_DIM == 2
@@ -336,7 +339,7 @@ cut_row_at(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
     cnt += m >> 1;
   }
   if (k < len) {
-    const size_t j = row[k];
+    const size_t j = VIEW_AT(v, k, one_run);
     const double dx = sep_x(xs0, hot[j].x, period, hp, F);
 #if SPH_DIM == 2
     const double dy = ys0 - hot[j].y;
@@ -354,7 +357,9 @@ cut_row_at(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
 static inline __attribute__((always_inline)) size_t
 cut_row(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
         const sph_force_params *restrict fp, size_t i, uint32_t *restrict nb, const unsigned F) {
-  return cut_row_at(hot, l, fp, i, nb, 0, 0, F);
+  const sph_nlist_view v = sph_nlist_view_of(l, i);
+  return v.o ? cut_row_at(hot, v, 1, fp, i, nb, 0, 0, F)
+             : cut_row_at(hot, v, 0, fp, i, nb, 0, 0, F);
 }
 
 /* The fields of a packed record (sph_force_hot) by their place, for the
@@ -380,11 +385,11 @@ typedef char sph_hot_layout_check[(offsetof(sph_force_hot, y) == H_y * sizeof(do
  * cut with AVX-512's compress gained less (0.978). */
 #ifdef SPH_LANES_AVX
 static inline __attribute__((always_inline, target("avx2"))) size_t
-cut_row_v4x(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
-            const sph_force_params *restrict fp, size_t i, uint32_t *restrict nb,
-            const unsigned F) {
+cut_row_v4x_of(const sph_force_hot *restrict hot, const sph_nlist_view v, const int one_run,
+               const sph_force_params *restrict fp, size_t i, uint32_t *restrict nb,
+               const unsigned F) {
   const sph_force_hot qi = hot[i];
-  ROW(l, i, row, len)
+  const size_t len = v.len;
   const v4x xi = v4x_all(qi.x), yi = v4x_all(qi.y);
   SPH_IF3(const v4x zi = v4x_all(qi.z);)
   const v4x sv = v4x_all(4.0 * fp->h * fp->h), zero = v4x_all(0.0);
@@ -393,11 +398,19 @@ cut_row_v4x(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
   SPH_IF3(const double py = period_along(fp, 1), pz = period_along(fp, 2);
           const v4x pery = v4x_all(py), hpery = v4x_all(0.5 * py), npery = v4x_all(-0.5 * py);
           const v4x perz = v4x_all(pz), hperz = v4x_all(0.5 * pz), nperz = v4x_all(-0.5 * pz);)
+  const __m128i base = _mm_set1_epi32((int)v.base);
+  /* entry k's record: hb[o[k]] with hb = hot + base (the offset alone in the address), or
+   * hot[e[k]] */
+  const sph_force_hot *const hb = one_run ? hot + v.base : hot;
+#define HOT_AT(k) (one_run ? hb + v.o[k] : hot + v.e[k])
   size_t k = 0, cnt = 0;
   for (; k + 4 <= len; k += 4) {
-    const __m128i idx = _mm_loadu_si128((const __m128i *)(row + k));
-    const sph_force_hot *q0 = hot + row[k], *q1 = hot + row[k + 1], *q2 = hot + row[k + 2],
-                        *q3 = hot + row[k + 3];
+    /* the four entries: a run's offsets widened and added to its base, or the written-out row */
+    const __m128i idx = one_run ? _mm_add_epi32(base, _mm_cvtepu16_epi32(_mm_loadl_epi64((
+                                                          const __m128i *)(const void *)(v.o + k))))
+                                : _mm_loadu_si128((const __m128i *)(const void *)(v.e + k));
+    const sph_force_hot *q0 = HOT_AT(k), *q1 = HOT_AT(k + 1), *q2 = HOT_AT(k + 2),
+                        *q3 = HOT_AT(k + 3);
     v4x dx = v4x_sub(xi, v4x_set(q0->x, q1->x, q2->x, q3->x));
     if (F & F_PERIODIC) dx = SPH_LANE_MIN_IMAGE(v4x, dx, per, hper, nper);
 #if SPH_DIM == 2
@@ -417,7 +430,15 @@ cut_row_v4x(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
     _mm_storeu_si128((__m128i *)(nb + cnt), v4x_pack32(idx, m));
     cnt += (size_t)__builtin_popcount(m);
   }
-  return cut_row_at(hot, l, fp, i, nb, k, cnt, F);
+#undef HOT_AT
+  return cut_row_at(hot, v, one_run, fp, i, nb, k, cnt, F);
+}
+static inline __attribute__((always_inline, target("avx2"))) size_t
+cut_row_v4x(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
+            const sph_force_params *restrict fp, size_t i, uint32_t *restrict nb,
+            const unsigned F) {
+  const sph_nlist_view v = sph_nlist_view_of(l, i);
+  return v.o ? cut_row_v4x_of(hot, v, 1, fp, i, nb, F) : cut_row_v4x_of(hot, v, 0, fp, i, nb, F);
 }
 #endif
 

@@ -83,11 +83,10 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const uint32_t *restrict nb;
   size_t cnt;
   if (F & F_VARH) { /* (the scalar loop only) the whole row: the support is per pair */
-    nb = l->nb + l->start[i];
-    cnt = l->count[i];
+    nb = sph_nlist_row(l, i, &cnt);
   } else if ((F & (F_STRESS | F_CGRAD)) && w->keep_valid) { /* the strain-rate pass's cut row,
                                                               padded */
-    nb = w->keep + l->start[i] + SPH_KEEP_PAD * i;
+    nb = w->keep + sph_nlist_slot(l, i) + SPH_KEEP_PAD * i;
     cnt = w->keepn[i];
   } else {
     uint32_t *restrict cut = w->rows + (size_t)sph_thread() * w->rows_stride;

@@ -15,8 +15,9 @@
 
 /* Whether a fluid particle of i's row lies inside the support. */
 static int fluid_near(const sph_particles *p, const sph_nlist *l, size_t i, double s2) {
-  const uint32_t *row = l->nb + l->start[i];
-  for (size_t k = 0; k < l->count[i]; k++) {
+  size_t cnt;
+  const uint32_t *row = sph_nlist_row(l, i, &cnt);
+  for (size_t k = 0; k < cnt; k++) {
     const size_t j = row[k];
     if (p->kind[j] != SPH_KIND_FLUID) continue;
     const double dx = sph_nlist_sep(l, 0, p->x[i], p->x[j]);

@@ -19,8 +19,8 @@ void sph_repulsion_add(sph_particles *p, const sph_nlist *l, double d, double r0
   for (long li = 0; li < n; li++) {
     const size_t i = (size_t)li;
     if (p->kind[i] != SPH_KIND_FLUID) continue;
-    const uint32_t *nb = l->nb + l->start[i];
-    const size_t cnt = l->count[i];
+    size_t cnt;
+    const uint32_t *nb = sph_nlist_row(l, i, &cnt);
     double ax = 0.0, ay = 0.0, pw = 0.0, phi = 0.0;
     SPH_IF3(double az = 0.0;)
     for (size_t k = 0; k < cnt; k++) {
