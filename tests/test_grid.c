@@ -468,6 +468,22 @@ static void test_unused_groups_untouched(void) {
   /* the groups still off are still untouched (not read here either: mincore
    * counts a page read from the kernel's zero page as present) */
   CU_ASSERT_EQUAL(resident_pages(p.vxh, bytes) + resident_pages(p.mx, bytes), 0);
+  sph_particles_free(&p);
+  /* the leap-frog's half step without the heat: vxh carried, uh (both
+   * groups) untouched */
+  CU_ASSERT_FATAL(sph_particles_init(&p, N, &err) == 0);
+  CU_ASSERT_FATAL(sph_particles_limit(&p, SPH_ARRAYS_HALF_STEP) == 0);
+  for (size_t i = 0; i < N; i++) {
+    CU_ASSERT_FATAL(
+        sph_particles_add(&p, (double)i, 0.0, 0, 0, 1000, 1, 0.01, SPH_KIND_FLUID, &err) >= 0);
+    p.vxh[i] = (double)i;
+  }
+  sph_particles_permute(&p, perm, work);
+  ok = 1;
+  for (int i = 0; i < N; i++)
+    ok &= p.vxh[i] == N - 1 - i && p.x[i] == N - 1 - i;
+  CU_ASSERT(ok);
+  CU_ASSERT_EQUAL(resident_pages(p.uh, bytes) + resident_pages(p.u, bytes), 0);
   free(perm);
   free(work);
   sph_particles_free(&p);

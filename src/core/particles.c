@@ -26,13 +26,14 @@
 /* clang-format off */
 #define HEAT SPH_ARRAYS_HEAT
 #define HALF SPH_ARRAYS_HALF_STEP
+#define HALF_HEAT (SPH_ARRAYS_HALF_STEP | SPH_ARRAYS_HEAT) /* uh: both groups */
 #define REST SPH_ARRAYS_REST
 #define OFFSET SPH_ARRAYS_OFFSET
 #define SPH_PARTICLE_DOUBLES(X) \
   X(x, 0) X(y, 0) X(vx, 0) X(vy, 0) X(rho, 0) X(p, 0) X(mass, 0) X(h, 0) X(u, HEAT) \
   X(x0, 0) X(y0, 0) X(vx0, 0) X(vy0, 0) X(rho0, 0) X(u0, HEAT) \
   X(ax, 0) X(ay, 0) X(drho, 0) X(du, HEAT) X(xsx, 0) X(xsy, 0) \
-  X(vxh, HALF) X(vyh, HALF) X(rhoh, HALF) X(uh, HALF) X(xr, REST) X(yr, REST) \
+  X(vxh, HALF) X(vyh, HALF) X(rhoh, HALF) X(uh, HALF_HEAT) X(xr, REST) X(yr, REST) \
   X(mx, OFFSET) X(my, OFFSET) SPH_PARTICLE_DOUBLES_Z(X)
 #if SPH_DIM == 2
 #define SPH_PARTICLE_DOUBLES_Z(X)
@@ -52,7 +53,7 @@ enum {
 typedef char sph_store_dim_check[SPH_STORE_DIM == SPH_DIM ? 1 : -1];
 
 /* Whether an array of group g is in use. */
-static inline int live(const sph_particles *p, unsigned g) { return !g || (p->live & g); }
+static inline int live(const sph_particles *p, unsigned g) { return (p->live & g) == g; }
 
 /* The block of arrays is reallocated whole (arrays.h: staggered starts) and
  * the first p->cap entries of every live array copied over. */
@@ -186,5 +187,6 @@ void sph_particles_permute(sph_particles *p, const size_t *perm, void *work) {
 }
 #undef HEAT
 #undef HALF
+#undef HALF_HEAT
 #undef REST
 #undef OFFSET

@@ -48,8 +48,8 @@ enum {
  * (sph_particles_use). */
 enum {
   SPH_ARRAYS_HEAT = 1,      /* u, u0, du: the energy ledger's heat */
-  SPH_ARRAYS_HALF_STEP = 2, /* vxh, vyh, rhoh, uh: the leap-frog's half step; the velocity
-                               mirror particles carry */
+  SPH_ARRAYS_HALF_STEP = 2, /* vxh, vyh, rhoh, uh: the leap-frog's half step (uh with HEAT
+                               only); the velocity mirror particles carry */
   SPH_ARRAYS_REST = 4,      /* xr, yr: the rest positions of moving walls' particles */
   SPH_ARRAYS_OFFSET = 8,    /* mx, my: offsets of mdbc, no-slip and free-slip wall particles */
   SPH_ARRAYS_ALL = 15

@@ -101,14 +101,15 @@ static double diffusion_mass(const sph_particles *restrict p, const sph_nlist *r
 }
 
 void sph_diffusion_prepare(const sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
-                           sph_force_work *w) {
+                           sph_force_work *w, int mass_is_fm) {
   const long n = (long)p->n;
-  double c[SPH_DIM] = {0.0}; /* the same c_i everywhere but for antuono (the lane loops rely on
-                                it) */
+  double c[SPH_DIM] = {0.0}; /* the same c_i everywhere but for antuono */
   if (fp->diffusion == SPH_DIFFUSION_NONE) return;
+  if (!mass_is_fm) {
 #pragma omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)
-  for (long i = 0; i < n; i++)
-    w->ddm[i] = diffusion_mass(p, l, fp, (size_t)i);
+    for (long i = 0; i < n; i++)
+      w->ddm[i] = diffusion_mass(p, l, fp, (size_t)i);
+  }
   switch (fp->diffusion) {
   case SPH_DIFFUSION_NONE: return;
   case SPH_DIFFUSION_FOURTAKAS: {
@@ -130,13 +131,7 @@ void sph_diffusion_prepare(const sph_particles *p, const sph_nlist *l, const sph
     return;
   case SPH_DIFFUSION_MOLTENI: break;
   }
-  double *restrict const ddcx = w->ddcx, *restrict const ddcy = w->ddcy;
-  const double cx = c[0], cy = c[1];
-  SPH_IF3(double *restrict const ddcz = w->ddcz; const double cz = c[2];)
-#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
-  for (long i = 0; i < n; i++) {
-    ddcx[i] = cx;
-    ddcy[i] = cy;
-    SPH_IF3(ddcz[i] = cz;)
-  }
+#pragma GCC unroll 3
+  for (int d = 0; d < SPH_DIM; d++)
+    w->ddc0[d] = c[d];
 }

@@ -28,10 +28,12 @@ int sph_diffusion_wall_takes_part(int32_t kind, uint8_t flags);
  * (2.03 % without the walls' pairs). */
 int sph_diffusion_walls(const sph_particles *p, const sph_force_params *fp);
 
-/* Fills w->ddc[axis] (n values each, storage order) with the model's c_i:
- * zero (molteni_colagrossi), (rho0 / (2 c0^2)) g (fourtakas), or half the
- * renormalised density gradient (antuono: a pass over the list l, fluid
- * particles only, wall and mirror particles get 0); and w->ddm with
+/* Fills w->ddc0 with the model's c_i where it is the same at every
+ * particle: zero (molteni_colagrossi) or (rho0 / (2 c0^2)) g (fourtakas);
+ * or w->ddc[axis] (n values each, storage order) with half the renormalised
+ * density gradient (antuono: a pass over the list l, fluid particles only,
+ * wall and mirror particles get 0). And, unless mass_is_fm
+ * (sph_diffusion_mass_is_fm: the pass reads w->fm, the same values), w->ddm with
  * the mass each particle diffuses with: m_i for a fluid particle whose
  * support holds no mdbc wall particle and, with fp->wall_diffusion, for a
  * dynamic or fixed_layers wall particle; 0 for the others. A pair diffuses
@@ -59,6 +61,13 @@ int sph_diffusion_walls(const sph_particles *p, const sph_force_params *fp);
  * entries: the same bits for any thread count. Nothing to do when the
  * diffusion is off. */
 void sph_diffusion_prepare(const sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
-                           sph_force_work *w);
+                           sph_force_work *w, int mass_is_fm);
+
+/* Whether the mass each particle diffuses with is w->fm's (the fluid's
+ * mass, 0 for the others), which the pass fills with XSPH on: no mdbc wall
+ * takes it away from the fluid next to it and no wall diffuses. */
+static inline int sph_diffusion_mass_is_fm(const sph_force_params *fp, int xsph) {
+  return xsph && !fp->mdbc && !fp->wall_diffusion;
+}
 
 #endif

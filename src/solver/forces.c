@@ -73,7 +73,6 @@ static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
   void **arrays[] = {
     (void **)&w->hot,
     (void **)&w->prho2,
-    (void **)&w->cs,
     (void **)&w->sigma,
     (void **)&w->sxx,
     (void **)&w->sxy,
@@ -328,7 +327,7 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
       while (sph_steal_next(&w->steal, SPH_STEAL_GRAIN, &lo, &hi))                                 \
         for (size_t i = lo; i < hi; i++) {                                                         \
           PARTICLE_##FL(p, l, fp, w, i, (Fc));                                                     \
-          const double c = w->cs[i] + w->sigma[i];                                                 \
+          const double c = w->hot[i].cs + w->sigma[i];                                             \
           if (c > mx) mx = c;                                                                      \
         }                                                                                          \
     }                                                                                              \
@@ -482,7 +481,7 @@ static strain_fn strain_lanes(const sph_force_params *fp) {
   }
 }
 
-/* Per pass: the packed state of every particle (w->hot, w->cs), a cut-row
+/* Per pass: the packed state of every particle (w->hot), a cut-row
  * buffer per thread, and the interaction loop's slices (the list's, with
  * stealing). */
 static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
@@ -500,7 +499,6 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
     sph_slice(l->cost, p->n, &lo, &hi);
     for (size_t i = lo; i < hi; i++) {
       const double rho = p->rho[i], cs = sph_eos_sound_speed(&fp->eos, rho);
-      w->cs[i] = cs;
       w->hot[i] = (sph_force_hot){p->x[i],  p->y[i],
                                   p->vx[i], p->vy[i],
                                   rho,      p->p[i] / (rho * rho),
@@ -687,7 +685,8 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
       moment_pass(p, l, fp, w, err))
     return -1;
   if ((F & F_STRESS) && stress_pass(p, l, fp, w, err)) return -1;
-  if (F & F_DDIFF) sph_diffusion_prepare(p, l, fp, w);
+  if (F & F_DDIFF)
+    sph_diffusion_prepare(p, l, fp, w, sph_diffusion_mass_is_fm(fp, (F & F_XSPH) != 0));
   run(p, l, fp, w);
   if (SPH_DEBUG) check_rates(p, w, F);
   if (fp->repulsive) {

@@ -185,7 +185,6 @@ typedef struct sph_force_work {
   void *block;                 /* the one allocation of the arrays below (arrays.h) */
   sph_force_hot *hot;          /* packed copy of the state read from neighbours */
   double *prho2;               /* scratch of n doubles (p / rho^2 lives in hot) */
-  double *cs;                  /* sound speed */
   double *sigma;               /* max_j |h v_ij.r_ij / r_ij^2| */
   SPH_SYM_ARRAYS(s, s);        /* tau / rho^2 (stress-tensor viscosity only): sxx, sxy, syy */
   double *wpow;                /* ledger: sum over wall neighbours j of a_ij . v_j (fluid i) */
@@ -193,11 +192,14 @@ typedef struct sph_force_work {
   SPH_SYM_ARRAYS(l, l);        /* kernel-gradient correction M^-1 of the strain-rate pass */
   SPH_AXES(gv, gvx, gvy,
            gvz); /* velocity in the strain-rate pass (extrapolated on no-slip walls) */
-  SPH_AXES(ddc, ddcx, ddcy, ddcz); /* density diffusion: the model's vector c_i (diffusion.h) */
+  SPH_AXES(ddc, ddcx, ddcy, ddcz); /* density diffusion: the model's vector c_i (diffusion.h),
+                                      antuono's only: the others' is ddc0 */
+  double ddc0[SPH_DIM];            /* the vector c_i of a model that has one for every particle */
 #if SPH_DIM == 3
   double *sdiv; /* the strain pass's div v, which the 3-D SPS closure reads (tr eps = 0) */
 #endif
-  double *ddm;     /* density diffusion: the mass a particle diffuses with (0: none) */
+  double *ddm;     /* density diffusion: the mass a particle diffuses with (0: none); not
+                      filled where it is fm (sph_diffusion_mass_is_fm) */
   double *fm;      /* the mass of a fluid particle, 0 for the others (every pass) */
   uint32_t *keepn; /* the pairs of each kept row (below) */
   uint32_t *nwall; /* Riemann pressure: 1 where the particle's list row holds a wall
@@ -226,8 +228,8 @@ void sph_forces_pressure(sph_particles *p, const sph_eos *eos);
 /* One interaction pass over the neighbour list l (complete for the
  * support 2 h, 2 max h with var_h, and for the Lennard-Jones range r0 on
  * p's current positions: see sph_nlist_fresh): fills p->drho, p->ax, p->ay
- * (and p->xsx, p->xsy when XSPH is on), w->sigma, w->cs and
- * w->cs_sigma_max. Needs p->p current. */
+ * (and p->xsx, p->xsy when XSPH is on), w->sigma, w->hot (its cs the
+ * sound speed) and w->cs_sigma_max. Needs p->p current. */
 int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                         sph_force_work *w, sph_error *err);
 

@@ -33,6 +33,7 @@
 #include "neighbours/grid.h"
 #include "physics/kernel.h"
 #include "physics/pair_terms.h"
+#include "solver/diffusion.h"
 #include "solver/forces.h"
 
 /* The terms, as bits of F. */

@@ -148,16 +148,16 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   const int rnorm_i = rnorm && kind[i] == SPH_KIND_WALL && (flags[i] & SPH_WALL_NORMAL);
   const double *restrict ddcx = w->ddcx, *restrict ddcy = w->ddcy, *restrict ddm = w->ddm;
   SPH_IF3(const double *restrict ddcz = w->ddcz;)
-  const int diffuses = (F & F_DDIFF) && ddm[i] != 0.0; /* diffusion.h */
-  const double *restrict fm = w->fm;                   /* m_j of fluid j, 0 for the others */
-  /* then ddm = fm (diffusion.c): only fluid diffuses, all of it */
-  const int mdd_is_mx = (F & F_XSPH) && !fp->mdbc && !fp->wall_diffusion;
-  const LT cxi = LOP(all)((F & F_DDIFF) ? ddcx[i] : 0.0);
-  const LT cyi = LOP(all)((F & F_DDIFF) ? ddcy[i] : 0.0);
-  SPH_IF3(const LT czi = LOP(all)((F & F_DDIFF) ? ddcz[i] : 0.0);)
-  /* c_j = c_i at every particle but with antuono (diffusion.c): the same sums without reading c_j
-   */
+  const double *restrict fm = w->fm; /* m_j of fluid j, 0 for the others */
+  /* then ddm = fm, which diffusion.c does not fill: only fluid diffuses, all of it */
+  const int mdd_is_mx = sph_diffusion_mass_is_fm(fp, (F & F_XSPH) != 0);
+  const int diffuses = (F & F_DDIFF) && (mdd_is_mx ? fm : ddm)[i] != 0.0; /* diffusion.h */
+  /* c_j = c_i at every particle but with antuono (diffusion.c: then w->ddc0): the same sums
+   * without reading c_j */
   const int dd_uniform = fp->diffusion != SPH_DIFFUSION_ANTUONO;
+  const LT cxi = LOP(all)((F & F_DDIFF) ? (dd_uniform ? w->ddc0[0] : ddcx[i]) : 0.0);
+  const LT cyi = LOP(all)((F & F_DDIFF) ? (dd_uniform ? w->ddc0[1] : ddcy[i]) : 0.0);
+  SPH_IF3(const LT czi = LOP(all)((F & F_DDIFF) ? (dd_uniform ? w->ddc0[2] : ddcz[i]) : 0.0);)
   const LT cxx = LOP(add)(cxi, cxi), cyy = LOP(add)(cyi, cyi);
   SPH_IF3(const LT czz = LOP(add)(czi, czi);)
   for (size_t k = 0; k < cnt; k += LW) {
