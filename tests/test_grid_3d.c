@@ -361,6 +361,25 @@ static void test_list_runs_split(void) {
   /* rows 0, 1, 2 and 40000 reach from 0 or 1 to 69999: two runs each */
   CU_ASSERT_EQUAL(l.off[n], 4 * (2 * 6 + 2 * 4) + (6 + 2 * 4));
   CU_ASSERT_PTR_NULL(sph_nlist_check(&l, &p, 0.02));
+#ifdef _OPENMP
+  { /* built for one thread, read by two: the second writes rows into a buffer of its own */
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(1);
+    CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, 0.02, 0.0, 0.0, &err) == 0);
+    CU_ASSERT_EQUAL(l.dec_threads, 1);
+    int bad = 0;
+#pragma omp parallel num_threads(2) reduction(+ : bad)
+    for (int k = 0; k < 5; k++) {
+      size_t len;
+      const uint32_t *row = sph_nlist_row(&l, near[k], &len);
+      bad += len != 4;
+      for (size_t q = 0, m = 0; q < 5 && len == 4; q++)
+        if (q != (size_t)k) bad += row[m++] != near[q];
+    }
+    CU_ASSERT_EQUAL(bad, 0);
+    omp_set_num_threads(saved);
+  }
+#endif
   uint16_t o[4], swapped[4]; /* row 69999's offsets, 1 and 2 swapped: caught */
   uint8_t *run = l.rows + l.off[n - 1] + SPH_NLIST_RUN_HEAD;
   memcpy(o, run, sizeof o);

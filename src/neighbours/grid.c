@@ -21,6 +21,7 @@
 #include "core/arrays.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -284,6 +285,21 @@ int sph_grid_bin(sph_grid *g, const sph_particles *p, double cell, int periodic,
 /* ---- the neighbour list ------------------------------------------------------------- */
 
 void sph_nlist_init(sph_nlist *l) { memset(l, 0, sizeof *l); }
+
+uint32_t *sph_nlist_spare_row(size_t entries) {
+  static _Thread_local uint32_t *buf; /* one per thread, kept for the next call */
+  static _Thread_local size_t cap;
+  if (entries > cap) {
+    uint32_t *a = realloc(buf, entries * sizeof *a);
+    if (!a) { /* a few hundred bytes: the process has no memory left at all */
+      fprintf(stderr, "sph: out of memory for a neighbour row of %zu entries\n", entries);
+      abort();
+    }
+    buf = a;
+    cap = entries;
+  }
+  return buf;
+}
 
 void sph_nlist_free(sph_nlist *l) {
   free(l->block);

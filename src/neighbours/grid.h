@@ -21,8 +21,6 @@
 #include <emmintrin.h>
 #endif
 
-#include "core/check.h"
-
 #include "core/dim.h"
 #include "core/error.h"
 #include "core/parallel.h"
@@ -347,17 +345,24 @@ static inline uint32_t sph_nlist_decode(const sph_nlist *l, size_t i, uint32_t *
   return n;
 }
 
+/* A buffer of the calling thread for `entries` indices, for a team larger
+ * than the one the list was built for (grid.c: kept per thread, grown as
+ * needed; the program stops with a message if there is no memory for it). */
+uint32_t *sph_nlist_spare_row(size_t entries);
+
 /* Row i of l written out (sph_nlist_decode) into the calling thread's
  * buffer in l (in 2-D the row in place), its length in *cnt: valid until
- * the same thread's next call. */
+ * the same thread's next call. A thread beyond those the list has buffers
+ * for (a team made larger after the build) writes into a buffer of its
+ * own (sph_nlist_spare_row). */
 static inline const uint32_t *sph_nlist_row(const sph_nlist *l, size_t i, size_t *cnt) {
   if (!SPH_NLIST_RUNS) { /* the row in place */
     *cnt = l->count[i];
     return (const uint32_t *)(const void *)(l->rows + l->off[i]);
   }
   const int t = sph_thread();
-  SPH_INVARIANT(t < l->dec_threads, "neighbour list: thread %d has no row buffer", t);
-  uint32_t *out = l->dec + (size_t)t * l->dec_stride;
+  uint32_t *out =
+      t < l->dec_threads ? l->dec + (size_t)t * l->dec_stride : sph_nlist_spare_row(l->dec_stride);
   *cnt = sph_nlist_decode(l, i, out);
   return out;
 }
