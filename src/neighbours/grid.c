@@ -472,6 +472,11 @@ static inline uint32_t run_length(const uint32_t *row, uint32_t k, uint32_t c) {
   return m;
 }
 
+/* Whether c entries from lo to hi (the least and the largest) make one run. */
+static inline int one_run(uint32_t lo, uint32_t hi, uint32_t c) {
+  return c <= SPH_NLIST_RUN_MAX && hi - lo <= SPH_NLIST_RUN_MAX;
+}
+
 /* The bytes of the runs (grid.h; in 2-D four an entry) of the c entries of row, increasing
  * when `in_order`, else in any order: one run when they span at most SPH_NLIST_RUN_MAX (and are
  * as many at most), else row is sorted first (as fill_sorted would) and its runs counted. */
@@ -484,8 +489,7 @@ static size_t runs_size(uint32_t *row, uint32_t c, int in_order) {
       lo = row[k] < lo ? row[k] : lo;
       hi = row[k] > hi ? row[k] : hi;
     }
-  if (hi - lo <= SPH_NLIST_RUN_MAX && c <= SPH_NLIST_RUN_MAX)
-    return SPH_NLIST_RUN_HEAD + 2 * (size_t)c;
+  if (one_run(lo, hi, c)) return SPH_NLIST_RUN_HEAD + 2 * (size_t)c;
   sort_row(row, c);
   size_t b = 0;
   for (uint32_t k = 0; k < c;) {
@@ -503,7 +507,7 @@ static void runs_write(const uint32_t *row, uint32_t c, uint8_t *restrict out) {
     return;
   }
   /* (one run, the common row, without run_length's walk) */
-  const int one = c > 0 && c <= SPH_NLIST_RUN_MAX && row[c - 1] - row[0] <= SPH_NLIST_RUN_MAX;
+  const int one = c > 0 && one_run(row[0], row[c - 1], c);
   for (uint32_t k = 0; k < c;) {
     const uint32_t m = one ? c : run_length(row, k, c), base = row[k];
     const uint16_t m16 = (uint16_t)m;
@@ -550,11 +554,10 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   }
   /* Rows are stored compactly: in 3-D as runs (grid.h), about two bytes
    * an entry, in 2-D four (doc/memory.md). A first pass fills each row (in
-   * 2-D only counts it) into a scratch row per
-   * thread as long as the most candidates (fill_row writes every candidate
-   * before its test) and counts its entries and bytes, the prefix sums
-   * place the rows, and the second pass fills each row again and writes
-   * its runs in place. */
+   * 2-D only counts it) into a scratch row per thread as long as the most
+   * candidates (fill_row writes every candidate before its test) and
+   * counts its entries and bytes, the prefix sums place the rows, and the
+   * second pass fills each row again and writes its runs in place. */
   const double radius = support + skin, r2max = radius * radius;
   /* the axes with the periodic one first: fill_row takes the minimum image
    * along its first axis (in 2-D and without periodicity, the store's order) */
@@ -597,11 +600,8 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     free(scratch);
   }
   if (oom) return sph_error_set(err, "grid: out of memory for a scratch row");
-  size_t pairs = 0;
-  for (size_t i = 0; i < n; i++) {
+  for (size_t i = 0; i < n; i++)
     l->off[i + 1] += l->off[i]; /* exact: integers */
-    pairs += l->count[i];
-  }
   const size_t total = l->off[n] + SPH_NLIST_SLACK;
   if (total > l->cap_rows) {
     const size_t cap = total + total / 4 + 64;
@@ -644,7 +644,6 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     l->cost[i + 1] = l->cost[i] + SPH_NLIST_ROW_COST +
                      (p->kind[i] == SPH_KIND_FLUID ? l->count[i] : l->count[i] / 2);
   l->maxcount = mc;
-  l->pairs = pairs;
   l->n = n;
   l->radius = radius;
   l->skin = skin;

@@ -237,7 +237,6 @@ typedef struct sph_nlist {
   uint32_t *count;      /* neighbours of each particle */
   uint32_t maxcount;    /* the longest row */
   uint8_t *rows;        /* the rows' runs (above), SPH_NLIST_SLACK bytes past the last */
-  size_t pairs;         /* entries in all rows */
   double *ref[SPH_DIM]; /* positions at the build */
   int64_t *idref;       /* ids at the build (a reordered store is detected) */
   size_t cap_n, cap_rows;
@@ -246,7 +245,7 @@ typedef struct sph_nlist {
   int dec_threads;   /* threads it has room for */
   size_t *cost;    /* n + 1: prefix sums of the particles' costs (SPH_NLIST_ROW_COST), the split of
                       the loops over the store among threads (parallel.h) */
-  void *block;     /* the one allocation of start ... cost (arrays.h) */
+  void *block;     /* the one allocation of off ... cost (arrays.h) */
   long builds;     /* number of builds (statistics) */
   sph_steal steal; /* the fill loop's slices (parallel.h) */
 } sph_nlist;
