@@ -68,44 +68,66 @@ static double wetted_length(const sph_probe *q, const sph_particles *p, sph_kern
 #if SPH_DIM == 2
     const double rho = fabs(p->x[j] - q->x);
 #else
-    const double rho = hypot(p->x[j] - q->x, p->y[j] - q->y);
+    /* hypot only within the reach: a sum of squares 1e-9 above (2h)^2
+     * puts hypot's correctly rounded distance past 2h too */
+    const double ex = p->x[j] - q->x, ey = p->y[j] - q->y;
+    if (ex * ex + ey * ey >= 4.0 * h * h * (1.0 + 1e-9)) continue;
+    const double rho = hypot(ex, ey);
 #endif
     if (rho < 2.0 * h) sum += p->mass[j] / p->rho[j] * line_weight(kernel, rho, h);
   }
   return sum;
 }
 
-/* The Shepard-normalised pressure (carried along g) and velocity at the
- * point x: out[0] the pressure, out[1 ..] the velocity. 0 where dry. */
-static int shepard_at(const sph_particles *p, sph_kernel_kind kernel, const double x[SPH_DIM],
-                      double h, const double g[SPH_DIM], double out[1 + SPH_DIM]) {
+/* The Shepard-normalised pressure (carried along g) and velocity at each
+ * of the n points x[k] (n <= SPH_PROBE_FACE_POINTS), in one pass over the
+ * particles: out[k][0] the pressure, out[k][1 ..] the velocity; wet[k] 0
+ * where dry (out[k] then unset). Each point's sums run over the particles
+ * in storage order, as they would alone. */
+static void shepard_at(const sph_particles *p, sph_kernel_kind kernel, int n,
+                       const double x[][SPH_DIM], double h, const double g[SPH_DIM],
+                       double out[][1 + SPH_DIM], int *wet) {
   const double reach = 2.0 * h;
-  double den = 0.0, sp = 0.0, svx = 0.0, svy = 0.0;
-  SPH_IF3(double svz = 0.0;)
+  double lo[SPH_DIM], hi[SPH_DIM]; /* the box every point's reach lies in */
+  double s[SPH_PROBE_FACE_POINTS][2 + SPH_DIM] = {{0.0}};
+  for (int d = 0; d < SPH_DIM; d++) {
+    lo[d] = hi[d] = x[0][d];
+    for (int k = 1; k < n; k++)
+      lo[d] = fmin(lo[d], x[k][d]), hi[d] = fmax(hi[d], x[k][d]);
+    lo[d] -= 1.001 * reach, hi[d] += 1.001 * reach; /* never tighter than the test below */
+  }
   for (size_t j = 0; j < p->n; j++) {
     if (p->kind[j] != SPH_KIND_FLUID) continue;
-    const double dx = x[0] - p->x[j], dy = x[1] - p->y[j];
-    if (fabs(dx) >= reach || fabs(dy) >= reach) continue;
+    const double xj[SPH_DIM] = {SPH_XYZ(p->x[j], p->y[j], p->z[j])};
+    int in = 1;
+    for (int d = 0; d < SPH_DIM; d++)
+      in &= xj[d] > lo[d] && xj[d] < hi[d];
+    if (!in) continue;
+    for (int k = 0; k < n; k++) {
+      const double dx = x[k][0] - xj[0], dy = x[k][1] - xj[1];
+      if (fabs(dx) >= reach || fabs(dy) >= reach) continue;
 #if SPH_DIM == 2
-    const double r = sqrt(dx * dx + dy * dy), gd = g[0] * dx + g[1] * dy;
+      const double r = sqrt(dx * dx + dy * dy), gd = g[0] * dx + g[1] * dy;
 #else
-    const double dz = x[2] - p->z[j];
-    if (fabs(dz) >= reach) continue;
-    const double r = sqrt(dx * dx + dy * dy + dz * dz), gd = g[0] * dx + g[1] * dy + g[2] * dz;
+      const double dz = x[k][2] - xj[2];
+      if (fabs(dz) >= reach) continue;
+      const double r = sqrt(dx * dx + dy * dy + dz * dz), gd = g[0] * dx + g[1] * dy + g[2] * dz;
 #endif
-    const double w = sph_kernel_w(kernel, r, h) * (p->mass[j] / p->rho[j]);
-    den += w;
-    sp += w * (p->p[j] + p->rho[j] * gd);
-    svx += w * p->vx[j];
-    svy += w * p->vy[j];
-    SPH_IF3(svz += w * p->vz[j];)
+      const double w = sph_kernel_w(kernel, r, h) * (p->mass[j] / p->rho[j]);
+      double *sk = s[k];
+      sk[0] += w;
+      sk[1] += w * (p->p[j] + p->rho[j] * gd);
+      sk[2] += w * p->vx[j];
+      sk[3] += w * p->vy[j];
+      SPH_IF3(sk[4] += w * p->vz[j];)
+    }
   }
-  if (!(den >= SPH_PROBE_WET_SUM)) return 0;
-  out[0] = sp / den;
-  out[1] = svx / den;
-  out[2] = svy / den;
-  SPH_IF3(out[3] = svz / den;)
-  return 1;
+  for (int k = 0; k < n; k++) {
+    wet[k] = s[k][0] >= SPH_PROBE_WET_SUM;
+    if (!wet[k]) continue;
+    for (int m = 0; m < 1 + SPH_DIM; m++)
+      out[k][m] = s[k][1 + m] / s[k][0];
+  }
 }
 
 #if SPH_DIM == 3
@@ -144,15 +166,17 @@ static void face_point(const sph_probe *q, int k, int n, double x[SPH_DIM]) {
 
 void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind kernel, double h,
                     double dx, double floor_y, const double g[SPH_DIM], double *out) {
-  double v[1 + SPH_DIM], at[SPH_DIM];
   switch (q->kind) {
   case SPH_PROBE_PRESSURE: {
     const int n = q->diameter > 0.0 ? SPH_PROBE_FACE_POINTS : 1;
+    double at[SPH_PROBE_FACE_POINTS][SPH_DIM], v[SPH_PROBE_FACE_POINTS][1 + SPH_DIM];
+    int wet[SPH_PROBE_FACE_POINTS];
+    for (int k = 0; k < n; k++)
+      face_point(q, k, n, at[k]);
+    shepard_at(p, kernel, n, at, h, g, v, wet);
     double sum = 0.0;
-    for (int k = 0; k < n; k++) {
-      face_point(q, k, n, at);
-      if (shepard_at(p, kernel, at, h, g, v)) sum += v[0];
-    }
+    for (int k = 0; k < n; k++)
+      if (wet[k]) sum += v[k][0];
     out[0] = sum / n;
     break;
   }
@@ -178,12 +202,15 @@ void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind 
     break;
   }
   case SPH_PROBE_VELOCITY: {
-    const double c[SPH_DIM] = {SPH_XYZ(q->x, q->y, q->z)};
+    const double c[1][SPH_DIM] = {{SPH_XYZ(q->x, q->y, q->z)}};
+    double v[1][1 + SPH_DIM];
+    int wet;
     for (int d = 0; d < SPH_DIM; d++)
       out[d] = 0.0;
-    if (shepard_at(p, kernel, c, h, g, v))
+    shepard_at(p, kernel, 1, c, h, g, v, &wet);
+    if (wet)
       for (int d = 0; d < SPH_DIM; d++)
-        out[d] = v[1 + d];
+        out[d] = v[0][1 + d];
     break;
   }
   }

@@ -41,8 +41,10 @@
  * disc's area) along two directions across the normal; a level gauge is the
  * vertical line at (x, y), read from the particles within dx of it
  * horizontally; a velocity probe reads vx, vy, vz.
- * Each reads the particles alone, serially in storage order: the same bits
- * for any thread count and across a restart.
+ * Each reads the particles alone, serially in storage order (a sensor's
+ * face points in one pass, each point's sums in that order): the same bits
+ * for any thread count and across a restart. A run reads its probes one to
+ * a thread (solver/run.c).
  */
 #ifndef SPH_PROBES_H
 #define SPH_PROBES_H

@@ -27,6 +27,7 @@
 #include <string.h>
 
 #include "analysis/probes.h"
+#include "core/parallel.h"
 #include "io/csv.h"
 #include "io/snapshot.h"
 #include "solver/sim_internal.h"
@@ -115,7 +116,11 @@ static int write_probes(sph_sim *s, outputs *o, sph_error *err) {
   /* this row's readings: raw (a velocity's vx), then a velocity's vy (, vz) */
   double *raw = o->lp + c->n_probes, *vy = raw + c->n_probes;
   SPH_IF3(double *vz = vy + c->n_probes;)
-  for (size_t k = 0; k < c->n_probes; k++) {
+  /* each probe reads serially (probes.h): one probe to a thread, the same
+   * bits for any team */
+  const long np = (long)c->n_probes;
+#pragma omp parallel for schedule(dynamic, 1) if (np > 1 && (long)p->n > SPH_OMP_MIN)
+  for (long k = 0; k < np; k++) {
     double v[SPH_DIM] = {0.0};
     sph_probe_read(&c->probes[k], p, c->kernel, c->h, c->dx, sph_sim_floor(s), c->gravity, v);
     raw[k] = v[0];
