@@ -50,6 +50,7 @@
 #include <string.h>
 
 #include "case/case.h"
+#include "io/snapshot.h"
 #include "physics/eos.h"
 #include "snapcmp.h"
 #include "solver/sim.h"
@@ -205,6 +206,69 @@ static void test_dt_too_large(void) {
     char path[4300];
     snprintf(path, sizeof path, "%s/last_good.h5", dir);
     CU_ASSERT(snapcmp_complete(path, NULL, NULL));
+  }
+}
+
+/* The last good state a blow-up keeps is the state the failed step started
+ * from, bit for bit, with its time and step: for the predictor-corrector
+ * (its saved X0) and the leap-frog (which keeps no X0: the pass's packed
+ * copy of that state, solver/sim.c). The state before every step is copied
+ * here by id and compared with sph_sim_write_saved_snapshot's file. */
+static void test_last_good_state(void) {
+  const char *integrators[] = {"predictor_corrector", "leapfrog"};
+  for (int k = 0; k < 2; k++) {
+    char integ[128];
+    snprintf(integ, sizeof integ, "numerics.integrator=%s", integrators[k]);
+    const char *sets[2] = {integ, "numerics.time_step={rule: fixed, dt: 0.001}"};
+    sph_case c;
+    sph_sim *s;
+    if (sph_test_open_sim("tests/data/stability_impact.yaml", sets, 2, &c, &s)) {
+      CU_FAIL("stability_impact did not open");
+      continue;
+    }
+    const sph_particles *p = sph_sim_particles(s);
+    double *keep = NULL, t_keep = 0.0;
+    long step_keep = -1;
+    int st = 0;
+    sph_error err;
+    for (int i = 0; i < 600 && st == 0; i++) {
+      double *a = realloc(keep, 5 * p->n * sizeof *a);
+      CU_ASSERT_FATAL(a != NULL);
+      keep = a;
+      for (size_t j = 0; j < p->n; j++) {
+        double *q = keep + 5 * (size_t)p->id[j];
+        q[0] = p->x[j], q[1] = p->y[j], q[2] = p->vx[j], q[3] = p->vy[j], q[4] = p->rho[j];
+      }
+      t_keep = sph_sim_time(s);
+      step_keep = sph_sim_steps(s);
+      st = sph_sim_step(s, c.t_end, &err);
+    }
+    CU_ASSERT_EQUAL(st, SPH_BLOWUP);
+    char path[4300];
+    snprintf(path, sizeof path, "%s/last_good_%s.h5", tmp, integrators[k]);
+    CU_ASSERT_FATAL(sph_sim_write_saved_snapshot(s, path, &err) == 0);
+    sph_snapshot *snap;
+    sph_particles q;
+    CU_ASSERT_FATAL(sph_snapshot_open(path, &snap, &err) == 0);
+    CU_ASSERT_EQUAL(sph_snapshot_time(snap), t_keep);
+    CU_ASSERT_EQUAL(sph_snapshot_step(snap), step_keep);
+    CU_ASSERT_FATAL(sph_snapshot_read_particles(snap, &q, &err) == 0);
+    CU_ASSERT_EQUAL_FATAL(q.n, p->n);
+    size_t differ = 0;
+    for (size_t j = 0; j < q.n; j++) {
+      const double *r = keep + 5 * (size_t)q.id[j];
+      differ += q.x[j] != r[0] || q.y[j] != r[1] || q.vx[j] != r[2] || q.vy[j] != r[3] ||
+                q.rho[j] != r[4];
+    }
+    CU_ASSERT_EQUAL(differ, 0);
+    printf("\n  %s: blow-up at step %ld; last good state t = %.6g s, step %ld, %zu of %zu "
+           "particles differ",
+           integrators[k], sph_sim_steps(s), t_keep, step_keep, differ, q.n);
+    sph_particles_free(&q);
+    sph_snapshot_close(snap);
+    free(keep);
+    sph_sim_free(s);
+    sph_case_free(&c);
   }
 }
 
@@ -394,6 +458,7 @@ int main(void) {
   CU_TestInfo tests[] = {
       {"hydrostatic tank, long run: still, in the tank, hydrostatic", test_hydrostatic_long},
       {"time step too large: blow-up stop, no NaN on disk", test_dt_too_large},
+      {"the last good state is the failed step's start, bit for bit", test_last_good_state},
       {"a start that is not finite: stopped before anything is written",
        test_initial_state_checked},
       {"perturbed start: jitter validated, seeded, bounded, stable", test_jitter},

@@ -29,9 +29,10 @@
 #define HALF_HEAT (SPH_ARRAYS_HALF_STEP | SPH_ARRAYS_HEAT) /* uh: both groups */
 #define REST SPH_ARRAYS_REST
 #define OFFSET SPH_ARRAYS_OFFSET
+#define SAVED SPH_ARRAYS_SAVED
 #define SPH_PARTICLE_DOUBLES(X) \
   X(x, 0) X(y, 0) X(vx, 0) X(vy, 0) X(rho, 0) X(p, 0) X(mass, 0) X(h, 0) X(u, HEAT) \
-  X(x0, 0) X(y0, 0) X(vx0, 0) X(vy0, 0) X(rho0, 0) X(u0, HEAT) \
+  X(x0, SAVED) X(y0, SAVED) X(vx0, SAVED) X(vy0, SAVED) X(rho0, SAVED) X(u0, HEAT) \
   X(ax, 0) X(ay, 0) X(drho, 0) X(du, HEAT) X(xsx, 0) X(xsy, 0) \
   X(vxh, HALF) X(vyh, HALF) X(rhoh, HALF) X(uh, HALF_HEAT) X(xr, REST) X(yr, REST) \
   X(mx, OFFSET) X(my, OFFSET) SPH_PARTICLE_DOUBLES_Z(X)
@@ -39,7 +40,7 @@
 #define SPH_PARTICLE_DOUBLES_Z(X)
 #else
 #define SPH_PARTICLE_DOUBLES_Z(X) \
-  X(z, 0) X(vz, 0) X(z0, 0) X(vz0, 0) X(az, 0) X(xsz, 0) X(vzh, HALF) X(zr, REST) X(mz, OFFSET)
+  X(z, 0) X(vz, 0) X(z0, SAVED) X(vz0, SAVED) X(az, 0) X(xsz, 0) X(vzh, HALF) X(zr, REST) X(mz, OFFSET)
 #endif
 /* clang-format on */
 #define SPH_PARTICLE_OTHERS(X) X(kind, 0) X(body, 0) X(id, 0) X(flags, 0)

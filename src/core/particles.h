@@ -52,7 +52,10 @@ enum {
                                only); the velocity mirror particles carry */
   SPH_ARRAYS_REST = 4,      /* xr, yr: the rest positions of moving walls' particles */
   SPH_ARRAYS_OFFSET = 8,    /* mx, my: offsets of mdbc, no-slip and free-slip wall particles */
-  SPH_ARRAYS_ALL = 15
+  SPH_ARRAYS_SAVED = 16,    /* x0, y0, vx0, vy0, rho0: the state at the start of the step (the
+                               predictor-corrector's; the leap-frog keeps it in the pass's
+                               packed copy instead, solver/sim.c) */
+  SPH_ARRAYS_ALL = 31
 };
 
 /* The store's axes: a per-axis field is SPH_DIM arrays (core/dim.h), reachable
@@ -94,7 +97,8 @@ typedef struct sph_particles {
   int32_t *kind;             /* SPH_KIND_* */
   int64_t *id;               /* 0..n-1, fixed at creation */
   uint8_t *flags;            /* per-particle flags, SPH_FLAG_* (free surface, wall models) */
-  /* state at the start of the step (predictor-corrector), and rates */
+  /* state at the start of the step (predictor-corrector; group SAVED, u0
+   * with HEAT), and rates */
   SPH_AXES(pos0, x0, y0, z0);
   SPH_AXES(vel0, vx0, vy0, vz0);
   double *rho0, *u0;

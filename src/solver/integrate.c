@@ -85,17 +85,22 @@ void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const s
   const long n = (long)p->n;
   const double kick = first ? 0.5 * dt : dt, hdt = 0.5 * dt;
   const int heat = (p->live & SPH_ARRAYS_HEAT) != 0; /* without the ledger u stays 0 */
+  /* the saved state (the last good state after a blow-up), unless the
+   * pass's packed copy holds it (solver/sim.c) */
+  const int save = (p->live & SPH_ARRAYS_SAVED) != 0;
 #pragma omp parallel if (n > SPH_OMP_MIN)
   {
     size_t lo, hi;
     sph_slice(cost, p->n, &lo, &hi);
     for (size_t i = lo; i < hi; i++) {
-      p->x0[i] = p->x[i]; /* the saved state (last good state after a blow-up) */
-      p->y0[i] = p->y[i];
-      p->vx0[i] = p->vx[i];
-      p->vy0[i] = p->vy[i];
-      SPH_IF3(p->z0[i] = p->z[i]; p->vz0[i] = p->vz[i];)
-      p->rho0[i] = p->rho[i];
+      if (save) {
+        p->x0[i] = p->x[i];
+        p->y0[i] = p->y[i];
+        p->vx0[i] = p->vx[i];
+        p->vy0[i] = p->vy[i];
+        SPH_IF3(p->z0[i] = p->z[i]; p->vz0[i] = p->vz[i];)
+        p->rho0[i] = p->rho[i];
+      }
       if (p->flags[i] & SPH_FLAG_MDBC) {
         /* an mdbc wall's density is the fluid's, extrapolated at every pass
          * (wall_velocity.h), not a state: integrated from t = 0 its half-step

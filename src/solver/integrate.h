@@ -10,7 +10,8 @@
  * and X = (rho, u) for wall particles (u: thermal energy per unit mass,
  * integrated like the density, paper A §9); the pressure follows from the EOS
  * in each stage's loop. The state before the step is saved in X0 (x0, y0,
- * vx0, vy0, rho0, u0) by the predictor (and by the leap-frog).
+ * vx0, vy0, rho0, u0) by the predictor (and by the leap-frog when the
+ * store keeps the SAVED group: core/particles.h).
  */
 #ifndef SPH_INTEGRATE_H
 #define SPH_INTEGRATE_H

@@ -382,7 +382,13 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
    * what theirs need (doc/memory.md) */
   const unsigned heat = c->energy ? SPH_ARRAYS_HEAT : 0u;
   const unsigned half = c->integrator == SPH_INTEGRATOR_LEAPFROG ? SPH_ARRAYS_HALF_STEP : 0u;
-  sph_particles_limit(&s->p, heat | half);
+  /* the state at the start of a step: the predictor-corrector's X0; the
+   * leap-frog's last good state is the pass's packed copy (sim.c), unless
+   * the store is reordered between that pass and the blow-up check (the
+   * density filter's grid; mirror particles, below) */
+  const unsigned saved =
+      !half || c->density_filter != SPH_FILTER_NONE ? (unsigned)SPH_ARRAYS_SAVED : 0u;
+  sph_particles_limit(&s->p, heat | half | saved);
   if (add_fluid(s, err)) goto fail;
   if (sph_walls_create(&s->walls, &s->p, &c->tank, c->walls, c->n_walls, c->obstacles,
                        c->n_obstacles, c->dx, c->rho0, c->h,
@@ -398,6 +404,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.moving_walls = s->walls.moving;
   s->fp.wall_diffusion = sph_diffusion_walls(&s->p, &s->fp);
   s->fp.mirror = s->walls.n_mirror > 0;
+  if (s->fp.mirror) sph_particles_use(&s->p, SPH_ARRAYS_SAVED);
   s->fp.repulsive = s->walls.repulsive;
   s->ledger.repulsion = c->energy && s->walls.repulsive;
   if (c->periodic) dedupe_periodic(s);

@@ -18,6 +18,7 @@
  */
 #include "config.h"
 
+#include "core/check.h"
 #include "core/parallel.h"
 
 #include "solver/sim_internal.h"
@@ -192,6 +193,8 @@ int sph_sim_pass(sph_sim *s, sph_error *err) {
   if (rc == 0 && s->detect) rc = free_surface(s, err);
   if (rc == 0 && s->walls.mdbc) rc = mdbc_walls(s, err);
   if (rc == 0) rc = sph_forces_evaluate(&s->p, &s->nl, &s->fp, &s->work, err);
+  s->t_pass = s->t; /* the state w->hot now holds */
+  s->step_pass = s->steps;
   /* everything that reads the pass's per-particle work arrays, before
    * removing the mirror particles reorders the store under them */
   if (rc == 0) {
@@ -358,6 +361,22 @@ static int shift_particles(sph_sim *s, double dt, sph_error *err) {
   return 0;
 }
 
+/* Whether the pass's packed copy (w->hot) holds the state of the last
+ * pass, particle for particle in storage order: what the leap-frog keeps
+ * instead of X0 (setup.c). Checked at every leap-frog step in a debug
+ * build. */
+static int hot_is_state(const sph_sim *s) {
+  const sph_particles *p = &s->p;
+  if (s->work.cap < p->n) return 0;
+  for (size_t i = 0; i < p->n; i++) {
+    const sph_force_hot *h = &s->work.hot[i];
+    if (h->x != p->x[i] || h->y != p->y[i] || h->vx != p->vx[i] || h->vy != p->vy[i] ||
+        h->rho != p->rho[i] SPH_IF3(|| h->z != p->z[i] || h->vz != p->vz[i]))
+      return 0;
+  }
+  return 1;
+}
+
 int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   const sph_case *c = s->c;
   const int xsph = c->xsph != 0.0;
@@ -380,6 +399,11 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   s->t_saved = s->t; /* the stage (or the leap-frog) saves X^n in X0 */
   const double t_new = land ? t_target : s->t + dt;
   if (c->integrator == SPH_INTEGRATOR_LEAPFROG) {
+    if (SPH_DEBUG && !(s->p.live & SPH_ARRAYS_SAVED))
+      SPH_INVARIANT(hot_is_state(s),
+                    "leap-frog: the pass's packed copy is not the state at t = %.9g "
+                    "s (the last good state after a blow-up is read from it)",
+                    s->t);
     /* the rates of t^n drive the whole step: so do the ledger's powers */
     sph_ledger_advance(&s->ledger, dt);
     sph_leapfrog_step(&s->p, dt, s->first_step, xsph, &s->fp.eos, slices(s));
@@ -467,16 +491,46 @@ int sph_sim_write_snapshot(const sph_sim *s, const char *path, sph_error *err) {
 int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err) {
   /* a view of the store whose state arrays are the saved ones */
   sph_particles v = s->p;
-  for (int d = 0; d < SPH_STORE_DIM; d++) {
-    v.pos[d] = s->p.pos0[d];
-    v.vel[d] = s->p.vel0[d];
+  const size_t n = v.n;
+  double *tmp = NULL;
+  double t = s->t_saved;
+  long step = s->steps - 1;
+  if (!(s->p.live & SPH_ARRAYS_SAVED) && s->step_pass == s->steps) {
+    /* the leap-frog stopped before its step (a step that is not finite):
+     * the store is still the state of the last pass */
+    sph_snapshot_meta m;
+    sph_sim_fill_meta(s, &m, s->t, s->steps);
+    return sph_snapshot_write(path, &m, &s->p, err);
   }
-  v.rho = s->p.rho0;
+  if (s->p.live & SPH_ARRAYS_SAVED) {
+    for (int d = 0; d < SPH_STORE_DIM; d++) {
+      v.pos[d] = s->p.pos0[d];
+      v.vel[d] = s->p.vel0[d];
+    }
+    v.rho = s->p.rho0;
+  } else { /* the leap-frog: the state of the last pass, from its packed copy */
+    if (!(tmp = malloc((2 * SPH_DIM + 1) * (n ? n : 1) * sizeof *tmp)))
+      return sph_error_set(err, "out of memory for the last good state");
+    for (int d = 0; d < SPH_STORE_DIM; d++) {
+      v.pos[d] = tmp + (size_t)d * n;
+      v.vel[d] = tmp + (size_t)(SPH_DIM + d) * n;
+    }
+    v.rho = tmp + (size_t)(2 * SPH_DIM) * n;
+    for (size_t i = 0; i < n; i++) {
+      const sph_force_hot *h = &s->work.hot[i];
+      v.x[i] = h->x, v.y[i] = h->y, v.vx[i] = h->vx, v.vy[i] = h->vy, v.rho[i] = h->rho;
+      SPH_IF3(v.z[i] = h->z, v.vz[i] = h->vz;)
+    }
+    t = s->t_pass;
+    step = s->step_pass;
+  }
   v.u = s->p.u0;
   v.p = s->work.prho2; /* scratch: pressure of the saved state */
-  for (size_t i = 0; i < v.n; i++)
+  for (size_t i = 0; i < n; i++)
     v.p[i] = sph_eos_pressure(&s->fp.eos, v.rho[i]);
   sph_snapshot_meta m;
-  sph_sim_fill_meta(s, &m, s->t_saved, s->steps - 1);
-  return sph_snapshot_write(path, &m, &v, err);
+  sph_sim_fill_meta(s, &m, t, step);
+  const int rc = sph_snapshot_write(path, &m, &v, err);
+  free(tmp);
+  return rc;
 }
