@@ -477,6 +477,7 @@ static void run_pass(const sph_particles *p0, const sph_force_params *fp0, sph_f
                   0);
   sph_force_work w;
   memset(&w, 0, sizeof w);
+  w.keep_sigma = 1; /* sigma per particle, compared below */
   int rc_pass = choose ? sph_forces_fastest_loop(&p, &l, &fp, &w, chosen, ratio, &err) : 0;
   /* nothing measured: no evaluation either */
   if (rc_pass == 0 && (!choose || *chosen == fp.loop))

@@ -326,8 +326,9 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
       size_t lo, hi; /* slices of equal cost, with stealing (parallel.h) */                        \
       while (sph_steal_next(&w->steal, SPH_STEAL_GRAIN, &lo, &hi))                                 \
         for (size_t i = lo; i < hi; i++) {                                                         \
-          PARTICLE_##FL(p, l, fp, w, i, (Fc));                                                     \
-          const double c = w->hot[i].cs + w->sigma[i];                                             \
+          const double sg = PARTICLE_##FL(p, l, fp, w, i, (Fc));                                   \
+          if (w->keep_sigma) w->sigma[i] = sg; /* the tests' */                                    \
+          const double c = w->hot[i].cs + sg;                                                      \
           if (c > mx) mx = c;                                                                      \
         }                                                                                          \
     }                                                                                              \
@@ -662,7 +663,7 @@ int sph_forces_fastest_loop(sph_particles *p, const sph_nlist *l, const sph_forc
  * a term or a loop, not a blow-up: the state it read was checked). */
 static void check_rates(const sph_particles *p, const sph_force_work *w, unsigned F) {
   for (size_t i = 0; i < p->n; i++) {
-    int ok = isfinite(p->drho[i]) && isfinite(w->sigma[i]);
+    int ok = isfinite(p->drho[i]) && (!w->keep_sigma || isfinite(w->sigma[i]));
     for (int d = 0; d < SPH_DIM; d++) {
       ok &= isfinite(p->acc[d][i]);
       if ((F & F_XSPH) && p->kind[i] == SPH_KIND_FLUID) ok &= isfinite(p->xsph[d][i]);

@@ -182,12 +182,13 @@ typedef struct sph_force_hot {
 /* Per-particle quantities of a pass (storage order). */
 typedef struct sph_force_work {
   size_t cap;
-  void *block;                 /* the one allocation of the arrays below (arrays.h) */
-  sph_force_hot *hot;          /* packed copy of the state read from neighbours */
-  double *prho2;               /* scratch of n doubles (p / rho^2 lives in hot) */
-  double *sigma;               /* max_j |h v_ij.r_ij / r_ij^2| */
-  SPH_SYM_ARRAYS(s, s);        /* tau / rho^2 (stress-tensor viscosity only): sxx, sxy, syy */
-  double *wpow;                /* ledger: sum over wall neighbours j of a_ij . v_j (fluid i) */
+  void *block;          /* the one allocation of the arrays below (arrays.h) */
+  sph_force_hot *hot;   /* packed copy of the state read from neighbours */
+  double *prho2;        /* scratch of n doubles (p / rho^2 lives in hot) */
+  double *sigma;        /* max_j |h v_ij.r_ij / r_ij^2|, filled only with keep_sigma (the loops
+                           reduce cs + sigma as they go: cs_sigma_max) */
+  SPH_SYM_ARRAYS(s, s); /* tau / rho^2 (stress-tensor viscosity only): sxx, sxy, syy */
+  double *wpow;         /* ledger: sum over wall neighbours j of a_ij . v_j (fluid i) */
   SPH_AXES(wf, wfx, wfy, wfz); /* ledger: sum over wall and mirror neighbours j of a_ij (fluid i) */
   SPH_SYM_ARRAYS(l, l);        /* kernel-gradient correction M^-1 of the strain-rate pass */
   SPH_AXES(gv, gvx, gvy,
@@ -208,6 +209,7 @@ typedef struct sph_force_work {
   double *lj;      /* repulsive walls' potential energy per unit mass (with the ledger) */
   sph_wall_velocity_work wv;
   double cs_sigma_max; /* max over the particles of cs + sigma (the step rule) */
+  int keep_sigma;      /* set by a caller that reads sigma per particle (the tests) */
   unsigned terms;      /* the pass's term set (interact.h: the bits a loop tests at run time) */
   uint32_t *rows;      /* per thread: a neighbour row cut to the support */
   size_t rows_stride, rows_cap;
@@ -228,8 +230,8 @@ void sph_forces_pressure(sph_particles *p, const sph_eos *eos);
 /* One interaction pass over the neighbour list l (complete for the
  * support 2 h, 2 max h with var_h, and for the Lennard-Jones range r0 on
  * p's current positions: see sph_nlist_fresh): fills p->drho, p->ax, p->ay
- * (and p->xsx, p->xsy when XSPH is on), w->sigma, w->hot (its cs the
- * sound speed) and w->cs_sigma_max. Needs p->p current. */
+ * (and p->xsx, p->xsy when XSPH is on), w->hot (its cs the sound speed),
+ * w->cs_sigma_max and, with w->keep_sigma, w->sigma. Needs p->p current. */
 int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                         sph_force_work *w, sph_error *err);
 

@@ -63,9 +63,12 @@
 #define LVEC SPH_PT_XGLUE(vec, FL) /* vectors and symmetric tensors of the pair terms */
 #define LSYM SPH_PT_XGLUE(sym, FL)
 
-LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_nlist *restrict l,
-                                          const sph_force_params *restrict fp,
-                                          sph_force_work *restrict w, size_t i, const unsigned Fc) {
+/* Returns sigma_i, the step rule's max_j |h v_ij.r_ij / r_ij^2| (0 for a
+ * row that sums nothing). */
+LOOP_ATTR double SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_nlist *restrict l,
+                                            const sph_force_params *restrict fp,
+                                            sph_force_work *restrict w, size_t i,
+                                            const unsigned Fc) {
   const unsigned F = SPH_TERMS(Fc, F_LITERAL(Fc), w->terms);
   const sph_force_hot *restrict hot = w->hot;
   const double *restrict sxx = w->sxx, *restrict sxy = w->sxy, *restrict syy = w->syy;
@@ -74,11 +77,10 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
   if (kind[i] == SPH_KIND_MIRROR || (p->flags[i] & SPH_FLAG_REPULSIVE)) {
     p->drho[i] = p->ax[i] = p->ay[i] = 0.0;
     SPH_IF3(p->az[i] = 0.0;)
-    w->sigma[i] = 0.0;
     if (F & F_LEDGER) p->du[i] = w->wpow[i] = w->wfx[i] = w->wfy[i] = 0.0;
     SPH_IF3(if (F & F_LEDGER) w->wfz[i] = 0.0;)
     if ((F & F_DDIFF) && (F & F_LEDGER)) w->dd[i] = 0.0;
-    return;
+    return 0.0;
   }
   const uint32_t *restrict nb;
   size_t cnt;
@@ -449,7 +451,7 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     w->wfy[i] = LSUM(wfy);
     SPH_IF3(w->wfz[i] = LSUM(wfz);)
   }
-  w->sigma[i] = LMAXALL(sig);
+  const double sigma_i = LMAXALL(sig);
   if (fluid) {
     p->ax[i] = LSUM(ax) + fp->gx;
     p->ay[i] = LSUM(ay) + fp->gy;
@@ -463,6 +465,7 @@ LOOP_ATTR void SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_n
     p->ax[i] = p->ay[i] = 0.0;
     SPH_IF3(p->az[i] = 0.0;)
   }
+  return sigma_i;
 }
 
 #undef LMAXALL

@@ -216,7 +216,7 @@ static int apply_filter(sph_sim *s, sph_error *err) {
   sph_filter_params fp;
   sph_filter_params_default(&fp, s->fp.var_h ? 0.0 : c->h);
   fp.kernel = c->kernel;
-  if (sph_filter_apply(c->density_filter, &s->p, &s->grid, &fp, s->work.sigma, NULL, err))
+  if (sph_filter_apply(c->density_filter, &s->p, &s->grid, &fp, s->work.prho2, NULL, err))
     return -1;
   if (c->integrator == SPH_INTEGRATOR_LEAPFROG)
     for (size_t i = 0; i < s->p.n; i++)
