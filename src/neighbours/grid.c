@@ -305,7 +305,6 @@ void sph_nlist_free(sph_nlist *l) {
   free(l->block);
   free(l->rows);
   free(l->dec);
-  sph_steal_free(&l->steal);
   memset(l, 0, sizeof *l);
 }
 
@@ -553,11 +552,14 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     l->cap_n = cap;
   }
   /* Rows are stored compactly: in 3-D as runs (grid.h), about two bytes
-   * an entry, in 2-D four (doc/memory.md). A first pass fills each row (in
-   * 2-D only counts it) into a scratch row per thread as long as the most
-   * candidates (fill_row writes every candidate before its test) and
-   * counts its entries and bytes, the prefix sums place the rows, and the
-   * second pass fills each row again and writes its runs in place. */
+   * an entry, in 2-D four (doc/memory.md). One pass fills the rows in
+   * chunks of SPH_NLIST_CHUNK: a thread fills a chunk's rows into a
+   * scratch row as long as the most candidates (fill_row writes every
+   * candidate before its test) and writes their runs into a buffer of its
+   * own, then appends the buffer to the list in chunk order (an ordered
+   * region: the list grows only there). Until 2026-11-28 a first pass
+   * counted the rows' bytes and a second filled them again in place:
+   * every distance computed twice. */
   const double radius = support + skin, r2max = radius * radius;
   /* the axes with the periodic one first: fill_row takes the minimum image
    * along its first axis (in 2-D and without periodicity, the store's order) */
@@ -580,36 +582,96 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     const size_t c = candidates(g, (size_t)li);
     if (c > cmax) cmax = c;
   }
+  if (l->cap_rows == 0) {
+    /* the first build sizes the rows first: grown chunk by chunk, the
+     * block would be copied as it grows and (below glibc's mmap threshold,
+     * 32 MB) leave the old copies resident, 10 MB more peak RSS on SPHERIC
+     * at dx = 0.02 m. Later builds find the room of the earlier ones (a
+     * quarter to spare) */
+    size_t total = 0;
+    int no = 0;
+#pragma omp parallel if (ln > SPH_OMP_MIN) reduction(+ : total) reduction(| : no)
+    {
+      uint32_t *restrict scratch = malloc((cmax + 1) * sizeof *scratch);
+      if (!scratch) no = 1;
+#pragma omp for schedule(static)
+      for (long li = 0; li < ln; li++) {
+        if (!scratch) continue;
+        /* (in 2-D only counted: four bytes an entry whatever their order) */
+        const uint32_t c = fill_rows(g, x, (size_t)li, r2max, period,
+                                     SPH_NLIST_RUNS ? scratch : NULL, sorted, wide);
+        total += runs_size(scratch, c, sorted && period <= 0.0);
+      }
+      free(scratch);
+    }
+    if (no) return sph_error_set(err, "grid: out of memory for a scratch row");
+    total += SPH_NLIST_SLACK;
+    const size_t cap = total + total / 4 + 64;
+    if (!(l->rows = malloc(cap)))
+      return sph_error_set(err, "grid: out of memory for %zu bytes of neighbours", total);
+    l->cap_rows = cap;
+  }
   uint32_t mc = 0;
-  int oom = 0;
+  int oom = 0, full = 0; /* a thread's buffers; the list (in the ordered region) */
+  size_t used = 0;       /* bytes appended (in the ordered region) */
+  const long chunks = (ln + SPH_NLIST_CHUNK - 1) / SPH_NLIST_CHUNK;
   l->off[0] = 0;
 #pragma omp parallel if (ln > SPH_OMP_MIN) reduction(max : mc) reduction(| : oom)
   {
     uint32_t *restrict scratch = malloc((cmax + 1) * sizeof *scratch);
+    uint8_t *buf = NULL;
+    size_t cap = 0;
     if (!scratch) oom = 1;
-#pragma omp for schedule(static)
-    for (long li = 0; li < ln; li++) {
-      if (!scratch) continue;
-      /* (in 2-D only counted: four bytes an entry whatever their order) */
-      const uint32_t c =
-          fill_rows(g, x, (size_t)li, r2max, period, SPH_NLIST_RUNS ? scratch : NULL, sorted, wide);
-      l->count[li] = c;
-      l->off[li + 1] = runs_size(scratch, c, sorted && period <= 0.0);
-      if (c > mc) mc = c;
+#pragma omp for ordered schedule(dynamic, 1)
+    for (long ch = 0; ch < chunks; ch++) {
+      const size_t a = (size_t)ch * SPH_NLIST_CHUNK,
+                   b = a + SPH_NLIST_CHUNK < n ? a + SPH_NLIST_CHUNK : n;
+      size_t bytes = 0;
+      for (size_t i = a; i < b && !oom; i++) {
+        const uint32_t c = fill_sorted(g, x, i, r2max, period, scratch, sorted, wide);
+        const size_t sz = runs_size(scratch, c, 1);
+        if (bytes + sz > cap) {
+          const size_t nc = 2 * (bytes + sz) + 4096;
+          uint8_t *nb = realloc(buf, nc);
+          if (!nb) {
+            oom = 1;
+            break;
+          }
+          buf = nb, cap = nc;
+        }
+        runs_write(scratch, c, buf + bytes);
+        bytes += sz;
+        l->count[i] = c;
+        l->off[i + 1] = bytes; /* from the chunk's start: moved to the list's below */
+        if (c > mc) mc = c;
+        for (int d = 0; d < SPH_DIM; d++)
+          l->ref[d][i] = p->pos[d][i];
+        l->idref[i] = p->id[i];
+      }
+#pragma omp ordered
+      if (!oom && !full) {
+        const size_t need = used + bytes + SPH_NLIST_SLACK;
+        if (need > l->cap_rows) {
+          const size_t nc = need + need / 4 + 64;
+          uint8_t *nr = realloc(l->rows, nc);
+          if (nr)
+            l->rows = nr, l->cap_rows = nc;
+          else
+            full = 1;
+        }
+        if (!full) {
+          memcpy(l->rows + used, buf, bytes);
+          for (size_t i = a; i < b; i++)
+            l->off[i + 1] += used;
+          used += bytes;
+        }
+      }
     }
     free(scratch);
+    free(buf);
   }
   if (oom) return sph_error_set(err, "grid: out of memory for a scratch row");
-  for (size_t i = 0; i < n; i++)
-    l->off[i + 1] += l->off[i]; /* exact: integers */
-  const size_t total = l->off[n] + SPH_NLIST_SLACK;
-  if (total > l->cap_rows) {
-    const size_t cap = total + total / 4 + 64;
-    void *a = realloc(l->rows, cap);
-    if (!a) return sph_error_set(err, "grid: out of memory for %zu bytes of neighbours", total);
-    l->rows = a;
-    l->cap_rows = cap;
-  }
+  if (full) return sph_error_set(err, "grid: out of memory for the neighbours' rows");
   memset(l->rows + l->off[n], 0, SPH_NLIST_SLACK); /* read, never used, by sph_nlist_decode */
   const int threads = SPH_NLIST_RUNS ? sph_max_threads() : 0; /* (2-D rows are read in place) */
   const size_t stride = (size_t)mc + SPH_NLIST_SLACK;
@@ -620,25 +682,6 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   }
   l->dec_stride = stride;
   l->dec_threads = threads;
-  if (sph_steal_reset(&l->steal, l->off, n, sph_team_size(n)))
-    return sph_error_set(err, "grid: out of memory for the thread slices");
-#pragma omp parallel if (ln > SPH_OMP_MIN) reduction(| : oom)
-  {
-    uint32_t *restrict scratch = malloc((cmax + 1) * sizeof *scratch);
-    size_t lo, hi; /* slices of equal row sizes, with stealing (parallel.h) */
-    if (!scratch) oom = 1;
-    while (scratch && sph_steal_next(&l->steal, SPH_NLIST_STEAL_GRAIN, &lo, &hi))
-      for (size_t i = lo; i < hi; i++) {
-        const uint32_t c = fill_sorted(g, x, i, r2max, period, scratch, sorted, wide);
-        runs_write(scratch, c, l->rows + l->off[i]);
-        for (int d = 0; d < SPH_DIM; d++)
-          l->ref[d][i] = p->pos[d][i];
-        l->idref[i] = p->id[i];
-      }
-    free(scratch);
-  }
-  if (oom) return sph_error_set(err, "grid: out of memory for a scratch row");
-  sph_steal_learn(&l->steal);
   l->cost[0] = 0; /* exact: integers */
   for (size_t i = 0; i < n; i++)
     l->cost[i + 1] = l->cost[i] + SPH_NLIST_ROW_COST +

@@ -223,8 +223,9 @@ static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SP
  * tank floor finished its interaction loops 0.85 s earlier in all (of
  * 17.5 s), halved 0.4-0.56 s. */
 #define SPH_NLIST_ROW_COST 8
-/* Rows per stolen chunk of the list's fill loop (parallel.h). */
-#define SPH_NLIST_STEAL_GRAIN 32
+/* Rows per chunk of the list's fill loop: a thread fills a chunk's rows
+ * into a buffer of its own and appends it to the list in chunk order. */
+#define SPH_NLIST_CHUNK 256
 
 typedef struct sph_nlist {
   int valid;            /* built, and the store not reordered since */
@@ -243,11 +244,10 @@ typedef struct sph_nlist {
   uint32_t *dec;     /* per thread a row written out (sph_nlist_row): dec_stride entries each */
   size_t dec_stride; /* maxcount + SPH_NLIST_SLACK */
   int dec_threads;   /* threads it has room for */
-  size_t *cost;    /* n + 1: prefix sums of the particles' costs (SPH_NLIST_ROW_COST), the split of
-                      the loops over the store among threads (parallel.h) */
-  void *block;     /* the one allocation of off ... cost (arrays.h) */
-  long builds;     /* number of builds (statistics) */
-  sph_steal steal; /* the fill loop's slices (parallel.h) */
+  size_t *cost; /* n + 1: prefix sums of the particles' costs (SPH_NLIST_ROW_COST), the split of
+                   the loops over the store among threads (parallel.h) */
+  void *block;  /* the one allocation of off ... cost (arrays.h) */
+  long builds;  /* number of builds (statistics) */
 } sph_nlist;
 
 void sph_nlist_init(sph_nlist *l);
