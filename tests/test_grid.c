@@ -651,6 +651,15 @@ static void test_list_fresh(void) {
   sph_particles_permute(&p, perm, work);
   p.n = n;
   CU_ASSERT(!sph_nlist_fresh(&l, &p));
+  p.n = 2; /* swapped back: the list is still not trusted */
+  sph_particles_permute(&p, perm, work);
+  p.n = n;
+  CU_ASSERT(!sph_nlist_fresh(&l, &p));
+  CU_ASSERT_FATAL(sph_grid_build(&g, &p, (support + skin) * (1 + 1e-9), 1u << 24, &err) == 0);
+  CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, support, skin, 0.0, &err) == 0);
+  CU_ASSERT(sph_nlist_fresh(&l, &p));
+  sph_particles_move(&p, 7, 7); /* any move of a particle to a storage index */
+  CU_ASSERT(!sph_nlist_fresh(&l, &p));
   /* without a skin: fresh until the first move, however small */
   CU_ASSERT_FATAL(sph_grid_build(&g, &p, support * (1 + 1e-9), 1u << 24, &err) == 0);
   CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, support, 0.0, 0.0, &err) == 0);

@@ -88,6 +88,7 @@ long sph_particles_add_at(sph_particles *p, const double x[SPH_DIM], const doubl
                           double rho, double mass, double h, int32_t kind, sph_error *err) {
   if (p->n == p->cap && grow(p, p->cap ? 2 * p->cap : 16, err)) return -1;
   size_t i = p->n++;
+  p->order++;
   for (int d = 0; d < SPH_DIM; d++) {
     p->pos[d][i] = x[d];
     p->vel[d][i] = v[d];
@@ -134,6 +135,7 @@ void sph_particles_use(sph_particles *p, unsigned groups) {
 }
 
 void sph_particles_move(sph_particles *p, size_t to, size_t from) {
+  p->order++;
 #define MOVE(field, g)                                                                             \
   if (live(p, g)) p->field[to] = p->field[from];
   SPH_PARTICLE_DOUBLES(MOVE)
@@ -171,6 +173,7 @@ size_t sph_particles_count_kind(const sph_particles *p, int32_t kind) {
 void sph_particles_permute(sph_particles *p, const size_t *perm, void *work) {
   size_t n = p->n;
   if (n == 0) return;
+  p->order++;
   const long ln = (long)n;
   /* one parallel region; each field's gather and copy-back split by index */
 #define PERMUTE(field, g)                                                                          \

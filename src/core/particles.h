@@ -82,10 +82,13 @@ enum { SPH_AXIS_X = 0, SPH_AXIS_Y = 1, SPH_AXIS_Z = 2 };
 #endif
 
 typedef struct sph_particles {
-  size_t n;      /* particles in use */
-  size_t cap;    /* allocated length of every array */
-  void *block;   /* the one allocation holding every array (particles.c) */
-  unsigned live; /* SPH_ARRAYS_* groups in use; the others hold zeros */
+  size_t n;       /* particles in use */
+  size_t cap;     /* allocated length of every array */
+  void *block;    /* the one allocation holding every array (particles.c) */
+  unsigned live;  /* SPH_ARRAYS_* groups in use; the others hold zeros */
+  uint64_t order; /* bumped by every function below that moves particles to other storage
+                     indices or changes n (a list built on the store checks it: code that
+                     reorders the arrays itself bumps it too) */
   /* state */
   SPH_AXES(pos, x, y, z);    /* position (m) */
   SPH_AXES(vel, vx, vy, vz); /* velocity (m/s) */

@@ -539,13 +539,12 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   if (n > UINT32_MAX) return sph_error_set(err, "grid: %zu particles is too many for a list", n);
   if (n + 1 > l->cap_n) { /* every row array is rewritten below: nothing to keep */
     const size_t cap = n + 1 + n / 4 + 16;
-    void **arrays[SPH_DIM + 4];
-    size_t size[SPH_DIM + 4], k = 0;
+    void **arrays[SPH_DIM + 3];
+    size_t size[SPH_DIM + 3], k = 0;
     size[k] = sizeof *l->off, arrays[k++] = (void **)&l->off;
     size[k] = sizeof *l->count, arrays[k++] = (void **)&l->count;
     for (int d = 0; d < SPH_DIM; d++)
       size[k] = sizeof *l->ref[d], arrays[k++] = (void **)&l->ref[d];
-    size[k] = sizeof *l->idref, arrays[k++] = (void **)&l->idref;
     size[k] = sizeof *l->cost, arrays[k++] = (void **)&l->cost;
     if (sph_arrays_regrow(&l->block, cap, 0, k, size, arrays, NULL))
       return sph_error_set(err, "grid: out of memory for the neighbour list of %zu particles", n);
@@ -646,7 +645,6 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
         if (c > mc) mc = c;
         for (int d = 0; d < SPH_DIM; d++)
           l->ref[d][i] = p->pos[d][i];
-        l->idref[i] = p->id[i];
       }
 #pragma omp ordered
       if (!oom && !full) {
@@ -692,6 +690,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   l->skin = skin;
   l->period = period;
   l->paxis = paxis;
+  l->order = p->order;
   l->builds++;
   l->valid = 1;
   if (SPH_DEBUG) {
@@ -702,17 +701,15 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
 }
 
 int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p) {
-  if (!l->valid || l->n != p->n) return 0;
+  if (!l->valid || l->n != p->n || l->order != p->order) return 0;
   const long n = (long)p->n;
   const double *restrict x = p->x, *restrict y = p->y;
   const double *restrict xr = l->ref[0], *restrict yr = l->ref[1];
 #if SPH_DIM == 3
   const double *restrict z = p->z, *restrict zr = l->ref[2];
 #endif
-  const int64_t *restrict id = p->id, *restrict idr = l->idref;
   double d2 = 0.0;
-  int moved = 0;
-#pragma omp parallel if (n > SPH_OMP_MIN) reduction(max : d2) reduction(| : moved)
+#pragma omp parallel if (n > SPH_OMP_MIN) reduction(max : d2)
   {
     size_t lo, hi;
     sph_slice(l->cost, p->n, &lo, &hi);
@@ -721,10 +718,8 @@ int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p) {
       SPH_IF3(const double dz = sph_nlist_sep(l, 2, z[i], zr[i]);)
       const double d = SPH_NORM2(dx, dy, dz);
       if (d > d2) d2 = d;
-      moved |= id[i] != idr[i];
     }
   }
-  if (moved) return 0;
   /* max displacement < skin/2, with a relative margin for rounding; a
    * list nobody has moved since its build is complete without a skin */
   const double half = 0.5 * l->skin * (1.0 - 1e-6);

@@ -239,7 +239,8 @@ typedef struct sph_nlist {
   uint32_t maxcount;    /* the longest row */
   uint8_t *rows;        /* the rows' runs (above), SPH_NLIST_SLACK bytes past the last */
   double *ref[SPH_DIM]; /* positions at the build */
-  int64_t *idref;       /* ids at the build (a reordered store is detected) */
+  uint64_t order;       /* the store's order count at the build (a reordered store is detected;
+                           until 2026-11-28 each particle's id was kept, 8 bytes a particle) */
   size_t cap_n, cap_rows;
   uint32_t *dec;     /* per thread a row written out (sph_nlist_row): dec_stride entries each */
   size_t dec_stride; /* maxcount + SPH_NLIST_SLACK */
@@ -261,7 +262,8 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
                     double skin, double period, sph_error *err);
 
 /* 1 if the list built earlier on p is still complete for its support:
- * the same particles in the same storage order (ids compared), every one
+ * the same particles in the same storage order (the store's order count:
+ * particles.h), every one
  * within skin/2 (less a rounding margin) of where it stood at the build,
  * or none moved at all (so a list without a skin is fresh until the first
  * move). */
