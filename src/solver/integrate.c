@@ -13,6 +13,16 @@
 
 #include <math.h>
 
+/* X0 <- X for particle i: position, velocity, density (group SAVED). */
+static inline __attribute__((always_inline)) void save_start(sph_particles *p, size_t i) {
+  p->x0[i] = p->x[i];
+  p->y0[i] = p->y[i];
+  p->vx0[i] = p->vx[i];
+  p->vy0[i] = p->vy[i];
+  SPH_IF3(p->z0[i] = p->z[i]; p->vz0[i] = p->vz[i];)
+  p->rho0[i] = p->rho[i];
+}
+
 /* The shared update: X <- X0 + dt/2 F, then doubled-and-shifted when
  * `finish`: X <- 2 X - X0; the predictor first saves X0 <- X (`save`).
  * The pressure follows from the new density in the same loop, so a stage
@@ -29,12 +39,7 @@ static inline __attribute__((always_inline)) void stage(sph_particles *p, double
     sph_slice(cost, p->n, &lo, &hi);
     for (size_t i = lo; i < hi; i++) {
       if (save) {
-        p->x0[i] = p->x[i];
-        p->y0[i] = p->y[i];
-        p->vx0[i] = p->vx[i];
-        p->vy0[i] = p->vy[i];
-        SPH_IF3(p->z0[i] = p->z[i]; p->vz0[i] = p->vz[i];)
-        p->rho0[i] = p->rho[i];
+        save_start(p, i);
         if (heat) p->u0[i] = p->u[i];
       }
       double rho = p->rho0[i] + hdt * p->drho[i];
@@ -93,14 +98,7 @@ void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const s
     size_t lo, hi;
     sph_slice(cost, p->n, &lo, &hi);
     for (size_t i = lo; i < hi; i++) {
-      if (save) {
-        p->x0[i] = p->x[i];
-        p->y0[i] = p->y[i];
-        p->vx0[i] = p->vx[i];
-        p->vy0[i] = p->vy[i];
-        SPH_IF3(p->z0[i] = p->z[i]; p->vz0[i] = p->vz[i];)
-        p->rho0[i] = p->rho[i];
-      }
+      if (save) save_start(p, i);
       if (p->flags[i] & SPH_FLAG_MDBC) {
         /* an mdbc wall's density is the fluid's, extrapolated at every pass
          * (wall_velocity.h), not a state: integrated from t = 0 its half-step
