@@ -193,8 +193,7 @@ int sph_sim_pass(sph_sim *s, sph_error *err) {
   if (rc == 0 && s->detect) rc = free_surface(s, err);
   if (rc == 0 && s->walls.mdbc) rc = mdbc_walls(s, err);
   if (rc == 0) rc = sph_forces_evaluate(&s->p, &s->nl, &s->fp, &s->work, err);
-  s->t_pass = s->t; /* the state w->hot now holds */
-  s->step_pass = s->steps;
+  s->step_pass = s->steps; /* the state w->hot now holds */
   /* everything that reads the pass's per-particle work arrays, before
    * removing the mirror particles reorders the store under them */
   if (rc == 0) {
@@ -396,7 +395,9 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
     dt = t_target - s->t;
     land = 1;
   }
-  s->t_saved = s->t; /* the stage (or the leap-frog) saves X^n in X0 */
+  /* the stage (or the leap-frog) saves X^n in X0; a leap-frog without the
+   * SAVED group finds it in the last pass's packed copy */
+  s->t_saved = s->t;
   const double t_new = land ? t_target : s->t + dt;
   if (c->integrator == SPH_INTEGRATOR_LEAPFROG) {
     if (SPH_DEBUG && !(s->p.live & SPH_ARRAYS_SAVED))
@@ -489,12 +490,6 @@ int sph_sim_write_snapshot(const sph_sim *s, const char *path, sph_error *err) {
 }
 
 int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err) {
-  /* a view of the store whose state arrays are the saved ones */
-  sph_particles v = s->p;
-  const size_t n = v.n;
-  double *tmp = NULL;
-  double t = s->t_saved;
-  long step = s->steps - 1;
   if (!(s->p.live & SPH_ARRAYS_SAVED) && s->step_pass == s->steps) {
     /* the leap-frog stopped before its step (a step that is not finite):
      * the store is still the state of the last pass */
@@ -502,13 +497,17 @@ int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err) {
     sph_sim_fill_meta(s, &m, s->t, s->steps);
     return sph_snapshot_write(path, &m, &s->p, err);
   }
+  /* a view of the store whose state arrays are the saved ones */
+  sph_particles v = s->p;
+  const size_t n = v.n;
+  double *tmp = NULL;
   if (s->p.live & SPH_ARRAYS_SAVED) {
     for (int d = 0; d < SPH_STORE_DIM; d++) {
       v.pos[d] = s->p.pos0[d];
       v.vel[d] = s->p.vel0[d];
     }
     v.rho = s->p.rho0;
-  } else { /* the leap-frog: the state of the last pass, from its packed copy */
+  } else { /* the leap-frog: the state of the last pass (at t_saved), from its packed copy */
     if (!(tmp = malloc((2 * SPH_DIM + 1) * (n ? n : 1) * sizeof *tmp)))
       return sph_error_set(err, "out of memory for the last good state");
     for (int d = 0; d < SPH_STORE_DIM; d++) {
@@ -521,15 +520,13 @@ int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err) {
       v.x[i] = h->x, v.y[i] = h->y, v.vx[i] = h->vx, v.vy[i] = h->vy, v.rho[i] = h->rho;
       SPH_IF3(v.z[i] = h->z, v.vz[i] = h->vz;)
     }
-    t = s->t_pass;
-    step = s->step_pass;
   }
   v.u = s->p.u0;
   v.p = s->work.prho2; /* scratch: pressure of the saved state */
   for (size_t i = 0; i < n; i++)
     v.p[i] = sph_eos_pressure(&s->fp.eos, v.rho[i]);
   sph_snapshot_meta m;
-  sph_sim_fill_meta(s, &m, t, step);
+  sph_sim_fill_meta(s, &m, s->t_saved, s->steps - 1);
   const int rc = sph_snapshot_write(path, &m, &v, err);
   free(tmp);
   return rc;

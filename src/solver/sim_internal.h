@@ -51,8 +51,7 @@ struct sph_sim {
   double t, last_dt;
   double lane_ratio; /* AVX2 / AVX-512 time of the start-up pass (forces.h), 1 if not measured */
   double t_saved;    /* time of the state saved at the start of the last step */
-  double t_pass;     /* time and step of the state the last pass evaluated */
-  long step_pass;
+  long step_pass;    /* step of the state the last pass evaluated (w->hot) */
   long steps;
   double floor_y;             /* the floor's height (y; z in 3-D) */
   double domain[2 * SPH_DIM]; /* x0, x1, y0, y1 (, z0, z1): leaving it is a blow-up */
