@@ -58,6 +58,12 @@
  *   divergence as 3e-5, the larger h in place of the mean as 7e-2);
  * - periodic along y and along z: the rates of the block periodic along x
  *   with its axes exchanged;
+ * - the wall particles' rows with their fluid neighbours only (grid.h,
+ *   wall_fluid_only; three layers of dynamic walls at rest under the
+ *   jittered block): the fluid particles' rates the same bits as with
+ *   full rows, the walls' within 1e-12 of the largest wall drho/dt, with
+ *   artificial viscosity, XSPH and Fourtakas' diffusion and with Morris
+ *   viscosity and Molteni's, in the default, scalar and portable loops;
  * - each pair term in 3-D (pair_terms.h with three components) from i's
  *   side and from j's, on 2000 random pairs: the forces (pressure,
  *   artificial viscosity, stress with its six components, Morris, XSPH)
@@ -1112,6 +1118,111 @@ static void test_integrators(void) {
   sph_particles_free(&p);
 }
 
+/* The rates of fp on the jittered block of rates() whose three lowest
+ * layers are dynamic wall particles at rest, with the list's wall rows
+ * holding every neighbour or (fluid_only) their fluid ones only
+ * (grid.h, wall_fluid_only); *entries: the list's entries; *wall_walls:
+ * wall neighbours listed in wall rows. */
+static void wall_rates(sph_force_params fp, int fluid_only, double *out, size_t *entries,
+                       size_t *wall_walls) {
+  sph_particles p;
+  rng = 4242;
+  lattice(&p, 0.2, random_velocity);
+  for (size_t i = 0; i < p.n; i++) {
+    p.rho[i] = RHO0 * (1.0 + 0.01 * (2.0 * uniform() - 1.0));
+    if (p.z[i] < 2.5 * DX) {
+      p.kind[i] = SPH_KIND_WALL;
+      for (int d = 0; d < 3; d++)
+        p.vel[d][i] = 0.0;
+    }
+  }
+  sph_grid g;
+  sph_grid_init(&g);
+  sph_nlist l;
+  sph_nlist_init(&l);
+  l.wall_fluid_only = fluid_only;
+  sph_error err;
+  sph_force_work w;
+  memset(&w, 0, sizeof w);
+  CU_ASSERT_FATAL(sph_grid_build(&g, &p, 2.0 * fp.h * (1.0 + 1e-9), 1u << 24, &err) == 0);
+  CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, 2.0 * fp.h, 0.0, 0.0, &err) == 0);
+  const char *bad = sph_nlist_check(&l, &p, 2.0 * fp.h);
+  CU_ASSERT_PTR_NULL(bad);
+  if (bad) printf("\n    %s", bad);
+  *entries = *wall_walls = 0;
+  uint32_t *row = malloc((l.maxcount + SPH_NLIST_SLACK) * sizeof *row);
+  CU_ASSERT_FATAL(row != NULL);
+  for (size_t i = 0; i < p.n; i++) {
+    const uint32_t c = sph_nlist_decode(&l, i, row);
+    *entries += c;
+    for (uint32_t k = 0; k < c && p.kind[i] == SPH_KIND_WALL; k++)
+      *wall_walls += p.kind[row[k]] == SPH_KIND_WALL;
+  }
+  free(row);
+  sph_forces_pressure(&p, &fp.eos);
+  CU_ASSERT_FATAL(sph_forces_evaluate(&p, &l, &fp, &w, &err) == 0);
+  for (size_t i = 0; i < p.n; i++) {
+    const size_t k = (size_t)p.id[i] * 8;
+    out[k] = p.drho[i];
+    for (int d = 0; d < 3; d++)
+      out[k + 1 + d] = p.acc[d][i], out[k + 4 + d] = p.xsph[d][i];
+    out[k + 7] = p.kind[i];
+  }
+  sph_force_work_free(&w);
+  sph_nlist_free(&l);
+  sph_grid_free(&g);
+  sph_particles_free(&p);
+}
+
+/* Wall rows with their fluid neighbours only (what sim.c picks for
+ * dynamic walls at rest in 3-D): every fluid particle's rates the same
+ * bits (its row is the same), every wall particle's within round-off (its
+ * sums lose only +-0 terms, added in other lanes), for two term sets and
+ * each loop; the wall rows hold no walls and the list is shorter. */
+static void test_wall_rows_fluid(void) {
+  const size_t n = (size_t)NL * NL * NL * 8;
+  double *ref = calloc(n, sizeof *ref), *got = calloc(n, sizeof *got);
+  CU_ASSERT_FATAL(ref && got);
+  const sph_force_loop loops[3] = {SPH_LOOP_AUTO, SPH_LOOP_SCALAR, SPH_LOOP_LANES};
+  for (int set = 0; set < 2; set++)
+    for (int q = 0; q < 3; q++) {
+      sph_force_params fp = params();
+      fp.gz = -G;
+      fp.loop = loops[q];
+      fp.wall_diffusion = 1;
+      if (set == 0)
+        fp.alpha = 0.2, fp.xsph = 0.5, fp.diffusion = SPH_DIFFUSION_FOURTAKAS,
+        fp.diffusion_delta = 0.1;
+      else
+        fp.viscosity = SPH_VISCOSITY_MORRIS, fp.mu = 1e-3, fp.diffusion = SPH_DIFFUSION_MOLTENI,
+        fp.diffusion_delta = 0.1;
+      size_t e_all, e_fluid, ww_all, ww_fluid;
+      wall_rates(fp, 0, ref, &e_all, &ww_all);
+      wall_rates(fp, 1, got, &e_fluid, &ww_fluid);
+      CU_ASSERT(ww_all > 0 && ww_fluid == 0 && e_fluid + ww_all == e_all);
+      double worst = 0.0, mag = 0.0;
+      size_t walls = 0, fluid_differs = 0;
+      for (size_t i = 0; i < n; i += 8) {
+        if (ref[i + 7] == SPH_KIND_FLUID) {
+          fluid_differs += memcmp(ref + i, got + i, 8 * sizeof *ref) != 0;
+          continue;
+        }
+        walls++;
+        for (int k = 0; k < 7; k++)
+          worst = fmax(worst, fabs(got[i + k] - ref[i + k]));
+        mag = fmax(mag, fabs(ref[i])); /* a wall's drho: its fluid neighbours' */
+      }
+      CU_ASSERT(walls > 0 && mag > 0.0);
+      CU_ASSERT_EQUAL(fluid_differs, 0);
+      CU_ASSERT(worst <= 1e-12 * mag);
+      if (worst > 1e-12 * mag || fluid_differs)
+        printf("\n    set %d loop %d: walls off by %.3g of %.3g, %zu fluid rates differ", set,
+               (int)loops[q], worst, mag, fluid_differs);
+    }
+  free(ref);
+  free(got);
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
       {"3x3 symmetric inverse and product; SPS of a shear in 3-D", test_tensors},
@@ -1129,6 +1240,8 @@ int main(void) {
       {"3-D periodic along y and z: the rates of periodic along x, axes exchanged",
        test_periodic_axes},
       {"3-D MLS filter: exact for a linear density; Shepard for a uniform one", test_filters},
+      {"3-D wall rows with fluid neighbours only: fluid the same bits, walls within round-off",
+       test_wall_rows_fluid},
       CU_TEST_INFO_NULL};
   return sph_test_main("forces_3d", tests);
 }

@@ -520,6 +520,18 @@ static void runs_write(const uint32_t *row, uint32_t c, uint8_t *restrict out) {
   }
 }
 
+/* Keeps the fluid particles among row's c entries, in order; returns how
+ * many (the rows of wall particles where l->wall_fluid_only is set). */
+static inline uint32_t keep_fluid(uint32_t *restrict row, uint32_t c,
+                                  const int32_t *restrict kind) {
+  uint32_t m = 0;
+  for (uint32_t k = 0; k < c; k++) {
+    row[m] = row[k];
+    m += (uint32_t)(kind[row[k]] == SPH_KIND_FLUID);
+  }
+  return m;
+}
+
 /* Row i's entries within sqrt(r2max) in increasing storage index into
  * row (room for all i's candidates); returns their number. */
 static inline uint32_t fill_sorted(const sph_grid *g, const double *const *x, size_t i,
@@ -575,6 +587,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   const int wide = 0;
 #endif
   const long ln = (long)n;
+  const int fluid_only = l->wall_fluid_only;
   size_t cmax = 0; /* the most candidates of any particle: the scratch row */
 #pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN) reduction(max : cmax)
   for (long li = 0; li < ln; li++) {
@@ -597,8 +610,10 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
       for (long li = 0; li < ln; li++) {
         if (!scratch) continue;
         /* (in 2-D only counted: four bytes an entry whatever their order) */
-        const uint32_t c = fill_rows(g, x, (size_t)li, r2max, period,
-                                     SPH_NLIST_RUNS ? scratch : NULL, sorted, wide);
+        const int keep = fluid_only && p->kind[li] != SPH_KIND_FLUID;
+        uint32_t c = fill_rows(g, x, (size_t)li, r2max, period,
+                               SPH_NLIST_RUNS || keep ? scratch : NULL, sorted, wide);
+        if (keep) c = keep_fluid(scratch, c, p->kind);
         total += runs_size(scratch, c, sorted && period <= 0.0);
       }
       free(scratch);
@@ -627,7 +642,8 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
                    b = a + SPH_NLIST_CHUNK < n ? a + SPH_NLIST_CHUNK : n;
       size_t bytes = 0;
       for (size_t i = a; i < b && !oom; i++) {
-        const uint32_t c = fill_sorted(g, x, i, r2max, period, scratch, sorted, wide);
+        uint32_t c = fill_sorted(g, x, i, r2max, period, scratch, sorted, wide);
+        if (fluid_only && p->kind[i] != SPH_KIND_FLUID) c = keep_fluid(scratch, c, p->kind);
         const size_t sz = runs_size(scratch, c, 1);
         if (bytes + sz > cap) {
           const size_t nc = 2 * (bytes + sz) + 4096;
@@ -772,9 +788,12 @@ const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double s
       return check_msg;
     }
     for (uint32_t k = 0; k < l->count[i]; k++)
-      if (row[k] >= n || row[k] == i || (k && row[k] <= row[k - 1])) {
+      if (row[k] >= n || row[k] == i || (k && row[k] <= row[k - 1]) ||
+          (l->wall_fluid_only && p->kind[i] != SPH_KIND_FLUID &&
+           p->kind[row[k]] != SPH_KIND_FLUID)) {
         snprintf(check_msg, sizeof check_msg,
-                 "neighbour list: row %zu is not sorted or holds %u at entry %u", i, row[k], k);
+                 "neighbour list: row %zu is not sorted or holds %u (or a wall) at entry %u", i,
+                 row[k], k);
         free(row);
         return check_msg;
       }
@@ -791,6 +810,8 @@ const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double s
       while (k < l->count[i] && row[k] < j)
         k++;
       if (j == i || !(r2ij < r2)) continue;
+      if (l->wall_fluid_only && p->kind[i] != SPH_KIND_FLUID && p->kind[j] != SPH_KIND_FLUID)
+        continue; /* a wall row's walls: not listed (wall_fluid_only) */
       if (k == l->count[i] || row[k] != j) {
         snprintf(check_msg, sizeof check_msg,
                  "neighbour list: row %zu lacks particle %zu within the support", i, j);

@@ -203,7 +203,9 @@ static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SP
  * more a row: 3-D SPHERIC Test 2 at dx = 0.02 m, 74 entries a row, holds
  * its list in about 160 bytes a particle where four bytes an entry took
  * 297. sph_nlist_decode writes row i out as indices (increasing, count[i]
- * of them); the passes read rows that way.
+ * of them); the passes read rows that way. With wall_fluid_only set (3-D
+ * dynamic walls at rest: sim's choice) a wall particle's row holds its
+ * fluid neighbours only, so the dry walls' rows are empty.
  *
  * With radius = support + skin the list stays complete for the support
  * (every pair closer than `support` is in it) as long as no particle has
@@ -241,6 +243,10 @@ typedef struct sph_nlist {
   double *ref[SPH_DIM]; /* positions at the build */
   uint64_t order;       /* the store's order count at the build (a reordered store is detected;
                            until 2026-11-28 each particle's id was kept, 8 bytes a particle) */
+  int wall_fluid_only;  /* set by the caller before a build: a wall particle's row holds its
+                           fluid neighbours only (a fluid particle's every neighbour), for
+                           schemes where a wall-wall pair adds +-0 to every sum of a wall row
+                           (sim.c, wall_rows_fluid_only; doc/memory.md) */
   size_t cap_n, cap_rows;
   uint32_t *dec;     /* per thread a row written out (sph_nlist_row): dec_stride entries each */
   size_t dec_stride; /* maxcount + SPH_NLIST_SLACK */

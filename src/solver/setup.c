@@ -32,6 +32,28 @@ static double sph_skin_fraction(void) {
   return SPH_SKIN_DEFAULT;
 }
 
+/* Whether the wall particles' neighbour rows may hold their fluid
+ * neighbours only (grid.h, wall_fluid_only): where every wall-wall pair
+ * adds +-0 to every sum a wall row feeds. A wall row sums the continuity
+ * (v_ij = 0 between walls at rest), the step rule's sigma (v_ij . r_ij =
+ * 0) and the density diffusion (a wall neighbour's diffusing mass is 0 in
+ * a wall row: interact_row.h), and the density bound looks for fluid
+ * neighbours only (dbc.c). Not so, and so every neighbour listed, with
+ * moving walls or mirror particles (sigma), the ledger (a wall row's
+ * heat), the strain-rate pass and the corrected gradients (a wall
+ * particle's sums over its walls), wall normals (their rows mark their
+ * fluid neighbours, and mdbc's), repulsive walls, Antuono's diffusion (its
+ * c_i) and the density filters (which may filter walls). 3-D only: in
+ * 2-D the shorter rows would move the lanes' sums of wall rows, and the
+ * golden files with them (a 2-D row is short: doc/memory.md). */
+static int wall_rows_fluid_only(const sph_sim *s) {
+  const sph_force_params *fp = &s->fp;
+  return SPH_DIM == 3 && !fp->moving_walls && !fp->mirror && !fp->ledger && !fp->sps &&
+         fp->viscosity != SPH_VISCOSITY_STRESS_TENSOR && !fp->gradient_correction &&
+         !fp->corrected_gradient && !sph_force_wall_normals(fp) && !fp->repulsive &&
+         fp->diffusion != SPH_DIFFUSION_ANTUONO && s->c->density_filter == SPH_FILTER_NONE;
+}
+
 /* The interaction loop: the default, or the one the test hook
  * SPH_TEST_LANES names (portable, avx, avx512 or scalar; doc/testing.md), for the
  * tests that compare the loops through whole runs. */
@@ -421,6 +443,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
    * moves with the density) rebuild it at every pass */
   if (!s->walls.n_mirror && !c->variable_h)
     s->skin = sph_skin_fraction() * SPH_CUBIC_SUPPORT * c->h;
+  s->nl.wall_fluid_only = wall_rows_fluid_only(s);
   if (s->p.n == 0) {
     sph_error_set(err, "case %s: no particles", c->name);
     goto fail;
