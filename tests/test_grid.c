@@ -639,8 +639,11 @@ static void test_list_fresh(void) {
       missing += !found;
     }
   CU_ASSERT_EQUAL(missing, 0);
+  /* the build's positions in single precision: off by a rounding of the
+   * store's extent at most, far below the skin */
+  CU_ASSERT(l.ref_err > 0.0 && l.ref_err < 1e-5 * skin);
   const double x5 = p.x[5];
-  p.x[5] = l.ref[0][5] + 0.51 * skin;
+  p.x[5] = sph_nlist_ref(&l, 0, 5) + 0.51 * skin;
   CU_ASSERT(!sph_nlist_fresh(&l, &p));
   p.x[5] = x5;
   CU_ASSERT(sph_nlist_fresh(&l, &p));
@@ -660,6 +663,21 @@ static void test_list_fresh(void) {
   CU_ASSERT(sph_nlist_fresh(&l, &p));
   sph_particles_move(&p, 7, 7); /* any move of a particle to a storage index */
   CU_ASSERT(!sph_nlist_fresh(&l, &p));
+  /* far from the coordinates' origin (x about 1e5 m): the single-precision
+   * positions count from the first particle's, so moves of 0.45 skin keep
+   * the list fresh there as well */
+  for (size_t i = 0; i < p.n; i++)
+    p.x[i] += 1e5;
+  CU_ASSERT_FATAL(sph_grid_build(&g, &p, (support + skin) * (1 + 1e-9), 1u << 24, &err) == 0);
+  CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, support, skin, 0.0, &err) == 0);
+  CU_ASSERT(l.ref_err < 1e-5 * skin);
+  for (size_t i = 0; i < p.n; i++)
+    p.y[i] += 0.45 * 0.5 * skin;
+  CU_ASSERT(sph_nlist_fresh(&l, &p));
+  p.y[9] += 0.3 * skin; /* 0.525 skin in all */
+  CU_ASSERT(!sph_nlist_fresh(&l, &p));
+  for (size_t i = 0; i < p.n; i++)
+    p.x[i] -= 1e5;
   /* without a skin: fresh until the first move, however small */
   CU_ASSERT_FATAL(sph_grid_build(&g, &p, support * (1 + 1e-9), 1u << 24, &err) == 0);
   CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, support, 0.0, 0.0, &err) == 0);

@@ -434,7 +434,7 @@ static void test_list_fresh(void) {
     }
   CU_ASSERT_EQUAL(missing, 0);
   const double z5 = p.z[5];
-  p.z[5] = l.ref[SPH_AXIS_Z][5] + 0.51 * skin;
+  p.z[5] = sph_nlist_ref(&l, SPH_AXIS_Z, 5) + 0.51 * skin;
   CU_ASSERT(!sph_nlist_fresh(&l, &p));
   p.z[5] = z5;
   CU_ASSERT(sph_nlist_fresh(&l, &p));
@@ -471,7 +471,8 @@ static void test_periodic_yz(void) {
       CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, 0.025, 0.005, L[a], &err) == 0);
       CU_ASSERT_EQUAL(l.paxis, a);
       const size_t i = 7;
-      p.pos[a][i] = l.ref[a][i] + (l.ref[a][i] < 0.5 * L[a] ? L[a] : -L[a]) + 0.001;
+      const double r = sph_nlist_ref(&l, a, i);
+      p.pos[a][i] = r + (r < 0.5 * L[a] ? L[a] : -L[a]) + 0.001;
       CU_ASSERT(sph_nlist_fresh(&l, &p)); /* moved 0.001 < skin/2 through the seam */
       p.pos[a][i] += 0.002;
       CU_ASSERT(!sph_nlist_fresh(&l, &p));

@@ -41,15 +41,15 @@ void sph_grid_free(sph_grid *g) {
 static int reserve(sph_grid *g, size_t n, size_t cells, sph_error *err) {
   if (n > g->cap_particles) {
     const size_t cap = n + n / 4 + 16;
-    void **arrays[SPH_DIM + 3];
-    size_t size[SPH_DIM + 3], k = 0;
-    for (int d = 0; d < SPH_DIM; d++)
-      size[k] = sizeof *g->cell_of[d], arrays[k++] = (void **)&g->cell_of[d];
+    void **arrays[3];
+    size_t size[3], k = 0;
+    size[k] = SPH_DIM * sizeof *g->cell_of[0], arrays[k++] = (void **)&g->cell_of[0];
     size[k] = sizeof *g->key, arrays[k++] = (void **)&g->key;
     size[k] = sizeof *g->perm, arrays[k++] = (void **)&g->perm;
-    size[k] = 8, arrays[k++] = &g->work;
     if (sph_arrays_regrow(&g->block, cap, 0, k, size, arrays, NULL))
       return sph_error_set(err, "grid: out of memory for %zu particles", n);
+    for (int d = 1; d < SPH_DIM; d++)
+      g->cell_of[d] = g->cell_of[0] + (size_t)d * cap;
     g->cap_particles = cap;
   }
   if (cells + 1 > g->cap_cells) {
@@ -71,7 +71,7 @@ static int reserve(sph_grid *g, size_t n, size_t cells, sph_error *err) {
  * those of threads before it, each thread's in increasing index, so the
  * order is the serial sort's, whatever the team. */
 static int counting_sort(sph_grid *g, size_t n, size_t cells, sph_error *err) {
-  const size_t *restrict key = g->key;
+  const uint32_t *restrict key = g->key;
   size_t *restrict perm = g->perm;
   const int team = sph_team_size(n);
   if (team <= 1 || cells > n) {
@@ -195,16 +195,17 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
     total *= f[d];
     too_long |= f[d] > INT32_MAX;
   }
-  if (total > (double)max_cells || too_long)
+  if (total > (double)max_cells || total >= (double)UINT32_MAX || too_long)
 #if SPH_DIM == 2
-    return sph_error_set(
-        err, "grid: particles spread over %.0f x %.0f cells (limit %zu, and 2^31 - 1 a side)", f[0],
-        f[1], max_cells);
+    return sph_error_set(err,
+                         "grid: particles spread over %.0f x %.0f cells (limit %zu, at most 2^32 - "
+                         "1, and 2^31 - 1 a side)",
+                         f[0], f[1], max_cells);
 #else
-    return sph_error_set(
-        err,
-        "grid: particles spread over %.0f x %.0f x %.0f cells (limit %zu, and 2^31 - 1 a side)",
-        f[0], f[1], f[2], max_cells);
+    return sph_error_set(err,
+                         "grid: particles spread over %.0f x %.0f x %.0f cells (limit %zu, at most "
+                         "2^32 - 1, and 2^31 - 1 a side)",
+                         f[0], f[1], f[2], max_cells);
 #endif
   for (int d = 0; d < SPH_DIM; d++) {
     g->axis[d] = axis[d];
@@ -234,18 +235,20 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
     if (cx >= nx) cx = nx - 1;
     if (cy >= ny) cy = ny - 1;
 #if SPH_DIM == 2
-    g->key[i] = (size_t)cy * (size_t)nx + (size_t)cx;
+    g->key[i] = (uint32_t)((size_t)cy * (size_t)nx + (size_t)cx);
 #else
     long cz = (long)((qz[i] - z0) * inv);
     if (cz >= nz) cz = nz - 1;
-    g->key[i] = ((size_t)cz * (size_t)ny + (size_t)cy) * (size_t)nx + (size_t)cx;
+    g->key[i] = (uint32_t)(((size_t)cz * (size_t)ny + (size_t)cy) * (size_t)nx + (size_t)cx);
 #endif
   }
   if (counting_sort(g, n, cells, err)) return -1;
   /* the cell of each storage index: binned only, the particle's own key;
    * sorted, the key of the particle moved there */
-  if (p) sph_particles_permute(p, g->perm, g->work);
-  const size_t *restrict key = g->key, *restrict perm = g->perm;
+  /* (the scratch: cell_of, SPH_DIM x 4 >= 8 bytes a particle, written below) */
+  if (p) sph_particles_permute(p, g->perm, sph_grid_scratch(g));
+  const uint32_t *restrict key = g->key;
+  const size_t *restrict perm = g->perm;
 #pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN)
   for (long i = 0; i < ln; i++) {
     size_t k = p ? key[perm[i]] : key[i];
@@ -551,12 +554,14 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   if (n > UINT32_MAX) return sph_error_set(err, "grid: %zu particles is too many for a list", n);
   if (n + 1 > l->cap_n) { /* every row array is rewritten below: nothing to keep */
     const size_t cap = n + 1 + n / 4 + 16;
-    void **arrays[SPH_DIM + 3];
-    size_t size[SPH_DIM + 3], k = 0;
+    void **arrays[2 * SPH_DIM + 3];
+    size_t size[2 * SPH_DIM + 3], k = 0;
     size[k] = sizeof *l->off, arrays[k++] = (void **)&l->off;
     size[k] = sizeof *l->count, arrays[k++] = (void **)&l->count;
-    for (int d = 0; d < SPH_DIM; d++)
+    for (int d = 0; d < SPH_DIM; d++) {
       size[k] = sizeof *l->ref[d], arrays[k++] = (void **)&l->ref[d];
+      size[k] = sizeof *l->exact[d], arrays[k++] = (void **)&l->exact[d];
+    }
     size[k] = sizeof *l->cost, arrays[k++] = (void **)&l->cost;
     if (sph_arrays_regrow(&l->block, cap, 0, k, size, arrays, NULL))
       return sph_error_set(err, "grid: out of memory for the neighbour list of %zu particles", n);
@@ -626,11 +631,14 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     l->cap_rows = cap;
   }
   uint32_t mc = 0;
+  double origin[SPH_DIM], off_by[SPH_DIM]; /* the reference positions' (grid.h) */
+  for (int d = 0; d < SPH_DIM; d++)
+    origin[d] = n ? p->pos[d][0] : 0.0, off_by[d] = 0.0;
   int oom = 0, full = 0; /* a thread's buffers; the list (in the ordered region) */
   size_t used = 0;       /* bytes appended (in the ordered region) */
   const long chunks = (ln + SPH_NLIST_CHUNK - 1) / SPH_NLIST_CHUNK;
   l->off[0] = 0;
-#pragma omp parallel if (ln > SPH_OMP_MIN) reduction(max : mc) reduction(| : oom)
+#pragma omp parallel if (ln > SPH_OMP_MIN) reduction(max : mc, off_by[:SPH_DIM]) reduction(| : oom)
   {
     uint32_t *restrict scratch = malloc((cmax + 1) * sizeof *scratch);
     uint8_t *buf = NULL;
@@ -659,8 +667,16 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
         l->count[i] = c;
         l->off[i + 1] = bytes; /* from the chunk's start: moved to the list's below */
         if (c > mc) mc = c;
-        for (int d = 0; d < SPH_DIM; d++)
-          l->ref[d][i] = p->pos[d][i];
+        if (skin > 0.0) /* in single precision from the origin, and how far off */
+          for (int d = 0; d < SPH_DIM; d++) {
+            const double r = p->pos[d][i] - origin[d];
+            l->ref[d][i] = (float)r;
+            const double e = fabs(r - (double)l->ref[d][i]); /* (exact: Sterbenz) */
+            if (e > off_by[d]) off_by[d] = e;
+          }
+        else
+          for (int d = 0; d < SPH_DIM; d++)
+            l->exact[d][i] = p->pos[d][i];
       }
 #pragma omp ordered
       if (!oom && !full) {
@@ -701,6 +717,12 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     l->cost[i + 1] = l->cost[i] + SPH_NLIST_ROW_COST +
                      (p->kind[i] == SPH_KIND_FLUID ? l->count[i] : l->count[i] / 2);
   l->maxcount = mc;
+  double e2 = 0.0;
+  for (int d = 0; d < SPH_DIM; d++) {
+    l->origin[d] = origin[d];
+    e2 += off_by[d] * off_by[d];
+  }
+  l->ref_err = sqrt(e2) * (1.0 + 1e-9); /* (rounded up) */
   l->n = n;
   l->radius = radius;
   l->skin = skin;
@@ -720,26 +742,43 @@ int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p) {
   if (!l->valid || l->n != p->n || l->order != p->order) return 0;
   const long n = (long)p->n;
   const double *restrict x = p->x, *restrict y = p->y;
-  const double *restrict xr = l->ref[0], *restrict yr = l->ref[1];
-#if SPH_DIM == 3
-  const double *restrict z = p->z, *restrict zr = l->ref[2];
-#endif
+  SPH_IF3(const double *restrict z = p->z;)
   double d2 = 0.0;
-#pragma omp parallel if (n > SPH_OMP_MIN) reduction(max : d2)
-  {
-    size_t lo, hi;
-    sph_slice(l->cost, p->n, &lo, &hi);
-    for (size_t i = lo; i < hi; i++) {
+  if (!(l->skin > 0.0)) { /* without a skin: fresh until the first move */
+    const double *restrict xr = l->exact[0], *restrict yr = l->exact[1];
+    SPH_IF3(const double *restrict zr = l->exact[2];)
+#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : d2)
+    for (long i = 0; i < n; i++) {
       const double dx = sph_nlist_sep(l, 0, x[i], xr[i]), dy = sph_nlist_sep(l, 1, y[i], yr[i]);
       SPH_IF3(const double dz = sph_nlist_sep(l, 2, z[i], zr[i]);)
       const double d = SPH_NORM2(dx, dy, dz);
       if (d > d2) d2 = d;
     }
+    return d2 == 0.0;
   }
-  /* max displacement < skin/2, with a relative margin for rounding; a
-   * list nobody has moved since its build is complete without a skin */
-  const double half = 0.5 * l->skin * (1.0 - 1e-6);
-  return d2 == 0.0 || d2 < half * half;
+  const float *restrict xr = l->ref[0], *restrict yr = l->ref[1];
+  const double ox = l->origin[0], oy = l->origin[1];
+#if SPH_DIM == 3
+  const float *restrict zr = l->ref[2];
+  const double oz = l->origin[2];
+#endif
+#pragma omp parallel if (n > SPH_OMP_MIN) reduction(max : d2)
+  {
+    size_t lo, hi;
+    sph_slice(l->cost, p->n, &lo, &hi);
+    for (size_t i = lo; i < hi; i++) {
+      const double dx = sph_nlist_sep(l, 0, x[i] - ox, (double)xr[i]),
+                   dy = sph_nlist_sep(l, 1, y[i] - oy, (double)yr[i]);
+      SPH_IF3(const double dz = sph_nlist_sep(l, 2, z[i] - oz, (double)zr[i]);)
+      const double d = SPH_NORM2(dx, dy, dz);
+      if (d > d2) d2 = d;
+    }
+  }
+  /* max displacement < skin/2: each move as computed, plus how far the
+   * single-precision positions of the build are off (ref_err), with a
+   * relative margin for the rounding of the sums */
+  const double half = 0.5 * l->skin * (1.0 - 1e-6) - l->ref_err;
+  return half > 0.0 && d2 < half * half;
 }
 
 /* ---- debug invariants ------------------------------------------------------------------ */

@@ -44,13 +44,24 @@ typedef struct sph_grid {
   long ncell[SPH_DIM]; /* cells along each direction */
   size_t *start;       /* cells + 1 offsets into the sorted store */
   int32_t *cell_of[SPH_DIM]; /* the cell coordinate along each direction of the particle at each
-                                storage index (each ncell below 2^31: the build checks) */
+                                storage index (each ncell below 2^31: the build checks); one
+                                array of SPH_DIM x cap_particles, cell_of[d] its d-th part,
+                                which is also the scratch of the store's permutation (the
+                                coordinates are written after it): until 2026-11-28 a scratch
+                                array of its own, 8 bytes a particle */
   size_t cap_cells, cap_particles;
-  size_t *key, *perm, *count; /* scratch */
-  size_t *hist, cap_hist;     /* scratch: one count per cell per thread */
-  void *work;                 /* scratch for permutation (8 bytes per particle) */
-  void *block;                /* the one allocation of cell_of, key, perm, work (arrays.h) */
+  uint32_t *key;          /* scratch: each particle's cell (fewer than 2^32 cells: the build
+                             checks; 64-bit until 2026-11-28) */
+  size_t *perm, *count;   /* scratch */
+  size_t *hist, cap_hist; /* scratch: one count per cell per thread */
+  void *block;            /* the one allocation of cell_of, key and perm (arrays.h) */
 } sph_grid;
+
+/* Eight bytes a particle of scratch (for sph_particles_permute and the
+ * like), for as many particles as the last build had: the cell
+ * coordinates' array, which it overwrites (build the grid again before
+ * walking it). */
+static inline void *sph_grid_scratch(sph_grid *g) { return g->cell_of[0]; }
 
 /* The number of cells. */
 static inline size_t sph_grid_cells(const sph_grid *g) {
@@ -230,23 +241,31 @@ static inline void sph_grid_ranges_all(const sph_grid *g, size_t i, size_t lo[SP
 #define SPH_NLIST_CHUNK 256
 
 typedef struct sph_nlist {
-  int valid;            /* built, and the store not reordered since */
-  int paxis;            /* the store axis that wraps (the grid's; 0 when none) */
-  size_t n;             /* particles at the build */
-  double radius;        /* list radius: support + skin */
-  double skin;          /* radius - support */
-  double period;        /* > 0: minimum image along axis paxis with this period */
-  size_t *off;          /* n + 1 byte offsets of the rows' runs in rows */
-  uint32_t *count;      /* neighbours of each particle */
-  uint32_t maxcount;    /* the longest row */
-  uint8_t *rows;        /* the rows' runs (above), SPH_NLIST_SLACK bytes past the last */
-  double *ref[SPH_DIM]; /* positions at the build */
-  uint64_t order;       /* the store's order count at the build (a reordered store is detected;
-                           until 2026-11-28 each particle's id was kept, 8 bytes a particle) */
-  int wall_fluid_only;  /* set by the caller before a build: a wall particle's row holds its
-                           fluid neighbours only (a fluid particle's every neighbour), for
-                           schemes where a wall-wall pair adds +-0 to every sum of a wall row
-                           (sim.c, wall_rows_fluid_only; doc/memory.md) */
+  int valid;         /* built, and the store not reordered since */
+  int paxis;         /* the store axis that wraps (the grid's; 0 when none) */
+  size_t n;          /* particles at the build */
+  double radius;     /* list radius: support + skin */
+  double skin;       /* radius - support */
+  double period;     /* > 0: minimum image along axis paxis with this period */
+  size_t *off;       /* n + 1 byte offsets of the rows' runs in rows */
+  uint32_t *count;   /* neighbours of each particle */
+  uint32_t maxcount; /* the longest row */
+  uint8_t *rows;     /* the rows' runs (above), SPH_NLIST_SLACK bytes past the last */
+  /* positions at the build (sph_nlist_ref): with a skin, less origin, in single
+   * precision, ref_err the largest distance any is off (sph_nlist_fresh adds it to the
+   * moves; 24 bytes a particle until 2026-11-28, 12 since); without a skin exactly, in
+   * exact (a list without a skin is fresh until the first move, however small). Each set
+   * is untouched (no resident memory) where the other is used. */
+  float *ref[SPH_DIM];
+  double *exact[SPH_DIM];
+  double origin[SPH_DIM];
+  double ref_err;
+  uint64_t order;      /* the store's order count at the build (a reordered store is detected;
+                          until 2026-11-28 each particle's id was kept, 8 bytes a particle) */
+  int wall_fluid_only; /* set by the caller before a build: a wall particle's row holds its
+                          fluid neighbours only (a fluid particle's every neighbour), for
+                          schemes where a wall-wall pair adds +-0 to every sum of a wall row
+                          (sim.c, wall_rows_fluid_only; doc/memory.md) */
   size_t cap_n, cap_rows;
   uint32_t *dec;     /* per thread a row written out (sph_nlist_row): dec_stride entries each */
   size_t dec_stride; /* maxcount + SPH_NLIST_SLACK */
@@ -274,6 +293,12 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
  * or none moved at all (so a list without a skin is fresh until the first
  * move). */
 int sph_nlist_fresh(const sph_nlist *l, const sph_particles *p);
+
+/* The position along axis d of particle i at the build of l: exact
+ * without a skin, within l->ref_err with one. */
+static inline double sph_nlist_ref(const sph_nlist *l, int d, size_t i) {
+  return l->skin > 0.0 ? l->origin[d] + (double)l->ref[d][i] : l->exact[d][i];
+}
 
 /* Debug invariants (src/core/check.h), run after every build in a build
  * with --enable-debug-checks and by tests/test_checks.c: NULL if they hold,

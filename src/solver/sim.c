@@ -202,7 +202,7 @@ int sph_sim_pass(sph_sim *s, sph_error *err) {
       sph_ledger_rates(&s->ledger, &s->p, &s->work, c->gravity, c->xsph != 0.0,
                        c->diffusion != SPH_DIFFUSION_NONE || c->riemann);
   }
-  if (s->walls.n_mirror) sph_mirror_remove(&s->p, s->grid.perm, s->grid.work);
+  if (s->walls.n_mirror) sph_mirror_remove(&s->p, s->grid.perm, sph_grid_scratch(&s->grid));
   return rc;
 }
 
