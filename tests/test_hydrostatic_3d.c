@@ -536,6 +536,8 @@ static void test_snapshots(void) {
   rc = sph_sim_restore(r, path, &rd, &err);
   if (rc) printf("\n    restore: %s", err.msg);
   CU_ASSERT_FATAL(rc == 0);
+  /* its per-particle arrays, in the store by then, released before the pass */
+  CU_ASSERT(rd.order == NULL && rd.vxh == NULL && rd.vzh == NULL && rd.rhoh == NULL);
   sph_snapshot_restart_free(&rd);
   step_to(r, 0.6);
   double *b = state(r);

@@ -311,6 +311,12 @@ void sph_nlist_free(sph_nlist *l) {
   memset(l, 0, sizeof *l);
 }
 
+void sph_nlist_release(sph_nlist *l) {
+  const int fluid_only = l->wall_fluid_only;
+  sph_nlist_free(l);
+  l->wall_fluid_only = fluid_only;
+}
+
 /* The candidates of particle i within sqrt(r2max), in the grid's walk
  * order (positions, or storage indices through perm when the grid is only
  * binned), into row (with row NULL: only counted); returns how many. The

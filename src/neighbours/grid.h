@@ -278,6 +278,9 @@ typedef struct sph_nlist {
 
 void sph_nlist_init(sph_nlist *l);
 void sph_nlist_free(sph_nlist *l);
+/* Frees l's arrays and keeps what its caller set (wall_fluid_only): an
+ * empty list that the next build fills as the first. */
+void sph_nlist_release(sph_nlist *l);
 
 /* Builds the list of p from g (built or binned on p's current positions
  * with cells of side >= radius) for pairs closer than radius = support +

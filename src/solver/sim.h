@@ -86,8 +86,11 @@ int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err);
  * case (only time.end may differ: the snapshot's "parameters" must match)
  * and puts it in the state of the snapshot at path, so that the steps that
  * follow are bitwise those of the run that wrote it. rd receives the
- * snapshot's restart record (free it with sph_snapshot_restart_free);
- * errors name the file and what does not match. */
+ * snapshot's restart record (free it with sph_snapshot_restart_free)
+ * without its per-particle arrays (order and the half-step values: in the
+ * store by then, and released before the state's first pass, so that a
+ * restart takes no more memory than a fresh run); errors name the file
+ * and what does not match. */
 int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t output_index,
                                const double *levels, size_t n_levels, const double *filters,
                                size_t n_filters, sph_error *err);
