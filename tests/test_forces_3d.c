@@ -62,7 +62,8 @@
  *   wall_fluid_only; three layers of dynamic walls at rest under the
  *   jittered block): the fluid particles' rates the same bits as with
  *   full rows, the walls' within 1e-12 of the largest wall drho/dt, with
- *   artificial viscosity, XSPH and Fourtakas' diffusion and with Morris
+ *   artificial viscosity, XSPH and Fourtakas' diffusion (and again with
+ *   the ledger: the walls' heat rates within 1e-12 too) and with Morris
  *   viscosity and Molteni's, in the default, scalar and portable loops;
  * - each pair term in 3-D (pair_terms.h with three components) from i's
  *   side and from j's, on 2000 random pairs: the forces (pressure,
@@ -1162,11 +1163,12 @@ static void wall_rates(sph_force_params fp, int fluid_only, double *out, size_t 
   sph_forces_pressure(&p, &fp.eos);
   CU_ASSERT_FATAL(sph_forces_evaluate(&p, &l, &fp, &w, &err) == 0);
   for (size_t i = 0; i < p.n; i++) {
-    const size_t k = (size_t)p.id[i] * 8;
+    const size_t k = (size_t)p.id[i] * 9;
     out[k] = p.drho[i];
     for (int d = 0; d < 3; d++)
       out[k + 1 + d] = p.acc[d][i], out[k + 4 + d] = p.xsph[d][i];
-    out[k + 7] = p.kind[i];
+    out[k + 7] = fp.ledger ? p.du[i] : 0.0;
+    out[k + 8] = p.kind[i];
   }
   sph_force_work_free(&w);
   sph_nlist_free(&l);
@@ -1180,19 +1182,21 @@ static void wall_rates(sph_force_params fp, int fluid_only, double *out, size_t 
  * sums lose only +-0 terms, added in other lanes), for two term sets and
  * each loop; the wall rows hold no walls and the list is shorter. */
 static void test_wall_rows_fluid(void) {
-  const size_t n = (size_t)NL * NL * NL * 8;
+  const size_t n = (size_t)NL * NL * NL * 9;
   double *ref = calloc(n, sizeof *ref), *got = calloc(n, sizeof *got);
   CU_ASSERT_FATAL(ref && got);
   const sph_force_loop loops[3] = {SPH_LOOP_AUTO, SPH_LOOP_SCALAR, SPH_LOOP_LANES};
-  for (int set = 0; set < 2; set++)
+  for (int set = 0; set < 3; set++)
     for (int q = 0; q < 3; q++) {
       sph_force_params fp = params();
       fp.gz = -G;
       fp.loop = loops[q];
       fp.wall_diffusion = 1;
-      if (set == 0)
+      if (set == 0 || set == 2)
         fp.alpha = 0.2, fp.xsph = 0.5, fp.diffusion = SPH_DIFFUSION_FOURTAKAS,
         fp.diffusion_delta = 0.1;
+      if (set == 2)
+        fp.ledger = 1; /* a wall's heat: its pairs with fluid only */
       else
         fp.viscosity = SPH_VISCOSITY_MORRIS, fp.mu = 1e-3, fp.diffusion = SPH_DIFFUSION_MOLTENI,
         fp.diffusion_delta = 0.1;
@@ -1202,22 +1206,28 @@ static void test_wall_rows_fluid(void) {
       CU_ASSERT(ww_all > 0 && ww_fluid == 0 && e_fluid + ww_all == e_all);
       double worst = 0.0, mag = 0.0;
       size_t walls = 0, fluid_differs = 0;
-      for (size_t i = 0; i < n; i += 8) {
-        if (ref[i + 7] == SPH_KIND_FLUID) {
-          fluid_differs += memcmp(ref + i, got + i, 8 * sizeof *ref) != 0;
+      double heat = 0.0, hworst = 0.0; /* the largest wall heat rate, and its change */
+      for (size_t i = 0; i < n; i += 9) {
+        if (ref[i + 8] == SPH_KIND_FLUID) {
+          fluid_differs += memcmp(ref + i, got + i, 9 * sizeof *ref) != 0;
           continue;
         }
         walls++;
         for (int k = 0; k < 7; k++)
           worst = fmax(worst, fabs(got[i + k] - ref[i + k]));
         mag = fmax(mag, fabs(ref[i])); /* a wall's drho: its fluid neighbours' */
+        heat = fmax(heat, fabs(ref[i + 7]));
+        hworst = fmax(hworst, fabs(got[i + 7] - ref[i + 7]));
       }
       CU_ASSERT(walls > 0 && mag > 0.0);
+      CU_ASSERT(set != 2 || heat > 0.0);
+      CU_ASSERT(hworst <= 1e-12 * heat);
       CU_ASSERT_EQUAL(fluid_differs, 0);
       CU_ASSERT(worst <= 1e-12 * mag);
-      if (worst > 1e-12 * mag || fluid_differs)
-        printf("\n    set %d loop %d: walls off by %.3g of %.3g, %zu fluid rates differ", set,
-               (int)loops[q], worst, mag, fluid_differs);
+      if (worst > 1e-12 * mag || hworst > 1e-12 * heat || fluid_differs)
+        printf("\n    set %d loop %d: walls off by %.3g of %.3g (heat %.3g of %.3g), %zu fluid "
+               "rates differ",
+               set, (int)loops[q], worst, mag, hworst, heat, fluid_differs);
     }
   free(ref);
   free(got);

@@ -37,10 +37,10 @@ static double sph_skin_fraction(void) {
  * adds +-0 to every sum a wall row feeds. A wall row sums the continuity
  * (v_ij = 0 between walls at rest), the step rule's sigma (v_ij . r_ij =
  * 0) and the density diffusion (a wall neighbour's diffusing mass is 0 in
- * a wall row: interact_row.h), and the density bound looks for fluid
- * neighbours only (dbc.c). Not so, and so every neighbour listed, with
- * moving walls or mirror particles (sigma), the ledger (a wall row's
- * heat), the strain-rate pass and the corrected gradients (a wall
+ * a wall row: interact_row.h), with the ledger its heat (of its pairs
+ * with fluid only), and the density bound looks for fluid neighbours only
+ * (dbc.c). Not so, and so every neighbour listed, with moving walls or
+ * mirror particles (sigma), the strain-rate pass and the corrected gradients (a wall
  * particle's sums over its walls), wall normals (their rows mark their
  * fluid neighbours, and mdbc's), repulsive walls, Antuono's diffusion (its
  * c_i) and the density filters (which may filter walls). 3-D only: in
@@ -48,7 +48,7 @@ static double sph_skin_fraction(void) {
  * golden files with them (a 2-D row is short: doc/memory.md). */
 static int wall_rows_fluid_only(const sph_sim *s) {
   const sph_force_params *fp = &s->fp;
-  return SPH_DIM == 3 && !fp->moving_walls && !fp->mirror && !fp->ledger && !fp->sps &&
+  return SPH_DIM == 3 && !fp->moving_walls && !fp->mirror && !fp->sps &&
          fp->viscosity != SPH_VISCOSITY_STRESS_TENSOR && !fp->gradient_correction &&
          !fp->corrected_gradient && !sph_force_wall_normals(fp) && !fp->repulsive &&
          fp->diffusion != SPH_DIFFUSION_ANTUONO && s->c->density_filter == SPH_FILTER_NONE;
