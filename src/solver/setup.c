@@ -39,10 +39,13 @@ static double sph_skin_fraction(void) {
  * 0) and the density diffusion (a wall neighbour's diffusing mass is 0 in
  * a wall row: interact_row.h), with the ledger its heat (of its pairs
  * with fluid only), and the density bound looks for fluid neighbours only
- * (dbc.c). Not so, and so every neighbour listed, with moving walls or
- * mirror particles (sigma), the strain-rate pass and the corrected gradients (a wall
- * particle's sums over its walls), wall normals (their rows mark their
- * fluid neighbours, and mdbc's), repulsive walls, Antuono's diffusion (its
+ * (dbc.c); mdbc walls take their density from their mirror points, on a
+ * grid of their own (wall_velocity.c), and of the walls' rows only the
+ * fluid entries are read as meeting a wall (forces.c, nwall). Not so, and
+ * so every neighbour listed, with moving walls or mirror particles
+ * (sigma), the strain-rate pass and the corrected gradients (a wall
+ * particle's sums over its walls), no-slip and free-slip walls (their
+ * velocities and normal parts), repulsive walls, Antuono's diffusion (its
  * c_i) and the density filters (which may filter walls). 3-D only: in
  * 2-D the shorter rows would move the lanes' sums of wall rows, and the
  * golden files with them (a 2-D row is short: doc/memory.md). */
@@ -50,7 +53,7 @@ static int wall_rows_fluid_only(const sph_sim *s) {
   const sph_force_params *fp = &s->fp;
   return SPH_DIM == 3 && !fp->moving_walls && !fp->mirror && !fp->sps &&
          fp->viscosity != SPH_VISCOSITY_STRESS_TENSOR && !fp->gradient_correction &&
-         !fp->corrected_gradient && !sph_force_wall_normals(fp) && !fp->repulsive &&
+         !fp->corrected_gradient && !fp->no_slip && !fp->free_slip && !fp->repulsive &&
          fp->diffusion != SPH_DIFFUSION_ANTUONO && s->c->density_filter == SPH_FILTER_NONE;
 }
 
