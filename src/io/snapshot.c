@@ -1127,14 +1127,21 @@ int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *
   return rc;
 }
 
-void sph_snapshot_restart_free(sph_snapshot_restart_data *r) {
-  free(r->levels);
-  free(r->filters);
+void sph_snapshot_restart_free_particles(sph_snapshot_restart_data *r) {
   free(r->order);
   free(r->vxh);
   free(r->vyh);
-  SPH_IF3(free(r->vzh);)
+  SPH_IF3(free(r->vzh); r->vzh = NULL;)
   free(r->rhoh);
   free(r->uh);
+  r->order = NULL;
+  r->vxh = r->vyh = r->rhoh = r->uh = NULL;
+  r->count = 0;
+}
+
+void sph_snapshot_restart_free(sph_snapshot_restart_data *r) {
+  sph_snapshot_restart_free_particles(r);
+  free(r->levels);
+  free(r->filters);
   memset(r, 0, sizeof *r);
 }

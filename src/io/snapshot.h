@@ -160,6 +160,10 @@ typedef struct sph_snapshot_restart_data {
 } sph_snapshot_restart_data;
 int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *r, sph_error *err);
 void sph_snapshot_restart_free(sph_snapshot_restart_data *r);
+/* Frees only r's per-particle arrays (order and the half-step values; count
+ * becomes 0), keeping its gauges, filters and scalars: for a caller that
+ * has copied those arrays into its store. */
+void sph_snapshot_restart_free_particles(sph_snapshot_restart_data *r);
 
 #ifdef __cplusplus
 }

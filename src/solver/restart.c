@@ -173,19 +173,6 @@ static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particl
   return sph_sim_check_state(s, err);
 }
 
-/* The per-particle arrays of rd, which restore_state has copied into the
- * store (the run reads only rd's gauges, filters and output index). */
-static void drop_particle_data(sph_snapshot_restart_data *rd) {
-  free(rd->order);
-  free(rd->vxh);
-  free(rd->vyh);
-  SPH_IF3(free(rd->vzh); rd->vzh = NULL;)
-  free(rd->rhoh);
-  free(rd->uh);
-  rd->order = NULL, rd->vxh = rd->vyh = rd->rhoh = rd->uh = NULL;
-  rd->count = 0;
-}
-
 int sph_sim_restore(sph_sim *s, const char *path, sph_snapshot_restart_data *rd, sph_error *err) {
   memset(rd, 0, sizeof *rd);
   sph_snapshot *snap;
@@ -205,7 +192,9 @@ int sph_sim_restore(sph_sim *s, const char *path, sph_snapshot_restart_data *rd,
      * work arrays were held at once, a restart's peak 1.4 times a fresh
      * run's (SPHERIC at dx = 0.02 m: 123 MB against 85) */
     sph_particles_free(&q);
-    drop_particle_data(rd);
+    /* and rd's per-particle arrays, in the store by then (the run reads
+     * only rd's gauges, filters and output index) */
+    sph_snapshot_restart_free_particles(rd);
 #ifdef __GLIBC__
     /* and its pages back to the system: blocks freed below glibc's
      * dynamic mmap threshold stay resident otherwise */
