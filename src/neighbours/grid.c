@@ -529,8 +529,14 @@ static void runs_write(const uint32_t *row, uint32_t c, uint8_t *restrict out) {
   }
 }
 
+/* Whether particle i's row holds its fluid neighbours only: a wall
+ * particle's where l->wall_fluid_only is set (grid.h). */
+static inline int fluid_only_row(const sph_nlist *l, const sph_particles *p, size_t i) {
+  return l->wall_fluid_only && p->kind[i] != SPH_KIND_FLUID;
+}
+
 /* Keeps the fluid particles among row's c entries, in order; returns how
- * many (the rows of wall particles where l->wall_fluid_only is set). */
+ * many (the rows fluid_only_row names). */
 static inline uint32_t keep_fluid(uint32_t *restrict row, uint32_t c,
                                   const int32_t *restrict kind) {
   uint32_t m = 0;
@@ -598,7 +604,6 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   const int wide = 0;
 #endif
   const long ln = (long)n;
-  const int fluid_only = l->wall_fluid_only;
   size_t cmax = 0; /* the most candidates of any particle: the scratch row */
 #pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN) reduction(max : cmax)
   for (long li = 0; li < ln; li++) {
@@ -621,7 +626,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
       for (long li = 0; li < ln; li++) {
         if (!scratch) continue;
         /* (in 2-D only counted: four bytes an entry whatever their order) */
-        const int keep = fluid_only && p->kind[li] != SPH_KIND_FLUID;
+        const int keep = fluid_only_row(l, p, (size_t)li);
         uint32_t c = fill_rows(g, x, (size_t)li, r2max, period,
                                SPH_NLIST_RUNS || keep ? scratch : NULL, sorted, wide);
         if (keep) c = keep_fluid(scratch, c, p->kind);
@@ -657,7 +662,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
       size_t bytes = 0;
       for (size_t i = a; i < b && !oom; i++) {
         uint32_t c = fill_sorted(g, x, i, r2max, period, scratch, sorted, wide);
-        if (fluid_only && p->kind[i] != SPH_KIND_FLUID) c = keep_fluid(scratch, c, p->kind);
+        if (fluid_only_row(l, p, i)) c = keep_fluid(scratch, c, p->kind);
         const size_t sz = runs_size(scratch, c, 1);
         if (bytes + sz > cap) {
           const size_t nc = 2 * (bytes + sz) + 4096;
@@ -834,8 +839,7 @@ const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double s
     }
     for (uint32_t k = 0; k < l->count[i]; k++)
       if (row[k] >= n || row[k] == i || (k && row[k] <= row[k - 1]) ||
-          (l->wall_fluid_only && p->kind[i] != SPH_KIND_FLUID &&
-           p->kind[row[k]] != SPH_KIND_FLUID)) {
+          (fluid_only_row(l, p, i) && p->kind[row[k]] != SPH_KIND_FLUID)) {
         snprintf(check_msg, sizeof check_msg,
                  "neighbour list: row %zu is not sorted or holds %u (or a wall) at entry %u", i,
                  row[k], k);
@@ -855,7 +859,7 @@ const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double s
       while (k < l->count[i] && row[k] < j)
         k++;
       if (j == i || !(r2ij < r2)) continue;
-      if (l->wall_fluid_only && p->kind[i] != SPH_KIND_FLUID && p->kind[j] != SPH_KIND_FLUID)
+      if (fluid_only_row(l, p, i) && p->kind[j] != SPH_KIND_FLUID)
         continue; /* a wall row's walls: not listed (wall_fluid_only) */
       if (k == l->count[i] || row[k] != j) {
         snprintf(check_msg, sizeof check_msg,
