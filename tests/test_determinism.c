@@ -22,7 +22,9 @@
  *   - particle shifting with the ledger on free-slip mdbc walls, and on
  *     the periodic inclined plane;
  *   - the Riemann-solver pressure on mdbc walls with the ledger and a
- *     low-pass probe.
+ *     low-pass probe;
+ *   - adami walls with Morris viscosity and the ledger, a probe with its
+ *     own interpolation, on 1-3 threads.
  * Every file of the two output directories (snapshots, XDMF index,
  * diagnostics.csv, gauges.csv, probes.csv) must be identical.
  */
@@ -159,6 +161,21 @@ static void test_riemann(void) {
                           "low_pass: 500}]'");
 }
 
+/* adami walls (walls/adami.h): their pass over the walls' rows, the rows
+ * skipped in the main pass, their no-slip velocity gathered in the lanes
+ * (artificial and Morris viscosity), the ledger's passive pairs, through
+ * the impact on the right wall, on 1-3 threads; and a probe with its own
+ * interpolation (points, smoothing, clip_negative, hydrostatic) */
+static void test_adami(void) {
+  same_on_threads("cases/martin_moyce_coarse.yaml",
+                  "--set time.end=0.2 --set time.stop=none --set 'geometry.tank={x: [0.0, "
+                  "0.2286], y: [0.0, 0.17145], boundary: adami}' "
+                  "--set 'physics.viscosity={model: morris, mu: 0.001}' --set output.energy=true "
+                  "--set 'output.probes=[{name: P, kind: pressure, at: [0.2286, 0.005], diameter: "
+                  "0.004, points: 7, smoothing: 2, clip_negative: true, hydrostatic: false}]'",
+                  3);
+}
+
 /* the Wendland kernel in the pair loop, the strain-rate pass, the MLS
  * filter and the probes */
 static void test_wendland(void) {
@@ -174,6 +191,7 @@ int main(void) {
       {"Wendland kernel, stress tensor, MLS filter, probes", test_wendland},
       {"density diffusion: antuono, fourtakas with the ledger", test_density_diffusion},
       {"mdbc walls through an impact", test_mdbc},
+      {"adami walls through an impact, 1-3 threads", test_adami},
       {"the Riemann pressure through an impact, with the ledger", test_riemann},
       {"particle shifting, also periodic", test_shifting},
       {"wet bed: viscosity, ledger, moving gate", test_wet_bed},

@@ -19,6 +19,15 @@
  *     gives 1 - exp(-2 pi fc t) whatever the steps (1e-12), a sine at the
  *     cut-off comes out at 1/sqrt(2) of its amplitude (1 %); in probes.csv
  *     the filtered column follows the raw one, which it leaves unchanged;
+ *   - a sensor's own interpolation (points, smoothing, clip_negative,
+ *     hydrostatic, wet_sum) against a brute-force Shepard sum written
+ *     here (1e-12): carried along g it still reads the hydrostatic field
+ *     exactly with any points and smoothing; not carried, on the lattice's
+ *     side face it still reads the field (which varies along the face),
+ *     in its floor the mean pressure of the fluid above, 0.5-2.5 dx of
+ *     rho g below the field at the floor; a field below 0
+ *     reads 0 clipped and below 0 unclipped; a point that sees the fluid
+ *     only faintly is dry by default and wet with a small wet_sum;
  *   - case errors name the probe's key.
  * Restart safety of probes.csv is in tests/test_restart.c.
  */
@@ -32,6 +41,7 @@
 #include "analysis/probes.h"
 #include "case/case.h"
 #include "core/particles.h"
+#include "physics/kernel.h"
 #include "testutil.h"
 
 #define DXL 0.01
@@ -102,6 +112,76 @@ static void test_lattice(void) {
   q = probe(SPH_PROBE_LEVEL, 2.0, 0.0, 0.0, 0);
   sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, 1.3 * DXL, DXL, 0.0, g, v);
   CU_ASSERT(v[0] == 0.0);
+  sph_particles_free(&p);
+}
+
+/* The oracle: the Shepard sum of the fluid's pressure at (x, y) with h, carried along g or not,
+ * clipped or not, in the plainest form; 0 below the kernel sum wet. */
+static double shepard_oracle(const sph_particles *p, double x, double y, double h, int carry,
+                             int clip, double wet) {
+  double sw = 0.0, sp = 0.0;
+  for (size_t j = 0; j < p->n; j++) {
+    const double r = hypot(x - p->x[j], y - p->y[j]);
+    if (r >= 2.0 * h) continue;
+    const double w = sph_kernel_w(SPH_KERNEL_CUBIC_SPLINE, r, h) * p->mass[j] / p->rho[j];
+    const double pj = clip && p->p[j] < 0.0 ? 0.0 : p->p[j];
+    sw += w;
+    sp += w * (carry ? pj + p->rho[j] * (-9.81) * (y - p->y[j]) : pj);
+  }
+  return sw >= wet ? sp / sw : 0.0;
+}
+
+static void test_own_interpolation(void) {
+  sph_particles p;
+  lattice(&p);
+  const double g[2] = {0.0, -9.81}, H = NY * DXL, rgh = 1000.0 * 9.81 * H, h = 1.3 * DXL;
+  /* TrixiParticles' sensor (10 points, 2h, clipped, not carried) on the side face, and in the
+   * floor (its face along x), where the kernel sees the fluid above only */
+  sph_probe q = probe(SPH_PROBE_PRESSURE, 0.0, 0.05, 0.0084, 0);
+  q.points = 10, q.smoothing = 2.0, q.clip_negative = 1, q.no_carry = 1, q.wet_sum = 1e-12;
+  double v, want = 0.0;
+  sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, h, DXL, 0.0, g, &v);
+  for (int k = 0; k < 10; k++)
+    want += shepard_oracle(&p, 0.0, 0.05 + (k / 9.0 - 0.5) * 0.0084, 2 * h, 0, 1, 1e-12) / 10;
+  const double exact = 1000.0 * 9.81 * (H - 0.05);
+  CU_ASSERT(fabs(v - want) < 1e-12 * rgh);
+  CU_ASSERT(fabs(v - exact) < 1e-3 * 1000.0 * 9.81 * DXL); /* the field varies along the face */
+  sph_probe fl = q;
+  fl.x = 0.15, fl.y = 0.0, fl.along_x = 1;
+  sph_probe_read(&fl, &p, SPH_KERNEL_CUBIC_SPLINE, h, DXL, 0.0, g, &v);
+  want = 0.0;
+  for (int k = 0; k < 10; k++)
+    want += shepard_oracle(&p, 0.15 + (k / 9.0 - 0.5) * 0.0084, 0.0, 2 * h, 0, 1, 1e-12) / 10;
+  const double below = (rgh - v) / (1000.0 * 9.81 * DXL);
+  printf("\n  10 points, 2h, clipped, not carried: in the floor %.6f Pa (oracle %.6f, the field "
+         "%.6f: %.2f dx of rho g below it)",
+         v, want, rgh, below);
+  CU_ASSERT(fabs(v - want) < 1e-12 * rgh);
+  CU_ASSERT(below > 0.5 && below < 2.5);
+  /* carried, any points and smoothing: the field exactly */
+  q.no_carry = 0;
+  sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, h, DXL, 0.0, g, &v);
+  CU_ASSERT(fabs(v - exact) < 1e-9 * rgh);
+  /* a field below 0: clipped reads 0, unclipped below 0 */
+  for (size_t j = 0; j < p.n; j++)
+    p.p[j] -= 2.0 * rgh;
+  q.no_carry = 1;
+  sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, h, DXL, 0.0, g, &v);
+  CU_ASSERT(v == 0.0);
+  q.clip_negative = 0;
+  sph_probe_read(&q, &p, SPH_KERNEL_CUBIC_SPLINE, h, DXL, 0.0, g, &v);
+  CU_ASSERT(v < -rgh);
+  /* a point 1.95 dx beyond the fluid's side face sees its first column faintly (kernel sum
+   * below 0.1): dry by default, wet with a small wet_sum */
+  for (size_t j = 0; j < p.n; j++)
+    p.p[j] += 2.0 * rgh;
+  sph_probe f = probe(SPH_PROBE_PRESSURE, -1.95 * DXL, 0.1, 0.0, 0);
+  sph_probe_read(&f, &p, SPH_KERNEL_CUBIC_SPLINE, h, DXL, 0.0, g, &v);
+  CU_ASSERT(v == 0.0);
+  f.wet_sum = 1e-12;
+  sph_probe_read(&f, &p, SPH_KERNEL_CUBIC_SPLINE, h, DXL, 0.0, g, &v);
+  CU_ASSERT(fabs(v - shepard_oracle(&p, -1.95 * DXL, 0.1, h, 1, 0, 1e-12)) < 1e-9 * rgh);
+  CU_ASSERT(v > 0.0);
   sph_particles_free(&p);
 }
 
@@ -304,6 +384,12 @@ static void test_case_errors(void) {
              "t.yaml:9: output.gauges[1]: x = -100 is outside the domain, x [-0.302, 0.802] "
              "y [-0.302, 1.802] (geometry.domain, or its default from the geometry): the water "
              "cannot reach it");
+  expect_err("  probes:\n    - {name: a, kind: level, x: 0, points: 10}\n",
+             "t.yaml:10: output.probes[0].points: not a key of a level probe");
+  expect_err("  probes:\n    - {name: a, kind: pressure, at: [0.5, 0], points: 65}\n",
+             "t.yaml:10: output.probes[0].points: expected an integer in 1..64, got '65'");
+  expect_err("  probes:\n    - {name: a, kind: pressure, at: [0.5, 0], smoothing: 0}\n",
+             "t.yaml:10: output.probes[0].smoothing: expected a positive number, got '0'");
   expect_err("  probes:\n    - {name: a, kind: level, x: 0, low_pass: 100}\n",
              "t.yaml:10: output.probes[0].low_pass: not a key of a level probe");
   expect_err("  probes:\n    - {name: a, kind: pressure, at: [0, 0], low_pass: 0}\n",
@@ -318,6 +404,7 @@ static void test_case_errors(void) {
 int main(void) {
   CU_TestInfo tests[] = {{"readings on a hydrostatic lattice", test_lattice},
                          {"a wire gauge: still water, a jet above it, dry", test_wetted},
+                         {"a sensor's own interpolation", test_own_interpolation},
                          {"hydrostatic tank: probes.csv against rho0 g (H - y)", test_tank},
                          {"a sensor's low-pass response", test_low_pass},
                          {"case errors", test_case_errors},

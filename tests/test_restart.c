@@ -146,6 +146,7 @@ static void test_lf_fresh(void) { restart_fresh("restart_lf", 2); }
 static void test_mirror_fresh(void) { restart_fresh("restart_mirror", 2); }
 static void test_lf_from_start(void) { restart_fresh("restart_lf", 0); }
 static void test_fs_fresh(void) { restart_fresh("restart_fs", 3); }
+static void test_adami_fresh(void) { restart_fresh("restart_adami", 2); }
 
 /* Restart in a copy of the run's own directory (which holds the later
  * snapshots and rows already): the end result is byte for byte the
@@ -358,6 +359,7 @@ int main(void) {
       {"mirror, periodic: restart in a fresh directory is bitwise", test_mirror_fresh},
       {"leap-frog: restart from t = 0 is bitwise", test_lf_from_start},
       {"free-surface flags on the kept list: restart is bitwise", test_fs_fresh},
+      {"adami walls, a moving one, the ledger: restart is bitwise", test_adami_fresh},
       {"restart in the run's directory: CSV and XDMF as uninterrupted", test_pc_in_place},
       {"mirror, periodic: restart in place, headers of an earlier version", test_mirror_in_place},
       {"bad restarts fail clearly; time.end may change", test_bad_restarts},

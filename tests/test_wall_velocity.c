@@ -255,7 +255,7 @@ static void test_case_keys(void) {
       {"physics.viscosity.model=morris",
        "physics.viscosity.gradient_correction: corrects the stress-tensor viscosity"},
       {"geometry.walls=[{from: [1.0e-3, 0], to: [0, 0], boundary: repulsive, stagger: false}]",
-       "geometry.walls[0].stagger: only for 'dynamic', 'fixed_layers' and 'mdbc' walls"},
+       "geometry.walls[0].stagger: only for 'dynamic', 'fixed_layers', 'mdbc' and 'adami' walls"},
       {"geometry.walls=[{from: [1.0e-3, 0], to: [0, 0], stagger: maybe}]",
        "geometry.walls[0].stagger: expected"},
       {"geometry.walls=[{from: [1.0e-3, 0], to: [0, 0], extrapolated_velocity: true, "

@@ -79,17 +79,36 @@ static double wetted_length(const sph_probe *q, const sph_particles *p, sph_kern
   return sum;
 }
 
+/* How a probe interpolates (probes.h): the defaults, or a pressure
+ * sensor's own. */
+typedef struct interp {
+  double h;   /* the kernel's smoothing length */
+  double wet; /* the kernel sum below which a point is dry */
+  int clip;   /* negative pressures read as 0 */
+  int carry;  /* pressures carried along g */
+} interp;
+
+static interp interp_of(const sph_probe *q, double h) {
+  interp o = {h, SPH_PROBE_WET_SUM, 0, 1};
+  if (q->kind != SPH_PROBE_PRESSURE) return o;
+  if (q->smoothing > 0.0) o.h = q->smoothing * h;
+  if (q->wet_sum > 0.0) o.wet = q->wet_sum;
+  o.clip = q->clip_negative;
+  o.carry = !q->no_carry;
+  return o;
+}
+
 /* The Shepard-normalised pressure (carried along g) and velocity at each
- * of the n points x[k] (n <= SPH_PROBE_FACE_POINTS), in one pass over the
+ * of the n points x[k] (n <= SPH_PROBE_MAX_POINTS), in one pass over the
  * particles: out[k][0] the pressure, out[k][1 ..] the velocity; wet[k] 0
  * where dry (out[k] then unset). Each point's sums run over the particles
  * in storage order, as they would alone. */
 static void shepard_at(const sph_particles *p, sph_kernel_kind kernel, int n,
-                       const double x[][SPH_DIM], double h, const double g[SPH_DIM],
+                       const double x[][SPH_DIM], const interp *o, const double g[SPH_DIM],
                        double out[][1 + SPH_DIM], int *wet) {
-  const double reach = 2.0 * h;
+  const double h = o->h, reach = 2.0 * h;
   double lo[SPH_DIM], hi[SPH_DIM]; /* the box every point's reach lies in */
-  double s[SPH_PROBE_FACE_POINTS][2 + SPH_DIM] = {{0.0}};
+  double s[SPH_PROBE_MAX_POINTS][2 + SPH_DIM] = {{0.0}};
   for (int d = 0; d < SPH_DIM; d++) {
     lo[d] = hi[d] = x[0][d];
     for (int k = 1; k < n; k++)
@@ -114,16 +133,17 @@ static void shepard_at(const sph_particles *p, sph_kernel_kind kernel, int n,
       const double r = sqrt(dx * dx + dy * dy + dz * dz), gd = g[0] * dx + g[1] * dy + g[2] * dz;
 #endif
       const double w = sph_kernel_w(kernel, r, h) * (p->mass[j] / p->rho[j]);
+      const double pj = o->clip && !(p->p[j] > 0.0) ? 0.0 : p->p[j];
       double *sk = s[k];
       sk[0] += w;
-      sk[1] += w * (p->p[j] + p->rho[j] * gd);
+      sk[1] += w * (o->carry ? pj + p->rho[j] * gd : pj);
       sk[2] += w * p->vx[j];
       sk[3] += w * p->vy[j];
       SPH_IF3(sk[4] += w * p->vz[j];)
     }
   }
   for (int k = 0; k < n; k++) {
-    wet[k] = s[k][0] >= SPH_PROBE_WET_SUM;
+    wet[k] = s[k][0] >= o->wet;
     if (!wet[k]) continue;
     for (int m = 0; m < 1 + SPH_DIM; m++)
       out[k][m] = s[k][1 + m] / s[k][0];
@@ -168,12 +188,13 @@ void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind 
                     double dx, double floor_y, const double g[SPH_DIM], double *out) {
   switch (q->kind) {
   case SPH_PROBE_PRESSURE: {
-    const int n = q->diameter > 0.0 ? SPH_PROBE_FACE_POINTS : 1;
-    double at[SPH_PROBE_FACE_POINTS][SPH_DIM], v[SPH_PROBE_FACE_POINTS][1 + SPH_DIM];
-    int wet[SPH_PROBE_FACE_POINTS];
+    const int n = q->diameter > 0.0 ? (q->points > 0 ? q->points : SPH_PROBE_FACE_POINTS) : 1;
+    double at[SPH_PROBE_MAX_POINTS][SPH_DIM], v[SPH_PROBE_MAX_POINTS][1 + SPH_DIM];
+    int wet[SPH_PROBE_MAX_POINTS];
+    const interp o = interp_of(q, h);
     for (int k = 0; k < n; k++)
       face_point(q, k, n, at[k]);
-    shepard_at(p, kernel, n, at, h, g, v, wet);
+    shepard_at(p, kernel, n, at, &o, g, v, wet);
     double sum = 0.0;
     for (int k = 0; k < n; k++)
       if (wet[k]) sum += v[k][0];
@@ -205,9 +226,10 @@ void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind 
     const double c[1][SPH_DIM] = {{SPH_XYZ(q->x, q->y, q->z)}};
     double v[1][1 + SPH_DIM];
     int wet;
+    const interp o = interp_of(q, h);
     for (int d = 0; d < SPH_DIM; d++)
       out[d] = 0.0;
-    shepard_at(p, kernel, 1, c, h, g, v, &wet);
+    shepard_at(p, kernel, 1, c, &o, g, v, &wet);
     if (wet)
       for (int d = 0; d < SPH_DIM; d++)
         out[d] = v[0][1 + d];

@@ -18,6 +18,15 @@
  *             SPH_PROBE_WET_SUM (a tenth of a full neighbourhood; half a
  *             neighbourhood is what a point on a wall face sees) is dry and
  *             reads 0: spray passing the sensor is not a pressure.
+ *             A sensor may state another interpolation, so that a
+ *             peer's sensor can be read as the peer reads it (bench/
+ *             peers_trixi: TrixiParticles' dam-break sensors): `points`
+ *             face points instead of 5 (2-D: evenly spaced over the face,
+ *             both ends included; 3-D: 1 or 5), the kernel's h times
+ *             `smoothing`, `clip_negative` (each particle's pressure below
+ *             0 read as 0, as sensors that clip cavitation do),
+ *             `hydrostatic: false` (p_j as it is, not carried) and
+ *             `wet_sum` (the kernel sum below which a point is dry).
  *             With `low_pass` (Hz) the sensor's response too: a
  *             first-order low-pass filter of the reading at that cut-off
  *             (sph_probe_low_pass), in a column of its own beside the raw
@@ -59,6 +68,7 @@ extern "C" {
 #endif
 
 #define SPH_PROBE_FACE_POINTS 5
+#define SPH_PROBE_MAX_POINTS 64
 #define SPH_PROBE_WET_SUM 0.1
 
 typedef enum {
@@ -79,6 +89,13 @@ typedef struct sph_probe {
   int along_x;     /* pressure (2-D): the face spans x (a sensor in a floor); default y */
   double low_pass; /* pressure: the cut-off (Hz) of the sensor's first-order response, 0 = none */
   int wetted;      /* level: the wetted length of a wire gauge instead of the highest particle */
+  /* pressure: the interpolation, where it is not the default (0 in each means the default) */
+  int points;        /* face points, 1 .. SPH_PROBE_MAX_POINTS (default SPH_PROBE_FACE_POINTS;
+                        1 for diameter 0) */
+  double smoothing;  /* the interpolation's h over the case's (default 1) */
+  int clip_negative; /* each particle's pressure below 0 read as 0 */
+  int no_carry;      /* each particle's pressure as it is, not carried along g */
+  double wet_sum;    /* the kernel sum below which a point is dry (default SPH_PROBE_WET_SUM) */
 } sph_probe;
 
 /* Whether q has a sensor response (a pressure probe with low_pass > 0). */

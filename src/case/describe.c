@@ -250,6 +250,12 @@ char *sph_case_describe(const sph_case *c) {
              q->along_x ? "x" : "y");
 #endif
       if (sph_probe_filtered(q)) sb_add(&b, " low_pass %.17g", q->low_pass);
+      /* a sensor's own interpolation, where it states one */
+      if (q->points) sb_add(&b, " points %d", q->points);
+      if (q->smoothing > 0.0) sb_add(&b, " smoothing %.17g", q->smoothing);
+      if (q->clip_negative) sb_add(&b, " clip_negative");
+      if (q->no_carry) sb_add(&b, " hydrostatic false");
+      if (q->wet_sum > 0.0) sb_add(&b, " wet_sum %.17g", q->wet_sum);
       sb_add(&b, "\n");
     }
   }

@@ -56,8 +56,8 @@ static const char *const domain_keys[] = {"x", "y",
                                           "z",
 #endif
                                           NULL};
-static const char *const boundary_names[] = {"dynamic", "fixed_layers", "repulsive",
-                                             "mirror",  "mdbc",         NULL};
+static const char *const boundary_names[] = {"dynamic", "fixed_layers", "repulsive", "mirror",
+                                             "mdbc",    "adami",        NULL};
 
 const char *sph_boundary_name(sph_boundary_kind b) {
   return sph_case_choice_name(boundary_names, (int)b);
@@ -95,9 +95,19 @@ static int check_layers(const ctx *x, const node *m, const char *p, sph_boundary
  * field, 3 layers on the fluid's lattice continued (they fill the support
  * 2h = 2.6 dx; in still water the floor particles then carry their
  * hydrostatic load within 3 %, against 42-53 % under it with 2 staggered
- * layers). */
-static int default_layers(sph_boundary_kind b) { return b == SPH_BOUNDARY_MDBC ? 3 : 2; }
-static int default_stagger(sph_boundary_kind b) { return SPH_DIM == 2 && b != SPH_BOUNDARY_MDBC; }
+ * layers). For adami, whose wall particles complete the fluid's kernel
+ * sums, as many layers on the lattice as fill the support 2h (3 at the
+ * default h = 1.3 dx, 4 at h = 2 dx as TrixiParticles' dam break runs). */
+static int default_layers(sph_boundary_kind b, const sph_case *c) {
+  if (b == SPH_BOUNDARY_ADAMI) {
+    const int k = (int)ceil(2.0 * c->h_factor - 1e-9);
+    return k < 1 ? 1 : k > 8 ? 8 : k;
+  }
+  return b == SPH_BOUNDARY_MDBC ? 3 : 2;
+}
+static int default_stagger(sph_boundary_kind b) {
+  return SPH_DIM == 2 && b != SPH_BOUNDARY_MDBC && b != SPH_BOUNDARY_ADAMI;
+}
 
 /* A wall segment's heights at its ends (from, to): y in 2-D, z in 3-D. */
 static double *wall_up(sph_wall_segment *w, int end) {
@@ -109,21 +119,28 @@ static double *wall_up(sph_wall_segment *w, int end) {
 }
 
 /* `stagger`, `extrapolated_velocity` and `free_slip` of a wall of
- * particles with a density (dynamic, fixed_layers, mdbc); an error on the
- * others, and the extrapolated velocity only where a strain-rate pass uses
- * it. */
+ * particles with a density (dynamic, fixed_layers, mdbc, adami); an error
+ * on the others, and the extrapolated velocity only where a strain-rate
+ * pass uses it, never on adami walls (their no-slip velocity is AHA12's,
+ * in every viscous term: walls/adami.h). */
 static int read_layout(const ctx *x, const node *m, const char *p, const sph_case *c,
                        sph_boundary_kind b, int *stagger, int *extrapolated, int *free_slip) {
   const node *t;
   char kp[SPH_YAML_KEYLEN];
-  const int evolving =
-      b == SPH_BOUNDARY_DYNAMIC || b == SPH_BOUNDARY_FIXED_LAYERS || b == SPH_BOUNDARY_MDBC;
+  const int evolving = b == SPH_BOUNDARY_DYNAMIC || b == SPH_BOUNDARY_FIXED_LAYERS ||
+                       b == SPH_BOUNDARY_MDBC || b == SPH_BOUNDARY_ADAMI;
   static const char *const keys[] = {"stagger", "extrapolated_velocity", "free_slip"};
   for (int k = 0; k < 3; k++)
     if (!evolving && sph_yaml_lookup(&x->t, m, p, keys[k], 0, &t, kp) > 0)
-      return sph_yaml_fail_at(
-          &x->t, t, kp, "only for 'dynamic', 'fixed_layers' and 'mdbc' walls (this one is '%s')",
-          sph_boundary_name(b));
+      return sph_yaml_fail_at(&x->t, t, kp,
+                              "only for 'dynamic', 'fixed_layers', 'mdbc' and 'adami' walls "
+                              "(this one is '%s')",
+                              sph_boundary_name(b));
+  if (b == SPH_BOUNDARY_ADAMI &&
+      sph_yaml_lookup(&x->t, m, p, "extrapolated_velocity", 0, &t, kp) > 0)
+    return sph_yaml_fail_at(&x->t, t, kp,
+                            "not on an 'adami' wall: its no-slip velocity is Adami et al.'s, in "
+                            "every viscous term (free_slip: true turns it off)");
   if (sph_yaml_get_bool(&x->t, m, p, "stagger", stagger) < 0) return -1;
   if (sph_yaml_get_bool(&x->t, m, p, "free_slip", free_slip) < 0) return -1;
   int rc = sph_yaml_get_bool(&x->t, m, p, "extrapolated_velocity", extrapolated);
@@ -161,7 +178,7 @@ static int read_tank(const ctx *x, const node *m, sph_case *c) {
 #endif
   if (sph_yaml_get_choice(&x->t, t, p, "boundary", boundary_names, &b) < 0) return -1;
   c->tank.boundary = (sph_boundary_kind)b;
-  c->tank.layers = default_layers(c->tank.boundary);
+  c->tank.layers = default_layers(c->tank.boundary, c);
   if (sph_yaml_get_int(&x->t, t, p, "layers", 1, 8, &c->tank.layers) < 0) return -1;
   c->tank.stagger = default_stagger(c->tank.boundary);
   if (read_layout(x, t, p, c, c->tank.boundary, &c->tank.stagger, &c->tank.extrapolated,
@@ -414,7 +431,7 @@ static int read_wall(const ctx *x, const node *m, const char *p, const sph_case 
                             "is 2-D only so far (a 3-D wall's layers are dx apart, "
                             "doc/dimensions.md)");
   }
-  w->layers = default_layers(w->boundary);
+  w->layers = default_layers(w->boundary, c);
   if (sph_yaml_get_int(&x->t, m, p, "layers", 1, 8, &w->layers) < 0) return -1;
   if (check_layers(x, m, p, w->boundary, &w->layers)) return -1;
   w->stagger = default_stagger(w->boundary);
@@ -529,12 +546,13 @@ static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_c
   o->boundary = (sph_boundary_kind)bnd;
   if (bnd == SPH_BOUNDARY_MIRROR) {
     sph_yaml_join(kp, sizeof kp, p, "boundary");
-    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "boundary")->val, kp,
-                            "expected 'dynamic', 'fixed_layers', 'mdbc' or 'repulsive' (an "
-                            "obstacle is a box of wall particles), got '%s'",
-                            sph_boundary_name(o->boundary));
+    return sph_yaml_fail_at(
+        &x->t, sph_yaml_find(m, "boundary")->val, kp,
+        "expected 'dynamic', 'fixed_layers', 'mdbc', 'adami' or 'repulsive' (an "
+        "obstacle is a box of wall particles), got '%s'",
+        sph_boundary_name(o->boundary));
   }
-  o->layers = 2;
+  o->layers = o->boundary == SPH_BOUNDARY_ADAMI ? default_layers(o->boundary, c) : 2;
   if (sph_yaml_get_int(&x->t, m, p, "layers", 1, 8, &o->layers) < 0) return -1;
   return check_layers(x, m, p, o->boundary, &o->layers); /* (repulsive: exactly 1) */
 }

@@ -16,12 +16,14 @@
 
 static const char *const output_keys[] = {"snapshots", "free_surface",   "energy", "gauges",
                                           "probes",    "probe_interval", NULL};
-static const char *const probe_keys[] = {"name",     "kind",  "at",       "x",
-                                         "diameter", "along", "low_pass", "wetted",
+static const char *const probe_keys[] = {
+    "name",     "kind",   "at",     "x",         "diameter",      "along",
+    "low_pass", "wetted", "points", "smoothing", "clip_negative", "hydrostatic",
+    "wet_sum",
 #if SPH_DIM == 3
-                                         "normal",
+    "normal",
 #endif
-                                         NULL};
+    NULL};
 static const char *const probe_kind_names[] = {"pressure", "level", "velocity", NULL};
 static const char *const along_names[] = {"y", "x", NULL};
 
@@ -70,6 +72,31 @@ static int outside_reach(const ctx *x, const node *t, const char *k, const char 
                           what, box[0], box[1], box[2], box[3]);
 }
 
+/* A pressure sensor's interpolation where it states its own (probes.h):
+ * points (1 to SPH_PROBE_MAX_POINTS in 2-D, 1 or 5 in 3-D), smoothing (> 0),
+ * clip_negative, hydrostatic (true: carried along g) and wet_sum (> 0). */
+static int read_interpolation(const ctx *x, const node *m, const char *p, sph_probe *pr) {
+  const node *t;
+  char kp[SPH_YAML_KEYLEN];
+  pr->points = 0;
+  if (sph_yaml_get_int(&x->t, m, p, "points", 1, SPH_PROBE_MAX_POINTS, &pr->points) < 0) return -1;
+  if (SPH_DIM == 3 && pr->points != 0 && pr->points != 1 && pr->points != 5) {
+    sph_yaml_lookup(&x->t, m, p, "points", 1, &t, kp);
+    return sph_yaml_fail_at(&x->t, t, kp,
+                            "expected 1 or 5 (a 3-D sensor's face: its centre, or the centre "
+                            "and four points across it), got %d",
+                            pr->points);
+  }
+  int carry = 1;
+  if (sph_yaml_get_number(&x->t, m, p, "smoothing", 0, &SPH_YAML_POS, &pr->smoothing) < 0 ||
+      sph_yaml_get_bool(&x->t, m, p, "clip_negative", &pr->clip_negative) < 0 ||
+      sph_yaml_get_bool(&x->t, m, p, "hydrostatic", &carry) < 0 ||
+      sph_yaml_get_number(&x->t, m, p, "wet_sum", 0, &SPH_YAML_POS, &pr->wet_sum) < 0)
+    return -1;
+  pr->no_carry = !carry;
+  return 0;
+}
+
 /* One entry of output.probes (p its key, output.probes[i]), inside box. */
 static int read_probe(const ctx *x, const node *m, const char *p, const double box[2 * SPH_DIM],
                       sph_probe *pr) {
@@ -90,17 +117,24 @@ static int read_probe(const ctx *x, const node *m, const char *p, const double b
   const int level = pr->kind == SPH_PROBE_LEVEL, pressure = pr->kind == SPH_PROBE_PRESSURE;
   /* the keys each kind takes (3-D: a level gauge is at (x, y), a pressure
    * sensor has a normal instead of along) */
-  static const char *const only[] = {"at",       "x",      "diameter", "along",
-                                     "low_pass", "normal", "wetted"};
+  enum { N_ONLY = 12 };
+  static const char *const only[N_ONLY] = {
+      "at",     "x",      "diameter",  "along",         "low_pass",    "normal",
+      "wetted", "points", "smoothing", "clip_negative", "hydrostatic", "wet_sum"};
 #if SPH_DIM == 2
-  const int allowed[3][7] = {{1, 0, 1, 1, 1, 0, 0}, {0, 1, 0, 0, 0, 0, 1}, {1, 0, 0, 0, 0, 0, 0}};
+  const int allowed[3][N_ONLY] = {{1, 0, 1, 1, 1, 0, 0, 1, 1, 1, 1, 1},
+                                  {0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0},
+                                  {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}};
 #else
-  const int allowed[3][7] = {{1, 0, 1, 0, 1, 1, 0}, {1, 0, 0, 0, 0, 0, 1}, {1, 0, 0, 0, 0, 0, 0}};
+  const int allowed[3][N_ONLY] = {{1, 0, 1, 0, 1, 1, 0, 1, 1, 1, 1, 1},
+                                  {1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0},
+                                  {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}};
 #endif
-  for (int k = 0; k < 7; k++)
+  for (int k = 0; k < N_ONLY; k++)
     if (!allowed[kind][k] && sph_yaml_lookup(&x->t, m, p, only[k], 0, &t, kp) > 0)
       return sph_yaml_fail_at(&x->t, t, kp, "not a key of a %s probe", probe_kind_names[kind]);
   if (level && sph_yaml_get_bool(&x->t, m, p, "wetted", &pr->wetted) < 0) return -1;
+  if (pressure && read_interpolation(x, m, p, pr)) return -1;
 #if SPH_DIM == 3
   if (level) { /* the vertical line at (x, y) */
     double at[2];

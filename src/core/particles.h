@@ -34,12 +34,16 @@ enum {
   SPH_FLAG_REPULSIVE = 2,    /* a wall particle of a repulsive wall (paper A eq. 21-22) */
   SPH_FLAG_NO_SLIP = 4,      /* a wall particle with the extrapolated velocity (wall_velocity.h) */
   SPH_FLAG_MDBC = 8, /* a wall particle of an mdbc wall: density from the fluid (wall_velocity.h) */
-  SPH_FLAG_FREE_SLIP = 16 /* a wall particle of a free-slip wall: its pressure and artificial-
-                             viscosity pair forces act along the wall's normal (pair_terms.h) */
+  SPH_FLAG_FREE_SLIP = 16, /* a wall particle of a free-slip wall: its pressure and artificial-
+                              viscosity pair forces act along the wall's normal (pair_terms.h) */
+  SPH_FLAG_ADAMI = 32,     /* a wall particle of an adami wall: pressure extrapolated from the
+                              fluid, no rates of its own (walls/adami.h) */
+  SPH_FLAG_INVISCID = 64   /* an adami wall particle of a free-slip wall: no viscous pair term
+                              with it (walls/adami.h) */
 };
 /* The flags of wall particles that carry their mirror offset (mx, my: twice their depth along
  * the wall's normal, boundary.h). */
-#define SPH_WALL_NORMAL (SPH_FLAG_NO_SLIP | SPH_FLAG_MDBC | SPH_FLAG_FREE_SLIP)
+#define SPH_WALL_NORMAL (SPH_FLAG_NO_SLIP | SPH_FLAG_MDBC | SPH_FLAG_FREE_SLIP | SPH_FLAG_ADAMI)
 
 /* Groups of arrays a case may not use (doc/memory.md). Until a group is
  * live its arrays hold zeros, nothing writes them, and they are neither

@@ -65,7 +65,7 @@ static void half_gradient(const sph_particles *restrict p, const sph_nlist *rest
 }
 
 int sph_diffusion_wall_takes_part(int32_t kind, uint8_t flags) {
-  return kind == SPH_KIND_WALL && !(flags & (SPH_FLAG_MDBC | SPH_FLAG_REPULSIVE));
+  return kind == SPH_KIND_WALL && !(flags & (SPH_FLAG_MDBC | SPH_FLAG_REPULSIVE | SPH_FLAG_ADAMI));
 }
 
 int sph_diffusion_walls(const sph_particles *p, const sph_force_params *fp) {

@@ -12,9 +12,10 @@
 #include "solver/forces.h"
 
 /* Whether a particle of this kind and these flags takes part in the
- * diffusion as a wall: a dynamic or fixed_layers wall particle (not mdbc,
- * whose density is the fluid's already; not repulsive; not a mirror
- * particle). */
+ * diffusion as a wall: a dynamic or fixed_layers wall particle (not mdbc
+ * or adami, whose density is the fluid's already; not repulsive; not a
+ * mirror particle). The fluid next to adami walls diffuses among its
+ * fluid neighbours, as AHA12's and TrixiParticles' fluid does. */
 int sph_diffusion_wall_takes_part(int32_t kind, uint8_t flags);
 
 /* Whether the diffusion is on and some particle of p takes part in it as a

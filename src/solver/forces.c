@@ -67,7 +67,7 @@ void sph_force_work_free(sph_force_work *w) {
 
 /* Room for n particles: every per-particle array in one block (arrays.h),
  * the contents of the old one carried over. */
-static int work_reserve(sph_force_work *w, size_t n, sph_error *err) {
+int sph_force_work_reserve(sph_force_work *w, size_t n, sph_error *err) {
   if (n <= w->cap) return 0;
   const size_t cap = n + n / 4 + 16;
   void **arrays[] = {
@@ -274,21 +274,23 @@ static int strain_setup(const sph_particles *p, const sph_force_params *fp, sph_
   *o = (strain_opts){0};
   if (fp->gradient_correction) o->l = w->l;
   SPH_IF3(if (fp->sps) o->div = w->sdiv;)
+  if (!(fp->no_slip || fp->mirror || fp->adami)) return 0;
+  /* every particle's own velocity but an adami wall particle's, set before the pass
+   * (walls/adami.h); sph_wall_velocity leaves those too */
   if (fp->no_slip) {
     if (wall_ghosts(p, fp, w->gv, &w->wv, err)) return -1;
-    o->gv = (const double *const *)w->gv;
-  }
-  if (fp->mirror) { /* mirror particles: their no-slip velocity (boundary.h) */
-    if (!fp->no_slip)
-      for (size_t i = 0; i < p->n; i++)
+  } else {
+    for (size_t i = 0; i < p->n; i++)
+      if (!(p->flags[i] & SPH_FLAG_ADAMI))
         for (int d = 0; d < SPH_DIM; d++)
           w->gv[d][i] = p->vel[d][i];
+  }
+  if (fp->mirror) /* mirror particles: their no-slip velocity (boundary.h) */
     for (size_t i = 0; i < p->n; i++)
       if (p->kind[i] == SPH_KIND_MIRROR)
         for (int d = 0; d < SPH_DIM; d++)
           w->gv[d][i] = p->velh[d][i];
-    o->gv = (const double *const *)w->gv;
-  }
+  o->gv = (const double *const *)w->gv;
   return 0;
 }
 
@@ -300,7 +302,7 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
   strain_opts o;
   int rc =
       sph_nlist_build(&l, g, p, kernel_reach(p, fp), 0.0, fp->periodic ? fp->period : 0.0, err);
-  if (rc == 0) rc = work_reserve(&w, p->n, err);
+  if (rc == 0) rc = sph_force_work_reserve(&w, p->n, err);
   if (rc == 0) rc = strain_setup(p, fp, &w, &o, err);
   if (rc == 0) strain_list(p, &l, fp, eps, &o);
   sph_force_work_free(&w);
@@ -488,7 +490,7 @@ static strain_fn strain_lanes(const sph_force_params *fp) {
 static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                         sph_force_work *w, const unsigned F, sph_error *err) {
   const long n = (long)p->n;
-  if (work_reserve(w, p->n, err)) return -1;
+  if (sph_force_work_reserve(w, p->n, err)) return -1;
   /* the loops read the fluid masses: XSPH, the ledger, the Riemann terms, and a wall row's
    * continuity where walls move (interact_row.h) */
   const int fm = (F & (F_XSPH | F_LEDGER | F_RIEMANN)) || fp->moving_walls || fp->mirror;

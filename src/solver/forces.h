@@ -132,6 +132,8 @@ typedef struct sph_force_params {
   int no_slip;             /* some wall particles carry SPH_FLAG_NO_SLIP (wall_velocity.h) */
   int free_slip;           /* some wall particles carry SPH_FLAG_FREE_SLIP: the scalar loop */
   int mdbc;                /* some wall particles carry SPH_FLAG_MDBC (diffusion.c) */
+  int adami;               /* some wall particles carry SPH_FLAG_ADAMI: their rows are skipped,
+                              their no-slip velocity in the work's gv (walls/adami.h) */
   int moving_walls;        /* some wall particles move: a wall row's continuity then skips
                               its wall (and mirror) neighbours, as with mirror walls; for
                               walls at rest each such pair adds +-0 */
@@ -157,10 +159,10 @@ typedef struct sph_force_params {
 } sph_force_params;
 
 /* Whether some wall particles carry their normal (SPH_WALL_NORMAL: mdbc,
- * no-slip and free-slip walls), which the Riemann pressure's closing speed
- * reads (interact_row.h, forces.c). */
+ * adami, no-slip and free-slip walls), which the Riemann pressure's closing
+ * speed reads (interact_row.h, forces.c). */
 static inline int sph_force_wall_normals(const sph_force_params *fp) {
-  return fp->mdbc || fp->no_slip || fp->free_slip;
+  return fp->mdbc || fp->no_slip || fp->free_slip || fp->adami;
 }
 
 /* The fields a neighbour reads, packed in one cache line per particle
@@ -191,8 +193,10 @@ typedef struct sph_force_work {
   double *wpow;         /* ledger: sum over wall neighbours j of a_ij . v_j (fluid i) */
   SPH_AXES(wf, wfx, wfy, wfz); /* ledger: sum over wall and mirror neighbours j of a_ij (fluid i) */
   SPH_SYM_ARRAYS(l, l);        /* kernel-gradient correction M^-1 of the strain-rate pass */
-  SPH_AXES(gv, gvx, gvy,
-           gvz); /* velocity in the strain-rate pass (extrapolated on no-slip walls) */
+  SPH_AXES(gv, gvx, gvy, gvz); /* velocity in the viscous terms: every particle's in the
+                                  strain-rate pass (extrapolated on no-slip walls); an adami wall
+                                  particle's no-slip velocity (walls/adami.h, set before the
+                                  pass) also in the main pass */
   SPH_AXES(ddc, ddcx, ddcy, ddcz); /* density diffusion: the model's vector c_i (diffusion.h),
                                       antuono's only: the others' is ddc0 */
   double ddc0[SPH_DIM];            /* the vector c_i of a model that has one for every particle */
@@ -223,6 +227,10 @@ typedef struct sph_force_work {
 } sph_force_work;
 
 void sph_force_work_free(sph_force_work *w);
+
+/* Room in w for n particles (the contents carried over): for a caller
+ * that fills one of its arrays before the pass (adami walls' gv). */
+int sph_force_work_reserve(sph_force_work *w, size_t n, sph_error *err);
 
 /* Sets p->p from the equation of state for every particle. */
 void sph_forces_pressure(sph_particles *p, const sph_eos *eos);

@@ -99,7 +99,7 @@ void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const s
     sph_slice(cost, p->n, &lo, &hi);
     for (size_t i = lo; i < hi; i++) {
       if (save) save_start(p, i);
-      if (p->flags[i] & SPH_FLAG_MDBC) {
+      if (p->flags[i] & (SPH_FLAG_MDBC | SPH_FLAG_ADAMI)) {
         /* an mdbc wall's density is the fluid's, extrapolated at every pass
          * (wall_velocity.h), not a state: integrated from t = 0 its half-step
          * value drifted to 1.3 rho0 on the Lobovsky floor and stopped the run

@@ -74,7 +74,9 @@ LOOP_ATTR double SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph
   const double *restrict sxx = w->sxx, *restrict sxy = w->sxy, *restrict syy = w->syy;
   SPH_IF3(const double *restrict sxz = w->sxz, *restrict syz = w->syz, *restrict szz = w->szz;)
   const int32_t *restrict kind = p->kind;
-  if (kind[i] == SPH_KIND_MIRROR || (p->flags[i] & SPH_FLAG_REPULSIVE)) {
+  /* no rates: mirror particles, repulsive wall particles, adami wall particles (whose density
+   * and pressure are the fluid's, walls/adami.h) */
+  if (kind[i] == SPH_KIND_MIRROR || (p->flags[i] & (SPH_FLAG_REPULSIVE | SPH_FLAG_ADAMI))) {
     p->drho[i] = p->ax[i] = p->ay[i] = 0.0;
     SPH_IF3(p->az[i] = 0.0;)
     if (F & F_LEDGER) p->du[i] = w->wpow[i] = w->wfx[i] = w->wfy[i] = 0.0;
@@ -137,8 +139,13 @@ LOOP_ATTR double SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph
   LA rd = azero;                                         /* the Riemann continuity term */
   SPH_IF3(LA az = azero, zs = azero, wfz = azero;)
   const uint8_t *restrict flags = p->flags;
-  /* neighbours that take no heat: repulsive wall particles and mirror particles */
-  const int passive = (F & F_LEDGER) && (fp->repulsive || fp->mirror);
+  /* neighbours that take no heat: repulsive wall particles, mirror particles and adami wall
+   * particles */
+  const int passive = (F & F_LEDGER) && (fp->repulsive || fp->mirror || fp->adami);
+  /* adami walls in the viscous terms of a fluid row: a wall neighbour's no-slip velocity
+   * (w->gv), none on a free-slip one (walls/adami.h) */
+  const int adami_v = fp->adami && fluid && (F & (F_AV | F_MORRIS | F_STRESS));
+  const double *const *restrict agv = (const double *const *)w->gv;
   /* free-slip walls: a predicted branch per iteration (i's own flag for a wall i) */
   const int slip = fp->free_slip;
   const int slip_i = slip && kind[i] == SPH_KIND_WALL && (flags[i] & SPH_FLAG_FREE_SLIP);
@@ -289,6 +296,27 @@ LOOP_ATTR double SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph
 #endif
     }
 #endif
+    /* an adami wall neighbour: the viscous terms read its no-slip velocity, and none of them
+     * acts on a free-slip one (vis: the lanes they act on) */
+    LMASK vis = LOP(lt)(zero, one);
+    if (adami_v) {
+#define E_AF(q, f) ((kind[jk[q]] == SPH_KIND_WALL && (flags[jk[q]] & (f))) ? 1.0 : 0.0)
+#define E_AGV(q, a)                                                                                \
+  ((kind[jk[q]] == SPH_KIND_WALL && (flags[jk[q]] & SPH_FLAG_ADAMI)) ? agv[a][jk[q]] : 0.0)
+      const LMASK ad = LOP(lt)(zero, LSET(E_AF, SPH_FLAG_ADAMI));
+      vis = LOP(lt)(zero, LOP(sub)(one, LSET(E_AF, SPH_FLAG_INVISCID)));
+      vvx = LOP(sel)(ad, LOP(sub)(vxi, LSET(E_AGV, 0)), vvx);
+      vvy = LOP(sel)(ad, LOP(sub)(vyi, LSET(E_AGV, 1)), vvy);
+#if SPH_DIM == 2
+      const LT avdotr = LOP(add)(LOP(mul)(vvx, dx), LOP(mul)(vvy, dy));
+#else
+      vvz = LOP(sel)(ad, LOP(sub)(vzi, LSET(E_AGV, 2)), vvz);
+      const LT avdotr = LOP(add)(LOP(add)(LOP(mul)(vvx, dx), LOP(mul)(vvy, dy)), LOP(mul)(vvz, dz));
+#endif
+      vvdotr = LOP(sel)(ad, avdotr, vvdotr);
+#undef E_AGV
+#undef E_AF
+    }
     LT inv_rb = zero;
     if (F & (F_AV | F_XSPH)) inv_rb = LTERM(inv_rho_mean)(rhoi, GATHER(rho));
     /* a fluid-wall pair on a free-slip wall: the pressure and Pi_ij along the
@@ -348,9 +376,11 @@ LOOP_ATTR double SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph
     } else {
       pij = LOP(add)(pri, GATHER(prho2));
     }
-    if (F & F_AV)
-      pij = LOP(add)(pij, LTERM(artificial_viscosity)(avr, hij, r2, eta2_ij, ci, GATHER(cs), nalpha,
-                                                      beta, inv_rb));
+    if (F & F_AV) {
+      const LT av =
+          LTERM(artificial_viscosity)(avr, hij, r2, eta2_ij, ci, GATHER(cs), nalpha, beta, inv_rb);
+      pij = LOP(add)(pij, adami_v ? LOP(and)(vis, av) : av);
+    }
     const LT mp = LOP(mul)(mj, pij);
     const LVEC pg = {{SPH_XYZ(pgx, pgy, pgz)}}, pa = LTERM(pressure_force)(mp, pg);
     LT pax = pa.c[0], pay = pa.c[1];
@@ -369,14 +399,18 @@ LOOP_ATTR double SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph
       const LT tzz = LOP(add)(LOP(all)(szz[i]), LSET(E_ARR, szz));
       const LSYM t = {{txx, txy, txz, tyy, tyz, tzz}};
 #endif
-      const LVEC sv = LTERM(stress_force)(mj, t, gw);
+      LVEC sv = LTERM(stress_force)(mj, t, gw);
+      if (adami_v)
+        sv = (LVEC){
+            {SPH_XYZ(LOP(and)(vis, sv.c[0]), LOP(and)(vis, sv.c[1]), LOP(and)(vis, sv.c[2]))}};
       pax = LOP(add)(pax, sv.c[0]);
       pay = LOP(add)(pay, sv.c[1]);
       SPH_IF3(paz = LOP(add)(paz, sv.c[2]);)
       if (F & F_LEDGER) heat = LOP(sub)(heat, LTERM(stress_heat)(mj, t, dv, gw));
     }
     if (F & F_MORRIS) {
-      const LT c = LTERM(morris_factor)(mj, nu4, f, r2, rhoi, GATHER(rho), eta2_ij);
+      LT c = LTERM(morris_factor)(mj, nu4, f, r2, rhoi, GATHER(rho), eta2_ij);
+      if (adami_v) c = LOP(and)(vis, c);
       pax = LOP(add)(pax, LOP(mul)(c, vvx));
       pay = LOP(add)(pay, LOP(mul)(c, vvy));
       SPH_IF3(paz = LOP(add)(paz, LOP(mul)(c, vvz));)
@@ -387,7 +421,9 @@ LOOP_ATTR double SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph
       SPH_IF3(LT vwz = GATHER(vz);)
       if (passive) { /* a repulsive wall or mirror neighbour: i takes the whole heat */
 #define E_PAS(q, a)                                                                                \
-  ((kind[jk[q]] == SPH_KIND_MIRROR || (flags[jk[q]] & SPH_FLAG_REPULSIVE)) ? 1.0 : 0.0)
+  ((kind[jk[q]] == SPH_KIND_MIRROR || (flags[jk[q]] & (SPH_FLAG_REPULSIVE | SPH_FLAG_ADAMI)))      \
+       ? 1.0                                                                                       \
+       : 0.0)
 #define E_WV(q, a) (kind[jk[q]] == SPH_KIND_WALL ? hot[jk[q]].a : 0.0) /* a mirror's: at rest */
         const LMASK pas = LOP(lt)(zero, LSET(E_PAS, 0));
         vwx = LSET(E_WV, vx);

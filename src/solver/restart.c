@@ -164,6 +164,7 @@ static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particl
     }
   }
   s->t = sph_snapshot_time(snap);
+  s->t_walls = s->t; /* the snapshot's walls stand where their laws put them at t */
   s->steps = (long)sph_snapshot_step(snap);
   s->last_dt = sph_snapshot_dt(snap);
   s->first_step = (int)rd->first_step;

@@ -426,6 +426,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.no_slip = s->walls.no_slip;
   s->fp.free_slip = s->walls.free_slip;
   s->fp.mdbc = s->walls.mdbc;
+  s->fp.adami = s->walls.adami;
   s->fp.moving_walls = s->walls.moving;
   s->fp.wall_diffusion = sph_diffusion_walls(&s->p, &s->fp);
   s->fp.mirror = s->walls.n_mirror > 0;
@@ -468,7 +469,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
     sph_error_set(err, "out of memory");
     goto fail;
   }
-  sph_walls_move(&s->walls, &s->p, 0.0);
+  sph_sim_move_walls(s, 0.0);
   s->resort = 1;
   if (sph_sim_pass(s, err)) goto fail; /* rates and flags of the initial state */
   /* the faster lane loop on this processor (the same bits; mirror walls

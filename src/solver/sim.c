@@ -37,6 +37,7 @@
 #include "physics/shifting.h"
 #include "solver/forces.h"
 #include "solver/integrate.h"
+#include "walls/adami.h"
 #include "walls/boundary.h"
 #include "walls/dbc.h"
 #include "walls/wall_velocity.h"
@@ -173,6 +174,31 @@ static int mdbc_walls(sph_sim *s, sph_error *err) {
   return 0;
 }
 
+/* Adami walls (walls/adami.h): pressure and density from the fluid near
+ * them, with the hydrostatic term and their walls' accelerations at the
+ * time they stand at, and their no-slip velocity into the work's gv for
+ * the viscous terms. */
+static int adami_walls(sph_sim *s, sph_error *err) {
+  const sph_case *c = s->c;
+  if (sph_force_work_reserve(&s->work, s->p.n, err)) return -1;
+  sph_adami_params ap = {.kernel = c->kernel,
+                         .h = c->h,
+                         .var_h = s->fp.var_h,
+                         .eos = s->fp.eos,
+                         .walls = s->walls.moving ? &s->walls : NULL,
+                         .t = s->t_walls};
+  for (int d = 0; d < SPH_DIM; d++)
+    ap.g[d] = c->gravity[d];
+  sph_wall_adami(&s->p, &s->nl, &ap, s->work.gv);
+  return 0;
+}
+
+/* The moving walls at time t (walls.h), which the adami walls' pass reads. */
+void sph_sim_move_walls(sph_sim *s, double t) {
+  sph_walls_move(&s->walls, &s->p, t);
+  s->t_walls = t;
+}
+
 /* Mirror particles, grid build, free-surface flags and one interaction
  * pass on the current state; the mirror particles are gone again when it
  * returns. */
@@ -192,6 +218,7 @@ int sph_sim_pass(sph_sim *s, sph_error *err) {
   if (rc == 0 && s->walls.dbc) rc = dbc_bound(s, err);
   if (rc == 0 && s->detect) rc = free_surface(s, err);
   if (rc == 0 && s->walls.mdbc) rc = mdbc_walls(s, err);
+  if (rc == 0 && s->walls.adami) rc = adami_walls(s, err);
   if (rc == 0) rc = sph_forces_evaluate(&s->p, &s->nl, &s->fp, &s->work, err);
   s->step_pass = s->steps; /* the state w->hot now holds */
   /* everything that reads the pass's per-particle work arrays, before
@@ -409,17 +436,17 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
     sph_ledger_advance(&s->ledger, dt);
     sph_leapfrog_step(&s->p, dt, s->first_step, xsph, &s->fp.eos, slices(s));
     s->first_step = 0;
-    sph_walls_move(&s->walls, &s->p, t_new);
+    sph_sim_move_walls(s, t_new);
     keep_off_mirrors(s, 1);
   } else {
     sph_pc_half(&s->p, dt, xsph, &s->fp.eos, slices(s));
-    sph_walls_move(&s->walls, &s->p, s->t + 0.5 * dt);
+    sph_sim_move_walls(s, s->t + 0.5 * dt);
 
     if (sph_sim_pass(s, err)) return -1;
     /* X^{n+1} = X^n + dt F(X^{n+1/2}): the mid-step powers drive the step */
     sph_ledger_advance(&s->ledger, dt);
     sph_pc_finish(&s->p, dt, xsph, &s->fp.eos, slices(s));
-    sph_walls_move(&s->walls, &s->p, t_new);
+    sph_sim_move_walls(s, t_new);
     keep_off_mirrors(s, 0);
   }
   wrap_periodic(s);

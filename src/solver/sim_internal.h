@@ -49,6 +49,7 @@ struct sph_sim {
   double
       *shift[SPH_DIM]; /* particle shifting's displacements by axis (numerics.shifting), or NULL */
   double t, last_dt;
+  double t_walls;    /* the time the moving walls stand at (sph_sim_move_walls) */
   double lane_ratio; /* AVX2 / AVX-512 time of the start-up pass (forces.h), 1 if not measured */
   double t_saved;    /* time of the state saved at the start of the last step */
   long step_pass;    /* step of the state the last pass evaluated (w->hot) */
@@ -58,6 +59,9 @@ struct sph_sim {
   double view[2 * SPH_DIM];
   char *parameters; /* sph_case_describe */
 };
+
+/* The moving walls at time t, which a pass's adami walls read (sim.c). */
+void sph_sim_move_walls(sph_sim *s, double t);
 
 /* Mirror particles, grid build, free-surface flags and one interaction
  * pass on the current state (sim.c). */

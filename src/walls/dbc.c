@@ -36,7 +36,8 @@ long sph_dbc_bound(sph_particles *p, const sph_nlist *l, double support, double 
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(+ : changed)
   for (long li = 0; li < n; li++) {
     const size_t i = (size_t)li;
-    if (p->kind[i] != SPH_KIND_WALL || (p->flags[i] & (SPH_FLAG_REPULSIVE | SPH_FLAG_MDBC)))
+    if (p->kind[i] != SPH_KIND_WALL ||
+        (p->flags[i] & (SPH_FLAG_REPULSIVE | SPH_FLAG_MDBC | SPH_FLAG_ADAMI)))
       continue;
     const double rho = p->rho[i], rhoh = half_step ? p->rhoh[i] : rho0;
     if (rho == rho0 && rhoh == rho0) continue; /* at rest: nothing to bound */

@@ -30,7 +30,7 @@
 #include "neighbours/grid.h"
 
 /* Applies both bounds to every wall particle of a dynamic or fixed_layers
- * wall (kind SPH_KIND_WALL, neither SPH_FLAG_REPULSIVE nor SPH_FLAG_MDBC):
+ * wall (kind SPH_KIND_WALL, none of SPH_FLAG_REPULSIVE, _MDBC, _ADAMI):
  * its density (and, when half_step is set, its leap-frog half-step density
  * rhoh) is raised to rho0 where below, and set to rho0 where no fluid
  * particle of the list l is closer than `support` (the minimum image along

@@ -27,3 +27,15 @@ void sph_motion_point(const sph_motion *m, double t, const double r[SPH_DIM], do
     for (int a = 0; a < SPH_DIM; a++)
       v[a] = m->v[a];
 }
+
+void sph_motion_accel(const sph_motion *m, double t, const double r[SPH_DIM], double a[SPH_DIM]) {
+  for (int d = 0; d < SPH_DIM; d++)
+    a[d] = 0.0;
+  if (m->kind != SPH_MOTION_PISTON && m->kind != SPH_MOTION_FLAP) return;
+  const double e = 1e-6;
+  double x[SPH_DIM], v0[SPH_DIM], v1[SPH_DIM];
+  sph_motion_point(m, t - e, r, x, v0);
+  sph_motion_point(m, t + e, r, x, v1);
+  for (int d = 0; d < SPH_DIM; d++)
+    a[d] = (v1[d] - v0[d]) / (2.0 * e);
+}

@@ -15,4 +15,11 @@
 void sph_motion_point(const sph_motion *m, double t, const double r[SPH_DIM], double x[SPH_DIM],
                       double v[SPH_DIM]);
 
+/* The acceleration a of that point at time t: 0 for a translation (its
+ * start and stop are jumps of the velocity, not accelerations), and for
+ * a paddle the central difference of its velocity over t +- 1e-6 s
+ * (exact to about 1e-10 of the velocity's scale for the paddles' periods
+ * of 0.5 s and more; a function of t alone). */
+void sph_motion_accel(const sph_motion *m, double t, const double r[SPH_DIM], double a[SPH_DIM]);
+
 #endif

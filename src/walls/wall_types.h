@@ -21,8 +21,10 @@ typedef enum {
   SPH_BOUNDARY_FIXED_LAYERS = 1, /* Morris' fixed layers (paper A §6 b): the same particles */
   SPH_BOUNDARY_REPULSIVE = 2,    /* one layer + Lennard-Jones force, paper A eq. (21)-(22) */
   SPH_BOUNDARY_MIRROR = 3,       /* mirror particles, GOST R 57700.6 3.4.5 */
-  SPH_BOUNDARY_MDBC = 4          /* dynamic particles whose density is the fluid's extrapolated
+  SPH_BOUNDARY_MDBC = 4,         /* dynamic particles whose density is the fluid's extrapolated
                                     across the face (English et al. 2022; wall_velocity.h) */
+  SPH_BOUNDARY_ADAMI = 5         /* particles whose pressure is the fluid's extrapolated with the
+                                    hydrostatic term (Adami, Hu & Adams 2012; adami.h) */
 } sph_boundary_kind;
 
 /* A rectangular tank: inner faces at x0 (left), x1 (right), y0 (floor); the

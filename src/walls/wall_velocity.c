@@ -286,7 +286,7 @@ int sph_wall_velocity(const sph_particles *p, double support, double px0, double
   const size_t n = p->n;
   for (int a = 0; a < SPH_DIM; a++)
     for (size_t i = 0; i < n; i++)
-      gv[a][i] = p->vel[a][i];
+      if (!(p->flags[i] & SPH_FLAG_ADAMI)) gv[a][i] = p->vel[a][i];
   layout g;
   const int rc = bin_fluid(p, support, px0, period, paxis, &g, w, err);
   if (rc) return rc < 0 ? -1 : 0;

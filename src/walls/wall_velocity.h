@@ -55,7 +55,9 @@ void sph_wall_velocity_work_free(sph_wall_velocity_work *w);
 
 /* gv[a] (SPH_DIM arrays of n values) = the velocity of every particle in
  * the viscous terms: the ghost velocity above for particles flagged
- * SPH_FLAG_NO_SLIP, the particle's own velocity for all others. `support`
+ * SPH_FLAG_NO_SLIP, the particle's own velocity for all others but adami
+ * wall particles, whose entries are left as they are (walls/adami.h sets
+ * them). `support`
  * is the kernel's reach (2 max h); period > 0: the domain is periodic
  * along axis paxis over [px0, px0 + period). Deterministic: each sum runs
  * in cell order, storage order within a cell, whatever the thread count. */

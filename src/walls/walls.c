@@ -15,7 +15,11 @@
 
 #include "walls/motion.h"
 
+/* An adami wall's free slip is AHA12's (no viscous pair term, adami.h), not the normal part
+ * of the other models' forces (SPH_FLAG_FREE_SLIP). */
 static uint8_t wall_flags(sph_boundary_kind b, int extrapolated, int free_slip) {
+  if (b == SPH_BOUNDARY_ADAMI)
+    return (uint8_t)(SPH_FLAG_ADAMI | (free_slip ? SPH_FLAG_INVISCID : 0));
   return (uint8_t)((b == SPH_BOUNDARY_REPULSIVE ? SPH_FLAG_REPULSIVE : 0) |
                    (b == SPH_BOUNDARY_MDBC ? SPH_FLAG_MDBC : 0) |
                    (extrapolated ? SPH_FLAG_NO_SLIP : 0) | (free_slip ? SPH_FLAG_FREE_SLIP : 0));
@@ -91,10 +95,10 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
   w->segments = segments;
   w->n_segments = n_segments;
   w->no_slip = tank->present && tank->extrapolated;
-  w->free_slip = tank->present && tank->free_slip;
+  w->free_slip = tank->present && tank->free_slip && tank->boundary != SPH_BOUNDARY_ADAMI;
   for (size_t k = 0; k < n_segments; k++) {
     w->no_slip |= segments[k].extrapolated;
-    w->free_slip |= segments[k].free_slip;
+    w->free_slip |= segments[k].free_slip && segments[k].boundary != SPH_BOUNDARY_ADAMI;
   }
   if (tank->present) {
     if (tank->boundary == SPH_BOUNDARY_MIRROR) {
@@ -122,6 +126,7 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
     }
     if (tank->boundary == SPH_BOUNDARY_REPULSIVE) w->repulsive = 1;
     if (tank->boundary == SPH_BOUNDARY_MDBC) w->mdbc = 1;
+    if (tank->boundary == SPH_BOUNDARY_ADAMI) w->adami = 1;
     if (is_dbc(tank->boundary)) w->dbc = 1;
   }
   for (size_t k = 0; k < n_segments; k++) {
@@ -135,6 +140,7 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
     }
     if (ws->boundary == SPH_BOUNDARY_REPULSIVE) w->repulsive = 1;
     if (ws->boundary == SPH_BOUNDARY_MDBC) w->mdbc = 1;
+    if (ws->boundary == SPH_BOUNDARY_ADAMI) w->adami = 1;
     if (is_dbc(ws->boundary)) w->dbc = 1;
     const size_t first = p->n;
     const uint8_t flags = wall_flags(ws->boundary, ws->extrapolated, ws->free_slip);
@@ -166,6 +172,7 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
     const sph_obstacle *o = &obstacles[k];
     if (is_dbc(o->boundary)) w->dbc = 1;
     if (o->boundary == SPH_BOUNDARY_MDBC) w->mdbc = 1;
+    if (o->boundary == SPH_BOUNDARY_ADAMI) w->adami = 1;
     if (o->boundary == SPH_BOUNDARY_REPULSIVE) w->repulsive = 1;
     const size_t first = p->n;
     if (sph_boundary_add_box(p, o, w->obstacle_floor, dx, rho0, wall_mass, h,

@@ -33,6 +33,7 @@ typedef struct sph_walls {
   int no_slip;       /* some wall particles carry SPH_FLAG_NO_SLIP */
   int free_slip;     /* some wall particles carry SPH_FLAG_FREE_SLIP */
   int mdbc;          /* some wall particles carry SPH_FLAG_MDBC */
+  int adami;         /* some wall particles carry SPH_FLAG_ADAMI (adami.h) */
   int dbc;           /* some wall particles are dynamic or fixed_layers (dbc.h) */
   const sph_wall_segment *segments; /* the case's segments (their motions), not owned */
   size_t n_segments;

@@ -1,0 +1,79 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * adami.c - Adami, Hu and Adams' (2012) generalized wall boundary
+ * condition (see adami.h): one loop over the adami wall particles, each
+ * summing over the fluid particles of its own neighbour row.
+ */
+#include "config.h"
+
+#include "walls/adami.h"
+
+#include <math.h>
+
+#include "core/parallel.h"
+#include "physics/kernel.h"
+#include "walls/motion.h"
+
+/* g - a_w of wall particle i: its moving wall's acceleration by its law. */
+static void resulting_acceleration(const sph_particles *p, const sph_adami_params *ap, size_t i,
+                                   double ga[SPH_DIM]) {
+  for (int d = 0; d < SPH_DIM; d++)
+    ga[d] = ap->g[d];
+  if (!ap->walls || !(p->live & SPH_ARRAYS_REST) || p->body[i] < 0) return;
+  const sph_motion *m = &ap->walls->segments[p->body[i]].motion;
+  const double r[SPH_DIM] = {SPH_XYZ(p->xr[i], p->yr[i], p->zr[i])};
+  double a[SPH_DIM];
+  sph_motion_accel(m, ap->t, r, a);
+  for (int d = 0; d < SPH_DIM; d++)
+    ga[d] -= a[d];
+}
+
+size_t sph_wall_adami(sph_particles *p, const sph_nlist *l, const sph_adami_params *ap,
+                      double *const *gv) {
+  const long n = (long)p->n;
+  size_t wet = 0;
+#pragma omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN) reduction(+ : wet)
+  for (long li = 0; li < n; li++) {
+    const size_t i = (size_t)li;
+    if (p->kind[i] != SPH_KIND_WALL || !(p->flags[i] & SPH_FLAG_ADAMI)) continue;
+    double ga[SPH_DIM];
+    resulting_acceleration(p, ap, i, ga);
+    /* AHA12 eq. (27): sum_f (p_f + rho_f (g - a_w) . r_wf) W_wf and sum_f W_wf; eq. (24): sum_f
+     * v_f W_wf */
+    double sw = 0.0, sp = 0.0, sv[SPH_DIM] = {0.0};
+    size_t cnt;
+    const uint32_t *row = sph_nlist_row(l, i, &cnt);
+    for (size_t k = 0; k < cnt; k++) {
+      const size_t j = row[k];
+      if (p->kind[j] != SPH_KIND_FLUID) continue;
+      const double dx = sph_nlist_sep(l, 0, p->x[i], p->x[j]);
+      const double dy = sph_nlist_sep(l, 1, p->y[i], p->y[j]);
+      SPH_IF3(const double dz = sph_nlist_sep(l, 2, p->z[i], p->z[j]);)
+      const double r2 = SPH_NORM2(dx, dy, dz);
+      const double hij = ap->var_h ? 0.5 * (p->h[i] + p->h[j]) : ap->h;
+      if (r2 >= SPH_CUBIC_SUPPORT * SPH_CUBIC_SUPPORT * hij * hij || r2 == 0.0) continue;
+      const double wij = sph_kernel_w(ap->kernel, sqrt(r2), hij);
+#if SPH_DIM == 2
+      const double gr = ga[0] * dx + ga[1] * dy;
+#else
+      const double gr = ga[0] * dx + ga[1] * dy + ga[2] * dz;
+#endif
+      sw += wij;
+      sp += (p->p[j] + p->rho[j] * gr) * wij;
+      for (int d = 0; d < SPH_DIM; d++)
+        sv[d] += p->vel[d][j] * wij;
+    }
+    double pw = 0.0;
+    if (sw > 0.0) {
+      wet++;
+      pw = sp / sw;
+      if (!(pw > 0.0)) pw = 0.0; /* a wall pushes, never pulls (adami.h) */
+    }
+    p->p[i] = pw;
+    p->rho[i] = pw > 0.0 ? sph_eos_density(&ap->eos, pw) : ap->eos.rho0; /* AHA12 eq. (28) */
+    if (gv)
+      for (int d = 0; d < SPH_DIM; d++)
+        gv[d][i] = sw > 0.0 ? 2.0 * p->vel[d][i] - sv[d] / sw : p->vel[d][i];
+  }
+  return wet;
+}
