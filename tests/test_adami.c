@@ -12,6 +12,10 @@
  *    is the Tait inverse of it; their no-slip velocity is 2 v_w - v for a
  *    uniform fluid velocity v; a wall particle with no fluid in reach reads
  *    0 and rho0; a field below 0 reads 0 (clipped).
+ * 1b. The walls' guard (walls.h, sph_walls_keep_off) is the face itself for
+ *    adami walls: a particle just in front of a tank face or a box
+ *    obstacle's face stays, one that crossed it is reflected to as far in
+ *    front as it was behind (other walls' guard moves both).
  * 2. Still water (cases/hydrostatic_tank.yaml, 0.5 s, both integrators):
  *    no fluid particle crosses a wall face; the largest speed stays under
  *    1 % of sqrt(g H) in the first 0.1 s and 0.5 % after (measured 0.55 /
@@ -195,6 +199,48 @@ static void test_extrapolation(void) {
   sph_particles_free(&p);
 }
 
+/* The guard of adami walls (walls.h, sph_walls_keep_off) is the face itself: in a unit tank
+ * with an adami box obstacle, a particle 0.004 in front of the floor, or of the box's left face,
+ * stays (the guard of other walls at d_min = 0.01 would move it), one 0.004 behind the floor or
+ * inside the box's left face is reflected to 0.004 in front of it, its normal velocity turned
+ * into the water; and a dynamic tank with the same d_min moves the one in front too. */
+static void test_guard_at_face(void) {
+  static const double cases[][6] = {
+      /* x, y, vx, vy; x, y after */
+      {0.2, 0.004, 0.3, -1.0, 0.2, 0.004},  /* in front of the floor: stays */
+      {0.2, -0.004, 0.3, -1.0, 0.2, 0.004}, /* behind the floor: reflected */
+      {0.396, 0.1, 1.0, 0.0, 0.396, 0.1},   /* in front of the box's left face: stays */
+      {0.404, 0.1, 1.0, 0.0, 0.396, 0.1},   /* inside it: reflected */
+  };
+  for (int adami = 1; adami >= 0; adami--) {
+    sph_particles p;
+    sph_error err;
+    CU_ASSERT_FATAL(sph_particles_init(&p, 8, &err) == 0);
+    for (size_t k = 0; k < 4; k++)
+      CU_ASSERT_FATAL(sph_particles_add(&p, cases[k][0], cases[k][1], cases[k][2], cases[k][3],
+                                        1000, 1, 0.026, SPH_KIND_FLUID, &err) == (long)k);
+    const sph_boundary_kind b = adami ? SPH_BOUNDARY_ADAMI : SPH_BOUNDARY_DYNAMIC;
+    sph_tank t = {1, 0.0, 1.0, 0.0, 1.0, 3, b, 0, 0, 0, 0};
+    const sph_obstacle o = {{0.4, 0.0}, {0.6, 0.2}, 3, b};
+    sph_walls w;
+    CU_ASSERT_FATAL(sph_walls_create(&w, &p, &t, NULL, 0, &o, 1, 0.02, 1000, 0.026, 0.0, &err) ==
+                    0);
+    const size_t moved = sph_walls_keep_off(&w, &p, 0.01, 0, NULL);
+    if (adami) {
+      CU_ASSERT_EQUAL(moved, 2);
+      for (size_t k = 0; k < 4; k++)
+        CU_ASSERT(fabs(p.x[k] - cases[k][4]) < 1e-15 && fabs(p.y[k] - cases[k][5]) < 1e-15);
+      CU_ASSERT(p.vy[0] == -1.0 && p.vy[1] == 1.0 && p.vx[1] == 0.3);
+      CU_ASSERT(p.vx[2] == 1.0 && p.vx[3] == -1.0);
+    } else {
+      CU_ASSERT_EQUAL(moved, 4); /* the guard at d_min: the particles in front move too */
+      CU_ASSERT(fabs(p.y[0] - 0.016) < 1e-15 && fabs(p.x[2] - 0.384) < 1e-15);
+    }
+    printf("\n  %s walls: %zu of 4 particles moved", adami ? "adami" : "dynamic", moved);
+    sph_particles_free(&p);
+  }
+}
+
 /* Still water in the tank of cases/hydrostatic_tank.yaml with adami walls (and `extra`). */
 static void still_water(const char *extra, double start_bound, double bound) {
   const char *sets[] = {"geometry.tank={x: [0.0, 0.2], y: [0.0, 0.15], boundary: adami}",
@@ -331,6 +377,7 @@ static void test_still_water_3d(void) {
 int main(void) {
   CU_TestInfo tests[] = {
       {"the extrapolation: a linear field continued, at rest and moving", test_extrapolation},
+      {"the guard is the face itself", test_guard_at_face},
       {"still water: the wall carries the hydrostatic pressure", test_still_water},
       {"still water with the leap-frog", test_still_water_leapfrog},
       {"a piston's work and the closed ledger", test_piston},

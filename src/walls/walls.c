@@ -126,7 +126,7 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
     }
     if (tank->boundary == SPH_BOUNDARY_REPULSIVE) w->repulsive = 1;
     if (tank->boundary == SPH_BOUNDARY_MDBC) w->mdbc = 1;
-    if (tank->boundary == SPH_BOUNDARY_ADAMI) w->adami = 1;
+    if (tank->boundary == SPH_BOUNDARY_ADAMI) w->adami = w->adami_tank = 1;
     if (is_dbc(tank->boundary)) w->dbc = 1;
   }
   for (size_t k = 0; k < n_segments; k++) {
@@ -203,6 +203,15 @@ void sph_walls_move(const sph_walls *w, sph_particles *p, double t) {
 /* ---- keeping the fluid off: box obstacles (both dimensions), the 2-D
  * build's lines, the 3-D build's planes ---- */
 
+/* The guard's distance for a tank face and for obstacle o: d_min, but 0 (the face itself) for
+ * adami walls (walls.h). */
+static inline double tank_guard(const sph_walls *w, double d_min) {
+  return w->adami_tank ? 0.0 : d_min;
+}
+static inline double box_guard(const sph_obstacle *o, double d_min) {
+  return o->boundary == SPH_BOUNDARY_ADAMI ? 0.0 : d_min;
+}
+
 /* Whether particle i lies inside obstacle o grown by d_min. */
 static inline int in_box(const sph_obstacle *o, const sph_particles *p, size_t i, double d_min) {
   for (int a = 0; a < SPH_DIM; a++)
@@ -236,7 +245,8 @@ static size_t keep_off_boxes(const sph_walls *w, sph_particles *p, size_t i, dou
   size_t moved = 0;
   for (size_t k = 0; k < w->n_obstacles; k++) {
     const sph_obstacle *o = &w->obstacles[k];
-    if (!in_box(o, p, i, d_min)) continue;
+    const double dg = box_guard(o, d_min);
+    if (!in_box(o, p, i, dg)) continue;
     int best_a = -1, best_dir = 0;
     double best = -INFINITY;
     for (int a = 0; a < SPH_DIM; a++)
@@ -247,7 +257,7 @@ static size_t keep_off_boxes(const sph_walls *w, sph_particles *p, size_t i, dou
         if (d > best) best = d, best_a = a, best_dir = dir;
       }
     if (best_a < 0) continue;
-    reflect_along(p, i, best_a, best_dir, best, d_min, half_step, kick);
+    reflect_along(p, i, best_a, best_dir, best, dg, half_step, kick);
     moved++;
   }
   return moved;
@@ -310,13 +320,13 @@ static inline int near_any(const sph_walls *w, const sph_particles *p, size_t i,
   for (size_t l = 0; l < w->n_mirror; l++)
     any |= closer(&w->mirror[l], p->x[i], p->y[i], d_min);
   for (size_t l = 0; l < w->n_face; l++)
-    any |= closer(&w->face[l], p->x[i], p->y[i], d_min);
+    any |= closer(&w->face[l], p->x[i], p->y[i], tank_guard(w, d_min));
 #else
   for (size_t l = 0; l < w->n_plane; l++)
-    any |= plane_distance(&w->plane[l], p, i) < d_min;
+    any |= plane_distance(&w->plane[l], p, i) < (w->n_mirror ? d_min : tank_guard(w, d_min));
 #endif
   for (size_t k = 0; k < w->n_obstacles; k++)
-    any |= in_box(&w->obstacles[k], p, i, d_min);
+    any |= in_box(&w->obstacles[k], p, i, box_guard(&w->obstacles[k], d_min));
   return any;
 }
 
@@ -330,19 +340,22 @@ static size_t keep_off_one(const sph_walls *w, sph_particles *p, size_t i, doubl
   for (size_t l = 0; l < w->n_mirror; l++)
     if (closer(&w->mirror[l], p->x[i], p->y[i], d_min))
       moved += (size_t)reflect(&w->mirror[l], p, i, d_min, w->mirror_reach, half_step, kick);
+  const double df = tank_guard(w, d_min);
   for (size_t l = 0; l < w->n_face; l++)
-    if (closer(&w->face[l], p->x[i], p->y[i], d_min))
-      moved += (size_t)reflect(&w->face[l], p, i, d_min, w->face_reach, half_step, kick);
+    if (closer(&w->face[l], p->x[i], p->y[i], df))
+      moved += (size_t)reflect(&w->face[l], p, i, df, w->face_reach, half_step, kick);
 #else
+  /* (a mirror tank's planes are its mirror planes: d_min) */
+  const double df = w->n_mirror ? d_min : tank_guard(w, d_min);
   for (size_t l = 0; l < w->n_plane; l++) {
     const sph_wall_plane *f = &w->plane[l];
     const double d = plane_distance(f, p, i);
-    if (!(d < d_min) || d <= -w->face_reach) continue;
+    if (!(d < df) || d <= -w->face_reach) continue;
     int within = 1; /* on the face's span along the other axes */
     for (int b = 0; b < 3; b++)
       if (b != f->axis && (p->pos[b][i] < f->lo[b] || p->pos[b][i] > f->hi[b])) within = 0;
     if (!within) continue;
-    reflect_along(p, i, f->axis, f->dir, d, d_min, half_step, kick);
+    reflect_along(p, i, f->axis, f->dir, d, df, half_step, kick);
     moved++;
   }
 #endif
