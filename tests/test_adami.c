@@ -15,7 +15,8 @@
  * 1b. The walls' guard (walls.h, sph_walls_keep_off) is the face itself for
  *    adami walls: a particle just in front of a tank face or a box
  *    obstacle's face stays, one that crossed it is reflected to as far in
- *    front as it was behind (other walls' guard moves both).
+ *    front as it was behind (other walls' guard moves both); one that
+ *    crossed two faces into the tank's corner is kept off both.
  * 2. Still water (cases/hydrostatic_tank.yaml, 0.5 s, both integrators):
  *    no fluid particle crosses a wall face; the largest speed stays under
  *    1 % of sqrt(g H) in the first 0.1 s and 0.5 % after (measured 0.55 /
@@ -211,12 +212,14 @@ static void test_guard_at_face(void) {
       {0.2, -0.004, 0.3, -1.0, 0.2, 0.004}, /* behind the floor: reflected */
       {0.396, 0.1, 1.0, 0.0, 0.396, 0.1},   /* in front of the box's left face: stays */
       {0.404, 0.1, 1.0, 0.0, 0.396, 0.1},   /* inside it: reflected */
+      /* behind the floor and the left wall, in the tank's corner: kept off both */
+      {-0.004, -0.003, -0.5, -0.5, 0.004, 0.003},
   };
   for (int adami = 1; adami >= 0; adami--) {
     sph_particles p;
     sph_error err;
     CU_ASSERT_FATAL(sph_particles_init(&p, 8, &err) == 0);
-    for (size_t k = 0; k < 4; k++)
+    for (size_t k = 0; k < 5; k++)
       CU_ASSERT_FATAL(sph_particles_add(&p, cases[k][0], cases[k][1], cases[k][2], cases[k][3],
                                         1000, 1, 0.026, SPH_KIND_FLUID, &err) == (long)k);
     const sph_boundary_kind b = adami ? SPH_BOUNDARY_ADAMI : SPH_BOUNDARY_DYNAMIC;
@@ -227,16 +230,18 @@ static void test_guard_at_face(void) {
                     0);
     const size_t moved = sph_walls_keep_off(&w, &p, 0.01, 0, NULL);
     if (adami) {
-      CU_ASSERT_EQUAL(moved, 2);
-      for (size_t k = 0; k < 4; k++)
+      CU_ASSERT_EQUAL(moved, 4); /* (two for the corner's) */
+      for (size_t k = 0; k < 5; k++)
         CU_ASSERT(fabs(p.x[k] - cases[k][4]) < 1e-15 && fabs(p.y[k] - cases[k][5]) < 1e-15);
       CU_ASSERT(p.vy[0] == -1.0 && p.vy[1] == 1.0 && p.vx[1] == 0.3);
       CU_ASSERT(p.vx[2] == 1.0 && p.vx[3] == -1.0);
+      CU_ASSERT(p.vx[4] == 0.5 && p.vy[4] == 0.5);
     } else {
-      CU_ASSERT_EQUAL(moved, 4); /* the guard at d_min: the particles in front move too */
+      CU_ASSERT_EQUAL(moved, 6); /* the guard at d_min: the particles in front move too */
       CU_ASSERT(fabs(p.y[0] - 0.016) < 1e-15 && fabs(p.x[2] - 0.384) < 1e-15);
+      CU_ASSERT(fabs(p.x[4] - 0.024) < 1e-15 && fabs(p.y[4] - 0.023) < 1e-15);
     }
-    printf("\n  %s walls: %zu of 4 particles moved", adami ? "adami" : "dynamic", moved);
+    printf("\n  %s walls: %zu reflections of 5 particles", adami ? "adami" : "dynamic", moved);
     sph_particles_free(&p);
   }
 }
