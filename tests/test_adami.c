@@ -17,7 +17,7 @@
  *    obstacle's face stays, one that crossed it is reflected to as far in
  *    front as it was behind (other walls' guard moves both); one that
  *    crossed two faces into the tank's corner is kept off both.
- * 2. Still water (cases/hydrostatic_tank.yaml, 0.5 s, both integrators):
+ * 2. Still water (tests/data/still_tank.yaml, 0.5 s, both integrators):
  *    no fluid particle crosses a wall face; the largest speed stays under
  *    1 % of sqrt(g H) in the first 0.1 s and 0.5 % after (measured 0.55 /
  *    0.35 with either integrator: the lattice's free surface settling;
@@ -33,7 +33,7 @@
  *    tank and piston, 3 layers): its work within 3 % of the linear
  *    shallow-water estimate 0.2040 J (measured 0.2023 J), the closed
  *    balance within 1e-5 of E0 (measured 3e-7), also free-slip.
- * 4. In 3-D (cases/hydrostatic_3d.yaml, to 0.3 s, sph-3d): the floor sensor
+ * 4. In 3-D (tests/data/still_tank_3d.yaml, to 0.3 s, sph-3d): the floor sensor
  *    reads the hydrostatic pressure within 2.5 % (the plain kernel
  *    gradient's 3-D lattice sum leaves a still tank's water 1.6-1.9 % heavy
  *    on its floor whatever the walls, doc/method.md; measured +1.75 %).
@@ -246,7 +246,7 @@ static void test_guard_at_face(void) {
   }
 }
 
-/* Still water in the tank of cases/hydrostatic_tank.yaml with adami walls (and `extra`). */
+/* Still water in the tank of tests/data/still_tank.yaml with adami walls (and `extra`). */
 static void still_water(const char *extra, double start_bound, double bound) {
   const char *sets[] = {"geometry.tank={x: [0.0, 0.2], y: [0.0, 0.15], boundary: adami}",
                         "geometry.fluid=[{x: [0.0, 0.2], y: [0.0, 0.1], hydrostatic: true}]",
@@ -254,7 +254,7 @@ static void still_water(const char *extra, double start_bound, double bound) {
   sph_case c;
   sph_sim *s;
   sph_error err;
-  CU_ASSERT_FATAL(sph_test_open_sim("cases/hydrostatic_tank.yaml", sets, extra ? 3 : 2, &c, &s) ==
+  CU_ASSERT_FATAL(sph_test_open_sim("tests/data/still_tank.yaml", sets, extra ? 3 : 2, &c, &s) ==
                   0);
   const size_t n0 = sph_sim_particles(s)->n;
   double vmax = 0.0, vstart = 0.0;
@@ -363,7 +363,7 @@ static void test_still_water_3d(void) {
            "run --quiet '%s' -o '%s' --set time.end=0.3 --set geometry.tank.boundary=adami "
            "--set numerics.gradient_correction=false --set 'geometry.fluid=[{x: [0.0, 0.2], y: "
            "[0.0, 0.1], z: [0.0, 0.1], hydrostatic: true}]'",
-           sph_test_src("cases/hydrostatic_3d.yaml"), d);
+           sph_test_src("tests/data/still_tank_3d.yaml"), d);
   CU_ASSERT_FATAL(sph_test_sph_ok(args, d, out, sizeof out) == 0);
   char path[4200];
   snprintf(path, sizeof path, "%s/probes.csv", d);

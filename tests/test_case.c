@@ -19,6 +19,7 @@
 #include <time.h>
 
 #include "case/case.h"
+#include "case/presets.h"
 #include "physics/shifting.h"
 #include "testutil.h"
 
@@ -168,11 +169,14 @@ static void test_minimal_defaults(void) {
   CU_ASSERT_EQUAL(c.eta, 0.1);
   CU_ASSERT_EQUAL(c.xsph, 0.0);
   CU_ASSERT_EQUAL(c.dx, 0.01);
-  CU_ASSERT_EQUAL(c.h_factor, 1.3);
-  CU_ASSERT_EQUAL(c.h, 1.3 * 0.01);
-  CU_ASSERT_EQUAL(c.kernel, SPH_KERNEL_CUBIC_SPLINE);
+  /* the default scheme's (test_schemes) */
+  CU_ASSERT_EQUAL(c.scheme, SPH_SCHEME_RIEMANN);
+  CU_ASSERT_EQUAL(c.riemann, 1);
+  CU_ASSERT_EQUAL(c.h_factor, 2.0);
+  CU_ASSERT_EQUAL(c.h, 2.0 * 0.01);
+  CU_ASSERT_EQUAL(c.kernel, SPH_KERNEL_WENDLAND_C2);
   CU_ASSERT_EQUAL(c.integrator, SPH_INTEGRATOR_PREDICTOR_CORRECTOR);
-  CU_ASSERT_EQUAL(c.dt_rule, SPH_DT_PAPER_B);
+  CU_ASSERT_EQUAL(c.dt_rule, SPH_DT_CFL);
   CU_ASSERT_EQUAL(c.dt_factor, 0.3);
   CU_ASSERT_EQUAL(c.dt_fixed, 0.0);
   CU_ASSERT_EQUAL(c.density_limit, 0.3);
@@ -286,15 +290,16 @@ static void test_sound_speed(void) {
              "t.yaml:3: physics.sound_speed: required key is missing");
 }
 
-/* numerics.scheme: a named set of defaults, read before the other keys; a
- * key the case gives wins; the tank's wall model defaults to mdbc. */
+/* numerics.scheme (src/case/presets.c): the default riemann, read before
+ * the other keys; each of its keys the case leaves out takes its value, each
+ * it gives keeps its own (the table's keys are the unit: a mapping the case
+ * gives is its own whole), and the start-up listing names those. */
 static void test_schemes(void) {
   const char *tank = "geometry:\n  tank: {x: [0, 2], y: [0, 1]}\n";
   char text[8192];
   sph_case c, d;
-  snprintf(text, sizeof text, "%s",
-           edit(edit(MINIMAL, 9, tank), 5, "  dx: 0.01\n  scheme: riemann\n"));
-  expect_ok(text, NULL, 0, &c);
+  snprintf(text, sizeof text, "%s", edit(MINIMAL, 9, tank));
+  expect_ok(text, NULL, 0, &c); /* no scheme: the default */
   CU_ASSERT_EQUAL(c.scheme, SPH_SCHEME_RIEMANN);
   CU_ASSERT_EQUAL(c.riemann, 1);
   CU_ASSERT_EQUAL(c.riemann_limiter, 3.0);
@@ -302,26 +307,62 @@ static void test_schemes(void) {
   CU_ASSERT_EQUAL(c.xsph, 0.0);
   CU_ASSERT_EQUAL(c.diffusion, SPH_DIFFUSION_NONE);
   CU_ASSERT_EQUAL(c.viscosity, SPH_VISCOSITY_NONE);
-  CU_ASSERT_EQUAL(c.tank.boundary, SPH_BOUNDARY_MDBC);
-  CU_ASSERT_EQUAL(c.tank.layers, 3);
+  CU_ASSERT_EQUAL(c.kernel, SPH_KERNEL_WENDLAND_C2);
+  CU_ASSERT_EQUAL(c.h_factor, 2.0);
+  CU_ASSERT_EQUAL(c.h, 2.0 * c.dx);
+  CU_ASSERT_EQUAL(c.dt_rule, SPH_DT_CFL);
+  CU_ASSERT_EQUAL(c.tank.boundary, SPH_BOUNDARY_ADAMI);
+  CU_ASSERT_EQUAL(c.tank.layers, 4); /* as many as fill the support 2h = 4 dx */
+  CU_ASSERT_EQUAL(c.tank.stagger, 0);
   CU_ASSERT_STRING_EQUAL(c.scheme_kept, ""); /* the case gives none of the scheme's keys */
   char *s = sph_case_describe(&c);
   CU_ASSERT_PTR_NOT_NULL(s && strstr(s, "numerics.scheme: riemann\n"));
   free(s);
-  /* the same case written out key by key is the same case */
-  const char *keys[] = {"physics.riemann={limiter: 3}", "physics.artificial_viscosity.alpha=0",
-                        "geometry.tank.boundary=mdbc"};
-  expect_ok(edit(MINIMAL, 9, tank), keys, 3, &d);
+  /* the same case written out key by key under another scheme is the same case */
+  const char *keys[] = {"numerics.scheme=paper_b",
+                        "physics.riemann={limiter: 3}",
+                        "physics.artificial_viscosity.alpha=0",
+                        "physics.xsph=0",
+                        "physics.viscosity={model: none}",
+                        "numerics.density_diffusion={model: none}",
+                        "numerics.kernel=wendland_c2",
+                        "numerics.h_factor=2",
+                        "numerics.time_step.rule=cfl",
+                        "geometry.tank.boundary=adami"};
+  expect_ok(text, keys, 10, &d);
+  CU_ASSERT_EQUAL(d.scheme, SPH_SCHEME_PAPER_B);
   CU_ASSERT_EQUAL(d.riemann, c.riemann);
   CU_ASSERT_EQUAL(d.alpha, c.alpha);
+  CU_ASSERT_EQUAL(d.kernel, c.kernel);
+  CU_ASSERT_EQUAL(d.h, c.h);
+  CU_ASSERT_EQUAL(d.dt_rule, c.dt_rule);
   CU_ASSERT_EQUAL(d.tank.boundary, c.tank.boundary);
   CU_ASSERT_EQUAL(d.tank.layers, c.tank.layers);
   CU_ASSERT_EQUAL(d.tank.stagger, c.tank.stagger);
+  CU_ASSERT_STRING_EQUAL(d.scheme_kept,
+                         "physics.riemann, physics.artificial_viscosity.alpha, physics.xsph, "
+                         "physics.viscosity, numerics.density_diffusion, numerics.kernel, "
+                         "numerics.h_factor, numerics.time_step.rule, geometry.tank.boundary");
   sph_case_free(&c);
   sph_case_free(&d);
+  /* the papers' base: the plain pressure, the cubic spline at 1.3 dx, paper B's rule, dynamic
+   * walls (the built-in defaults of every key) */
+  const char *paper[] = {"numerics.scheme=paper_a"};
+  expect_ok(text, paper, 1, &c);
+  CU_ASSERT_EQUAL(c.scheme, SPH_SCHEME_PAPER_A);
+  CU_ASSERT_EQUAL(c.riemann, 0);
+  CU_ASSERT_EQUAL(c.kernel, SPH_KERNEL_CUBIC_SPLINE);
+  CU_ASSERT_EQUAL(c.h_factor, 1.3);
+  CU_ASSERT_EQUAL(c.dt_rule, SPH_DT_PAPER_B);
+  CU_ASSERT_EQUAL(c.tank.boundary, SPH_BOUNDARY_DYNAMIC);
+  CU_ASSERT_EQUAL(c.tank.layers, 2);
+  s = sph_case_describe(&c);
+  CU_ASSERT_PTR_NOT_NULL(s && strstr(s, "numerics.scheme: paper_a\n"));
+  free(s);
+  sph_case_free(&c);
   /* delta-SPH, and the case's own keys over the scheme's */
   const char *set[] = {"numerics.scheme=delta_sph"};
-  expect_ok(edit(MINIMAL, 9, tank), set, 1, &c);
+  expect_ok(text, set, 1, &c);
   CU_ASSERT_EQUAL(c.scheme, SPH_SCHEME_DELTA_SPH);
   CU_ASSERT_EQUAL(c.riemann, 0);
   CU_ASSERT_EQUAL(c.alpha, 0.02);
@@ -332,33 +373,68 @@ static void test_schemes(void) {
   CU_ASSERT_EQUAL(c.tank.boundary, SPH_BOUNDARY_MDBC);
   sph_case_free(&c);
   const char *own[] = {"numerics.scheme=delta_sph", "physics.artificial_viscosity.alpha=0.1",
-                       "physics.viscosity={mu: 0.002}", "numerics.density_diffusion={delta: 0.2}",
+                       "physics.viscosity={model: morris, mu: 0.002}",
+                       "numerics.density_diffusion={model: antuono, delta: 0.2}",
                        "geometry.tank.boundary=dynamic"};
-  expect_ok(edit(MINIMAL, 9, tank), own, 5, &c);
+  expect_ok(text, own, 5, &c);
   CU_ASSERT_EQUAL(c.alpha, 0.1);
   CU_ASSERT_EQUAL(c.viscosity, SPH_VISCOSITY_MORRIS);
   CU_ASSERT_EQUAL(c.mu, 0.002);
   CU_ASSERT_EQUAL(c.diffusion, SPH_DIFFUSION_ANTUONO);
   CU_ASSERT_EQUAL(c.diffusion_delta, 0.2);
   CU_ASSERT_EQUAL(c.tank.boundary, SPH_BOUNDARY_DYNAMIC);
-  /* the start-up listing names them: a mixture is never silent */
-  CU_ASSERT_STRING_EQUAL(c.scheme_kept, "physics.artificial_viscosity.alpha, "
-                                        "numerics.density_diffusion, physics.viscosity, "
-                                        "geometry.tank.boundary");
+  /* the start-up listing names them, in the table's order: a mixture is never silent */
+  CU_ASSERT_STRING_EQUAL(c.scheme_kept, "physics.artificial_viscosity.alpha, physics.viscosity, "
+                                        "numerics.density_diffusion, geometry.tank.boundary");
   sph_case_free(&c);
-  /* none is the built-in defaults; a wall segment keeps its own default */
-  const char *none[] = {"numerics.scheme=none"};
-  expect_ok(edit(MINIMAL, 9, tank), none, 1, &c);
-  CU_ASSERT_EQUAL(c.scheme, SPH_SCHEME_NONE);
-  CU_ASSERT_EQUAL(c.tank.boundary, SPH_BOUNDARY_DYNAMIC);
+  /* no tank: none is made for the scheme's wall model; physics.riemann: off */
+  const char *off[] = {"physics.riemann=off"};
+  expect_ok(MINIMAL, off, 1, &c);
+  CU_ASSERT_EQUAL(c.tank.present, 0);
   CU_ASSERT_EQUAL(c.riemann, 0);
-  s = sph_case_describe(&c);
-  CU_ASSERT_PTR_NOT_NULL(s && !strstr(s, "numerics.scheme") ? s : NULL);
-  free(s);
+  CU_ASSERT_STRING_EQUAL(c.scheme_kept, "physics.riemann");
   sph_case_free(&c);
-  expect_err(
-      edit(MINIMAL, 5, "  dx: 0.01\n  scheme: sphysics\n"),
-      "t.yaml:6: numerics.scheme: unknown choice 'sphysics' (valid: none, riemann, delta_sph)");
+  expect_err(edit(MINIMAL, 3, "  sound_speed: 20\n  riemann: 3\n"),
+             "t.yaml:4: physics.riemann: expected a mapping {limiter: ...} (the Riemann-solver "
+             "pressure) or off, got '3'");
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  scheme: sphysics\n"),
+             "t.yaml:6: numerics.scheme: unknown choice 'sphysics' (valid: riemann, paper_a, "
+             "paper_b, delta_sph)");
+}
+
+/* doc/method.md's table of the schemes is the presets' table: a row per key in the table's
+ * order, a column per scheme, each cell the value as a case writes it. */
+static void test_schemes_doc(void) {
+  char *doc = sph_test_read_file(sph_test_src("doc/method.md"), NULL);
+  CU_ASSERT_FATAL(doc != NULL);
+  const char *t = strstr(doc, "| key | `riemann` (default) |");
+  CU_ASSERT_FATAL(t != NULL);
+  size_t n;
+  const sph_preset *all = sph_presets(&n);
+  char head[512] = "| key |";
+  for (size_t k = 0; k < n; k++)
+    snprintf(head + strlen(head), sizeof head - strlen(head), " `%s`%s |", all[k].name,
+             k == 0 ? " (default)" : "");
+  CU_ASSERT(strncmp(t, head, strlen(head)) == 0);
+  const char *line = strchr(t, '\n') + 1;
+  line = strchr(line, '\n') + 1; /* the |---| row */
+  int rows = 0;
+  for (size_t r = 0; r < SPH_PRESET_KEYS; r++) {
+    char want[1024];
+    snprintf(want, sizeof want, "| `%s` |", all[0].keys[r].key);
+    for (size_t k = 0; k < n; k++) {
+      CU_ASSERT_STRING_EQUAL(all[k].keys[r].key, all[0].keys[r].key); /* the same keys */
+      snprintf(want + strlen(want), sizeof want - strlen(want), " `%s` |", all[k].keys[r].value);
+    }
+    const size_t len = strcspn(line, "\n");
+    if (len != strlen(want) || strncmp(line, want, len) != 0)
+      printf("\n  doc/method.md: %.*s\n  want:          %s", (int)len, line, want);
+    else
+      rows++;
+    line += len + 1;
+  }
+  CU_ASSERT_EQUAL(rows, SPH_PRESET_KEYS);
+  free(doc);
 }
 
 static void test_time_step_rules(void) {
@@ -372,7 +448,7 @@ static void test_time_step_rules(void) {
              "t.yaml:7: numerics.time_step.dt: required key is missing (rule 'fixed' needs it)");
   expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  time_step:\n    dt: 0.001\n"),
              "t.yaml:7: numerics.time_step.dt: only allowed with rule: fixed (the rule is "
-             "'paper_b')");
+             "'cfl')");
   expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  time_step: {rule: cfl, factor: 0}\n"),
              "t.yaml:6: numerics.time_step.factor: expected a number in (0, 1], got '0'");
   expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  time_step: {rule: adaptive}\n"),
@@ -633,7 +709,7 @@ static void test_cross_checks(void) {
              "t.yaml:10: geometry.periodic_x: a periodic domain cannot have a tank (use "
              "geometry.walls for the bed)");
   expect_err(edit(MINIMAL, 10, "  periodic_x: [0, 0.05]\n  fluid:\n"),
-             "t.yaml:10: geometry.periodic_x: expected a period of at least 6 h = 0.078 m, got "
+             "t.yaml:10: geometry.periodic_x: expected a period of at least 6 h = 0.12 m, got "
              "0.05");
 }
 
@@ -770,7 +846,7 @@ static void test_set_overrides(void) {
   const char *s1[] = {"numerics.dx=0.005", "numerics.dx=0.002"}; /* the last one wins */
   expect_ok(MINIMAL, s1, 2, &c);
   CU_ASSERT_EQUAL(c.dx, 0.002);
-  CU_ASSERT_EQUAL(c.h, 1.3 * 0.002);
+  CU_ASSERT_EQUAL(c.h, 2.0 * 0.002); /* the default scheme's h_factor */
   CU_ASSERT_STRING_EQUAL(c.overrides, "numerics.dx=0.005\nnumerics.dx=0.002");
   CU_ASSERT_STRING_EQUAL(c.text, MINIMAL); /* the file text is kept as written */
   sph_case_free(&c);
@@ -865,16 +941,18 @@ static const char MINIMAL_DESCRIPTION[] = "name: mini\n"
                                           "physics.artificial_viscosity.beta: 0\n"
                                           "physics.artificial_viscosity.eta: 0.10000000000000001\n"
                                           "physics.xsph: 0\n"
+                                          "physics.riemann.limiter: 3\n"
                                           "physics.viscosity.model: none\n"
                                           "physics.turbulence.model: none\n"
                                           "physics.repulsion: 24.525000000000002\n"
+                                          "numerics.scheme: riemann\n"
                                           "numerics.dx: 0.01\n"
-                                          "numerics.h_factor: 1.3\n"
-                                          "numerics.h: 0.013000000000000001\n"
+                                          "numerics.h_factor: 2\n"
+                                          "numerics.h: 0.02\n"
                                           "numerics.smoothing_length: constant\n"
-                                          "numerics.kernel: cubic_spline\n"
+                                          "numerics.kernel: wendland_c2\n"
                                           "numerics.integrator: predictor_corrector\n"
-                                          "numerics.time_step.rule: paper_b\n"
+                                          "numerics.time_step.rule: cfl\n"
                                           "numerics.time_step.factor: 0.29999999999999999\n"
                                           "numerics.density_filter.kind: none\n"
                                           "numerics.density_filter.every: 30\n"
@@ -942,14 +1020,19 @@ static void test_describe(void) {
   sph_case_free(&a);
 }
 
-/* physics.riemann: off by default, on with its mapping (the default limiter 3),
- * the limiter checked, and in the description only when on. */
+/* physics.riemann: on by default (the default scheme's limiter 3), off with
+ * `off`, on with its mapping (the default limiter 3), the limiter checked, and
+ * in the description only when on. */
 static void test_riemann(void) {
   sph_case c;
   expect_ok(MINIMAL, NULL, 0, &c);
+  CU_ASSERT_EQUAL(c.riemann, 1);
+  CU_ASSERT_EQUAL(c.riemann_limiter, 3.0);
+  sph_case_free(&c);
+  expect_ok(edit(MINIMAL, 3, "  sound_speed: 20\n  riemann: off\n"), NULL, 0, &c);
   CU_ASSERT_EQUAL(c.riemann, 0);
   char *d = sph_case_describe(&c);
-  CU_ASSERT_PTR_NULL(strstr(d, "riemann"));
+  CU_ASSERT_PTR_NULL(strstr(d, "riemann.limiter"));
   free(d);
   sph_case_free(&c);
   expect_ok(edit(MINIMAL, 3, "  sound_speed: 20\n  riemann: {}\n"), NULL, 0, &c);
@@ -991,7 +1074,7 @@ static void test_corrected_gradient(void) {
   CU_ASSERT_EQUAL(c.corrected_gradient, 0);
   sph_case_free(&c);
   /* not with walls whose particles do not tile the wall as the water's lattice does */
-  const char *tank[] = {"geometry.tank={x: [0, 1], y: [0, 1]}"};
+  const char *tank[] = {"geometry.tank={x: [0, 1], y: [0, 1], boundary: dynamic}"};
   expect_err_set(edit(MINIMAL, 5, "  dx: 0.01\n  gradient_correction: true\n"), tank, 1,
                  "t.yaml:6: numerics.gradient_correction: cannot be combined with staggered walls "
                  "(layers dx/2 apart count the wall's volume twice; give the tank and the walls "
@@ -1000,7 +1083,8 @@ static void test_corrected_gradient(void) {
   expect_err_set(edit(MINIMAL, 5, "  dx: 0.01\n  gradient_correction: true\n"), rep, 1,
                  "t.yaml:6: numerics.gradient_correction: cannot be combined with repulsive walls "
                  "(their particles carry no pressure; use dynamic or mdbc walls)");
-  const char *lattice[] = {"geometry.tank={x: [0, 1], y: [0, 1], stagger: false}"};
+  const char *lattice[] = {
+      "geometry.tank={x: [0, 1], y: [0, 1], boundary: dynamic, stagger: false}"};
   expect_ok(edit(MINIMAL, 5, "  dx: 0.01\n  gradient_correction: true\n"), lattice, 1, &c);
   CU_ASSERT_EQUAL(c.corrected_gradient, 1);
   sph_case_free(&c);
@@ -1027,6 +1111,7 @@ int main(void) {
                          {"sound speed: value, factor*height, factor*speed", test_sound_speed},
                          {"time step rules", test_time_step_rules},
                          {"numerics.scheme: defaults a case's keys override", test_schemes},
+                         {"doc/method.md's table of the schemes is the presets'", test_schemes_doc},
                          {"load from a file with overrides", test_load_file},
                          {"unknown key", test_unknown_key},
                          {"wrong type", test_wrong_type},

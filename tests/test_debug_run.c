@@ -50,7 +50,7 @@ static void test_cases(void) {
   steps("cases/sps_dam_break_coarse.yaml", NULL, 0, 40);
   const char *mirror[] = {"geometry.tank.boundary=mirror", "numerics.density_filter.kind=mls",
                           "numerics.density_filter.every=5"};
-  steps("cases/hydrostatic_tank.yaml", mirror, 3, 40);
+  steps("tests/data/still_tank.yaml", mirror, 3, 40);
 }
 
 int main(void) {

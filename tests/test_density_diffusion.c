@@ -5,7 +5,7 @@
  *   - an isolated patch of fluid with a noisy density: the diffusion moves
  *     density within the fluid (sum_i V_i D_i = 0 to round-off), changes no
  *     velocity (momentum to round-off over a run) and damps the noise;
- *   - the hydrostatic tank (cases/hydrostatic_tank.yaml, walls as 3
+ *   - the hydrostatic tank (tests/data/still_tank.yaml, walls as 3
  *     unstaggered layers) for 0.5 s: the
  *     particle pressures against rho0 g (H - y) as an RMS over the fluid,
  *     in units of rho0 g H. Molteni & Colagrossi's form diffuses the
@@ -171,7 +171,7 @@ static void test_hydrostatic_tank(void) {
                                "stagger: false}"};
     sph_case c;
     sph_sim *s;
-    CU_ASSERT_FATAL(sph_test_open_sim("cases/hydrostatic_tank.yaml", sets, 2, &c, &s) == 0);
+    CU_ASSERT_FATAL(sph_test_open_sim("tests/data/still_tank.yaml", sets, 2, &c, &s) == 0);
     sph_error err;
     int rc = 0;
     while (rc == 0 && sph_sim_time(s) < c.t_end)

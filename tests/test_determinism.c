@@ -80,7 +80,7 @@ static void test_sps(void) {
 }
 
 static void test_mirror_filter(void) {
-  same_on_1_and_2_threads("cases/hydrostatic_tank.yaml",
+  same_on_1_and_2_threads("tests/data/still_tank.yaml",
                           "--set time.end=0.05 --set time.output_interval=0.01 "
                           "--set 'geometry.tank={x: [0.0, 0.2], y: [0.0, 0.15], boundary: mirror}' "
                           "--set 'numerics.density_filter={kind: mls, every: 5}'");

@@ -306,7 +306,7 @@ static void test_run(void) {
   static const char *const text = "name: fs3\n"
                                   "dimension: 3\n"
                                   "physics: {sound_speed: {factor: 10, height: 0.1}}\n"
-                                  "numerics: {dx: 0.01}\n"
+                                  "numerics: {dx: 0.01, scheme: paper_b}\n"
                                   "time: {end: 0.02, output_interval: 0.02}\n"
                                   "geometry:\n"
                                   "  tank: {x: [0.0, 0.2], y: [0.0, 0.1], z: [0.0, 0.15]}\n"

@@ -2,9 +2,16 @@
 /*
  * test_hydrostatic.c - still water stays still (cases/hydrostatic_tank.yaml).
  *
- * 0.1 m of water in a tank of dynamic-particle walls, started hydrostatic,
- * run for 0.5 s (some 3500 steps). Checked at every output time:
- *   - the largest fluid speed stays below 2 % of sqrt(g H);
+ * 0.1 m of water in a closed tank, started hydrostatic, run for 0.5 s: the
+ * shipped case with the default scheme (Riemann pressure, Wendland h = 2 dx,
+ * Adami walls; some 2400 steps) and tests/data/still_tank.yaml, the same tank
+ * with paper B's plain scheme and dynamic walls (some 3500 steps). Checked at
+ * every output time:
+ *   - the largest fluid speed: below 2 % of sqrt(g H) throughout with the
+ *     papers' scheme; with the default scheme below 5 % (3.7 % at 0.05 s:
+ *     the two particles where the free surface meets each side wall start
+ *     down and inwards, undamped without artificial viscosity) and below
+ *     1.5 % from 0.35 s on, when that start has settled (0.7-1.0 %);
  *   - no fluid particle crosses a wall face (x in [0, 0.2], y > 0);
  * and at the end, away from the free surface (depth > 2 dx) and from the
  * walls' first layer (the kernel is truncated there):
@@ -14,7 +21,8 @@
  *     at every particle and within 1.5 % on average;
  *   - the particles' own pressures, which carry the odd-even row pattern
  *     that plain WCSPH is known for (the density filters of the paper B
- *     issue remove it), stay within 15 %.
+ *     issue remove it), stay within 15 % (the papers' scheme reads 11.6 %
+ *     at worst, the default scheme 0.9 %).
  */
 #include "config.h"
 
@@ -26,17 +34,19 @@
 #include "solver/sim.h"
 #include "testutil.h"
 
-static void test_still_water(void) {
+/* One tank: the speed bounds over the whole run and from `settled` on. */
+static void still_water(const char *file, double vbound, double settled, double vbound_settled) {
   sph_case c;
   sph_error err;
-  int rc = sph_case_load(sph_test_src("cases/hydrostatic_tank.yaml"), NULL, 0, &c, &err);
+  printf("\n  %s", file);
+  int rc = sph_case_load(sph_test_src(file), NULL, 0, &c, &err);
   if (rc) printf("\n%s\n", err.msg);
   CU_ASSERT_FATAL(rc == 0);
   sph_sim *s;
   CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
   const double H = 0.1, g = 9.81;
   const double vref = sqrt(g * H);
-  double vmax_all = 0.0;
+  double vmax_all = 0.0, vmax_settled = 0.0;
   int k = 1, crossed = 0;
   while (sph_sim_time(s) < c.t_end) {
     const double target = k * c.output_interval;
@@ -46,12 +56,16 @@ static void test_still_water(void) {
     if (sph_sim_time(s) < target) continue;
     k++;
     const sph_particles *p = sph_sim_particles(s);
+    double vmax_now = 0.0;
     for (size_t i = 0; i < p->n; i++) {
       if (p->kind[i] != SPH_KIND_FLUID) continue;
       const double v = sqrt(p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);
-      if (v > vmax_all) vmax_all = v;
+      if (v > vmax_now) vmax_now = v;
       if (p->x[i] < 0.0 || p->x[i] > 0.2 || p->y[i] < 0.0) crossed++;
     }
+    printf("\n  t %.2f s: max speed %.3f %% of sqrt(gH)", sph_sim_time(s), 100 * vmax_now / vref);
+    if (vmax_now > vmax_all) vmax_all = vmax_now;
+    if (sph_sim_time(s) >= settled - 1e-12 && vmax_now > vmax_settled) vmax_settled = vmax_now;
   }
   const sph_particles *p = sph_sim_particles(s);
   double err_max = 0.0, err_sum = 0.0, raw_max = 0.0;
@@ -82,7 +96,8 @@ static void test_still_water(void) {
          sph_sim_steps(s), vmax_all, 100 * vmax_all / vref, 100 * err_max, 100 * err_sum / count,
          100 * raw_max, count, crossed);
   CU_ASSERT(sph_sim_steps(s) > 2000);
-  CU_ASSERT(vmax_all < 0.02 * vref);
+  CU_ASSERT(vmax_all < vbound * vref);
+  CU_ASSERT(vmax_settled < vbound_settled * vref);
   CU_ASSERT_EQUAL(crossed, 0);
   CU_ASSERT(count > 400);
   CU_ASSERT(err_max < 0.05);
@@ -90,6 +105,11 @@ static void test_still_water(void) {
   CU_ASSERT(raw_max < 0.15);
   sph_sim_free(s);
   sph_case_free(&c);
+}
+
+static void test_still_water(void) {
+  still_water("cases/hydrostatic_tank.yaml", 0.05, 0.35, 0.015);
+  still_water("tests/data/still_tank.yaml", 0.02, 0.0, 0.02);
 }
 
 int main(void) {

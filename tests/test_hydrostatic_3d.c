@@ -17,7 +17,7 @@
  * dimension a --set gives.
  * - Still water 0.1 m deep in a 0.2 x 0.1 m tank at dx = 0.01 m (2000
  *   fluid particles) for 1 s, with the corrected gradient of
- *   cases/hydrostatic_3d.yaml (numerics.gradient_correction). The pressure
+ *   tests/data/still_tank_3d.yaml (numerics.gradient_correction). The pressure
  *   as SPH reads a field (the particles' own pressure, layer by layer away
  *   from the side walls, less rho0 g (H - z)): inside the water (layers 2-8)
  *   and in the lowest layer within 1 % of rho0 g H on average, every layer
@@ -67,6 +67,7 @@ static const char *const CASE3 = "name: hydrostatic_3d\n"
                                  "  sound_speed: {factor: 10, height: 0.1}\n"
                                  "  artificial_viscosity: {alpha: 0.1}\n"
                                  "numerics:\n"
+                                 "  scheme: paper_b\n"
                                  "  dx: 0.01\n"
                                  "time:\n"
                                  "  end: 1.0\n"
@@ -170,8 +171,8 @@ static void test_reader(void) {
   refused("geometry.obstacles=[{x: [0.05, 0.1], y: [0.0, 0.05], z: [0.0, 0.05], "
           "boundary: repulsive, layers: 2}]",
           "geometry.obstacles[0].layers: repulsive walls have exactly 1 layer");
-  /* walls with a normal: mdbc (a scheme's tank), free-slip, no-slip; repulsive walls; a
-   * mirror tank; particle shifting */
+  /* walls with a normal: mdbc, free-slip; adami (the default scheme's tank); no-slip;
+   * repulsive walls; a mirror tank; particle shifting */
   static const char *const normal[][2] = {
       {"geometry.tank.boundary=mdbc", "geometry.tank.free_slip=true"},
       {"numerics.scheme=riemann", "geometry.obstacles=[{x: [0.05, 0.1], y: [0.0, 0.05], "
@@ -189,7 +190,7 @@ static void test_reader(void) {
       printf("\n    %s", err.msg);
       continue;
     }
-    static const sph_boundary_kind want[6] = {SPH_BOUNDARY_MDBC,    SPH_BOUNDARY_MDBC,
+    static const sph_boundary_kind want[6] = {SPH_BOUNDARY_MDBC,    SPH_BOUNDARY_ADAMI,
                                               SPH_BOUNDARY_DYNAMIC, SPH_BOUNDARY_REPULSIVE,
                                               SPH_BOUNDARY_MIRROR,  SPH_BOUNDARY_MDBC};
     CU_ASSERT(c.tank.boundary == want[k]);
@@ -242,7 +243,8 @@ static double probe_read[4][3];
  * transient) and over 0.3-1 s. */
 static double floor_mean, floor_start, floor_worst;
 
-/* The floor sensor of cases/hydrostatic_3d.yaml: a disc 20 mm across at the centre, normal up. */
+/* The floor sensor of tests/data/still_tank_3d.yaml: a disc 20 mm across at the centre, normal up.
+ */
 static sph_probe floor_sensor(void) {
   sph_probe q;
   memset(&q, 0, sizeof q);
@@ -251,7 +253,7 @@ static sph_probe floor_sensor(void) {
   return q;
 }
 
-/* The still-water run's scheme: the corrected gradient of cases/hydrostatic_3d.yaml. */
+/* The still-water run's scheme: the corrected gradient of tests/data/still_tank_3d.yaml. */
 static const char *const CORRECTED[1] = {"numerics.gradient_correction=true"};
 
 /* Runs CASE3 with the corrected gradient to t = 1 s; the particles' state by id into out (x, y,

@@ -291,7 +291,7 @@ static void test_one_run_per_directory(void) {
   const pid_t pid = start_running(dir);
   snprintf(log, sizeof log, "%s.second.log", dir);
   snprintf(cmd, sizeof cmd, "'%s' run -q '%s' -o '%s' --set time.end=0.1 > '%s' 2>&1",
-           sph_test_build("src/sph"), sph_test_src("cases/hydrostatic_tank.yaml"), dir, log);
+           sph_test_build("src/sph"), sph_test_src("tests/data/still_tank.yaml"), dir, log);
   const int second = sph_test_system(cmd);
   char want[4400];
   snprintf(want, sizeof want,
@@ -304,7 +304,7 @@ static void test_one_run_per_directory(void) {
   CU_ASSERT_STRING_EQUAL(msg, want);
   /* sph audit takes the directory the same way */
   snprintf(cmd, sizeof cmd, "'%s' audit -q '%s' -p 100 -o '%s' > '%s' 2>&1",
-           sph_test_build("src/sph"), sph_test_src("cases/hydrostatic_tank.yaml"), dir, log);
+           sph_test_build("src/sph"), sph_test_src("tests/data/still_tank.yaml"), dir, log);
   CU_ASSERT_EQUAL(sph_test_system(cmd), 1);
   snprintf(want, sizeof want, "sph audit: output directory %s is in use by another run (pid %ld)",
            dir, (long)pid);

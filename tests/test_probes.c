@@ -9,7 +9,7 @@
  *     its face, velocity probes read the velocity, and a point away from
  *     the fluid reads 0 (dry); a level gauge reads the top of the fluid
  *     above the bed, 0 and finite where dry;
- *   - the hydrostatic tank (cases/hydrostatic_tank.yaml with its walls as
+ *   - the hydrostatic tank (tests/data/still_tank.yaml with its walls as
  *     3 unstaggered layers and the fourtakas density diffusion) run by
  *     `sph run` for 0.3 s: probes.csv has a time column, units in its
  *     header and a row every probe_interval; wall sensors at two depths and
@@ -239,7 +239,7 @@ static void test_tank(void) {
            "{name: P2, kind: pressure, at: [0.0, 0.05]}, "
            "{name: Pf, kind: pressure, at: [0.1, 0.0], along: x, diameter: 0.01}, "
            "{name: H1, kind: level, x: 0.1}, {name: V1, kind: velocity, at: [0.1, 0.05]}]'",
-           sph_test_src("cases/hydrostatic_tank.yaml"), dir);
+           sph_test_src("tests/data/still_tank.yaml"), dir);
   CU_ASSERT_EQUAL_FATAL(sph_test_sph_ok(args, dir, out, sizeof out), 0);
   snprintf(path, sizeof path, "%s/run/probes.csv", dir);
   char header[512];
@@ -306,7 +306,7 @@ static void test_low_pass(void) {
              "run -q '%s' -o '%s/run%d' --set time.end=0.05 --set output.snapshots=false "
              "--set 'output.probes=[{name: P1, kind: pressure, at: [0.2, 0.02]%s}, "
              "{name: H1, kind: level, x: 0.1}]'",
-             sph_test_src("cases/hydrostatic_tank.yaml"), dir, lp, lp ? ", low_pass: 50" : "");
+             sph_test_src("tests/data/still_tank.yaml"), dir, lp, lp ? ", low_pass: 50" : "");
     CU_ASSERT_EQUAL_FATAL(sph_test_sph_ok(args, dir, out, sizeof out), 0);
   }
   snprintf(path, sizeof path, "%s/run1/probes.csv", dir);
@@ -339,7 +339,7 @@ static void test_low_pass(void) {
 static void expect_err(const char *probes, const char *want) {
   char text[2048];
   snprintf(text, sizeof text,
-           "name: t\nphysics: {sound_speed: 20}\nnumerics: {dx: 0.01}\n"
+           "name: t\nphysics: {sound_speed: 20}\nnumerics: {dx: 0.01, scheme: paper_b}\n"
            "time: {end: 1, output_interval: 0.1}\n"
            "geometry:\n  fluid:\n    - {x: [0, 0.5], y: [0, 0.5]}\noutput:\n%s",
            probes);

@@ -19,7 +19,7 @@
  *    shows: depth); the same inputs give the same bytes. A red square mesh
  *    facing the eye is lit as the sphere's centre is, seen from behind the
  *    same, and a sphere before it shows while one behind it does not.
- * 3. sph-render on a 3-D snapshot of cases/hydrostatic_3d.yaml (t = 0):
+ * 3. sph-render on a 3-D snapshot of tests/data/still_tank_3d.yaml (t = 0):
  *    the front view shows the water as spheres coloured by the field (the
  *    image's plot box holds non-background pixels, its corners do not) and
  *    the tank's edges as faint lines (above the water, a column crosses the
@@ -43,7 +43,7 @@
  *    overlay's markers on a slice; a bad
  *    axis, a negative thickness and --slice with --surface are refused.
  * 7. Golden images (golden/render/small3d_*.png, tests/render_testutil.h's
- *    tolerances) of cases/hydrostatic_3d.yaml at dx = 0.02 m after one
+ *    tolerances) of tests/data/still_tank_3d.yaml at dx = 0.02 m after one
  *    step (250 fluid particles): the fluid as spheres (iso view), the
  *    surface and the slice y = 0.05 m, coloured by pressure; the same run's
  *    free-surface flags (the top layer yellow, the rest purple); --compare
@@ -325,14 +325,14 @@ static int same_file(const char *a, const char *b) {
 
 static int made;
 
-/* Runs cases/hydrostatic_3d.yaml for one step into tmp/dir (with extra
+/* Runs tests/data/still_tank_3d.yaml for one step into tmp/dir (with extra
  * --set arguments); whether it ran. */
 static int run_hydrostatic(const char *dir, const char *sets) {
   char args[8192], out[4096];
   snprintf(args, sizeof args,
            "run '%s' -o '%s/%s' --quiet --set time.end=0.001 --set time.output_interval=0.001 "
            "--set output.probe_interval=0.001 %s",
-           sph_test_src("cases/hydrostatic_3d.yaml"), tmp, dir, sets);
+           sph_test_src("tests/data/still_tank_3d.yaml"), tmp, dir, sets);
   const int ran = sph_test_sph(args, tmp, out, sizeof out) == 0;
   if (!ran) printf("\n    sph run: %s", out);
   return ran;
@@ -520,7 +520,7 @@ static void test_slices(void) {
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "--slice and --surface"));
 }
 
-/* Golden images of a small 3-D case (cases/hydrostatic_3d.yaml at dx =
+/* Golden images of a small 3-D case (tests/data/still_tank_3d.yaml at dx =
  * 0.02 m: 250 fluid particles): spheres, the surface, a slice. */
 static void test_golden(void) {
   CU_ASSERT_FATAL(

@@ -2,7 +2,7 @@
 /*
  * test_stability.c - the solver under stress (issue 7).
  *
- * Long run: the hydrostatic tank (cases/hydrostatic_tank.yaml, 800 fluid
+ * Long run: the hydrostatic tank (tests/data/still_tank.yaml, 800 fluid
  * particles) for SPH_STABILITY_STEPS steps (default 5000; bench/stability
  * runs 100 000), with its walls as 3 unstaggered layers (the fluid's
  * lattice continued, `stagger: false`) and the MLS density filter every 30
@@ -118,7 +118,7 @@ static void test_hydrostatic_long(void) {
   sph_case c;
   sph_sim *s;
   sph_error err;
-  CU_ASSERT_FATAL(sph_test_open_sim("cases/hydrostatic_tank.yaml", STILL_WATER, 2, &c, &s) == 0);
+  CU_ASSERT_FATAL(sph_test_open_sim("tests/data/still_tank.yaml", STILL_WATER, 2, &c, &s) == 0);
   const double H = c.fluid[0].y1, vref = sqrt(9.81 * H);
   extremes e = {0, 0, 0, 0, 0, 0, 0}, start = {0, 0, 0, 0, 0, 0, 0};
   measure(s, H, &start);
@@ -276,7 +276,7 @@ static void expect_error(const char *set, const char *want) {
   sph_case c;
   sph_error err;
   const char *sets[1] = {set};
-  const int rc = sph_case_load(sph_test_src("cases/hydrostatic_tank.yaml"), sets, 1, &c, &err);
+  const int rc = sph_case_load(sph_test_src("tests/data/still_tank.yaml"), sets, 1, &c, &err);
   CU_ASSERT_NOT_EQUAL(rc, 0);
   if (rc && !strstr(err.msg, want)) printf("\n  got: %s\n  want: %s\n", err.msg, want);
   if (rc) CU_ASSERT(strstr(err.msg, want) != NULL);
@@ -289,7 +289,7 @@ static double *jittered(const char *jitter, const char *seed, size_t *n) {
   const char *sets[2] = {jitter, seed};
   sph_case c;
   sph_sim *s;
-  if (sph_test_open_sim("cases/hydrostatic_tank.yaml", sets, seed ? 2 : 1, &c, &s)) return NULL;
+  if (sph_test_open_sim("tests/data/still_tank.yaml", sets, seed ? 2 : 1, &c, &s)) return NULL;
   const sph_particles *p = sph_sim_particles(s);
   double *xy = calloc(2 * p->n, sizeof *xy);
   for (size_t i = 0; xy && i < p->n; i++) {
@@ -345,7 +345,7 @@ static void test_jitter(void) {
   const char *sets[1] = {"geometry.fluid=[{x: [0, 0.2], y: [0, 0.1], jitter: 0.2, seed: 7}]"};
   sph_sim *s;
   sph_error err;
-  CU_ASSERT_FATAL(sph_test_open_sim("cases/hydrostatic_tank.yaml", sets, 1, &c, &s) == 0);
+  CU_ASSERT_FATAL(sph_test_open_sim("tests/data/still_tank.yaml", sets, 1, &c, &s) == 0);
   extremes e = {0, 0, 0, 0, 0, 0, 0};
   measure(s, 0.0, &e);
   const size_t nf = e.n_fluid;
@@ -406,7 +406,7 @@ enum offence { DENSE, THIN, OUTSIDE, NOT_FINITE };
 static int step_after(enum offence what, int wall, sph_error *err, long long *id) {
   sph_case c;
   sph_sim *s;
-  CU_ASSERT_FATAL(sph_test_open_sim("cases/hydrostatic_tank.yaml", NULL, 0, &c, &s) == 0);
+  CU_ASSERT_FATAL(sph_test_open_sim("tests/data/still_tank.yaml", NULL, 0, &c, &s) == 0);
   sph_particles *p = sph_sim_particles(s);
   const int kind = wall ? SPH_KIND_WALL : SPH_KIND_FLUID;
   size_t i = wall ? 0 : p->n / 2;

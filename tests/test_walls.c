@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
- * test_walls.c - the wall models hold still water: cases/hydrostatic_tank.yaml
+ * test_walls.c - the wall models hold still water: tests/data/still_tank.yaml
  * run for 0.5 s with each boundary of the tank (dynamic, fixed_layers,
  * repulsive, mirror). For every model: no fluid particle crosses a wall
  * face, and the largest speed stays below bounds stated per model, in
@@ -75,7 +75,7 @@ static void run_model(const char *boundary, double start_bound, double bound, si
   sph_case c;
   sph_sim *s;
   sph_error err;
-  CU_ASSERT_FATAL(sph_test_open_sim("cases/hydrostatic_tank.yaml", sets, 1, &c, &s) == 0);
+  CU_ASSERT_FATAL(sph_test_open_sim("tests/data/still_tank.yaml", sets, 1, &c, &s) == 0);
   int rc;
   const size_t n0 = sph_sim_particles(s)->n;
   CU_ASSERT_EQUAL(n0 - sph_particles_count_kind(sph_sim_particles(s), SPH_KIND_FLUID),
@@ -167,7 +167,7 @@ static void test_floor_load(void) {
   sph_case c;
   sph_sim *s;
   sph_error err;
-  CU_ASSERT_FATAL(sph_test_open_sim("cases/hydrostatic_tank.yaml", sets, 1, &c, &s) == 0);
+  CU_ASSERT_FATAL(sph_test_open_sim("tests/data/still_tank.yaml", sets, 1, &c, &s) == 0);
   while (sph_sim_time(s) < c.t_end)
     CU_ASSERT_FATAL(sph_sim_step(s, c.t_end, &err) == 0);
   floor_load(&c, s, tank, 1);

@@ -19,7 +19,7 @@
 
 /* A context for text under the origin "t.yaml" with the overrides set. */
 static sph_yaml_ctx ctx_of(const char *text, const char *const *set, sph_error *err) {
-  sph_yaml_ctx x = {"t.yaml", text, strlen(text), set, err};
+  sph_yaml_ctx x = {"t.yaml", text, strlen(text), set, err, NULL};
   return x;
 }
 

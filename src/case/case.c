@@ -28,6 +28,7 @@
 #include "case/case_read.h"
 
 #include "case/choices.h"
+#include "case/presets.h"
 
 #include "physics/density_diffusion.h"
 #include "physics/shifting.h"
@@ -55,7 +56,6 @@
 static const char *const kernel_names[] = {"cubic_spline", "wendland_c2", NULL};
 static const char *const integrator_names[] = {"predictor_corrector", "leapfrog", NULL};
 static const char *const dt_rule_names[] = {"paper_b", "cfl", "fixed", NULL};
-static const char *const scheme_names[] = {"none", "riemann", "delta_sph", NULL};
 static const char *const viscosity_names[] = {"none", "stress_tensor", "morris", NULL};
 static const char *const stop_names[] = {"none", "front_at_wall", NULL};
 
@@ -73,7 +73,9 @@ const char *sph_integrator_name(sph_integrator_kind k) {
 }
 const char *sph_dt_rule_name(sph_dt_rule r) { return sph_case_choice_name(dt_rule_names, (int)r); }
 const char *sph_scheme_name(sph_scheme_kind s) {
-  return sph_case_choice_name(scheme_names, (int)s);
+  size_t n;
+  const sph_preset *all = sph_presets(&n);
+  return (size_t)s < n ? all[s].name : "unknown";
 }
 const char *sph_stop_name(sph_stop_kind s) { return sph_case_choice_name(stop_names, (int)s); }
 const char *sph_viscosity_name(sph_viscosity_kind v) {
@@ -150,30 +152,6 @@ static const char *const turbulence_keys[] = {"model", "cs", "ci", NULL};
 static const char *const turbulence_names[] = {"none", "sps", NULL};
 const char *const sph_case_h_names[] = {"constant", "variable", NULL};
 
-/* The defaults of numerics.scheme s (doc/method.md, Schemes), on top of
- * set_defaults: what a case gets for every key it leaves out. */
-static void scheme_defaults(sph_case *c, sph_scheme_kind s) {
-  c->scheme = s;
-  switch (s) {
-  case SPH_SCHEME_NONE: break;
-  case SPH_SCHEME_RIEMANN: /* Zhang, Hu & Adams 2017 (ZH17) */
-    c->alpha = 0.0;
-    c->xsph = 0.0;
-    c->riemann = 1;
-    c->riemann_limiter = 3.0;
-    c->diffusion = SPH_DIFFUSION_NONE;
-    break;
-  case SPH_SCHEME_DELTA_SPH: /* delta-SPH, MA11 with AC10's diffusion (doc/method.md) */
-    c->alpha = 0.02;
-    c->xsph = 0.0;
-    c->diffusion = SPH_DIFFUSION_ANTUONO;
-    c->diffusion_delta = 0.1;
-    c->viscosity = SPH_VISCOSITY_MORRIS;
-    c->mu = 1.0e-3; /* water at 20 C */
-    break;
-  }
-}
-
 /* Whether the dotted key (mappings down from root) is in the tree. */
 static int has_key(const node *root, const char *dotted) {
   char part[64];
@@ -192,43 +170,60 @@ static int has_key(const node *root, const char *dotted) {
   return 0;
 }
 
-/* The keys of scheme s's set that the case gives itself, joined by ", "
- * into c->scheme_kept (the start-up listing says they keep the case's
- * values: a scheme on a case with its own numerics is a mixture). */
-static int note_kept_keys(const ctx *x, const node *root, sph_case *c) {
-  static const char *const riemann[] = {
-      "physics.riemann",        "physics.artificial_viscosity.alpha",
-      "physics.xsph",           "numerics.density_diffusion",
-      "geometry.tank.boundary", NULL};
-  static const char *const delta[] = {"physics.artificial_viscosity.alpha",
-                                      "physics.xsph",
-                                      "numerics.density_diffusion",
-                                      "physics.viscosity",
-                                      "geometry.tank.boundary",
-                                      NULL};
-  const char *const *keys = c->scheme == SPH_SCHEME_RIEMANN     ? riemann
-                            : c->scheme == SPH_SCHEME_DELTA_SPH ? delta
-                                                                : NULL;
-  char buf[512] = "";
-  for (size_t k = 0; keys && keys[k]; k++)
-    if (has_key(root, keys[k]))
-      sph_yaml_bprintf(buf + strlen(buf), sizeof buf - strlen(buf), "%s%s", buf[0] ? ", " : "",
-                       keys[k]);
-  c->scheme_kept = sph_yaml_dup(buf, strlen(buf));
-  return c->scheme_kept ? 0 : sph_yaml_oom(&x->t);
+/* Whether every part of the dotted key's path that the tree holds is a
+ * mapping (a scheme's value is put in only there: a case whose numerics is
+ * not a mapping is left to the readers to refuse). */
+static int path_open(const node *root, const char *dotted) {
+  char part[64];
+  const node *m = root;
+  for (const char *p = dotted;;) {
+    if (m->kind != SPH_YAML_MAP) return 0;
+    const size_t len = strcspn(p, ".");
+    if (!p[len] || len >= sizeof part) return 1;
+    memcpy(part, p, len);
+    part[len] = '\0';
+    const sph_yaml_entry *e = sph_yaml_find(m, part);
+    if (!e) return 1;
+    m = e->val;
+    p += len + 1;
+  }
 }
 
-/* numerics.scheme, read before every other key so that its defaults are in
- * place when they are read (a key the case gives wins over the scheme). A
- * numerics that is not a mapping is left to read_numerics to refuse. */
-static int read_scheme(const ctx *x, const node *root, sph_case *c) {
-  const sph_yaml_entry *n = sph_yaml_find(root, "numerics");
-  int s = (int)SPH_SCHEME_NONE;
-  if (n && n->val->kind == SPH_YAML_MAP &&
-      sph_yaml_get_choice(&x->t, n->val, "numerics", "scheme", scheme_names, &s) < 0)
+/* numerics.scheme (default the presets' first), read before every other
+ * key: its values (src/case/presets.c) go into the tree for every key the
+ * case leaves out, so the readers read them as the case's own, and every
+ * key the case gives keeps its value; those are joined by ", " into
+ * c->scheme_kept (the start-up listing says a scheme on a case with its
+ * own numerics is a mixture). A numerics that is not a mapping is left to
+ * read_numerics to refuse. */
+static int read_scheme(ctx *x, node *root, sph_case *c) {
+  size_t n;
+  const sph_preset *all = sph_presets(&n);
+  const char *names[8];
+  for (size_t k = 0; k < n && k < 7; k++)
+    names[k] = all[k].name;
+  names[n < 7 ? n : 7] = NULL;
+  const sph_yaml_entry *num = sph_yaml_find(root, "numerics");
+  int s = 0;
+  if (num && num->val->kind == SPH_YAML_MAP &&
+      sph_yaml_get_choice(&x->t, num->val, "numerics", "scheme", names, &s) < 0)
     return -1;
-  scheme_defaults(c, (sph_scheme_kind)s);
-  return note_kept_keys(x, root, c);
+  const sph_preset *ps = &all[s];
+  c->scheme = (sph_scheme_kind)s;
+  x->t.scheme = ps->name;
+  char buf[512] = "";
+  for (size_t k = 0; k < SPH_PRESET_KEYS; k++) {
+    const sph_preset_key *e = &ps->keys[k];
+    if (has_key(root, e->key)) {
+      sph_yaml_bprintf(buf + strlen(buf), sizeof buf - strlen(buf), "%s%s", buf[0] ? ", " : "",
+                       e->key);
+      continue;
+    }
+    if ((e->needs && !has_key(root, e->needs)) || !path_open(root, e->key)) continue;
+    if (sph_yaml_put_default(&x->t, root, e->key, e->value)) return -1;
+  }
+  c->scheme_kept = sph_yaml_dup(buf, strlen(buf));
+  return c->scheme_kept ? 0 : sph_yaml_oom(&x->t);
 }
 
 static void set_defaults(sph_case *c) {
@@ -392,13 +387,27 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
     if (sph_yaml_get_number(&x->t, v, vp, "beta", 0, &SPH_YAML_NONNEG, &c->beta) < 0) return -1;
     if (sph_yaml_get_number(&x->t, v, vp, "eta", 0, &SPH_YAML_POS, &c->eta) < 0) return -1;
   }
-  rc = sph_yaml_get_section(&x->t, m, p, "riemann", 0, riemann_keys, &v);
-  if (rc < 0) return -1;
-  if (rc > 0) {
-    c->riemann = 1;
-    if (sph_yaml_get_number(&x->t, v, "physics.riemann", "limiter", 0, &SPH_YAML_NONNEG,
-                            &c->riemann_limiter) < 0)
-      return -1;
+  /* physics.riemann: a mapping {limiter} turns the Riemann pressure on, `off` leaves the plain
+   * one (the papers' schemes say so) */
+  const sph_yaml_entry *re = sph_yaml_find(m, "riemann");
+  if (re && re->val->kind == SPH_YAML_SCALAR && strcmp(re->val->text, "off") == 0) {
+    c->riemann = 0;
+  } else {
+    if (re && re->val->kind != SPH_YAML_MAP) {
+      char b[96];
+      return sph_yaml_fail_at(&x->t, re->val, "physics.riemann",
+                              "expected a mapping {limiter: ...} (the Riemann-solver pressure) or "
+                              "off, got %s",
+                              sph_yaml_got(re->val, b, sizeof b));
+    }
+    rc = sph_yaml_get_section(&x->t, m, p, "riemann", 0, riemann_keys, &v);
+    if (rc < 0) return -1;
+    if (rc > 0) {
+      c->riemann = 1;
+      if (sph_yaml_get_number(&x->t, v, "physics.riemann", "limiter", 0, &SPH_YAML_NONNEG,
+                              &c->riemann_limiter) < 0)
+        return -1;
+    }
   }
   return sph_yaml_get_number(&x->t, m, p, "xsph", 0, &SPH_YAML_UNIT, &c->xsph) < 0 ? -1 : 0;
 }
@@ -681,7 +690,7 @@ static int parse_into(ctx *x, const char *text, size_t len, size_t n_set, sph_ca
 
 int sph_case_parse(const char *text, size_t len, const char *origin, const char *const *set,
                    size_t n_set, sph_case *c, sph_error *err) {
-  ctx x = {{origin ? origin : "<text>", text ? text : "", text ? len : 0, set, err},
+  ctx x = {{origin ? origin : "<text>", text ? text : "", text ? len : 0, set, err, NULL},
            NULL,
            NULL,
            NULL,
@@ -759,7 +768,7 @@ int sph_case_file_dimension(const char *path, const char *const *set, size_t n_s
   char *buf;
   size_t len;
   if (read_case_file(path, &buf, &len, err)) return -1;
-  ctx x = {{path, buf, len, set, err}, NULL, NULL, NULL, NULL};
+  ctx x = {{path, buf, len, set, err, NULL}, NULL, NULL, NULL, NULL};
   node *root = NULL;
   int rc = sph_yaml_parse(&x.t, buf, len, SPH_YAML_FROM_FILE, NULL, &root);
   if (rc == 0 && root->kind == SPH_YAML_MAP) { /* (not a mapping: 2, the full reader says why) */

@@ -37,12 +37,16 @@ typedef enum {
   SPH_DT_FIXED = 2    /* a constant step from the case */
 } sph_dt_rule;
 typedef enum { SPH_STOP_NONE = 0, SPH_STOP_FRONT_AT_WALL = 1 } sph_stop_kind;
-/* numerics.scheme: a named set of defaults for the dissipation, diffusion
- * and tank wall model (doc/method.md, Schemes); the keys a case gives win. */
+/* numerics.scheme: a named set of defaults for the pressure term, the
+ * dissipation, the diffusion, the kernel, the step rule and the tank's
+ * wall model (src/case/presets.c, doc/method.md, Schemes); the keys a case
+ * gives win. In the order of the presets' table. */
 typedef enum {
-  SPH_SCHEME_NONE = 0,      /* the built-in defaults, key by key */
-  SPH_SCHEME_RIEMANN = 1,   /* Zhang et al. 2017: Riemann pressure, limiter 3, mdbc tank */
-  SPH_SCHEME_DELTA_SPH = 2, /* Marrone et al. 2011: alpha 0.02, antuono 0.1, Morris, mdbc */
+  SPH_SCHEME_RIEMANN = 0,  /* the default: Zhang et al. 2017's pressure, Wendland h = 2 dx,
+                              Adami walls */
+  SPH_SCHEME_PAPER_A = 1,  /* the dam-break paper's base: cubic spline h = 1.3 dx, dynamic walls */
+  SPH_SCHEME_PAPER_B = 2,  /* the breaking-wave paper's base: the same keys */
+  SPH_SCHEME_DELTA_SPH = 3 /* Marrone et al. 2011: alpha 0.02, antuono 0.1, Morris, mdbc */
 } sph_scheme_kind;
 const char *sph_scheme_name(sph_scheme_kind s);
 
@@ -98,7 +102,7 @@ typedef struct sph_case {
                               default 5 |g| H, H the deepest fluid block */
 
   /* numerics */
-  sph_scheme_kind scheme; /* numerics.scheme, default none */
+  sph_scheme_kind scheme; /* numerics.scheme, default riemann */
   char *scheme_kept;      /* the keys of the scheme's set the case gives itself (they keep the
                              case's values), joined by ", "; "" if none or no scheme */
   double dx;              /* initial particle spacing (required) */

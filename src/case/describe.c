@@ -195,7 +195,7 @@ char *sph_case_describe(const sph_case *c) {
     sb_add(&b, "physics.turbulence.ci: %.17g\n", c->sps_ci);
   }
   sb_add(&b, "physics.repulsion: %.17g\n", c->repulsion);
-  if (c->scheme != SPH_SCHEME_NONE) sb_add(&b, "numerics.scheme: %s\n", sph_scheme_name(c->scheme));
+  sb_add(&b, "numerics.scheme: %s\n", sph_scheme_name(c->scheme));
   sb_add(&b, "numerics.dx: %.17g\n", c->dx);
   sb_add(&b, "numerics.h_factor: %.17g\n", c->h_factor);
   sb_add(&b, "numerics.h: %.17g\n", c->h);

@@ -160,8 +160,8 @@ static int read_tank(const ctx *x, const node *m, sph_case *c) {
   const char *p = "geometry.tank";
   const node *t;
   double v[2];
-  /* a scheme's tank carries the fluid's pressure (mdbc); without one, dynamic */
-  int b = c->scheme != SPH_SCHEME_NONE ? (int)SPH_BOUNDARY_MDBC : (int)SPH_BOUNDARY_DYNAMIC;
+  /* (every scheme gives the tank's wall model: src/case/presets.c) */
+  int b = (int)SPH_BOUNDARY_DYNAMIC;
   int rc = sph_yaml_get_section(&x->t, m, "geometry", "tank", 0, tank_keys, &t);
   if (rc <= 0) return rc;
   c->tank.present = 1;

@@ -81,6 +81,9 @@ static int failv(const sph_yaml_ctx *x, int src, size_t line, const char *key, c
   char where[512], msg[768];
   if (src >= 0)
     sph_yaml_bprintf(where, sizeof where, "--set %s", x->set[src]);
+  else if (src == SPH_YAML_FROM_SCHEME)
+    sph_yaml_bprintf(where, sizeof where, "%s: numerics.scheme %s (its default)", x->origin,
+                     x->scheme ? x->scheme : "?");
   else if (line > 0)
     sph_yaml_bprintf(where, sizeof where, "%s:%zu", x->origin, line);
   else
@@ -466,6 +469,14 @@ int sph_yaml_apply_set(const sph_yaml_ctx *x, sph_yaml_node *root, int i) {
   int rc = sph_yaml_parse(x, eq + 1, strlen(eq + 1), i, key, &val);
   if (rc == 0) rc = place(x, root, key, i, val);
   free(key);
+  return rc;
+}
+
+int sph_yaml_put_default(const sph_yaml_ctx *x, sph_yaml_node *root, const char *key,
+                         const char *value) {
+  sph_yaml_node *val;
+  int rc = sph_yaml_parse(x, value, strlen(value), SPH_YAML_FROM_SCHEME, key, &val);
+  if (rc == 0) rc = place(x, root, key, SPH_YAML_FROM_SCHEME, val);
   return rc;
 }
 

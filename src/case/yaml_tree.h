@@ -21,9 +21,10 @@
 
 #include "core/error.h"
 
-#define SPH_YAML_FROM_FILE (-1) /* a node's source: the text (else the index of an override) */
-#define SPH_YAML_MAX_DEPTH 64   /* the deepest nesting accepted */
-#define SPH_YAML_KEYLEN 256     /* room for a dotted key such as geometry.fluid[3].x */
+#define SPH_YAML_FROM_FILE (-1)   /* a node's source: the text (else the index of an override) */
+#define SPH_YAML_FROM_SCHEME (-2) /* or the scheme's default for a key the case leaves out */
+#define SPH_YAML_MAX_DEPTH 64     /* the deepest nesting accepted */
+#define SPH_YAML_KEYLEN 256       /* room for a dotted key such as geometry.fluid[3].x */
 
 typedef enum { SPH_YAML_SCALAR, SPH_YAML_LIST, SPH_YAML_MAP } sph_yaml_kind;
 
@@ -62,6 +63,7 @@ typedef struct sph_yaml_ctx {
   size_t len;
   const char *const *set; /* the overrides "dotted.key=value" */
   sph_error *err;
+  const char *scheme; /* the scheme whose defaults were put in (sph_yaml_put_default), or NULL */
 } sph_yaml_ctx;
 
 /* The ranges most keys take: any number, > 0, >= 0, [0, 1]. */
@@ -77,6 +79,11 @@ int sph_yaml_parse(const sph_yaml_ctx *x, const char *text, size_t len, int src,
                    sph_yaml_node **out);
 /* Applies override i of x->set to the mapping root. */
 int sph_yaml_apply_set(const sph_yaml_ctx *x, sph_yaml_node *root, int i);
+/* Puts value (YAML text) at the dotted key, creating mappings on the way, its
+ * nodes from SPH_YAML_FROM_SCHEME (messages name x->scheme); the caller has
+ * checked that the key is not there. */
+int sph_yaml_put_default(const sph_yaml_ctx *x, sph_yaml_node *root, const char *key,
+                         const char *value);
 void sph_yaml_free(sph_yaml_node *t);
 /* The entry of key in the mapping m, or NULL. */
 sph_yaml_entry *sph_yaml_find(const sph_yaml_node *m, const char *key);
