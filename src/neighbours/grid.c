@@ -701,7 +701,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
             full = 1;
         }
         if (!full) {
-          memcpy(l->rows + used, buf, bytes);
+          if (bytes) memcpy(l->rows + used, buf, bytes); /* buf is NULL for a chunk of empty rows */
           for (size_t i = a; i < b; i++)
             l->off[i + 1] += used;
           used += bytes;
