@@ -162,7 +162,10 @@ static void restart_in_place(const char *name, int k, int short_form, int old_he
   /* a torn last row, as a killed run may leave, is dropped too */
   snprintf(args, sizeof args, "printf '0.99,12' >> '%s/diagnostics.csv'", dir);
   CU_ASSERT_FATAL(sph_test_system(args) == 0);
-  if (old_headers) {
+  if (old_headers == 2) { /* CRLF line ends, as a spreadsheet may save them (issue 61, E6) */
+    snprintf(args, sizeof args, "cd '%s' && sed -i 's/$/\\r/' diagnostics.csv", dir);
+    CU_ASSERT_FATAL(sph_test_system(args) == 0);
+  } else if (old_headers) {
     snprintf(args, sizeof args,
              "cd '%s' && for f in diagnostics.csv gauges.csv probes.csv; do [ ! -f $f ] || "
              "sed -i '1s/ ([^)]*)//g' $f; done && head -n 1 diagnostics.csv | grep -qv '('",
@@ -192,6 +195,38 @@ static void restart_in_place(const char *name, int k, int short_form, int old_he
 /* snap_0003 of restart_pc is at a listed output time (0.0123 s) */
 static void test_pc_in_place(void) { restart_in_place("restart_pc", 3, 0, 0); }
 static void test_mirror_in_place(void) { restart_in_place("restart_mirror", 4, 1, 1); }
+static void test_crlf_in_place(void) { restart_in_place("restart_pc", 3, 0, 2); }
+
+/* A restart in place never drops rows it cannot read (issue 61, E6): a
+ * file with other columns or a row whose time is not a number is refused
+ * with its name and line, and every file is left as it was. */
+static void test_unreadable_rows(void) {
+  full_run("restart_pc");
+  static const char *const edits[][3] = {
+      {"diagnostics.csv", "1s/^time (s),step/time (s),steps/",
+       "diagnostics.csv: its header is not the columns this case writes (line 1: 'time (s),steps"},
+      {"probes.csv", "1s/,[^,]*$/,X (Pa)/", "probes.csv: its header is not the columns"},
+      {"diagnostics.csv", "4s/^[^,]*,/nan,/",
+       "diagnostics.csv:4: expected a row that starts with its time, got 'nan,"},
+      {"diagnostics.csv", "3s/^.*$//", "diagnostics.csv:3: expected a row that starts with its "
+                                       "time, got ''"}};
+  for (size_t k = 0; k < sizeof edits / sizeof *edits; k++) {
+    char args[32768], out[65536], dir[4200];
+    snprintf(dir, sizeof dir, "%s/unreadable%zu", tmp, k);
+    snprintf(args, sizeof args,
+             "rm -rf '%s' && cp -r '%s/restart_pc.full' '%s' && sed -i '%s' '%s/%s' && "
+             "cp -r '%s' '%s.before'",
+             dir, tmp, dir, edits[k][1], dir, edits[k][0], dir, dir);
+    CU_ASSERT_FATAL(sph_test_system(args) == 0);
+    snprintf(args, sizeof args, "run -q --restart '%s/snap_0002.h5' '%s' -o '%s'", dir,
+             case_file("restart_pc"), dir);
+    CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+    if (!strstr(out, edits[k][2])) printf("\n  want '%s' in: %s", edits[k][2], out);
+    CU_ASSERT(strstr(out, edits[k][2]) != NULL);
+    snprintf(args, sizeof args, "diff -r '%s' '%s.before'", dir, dir);
+    CU_ASSERT_EQUAL(sph_test_system(args), 0);
+  }
+}
 
 static void test_bad_restarts(void) {
   full_run("restart_pc");
@@ -362,6 +397,9 @@ int main(void) {
       {"adami walls, a moving one, the ledger: restart is bitwise", test_adami_fresh},
       {"restart in the run's directory: CSV and XDMF as uninterrupted", test_pc_in_place},
       {"mirror, periodic: restart in place, headers of an earlier version", test_mirror_in_place},
+      {"restart in place: CRLF line ends read, rows kept", test_crlf_in_place},
+      {"restart in place: unreadable rows refused, files left as they were",
+       test_unreadable_rows},
       {"bad restarts fail clearly; time.end may change", test_bad_restarts},
       {"the restart's clock: time.end before it, NaN, negative, 1e308 and step -5 refused",
        test_restart_clock},

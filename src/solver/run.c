@@ -252,44 +252,91 @@ static int same_columns(const char *a, const char *b) {
   }
 }
 
+/* A line's CR before its LF (a file saved with CRLF line ends) is
+ * dropped: the rows are kept with LF ends. */
+static void drop_cr(char *line, ssize_t *len) {
+  if (*len >= 2 && line[*len - 1] == '\n' && line[*len - 2] == '\r') {
+    line[*len - 2] = '\n';
+    line[*len - 1] = '\0';
+    (*len)--;
+  }
+}
+
 /* Opens a CSV file of the run for writing: a new file gets the header;
  * on a resumed run (t_keep >= 0) an existing file with the same columns
- * (same_columns) keeps its rows of time <= t_keep (the rest is dropped: rewritten
- * through a temporary file and renamed) and is opened for appending.
- * *kept_last tells whether a row of time t_keep was kept. */
-static FILE *open_csv(const char *path, const char *header, double t_keep, int *kept_last,
-                      sph_error *err) {
+ * (same_columns; CRLF line ends read as LF) keeps its rows of time <= t_keep
+ * (the rest is dropped: rewritten through a temporary file and renamed) and
+ * is opened for appending; a torn last row (no line end, as a killed run
+ * leaves it) is dropped. A file this run cannot read (other columns, a row
+ * whose time is not a number) is refused and left as it is: its rows are
+ * never dropped unread (issue 61, E6). *kept_last tells whether a row of
+ * time t_keep was kept. With check_only the file is only read: NULL with
+ * err where it would be refused, else stdin (a FILE not to be written or
+ * closed: the caller only tests it). */
+static FILE *read_csv(const char *path, const char *header, double t_keep, int *kept_last,
+                      int check_only, sph_error *err) {
   *kept_last = 0;
   FILE *old = t_keep >= 0.0 ? fopen(path, "r") : NULL;
+  if (check_only && !old) return stdin;
   char tmp[4200];
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
-  FILE *f = fopen(old ? tmp : path, "w");
+  FILE *f = check_only ? fopen("/dev/null", "w") : fopen(old ? tmp : path, "w");
   if (!f) {
     sph_error_set(err, "%s: cannot create: %s", old ? tmp : path, strerror(errno));
     if (old) fclose(old);
     return NULL;
   }
-  int bad = fputs(header, f) == EOF;
+  int bad = fputs(header, f) == EOF, refused = 0;
   if (old) {
     char *line = NULL;
     size_t cap = 0;
+    long row = 1;
     ssize_t len = getline(&line, &cap, old);
-    if (len > 0 && same_columns(line, header)) {
-      while (!bad && (len = getline(&line, &cap, old)) > 0) {
-        if (line[len - 1] != '\n') break; /* a torn last row */
-        char *end;
-        const double t = strtod(line, &end);
-        if (end == line || *end != ',' || !(t <= t_keep)) break;
-        *kept_last = t == t_keep;
-        bad = fputs(line, f) == EOF;
+    if (len > 0) drop_cr(line, &len);
+    if (len > 0 && !same_columns(line, header)) {
+      const size_t shown = strcspn(line, "\n");
+      refused = sph_error_set(err,
+                              "%s: its header is not the columns this case writes (line 1: "
+                              "'%.*s%s'); a restart in place keeps a file's rows and would "
+                              "drop these: left as it is (restart into another directory "
+                              "with -o, or move the file away)",
+                              path, shown > 80 ? 80 : (int)shown, line, shown > 80 ? "..." : "");
+    }
+    while (len > 0 && !bad && !refused && (len = getline(&line, &cap, old)) > 0) {
+      row++;
+      if (line[len - 1] != '\n') break; /* a torn last row */
+      drop_cr(line, &len);
+      char *end;
+      const double t = strtod(line, &end);
+      if (end == line || *end != ',' || isnan(t)) {
+        refused = sph_error_set(err,
+                                "%s:%ld: expected a row that starts with its time, got '%.*s': "
+                                "the rows after it would be dropped unread; left as it is "
+                                "(mend the row, or restart into another directory with -o)",
+                                path, row, (int)(strcspn(line, "\n") > 40 ? 40 : strcspn(line, "\n")),
+                                line);
+        break;
       }
+      if (!(t <= t_keep)) break;
+      *kept_last = t == t_keep;
+      bad = fputs(line, f) == EOF;
     }
     free(line);
     fclose(old);
   }
+  if (refused) {
+    fclose(f);
+    if (!check_only) remove(tmp);
+    return NULL;
+  }
+  if (check_only) {
+    fclose(f);
+    return stdin;
+  }
   if (bad || fflush(f)) {
     sph_error_set(err, "%s: write failed: %s", old ? tmp : path, strerror(errno));
     fclose(f);
+    if (old) remove(tmp);
     return NULL;
   }
   if (old) {
@@ -348,8 +395,17 @@ static char *csv_header(const sph_case *c, int what) {
 /* Opens the run's CSV file `what` (0 diagnostics.csv, 1 gauges.csv, 2
  * probes.csv) in out->dir with its header (open_csv: kept rows up to
  * t_keep on a resumed run). */
+static FILE *run_csv(const outputs *out, const sph_case *c, int what, double t_keep,
+                     int *kept_last, int check_only, sph_error *err);
+
 static FILE *open_run_csv(const outputs *out, const sph_case *c, int what, double t_keep,
                           int *kept_last, sph_error *err) {
+  return run_csv(out, c, what, t_keep, kept_last, 0, err);
+}
+
+/* open_run_csv's work; check_only: read_csv's. */
+static FILE *run_csv(const outputs *out, const sph_case *c, int what, double t_keep,
+                     int *kept_last, int check_only, sph_error *err) {
   static const char *const names[] = {"diagnostics.csv", "gauges.csv", "probes.csv"};
   char *header = csv_header(c, what), path[4096];
   if (!header) {
@@ -357,9 +413,20 @@ static FILE *open_run_csv(const outputs *out, const sph_case *c, int what, doubl
     return NULL;
   }
   snprintf(path, sizeof path, "%s/%s", out->dir, names[what]);
-  FILE *f = open_csv(path, header, t_keep, kept_last, err);
+  FILE *f = read_csv(path, header, t_keep, kept_last, check_only, err);
   free(header);
   return f;
+}
+
+/* A resumed run's CSV files, each read before any is rewritten: one that
+ * would be refused leaves all of them as they were. */
+static int check_run_csvs(const outputs *out, const sph_case *c, double t_keep, sph_error *err) {
+  for (int what = 0; what < 3; what++) {
+    if ((what == 1 && !c->n_gauges) || (what == 2 && !c->n_probes)) continue;
+    int kept;
+    if (!run_csv(out, c, what, t_keep, &kept, 1, err)) return -1;
+  }
+  return 0;
 }
 
 /* The snapshots snap_0000 .. snap_<last> still in dir, for the XDMF index
@@ -388,6 +455,7 @@ static int open_outputs(sph_sim *s, outputs *out, const sph_snapshot_restart_dat
   const double t_keep = rd ? sph_sim_time(s) : -1.0;
   int kept_diag = 0, kept_gauges = 1, kept_probes = 1;
   *need_row = 0;
+  if (rd && check_run_csvs(out, c, t_keep, err)) return -1;
   if (!(out->diag = open_run_csv(out, c, 0, t_keep, &kept_diag, err))) return -1;
   if (c->n_gauges) {
     out->still = calloc(c->n_gauges, sizeof *out->still);
