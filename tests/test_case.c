@@ -517,6 +517,12 @@ static void test_wrong_type(void) {
   expect_err(edit(MINIMAL, 1, "name: two words\n"),
              "t.yaml:1: name: expected a name of 1 to 64 characters from [A-Za-z0-9_.-], got "
              "'two words'");
+  expect_err(edit(MINIMAL, 1, "name: ..\n"),
+             "t.yaml:1: name: expected a name with a character other than '.', got '..' "
+             "(out/.. would be a directory that is already there)");
+  expect_err(edit(MINIMAL, 1, "name: .\n"),
+             "t.yaml:1: name: expected a name with a character other than '.', got '.' "
+             "(out/. would be a directory that is already there)");
   expect_err(edit(MINIMAL, 1, "name: [a]\n"),
              "t.yaml:1: name: expected a name of 1 to 64 characters from [A-Za-z0-9_.-], got a "
              "list of 1 item");

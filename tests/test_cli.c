@@ -7,7 +7,9 @@
  */
 #include "config.h"
 
+#include <hdf5.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -384,6 +386,134 @@ static void test_three_dimensions(void) {
   CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
   unsetenv("SPH_TWIN");
   CU_ASSERT(strstr(out, "is a 3-D case and the 3-D program (sph-3d) is not installed") != NULL);
+  /* SPH_TWIN naming a program of this dimension: handed over once, then
+   * refused, never back and forth (issue 61, E2; timeout: the old loop) */
+  char cmd[16384];
+  snprintf(cmd, sizeof cmd,
+           "SPH_TWIN='%s' timeout 60 '%s' run '%s' -o '%s/run3c' >'%s/twin.log' 2>&1",
+           sph_test_build("src/sph"), sph_test_build("src/sph"),
+           sph_test_src("cases/hydrostatic_3d.yaml"), tmp, tmp);
+  CU_ASSERT_EQUAL(sph_test_system(cmd), 1);
+  snprintf(path, sizeof path, "%s/twin.log", tmp);
+  d = sph_test_read_file(path, NULL);
+  if (!(d && strstr(d, "not handed back (is SPH_TWIN set to a program of the wrong dimension?)")))
+    printf("\n  %s\n", d ? d : "(no log)");
+  CU_ASSERT_PTR_NOT_NULL(
+      d && strstr(d, "not handed back (is SPH_TWIN set to a program of the wrong dimension?)"));
+  free(d);
+  /* a snapshot whose dimension attribute is neither 2 nor 3: refused by
+   * the first program, not handed over */
+  for (int k = 0; k < 3; k++) {
+    const long long bad[3] = {0, 4, -1};
+    snprintf(cmd, sizeof cmd, "cp '%s/run3/snap_0002.h5' '%s/dim.h5'", tmp, tmp);
+    CU_ASSERT_EQUAL_FATAL(sph_test_system(cmd), 0);
+    snprintf(path, sizeof path, "%s/dim.h5", tmp);
+    const hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+    CU_ASSERT_FATAL(f >= 0);
+    const hid_t a = H5Aopen(f, "dimension", H5P_DEFAULT);
+    CU_ASSERT_FATAL(a >= 0);
+    const int64_t v = bad[k];
+    CU_ASSERT(H5Awrite(a, H5T_NATIVE_INT64, &v) >= 0);
+    H5Aclose(a);
+    H5Fclose(f);
+    for (int r = 0; r < 2; r++) {
+      snprintf(cmd, sizeof cmd,
+               r ? "timeout 60 '%s' run --restart '%s/dim.h5' -o '%s/dimrun' >'%s/dim.log' 2>&1"
+                 : "timeout 60 '%s' info '%s/dim.h5' >'%s/dim.log' 2>&1",
+               sph_test_build("src/sph"), tmp, tmp, tmp);
+      const int st = sph_test_system(cmd);
+      CU_ASSERT(st != 0 && st != 124);
+      snprintf(path, sizeof path, "%s/dim.log", tmp);
+      d = sph_test_read_file(path, NULL);
+      char want[96];
+      snprintf(want, sizeof want, "attribute \"dimension\" is %lld, expected 2 or 3", bad[k]);
+      if (!(d && strstr(d, want))) printf("\n  exit %d: %s\n", st, d ? d : "(no log)");
+      CU_ASSERT_PTR_NOT_NULL(d && strstr(d, want));
+      free(d);
+    }
+  }
+}
+
+/* A case file that can be read once (issue 61, E4): a named FIFO, /dev/stdin
+ * and a pipe run the case, 2-D and 3-D (the 3-D one handed over with a copy
+ * of its text), and give the same diagnostics as the file itself. The
+ * timeouts: the old second open of a FIFO hung. */
+static void test_case_read_once(void) {
+  char cmd[40000], path[4400];
+  write_file("good.yaml", GOOD);
+  const char *sph_prog = sph_test_build("src/sph");
+  const char *three = sph_test_src("cases/hydrostatic_3d.yaml");
+  const char *sets3 = "--set time.end=0.002 --set time.output_interval=0.002 "
+                      "--set output.probe_interval=0.002";
+  /* the references, from the files */
+  snprintf(cmd, sizeof cmd, "'%s' run -q '%s/good.yaml' -o '%s/once_ref2' --set time.end=0.01",
+           sph_prog, tmp, tmp);
+  CU_ASSERT_EQUAL_FATAL(sph_test_system(cmd), 0);
+  snprintf(cmd, sizeof cmd, "'%s' run -q '%s' -o '%s/once_ref3' %s", sph_prog, three, tmp, sets3);
+  CU_ASSERT_EQUAL_FATAL(sph_test_system(cmd), 0);
+  for (int d = 2; d <= 3; d++) {
+    char src[4200], ref[4200], sets[256];
+    if (d == 2) snprintf(src, sizeof src, "%s/good.yaml", tmp);
+    else snprintf(src, sizeof src, "%s", three);
+    snprintf(ref, sizeof ref, "%s/once_ref%d/diagnostics.csv", tmp, d);
+    snprintf(sets, sizeof sets, "%s", d == 2 ? "--set time.end=0.01" : sets3);
+    const char *how[3] = {"fifo", "stdin", "pipe"};
+    for (int k = 0; k < 3; k++) {
+      char dir[4300];
+      snprintf(dir, sizeof dir, "%s/once_%s%d", tmp, how[k], d);
+      if (k == 0)
+        snprintf(cmd, sizeof cmd,
+                 "rm -f '%s.fifo' && mkfifo '%s.fifo' && (cat '%s' > '%s.fifo' &) && "
+                 "timeout 120 '%s' run -q '%s.fifo' -o '%s' %s >'%s.log' 2>&1",
+                 dir, dir, src, dir, sph_prog, dir, dir, sets, dir);
+      else if (k == 1)
+        snprintf(cmd, sizeof cmd, "timeout 120 '%s' run -q /dev/stdin -o '%s' %s <'%s' >'%s.log' 2>&1",
+                 sph_prog, dir, sets, src, dir);
+      else
+        snprintf(cmd, sizeof cmd,
+                 "cat '%s' | timeout 120 '%s' run -q /dev/stdin -o '%s' %s >'%s.log' 2>&1", src,
+                 sph_prog, dir, sets, dir);
+      const int st = sph_test_system(cmd);
+      snprintf(path, sizeof path, "%s.log", dir);
+      char *log = sph_test_read_file(path, NULL);
+      if (st != 0) printf("\n  %d-D %s: exit %d: %s\n", d, how[k], st, log ? log : "");
+      free(log);
+      CU_ASSERT_EQUAL(st, 0);
+      snprintf(cmd, sizeof cmd, "cmp '%s' '%s/diagnostics.csv'", ref, dir);
+      CU_ASSERT_EQUAL(sph_test_system(cmd), 0);
+    }
+  }
+}
+
+/* A fluid block drawn through a box obstacle (a wet bed with a box standing
+ * in it): the box's inside is solid, so none of the block's particles are
+ * made there, and the run says how many (issue 61, E1), 2-D and 3-D. */
+static void test_fluid_through_obstacle(void) {
+  char out[65536], args[8192];
+  write_file("good.yaml", GOOD);
+  /* 2-D: the bed x [0, 0.1] y [0, 0.05] at dx 0.01 (50 particles), the box
+   * x [0.03, 0.07] covers 4 of its 10 columns */
+  snprintf(args, sizeof args,
+           "run '%s/good.yaml' -o '%s/bed2' --set 'geometry.fluid=[{x: [0, 0.1], y: [0, 0.05]}]' "
+           "--set 'geometry.obstacles=[{x: [0.03, 0.07], y: [0, 0.08]}]'",
+           tmp, tmp);
+  CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "20 fluid particles not made: inside an obstacle box") != NULL);
+  snprintf(args, sizeof args, "info '%s/bed2/snap_0000.h5'", tmp);
+  CU_ASSERT_EQUAL(sph_ok(args, out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "(fluid 30, ") != NULL);
+  /* 3-D: the bed of cases/hydrostatic_3d.yaml (20 x 10 x 10), a box
+   * x [0.05, 0.1] y [0, 0.1] z [0, 0.12] takes 5 x 10 x 10 of it */
+  snprintf(args, sizeof args,
+           "run '%s' -o '%s/bed3' --set time.end=0.002 --set time.output_interval=0.002 "
+           "--set output.probe_interval=0.002 "
+           "--set 'geometry.obstacles=[{x: [0.05, 0.1], y: [0, 0.1], z: [0, 0.12]}]'",
+           sph_test_src("cases/hydrostatic_3d.yaml"), tmp);
+  CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "500 fluid particles not made: inside an obstacle box") != NULL);
+  snprintf(args, sizeof args, "info '%s/bed3/snap_0000.h5'", tmp);
+  CU_ASSERT_EQUAL(sph_ok(args, out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "(fluid 1500, ") != NULL);
 }
 
 static void test_blowup_stops_cleanly(void) {
@@ -401,6 +531,19 @@ static void test_blowup_stops_cleanly(void) {
   CU_ASSERT_EQUAL(sph_test_system(args), 0);
   snprintf(args, sizeof args, "ls '%s/boom' | grep -c '\\.tmp$' >/dev/null", tmp);
   CU_ASSERT_NOT_EQUAL(sph_test_system(args), 0); /* no temporary file left */
+  /* a step that has collapsed stops the run the same way, naming the rule
+   * (issue 61, E5: a step of 1e-300 s would run for ever) */
+  snprintf(args, sizeof args,
+           "run '%s/good.yaml' -o '%s/stall' --set time.end=1 "
+           "--set 'numerics.time_step={rule: fixed, dt: 1e-300}'",
+           tmp, tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 3);
+  const char *want = "time step collapse at step 0, t = 0 s: the step (numerics.time_step.rule: "
+                     "fixed) is 1e-300 s, below 1e-06 of the case's acoustic step factor h / c0";
+  if (!strstr(out, want)) printf("\n  want '%s' in: %s\n", want, out);
+  CU_ASSERT(strstr(out, want) != NULL);
+  snprintf(args, sizeof args, "test -s '%s/stall/last_good.h5'", tmp);
+  CU_ASSERT_EQUAL(sph_test_system(args), 0);
 }
 
 int main(void) {
@@ -414,6 +557,8 @@ int main(void) {
       {"an output time listed twice (interval and list) is one output", test_output_times_merge},
       {"a blow-up stops with a message and keeps snapshots", test_blowup_stops_cleanly},
       {"numerics.scheme runs as its keys written out, bit for bit", test_scheme_is_its_keys},
+      {"a case read once: FIFO, /dev/stdin, a pipe, 2-D and 3-D", test_case_read_once},
+      {"a fluid block through a box obstacle: its inside stays dry", test_fluid_through_obstacle},
       CU_TEST_INFO_NULL};
   int rc = sph_test_main("cli", tests);
   sph_test_rmtree(tmp);

@@ -11,6 +11,8 @@
  *     index; restarted from it (--restart, time.end moved closer), the run
  *     reaches the same state, bit for bit, as an uninterrupted run to that
  *     end time;
+ *   - a run started with SIGHUP ignored (`nohup`) keeps running through a
+ *     hangup;
  *   - SIGKILL, at several moments while snapshots are written every few
  *     steps: every snap_*.h5 left behind is complete (a torn file can only
  *     be a *.tmp).
@@ -51,8 +53,9 @@ static int exists(const char *path) {
 }
 
 /* Starts `sph run -q CASE -o dir --set time.end=5 [--set extra]`, output
- * to dir.log; returns the pid. */
-static pid_t start(const char *dir, const char *extra) {
+ * to dir.log, with SIGHUP ignored as `nohup` leaves it when ignore_hup;
+ * returns the pid. */
+static pid_t start_as(const char *dir, const char *extra, int ignore_hup) {
   char log[4200];
   snprintf(log, sizeof log, "%s.log", dir);
   const char *sph = sph_test_build("src/sph");
@@ -60,6 +63,7 @@ static pid_t start(const char *dir, const char *extra) {
   snprintf(prog, sizeof prog, "%s", sph);
   const pid_t pid = fork();
   if (pid == 0) {
+    if (ignore_hup) signal(SIGHUP, SIG_IGN);
     const int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0) {
       dup2(fd, 1);
@@ -75,6 +79,8 @@ static pid_t start(const char *dir, const char *extra) {
   }
   return pid;
 }
+
+static pid_t start(const char *dir, const char *extra) { return start_as(dir, extra, 0); }
 
 /* Waits (up to 60 s) until path exists; 0 if it never did. */
 static int wait_for(const char *path, pid_t pid) {
@@ -273,6 +279,36 @@ static void test_disk_full(void) {
   }
 }
 
+/* `nohup sph run ...`: a run started with SIGHUP ignored keeps running
+ * through a hangup (issue 61, E3), and still ends cleanly on SIGTERM. */
+static void test_nohup_survives_hangup(void) {
+  char dir[4200], path[4300], log[4300];
+  snprintf(dir, sizeof dir, "%s/nohup", tmp);
+  snprintf(log, sizeof log, "%s.log", dir);
+  const pid_t pid = start_as(dir, NULL, 1);
+  CU_ASSERT_FATAL(pid > 0);
+  snprintf(path, sizeof path, "%s/snap_0002.h5", dir);
+  const int started = wait_for(path, pid);
+  if (!started) kill(pid, SIGKILL);
+  CU_ASSERT_FATAL(started);
+  CU_ASSERT_FATAL(kill(pid, SIGHUP) == 0);
+  /* still running after the hangup: it writes a later snapshot */
+  snprintf(path, sizeof path, "%s/snap_0005.h5", dir);
+  const int went_on = wait_for(path, pid);
+  int st = 0;
+  if (!went_on) printf("\n%s\n", slurp(log));
+  CU_ASSERT(went_on);
+  if (went_on) {
+    CU_ASSERT_FATAL(kill(pid, SIGTERM) == 0);
+  } else {
+    kill(pid, SIGKILL);
+  }
+  CU_ASSERT_FATAL(waitpid(pid, &st, 0) == pid);
+  CU_ASSERT(WIFEXITED(st) && WEXITSTATUS(st) == 4);
+  CU_ASSERT(strstr(slurp(log), "interrupted by SIGTERM") != NULL);
+  CU_ASSERT(strstr(slurp(log), "SIGHUP") == NULL);
+}
+
 static void test_sigint(void) { interrupt_with(SIGINT, "sigint"); }
 static void test_sigterm(void) { interrupt_with(SIGTERM, "sigterm"); }
 /* a closed terminal or ssh session: as SIGTERM (issue 39, D5) */
@@ -386,6 +422,7 @@ int main(void) {
                          {"a full disk: exit 1, one line, snapshots kept", test_disk_full},
                          {"SIGINT: final snapshot, exit 4, bitwise restart", test_sigint},
                          {"SIGHUP: as SIGTERM", test_sighup},
+                         {"nohup: an ignored SIGHUP stays ignored", test_nohup_survives_hangup},
                          {"one run per output directory; a killed run's lock holds nothing",
                           test_one_run_per_directory},
                          {"SIGTERM: final snapshot, exit 4, bitwise restart", test_sigterm},

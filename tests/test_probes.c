@@ -397,8 +397,12 @@ static void test_case_errors(void) {
   expect_err("  probe_interval: 0.1\n",
              "t.yaml:9: output.probe_interval: expected output.probes alongside it");
   expect_err("  probe_interval: 2\n  probes:\n    - {name: a, kind: velocity, at: [0, 0]}\n",
-             "t.yaml:9: output.probe_interval: expected a number from 0 (every step) to time.end "
-             "(1), got '2'");
+             "t.yaml:9: output.probe_interval: expected 0 (a row every step) or a number from "
+             "time.end/1000000 (1e-06, at most 1000000 rows) to time.end (1), got '2'");
+  /* a tiny interval would land every step on it for ever (issue 61, E5) */
+  expect_err("  probe_interval: 1e-300\n  probes:\n    - {name: a, kind: velocity, at: [0, 0]}\n",
+             "t.yaml:9: output.probe_interval: expected 0 (a row every step) or a number from "
+             "time.end/1000000 (1e-06, at most 1000000 rows) to time.end (1), got 1e-300");
 }
 
 int main(void) {

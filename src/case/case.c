@@ -272,6 +272,13 @@ int sph_case_read_plain_name(const ctx *x, const node *m, const char *path, cons
     return sph_yaml_fail_at(&x->t, t, kp,
                             "expected a name of 1 to 64 characters from [A-Za-z0-9_.-], got %s",
                             sph_yaml_got(t, b, sizeof b));
+  /* a name is a directory's (out/NAME): '.' and '..' would be this one or
+   * its parent (issue 61, E7) */
+  if (strspn(s, ".") == n)
+    return sph_yaml_fail_at(&x->t, t, kp,
+                            "expected a name with a character other than '.', got %s (out/%s "
+                            "would be a directory that is already there)",
+                            sph_yaml_got(t, b, sizeof b), s);
   *out = s;
   return 0;
 }
@@ -707,7 +714,7 @@ int sph_case_parse(const char *text, size_t len, const char *origin, const char 
 }
 
 /* The whole case file (at most MAX_CASE_BYTES) into *buf (malloc'ed) and *len. */
-static int read_case_file(const char *path, char **buf_out, size_t *len_out, sph_error *err) {
+int sph_case_read_text(const char *path, char **buf_out, size_t *len_out, sph_error *err) {
   if (!path) return sph_error_set(err, "no case file given");
   FILE *f = fopen(path, "rb");
   if (!f) return sph_error_set(err, "%s: cannot open the case file: %s", path, strerror(errno));
@@ -756,10 +763,25 @@ int sph_case_load(const char *path, const char *const *set, size_t n_set, sph_ca
   memset(c, 0, sizeof *c);
   char *buf;
   size_t len;
-  if (read_case_file(path, &buf, &len, err)) return -1;
+  if (sph_case_read_text(path, &buf, &len, err)) return -1;
   int rc = sph_case_parse(buf, len, path, set, n_set, c, err);
   free(buf);
   return rc;
+}
+
+int sph_case_text_dimension(const char *text, size_t len, const char *origin,
+                            const char *const *set, size_t n_set, int *dim, sph_error *err) {
+  *dim = 2;
+  ctx x = {{origin, text, len, set, err, NULL}, NULL, NULL, NULL, NULL};
+  node *root = NULL;
+  int rc = sph_yaml_parse(&x.t, text, len, SPH_YAML_FROM_FILE, NULL, &root);
+  if (rc == 0 && root->kind == SPH_YAML_MAP) { /* (not a mapping: 2, the full reader says why) */
+    for (size_t i = 0; rc == 0 && i < n_set; i++)
+      rc = sph_yaml_apply_set(&x.t, root, (int)i);
+    if (rc == 0 && sph_yaml_get_int(&x.t, root, "", "dimension", 2, 3, dim) < 0) rc = -1;
+  }
+  if (root) sph_yaml_free(root);
+  return rc ? -1 : 0;
 }
 
 int sph_case_file_dimension(const char *path, const char *const *set, size_t n_set, int *dim,
@@ -767,18 +789,10 @@ int sph_case_file_dimension(const char *path, const char *const *set, size_t n_s
   *dim = 2;
   char *buf;
   size_t len;
-  if (read_case_file(path, &buf, &len, err)) return -1;
-  ctx x = {{path, buf, len, set, err, NULL}, NULL, NULL, NULL, NULL};
-  node *root = NULL;
-  int rc = sph_yaml_parse(&x.t, buf, len, SPH_YAML_FROM_FILE, NULL, &root);
-  if (rc == 0 && root->kind == SPH_YAML_MAP) { /* (not a mapping: 2, the full reader says why) */
-    for (size_t i = 0; rc == 0 && i < n_set; i++)
-      rc = sph_yaml_apply_set(&x.t, root, (int)i);
-    if (rc == 0 && sph_yaml_get_int(&x.t, root, "", "dimension", 2, 3, dim) < 0) rc = -1;
-  }
-  if (root) sph_yaml_free(root);
+  if (sph_case_read_text(path, &buf, &len, err)) return -1;
+  const int rc = sph_case_text_dimension(buf, len, path, set, n_set, dim, err);
   free(buf);
-  return rc ? -1 : 0;
+  return rc;
 }
 
 void sph_case_free(sph_case *c) {

@@ -192,6 +192,12 @@ int sph_case_check_size(const sph_case *c, double max, sph_error *err);
  * cannot be read or the value is not 2 or 3. */
 int sph_case_file_dimension(const char *path, const char *const *set, size_t n_set, int *dim,
                             sph_error *err);
+/* The same from text in memory (sph_case_read_text's); `origin` names it. */
+int sph_case_text_dimension(const char *text, size_t len, const char *origin,
+                            const char *const *set, size_t n_set, int *dim, sph_error *err);
+/* A case file's text, read once (a FIFO, /dev/stdin or <(...) can be read
+ * only once), at most 1 MiB, into a malloc'd *text of *len bytes. */
+int sph_case_read_text(const char *path, char **text, size_t *len, sph_error *err);
 
 /* Reads and validates a case file, applying n_set overrides of the form
  * "dotted.key=yaml-value" (e.g. "numerics.dx=0.001"). On failure returns

@@ -14,6 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define SPH_MAX_PROBE_ROWS 1000000 /* rows of probes.csv from output.probe_interval, at most */
+
 static const char *const output_keys[] = {"snapshots", "free_surface",   "energy", "gauges",
                                           "probes",    "probe_interval", NULL};
 static const char *const probe_keys[] = {
@@ -241,12 +243,23 @@ static int read_probes(const ctx *x, const node *s, sph_case *c) {
             c->probes[i].name, k);
       }
   }
-  char what[128];
-  sph_yaml_bprintf(what, sizeof what, "a number from 0 (every step) to time.end (%g)", c->t_end);
+  /* 0 (a row every step) or at most SPH_MAX_PROBE_ROWS rows: each row
+   * time is landed on, so a tiny interval would shorten every step to it
+   * and write a row a step for ever (issue 61, E5) */
+  const double least = c->t_end / SPH_MAX_PROBE_ROWS;
+  char what[160];
+  sph_yaml_bprintf(what, sizeof what,
+                   "0 (a row every step) or a number from time.end/%d (%g, at most %d rows) to "
+                   "time.end (%g)",
+                   SPH_MAX_PROBE_ROWS, least, SPH_MAX_PROBE_ROWS, c->t_end);
   const range iv = {0, c->t_end, '[', ']', what};
-  return sph_yaml_get_number(&x->t, s, "output", "probe_interval", 0, &iv, &c->probe_interval) < 0
-             ? -1
-             : 0;
+  if (sph_yaml_get_number(&x->t, s, "output", "probe_interval", 0, &iv, &c->probe_interval) < 0)
+    return -1;
+  if (c->probe_interval > 0.0 && c->probe_interval < least) {
+    sph_yaml_lookup(&x->t, s, "output", "probe_interval", 0, &t, kp);
+    return sph_yaml_fail_at(&x->t, t, kp, "expected %s, got %g", what, c->probe_interval);
+  }
+  return 0;
 }
 
 /* The output section: snapshots, free_surface, energy, gauges and probes. */

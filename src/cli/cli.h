@@ -23,10 +23,16 @@ extern const char *sph_cli_program;
 extern char **sph_cli_argv;
 /* The program built for the other dimension (twin.c), or NULL. */
 const char *sph_cli_twin(void);
-/* If the case file's dimension (with the overrides) is not this build's,
- * runs the other build with the same arguments (it does not return unless
- * that fails: 1, message printed); 0 where this build runs the case. */
-int sph_cli_hand_over(const char *cmd, const char *case_path, const char *const *set, size_t n_set);
+/* The case file's text, read once (sph_case_read_text): from the copy a
+ * handing-over program left for this one where the file could be read only
+ * once (a FIFO, /dev/stdin, <(...)). Non-zero with err. */
+int sph_cli_read_case(const char *path, char **text, size_t *len, sph_error *err);
+/* If the case's dimension (its text, with the overrides) is not this
+ * build's, runs the other build with the same arguments, the text handed
+ * on where the file cannot be read again (it does not return unless that
+ * fails: 1, message printed); 0 where this build runs the case. */
+int sph_cli_hand_over(const char *cmd, const char *case_path, const char *text, size_t len,
+                      const char *const *set, size_t n_set);
 /* The same for a snapshot file (its attribute "dimension"). */
 int sph_cli_hand_over_snapshot(const char *cmd, const char *path);
 

@@ -159,8 +159,21 @@ static int load_run_case(run_args *a, sph_case *c, char *snapdir, size_t n) {
       return 1;
     }
     a->case_path = path;
-    if (sph_cli_hand_over("run", a->case_path, a->sets, a->n_set)) return 1;
-    if (sph_case_load(a->case_path, a->sets, a->n_set, c, &err) == 0) return 0;
+    /* the file is read once: a FIFO, /dev/stdin or <(...) gives its text
+     * only once (issue 61, E4) */
+    char *text;
+    size_t len;
+    if (sph_cli_read_case(a->case_path, &text, &len, &err)) {
+      fprintf(stderr, "sph run: %s\n", err.msg);
+      return 1;
+    }
+    if (sph_cli_hand_over("run", a->case_path, text, len, a->sets, a->n_set)) {
+      free(text);
+      return 1;
+    }
+    const int rc = sph_case_parse(text, len, a->case_path, a->sets, a->n_set, c, &err);
+    free(text);
+    if (rc == 0) return 0;
     fprintf(stderr, "sph run: %s\n", err.msg);
     sph_case_free(c);
     return 1;
@@ -227,6 +240,10 @@ static void print_banner(const run_args *a, const sph_case *c, sph_sim *s, int n
     printf("  %zu fluid particles not made: closer than dx/2 to a wall particle (a wall drawn "
            "through the fluid)\n",
            sph_sim_fluid_removed(s));
+  if (sph_sim_fluid_in_obstacles(s))
+    printf("  %zu fluid particles not made: inside an obstacle box (a fluid block drawn through "
+           "it)\n",
+           sph_sim_fluid_in_obstacles(s));
   if (sph_sim_walls_dropped(s))
     printf("  %zu wall particles not made: closer than dx/2 to an earlier wall's (walls that "
            "meet or cross)\n",
@@ -247,15 +264,20 @@ static void print_banner(const run_args *a, const sph_case *c, sph_sim *s, int n
 }
 
 /* SIGINT, SIGTERM and SIGHUP (a closed terminal or ssh session) end the
- * run after the current step with a final snapshot (doc/cli.md). */
+ * run after the current step with a final snapshot (doc/cli.md). A signal
+ * the run was started ignoring stays ignored: `nohup sph run ...` survives
+ * the hangup it asked to survive (issue 61, E3). */
 static void install_signals(void) {
+  static const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
   sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, NULL);
-  sigaction(SIGTERM, &sa, NULL);
-  sigaction(SIGHUP, &sa, NULL);
+  for (size_t k = 0; k < sizeof sigs / sizeof *sigs; k++) {
+    struct sigaction old;
+    if (sigaction(sigs[k], NULL, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    sigaction(sigs[k], &sa, NULL);
+  }
 }
 
 static const char *signal_name(int sig) {

@@ -13,6 +13,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli/cli.h"
@@ -46,8 +48,21 @@ const char *sph_cli_twin(void) {
   return NULL;
 }
 
+/* Set in the environment of a handed-over program: it hands nothing
+ * back (a loop between two programs of one dimension, SPH_TWIN naming this
+ * one, or a file each reads as the other's; issue 61, E2). */
+#define HANDED_OVER "SPH_HANDED_OVER"
+
 /* Runs the other build with this command line (no return unless that fails: 1). */
 static int exec_twin(const char *cmd, const char *what, const char *path, int dim) {
+  const char *from = getenv(HANDED_OVER);
+  if (from && *from) {
+    fprintf(stderr,
+            "sph %s: %s is a %d-D %s, and this %d-D program was started for it by %s: not "
+            "handed back (is SPH_TWIN set to a program of the wrong dimension?)\n",
+            cmd, path, dim, what, SPH_DIM, from);
+    return 1;
+  }
   const char *twin = sph_cli_twin();
   if (!twin || !sph_cli_argv) {
     fprintf(stderr,
@@ -56,17 +71,56 @@ static int exec_twin(const char *cmd, const char *what, const char *path, int di
             cmd, path, dim, what, dim, SPH_DIM == 2 ? "sph-3d" : "sph");
     return 1;
   }
+  setenv(HANDED_OVER, SPH_DIM == 2 ? "sph (2-D)" : "sph-3d (3-D)", 1);
   execv(twin, sph_cli_argv);
+  unsetenv(HANDED_OVER);
   fprintf(stderr, "sph %s: cannot run the %d-D program %s: %s\n", cmd, dim, twin, strerror(errno));
   return 1;
 }
 
-int sph_cli_hand_over(const char *cmd, const char *case_path, const char *const *set,
-                      size_t n_set) {
+/* The copy of a case file's text handed to the other program: the file
+ * descriptor of an anonymous file holding it, and the path it was read
+ * from (issue 61, E4). */
+#define TEXT_FD "SPH_CASE_TEXT_FD"
+#define TEXT_PATH "SPH_CASE_TEXT_PATH"
+
+int sph_cli_read_case(const char *path, char **text, size_t *len, sph_error *err) {
+  const char *fd = getenv(TEXT_FD), *from = getenv(TEXT_PATH);
+  if (fd && from && strcmp(from, path) == 0) {
+    char copy[64];
+    snprintf(copy, sizeof copy, "/proc/self/fd/%d", atoi(fd));
+    const int rc = sph_case_read_text(copy, text, len, err);
+    close(atoi(fd));
+    unsetenv(TEXT_FD);
+    unsetenv(TEXT_PATH);
+    if (rc) return sph_error_set(err, "%s: cannot read the copy of the case handed over", path);
+    return 0;
+  }
+  return sph_case_read_text(path, text, len, err);
+}
+
+int sph_cli_hand_over(const char *cmd, const char *case_path, const char *text, size_t len,
+                      const char *const *set, size_t n_set) {
   int dim = SPH_DIM;
   sph_error err = {{0}};
-  if (sph_case_file_dimension(case_path, set, n_set, &dim, &err) || dim == SPH_DIM)
+  if (sph_case_text_dimension(text, len, case_path, set, n_set, &dim, &err) || dim == SPH_DIM)
     return 0; /* (an error: the case reader says it in full) */
+  /* a file that is not a regular one (a FIFO, a terminal, a pipe) cannot be
+   * read a second time: the other program gets a copy of the text */
+  struct stat st;
+  if (stat(case_path, &st) != 0 || !S_ISREG(st.st_mode)) {
+    const int fd = memfd_create("sph-case", 0);
+    if (fd < 0 || write(fd, text, len) != (ssize_t)len) {
+      fprintf(stderr, "sph %s: %s: cannot keep a copy of the case for the %d-D program: %s\n", cmd,
+              case_path, dim, strerror(errno));
+      if (fd >= 0) close(fd);
+      return 1;
+    }
+    char v[32];
+    snprintf(v, sizeof v, "%d", fd);
+    setenv(TEXT_FD, v, 1);
+    setenv(TEXT_PATH, case_path, 1);
+  }
   return exec_twin(cmd, "case", case_path, dim);
 }
 

@@ -666,7 +666,11 @@ static int read_dimension(const sph_snapshot *s, int64_t *dim, sph_error *err) {
   *dim = 2;
   const htri_t has_dim = H5Aexists(s->file, "dimension");
   if (has_dim < 0) return h5_fail(err, s->path, "cannot look for attribute \"dimension\"");
-  return has_dim > 0 && get_numbers(s, "dimension", H5T_NATIVE_INT64, dim, 1, err) ? -1 : 0;
+  if (has_dim > 0 && get_numbers(s, "dimension", H5T_NATIVE_INT64, dim, 1, err)) return -1;
+  if (*dim != 2 && *dim != 3)
+    return sph_error_set(err, "%s: attribute \"dimension\" is %lld, expected 2 or 3", s->path,
+                         (long long)*dim);
+  return 0;
 }
 
 static int read_header(sph_snapshot *s, int any, sph_error *err) {
@@ -682,9 +686,6 @@ static int read_header(sph_snapshot *s, int any, sph_error *err) {
   s->count = (size_t)count;
   int64_t dim;
   if (read_dimension(s, &dim, err)) return -1;
-  if (dim != 2 && dim != 3)
-    return sph_error_set(err, "%s: attribute \"dimension\" is %lld, expected 2 or 3", s->path,
-                         (long long)dim);
   s->dim = (int)dim;
   if (!any && dim != SPH_DIM)
     return sph_error_set(err,

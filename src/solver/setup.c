@@ -202,6 +202,24 @@ static size_t bin_of(const wall_bins *b, const double x[SPH_DIM]) {
   return (size_t)bin_key(b, c, here);
 }
 
+/* Whether fluid particle i lies inside one of the case's obstacle boxes
+ * (ctx: the case): a box's wall particles are layers behind its faces, its
+ * inside is hollow, and a fluid block drawn through the box would fill it
+ * (issue 61, E1). */
+static int fluid_in_obstacle(const void *ctx, const sph_particles *p, size_t i) {
+  const sph_case *c = ctx;
+  if (p->kind[i] != SPH_KIND_FLUID) return 0;
+  const double x[SPH_DIM] = {SPH_XYZ(p->x[i], p->y[i], p->z[i])};
+  for (size_t k = 0; k < c->n_obstacles; k++) {
+    const sph_obstacle *o = &c->obstacles[k];
+    int in = 1;
+    for (int d = 0; d < SPH_DIM && in; d++)
+      in = x[d] > o->lo[d] && x[d] < o->hi[d];
+    if (in) return 1;
+  }
+  return 0;
+}
+
 static long remove_fluid_in_walls(sph_sim *s) {
   sph_particles *p = &s->p;
   const double dx = s->c->dx, d2 = (SPH_WALL_CLEARANCE * dx) * (SPH_WALL_CLEARANCE * dx);
@@ -434,6 +452,8 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   s->fp.repulsive = s->walls.repulsive;
   s->ledger.repulsion = c->energy && s->walls.repulsive;
   if (c->periodic) dedupe_periodic(s);
+  s->fluid_in_obstacles =
+      s->c->n_obstacles ? sph_particles_drop_if(&s->p, 0, fluid_in_obstacle, s->c) : 0;
   const long removed = remove_fluid_in_walls(s);
   if (removed < 0) {
     sph_error_set(err, "out of memory");

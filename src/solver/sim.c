@@ -403,6 +403,35 @@ static int hot_is_state(const sph_sim *s) {
   return 1;
 }
 
+/* The step's floor, a fraction of the case's acoustic step factor h / c0:
+ * below it the run is not resolving its flow but stalling (a step
+ * shrinking geometrically, a motion of period 1e-300 s; issue 61, E5). */
+#define SPH_DT_FLOOR 1e-6
+
+/* The message of a step below the floor: the rule, and the particle that
+ * moves fastest (what the acoustic rule reads). SPH_BLOWUP. */
+static int step_collapse(const sph_sim *s, double dt, double acoustic, sph_error *err) {
+  static const char *const rule[] = {"paper_b", "cfl", "fixed"};
+  const sph_particles *p = &s->p;
+  const sph_case *c = s->c;
+  size_t fast = 0;
+  double vmax = -1.0;
+  for (size_t i = 0; i < p->n; i++) { /* serial: the first of equals, any thread count */
+    const double w2 = SPH_NORM2(p->vx[i], p->vy[i], p->vz[i]);
+    if (w2 > vmax) vmax = w2, fast = i;
+  }
+  const int r = c->dt_rule == SPH_DT_CFL ? 1 : c->dt_rule == SPH_DT_FIXED ? 2 : 0;
+  sph_error_set(err,
+                "time step collapse at step %ld, t = %.9g s: the step (numerics.time_step.rule: "
+                "%s) is %.3g s, below %g of the case's acoustic step factor h / c0 = %.3g s; the "
+                "fastest particle, %s particle %lld, moves at %.3g m/s (c0 = %.3g m/s): look for "
+                "a motion, a fixed step or an output interval far shorter than the flow's time",
+                s->steps, s->t, rule[r], dt, SPH_DT_FLOOR, acoustic,
+                p->kind[fast] == SPH_KIND_FLUID ? "fluid" : "wall", (long long)p->id[fast],
+                vmax > 0.0 ? sqrt(vmax) : 0.0, c->sound_speed);
+  return SPH_BLOWUP;
+}
+
 int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   const sph_case *c = s->c;
   const int xsph = c->xsph != 0.0;
@@ -417,6 +446,8 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
     return sph_error_set(err, "blow-up at step %ld, t = %.9g s: time step is %g", s->steps, s->t,
                          dt),
            SPH_BLOWUP;
+  const double acoustic = c->dt_factor * c->h / c->sound_speed;
+  if (dt < SPH_DT_FLOOR * acoustic) return step_collapse(s, dt, acoustic, err);
   int land = 0;
   if (s->t + dt >= t_target) {
     dt = t_target - s->t;
@@ -475,6 +506,7 @@ const char *sph_sim_loop(const sph_sim *s, double *ratio) {
 sph_particles *sph_sim_particles(sph_sim *s) { return &s->p; }
 double sph_sim_floor(const sph_sim *s) { return s->floor_y; }
 size_t sph_sim_fluid_removed(const sph_sim *s) { return s->fluid_removed; }
+size_t sph_sim_fluid_in_obstacles(const sph_sim *s) { return s->fluid_in_obstacles; }
 size_t sph_sim_walls_dropped(const sph_sim *s) { return s->walls.n_dropped; }
 void sph_sim_domain(const sph_sim *s, double box[2 * SPH_DIM]) {
   memcpy(box, s->domain, 2 * SPH_DIM * sizeof *box);

@@ -58,6 +58,9 @@ double sph_sim_floor(const sph_sim *s);
  * particle lies closer than dx/2 (a wall drawn through the fluid;
  * doc/case-files.md). */
 size_t sph_sim_fluid_removed(const sph_sim *s);
+/* Fluid particles of the case's blocks that were not made because they lie
+ * inside an obstacle box (a block drawn through a box: its inside is solid). */
+size_t sph_sim_fluid_in_obstacles(const sph_sim *s);
 /* Wall particles of a geometry.walls segment not made: closer than dx/2 to
  * a particle of an earlier wall (the tank or a segment before it). */
 size_t sph_sim_walls_dropped(const sph_sim *s);

@@ -35,6 +35,7 @@ struct sph_sim {
   int first_step;       /* leap-frog: the special first half step */
   int detect;           /* free-surface detection runs at every pass */
   size_t fluid_removed; /* fluid particles not made: inside a wall (setup.c) */
+  size_t fluid_in_obstacles; /* fluid particles not made: inside an obstacle box (setup.c) */
   size_t n_surface;     /* particles flagged at the last pass */
   sph_ledger ledger;    /* energy and momentum ledger (output.energy) */
   double dt_paper_b;    /* paper B §2.6 step from the last pass */
