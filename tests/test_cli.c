@@ -516,6 +516,93 @@ static void test_fluid_through_obstacle(void) {
   CU_ASSERT(strstr(out, "(fluid 1500, ") != NULL);
 }
 
+/* sph face on a 3-D snapshot reads heights along z (issue 61, E9): water
+ * 0.06 m deep in a tank 0.1 m across y has its crest at z = 0.055 m (the
+ * top layer's centre), not at the y extent's 0.095 m. */
+static void test_face_3d(void) {
+  char out[65536], args[8192];
+  snprintf(args, sizeof args,
+           "run '%s' -o '%s/face3' --set time.end=0.002 --set time.output_interval=0.002 "
+           "--set output.probe_interval=0.002 "
+           "--set 'geometry.fluid=[{x: [0, 0.2], y: [0, 0.1], z: [0, 0.06]}]'",
+           sph_test_src("cases/hydrostatic_3d.yaml"), tmp);
+  CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
+  snprintf(args, sizeof args, "face '%s/face3/snap_0000.h5'", tmp);
+  CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
+  double t = -1, cx = 0, cy = 0;
+  const char *line = strstr(out, "0 ");
+  CU_ASSERT_FATAL(line != NULL);
+  CU_ASSERT_EQUAL(sscanf(line, "%lf %lf %lf", &t, &cx, &cy), 3);
+  if (!(fabs(cy - 0.055) < 1e-3)) printf("\n  %s\n", out);
+  CU_ASSERT(fabs(cy - 0.055) < 1e-3);
+  CU_ASSERT(strstr(out, "# first vertical: not reached") != NULL); /* still water: no face */
+}
+
+/* 3-D messages give every component (issue 61, E12): a probe below the
+ * domain is outside its z range, a blow-up names z and vz. */
+static void test_messages_3d(void) {
+  char out[65536], args[8192];
+  snprintf(args, sizeof args,
+           "run -q '%s' -o '%s/msg3a' "
+           "--set 'output.probes=[{name: a, kind: pressure, at: [0.1, 0.05, -0.5]}]'",
+           sph_test_src("cases/hydrostatic_3d.yaml"), tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  CU_ASSERT(strstr(out, "(0.1, 0.05, -0.5) is outside the domain, x [-0.18, 0.38] y [-0.18, "
+                        "0.28] z [-0.18, 0.63]") != NULL);
+  snprintf(args, sizeof args,
+           "run -q '%s' -o '%s/msg3b' --set time.end=0.05 --set time.output_interval=0.01 "
+           "--set output.probe_interval=0 --set numerics.density_limit=0.01 "
+           "--set 'geometry.fluid=[{x: [0, 0.05], y: [0, 0.05], z: [0.02, 0.07], "
+           "velocity: [0, 0, -3]}]'",
+           sph_test_src("cases/hydrostatic_3d.yaml"), tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 3);
+  if (!strstr(out, ", vz = ")) printf("\n  %s\n", out);
+  CU_ASSERT(strstr(out, "blow-up at step") != NULL && strstr(out, ", z = ") != NULL &&
+            strstr(out, ", vz = ") != NULL && strstr(out, "] z [-0.25, 0.735])") != NULL);
+}
+
+/* A case far from the origin (UTM-like coordinates) makes the particles it
+ * makes at the origin (issue 61, E8: x + 1e6 m lost a layer of fluid, 1900
+ * of 2000 in 3-D), and one so far that doubles cannot hold the lattice is
+ * refused before any particle is made. */
+static void test_far_from_origin(void) {
+  char out[65536], args[8192], text[2048];
+  const char *offs[] = {"0", "1000000", "10000000", "123456.789"};
+  for (int d = 2; d <= 3; d++)
+    for (int k = 0; k < 5; k++) {
+      const char *o = k < 4 ? offs[k] : "1e15";
+      const double x0 = atof(o), x1 = x0 + 0.2;
+      if (d == 3)
+        snprintf(text, sizeof text,
+                 "name: far\ndimension: 3\nphysics: {sound_speed: 10}\nnumerics: {dx: 0.01}\n"
+                 "time: {end: 0.002, output_interval: 0.002}\ngeometry:\n"
+                 "  tank: {x: [%.17g, %.17g], y: [0, 0.1], z: [0, 0.15]}\n"
+                 "  fluid:\n    - {x: [%.17g, %.17g], y: [0, 0.1], z: [0, 0.1]}\n",
+                 x0, x1, x0, x1);
+      else
+        snprintf(text, sizeof text,
+                 "name: far\nphysics: {sound_speed: 10}\nnumerics: {dx: 0.01}\n"
+                 "time: {end: 0.002, output_interval: 0.002}\ngeometry:\n"
+                 "  tank: {x: [%.17g, %.17g], y: [0, 0.15]}\n"
+                 "  fluid:\n    - {x: [%.17g, %.17g], y: [0, 0.1]}\n",
+                 x0, x1, x0, x1);
+      write_file("far.yaml", text);
+      snprintf(args, sizeof args, "run -q '%s/far.yaml' -o '%s/far%d_%d'", tmp, tmp, d, k);
+      if (k == 4) {
+        CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+        CU_ASSERT(strstr(out, "the geometry reaches 1e+15 m from the origin, where doubles are "
+                              "0.222 m apart: too coarse for dx = 0.01 m") != NULL);
+        continue;
+      }
+      CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
+      snprintf(args, sizeof args, "info '%s/far%d_%d/snap_0000.h5'", tmp, d, k);
+      CU_ASSERT_EQUAL(sph_ok(args, out, sizeof out), 0);
+      const char *want = d == 3 ? "(fluid 2000, " : "(fluid 200, ";
+      if (!strstr(out, want)) printf("\n  %d-D, x0 = %s: %s\n", d, o, out);
+      CU_ASSERT(strstr(out, want) != NULL);
+    }
+}
+
 static void test_blowup_stops_cleanly(void) {
   char out[65536], args[8192];
   write_file("good.yaml", GOOD);
@@ -559,6 +646,9 @@ int main(void) {
       {"numerics.scheme runs as its keys written out, bit for bit", test_scheme_is_its_keys},
       {"a case read once: FIFO, /dev/stdin, a pipe, 2-D and 3-D", test_case_read_once},
       {"a fluid block through a box obstacle: its inside stays dry", test_fluid_through_obstacle},
+      {"sph face on a 3-D snapshot: heights along z", test_face_3d},
+      {"a case far from the origin: the same particles; too far: refused", test_far_from_origin},
+      {"3-D messages in three components", test_messages_3d},
       CU_TEST_INFO_NULL};
   int rc = sph_test_main("cli", tests);
   sph_test_rmtree(tmp);

@@ -399,6 +399,21 @@ static void test_case_errors(void) {
   expect_err("  probe_interval: 2\n  probes:\n    - {name: a, kind: velocity, at: [0, 0]}\n",
              "t.yaml:9: output.probe_interval: expected 0 (a row every step) or a number from "
              "time.end/1000000 (1e-06, at most 1000000 rows) to time.end (1), got '2'");
+  /* every column of probes.csv and gauges.csv has a name of its own (issue 61, E10) */
+  expect_err("  probes:\n    - {name: V, kind: velocity, at: [0.2, 0.2]}\n"
+             "    - {name: V_vx, kind: level, x: 0.1}\n",
+             "t.yaml:11: output.probes[1].name: expected a name whose columns are its own, got "
+             "'V_vx' (its column 'V_vx' is one of output.probes[0]'s, 'V')");
+  expect_err("  probes:\n    - {name: a_low_pass, kind: level, x: 0.1}\n"
+             "    - {name: a, kind: pressure, at: [0.2, 0], low_pass: 100}\n",
+             "t.yaml:11: output.probes[1].name: expected a name whose columns are its own, got "
+             "'a' (its column 'a_low_pass' is one of output.probes[0]'s, 'a_low_pass')");
+  expect_err("  probes:\n    - {name: time, kind: level, x: 0.1}\n",
+             "t.yaml:10: output.probes[0].name: expected a name whose columns are its own, got "
+             "'time' (its column 'time' is probes.csv's first)");
+  expect_err("  gauges: [0.1, 0.2, 0.1]\n",
+             "t.yaml:9: output.gauges[2]: expected a place of its own, got the column eta_0.1 of "
+             "output.gauges[0] (two gauges there read the same)");
   /* a tiny interval would land every step on it for ever (issue 61, E5) */
   expect_err("  probe_interval: 1e-300\n  probes:\n    - {name: a, kind: velocity, at: [0, 0]}\n",
              "t.yaml:9: output.probe_interval: expected 0 (a row every step) or a number from "

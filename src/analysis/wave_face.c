@@ -12,6 +12,11 @@
 
 #include "physics/kernel.h" /* SPH_PI */
 
+/* A particle's height: y in 2-D, z in 3-D (z up, doc/dimensions.md); in
+ * 3-D the face is that of the water's profile over the whole width (the
+ * highest particles at each x and height, whatever their y). */
+static double up(const sph_particles *p, size_t i) { return p->pos[SPH_DIM - 1][i]; }
+
 static int fluid_in(const sph_particles *p, size_t i, double x0, double x1) {
   return p->kind[i] == SPH_KIND_FLUID && p->x[i] >= x0 && p->x[i] <= x1;
 }
@@ -21,7 +26,8 @@ static long crest(const sph_particles *p, double x0, double x1) {
   long c = -1;
   for (size_t i = 0; i < p->n; i++) {
     if (!fluid_in(p, i, x0, x1)) continue;
-    if (c < 0 || p->y[i] > p->y[c] || (p->y[i] == p->y[c] && p->x[i] > p->x[c])) c = (long)i;
+    if (c < 0 || up(p, i) > up(p, (size_t)c) || (up(p, i) == up(p, (size_t)c) && p->x[i] > p->x[c]))
+      c = (long)i;
   }
   return c;
 }
@@ -41,7 +47,7 @@ static int toe(const sph_particles *p, double xc, double ylo, double dx, double 
   for (size_t i = 0; i < p->n; i++) {
     if (!fluid_in(p, i, xc + 0.5 * dx, x1)) continue;
     const size_t k = (size_t)floor((p->x[i] - xc) / dx + 0.5);
-    if (k < k_max && p->y[i] > top[k]) top[k] = p->y[i];
+    if (k < k_max && up(p, i) > top[k]) top[k] = up(p, i);
   }
   *xt = x1;
   for (size_t k = 1; k < k_max; k++)
@@ -65,7 +71,7 @@ int sph_wave_face_measure(const sph_particles *p, double level, double dx, doubl
                          level, dx, x0, x1);
   const long c = crest(p, x0, x1);
   if (c < 0) return 1;
-  const double xc = p->x[c], yc = p->y[c];
+  const double xc = p->x[c], yc = up(p, (size_t)c);
   f->crest_x = xc;
   f->crest_y = yc;
   if (yc - level < 4.0 * dx) return 1;
@@ -79,8 +85,8 @@ int sph_wave_face_measure(const sph_particles *p, double level, double dx, doubl
   for (size_t b = 0; b < nb; b++)
     lead[b] = -INFINITY;
   for (size_t i = 0; i < p->n; i++) {
-    if (!fluid_in(p, i, x0, xt) || p->x[i] >= xt || p->y[i] < ylo) continue;
-    const double u = floor((p->y[i] - ylo) / dx);
+    if (!fluid_in(p, i, x0, xt) || p->x[i] >= xt || up(p, i) < ylo) continue;
+    const double u = floor((up(p, i) - ylo) / dx);
     if (u < 0.0 || u >= (double)nb) continue;
     const size_t b = (size_t)u;
     if (p->x[i] > lead[b]) lead[b] = p->x[i];

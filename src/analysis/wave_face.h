@@ -20,6 +20,9 @@
  *           the bands: 90 is a vertical face, less leans back (a face that
  *           rises towards the crest behind its foot), more overhangs (the
  *           upper face is ahead of the lower: a jet).
+ * Heights are y in 2-D and z in 3-D (z up); in 3-D the particles of the
+ * whole width count, so the face is that of the water's profile seen from
+ * the side (crest_y is then the crest's z).
  * The particles' order does not matter (sums run over bands in order).
  */
 #ifndef SPH_WAVE_FACE_H

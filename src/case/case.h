@@ -186,6 +186,16 @@ double sph_case_default_max(void);
  * sph_sim_create before any particle is made (issue 21, D3, D4). */
 int sph_case_check_size(const sph_case *c, double max, sph_error *err);
 
+/* The lattice points lo + (i + 1/2) dx, i = 0, 1, ..., a fluid block's
+ * range [lo, hi] holds: floor((hi - lo) / dx) with a tolerance for the
+ * rounding of hi - lo, relative to the coordinates (a block far from the
+ * origin, x + 1e6 m, holds what it holds at the origin; issue 61, E8). */
+long sph_case_lattice_points(double lo, double hi, double dx);
+
+/* The name of gauge g's column in gauges.csv ("eta_X", in 3-D "eta_X_Y"):
+ * unique among the case's gauges (the reader refuses two with one name). */
+void sph_case_gauge_column(const sph_case *c, size_t g, char *buf, size_t len);
+
 /* The case file's `dimension` (2 when absent) into *dim, after the
  * overrides (a --set dimension=3 counts): what `sph` reads to choose the
  * build that runs the case. Non-zero with err (file, line, key) if the file

@@ -16,6 +16,8 @@
 
 #include "walls/wavemaker.h"
 
+#include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -600,9 +602,10 @@ void sph_case_estimate_particles(sph_case *c) {
   double fluid = 0.0, wall = 0.0;
   for (size_t b = 0; b < c->n_fluid; b++) {
     const sph_fluid_block *f = &c->fluid[b];
-    fluid += floor((f->x1 - f->x0) / dx + 1e-9) * floor((f->y1 - f->y0) / dx + 1e-9)
+    fluid += (double)sph_case_lattice_points(f->x0, f->x1, dx) *
+             (double)sph_case_lattice_points(f->y0, f->y1, dx)
 #if SPH_DIM == 3
-             * floor((f->z1 - f->z0) / dx + 1e-9)
+             * (double)sph_case_lattice_points(f->z0, f->z1, dx)
 #endif
         ;
   }
@@ -647,12 +650,66 @@ double sph_case_default_max(void) {
   return max < SPH_MAX_PARTICLES_HARD ? max : SPH_MAX_PARTICLES_HARD;
 }
 
+long sph_case_lattice_points(double lo, double hi, double dx) {
+  /* hi - lo carries up to an ulp of each end: a few DBL_EPSILON of their
+   * size, in units of dx; 1e-9 of dx at the origin (a range that is a
+   * whole number of dx up to printing) */
+  const double tol = 1e-9 + 8.0 * DBL_EPSILON * (fabs(lo) + fabs(hi)) / dx;
+  const double n = floor((hi - lo) / dx + tol);
+  return n > 0.0 ? (n < (double)LONG_MAX ? (long)n : LONG_MAX) : 0;
+}
+
+/* The largest |coordinate| of the geometry (tank, fluid blocks, walls,
+ * obstacles). */
+static double largest_coordinate(const sph_case *c) {
+  double m = 0.0;
+#define SEE(v) m = fmax(m, fabs(v))
+  if (c->tank.present) {
+    SEE(c->tank.x0), SEE(c->tank.x1), SEE(c->tank.y0), SEE(c->tank.y1);
+#if SPH_DIM == 3
+    SEE(c->tank.z0), SEE(c->tank.z1);
+#endif
+  }
+  for (size_t b = 0; b < c->n_fluid; b++) {
+    const sph_fluid_block *f = &c->fluid[b];
+    SEE(f->x0), SEE(f->x1), SEE(f->y0), SEE(f->y1);
+#if SPH_DIM == 3
+    SEE(f->z0), SEE(f->z1);
+#endif
+  }
+  for (size_t i = 0; i < c->n_walls; i++) {
+    const sph_wall_segment *w = &c->walls[i];
+    SEE(w->x0), SEE(w->x1), SEE(w->y0), SEE(w->y1);
+#if SPH_DIM == 3
+    SEE(w->z0), SEE(w->z1);
+#endif
+  }
+  for (size_t i = 0; i < c->n_obstacles; i++)
+    for (int a = 0; a < SPH_DIM; a++)
+      SEE(c->obstacles[i].lo[a]), SEE(c->obstacles[i].hi[a]);
+#undef SEE
+  return m;
+}
+
+/* The geometry's coordinates against dx: doubles must resolve the lattice,
+ * and far from the origin they are too coarse for it (at 1e15 m they are
+ * 0.125 m apart; issue 61, E8). */
+static int check_coordinates(const sph_case *c, sph_error *err) {
+  const double far = largest_coordinate(c), ulp = far * DBL_EPSILON;
+  if (ulp <= 1e-4 * c->dx) return 0;
+  return sph_error_set(err,
+                       "%s: the geometry reaches %g m from the origin, where doubles are %.3g m "
+                       "apart: too coarse for dx = %g m (at most dx/10000): expected the "
+                       "geometry nearer the origin",
+                       c->path ? c->path : "the case", far, ulp, c->dx);
+}
+
 int sph_case_check_size(const sph_case *c, double max, sph_error *err) {
   const int given = max > 0.0;
   if (!given) max = sph_case_default_max();
   if (max > SPH_MAX_PARTICLES_HARD) max = SPH_MAX_PARTICLES_HARD;
   const double n = c->est_fluid + c->est_wall;
-  if (n <= max) return 0;
+  if (n <= max) return check_coordinates(c, err);
   char where[4200];
   if (c->dx_line)
     snprintf(where, sizeof where, "%s:%zu: numerics.dx", c->path ? c->path : "", c->dx_line);

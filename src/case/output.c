@@ -11,6 +11,7 @@
 #include "case/domain.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -65,13 +66,67 @@ static void reach_box(const sph_case *c, double box[2 * SPH_DIM]) {
   sph_case_domain_around(c, bb, box);
 }
 
+void sph_case_gauge_column(const sph_case *c, size_t g, char *buf, size_t len) {
+#if SPH_DIM == 2
+  snprintf(buf, len, "eta_%.6g", c->gauges[g]);
+#else
+  snprintf(buf, len, "eta_%.6g_%.6g", c->gauges[2 * g], c->gauges[2 * g + 1]);
+#endif
+}
+
+/* Whether the comma-separated column list `cols` (",NAME (unit),...", a
+ * probe's sph_probe_header) names `name` (units aside). */
+static int names_column(const char *cols, const char *name) {
+  const size_t n = strlen(name);
+  for (const char *p = cols; p && *p; p = strchr(p + 1, ',')) {
+    const char *q = p + 1;
+    if (strncmp(q, name, n) == 0 && (q[n] == ' ' || q[n] == ',' || q[n] == '\0')) return 1;
+  }
+  return 0;
+}
+
+/* Probe i's columns against the time column and every earlier probe's:
+ * each column of probes.csv has a name of its own (a level probe "V_vx"
+ * beside a velocity probe "V" gave two columns "V_vx"; issue 61, E10). */
+static int unique_columns(const ctx *x, const node *t, const sph_case *c, size_t i) {
+  char mine[256], other[256];
+  sph_probe_header(&c->probes[i], mine, sizeof mine);
+  for (const char *p = mine; p && *p; p = strchr(p + 1, ',')) {
+    char col[160];
+    const size_t n = strcspn(p + 1, " ,");
+    snprintf(col, sizeof col, "%.*s", (int)(n < sizeof col ? n : sizeof col - 1), p + 1);
+    char nk[SPH_YAML_KEYLEN];
+    sph_yaml_bprintf(nk, sizeof nk, "output.probes[%zu].name", i);
+    const node *v = sph_yaml_find(t->items[i], "name")->val;
+    if (strcmp(col, "time") == 0)
+      return sph_yaml_fail_at(&x->t, v, nk,
+                              "expected a name whose columns are its own, got '%s' (its column "
+                              "'time' is probes.csv's first)",
+                              c->probes[i].name);
+    for (size_t k = 0; k < i; k++) {
+      sph_probe_header(&c->probes[k], other, sizeof other);
+      if (names_column(other, col))
+        return sph_yaml_fail_at(&x->t, v, nk,
+                                "expected a name whose columns are its own, got '%s' (its column "
+                                "'%s' is one of output.probes[%zu]'s, '%s')",
+                                c->probes[i].name, col, k, c->probes[k].name);
+    }
+  }
+  return 0;
+}
+
 /* A probe's or gauge's place outside box (the node t at key k): the error. */
 static int outside_reach(const ctx *x, const node *t, const char *k, const char *what,
                          const double box[2 * SPH_DIM]) {
+  char z[96] = ""; /* 3-D: the third range (issue 61, E12) */
+#if SPH_DIM == 3
+  snprintf(z, sizeof z, " z [%.9g, %.9g]", box[4], box[5]);
+#endif
   return sph_yaml_fail_at(&x->t, t, k,
-                          "%s is outside the domain, x [%g, %g] y [%g, %g] (geometry.domain, "
-                          "or its default from the geometry): the water cannot reach it",
-                          what, box[0], box[1], box[2], box[3]);
+                          "%s is outside the domain, x [%.9g, %.9g] y [%.9g, %.9g]%s "
+                          "(geometry.domain, or its default from the geometry): the water cannot "
+                          "reach it",
+                          what, box[0], box[1], box[2], box[3], z);
 }
 
 /* A pressure sensor's interpolation where it states its own (probes.h):
@@ -242,6 +297,7 @@ static int read_probes(const ctx *x, const node *s, sph_case *c) {
             "expected a name of its own, got '%s' (the name of output.probes[%zu])",
             c->probes[i].name, k);
       }
+    if (unique_columns(x, t, c, i)) return -1;
   }
   /* 0 (a row every step) or at most SPH_MAX_PROBE_ROWS rows: each row
    * time is landed on, so a tiny interval would shorten every step to it
@@ -295,6 +351,17 @@ int sph_case_read_output(const ctx *x, const node *root, sph_case *c) {
           sph_yaml_bprintf(b, sizeof b, "%c = %g", "xy"[a], at[a]);
           return outside_reach(x, gl->items[i], ik, b, box);
         }
+      /* a column of its own in gauges.csv (issue 61, E10) */
+      char mine[64], other[64];
+      sph_case_gauge_column(c, i, mine, sizeof mine);
+      for (size_t k = 0; k < i; k++) {
+        sph_case_gauge_column(c, k, other, sizeof other);
+        if (strcmp(mine, other) == 0)
+          return sph_yaml_fail_at(&x->t, gl->items[i], ik,
+                                  "expected a place of its own, got the column %s of "
+                                  "output.gauges[%zu] (two gauges there read the same)",
+                                  mine, k);
+      }
     }
   }
   if (rc >= 0 && s && read_probes(x, s, c)) return -1;

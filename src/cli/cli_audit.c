@@ -98,18 +98,27 @@ static long count_at(const sph_case *c, double dx) {
   long n = 0;
   for (size_t b = 0; b < c->n_fluid; b++) {
     const sph_fluid_block *f = &c->fluid[b];
-    n += (long)floor((f->x1 - f->x0) / dx + 1e-9) * (long)floor((f->y1 - f->y0) / dx + 1e-9);
+    long m = sph_case_lattice_points(f->x0, f->x1, dx) * sph_case_lattice_points(f->y0, f->y1, dx);
+#if SPH_DIM == 3
+    m *= sph_case_lattice_points(f->z0, f->z1, dx);
+#endif
+    n += m;
   }
   return n;
 }
 
-/* dx whose fill is closest to `want` particles: sqrt(area / want), then the
- * best of 401 values within +-20 % of it (ties: the one nearer the start). */
+/* dx whose fill is closest to `want` particles: (volume / want)^(1/d), then
+ * the best of 401 values within +-20 % of it (ties: the one nearer the
+ * start). */
 static double dx_for(const sph_case *c, long want, long *got) {
   double area = 0.0;
   for (size_t b = 0; b < c->n_fluid; b++)
-    area += (c->fluid[b].x1 - c->fluid[b].x0) * (c->fluid[b].y1 - c->fluid[b].y0);
-  const double dx0 = sqrt(area / (double)want);
+    area += (c->fluid[b].x1 - c->fluid[b].x0) * (c->fluid[b].y1 - c->fluid[b].y0)
+#if SPH_DIM == 3
+            * (c->fluid[b].z1 - c->fluid[b].z0)
+#endif
+        ;
+  const double dx0 = pow(area / (double)want, 1.0 / SPH_DIM);
   double best = dx0;
   long bestn = count_at(c, dx0);
   for (int k = 1; k <= 200; k++)
@@ -147,6 +156,8 @@ typedef struct audit_args {
   double max_particles; /* --max-particles; 0: the default bound */
   const char **sets;    /* the user's --set overrides, then the audit's own */
   size_t n_set;
+  char *text; /* the case file's text, read once */
+  size_t len;
 } audit_args;
 
 /* What the run hands over, row by row (sph_run_options.row). */
@@ -360,16 +371,21 @@ static void default_times(audit_args *a, const sph_case *base) {
  * snapshots off, outputs at the audit times, to the last of them, and
  * the spacing (set_dx, filled per run). */
 static void audit_sets(audit_args *a, char *set_times, size_t n_times, char *set_end, size_t n_end,
-                       char *set_dx) {
+                       char *set_end_interval, char *set_dx) {
   size_t len = (size_t)snprintf(set_times, n_times, "time.output_times=[");
   for (int k = 0; k < a->ntimes; k++)
     len += (size_t)snprintf(set_times + len, n_times - len, "%s%.17g", k ? "," : "", a->times[k]);
   snprintf(set_times + len, n_times - len, "]");
   snprintf(set_end, n_end, "time.end=%.17g", a->times[a->ntimes - 1]);
+  if (set_end_interval)
+    snprintf(set_end_interval, n_end, "time.output_interval=%.17g", a->times[a->ntimes - 1]);
   a->sets[a->n_set++] = "output.energy=true";
   a->sets[a->n_set++] = "output.snapshots=false";
   a->sets[a->n_set++] = set_times;
   a->sets[a->n_set++] = set_end;
+  /* an interval longer than the audit's last time would be refused: the
+   * outputs are then the audit's times alone */
+  if (set_end_interval) a->sets[a->n_set++] = set_end_interval;
   a->sets[a->n_set++] = "time.stop=none";
   a->sets[a->n_set++] = set_dx;
 }
@@ -379,7 +395,7 @@ static void audit_sets(audit_args *a, char *set_times, size_t n_times, char *set
 static int audit_run(const audit_args *a, int r, long got, double dx, audit_row *row) {
   sph_error err = {{0}};
   sph_case c;
-  if (sph_case_load(a->case_path, a->sets, a->n_set, &c, &err)) {
+  if (sph_case_parse(a->text, a->len, a->case_path, a->sets, a->n_set, &c, &err)) {
     fprintf(stderr, "sph audit: %s\n", err.msg);
     return 1;
   }
@@ -507,8 +523,10 @@ static int write_report(const char *outdir, const char *name, const audit_row *r
 /* Every run of the audit, then the report; the exit status. */
 static int audit_all(audit_args *a, const sph_case *base, const reference *ref) {
   audit_row rows[MAX_RUNS];
-  char set_dx[128], set_times[4096], set_end[128];
-  audit_sets(a, set_times, sizeof set_times, set_end, sizeof set_end, set_dx);
+  char set_dx[128], set_times[4096], set_end[128], set_interval[128];
+  const int long_interval = base->output_interval > a->times[a->ntimes - 1];
+  audit_sets(a, set_times, sizeof set_times, set_end, sizeof set_end,
+             long_interval ? set_interval : NULL, set_dx);
   for (int r = 0; r < a->ncounts; r++) {
     long got;
     const double dx = dx_for(base, (long)a->counts[r], &got);
@@ -544,7 +562,15 @@ int sph_cli_audit(int argc, char **argv) {
   sph_error err = {{0}};
   sph_case base;
   char defdir[4096];
-  if (sph_case_load(a.case_path, a.sets, a.n_set, &base, &err)) {
+  /* a case of the other dimension goes to the other program (issue 61, E9) */
+  int loaded = sph_cli_read_case(a.case_path, &a.text, &a.len, &err) == 0;
+  if (loaded && sph_cli_hand_over("audit", a.case_path, a.text, a.len, a.sets, a.n_set)) {
+    free(a.text);
+    free(a.sets);
+    return 1;
+  }
+  loaded = loaded && sph_case_parse(a.text, a.len, a.case_path, a.sets, a.n_set, &base, &err) == 0;
+  if (!loaded) {
     fprintf(stderr, "sph audit: %s\n", err.msg);
     status = 1;
   } else {
@@ -571,6 +597,7 @@ int sph_cli_audit(int argc, char **argv) {
     sph_cli_dir_unlock(&lock);
   }
   sph_case_free(&base);
+  free(a.text);
   free(a.sets);
   return status;
 }

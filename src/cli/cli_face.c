@@ -40,6 +40,8 @@ static const char USAGE[] =
     "  time crest_x crest_y toe_x angle_deg\n"
     "then the first file whose face is at least vertical:\n"
     "  # first vertical: t = T (FILE)      or      # first vertical: not reached\n"
+    "Heights are y in 2-D and z in 3-D (crest_y is then the crest's height), and a\n"
+    "3-D snapshot's face is that of the water seen from the side (the whole width).\n"
     "Exit status: 0 all read, 1 a file failed, 2 usage error.\n";
 
 /* Measures one file and prints its line; *angle gets the angle (NaN if
@@ -54,7 +56,12 @@ static int measure(const char *path, double *t, double *angle, sph_error *err) {
   }
   double level = -INFINITY, x0 = INFINITY, x1 = -INFINITY;
   for (size_t b = 0; b < c.n_fluid; b++) {
-    if (c.fluid[b].y1 > level) level = c.fluid[b].y1;
+#if SPH_DIM == 3
+    const double top = c.fluid[b].z1; /* z up */
+#else
+    const double top = c.fluid[b].y1;
+#endif
+    if (top > level) level = top;
     if (c.fluid[b].x0 < x0) x0 = c.fluid[b].x0;
     if (c.fluid[b].x1 > x1) x1 = c.fluid[b].x1;
   }

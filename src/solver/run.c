@@ -372,11 +372,7 @@ static char *csv_header(const sph_case *c, int what) {
     bad = sph_csv_put_column(m, "time", 1) != 0;
     for (size_t g = 0; !bad && g < c->n_gauges; g++) {
       char col[64];
-#if SPH_DIM == 2
-      snprintf(col, sizeof col, "eta_%.6g", c->gauges[g]);
-#else
-      snprintf(col, sizeof col, "eta_%.6g_%.6g", c->gauges[2 * g], c->gauges[2 * g + 1]);
-#endif
+      sph_case_gauge_column(c, g, col, sizeof col);
       bad = sph_csv_put_column(m, col, 0) != 0;
     }
     bad = bad || fputc('\n', m) == EOF;

@@ -115,13 +115,13 @@ static int add_fluid(sph_sim *s, sph_error *err) {
   const double gmag = gravity_down(c);
   for (size_t b = 0; b < c->n_fluid; b++) {
     const sph_fluid_block *fb = &c->fluid[b];
-    const long nx = (long)floor((fb->x1 - fb->x0) / dx + 1e-9);
-    const long ny = (long)floor((fb->y1 - fb->y0) / dx + 1e-9);
+    const long nx = sph_case_lattice_points(fb->x0, fb->x1, dx);
+    const long ny = sph_case_lattice_points(fb->y0, fb->y1, dx);
 #if SPH_DIM == 2
     const long nz = 1;
     const double v[SPH_DIM] = {fb->vx, fb->vy};
 #else
-    const long nz = (long)floor((fb->z1 - fb->z0) / dx + 1e-9);
+    const long nz = sph_case_lattice_points(fb->z0, fb->z1, dx);
     const double v[SPH_DIM] = {fb->vx, fb->vy, fb->vz};
 #endif
     for (long k = 0; k < nz; k++)

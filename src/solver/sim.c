@@ -340,13 +340,24 @@ int sph_sim_check_state(sph_sim *s, sph_error *err) {
              "; the fixed time step %.6g s is %.3g times the stable step %.6g s that paper B's "
              "rule (time_step.rule: paper_b, factor %g) gives for that state",
              c->dt_fixed, c->dt_fixed / s->dt_paper_b, s->dt_paper_b, c->dt_factor);
+  /* the state and the domain in every component (issue 61, E12) */
+  char state[256], box[160];
+#if SPH_DIM == 3
+  snprintf(state, sizeof state, "x = %.6g, y = %.6g, z = %.6g, vx = %.6g, vy = %.6g, vz = %.6g",
+           p->x[i], p->y[i], p->z[i], p->vx[i], p->vy[i], p->vz[i]);
+  snprintf(box, sizeof box, "x [%.6g, %.6g] y [%.6g, %.6g] z [%.6g, %.6g]", d[0], d[1], d[2], d[3],
+           d[4], d[5]);
+#else
+  snprintf(state, sizeof state, "x = %.6g, y = %.6g, vx = %.6g, vy = %.6g", p->x[i], p->y[i],
+           p->vx[i], p->vy[i]);
+  snprintf(box, sizeof box, "x [%.6g, %.6g] y [%.6g, %.6g]", d[0], d[1], d[2], d[3]);
+#endif
   sph_error_set(err,
                 "blow-up at step %ld, t = %.9g s: %s particle %lld: %s "
-                "(x = %.6g, y = %.6g, vx = %.6g, vy = %.6g, rho = %.6g; allowed rho in "
-                "[%.6g, %.6g], domain x [%.6g, %.6g] y [%.6g, %.6g])%s",
+                "(%s, rho = %.6g; allowed rho in [%.6g, %.6g], domain %s)%s",
                 s->steps, s->t, p->kind[i] == SPH_KIND_FLUID ? "fluid" : "wall",
-                (long long)p->id[i], why, p->x[i], p->y[i], p->vx[i], p->vy[i], p->rho[i],
-                rho0 * (1.0 - lim), rho0 * (1.0 + lim), d[0], d[1], d[2], d[3], hint);
+                (long long)p->id[i], why, state, p->rho[i], rho0 * (1.0 - lim),
+                rho0 * (1.0 + lim), box, hint);
   return SPH_BLOWUP;
 }
 
