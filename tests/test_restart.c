@@ -366,8 +366,12 @@ static void test_restart_clock(void) {
   } bad[] = {{"time", NAN, 0, "its time nan is not a finite time >= 0"},
              {"time", -1.0, 0, "its time -1 is not a finite time >= 0"},
              {"time", 1e308, 0, "is not before time.end"},
-             {"step", -5.0, 1, "its step -5"}};
-  for (int i = 0; i < 4; i++) {
+             {"step", -5.0, 1, "its step -5"},
+             /* a time that cannot follow from its step (issue 61, E13) */
+             {"time", -0.0, 0, "its time -0 s does not go with its step"},
+             {"time", 1e-320, 0, "its time 9.99989e-321 s does not go with its step"},
+             {"time", 0.0, 0, "its time 0 s does not go with its step"}};
+  for (int i = 0; i < 7; i++) {
     char edited[4300], outdir[4300];
     snprintf(edited, sizeof edited, "%s/edited%d.h5", tmp, i);
     snprintf(outdir, sizeof outdir, "%s/edited%d.out", tmp, i);
@@ -383,6 +387,35 @@ static void test_restart_clock(void) {
     FILE *f = fopen(outdir, "r");
     CU_ASSERT(f == NULL); /* nothing written, not even the directory */
     if (f) fclose(f);
+  }
+  /* a particle's h edited in a constant-h case (issue 61, E13) */
+  const double hs[2] = {0.0, 1e6};
+  for (int i = 0; i < 2; i++) {
+    char edited[4300], outdir[4300];
+    snprintf(edited, sizeof edited, "%s/edited_h%d.h5", tmp, i);
+    snprintf(outdir, sizeof outdir, "%s/edited_h%d.out", tmp, i);
+    snprintf(args, sizeof args, "cp '%s/restart_pc.full/snap_0002.h5' '%s'", tmp, edited);
+    CU_ASSERT_FATAL(sph_test_system(args) == 0);
+    const hid_t f = H5Fopen(edited, H5F_ACC_RDWR, H5P_DEFAULT);
+    CU_ASSERT_FATAL(f >= 0);
+    const hid_t d = H5Dopen(f, "particles/h", H5P_DEFAULT);
+    CU_ASSERT_FATAL(d >= 0);
+    const hid_t space = H5Dget_space(d);
+    const hsize_t at = 7, one = 1;
+    H5Sselect_hyperslab(space, H5S_SELECT_SET, &at, NULL, &one, NULL);
+    const hid_t mem = H5Screate_simple(1, &one, NULL);
+    CU_ASSERT(H5Dwrite(d, H5T_NATIVE_DOUBLE, mem, space, H5P_DEFAULT, &hs[i]) >= 0);
+    H5Sclose(mem);
+    H5Sclose(space);
+    H5Dclose(d);
+    H5Fclose(f);
+    snprintf(args, sizeof args, "run -q --restart '%s' -o '%s'", edited, outdir);
+    const int st = sph(args, out, sizeof out);
+    char says[128];
+    snprintf(says, sizeof says, "particle 7 has h = %g m, the case's h is", hs[i]);
+    if (st != 1 || !strstr(out, says)) printf("\n  h = %g: exit %d: %s", hs[i], st, out);
+    CU_ASSERT_EQUAL(st, 1);
+    CU_ASSERT(strstr(out, says) != NULL);
   }
 }
 

@@ -5,6 +5,7 @@
  */
 #include "config.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #ifdef __GLIBC__
@@ -107,6 +108,13 @@ static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particl
                          "%s: its time %.9g s is not before time.end = %.9g s: nothing to run "
                          "(--set time.end=... past it to continue)",
                          path, t, s->c->t_end);
+  /* a time that could not follow from its step (issue 61, E13): -0, a
+   * subnormal time, a time of 0 after step 0 or past 0 at step 0 */
+  if (signbit(t) || (t > 0.0 && t < DBL_MIN) || (t == 0.0) != (step == 0.0))
+    return sph_error_set(err,
+                         "%s: its time %g s does not go with its step %.0f (a run is at t = 0 at "
+                         "step 0, past it after; the time a normal number)",
+                         path, t, step);
   if (!(step >= 0.0) || !(isfinite(dt) && dt >= 0.0) || rd->output_index < 0 ||
       (rd->first_step != 0 && rd->first_step != 1))
     return sph_error_set(err,
@@ -152,7 +160,16 @@ static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particl
     SPH_IF3(p->z[k] = q->z[i]; p->vz[k] = q->vz[i];)
     p->rho[k] = q->rho[i];
     p->p[k] = q->p[i];
-    p->h[k] = q->h[i];
+    /* the smoothing length is the case's where it is constant, and near it
+     * where it varies (issue 61, E13) */
+    const double h0 = s->c->h, hk = q->h[i];
+    const double hmax = 2.0 * h0 * (s->c->fs_h_factor > 1.0 ? s->c->fs_h_factor : 1.0);
+    if (s->fp.var_h ? !(hk >= 0.5 * h0 && hk <= hmax) : hk != h0)
+      return sph_error_set(err,
+                           "%s: particle %zu has h = %g m, the case's h is %g m%s: not a "
+                           "snapshot of this case",
+                           path, i, hk, h0, s->fp.var_h ? " (and varies by at most a factor 2)" : "");
+    p->h[k] = hk;
     if (p->live & SPH_ARRAYS_HEAT) p->u[k] = q->u[i];
     p->flags[k] = (uint8_t)((p->flags[k] & ~SPH_FLAG_FREE_SURFACE) | (q->flags[i] & 1u));
     if (rd->vxh && (p->live & SPH_ARRAYS_HALF_STEP)) {
