@@ -46,6 +46,11 @@ int rslice_apply(const rslice *sl, rsnap *s, sph_error *err) {
     return sph_error_set(err,
                          "%s: no particle spacing (attribute dx): give --slice %c=%g,THICKNESS",
                          s->path, 'x' + sl->axis, sl->pos);
+  /* a cut outside the domain would draw an empty panel (issue 61, E11) */
+  const double lo = s->box[2 * sl->axis], hi = s->box[2 * sl->axis + 1];
+  if (isfinite(lo) && isfinite(hi) && !(sl->pos >= lo && sl->pos <= hi))
+    return sph_error_set(err, "%s: --slice %c=%g is outside the domain, %c [%g, %g]", s->path,
+                         'x' + sl->axis, sl->pos, 'x' + sl->axis, lo, hi);
   const int u = rslice_axis(sl->axis, 0), v = rslice_axis(sl->axis, 1);
   double *c[3] = {s->x, s->y, s->z};
   double *nu = malloc((s->n ? s->n : 1) * sizeof *nu), *nv = malloc((s->n ? s->n : 1) * sizeof *nv);

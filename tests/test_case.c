@@ -707,6 +707,22 @@ static void test_cross_checks(void) {
       edit(MINIMAL, 10, "  obstacles: [{x: [0.2, 0.4], y: [0, 0.1], z: [0, 1]}]\n  fluid:\n"),
       "t.yaml:10: geometry.obstacles[0].z: unknown key (valid keys in "
       "'geometry.obstacles[0]': x, y, layers, boundary)");
+  /* an obstacle inside the tank; its top may stand above the walls (issue 61, E11) */
+  expect_err(edit(MINIMAL, 10,
+                  "  tank: {x: [0, 1], y: [0, 1]}\n  obstacles: [{x: [1.2, 1.4], y: [0, 0.1]}]\n"
+                  "  fluid:\n"),
+             "t.yaml:11: geometry.obstacles[0].x: expected a range inside the tank's inner box [0, "
+             "1], got [1.2, 1.4]");
+  expect_err(edit(MINIMAL, 10,
+                  "  tank: {x: [0, 1], y: [0, 1]}\n  obstacles: [{x: [0.2, 0.4], y: [-0.1, 0.1]}]\n"
+                  "  fluid:\n"),
+             "t.yaml:11: geometry.obstacles[0].y: expected a range inside the tank's inner box [0, "
+             "1] (its top may stand above it), got [-0.1, 0.1]");
+  expect_ok(edit(MINIMAL, 10,
+                 "  tank: {x: [0, 1], y: [0, 1]}\n  obstacles: [{x: [0.6, 0.8], y: [0, 1.2]}]\n"
+                 "  fluid:\n"),
+            NULL, 0, &c);
+  sph_case_free(&c);
   /* only x wraps in 2-D; a 2-D tank is never periodic */
   expect_err(edit(MINIMAL, 10, "  periodic_y: [0, 1]\n  fluid:\n"),
              "t.yaml:10: geometry.periodic_y: is 3-D only: a 2-D case is periodic in x only (y is "

@@ -559,6 +559,14 @@ static void test_messages_3d(void) {
   if (!strstr(out, ", vz = ")) printf("\n  %s\n", out);
   CU_ASSERT(strstr(out, "blow-up at step") != NULL && strstr(out, ", z = ") != NULL &&
             strstr(out, ", vz = ") != NULL && strstr(out, "] z [-0.25, 0.735])") != NULL);
+  /* a 3-D plate thinner than dx across the flume is one row: refused (E11) */
+  snprintf(args, sizeof args,
+           "run -q '%s' -o '%s/msg3c' "
+           "--set 'geometry.walls=[{from: [0.1, 0], to: [0.1, 0.05], y: [0.05, 0.050000000001]}]'",
+           sph_test_src("cases/hydrostatic_3d.yaml"), tmp);
+  CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
+  CU_ASSERT(strstr(out, "geometry.walls[0].y: expected a range at least numerics.dx = 0.01 m "
+                        "wide across the flume") != NULL);
 }
 
 /* A case far from the origin (UTM-like coordinates) makes the particles it

@@ -512,6 +512,9 @@ static void test_slices(void) {
       render("--slice y=0.05 --overlay ref.csv --size 480x270 run3/snap_0000.h5 -o ov.png"), 0);
   CU_ASSERT_EQUAL(render("--slice y=0.05 --size 480x270 run3/snap_0000.h5 -o nov.png"), 0);
   CU_ASSERT(!same_file("ov.png", "nov.png")); /* the markers are drawn */
+  /* a cut outside the domain is refused, not drawn blank (issue 61, E11) */
+  CU_ASSERT_NOT_EQUAL(render("--slice x=1e9 run3/snap_0000.h5 -o x.png"), 0);
+  CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "--slice x=1e+09 is outside the domain, x ["));
   CU_ASSERT_NOT_EQUAL(render("--slice w=0.5 run3/snap_0000.h5 -o x.png"), 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "expected AXIS=POS[,THICKNESS]"));
   CU_ASSERT_NOT_EQUAL(render("--slice y=0.5,-1 run3/snap_0000.h5 -o x.png"), 0);

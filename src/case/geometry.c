@@ -415,6 +415,15 @@ static int read_wall(const ctx *x, const node *m, const char *p, const sph_case 
 #if SPH_DIM == 3 /* a plate across the flume: its extent along y, the tank's by default */
   double across[2] = {c->tank.y0, c->tank.y1};
   if (sph_yaml_get_pair(&x->t, m, p, "y", !c->tank.present, 'y', across) < 0) return -1;
+  if (c->dx > 0.0 && !(across[1] - across[0] >= c->dx)) { /* one row would be a line (E11) */
+    char kp[SPH_YAML_KEYLEN];
+    sph_yaml_join(kp, sizeof kp, p, "y");
+    const sph_yaml_entry *e = sph_yaml_find(m, "y");
+    return sph_yaml_fail_at(&x->t, e ? e->val : m, kp,
+                            "expected a range at least numerics.dx = %g m wide across the flume, "
+                            "got [%g, %g]",
+                            c->dx, across[0], across[1]);
+  }
   w->y0 = across[0];
   w->y1 = across[1];
 #endif
@@ -539,6 +548,20 @@ static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_c
       return sph_yaml_fail_at(&x->t, sph_yaml_find(m, key)->val, kp,
                               "expected a range at least numerics.dx = %g m wide, got [%g, %g]",
                               c->dx, v[0], v[1]);
+    }
+    /* inside the tank (it may stand above the walls' top): a box outside
+     * it is no obstacle to the water (issue 61, E11) */
+    const sph_tank *k = &c->tank;
+    const double t[2 * SPH_DIM] = {SPH_XYZ(k->x0, k->y0, k->z0), SPH_XYZ(k->x1, k->y1, k->z1)};
+    const double tlo = t[a], thi = t[SPH_DIM + a], tol = 1e-9 * c->dx;
+    if (k->present && (v[0] < tlo - tol || (a != SPH_DIM - 1 && v[1] > thi + tol) ||
+                       v[1] <= tlo || v[0] >= thi)) {
+      sph_yaml_join(kp, sizeof kp, p, key);
+      return sph_yaml_fail_at(&x->t, sph_yaml_find(m, key)->val, kp,
+                              "expected a range inside the tank's inner box [%g, %g]%s, got "
+                              "[%g, %g]",
+                              tlo, thi, a == SPH_DIM - 1 ? " (its top may stand above it)" : "",
+                              v[0], v[1]);
     }
     o->lo[a] = v[0];
     o->hi[a] = v[1];
