@@ -236,11 +236,16 @@ static int resolve_size(roptions *o, sph_error *err) {
   const int vector = o->output && rcanvas_vector_kind(o->output);
   const double per_in = vector ? 72.0 : (double)o->dpi;
   const double w = o->size_in[0] * per_in, h = o->size_in[1] * per_in;
-  if (!(w >= 16.0 && w <= 16384.0) || (h > 0.0 && !(h >= 16.0 && h <= 16384.0)))
-    return sph_error_set(err,
-                         "--size: %.4g x %.4g in is %.0f x %.0f %s: each side must be 16 to "
-                         "16384",
-                         o->size_in[0], o->size_in[1], w, h, vector ? "points" : "pixels");
+  if (!(w >= 16.0 && w <= 16384.0) || (h > 0.0 && !(h >= 16.0 && h <= 16384.0))) {
+    /* the sides given, in three digits (issue 61, E12: "118110236220 x 0") */
+    if (h > 0.0)
+      return sph_error_set(err,
+                           "--size: %.4g x %.4g in is %.3g x %.3g %s: each side must be 16 to "
+                           "16384",
+                           o->size_in[0], o->size_in[1], w, h, vector ? "points" : "pixels");
+    return sph_error_set(err, "--size: %.4g in wide is %.3g %s: each side must be 16 to 16384",
+                         o->size_in[0], w, vector ? "points" : "pixels");
+  }
   o->width = (int)lround(w);
   o->height = h > 0.0 ? (int)lround(h) : 0;
   if (o->font_scale == 0) {

@@ -268,6 +268,11 @@ static void test_sound_speed(void) {
   CU_ASSERT_EQUAL(c.sound_speed, 15.0);
   sph_case_free(&c);
 
+  /* a gravity beyond what a run holds is the gravity's fault, not the sound
+   * speed's (issue 61, E12) */
+  expect_err(edit(MINIMAL, 3, "  gravity: [0, -1e308]\n  sound_speed: {factor: 10, height: 0.1}\n"),
+             "t.yaml:3: physics.gravity: expected an acceleration of at most 1e+06 m/s^2, got "
+             "[0, -1e+308]");
   expect_err(edit(MINIMAL, 3, "  sound_speed: {factor: 10, height: 1, speed: 1}\n"),
              "t.yaml:3: physics.sound_speed: give either 'height' or 'speed', not both");
   expect_err(edit(MINIMAL, 3, "  sound_speed: {factor: 10}\n"),
@@ -642,6 +647,12 @@ static void test_unknown_choice(void) {
              "t.yaml:6: numerics.density_diffusion.delta: only used with a density-diffusion "
              "model (model is 'none'; --set 'numerics.density_diffusion={model: none}' replaces "
              "the whole mapping)");
+  /* without a model of its own, the message names the scheme whose default
+   * it is (issue 61, E12) */
+  expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  density_diffusion: {delta: 0.1}\n"),
+             "t.yaml:6: numerics.density_diffusion.delta: only used with a density-diffusion "
+             "model (model is 'none', numerics.scheme riemann's: give the model; --set "
+             "'numerics.density_diffusion={model: none}' replaces the whole mapping)");
   expect_err(edit(MINIMAL, 5, "  dx: 0.01\n  density_diffusion: {model: antuono, d: 0.1}\n"),
              "t.yaml:6: numerics.density_diffusion.d: unknown key (valid keys in "
              "'numerics.density_diffusion': model, delta)");

@@ -1078,6 +1078,10 @@ static void test_vector_figures(void) {
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "lengths in cm, mm or in"));
   CU_ASSERT_NOT_EQUAL(render("--size 300in run/snap_0001.h5 -o bad.png"), 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "each side must be 16 to 16384"));
+  /* the width alone, in three digits (issue 61, E12) */
+  CU_ASSERT_NOT_EQUAL(render("--size 1e9cm run/snap_0001.h5 -o bad.png"), 0);
+  CU_ASSERT_PTR_NOT_NULL(
+      strstr(last_err(), "--size: 3.937e+08 in wide is 1.18e+11 pixels: each side must be"));
   CU_ASSERT_FALSE(exists(path_in(tmp, "bad.png")));
 }
 

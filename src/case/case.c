@@ -48,6 +48,7 @@
 
 #define MAX_CASE_BYTES (1u << 20) /* the largest case file read: 1 MiB (issue 21, D8) */
 #define MAX_DESCRIPTION 10000     /* the longest description, in bytes (stored in snapshots: D12) */
+#define SPH_MAX_GRAVITY 1e6        /* m/s^2: physics.gravity's and body_force's magnitude, at most */
 #define SPH_MAX_OUTPUTS 100000    /* output times from time.output_interval, at most */
 #define KEYLEN SPH_YAML_KEYLEN
 
@@ -337,6 +338,16 @@ static int read_sound_speed(const ctx *x, const node *m, sph_case *c) {
   return 0;
 }
 
+/* Where a mapping's `model` came from when the mapping does not give it:
+ * the scheme's default (issue 61, E12: "model is 'none'" with no word of
+ * the scheme that chose it). */
+static const char *whose_default(const ctx *x, const node *mapping) {
+  static char buf[96];
+  if (sph_yaml_find(mapping, "model")) return "";
+  sph_yaml_bprintf(buf, sizeof buf, ", numerics.scheme %s's: give the model", x->t.scheme);
+  return buf;
+}
+
 static int read_physics(const ctx *x, const node *m, sph_case *c) {
   const char *p = "physics";
   const node *v;
@@ -350,6 +361,21 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
       return sph_yaml_fail_at(&x->t, bf, kp,
                               "give either physics.gravity or physics.body_force, not both");
     if (sph_yaml_read_vector(&x->t, bf, kp, SPH_DIM, c->gravity)) return -1;
+  }
+  /* an acceleration the run can hold: 1e308 made c0 infinite and the
+   * message blamed the sound speed (issue 61, E12) */
+  if (!(gravity_norm(c) <= SPH_MAX_GRAVITY)) {
+    const char *key = has_g ? "gravity" : "body_force";
+    const node *g;
+    sph_yaml_lookup(&x->t, m, p, key, 0, &g, kp);
+    char got[96];
+#if SPH_DIM == 3
+    sph_yaml_bprintf(got, sizeof got, "[%g, %g, %g]", c->gravity[0], c->gravity[1], c->gravity[2]);
+#else
+    sph_yaml_bprintf(got, sizeof got, "[%g, %g]", c->gravity[0], c->gravity[1]);
+#endif
+    return sph_yaml_fail_at(&x->t, g, kp, "expected an acceleration of at most %g m/s^2, got %s",
+                            SPH_MAX_GRAVITY, got);
   }
   if (read_sound_speed(x, m, c)) return -1;
   int rc = sph_yaml_get_section(&x->t, m, p, "viscosity", 0, laminar_keys, &v);
@@ -365,8 +391,9 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
     if (has_mu < 0) return -1;
     if (has_mu && c->viscosity == SPH_VISCOSITY_NONE)
       return sph_yaml_fail_at(&x->t, sph_yaml_find(v, "mu")->val, "physics.viscosity.mu",
-                              "only used with a viscosity model (model is 'none'; --set "
-                              "'physics.viscosity={model: none}' replaces the whole mapping)");
+                              "only used with a viscosity model (model is 'none'%s; --set "
+                              "'physics.viscosity={model: none}' replaces the whole mapping)",
+                              whose_default(x, v));
     int has_gc = sph_yaml_get_bool(&x->t, v, vp, "gradient_correction", &c->gradient_correction);
     if (has_gc < 0) return -1;
     if (has_gc && c->gradient_correction && c->viscosity != SPH_VISCOSITY_STRESS_TENSOR)
@@ -488,9 +515,10 @@ static int read_numerics(ctx *x, const node *m, sph_case *c) {
     if (has_delta && model == SPH_DIFFUSION_NONE) /* as physics.viscosity.mu */
       return sph_yaml_fail_at(&x->t, sph_yaml_find(f, "delta")->val,
                               "numerics.density_diffusion.delta",
-                              "only used with a density-diffusion model (model is 'none'; --set "
-                              "'numerics.density_diffusion={model: none}' replaces the whole "
-                              "mapping)");
+                              "only used with a density-diffusion model (model is 'none'%s; "
+                              "--set 'numerics.density_diffusion={model: none}' replaces the "
+                              "whole mapping)",
+                              whose_default(x, f));
     c->diffusion = (sph_diffusion_kind)model;
   }
   static const range shift = {0, 10, '(', ']', NULL};

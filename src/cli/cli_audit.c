@@ -396,7 +396,11 @@ static int audit_run(const audit_args *a, int r, long got, double dx, audit_row 
   sph_error err = {{0}};
   sph_case c;
   if (sph_case_parse(a->text, a->len, a->case_path, a->sets, a->n_set, &c, &err)) {
-    fprintf(stderr, "sph audit: %s\n", err.msg);
+    /* the case read, so the audit's own settings broke it: say so (E12) */
+    fprintf(stderr,
+            "sph audit: the case with the audit's settings (time.end = %g, the last of --times, "
+            "and dx = %g for %ld particles): %s\n",
+            a->times[a->ntimes - 1], dx, got, err.msg);
     return 1;
   }
   c.max_particles = a->max_particles;

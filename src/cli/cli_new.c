@@ -231,7 +231,12 @@ int sph_cli_new(int argc, char **argv) {
                        c.name);
   sph_case_free(&c);
   if (rc) {
-    fprintf(stderr, "sph new: %s\n", err.msg);
+    /* the name's rule, not a file: nothing was written (issue 61, E12) */
+    const char *why = strstr(err.msg, ": name: ");
+    if (why)
+      fprintf(stderr, "sph new: NAME '%s': %s (nothing written)\n", name, why + 8);
+    else
+      fprintf(stderr, "sph new: %s\n", err.msg);
     free(text);
     return 2;
   }

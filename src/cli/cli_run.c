@@ -211,9 +211,15 @@ static void print_plan(const run_args *a, const sph_case *c) {
   const double bytes = n * SPH_BYTES_PER_PARTICLE;
   const double unit = bytes < 1e9 ? 1e6 : bytes < 1e12 ? 1e9 : 1e12;
   printf("%s: case %s (%s)\n", sph_version(), c->name, a->case_path);
-  printf("  setting up about %.0f particles (fluid %.0f, walls at most %.0f): memory about %.3g %s "
-         "(%.0f bytes per particle); at most %.0f particles allowed\n",
-         n, c->est_fluid, c->est_wall, bytes / unit,
+  /* whole counts up to a billion; beyond (a case that will be refused:
+   * the bound is below), three digits, never a 300-digit number (E12) */
+  const char *fmt = n < 1e9 ? "  setting up about %.0f particles (fluid %.0f, walls at most %.0f): "
+                              "memory about %.3g %s (%.0f bytes per particle); at most %.0f "
+                              "particles allowed\n"
+                            : "  setting up about %.3g particles (fluid %.3g, walls at most %.3g): "
+                              "memory about %.3g %s (%.0f bytes per particle); at most %.0f "
+                              "particles allowed\n";
+  printf(fmt, n, c->est_fluid, c->est_wall, bytes / unit,
          unit == 1e6   ? "MB"
          : unit == 1e9 ? "GB"
                        : "TB",
