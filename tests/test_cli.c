@@ -434,6 +434,28 @@ static void test_three_dimensions(void) {
   }
 }
 
+/* A signal while sph hands a 3-D run to sph-3d (between the two programs'
+ * handlers; the test hook SPH_TEST_HANDOVER_SIGNAL raises SIGTERM there) is
+ * held across the exec and reported by sph-3d as a set-up interruption:
+ * exit 4, nothing written (it was lost, and the run went on to the end). */
+static void test_signal_in_hand_over(void) {
+  char cmd[16384], path[4400];
+  snprintf(cmd, sizeof cmd,
+           "SPH_TEST_HANDOVER_SIGNAL=1 timeout 120 '%s' run '%s' -o '%s/handsig' "
+           "--set time.end=0.002 --set time.output_interval=0.002 "
+           "--set output.probe_interval=0.002 >'%s/handsig.log' 2>&1",
+           sph_test_build("src/sph"), sph_test_src("cases/hydrostatic_3d.yaml"), tmp, tmp);
+  const int st = sph_test_system(cmd);
+  snprintf(path, sizeof path, "%s/handsig.log", tmp);
+  char *log = sph_test_read_file(path, NULL);
+  if (st != 4) printf("\n  exit %d: %s\n", st, log ? log : "");
+  CU_ASSERT_EQUAL(st, 4);
+  CU_ASSERT_PTR_NOT_NULL(log && strstr(log, "interrupted by SIGTERM during set-up; nothing written"));
+  free(log);
+  snprintf(cmd, sizeof cmd, "test -e '%s/handsig'", tmp);
+  CU_ASSERT_NOT_EQUAL(sph_test_system(cmd), 0);
+}
+
 /* A case file that can be read once (issue 61, E4): a named FIFO, /dev/stdin
  * and a pipe run the case, 2-D and 3-D (the 3-D one handed over with a copy
  * of its text), and give the same diagnostics as the file itself. The
@@ -657,6 +679,7 @@ int main(void) {
       {"sph face on a 3-D snapshot: heights along z", test_face_3d},
       {"a case far from the origin: the same particles; too far: refused", test_far_from_origin},
       {"3-D messages in three components", test_messages_3d},
+      {"a signal during the hand-over to sph-3d is not lost", test_signal_in_hand_over},
       CU_TEST_INFO_NULL};
   int rc = sph_test_main("cli", tests);
   sph_test_rmtree(tmp);

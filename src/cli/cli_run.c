@@ -148,6 +148,21 @@ static int parse_run_args(int argc, char **argv, run_args *a) {
 /* The case: from CASE, or with --restart alone from the snapshot (whose
  * directory is then the default output, into snapdir). 0, or 1 with the
  * message printed. */
+static int setup_interrupted(void);
+
+/* The signals a run catches, blocked (how = SIG_BLOCK) or unblocked. A
+ * blocked signal stays pending across the hand-over's exec, and the other
+ * program's handler gets it once installed (issue 61: the window between
+ * the two programs' handlers). */
+static void catchable_signals(int how) {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  sigaddset(&set, SIGHUP);
+  sigprocmask(how, &set, NULL);
+}
+
 static int load_run_case(run_args *a, sph_case *c, char *snapdir, size_t n) {
   sph_error err = {{0}};
   if (a->case_path) {
@@ -167,10 +182,18 @@ static int load_run_case(run_args *a, sph_case *c, char *snapdir, size_t n) {
       fprintf(stderr, "sph run: %s\n", err.msg);
       return 1;
     }
+    catchable_signals(SIG_BLOCK);
+    if (interrupted) { /* before the hand-over: this program says it */
+      catchable_signals(SIG_UNBLOCK);
+      free(text);
+      return setup_interrupted();
+    }
     if (sph_cli_hand_over("run", a->case_path, text, len, a->sets, a->n_set)) {
+      catchable_signals(SIG_UNBLOCK);
       free(text);
       return 1;
     }
+    catchable_signals(SIG_UNBLOCK); /* this program runs it: a pending signal now */
     const int rc = sph_case_parse(text, len, a->case_path, a->sets, a->n_set, c, &err);
     free(text);
     if (rc == 0) return 0;
@@ -178,7 +201,16 @@ static int load_run_case(run_args *a, sph_case *c, char *snapdir, size_t n) {
     sph_case_free(c);
     return 1;
   }
-  if (sph_cli_hand_over_snapshot("run", a->restart)) return 1;
+  catchable_signals(SIG_BLOCK);
+  if (interrupted) {
+    catchable_signals(SIG_UNBLOCK);
+    return setup_interrupted();
+  }
+  if (sph_cli_hand_over_snapshot("run", a->restart)) {
+    catchable_signals(SIG_UNBLOCK);
+    return 1;
+  }
+  catchable_signals(SIG_UNBLOCK);
   sph_snapshot *snap;
   int rc = sph_snapshot_open(a->restart, &snap, &err);
   if (rc == 0) {
@@ -284,6 +316,8 @@ static void install_signals(void) {
     if (sigaction(sigs[k], NULL, &old) == 0 && old.sa_handler == SIG_IGN) continue;
     sigaction(sigs[k], &sa, NULL);
   }
+  /* a program handed the run holds what came during the hand-over: now */
+  catchable_signals(SIG_UNBLOCK);
 }
 
 static const char *signal_name(int sig) {

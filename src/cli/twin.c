@@ -10,6 +10,7 @@
 
 #include <errno.h>
 #include <limits.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -71,6 +72,9 @@ static int exec_twin(const char *cmd, const char *what, const char *path, int di
             cmd, path, dim, what, dim, SPH_DIM == 2 ? "sph-3d" : "sph");
     return 1;
   }
+  /* test hook (doc/testing.md): a signal in the hand-over's window */
+  const char *hook = getenv("SPH_TEST_HANDOVER_SIGNAL");
+  if (hook && *hook) raise(SIGTERM);
   setenv(HANDED_OVER, SPH_DIM == 2 ? "sph (2-D)" : "sph-3d (3-D)", 1);
   execv(twin, sph_cli_argv);
   unsetenv(HANDED_OVER);
