@@ -506,6 +506,19 @@ static void test_csv(void) {
   CU_ASSERT_EQUAL(sph_csv_eval(&t, "time+kinetic", v, &err), 0);
   CU_ASSERT_DOUBLE_EQUAL(v[0], 2.0, 1e-15);
   sph_csv_free(&t);
+  /* two columns a name could mean are ambiguous, not one picked silently
+   * (issue 61, E10); the exact name still picks its own */
+  fp = fopen(bad, "w");
+  CU_ASSERT_PTR_NOT_NULL_FATAL(fp);
+  fputs("time (s),a (m),a (Pa),b,b\n0,1,2,3,4\n", fp);
+  fclose(fp);
+  CU_ASSERT_EQUAL_FATAL(sph_csv_read(bad, &t, &err), 0);
+  CU_ASSERT_EQUAL(sph_csv_column(&t, "a", &err), -1);
+  CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "'a' names columns 2 ('a (m)') and 3 ('a (Pa)'): ambiguous"));
+  CU_ASSERT_EQUAL(sph_csv_column(&t, "a (Pa)", &err), 2);
+  CU_ASSERT_EQUAL(sph_csv_column(&t, "b", &err), -1);
+  CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "'b' names columns 4 ('b') and 5 ('b'): ambiguous"));
+  sph_csv_free(&t);
   fp = fopen(bad, "w");
   fputs("a,b\n1,2,3\n", fp);
   fclose(fp);

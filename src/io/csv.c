@@ -207,14 +207,28 @@ size_t sph_csv_bare_length(const char *column, size_t len) {
 }
 
 int sph_csv_column(const sph_csv *t, const char *name, sph_error *err) {
-  for (size_t k = 0; k < t->ncol; k++)
-    if (strcmp(t->names[k], name) == 0) return (int)k;
-  const size_t n = strlen(name);
-  for (size_t k = 0; k < t->ncol; k++) { /* "kinetic" for "kinetic (J/m)" */
-    const char *c = t->names[k];
-    const size_t len = strlen(c);
-    if (n > 0 && n < len && sph_csv_bare_length(c, len) == n && strncmp(c, name, n) == 0)
-      return (int)k;
+  /* the column of that exact name; else the one whose name before its
+   * units is name ("kinetic" for "kinetic (J/m)"); two of either kind are
+   * ambiguous, never one picked silently (issue 61, E10) */
+  for (int pass = 0; pass < 2; pass++) {
+    const size_t n = strlen(name);
+    int found = -1, again = -1;
+    for (size_t k = 0; k < t->ncol; k++) {
+      const char *c = t->names[k];
+      const size_t len = strlen(c);
+      const int hit = pass == 0 ? strcmp(c, name) == 0
+                                : n > 0 && n < len && sph_csv_bare_length(c, len) == n &&
+                                      strncmp(c, name, n) == 0;
+      if (!hit) continue;
+      if (found < 0) found = (int)k;
+      else if (again < 0) again = (int)k;
+    }
+    if (found >= 0 && again < 0) return found;
+    if (again >= 0) {
+      sph_error_set(err, "%s: '%s' names columns %d ('%s') and %d ('%s'): ambiguous", t->path, name,
+                    found + 1, t->names[found], again + 1, t->names[again]);
+      return -1;
+    }
   }
   char list[512] = "";
   size_t used = 0;
