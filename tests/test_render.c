@@ -514,7 +514,8 @@ static void test_csv(void) {
   fclose(fp);
   CU_ASSERT_EQUAL_FATAL(sph_csv_read(bad, &t, &err), 0);
   CU_ASSERT_EQUAL(sph_csv_column(&t, "a", &err), -1);
-  CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "'a' names columns 2 ('a (m)') and 3 ('a (Pa)'): ambiguous"));
+  CU_ASSERT_PTR_NOT_NULL(
+      strstr(err.msg, "'a' names columns 2 ('a (m)') and 3 ('a (Pa)'): ambiguous"));
   CU_ASSERT_EQUAL(sph_csv_column(&t, "a (Pa)", &err), 2);
   CU_ASSERT_EQUAL(sph_csv_column(&t, "b", &err), -1);
   CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, "'b' names columns 4 ('b') and 5 ('b'): ambiguous"));

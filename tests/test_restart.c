@@ -208,8 +208,9 @@ static void test_unreadable_rows(void) {
       {"probes.csv", "1s/,[^,]*$/,X (Pa)/", "probes.csv: its header is not the columns"},
       {"diagnostics.csv", "4s/^[^,]*,/nan,/",
        "diagnostics.csv:4: expected a row that starts with its time, got 'nan,"},
-      {"diagnostics.csv", "3s/^.*$//", "diagnostics.csv:3: expected a row that starts with its "
-                                       "time, got ''"}};
+      {"diagnostics.csv", "3s/^.*$//",
+       "diagnostics.csv:3: expected a row that starts with its "
+       "time, got ''"}};
   for (size_t k = 0; k < sizeof edits / sizeof *edits; k++) {
     char args[32768], out[65536], dir[4200];
     snprintf(dir, sizeof dir, "%s/unreadable%zu", tmp, k);
@@ -431,8 +432,7 @@ int main(void) {
       {"restart in the run's directory: CSV and XDMF as uninterrupted", test_pc_in_place},
       {"mirror, periodic: restart in place, headers of an earlier version", test_mirror_in_place},
       {"restart in place: CRLF line ends read, rows kept", test_crlf_in_place},
-      {"restart in place: unreadable rows refused, files left as they were",
-       test_unreadable_rows},
+      {"restart in place: unreadable rows refused, files left as they were", test_unreadable_rows},
       {"bad restarts fail clearly; time.end may change", test_bad_restarts},
       {"the restart's clock: time.end before it, NaN, negative, 1e308 and step -5 refused",
        test_restart_clock},

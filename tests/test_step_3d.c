@@ -84,6 +84,11 @@ static double smallest_step(const char *rule) {
   double smallest = INFINITY;
   for (int k = 0; k < STEPS; k++) {
     const int rc = sph_sim_step(s, c.t_end, &err);
+    if (rc && strstr(err.msg, "time step collapse")) { /* below the step's floor: stopped */
+      printf("\n    step %d: %.60s...", k, err.msg);
+      smallest = 0.0;
+      break;
+    }
     if (rc) printf("\n    step %d: %s", k, err.msg);
     CU_ASSERT_FATAL(rc == 0);
     sph_sim_diag(s, &row);

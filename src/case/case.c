@@ -48,7 +48,7 @@
 
 #define MAX_CASE_BYTES (1u << 20) /* the largest case file read: 1 MiB (issue 21, D8) */
 #define MAX_DESCRIPTION 10000     /* the longest description, in bytes (stored in snapshots: D12) */
-#define SPH_MAX_GRAVITY 1e6        /* m/s^2: physics.gravity's and body_force's magnitude, at most */
+#define SPH_MAX_GRAVITY 1e6       /* m/s^2: physics.gravity's and body_force's magnitude, at most */
 #define SPH_MAX_OUTPUTS 100000    /* output times from time.output_interval, at most */
 #define KEYLEN SPH_YAML_KEYLEN
 

@@ -554,8 +554,8 @@ static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_c
     const sph_tank *k = &c->tank;
     const double t[2 * SPH_DIM] = {SPH_XYZ(k->x0, k->y0, k->z0), SPH_XYZ(k->x1, k->y1, k->z1)};
     const double tlo = t[a], thi = t[SPH_DIM + a], tol = 1e-9 * c->dx;
-    if (k->present && (v[0] < tlo - tol || (a != SPH_DIM - 1 && v[1] > thi + tol) ||
-                       v[1] <= tlo || v[0] >= thi)) {
+    if (k->present && (v[0] < tlo - tol || (a != SPH_DIM - 1 && v[1] > thi + tol) || v[1] <= tlo ||
+                       v[0] >= thi)) {
       sph_yaml_join(kp, sizeof kp, p, key);
       return sph_yaml_fail_at(&x->t, sph_yaml_find(m, key)->val, kp,
                               "expected a range inside the tank's inner box [%g, %g]%s, got "

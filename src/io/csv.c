@@ -220,8 +220,10 @@ int sph_csv_column(const sph_csv *t, const char *name, sph_error *err) {
                                 : n > 0 && n < len && sph_csv_bare_length(c, len) == n &&
                                       strncmp(c, name, n) == 0;
       if (!hit) continue;
-      if (found < 0) found = (int)k;
-      else if (again < 0) again = (int)k;
+      if (found < 0)
+        found = (int)k;
+      else if (again < 0)
+        again = (int)k;
     }
     if (found >= 0 && again < 0) return found;
     if (again >= 0) {

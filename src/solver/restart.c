@@ -168,7 +168,8 @@ static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particl
       return sph_error_set(err,
                            "%s: particle %zu has h = %g m, the case's h is %g m%s: not a "
                            "snapshot of this case",
-                           path, i, hk, h0, s->fp.var_h ? " (and varies by at most a factor 2)" : "");
+                           path, i, hk, h0,
+                           s->fp.var_h ? " (and varies by at most a factor 2)" : "");
     p->h[k] = hk;
     if (p->live & SPH_ARRAYS_HEAT) p->u[k] = q->u[i];
     p->flags[k] = (uint8_t)((p->flags[k] & ~SPH_FLAG_FREE_SURFACE) | (q->flags[i] & 1u));

@@ -313,8 +313,8 @@ static FILE *read_csv(const char *path, const char *header, double t_keep, int *
                                 "%s:%ld: expected a row that starts with its time, got '%.*s': "
                                 "the rows after it would be dropped unread; left as it is "
                                 "(mend the row, or restart into another directory with -o)",
-                                path, row, (int)(strcspn(line, "\n") > 40 ? 40 : strcspn(line, "\n")),
-                                line);
+                                path, row,
+                                (int)(strcspn(line, "\n") > 40 ? 40 : strcspn(line, "\n")), line);
         break;
       }
       if (!(t <= t_keep)) break;
@@ -391,8 +391,8 @@ static char *csv_header(const sph_case *c, int what) {
 /* Opens the run's CSV file `what` (0 diagnostics.csv, 1 gauges.csv, 2
  * probes.csv) in out->dir with its header (open_csv: kept rows up to
  * t_keep on a resumed run). */
-static FILE *run_csv(const outputs *out, const sph_case *c, int what, double t_keep,
-                     int *kept_last, int check_only, sph_error *err);
+static FILE *run_csv(const outputs *out, const sph_case *c, int what, double t_keep, int *kept_last,
+                     int check_only, sph_error *err);
 
 static FILE *open_run_csv(const outputs *out, const sph_case *c, int what, double t_keep,
                           int *kept_last, sph_error *err) {
@@ -400,8 +400,8 @@ static FILE *open_run_csv(const outputs *out, const sph_case *c, int what, doubl
 }
 
 /* open_run_csv's work; check_only: read_csv's. */
-static FILE *run_csv(const outputs *out, const sph_case *c, int what, double t_keep,
-                     int *kept_last, int check_only, sph_error *err) {
+static FILE *run_csv(const outputs *out, const sph_case *c, int what, double t_keep, int *kept_last,
+                     int check_only, sph_error *err) {
   static const char *const names[] = {"diagnostics.csv", "gauges.csv", "probes.csv"};
   char *header = csv_header(c, what), path[4096];
   if (!header) {

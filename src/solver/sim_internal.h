@@ -31,14 +31,14 @@
 
 struct sph_sim {
   const sph_case *c;
-  sph_walls walls;      /* wall particles' models, mirror lines, motions */
-  int first_step;       /* leap-frog: the special first half step */
-  int detect;           /* free-surface detection runs at every pass */
-  size_t fluid_removed; /* fluid particles not made: inside a wall (setup.c) */
+  sph_walls walls;           /* wall particles' models, mirror lines, motions */
+  int first_step;            /* leap-frog: the special first half step */
+  int detect;                /* free-surface detection runs at every pass */
+  size_t fluid_removed;      /* fluid particles not made: inside a wall (setup.c) */
   size_t fluid_in_obstacles; /* fluid particles not made: inside an obstacle box (setup.c) */
-  size_t n_surface;     /* particles flagged at the last pass */
-  sph_ledger ledger;    /* energy and momentum ledger (output.energy) */
-  double dt_paper_b;    /* paper B §2.6 step from the last pass */
+  size_t n_surface;          /* particles flagged at the last pass */
+  sph_ledger ledger;         /* energy and momentum ledger (output.energy) */
+  double dt_paper_b;         /* paper B §2.6 step from the last pass */
   sph_particles p;
   sph_grid grid;
   sph_nlist nl; /* neighbour list of the interaction passes */
@@ -55,6 +55,7 @@ struct sph_sim {
   double t_saved;    /* time of the state saved at the start of the last step */
   long step_pass;    /* step of the state the last pass evaluated (w->hot) */
   long steps;
+  long below_floor;           /* steps in a row whose step was below the floor (sim.c) */
   double floor_y;             /* the floor's height (y; z in 3-D) */
   double domain[2 * SPH_DIM]; /* x0, x1, y0, y1 (, z0, z1): leaving it is a blow-up */
   double view[2 * SPH_DIM];
