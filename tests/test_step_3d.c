@@ -93,6 +93,7 @@ static double smallest_step(const char *rule) {
     CU_ASSERT_FATAL(rc == 0);
     sph_sim_diag(s, &row);
     if (row.dt < smallest) smallest = row.dt;
+    if (smallest < 1e-4 * dt0) break; /* collapsed: what the test asks is known */
   }
   sph_sim_free(s);
   sph_case_free(&c);
@@ -102,8 +103,8 @@ static double smallest_step(const char *rule) {
 static void test_pair_head_on(void) {
   const double ours = smallest_step(NULL);
   const double paper_b = smallest_step("numerics.time_step.rule=paper_b");
-  printf("\n  the smallest of 120 steps after the pair was put in, over the first step: default "
-         "scheme %.3g, with paper B's rule %.3g",
+  printf("\n  the smallest of 120 steps after the pair was put in (or of those until one is "
+         "below 1e-4), over the first step: default scheme %.3g, with paper B's rule %.3g",
          ours, paper_b);
   CU_ASSERT(ours >= 1e-3);
   CU_ASSERT(paper_b < 1e-3);
