@@ -601,10 +601,10 @@ static void test_messages_3d(void) {
  * refused before any particle is made. */
 static void test_far_from_origin(void) {
   char out[65536], args[8192], text[2048];
-  const char *offs[] = {"0", "1000000", "10000000", "123456.789"};
+  const char *offs[] = {"0", "1000000", "123456.789"};
   for (int d = 2; d <= 3; d++)
-    for (int k = 0; k < 5; k++) {
-      const char *o = k < 4 ? offs[k] : "1e15";
+    for (int k = 0; k < 4; k++) {
+      const char *o = k < 3 ? offs[k] : "1e15";
       const double x0 = atof(o), x1 = x0 + 0.2;
       if (d == 3)
         snprintf(text, sizeof text,
@@ -622,7 +622,7 @@ static void test_far_from_origin(void) {
                  x0, x1, x0, x1);
       write_file("far.yaml", text);
       snprintf(args, sizeof args, "run -q '%s/far.yaml' -o '%s/far%d_%d'", tmp, tmp, d, k);
-      if (k == 4) {
+      if (k == 3) {
         CU_ASSERT_EQUAL(sph(args, out, sizeof out), 1);
         CU_ASSERT(strstr(out, "the geometry reaches 1e+15 m from the origin, where doubles are "
                               "0.222 m apart: too coarse for dx = 0.01 m") != NULL);
