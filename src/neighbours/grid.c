@@ -511,7 +511,7 @@ static size_t runs_size(uint32_t *row, uint32_t c, int in_order) {
 /* Writes the runs of a row of c increasing entries at out (runs_size bytes). */
 static void runs_write(const uint32_t *row, uint32_t c, uint8_t *restrict out) {
   if (!SPH_NLIST_RUNS) {
-    memcpy(out, row, 4 * (size_t)c);
+    if (c) memcpy(out, row, 4 * (size_t)c); /* (out may be NULL for an empty row: E14's twin) */
     return;
   }
   /* (one run, the common row, without run_length's walk) */
