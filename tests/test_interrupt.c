@@ -63,7 +63,11 @@ static pid_t start_as(const char *dir, const char *extra, int ignore_hup) {
   snprintf(prog, sizeof prog, "%s", sph);
   const pid_t pid = fork();
   if (pid == 0) {
-    if (ignore_hup) signal(SIGHUP, SIG_IGN);
+    /* a run started in the foreground: a background make (sh's `&`) hands
+     * its children SIGINT ignored, which sph keeps ignored (issue 61, E3) */
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
+    signal(SIGHUP, ignore_hup ? SIG_IGN : SIG_DFL);
     const int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0) {
       dup2(fd, 1);
