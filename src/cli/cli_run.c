@@ -145,9 +145,6 @@ static int parse_run_args(int argc, char **argv, run_args *a) {
   return 0;
 }
 
-/* The case: from CASE, or with --restart alone from the snapshot (whose
- * directory is then the default output, into snapdir). 0, or 1 with the
- * message printed. */
 static int setup_interrupted(void);
 
 /* The signals a run catches, blocked (how = SIG_BLOCK) or unblocked. A
@@ -163,6 +160,25 @@ static void catchable_signals(int how) {
   sigprocmask(how, &set, NULL);
 }
 
+/* Hands the case (its text, len bytes) or, with text NULL, the --restart
+ * snapshot to the other build where it is of the other dimension, the
+ * signals held across the exec: 0 where this build runs it, else the exit
+ * status (message printed; 4 for a signal that came before). */
+static int hand_over(const run_args *a, const char *text, size_t len) {
+  catchable_signals(SIG_BLOCK);
+  if (interrupted) { /* before the hand-over: this program says it */
+    catchable_signals(SIG_UNBLOCK);
+    return setup_interrupted();
+  }
+  const int rc = text ? sph_cli_hand_over("run", a->case_path, text, len, a->sets, a->n_set)
+                      : sph_cli_hand_over_snapshot("run", a->restart);
+  catchable_signals(SIG_UNBLOCK); /* this program runs it: a pending signal now */
+  return rc ? 1 : 0;
+}
+
+/* The case: from CASE, or with --restart alone from the snapshot (whose
+ * directory is then the default output, into snapdir). 0, or 1 with the
+ * message printed. */
 static int load_run_case(run_args *a, sph_case *c, char *snapdir, size_t n) {
   sph_error err = {{0}};
   if (a->case_path) {
@@ -182,18 +198,11 @@ static int load_run_case(run_args *a, sph_case *c, char *snapdir, size_t n) {
       fprintf(stderr, "sph run: %s\n", err.msg);
       return 1;
     }
-    catchable_signals(SIG_BLOCK);
-    if (interrupted) { /* before the hand-over: this program says it */
-      catchable_signals(SIG_UNBLOCK);
+    const int st = hand_over(a, text, len);
+    if (st) {
       free(text);
-      return setup_interrupted();
+      return st;
     }
-    if (sph_cli_hand_over("run", a->case_path, text, len, a->sets, a->n_set)) {
-      catchable_signals(SIG_UNBLOCK);
-      free(text);
-      return 1;
-    }
-    catchable_signals(SIG_UNBLOCK); /* this program runs it: a pending signal now */
     const int rc = sph_case_parse(text, len, a->case_path, a->sets, a->n_set, c, &err);
     free(text);
     if (rc == 0) return 0;
@@ -201,16 +210,8 @@ static int load_run_case(run_args *a, sph_case *c, char *snapdir, size_t n) {
     sph_case_free(c);
     return 1;
   }
-  catchable_signals(SIG_BLOCK);
-  if (interrupted) {
-    catchable_signals(SIG_UNBLOCK);
-    return setup_interrupted();
-  }
-  if (sph_cli_hand_over_snapshot("run", a->restart)) {
-    catchable_signals(SIG_UNBLOCK);
-    return 1;
-  }
-  catchable_signals(SIG_UNBLOCK);
+  const int st = hand_over(a, NULL, 0);
+  if (st) return st;
   sph_snapshot *snap;
   int rc = sph_snapshot_open(a->restart, &snap, &err);
   if (rc == 0) {

@@ -262,76 +262,80 @@ static void drop_cr(char *line, ssize_t *len) {
   }
 }
 
-/* Opens a CSV file of the run for writing: a new file gets the header;
- * on a resumed run (t_keep >= 0) an existing file with the same columns
- * (same_columns; CRLF line ends read as LF) keeps its rows of time <= t_keep
- * (the rest is dropped: rewritten through a temporary file and renamed) and
- * is opened for appending; a torn last row (no line end, as a killed run
- * leaves it) is dropped. A file this run cannot read (other columns, a row
- * whose time is not a number) is refused and left as it is: its rows are
- * never dropped unread (issue 61, E6). *kept_last tells whether a row of
- * time t_keep was kept. With check_only the file is only read: NULL with
- * err where it would be refused, else stdin (a FILE not to be written or
- * closed: the caller only tests it). */
-static FILE *read_csv(const char *path, const char *header, double t_keep, int *kept_last,
-                      int check_only, sph_error *err) {
+/* Reads a resumed run's CSV file `old` (its header first) and copies its
+ * rows of time <= t_keep to out (NULL: read only); CRLF line ends are read
+ * as LF, a torn last row (no line end, as a killed run leaves it) is
+ * dropped. A file this run cannot read (other columns than header, a row
+ * whose time is not a number) is refused: -1 with err naming path and the
+ * line, and its rows are never dropped unread (issue 61, E6). 1 if out
+ * failed, else 0; *kept_last tells whether a row of time t_keep was kept. */
+static int scan_csv(FILE *old, const char *path, const char *header, double t_keep, FILE *out,
+                    int *kept_last, sph_error *err) {
+  char *line = NULL;
+  size_t cap = 0;
+  long row = 1;
+  int rc = 0;
+  *kept_last = 0;
+  ssize_t len = getline(&line, &cap, old);
+  if (len > 0) drop_cr(line, &len);
+  if (len > 0 && !same_columns(line, header)) {
+    const size_t shown = strcspn(line, "\n");
+    rc = sph_error_set(err,
+                       "%s: its header is not the columns this case writes (line 1: '%.*s%s'); "
+                       "a restart in place keeps a file's rows and would drop these: left as it "
+                       "is (restart into another directory with -o, or move the file away)",
+                       path, shown > 80 ? 80 : (int)shown, line, shown > 80 ? "..." : "");
+  }
+  while (len > 0 && rc == 0 && (len = getline(&line, &cap, old)) > 0) {
+    row++;
+    if (line[len - 1] != '\n') break; /* a torn last row */
+    drop_cr(line, &len);
+    char *end;
+    const double t = strtod(line, &end);
+    if (end == line || *end != ',' || isnan(t)) {
+      const size_t shown = strcspn(line, "\n");
+      rc = sph_error_set(err,
+                         "%s:%ld: expected a row that starts with its time, got '%.*s': the rows "
+                         "after it would be dropped unread; left as it is (mend the row, or "
+                         "restart into another directory with -o)",
+                         path, row, shown > 40 ? 40 : (int)shown, line);
+      break;
+    }
+    if (!(t <= t_keep)) break;
+    *kept_last = t == t_keep;
+    if (out && fputs(line, out) == EOF) rc = 1;
+  }
+  free(line);
+  return rc;
+}
+
+/* Opens a CSV file of the run for writing: a new file gets the header; on
+ * a resumed run (t_keep >= 0) an existing file keeps the rows scan_csv
+ * keeps (the rest is dropped: rewritten through a temporary file and
+ * renamed) and is opened for appending; one scan_csv refuses is left as it
+ * is (NULL with err). */
+static FILE *open_csv(const char *path, const char *header, double t_keep, int *kept_last,
+                      sph_error *err) {
   *kept_last = 0;
   FILE *old = t_keep >= 0.0 ? fopen(path, "r") : NULL;
-  if (check_only && !old) return stdin;
   char tmp[4200];
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
-  FILE *f = check_only ? fopen("/dev/null", "w") : fopen(old ? tmp : path, "w");
+  FILE *f = fopen(old ? tmp : path, "w");
   if (!f) {
     sph_error_set(err, "%s: cannot create: %s", old ? tmp : path, strerror(errno));
     if (old) fclose(old);
     return NULL;
   }
-  int bad = fputs(header, f) == EOF, refused = 0;
+  int bad = fputs(header, f) == EOF;
   if (old) {
-    char *line = NULL;
-    size_t cap = 0;
-    long row = 1;
-    ssize_t len = getline(&line, &cap, old);
-    if (len > 0) drop_cr(line, &len);
-    if (len > 0 && !same_columns(line, header)) {
-      const size_t shown = strcspn(line, "\n");
-      refused = sph_error_set(err,
-                              "%s: its header is not the columns this case writes (line 1: "
-                              "'%.*s%s'); a restart in place keeps a file's rows and would "
-                              "drop these: left as it is (restart into another directory "
-                              "with -o, or move the file away)",
-                              path, shown > 80 ? 80 : (int)shown, line, shown > 80 ? "..." : "");
-    }
-    while (len > 0 && !bad && !refused && (len = getline(&line, &cap, old)) > 0) {
-      row++;
-      if (line[len - 1] != '\n') break; /* a torn last row */
-      drop_cr(line, &len);
-      char *end;
-      const double t = strtod(line, &end);
-      if (end == line || *end != ',' || isnan(t)) {
-        refused = sph_error_set(err,
-                                "%s:%ld: expected a row that starts with its time, got '%.*s': "
-                                "the rows after it would be dropped unread; left as it is "
-                                "(mend the row, or restart into another directory with -o)",
-                                path, row,
-                                (int)(strcspn(line, "\n") > 40 ? 40 : strcspn(line, "\n")), line);
-        break;
-      }
-      if (!(t <= t_keep)) break;
-      *kept_last = t == t_keep;
-      bad = fputs(line, f) == EOF;
-    }
-    free(line);
+    const int rc = bad ? 0 : scan_csv(old, path, header, t_keep, f, kept_last, err);
     fclose(old);
-  }
-  if (refused) {
-    fclose(f);
-    if (!check_only) remove(tmp);
-    return NULL;
-  }
-  if (check_only) {
-    fclose(f);
-    return stdin;
+    if (rc < 0) {
+      fclose(f);
+      remove(tmp);
+      return NULL;
+    }
+    bad = bad || rc;
   }
   if (bad || fflush(f)) {
     sph_error_set(err, "%s: write failed: %s", old ? tmp : path, strerror(errno));
@@ -388,39 +392,44 @@ static char *csv_header(const sph_case *c, int what) {
   return buf;
 }
 
-/* Opens the run's CSV file `what` (0 diagnostics.csv, 1 gauges.csv, 2
- * probes.csv) in out->dir with its header (open_csv: kept rows up to
- * t_keep on a resumed run). */
-static FILE *run_csv(const outputs *out, const sph_case *c, int what, double t_keep, int *kept_last,
-                     int check_only, sph_error *err);
-
-static FILE *open_run_csv(const outputs *out, const sph_case *c, int what, double t_keep,
-                          int *kept_last, sph_error *err) {
-  return run_csv(out, c, what, t_keep, kept_last, 0, err);
+/* The path of the run's CSV file `what` (0 diagnostics.csv, 1 gauges.csv,
+ * 2 probes.csv) in out->dir. */
+static void run_csv_path(const outputs *out, int what, char *path, size_t n) {
+  static const char *const names[] = {"diagnostics.csv", "gauges.csv", "probes.csv"};
+  snprintf(path, n, "%s/%s", out->dir, names[what]);
 }
 
-/* open_run_csv's work; check_only: read_csv's. */
-static FILE *run_csv(const outputs *out, const sph_case *c, int what, double t_keep, int *kept_last,
-                     int check_only, sph_error *err) {
-  static const char *const names[] = {"diagnostics.csv", "gauges.csv", "probes.csv"};
+/* Opens the run's CSV file `what` with its header (open_csv: kept rows up
+ * to t_keep on a resumed run). */
+static FILE *open_run_csv(const outputs *out, const sph_case *c, int what, double t_keep,
+                          int *kept_last, sph_error *err) {
   char *header = csv_header(c, what), path[4096];
   if (!header) {
     sph_error_set(err, "out of memory");
     return NULL;
   }
-  snprintf(path, sizeof path, "%s/%s", out->dir, names[what]);
-  FILE *f = read_csv(path, header, t_keep, kept_last, check_only, err);
+  run_csv_path(out, what, path, sizeof path);
+  FILE *f = open_csv(path, header, t_keep, kept_last, err);
   free(header);
   return f;
 }
 
-/* A resumed run's CSV files, each read before any is rewritten: one that
- * would be refused leaves all of them as they were. */
+/* A resumed run's CSV files, each read (scan_csv, nothing written) before
+ * any is rewritten: one that would be refused leaves all of them as they
+ * were. */
 static int check_run_csvs(const outputs *out, const sph_case *c, double t_keep, sph_error *err) {
   for (int what = 0; what < 3; what++) {
     if ((what == 1 && !c->n_gauges) || (what == 2 && !c->n_probes)) continue;
-    int kept;
-    if (!run_csv(out, c, what, t_keep, &kept, 1, err)) return -1;
+    char path[4096];
+    run_csv_path(out, what, path, sizeof path);
+    FILE *old = fopen(path, "r");
+    if (!old) continue; /* none: nothing to lose */
+    char *header = csv_header(c, what);
+    int kept, rc = header ? scan_csv(old, path, header, t_keep, NULL, &kept, err)
+                          : sph_error_set(err, "out of memory");
+    free(header);
+    fclose(old);
+    if (rc) return -1;
   }
   return 0;
 }
