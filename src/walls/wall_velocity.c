@@ -19,11 +19,14 @@
  * a field's linear fit (its value and its gradient). */
 #define SPH_FIT_MAX SPH_DIM
 #define FIT_N (SPH_DIM + 1)
+/* The values a packed slot holds: the coordinates and h. */
+#define PACK (SPH_DIM + 1)
 
 void sph_wall_velocity_work_free(sph_wall_velocity_work *w) {
   free(w->start);
   free(w->idx);
   free(w->key);
+  free(w->pack);
   *w = (sph_wall_velocity_work){0};
 }
 
@@ -32,6 +35,7 @@ void sph_wall_velocity_work_free(sph_wall_velocity_work *w) {
  * numbered with x fastest, then y (then z). */
 typedef struct layout {
   double o[SPH_DIM], c[SPH_DIM], period;
+  double support; /* no particle farther than this from a point counts in its fit */
   long n[SPH_DIM];
   int paxis;
 } layout;
@@ -71,6 +75,18 @@ static int cells_near(const layout *g, int a, double x, long cells[3]) {
   for (long c = c0 - 1; c <= c0 + 1; c++)
     if (c >= 0 && c < n) cells[nc++] = c;
   return nc;
+}
+
+/* The squared distance along axis a from the coordinate x to cell c, less
+ * 1e-9 of a cell's width for round-off (a particle binned to a cell lies
+ * inside it to round-off); 0 along the periodic axis, whose cells are
+ * reached through the period. */
+static double cell_gap2(const layout *g, int a, double x, long c) {
+  if (a == g->paxis && g->period > 0.0) return 0.0;
+  const double lo = g->o[a] + (double)c * g->c[a], hi = lo + g->c[a];
+  double gap = x < lo ? lo - x : x > hi ? x - hi : 0.0;
+  gap -= 1e-9 * g->c[a];
+  return gap > 0.0 ? gap * gap : 0.0;
 }
 
 /* The linear fit's solution from its moments: A (the symmetric moment
@@ -123,13 +139,20 @@ static void solve_fit(const double A[FIT_N][FIT_N], const double b[SPH_FIT_MAX][
  * values set by the caller) is raised to the largest value of each field
  * among those particles. Returns 0 when no fluid particle reaches the
  * point, else 1. */
-static int fit_at(const sph_particles *p, const layout *g, const sph_wall_velocity_work *w,
-                  const double x[SPH_DIM], const double *const *f, int nf, double *fit,
-                  double *fmax) {
+static int fit_at(const layout *g, const sph_wall_velocity_work *w, const double x[SPH_DIM],
+                  const double *const *f, int nf, double *fit, double *fmax) {
   long cells[SPH_DIM][3];
   int nc[3] = {1, 1, 1};
   for (int a = SPH_DIM - 1; a >= 0; a--) /* (the order of 2-D's first reach test: y, then x) */
     if ((nc[a] = cells_near(g, a, x[a], cells[a])) == 0) return 0;
+  /* the squared gap along each axis between x and each cell: a cell whose
+   * nearest point is beyond the support holds no particle the sums below
+   * would take, so it is not visited (the same sums, in the same order) */
+  double gap2[3][3] = {{0.0}};
+  for (int a = 0; a < SPH_DIM; a++)
+    for (int k = 0; k < nc[a]; k++)
+      gap2[a][k] = cell_gap2(g, a, x[a], cells[a][k]);
+  const double s2 = g->support * g->support;
   /* linear MLS moments: A = sum W e e^T, b = sum W f e, e = (1, x_j - x), in
    * scalars (the 2-D loop's registers) */
   double sw = 0.0, a01 = 0.0, a02 = 0.0, a11 = 0.0, a12 = 0.0, a22 = 0.0;
@@ -142,20 +165,23 @@ static int fit_at(const sph_particles *p, const layout *g, const sph_wall_veloci
   for (int kz = 0; kz < nc[2]; kz++)
     for (int ky = 0; ky < nc[1]; ky++)
       for (int kx = 0; kx < nc[0]; kx++) {
+        if (gap2[0][kx] + gap2[1][ky] + gap2[2][kz] >= s2) continue;
         size_t cell = (size_t)(cells[1][ky] * g->n[0] + cells[0][kx]);
         SPH_IF3(cell += (size_t)(cells[2][kz] * g->n[0] * g->n[1]);)
         for (size_t q = w->start[cell]; q < w->start[cell + 1]; q++) {
-          const size_t j = w->idx[q];
+          const double *pq = w->pack + PACK * q;
 #if SPH_DIM == 2 /* periodic along x only */
-          const double dx = sph_grid_min_image(x[0] - p->x[j], g->period), dy = x[1] - p->y[j];
+          const double dx = sph_grid_min_image(x[0] - pq[0], g->period), dy = x[1] - pq[1];
 #else
-          const double dx = sph_grid_min_image(x[0] - p->x[j], per[0]),
-                       dy = sph_grid_min_image(x[1] - p->y[j], per[1]),
-                       dz = sph_grid_min_image(x[2] - p->z[j], per[2]);
+          const double dx = sph_grid_min_image(x[0] - pq[0], per[0]),
+                       dy = sph_grid_min_image(x[1] - pq[1], per[1]),
+                       dz = sph_grid_min_image(x[2] - pq[2], per[2]);
 #endif
-          const double r2 = SPH_NORM2(dx, dy, dz), hj = p->h[j];
+          const double r2 = SPH_NORM2(dx, dy, dz), hj = pq[SPH_DIM];
           if (r2 >= SPH_CUBIC_SUPPORT * SPH_CUBIC_SUPPORT * hj * hj) continue;
-          const double wj = sph_cubic_w(sqrt(r2), hj);
+          const size_t j = w->idx[q];
+          double wj, dwj; /* (the derivative is not used: the compiler drops it) */
+          sph_cubic_w_dw(sqrt(r2), hj, &wj, &dwj);
           const double ex = -dx, ey = -dy; /* x_j - x */
           SPH_IF3(const double ez = -dz;)
           sw += wj;
@@ -217,7 +243,7 @@ static int bin_fluid(const sph_particles *p, double support, double px0, double 
   if (nf == 0) return 1; /* no fluid: nothing to fit */
   /* cells at least `support` wide, and not many more than particles */
   double cell = support;
-  layout g = {.period = period > 0.0 ? period : 0.0, .paxis = paxis};
+  layout g = {.period = period > 0.0 ? period : 0.0, .paxis = paxis, .support = support};
   for (;;) {
     double cells = 1.0;
     for (int a = 0; a < SPH_DIM; a++) {
@@ -249,8 +275,10 @@ static int bin_fluid(const sph_particles *p, double support, double px0, double 
     uint32_t *a = realloc(w->idx, n * sizeof *a);
     if (a) w->idx = a;
     size_t *b = a ? realloc(w->key, n * sizeof *b) : NULL;
-    if (!b) return sph_error_set(err, "wall velocity: out of memory for %zu particles", n);
-    w->key = b;
+    if (b) w->key = b;
+    double *c = b ? realloc(w->pack, PACK * n * sizeof *c) : NULL;
+    if (!c) return sph_error_set(err, "wall velocity: out of memory for %zu particles", n);
+    w->pack = c;
     w->cap_n = n;
   }
   /* counting sort of the fluid particles by cell, stable */
@@ -271,6 +299,12 @@ static int bin_fluid(const sph_particles *p, double support, double px0, double 
   for (size_t c = cells; c > 0; c--)
     w->start[c] = w->start[c - 1];
   w->start[0] = 0;
+  for (size_t q = 0; q < nf; q++) { /* the candidates' coordinates in the cells' order */
+    const size_t j = w->idx[q];
+    for (int a = 0; a < SPH_DIM; a++)
+      w->pack[PACK * q + a] = p->pos[a][j];
+    w->pack[PACK * q + SPH_DIM] = p->h[j];
+  }
   *gp = g;
   return 0;
 }
@@ -298,7 +332,7 @@ int sph_wall_velocity(const sph_particles *p, double support, double px0, double
     if (!(p->flags[i] & SPH_FLAG_NO_SLIP) || p->kind[i] != SPH_KIND_WALL) continue;
     double fit[FIT_N * SPH_DIM], x[SPH_DIM];
     mirror_point(p, i, x);
-    if (fit_at(p, &g, w, x, fields, SPH_DIM, fit, NULL))
+    if (fit_at(&g, w, x, fields, SPH_DIM, fit, NULL))
       for (int a = 0; a < SPH_DIM; a++)
         gv[a][i] = 2.0 * p->vel[a][i] - fit[FIT_N * a];
   }
@@ -318,7 +352,7 @@ int sph_wall_mdbc_density(sph_particles *p, double support, double px0, double p
     if (!(p->flags[i] & SPH_FLAG_MDBC) || p->kind[i] != SPH_KIND_WALL) continue;
     double fit[FIT_N], x[SPH_DIM], top = -INFINITY, rho = rho0;
     mirror_point(p, i, x);
-    if (rc == 0 && fit_at(p, &g, w, x, fields, 1, fit, &top)) {
+    if (rc == 0 && fit_at(&g, w, x, fields, 1, fit, &top)) {
       /* the fit at the wall particle: rho_g - m . grad rho_g */
 #if SPH_DIM == 2
       rho = fit[0] - (fit[1] * p->mx[i] + fit[2] * p->my[i]);

@@ -48,6 +48,8 @@ typedef struct sph_wall_velocity_work {
   size_t *start; /* cell offsets into idx */
   uint32_t *idx; /* fluid storage indices by cell, in storage order within a cell */
   size_t *key;   /* cell of each particle (scratch) */
+  double *pack;  /* per slot of idx: the particle's coordinates and h (SPH_DIM + 1 values), so
+                    that a fit reads its candidates in a row */
   size_t cap_cells, cap_n;
 } sph_wall_velocity_work;
 
