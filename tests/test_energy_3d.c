@@ -127,10 +127,12 @@ static void test_mdbc(void) {
 #ifdef _OPENMP
   sph_diag_row two, one;
   const char *end = "time={end: 0.02, output_interval: 0.02}";
+  const int saved = omp_get_max_threads(); /* (make check runs tests on one thread) */
+  omp_set_num_threads(2);
   run_box_until("mdbc", NULL, end, &two);
   omp_set_num_threads(1);
   run_box_until("mdbc", NULL, end, &one);
-  omp_set_num_threads(2);
+  omp_set_num_threads(saved);
   CU_ASSERT(one.kinetic == two.kinetic && one.potential == two.potential &&
             one.internal == two.internal && one.momentum_x == two.momentum_x &&
             one.momentum_y == two.momentum_y && one.momentum_z == two.momentum_z &&

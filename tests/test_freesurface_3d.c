@@ -128,6 +128,10 @@ static unsigned char *flags_of(sph_particles *p, double py, int exact_only, size
  * thread give the same flags; returns the flags by id. */
 static unsigned char *detect_checked(sph_particles *p, double py, size_t *count) {
   size_t n_exact = 0;
+#ifdef _OPENMP
+  const int saved = omp_get_max_threads(); /* (make check runs tests on one thread) */
+  omp_set_num_threads(2);
+#endif
   unsigned char *f = flags_of(p, py, 0, count);
   unsigned char *e = flags_of(p, py, 1, &n_exact);
   CU_ASSERT(memcmp(f, e, p->n) == 0 && *count == n_exact);
@@ -135,7 +139,7 @@ static unsigned char *detect_checked(sph_particles *p, double py, size_t *count)
   omp_set_num_threads(1);
   size_t n1 = 0;
   unsigned char *one = flags_of(p, py, 0, &n1);
-  omp_set_num_threads(2);
+  omp_set_num_threads(saved);
   CU_ASSERT(memcmp(f, one, p->n) == 0);
   free(one);
 #endif

@@ -14,7 +14,7 @@
  * read from the kept neighbour list. Each is run
  * uninterrupted; then
  *   - restarted from snap_0002 (restart_fs: snap_0003) into a fresh
- *     directory (1 thread): every
+ *     directory (1 thread; the uninterrupted run on 2): every
  *     later snapshot equals the uninterrupted one dataset by dataset, bit
  *     for bit, restart record included, and the files are byte-identical;
  *     diagnostics.csv starts at the restart time with the same rows;
@@ -67,7 +67,8 @@ static const char *case_file(const char *name) {
  * number of snapshots. */
 static int full_run(const char *name) {
   char args[32768], out[65536];
-  snprintf(args, sizeof args, "run -q '%s' -o '%s/%s.full'", case_file(name), tmp, name);
+  snprintf(args, sizeof args, "run -q --threads 2 '%s' -o '%s/%s.full'", case_file(name), tmp,
+           name);
   CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
   int n = 0;
   for (;; n++) {

@@ -83,7 +83,7 @@ static void against_experiment(const series *s, double *rms, double *emax, int *
 
 static void test_run(void) {
   char args[8192], out[512];
-  snprintf(args, sizeof args, "run --quiet --threads 2 '%s' -o '%s/out'",
+  snprintf(args, sizeof args, "run --quiet '%s' -o '%s/out'",
            sph_test_src("cases/martin_moyce_slab_3d.yaml"), dir);
   CU_ASSERT_FATAL(sph_test_sph_ok(args, dir, out, sizeof out) == 0);
   run_ok = 1;

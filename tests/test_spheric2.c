@@ -50,7 +50,7 @@ static double get(const char *name, int which) {
 static void test_run(void) {
   char args[8192], out[512];
   snprintf(args, sizeof args,
-           "run --quiet --threads 2 '%s' --set numerics.dx=0.04 --set time.end=0.8 --set "
+           "run --quiet '%s' --set numerics.dx=0.04 --set time.end=0.8 --set "
            "output.snapshots=false -o '%s/out'",
            sph_test_src("cases/spheric_test2.yaml"), dir);
   CU_ASSERT_FATAL(sph_test_sph_ok(args, dir, out, sizeof out) == 0);
