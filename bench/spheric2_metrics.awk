@@ -105,8 +105,9 @@ END {
   printf "rise_P3 %.4f %.4f %+.4f\n", a, b, a - b
   for (k = 1; k <= 3; k += 2) {
     ra = first_above(st, sv, ns, "P" k "_low_pass", 1000, tmax); rb = first_above(et, ev, ne, "P" k, 1000, tmax)
-    a = ra > 0 ? impulse(st, sv, ns, "P" k "_low_pass", ra) : 0; b = impulse(et, ev, ne, "P" k, rb)
-    printf "impulse_P%d %.1f %.1f %+.1f\n", k, a, b, 100 * (a - b) / b
+    a = ra > 0 ? impulse(st, sv, ns, "P" k "_low_pass", ra) : 0
+    if (rb > 0) { b = impulse(et, ev, ne, "P" k, rb); printf "impulse_P%d %.1f %.1f %+.1f\n", k, a, b, 100 * (a - b) / b }
+    else printf "impulse_P%d %.1f - -\n", k, a # (the measurement has not risen by tmax)
   }
   lt = 1e30; le = 1e30
   for (k = 5; k <= 8; k++) {
