@@ -1106,7 +1106,7 @@ static void test_integrators(void) {
         sph_pc_half(&p, 1e-3, 1, &eos, cost);
         sph_pc_finish(&p, 1e-3, 1, &eos, cost);
       } else {
-        sph_leapfrog_step(&p, 1e-3, step == 0, scheme == 2, &eos, cost);
+        sph_leapfrog_step(&p, 1e-3, 1e-3, step == 0, scheme == 2, &eos, cost);
       }
     for (int d = 0; d < 3; d++) {
       CU_ASSERT_EQUAL(p.pos[d][0], p.pos[2 - d][1]);

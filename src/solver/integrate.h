@@ -35,12 +35,15 @@ void sph_pc_finish(sph_particles *p, double dt, int xsph, const sph_eos *eos, co
  * = (v, rho)^{n-1/2}, and the values at t^n predicted from them,
  * (v, rho)^n = (v, rho)^{n-1/2} + dt/2 (dv, drho)/dt^{n-1}, at which the
  * rates are evaluated. After the rates at t^n are known:
- *   (v, rho)^{n+1/2} = (v, rho)^{n-1/2} + dt (dv, drho)/dt^n   (first step:
- *                      (v, rho)^0 + dt/2 (dv, drho)/dt^0)
+ *   (v, rho)^{n+1/2} = (v, rho)^{n-1/2} + (dt_prev + dt)/2 (dv, drho)/dt^n
+ *                      (first step: (v, rho)^0 + dt/2 (dv, drho)/dt^0)
  *   x^{n+1} = x^n + dt (v^{n+1/2} + XSPH correction)
- *   (v, rho)^{n+1} predicted = (v, rho)^{n+1/2} + dt/2 (dv, drho)/dt^n. */
-void sph_leapfrog_step(sph_particles *p, double dt, int first, int xsph, const sph_eos *eos,
-                       const size_t *cost);
+ *   (v, rho)^{n+1} predicted = (v, rho)^{n+1/2} + dt/2 (dv, drho)/dt^n,
+ * dt = t^{n+1} - t^n and dt_prev = t^n - t^{n-1}: with a step that changes
+ * (the CFL rule, a step landing on an output time) the kick is the
+ * velocity Verlet's half of each, and the scheme stays second order. */
+void sph_leapfrog_step(sph_particles *p, double dt, double dt_prev, int first, int xsph,
+                       const sph_eos *eos, const size_t *cost);
 
 /* Paper B §2.6: dt = min_a factor h / (c_a + sigma_a), from the maximum of
  * c_a + sigma_a that the last interaction pass found (w->cs_sigma_max). */

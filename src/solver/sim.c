@@ -484,7 +484,7 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
                     s->t);
     /* the rates of t^n drive the whole step: so do the ledger's powers */
     sph_ledger_advance(&s->ledger, dt);
-    sph_leapfrog_step(&s->p, dt, s->first_step, xsph, &s->fp.eos, slices(s));
+    sph_leapfrog_step(&s->p, dt, s->last_dt, s->first_step, xsph, &s->fp.eos, slices(s));
     s->first_step = 0;
     sph_sim_move_walls(s, t_new);
     keep_off_mirrors(s, 1);
