@@ -175,7 +175,7 @@ static void test_minimal_defaults(void) {
   CU_ASSERT_EQUAL(c.h_factor, 2.0);
   CU_ASSERT_EQUAL(c.h, 2.0 * 0.01);
   CU_ASSERT_EQUAL(c.kernel, SPH_KERNEL_WENDLAND_C2);
-  CU_ASSERT_EQUAL(c.integrator, SPH_INTEGRATOR_PREDICTOR_CORRECTOR);
+  CU_ASSERT_EQUAL(c.integrator, SPH_INTEGRATOR_LEAPFROG);
   CU_ASSERT_EQUAL(c.dt_rule, SPH_DT_CFL);
   CU_ASSERT_EQUAL(c.dt_factor, 0.3);
   CU_ASSERT_EQUAL(c.dt_fixed, 0.0);
@@ -984,7 +984,7 @@ static const char MINIMAL_DESCRIPTION[] = "name: mini\n"
                                           "numerics.h: 0.02\n"
                                           "numerics.smoothing_length: constant\n"
                                           "numerics.kernel: wendland_c2\n"
-                                          "numerics.integrator: predictor_corrector\n"
+                                          "numerics.integrator: leapfrog\n"
                                           "numerics.time_step.rule: cfl\n"
                                           "numerics.time_step.factor: 0.29999999999999999\n"
                                           "numerics.density_filter.kind: none\n"

@@ -3,7 +3,7 @@
  * test_restart.c - `sph run --restart SNAPSHOT CASE` continues a run
  * bitwise.
  *
- * Four small cases (tests/data/restart_*.yaml) between them switch on
+ * Small cases (tests/data/restart_*.yaml) between them switch on
  * what a restart must carry over: the predictor-corrector and the
  * leap-frog (half-step values, first step), the paper B, CFL and fixed
  * step rules, an MLS and a Shepard filter (step counter), a moving gate
@@ -11,7 +11,8 @@
  * viscosity, dynamic, repulsive and mirror walls, periodic x, particle
  * shifting, the energy ledger (its integrals, shifting's drift among them), wave gauges (their
  * levels at t = 0), the pressure probes' low-pass filters (their outputs) and free-surface flags
- * read from the kept neighbour list. Each is run
+ * read from the kept neighbour list; restart_default is the default scheme as shipped (the
+ * leap-frog with a step that changes, Adami walls). Each is run
  * uninterrupted; then
  *   - restarted from snap_0002 (restart_fs: snap_0003) into a fresh
  *     directory (1 thread; the uninterrupted run on 2): every
@@ -148,6 +149,7 @@ static void test_mirror_fresh(void) { restart_fresh("restart_mirror", 2); }
 static void test_lf_from_start(void) { restart_fresh("restart_lf", 0); }
 static void test_fs_fresh(void) { restart_fresh("restart_fs", 3); }
 static void test_adami_fresh(void) { restart_fresh("restart_adami", 2); }
+static void test_default_fresh(void) { restart_fresh("restart_default", 2); }
 
 /* Restart in a copy of the run's own directory (which holds the later
  * snapshots and rows already): the end result is byte for byte the
@@ -430,6 +432,7 @@ int main(void) {
       {"leap-frog: restart from t = 0 is bitwise", test_lf_from_start},
       {"free-surface flags on the kept list: restart is bitwise", test_fs_fresh},
       {"adami walls, a moving one, the ledger: restart is bitwise", test_adami_fresh},
+      {"the default scheme (leap-frog, changing step): restart is bitwise", test_default_fresh},
       {"restart in the run's directory: CSV and XDMF as uninterrupted", test_pc_in_place},
       {"mirror, periodic: restart in place, headers of an earlier version", test_mirror_in_place},
       {"restart in place: CRLF line ends read, rows kept", test_crlf_in_place},

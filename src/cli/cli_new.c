@@ -66,7 +66,7 @@ static const char *const TEMPLATE =
     "  smoothing_length: constant # constant (default), variable\n"
     "  # kernel: wendland_c2      # cubic_spline, wendland_c2 (scheme: wendland_c2; the others\n"
     "                             # cubic_spline)\n"
-    "  integrator: predictor_corrector  # predictor_corrector (default), leapfrog\n"
+    "  # integrator: leapfrog     # predictor_corrector, leapfrog (scheme: leapfrog)\n"
     "  time_step:\n"
     "    # rule: cfl              # cfl, paper_b, fixed (scheme: cfl; the others paper_b)\n"
     "    factor: 0.3              # (0, 1] (default 0.3); unused by fixed\n"
