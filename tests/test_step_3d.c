@@ -98,6 +98,11 @@ static double smallest_step(const char *rule) {
     if (row.dt < smallest) smallest = row.dt;
     if (smallest < 1e-4 * dt0) break; /* collapsed: what the test asks is known */
   }
+  /* the run's own record of its steps: the first, and the smallest the rule chose */
+  double first, least, t_least;
+  CU_ASSERT(sph_sim_step_range(s, &first, &least, &t_least) == 1);
+  CU_ASSERT_EQUAL(first, dt0);
+  if (smallest > 0.0) CU_ASSERT_EQUAL(least, fmin(dt0, smallest));
   sph_sim_free(s);
   sph_case_free(&c);
   return smallest / dt0;

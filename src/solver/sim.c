@@ -467,6 +467,8 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   /* (a restart counts afresh: the count decides only whether the run stops) */
   s->below_floor = dt < SPH_DT_FLOOR * acoustic ? s->below_floor + 1 : 0;
   if (s->below_floor >= SPH_DT_FLOOR_STEPS) return step_collapse(s, dt, acoustic, err);
+  if (!(s->dt_first > 0.0)) s->dt_first = s->dt_smallest = dt, s->t_smallest = s->t;
+  if (dt < s->dt_smallest) s->dt_smallest = dt, s->t_smallest = s->t;
   int land = 0;
   if (s->t + dt >= t_target) {
     dt = t_target - s->t;
@@ -517,6 +519,13 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
 
 double sph_sim_time(const sph_sim *s) { return s->t; }
 long sph_sim_steps(const sph_sim *s) { return s->steps; }
+int sph_sim_step_range(const sph_sim *s, double *first, double *smallest, double *t) {
+  if (!(s->dt_first > 0.0)) return 0;
+  *first = s->dt_first;
+  *smallest = s->dt_smallest;
+  *t = s->t_smallest;
+  return 1;
+}
 const sph_case *sph_sim_case(const sph_sim *s) { return s->c; }
 const char *sph_sim_loop(const sph_sim *s, double *ratio) {
   *ratio = s->lane_ratio;

@@ -48,6 +48,10 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err);
 
 double sph_sim_time(const sph_sim *s);
 long sph_sim_steps(const sph_sim *s);
+/* The steps of this run (since sph_sim_create or the restore) as the step rule chose them, steps
+ * cut short to land on an output time left out: the first, the smallest and the time t at which
+ * the smallest began. Returns 0 (and leaves the outputs alone) before the first such step. */
+int sph_sim_step_range(const sph_sim *s, double *first, double *smallest, double *t);
 const sph_case *sph_sim_case(const sph_sim *s);
 /* The particles (storage order changes at every step; use id for identity). */
 sph_particles *sph_sim_particles(sph_sim *s);

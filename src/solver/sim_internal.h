@@ -55,7 +55,10 @@ struct sph_sim {
   double t_saved;    /* time of the state saved at the start of the last step */
   long step_pass;    /* step of the state the last pass evaluated (w->hot) */
   long steps;
-  long below_floor;           /* steps in a row whose step was below the floor (sim.c) */
+  long below_floor; /* steps in a row whose step was below the floor (sim.c) */
+  /* this run's steps as its rule chose them (steps cut to land on an output time left out):
+   * the first, the smallest and the time it began at (sph_sim_step_range) */
+  double dt_first, dt_smallest, t_smallest;
   double floor_y;             /* the floor's height (y; z in 3-D) */
   double domain[2 * SPH_DIM]; /* x0, x1, y0, y1 (, z0, z1): leaving it is a blow-up */
   double view[2 * SPH_DIM];
