@@ -19,8 +19,9 @@
  * makes the wall's reading quiet: bench/results/validation.md), the acoustic step rule
  * h / (c + |v|) (paper B's rule adds h |v_ij . r_ij| / r_ij^2, the artificial viscosity's, which
  * for two particles meeting head on without it shrinks the step geometrically: the 3-D
- * collapse), paper A's leap-frog (one pass a step instead of the predictor-corrector's two: the
- * same verdicts against every experiment at 0.55-0.58 of the CPU time), Adami walls (AHA12). */
+ * collapse), paper A's leap-frog (one pass a step instead of the predictor-corrector's two, at
+ * 0.55-0.6 of the CPU time; against the experiments the same verdicts but two, doc/method.md,
+ * Schemes), Adami walls (AHA12). */
 static const sph_preset_key riemann[SPH_PRESET_KEYS] = {
     {"physics.riemann", "{limiter: 3}", NULL},
     {"physics.artificial_viscosity.alpha", "0", NULL},

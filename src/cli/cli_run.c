@@ -366,11 +366,12 @@ static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
   const double wall = sph_wall_seconds() - w0;
   sph_progress_done(&pc.bar);
   const int status = report_end(&r, s, &err, a->outdir);
-  double dt_first, dt_min, t_min;
-  if (!a->quiet && status != 1 && sph_sim_step_range(s, &dt_first, &dt_min, &t_min))
-    printf("  steps: the first %.3g s, the smallest %.3g s (%.3g of the first) at t = %.9g s\n",
-           dt_first, dt_min, dt_min / dt_first, t_min);
   if (!a->quiet && status != 1) {
+    /* the steps the rule chose (sph_sim_step_range), then the closing line */
+    double dt_first, dt_min, t_min;
+    if (sph_sim_step_range(s, &dt_first, &dt_min, &t_min))
+      printf("  steps: the first %.3g s, the smallest %.3g s (%.3g of the first) at t = %.9g s\n",
+             dt_first, dt_min, dt_min / dt_first, t_min);
     /* the rate of this run's own steps (a restart's began at steps0) */
     const double n = (double)sph_sim_particles((sph_sim *)s)->n;
     const long mine = r.steps - steps0;
