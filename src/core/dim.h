@@ -5,8 +5,8 @@
  * The solver is written for SPH_DIM dimensions and compiled once per
  * dimension (as SWIFT's dimension.h fixes it at configure time), so loops
  * over the axes unroll and a 2-D build pays nothing for a third axis. The
- * 2-D build is the library sph runs; the 3-D build (src/libsph3.la) holds
- * the sources made dimension-neutral so far (doc/dimensions.md).
+ * 2-D build is libsph, the 3-D build libsph3 (doc/dimensions.md); both
+ * are installed, each with its own header folder.
  *
  *   SPH_DIM    2 (or 3)
  *   SPH_SYM    the independent components of a symmetric tensor: 3 in 2-D
@@ -15,6 +15,18 @@
 #ifndef SPH_DIM_H
 #define SPH_DIM_H
 
+/* SPH_LIBRARY_DIM: 0 in the source tree, where the build chooses SPH_DIM
+ * (2 unless told); in an installed header folder, that library's dimension
+ * (make install writes it: 2 in include/sph, 3 in include/sph3), so an
+ * includer cannot give the headers another layout than the library's. */
+#define SPH_LIBRARY_DIM 0
+#if SPH_LIBRARY_DIM
+#if defined(SPH_DIM) && SPH_DIM != SPH_LIBRARY_DIM
+#error "SPH_DIM differs from the dimension of the library these headers belong to"
+#endif
+#undef SPH_DIM
+#define SPH_DIM SPH_LIBRARY_DIM
+#endif
 #ifndef SPH_DIM
 #define SPH_DIM 2
 #endif

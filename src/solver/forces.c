@@ -1,16 +1,18 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * forces.c - the interaction passes (see forces.h for the equations): the
- * per-pass set-up, the strain-rate pass, the main pass's variants and
- * its dispatch (the Lennard-Jones wall force is src/walls/repulsion.c).
+ * per-pass set-up, the strain-rate pass and the main pass's dispatch (the
+ * Lennard-Jones wall force is src/walls/repulsion.c).
  *
  * The physics of a pair is written once, in src/physics/pair_terms.h; the
  * loops that sum it over a neighbour row are in src/solver/interact.h (the
- * scalar loop and the lane loops). Here each loop is instantiated for the
- * term sets the shipped cases run, for the combinations of the terms that
- * weigh most, and once with every term read at run time (interact.h,
- * LANE_LOOPS: DESIGN rule 4, a shipped case pays only for what it
- * switches on), each its Fc a literal inside its parallel region. Particles are
+ * scalar loop and the lane loops). Each loop is instantiated, a translation
+ * unit per flavour (loops.h: loops_scalar.c, loops_lanes.c, loops_avx2.c,
+ * loops_avx512.c), for the term sets the shipped cases run, for the
+ * combinations of the terms that weigh most, and once with every term read
+ * at run time (interact.h, LANE_LOOPS: DESIGN rule 4, a shipped case pays
+ * only for what it switches on), each its Fc a literal inside its parallel
+ * region; here the pass picks one. Particles are
  * processed in parallel, each writing only its own rates, so results are
  * bitwise independent of the thread count, the schedule and the age of
  * the list.
@@ -50,11 +52,8 @@
 #include "physics/turbulence.h"
 #include "solver/diffusion.h"
 #include "solver/interact.h"
+#include "solver/loops.h"
 #include "walls/repulsion.h"
-
-/* Rows per stolen chunk of the interaction loop: a few microseconds of
- * work, so a thread waits at most that long at the end of a pass. */
-#define SPH_STEAL_GRAIN 32
 
 void sph_force_work_free(sph_force_work *w) {
   free(w->block);
@@ -310,79 +309,15 @@ int sph_forces_strain_rate(const sph_particles *p, const sph_grid *g, const sph_
   return rc;
 }
 
-/* One particle of the main pass in a flavour. */
-#define PARTICLE_v1(p, l, fp, w, i, k) interact_v1(p, l, fp, w, i, k)
-#define PARTICLE_v4e(p, l, fp, w, i, k) interact_v4e(p, l, fp, w, i, k)
-#define PARTICLE_v4x(p, l, fp, w, i, k) interact_v4x(p, l, fp, w, i, k)
-#define PARTICLE_v8z(p, l, fp, w, i, k) interact_v8z(p, l, fp, w, i, k)
-
-/* One function per flavour and loop Fc (interact.h: LANE_LOOPS,
- * SCALAR_LOOPS, PORTABLE_LOOPS), Fc a literal in its parallel region (see
- * STRAIN_VARIANT). */
-#define VARIANT_FL(NAME, FL, ATTR, Fc)                                                             \
-  ATTR void NAME(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,                 \
-                 sph_force_work *w) {                                                              \
-    const long n = (long)p->n;                                                                     \
-    double mx = 0.0; /* max of cs + sigma: exact in any order */                                   \
-    _Pragma("omp parallel if (n > SPH_OMP_MIN) reduction(max : mx)") {                             \
-      size_t lo, hi; /* slices of equal cost, with stealing (parallel.h) */                        \
-      while (sph_steal_next(&w->steal, SPH_STEAL_GRAIN, &lo, &hi))                                 \
-        for (size_t i = lo; i < hi; i++) {                                                         \
-          const double sg = PARTICLE_##FL(p, l, fp, w, i, (Fc));                                   \
-          if (w->keep_sigma) w->sigma[i] = sg; /* the tests' */                                    \
-          const double c = w->hot[i].cs + sg;                                                      \
-          if (c > mx) mx = c;                                                                      \
-        }                                                                                          \
-    }                                                                                              \
-    sph_steal_learn(&w->steal);                                                                    \
-    w->cs_sigma_max = mx;                                                                          \
-  }
-
-#define AVX2_ATTR static __attribute__((target("avx2")))
-#define AVX512_ATTR static __attribute__((target("avx512f")))
-#define VARIANT_S(k, Fc) VARIANT_FL(interact_scalar_##k, v1, static, Fc)
-#define VARIANT_V4E(k, Fc) VARIANT_FL(interact_all_##k, v4e, static, Fc)
-#define VARIANT_V4X(k, Fc) VARIANT_FL(interact_avx_##k, v4x, AVX2_ATTR, Fc)
-#define VARIANT_V8Z(k, Fc) VARIANT_FL(interact_avx512_##k, v8z, AVX512_ATTR, Fc)
-SCALAR_LOOPS(VARIANT_S)
-PORTABLE_LOOPS(VARIANT_V4E)
-#ifdef SPH_LANES_AVX
-LANE_LOOPS(VARIANT_V4X)
-#endif
-#ifdef SPH_LANES_AVX512
-LANE_LOOPS(VARIANT_V8Z)
-#endif
-
-/* Each flavour's loops by their Fc. */
-typedef void (*interact_fn)(sph_particles *, const sph_nlist *, const sph_force_params *,
-                            sph_force_work *);
-typedef struct variant {
-  unsigned fc; /* the loop's Fc (interact.h) */
-  interact_fn fn;
-} variant;
-#define ENTRY_S(k, Fc) {(Fc), interact_scalar_##k},
-#define ENTRY_V4E(k, Fc) {(Fc), interact_all_##k},
-#define ENTRY_V4X(k, Fc) {(Fc), interact_avx_##k},
-#define ENTRY_V8Z(k, Fc) {(Fc), interact_avx512_##k},
-static const variant TABLE_SCALAR[] = {SCALAR_LOOPS(ENTRY_S)};
-static const variant TABLE_V4E[] = {PORTABLE_LOOPS(ENTRY_V4E)};
-#ifdef SPH_LANES_AVX
-static const variant TABLE_V4X[] = {LANE_LOOPS(ENTRY_V4X)};
-#endif
-#ifdef SPH_LANES_AVX512
-static const variant TABLE_V8Z[] = {LANE_LOOPS(ENTRY_V8Z)};
-#endif
-#define FIND(table, F, runtime) find_variant(table, sizeof table / sizeof table[0], F, runtime)
-
 /* The loop of a table for the term set F (interact.h): the one compiled
  * for F, else F's axes loop, else the run-time loop for F's per-particle
  * h; with `runtime` set, the first is skipped (the tests compare it with
  * the others). NULL if the table has none of them. */
-static interact_fn find_variant(const variant *t, size_t n, unsigned F, int runtime) {
+static sph_loop_fn find_variant(const sph_loop_table *t, unsigned F, int runtime) {
   const unsigned want[3] = {F, F_RUNTIME | F_AXES_FIXED | (F & F_AXES), F_RUNTIME | (F & F_VARH)};
   for (int w = runtime ? 1 : 0; w < 3; w++)
-    for (size_t k = 0; k < n; k++)
-      if (t[k].fc == want[w]) return t[k].fn;
+    for (size_t k = 0; k < t->n; k++)
+      if (t->entry[k].fc == want[w]) return t->entry[k].fn;
   return NULL;
 }
 
@@ -429,14 +364,14 @@ static lane_flavour flavour_of(sph_force_loop loop) {
 
 /* The variant of a lane loop that can run here for the term set F (NULL:
  * none), from its flavour's table (find_variant). */
-static interact_fn lane_variant(sph_force_loop loop, unsigned F, int runtime) {
+static sph_loop_fn lane_variant(sph_force_loop loop, unsigned F, int runtime) {
   switch (flavour_of(loop)) {
-  case FLAVOUR_V4E: return FIND(TABLE_V4E, F, runtime);
+  case FLAVOUR_V4E: return find_variant(&sph_loops_lanes, F, runtime);
 #ifdef SPH_LANES_AVX
-  case FLAVOUR_V4X: return FIND(TABLE_V4X, F, runtime);
+  case FLAVOUR_V4X: return find_variant(&sph_loops_avx2, F, runtime);
 #endif
 #ifdef SPH_LANES_AVX512
-  case FLAVOUR_V8Z: return FIND(TABLE_V8Z, F, runtime);
+  case FLAVOUR_V8Z: return find_variant(&sph_loops_avx512, F, runtime);
 #endif
   default: return NULL;
   }
@@ -458,10 +393,10 @@ const char *sph_force_loop_name(const sph_force_params *fp) {
  * the scalar loop for per-particle h, and every loop for mirror particles
  * (`scalar`); `runtime` asks for the flavour's run-time loop even where F
  * has a loop of its own. NULL if that loop cannot run here. */
-static interact_fn pick_variant(unsigned F, sph_force_loop loop, int scalar, int runtime) {
+static sph_loop_fn pick_variant(unsigned F, sph_force_loop loop, int scalar, int runtime) {
   if (!sph_force_loop_available(loop)) return NULL;
   if (scalar || loop == SPH_LOOP_SCALAR || (F & F_SCALAR_ONLY))
-    return FIND(TABLE_SCALAR, F, runtime);
+    return find_variant(&sph_loops_scalar, F, runtime);
   return lane_variant(loop, F, runtime);
 }
 
@@ -679,7 +614,7 @@ static void check_rates(const sph_particles *p, const sph_force_work *w, unsigne
 int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                         sph_force_work *w, sph_error *err) {
   const unsigned F = sph_interact_terms(fp);
-  const interact_fn run = pick_variant(F, fp->loop, fp->mirror, fp->runtime_terms);
+  const sph_loop_fn run = pick_variant(F, fp->loop, fp->mirror, fp->runtime_terms);
   if (!run) return sph_error_set(err, "forces: the interaction loop asked for cannot run here");
   if (prepare_pass(p, l, fp, w, F, err)) return -1;
   w->terms = F;
