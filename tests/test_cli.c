@@ -564,6 +564,39 @@ static void test_face_3d(void) {
   CU_ASSERT(strstr(out, "# first vertical: not reached") != NULL); /* still water: no face */
 }
 
+/* sph profile on a 3-D snapshot measures heights along z: water 0.06 m
+ * deep (six layers, 0.1 m across y) at rest under a body force along x
+ * reads, against v(z) = (g/nu)(L - z/2) z with L = 0.06 m, max = the top
+ * layer's v / v_max (99.31 %) and L2 = the RMS over the layers; heights
+ * along y (0.1 m of them) would give 99.75 % and another L2. */
+static void test_profile_3d(void) {
+  char out[65536], args[8192];
+  snprintf(args, sizeof args,
+           "run -q '%s' -o '%s/profile3' --set time.end=0.001 --set time.output_interval=0.001 "
+           "--set output.probe_interval=0.001 --set 'physics.gravity=[1.0e-4, 0, 0]' "
+           "--set physics.viscosity.model=morris --set physics.viscosity.mu=1.0e-3 "
+           "--set 'geometry.fluid=[{x: [0, 0.2], y: [0, 0.1], z: [0, 0.06]}]'",
+           sph_test_src("cases/hydrostatic_3d.yaml"), tmp);
+  CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
+  snprintf(args, sizeof args, "profile '%s/profile3/snap_0000.h5'", tmp);
+  CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
+  const double L = 0.06, dz = 0.01;
+  double want_max = 0.0, sum = 0.0;
+  for (int k = 0; k < 6; k++) {
+    const double z = (k + 0.5) * dz, f = (2.0 * L - z) * z / (L * L);
+    want_max = fmax(want_max, f);
+    sum += f * f;
+  }
+  double t = -1, emax = 0, el2 = 0;
+  const char *line = strstr(out, "\n0 ");
+  CU_ASSERT_FATAL(line != NULL);
+  CU_ASSERT_EQUAL(sscanf(line + 1, "%lf %lf %lf", &t, &emax, &el2), 3);
+  if (!(fabs(emax - 100.0 * want_max) < 1e-6 && fabs(el2 - 100.0 * sqrt(sum / 6)) < 1e-6))
+    printf("\n  want %.9g %.9g: %s\n", 100.0 * want_max, 100.0 * sqrt(sum / 6), out);
+  CU_ASSERT(fabs(emax - 100.0 * want_max) < 1e-6);
+  CU_ASSERT(fabs(el2 - 100.0 * sqrt(sum / 6)) < 1e-6);
+}
+
 /* 3-D messages give every component (issue 61, E12): a probe below the
  * domain is outside its z range, a blow-up names z and vz. */
 static void test_messages_3d(void) {
@@ -682,6 +715,7 @@ int main(void) {
       {"a case read once: FIFO, /dev/stdin, a pipe, 2-D and 3-D", test_case_read_once},
       {"a fluid block through a box obstacle: its inside stays dry", test_fluid_through_obstacle},
       {"sph face on a 3-D snapshot: heights along z", test_face_3d},
+      {"sph profile on a 3-D snapshot: heights along z", test_profile_3d},
       {"a case far from the origin: the same particles; too far: refused", test_far_from_origin},
       {"3-D messages in three components", test_messages_3d},
       {"a signal during the hand-over to sph-3d is not lost", test_signal_in_hand_over},

@@ -28,7 +28,7 @@ long sph_film_error(const sph_particles *p, double g, double nu, double L, doubl
   double emax = 0.0, sum = 0.0, carry = 0.0;
   for (size_t i = 0; i < p->n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
-    const double e = p->vx[i] - sph_film_profile(p->y[i] - y0, g, nu, L);
+    const double e = p->vx[i] - sph_film_profile(p->pos[SPH_UP][i] - y0, g, nu, L);
     const double ae = fabs(e);
     if (!(ae <= emax) && !isnan(emax)) emax = ae; /* a NaN, once seen, stays */
     const double e2 = e * e, t = sum + e2;

@@ -28,7 +28,8 @@ extern "C" {
 double sph_film_profile(double y, double g, double nu, double L);
 
 /* The two error norms above over the fluid particles of p, with y measured
- * from the bed at y0 (y_i = p->y[i] - y0). Returns the number of fluid
+ * from the bed at y0 along the vertical axis (y_i = p->y[i] - y0 in 2-D,
+ * p->z[i] - y0 in 3-D: SPH_UP). Returns the number of fluid
  * particles used (> 0), or -1 (outputs untouched) if there is none or g,
  * nu or L is not a positive finite number. The sums run in storage order
  * with compensation, so the result does not depend on the order beyond the

@@ -10,7 +10,8 @@
  * parsed again with sph_case_parse, so the physics is exactly the run's:
  *   g  = the body force along x (physics.body_force[0], g sin(alpha)),
  *   nu = mu / rho0 (physics.viscosity.mu, physics.rho0),
- *   L  = the height of the (single) fluid block, y0 = its bottom (the bed).
+ *   L  = the height of the (single) fluid block, y0 = its bottom (the bed),
+ *        heights along the vertical axis: y in 2-D, z in 3-D.
  * Then, over the fluid particles of the snapshot (analytic.h),
  *   max  = 100 max_i |vx_i - v(y_i - y0)| / v_max,
  *   L2   = 100 sqrt(mean_i (vx_i - v(y_i - y0))^2) / v_max,
@@ -47,6 +48,7 @@ static const char USAGE[] =
     "over the N fluid particles i (y_i measured from the bed):\n"
     "  max = 100 max_i |vx_i - v(y_i)| / v_max\n"
     "  L2  = 100 sqrt( sum_i (vx_i - v(y_i))^2 / N ) / v_max\n"
+    "Heights are y in 2-D and z in 3-D (the vertical axis).\n"
     "Exit status: 0 all measured, 1 a file failed, 2 usage error.\n";
 
 /* g, nu, L and y0 of the case stored in s; 0, or -1 with err. */
@@ -68,8 +70,13 @@ static int film_parameters(const sph_snapshot *s, double *g, double *nu, double 
   if (rc == 0) {
     *g = c.gravity[0];
     *nu = c.mu / c.rho0;
+#if SPH_DIM == 2
     *y0 = c.fluid[0].y0;
     *L = c.fluid[0].y1 - c.fluid[0].y0;
+#else /* the vertical axis is z (doc/dimensions.md) */
+    *y0 = c.fluid[0].z0;
+    *L = c.fluid[0].z1 - c.fluid[0].z0;
+#endif
   }
   sph_case_free(&c);
   return rc;
