@@ -1,9 +1,11 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
- * obstacles.h - the boxes of a 3-D snapshot's obstacles (the case's
- * `geometry.obstacles`, each x, y and z a range), read from the
- * snapshot's `parameters` listing, and as a lit mesh of their faces for a
- * 3-D view (scene3d.h); the tank's box from the same listing.
+ * obstacles.h - the boxes of a 3-D snapshot's obstacles as a lit mesh of
+ * their faces for a 3-D view (scene3d.h). A snapshot records them in its
+ * group /geometry (io/snapshot_geometry.h); for snapshots written before
+ * it, robstacles_parse and robstacles_tank read the boxes (the case's
+ * `geometry.obstacles`, each x, y and z a range) and the tank's box from
+ * the snapshot's `parameters` listing.
  */
 #ifndef SPH_RENDER_OBSTACLES_H
 #define SPH_RENDER_OBSTACLES_H

@@ -301,14 +301,32 @@ static int plan_range_and_view(plan *p, double view[4], sph_error *err) {
 
 /* The obstacles' boxes of the first snapshot (the case's; they do not
  * move), as a light grey mesh drawn in every 3-D view, and the tank's
- * inner faces, whose edges are drawn. */
+ * inner faces, whose edges are drawn: from the snapshot's /geometry, or
+ * in a snapshot written before it existed from its parameter listing. */
 static int plan_obstacles(plan *p, sph_error *err) {
   sph_snapshot *s = NULL;
   if (sph_snapshot_open_any(p->task[0].path[0], &s, err) != 0) return -1;
   double box[ROBSTACLES_MAX][6];
-  const char *parameters = sph_snapshot_text(s, "parameters");
-  const int n = robstacles_parse(parameters, box, ROBSTACLES_MAX);
-  if (robstacles_tank(parameters, p->tank) != 0) p->tank[0] = NAN;
+  int n = 0;
+  sph_snapshot_geometry geo;
+  const int old = sph_snapshot_read_geometry(s, &geo, err);
+  if (old < 0) {
+    sph_snapshot_close(s);
+    return -1;
+  }
+  if (old) {
+    const char *parameters = sph_snapshot_text(s, "parameters");
+    n = robstacles_parse(parameters, box, ROBSTACLES_MAX);
+    if (robstacles_tank(parameters, p->tank) != 0) p->tank[0] = NAN;
+  } else {
+    p->tank[0] = NAN;
+    if (geo.dim == 3) { /* boxes in three axes only */
+      for (size_t k = 0; k < geo.n_obstacles && n < ROBSTACLES_MAX; k++, n++)
+        memcpy(box[n], geo.obstacles[k], sizeof box[n]);
+      if (geo.has_tank) memcpy(p->tank, geo.tank, sizeof geo.tank);
+    }
+    sph_snapshot_geometry_free(&geo);
+  }
   sph_snapshot_close(s);
   if (robstacles_mesh((const double(*)[6])box, n, &p->boxes, err) != 0) return -1;
   p->boxes_rgba = malloc(4 * (p->boxes.nv ? p->boxes.nv : 1));

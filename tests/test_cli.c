@@ -562,6 +562,20 @@ static void test_face_3d(void) {
   if (!(fabs(cy - 0.055) < 1e-3)) printf("\n  %s\n", out);
   CU_ASSERT(fabs(cy - 0.055) < 1e-3);
   CU_ASSERT(strstr(out, "# first vertical: not reached") != NULL); /* still water: no face */
+  /* sph info lists the snapshot's geometry (its /geometry group) */
+  snprintf(args, sizeof args, "info '%s/face3/snap_0000.h5'", tmp);
+  CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
+  if (!strstr(out, "geometry:    tank x [0, 0.2] y [0, 0.1] z [0, 0.15]; 0 obstacles, 0 walls, "
+                   "4 probes\n"))
+    printf("\n  %s\n", out);
+  CU_ASSERT(strstr(out, "geometry:    tank x [0, 0.2] y [0, 0.1] z [0, 0.15]; 0 obstacles, 0 "
+                        "walls, 4 probes\n") != NULL);
+  CU_ASSERT(strstr(out, "  probe P_centre (pressure) at (0.1, 0.05, 0)\n") != NULL);
+  CU_ASSERT(strstr(out, "  probe H_centre (level) at (0.1, 0.05, 0)\n") != NULL);
+  /* a snapshot of an earlier build has none, and says so */
+  snprintf(args, sizeof args, "info '%s'", sph_test_src("tests/data/snapshot_unchecked_v0.h5"));
+  CU_ASSERT_EQUAL(sph_ok(args, out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "geometry:    (not recorded: a snapshot of an earlier build)") != NULL);
 }
 
 /* sph profile on a 3-D snapshot measures heights along z: water 0.06 m

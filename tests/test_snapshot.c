@@ -393,6 +393,93 @@ static void test_free_surface_optional(void) {
   free(dir);
 }
 
+/* The group /geometry: what is written reads back to the bit (a tank,
+ * two obstacles, a wall, three probes), two writes are byte-identical, a
+ * snapshot without the group (written before it existed) says so with 1,
+ * and a group of another format is refused by name. */
+static void test_geometry(void) {
+  char *dir = sph_test_tmpdir();
+  char *a = join(dir, "geo_a.h5"), *b = join(dir, "geo_b.h5");
+  sph_particles p;
+  sph_error err;
+  build_store(&p, N_TEST);
+  double obstacles[2][6] = {{0.1, 0.2, 0.3, 0.4, 0.5, 0.6}, {1.5, 2.5, 0.0, 0.25, 0, 0}};
+  double walls[1][6] = {{0.0, -0.01, 0.2, -0.01, 0, 0}};
+  double at[3][3] = {{0.5, 0.25, 0}, {1.0, 0, 0}, {0.125, 0.375, 0}};
+  char names[3][SPH_GEOMETRY_NAME] = {"P1", "H1", "a_probe.name-2"};
+  char kinds[3][SPH_GEOMETRY_KIND] = {"pressure", "level", "velocity"};
+  sph_snapshot_geometry g = {.dim = SPH_DIM,
+                             .has_tank = 1,
+                             .tank = {0.0, 1.61, 0.0, 0.6, 0, 0},
+                             .n_obstacles = 2,
+                             .obstacles = obstacles,
+                             .n_walls = 1,
+                             .walls = walls,
+                             .n_probes = 3,
+                             .probe_position = at,
+                             .probe_name = names,
+                             .probe_kind = kinds};
+  sph_snapshot_meta m = test_meta(0);
+  m.geometry = &g;
+  CU_ASSERT_FATAL(sph_snapshot_write(a, &m, &p, &err) == 0);
+  sleep(1); /* HDF5 timestamps have one-second resolution */
+  CU_ASSERT_FATAL(sph_snapshot_write(b, &m, &p, &err) == 0);
+  size_t la = 0, lb = 0;
+  char *da = sph_test_read_file(a, &la), *db = sph_test_read_file(b, &lb);
+  CU_ASSERT(da && db && la == lb && la > 0 && memcmp(da, db, la) == 0);
+  free(da);
+  free(db);
+  sph_snapshot *s;
+  CU_ASSERT_FATAL(sph_snapshot_open(a, &s, &err) == 0);
+  sph_snapshot_geometry r;
+  const int rc = sph_snapshot_read_geometry(s, &r, &err);
+  if (rc) printf("\n%s\n", err.msg);
+  CU_ASSERT_FATAL(rc == 0);
+  CU_ASSERT(r.dim == SPH_DIM && r.has_tank == 1);
+  CU_ASSERT(memcmp(r.tank, g.tank, 2 * SPH_DIM * sizeof(double)) == 0);
+  CU_ASSERT_FATAL(r.n_obstacles == 2 && r.n_walls == 1 && r.n_probes == 3);
+  for (int k = 0; k < 2; k++)
+    CU_ASSERT(memcmp(r.obstacles[k], obstacles[k], 2 * SPH_DIM * sizeof(double)) == 0);
+  CU_ASSERT(memcmp(r.walls[0], walls[0], 2 * SPH_DIM * sizeof(double)) == 0);
+  for (int k = 0; k < 3; k++) {
+    CU_ASSERT(memcmp(r.probe_position[k], at[k], SPH_DIM * sizeof(double)) == 0);
+    CU_ASSERT_STRING_EQUAL(r.probe_name[k], names[k]);
+    CU_ASSERT_STRING_EQUAL(r.probe_kind[k], kinds[k]);
+  }
+  sph_snapshot_geometry_free(&r);
+  CU_ASSERT(r.obstacles == NULL && r.n_probes == 0);
+  sph_snapshot_close(s);
+  /* a snapshot without the group: 1, and *g empty */
+  m.geometry = NULL;
+  CU_ASSERT_FATAL(sph_snapshot_write(b, &m, &p, &err) == 0);
+  CU_ASSERT_FATAL(sph_snapshot_open(b, &s, &err) == 0);
+  CU_ASSERT(sph_snapshot_read_geometry(s, &r, &err) == 1);
+  CU_ASSERT(r.n_obstacles == 0 && r.obstacles == NULL && !r.has_tank);
+  sph_snapshot_close(s);
+  CU_ASSERT_FATAL(
+      sph_snapshot_open(sph_test_src("tests/data/snapshot_unchecked_v0.h5"), &s, &err) == 0);
+  CU_ASSERT(sph_snapshot_read_geometry(s, &r, &err) == 1);
+  sph_snapshot_close(s);
+  /* another format: refused, naming it */
+  char cmd[4096];
+  snprintf(cmd, sizeof cmd,
+           "python3 -c \"import h5py; f = h5py.File('%s', 'r+'); "
+           "f['geometry'].attrs.modify('format', 7)\" 2>/dev/null || "
+           "/usr/bin/python3 -c \"import h5py; f = h5py.File('%s', 'r+'); "
+           "f['geometry'].attrs.modify('format', 7)\"",
+           a, a);
+  CU_ASSERT_FATAL(sph_test_system(cmd) == 0);
+  CU_ASSERT_FATAL(sph_snapshot_open(a, &s, &err) == 0);
+  CU_ASSERT(sph_snapshot_read_geometry(s, &r, &err) == -1);
+  CU_ASSERT(strstr(err.msg, "the group /geometry has format 7") != NULL);
+  sph_snapshot_close(s);
+  sph_particles_free(&p);
+  free(a);
+  free(b);
+  sph_test_rmtree(dir);
+  free(dir);
+}
+
 static void test_empty_store(void) {
   char *dir = sph_test_tmpdir();
   char *path = join(dir, "empty.h5");
@@ -688,6 +775,7 @@ int main(void) {
       {"snapshots without checksums are still read", test_unchecked_still_read},
       {"free_surface only when asked", test_free_surface_optional},
       {"empty store", test_empty_store},
+      {"the geometry group: round trip, absent in older files", test_geometry},
       {"ids must be a permutation", test_bad_ids},
       {"unwritable path", test_write_failure},
       {"missing, garbage and truncated files", test_bad_files},

@@ -117,6 +117,46 @@ static void print_version(const sph_snapshot *s) {
   printf("version:     %s\n", version ? version : "(unknown)");
 }
 
+/* A box of the geometry group's as "x [x0, x1] y [y0, y1] (z [z0, z1])". */
+static void print_box(const double *b, int dim) {
+  static const char axes[3] = {'x', 'y', 'z'};
+  for (int a = 0; a < dim; a++)
+    printf("%s%c [%.9g, %.9g]", a ? " " : "", axes[a], b[2 * a], b[2 * a + 1]);
+}
+
+/* The snapshot's geometry (its group /geometry; a line saying so for a
+ * snapshot written before it existed): 0, or -1 with err. */
+static int print_geometry(const sph_snapshot *s, sph_error *err) {
+  sph_snapshot_geometry g;
+  const int rc = sph_snapshot_read_geometry(s, &g, err);
+  if (rc < 0) return -1;
+  if (rc > 0) {
+    printf("geometry:    (not recorded: a snapshot of an earlier build)\n");
+    return 0;
+  }
+  printf("geometry:    tank ");
+  if (g.has_tank)
+    print_box(g.tank, g.dim);
+  else
+    printf("none");
+  printf("; %zu obstacle%s, %zu wall%s, %zu probe%s\n", g.n_obstacles,
+         g.n_obstacles == 1 ? "" : "s", g.n_walls, g.n_walls == 1 ? "" : "s", g.n_probes,
+         g.n_probes == 1 ? "" : "s");
+  for (size_t k = 0; k < g.n_obstacles; k++) {
+    printf("  obstacle %zu: ", k);
+    print_box(g.obstacles[k], g.dim);
+    printf("\n");
+  }
+  for (size_t k = 0; k < g.n_probes; k++) {
+    const double *q = g.probe_position[k];
+    printf("  probe %s (%s) at (%.9g, %.9g", g.probe_name[k], g.probe_kind[k], q[0], q[1]);
+    if (g.dim == 3) printf(", %.9g", q[2]);
+    printf(")\n");
+  }
+  sph_snapshot_geometry_free(&g);
+  return 0;
+}
+
 /* Prints one snapshot, after a blank line if *printed (set here once
  * anything is printed); returns 0, or -1 with err. */
 static int show(const char *path, int *printed, sph_error *err) {
@@ -133,6 +173,7 @@ static int show(const char *path, int *printed, sph_error *err) {
   print_header(s);
   int rc = print_counts(s, buf, err);
   if (rc == 0) print_version(s);
+  if (rc == 0) rc = print_geometry(s, err);
   if (rc == 0) printf("  %-14s %16s %16s %16s\n", "field", "min", "max", "mean");
   for (size_t i = 0; rc == 0 && i < sph_snapshot_field_count(s); i++) {
     const char *name = sph_snapshot_field_name(s, i);

@@ -45,6 +45,7 @@
 /* ------------------------------------------------------------------------ */
 /* The fields of a snapshot and where they live in the particle store.      */
 
+#include "io/geometry_group.h"
 #include "io/snapshot_fields.h"
 
 /* The string attributes of "/" the reader keeps (snapshot.h). */
@@ -499,6 +500,8 @@ static int write_file(writer *w, const char *tmp, const sph_snapshot_meta *meta,
   if (rc == 0) rc = write_particles(w, p, meta->free_surface, pos);
   if (rc == 0) rc = write_vectors(w, p, pos);
   if (rc == 0 && meta->restart) rc = write_restart(w, meta->restart, p->n);
+  if (rc == 0 && meta->geometry)
+    rc = sph_geometry_group_write(w->file, meta->geometry, w->path, w->err);
   if (H5Fclose(w->file) < 0 && rc == 0) rc = h5_fail(w->err, w->path, "cannot close %s", tmp);
   return rc;
 }
@@ -844,6 +847,8 @@ int sph_snapshot_open_any(const char *path, sph_snapshot **out, sph_error *err) 
 }
 
 int sph_snapshot_dimension(const sph_snapshot *s) { return s->dim; }
+
+hid_t sph_snapshot_hdf5_file(const sph_snapshot *s) { return s->file; }
 
 /* The error for reading particles or a restart record of a snapshot of the
  * other dimension (opened with sph_snapshot_open_any). */

@@ -25,6 +25,7 @@
 
 #include "core/error.h"
 #include "core/particles.h"
+#include "io/snapshot_geometry.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -42,6 +43,7 @@ typedef struct sph_snapshot_meta {
   double view[2 * SPH_DIM];                   /* x0, x1, y0, y1 (, z0, z1) */
   int free_surface;                           /* write the free_surface field (flags bit 0) */
   const struct sph_snapshot_restart *restart; /* the /restart group, or NULL for none */
+  const sph_snapshot_geometry *geometry;      /* the /geometry group, or NULL for none */
 } sph_snapshot_meta;
 
 /* What a run needs beyond the particle fields to continue exactly from a

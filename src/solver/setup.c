@@ -384,6 +384,10 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   sph_sim *s = calloc(1, sizeof *s);
   if (!s) return sph_error_set(err, "out of memory");
   s->c = c;
+  if (sph_sim_record_geometry(c, &s->geometry, err)) {
+    free(s);
+    return -1;
+  }
   sph_grid_init(&s->grid);
   sph_nlist_init(&s->nl);
   s->fp.eos = sph_eos_tait(c->rho0, c->sound_speed);
@@ -520,5 +524,6 @@ void sph_sim_free(sph_sim *s) {
   for (int a = 0; a < SPH_DIM; a++)
     free(s->shift[a]);
   free(s->parameters);
+  sph_snapshot_geometry_free(&s->geometry);
   free(s);
 }

@@ -568,6 +568,7 @@ void sph_sim_fill_meta(const sph_sim *s, sph_snapshot_meta *m, double t, long st
   m->rho0 = s->c->rho0;
   memcpy(m->view, s->view, sizeof m->view);
   m->free_surface = s->detect;
+  m->geometry = &s->geometry;
 }
 
 int sph_sim_write_snapshot(const sph_sim *s, const char *path, sph_error *err) {

@@ -62,7 +62,8 @@ struct sph_sim {
   double floor_y;             /* the floor's height (y; z in 3-D) */
   double domain[2 * SPH_DIM]; /* x0, x1, y0, y1 (, z0, z1): leaving it is a blow-up */
   double view[2 * SPH_DIM];
-  char *parameters; /* sph_case_describe */
+  char *parameters;               /* sph_case_describe */
+  sph_snapshot_geometry geometry; /* every snapshot's /geometry (geometry_record.c) */
 };
 
 /* The moving walls at time t, which a pass's adami walls read (sim.c). */
@@ -75,6 +76,10 @@ int sph_sim_pass(sph_sim *s, sph_error *err);
 /* The blow-up check of the current state: SPH_BLOWUP with err naming the
  * first offender in id order, or 0 (sim.c). */
 int sph_sim_check_state(sph_sim *s, sph_error *err);
+
+/* The case's geometry as snapshots record it: 0, or -1 with err (*g then
+ * empty; sph_snapshot_geometry_free frees it) (geometry_record.c). */
+int sph_sim_record_geometry(const sph_case *c, sph_snapshot_geometry *g, sph_error *err);
 
 /* The snapshot header of the sim's state at time t, step `step` (sim.c). */
 void sph_sim_fill_meta(const sph_sim *s, sph_snapshot_meta *m, double t, long step);
