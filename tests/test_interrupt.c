@@ -146,8 +146,9 @@ static void interrupt_with(int sig, const char *name) {
   /* the command to continue names the program as it was started (issue 39, D11) */
   char again[4400];
   snprintf(again, sizeof again, "continue with: %s run --restart", sph_test_build("src/sph"));
-  if (!strstr(msg, again)) printf("\n  want '%s' in: %s", again, msg);
-  CU_ASSERT(strstr(msg, again) != NULL);
+  const int named = strstr(msg, again) != NULL;
+  if (!named) printf("\n  want '%s' in: %s", again, msg);
+  CU_ASSERT(named);
   /* the final snapshot is the last one; it is complete and indexed */
   int last = -1;
   for (int k = 0; k < 10000; k++) {
