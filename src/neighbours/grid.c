@@ -559,35 +559,97 @@ static inline uint32_t fill_sorted(const sph_grid *g, const double *const *x, si
   return c;
 }
 
+/* Room for the per-particle arrays of a list of n particles (every row
+ * array is rewritten by the build: nothing to keep). */
+static int reserve_list(sph_nlist *l, size_t n, sph_error *err) {
+  if (n + 1 <= l->cap_n) return 0;
+  const size_t cap = n + 1 + n / 4 + 16;
+  void **arrays[2 * SPH_DIM + 3];
+  size_t size[2 * SPH_DIM + 3], k = 0;
+  size[k] = sizeof *l->off, arrays[k++] = (void **)&l->off;
+  size[k] = sizeof *l->count, arrays[k++] = (void **)&l->count;
+  for (int d = 0; d < SPH_DIM; d++) {
+    size[k] = sizeof *l->ref[d], arrays[k++] = (void **)&l->ref[d];
+    size[k] = sizeof *l->exact[d], arrays[k++] = (void **)&l->exact[d];
+  }
+  size[k] = sizeof *l->cost, arrays[k++] = (void **)&l->cost;
+  if (sph_arrays_regrow(&l->block, cap, 0, k, size, arrays, NULL))
+    return sph_error_set(err, "grid: out of memory for the neighbour list of %zu particles", n);
+  l->cap_n = cap;
+  return 0;
+}
+
+/* The first build sizes the rows first: grown chunk by chunk, the block
+ * would be copied as it grows and (below glibc's mmap threshold, 32 MB)
+ * leave the old copies resident, 10 MB more peak RSS on SPHERIC at dx =
+ * 0.02 m. Later builds find the room of the earlier ones (a quarter to
+ * spare). */
+static int size_rows(sph_nlist *l, const sph_grid *g, const sph_particles *p,
+                     const double *const *x, double r2max, double period, int sorted, int wide,
+                     size_t cmax, sph_error *err) {
+  const long ln = (long)p->n;
+  size_t total = 0;
+  int no = 0;
+#pragma omp parallel if (ln > SPH_OMP_MIN) reduction(+ : total) reduction(| : no)
+  {
+    uint32_t *restrict scratch = malloc((cmax + 1) * sizeof *scratch);
+    if (!scratch) no = 1;
+#pragma omp for schedule(static)
+    for (long li = 0; li < ln; li++) {
+      if (!scratch) continue;
+      /* (in 2-D only counted: four bytes an entry whatever their order) */
+      const int keep = fluid_only_row(l, p, (size_t)li);
+      uint32_t c = fill_rows(g, x, (size_t)li, r2max, period,
+                             SPH_NLIST_RUNS || keep ? scratch : NULL, sorted, wide);
+      if (keep) c = keep_fluid(scratch, c, p->kind);
+      total += runs_size(scratch, c, sorted && period <= 0.0);
+    }
+    free(scratch);
+  }
+  if (no) return sph_error_set(err, "grid: out of memory for a scratch row");
+  total += SPH_NLIST_SLACK;
+  const size_t cap = total + total / 4 + 64;
+  if (!(l->rows = malloc(cap)))
+    return sph_error_set(err, "grid: out of memory for %zu bytes of neighbours", total);
+  l->cap_rows = cap;
+  return 0;
+}
+
+/* After the rows: the slack past them, the rows' write-out buffers
+ * (longest row mc) and the rows' costs, the split of loops among threads. */
+static int finish_rows(sph_nlist *l, const sph_particles *p, uint32_t mc, sph_error *err) {
+  const size_t n = p->n;
+  memset(l->rows + l->off[n], 0, SPH_NLIST_SLACK); /* read, never used, by sph_nlist_decode */
+  const int threads = SPH_NLIST_RUNS ? sph_max_threads() : 0; /* (2-D rows are read in place) */
+  const size_t stride = (size_t)mc + SPH_NLIST_SLACK;
+  if (threads && stride * (size_t)threads > l->dec_stride * (size_t)l->dec_threads) {
+    uint32_t *a = realloc(l->dec, stride * (size_t)threads * sizeof *a);
+    if (!a) return sph_error_set(err, "grid: out of memory for the rows written out");
+    l->dec = a;
+  }
+  l->dec_stride = stride;
+  l->dec_threads = threads;
+  l->cost[0] = 0; /* exact: integers */
+  for (size_t i = 0; i < n; i++)
+    l->cost[i + 1] = l->cost[i] + SPH_NLIST_ROW_COST +
+                     (p->kind[i] == SPH_KIND_FLUID ? l->count[i] : l->count[i] / 2);
+  return 0;
+}
+
 int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, double support,
                     double skin, double period, sph_error *err) {
   const size_t n = p->n;
   l->valid = 0;
   if (n > UINT32_MAX) return sph_error_set(err, "grid: %zu particles is too many for a list", n);
-  if (n + 1 > l->cap_n) { /* every row array is rewritten below: nothing to keep */
-    const size_t cap = n + 1 + n / 4 + 16;
-    void **arrays[2 * SPH_DIM + 3];
-    size_t size[2 * SPH_DIM + 3], k = 0;
-    size[k] = sizeof *l->off, arrays[k++] = (void **)&l->off;
-    size[k] = sizeof *l->count, arrays[k++] = (void **)&l->count;
-    for (int d = 0; d < SPH_DIM; d++) {
-      size[k] = sizeof *l->ref[d], arrays[k++] = (void **)&l->ref[d];
-      size[k] = sizeof *l->exact[d], arrays[k++] = (void **)&l->exact[d];
-    }
-    size[k] = sizeof *l->cost, arrays[k++] = (void **)&l->cost;
-    if (sph_arrays_regrow(&l->block, cap, 0, k, size, arrays, NULL))
-      return sph_error_set(err, "grid: out of memory for the neighbour list of %zu particles", n);
-    l->cap_n = cap;
-  }
+  if (reserve_list(l, n, err)) return -1;
   /* Rows are stored compactly: in 3-D as runs (grid.h), about two bytes
    * an entry, in 2-D four (doc/memory.md). One pass fills the rows in
    * chunks of SPH_NLIST_CHUNK: a thread fills a chunk's rows into a
    * scratch row as long as the most candidates (fill_row writes every
    * candidate before its test) and writes their runs into a buffer of its
    * own, then appends the buffer to the list in chunk order (an ordered
-   * region: the list grows only there). Until 2026-11-28 a first pass
-   * counted the rows' bytes and a second filled them again in place:
-   * every distance computed twice. */
+   * region: the list grows only there), so every distance is computed
+   * once. */
   const double radius = support + skin, r2max = radius * radius;
   /* the axes with the periodic one first: fill_row takes the minimum image
    * along its first axis (in 2-D and without periodicity, the store's order) */
@@ -610,37 +672,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     const size_t c = candidates(g, (size_t)li);
     if (c > cmax) cmax = c;
   }
-  if (l->cap_rows == 0) {
-    /* the first build sizes the rows first: grown chunk by chunk, the
-     * block would be copied as it grows and (below glibc's mmap threshold,
-     * 32 MB) leave the old copies resident, 10 MB more peak RSS on SPHERIC
-     * at dx = 0.02 m. Later builds find the room of the earlier ones (a
-     * quarter to spare) */
-    size_t total = 0;
-    int no = 0;
-#pragma omp parallel if (ln > SPH_OMP_MIN) reduction(+ : total) reduction(| : no)
-    {
-      uint32_t *restrict scratch = malloc((cmax + 1) * sizeof *scratch);
-      if (!scratch) no = 1;
-#pragma omp for schedule(static)
-      for (long li = 0; li < ln; li++) {
-        if (!scratch) continue;
-        /* (in 2-D only counted: four bytes an entry whatever their order) */
-        const int keep = fluid_only_row(l, p, (size_t)li);
-        uint32_t c = fill_rows(g, x, (size_t)li, r2max, period,
-                               SPH_NLIST_RUNS || keep ? scratch : NULL, sorted, wide);
-        if (keep) c = keep_fluid(scratch, c, p->kind);
-        total += runs_size(scratch, c, sorted && period <= 0.0);
-      }
-      free(scratch);
-    }
-    if (no) return sph_error_set(err, "grid: out of memory for a scratch row");
-    total += SPH_NLIST_SLACK;
-    const size_t cap = total + total / 4 + 64;
-    if (!(l->rows = malloc(cap)))
-      return sph_error_set(err, "grid: out of memory for %zu bytes of neighbours", total);
-    l->cap_rows = cap;
-  }
+  if (l->cap_rows == 0 && size_rows(l, g, p, x, r2max, period, sorted, wide, cmax, err)) return -1;
   uint32_t mc = 0;
   double origin[SPH_DIM], off_by[SPH_DIM]; /* the reference positions' (grid.h) */
   for (int d = 0; d < SPH_DIM; d++)
@@ -713,20 +745,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   }
   if (oom) return sph_error_set(err, "grid: out of memory for a scratch row");
   if (full) return sph_error_set(err, "grid: out of memory for the neighbours' rows");
-  memset(l->rows + l->off[n], 0, SPH_NLIST_SLACK); /* read, never used, by sph_nlist_decode */
-  const int threads = SPH_NLIST_RUNS ? sph_max_threads() : 0; /* (2-D rows are read in place) */
-  const size_t stride = (size_t)mc + SPH_NLIST_SLACK;
-  if (threads && stride * (size_t)threads > l->dec_stride * (size_t)l->dec_threads) {
-    uint32_t *a = realloc(l->dec, stride * (size_t)threads * sizeof *a);
-    if (!a) return sph_error_set(err, "grid: out of memory for the rows written out");
-    l->dec = a;
-  }
-  l->dec_stride = stride;
-  l->dec_threads = threads;
-  l->cost[0] = 0; /* exact: integers */
-  for (size_t i = 0; i < n; i++)
-    l->cost[i + 1] = l->cost[i] + SPH_NLIST_ROW_COST +
-                     (p->kind[i] == SPH_KIND_FLUID ? l->count[i] : l->count[i] / 2);
+  if (finish_rows(l, p, mc, err)) return -1;
   l->maxcount = mc;
   double e2 = 0.0;
   for (int d = 0; d < SPH_DIM; d++) {
