@@ -130,6 +130,17 @@ int sph_fuzz_snapshot(const uint8_t *data, size_t len, const char *scratch) {
     } else {
       check(strstr(err.msg, scratch) != NULL);
     }
+    /* the geometry group: read whole, absent, or refused naming the file */
+    sph_snapshot_geometry g;
+    const int gr = sph_snapshot_read_geometry(s, &g, &err);
+    if (gr == 0) {
+      check(g.dim == 2 || g.dim == 3);
+      for (size_t k = 0; k < g.n_probes; k++)
+        check(memchr(g.probe_name[k], 0, SPH_GEOMETRY_NAME) != NULL);
+      sph_snapshot_geometry_free(&g);
+    } else if (gr < 0) {
+      check(strstr(err.msg, scratch) != NULL);
+    }
   }
   sph_snapshot_close(s);
   return 0;
