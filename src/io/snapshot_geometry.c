@@ -188,7 +188,8 @@ int sph_geometry_group_read(hid_t file, sph_snapshot_geometry *g, const char *pa
   }
   g->dim = (int)dim;
   const size_t box = 2 * (size_t)dim;
-  double *tank = NULL, *pos = NULL;
+  double *tank = NULL, *pos = NULL, *obstacles = NULL, *walls = NULL;
+  char *names = NULL, *kinds = NULL;
   size_t n_tank = 0, n_pos = 0;
   if (rc == 0) rc = get_rows(grp, "tank", box, 6, &tank, &n_tank);
   if (rc == 0 && n_tank == 1) {
@@ -196,16 +197,18 @@ int sph_geometry_group_read(hid_t file, sph_snapshot_geometry *g, const char *pa
     g->has_tank = 1;
   }
   free(tank);
-  if (rc == 0) rc = get_rows(grp, "obstacles", box, 6, (double **)&g->obstacles, &g->n_obstacles);
-  if (rc == 0) rc = get_rows(grp, "walls", box, 6, (double **)&g->walls, &g->n_walls);
+  /* each array read through a pointer of its own type, then given its rows' type */
+  if (rc == 0) rc = get_rows(grp, "obstacles", box, 6, &obstacles, &g->n_obstacles);
+  g->obstacles = (double(*)[6])obstacles;
+  if (rc == 0) rc = get_rows(grp, "walls", box, 6, &walls, &g->n_walls);
+  g->walls = (double(*)[6])walls;
   if (rc == 0) rc = get_rows(grp, "probe_position", (size_t)dim, 3, &pos, &n_pos);
-  if (rc == 0) {
-    g->probe_position = (double(*)[3])pos;
-    g->n_probes = n_pos;
-    rc = get_strings(grp, "probe_name", SPH_GEOMETRY_NAME, n_pos, (char **)&g->probe_name);
-  }
-  if (rc == 0)
-    rc = get_strings(grp, "probe_kind", SPH_GEOMETRY_KIND, n_pos, (char **)&g->probe_kind);
+  g->probe_position = (double(*)[3])pos;
+  g->n_probes = n_pos;
+  if (rc == 0) rc = get_strings(grp, "probe_name", SPH_GEOMETRY_NAME, n_pos, &names);
+  g->probe_name = (char(*)[SPH_GEOMETRY_NAME])names;
+  if (rc == 0) rc = get_strings(grp, "probe_kind", SPH_GEOMETRY_KIND, n_pos, &kinds);
+  g->probe_kind = (char(*)[SPH_GEOMETRY_KIND])kinds;
   close_id(grp);
   if (rc) {
     sph_snapshot_geometry_free(g);

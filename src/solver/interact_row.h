@@ -155,12 +155,10 @@ typedef struct LNORM {
 
 /* The row of particle i: its neighbours (*cnt of them, padded to a
  * multiple of LW with the last). */
-LOOP_ATTR const uint32_t *SPH_PT_XGLUE(row_entries, FL)(const sph_particles *restrict p,
-                                                        const sph_nlist *restrict l,
+LOOP_ATTR const uint32_t *SPH_PT_XGLUE(row_entries, FL)(const sph_nlist *restrict l,
                                                         const sph_force_params *restrict fp,
                                                         const sph_force_work *restrict w, size_t i,
                                                         unsigned F, size_t *cnt) {
-  (void)p;
   const sph_force_hot *restrict hot = w->hot;
   if (F & F_VARH) /* (the scalar loop only) the whole row: the support is per pair */
     return sph_nlist_row(l, i, cnt);
@@ -559,7 +557,8 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_momentum,
     SPH_IF3(pa->c[2] = LOP(add)(pa->c[2], LOP(mul)(c, V->vvz));)
     if (F & F_LEDGER) *heat = LOP(sub)(*heat, LTERM(morris_heat)(c, G->dv));
   }
-  if (F & F_XSPH) { /* over fluid neighbours (m_j of fluid j, 0 for the others) */
+  if ((F & F_XSPH) && R->fluid) { /* over fluid neighbours (m_j of fluid j, 0 for the
+                                   * others); a wall row's XSPH is never written */
     const LT c = LTERM(xsph_factor)(LSET(E_ARR, w->fm), inv_rb, G->wij);
     LDEC(S->xs, LOP(mul)(c, G->dvx));
     LDEC(S->ys, LOP(mul)(c, G->dvy));
@@ -680,7 +679,7 @@ LOOP_ATTR double SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph
     return 0.0;
   }
   size_t cnt;
-  const uint32_t *restrict nb = SPH_PT_XGLUE(row_entries, FL)(p, l, fp, w, i, F, &cnt);
+  const uint32_t *restrict nb = SPH_PT_XGLUE(row_entries, FL)(l, fp, w, i, F, &cnt);
   LROW R;
   SPH_PT_XGLUE(row_begin, FL)(&R, p, fp, w, i, F, cnt);
   const LA azero = LAOP(all)(0.0);
@@ -698,7 +697,6 @@ LOOP_ATTR double SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph
              .rd = azero};
   SPH_IF3(S.az = S.zs = S.wfz = azero;)
   const sph_force_hot *restrict hot = w->hot;
-  (void)hot;
   for (size_t k = 0; k < cnt; k += LW) {
     const uint32_t *restrict jk = nb + k; /* this iteration's neighbours */
 #if LW == 1
