@@ -11,7 +11,7 @@
 
 #include "core/parallel.h"
 #include "physics/kernel.h"
-#include "solver/interact.h"
+#include "solver/row_walk.h"
 
 /* Half the renormalised density gradient at fluid particle i, Antuono et
  * al. (2010) eq. (6): <grad rho>^L_i = L_i sum_j (rho_j - rho_i) grad_i W_ij V_j,
@@ -22,7 +22,7 @@ static void half_gradient(const sph_particles *restrict p, const sph_nlist *rest
                           const sph_force_params *restrict fp, size_t i, double c[SPH_DIM]) {
   const double *restrict x = p->x, *restrict y = p->y, *restrict h = p->h;
   const double *restrict m = p->mass, *restrict rho = p->rho;
-  const unsigned F = fp->periodic ? F_PERIODIC : 0u;
+  const unsigned F = fp->periodic ? SPH_ROW_PERIODIC : 0u;
   const double xi = x[i], yi = y[i], rhoi = rho[i];
   double gx = 0.0, gy = 0.0, mxx = 0.0, mxy = 0.0, myy = 0.0;
   SPH_IF3(const double *restrict z = p->z; const double zi = z[i];
@@ -87,7 +87,7 @@ static double diffusion_mass(const sph_particles *restrict p, const sph_nlist *r
     return fp->wall_diffusion && sph_diffusion_wall_takes_part(p->kind[i], p->flags[i]) ? p->mass[i]
                                                                                         : 0.0;
   if (!fp->mdbc) return p->mass[i]; /* no mdbc wall: no scan (a term that is off costs nothing) */
-  const unsigned F = fp->periodic ? F_PERIODIC : 0u;
+  const unsigned F = fp->periodic ? SPH_ROW_PERIODIC : 0u;
   ROW(l, i, nb, cnt)
   for (size_t k = 0; k < cnt; k++) {
     const size_t j = nb[k];

@@ -9,7 +9,7 @@
 
 #include "core/particles.h"
 #include "neighbours/grid.h"
-#include "solver/forces.h"
+#include "solver/force_pass.h"
 
 /* Whether a particle of this kind and these flags takes part in the
  * diffusion as a wall: a dynamic or fixed_layers wall particle (not mdbc

@@ -34,7 +34,8 @@
 #include "physics/kernel.h"
 #include "physics/pair_terms.h"
 #include "solver/diffusion.h"
-#include "solver/forces.h"
+#include "solver/force_pass.h"
+#include "solver/row_walk.h"
 
 /* The terms, as bits of F. */
 enum {
@@ -42,13 +43,14 @@ enum {
   F_XSPH = 2,      /* XSPH velocity correction */
   F_STRESS = 4,    /* viscous stress tensor (paper A) and SPS stress (paper B) */
   F_MORRIS = 8,    /* Morris laminar viscosity, paper B */
-  F_PERIODIC = 16, /* minimum image along the periodic axis */
+  F_PERIODIC = 16, /* minimum image along the periodic axis (row_walk.h's SEP) */
   F_VARH = 32,     /* per-particle smoothing length */
   F_LEDGER = 64,   /* energy ledger: du/dt and the power of moving walls */
   F_DDIFF = 128,   /* density diffusion (physics/density_diffusion.h) */
   F_RIEMANN = 256, /* Riemann-solver pressure (Zhang et al. 2017) in place of p/rho^2 */
   F_CGRAD = 512    /* the pressure and continuity with the corrected gradient (forces.h) */
 };
+_Static_assert(F_PERIODIC == SPH_ROW_PERIODIC, "row_walk.h's SEP reads F_PERIODIC");
 
 /* The lane loops serve the term sets without these (the scalar loop runs them). */
 #define F_SCALAR_ONLY F_VARH
@@ -229,20 +231,6 @@ static inline void strain_finish(const strain_opts *o, size_t i, const double s[
 #endif
 }
 
-/* The neighbour row of i in the list l: j = row_[0], ..., row_[len_ - 1], written out into the
- * calling thread's buffer of the list (sph_nlist_row). */
-#define ROW(l, i, row_, len_)                                                                      \
-  size_t len_;                                                                                     \
-  const uint32_t *restrict row_ = sph_nlist_row((l), (i), &len_);
-
-/* The period along axis a: fp->period on the axis that wraps, 0 on the others (sep_x and
- * LANE_MIN_IMAGE with a period of 0 leave a separation as it is, bit for bit). */
-#if SPH_DIM == 2 /* only x wraps in 2-D: the period as the loops have always read it */
-#define period_along(fp, a) ((fp)->period)
-#else
-#define period_along(fp, a) ((fp)->periodic && (fp)->paxis == (a) ? (fp)->period : 0.0)
-#endif
-
 /* The lane form of sep_x in the flavour of the including loop (LOP): d as its minimum image
  * over the period per, with hper = per/2 and nper = -per/2. */
 #define LANE_MIN_IMAGE(d, per, hper, nper) SPH_LANE_MIN_IMAGE(FL, d, per, hper, nper)
@@ -259,26 +247,6 @@ static inline void strain_finish(const strain_opts *o, size_t i, const double s[
   LANE_PERIOD(pery, fp, 1);                                                                        \
   LANE_PERIOD(perz, fp, 2)
 #endif
-
-/* x_i - x_j with the minimum image when periodic (any axis: period 0 on one that does not
- * wrap). */
-static inline __attribute__((always_inline)) double sep_x(double xi, double xj, double period,
-                                                          double half, const unsigned F) {
-  double d = xi - xj;
-  if (F & F_PERIODIC) {
-    if (d > half)
-      d -= period;
-    else if (d < -half)
-      d += period;
-  }
-  return d;
-}
-
-/* x_i - x_j along axis a (a literal) with the minimum image when periodic: in 2-D only x
- * wraps. */
-#define SEP(fp, a, xi, xj, F)                                                                      \
-  (SPH_DIM == 2 && (a) ? (xi) - (xj)                                                               \
-                       : sep_x(xi, xj, period_along(fp, a), 0.5 * period_along(fp, a), F))
 
 /* The largest of a lane loop's four maxima, (l0 max l1) max (l2 max l3). */
 static inline double lanes_max4(const double lv[4]) {
