@@ -62,7 +62,7 @@ typedef struct sph_force_params {
   double lj_d, lj_r0;      /* Lennard-Jones strength D and range r0 */
   int ledger;              /* energy ledger: du/dt and the power of wall particles on fluid */
   int sps;                 /* SPS turbulence stress (src/physics/turbulence.h) */
-  int gradient_correction; /* kernel-gradient correction of the stress tensor (below) */
+  int gradient_correction; /* kernel-gradient correction of the stress tensor (forces.h) */
   int no_slip;             /* some wall particles carry SPH_FLAG_NO_SLIP (wall_velocity.h) */
   int free_slip;           /* some wall particles carry SPH_FLAG_FREE_SLIP: the scalar loop */
   int mdbc;                /* some wall particles carry SPH_FLAG_MDBC (diffusion.c) */
@@ -89,7 +89,7 @@ typedef struct sph_force_params {
   double riemann_limiter;       /* its limiter eta: beta = min(eta max(dU, 0) / c0, 1) */
   int corrected_gradient;       /* the pressure, its artificial viscosity and continuity with
                                    the pair's corrected kernel gradient L_ij grad_i W_ij
-                                   (above) */
+                                   (forces.h) */
 } sph_force_params;
 
 /* Whether some wall particles carry their normal (SPH_WALL_NORMAL: mdbc,

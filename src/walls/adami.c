@@ -52,7 +52,7 @@ size_t sph_wall_adami(sph_particles *p, const sph_nlist *l, const sph_adami_para
       const double r2 = SPH_NORM2(dx, dy, dz);
       const double hij = ap->var_h ? 0.5 * (p->h[i] + p->h[j]) : ap->h;
       if (r2 >= SPH_CUBIC_SUPPORT * SPH_CUBIC_SUPPORT * hij * hij || r2 == 0.0) continue;
-      double wij, dwij; /* inline: the out-of-line sph_kernel_w was a fifth of the pass */
+      double wij, dwij; /* the static inline form, as the interaction loops use (kernel.c) */
       sph_kernel_w_dw(ap->kernel, sqrt(r2), hij, &wij, &dwij);
 #if SPH_DIM == 2
       const double gr = ga[0] * dx + ga[1] * dy;
