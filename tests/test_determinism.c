@@ -24,7 +24,9 @@
  *   - the Riemann-solver pressure on mdbc walls with the ledger and a
  *     low-pass probe;
  *   - adami walls with Morris viscosity and the ledger, a probe with its
- *     own interpolation, on 1-3 threads.
+ *     own interpolation, on 1-3 threads;
+ *   - a fluid without tension (the density floor) in the default scheme
+ *     with the ledger and a probe, on 1-3 threads.
  * Every file of the two output directories (snapshots, XDMF index,
  * diagnostics.csv, gauges.csv, probes.csv) must be identical.
  */
@@ -176,6 +178,12 @@ static void test_adami(void) {
                   3);
 }
 
+/* a fluid that holds no tension (physics.negative_pressure: false): the density floor in
+ * the leap-frog's slices, with the default scheme, the ledger and a probe */
+static void test_no_tension(void) {
+  same_on_threads("tests/data/restart_no_tension.yaml", "--set time.end=0.1", 3);
+}
+
 /* the Wendland kernel in the pair loop, the strain-rate pass, the MLS
  * filter and the probes */
 static void test_wendland(void) {
@@ -201,6 +209,7 @@ int main(void) {
       {"free surface on the kept neighbour list, 1-3 threads", test_free_surface_kept_list},
       {"paddle, gauges, variable h, Shepard filter", test_paddle},
       {"leap-frog dam break on 1, 2 and 3 threads", test_three_threads},
+      {"a fluid without tension, 1-3 threads", test_no_tension},
       CU_TEST_INFO_NULL};
   return sph_test_main("determinism", tests);
 }

@@ -12,7 +12,8 @@
  * shifting, the energy ledger (its integrals, shifting's drift among them), wave gauges (their
  * levels at t = 0), the pressure probes' low-pass filters (their outputs) and free-surface flags
  * read from the kept neighbour list; restart_default is the default scheme as shipped (the
- * leap-frog with a step that changes, Adami walls). Each is run
+ * leap-frog with a step that changes, Adami walls), restart_no_tension the same with the
+ * density floor of a fluid without tension. Each is run
  * uninterrupted; then
  *   - restarted from snap_0002 (restart_fs: snap_0003) into a fresh
  *     directory (1 thread; the uninterrupted run on 2): every
@@ -150,6 +151,7 @@ static void test_lf_from_start(void) { restart_fresh("restart_lf", 0); }
 static void test_fs_fresh(void) { restart_fresh("restart_fs", 3); }
 static void test_adami_fresh(void) { restart_fresh("restart_adami", 2); }
 static void test_default_fresh(void) { restart_fresh("restart_default", 2); }
+static void test_no_tension_fresh(void) { restart_fresh("restart_no_tension", 2); }
 
 /* Restart in a copy of the run's own directory (which holds the later
  * snapshots and rows already): the end result is byte for byte the
@@ -434,6 +436,7 @@ int main(void) {
       {"free-surface flags on the kept list: restart is bitwise", test_fs_fresh},
       {"adami walls, a moving one, the ledger: restart is bitwise", test_adami_fresh},
       {"the default scheme (leap-frog, changing step): restart is bitwise", test_default_fresh},
+      {"a fluid without tension: restart is bitwise", test_no_tension_fresh},
       {"restart in the run's directory: CSV and XDMF as uninterrupted", test_pc_in_place},
       {"mirror, periodic: restart in place, headers of an earlier version", test_mirror_in_place},
       {"restart in place: CRLF line ends read, rows kept", test_crlf_in_place},

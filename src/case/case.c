@@ -125,9 +125,8 @@ static const char *const top_keys[] = {"name", "description", "dimension",    "p
 static const char *const fs_keys[] = {"radius_factor", "h_factor", NULL};
 static const char *const laminar_keys[] = {"model", "mu", "gradient_correction", NULL};
 static const char *const physics_keys[] = {
-    "rho0",      "gravity",    "body_force", "sound_speed", "artificial_viscosity",
-    "viscosity", "turbulence", "repulsion",  "xsph",        "riemann",
-    NULL};
+    "rho0",       "gravity",   "body_force", "sound_speed", "artificial_viscosity", "viscosity",
+    "turbulence", "repulsion", "xsph",       "riemann",     "negative_pressure",    NULL};
 static const char *const c0_keys[] = {"factor", "height", "speed", NULL};
 static const char *const visc_keys[] = {"alpha", "beta", "eta", NULL};
 static const char *const riemann_keys[] = {"limiter", NULL};
@@ -236,6 +235,7 @@ static void set_defaults(sph_case *c) {
   c->beta = 0.0;
   c->eta = 0.1;
   c->xsph = 0.0;
+  c->negative_pressure = 1;
   c->riemann = 0;
   c->riemann_limiter = 3.0;
   c->h_factor = 1.3;
@@ -443,6 +443,7 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
         return -1;
     }
   }
+  if (sph_yaml_get_bool(&x->t, m, p, "negative_pressure", &c->negative_pressure) < 0) return -1;
   return sph_yaml_get_number(&x->t, m, p, "xsph", 0, &SPH_YAML_UNIT, &c->xsph) < 0 ? -1 : 0;
 }
 

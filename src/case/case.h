@@ -91,10 +91,12 @@ typedef struct sph_case {
   double alpha, beta; /* artificial viscosity, paper A eq. (15)-(16); defaults 0, 0 */
   double eta;         /* eta = eta * h_ij, default 0.1 (eta^2 = 0.01 h^2) */
   double xsph;        /* XSPH epsilon, paper B eq. (6); default 0 = off */
-  int riemann;        /* Riemann-solver pressure (Zhang et al. 2017), default off */
-  double riemann_limiter;       /* its dissipation limiter eta, default 3 */
-  int sps;                      /* SPS turbulence (paper B eq. 4), default off */
-  double sps_cs, sps_ci;        /* Smagorinsky C_s = 0.12 and C_I = 0.00066; Delta = dx */
+  int negative_pressure;  /* 1 (default): the fluid's pressure may fall below 0; 0: its density
+                             is held at rho0 or above, so it holds no tension (physics/eos.h) */
+  int riemann;            /* Riemann-solver pressure (Zhang et al. 2017), default off */
+  double riemann_limiter; /* its dissipation limiter eta, default 3 */
+  int sps;                /* SPS turbulence (paper B eq. 4), default off */
+  double sps_cs, sps_ci;  /* Smagorinsky C_s = 0.12 and C_I = 0.00066; Delta = dx */
   sph_viscosity_kind viscosity; /* laminar viscosity model, default none */
   double mu;                    /* dynamic viscosity (Pa s), required unless viscosity is none */
   int gradient_correction; /* stress tensor: kernel-gradient correction (src/solver/forces.h) */

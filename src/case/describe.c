@@ -185,6 +185,7 @@ char *sph_case_describe(const sph_case *c) {
   sb_add(&b, "physics.artificial_viscosity.beta: %.17g\n", c->beta);
   sb_add(&b, "physics.artificial_viscosity.eta: %.17g\n", c->eta);
   sb_add(&b, "physics.xsph: %.17g\n", c->xsph);
+  if (!c->negative_pressure) sb_add(&b, "physics.negative_pressure: false\n");
   if (c->riemann) sb_add(&b, "physics.riemann.limiter: %.17g\n", c->riemann_limiter);
   sb_add(&b, "physics.viscosity.model: %s\n", sph_viscosity_name(c->viscosity));
   if (c->viscosity != SPH_VISCOSITY_NONE) sb_add(&b, "physics.viscosity.mu: %.17g\n", c->mu);

@@ -12,11 +12,21 @@
 
 typedef struct sph_eos {
   double rho0, c0, B; /* B = rho0 c0^2 / 7 */
+  double rho_min;     /* the fluid's density floor: rho0 where the fluid holds no tension
+                         (physics.negative_pressure: false), else 0 (no floor) */
 } sph_eos;
 
 static inline sph_eos sph_eos_tait(double rho0, double c0) {
-  sph_eos e = {rho0, c0, rho0 * c0 * c0 / 7.0};
+  sph_eos e = {rho0, c0, rho0 * c0 * c0 / 7.0, 0.0};
   return e;
+}
+
+/* A fluid particle's density held at the floor or above (physics.negative_pressure: false):
+ * its pressure is then never below 0, the air's. A particle that a stretching jet or sheet
+ * would expand below rho0 stays at rho0 instead of pulling on its neighbours (doc/method.md,
+ * Negative pressure). With no floor (0) every density passes unchanged. */
+static inline double sph_eos_floor(const sph_eos *e, double rho) {
+  return rho < e->rho_min ? e->rho_min : rho;
 }
 
 static inline double sph_eos_pressure(const sph_eos *e, double rho) {

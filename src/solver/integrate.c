@@ -44,6 +44,7 @@ static inline __attribute__((always_inline)) void stage(sph_particles *p, double
       }
       double rho = p->rho0[i] + hdt * p->drho[i];
       if (finish) rho = 2.0 * rho - p->rho0[i];
+      if (p->kind[i] == SPH_KIND_FLUID) rho = sph_eos_floor(eos, rho);
       p->rho[i] = rho;
       if (heat) {
         double u = p->u0[i] + hdt * p->du[i];
@@ -109,9 +110,12 @@ void sph_leapfrog_step(sph_particles *p, double dt, double dt_prev, int first, i
          * as a blow-up although the pass never used it */
         p->rhoh[i] = p->rho[i];
       } else {
-        const double rh = (first ? p->rho[i] : p->rhoh[i]) + kick * p->drho[i];
+        double rh = (first ? p->rho[i] : p->rhoh[i]) + kick * p->drho[i],
+               rho = rh + hdt * p->drho[i];
+        if (p->kind[i] == SPH_KIND_FLUID) /* the floor (eos.h), on both the state and its value */
+          rh = sph_eos_floor(eos, rh), rho = sph_eos_floor(eos, rho);
         p->rhoh[i] = rh;
-        p->rho[i] = rh + hdt * p->drho[i];
+        p->rho[i] = rho;
         p->p[i] = sph_eos_pressure(eos, p->rho[i]);
       }
       if (heat) {

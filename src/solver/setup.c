@@ -391,6 +391,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   sph_grid_init(&s->grid);
   sph_nlist_init(&s->nl);
   s->fp.eos = sph_eos_tait(c->rho0, c->sound_speed);
+  if (!c->negative_pressure) s->fp.eos.rho_min = c->rho0; /* a fluid without tension */
   s->fp.h = c->h;
   s->fp.alpha = c->alpha;
   s->fp.beta = c->beta;
