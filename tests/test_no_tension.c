@@ -11,11 +11,11 @@
  * 3. A run (tests/data/restart_no_tension.yaml: a block of water thrown at 1 m/s along the
  *    floor of an adami tank, the default scheme, the ledger on, 0.15 s): with the key false no
  *    fluid particle's density falls below rho0 nor its pressure below 0 after any step, on
- *    either integrator; with it true the same run does fall below rho0 (the block leaving the
- *    left wall stretches), so the first half can fail; the energy balance closes to 5e-4 of
- *    E0 with the floor (measured 1.0e-4; the pairs' heat and force use the same pressure, so
- *    the floor changes which pressure acts, not the balance).
- * Threads and restart: test_determinism and test_restart run the same fixture.
+ *    either integrator and with the Shepard filter; with it true the same run does fall below rho0
+ * (the block leaving the left wall stretches), so the first half can fail; the energy balance
+ * closes to 5e-4 of E0 with the floor (measured 1.0e-4; the pairs' heat and force use the same
+ * pressure, so the floor changes which pressure acts, not the balance). Threads and restart:
+ * test_determinism and test_restart run the same fixture.
  */
 #include "config.h"
 
@@ -40,26 +40,29 @@ static void test_floor(void) {
   CU_ASSERT_EQUAL(sph_eos_pressure(&e, sph_eos_floor(&e, 990.0)), 0.0);
 }
 
-static void test_key(void) {
-  const char *off[] = {"physics.negative_pressure=false"};
+/* The fixture's value of the key with the overrides set (n of them); *listing the run's
+ * parameters (free it). */
+static int key_of(const char *const *set, size_t n, char **listing) {
   sph_case c;
   sph_sim *s;
-  CU_ASSERT_FATAL(sph_test_open_sim("tests/data/restart_default.yaml", NULL, 0, &c, &s) == 0);
-  CU_ASSERT_EQUAL(c.negative_pressure, 1);
-  char *d = sph_case_describe(&c);
-  CU_ASSERT_FATAL(d != NULL);
+  CU_ASSERT_FATAL(sph_test_open_sim("tests/data/restart_default.yaml", set, n, &c, &s) == 0);
+  const int v = c.negative_pressure;
+  *listing = sph_case_describe(&c);
+  CU_ASSERT_FATAL(*listing != NULL);
+  sph_sim_free(s);
+  sph_case_free(&c);
+  return v;
+}
+
+static void test_key(void) {
+  const char *off[] = {"physics.negative_pressure=false"};
+  char *d;
+  CU_ASSERT_EQUAL(key_of(NULL, 0, &d), 1);
   CU_ASSERT(strstr(d, "negative_pressure") == NULL);
   free(d);
-  sph_sim_free(s);
-  sph_case_free(&c);
-  CU_ASSERT_FATAL(sph_test_open_sim("tests/data/restart_default.yaml", off, 1, &c, &s) == 0);
-  CU_ASSERT_EQUAL(c.negative_pressure, 0);
-  d = sph_case_describe(&c);
-  CU_ASSERT_FATAL(d != NULL);
+  CU_ASSERT_EQUAL(key_of(off, 1, &d), 0);
   CU_ASSERT(strstr(d, "physics.negative_pressure: false\n") != NULL);
   free(d);
-  sph_sim_free(s);
-  sph_case_free(&c);
   /* not a boolean: refused, the key named */
   char *dir = sph_test_tmpdir(), args[8192], out[8192];
   snprintf(args, sizeof args, "run -q '%s' -o '%s/run' --set physics.negative_pressure=maybe",
@@ -72,17 +75,20 @@ static void test_key(void) {
   free(dir);
 }
 
-/* Runs the fixture to its end with negative_pressure as given (and the integrator); returns
- * the lowest fluid density over all steps in rho0 and the lowest fluid pressure in *pmin. */
-static double lowest_density(const char *negative, const char *integrator, double *pmin) {
-  char k1[64], k2[64];
+/* Runs the fixture to its end with negative_pressure as given, the integrator and the density
+ * filter (a YAML mapping, or "{kind: none}"); returns the lowest fluid density over all steps
+ * in rho0 and the lowest fluid pressure in *pmin. */
+static double lowest_density(const char *negative, const char *integrator, const char *filter,
+                             double *pmin) {
+  char k1[64], k2[64], k3[96];
   snprintf(k1, sizeof k1, "physics.negative_pressure=%s", negative);
   snprintf(k2, sizeof k2, "numerics.integrator=%s", integrator);
-  const char *sets[] = {k1, k2};
+  snprintf(k3, sizeof k3, "numerics.density_filter=%s", filter);
+  const char *sets[] = {k1, k2, k3};
   sph_case c;
   sph_sim *s;
   sph_error err;
-  CU_ASSERT_FATAL(sph_test_open_sim("tests/data/restart_no_tension.yaml", sets, 2, &c, &s) == 0);
+  CU_ASSERT_FATAL(sph_test_open_sim("tests/data/restart_no_tension.yaml", sets, 3, &c, &s) == 0);
   double lo = INFINITY;
   *pmin = INFINITY;
   while (sph_sim_time(s) < c.t_end) {
@@ -103,14 +109,18 @@ static double lowest_density(const char *negative, const char *integrator, doubl
 }
 
 static void test_run(void) {
-  static const char *const integrators[] = {"leapfrog", "predictor_corrector"};
-  for (int k = 0; k < 2; k++) {
+  /* both integrators, and the leap-frog with the Shepard filter every 5 steps (the floor on
+   * the filtered density) */
+  static const char *const integrators[] = {"leapfrog", "predictor_corrector", "leapfrog"};
+  static const char *const filters[] = {"{kind: none}", "{kind: none}",
+                                        "{kind: shepard, every: 5}"};
+  for (int k = 0; k < 3; k++) {
     double pmin_on, pmin_off;
-    const double with = lowest_density("true", integrators[k], &pmin_on);
-    const double without = lowest_density("false", integrators[k], &pmin_off);
-    printf("\n  %s: lowest density %.6f rho0 (pressure %.1f Pa) with tension, %.6f rho0 (%.1f "
-           "Pa) without",
-           integrators[k], with, pmin_on, without, pmin_off);
+    const double with = lowest_density("true", integrators[k], filters[k], &pmin_on);
+    const double without = lowest_density("false", integrators[k], filters[k], &pmin_off);
+    printf("\n  %s, filter %s: lowest density %.6f rho0 (pressure %.1f Pa) with tension, %.6f "
+           "rho0 (%.1f Pa) without",
+           integrators[k], filters[k], with, pmin_on, without, pmin_off);
     CU_ASSERT(with < 0.999);
     CU_ASSERT(without >= 1.0);
     CU_ASSERT(pmin_off >= 0.0);

@@ -244,11 +244,14 @@ static int apply_filter(sph_sim *s, sph_error *err) {
   fp.kernel = c->kernel;
   if (sph_filter_apply(c->density_filter, &s->p, &s->grid, &fp, s->work.prho2, NULL, err))
     return -1;
-  for (size_t i = 0; i < s->p.n; i++) /* the floor (eos.h) holds for the filtered density too */
-    if (s->p.kind[i] == SPH_KIND_FLUID) s->p.rho[i] = sph_eos_floor(&s->fp.eos, s->p.rho[i]);
-  if (c->integrator == SPH_INTEGRATOR_LEAPFROG)
-    for (size_t i = 0; i < s->p.n; i++)
-      s->p.rhoh[i] = s->p.rho[i];
+  const int floored = s->fp.eos.rho_min > 0.0, leapfrog = c->integrator == SPH_INTEGRATOR_LEAPFROG;
+  if (floored || leapfrog)
+    for (size_t i = 0; i < s->p.n; i++) {
+      /* the floor (eos.h) holds for the filtered density too */
+      if (floored && s->p.kind[i] == SPH_KIND_FLUID)
+        s->p.rho[i] = sph_eos_floor(&s->fp.eos, s->p.rho[i]);
+      if (leapfrog) s->p.rhoh[i] = s->p.rho[i];
+    }
   sph_forces_pressure(&s->p, &s->fp.eos);
   return 0;
 }
