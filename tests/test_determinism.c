@@ -184,6 +184,10 @@ static void test_no_tension(void) {
   same_on_threads("tests/data/restart_no_tension.yaml", "--set time.end=0.1", 3);
 }
 
+/* fluid that leaves the domain taken out (geometry.leaving: remove): the count's reduction,
+ * the store's compaction and the booking, with the default scheme and the ledger */
+static void test_outflow(void) { same_on_threads("tests/data/restart_outflow.yaml", "", 3); }
+
 /* the Wendland kernel in the pair loop, the strain-rate pass, the MLS
  * filter and the probes */
 static void test_wendland(void) {
@@ -210,6 +214,7 @@ int main(void) {
       {"paddle, gauges, variable h, Shepard filter", test_paddle},
       {"leap-frog dam break on 1, 2 and 3 threads", test_three_threads},
       {"a fluid without tension, 1-3 threads", test_no_tension},
+      {"fluid that leaves the domain taken out, 1-3 threads", test_outflow},
       CU_TEST_INFO_NULL};
   return sph_test_main("determinism", tests);
 }

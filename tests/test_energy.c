@@ -362,9 +362,9 @@ static void test_column_units(void) {
   size_t len = 0;
   FILE *m = open_memstream(&text, &len);
   CU_ASSERT_PTR_NOT_NULL_FATAL(m);
-  CU_ASSERT_EQUAL(sph_diag_write_header(m, 1, 1, 1, 1, 1), 0);
+  CU_ASSERT_EQUAL(sph_diag_write_header(m, 1, 1, 1, 1, 1, 1), 0);
   fclose(m);
-  CU_ASSERT_EQUAL(check_units_of(text), 22);
+  CU_ASSERT_EQUAL(check_units_of(text), 25);
   free(text);
   CU_ASSERT_STRING_EQUAL(sph_csv_units("eta_0.35"), "m");
   CU_ASSERT_STRING_EQUAL(sph_csv_units("kinetic"), "J/m");

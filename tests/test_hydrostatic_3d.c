@@ -527,7 +527,7 @@ static void test_snapshots(void) {
   const char *names[1] = {"snap_0001.h5"};
   const double times[1] = {0.5};
   const size_t np = sph_sim_particles(s)->n;
-  CU_ASSERT_FATAL(sph_xdmf_write(xmf, 1, names, times, np, 0, &err) == 0);
+  CU_ASSERT_FATAL(sph_xdmf_write(xmf, 1, names, times, &np, 0, &err) == 0);
   char *text = sph_test_read_file(xmf, NULL), dims[64];
   snprintf(dims, sizeof dims, "Dimensions=\"%zu 3\"", np);
   CU_ASSERT_PTR_NOT_NULL(text && strstr(text, "GeometryType=\"XYZ\""));

@@ -13,7 +13,9 @@
  * levels at t = 0), the pressure probes' low-pass filters (their outputs) and free-surface flags
  * read from the kept neighbour list; restart_default is the default scheme as shipped (the
  * leap-frog with a step that changes, Adami walls), restart_no_tension the same with the
- * density floor of a fluid without tension. Each is run
+ * density floor of a fluid without tension, restart_outflow fluid taken out of the run as it
+ * leaves the domain (which particles left, what they carried, the snapshots' own counts in
+ * the XDMF index). Each is run
  * uninterrupted; then
  *   - restarted from snap_0002 (restart_fs: snap_0003) into a fresh
  *     directory (1 thread; the uninterrupted run on 2): every
@@ -201,6 +203,9 @@ static void restart_in_place(const char *name, int k, int short_form, int old_he
 static void test_pc_in_place(void) { restart_in_place("restart_pc", 3, 0, 0); }
 static void test_mirror_in_place(void) { restart_in_place("restart_mirror", 4, 1, 1); }
 static void test_crlf_in_place(void) { restart_in_place("restart_pc", 3, 0, 2); }
+/* snap_0004 (t = 0.2 s) after 17 particles left the domain, more leave later */
+static void test_outflow_fresh(void) { restart_fresh("restart_outflow", 4); }
+static void test_outflow_in_place(void) { restart_in_place("restart_outflow", 4, 0, 0); }
 
 /* A restart in place never drops rows it cannot read (issue 61, E6): a
  * file with other columns or a row whose time is not a number is refused
@@ -440,6 +445,8 @@ int main(void) {
       {"restart in the run's directory: CSV and XDMF as uninterrupted", test_pc_in_place},
       {"mirror, periodic: restart in place, headers of an earlier version", test_mirror_in_place},
       {"restart in place: CRLF line ends read, rows kept", test_crlf_in_place},
+      {"fluid taken out as it leaves: restart is bitwise", test_outflow_fresh},
+      {"fluid taken out: restart in place, XDMF counts as uninterrupted", test_outflow_in_place},
       {"restart in place: unreadable rows refused, files left as they were", test_unreadable_rows},
       {"bad restarts fail clearly; time.end may change", test_bad_restarts},
       {"the restart's clock: time.end before it, NaN, negative, 1e308 and step -5 refused",

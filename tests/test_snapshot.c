@@ -703,7 +703,8 @@ static void test_xdmf(void) {
     CU_ASSERT_FATAL(sph_snapshot_write(h5, &m, &p, &err) == 0);
     free(h5);
   }
-  int rc = sph_xdmf_write(xmf, 3, names, times, p.n, 1, &err);
+  const size_t counts[3] = {p.n, p.n, p.n};
+  int rc = sph_xdmf_write(xmf, 3, names, times, counts, 1, &err);
   if (rc) fprintf(stderr, "%s\n", err.msg);
   CU_ASSERT_FATAL(rc == 0);
   CU_ASSERT(no_tmp_files(dir));
@@ -744,19 +745,19 @@ static void test_xdmf(void) {
 
   /* without free_surface, odd characters escaped, a time that cannot be written */
   const char *odd[1] = {"a&b<c>.h5"};
-  CU_ASSERT_FATAL(sph_xdmf_write(xmf, 1, odd, times, p.n, 0, &err) == 0);
+  CU_ASSERT_FATAL(sph_xdmf_write(xmf, 1, odd, times, &p.n, 0, &err) == 0);
   text = sph_test_read_file(xmf, &len);
   CU_ASSERT_FATAL(text != NULL);
   CU_ASSERT(!contains(text, "free_surface"));
   CU_ASSERT(contains(text, ">a&amp;b&lt;c&gt;.h5:/particles/rho</DataItem>"));
   free(text);
   const double bad[1] = {NAN};
-  CU_ASSERT(sph_xdmf_write(xmf, 1, names, bad, p.n, 0, &err) != 0);
+  CU_ASSERT(sph_xdmf_write(xmf, 1, names, bad, &p.n, 0, &err) != 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, xmf));
   const char *colon[1] = {"c:snap.h5"};
-  CU_ASSERT(sph_xdmf_write(xmf, 1, colon, times, p.n, 0, &err) != 0);
+  CU_ASSERT(sph_xdmf_write(xmf, 1, colon, times, &p.n, 0, &err) != 0);
   char *nowhere = join(dir, "no/dir/run.xmf");
-  CU_ASSERT(sph_xdmf_write(nowhere, 3, names, times, p.n, 0, &err) != 0);
+  CU_ASSERT(sph_xdmf_write(nowhere, 3, names, times, counts, 0, &err) != 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(err.msg, nowhere));
   free(nowhere);
   CU_ASSERT(no_tmp_files(dir));

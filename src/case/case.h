@@ -37,6 +37,9 @@ typedef enum {
   SPH_DT_FIXED = 2    /* a constant step from the case */
 } sph_dt_rule;
 typedef enum { SPH_STOP_NONE = 0, SPH_STOP_FRONT_AT_WALL = 1 } sph_stop_kind;
+/* geometry.leaving: a fluid particle outside the domain stops the run as
+ * a blow-up, or is taken out of it (solver/outflow.h) */
+typedef enum { SPH_LEAVING_STOP = 0, SPH_LEAVING_REMOVE = 1 } sph_leaving_kind;
 /* numerics.scheme: a named set of defaults for the pressure term, the
  * dissipation, the diffusion, the kernel, the step rule and the tank's
  * wall model (src/case/presets.c, doc/method.md, Schemes); the keys a case
@@ -143,7 +146,8 @@ typedef struct sph_case {
   int periodic;               /* 1 if geometry.periodic_x (3-D: or _y, _z) was given */
   double periodic_range[2];   /* its range: particles leaving one side re-enter at the other */
   int domain_set;             /* 1 if geometry.domain was given */
-  double domain[2 * SPH_DIM]; /* x0, x1, y0, y1 (, z0, z1): leaving it stops the run */
+  double domain[2 * SPH_DIM]; /* x0, x1, y0, y1 (, z0, z1) */
+  sph_leaving_kind leaving;   /* what a fluid particle leaving the domain does (geometry.leaving) */
 
   /* free surface (paper A §7) */
   double fs_radius_factor; /* circle radius = factor * h, default 1 */

@@ -164,6 +164,9 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
   } else {
     sb_add(b, "geometry.domain: none\n");
   }
+  /* listed only when not the default: the parameters of every case that
+   * stops are those it had before the key existed */
+  if (c->leaving == SPH_LEAVING_REMOVE) sb_add(b, "geometry.leaving: remove\n");
 }
 
 char *sph_case_describe(const sph_case *c) {

@@ -13,6 +13,7 @@
 #include "config.h"
 
 #include "case/case_read.h"
+#include "case/choices.h"
 
 #include "walls/wavemaker.h"
 
@@ -24,9 +25,9 @@
 #include <string.h>
 #include <unistd.h>
 
-static const char *const geometry_keys[] = {"tank",       "fluid",      "walls",
-                                            "obstacles",  "periodic_x", "periodic_y",
-                                            "periodic_z", "domain",     NULL};
+static const char *const geometry_keys[] = {"tank",       "fluid",      "walls",      "obstacles",
+                                            "periodic_x", "periodic_y", "periodic_z", "domain",
+                                            "leaving",    NULL};
 static const char *const obstacle_keys[] = {"x", "y", SPH_IF3("z", ) "layers", "boundary", NULL};
 static const char *const tank_keys[] = {
     "x", "y", "layers", "boundary", "stagger", "extrapolated_velocity", "free_slip",
@@ -58,6 +59,7 @@ static const char *const domain_keys[] = {"x", "y",
                                           "z",
 #endif
                                           NULL};
+const char *const sph_case_leaving_names[] = {"stop", "remove", NULL};
 static const char *const boundary_names[] = {"dynamic", "fixed_layers", "repulsive", "mirror",
                                              "mdbc",    "adami",        NULL};
 
@@ -606,6 +608,10 @@ int sph_case_read_geometry(const ctx *x, const node *root, sph_case *c) {
   if (read_tank(x, m, c) || read_fluid(x, m, c) || read_walls(x, m, c) || read_obstacles(x, m, c))
     return -1;
   if (read_periodic(x, m, c)) return -1;
+  int leaving = SPH_LEAVING_STOP;
+  if (sph_yaml_get_choice(&x->t, m, "geometry", "leaving", sph_case_leaving_names, &leaving) < 0)
+    return -1;
+  c->leaving = (sph_leaving_kind)leaving;
   int rc = sph_yaml_get_section(&x->t, m, "geometry", "domain", 0, domain_keys, &d);
   if (rc <= 0) return rc;
   c->domain_set = 1;

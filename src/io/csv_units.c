@@ -58,6 +58,9 @@ static const column_units table[] = {
     {"momentum_residual_z", MOMENTUM_UNITS},
     {"diffusion_energy", ENERGY_UNITS},
     {"wall_potential", ENERGY_UNITS},
+    {"n_removed", ""},
+    {"mass_removed", MASS_UNITS},
+    {"energy_removed", ENERGY_UNITS},
     /* audit.csv (deviations, work and heat in units of E0) */
     {"particles", ""},
     {"dx", "m"},

@@ -466,6 +466,11 @@ static int write_restart(writer *w, const sph_snapshot_restart *r, size_t n) {
   if (rc == 0 && r->n_filters > 0)
     rc = put_numbers(w, g, "/restart", "probe_filters", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
                      r->filters, r->n_filters);
+  if (rc == 0 && r->has_outflow)
+    rc = put_numbers(w, g, "/restart", "outflow", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, r->outflow,
+                     3 + SPH_DIM);
+  if (rc == 0 && r->origin)
+    rc = write_raw(w, g, "origin", H5T_STD_I64LE, H5T_NATIVE_INT64, r->origin, n);
   if (rc == 0 && !r->order)
     rc = sph_error_set(w->err, "%s: restart record without the storage order", w->path);
   if (rc == 0) rc = write_raw(w, g, "order", H5T_STD_I64LE, H5T_NATIVE_INT64, r->order, n);
@@ -1076,8 +1081,19 @@ static int read_restart(const sph_snapshot *s, hid_t g, sph_snapshot_restart_dat
   if (get_optional_doubles(s, g, "gauge_levels", &r->levels, &r->n_levels, err) ||
       get_optional_doubles(s, g, "probe_filters", &r->filters, &r->n_filters, err))
     return -1;
+  const long long nout = attribute_length(s, g, "outflow", err);
+  if (nout < 0) return -1;
+  if (nout > 0 && nout != 3 + SPH_DIM)
+    return sph_error_set(err, "%s: attribute \"outflow\" on /restart has %lld values, expected %d",
+                         s->path, nout, 3 + SPH_DIM);
+  if (nout > 0 &&
+      get_numbers_of(s, g, "/restart", "outflow", H5T_NATIVE_DOUBLE, r->outflow, 3 + SPH_DIM, err))
+    return -1;
+  r->has_outflow = nout > 0;
   r->count = s->count;
   void *a = NULL;
+  if (read_restart_array(s, g, "origin", 0, H5T_NATIVE_INT64, sizeof(int64_t), &a, err)) return -1;
+  r->origin = a;
   if (read_restart_array(s, g, "order", 1, H5T_NATIVE_INT64, sizeof(int64_t), &a, err)) return -1;
   r->order = a;
   /* order must be a permutation of 0..count-1 */
@@ -1135,6 +1151,8 @@ int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *
 
 void sph_snapshot_restart_free_particles(sph_snapshot_restart_data *r) {
   free(r->order);
+  free(r->origin);
+  r->origin = NULL;
   free(r->vxh);
   free(r->vyh);
   SPH_IF3(free(r->vzh); r->vzh = NULL;)

@@ -57,10 +57,14 @@ typedef struct sph_snapshot_meta {
  * level at t = 0; absent without gauges), probe_filters (the probes' low-pass filters: each probe's
  * output, then the time of the last probe row and the rows seen; absent where no probe has a
  *     filter, and a resumed run's filters then start afresh);
+ *     outflow (with geometry.leaving: remove: the fluid particles that left
+ *     the domain, their mass, energy and momentum by axis; solver/outflow.h);
  *   datasets (in storage order, not id order): order (int64: the id of the
  *     particle at each storage index: the within-cell order the neighbour
  *     sums run in), and with the leap-frog vxh, vyh, rhoh, uh (float64: the
- *     half-step values).
+ *     half-step values); origin (int64, in id order, once a particle has
+ *     left the domain: the id each particle had when the case made it,
+ *     increasing).
  * For writing, the arrays are the store's own (n values each, storage
  * order); NULL half-step arrays are not written. */
 typedef struct sph_snapshot_restart {
@@ -75,6 +79,9 @@ typedef struct sph_snapshot_restart {
   const double *levels;
   size_t n_filters;
   const double *filters;
+  int has_outflow; /* write outflow */
+  double outflow[3 + SPH_DIM];
+  const int64_t *origin; /* NULL: not written */
   const int64_t *order;
   const double *vxh, *vyh, *rhoh, *uh;
 #if SPH_DIM == 3
@@ -88,9 +95,11 @@ int sph_snapshot_write(const char *path, const sph_snapshot_meta *meta, const sp
 
 /* Writes (atomically) an XDMF 3 file that describes a series of snapshots,
  * so ParaView and VisIt open the whole run: h5_names are the snapshot file
- * names relative to the XDMF file, times their times. */
+ * names relative to the XDMF file, times their times, n_particles their
+ * particle counts. */
 int sph_xdmf_write(const char *xmf_path, size_t n_snap, const char *const *h5_names,
-                   const double *times, size_t n_particles, int free_surface, sph_error *err);
+                   const double *times, const size_t *n_particles, int free_surface,
+                   sph_error *err);
 
 /* Reading. */
 typedef struct sph_snapshot sph_snapshot;
@@ -153,8 +162,11 @@ typedef struct sph_snapshot_restart_data {
   double *levels;
   size_t n_filters;
   double *filters; /* NULL when absent */
+  int has_outflow;
+  double outflow[3 + SPH_DIM]; /* zeros when absent */
   size_t count;
   int64_t *order;
+  int64_t *origin; /* NULL when absent */
   double *vxh, *vyh, *rhoh, *uh;
 #if SPH_DIM == 3
   double *vzh;
@@ -162,7 +174,7 @@ typedef struct sph_snapshot_restart_data {
 } sph_snapshot_restart_data;
 int sph_snapshot_read_restart(const sph_snapshot *s, sph_snapshot_restart_data *r, sph_error *err);
 void sph_snapshot_restart_free(sph_snapshot_restart_data *r);
-/* Frees only r's per-particle arrays (order and the half-step values; count
+/* Frees only r's per-particle arrays (order, origin and the half-step values; count
  * becomes 0), keeping its gauges, filters and scalars: for a caller that
  * has copied those arrays into its store. */
 void sph_snapshot_restart_free_particles(sph_snapshot_restart_data *r);

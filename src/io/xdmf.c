@@ -13,7 +13,8 @@
  * z = 0: ParaView's glyphs take it as it is), and every field (x and y
  * included) as a node-centred scalar Attribute that references
  * "<snapshot>:/particles/<field>". The data stay in the HDF5 files; only
- * their names, the particle count and the times are written here.
+ * their names, particle counts (each snapshot its own: fluid that leaves
+ * the domain may be taken out of a run) and times are written here.
  *
  * Invariants: the field list and number types below mirror the snapshot
  * writer (snapshot.c); the file is written to "<path>.tmp" and renamed, and
@@ -105,13 +106,13 @@ static void put_grid(FILE *f, const char *h5, double time, size_t n, int free_su
 }
 
 static void put_document(FILE *f, size_t n_snap, const char *const *h5_names, const double *times,
-                         size_t n, int free_surface) {
+                         const size_t *n, int free_surface) {
   fputs("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n", f);
   fputs("<Xdmf Version=\"3.0\">\n", f);
   fputs("  <Domain>\n", f);
   fputs("    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", f);
   for (size_t i = 0; i < n_snap; i++)
-    put_grid(f, h5_names[i], times[i], n, free_surface);
+    put_grid(f, h5_names[i], times[i], n[i], free_surface);
   fputs("    </Grid>\n", f);
   fputs("  </Domain>\n", f);
   fputs("</Xdmf>\n", f);
@@ -136,7 +137,8 @@ static int check_inputs(const char *xmf_path, size_t n_snap, const char *const *
 }
 
 int sph_xdmf_write(const char *xmf_path, size_t n_snap, const char *const *h5_names,
-                   const double *times, size_t n_particles, int free_surface, sph_error *err) {
+                   const double *times, const size_t *n_particles, int free_surface,
+                   sph_error *err) {
   if (!xmf_path || !*xmf_path) return sph_error_set(err, "xdmf: empty file name");
   if (check_inputs(xmf_path, n_snap, h5_names, times, err)) return -1;
   size_t len = strlen(xmf_path);

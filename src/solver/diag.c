@@ -104,10 +104,13 @@ void sph_diag_compute(const sph_particles *p, double floor_y, double band, const
   row->diffusion = 0;
   row->shifting = 0;
   row->repulsion = 0;
+  row->outflow = 0;
+  row->n_removed = 0;
+  row->mass_removed = row->energy_removed = 0.0;
 }
 
 int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion, int repulsion,
-                          int shifting) {
+                          int shifting, int outflow) {
   static const char *const base[] = {
     "time",
     "step",
@@ -142,12 +145,16 @@ int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion, 
   static const char *const diffusion_cols[] = {"diffusion_energy", NULL};
   static const char *const repulsion_cols[] = {"wall_potential", NULL};
   static const char *const shifting_cols[] = {"shifting_drift", NULL};
+  static const char *const outflow_cols[] = {"n_removed", "mass_removed", NULL};
+  static const char *const outflow_energy[] = {"energy_removed", NULL};
   int bad = sph_csv_put_columns(f, base, 1);
   if (!bad && free_surface) bad = sph_csv_put_columns(f, surface, 0);
   if (!bad && ledger) bad = sph_csv_put_columns(f, ledger_cols, 0);
   if (!bad && ledger && diffusion) bad = sph_csv_put_columns(f, diffusion_cols, 0);
   if (!bad && ledger && repulsion) bad = sph_csv_put_columns(f, repulsion_cols, 0);
   if (!bad && ledger && shifting) bad = sph_csv_put_columns(f, shifting_cols, 0);
+  if (!bad && outflow) bad = sph_csv_put_columns(f, outflow_cols, 0);
+  if (!bad && ledger && outflow) bad = sph_csv_put_columns(f, outflow_energy, 0);
   return bad || fputc('\n', f) == EOF;
 }
 
@@ -166,5 +173,7 @@ int sph_diag_write_row(FILE *f, const sph_diag_row *r) {
   if (r->ledger && r->diffusion && fprintf(f, ",%.17g", r->diffusion_energy) < 0) return 1;
   if (r->ledger && r->repulsion && fprintf(f, ",%.17g", r->wall_potential) < 0) return 1;
   if (r->ledger && r->shifting && fprintf(f, ",%.17g", r->shifting_drift) < 0) return 1;
+  if (r->outflow && fprintf(f, ",%zu,%.17g", r->n_removed, r->mass_removed) < 0) return 1;
+  if (r->ledger && r->outflow && fprintf(f, ",%.17g", r->energy_removed) < 0) return 1;
   return fputc('\n', f) == EOF;
 }

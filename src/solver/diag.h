@@ -21,6 +21,10 @@
  *   diffusion_energy  the elastic energy the density diffusion added
  *              (ledger.h; a column only with output.energy and density
  *              diffusion on)
+ *   n_removed,mass_removed,energy_removed  the fluid particles that left
+ *              the domain, their mass and energy (outflow.h; columns only
+ *              with geometry.leaving: remove, the last with output.energy;
+ *              after the other ledger columns)
  * Numbers are printed with %.17g: a row reads back to the same bits. Sums
  * run serially over the store in its (deterministic) sorted order.
  */
@@ -55,8 +59,12 @@ typedef struct sph_diag_row {
   double shifting_drift;   /* change of potential energy caused by particle shifting (ledger.h) */
   int repulsion;           /* write wall_potential */
   double wall_potential;   /* Lennard-Jones potential energy of repulsive walls (ledger.h) */
+  int outflow;             /* write n_removed, mass_removed (and energy_removed with the ledger) */
+  size_t n_removed;        /* fluid particles that left the domain (geometry.leaving: remove) */
+  double mass_removed;     /* their mass */
+  double energy_removed;   /* their kinetic + potential + internal energy when they left */
   double total;     /* kinetic + potential + internal + wall_potential - boundary_work - xsph_drift
-                       - shifting_drift */
+                       - shifting_drift + energy_removed */
   double deviation; /* (total - E0) / E0, E0 the initial total */
   double fluid_deviation; /* the fluid's own kinetic + potential + internal against its start */
   /* momentum balance: P - P0 - integral of the external force (walls,
@@ -92,7 +100,7 @@ void sph_diag_compute(const sph_particles *p, double floor_y, double band, const
                       sph_diag_row *row);
 /* CSV header line and rows. Return non-zero on a write error. */
 int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion, int repulsion,
-                          int shifting);
+                          int shifting, int outflow);
 int sph_diag_write_row(FILE *f, const sph_diag_row *row);
 
 #ifdef __cplusplus

@@ -75,7 +75,10 @@ double sph_ledger_fluid_internal(const sph_particles *p) {
   return u;
 }
 
-void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, sph_diag_row *row) {
+void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, const sph_outflow *out,
+                     sph_diag_row *row) {
+  static const sph_outflow none = {0};
+  if (!out) out = &none;
   double u = 0.0; /* every particle's heat: dynamic walls take half a pair's */
   for (size_t i = 0; i < p->n; i++)
     u += p->mass[i] * p->u[i];
@@ -87,17 +90,22 @@ void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, sph_diag_row 
   row->diffusion_energy = lg->work_diffusion;
   row->repulsion = lg->repulsion;
   row->wall_potential = lg->repulsion ? lg->wall_potential : 0.0;
+  row->energy_removed = out->energy;
   row->total = row->kinetic + row->potential + u + row->wall_potential - lg->work_wall -
-               lg->drift_xsph - lg->drift_shifting;
+               lg->drift_xsph - lg->drift_shifting + out->energy;
   row->deviation = lg->e0 != 0.0 ? (row->total - lg->e0) / lg->e0 : 0.0;
-  const double ef = row->kinetic + row->potential + sph_ledger_fluid_internal(p);
+  const double ef = row->kinetic + row->potential + sph_ledger_fluid_internal(p) + out->energy;
   row->fluid_deviation = lg->e0_fluid != 0.0 ? (ef - lg->e0_fluid) / lg->e0_fluid : 0.0;
-  row->momentum_residual_x = row->momentum_x - lg->p0x - lg->impulse_x;
-  row->momentum_residual_y = row->momentum_y - lg->p0y - lg->impulse_y;
-  SPH_IF3(row->momentum_residual_z = row->momentum_z - lg->p0z - lg->impulse_z;)
-  /* debug invariants: masses never change, and every total is a number */
-  SPH_INVARIANT(lg->m0 == 0.0 || row->mass == lg->m0, "fluid mass %.17g, initially %.17g",
-                row->mass, lg->m0);
+  row->momentum_residual_x = row->momentum_x + out->momentum[0] - lg->p0x - lg->impulse_x;
+  row->momentum_residual_y = row->momentum_y + out->momentum[1] - lg->p0y - lg->impulse_y;
+  SPH_IF3(row->momentum_residual_z = row->momentum_z + out->momentum[2] - lg->p0z - lg->impulse_z;)
+  /* debug invariants: masses never change (the fluid that left and what is
+   * left add up to the start, to the rounding of two sums), and every
+   * total is a number */
+  SPH_INVARIANT(
+      lg->m0 == 0.0 || (out->count == 0 ? row->mass == lg->m0
+                                        : fabs(row->mass + out->mass - lg->m0) <= 1e-12 * lg->m0),
+      "fluid mass %.17g (and %.17g removed), initially %.17g", row->mass, out->mass, lg->m0);
   SPH_INVARIANT(isfinite(row->total) && isfinite(lg->work_wall) && isfinite(lg->impulse_x) &&
                     isfinite(lg->impulse_y),
                 "a ledger total is not finite at t = %.9g s", row->time);

@@ -20,7 +20,8 @@
  * at the last interaction pass, and their time integrals work_wall,
  * drift_xsph, the impulse and work_diffusion. With these
  *   total     = kinetic + potential + internal + wall_potential
- *               - work_wall - drift_xsph - drift_shifting
+ *               - work_wall - drift_xsph - drift_shifting + energy_removed
+ * (energy_removed: what the fluid that left the domain carried, outflow.h)
  *   deviation = (total - total_0) / total_0
  * closes to round-off for a conservative scheme, and the momentum residual
  * p - p_0 - impulse closes to round-off. The density diffusion moves no
@@ -43,6 +44,7 @@
 #include "core/particles.h"
 #include "solver/diag.h"
 #include "solver/forces.h"
+#include "solver/outflow.h"
 
 /* The number of doubles a restart record keeps (sph_ledger_save). */
 #define SPH_LEDGER_SAVED (2 + SPH_DIM) /* wall work, XSPH drift, an impulse per axis */
@@ -101,8 +103,11 @@ void sph_ledger_add_shift(sph_ledger *lg, const double moved[SPH_DIM],
 double sph_ledger_fluid_internal(const sph_particles *p);
 
 /* Completes a diagnostics row (row->kinetic, potential and momentum
- * already filled by sph_diag_compute) with the ledger's columns. */
-void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, sph_diag_row *row);
+ * already filled by sph_diag_compute) with the ledger's columns; out (or
+ * NULL) is the fluid that left the domain (outflow.h): its energy joins
+ * the totals (the energy_removed column) and its momentum the balance. */
+void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, const sph_outflow *out,
+                     sph_diag_row *row);
 
 /* Takes the initial totals from the first row (filled by
  * sph_ledger_fill with zero integrals). */

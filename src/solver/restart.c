@@ -21,8 +21,9 @@
  * fields, what the next step reads that the fields do not hold: the
  * storage order (the grid's sort is stable, so the order within a cell,
  * and with it the order of every neighbour sum, depends on the history),
- * the leap-frog's half-step values and first-step flag, and the ledger's
- * time integrals. Everything else the step uses is either a function of
+ * the leap-frog's half-step values and first-step flag, the ledger's
+ * time integrals, and which particles have left the domain and what they
+ * carried (outflow.h). Everything else the step uses is either a function of
  * the case (set-up, rest positions and motion of walls, domain, initial
  * energies and momentum, all remade by sph_sim_create) or of the state in
  * that order (the rates, flags and step-rule inputs of the pass, which
@@ -47,6 +48,9 @@ int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t outpu
   r.levels = levels;
   r.n_filters = n_filters;
   r.filters = filters;
+  r.has_outflow = s->c->leaving == SPH_LEAVING_REMOVE;
+  sph_outflow_save(&s->out, r.outflow);
+  r.origin = s->out.origin;
   r.order = s->p.id;
   if (s->c->integrator == SPH_INTEGRATOR_LEAPFROG) {
     r.vxh = s->p.vxh;
@@ -81,6 +85,16 @@ static const char *first_difference(const char *a, const char *b, size_t *len) {
 static int restore_state(sph_sim *s, const sph_snapshot *snap, const sph_particles *q,
                          const sph_snapshot_restart_data *rd, sph_error *err) {
   const char *path = sph_snapshot_path(snap);
+  /* the fluid that had left the domain by then leaves the case's store */
+  if (rd->origin) {
+    if (sph_outflow_restore(&s->out, &s->p, rd->origin, rd->count, rd->outflow, path, err))
+      return -1;
+  } else if (rd->outflow[0] != 0.0) {
+    return sph_error_set(err,
+                         "%s: the restart record says %g particles left the domain but has no "
+                         "/restart/origin",
+                         path, rd->outflow[0]);
+  }
   const size_t n = s->p.n;
   if (q->n != n)
     return sph_error_set(err,

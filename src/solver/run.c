@@ -48,6 +48,7 @@ typedef struct outputs {
   size_t n, cap; /* snapshots listed in the XDMF index */
   char **names;
   double *times;
+  size_t *counts; /* each one's particles (fluid that leaves the domain may be taken out) */
 } outputs;
 
 static void outputs_free(outputs *o) {
@@ -60,6 +61,7 @@ static void outputs_free(outputs *o) {
     free(o->names[i]);
   free(o->names);
   free(o->times);
+  free(o->counts);
 }
 
 /* One row of gauges.csv: time, then each gauge's elevation above its level
@@ -170,17 +172,20 @@ static int probe_step(sph_sim *s, outputs *o, sph_error *err) {
 }
 
 /* Adds a snapshot to the XDMF list. */
-static int list_snapshot(outputs *o, const char *name, double t, sph_error *err) {
+static int list_snapshot(outputs *o, const char *name, double t, size_t count, sph_error *err) {
   if (o->n == o->cap) {
     size_t cap = o->cap ? 2 * o->cap : 64;
     char **nn = realloc(o->names, cap * sizeof *nn);
     if (nn) o->names = nn;
     double *nt = realloc(o->times, cap * sizeof *nt);
     if (nt) o->times = nt;
-    if (!nn || !nt) return sph_error_set(err, "out of memory");
+    size_t *nc = realloc(o->counts, cap * sizeof *nc);
+    if (nc) o->counts = nc;
+    if (!nn || !nt || !nc) return sph_error_set(err, "out of memory");
     o->cap = cap;
   }
   if (!(o->names[o->n] = strdup(name))) return sph_error_set(err, "out of memory");
+  o->counts[o->n] = count;
   o->times[o->n++] = t;
   return 0;
 }
@@ -217,11 +222,11 @@ static int write_output(sph_sim *s, outputs *o, sph_run_result *r, sph_error *er
   if (sph_sim_write_run_snapshot(s, path, (int64_t)o->index, o->still, c->n_gauges, o->lp, nf, err))
     return -1;
   o->index++;
-  if (list_snapshot(o, name, sph_sim_time(s), err)) return -1;
+  if (list_snapshot(o, name, sph_sim_time(s), sph_sim_particles(s)->n, err)) return -1;
   snprintf(r->last_snapshot, sizeof r->last_snapshot, "%s", path);
   snprintf(path, sizeof path, "%s/snapshots.xmf", o->dir);
-  return sph_xdmf_write(path, o->n, (const char *const *)o->names, o->times,
-                        sph_sim_particles(s)->n, sph_case_needs_free_surface(sph_sim_case(s)), err);
+  return sph_xdmf_write(path, o->n, (const char *const *)o->names, o->times, o->counts,
+                        sph_case_needs_free_surface(sph_sim_case(s)), err);
 }
 
 int sph_run_stop_measure(const sph_sim *s, double *now, double *stop) {
@@ -383,7 +388,8 @@ static char *csv_header(const sph_case *c, int what) {
   } else {
     bad = sph_diag_write_header(m, sph_case_needs_free_surface(c), c->energy,
                                 c->diffusion != SPH_DIFFUSION_NONE || c->riemann,
-                                sph_case_has_boundary(c, SPH_BOUNDARY_REPULSIVE), c->shifting) != 0;
+                                sph_case_has_boundary(c, SPH_BOUNDARY_REPULSIVE), c->shifting,
+                                c->leaving == SPH_LEAVING_REMOVE) != 0;
   }
   if (fclose(m) || bad) {
     free(buf);
@@ -445,8 +451,9 @@ static int list_earlier(outputs *o, size_t last, sph_error *err) {
     sph_error e2;
     if (sph_snapshot_open(path, &snap, &e2)) continue;
     const double t = sph_snapshot_time(snap);
+    const size_t count = sph_snapshot_count(snap);
     sph_snapshot_close(snap);
-    if (list_snapshot(o, name, t, err)) return -1;
+    if (list_snapshot(o, name, t, count, err)) return -1;
   }
   return 0;
 }

@@ -518,6 +518,7 @@ fail:
 void sph_sim_free(sph_sim *s) {
   if (!s) return;
   sph_particles_free(&s->p);
+  sph_outflow_free(&s->out);
   sph_grid_free(&s->grid);
   sph_nlist_free(&s->nl);
   sph_force_work_free(&s->work);

@@ -318,7 +318,10 @@ int sph_sim_check_state(sph_sim *s, sph_error *err) {
   const sph_particles *p = &s->p;
   const double lim = s->c->density_limit, rho0 = s->c->rho0;
   const double rlo = rho0 * (1.0 - lim) * (1.0 + 1e-9), rhi = rho0 * (1.0 + lim) * (1.0 - 1e-9);
-  const double *d = s->domain;
+  /* with geometry.leaving: remove, a particle outside is taken out after the check */
+  static const double everywhere[2 * SPH_DIM] = {-INFINITY, INFINITY, -INFINITY,
+                                                 INFINITY SPH_IF3(, -INFINITY, INFINITY)};
+  const double *d = s->c->leaving == SPH_LEAVING_REMOVE ? everywhere : s->domain;
   const long n = (long)p->n;
   int64_t first = INT64_MAX;
 #pragma omp parallel if (n > SPH_OMP_MIN) reduction(min : first)
@@ -515,6 +518,9 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
     return -1;
   const int st = sph_sim_check_state(s, err);
   if (st) return st;
+  if (c->leaving == SPH_LEAVING_REMOVE &&
+      sph_outflow_remove(&s->out, &s->p, s->domain, c->gravity, s->floor_y, err) < 0)
+    return -1;
   /* rates (and flags) of the new state: the next step starts from them,
    * and a snapshot of this state carries flags that belong to it */
   s->resort = s->steps % SPH_RESORT_EVERY == 0;
@@ -539,6 +545,10 @@ const char *sph_sim_loop(const sph_sim *s, double *ratio) {
 sph_particles *sph_sim_particles(sph_sim *s) { return &s->p; }
 double sph_sim_floor(const sph_sim *s) { return s->floor_y; }
 size_t sph_sim_fluid_removed(const sph_sim *s) { return s->fluid_removed; }
+size_t sph_sim_fluid_left(const sph_sim *s, double *mass) {
+  if (mass) *mass = s->out.mass;
+  return s->out.count;
+}
 size_t sph_sim_fluid_in_obstacles(const sph_sim *s) { return s->fluid_in_obstacles; }
 size_t sph_sim_walls_dropped(const sph_sim *s) { return s->walls.n_dropped; }
 void sph_sim_domain(const sph_sim *s, double box[2 * SPH_DIM]) {
@@ -548,8 +558,13 @@ void sph_sim_domain(const sph_sim *s, double box[2 * SPH_DIM]) {
 void sph_sim_diag(const sph_sim *s, sph_diag_row *row) {
   sph_diag_compute(&s->p, s->floor_y, 2.0 * s->c->dx, s->c->gravity, row);
   row->n_surface = s->detect ? (long)s->n_surface : -1;
+  if (s->c->leaving == SPH_LEAVING_REMOVE) {
+    row->outflow = 1;
+    row->n_removed = s->out.count;
+    row->mass_removed = s->out.mass;
+  }
   if (s->c->energy) {
-    sph_ledger_fill(&s->ledger, &s->p, row);
+    sph_ledger_fill(&s->ledger, &s->p, &s->out, row);
     row->diffusion = s->c->diffusion != SPH_DIFFUSION_NONE || s->c->riemann;
     row->shifting = s->c->shifting;
   }

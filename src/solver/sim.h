@@ -68,8 +68,12 @@ size_t sph_sim_fluid_in_obstacles(const sph_sim *s);
 /* Wall particles of a geometry.walls segment not made: closer than dx/2 to
  * a particle of an earlier wall (the tank or a segment before it). */
 size_t sph_sim_walls_dropped(const sph_sim *s);
-/* The domain box x0, x1, y0, y1 (, z0, z1 in 3-D): a particle leaving it is
- * a blow-up. */
+/* Fluid particles that left the domain and were taken out of the run
+ * (geometry.leaving: remove; 0 otherwise), and their mass into *mass
+ * (may be NULL). */
+size_t sph_sim_fluid_left(const sph_sim *s, double *mass);
+/* The domain box x0, x1, y0, y1 (, z0, z1 in 3-D): a fluid particle leaving it is
+ * a blow-up, or is taken out of the run (geometry.leaving). */
 void sph_sim_domain(const sph_sim *s, double box[2 * SPH_DIM]);
 /* The interaction loop the run uses ("AVX-512 lanes", "AVX2 lanes",
  * "portable lanes" or "scalar"); *ratio gets the AVX2 loop's time over the AVX-512 loop's at

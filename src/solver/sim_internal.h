@@ -12,6 +12,7 @@
 #include "neighbours/grid.h"
 #include "solver/forces.h"
 #include "solver/ledger.h"
+#include "solver/outflow.h"
 #include "solver/sim.h"
 #include "walls/wall_velocity.h"
 #include "walls/walls.h"
@@ -60,7 +61,8 @@ struct sph_sim {
    * the first, the smallest and the time it began at (sph_sim_step_range) */
   double dt_first, dt_smallest, t_smallest;
   double floor_y;             /* the floor's height (y; z in 3-D) */
-  double domain[2 * SPH_DIM]; /* x0, x1, y0, y1 (, z0, z1): leaving it is a blow-up */
+  double domain[2 * SPH_DIM]; /* x0, x1, y0, y1 (, z0, z1): leaving it is a blow-up, or */
+  sph_outflow out;            /* the fluid that left it, taken out (geometry.leaving: remove) */
   double view[2 * SPH_DIM];
   char *parameters;               /* sph_case_describe */
   sph_snapshot_geometry geometry; /* every snapshot's /geometry (geometry_record.c) */
