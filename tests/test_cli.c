@@ -287,7 +287,7 @@ static void test_output_times_merge(void) {
  * speed far too low for the impact, and a strict density limit. */
 /* numerics.scheme is its keys: a run with `scheme: riemann` (the default)
  * and one with delta_sph write the same diagnostics, byte for byte, as the
- * same case with all ten of the scheme's keys written out (src/case/presets.c);
+ * same case with all eleven of the scheme's keys written out (src/case/presets.c);
  * the start-up listing names the scheme's keys a case gives itself. */
 static void test_scheme_is_its_keys(void) {
   static const struct {
@@ -295,13 +295,13 @@ static void test_scheme_is_its_keys(void) {
   } cases[] = {
       {"riemann",
        "  riemann: {limiter: 3}\n  artificial_viscosity: {alpha: 0}\n  xsph: 0\n"
-       "  viscosity: {model: none}\n",
+       "  viscosity: {model: none}\n  negative_pressure: false\n",
        "  density_diffusion: {model: none}\n  kernel: wendland_c2\n  h_factor: 2\n"
        "  time_step: {rule: cfl}\n  integrator: leapfrog\n",
        "adami"},
       {"delta_sph",
        "  riemann: off\n  artificial_viscosity: {alpha: 0.02}\n  xsph: 0\n"
-       "  viscosity: {model: morris, mu: 0.001}\n",
+       "  viscosity: {model: morris, mu: 0.001}\n  negative_pressure: true\n",
        "  density_diffusion: {model: antuono, delta: 0.1}\n  kernel: cubic_spline\n"
        "  h_factor: 1.3\n  time_step: {rule: paper_b}\n  integrator: predictor_corrector\n",
        "mdbc"},

@@ -5,9 +5,10 @@
  *
  * 1. The floor itself: without it (rho_min 0) every density passes unchanged; with it a
  *    density below rho0 reads rho0 and one above stays as it is.
- * 2. The key: read as a boolean (default true), listed in the run's parameters only when
- *    false (so the listings of every other case stay as they were), and a value that is not a
- *    boolean refused with the key's name.
+ * 2. The key: the default scheme's value false, the papers' schemes' and delta-SPH's true, a
+ *    case's own value kept over its scheme's; listed in the run's parameters only when false
+ *    (so the papers' cases' listings stay as they were); a value that is not a boolean refused
+ *    with the key's name.
  * 3. A run (tests/data/restart_no_tension.yaml: a block of water thrown at 1 m/s along the
  *    floor of an adami tank, the default scheme, the ledger on, 0.15 s): with the key false no
  *    fluid particle's density falls below rho0 nor its pressure below 0 after any step, on
@@ -40,29 +41,38 @@ static void test_floor(void) {
   CU_ASSERT_EQUAL(sph_eos_pressure(&e, sph_eos_floor(&e, 990.0)), 0.0);
 }
 
-/* The fixture's value of the key with the overrides set (n of them); *listing the run's
- * parameters (free it). */
-static int key_of(const char *const *set, size_t n, char **listing) {
+/* The case's value of the key with the overrides set (n of them), and whether the listing
+ * names it. */
+static int key_of(const char *const *set, size_t n, int *listed) {
   sph_case c;
   sph_sim *s;
   CU_ASSERT_FATAL(sph_test_open_sim("tests/data/restart_default.yaml", set, n, &c, &s) == 0);
   const int v = c.negative_pressure;
-  *listing = sph_case_describe(&c);
-  CU_ASSERT_FATAL(*listing != NULL);
+  char *d = sph_case_describe(&c);
+  CU_ASSERT_FATAL(d != NULL);
+  *listed = strstr(d, "physics.negative_pressure: false\n") != NULL;
+  CU_ASSERT(v || strstr(d, "negative_pressure: true") == NULL);
+  free(d);
   sph_sim_free(s);
   sph_case_free(&c);
   return v;
 }
 
 static void test_key(void) {
-  const char *off[] = {"physics.negative_pressure=false"};
-  char *d;
-  CU_ASSERT_EQUAL(key_of(NULL, 0, &d), 1);
-  CU_ASSERT(strstr(d, "negative_pressure") == NULL);
-  free(d);
-  CU_ASSERT_EQUAL(key_of(off, 1, &d), 0);
-  CU_ASSERT(strstr(d, "physics.negative_pressure: false\n") != NULL);
-  free(d);
+  const char *paper[] = {"numerics.scheme=paper_b"}, *delta[] = {"numerics.scheme=delta_sph"};
+  const char *on[] = {"physics.negative_pressure=true"};
+  int listed;
+  /* the default scheme: no tension, listed */
+  CU_ASSERT_EQUAL(key_of(NULL, 0, &listed), 0);
+  CU_ASSERT(listed);
+  /* the papers' schemes and delta-SPH: the continuity's density, not listed */
+  CU_ASSERT_EQUAL(key_of(paper, 1, &listed), 1);
+  CU_ASSERT(!listed);
+  CU_ASSERT_EQUAL(key_of(delta, 1, &listed), 1);
+  CU_ASSERT(!listed);
+  /* the case's own value over its scheme's */
+  CU_ASSERT_EQUAL(key_of(on, 1, &listed), 1);
+  CU_ASSERT(!listed);
   /* not a boolean: refused, the key named */
   char *dir = sph_test_tmpdir(), args[8192], out[8192];
   snprintf(args, sizeof args, "run -q '%s' -o '%s/run' --set physics.negative_pressure=maybe",

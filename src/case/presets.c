@@ -21,7 +21,9 @@
  * for two particles meeting head on without it shrinks the step geometrically: the 3-D
  * collapse), paper A's leap-frog (one pass a step instead of the predictor-corrector's two, at
  * 0.55-0.6 of the CPU time; against the experiments the same verdicts but two, doc/method.md,
- * Schemes), Adami walls (AHA12). */
+ * Schemes), Adami walls (AHA12), a fluid that holds no tension (its density held at rho0 or
+ * above: a sheet thrown up a wall neither sticks to it nor pulls the wall's sensors below 0,
+ * doc/method.md, Negative pressure). */
 static const sph_preset_key riemann[SPH_PRESET_KEYS] = {
     {"physics.riemann", "{limiter: 3}", NULL},
     {"physics.artificial_viscosity.alpha", "0", NULL},
@@ -32,7 +34,8 @@ static const sph_preset_key riemann[SPH_PRESET_KEYS] = {
     {"numerics.h_factor", "2", NULL},
     {"numerics.time_step.rule", "cfl", NULL},
     {"numerics.integrator", "leapfrog", NULL},
-    {"geometry.tank.boundary", "adami", TANK}};
+    {"geometry.tank.boundary", "adami", TANK},
+    {"physics.negative_pressure", "false", NULL}};
 
 /* The papers' common base (paper A, the dam-break paper; paper B, the breaking-wave paper): the
  * plain pressure p_i/rho_i^2 + p_j/rho_j^2, the cubic spline at h = 1.3 dx, paper B's step rule,
@@ -49,7 +52,8 @@ static const sph_preset_key paper[SPH_PRESET_KEYS] = {
     {"numerics.h_factor", "1.3", NULL},
     {"numerics.time_step.rule", "paper_b", NULL},
     {"numerics.integrator", "predictor_corrector", NULL},
-    {"geometry.tank.boundary", "dynamic", TANK}};
+    {"geometry.tank.boundary", "dynamic", TANK},
+    {"physics.negative_pressure", "true", NULL}};
 
 /* delta-SPH (MA11, the diffusion of AC10) with a small artificial viscosity and water's
  * laminar viscosity, mdbc walls. */
@@ -63,11 +67,13 @@ static const sph_preset_key delta_sph[SPH_PRESET_KEYS] = {
     {"numerics.h_factor", "1.3", NULL},
     {"numerics.time_step.rule", "paper_b", NULL},
     {"numerics.integrator", "predictor_corrector", NULL},
-    {"geometry.tank.boundary", "mdbc", TANK}};
+    {"geometry.tank.boundary", "mdbc", TANK},
+    {"physics.negative_pressure", "true", NULL}};
 
 static const sph_preset presets[] = {
     {"riemann",
-     "Riemann-solver pressure (ZH17), Wendland h = 2 dx, leap-frog, Adami walls: the default",
+     "Riemann-solver pressure (ZH17), Wendland h = 2 dx, leap-frog, Adami walls, no tension: "
+     "the default",
      riemann},
     {"paper_a",
      "the dam-break paper's base: plain pressure, cubic spline h = 1.3 dx, dynamic walls", paper},

@@ -35,7 +35,7 @@ typedef struct sph_preset {
 } sph_preset;
 
 /* The number of keys of every scheme. */
-#define SPH_PRESET_KEYS 10
+#define SPH_PRESET_KEYS 11
 
 /* The schemes, the default first; *n their count. */
 const sph_preset *sph_presets(size_t *n);

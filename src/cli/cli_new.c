@@ -56,7 +56,7 @@ static const char *const TEMPLATE =
     "  # xsph: 0                  # XSPH epsilon, [0, 1] (scheme: 0, off)\n"
     "  # riemann:                 # Riemann-solver pressure, Zhang et al. 2017, or off\n"
     "  #   limiter: 3             # (scheme: riemann on; the others off); >= 0 (default 3)\n"
-    "  # negative_pressure: true  # false: no tension, the density held >= rho0 (default true)\n"
+    "  # negative_pressure: false # no tension: density held >= rho0 (scheme: false; others true)\n"
     "\n"
     "numerics:\n"
     "  scheme: riemann            # the values of the keys marked (scheme) left out: riemann\n"
