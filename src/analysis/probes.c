@@ -42,20 +42,22 @@ void sph_probe_header(const sph_probe *q, char *buf, size_t len) {
 }
 
 /* K(rho) = the integral of W(sqrt(rho^2 + s^2), h) over s: the kernel's weight along a line at
- * distance rho < 2h from its centre (Simpson's rule, 64 intervals over the chord). */
+ * distance rho < 2h from its centre (Simpson's rule, 64 intervals over the chord). The
+ * integrand is even in s: the chord's half from s = 0 is summed and doubled (33 kernel values
+ * instead of 65: a wire gauge reads it for every fluid particle near its line, every step). */
 static double line_weight(sph_kernel_kind kernel, double rho, double h) {
   const double half = sqrt(fmax(4.0 * h * h - rho * rho, 0.0));
   if (!(half > 0.0)) return 0.0;
-  const int n = 64;
-  const double ds = 2.0 * half / n;
-  double sum = 0.0;
-  for (int k = 0; k <= n; k++) {
-    const double s = -half + k * ds, r = sqrt(rho * rho + s * s);
-    double w, dw;
+  const int n = 32; /* intervals over the half chord */
+  const double ds = half / n;
+  double w, dw, sum = 0.0;
+  for (int k = 1; k <= n; k++) {
+    const double s = k * ds, r = sqrt(rho * rho + s * s);
     sph_kernel_w_dw(kernel, r, h, &w, &dw);
-    sum += (k == 0 || k == n ? 1.0 : (k % 2 ? 4.0 : 2.0)) * w;
+    sum += (k == n ? 1.0 : (k % 2 ? 4.0 : 2.0)) * w;
   }
-  return sum * ds / 3.0;
+  sph_kernel_w_dw(kernel, rho, h, &w, &dw); /* s = 0, the middle point: weight 2 of the whole */
+  return (2.0 * sum + 2.0 * w) * ds / 3.0;
 }
 
 /* A wire gauge's wetted length along the vertical line of a level probe:
