@@ -352,15 +352,6 @@ static int report_end(const sph_run_result *r, const sph_sim *s, const sph_error
 
 /* Runs s (restored from a->restart when set) with progress and signals;
  * the exit status. */
-/* The mass of the fluid still in the run. */
-static double fluid_mass(const sph_sim *s) {
-  const sph_particles *p = sph_sim_particles((sph_sim *)s); /* read only */
-  double m = 0.0;
-  for (size_t i = 0; i < p->n; i++)
-    if (p->kind[i] == SPH_KIND_FLUID) m += p->mass[i];
-  return m;
-}
-
 static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
                    sph_snapshot_restart_data *rd) {
   progress_ctx pc;
@@ -381,12 +372,12 @@ static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
     if (sph_sim_step_range(s, &dt_first, &dt_min, &t_min))
       printf("  steps: the first %.3g s, the smallest %.3g s (%.3g of the first) at t = %.9g s\n",
              dt_first, dt_min, dt_min / dt_first, t_min);
-    double left_mass = 0.0;
-    const size_t left = sph_sim_fluid_left(s, &left_mass);
-    if (left)
+    sph_diag_row end;
+    sph_sim_diag(s, &end);
+    if (end.n_removed)
       printf("  %zu fluid particles left the domain and were taken out (geometry.leaving: "
              "remove): %.3g %% of the fluid's mass\n",
-             left, 100.0 * left_mass / (left_mass + fluid_mass(s)));
+             end.n_removed, 100.0 * end.mass_removed / (end.mass_removed + end.mass));
     /* the rate of this run's own steps (a restart's began at steps0) */
     const double n = (double)sph_sim_particles((sph_sim *)s)->n;
     const long mine = r.steps - steps0;

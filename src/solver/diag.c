@@ -84,12 +84,11 @@ void sph_diag_compute(const sph_particles *p, double floor_y, double band, const
     my += m * p->vy[i];
 #if SPH_DIM == 2
     ke += 0.5 * m * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);
-    pe -= m * (g[0] * p->x[i] + g[1] * (p->y[i] - floor_y));
 #else /* the floor along z, the vertical */
     mz += m * p->vz[i];
     ke += 0.5 * m * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i] + p->vz[i] * p->vz[i]);
-    pe -= m * (g[0] * p->x[i] + g[1] * p->y[i] + g[2] * (p->z[i] - floor_y));
 #endif
+    pe -= sph_diag_lift(p, i, g, floor_y);
   }
   SPH_IF3(row->momentum_z = mz;)
   row->n_fluid = n;

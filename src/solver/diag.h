@@ -76,6 +76,18 @@ typedef struct sph_diag_row {
 #endif
 } sph_diag_row;
 
+/* m g.(r - r_floor) of particle i, r_floor = (0, floor_y) (the floor along the
+ * last axis): minus its share of the `potential` column (outflow.c books a
+ * particle that leaves with the same measure). */
+static inline double sph_diag_lift(const sph_particles *p, size_t i, const double g[SPH_DIM],
+                                   double floor_y) {
+#if SPH_DIM == 2
+  return p->mass[i] * (g[0] * p->x[i] + g[1] * (p->y[i] - floor_y));
+#else
+  return p->mass[i] * (g[0] * p->x[i] + g[1] * p->y[i] + g[2] * (p->z[i] - floor_y));
+#endif
+}
+
 /* Largest x of fluid particles with y < floor_y + band; -inf if none. */
 double sph_diag_front(const sph_particles *p, double floor_y, double band);
 /* Wave gauge: the highest fluid particle centre with |x_i - x| < half,

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "core/parallel.h"
+#include "solver/diag.h"
 
 /* Removes the particles whose id (a creation-order id, 0..n-1) has
  * keep_as[id] < 0 and gives every other its new id keep_as[id]; the order
@@ -34,7 +35,7 @@ long sph_outflow_remove(sph_outflow *o, sph_particles *p, const double domain[2 
   for (long i = 0; i < n; i++)
     k += sph_outflow_outside(p, (size_t)i, domain);
   if (k == 0) return 0;
-  int64_t *keep_as = malloc((size_t)n * sizeof *keep_as);
+  int64_t *keep_as = calloc((size_t)n, sizeof *keep_as);
   int64_t *origin = malloc((size_t)(n - k > 0 ? n - k : 1) * sizeof *origin);
   if (!keep_as || !origin) {
     free(keep_as);
@@ -42,19 +43,12 @@ long sph_outflow_remove(sph_outflow *o, sph_particles *p, const double domain[2 
     return sph_error_set(err, "out of memory taking %ld particles that left the domain out", k);
   }
   /* book what leaves, serially in storage order; mark it by id */
-  for (long i = 0; i < n; i++)
-    keep_as[i] = 0;
   for (size_t i = 0; i < p->n; i++) {
     if (!sph_outflow_outside(p, i, domain)) continue;
     const double m = p->mass[i];
     const double v2 = SPH_NORM2(p->vx[i], p->vy[i], p->vz[i]);
-#if SPH_DIM == 2
-    const double pe = -m * (g[0] * p->x[i] + g[1] * (p->y[i] - floor));
-#else
-    const double pe = -m * (g[0] * p->x[i] + g[1] * p->y[i] + g[2] * (p->z[i] - floor));
-#endif
     o->mass += m;
-    o->energy += 0.5 * m * v2 + pe + m * p->u[i];
+    o->energy += 0.5 * m * v2 - sph_diag_lift(p, i, g, floor) + m * p->u[i];
     for (int a = 0; a < SPH_DIM; a++)
       o->momentum[a] += m * p->vel[a][i];
     keep_as[p->id[i]] = -1;

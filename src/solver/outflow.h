@@ -7,7 +7,7 @@
  * models; it is taken out of the run instead of stopping it, as
  * DualSPHysics excludes its "out" particles. What it carried is booked:
  * its mass, momentum and energy (kinetic + potential + internal, the
- * potential measured as the diagnostics measure it: diag.h) at the moment
+ * potential measured as the diagnostics measure it: sph_diag_lift) at the moment
  * it is removed, so that the ledger still closes,
  *   mass + mass_removed = M0,
  *   momentum + momentum_removed - P0 - impulse = 0,
