@@ -579,6 +579,36 @@ static int reserve_list(sph_nlist *l, size_t n, sph_error *err) {
   return 0;
 }
 
+/* With fluid-only wall rows: the fluid particles before each position of g's walk (n + 1
+ * counts), so that a wall particle whose candidate ranges hold no fluid particle gets its empty
+ * row without walking them (SPHERIC Test 2: most of the tank's and the box's wall particles
+ * are dry at any time). NULL where rows are not fluid-only; *no set if out of memory. */
+static uint32_t *fluid_before(const sph_nlist *l, const sph_grid *g, const sph_particles *p,
+                              int *no) {
+  if (!l->wall_fluid_only) return NULL;
+  const size_t n = p->n;
+  uint32_t *f = malloc((n + 1) * sizeof *f);
+  if (!f) {
+    *no = 1;
+    return NULL;
+  }
+  f[0] = 0;
+  for (size_t pos = 0; pos < n; pos++) {
+    const size_t j = g->sorted ? pos : g->perm[pos];
+    f[pos + 1] = f[pos] + (uint32_t)(p->kind[j] == SPH_KIND_FLUID);
+  }
+  return f;
+}
+
+/* Whether particle i's candidates (the ranges fill_row walks) hold no fluid particle. */
+static inline int dry(const sph_grid *g, const uint32_t *restrict f, size_t i) {
+  size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES];
+  sph_grid_ranges_all(g, i, lo, hi);
+  for (int k = 0; k < SPH_GRID_RANGES; k++)
+    if (f[hi[k]] != f[lo[k]]) return 0;
+  return 1;
+}
+
 /* The first build sizes the rows first: grown chunk by chunk, the block
  * would be copied as it grows and (below glibc's mmap threshold, 32 MB)
  * leave the old copies resident, 10 MB more peak RSS on SPHERIC at dx =
@@ -590,22 +620,27 @@ static int size_rows(sph_nlist *l, const sph_grid *g, const sph_particles *p,
   const long ln = (long)p->n;
   size_t total = 0;
   int no = 0;
-#pragma omp parallel if (ln > SPH_OMP_MIN) reduction(+ : total) reduction(| : no)
+  const uint32_t *f = fluid_before(l, g, p, &no);
+#pragma omp parallel if (ln > SPH_OMP_MIN && !no) reduction(+ : total) reduction(| : no)
   {
     uint32_t *restrict scratch = malloc((cmax + 1) * sizeof *scratch);
     if (!scratch) no = 1;
 #pragma omp for schedule(static)
     for (long li = 0; li < ln; li++) {
-      if (!scratch) continue;
+      if (!scratch || no) continue;
       /* (in 2-D only counted: four bytes an entry whatever their order) */
       const int keep = fluid_only_row(l, p, (size_t)li);
-      uint32_t c = fill_rows(g, x, (size_t)li, r2max, period,
-                             SPH_NLIST_RUNS || keep ? scratch : NULL, sorted, wide);
-      if (keep) c = keep_fluid(scratch, c, p->kind);
+      uint32_t c = 0;
+      if (!keep || !dry(g, f, (size_t)li)) {
+        c = fill_rows(g, x, (size_t)li, r2max, period,
+                      SPH_NLIST_RUNS || keep ? scratch : NULL, sorted, wide);
+        if (keep) c = keep_fluid(scratch, c, p->kind);
+      }
       total += runs_size(scratch, c, sorted && period <= 0.0);
     }
     free(scratch);
   }
+  free((void *)f);
   if (no) return sph_error_set(err, "grid: out of memory for a scratch row");
   total += SPH_NLIST_SLACK;
   const size_t cap = total + total / 4 + 64;
@@ -673,6 +708,9 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     if (c > cmax) cmax = c;
   }
   if (l->cap_rows == 0 && size_rows(l, g, p, x, r2max, period, sorted, wide, cmax, err)) return -1;
+  int no_f = 0;
+  uint32_t *f = fluid_before(l, g, p, &no_f);
+  if (no_f) return sph_error_set(err, "grid: out of memory for the fluid counts of %zu particles", n);
   uint32_t mc = 0;
   double origin[SPH_DIM], off_by[SPH_DIM]; /* the reference positions' (grid.h) */
   for (int d = 0; d < SPH_DIM; d++)
@@ -693,8 +731,12 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
                    b = a + SPH_NLIST_CHUNK < n ? a + SPH_NLIST_CHUNK : n;
       size_t bytes = 0;
       for (size_t i = a; i < b && !oom; i++) {
-        uint32_t c = fill_sorted(g, x, i, r2max, period, scratch, sorted, wide);
-        if (fluid_only_row(l, p, i)) c = keep_fluid(scratch, c, p->kind);
+        const int keep = fluid_only_row(l, p, i);
+        uint32_t c = 0;
+        if (!keep || !dry(g, f, i)) {
+          c = fill_sorted(g, x, i, r2max, period, scratch, sorted, wide);
+          if (keep) c = keep_fluid(scratch, c, p->kind);
+        }
         const size_t sz = runs_size(scratch, c, 1);
         if (bytes + sz > cap) {
           const size_t nc = 2 * (bytes + sz) + 4096;
@@ -743,6 +785,7 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     free(scratch);
     free(buf);
   }
+  free(f);
   if (oom) return sph_error_set(err, "grid: out of memory for a scratch row");
   if (full) return sph_error_set(err, "grid: out of memory for the neighbours' rows");
   if (finish_rows(l, p, mc, err)) return -1;
