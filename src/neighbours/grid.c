@@ -317,6 +317,20 @@ void sph_nlist_release(sph_nlist *l) {
   l->wall_fluid_only = fluid_only;
 }
 
+/* The candidate ranges of particle i (sph_grid_ranges_all); with f (the fluid particles before
+ * each place of the walk: a fluid-only wall row, fluid_before) those that hold no fluid
+ * particle emptied: their entries would all be dropped (keep_fluid), so the row is the same
+ * without their walk. */
+static inline __attribute__((always_inline)) void fluid_ranges(const sph_grid *g, size_t i,
+                                                               const uint32_t *restrict f,
+                                                               size_t lo[SPH_GRID_RANGES],
+                                                               size_t hi[SPH_GRID_RANGES]) {
+  sph_grid_ranges_all(g, i, lo, hi);
+  if (f)
+    for (int k = 0; k < SPH_GRID_RANGES; k++)
+      if (f[hi[k]] == f[lo[k]]) hi[k] = lo[k];
+}
+
 /* The candidates of particle i within sqrt(r2max), in the grid's walk
  * order (positions, or storage indices through perm when the grid is only
  * binned), into row (with row NULL: only counted); returns how many. The
@@ -324,9 +338,9 @@ void sph_nlist_release(sph_nlist *l) {
  * that keeps it. x holds the store's axes, the periodic one first (grid.h). */
 static inline __attribute__((always_inline)) uint32_t
 fill_row(const sph_grid *g, const double *const restrict *x, size_t i, double r2max, double period,
-         uint32_t *restrict row, const int sorted) {
+         uint32_t *restrict row, const int sorted, const uint32_t *restrict f) {
   size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES];
-  sph_grid_ranges_all(g, i, lo, hi);
+  fluid_ranges(g, i, f, lo, hi);
   const size_t *restrict perm = g->perm;
   const double *restrict px = x[0], *restrict py = x[1];
   const double xi = px[i], yi = py[i];
@@ -356,9 +370,9 @@ fill_row(const sph_grid *g, const double *const restrict *x, size_t i, double r2
  * The row needs room for all i's candidates, as fill_row's. */
 static inline __attribute__((always_inline, target("avx2"))) uint32_t
 fill_row_v4x(const sph_grid *g, const double *const restrict *x, size_t i, double r2max,
-             double period, uint32_t *restrict row, const int sorted) {
+             double period, uint32_t *restrict row, const int sorted, const uint32_t *restrict f) {
   size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES];
-  sph_grid_ranges_all(g, i, lo, hi);
+  fluid_ranges(g, i, f, lo, hi);
   const size_t *restrict perm = g->perm;
   const double *restrict px = x[0], *restrict py = x[1];
   const double xi = px[i], yi = py[i];
@@ -415,14 +429,13 @@ fill_row_v4x(const sph_grid *g, const double *const restrict *x, size_t i, doubl
 
 /* fill_any's choice with fill_row_v4x (a call per row: the build's loops
  * are compiled for any x86-64) */
-static __attribute__((target("avx2"))) uint32_t fill_any_v4x(const sph_grid *g,
-                                                             const double *const restrict *x,
-                                                             size_t i, double r2max, double period,
-                                                             uint32_t *restrict row, int sorted) {
-  if (sorted && period <= 0.0) return fill_row_v4x(g, x, i, r2max, 0.0, row, 1);
-  if (sorted) return fill_row_v4x(g, x, i, r2max, period, row, 1);
-  if (period <= 0.0) return fill_row_v4x(g, x, i, r2max, 0.0, row, 0);
-  return fill_row_v4x(g, x, i, r2max, period, row, 0);
+static __attribute__((target("avx2"))) uint32_t
+fill_any_v4x(const sph_grid *g, const double *const restrict *x, size_t i, double r2max,
+             double period, uint32_t *restrict row, int sorted, const uint32_t *restrict f) {
+  if (sorted && period <= 0.0) return fill_row_v4x(g, x, i, r2max, 0.0, row, 1, f);
+  if (sorted) return fill_row_v4x(g, x, i, r2max, period, row, 1, f);
+  if (period <= 0.0) return fill_row_v4x(g, x, i, r2max, 0.0, row, 0, f);
+  return fill_row_v4x(g, x, i, r2max, period, row, 0, f);
 }
 #endif
 
@@ -431,23 +444,23 @@ static __attribute__((target("avx2"))) uint32_t fill_any_v4x(const sph_grid *g,
  * row is a literal NULL, so the counting loop writes nothing). */
 static inline __attribute__((always_inline)) uint32_t
 fill_any(const sph_grid *g, const double *const restrict *x, size_t i, double r2max, double period,
-         uint32_t *restrict row, int sorted) {
-  if (sorted && period <= 0.0) return fill_row(g, x, i, r2max, 0.0, row, 1);
-  if (sorted) return fill_row(g, x, i, r2max, period, row, 1);
-  if (period <= 0.0) return fill_row(g, x, i, r2max, 0.0, row, 0);
-  return fill_row(g, x, i, r2max, period, row, 0);
+         uint32_t *restrict row, int sorted, const uint32_t *restrict f) {
+  if (sorted && period <= 0.0) return fill_row(g, x, i, r2max, 0.0, row, 1, f);
+  if (sorted) return fill_row(g, x, i, r2max, period, row, 1, f);
+  if (period <= 0.0) return fill_row(g, x, i, r2max, 0.0, row, 0, f);
+  return fill_row(g, x, i, r2max, period, row, 0, f);
 }
 
 /* fill_any, or fill_any_v4x where wide (the processor has AVX2): the same rows. */
 static inline __attribute__((always_inline)) uint32_t
 fill_rows(const sph_grid *g, const double *const restrict *x, size_t i, double r2max, double period,
-          uint32_t *restrict row, int sorted, int wide) {
+          uint32_t *restrict row, int sorted, int wide, const uint32_t *restrict f) {
 #ifdef SPH_LANES_AVX
-  if (wide) return fill_any_v4x(g, x, i, r2max, period, row, sorted);
+  if (wide) return fill_any_v4x(g, x, i, r2max, period, row, sorted, f);
 #else
   (void)wide;
 #endif
-  return fill_any(g, x, i, r2max, period, row, sorted);
+  return fill_any(g, x, i, r2max, period, row, sorted, f);
 }
 
 /* The candidates of particle i: the particles of its 3 x 3 (x 3) cells. */
@@ -551,8 +564,8 @@ static inline uint32_t keep_fluid(uint32_t *restrict row, uint32_t c,
  * row (room for all i's candidates); returns their number. */
 static inline uint32_t fill_sorted(const sph_grid *g, const double *const *x, size_t i,
                                    double r2max, double period, uint32_t *restrict row, int sorted,
-                                   int wide) {
-  const uint32_t c = fill_rows(g, x, i, r2max, period, row, sorted, wide);
+                                   int wide, const uint32_t *restrict f) {
+  const uint32_t c = fill_rows(g, x, i, r2max, period, row, sorted, wide, f);
   /* increasing storage index: already so on a sorted grid that is not
    * periodic (rows below, same, above in key order) */
   if (!sorted || period > 0.0) sort_row(row, c);
@@ -580,9 +593,10 @@ static int reserve_list(sph_nlist *l, size_t n, sph_error *err) {
 }
 
 /* With fluid-only wall rows: the fluid particles before each position of g's walk (n + 1
- * counts), so that a wall particle whose candidate ranges hold no fluid particle gets its empty
- * row without walking them (SPHERIC Test 2: most of the tank's and the box's wall particles
- * are dry at any time). NULL where rows are not fluid-only; *no set if out of memory. */
+ * counts), so that a wall particle's fill walks only the candidate ranges that hold fluid
+ * (fluid_ranges): none for a dry one (SPHERIC Test 2: most of the tank's and the box's wall
+ * particles are dry at any time), fewer for a wet one. NULL where rows are not fluid-only;
+ * *no set if out of memory. */
 static uint32_t *fluid_before(const sph_nlist *l, const sph_grid *g, const sph_particles *p,
                               int *no) {
   if (!l->wall_fluid_only) return NULL;
@@ -598,15 +612,6 @@ static uint32_t *fluid_before(const sph_nlist *l, const sph_grid *g, const sph_p
     f[pos + 1] = f[pos] + (uint32_t)(p->kind[j] == SPH_KIND_FLUID);
   }
   return f;
-}
-
-/* Whether particle i's candidates (the ranges fill_row walks) hold no fluid particle. */
-static inline int dry(const sph_grid *g, const uint32_t *restrict f, size_t i) {
-  size_t lo[SPH_GRID_RANGES], hi[SPH_GRID_RANGES];
-  sph_grid_ranges_all(g, i, lo, hi);
-  for (int k = 0; k < SPH_GRID_RANGES; k++)
-    if (f[hi[k]] != f[lo[k]]) return 0;
-  return 1;
 }
 
 /* The first build sizes the rows first: grown chunk by chunk, the block
@@ -630,12 +635,9 @@ static int size_rows(sph_nlist *l, const sph_grid *g, const sph_particles *p,
       if (!scratch || no) continue;
       /* (in 2-D only counted: four bytes an entry whatever their order) */
       const int keep = fluid_only_row(l, p, (size_t)li);
-      uint32_t c = 0;
-      if (!keep || !dry(g, f, (size_t)li)) {
-        c = fill_rows(g, x, (size_t)li, r2max, period,
-                      SPH_NLIST_RUNS || keep ? scratch : NULL, sorted, wide);
-        if (keep) c = keep_fluid(scratch, c, p->kind);
-      }
+      uint32_t c = fill_rows(g, x, (size_t)li, r2max, period,
+                             SPH_NLIST_RUNS || keep ? scratch : NULL, sorted, wide, keep ? f : NULL);
+      if (keep) c = keep_fluid(scratch, c, p->kind);
       total += runs_size(scratch, c, sorted && period <= 0.0);
     }
     free(scratch);
@@ -732,11 +734,8 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
       size_t bytes = 0;
       for (size_t i = a; i < b && !oom; i++) {
         const int keep = fluid_only_row(l, p, i);
-        uint32_t c = 0;
-        if (!keep || !dry(g, f, i)) {
-          c = fill_sorted(g, x, i, r2max, period, scratch, sorted, wide);
-          if (keep) c = keep_fluid(scratch, c, p->kind);
-        }
+        uint32_t c = fill_sorted(g, x, i, r2max, period, scratch, sorted, wide, keep ? f : NULL);
+        if (keep) c = keep_fluid(scratch, c, p->kind);
         const size_t sz = runs_size(scratch, c, 1);
         if (bytes + sz > cap) {
           const size_t nc = 2 * (bytes + sz) + 4096;
