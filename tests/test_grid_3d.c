@@ -381,8 +381,8 @@ static void test_list_wall_fluid_only(void) {
       CU_ASSERT_EQUAL(bad, 0);
       CU_ASSERT(dry > 500 && wet > 50 && fluid > 500); /* every kind of row is there */
       if (bad || !(dry > 500 && wet > 50 && fluid > 500))
-        printf("\n    binned %d build %d: %zu rows wrong; %zu dry, %zu wet walls, %zu fluid", binned,
-               build, bad, dry, wet, fluid);
+        printf("\n    binned %d build %d: %zu rows wrong; %zu dry, %zu wet walls, %zu fluid",
+               binned, build, bad, dry, wet, fluid);
     }
     sph_nlist_free(&l);
     sph_grid_free(&g);

@@ -635,8 +635,9 @@ static int size_rows(sph_nlist *l, const sph_grid *g, const sph_particles *p,
       if (!scratch || no) continue;
       /* (in 2-D only counted: four bytes an entry whatever their order) */
       const int keep = fluid_only_row(l, p, (size_t)li);
-      uint32_t c = fill_rows(g, x, (size_t)li, r2max, period,
-                             SPH_NLIST_RUNS || keep ? scratch : NULL, sorted, wide, keep ? f : NULL);
+      uint32_t c =
+          fill_rows(g, x, (size_t)li, r2max, period, SPH_NLIST_RUNS || keep ? scratch : NULL,
+                    sorted, wide, keep ? f : NULL);
       if (keep) c = keep_fluid(scratch, c, p->kind);
       total += runs_size(scratch, c, sorted && period <= 0.0);
     }
@@ -712,7 +713,8 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   if (l->cap_rows == 0 && size_rows(l, g, p, x, r2max, period, sorted, wide, cmax, err)) return -1;
   int no_f = 0;
   uint32_t *f = fluid_before(l, g, p, &no_f);
-  if (no_f) return sph_error_set(err, "grid: out of memory for the fluid counts of %zu particles", n);
+  if (no_f)
+    return sph_error_set(err, "grid: out of memory for the fluid counts of %zu particles", n);
   uint32_t mc = 0;
   double origin[SPH_DIM], off_by[SPH_DIM]; /* the reference positions' (grid.h) */
   for (int d = 0; d < SPH_DIM; d++)
