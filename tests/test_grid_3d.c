@@ -327,14 +327,19 @@ static void test_list(void) {
 
 /* Wall rows with their fluid neighbours only (grid.h, wall_fluid_only): 2000 particles in a box
  * 0.3 deep, the lower half walls; a wall particle more than the list's radius below the fluid
- * is dry (its empty row is known from the fluid counts of its candidates, without their walk),
- * one nearer lists its fluid neighbours, a fluid particle every neighbour; each row against
- * brute force, on a sorted grid and on a binned one (the store in another order). */
+ * is dry (no candidate range of it holds fluid: none is walked), one nearer lists its fluid
+ * neighbours (only the ranges that hold fluid walked), a fluid particle every neighbour; each
+ * row against brute force, on a sorted grid, a binned one (the store in another order) and a
+ * grid periodic along x (a row's ranges split at the seam). */
 static void test_list_wall_fluid_only(void) {
-  for (int binned = 0; binned < 2; binned++) {
+  for (int grid = 0; grid < 3; grid++) {
+    const int binned = grid == 1;
+    const double period = grid == 2 ? 0.2 : 0.0;
     sph_particles p;
     const double L[3] = {0.2, 0.15, 0.3}, support = 0.025, skin = 0.004;
     random_store(&p, 2000, L); /* z in [0.7, 1.0) */
+    for (size_t i = 0; i < p.n && period > 0.0; i++)
+      p.x[i] += 0.3; /* into [0, 0.2), the period */
     for (size_t i = 0; i < p.n; i++)
       if (p.z[i] < 0.85) p.kind[i] = SPH_KIND_WALL;
     if (binned) /* another storage order: the grid does not sort it */
@@ -352,11 +357,13 @@ static void test_list_wall_fluid_only(void) {
     sph_error err;
     const double cell = (support + skin) * (1.0 + 1e-9);
     const int rc = binned ? sph_grid_bin(&g, &p, cell, 0, 0.0, 0.0, 1u << 24, &err)
-                          : sph_grid_build(&g, &p, cell, 1u << 24, &err);
+                   : period > 0
+                       ? sph_grid_build_periodic(&g, &p, cell, paxis, 0.0, period, 1u << 24, &err)
+                       : sph_grid_build(&g, &p, cell, 1u << 24, &err);
     CU_ASSERT_FATAL(rc == 0);
     CU_ASSERT_EQUAL(g.sorted, !binned);
     for (int build = 0; build < 2; build++) { /* the first build sizes the rows, then again */
-      CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, support, skin, 0.0, &err) == 0);
+      CU_ASSERT_FATAL(sph_nlist_build(&l, &g, &p, support, skin, period, &err) == 0);
       const double r2 = (support + skin) * (support + skin);
       size_t bad = 0, dry = 0, wet = 0, fluid = 0;
       for (size_t i = 0; i < p.n; i++) {
@@ -365,7 +372,7 @@ static void test_list_wall_fluid_only(void) {
         bad += len != l.count[i];
         size_t k = 0;
         for (size_t j = 0; j < p.n; j++) {
-          if (j == i || !(dist2(&p, i, j, 0.0) < r2)) continue;
+          if (j == i || !(dist2(&p, i, j, period) < r2)) continue;
           if (p.kind[i] == SPH_KIND_WALL && p.kind[j] != SPH_KIND_FLUID) continue;
           bad += k >= len || row[k] != j;
           k++;
@@ -381,8 +388,8 @@ static void test_list_wall_fluid_only(void) {
       CU_ASSERT_EQUAL(bad, 0);
       CU_ASSERT(dry > 500 && wet > 50 && fluid > 500); /* every kind of row is there */
       if (bad || !(dry > 500 && wet > 50 && fluid > 500))
-        printf("\n    binned %d build %d: %zu rows wrong; %zu dry, %zu wet walls, %zu fluid",
-               binned, build, bad, dry, wet, fluid);
+        printf("\n    grid %d build %d: %zu rows wrong; %zu dry, %zu wet walls, %zu fluid", grid,
+               build, bad, dry, wet, fluid);
     }
     sph_nlist_free(&l);
     sph_grid_free(&g);
@@ -557,7 +564,8 @@ int main(void) {
       {"3-D grid and list periodic in y and in z against brute force", test_periodic_yz},
       {"3-D counting sort: the same order on teams of 1 to 3 threads", test_sort_any_team},
       {"3-D neighbour list equals brute force (sorted, binned, periodic)", test_list},
-      {"3-D fluid-only wall rows: dry walls empty, wet walls their fluid (sorted, binned)",
+      {"3-D fluid-only wall rows: dry walls empty, wet walls their fluid (sorted, binned, "
+       "periodic)",
        test_list_wall_fluid_only},
       {"3-D rows spanning more than 65535 indices are split into runs", test_list_runs_split},
       {"3-D neighbour list: fresh within skin/2, stale beyond along z", test_list_fresh},
