@@ -618,21 +618,20 @@ static uint32_t *fluid_before(const sph_nlist *l, const sph_grid *g, const sph_p
  * would be copied as it grows and (below glibc's mmap threshold, 32 MB)
  * leave the old copies resident, 10 MB more peak RSS on SPHERIC at dx =
  * 0.02 m. Later builds find the room of the earlier ones (a quarter to
- * spare). */
+ * spare). f: the fluid counts of fluid_before, or NULL. */
 static int size_rows(sph_nlist *l, const sph_grid *g, const sph_particles *p,
                      const double *const *x, double r2max, double period, int sorted, int wide,
-                     size_t cmax, sph_error *err) {
+                     size_t cmax, const uint32_t *f, sph_error *err) {
   const long ln = (long)p->n;
   size_t total = 0;
   int no = 0;
-  const uint32_t *f = fluid_before(l, g, p, &no);
-#pragma omp parallel if (ln > SPH_OMP_MIN && !no) reduction(+ : total) reduction(| : no)
+#pragma omp parallel if (ln > SPH_OMP_MIN) reduction(+ : total) reduction(| : no)
   {
     uint32_t *restrict scratch = malloc((cmax + 1) * sizeof *scratch);
     if (!scratch) no = 1;
 #pragma omp for schedule(static)
     for (long li = 0; li < ln; li++) {
-      if (!scratch || no) continue;
+      if (!scratch) continue;
       /* (in 2-D only counted: four bytes an entry whatever their order) */
       const int keep = fluid_only_row(l, p, (size_t)li);
       uint32_t c =
@@ -643,7 +642,6 @@ static int size_rows(sph_nlist *l, const sph_grid *g, const sph_particles *p,
     }
     free(scratch);
   }
-  free((void *)f);
   if (no) return sph_error_set(err, "grid: out of memory for a scratch row");
   total += SPH_NLIST_SLACK;
   const size_t cap = total + total / 4 + 64;
@@ -710,11 +708,14 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
     const size_t c = candidates(g, (size_t)li);
     if (c > cmax) cmax = c;
   }
-  if (l->cap_rows == 0 && size_rows(l, g, p, x, r2max, period, sorted, wide, cmax, err)) return -1;
   int no_f = 0;
-  uint32_t *f = fluid_before(l, g, p, &no_f);
+  uint32_t *f = fluid_before(l, g, p, &no_f); /* for size_rows and the fill below */
   if (no_f)
     return sph_error_set(err, "grid: out of memory for the fluid counts of %zu particles", n);
+  if (l->cap_rows == 0 && size_rows(l, g, p, x, r2max, period, sorted, wide, cmax, f, err)) {
+    free(f);
+    return -1;
+  }
   uint32_t mc = 0;
   double origin[SPH_DIM], off_by[SPH_DIM]; /* the reference positions' (grid.h) */
   for (int d = 0; d < SPH_DIM; d++)
