@@ -434,7 +434,9 @@ cut_row_v4x(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
 #define FL v1
 #define LCUT cut_row
 #define LOOP_ATTR static inline __attribute__((always_inline))
+#define LOOP_SHARED static __attribute__((noipa, unused))
 #include "solver/interact_row.h"
+#undef LOOP_SHARED
 #undef LOOP_ATTR
 #undef LCUT
 #undef FL
@@ -475,8 +477,10 @@ cut_row_v4x(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
 #define LHOT(g) LHOT_SET(g)
 #define LCUT cut_row
 #define LOOP_ATTR static inline __attribute__((always_inline))
+#define LOOP_SHARED static __attribute__((noipa, unused))
 #include "solver/interact_row.h"
 #include "solver/strain_lanes.h"
+#undef LOOP_SHARED
 #undef LOOP_ATTR
 #undef LCUT
 #undef LHOT
@@ -493,7 +497,9 @@ cut_row_v4x(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
   LHOT_Z(g)
 #define LCUT cut_row_v4x
 #define LOOP_ATTR static inline __attribute__((always_inline, target("avx2")))
+#define LOOP_SHARED static __attribute__((noipa, unused, target("avx2")))
 #include "solver/interact_row.h"
+#undef LOOP_SHARED
 #include "solver/strain_lanes.h"
 #undef LOOP_ATTR
 #undef LCUT
@@ -546,7 +552,9 @@ cut_row_v4x(const sph_force_hot *restrict hot, const sph_nlist *restrict l,
 #define FL v8z
 #define LCUT cut_row_v4x /* (AVX-512 implies AVX2) */
 #define LOOP_ATTR static inline __attribute__((always_inline, target("avx512f")))
+#define LOOP_SHARED static __attribute__((noipa, unused, target("avx512f")))
 #include "solver/interact_row.h"
+#undef LOOP_SHARED
 #include "solver/strain_lanes.h"
 #undef LOOP_ATTR
 #undef LCUT

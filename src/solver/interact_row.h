@@ -11,22 +11,32 @@
  * the ledger's passive heat) is spelled out here and nowhere else; the
  * terms themselves are src/physics/pair_terms.h.
  *
- * A row in named steps (each a function of its own, inlined into the loop):
+ * A fluid particle's row is fluid_row_FL (compiled for each term set), a
+ * wall particle's wall_row_FL (one function a flavour, the term set at run
+ * time); both are row_FL, whose named steps (each a function of its own,
+ * inlined) go by pair kind:
  *   row_entries_FL       the row's neighbours (cut to the support, padded)
  *   row_begin_FL         what every pair of the row reads (LROW)
- *   pair_density_FL      per iteration: the pairs' separation and kernel,
- *                        and what every particle takes from a pair, fluid
- *                        or wall: continuity, signal, density diffusion
- *   pair_viscous_velocity_FL   the relative velocity the viscous terms read
- *                        (mirror and adami walls' no-slip velocity)
- *   pair_wall_normals_FL the pressure's gradient and the closing speeds on
- *                        free-slip walls and walls with a normal
- *   pair_momentum_FL     the pair's force on i: pressure (Riemann or not),
- *                        artificial viscosity, stress, Morris; XSPH
+ *   pair_density_FL      every pair: the separation and kernel, and what
+ *                        every particle takes from a pair, fluid or wall:
+ *                        continuity, signal, density diffusion
+ *   pair_viscous_velocity_FL   a pair with a wall particle: the relative
+ *                        velocity the viscous terms read (mirror and adami
+ *                        walls' no-slip velocity)
+ *   pair_wall_normals_FL a pair with a wall particle: the pressure's
+ *                        gradient and the closing speeds on free-slip walls
+ *                        and walls with a normal
+ *   pair_momentum_FL     every pair of a fluid row: the force on i,
+ *                        pressure (Riemann or not), artificial viscosity,
+ *                        stress, Morris (a wall row: its heat, ledger only)
+ *   pair_fluid_fluid_FL  two fluid particles: the Riemann pressure's
+ *                        continuity term, XSPH
  *   pair_ledger_FL       the energy ledger's heat, wall power and force
  *   row_end_FL           the sums written out; sigma_i
- * A fluid row runs every step; a wall row only pair_density_FL unless the
- * ledger is on. A new pair term goes into the step it belongs to.
+ * A wall row runs only pair_density_FL unless the ledger is on. The lanes
+ * of one iteration hold neighbours of any kind, so a step of some kinds
+ * masks the others. A new pair term goes into the step of the pairs it
+ * acts on.
  *
  * The row: with per-particle h (the scalar loop only, F_VARH) the whole
  * neighbour row, each pair outside its own support skipped; otherwise the
@@ -68,7 +78,9 @@
  * neighbour j), LHOT(g) (LW > 1) the declaration of g[8], the fields of
  * this iteration's neighbours' records (sph_force_hot) by place H_field,
  * LCUT the row cut (cut_row, or cut_row_v4x in the AVX2 and AVX-512
- * flavours: the same pairs, four entries at a time).
+ * flavours: the same pairs, four entries at a time), LOOP_ATTR the
+ * flavour's attributes for inlined steps and LOOP_SHARED for a function
+ * the loops share (noipa: neither inlined nor cloned per term set).
  * Fc, a literal at every call, is the term set the loop is compiled for,
  * or F_RUNTIME (interact.h, F_LITERAL): the bits it does not fix come
  * from the pass's term set.
@@ -482,42 +494,30 @@ LOOP_ATTR LNORM SPH_PT_XGLUE(pair_wall_normals, FL)(const LROW *restrict R, cons
 }
 
 /* The pair's force on i per unit mass of i (*pa) and i's half of its heat
- * (*heat, with the ledger): the pressure (the Riemann interface pressure,
- * with its continuity term between fluid particles, or p_i/rho_i^2 +
- * p_j/rho_j^2), the artificial viscosity, the stress tensor and Morris'
- * viscosity, each where the term set has it. */
-LOOP_ATTR void SPH_PT_XGLUE(pair_momentum,
-                            FL)(const LROW *restrict R, LSUMS *restrict S, const LPAIR *restrict G,
-                                const LVIS *restrict V, const LNORM *restrict N, LMASK fluid_j,
-                                const uint32_t *restrict jk, LNB nbr, LVEC *pa, LT *heat) {
+ * (*heat, with the ledger), for every pair kind of a fluid row (and a wall
+ * row's heat): the pressure (the Riemann interface pressure, or
+ * p_i/rho_i^2 + p_j/rho_j^2), the artificial viscosity, the stress tensor
+ * and Morris' viscosity, each where the term set has it. */
+LOOP_ATTR void SPH_PT_XGLUE(pair_momentum, FL)(const LROW *restrict R, const LPAIR *restrict G,
+                                               const LVIS *restrict V, const LNORM *restrict N,
+                                               const uint32_t *restrict jk, LNB nbr, LVEC *pa,
+                                               LT *heat) {
   const unsigned F = R->F;
   const sph_force_work *restrict w = R->w;
   const size_t i = R->i;
   const LT mj = G->mj, f = G->f;
-  const LT dx = G->dx, dy = G->dy;
-  SPH_IF3(const LT dz = G->dz;)
   LT pij;
   if (F & F_RIEMANN) { /* the interface pressure; the closing speed from v_ij (a
                         * mirror's reflected velocity, a wall's normal part) */
-    const LT rhoi = R->rhoi, pi = R->pi, hgx = R->hgx, hgy = R->hgy;
+    const LT rhoi = R->rhoi, pi = R->pi;
     const LT rhoj = GATHER(rho), pj = LOP(mul)(LOP(mul)(GATHER(prho2), rhoj), rhoj);
     const LT close = LOP(neg)(LOP(mul)(N->rvr, G->inv_r));
     pij = LTERM(riemann_pressure)(pi, pj, rhoi, rhoj, close, R->rz0, R->rkc);
-    if (R->fluid) { /* its continuity term, between fluid particles only */
-#if SPH_DIM == 2
-      const LT jump = LOP(sub)(LOP(sub)(pi, pj), LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy)));
-#else
-      const LT hg = LOP(add)(LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy)), LOP(mul)(R->hgz, dz));
-      const LT jump = LOP(sub)(LOP(sub)(pi, pj), hg);
-#endif
-      LACC(S->rd,
-           LOP(and)(fluid_j, LTERM(riemann_density)(rhoi, mj, rhoj, jump, f, G->r, R->rinv_z0)));
-    }
   } else {
     pij = LOP(add)(R->pri, GATHER(prho2));
   }
-  const LT inv_rb = (F & (F_AV | F_XSPH)) ? LTERM(inv_rho_mean)(R->rhoi, GATHER(rho)) : R->zero;
   if (F & F_AV) {
+    const LT inv_rb = LTERM(inv_rho_mean)(R->rhoi, GATHER(rho));
     const LT av = LTERM(artificial_viscosity)(N->avr, G->hij, G->r2, G->eta2_ij, R->ci, GATHER(cs),
                                               R->nalpha, R->beta, inv_rb);
     pij = LOP(add)(pij, R->adami_v ? LOP(and)(V->vis, av) : av);
@@ -557,8 +557,31 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_momentum,
     SPH_IF3(pa->c[2] = LOP(add)(pa->c[2], LOP(mul)(c, V->vvz));)
     if (F & F_LEDGER) *heat = LOP(sub)(*heat, LTERM(morris_heat)(c, G->dv));
   }
-  if ((F & F_XSPH) && R->fluid) { /* over fluid neighbours (m_j of fluid j, 0 for the
-                                   * others); a wall row's XSPH is never written */
+}
+
+/* The terms of a pair of two fluid particles (a fluid row; the lanes of
+ * other neighbours masked out): the Riemann pressure's continuity term
+ * (over fluid_j) and XSPH (over m_j of fluid j, 0 for the others). */
+LOOP_ATTR void SPH_PT_XGLUE(pair_fluid_fluid, FL)(const LROW *restrict R, LSUMS *restrict S,
+                                                  const LPAIR *restrict G, LMASK fluid_j,
+                                                  const uint32_t *restrict jk, LNB nbr) {
+  const unsigned F = R->F;
+  const sph_force_work *restrict w = R->w;
+  (void)fluid_j, (void)jk, (void)w;
+  if (F & F_RIEMANN) {
+    const LT rhoi = R->rhoi, pi = R->pi, hgx = R->hgx, hgy = R->hgy, dx = G->dx, dy = G->dy;
+    const LT rhoj = GATHER(rho), pj = LOP(mul)(LOP(mul)(GATHER(prho2), rhoj), rhoj);
+#if SPH_DIM == 2
+    const LT jump = LOP(sub)(LOP(sub)(pi, pj), LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy)));
+#else
+    const LT hg = LOP(add)(LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy)), LOP(mul)(R->hgz, G->dz));
+    const LT jump = LOP(sub)(LOP(sub)(pi, pj), hg);
+#endif
+    LACC(S->rd, LOP(and)(fluid_j,
+                         LTERM(riemann_density)(rhoi, G->mj, rhoj, jump, G->f, G->r, R->rinv_z0)));
+  }
+  if (F & F_XSPH) {
+    const LT inv_rb = LTERM(inv_rho_mean)(R->rhoi, GATHER(rho));
     const LT c = LTERM(xsph_factor)(LSET(E_ARR, w->fm), inv_rb, G->wij);
     LDEC(S->xs, LOP(mul)(c, G->dvx));
     LDEC(S->ys, LOP(mul)(c, G->dvy));
@@ -661,27 +684,19 @@ LOOP_ATTR double SPH_PT_XGLUE(row_end, FL)(const LROW *restrict R, const LSUMS *
 #undef LSUM
 }
 
-/* Returns sigma_i, the step rule's max_j |h v_ij.r_ij / r_ij^2| (0 for a
- * row that sums nothing). */
-LOOP_ATTR double SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_nlist *restrict l,
-                                            const sph_force_params *restrict fp,
-                                            sph_force_work *restrict w, size_t i,
-                                            const unsigned Fc) {
-  const unsigned F = SPH_TERMS(Fc, F_LITERAL(Fc), w->terms);
-  /* no rates: mirror particles, repulsive wall particles, adami wall particles (whose density
-   * and pressure are the fluid's, walls/adami.h) */
-  if (p->kind[i] == SPH_KIND_MIRROR || (p->flags[i] & (SPH_FLAG_REPULSIVE | SPH_FLAG_ADAMI))) {
-    p->drho[i] = p->ax[i] = p->ay[i] = 0.0;
-    SPH_IF3(p->az[i] = 0.0;)
-    if (F & F_LEDGER) p->du[i] = w->wpow[i] = w->wfx[i] = w->wfy[i] = 0.0;
-    SPH_IF3(if (F & F_LEDGER) w->wfz[i] = 0.0;)
-    if ((F & F_DDIFF) && (F & F_LEDGER)) w->dd[i] = 0.0;
-    return 0.0;
-  }
+/* Particle i's row, fluid (fluid_row 1: every pair's force, fluid-fluid
+ * terms, the ledger's wall power) or a wall particle's (0: its density's
+ * rates, and with the ledger its half of the heat of its pairs with
+ * fluid); fluid_row a literal at both calls. Returns sigma_i. */
+LOOP_ATTR double SPH_PT_XGLUE(row, FL)(sph_particles *restrict p, const sph_nlist *restrict l,
+                                       const sph_force_params *restrict fp,
+                                       sph_force_work *restrict w, size_t i, const unsigned F,
+                                       const int fluid_row) {
   size_t cnt;
   const uint32_t *restrict nb = SPH_PT_XGLUE(row_entries, FL)(l, fp, w, i, F, &cnt);
   LROW R;
   SPH_PT_XGLUE(row_begin, FL)(&R, p, fp, w, i, F, cnt);
+  R.fluid = fluid_row; /* (as row_begin found it: a constant from here on) */
   const LA azero = LAOP(all)(0.0);
   LSUMS S = {.drho = azero,
              .ax = azero,
@@ -707,7 +722,7 @@ LOOP_ATTR double SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph
 #endif
     LPAIR G;
     if (!SPH_PT_XGLUE(pair_density, FL)(&R, &S, &G, jk, k, nbr)) continue;
-    if (!R.fluid && !(F & F_LEDGER)) continue; /* a wall particle needs no other pair terms */
+    if (!fluid_row && !(F & F_LEDGER)) continue; /* a wall particle needs no other pair terms */
     /* with the ledger, XSPH and the Riemann pressure: m_j of fluid neighbours (0 for walls)
      * as their kind */
     const LT fmj = (F & (F_XSPH | F_LEDGER | F_RIEMANN)) ? LSET(E_ARR, w->fm) : R.zero;
@@ -716,16 +731,60 @@ LOOP_ATTR double SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph
     const LNORM N = SPH_PT_XGLUE(pair_wall_normals, FL)(&R, &G, &V, jk);
     LVEC pa;
     LT heat = R.zero; /* this particle's half of the pair's heat (energy ledger) */
-    SPH_PT_XGLUE(pair_momentum, FL)(&R, &S, &G, &V, &N, fluid_j, jk, nbr, &pa, &heat);
+    SPH_PT_XGLUE(pair_momentum, FL)(&R, &G, &V, &N, jk, nbr, &pa, &heat);
+    if (fluid_row) SPH_PT_XGLUE(pair_fluid_fluid, FL)(&R, &S, &G, fluid_j, jk, nbr);
     if (F & F_LEDGER) {
       SPH_PT_XGLUE(pair_ledger, FL)(&R, &S, fluid_j, jk, nbr, pa, heat);
-      if (!R.fluid) continue;
+      if (!fluid_row) continue;
     }
     LACC(S.ax, pa.c[0]);
     LACC(S.ay, pa.c[1]);
     SPH_IF3(LACC(S.az, pa.c[2]);)
   }
   return SPH_PT_XGLUE(row_end, FL)(&R, &S);
+}
+
+/* A fluid particle's row: every pair's force, compiled for each term set. */
+LOOP_ATTR double SPH_PT_XGLUE(fluid_row, FL)(sph_particles *restrict p, const sph_nlist *restrict l,
+                                             const sph_force_params *restrict fp,
+                                             sph_force_work *restrict w, size_t i,
+                                             const unsigned F) {
+  return SPH_PT_XGLUE(row, FL)(p, l, fp, w, i, F, 1);
+}
+/* A wall particle's row with the energy ledger (its density's rates and
+ * its half of the heat of its pairs with fluid): one function per flavour
+ * for every term set (F at run time, LOOP_SHARED: not inlined, not cloned),
+ * which keeps the loops' code small; the same bits as a row compiled for F
+ * (the run-time loops', tests/test_pair_terms.c). Without the ledger a
+ * wall row sums pair_density_FL only and is compiled into each loop. */
+LOOP_SHARED double SPH_PT_XGLUE(wall_row,
+                                FL)(sph_particles *restrict p, const sph_nlist *restrict l,
+                                    const sph_force_params *restrict fp, sph_force_work *restrict w,
+                                    size_t i, const unsigned F) {
+  return SPH_PT_XGLUE(row, FL)(p, l, fp, w, i, F, 0);
+}
+
+/* Returns sigma_i, the step rule's max_j |h v_ij.r_ij / r_ij^2| (0 for a
+ * row that sums nothing). */
+LOOP_ATTR double SPH_PT_XGLUE(interact, FL)(sph_particles *restrict p, const sph_nlist *restrict l,
+                                            const sph_force_params *restrict fp,
+                                            sph_force_work *restrict w, size_t i,
+                                            const unsigned Fc) {
+  const unsigned F = SPH_TERMS(Fc, F_LITERAL(Fc), w->terms);
+  /* no rates: mirror particles, repulsive wall particles, adami wall particles (whose density
+   * and pressure are the fluid's, walls/adami.h) */
+  if (p->kind[i] == SPH_KIND_MIRROR || (p->flags[i] & (SPH_FLAG_REPULSIVE | SPH_FLAG_ADAMI))) {
+    p->drho[i] = p->ax[i] = p->ay[i] = 0.0;
+    SPH_IF3(p->az[i] = 0.0;)
+    if (F & F_LEDGER) p->du[i] = w->wpow[i] = w->wfx[i] = w->wfy[i] = 0.0;
+    SPH_IF3(if (F & F_LEDGER) w->wfz[i] = 0.0;)
+    if ((F & F_DDIFF) && (F & F_LEDGER)) w->dd[i] = 0.0;
+    return 0.0;
+  }
+  if (p->kind[i] == SPH_KIND_FLUID) return SPH_PT_XGLUE(fluid_row, FL)(p, l, fp, w, i, F);
+  /* a wall row without the ledger (its density's rates only) inlined, the ledger's shared */
+  if (!(F & F_LEDGER)) return SPH_PT_XGLUE(row, FL)(p, l, fp, w, i, F & ~F_LEDGER, 0);
+  return SPH_PT_XGLUE(wall_row, FL)(p, l, fp, w, i, F);
 }
 
 #undef E_ARR
