@@ -567,7 +567,6 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_fluid_fluid, FL)(const LROW *restrict R, LSUMS 
                                                   const uint32_t *restrict jk, LNB nbr) {
   const unsigned F = R->F;
   const sph_force_work *restrict w = R->w;
-  (void)fluid_j, (void)jk, (void)w;
   if (F & F_RIEMANN) {
     const LT rhoi = R->rhoi, pi = R->pi, hgx = R->hgx, hgy = R->hgy, dx = G->dx, dy = G->dy;
     const LT rhoj = GATHER(rho), pj = LOP(mul)(LOP(mul)(GATHER(prho2), rhoj), rhoj);
