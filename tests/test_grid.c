@@ -6,9 +6,11 @@
  * along x), and sets with particles exactly on cell edges and at exactly
  * the support distance, the neighbours found through the grid's three
  * index ranges equal the pairs found by testing every pair;
- * the sort is stable (ids keep their order within a cell), gives the same
- * permutation and offsets on teams of 1, 2 and 3 threads (one histogram
- * per thread), and a permutation of the store carries every field along. On a grid periodic in x
+ * the sort is stable, gives the same permutation and offsets on teams of
+ * 1, 2 and 3 threads (one histogram per thread), and a permutation of the
+ * store carries every field along. The sorted order is a function of the
+ * particles' positions and ids alone (global cells, then ids): a shuffled
+ * store and any subset of it sort into the whole set's order. On a grid periodic in x
  * (sph_grid_build_periodic + sph_grid_ranges_all) the neighbours at
  * minimum-image distance below the support equal brute force with the
  * minimum image, for a period of exactly 3 cells (whole rows) and longer
@@ -602,6 +604,86 @@ static void test_sort_any_team(void) {
   sph_particles_free(&p);
 }
 
+/* The ids of a store sorted by an oriented grid, in storage order. */
+static int64_t *sorted_ids(sph_particles *p, const double ext[2], double cell, int periodic,
+                           double period) {
+  sph_grid g;
+  sph_grid_init(&g);
+  g.oriented = 1;
+  memcpy(g.orient_ext, ext, 2 * sizeof *ext);
+  sph_error err;
+  const int rc = periodic
+                     ? sph_grid_build_periodic(&g, p, cell, SPH_AXIS_X, 0.0, period, 1u << 24, &err)
+                     : sph_grid_build(&g, p, cell, 1u << 24, &err);
+  CU_ASSERT_FATAL(rc == 0);
+  int64_t *ids = malloc(p->n * sizeof *ids);
+  memcpy(ids, p->id, p->n * sizeof *ids);
+  sph_grid_free(&g);
+  return ids;
+}
+
+/* The order a sort gives is a function of the particles' positions and ids
+ * alone (grid.h: global cells, then ids), the summation order the MPI ranks
+ * need: a store shuffled and sorted again comes out in the same order, and
+ * any subset of it (a rank's particles, its ghosts among them, moved by a
+ * whole number of cells or not) sorts into the whole set's order
+ * restricted to it, whatever its own bounding box. Plain and periodic. */
+static void test_global_order(void) {
+  for (int periodic = 0; periodic < 2; periodic++) {
+    enum { N = 3000 };
+    sph_particles p;
+    random_store(&p, N, 0.2);
+    for (size_t i = 0; i < 40; i++) /* some on cell edges, some sharing a spot */
+      p.x[i] = 0.01 * (double)(i % 20), p.y[i] = 1.0 + 0.01 * (double)(i / 20);
+    const double ext[2] = {0.2, 0.1}, cell = 0.01;
+    int64_t *all = sorted_ids(&p, ext, cell, periodic, 0.2);
+    /* shuffled: the same order */
+    size_t *perm = malloc(N * sizeof *perm);
+    double *work = malloc(N * sizeof *work);
+    for (size_t i = 0; i < N; i++)
+      perm[i] = i;
+    for (size_t i = N - 1; i > 0; i--) {
+      const size_t k = (size_t)(uniform() * (double)(i + 1)), t = perm[i];
+      perm[i] = perm[k], perm[k] = t;
+    }
+    sph_particles_permute(&p, perm, work);
+    int64_t *again = sorted_ids(&p, ext, cell, periodic, 0.2);
+    CU_ASSERT(memcmp(all, again, N * sizeof *all) == 0);
+    /* subsets: a band of x (a rank's slab with its ghosts), and a random third */
+    for (int kind = 0; kind < 2; kind++) {
+      sph_particles q;
+      sph_error err;
+      CU_ASSERT_FATAL(sph_particles_init(&q, 16, &err) == 0);
+      char *in = calloc(N + 1, 1);
+      for (size_t i = 0; i < p.n; i++) {
+        const int take = kind ? uniform() < 0.33 : p.x[i] >= 0.07 && p.x[i] < 0.13;
+        if (!take) continue;
+        const long k =
+            sph_particles_add(&q, p.x[i], p.y[i], 0, 0, 1000, 1, 0.01, SPH_KIND_FLUID, &err);
+        CU_ASSERT_FATAL(k >= 0);
+        q.id[k] = p.id[i];
+        in[p.id[i]] = 1;
+      }
+      int64_t *sub = sorted_ids(&q, ext, cell, periodic, 0.2);
+      size_t m = 0, same = 1;
+      for (size_t i = 0; i < N; i++)
+        if (in[all[i]]) same &= m < q.n && sub[m++] == all[i];
+      printf("\n  %s, subset %s: %zu of %d particles, %s", periodic ? "periodic" : "plain",
+             kind ? "random third" : "band 0.07 <= x < 0.13", q.n, N,
+             same && m == q.n ? "the whole set's order" : "ANOTHER ORDER");
+      CU_ASSERT(same && m == q.n);
+      free(sub);
+      free(in);
+      sph_particles_free(&q);
+    }
+    free(again);
+    free(all);
+    free(perm);
+    free(work);
+    sph_particles_free(&p);
+  }
+}
+
 /* Moves of up to skin/2: the list stays fresh and holds every pair within
  * the support; a larger move, or a reordered store, makes it stale. */
 static void test_list_fresh(void) {
@@ -729,6 +811,7 @@ int main(void) {
   CU_TestInfo tests[] = {
       {"grid neighbours equal brute force (random sets)", test_random_sets},
       {"counting sort: the same order on teams of 1 to 3 threads", test_sort_any_team},
+      {"the order is the positions' and ids' alone: shuffled, subsets", test_global_order},
       {"particles on cell edges and at exactly 2h", test_cell_edges},
       {"a grid of 2^31 cells a side is refused", test_grid_side_bound},
       {"permutation carries every field", test_permute_carries_fields},

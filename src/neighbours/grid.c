@@ -3,11 +3,14 @@
  * grid.c - cell-linked list with a stable counting sort (see grid.h).
  *
  * Build: (1) bounding box of all particles (min/max: exact, order-free);
- * (2) cell coordinates per particle; (3) counting sort by row-major key,
- * stable because particles are placed in increasing old index (in
- * parallel, one histogram per thread: the same order); (4) the store is
- * permuted into cell order. All steps are serial, per-particle or that
- * sort, so the result does not depend on the number of threads.
+ * (2) global cell coordinates per particle (floor(x / cell): the same
+ * cell whatever the box); (3) counting sort by row-major key, stable
+ * because particles are placed in increasing old index (in parallel, one
+ * histogram per thread: the same order); (4) when the store is to be
+ * sorted, each cell's particles in increasing id, so that the order no
+ * longer depends on the old one; (5) the store is permuted into that
+ * order. All steps are serial, per-particle, per-cell or that sort, so
+ * the result does not depend on the number of threads.
  */
 #include "config.h"
 
@@ -27,12 +30,30 @@
 
 void sph_grid_init(sph_grid *g) { memset(g, 0, sizeof *g); }
 
+void sph_grid_orient(sph_grid *g, const sph_particles *p) {
+  for (int d = 0; d < SPH_DIM; d++) {
+    double a = 0.0, b = 0.0;
+    for (size_t i = 0; i < p->n; i++) { /* min and max: exact in any order */
+      const double x = p->pos[d][i];
+      if (i == 0 || x < a) a = x;
+      if (i == 0 || x > b) b = x;
+    }
+    g->orient_ext[d] = b - a;
+  }
+  g->oriented = 1;
+}
+
 void sph_grid_free(sph_grid *g) {
   free(g->start);
   free(g->count);
   free(g->hist);
   free(g->block);
+  const int oriented = g->oriented;
+  double ext[SPH_DIM];
+  memcpy(ext, g->orient_ext, sizeof ext);
   memset(g, 0, sizeof *g);
+  g->oriented = oriented; /* the directions outlive the buffers */
+  memcpy(g->orient_ext, ext, sizeof ext);
 }
 
 /* Room for n particles and `cells` cells. Every per-particle array is
@@ -122,6 +143,26 @@ static int counting_sort(sph_grid *g, size_t n, size_t cells, sph_error *err) {
   return 0;
 }
 
+/* Each cell's run of g->perm in increasing id (insertion sort: a cell
+ * holds a few particles, mostly in id order already from the last sort),
+ * ties (equal ids: a store whose ids are not unique) kept in the stable
+ * order. Cells are independent, so the result is the serial one. */
+static void sort_cells_by_id(sph_grid *g, const int64_t *restrict id, size_t cells) {
+  size_t *restrict perm = g->perm;
+  const size_t *restrict start = g->start;
+  const long lc = (long)cells;
+#pragma omp parallel for schedule(static) if (lc > SPH_OMP_MIN)
+  for (long c = 0; c < lc; c++)
+    for (size_t k = start[c] + 1; k < start[c + 1]; k++) {
+      const size_t v = perm[k];
+      const int64_t key = id[v];
+      size_t m = k;
+      for (; m > start[c] && id[perm[m - 1]] > key; m--)
+        perm[m] = perm[m - 1];
+      perm[m] = v;
+    }
+}
+
 /* The grid's directions (grid.h): the store's axes in increasing extent,
  * ties in axis order, the periodic axis (periodic - 1) first when periodic. */
 static void choose_directions(const double ext[SPH_DIM], int periodic, int axis[SPH_DIM]) {
@@ -140,8 +181,8 @@ static void choose_directions(const double ext[SPH_DIM], int periodic, int axis[
 
 /* The shared build: bounding box (along all axes but a periodic one), the
  * directions, keys, stable counting sort, and the permutation of the store
- * (p != NULL) or only the cell lists in g->perm (p == NULL, the store read
- * through q). */
+ * into that order with each cell's particles by id (p != NULL), or only
+ * the cell lists in g->perm (p == NULL, the store read through q). */
 static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double cell, int periodic,
                  double px0, double px1, size_t max_cells, sph_error *err) {
   if (p) q = p;
@@ -166,11 +207,22 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
   }
   double ext[SPH_DIM];
   for (int d = 0; d < SPH_DIM; d++)
-    ext[d] = hi[d] - lo[d];
+    ext[d] = g->oriented ? g->orient_ext[d] : hi[d] - lo[d];
   int axis[SPH_DIM];
   choose_directions(ext, periodic, axis);
   double cellx = cell;
-  double first = lo[axis[0]], f[SPH_DIM];
+  const double inv = 1.0 / cell;
+  /* the global cells the box spans along each direction: floor(x / cell)
+   * is monotonic in x, so the box's ends give the least and the greatest */
+  double c0[SPH_DIM], f[SPH_DIM];
+  for (int d = 0; d < SPH_DIM; d++) {
+    const double a = floor(lo[axis[d]] * inv), b = floor(hi[axis[d]] * inv);
+    if (!(fabs(a) < 0x1p52 && fabs(b) < 0x1p52))
+      return sph_error_set(err, "grid: a particle is %g cells of %g from the origin (at most 2^52)",
+                           fmax(fabs(a), fabs(b)), cell);
+    c0[d] = a;
+    f[d] = b - a + 1.0;
+  }
   if (periodic) {
     /* between the two stages of a step particles may stand up to one step's
      * travel outside the period; further is an error */
@@ -183,15 +235,13 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
                            "grid: the period %g holds fewer than 3 cells of %g (the support, the "
                            "list's skin and a margin): expected a period of at least %g",
                            px1 - px0, cell, 3.0 * cell);
-    first = px0;
     cellx = (px1 - px0) / ncol;
+    c0[0] = 0.0;
     f[0] = ncol;
-  } else
-    f[0] = floor(ext[axis[0]] / cell) + 1.0;
-  double total = f[0];
-  int too_long = f[0] > INT32_MAX;
-  for (int d = 1; d < SPH_DIM; d++) {
-    f[d] = floor(ext[axis[d]] / cell) + 1.0;
+  }
+  double total = 1.0;
+  int too_long = 0;
+  for (int d = 0; d < SPH_DIM; d++) {
     total *= f[d];
     too_long |= f[d] > INT32_MAX;
   }
@@ -209,7 +259,7 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
 #endif
   for (int d = 0; d < SPH_DIM; d++) {
     g->axis[d] = axis[d];
-    g->lo[d] = d ? lo[axis[d]] : first;
+    g->lo[d] = periodic && d == 0 ? px0 : c0[d] * cell;
     g->ncell[d] = (long)f[d];
   }
   g->cell = cell;
@@ -218,31 +268,33 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
   const size_t cells = sph_grid_cells(g);
   if (reserve(g, n, cells, err)) return -1;
 
-  const double inv = 1.0 / cell, invx = 1.0 / cellx;
+  const double invx = 1.0 / cellx;
   const double *restrict qx = q->pos[axis[0]], *restrict qy = q->pos[axis[1]];
-  const double x0 = g->lo[0], y0 = g->lo[1];
-  const long nx = g->ncell[0], ny = g->ncell[1];
+  const long x0 = (long)c0[0], y0 = (long)c0[1];
+  const long nx = g->ncell[0];
 #if SPH_DIM == 3
   const double *restrict qz = q->pos[axis[2]];
-  const double z0 = g->lo[2];
-  const long nz = g->ncell[2];
+  const long z0 = (long)c0[2];
+  const long ny = g->ncell[1];
 #endif
 #pragma omp parallel for schedule(static) if (ln > SPH_OMP_MIN)
   for (long i = 0; i < ln; i++) {
-    long cx = (long)floor((qx[i] - x0) * invx);
-    long cy = (long)((qy[i] - y0) * inv);
-    if (periodic) cx = ((cx % nx) + nx) % nx;
-    if (cx >= nx) cx = nx - 1;
-    if (cy >= ny) cy = ny - 1;
+    long cx;
+    if (periodic) {
+      cx = (long)floor((qx[i] - px0) * invx);
+      cx = ((cx % nx) + nx) % nx;
+    } else
+      cx = (long)floor(qx[i] * inv) - x0;
+    const long cy = (long)floor(qy[i] * inv) - y0;
 #if SPH_DIM == 2
     g->key[i] = (uint32_t)((size_t)cy * (size_t)nx + (size_t)cx);
 #else
-    long cz = (long)((qz[i] - z0) * inv);
-    if (cz >= nz) cz = nz - 1;
+    const long cz = (long)floor(qz[i] * inv) - z0;
     g->key[i] = (uint32_t)(((size_t)cz * (size_t)ny + (size_t)cy) * (size_t)nx + (size_t)cx);
 #endif
   }
   if (counting_sort(g, n, cells, err)) return -1;
+  if (p) sort_cells_by_id(g, p->id, cells);
   /* the cell of each storage index: binned only, the particle's own key;
    * sorted, the key of the particle moved there */
   /* (the scratch: cell_of, SPH_DIM x 4 >= 8 bytes a particle, written below) */

@@ -3,13 +3,19 @@
  * grid.h - the cell-linked list ("dynamic grid" of paper A §2).
  *
  * Square (cubic) cells of side >= the smoothing radius cover the particles'
- * bounding box. Building the grid sorts the particle store by cell with a
- * stable counting sort (row-major cell key), so particles of a cell are
- * contiguous and, within a cell, keep their previous relative order: the
- * neighbour order of every particle is a function of the state alone, never
- * of the thread count. The neighbours of a particle are the particles of the
- * 3x3 (3x3x3) block of cells around its own; because a row of three cells is
- * one contiguous range, a neighbour walk is three (nine) index ranges.
+ * bounding box. The cells are those of one global grid: cell k along an
+ * axis holds floor(x / cell) = k (origin 0; a periodic axis counts its
+ * columns from the period's start), whatever particles the box holds.
+ * Building the grid sorts the particle store by cell with a counting sort
+ * (row-major cell key over the global cell coordinates, the directions
+ * fixed by sph_grid_orient), and within a cell by particle id: the storage
+ * order after a build is a function of each particle's position and id
+ * alone, so any subset of the particles (a rank's, with its ghosts) sorts
+ * into the order the whole set gives it, whatever the previous order and
+ * never depending on the thread count. The neighbours of a particle are
+ * the particles of the 3x3 (3x3x3) block of cells around its own; because a
+ * row of three cells is one contiguous range, a neighbour walk is three
+ * (nine) index ranges.
  */
 #ifndef SPH_GRID_H
 #define SPH_GRID_H
@@ -32,11 +38,15 @@
  * in axis order, so rows run along the shortest side and the threads'
  * slices of the sorted store (whole rows, planes in 3-D) meet across the
  * longest; a periodic grid has its periodic axis as direction 0 (its rows wrap). In 2-D
- * that is rows along x unless the box is wider than tall. */
+ * that is rows along x unless the box is wider than tall. The extents are
+ * those sph_grid_orient fixed (the case's particles at the start, so that a
+ * restart and every subset sort alike), or else each build's own box. */
 typedef struct sph_grid {
-  int axis[SPH_DIM];   /* the store axis (SPH_AXIS_*) of each direction */
-  double lo[SPH_DIM];  /* the lower corner of cell 0 along each direction */
-  double cell;         /* cell side */
+  int axis[SPH_DIM];          /* the store axis (SPH_AXIS_*) of each direction */
+  int oriented;               /* 1: the directions come from orient_ext */
+  double orient_ext[SPH_DIM]; /* the extents sph_grid_orient fixed, per store axis */
+  double lo[SPH_DIM];         /* the lower corner of cell 0 along each direction */
+  double cell;                /* cell side */
   double cellx;        /* cell width along direction 0: = cell, or period/ncell[0] when periodic */
   int periodic;        /* 0, or 1 + the store axis that wraps around: then direction 0 */
   int sorted;          /* the store is in cell order (sph_grid_build*); 0 after
@@ -77,6 +87,11 @@ static inline double sph_grid_period(const sph_grid *g) {
 
 void sph_grid_init(sph_grid *g);
 void sph_grid_free(sph_grid *g);
+/* Fixes the grid's directions (above) from the extents of p's bounding box,
+ * for every later build: the solver calls it once, on the case's particles
+ * as set up, before the first build (and before a restart's state is
+ * read), so the directions are a function of the case alone. */
+void sph_grid_orient(sph_grid *g, const sph_particles *p);
 
 /* Sorts p by cell (cells of side `cell`) and fills the cell offsets. Fails
  * if the bounding box would need more than max_cells cells (particles far

@@ -32,6 +32,36 @@ static double sph_skin_fraction(void) {
   return SPH_SKIN_DEFAULT;
 }
 
+/* SPH_TEST_SHUFFLE=SEED (doc/testing.md): the store in a random order
+ * before the first sort, a permutation drawn from SEED (a 64-bit LCG,
+ * Fisher-Yates). The first sort puts every particle where its position and
+ * id say (grid.h), so the run's every output is the unshuffled run's: the
+ * test that the summation order does not depend on the storage order. */
+static int shuffle_store(sph_particles *p, sph_error *err) {
+  const char *e = getenv("SPH_TEST_SHUFFLE");
+  if (!e || !*e || p->n < 2) return 0;
+  uint64_t r = strtoull(e, NULL, 10) * 2862933555777941757ull + 3037000493ull;
+  size_t *perm = malloc(p->n * sizeof *perm);
+  void *work = malloc(p->n * 8);
+  if (!perm || !work) {
+    free(perm);
+    free(work);
+    return sph_error_set(err, "out of memory");
+  }
+  for (size_t i = 0; i < p->n; i++)
+    perm[i] = i;
+  for (size_t i = p->n - 1; i > 0; i--) {
+    r = r * 6364136223846793005ull + 1442695040888963407ull;
+    const size_t k = (size_t)((r >> 11) % (uint64_t)(i + 1));
+    const size_t t = perm[i];
+    perm[i] = perm[k], perm[k] = t;
+  }
+  sph_particles_permute(p, perm, work);
+  free(perm);
+  free(work);
+  return 0;
+}
+
 /* Whether the wall particles' neighbour rows may hold their fluid
  * neighbours only (grid.h, wall_fluid_only): where every wall-wall pair
  * adds +-0 to every sum a wall row feeds. A wall row sums the continuity
@@ -494,6 +524,10 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
     sph_error_set(err, "out of memory");
     goto fail;
   }
+  /* the grid's directions from the case's particles as set up: every later
+   * sort (and a restart's) takes them (grid.h) */
+  sph_grid_orient(&s->grid, &s->p);
+  if (shuffle_store(&s->p, err)) goto fail;
   sph_sim_move_walls(s, 0.0);
   s->resort = 1;
   if (sph_sim_pass(s, err)) goto fail; /* rates and flags of the initial state */

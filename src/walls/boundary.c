@@ -232,15 +232,27 @@ sph_mirror_line sph_mirror_segment_line(double ax, double ay, double bx, double 
   return (sph_mirror_line){ax, ay, ly / len, -lx / len, -len, 0.0};
 }
 
-/* The image of fluid particle i at x: its velocity reflected in the
- * line(s) or plane(s), v, and its no-slip velocity -v_i in velh; its
- * density, and pressure, never below rho0 and 0. */
+/* An image's id: a function of its particle's id and of the lines or
+ * planes it is reflected in (slot: a line's index; 64 + 64 A + B for the
+ * corner of lines A and B; in 3-D the set of planes as a bit mask), above
+ * every particle's own id, so that the grid's sort (cell, then id: grid.h)
+ * places it where the storage order of its particle cannot move it. */
+#define SPH_IMAGE_ID_BASE ((int64_t)1 << 40)
+#define SPH_IMAGE_SLOTS 8192
+static inline int64_t image_id(const sph_particles *p, size_t i, int slot) {
+  return SPH_IMAGE_ID_BASE + p->id[i] * SPH_IMAGE_SLOTS + slot;
+}
+
+/* The image of fluid particle i at x with the id `id` (image_id): its
+ * velocity reflected in the line(s) or plane(s), v, and its no-slip
+ * velocity -v_i in velh; its density, and pressure, never below rho0 and 0. */
 static long add_image(sph_particles *p, size_t i, const double x[SPH_DIM], const double v[SPH_DIM],
-                      double rho0, sph_error *err) {
+                      double rho0, int64_t id, sph_error *err) {
   const int tension = p->rho[i] < rho0;
   const long k = sph_particles_add_at(p, x, v, tension ? rho0 : p->rho[i], p->mass[i], p->h[i],
                                       SPH_KIND_MIRROR, err);
   if (k < 0) return k;
+  p->id[k] = id;
   p->p[k] = tension ? 0.0 : p->p[i];
   for (int a = 0; a < SPH_DIM; a++)
     p->velh[a][k] = -p->vel[a][i];
@@ -279,7 +291,7 @@ long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lin
       double vx = p->vx[i], vy = p->vy[i];
       reflect_velocity(L->nx, L->ny, &vx, &vy);
       const double at[2] = {p->x[i] - 2.0 * d * L->nx, p->y[i] - 2.0 * d * L->ny}, v[2] = {vx, vy};
-      if (add_image(p, i, at, v, rho0, err) < 0) return -1;
+      if (add_image(p, i, at, v, rho0, image_id(p, i, (int)l), err) < 0) return -1;
       added++;
     }
     for (int a = 0; a < nn; a++) /* corners: the image through two perpendicular lines */
@@ -294,7 +306,8 @@ long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lin
         reflect_velocity(A->nx, A->ny, &vx, &vy);
         reflect_velocity(B->nx, B->ny, &vx, &vy);
         const double at[2] = {x, y}, v[2] = {vx, vy};
-        if (add_image(p, i, at, v, rho0, err) < 0) return -1;
+        if (add_image(p, i, at, v, rho0, image_id(p, i, 64 + 64 * near[a] + near[b]), err) < 0)
+          return -1;
         added++;
       }
   }
@@ -359,7 +372,10 @@ long sph_mirror_add_planes(sph_particles *p, const sph_wall_plane *planes, size_
         v[f->axis] = -v[f->axis];
       }
       if (!ok) continue;
-      if (add_image(p, i, x, v, rho0, err) < 0) return -1;
+      unsigned planes_hit = 0; /* the set of planes, by their index */
+      for (int k = 0; k < nn; k++)
+        if (mask >> k & 1u) planes_hit |= 1u << near[k];
+      if (add_image(p, i, x, v, rho0, image_id(p, i, (int)planes_hit), err) < 0) return -1;
       added++;
     }
   }
