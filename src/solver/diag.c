@@ -6,6 +6,7 @@
 
 #include "solver/diag.h"
 
+#include "core/exact_sum.h"
 #include "core/parallel.h"
 #include "io/csv.h"
 
@@ -70,34 +71,40 @@ double sph_diag_gauge_level(const sph_particles *p, const double at[SPH_DIM - 1]
   return level;
 }
 
+/* The sums of a row over the fluid particles, each exact (exact_sum.h):
+ * the same bits in any order and for any split of the particles. */
+enum { D_MASS, D_MX, D_MY, D_KE, D_PE, D_MZ, D_SUMS };
+
 void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[SPH_DIM],
                       sph_diag_row *row) {
   size_t n = 0;
-  double mass = 0.0, mx = 0.0, my = 0.0, ke = 0.0, pe = 0.0;
-  SPH_IF3(double mz = 0.0;)
+  sph_xsum sum[D_SUMS];
+  for (int k = 0; k < D_SUMS; k++)
+    sph_xsum_init(&sum[k]);
   for (size_t i = 0; i < p->n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     const double m = p->mass[i];
     n++;
-    mass += m;
-    mx += m * p->vx[i];
-    my += m * p->vy[i];
+    sph_xsum_add(&sum[D_MASS], m);
+    sph_xsum_add(&sum[D_MX], m * p->vx[i]);
+    sph_xsum_add(&sum[D_MY], m * p->vy[i]);
 #if SPH_DIM == 2
-    ke += 0.5 * m * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);
+    sph_xsum_add(&sum[D_KE], 0.5 * m * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]));
 #else /* the floor along z, the vertical */
-    mz += m * p->vz[i];
-    ke += 0.5 * m * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i] + p->vz[i] * p->vz[i]);
+    sph_xsum_add(&sum[D_MZ], m * p->vz[i]);
+    sph_xsum_add(&sum[D_KE],
+                 0.5 * m * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i] + p->vz[i] * p->vz[i]));
 #endif
-    pe -= sph_diag_lift(p, i, g, floor_y);
+    sph_xsum_add(&sum[D_PE], -sph_diag_lift(p, i, g, floor_y));
   }
-  SPH_IF3(row->momentum_z = mz;)
+  SPH_IF3(row->momentum_z = sph_xsum_round(&sum[D_MZ]);)
   row->n_fluid = n;
   row->front_x = sph_diag_front(p, floor_y, band);
-  row->mass = mass;
-  row->momentum_x = mx;
-  row->momentum_y = my;
-  row->kinetic = ke;
-  row->potential = pe;
+  row->mass = sph_xsum_round(&sum[D_MASS]);
+  row->momentum_x = sph_xsum_round(&sum[D_MX]);
+  row->momentum_y = sph_xsum_round(&sum[D_MY]);
+  row->kinetic = sph_xsum_round(&sum[D_KE]);
+  row->potential = sph_xsum_round(&sum[D_PE]);
   row->n_surface = -1;
   row->ledger = 0;
   row->diffusion = 0;

@@ -9,34 +9,64 @@
 #include <math.h>
 
 #include "core/check.h"
+#include "core/exact_sum.h"
+#include "core/parallel.h"
+
+/* The rates' sums over the fluid particles, each exact (exact_sum.h): in
+ * parallel, each thread's partial sums merged, the same bits in any order
+ * and for any split of the particles (threads, ranks). The walls' force on
+ * the fluid and its weight apart: sum m_i f_i over the particles a wall
+ * pushes (most have f_i = 0 and are not added), then g times the fluid's
+ * mass, added into the same exact sum. */
+enum { L_PW, L_PX, L_FX, L_FY, L_PD, L_PHI, L_FZ, L_M, L_SUMS };
 
 void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_work *w,
                       const double gravity[SPH_DIM], int xsph, int diffusion) {
   const double *g = gravity;
-  double pw = 0.0, px = 0.0, fx = 0.0, fy = 0.0, pd = 0.0, phi = 0.0;
-  SPH_IF3(double fz = 0.0;)
-  for (size_t i = 0; i < p->n; i++) {
-    if (p->kind[i] != SPH_KIND_FLUID) continue;
-    const double m = p->mass[i];
-    pw += m * w->wpow[i];
+  const int repulsion = lg->repulsion;
+  sph_xsum sum[L_SUMS];
+  for (int k = 0; k < L_SUMS; k++)
+    sph_xsum_init(&sum[k]);
+  const long n = (long)p->n;
+#pragma omp parallel if (n > SPH_OMP_MIN)
+  {
+    sph_xsum part[L_SUMS];
+    for (int k = 0; k < L_SUMS; k++)
+      sph_xsum_init(&part[k]);
+#pragma omp for schedule(static) nowait
+    for (long li = 0; li < n; li++) {
+      const size_t i = (size_t)li;
+      if (p->kind[i] != SPH_KIND_FLUID) continue;
+      const double m = p->mass[i];
+      sph_xsum_add(&part[L_M], m);
+      if (w->wpow[i] != 0.0) sph_xsum_add(&part[L_PW], m * w->wpow[i]);
 #if SPH_DIM == 2
-    if (xsph) px -= m * (g[0] * p->xsx[i] + g[1] * p->xsy[i]);
+      if (xsph) sph_xsum_add(&part[L_PX], -(m * (g[0] * p->xsx[i] + g[1] * p->xsy[i])));
 #else
-    if (xsph) px -= m * (g[0] * p->xsx[i] + g[1] * p->xsy[i] + g[2] * p->xsz[i]);
-    fz += m * (w->wfz[i] + g[2]);
+      if (xsph)
+        sph_xsum_add(&part[L_PX], -(m * (g[0] * p->xsx[i] + g[1] * p->xsy[i] + g[2] * p->xsz[i])));
+      if (w->wfz[i] != 0.0) sph_xsum_add(&part[L_FZ], m * w->wfz[i]);
 #endif
-    fx += m * (w->wfx[i] + g[0]);
-    fy += m * (w->wfy[i] + g[1]);
-    if (diffusion) pd += m * w->hot[i].prho2 * w->dd[i];
-    if (lg->repulsion) phi += m * w->lj[i];
+      if (w->wfx[i] != 0.0) sph_xsum_add(&part[L_FX], m * w->wfx[i]);
+      if (w->wfy[i] != 0.0) sph_xsum_add(&part[L_FY], m * w->wfy[i]);
+      if (diffusion) sph_xsum_add(&part[L_PD], m * w->hot[i].prho2 * w->dd[i]);
+      if (repulsion) sph_xsum_add(&part[L_PHI], m * w->lj[i]);
+    }
+#pragma omp critical(sph_ledger_rates)
+    for (int k = 0; k < L_SUMS; k++) /* exact: in any order */
+      sph_xsum_merge(&sum[k], &part[k]);
   }
-  lg->wall_potential = phi;
-  lg->power_diffusion = pd;
-  lg->power_wall = pw;
-  lg->power_xsph = px;
-  lg->force_x = fx;
-  lg->force_y = fy;
-  SPH_IF3(lg->force_z = fz;)
+  const double mass = sph_xsum_round(&sum[L_M]); /* the weight: g times it */
+  sph_xsum_add(&sum[L_FX], g[0] * mass);
+  sph_xsum_add(&sum[L_FY], g[1] * mass);
+  SPH_IF3(sph_xsum_add(&sum[L_FZ], g[2] * mass);)
+  lg->wall_potential = sph_xsum_round(&sum[L_PHI]);
+  lg->power_diffusion = sph_xsum_round(&sum[L_PD]);
+  lg->power_wall = sph_xsum_round(&sum[L_PW]);
+  lg->power_xsph = sph_xsum_round(&sum[L_PX]);
+  lg->force_x = sph_xsum_round(&sum[L_FX]);
+  lg->force_y = sph_xsum_round(&sum[L_FY]);
+  SPH_IF3(lg->force_z = sph_xsum_round(&sum[L_FZ]);)
 }
 
 void sph_ledger_advance(sph_ledger *lg, double dt) {
@@ -68,20 +98,22 @@ void sph_ledger_add_kick(sph_ledger *lg, const double kick[2 * SPH_DIM],
 #endif
 }
 
-double sph_ledger_fluid_internal(const sph_particles *p) {
-  double u = 0.0;
+/* The particles' heat, sum m u (fluid only, or every particle), exact. */
+static double heat(const sph_particles *p, int fluid_only) {
+  sph_xsum u;
+  sph_xsum_init(&u);
   for (size_t i = 0; i < p->n; i++)
-    if (p->kind[i] == SPH_KIND_FLUID) u += p->mass[i] * p->u[i];
-  return u;
+    if (!fluid_only || p->kind[i] == SPH_KIND_FLUID) sph_xsum_add(&u, p->mass[i] * p->u[i]);
+  return sph_xsum_round(&u);
 }
+
+double sph_ledger_fluid_internal(const sph_particles *p) { return heat(p, 1); }
 
 void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, const sph_outflow *out,
                      sph_diag_row *row) {
   static const sph_outflow none = {0};
   if (!out) out = &none;
-  double u = 0.0; /* every particle's heat: dynamic walls take half a pair's */
-  for (size_t i = 0; i < p->n; i++)
-    u += p->mass[i] * p->u[i];
+  const double u = heat(p, 0); /* every particle's: dynamic walls take half a pair's */
   row->ledger = 1;
   row->internal = u;
   row->boundary_work = lg->work_wall;

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/exact_sum.h"
 #include "core/parallel.h"
 #include "solver/diag.h"
 
@@ -42,17 +43,26 @@ long sph_outflow_remove(sph_outflow *o, sph_particles *p, const double domain[2 
     free(origin);
     return sph_error_set(err, "out of memory taking %ld particles that left the domain out", k);
   }
-  /* book what leaves, serially in storage order; mark it by id */
+  /* book what leaves (each sum exact: exact_sum.h, the same bits in any
+   * order), then add it to what left before; mark it by id */
+  sph_xsum sm, se, sv[SPH_DIM];
+  sph_xsum_init(&sm), sph_xsum_init(&se);
+  for (int a = 0; a < SPH_DIM; a++)
+    sph_xsum_init(&sv[a]);
   for (size_t i = 0; i < p->n; i++) {
     if (!sph_outflow_outside(p, i, domain)) continue;
     const double m = p->mass[i];
     const double v2 = SPH_NORM2(p->vx[i], p->vy[i], p->vz[i]);
-    o->mass += m;
-    o->energy += 0.5 * m * v2 - sph_diag_lift(p, i, g, floor) + m * p->u[i];
+    sph_xsum_add(&sm, m);
+    sph_xsum_add(&se, 0.5 * m * v2 - sph_diag_lift(p, i, g, floor) + m * p->u[i]);
     for (int a = 0; a < SPH_DIM; a++)
-      o->momentum[a] += m * p->vel[a][i];
+      sph_xsum_add(&sv[a], m * p->vel[a][i]);
     keep_as[p->id[i]] = -1;
   }
+  o->mass += sph_xsum_round(&sm);
+  o->energy += sph_xsum_round(&se);
+  for (int a = 0; a < SPH_DIM; a++)
+    o->momentum[a] += sph_xsum_round(&sv[a]);
   /* the survivors' new ids in their id order, and their creation ids */
   int64_t next = 0;
   for (long id = 0; id < n; id++) {

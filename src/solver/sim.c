@@ -19,6 +19,7 @@
 #include "config.h"
 
 #include "core/check.h"
+#include "core/exact_sum.h"
 #include "core/parallel.h"
 
 #include "solver/sim_internal.h"
@@ -392,14 +393,19 @@ static int shift_particles(sph_sim *s, double dt, sph_error *err) {
   if (neighbours(s, err)) return -1;
   const sph_shifting_params sp = {c->shifting_coefficient, c->h, c->dx, c->kernel};
   sph_shifting_compute(p, &s->nl, &sp, dt, s->shift);
-  double moved[SPH_DIM] = {0.0};
-  for (size_t i = 0; i < p->n; i++) { /* serial: the sums in storage order */
+  sph_xsum sum[SPH_DIM]; /* exact (exact_sum.h): the same bits in any order */
+  for (int a = 0; a < SPH_DIM; a++)
+    sph_xsum_init(&sum[a]);
+  for (size_t i = 0; i < p->n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     for (int a = 0; a < SPH_DIM; a++) {
       p->pos[a][i] += s->shift[a][i];
-      moved[a] += p->mass[i] * s->shift[a][i];
+      sph_xsum_add(&sum[a], p->mass[i] * s->shift[a][i]);
     }
   }
+  double moved[SPH_DIM];
+  for (int a = 0; a < SPH_DIM; a++)
+    moved[a] = sph_xsum_round(&sum[a]);
   if (s->fp.ledger) sph_ledger_add_shift(&s->ledger, moved, c->gravity);
   keep_off_mirrors(s, c->integrator == SPH_INTEGRATOR_LEAPFROG);
   wrap_periodic(s);

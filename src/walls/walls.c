@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "core/exact_sum.h"
 #include "core/parallel.h"
 
 #include "walls/walls.h"
@@ -412,7 +413,22 @@ size_t sph_walls_keep_off(const sph_walls *w, sph_particles *p, double d_min, in
     if (p->kind[i] == SPH_KIND_FLUID) any |= near_any(w, p, i, d_min);
   }
   if (!any) return 0;
-  for (size_t i = 0; i < p->n; i++)
-    if (p->kind[i] == SPH_KIND_FLUID) moved += keep_off_one(w, p, i, d_min, half_step, kick);
+  /* each particle's kick on its own, the sums over particles exact
+   * (exact_sum.h): the same bits in any order */
+  sph_xsum sum[2 * SPH_DIM];
+  for (int c = 0; c < 2 * SPH_DIM; c++)
+    sph_xsum_init(&sum[c]);
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->kind[i] != SPH_KIND_FLUID) continue;
+    double one[2 * SPH_DIM] = {0.0};
+    const size_t m = keep_off_one(w, p, i, d_min, half_step, kick ? one : NULL);
+    moved += m;
+    if (m && kick)
+      for (int c = 0; c < 2 * SPH_DIM; c++)
+        sph_xsum_add(&sum[c], one[c]);
+  }
+  if (kick)
+    for (int c = 0; c < 2 * SPH_DIM; c++)
+      kick[c] += sph_xsum_round(&sum[c]);
   return moved;
 }
