@@ -88,9 +88,10 @@ _Static_assert(F_PERIODIC == SPH_ROW_PERIODIC, "row_walk.h's SEP reads F_PERIODI
  *                the run-time loop for per-particle h and for uniform h
  *   portable     on x86-64 the fallback of processors without AVX2: the
  *                run-time loop only; elsewhere as the lane loops
- * A checking build (./configure --enable-sanitizers, or -DSPH_FEW_VARIANTS)
- * compiles the run-time loops only: the same body and the same results;
- * what a sanitizer checks is the code, not its speed.
+ * -DSPH_FEW_VARIANTS (the debug library of make check) compiles the run-time
+ * loops only: the same body and the same results, in less build time. The
+ * sanitized build (./configure --enable-sanitizers) compiles every loop, so
+ * that the specialised loops run under the sanitizers too.
  * Each list entry is V(name, Fc). */
 #define F_RUNTIME 1024u    /* not a term: a loop that reads bits at run time */
 #define F_AXES_FIXED 2048u /* not a term: with F_RUNTIME, the axes are literals */
@@ -99,7 +100,7 @@ _Static_assert(F_PERIODIC == SPH_ROW_PERIODIC, "row_walk.h's SEP reads F_PERIODI
 #define AXES_BITS(k)                                                                               \
   (((k)&1 ? F_AV : 0u) | ((k)&2 ? F_XSPH : 0u) | ((k)&4 ? F_STRESS : 0u) | ((k)&8 ? F_DDIFF : 0u))
 #define AXES_LOOP(V, k) V(a##k, F_RUNTIME | F_AXES_FIXED | AXES_BITS(k))
-#if defined(SPH_SANITIZERS) || defined(SPH_FEW_VARIANTS)
+#ifdef SPH_FEW_VARIANTS
 #define LANE_LOOPS(V) V(r, F_RUNTIME)
 #define SCALAR_LOOPS(V) V(r, F_RUNTIME) V(h, F_RUNTIME | F_VARH)
 #else
