@@ -37,7 +37,7 @@ void sph_xsum_merge(sph_xsum *a, const sph_xsum *b) {
 }
 
 double sph_xsum_round(const sph_xsum *s) {
-  if (s->special != 0.0 || isnan(s->special)) return s->special;
+  if (s->special != 0.0) return s->special; /* (true for NaN too) */
   int64_t d[SPH_XSUM_DIGITS];
   memcpy(d, s->d, sizeof d);
   sph_xsum_normalise_(d);
@@ -60,8 +60,7 @@ double sph_xsum_round(const sph_xsum *s) {
     sticky |= d[k] != 0;
   const int base = 32 * (t - 2) - 1074; /* the exponent of acc's lowest bit */
   const uint64_t hi = (uint64_t)(acc >> 64);
-  const int len = 64 + (64 - __builtin_clzll(hi));                 /* acc's bit length (hi > 0) */
-  if (len <= 53) return sign * ldexp((double)(uint64_t)acc, base); /* (never: hi > 0) */
+  const int len = 64 + (64 - __builtin_clzll(hi)); /* acc's bit length: over 64 (hi > 0) */
   int shift = len - 53;
   uint64_t mant = (uint64_t)(acc >> shift);
   const u128 rem = acc & (((u128)1 << shift) - 1), half = (u128)1 << (shift - 1);
