@@ -97,7 +97,12 @@ static void test_unstaggered_tank(void) {
   sph_particles p;
   sph_error err;
   CU_ASSERT_FATAL(sph_particles_init(&p, 256, &err) == 0);
-  sph_tank t = {1, 0.0, 0.1, 0.0, 0.055, 3, SPH_BOUNDARY_FIXED_LAYERS, 0, 1, 0, 0};
+  sph_tank t = {.present = 1,
+                .x1 = 0.1,
+                .y1 = 0.055,
+                .layers = 3,
+                .boundary = SPH_BOUNDARY_FIXED_LAYERS,
+                .extrapolated = 1};
   CU_ASSERT_FATAL(sph_boundary_add_tank(&p, &t, DX, 1000.0, 0.1, H, 0, &err) == 0);
   /* every particle on the lattice (i + 1/2) dx, no two alike */
   double *pts = malloc(2 * p.n * sizeof *pts);

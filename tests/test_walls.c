@@ -473,7 +473,12 @@ static void test_gate_work(void) {
 /* A particle at (x, y) with velocity (vx, vy) after keep_off_mirrors with
  * the lines of a [0, 1] x [0, 1] tank and d_min = 0.01. */
 static size_t reflect_one(double *x, double *y, double *vx, double *vy) {
-  sph_tank t = {1, 0.0, 1.0, 0.0, 1.0, 2, SPH_BOUNDARY_MIRROR, 1, 0, 0, 0};
+  sph_tank t = {.present = 1,
+                .x1 = 1.0,
+                .y1 = 1.0,
+                .layers = 2,
+                .boundary = SPH_BOUNDARY_MIRROR,
+                .stagger = 1};
   sph_walls w = {0};
   w.mirror_reach = 0.05;
   w.n_mirror = sph_mirror_tank_lines(&t, w.mirror_reach, w.mirror);
@@ -511,7 +516,12 @@ static void test_obstacle_impermeable(void) {
     CU_ASSERT_FATAL(sph_particles_add(&p, cases[k][0], cases[k][1], cases[k][2], cases[k][3], 1000,
                                       1, 0.01, SPH_KIND_FLUID, &err) == (long)k);
   const size_t n_fluid = p.n;
-  sph_tank t = {1, 0.0, 1.0, 0.0, 1.0, 2, SPH_BOUNDARY_DYNAMIC, 1, 0, 0, 0};
+  sph_tank t = {.present = 1,
+                .x1 = 1.0,
+                .y1 = 1.0,
+                .layers = 2,
+                .boundary = SPH_BOUNDARY_DYNAMIC,
+                .stagger = 1};
   const sph_obstacle o = {{0.4, 0.0}, {0.6, 0.2}, 2, SPH_BOUNDARY_MDBC};
   sph_walls w;
   CU_ASSERT_FATAL(sph_walls_create(&w, &p, &t, NULL, 0, &o, 1, 0.02, 1000, 0.026, 0.0, &err) == 0);

@@ -111,10 +111,9 @@ static const char *corrected_gradient_clash(const sph_case *c) {
 
 /* |g|, its components' squares added in axis order. */
 static double gravity_norm(const sph_case *c) {
-  double g2 = c->gravity[0] * c->gravity[0] + c->gravity[1] * c->gravity[1];
-#if SPH_DIM == 3
-  g2 += c->gravity[2] * c->gravity[2];
-#endif
+  double g2 = 0.0;
+  for (int a = 0; a < SPH_DIM; a++)
+    g2 += c->gravity[a] * c->gravity[a];
   return sqrt(g2);
 }
 
@@ -369,11 +368,8 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
     const node *g;
     sph_yaml_lookup(&x->t, m, p, key, 0, &g, kp);
     char got[96];
-#if SPH_DIM == 3
-    sph_yaml_bprintf(got, sizeof got, "[%g, %g, %g]", c->gravity[0], c->gravity[1], c->gravity[2]);
-#else
-    sph_yaml_bprintf(got, sizeof got, "[%g, %g]", c->gravity[0], c->gravity[1]);
-#endif
+    sph_yaml_bprintf(got, sizeof got, "[%g, %g" SPH_IF3(", %g") "]",
+                     SPH_XYZ(c->gravity[0], c->gravity[1], c->gravity[2]));
     return sph_yaml_fail_at(&x->t, g, kp, "expected an acceleration of at most %g m/s^2, got %s",
                             SPH_MAX_GRAVITY, got);
   }

@@ -64,11 +64,9 @@ const char *sph_viscosity_name(sph_viscosity_kind v);
 /* A rectangle of fluid filled on the lattice of spacing dx: particle centres
  * at (x0 + (i + 1/2) dx, y0 + (j + 1/2) dx) inside [x0,x1] x [y0,y1]. */
 typedef struct sph_fluid_block {
-  double x0, x1, y0, y1;
-  double vx, vy; /* initial velocity, default 0 */
-#if SPH_DIM == 3 /* a box (z up, doc/dimensions.md) */
-  double z0, z1, vz;
-#endif
+  SPH_COMPONENTS(double, lo, x0, y0, z0); /* lower corner (m; z up in 3-D, doc/dimensions.md) */
+  SPH_COMPONENTS(double, hi, x1, y1, z1); /* upper corner (m) */
+  SPH_COMPONENTS(double, v, vx, vy, vz);  /* initial velocity, default 0 */
   int hydrostatic; /* initial density from rho0 g (surface - height), default 1 */
   double surface;  /* free-surface height for the hydrostatic start, default the block's top
                       (y1; z1 in 3-D) */

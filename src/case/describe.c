@@ -74,12 +74,25 @@ static void sb_pair(sbuf *b, const char *key, double v0, double v1) {
   sb_add(b, "%s: [%.17g, %.17g]\n", key, v0, v1);
 }
 
+/* prefix.KEY: [v0, v1(, v2)] for a vector of SPH_DIM components. */
+static void sb_vector(sbuf *b, const char *prefix, const char *key, const double v[SPH_DIM]) {
+  sb_add(b, "%s%s%s: [", prefix, *prefix ? "." : "", key);
+  for (int a = 0; a < SPH_DIM; a++)
+    sb_add(b, a ? ", %.17g" : "%.17g", v[a]);
+  sb_add(b, "]\n");
+}
+
+/* prefix.x: [lo, hi], prefix.y: ... (, prefix.z): a box's ranges, axis by axis. */
+static void sb_box(sbuf *b, const char *prefix, const double lo[SPH_DIM],
+                   const double hi[SPH_DIM]) {
+  for (int a = 0; a < SPH_DIM; a++)
+    sb_add(b, "%s.%c: [%.17g, %.17g]\n", prefix, "xyz"[a], lo[a], hi[a]);
+}
+
 static void describe_geometry(sbuf *b, const sph_case *c) {
   char k[SPH_YAML_KEYLEN];
   if (c->tank.present) {
-    sb_pair(b, "geometry.tank.x", c->tank.x0, c->tank.x1);
-    sb_pair(b, "geometry.tank.y", c->tank.y0, c->tank.y1);
-    SPH_IF3(sb_pair(b, "geometry.tank.z", c->tank.z0, c->tank.z1);)
+    sb_box(b, "geometry.tank", c->tank.lo, c->tank.hi);
     sb_add(b, "geometry.tank.layers: %d\n", c->tank.layers);
     sb_add(b, "geometry.tank.boundary: %s\n", sph_boundary_name(c->tank.boundary));
     /* written only when not the default, so that older records still match */
@@ -92,14 +105,8 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
   for (size_t i = 0; i < c->n_fluid; i++) {
     const sph_fluid_block *f = &c->fluid[i];
     sph_yaml_bprintf(k, sizeof k, "geometry.fluid[%zu]", i);
-    sb_add(b, "%s.x: [%.17g, %.17g]\n", k, f->x0, f->x1);
-    sb_add(b, "%s.y: [%.17g, %.17g]\n", k, f->y0, f->y1);
-#if SPH_DIM == 2
-    sb_add(b, "%s.velocity: [%.17g, %.17g]\n", k, f->vx, f->vy);
-#else
-    sb_add(b, "%s.z: [%.17g, %.17g]\n", k, f->z0, f->z1);
-    sb_add(b, "%s.velocity: [%.17g, %.17g, %.17g]\n", k, f->vx, f->vy, f->vz);
-#endif
+    sb_box(b, k, f->lo, f->hi);
+    sb_vector(b, k, "velocity", f->v);
     sb_add(b, "%s.hydrostatic: %s\n", k, f->hydrostatic ? "true" : "false");
     sb_add(b, "%s.surface: %.17g\n", k, f->surface);
     sb_add(b, "%s.jitter: %.17g\n", k, f->jitter);
@@ -107,11 +114,8 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
   }
   for (size_t i = 0; i < c->n_obstacles; i++) { /* listed only when there are some */
     const sph_obstacle *o = &c->obstacles[i];
-    for (int a = 0; a < SPH_DIM; a++) {
-      sph_yaml_bprintf(k, sizeof k, "geometry.obstacles[%zu].%c", i, "xyz"[a]);
-      sb_pair(b, k, o->lo[a], o->hi[a]);
-    }
     sph_yaml_bprintf(k, sizeof k, "geometry.obstacles[%zu]", i);
+    sb_box(b, k, o->lo, o->hi);
     sb_add(b, "%s.layers: %d\n", k, o->layers);
     sb_add(b, "%s.boundary: %s\n", k, sph_boundary_name(o->boundary));
   }
@@ -143,12 +147,7 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
     }
     if (w->motion.kind == SPH_MOTION_TRANSLATE) {
       sb_add(b, "%s.motion.type: translate\n", k);
-#if SPH_DIM == 2
-      sb_add(b, "%s.motion.velocity: [%.17g, %.17g]\n", k, w->motion.vx, w->motion.vy);
-#else
-      sb_add(b, "%s.motion.velocity: [%.17g, %.17g, %.17g]\n", k, w->motion.vx, w->motion.vy,
-             w->motion.vz);
-#endif
+      sb_vector(b, k, "motion.velocity", w->motion.v);
       sb_add(b, "%s.motion.start: %.17g\n", k, w->motion.start);
       sb_add(b, "%s.motion.stop: %.17g\n", k, w->motion.stop);
     }
@@ -158,9 +157,9 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
   if (c->periodic)
     sb_pair(b, periodic_keys[c->periodic_axis], c->periodic_range[0], c->periodic_range[1]);
   if (c->domain_set) {
-    sb_pair(b, "geometry.domain.x", c->domain[0], c->domain[1]);
-    sb_pair(b, "geometry.domain.y", c->domain[2], c->domain[3]);
-    SPH_IF3(sb_pair(b, "geometry.domain.z", c->domain[4], c->domain[5]);)
+    for (int a = 0; a < SPH_DIM; a++)
+      sb_add(b, "geometry.domain.%c: [%.17g, %.17g]\n", "xyz"[a], c -> domain[2 * a],
+             c -> domain[2 * a + 1]);
   } else {
     sb_add(b, "geometry.domain: none\n");
   }
@@ -176,13 +175,9 @@ char *sph_case_describe(const sph_case *c) {
   sb_add(&b, "description: ");
   sb_quoted(&b, c->description);
   sb_add(&b, "physics.rho0: %.17g\n", c->rho0);
-#if SPH_DIM == 2
-  sb_pair(&b, "physics.gravity", c->gravity[0], c->gravity[1]);
-#else /* (a 2-D case's listing has no dimension line: the records of older runs match) */
-  sb_add(&b, "dimension: 3\n");
-  sb_add(&b, "physics.gravity: [%.17g, %.17g, %.17g]\n", c->gravity[0], c->gravity[1],
-         c->gravity[2]);
-#endif
+  /* (a 2-D case's listing has no dimension line: the records of older runs match) */
+  if (SPH_DIM == 3) sb_add(&b, "dimension: 3\n");
+  sb_vector(&b, "", "physics.gravity", c->gravity);
   sb_add(&b, "physics.sound_speed: %.17g\n", c->sound_speed);
   sb_add(&b, "physics.artificial_viscosity.alpha: %.17g\n", c->alpha);
   sb_add(&b, "physics.artificial_viscosity.beta: %.17g\n", c->beta);

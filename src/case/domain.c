@@ -17,11 +17,10 @@ void sph_case_domain_around(const sph_case *c, const double bb[2 * SPH_DIM],
   }
   /* the box, widened by half its size sideways and below, and by twice
    * its height above (splashes rise, nothing should fall far) */
-  const double w = bb[1] - bb[0], hgt = bb[UP + 1] - bb[UP];
-  double big = w > hgt ? w : hgt;
-#if SPH_DIM == 3
-  if (bb[3] - bb[2] > big) big = bb[3] - bb[2];
-#endif
+  const double hgt = bb[UP + 1] - bb[UP];
+  double big = 0.0; /* the largest extent */
+  for (int k = 0; k < 2 * SPH_DIM; k += 2)
+    if (bb[k + 1] - bb[k] > big) big = bb[k + 1] - bb[k];
   const double m = 0.5 * big + 4.0 * c->h;
   for (int k = 0; k < 2 * SPH_DIM; k += 2) {
     domain[k] = bb[k] - m;

@@ -28,19 +28,13 @@
 static const char *const geometry_keys[] = {"tank",       "fluid",      "walls",      "obstacles",
                                             "periodic_x", "periodic_y", "periodic_z", "domain",
                                             "leaving",    NULL};
+static const char *const axis_key[3] = {"x", "y", "z"};
 static const char *const obstacle_keys[] = {"x", "y", SPH_IF3("z", ) "layers", "boundary", NULL};
-static const char *const tank_keys[] = {
-    "x", "y", "layers", "boundary", "stagger", "extrapolated_velocity", "free_slip",
-#if SPH_DIM == 3
-    "z",
-#endif
-    NULL};
-static const char *const fluid_keys[] = {"x",       "y",      "velocity", "hydrostatic",
-                                         "surface", "jitter", "seed",
-#if SPH_DIM == 3
-                                         "z",
-#endif
-                                         NULL};
+static const char *const tank_keys[] = {"x",         "y",       SPH_IF3("z", ) "layers",
+                                        "boundary",  "stagger", "extrapolated_velocity",
+                                        "free_slip", NULL};
+static const char *const fluid_keys[] = {
+    "x", "y", SPH_IF3("z", ) "velocity", "hydrostatic", "surface", "jitter", "seed", NULL};
 static const char *const wall_keys[] = {"from",
                                         "to",
                                         "layers",
@@ -54,11 +48,7 @@ static const char *const motion_keys[] = {"type",   "velocity", "start",       "
                                           "period", "stroke",   "wave_height", "depth",
                                           "ramp",   "hinge",    NULL};
 const char *const sph_case_motion_names[] = {"none", "translate", "piston", "flap", NULL};
-static const char *const domain_keys[] = {"x", "y",
-#if SPH_DIM == 3
-                                          "z",
-#endif
-                                          NULL};
+static const char *const domain_keys[] = {"x", "y", SPH_IF3("z", ) NULL};
 const char *const sph_case_leaving_names[] = {"stop", "remove", NULL};
 static const char *const boundary_names[] = {"dynamic", "fixed_layers", "repulsive", "mirror",
                                              "mdbc",    "adami",        NULL};
@@ -169,17 +159,11 @@ static int read_tank(const ctx *x, const node *m, sph_case *c) {
   int rc = sph_yaml_get_section(&x->t, m, "geometry", "tank", 0, tank_keys, &t);
   if (rc <= 0) return rc;
   c->tank.present = 1;
-  if (sph_yaml_get_pair(&x->t, t, p, "x", 1, 'x', v) < 0) return -1;
-  c->tank.x0 = v[0];
-  c->tank.x1 = v[1];
-  if (sph_yaml_get_pair(&x->t, t, p, "y", 1, 'y', v) < 0) return -1;
-  c->tank.y0 = v[0];
-  c->tank.y1 = v[1];
-#if SPH_DIM == 3
-  if (sph_yaml_get_pair(&x->t, t, p, "z", 1, 'z', v) < 0) return -1;
-  c->tank.z0 = v[0];
-  c->tank.z1 = v[1];
-#endif
+  for (int a = 0; a < SPH_DIM; a++) {
+    if (sph_yaml_get_pair(&x->t, t, p, axis_key[a], 1, "xyz"[a], v) < 0) return -1;
+    c->tank.lo[a] = v[0];
+    c->tank.hi[a] = v[1];
+  }
   if (sph_yaml_get_choice(&x->t, t, p, "boundary", boundary_names, &b) < 0) return -1;
   c->tank.boundary = (sph_boundary_kind)b;
   c->tank.layers = default_layers(c->tank.boundary, c);
@@ -203,31 +187,20 @@ static int check_block(const ctx *x, const node *m, const char *p, const sph_cas
         "expected a positive number smaller than the width (%g) and height (%g) of "
         "%s, got %s",
         w, h, p, sph_yaml_got(x->dx_node, b, sizeof b));
-#if SPH_DIM == 3
-  if (!(c->dx < f->z1 - f->z0))
-    return sph_yaml_fail_at(&x->t, x->dx_node, "numerics.dx",
-                            "expected a positive number smaller than the z extent (%g) of %s, "
-                            "got %s",
-                            f->z1 - f->z0, p, sph_yaml_got(x->dx_node, b, sizeof b));
-  if (k->present && (f->z0 < k->z0 || f->z1 > k->z1)) {
-    sph_yaml_join(kp, sizeof kp, p, "z");
-    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "z")->val, kp,
-                            "expected a range inside the tank's inner box [%g, %g], got [%g, %g]",
-                            k->z0, k->z1, f->z0, f->z1);
-  }
-#endif
-  if (k->present && (f->x0 < k->x0 || f->x1 > k->x1)) {
-    sph_yaml_join(kp, sizeof kp, p, "x");
-    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "x")->val, kp,
-                            "expected a range inside the tank's inner box [%g, %g], got [%g, %g]",
-                            k->x0, k->x1, f->x0, f->x1);
-  }
-  if (k->present && (f->y0 < k->y0 || f->y1 > k->y1)) {
-    sph_yaml_join(kp, sizeof kp, p, "y");
-    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "y")->val, kp,
-                            "expected a range inside the tank's inner box [%g, %g], got [%g, %g]",
-                            k->y0, k->y1, f->y0, f->y1);
-  }
+  for (int a = 2; a < SPH_DIM; a++) /* (3-D: the z extent) */
+    if (!(c->dx < f->hi[a] - f->lo[a]))
+      return sph_yaml_fail_at(&x->t, x->dx_node, "numerics.dx",
+                              "expected a positive number smaller than the %s extent (%g) of %s, "
+                              "got %s",
+                              axis_key[a], f->hi[a] - f->lo[a], p,
+                              sph_yaml_got(x->dx_node, b, sizeof b));
+  for (int a = 0; a < SPH_DIM; a++)
+    if (k->present && (f->lo[a] < k->lo[a] || f->hi[a] > k->hi[a])) {
+      sph_yaml_join(kp, sizeof kp, p, axis_key[a]);
+      return sph_yaml_fail_at(&x->t, sph_yaml_find(m, axis_key[a])->val, kp,
+                              "expected a range inside the tank's inner box [%g, %g], got [%g, %g]",
+                              k->lo[a], k->hi[a], f->lo[a], f->hi[a]);
+    }
   return 0;
 }
 
@@ -239,22 +212,14 @@ static int read_block(const ctx *x, const node *m, const char *p, const sph_case
     return sph_yaml_fail_at(&x->t, m, p, "expected a mapping, got %s",
                             sph_yaml_got(m, b, sizeof b));
   if (sph_yaml_check_keys(&x->t, m, p, fluid_keys)) return -1;
-  if (sph_yaml_get_pair(&x->t, m, p, "x", 1, 'x', v) < 0) return -1;
-  f->x0 = v[0];
-  f->x1 = v[1];
-  if (sph_yaml_get_pair(&x->t, m, p, "y", 1, 'y', v) < 0) return -1;
-  f->y0 = v[0];
-  f->y1 = v[1];
-#if SPH_DIM == 3
-  if (sph_yaml_get_pair(&x->t, m, p, "z", 1, 'z', v) < 0) return -1;
-  f->z0 = v[0];
-  f->z1 = v[1];
-#endif
-  double vel[SPH_DIM] = {0.0};
-  if (sph_yaml_get_vector(&x->t, m, p, "velocity", 0, SPH_DIM, vel) < 0) return -1;
-  f->vx = vel[0];
-  f->vy = vel[1];
-  SPH_IF3(f->vz = vel[2];)
+  for (int a = 0; a < SPH_DIM; a++) {
+    if (sph_yaml_get_pair(&x->t, m, p, axis_key[a], 1, "xyz"[a], v) < 0) return -1;
+    f->lo[a] = v[0];
+    f->hi[a] = v[1];
+  }
+  for (int a = 0; a < SPH_DIM; a++)
+    f->v[a] = 0.0;
+  if (sph_yaml_get_vector(&x->t, m, p, "velocity", 0, SPH_DIM, f->v) < 0) return -1;
   f->hydrostatic = 1;
   if (sph_yaml_get_bool(&x->t, m, p, "hydrostatic", &f->hydrostatic) < 0) return -1;
   f->surface = sph_case_block_top(f);
@@ -295,12 +260,10 @@ static int read_fluid(const ctx *x, const node *m, sph_case *c) {
     const sph_fluid_block *a = &c->fluid[i];
     for (size_t k = 0; k < i; k++) {
       const sph_fluid_block *o = &c->fluid[k];
-      const double w = fmin(a->x1, o->x1) - fmax(a->x0, o->x0);
-      const double hh = fmin(a->y1, o->y1) - fmax(a->y0, o->y0);
-#if SPH_DIM == 3
-      if (!(fmin(a->z1, o->z1) - fmax(a->z0, o->z0) > 1e-9 * c->dx)) continue;
-#endif
-      if (w > 1e-9 * c->dx && hh > 1e-9 * c->dx)
+      int overlap = 1;
+      for (int d = 0; d < SPH_DIM; d++)
+        overlap &= fmin(a->hi[d], o->hi[d]) - fmax(a->lo[d], o->lo[d]) > 1e-9 * c->dx;
+      if (overlap)
         return sph_yaml_fail_at(
             &x->t, t->items[i], kp,
             "expected a block apart from geometry.fluid[%zu], got one that overlaps "
@@ -515,7 +478,7 @@ static int read_periodic(const ctx *x, const node *m, sph_case *c) {
     if (a == SPH_UP)
       return sph_yaml_fail_at(&x->t, v, kp,
                               "a tank cannot be periodic along z: its floor is normal to z");
-    const double t0 = a ? c->tank.y0 : c->tank.x0, t1 = a ? c->tank.y1 : c->tank.x1;
+    const double t0 = c->tank.lo[a], t1 = c->tank.hi[a];
     if (!(fabs(r[0] - t0) <= 1e-9 * L && fabs(r[1] - t1) <= 1e-9 * L))
       return sph_yaml_fail_at(&x->t, v, kp,
                               "expected the tank's %c range [%g, %g] (a tank is open along its "
@@ -542,7 +505,7 @@ static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_c
                             sph_yaml_got(m, b, sizeof b));
   if (sph_yaml_check_keys(&x->t, m, p, obstacle_keys)) return -1;
   for (int a = 0; a < SPH_DIM; a++) {
-    const char key[2] = {"xyz"[a], 0};
+    const char *const key = axis_key[a];
     double v[2];
     if (sph_yaml_get_pair(&x->t, m, p, key, 1, key[0], v) < 0) return -1;
     if (c->dx > 0.0 && !(v[1] - v[0] >= c->dx)) {
@@ -554,8 +517,7 @@ static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_c
     /* inside the tank (it may stand above the walls' top): a box outside
      * it is no obstacle to the water (issue 61, E11) */
     const sph_tank *k = &c->tank;
-    const double t[2 * SPH_DIM] = {SPH_XYZ(k->x0, k->y0, k->z0), SPH_XYZ(k->x1, k->y1, k->z1)};
-    const double tlo = t[a], thi = t[SPH_DIM + a], tol = 1e-9 * c->dx;
+    const double tlo = k->lo[a], thi = k->hi[a], tol = 1e-9 * c->dx;
     if (k->present && (v[0] < tlo - tol || (a != SPH_DIM - 1 && v[1] > thi + tol) || v[1] <= tlo ||
                        v[0] >= thi)) {
       sph_yaml_join(kp, sizeof kp, p, key);
@@ -615,11 +577,11 @@ int sph_case_read_geometry(const ctx *x, const node *root, sph_case *c) {
   int rc = sph_yaml_get_section(&x->t, m, "geometry", "domain", 0, domain_keys, &d);
   if (rc <= 0) return rc;
   c->domain_set = 1;
-  if (sph_yaml_get_pair(&x->t, d, "geometry.domain", "x", 1, 'x', &c->domain[0]) < 0) return -1;
-#if SPH_DIM == 3
-  if (sph_yaml_get_pair(&x->t, d, "geometry.domain", "z", 1, 'z', &c->domain[4]) < 0) return -1;
-#endif
-  return sph_yaml_get_pair(&x->t, d, "geometry.domain", "y", 1, 'y', &c->domain[2]) < 0 ? -1 : 0;
+  for (int a = 0; a < SPH_DIM; a++)
+    if (sph_yaml_get_pair(&x->t, d, "geometry.domain", axis_key[a], 1, "xyz"[a],
+                          &c -> domain[2 * a]) < 0)
+      return -1;
+  return 0;
 }
 
 /* The particles the geometry makes at dx, from above, in floating point (a
@@ -631,12 +593,10 @@ void sph_case_estimate_particles(sph_case *c) {
   double fluid = 0.0, wall = 0.0;
   for (size_t b = 0; b < c->n_fluid; b++) {
     const sph_fluid_block *f = &c->fluid[b];
-    fluid += (double)sph_case_lattice_points(f->x0, f->x1, dx) *
-             (double)sph_case_lattice_points(f->y0, f->y1, dx)
-#if SPH_DIM == 3
-             * (double)sph_case_lattice_points(f->z0, f->z1, dx)
-#endif
-        ;
+    double points = 1.0;
+    for (int a = 0; a < SPH_DIM; a++)
+      points *= (double)sph_case_lattice_points(f->lo[a], f->hi[a], dx);
+    fluid += points;
   }
   if (c->tank.present) {
     const sph_tank *k = &c->tank;
@@ -693,18 +653,10 @@ long sph_case_lattice_points(double lo, double hi, double dx) {
 static double largest_coordinate(const sph_case *c) {
   double m = 0.0;
 #define SEE(v) m = fmax(m, fabs(v))
-  if (c->tank.present) {
-    SEE(c->tank.x0), SEE(c->tank.x1), SEE(c->tank.y0), SEE(c->tank.y1);
-#if SPH_DIM == 3
-    SEE(c->tank.z0), SEE(c->tank.z1);
-#endif
-  }
-  for (size_t b = 0; b < c->n_fluid; b++) {
-    const sph_fluid_block *f = &c->fluid[b];
-    SEE(f->x0), SEE(f->x1), SEE(f->y0), SEE(f->y1);
-#if SPH_DIM == 3
-    SEE(f->z0), SEE(f->z1);
-#endif
+  for (int a = 0; a < SPH_DIM; a++) {
+    if (c->tank.present) SEE(c->tank.lo[a]), SEE(c->tank.hi[a]);
+    for (size_t b = 0; b < c->n_fluid; b++)
+      SEE(c->fluid[b].lo[a]), SEE(c->fluid[b].hi[a]);
   }
   for (size_t i = 0; i < c->n_walls; i++) {
     const sph_wall_segment *w = &c->walls[i];

@@ -47,31 +47,26 @@ static void reach_box(const sph_case *c, double box[2 * SPH_DIM]) {
     bb[k] = fmin(bb[k], fmin(a, b));                                                               \
     bb[k + 1] = fmax(bb[k + 1], fmax(a, b));                                                       \
   } while (0)
-  if (c->tank.present) {
-    GROW(0, c->tank.x0, c->tank.x1);
-    GROW(2, c->tank.y0, c->tank.y1);
-    SPH_IF3(GROW(4, c->tank.z0, c->tank.z1);)
-  }
+  for (int a = 0; a < SPH_DIM; a++)
+    if (c->tank.present) GROW(2 * a, c->tank.lo[a], c->tank.hi[a]);
   for (size_t i = 0; i < c->n_walls; i++) {
     GROW(0, c->walls[i].x0, c->walls[i].x1);
     GROW(2, c->walls[i].y0, c->walls[i].y1);
     SPH_IF3(GROW(4, c->walls[i].z0, c->walls[i].z1);)
   }
-  for (size_t i = 0; i < c->n_fluid; i++) {
-    GROW(0, c->fluid[i].x0, c->fluid[i].x1);
-    GROW(2, c->fluid[i].y0, c->fluid[i].y1);
-    SPH_IF3(GROW(4, c->fluid[i].z0, c->fluid[i].z1);)
-  }
+  for (size_t i = 0; i < c->n_fluid; i++)
+    for (int a = 0; a < SPH_DIM; a++)
+      GROW(2 * a, c->fluid[i].lo[a], c->fluid[i].hi[a]);
 #undef GROW
   sph_case_domain_around(c, bb, box);
 }
 
 void sph_case_gauge_column(const sph_case *c, size_t g, char *buf, size_t len) {
-#if SPH_DIM == 2
-  snprintf(buf, len, "eta_%.6g", c->gauges[g]);
-#else
-  snprintf(buf, len, "eta_%.6g_%.6g", c->gauges[2 * g], c->gauges[2 * g + 1]);
-#endif
+  /* the gauge's horizontal coordinates: x (2-D), x and y (3-D) */
+  const double *at = &c->gauges[(SPH_DIM - 1) * g];
+  size_t n = (size_t)snprintf(buf, len, "eta");
+  for (int a = 0; a < SPH_DIM - 1 && n < len; a++)
+    n += (size_t)snprintf(buf + n, len - n, "_%.6g", at[a]);
 }
 
 /* Whether the comma-separated column list `cols` (",NAME (unit),...", a
@@ -118,10 +113,9 @@ static int unique_columns(const ctx *x, const node *t, const sph_case *c, size_t
 /* A probe's or gauge's place outside box (the node t at key k): the error. */
 static int outside_reach(const ctx *x, const node *t, const char *k, const char *what,
                          const double box[2 * SPH_DIM]) {
-  char z[96] = ""; /* 3-D: the third range (issue 61, E12) */
-#if SPH_DIM == 3
-  snprintf(z, sizeof z, " z [%.9g, %.9g]", box[4], box[5]);
-#endif
+  char z[96] = ""; /* 3-D: the third range */
+  for (int a = 2; a < SPH_DIM; a++)
+    snprintf(z, sizeof z, " z [%.9g, %.9g]", box[4], box[5]);
   return sph_yaml_fail_at(&x->t, t, k,
                           "%s is outside the domain, x [%.9g, %.9g] y [%.9g, %.9g]%s "
                           "(geometry.domain, or its default from the geometry): the water cannot "

@@ -137,34 +137,28 @@ static double gravity_down(const sph_case *c) {
 
 static int add_fluid(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
-#if SPH_DIM == 2
-  const double dx = c->dx, mass = c->rho0 * dx * dx;
-#else
-  const double dx = c->dx, mass = c->rho0 * dx * dx * dx;
-#endif
+  const double dx = c->dx;
+  double mass = c->rho0; /* rho0 dx^SPH_DIM */
+  for (int a = 0; a < SPH_DIM; a++)
+    mass *= dx;
   const double gmag = gravity_down(c);
   for (size_t b = 0; b < c->n_fluid; b++) {
     const sph_fluid_block *fb = &c->fluid[b];
-    const long nx = sph_case_lattice_points(fb->x0, fb->x1, dx);
-    const long ny = sph_case_lattice_points(fb->y0, fb->y1, dx);
-#if SPH_DIM == 2
-    const long nz = 1;
-    const double v[SPH_DIM] = {fb->vx, fb->vy};
-#else
-    const long nz = sph_case_lattice_points(fb->z0, fb->z1, dx);
-    const double v[SPH_DIM] = {fb->vx, fb->vy, fb->vz};
-#endif
-    for (long k = 0; k < nz; k++)
-      for (long j = 0; j < ny; j++)
-        for (long i = 0; i < nx; i++) {
-          double x[SPH_DIM] = {SPH_XYZ(fb->x0 + ((double)i + 0.5) * dx,
-                                       fb->y0 + ((double)j + 0.5) * dx,
-                                       fb->z0 + ((double)k + 0.5) * dx)};
+    long n[3] = {1, 1, 1}; /* lattice points along each axis */
+    for (int a = 0; a < SPH_DIM; a++)
+      n[a] = sph_case_lattice_points(fb->lo[a], fb->hi[a], dx);
+    for (long k = 0; k < n[2]; k++)
+      for (long j = 0; j < n[1]; j++)
+        for (long i = 0; i < n[0]; i++) {
+          const long idx[3] = {i, j, k};
+          double x[SPH_DIM];
+          for (int a = 0; a < SPH_DIM; a++)
+            x[a] = fb->lo[a] + ((double)idx[a] + 0.5) * dx;
           fluid_jitter(fb, b, i, j, k, dx, x); /* perturbed start, if asked for */
           double rho = c->rho0;
           if (fb->hydrostatic)
             rho = sph_eos_density(&s->fp.eos, c->rho0 * gmag * (fb->surface - x[SPH_UP]));
-          if (sph_particles_add_at(&s->p, x, v, rho, mass, c->h, SPH_KIND_FLUID, err) < 0)
+          if (sph_particles_add_at(&s->p, x, fb->v, rho, mass, c->h, SPH_KIND_FLUID, err) < 0)
             return -1;
         }
   }
@@ -351,10 +345,10 @@ static void init_wall_density(sph_sim *s) {
     double depth = 0.0;
     for (size_t b = 0; b < c->n_fluid; b++) {
       const sph_fluid_block *fb = &c->fluid[b];
-      if (!fb->hydrostatic || s->p.x[i] < fb->x0 - reach || s->p.x[i] > fb->x1 + reach) continue;
-#if SPH_DIM == 3 /* beside the block in y too */
-      if (s->p.y[i] < fb->y0 - reach || s->p.y[i] > fb->y1 + reach) continue;
-#endif
+      int beside = fb->hydrostatic; /* beside the block along every horizontal axis */
+      for (int a = 0; a < SPH_UP; a++)
+        beside &= s->p.pos[a][i] >= fb->lo[a] - reach && s->p.pos[a][i] <= fb->hi[a] + reach;
+      if (!beside) continue;
       const double d = fb->surface - up[i];
       if (d > depth) depth = d;
     }
@@ -396,11 +390,7 @@ static void set_boxes(sph_sim *s) {
     memcpy(s->view, bb, sizeof bb);
     s->floor_y = INFINITY;
     for (size_t b = 0; b < c->n_fluid; b++) {
-#if SPH_DIM == 2
-      const double bottom = c->fluid[b].y0;
-#else
-      const double bottom = c->fluid[b].z0;
-#endif
+      const double bottom = c->fluid[b].lo[SPH_UP];
       if (bottom < s->floor_y) s->floor_y = bottom;
     }
   }

@@ -33,17 +33,15 @@ typedef enum {
  * z0, the walls rising to z1. */
 typedef struct sph_tank {
   int present;
-  double x0, x1, y0, y1;
-#if SPH_DIM == 3
-  double z0, z1;
-#endif
-  int layers;                 /* wall layers, default 2 (staggered) */
-  sph_boundary_kind boundary; /* default dynamic */
-  int stagger;                /* layers dx/2 apart and staggered (default), or dx apart */
-  int extrapolated;           /* no-slip: extrapolated wall velocity (src/wall_velocity.h) */
-  int free_slip;              /* pressure and artificial viscosity along the faces' normals */
-  int open_along;             /* 3-D: 0, or 1 + the axis (x or y) along which the tank has no
-                                 faces (the case's periodic axis) */
+  SPH_COMPONENTS(double, lo, x0, y0, z0); /* the inner box's lower corner (m) */
+  SPH_COMPONENTS(double, hi, x1, y1, z1); /* its upper corner: the side walls' top in z (y) */
+  int layers;                             /* wall layers, default 2 (staggered) */
+  sph_boundary_kind boundary;             /* default dynamic */
+  int stagger;      /* layers dx/2 apart and staggered (default), or dx apart */
+  int extrapolated; /* no-slip: extrapolated wall velocity (src/wall_velocity.h) */
+  int free_slip;    /* pressure and artificial viscosity along the faces' normals */
+  int open_along;   /* 3-D: 0, or 1 + the axis (x or y) along which the tank has no
+                       faces (the case's periodic axis) */
 } sph_tank;
 
 /* Prescribed motion of a wall (a gate): translation at a constant velocity

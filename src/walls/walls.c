@@ -113,11 +113,9 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
                      const sph_wall_segment *segments, size_t n_segments,
                      const sph_obstacle *obstacles, size_t n_obstacles, double dx, double rho0,
                      double h, double mirror_reach, sph_error *err) {
-#if SPH_DIM == 2
-  const double wall_mass = rho0 * dx * dx;
-#else
-  const double wall_mass = rho0 * dx * dx * dx;
-#endif
+  double wall_mass = rho0; /* rho0 dx^SPH_DIM */
+  for (int a = 0; a < SPH_DIM; a++)
+    wall_mass *= dx;
   const size_t walls_from = p->n; /* the fluid's particles come first */
   *w = (sph_walls){0};
   w->mirror_reach = mirror_reach;
@@ -193,11 +191,7 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
   }
   w->obstacles = obstacles;
   w->n_obstacles = n_obstacles;
-#if SPH_DIM == 2
-  w->obstacle_floor = tank->present ? tank->y0 + 0.5 * dx : -INFINITY;
-#else
-  w->obstacle_floor = tank->present ? tank->z0 + 0.5 * dx : -INFINITY;
-#endif
+  w->obstacle_floor = tank->present ? tank->lo[SPH_UP] + 0.5 * dx : -INFINITY;
   for (size_t k = 0; k < n_obstacles; k++) { /* boxes: any but mirror walls (the reader) */
     const sph_obstacle *o = &obstacles[k];
     if (is_dbc(o->boundary)) w->dbc = 1;
