@@ -143,6 +143,34 @@ void sph_particles_move(sph_particles *p, size_t to, size_t from) {
 #undef MOVE
 }
 
+int sph_particles_take(sph_particles *to, const sph_particles *from, const unsigned char *mark,
+                       sph_error *err) {
+  to->n = 0;
+  to->live = from->live;
+  to->order++;
+  if (to->cap < from->n && grow(to, from->n, err)) return -1;
+  size_t k = 0;
+  for (size_t i = 0; i < from->n; i++) {
+    if (!mark[i]) continue;
+#define TAKE(field, g)                                                                             \
+  if (live(from, g)) to->field[k] = from->field[i];
+    SPH_PARTICLE_DOUBLES(TAKE)
+    SPH_PARTICLE_OTHERS(TAKE)
+#undef TAKE
+    k++;
+  }
+  to->n = k;
+  return 0;
+}
+
+void sph_particles_copy_one(sph_particles *to, size_t j, const sph_particles *from, size_t i) {
+#define COPY(field, g)                                                                             \
+  if (live(from, g) && live(to, g)) to->field[j] = from->field[i];
+  SPH_PARTICLE_DOUBLES(COPY)
+  SPH_PARTICLE_OTHERS(COPY)
+#undef COPY
+}
+
 size_t sph_particles_drop_if(sph_particles *p, size_t first,
                              int (*drop)(const void *ctx, const sph_particles *p, size_t i),
                              const void *ctx) {

@@ -143,6 +143,13 @@ long sph_particles_add(sph_particles *p, double x, double y, double vx, double v
 /* Copies particle `from` to storage index `to`: every live array (id
  * included: renumber after, if the ids must stay 0..n-1). */
 void sph_particles_move(sph_particles *p, size_t to, size_t from);
+/* Makes `to` hold the particles i of `from` with mark[i] != 0, in their
+ * order, with every array `from` has live (ids kept); grows `to` if
+ * needed. 0, or -1 with err out of memory. */
+int sph_particles_take(sph_particles *to, const sph_particles *from, const unsigned char *mark,
+                       sph_error *err);
+/* Copies particle i of `from` to index j of `to`: every array live in both. */
+void sph_particles_copy_one(sph_particles *to, size_t j, const sph_particles *from, size_t i);
 /* Removes the particles i >= first for which drop(ctx, p, i) is true; the
  * others move down in order (sph_particles_move), each id from `first` on
  * renumbered to its new index. drop sees particle i where it was made and

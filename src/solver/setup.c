@@ -397,7 +397,24 @@ static void set_boxes(sph_sim *s) {
   sph_case_domain_around(c, bb, s->domain);
 }
 
+/* SPH_TEST_RANKS=R (doc/testing.md): every pass made as R ranks make it
+ * (ranks.c); 1 when unset. */
+static int test_ranks(void) {
+  const char *e = getenv("SPH_TEST_RANKS");
+  return e && *e ? atoi(e) : 1;
+}
+
+static int create(const sph_case *c, sph_sim **out, int ranks, sph_error *err);
+
 int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
+  return create(c, out, test_ranks(), err);
+}
+
+int sph_sim_create_rank_store(const sph_case *c, sph_sim **out, sph_error *err) {
+  return create(c, out, 1, err);
+}
+
+static int create(const sph_case *c, sph_sim **out, int ranks, sph_error *err) {
   *out = NULL;
   /* resources bounded before any particle is made (issue 21, D3, D4) */
   if (sph_case_check_size(c, c->max_particles, err)) return -1;
@@ -532,6 +549,7 @@ int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
     sph_sim_diag(s, &row);
     sph_ledger_start(&s->ledger, &s->p, &row);
   }
+  if (sph_sim_ranks_init(s, ranks, err)) goto fail;
   *out = s;
   return 0;
 fail:
@@ -551,5 +569,6 @@ void sph_sim_free(sph_sim *s) {
     free(s->shift[a]);
   free(s->parameters);
   sph_snapshot_geometry_free(&s->geometry);
+  sph_sim_ranks_free(s);
   free(s);
 }

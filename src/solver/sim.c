@@ -46,6 +46,7 @@
 /* The largest smoothing length: k h with h* = k h on the free surface. */
 static double h_max(const sph_sim *s) {
   if (!s->c->variable_h) return s->fp.var_h ? s->c->fs_h_factor * s->c->h : s->c->h;
+  if (s->hmax_all > 0.0) return s->hmax_all; /* a rank's store: the whole store's (ranks.c) */
   double h = 0.0;
   for (size_t i = 0; i < s->p.n; i++)
     if (s->p.h[i] > h) h = s->p.h[i];
@@ -122,6 +123,15 @@ static int build_grid(sph_sim *s, double cell, sph_error *err) {
  * storage order and the step count, so a run restarted from any snapshot
  * (which records the storage order) repeats the uninterrupted run bit for
  * bit, whatever the skin. */
+/* The cells the store is sorted by: they fit the support, plus the
+ * default skin when the case keeps its list (below). */
+static double sort_cell(const sph_sim *s) {
+  return (support(s) + (s->skin > 0.0 ? SPH_SKIN_DEFAULT * SPH_CUBIC_SUPPORT * s->c->h : 0.0)) *
+         SPH_CELL_MARGIN;
+}
+
+int sph_sim_sort(sph_sim *s, sph_error *err) { return build_grid(s, sort_cell(s), err); }
+
 static int neighbours(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   const int resort = s->resort;
@@ -139,10 +149,7 @@ static int neighbours(sph_sim *s, sph_error *err) {
    * order, come out nearly in storage order and the rows' insertion sort
    * (sph_nlist_build) has little to do; with smaller sort cells every row
    * interleaves several cells' runs of indices. */
-  const double sort_cell =
-      (support(s) + (s->skin > 0.0 ? SPH_SKIN_DEFAULT * SPH_CUBIC_SUPPORT * c->h : 0.0)) *
-      SPH_CELL_MARGIN;
-  if ((s->skin == 0.0 || resort) && build_grid(s, sort_cell, err)) return -1;
+  if ((s->skin == 0.0 || resort) && sph_sim_sort(s, err)) return -1;
   if (s->skin > 0.0 && sph_grid_bin(&s->grid, &s->p, cell, c->periodic ? 1 + c->periodic_axis : 0,
                                     px0, px1, 64 * s->p.n + 1024 * 1024, err))
     return -1;
@@ -206,6 +213,7 @@ void sph_sim_move_walls(sph_sim *s, double t) {
 int sph_sim_pass(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   update_h(s);
+  if (s->ranks > 1) return sph_sim_ranks_pass(s, err); /* ranks.c */
 #if SPH_DIM == 2
   if (s->walls.n_mirror && sph_mirror_add(&s->p, s->walls.mirror, s->walls.n_mirror,
                                           s->walls.mirror_reach, c->rho0, err) < 0)

@@ -66,7 +66,27 @@ struct sph_sim {
   double view[2 * SPH_DIM];
   char *parameters;               /* sph_case_describe */
   sph_snapshot_geometry geometry; /* every snapshot's /geometry (geometry_record.c) */
+  /* ranks (ranks.c): the passes split among `ranks` ranks, each holding its
+   * own particles and its ghosts in `sub`; 1: the whole store's pass */
+  int ranks;
+  struct sph_sim *sub;
+  double hmax_all; /* > 0: the largest h of the whole store (a rank's store's h_max) */
+  uint64_t *keys;
+  unsigned char *mark;
+  size_t *from; /* the whole store's index of each particle of sub */
+  size_t cap_ranks;
 };
+
+/* The passes on `ranks` ranks (SPH_TEST_RANKS, doc/testing.md): 0, or -1
+ * with err (ranks.c). */
+int sph_sim_ranks_init(sph_sim *s, int ranks, sph_error *err);
+void sph_sim_ranks_free(sph_sim *s);
+/* One pass of the whole store made as the ranks make it (ranks.c). */
+int sph_sim_ranks_pass(sph_sim *s, sph_error *err);
+/* A sim of the case for one rank's store: sph_sim_create on one rank (setup.c). */
+int sph_sim_create_rank_store(const sph_case *c, sph_sim **out, sph_error *err);
+/* Sorts the store by cell and id as a sorting pass does (sim.c). */
+int sph_sim_sort(sph_sim *s, sph_error *err);
 
 /* The moving walls at time t, which a pass's adami walls read (sim.c). */
 void sph_sim_move_walls(sph_sim *s, double t);

@@ -1,0 +1,172 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * test_ranks.c - whole runs with every pass made as ranks make it
+ * (SPH_TEST_RANKS, src/solver/ranks.c): each rank holds its own particles
+ * and its ghosts (src/neighbours/decomp.h), and every output file (the
+ * snapshots, the XDMF index, diagnostics.csv, gauges.csv, probes.csv) must
+ * be the bytes of the run on one rank, for 2 and 3 ranks (and 7 on the
+ * first case), on 1 and 2 threads, on:
+ *   - paper B's dam break (dynamic walls, fourtakas diffusion, XSPH);
+ *   - the default scheme on Lobovsky's tank (Adami walls, the Riemann
+ *     pressure, the leap-frog, pressure sensors);
+ *   - the wet bed (the stress tensor, a moving gate, output times);
+ *   - the periodic film (leap-frog, free-surface flags with h* = 2h, a
+ *     period shorter than the ghosts' reach);
+ *   - a still tank with mirror walls (mirror particles, the MLS filter);
+ *   - the SPS dam break; the flap wavemaker (paddle, gauges, variable h);
+ *   - in 3-D the Lobovsky tank and SPHERIC Test 2 (its box obstacle);
+ *   - a run stopped and restarted on another rank count.
+ * What cannot be split yet is refused by name (the energy ledger, particle
+ * shifting).
+ */
+#include "config.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "testutil.h"
+
+/* Runs the case with `env` before the command into a new directory. */
+static char *run(const char *prog, const char *case_rel, const char *sets, const char *env,
+                 int threads) {
+  char *d = sph_test_tmpdir(), cmd[8192];
+  snprintf(cmd, sizeof cmd, "%s SPH_TEST_OMP_MIN=0 '%s' run --quiet --threads %d '%s' -o '%s' %s",
+           env, sph_test_build(prog), threads, sph_test_src(case_rel), d, sets);
+  const int rc = sph_test_system(cmd);
+  if (rc) printf("\n  %s %s: exit %d", env, case_rel, rc);
+  CU_ASSERT_FATAL(rc == 0);
+  return d;
+}
+
+static int same_dirs(const char *a, const char *b) {
+  char cmd[4096];
+  snprintf(cmd, sizeof cmd, "diff -r '%s' '%s' >/dev/null", a, b);
+  return sph_test_system(cmd) == 0;
+}
+
+static void same_on_ranks(const char *prog, const char *case_rel, const char *sets,
+                          const int *ranks, int n_ranks) {
+  char *one = run(prog, case_rel, sets, "", 1);
+  for (int k = 0; k < n_ranks; k++) {
+    char env[64];
+    snprintf(env, sizeof env, "SPH_TEST_RANKS=%d", ranks[k]);
+    const int threads = 1 + k % 2; /* 1 and 2 threads in turn */
+    char *d = run(prog, case_rel, sets, env, threads);
+    const int same = same_dirs(one, d);
+    printf("\n  %s, %d ranks, %d thread(s): %s", case_rel, ranks[k], threads,
+           same ? "identical" : "DIFFERENT");
+    CU_ASSERT(same);
+    sph_test_rmtree(d);
+    free(d);
+  }
+  sph_test_rmtree(one);
+  free(one);
+}
+
+static const int two_three_seven[] = {2, 3, 7};
+static const int two_three[] = {2, 3};
+
+static void test_paper_b(void) {
+  same_on_ranks("src/sph", "cases/martin_moyce_coarse.yaml", "--set time.end=0.05", two_three_seven,
+                3);
+}
+
+static void test_default_scheme(void) {
+  same_on_ranks("src/sph", "cases/lobovsky_h300.yaml", "--set numerics.dx=0.02 --set time.end=0.2",
+                two_three, 2);
+}
+
+static void test_stress_and_gate(void) {
+  same_on_ranks("src/sph", "cases/wet_bed_dam_break.yaml",
+                "--set numerics.dx=0.015 --set time.end=0.1 --set output.energy=false", two_three,
+                2);
+}
+
+static void test_periodic_film(void) {
+  same_on_ranks("src/sph", "cases/inclined_plane.yaml",
+                "--set time.end=0.1 --set time.output_interval=0.05", two_three, 2);
+}
+
+static void test_mirror_walls(void) {
+  same_on_ranks("src/sph", "cases/hydrostatic_tank.yaml",
+                "--set geometry.tank.boundary=mirror --set time.end=0.05 "
+                "--set numerics.density_filter.kind=mls --set numerics.density_filter.every=5",
+                two_three + 1, 1);
+}
+
+static void test_sps_and_wavemaker(void) {
+  same_on_ranks("src/sph", "cases/sps_dam_break_coarse.yaml", "--set time.end=0.05", two_three, 1);
+  same_on_ranks("src/sph", "cases/linear_wave_coarse.yaml", "--set time.end=0.3", two_three + 1, 1);
+}
+
+static void test_3d(void) {
+  same_on_ranks("src/sph-3d", "cases/lobovsky_h300_3d.yaml",
+                "--set numerics.dx=0.03 --set time.end=0.1", two_three + 1, 1);
+  same_on_ranks("src/sph-3d", "cases/spheric_test2.yaml",
+                "--set numerics.dx=0.06 --set time.end=0.1", two_three, 1);
+}
+
+/* A run to t = 0.04 s on 3 ranks, restarted from its snapshot at 0.02 s
+ * on 2 ranks into a new directory: the snapshot at 0.04 s is the one-rank
+ * run's, byte for byte. */
+static void test_restart_on_other_ranks(void) {
+  const char *c = "cases/martin_moyce_coarse.yaml";
+  const char *sets = "--set time.end=0.04 --set time.output_interval=0.02 --set time.stop=none";
+  char *whole = run("src/sph", c, sets, "", 1);
+  char *part = run("src/sph", c, sets, "SPH_TEST_RANKS=3", 1), *again = sph_test_tmpdir();
+  char cmd[16384];
+  snprintf(cmd, sizeof cmd,
+           "SPH_TEST_RANKS=2 '%s' run --quiet --restart '%s/snap_0001.h5' '%s' -o '%s' %s",
+           sph_test_build("src/sph"), part, sph_test_src(c), again, sets);
+  const int rc = sph_test_system(cmd);
+  CU_ASSERT(rc == 0);
+  snprintf(cmd, sizeof cmd, "cmp -s '%s/snap_0002.h5' '%s/snap_0002.h5'", whole, again);
+  const int same = rc == 0 && sph_test_system(cmd) == 0;
+  printf("\n  restarted on 2 ranks from a 3-rank run's snapshot: %s",
+         same ? "identical" : "DIFFERENT");
+  CU_ASSERT(same);
+  sph_test_rmtree(whole);
+  sph_test_rmtree(part);
+  sph_test_rmtree(again);
+  free(whole);
+  free(part);
+  free(again);
+}
+
+/* The ledger and shifting are refused by name, not run wrong. */
+static void test_refusals(void) {
+  static const char *const sets[] = {"--set output.energy=true",
+                                     "--set 'numerics.shifting={coefficient: 2}'"};
+  static const char *const names[] = {"energy ledger", "particle shifting"};
+  for (int k = 0; k < 2; k++) {
+    char *d = sph_test_tmpdir(), cmd[8192], out[4096] = "";
+    snprintf(cmd, sizeof cmd,
+             "SPH_TEST_RANKS=2 '%s' run --quiet '%s' -o '%s' --set time.end=0.01 %s 2>&1",
+             sph_test_build("src/sph"), sph_test_src("cases/martin_moyce_coarse.yaml"), d, sets[k]);
+    FILE *f = popen(cmd, "r");
+    CU_ASSERT_FATAL(f != NULL);
+    const size_t got = fread(out, 1, sizeof out - 1, f);
+    out[got] = 0;
+    const int rc = pclose(f);
+    printf("\n  %s: %s", sets[k], out);
+    CU_ASSERT(rc != 0);
+    CU_ASSERT(strstr(out, names[k]) != NULL);
+    sph_test_rmtree(d);
+    free(d);
+  }
+}
+
+int main(void) {
+  CU_TestInfo tests[] = {{"paper B's scheme", test_paper_b},
+                         {"the default scheme", test_default_scheme},
+                         {"the stress tensor and a gate", test_stress_and_gate},
+                         {"the periodic film with free-surface flags", test_periodic_film},
+                         {"mirror walls and the MLS filter", test_mirror_walls},
+                         {"SPS and the flap wavemaker", test_sps_and_wavemaker},
+                         {"3-D", test_3d},
+                         {"a restart on another rank count", test_restart_on_other_ranks},
+                         {"what is not split yet is refused", test_refusals},
+                         CU_TEST_INFO_NULL};
+  return sph_test_main("ranks", tests);
+}
