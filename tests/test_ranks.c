@@ -9,21 +9,20 @@
  *   - paper B's dam break (dynamic walls, fourtakas diffusion, XSPH);
  *   - the default scheme on Lobovsky's tank (Adami walls, the Riemann
  *     pressure, the leap-frog, pressure sensors);
- *   - the wet bed (the stress tensor, a moving gate, output times);
+ *   - the wet bed (the stress tensor, the energy ledger, a moving gate,
+ *     output times);
  *   - the periodic film (leap-frog, free-surface flags with h* = 2h, a
  *     period shorter than the ghosts' reach);
  *   - a still tank with mirror walls (mirror particles, the MLS filter);
  *   - the SPS dam break; the flap wavemaker (paddle, gauges, variable h);
  *   - in 3-D the Lobovsky tank and SPHERIC Test 2 (its box obstacle);
+ *   - free-slip mdbc walls with particle shifting and the ledger;
  *   - a run stopped and restarted on another rank count.
- * What cannot be split yet is refused by name (the energy ledger, particle
- * shifting).
  */
 #include "config.h"
 
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "testutil.h"
 
@@ -79,8 +78,7 @@ static void test_default_scheme(void) {
 
 static void test_stress_and_gate(void) {
   same_on_ranks("src/sph", "cases/wet_bed_dam_break.yaml",
-                "--set numerics.dx=0.015 --set time.end=0.1 --set output.energy=false", two_three,
-                2);
+                "--set numerics.dx=0.015 --set time.end=0.1", two_three, 2);
 }
 
 static void test_periodic_film(void) {
@@ -134,27 +132,14 @@ static void test_restart_on_other_ranks(void) {
   free(again);
 }
 
-/* The ledger and shifting are refused by name, not run wrong. */
-static void test_refusals(void) {
-  static const char *const sets[] = {"--set output.energy=true",
-                                     "--set 'numerics.shifting={coefficient: 2}'"};
-  static const char *const names[] = {"energy ledger", "particle shifting"};
-  for (int k = 0; k < 2; k++) {
-    char *d = sph_test_tmpdir(), cmd[8192], out[4096] = "";
-    snprintf(cmd, sizeof cmd,
-             "SPH_TEST_RANKS=2 '%s' run --quiet '%s' -o '%s' --set time.end=0.01 %s 2>&1",
-             sph_test_build("src/sph"), sph_test_src("cases/martin_moyce_coarse.yaml"), d, sets[k]);
-    FILE *f = popen(cmd, "r");
-    CU_ASSERT_FATAL(f != NULL);
-    const size_t got = fread(out, 1, sizeof out - 1, f);
-    out[got] = 0;
-    const int rc = pclose(f);
-    printf("\n  %s: %s", sets[k], out);
-    CU_ASSERT(rc != 0);
-    CU_ASSERT(strstr(out, names[k]) != NULL);
-    sph_test_rmtree(d);
-    free(d);
-  }
+/* mdbc walls (free-slip) with particle shifting (its own pass over the
+ * whole store's list) and the energy ledger. */
+static void test_shifting_and_ledger(void) {
+  same_on_ranks("src/sph", "cases/martin_moyce_coarse.yaml",
+                "--set time.end=0.05 --set time.stop=none --set 'geometry.tank={x: [0.0, "
+                "0.2286], y: [0.0, 0.17145], boundary: mdbc, free_slip: true}' "
+                "--set 'numerics.shifting={coefficient: 2}' --set output.energy=true",
+                two_three, 2);
 }
 
 int main(void) {
@@ -166,7 +151,7 @@ int main(void) {
                          {"SPS and the flap wavemaker", test_sps_and_wavemaker},
                          {"3-D", test_3d},
                          {"a restart on another rank count", test_restart_on_other_ranks},
-                         {"what is not split yet is refused", test_refusals},
+                         {"mdbc walls, particle shifting and the ledger", test_shifting_and_ledger},
                          CU_TEST_INFO_NULL};
   return sph_test_main("ranks", tests);
 }

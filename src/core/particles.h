@@ -38,8 +38,10 @@ enum {
                               viscosity pair forces act along the wall's normal (pair_terms.h) */
   SPH_FLAG_ADAMI = 32,     /* a wall particle of an adami wall: pressure extrapolated from the
                               fluid, no rates of its own (walls/adami.h) */
-  SPH_FLAG_INVISCID = 64   /* an adami wall particle of a free-slip wall: no viscous pair term
+  SPH_FLAG_INVISCID = 64,  /* an adami wall particle of a free-slip wall: no viscous pair term
                               with it (walls/adami.h) */
+  SPH_FLAG_GHOST = 128     /* in a rank's store: a particle another rank owns, or a mirror
+                              particle of one (solver/ranks.c); never in a run's own store */
 };
 /* The flags of wall particles that carry their mirror offset (mx, my: twice their depth along
  * the wall's normal, boundary.h). */

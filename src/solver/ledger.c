@@ -19,14 +19,32 @@
  * pushes (most have f_i = 0 and are not added), then g times the fluid's
  * mass, added into the same exact sum. */
 enum { L_PW, L_PX, L_FX, L_FY, L_PD, L_PHI, L_FZ, L_M, L_SUMS };
+typedef char sph_ledger_sums_check[L_SUMS == SPH_LEDGER_SUMS ? 1 : -1];
+
+void sph_ledger_sums_init(sph_ledger_sums *t) {
+  for (int k = 0; k < SPH_LEDGER_SUMS; k++)
+    sph_xsum_init(&t->s[k]);
+}
+
+void sph_ledger_sums_merge(sph_ledger_sums *t, const sph_ledger_sums *u) {
+  for (int k = 0; k < SPH_LEDGER_SUMS; k++)
+    sph_xsum_merge(&t->s[k], &u->s[k]);
+}
 
 void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_work *w,
                       const double gravity[SPH_DIM], int xsph, int diffusion) {
+  sph_ledger_sums t;
+  sph_ledger_sums_init(&t);
+  sph_ledger_sums_add(&t, lg, p, w, gravity, xsph, diffusion, 0);
+  sph_ledger_finish(lg, &t, gravity);
+}
+
+void sph_ledger_sums_add(sph_ledger_sums *t, const sph_ledger *lg, const sph_particles *p,
+                         const sph_force_work *w, const double gravity[SPH_DIM], int xsph,
+                         int diffusion, unsigned skip) {
   const double *g = gravity;
   const int repulsion = lg->repulsion;
-  sph_xsum sum[L_SUMS];
-  for (int k = 0; k < L_SUMS; k++)
-    sph_xsum_init(&sum[k]);
+  sph_xsum *sum = t->s;
   const long n = (long)p->n;
 #pragma omp parallel if (n > SPH_OMP_MIN)
   {
@@ -36,7 +54,7 @@ void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_wo
 #pragma omp for schedule(static) nowait
     for (long li = 0; li < n; li++) {
       const size_t i = (size_t)li;
-      if (p->kind[i] != SPH_KIND_FLUID) continue;
+      if (p->kind[i] != SPH_KIND_FLUID || (p->flags[i] & skip)) continue;
       const double m = p->mass[i];
       sph_xsum_add(&part[L_M], m);
       if (w->wpow[i] != 0.0) sph_xsum_add(&part[L_PW], m * w->wpow[i]);
@@ -56,6 +74,11 @@ void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_wo
     for (int k = 0; k < L_SUMS; k++) /* exact: in any order */
       sph_xsum_merge(&sum[k], &part[k]);
   }
+}
+
+void sph_ledger_finish(sph_ledger *lg, sph_ledger_sums *t, const double gravity[SPH_DIM]) {
+  const double *g = gravity;
+  sph_xsum *sum = t->s;
   const double mass = sph_xsum_round(&sum[L_M]); /* the weight: g times it */
   sph_xsum_add(&sum[L_FX], g[0] * mass);
   sph_xsum_add(&sum[L_FY], g[1] * mass);

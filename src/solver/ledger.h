@@ -41,6 +41,7 @@
 #ifndef SPH_LEDGER_H
 #define SPH_LEDGER_H
 
+#include "core/exact_sum.h"
 #include "core/particles.h"
 #include "solver/diag.h"
 #include "solver/forces.h"
@@ -79,6 +80,21 @@ typedef struct sph_ledger {
  * particles of p. */
 void sph_ledger_rates(sph_ledger *lg, const sph_particles *p, const sph_force_work *w,
                       const double gravity[SPH_DIM], int xsph, int diffusion);
+
+/* The same in parts, for a store split among ranks (solver/ranks.c): the
+ * rates' exact sums (exact_sum.h) over the fluid particles whose flags
+ * hold none of the bits `skip`, added into t; sums of several ranks merged
+ * (exactly, in any order); then rounded once into lg. */
+#define SPH_LEDGER_SUMS 8
+typedef struct sph_ledger_sums {
+  sph_xsum s[SPH_LEDGER_SUMS];
+} sph_ledger_sums;
+void sph_ledger_sums_init(sph_ledger_sums *t);
+void sph_ledger_sums_add(sph_ledger_sums *t, const sph_ledger *lg, const sph_particles *p,
+                         const sph_force_work *w, const double gravity[SPH_DIM], int xsph,
+                         int diffusion, unsigned skip);
+void sph_ledger_sums_merge(sph_ledger_sums *t, const sph_ledger_sums *u);
+void sph_ledger_finish(sph_ledger *lg, sph_ledger_sums *t, const double gravity[SPH_DIM]);
 
 /* Integrates the rates over a step of dt (the rates of the pass that
  * drives the step: t^n for the leap-frog, the mid-step for the

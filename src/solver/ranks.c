@@ -9,8 +9,10 @@
  * makes the pass on them alone; its own particles (their rates, and what
  * the pass wrote into them: wall densities and pressures, flags) go back
  * into the whole store. The reductions of the pass (the step rule's max of
- * c + sigma, the flagged particles' count) are taken over each rank's own
- * particles and combined: a max and a count are exact in any order. The
+ * c + sigma, the flagged particles' count, the energy ledger's rates) are
+ * taken over each rank's own particles (SPH_FLAG_GHOST marks the others,
+ * and their mirror particles) and combined: a max, a count and exact sums
+ * (exact_sum.h) are the same in any order and for any split. The
  * integration, the blow-up check and the outputs then run on the whole
  * store as they always do.
  *
@@ -18,10 +20,8 @@
  * here stands for a process, `sub` for its store. With SPH_TEST_RANKS=R
  * every output of a run must be the same bytes as the run's on one rank
  * (tests/check_ranks): the proof that the cut, the ghosts and the order of
- * every sum are right before any message is sent. What it cannot split yet
- * is refused by name: the energy ledger (whose rates are sums over the
- * pass's per-particle work) and particle shifting (which reads the last
- * pass's neighbour list).
+ * every sum are right before any message is sent. Particle shifting runs on
+ * the whole store, over a neighbour list of its own (sim.c).
  */
 #include "config.h"
 
@@ -42,13 +42,9 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, sph_error *err) {
   const sph_case *c = s->c;
   if (ranks < 2) return 0;
   if (ranks > 64) return sph_error_set(err, "SPH_TEST_RANKS: at most 64 ranks, got %d", ranks);
-  if (c->energy)
-    return sph_error_set(err, "SPH_TEST_RANKS: the energy ledger (output.energy) is not split "
-                              "among ranks yet");
-  if (c->shifting)
-    return sph_error_set(err, "SPH_TEST_RANKS: particle shifting (numerics.shifting) is not "
-                              "split among ranks yet");
   if (sph_sim_create_rank_store(c, &s->sub, err)) return -1;
+  s->sub->rank_store = 1;
+  s->sub->work.keep_sigma = 1;
   s->ranks = ranks;
   return 0;
 }
@@ -101,18 +97,22 @@ int sph_sim_ranks_pass(sph_sim *s, sph_error *err) {
     return -1;
   double cs_max = 0.0;
   size_t surface = 0;
+  sph_ledger_sums ledger;
+  sph_ledger_sums_init(&ledger);
   for (int rank = 0; rank < s->ranks; rank++) {
     if (sph_decomp_halo(&g, p, s->keys, first, s->ranks, rank, SPH_RANKS_DEPTH, s->mark, err) < 0 ||
         sph_particles_take(&r->p, p, s->mark, err))
       return -1;
     size_t k = 0;
     for (size_t i = 0; i < p->n; i++)
-      if (s->mark[i]) s->from[k++] = i;
+      if (s->mark[i]) {
+        if (s->mark[i] == 2) r->p.flags[k] |= SPH_FLAG_GHOST;
+        s->from[k++] = i;
+      }
     r->t = s->t, r->t_walls = s->t_walls, r->t_saved = s->t_saved;
     r->steps = s->steps, r->last_dt = s->last_dt, r->first_step = s->first_step;
     r->resort = resort;
     r->nl.valid = 0;
-    r->work.keep_sigma = 1;
     r->fp.loop = s->fp.loop;
     r->hmax_all = c->variable_h ? hmax : 0.0;
     if (sph_sim_pass(r, err)) return -1;
@@ -120,20 +120,21 @@ int sph_sim_ranks_pass(sph_sim *s, sph_error *err) {
       return sph_error_set(err,
                            "ranks: rank %d's store holds %zu particles after its pass, not %zu",
                            rank, r->p.n, k);
+    if (r->own_cs_max > cs_max) cs_max = r->own_cs_max;
+    if (s->fp.ledger) sph_ledger_sums_merge(&ledger, &r->own_ledger);
     for (size_t j = 0; j < k; j++) {
       const size_t i = s->from[j];
       if (r->p.id[j] != p->id[i])
         return sph_error_set(err, "ranks: rank %d's pass reordered its store", rank);
       if (s->mark[i] != 1) continue; /* a ghost: its own rank writes it */
       sph_particles_copy_one(p, i, &r->p, j);
-      const double cs = r->work.hot[j].cs + r->work.sigma[j];
-      if (cs > cs_max) cs_max = cs;
       surface += (r->p.flags[j] & SPH_FLAG_FREE_SURFACE) != 0;
     }
   }
   s->work.cs_sigma_max = cs_max;
   s->dt_paper_b = sph_dt_paper_b(&s->work, c->h, c->dt_factor);
   s->n_surface = s->detect ? surface : 0;
+  if (s->fp.ledger) sph_ledger_finish(&s->ledger, &ledger, c->gravity);
   s->step_pass = s->steps;
   /* the state the pass saw, as the whole store's pass packs it: the
    * leap-frog's last good state (sim.c) */

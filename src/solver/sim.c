@@ -207,6 +207,22 @@ void sph_sim_move_walls(sph_sim *s, double t) {
   s->t_walls = t;
 }
 
+/* A rank's store (ranks.c): the pass's reductions over the particles it
+ * owns (and their mirror particles), before the mirror particles go: the
+ * step rule's max of c + sigma, and the ledger's exact sums. */
+static void rank_reductions(sph_sim *s, int diffusion) {
+  const sph_particles *p = &s->p;
+  double mx = 0.0;
+  for (size_t i = 0; i < p->n; i++)
+    if (!(p->flags[i] & SPH_FLAG_GHOST) && s->work.hot[i].cs + s->work.sigma[i] > mx)
+      mx = s->work.hot[i].cs + s->work.sigma[i];
+  s->own_cs_max = mx;
+  if (!s->fp.ledger) return;
+  sph_ledger_sums_init(&s->own_ledger);
+  sph_ledger_sums_add(&s->own_ledger, &s->ledger, p, &s->work, s->c->gravity, s->c->xsph != 0.0,
+                      diffusion, SPH_FLAG_GHOST);
+}
+
 /* Mirror particles, grid build, free-surface flags and one interaction
  * pass on the current state; the mirror particles are gone again when it
  * returns. */
@@ -234,9 +250,11 @@ int sph_sim_pass(sph_sim *s, sph_error *err) {
    * removing the mirror particles reorders the store under them */
   if (rc == 0) {
     s->dt_paper_b = sph_dt_paper_b(&s->work, c->h, c->dt_factor);
-    if (s->fp.ledger)
-      sph_ledger_rates(&s->ledger, &s->p, &s->work, c->gravity, c->xsph != 0.0,
-                       c->diffusion != SPH_DIFFUSION_NONE || c->riemann);
+    const int diffusion = c->diffusion != SPH_DIFFUSION_NONE || c->riemann;
+    if (s->rank_store) /* a rank's store: its own particles' part (ranks.c) */
+      rank_reductions(s, diffusion);
+    else if (s->fp.ledger)
+      sph_ledger_rates(&s->ledger, &s->p, &s->work, c->gravity, c->xsph != 0.0, diffusion);
   }
   if (s->walls.n_mirror) sph_mirror_remove(&s->p, s->grid.perm, sph_grid_scratch(&s->grid));
   return rc;

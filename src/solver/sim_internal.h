@@ -75,6 +75,11 @@ struct sph_sim {
   unsigned char *mark;
   size_t *from; /* the whole store's index of each particle of sub */
   size_t cap_ranks;
+  /* a rank's store (it is some sim's sub): ghosts carry SPH_FLAG_GHOST, and
+   * each pass leaves the reductions over the rank's own particles here */
+  int rank_store;
+  double own_cs_max;
+  sph_ledger_sums own_ledger;
 };
 
 /* The passes on `ranks` ranks (SPH_TEST_RANKS, doc/testing.md): 0, or -1

@@ -253,6 +253,7 @@ static long add_image(sph_particles *p, size_t i, const double x[SPH_DIM], const
                                       SPH_KIND_MIRROR, err);
   if (k < 0) return k;
   p->id[k] = id;
+  p->flags[k] = p->flags[i] & SPH_FLAG_GHOST; /* a ghost's image: a ghost (solver/ranks.c) */
   p->p[k] = tension ? 0.0 : p->p[i];
   for (int a = 0; a < SPH_DIM; a++)
     p->velh[a][k] = -p->vel[a][i];

@@ -30,25 +30,35 @@ void sph_wall_velocity_work_free(sph_wall_velocity_work *w) {
   *w = (sph_wall_velocity_work){0};
 }
 
-/* The cell layout: along each axis a, n[a] cells of width c[a] from o[a];
- * along the periodic axis (period > 0) the whole period. Cells are
- * numbered with x fastest, then y (then z). */
+/* The cell layout: along each axis a, n[a] cells of width c[a], the cells
+ * of one global grid (cell k holds floor(x / c[a]) = k, the grid's first
+ * k0[a]), so that any subset of the particles (a rank's) bins each one into
+ * the cell the whole set does and its fits sum in the whole set's order;
+ * along the periodic axis (period > 0) the whole period from o[a]. Cells
+ * are numbered with x fastest, then y (then z). */
 typedef struct layout {
   double o[SPH_DIM], c[SPH_DIM], period;
   double support; /* no particle farther than this from a point counts in its fit */
-  long n[SPH_DIM];
+  long n[SPH_DIM], k0[SPH_DIM];
   int paxis;
 } layout;
 
+/* The unclamped cell along axis a of the coordinate x (not periodic). */
+static double cell_float(const layout *g, int a, double x) {
+  return floor(x / g->c[a]) - (double)g->k0[a];
+}
+
 /* The cell along axis a of the coordinate x, clamped to the grid. */
 static long cell_along(const layout *g, int a, double x) {
-  double u = x - g->o[a];
+  double f;
   if (a == g->paxis && g->period > 0.0) { /* into [0, period) */
-    u = fmod(u, g->period);
+    double u = fmod(x - g->o[a], g->period);
     if (u < 0.0) u += g->period;
+    f = floor(u / g->c[a]);
+  } else {
+    f = cell_float(g, a, x);
   }
-  long c = (long)floor(u / g->c[a]);
-  return c < 0 ? 0 : c >= g->n[a] ? g->n[a] - 1 : c;
+  return f < 0.0 ? 0 : f >= (double)g->n[a] ? g->n[a] - 1 : (long)f;
 }
 
 /* The cells along axis a within one cell of the coordinate x, in the
@@ -69,7 +79,7 @@ static int cells_near(const layout *g, int a, double x, long cells[3]) {
     }
     return nc;
   }
-  const double f = floor((x - g->o[a]) / g->c[a]);
+  const double f = cell_float(g, a, x);
   if (f < -1.0 || f > (double)n) return 0;
   const long c0 = cell_along(g, a, x);
   for (long c = c0 - 1; c <= c0 + 1; c++)
@@ -83,7 +93,7 @@ static int cells_near(const layout *g, int a, double x, long cells[3]) {
  * reached through the period. */
 static double cell_gap2(const layout *g, int a, double x, long c) {
   if (a == g->paxis && g->period > 0.0) return 0.0;
-  const double lo = g->o[a] + (double)c * g->c[a], hi = lo + g->c[a];
+  const double lo = (double)(g->k0[a] + c) * g->c[a], hi = lo + g->c[a];
   double gap = x < lo ? lo - x : x > hi ? x - hi : 0.0;
   gap -= 1e-9 * g->c[a];
   return gap > 0.0 ? gap * gap : 0.0;
@@ -241,7 +251,8 @@ static int bin_fluid(const sph_particles *p, double support, double px0, double 
     }
   }
   if (nf == 0) return 1; /* no fluid: nothing to fit */
-  /* cells at least `support` wide, and not many more than particles */
+  /* cells `support` wide (twice as wide while they would be far more than
+   * the particles: fluid spread thin over a large domain) */
   double cell = support;
   layout g = {.period = period > 0.0 ? period : 0.0, .paxis = paxis, .support = support};
   for (;;) {
@@ -253,13 +264,15 @@ static int bin_fluid(const sph_particles *p, double support, double px0, double 
         if (g.n[a] < 1) g.n[a] = 1;
         g.c[a] = g.period / (double)g.n[a];
       } else {
-        g.o[a] = lo[a];
+        const double k0 = floor(lo[a] / cell);
+        g.k0[a] = (long)k0;
+        g.o[a] = k0 * cell;
         g.c[a] = cell;
-        g.n[a] = (long)floor((hi[a] - lo[a]) / cell) + 1;
+        g.n[a] = (long)(floor(hi[a] / cell) - k0) + 1;
       }
       cells *= (double)g.n[a];
     }
-    if (cells <= 4.0 * (double)nf + 64.0) break;
+    if (cells <= 64.0 * (double)nf + 1048576.0) break;
     cell *= 2.0;
   }
   size_t cells = 1;
