@@ -19,7 +19,7 @@
  * This is the pass of the MPI decomposition run in one process: each rank
  * here stands for a process, `sub` for its store. With SPH_TEST_RANKS=R
  * every output of a run must be the same bytes as the run's on one rank
- * (tests/check_ranks): the proof that the cut, the ghosts and the order of
+ * (tests/test_ranks): the proof that the cut, the ghosts and the order of
  * every sum are right before any message is sent. Particle shifting runs on
  * the whole store, over a neighbour list of its own (sim.c).
  */
