@@ -115,7 +115,7 @@ static int outside_reach(const ctx *x, const node *t, const char *k, const char 
                          const double box[2 * SPH_DIM]) {
   char z[96] = ""; /* 3-D: the third range */
   for (int a = 2; a < SPH_DIM; a++)
-    snprintf(z, sizeof z, " z [%.9g, %.9g]", box[4], box[5]);
+    snprintf(z, sizeof z, " z [%.9g, %.9g]", box[2 * a], box[2 * a + 1]);
   return sph_yaml_fail_at(&x->t, t, k,
                           "%s is outside the domain, x [%.9g, %.9g] y [%.9g, %.9g]%s "
                           "(geometry.domain, or its default from the geometry): the water cannot "

@@ -58,6 +58,15 @@
 #define SPH_NORM2(dx, dy, dz) ((dx) * (dx) + (dy) * (dy) + (dz) * (dz))
 #endif
 
+/* The mass of a particle of density rho on a lattice of spacing dx:
+ * rho dx^SPH_DIM, multiplied in that order ((rho dx) dx (dx)). */
+static inline double sph_lattice_mass(double rho, double dx) {
+  double m = rho;
+  for (int a = 0; a < SPH_DIM; a++)
+    m *= dx;
+  return m;
+}
+
 /* The vertical axis: y in 2-D, z in 3-D (the last one; doc/dimensions.md).
  * In a box of 2 * SPH_DIM bounds (x0, x1, y0, y1, ...) its lower bound is at
  * 2 * SPH_UP. */

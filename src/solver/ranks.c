@@ -70,7 +70,7 @@ static int reserve(sph_sim *s, size_t n, sph_error *err) {
   return 0;
 }
 
-int sph_sim_ranks_pass(sph_sim *s, sph_error *err) {
+int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
   const sph_case *c = s->c;
   sph_particles *p = &s->p;
   sph_sim *r = s->sub;
@@ -79,10 +79,7 @@ int sph_sim_ranks_pass(sph_sim *s, sph_error *err) {
   s->resort = 0;
   if (resort && sph_sim_sort(s, err)) return -1;
   if (reserve(s, p->n, err)) return -1;
-  double hmax = 0.0;
-  for (size_t i = 0; i < p->n; i++)
-    if (p->h[i] > hmax) hmax = p->h[i];
-  const double reach = SPH_CUBIC_SUPPORT * hmax * (c->fs_h_factor > 1.0 ? c->fs_h_factor : 1.0);
+  const double reach = SPH_CUBIC_SUPPORT * hmax;
   /* a periodic axis: whole cells over the period (a last, narrower strip
    * joins cell 0); a period shorter than the ghosts' reach puts its every
    * cell in every rank's halo */

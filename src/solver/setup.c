@@ -137,10 +137,7 @@ static double gravity_down(const sph_case *c) {
 
 static int add_fluid(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
-  const double dx = c->dx;
-  double mass = c->rho0; /* rho0 dx^SPH_DIM */
-  for (int a = 0; a < SPH_DIM; a++)
-    mass *= dx;
+  const double dx = c->dx, mass = sph_lattice_mass(c->rho0, dx);
   const double gmag = gravity_down(c);
   for (size_t b = 0; b < c->n_fluid; b++) {
     const sph_fluid_block *fb = &c->fluid[b];

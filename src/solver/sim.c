@@ -104,6 +104,15 @@ static int build_grid(sph_sim *s, double cell, sph_error *err) {
              : sph_grid_build(&s->grid, &s->p, cell, max_cells, err);
 }
 
+/* The cells the store is sorted by: they fit the support, plus the
+ * default skin when the case keeps its list (below). */
+static double sort_cell(const sph_sim *s) {
+  return (support(s) + (s->skin > 0.0 ? SPH_SKIN_DEFAULT * SPH_CUBIC_SUPPORT * s->c->h : 0.0)) *
+         SPH_CELL_MARGIN;
+}
+
+int sph_sim_sort(sph_sim *s, sph_error *err) { return build_grid(s, sort_cell(s), err); }
+
 /* Steps between sorts of the store when the neighbour list is kept. */
 #define SPH_RESORT_EVERY 40
 
@@ -123,15 +132,6 @@ static int build_grid(sph_sim *s, double cell, sph_error *err) {
  * storage order and the step count, so a run restarted from any snapshot
  * (which records the storage order) repeats the uninterrupted run bit for
  * bit, whatever the skin. */
-/* The cells the store is sorted by: they fit the support, plus the
- * default skin when the case keeps its list (below). */
-static double sort_cell(const sph_sim *s) {
-  return (support(s) + (s->skin > 0.0 ? SPH_SKIN_DEFAULT * SPH_CUBIC_SUPPORT * s->c->h : 0.0)) *
-         SPH_CELL_MARGIN;
-}
-
-int sph_sim_sort(sph_sim *s, sph_error *err) { return build_grid(s, sort_cell(s), err); }
-
 static int neighbours(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   const int resort = s->resort;
@@ -229,7 +229,7 @@ static void rank_reductions(sph_sim *s, int diffusion) {
 int sph_sim_pass(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   update_h(s);
-  if (s->ranks > 1) return sph_sim_ranks_pass(s, err); /* ranks.c */
+  if (s->ranks > 1) return sph_sim_ranks_pass(s, h_max(s), err); /* ranks.c */
 #if SPH_DIM == 2
   if (s->walls.n_mirror && sph_mirror_add(&s->p, s->walls.mirror, s->walls.n_mirror,
                                           s->walls.mirror_reach, c->rho0, err) < 0)

@@ -86,8 +86,9 @@ struct sph_sim {
  * with err (ranks.c). */
 int sph_sim_ranks_init(sph_sim *s, int ranks, sph_error *err);
 void sph_sim_ranks_free(sph_sim *s);
-/* One pass of the whole store made as the ranks make it (ranks.c). */
-int sph_sim_ranks_pass(sph_sim *s, sph_error *err);
+/* One pass of the whole store made as the ranks make it, hmax the store's
+ * largest smoothing length (ranks.c). */
+int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err);
 /* A sim of the case for one rank's store: sph_sim_create on one rank (setup.c). */
 int sph_sim_create_rank_store(const sph_case *c, sph_sim **out, sph_error *err);
 /* Sorts the store by cell and id as a sorting pass does (sim.c). */

@@ -34,10 +34,10 @@ void sph_wall_velocity_work_free(sph_wall_velocity_work *w) {
  * of one global grid (cell k holds floor(x / c[a]) = k, the grid's first
  * k0[a]), so that any subset of the particles (a rank's) bins each one into
  * the cell the whole set does and its fits sum in the whole set's order;
- * along the periodic axis (period > 0) the whole period from o[a]. Cells
- * are numbered with x fastest, then y (then z). */
+ * along the periodic axis (period > 0) the whole period from o. Cells are
+ * numbered with x fastest, then y (then z). */
 typedef struct layout {
-  double o[SPH_DIM], c[SPH_DIM], period;
+  double o, c[SPH_DIM], period;
   double support; /* no particle farther than this from a point counts in its fit */
   long n[SPH_DIM], k0[SPH_DIM];
   int paxis;
@@ -52,7 +52,7 @@ static double cell_float(const layout *g, int a, double x) {
 static long cell_along(const layout *g, int a, double x) {
   double f;
   if (a == g->paxis && g->period > 0.0) { /* into [0, period) */
-    double u = fmod(x - g->o[a], g->period);
+    double u = fmod(x - g->o, g->period);
     if (u < 0.0) u += g->period;
     f = floor(u / g->c[a]);
   } else {
@@ -259,14 +259,13 @@ static int bin_fluid(const sph_particles *p, double support, double px0, double 
     double cells = 1.0;
     for (int a = 0; a < SPH_DIM; a++) {
       if (a == g.paxis && g.period > 0.0) {
-        g.o[a] = px0;
+        g.o = px0;
         g.n[a] = (long)floor(g.period / cell);
         if (g.n[a] < 1) g.n[a] = 1;
         g.c[a] = g.period / (double)g.n[a];
       } else {
         const double k0 = floor(lo[a] / cell);
         g.k0[a] = (long)k0;
-        g.o[a] = k0 * cell;
         g.c[a] = cell;
         g.n[a] = (long)(floor(hi[a] / cell) - k0) + 1;
       }

@@ -113,9 +113,7 @@ int sph_walls_create(sph_walls *w, sph_particles *p, const sph_tank *tank,
                      const sph_wall_segment *segments, size_t n_segments,
                      const sph_obstacle *obstacles, size_t n_obstacles, double dx, double rho0,
                      double h, double mirror_reach, sph_error *err) {
-  double wall_mass = rho0; /* rho0 dx^SPH_DIM */
-  for (int a = 0; a < SPH_DIM; a++)
-    wall_mass *= dx;
+  const double wall_mass = sph_lattice_mass(rho0, dx);
   const size_t walls_from = p->n; /* the fluid's particles come first */
   *w = (sph_walls){0};
   w->mirror_reach = mirror_reach;
