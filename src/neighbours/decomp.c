@@ -7,6 +7,7 @@
 #include "neighbours/decomp.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -69,17 +70,30 @@ int sph_decomp_cell(const sph_decomp_grid *g, const double x[SPH_DIM], uint32_t 
   return 0;
 }
 
+/* The cell of particle i of p (sph_decomp_cell): 0, or -1 outside the curve. */
+static int particle_cell(const sph_decomp_grid *g, const sph_particles *p, size_t i,
+                         uint32_t c[SPH_DIM]) {
+  double x[SPH_DIM];
+  for (int a = 0; a < SPH_DIM; a++)
+    x[a] = p->pos[a][i];
+  return sph_decomp_cell(g, x, c);
+}
+
 int sph_decomp_keys(const sph_decomp_grid *g, const sph_particles *p, uint64_t *keys,
                     sph_error *err) {
+  /* the store is sorted by cells: a particle's cell is often the last
+   * one's, whose key is known */
+  uint64_t last = 0, last_key = 0;
   for (size_t i = 0; i < p->n; i++) {
-    double x[SPH_DIM];
     uint32_t c[SPH_DIM];
-    for (int a = 0; a < SPH_DIM; a++)
-      x[a] = p->pos[a][i];
-    if (sph_decomp_cell(g, x, c))
+    if (particle_cell(g, p, i, c))
       return sph_error_set(err, "decomposition: particle %lld is outside the curve's reach",
                            (long long)p->id[i]);
-    keys[i] = sph_decomp_hilbert(c, SPH_DECOMP_BITS);
+    uint64_t v = 0;
+    for (int a = 0; a < SPH_DIM; a++)
+      v = v << SPH_DECOMP_BITS | c[a];
+    if (i == 0 || v != last) last = v, last_key = sph_decomp_hilbert(c, SPH_DECOMP_BITS);
+    keys[i] = last_key;
   }
   return 0;
 }
@@ -87,6 +101,42 @@ int sph_decomp_keys(const sph_decomp_grid *g, const sph_particles *p, uint64_t *
 static int cmp_u64(const void *a, const void *b) {
   const uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
   return (x > y) - (x < y);
+}
+
+typedef struct weighted_key {
+  uint64_t key;
+  uint32_t w;
+} weighted_key;
+
+static int cmp_weighted(const void *a, const void *b) {
+  const weighted_key *x = a, *y = b;
+  if (x->key != y->key) return (x->key > y->key) - (x->key < y->key);
+  return (x->w > y->w) - (x->w < y->w);
+}
+
+int sph_decomp_cut_weighted(const uint64_t *keys, const uint32_t *w, size_t n, int ranks,
+                            uint64_t *first, sph_error *err) {
+  first[0] = 0;
+  if (ranks < 2) return 0;
+  weighted_key *s = malloc((n ? n : 1) * sizeof *s);
+  if (!s) return sph_error_set(err, "decomposition: out of memory");
+  uint64_t total = 0;
+  for (size_t i = 0; i < n; i++)
+    s[i].key = keys[i], s[i].w = w[i], total += w[i];
+  qsort(s, n, sizeof *s, cmp_weighted);
+  /* rank r from the first key before which the weights reach r / ranks of
+   * the whole: the running sums at the ends of runs of equal keys (whole
+   * cells) do not depend on the order within a run, so neither does the cut */
+  uint64_t sum = 0;
+  size_t p = 0;
+  for (int r = 1; r < ranks; r++) {
+    while (p < n && sum * (uint64_t)ranks < (uint64_t)r * total)
+      sum += s[p++].w;
+    first[r] = n ? (p < n ? s[p].key : s[n - 1].key + 1) : UINT64_MAX;
+    if (first[r] < first[r - 1]) first[r] = first[r - 1];
+  }
+  free(s);
+  return 0;
 }
 
 int sph_decomp_cut(const uint64_t *keys, size_t n, int ranks, uint64_t *first, sph_error *err) {
@@ -117,97 +167,96 @@ int sph_decomp_owner(const uint64_t *first, int ranks, uint64_t k) {
   return lo;
 }
 
-/* ---- the halo: a set of cells (open addressing on the packed coordinates) ---- */
+/* ---- the halo: the rank's own cells, dilated by `depth` on a box of cells ---- */
 
-typedef struct cellset {
-  uint64_t *slot; /* packed coordinates + 1; 0 = empty */
-  size_t cap, n;
-} cellset;
+/* The box of cells the particles fill, widened by depth on each axis that
+ * does not wrap; the periodic axis spans its period's cells. */
+typedef struct cellbox {
+  int64_t lo[SPH_DIM];
+  size_t n[SPH_DIM], total;
+} cellbox;
 
-static uint64_t pack(const uint32_t c[SPH_DIM]) {
-  uint64_t v = 0;
-  for (int a = 0; a < SPH_DIM; a++)
-    v = v << SPH_DECOMP_BITS | c[a];
-  return v + 1;
+static size_t box_index(const cellbox *b, const uint32_t c[SPH_DIM]) {
+  size_t k = 0;
+  for (int a = SPH_DIM - 1; a >= 0; a--)
+    k = k * b->n[a] + (size_t)((int64_t)c[a] - b->lo[a]);
+  return k;
 }
 
-static size_t slot_of(const cellset *s, uint64_t v) {
-  uint64_t h = v * 0x9E3779B97F4A7C15ull;
-  size_t i = (size_t)(h >> 17) & (s->cap - 1);
-  while (s->slot[i] && s->slot[i] != v)
-    i = (i + 1) & (s->cap - 1);
-  return i;
-}
-
-static int set_add(cellset *s, uint64_t v) {
-  if (2 * (s->n + 1) > s->cap) {
-    cellset t = {calloc(s->cap ? 2 * s->cap : 1024, sizeof *t.slot), s->cap ? 2 * s->cap : 1024, 0};
-    if (!t.slot) return -1;
-    for (size_t i = 0; i < s->cap; i++)
-      if (s->slot[i]) t.slot[slot_of(&t, s->slot[i])] = s->slot[i], t.n++;
-    free(s->slot);
-    *s = t;
-  }
-  const size_t i = slot_of(s, v);
-  if (!s->slot[i]) s->slot[i] = v, s->n++;
-  return 0;
-}
-
-static int set_has(const cellset *s, uint64_t v) { return s->cap && s->slot[slot_of(s, v)] == v; }
-
-/* Adds every cell within depth of c (a periodic axis wrapping). */
-static int add_block(const sph_decomp_grid *g, cellset *s, const uint32_t c[SPH_DIM], int depth) {
-  const int side = 2 * depth + 1;
-  long total = 1;
-  for (int a = 0; a < SPH_DIM; a++)
-    total *= side;
-  const int64_t half = (int64_t)1 << (SPH_DECOMP_BITS - 1);
-  for (long k = 0; k < total; k++) {
-    uint32_t d[SPH_DIM];
-    long rest = k;
-    int ok = 1;
-    for (int a = 0; a < SPH_DIM; a++) {
-      int64_t v = (int64_t)c[a] + rest % side - depth;
-      rest /= side;
-      if (g->periodic == 1 + a) {
-        v -= half;
-        v %= g->ncell_periodic;
-        if (v < 0) v += g->ncell_periodic;
-        v += half;
-      }
-      if (v < 0 || v >= 2 * half) ok = 0;
-      d[a] = (uint32_t)v;
+/* One axis's dilation: out[c] = 1 where in[c + k a] for some |k| <= depth
+ * (wrapping on the periodic axis, clipped on the others). */
+static void dilate(const cellbox *b, int a, int wrap, int depth, const unsigned char *in,
+                   unsigned char *out) {
+  size_t stride = 1;
+  for (int q = 0; q < a; q++)
+    stride *= b->n[q];
+  const long n = (long)b->n[a];
+  memset(out, 0, b->total);
+  for (size_t k = 0; k < b->total; k++) {
+    if (!in[k]) continue;
+    const long at = (long)((k / stride) % b->n[a]);
+    const size_t base = k - (size_t)at * stride;
+    for (long d = -depth; d <= depth; d++) {
+      long t = at + d;
+      if (wrap)
+        t = ((t % n) + n) % n;
+      else if (t < 0 || t >= n)
+        continue;
+      out[base + (size_t)t * stride] = 1;
     }
-    if (ok && set_add(s, pack(d))) return -1;
   }
-  return 0;
 }
 
 long sph_decomp_halo(const sph_decomp_grid *g, const sph_particles *p, const uint64_t *keys,
                      const uint64_t *first, int ranks, int rank, int depth, unsigned char *mark,
                      sph_error *err) {
-  cellset need = {NULL, 0, 0};
-  long ghosts = 0;
+  const int64_t half = (int64_t)1 << (SPH_DECOMP_BITS - 1);
+  cellbox b;
+  int64_t hi[SPH_DIM];
+  for (int a = 0; a < SPH_DIM; a++)
+    b.lo[a] = INT64_MAX, hi[a] = INT64_MIN;
+  for (size_t i = 0; i < p->n; i++) {
+    uint32_t c[SPH_DIM];
+    if (particle_cell(g, p, i, c))
+      return sph_error_set(err, "decomposition: particle %lld is outside the curve's reach",
+                           (long long)p->id[i]),
+             -1;
+    for (int a = 0; a < SPH_DIM; a++) {
+      if (c[a] < b.lo[a]) b.lo[a] = c[a];
+      if (c[a] > hi[a]) hi[a] = c[a];
+    }
+  }
+  b.total = p->n ? 1 : 0;
+  for (int a = 0; a < SPH_DIM && p->n; a++) {
+    if (g->periodic == 1 + a) b.lo[a] = half, hi[a] = half + g->ncell_periodic - 1;
+    b.n[a] = (size_t)(hi[a] - b.lo[a] + 1);
+    b.total *= b.n[a];
+  }
+  unsigned char *cells = calloc(2 * (b.total ? b.total : 1), 1);
+  if (!cells) return sph_error_set(err, "decomposition: out of memory for the halo"), -1;
+  unsigned char *other = cells + b.total;
   for (size_t i = 0; i < p->n; i++) {
     mark[i] = sph_decomp_owner(first, ranks, keys[i]) == rank;
     if (!mark[i]) continue;
-    double x[SPH_DIM];
     uint32_t c[SPH_DIM];
-    for (int a = 0; a < SPH_DIM; a++)
-      x[a] = p->pos[a][i];
-    if (sph_decomp_cell(g, x, c) || add_block(g, &need, c, depth)) {
-      free(need.slot);
-      return sph_error_set(err, "decomposition: out of memory or outside the curve"), -1;
-    }
+    particle_cell(g, p, i, c);
+    cells[box_index(&b, c)] = 1;
   }
+  /* the 3^D block and beyond, within depth cells: one axis at a time (the
+   * box's edges hold no particle beyond its last cells, so clipping there
+   * loses none) */
+  for (int a = 0; a < SPH_DIM; a++) {
+    dilate(&b, a, g->periodic == 1 + a, depth, cells, other);
+    unsigned char *t = cells;
+    cells = other, other = t;
+  }
+  long ghosts = 0;
   for (size_t i = 0; i < p->n; i++) {
     if (mark[i]) continue;
-    double x[SPH_DIM];
     uint32_t c[SPH_DIM];
-    for (int a = 0; a < SPH_DIM; a++)
-      x[a] = p->pos[a][i];
-    if (!sph_decomp_cell(g, x, c) && set_has(&need, pack(c))) mark[i] = 2, ghosts++;
+    particle_cell(g, p, i, c);
+    if (cells[box_index(&b, c)]) mark[i] = 2, ghosts++;
   }
-  free(need.slot);
+  free(cells < other ? cells : other);
   return ghosts;
 }

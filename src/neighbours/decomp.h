@@ -72,6 +72,13 @@ int sph_decomp_keys(const sph_decomp_grid *g, const sph_particles *p, uint64_t *
  * the same cut. Fails only out of memory. */
 int sph_decomp_cut(const uint64_t *keys, size_t n, int ranks, uint64_t *first, sph_error *err);
 
+/* The same cut balanced by weight: the particle of key keys[i] weighs
+ * w[i] (the cost of its rows); rank r from the first key at which the
+ * weights of the keys below it reach r / ranks of the whole. Pure, as
+ * sph_decomp_cut. */
+int sph_decomp_cut_weighted(const uint64_t *keys, const uint32_t *w, size_t n, int ranks,
+                            uint64_t *first, sph_error *err);
+
 /* The rank that owns key k under the cut. */
 int sph_decomp_owner(const uint64_t *first, int ranks, uint64_t k);
 
