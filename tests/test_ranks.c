@@ -38,12 +38,6 @@ static char *run(const char *prog, const char *case_rel, const char *sets, const
   return d;
 }
 
-static int same_dirs(const char *a, const char *b) {
-  char cmd[4096];
-  snprintf(cmd, sizeof cmd, "diff -r '%s' '%s' >/dev/null", a, b);
-  return sph_test_system(cmd) == 0;
-}
-
 static void same_on_ranks(const char *prog, const char *case_rel, const char *sets,
                           const int *ranks, int n_ranks) {
   char *one = run(prog, case_rel, sets, "", 1);
@@ -52,7 +46,7 @@ static void same_on_ranks(const char *prog, const char *case_rel, const char *se
     snprintf(env, sizeof env, "SPH_TEST_RANKS=%d", ranks[k]);
     const int threads = 1 + k % 2; /* 1 and 2 threads in turn */
     char *d = run(prog, case_rel, sets, env, threads);
-    const int same = same_dirs(one, d);
+    const int same = sph_test_same_dirs(one, d);
     printf("\n  %s, %d ranks, %d thread(s): %s", case_rel, ranks[k], threads,
            same ? "identical" : "DIFFERENT");
     CU_ASSERT(same);

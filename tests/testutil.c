@@ -181,3 +181,9 @@ double sph_test_uniform(unsigned long long *s) {
   *s ^= *s << 17;
   return (double)(*s >> 11) / 9007199254740992.0;
 }
+
+int sph_test_same_dirs(const char *a, const char *b) {
+  char cmd[8300];
+  snprintf(cmd, sizeof cmd, "diff -r '%s' '%s' >/dev/null", a, b);
+  return sph_test_system(cmd) == 0;
+}

@@ -30,6 +30,8 @@ char *sph_test_tmpdir(void);
 void sph_test_rmtree(const char *dir);
 /* Runs a shell command, returns its exit status (or -1). */
 int sph_test_system(const char *cmd);
+/* Whether two directories hold the same files, byte for byte (diff -r). */
+int sph_test_same_dirs(const char *a, const char *b);
 /* Runs the build tree's `sph ARGS` (ARGS shell-quoted by the caller) with
  * stdout and stderr captured in DIR/sph.log and returned in out (len
  * bytes, truncated, NUL-terminated); returns the exit status. */

@@ -267,8 +267,13 @@ static void print_plan(const run_args *a, const sph_case *c) {
 static void print_banner(const run_args *a, const sph_case *c, sph_sim *s, int nthreads) {
   const sph_particles *p = sph_sim_particles(s);
   const size_t nf = sph_particles_count_kind(p, SPH_KIND_FLUID);
-  printf("  particles %zu (fluid %zu, wall %zu), threads %d, output %s\n", p->n, nf, p->n - nf,
-         nthreads, a->outdir);
+  if (sph_procs_count() > 1)
+    printf("  particles %zu (fluid %zu, wall %zu), %d processes (mpirun) of %d threads, output "
+           "%s\n",
+           p->n, nf, p->n - nf, sph_procs_count(), nthreads, a->outdir);
+  else
+    printf("  particles %zu (fluid %zu, wall %zu), threads %d, output %s\n", p->n, nf, p->n - nf,
+           nthreads, a->outdir);
   double ratio = 1.0;
   const char *loop = sph_sim_loop(s, &ratio);
   if (ratio != 1.0)
@@ -334,9 +339,10 @@ static int report_end(const sph_run_result *r, const sph_sim *s, const sph_error
   case SPH_RUN_INTERRUPTED:
     fprintf(stderr,
             "sph run: interrupted by %s at t = %.9g s (step %ld); final snapshot %s\n"
-            "sph run: continue with: %s run --restart %s -o %s\n",
+            "sph run: continue with: %s%s run --restart %s -o %s\n",
             signal_name(interrupted), sph_sim_time(s), r->steps,
-            r->last_snapshot[0] ? r->last_snapshot : "(none)", sph_cli_program,
+            r->last_snapshot[0] ? r->last_snapshot : "(none)",
+            sph_procs_count() > 1 ? "mpirun -n N " : "", sph_cli_program,
             r->last_snapshot[0] ? r->last_snapshot : "SNAPSHOT", outdir);
     return 4;
   case SPH_RUN_BLOWUP:
@@ -357,7 +363,10 @@ static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
   progress_ctx pc;
   sph_progress_init(&pc.bar, stderr, c->t_end, c->stop == SPH_STOP_FRONT_AT_WALL ? "front" : NULL,
                     a->quiet);
-  sph_run_options opt = {a->outdir, on_progress, &pc, &interrupted, NULL, NULL};
+  /* under mpirun only rank 0 writes (procs.h); every process stops together */
+  const int root = sph_procs_rank() == 0;
+  sph_run_options opt = {
+      root ? a->outdir : NULL, root ? on_progress : NULL, &pc, &interrupted, NULL, NULL};
   sph_run_result r;
   sph_error err = {{0}};
   const long steps0 = sph_sim_steps(s); /* a restart's steps before this run */
@@ -366,6 +375,12 @@ static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
   const double wall = sph_wall_seconds() - w0;
   sph_progress_done(&pc.bar);
   const int status = report_end(&r, s, &err, a->outdir);
+  sph_procs_figures f; /* every process: a collective step */
+  sph_sim_procs_figures(s, &f);
+  if (!a->quiet && status != 1 && f.processes > 1 && f.passes > 0)
+    printf("  %d processes: ghosts %.3g of the owned particles (each process's halo), %.3g MB "
+           "sent per pass, all processes together\n",
+           f.processes, f.own > 0 ? f.ghosts / f.own : 0.0, f.bytes / (double)f.passes / 1e6);
   if (!a->quiet && status != 1) {
     /* the steps the rule chose (sph_sim_step_range), then the closing line */
     double dt_first, dt_min, t_min;
@@ -417,8 +432,37 @@ static void setup_pause(void) {
   }
 }
 
+/* Under an MPI launcher (procs.h): rank 0 speaks for every process (the
+ * others' messages are rank 0's, their state the same), and a build
+ * without MPI refuses to run as several copies of one case. 0, or the exit
+ * status. */
+static int launched(void) {
+  const int rank = sph_procs_launched_rank(), count = sph_procs_launched_count();
+  if (count == 1) return 0;
+  if (rank > 0 && (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)))
+    return 1;
+  if (!sph_procs_built()) {
+    fprintf(stderr,
+            "sph run: started as %d processes (mpirun), but this sph was built without MPI: "
+            "build it with ./configure --with-mpi (doc/parallel.md), or run one process\n",
+            count);
+    return 1;
+  }
+  return 0;
+}
+
+static int run_case(int argc, char **argv);
+
 int sph_cli_run(int argc, char **argv) {
+  const int status = run_case(argc, argv);
+  sph_procs_end();
+  return status;
+}
+
+static int run_case(int argc, char **argv) {
   install_signals(); /* from the start: a signal during set-up is reported too */
+  const int st = launched();
+  if (st) return st;
   run_args a = {0};
   a.sets = calloc((size_t)argc, sizeof *a.sets);
   if (!a.sets) return 1;
@@ -429,37 +473,45 @@ int sph_cli_run(int argc, char **argv) {
   free(a.sets);
   if (status) return status < 0 ? 0 : status;
   c.max_particles = a.max_particles;
+  sph_error err = {{0}};
+  if (sph_procs_start(&err)) { /* after the hand-over's exec: this program runs the case */
+    fprintf(stderr, "sph run: %s\n", err.msg);
+    sph_case_free(&c);
+    return 1;
+  }
+  const int root = sph_procs_rank() == 0;
+  if (!root) a.quiet = 1;
   const int nthreads = sph_cli_set_threads(a.threads, a.quiet);
   if (!a.outdir) {
     snprintf(defdir, sizeof defdir, "out/%s", c.name);
     a.outdir = defdir;
   }
-  sph_error err = {{0}};
   sph_sim *s = NULL;
   sph_snapshot_restart_data rd;
   sph_cli_lock lock = {-1, {0}};
-  const long holder = sph_cli_dir_holder(a.outdir); /* at once, before the set-up */
-  if (holder) {
+  /* at once, before the set-up; rank 0 alone writes, so it alone asks */
+  const long holder = root ? sph_cli_dir_holder(a.outdir) : 0;
+  if (sph_procs_any(holder != 0)) {
     sph_case_free(&c);
     return sph_cli_dir_busy("sph run", a.outdir, holder);
   }
   status = 1;
   if (!a.quiet) print_plan(&a, &c);
   setup_pause();
-  if (interrupted) {
+  if (sph_procs_any(interrupted)) {
     status = setup_interrupted();
   } else if (sph_sim_create(&c, &s, &err)) {
     fprintf(stderr, "sph run: %s\n", err.msg);
   } else if (a.restart && sph_sim_restore(s, a.restart, &rd, &err)) {
     fprintf(stderr, "sph run: --restart: %s\n", err.msg);
-  } else if (interrupted) { /* during the set-up: nothing written yet */
+  } else if (sph_procs_any(interrupted)) { /* during the set-up: nothing written yet */
     status = setup_interrupted();
     if (a.restart) sph_snapshot_restart_free(&rd);
-  } else if (sph_cli_make_dirs(a.outdir)) {
+  } else if (sph_procs_any(root && sph_cli_make_dirs(a.outdir))) {
     fprintf(stderr, "sph run: cannot create output directory %s: %s\n", a.outdir, strerror(errno));
     if (a.restart) sph_snapshot_restart_free(&rd);
   } else {
-    if (sph_cli_dir_take("sph run", a.outdir, &lock) == 0) {
+    if (!sph_procs_any(root && sph_cli_dir_take("sph run", a.outdir, &lock) != 0)) {
       if (!a.quiet) print_banner(&a, &c, s, nthreads);
       status = run_sim(&a, &c, s, &rd);
     }

@@ -171,6 +171,75 @@ void sph_particles_copy_one(sph_particles *to, size_t j, const sph_particles *fr
 #undef COPY
 }
 
+size_t sph_particles_record_size_of(const sph_particles *p, unsigned long long arrays) {
+  size_t n = 0;
+  int k = 0;
+#define SIZE(field, g)                                                                             \
+  if (live(p, g) && (arrays >> k & 1)) n += sizeof *p->field;                                      \
+  k++;
+  SPH_PARTICLE_DOUBLES(SIZE)
+  SPH_PARTICLE_OTHERS(SIZE)
+#undef SIZE
+  return n;
+}
+
+size_t sph_particles_record_size(const sph_particles *p) {
+  return sph_particles_record_size_of(p, SPH_PARTICLES_ALL);
+}
+
+void sph_particles_pack_of(const sph_particles *p, size_t i, unsigned long long arrays,
+                           unsigned char *rec) {
+  int k = 0;
+#define PACK(field, g)                                                                             \
+  if (live(p, g) && (arrays >> k & 1)) {                                                           \
+    memcpy(rec, &p->field[i], sizeof *p->field);                                                   \
+    rec += sizeof *p->field;                                                                       \
+  }                                                                                                \
+  k++;
+  SPH_PARTICLE_DOUBLES(PACK)
+  SPH_PARTICLE_OTHERS(PACK)
+#undef PACK
+}
+
+void sph_particles_pack(const sph_particles *p, size_t i, unsigned char *rec) {
+  sph_particles_pack_of(p, i, SPH_PARTICLES_ALL, rec);
+}
+
+void sph_particles_unpack_of(sph_particles *p, size_t i, unsigned long long arrays,
+                             const unsigned char *rec) {
+  int k = 0;
+#define UNPACK(field, g)                                                                           \
+  if (live(p, g) && (arrays >> k & 1)) {                                                           \
+    memcpy(&p->field[i], rec, sizeof *p->field);                                                   \
+    rec += sizeof *p->field;                                                                       \
+  }                                                                                                \
+  k++;
+  SPH_PARTICLE_DOUBLES(UNPACK)
+  SPH_PARTICLE_OTHERS(UNPACK)
+#undef UNPACK
+}
+
+void sph_particles_unpack(sph_particles *p, size_t i, const unsigned char *rec) {
+  sph_particles_unpack_of(p, i, SPH_PARTICLES_ALL, rec);
+}
+
+unsigned long long sph_particles_differ(const sph_particles *a, size_t i, const sph_particles *b,
+                                        size_t j) {
+  unsigned long long d = 0;
+  int k = 0;
+#define DIFFER(field, g)                                                                           \
+  if (live(a, g) && live(b, g) && memcmp(&a->field[i], &b->field[j], sizeof *a->field))            \
+    d |= 1ull << k;                                                                                \
+  k++;
+  SPH_PARTICLE_DOUBLES(DIFFER)
+  SPH_PARTICLE_OTHERS(DIFFER)
+#undef DIFFER
+  return d;
+}
+
+/* The store's arrays fit the bits of an array set. */
+typedef char sph_arrays_fit_check[SPH_PARTICLE_ARRAYS <= 64 ? 1 : -1];
+
 size_t sph_particles_drop_if(sph_particles *p, size_t first,
                              int (*drop)(const void *ctx, const sph_particles *p, size_t i),
                              const void *ctx) {

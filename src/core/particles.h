@@ -152,6 +152,24 @@ int sph_particles_take(sph_particles *to, const sph_particles *from, const unsig
                        sph_error *err);
 /* Copies particle i of `from` to index j of `to`: every array live in both. */
 void sph_particles_copy_one(sph_particles *to, size_t j, const sph_particles *from, size_t i);
+/* A particle as one record of bytes (every live array's entry, in the
+ * store's order of arrays), for a store that another process holds in the
+ * same state (solver/procs.h): the record's size, and particle i packed
+ * into rec or set from it. */
+size_t sph_particles_record_size(const sph_particles *p);
+void sph_particles_pack(const sph_particles *p, size_t i, unsigned char *rec);
+void sph_particles_unpack(sph_particles *p, size_t i, const unsigned char *rec);
+/* The same for the arrays in `arrays` alone (bit k: the store's k-th
+ * array; SPH_PARTICLES_ALL for every one); and the arrays whose entry of
+ * particle i of a and j of b differ in a bit (of those live in both). */
+#define SPH_PARTICLES_ALL (~0ull)
+size_t sph_particles_record_size_of(const sph_particles *p, unsigned long long arrays);
+void sph_particles_pack_of(const sph_particles *p, size_t i, unsigned long long arrays,
+                           unsigned char *rec);
+void sph_particles_unpack_of(sph_particles *p, size_t i, unsigned long long arrays,
+                             const unsigned char *rec);
+unsigned long long sph_particles_differ(const sph_particles *a, size_t i, const sph_particles *b,
+                                        size_t j);
 /* Removes the particles i >= first for which drop(ctx, p, i) is true; the
  * others move down in order (sph_particles_move), each id from `first` on
  * renumbered to its new index. drop sees particle i where it was made and

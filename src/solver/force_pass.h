@@ -148,6 +148,7 @@ typedef struct sph_force_work {
   sph_wall_velocity_work wv;
   double cs_sigma_max; /* max over the particles of cs + sigma (the step rule) */
   int keep_sigma;      /* set by a caller that reads sigma per particle (the tests) */
+  int skip_ghosts;     /* a rank's store: no rates for SPH_FLAG_GHOST (solver/ranks.c) */
   unsigned terms;      /* the pass's term set (interact.h: the bits a loop tests at run time) */
   uint32_t *rows;      /* per thread: a neighbour row cut to the support */
   size_t rows_stride, rows_cap;

@@ -65,6 +65,7 @@ extern const sph_loop_table sph_loops_avx512;
       size_t lo, hi; /* slices of equal cost, with stealing (parallel.h) */                        \
       while (sph_steal_next(&w->steal, SPH_STEAL_GRAIN, &lo, &hi))                                 \
         for (size_t i = lo; i < hi; i++) {                                                         \
+          if (w->skip_ghosts && (p->flags[i] & SPH_FLAG_GHOST)) continue; /* a rank's (ranks.c) */ \
           const double sg = interact_##FL(p, l, fp, w, i, (Fc));                                   \
           if (w->keep_sigma) w->sigma[i] = sg; /* the tests' */                                    \
           const double c = w->hot[i].cs + sg;                                                      \

@@ -16,36 +16,62 @@
  * integration, the blow-up check and the outputs then run on the whole
  * store as they always do.
  *
- * This is the pass of the MPI decomposition run in one process: each rank
- * here stands for a process, `sub` for its store. With SPH_TEST_RANKS=R
- * every output of a run must be the same bytes as the run's on one rank
- * (tests/test_ranks): the proof that the cut, the ghosts and the order of
- * every sum are right before any message is sent. Particle shifting runs on
- * the whole store, over a neighbour list of its own (sim.c).
+ * Under mpirun (procs.h) each process makes its own rank's part, then the
+ * processes share what their passes changed in their own particles and
+ * combine the reductions (doc/parallel.md). With SPH_TEST_RANKS=R one
+ * process makes every rank's part in turn: every output of a run must be
+ * the same bytes as the run's on one rank (tests/test_ranks, and
+ * tests/test_mpi under mpirun). Particle shifting runs on the whole store,
+ * over a neighbour list of its own (sim.c).
  */
 #include "config.h"
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
+#include "core/exact_sum.h"
 #include "neighbours/decomp.h"
 #include "physics/kernel.h"
 #include "solver/integrate.h"
+#include "solver/procs.h"
 #include "solver/sim_internal.h"
 
-/* Ghosts this many decomposition cells deep; the cells 1.25 supports wide
- * (tests/test_decomp: 2 cells give the same bits on every scheme). */
-#define SPH_RANKS_DEPTH 3
-#define SPH_RANKS_CELL 1.25
+/* Ghosts this many decomposition cells deep, the cells one support wide:
+ * two supports, the reach of a pass's chains (a neighbour's value that
+ * needs its own neighbours: the Adami walls' extrapolation, the strain
+ * rate, the free-surface flags; tests/test_decomp measures the least depth
+ * on every scheme, tests/test_ranks the bytes with these). */
+#define SPH_RANKS_DEPTH 2
+#define SPH_RANKS_CELL 1.0
 
-int sph_sim_ranks_init(sph_sim *s, int ranks, sph_error *err) {
+/* The cut's weights of a fluid and a wall particle: a wall particle's rows
+ * cost little beside a fluid one's (SPHERIC Test 2 in 3-D, dx = 0.02 m, 2
+ * processes: weights 4 and 1 left their interaction loops at 4.9 and 6.0 s,
+ * the fluid alone at 4.8 and 5.3 s); a wall's weight above 0 keeps a store of
+ * walls alone cut. */
+#define SPH_RANKS_FLUID_WEIGHT 16
+#define SPH_RANKS_WALL_WEIGHT 1
+
+int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   const sph_case *c = s->c;
+  s->self = -1;
   if (ranks < 2) return 0;
-  if (ranks > 64) return sph_error_set(err, "SPH_TEST_RANKS: at most 64 ranks, got %d", ranks);
+  if (ranks > 64)
+    return sph_error_set(err, "%s: at most 64 ranks, got %d",
+                         self < 0 ? "SPH_TEST_RANKS" : "mpirun -n", ranks);
   if (sph_sim_create_rank_store(c, &s->sub, err)) return -1;
   s->sub->rank_store = 1;
   s->sub->work.keep_sigma = 1;
+  s->sub->work.skip_ghosts = 1;
   s->ranks = ranks;
+  s->self = self;
+  /* SPH_TEST_RANK_ORDER_SUMS=1 (doc/testing.md): the ledger's sums made the
+   * way that depends on the rank count, for the test that must see it */
+  const char *e = getenv("SPH_TEST_RANK_ORDER_SUMS");
+  s->rank_order_sums = e && *e == '1';
+  if (self >= 0 && !(s->ledger_all = malloc((size_t)ranks * sizeof *s->ledger_all)))
+    return sph_error_set(err, "out of memory for the ranks' sums");
   return 0;
 }
 
@@ -54,7 +80,15 @@ void sph_sim_ranks_free(sph_sim *s) {
   free(s->keys);
   free(s->mark);
   free(s->from);
+  free(s->owner);
+  free(s->records);
+  free(s->ledger_all);
+  free(s->mark_last);
+  free(s->weight);
+  s->weight = NULL;
+  s->ledger_all = NULL, s->mark_last = NULL, s->n_mark_last = 0;
   s->sub = NULL, s->keys = NULL, s->mark = NULL, s->from = NULL, s->cap_ranks = 0;
+  s->owner = NULL, s->records = NULL, s->cap_records = 0;
 }
 
 static int reserve(sph_sim *s, size_t n, sph_error *err) {
@@ -65,15 +99,170 @@ static int reserve(sph_sim *s, size_t n, sph_error *err) {
   if (m) s->mark = m;
   size_t *f = realloc(s->from, n * sizeof *f);
   if (f) s->from = f;
-  if (!k || !m || !f) return sph_error_set(err, "out of memory for the ranks' cut");
+  unsigned char *o = s->self >= 0 ? realloc(s->owner, n) : s->owner;
+  if (o) s->owner = o;
+  unsigned char *l = s->self >= 0 ? realloc(s->mark_last, n) : s->mark_last;
+  if (l) s->mark_last = l;
+  uint32_t *w = realloc(s->weight, n * sizeof *w);
+  if (w) s->weight = w;
+  if (!k || !m || !f || !w || (s->self >= 0 && (!o || !l)))
+    return sph_error_set(err, "out of memory for the ranks' cut");
   s->cap_ranks = n;
   return 0;
+}
+
+/* What a rank's pass adds up over its own particles. */
+typedef struct rank_sums {
+  double cs_max;  /* the step rule's max of c + sigma */
+  size_t surface; /* free-surface particles */
+  sph_ledger_sums ledger;
+} rank_sums;
+
+/* A process's store (s->self) keeps the particles of its last pass while
+ * they cover what it needs now (s->mark): the same own particles, every
+ * ghost it needs among them, the store in the same order (extra ghosts
+ * change no own particle's bits: decomp.h, the depth). Its neighbour list
+ * then still names them, and is kept while its skin allows (sim.c: every
+ * sum depends on the state, the order and the step count alone, not on
+ * when lists are built). 1 with s->mark the last pass's marks, else 0. */
+static int covered(sph_sim *s, int resort) {
+  const sph_particles *p = &s->p;
+  int cover = !resort && s->n_mark_last == p->n && s->order_last == p->order;
+  for (size_t i = 0; cover && i < p->n; i++) {
+    const unsigned char now = s->mark[i], was = s->mark_last[i];
+    cover = (now == 1) == (was == 1) && (now != 2 || was != 0);
+  }
+  if (cover) memcpy(s->mark, s->mark_last, p->n);
+  return cover;
+}
+
+/* Rank `rank`'s part of the pass: its own particles and its ghosts into
+ * sub, in the whole store's order; the pass; its own particles' results
+ * back into the whole store, its reductions into t. */
+static int rank_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *first, int rank,
+                     int resort, double hmax, rank_sums *t, sph_error *err) {
+  const sph_case *c = s->c;
+  sph_particles *p = &s->p;
+  sph_sim *r = s->sub;
+  if (sph_decomp_halo(g, p, s->keys, first, s->ranks, rank, SPH_RANKS_DEPTH, s->mark, err) < 0)
+    return -1;
+  const int same = s->self >= 0 && covered(s, resort);
+  if (s->self >= 0 && !same) {
+    /* one cell more than it needs: a particle then crosses a whole cell
+     * before the store must be taken anew */
+    if (sph_decomp_halo(g, p, s->keys, first, s->ranks, rank, SPH_RANKS_DEPTH + 1, s->mark, err) <
+        0)
+      return -1;
+    memcpy(s->mark_last, s->mark, p->n);
+    s->n_mark_last = p->n, s->order_last = p->order;
+  }
+  if (sph_particles_take(&r->p, p, s->mark, err)) return -1;
+  size_t k = 0;
+  for (size_t i = 0; i < p->n; i++)
+    if (s->mark[i]) {
+      if (s->mark[i] == 2) r->p.flags[k] |= SPH_FLAG_GHOST;
+      s->from[k++] = i;
+    }
+  r->t = s->t, r->t_walls = s->t_walls, r->t_saved = s->t_saved;
+  r->steps = s->steps, r->last_dt = s->last_dt, r->first_step = s->first_step;
+  r->resort = resort;
+  if (same)
+    r->nl.order = r->p.order; /* the list's rows name the same particles */
+  else
+    r->nl.valid = 0;
+  r->fp.loop = s->fp.loop;
+  r->hmax_all = c->variable_h ? hmax : 0.0;
+  if (sph_sim_pass(r, err)) return -1;
+  if (r->p.n != k)
+    return sph_error_set(err, "ranks: rank %d's store holds %zu particles after its pass, not %zu",
+                         rank, r->p.n, k);
+  size_t own = 0;
+  if (r->own_cs_max > t->cs_max) t->cs_max = r->own_cs_max;
+  if (s->fp.ledger) sph_ledger_sums_merge(&t->ledger, &r->own_ledger);
+  for (size_t j = 0; j < k; j++) {
+    const size_t i = s->from[j];
+    if (r->p.id[j] != p->id[i])
+      return sph_error_set(err, "ranks: rank %d's pass reordered its store", rank);
+    if (s->mark[i] != 1) continue; /* a ghost: its own rank writes it */
+    own++;
+    if (s->self >= 0) s->changed |= sph_particles_differ(p, i, &r->p, j);
+    sph_particles_copy_one(p, i, &r->p, j);
+    t->surface += (r->p.flags[j] & SPH_FLAG_FREE_SURFACE) != 0;
+  }
+  s->fig_passes++;
+  s->fig_own += (double)own;
+  s->fig_ghosts += (double)(k - own);
+  return 0;
+}
+
+/* The processes' parts shared (procs.h): each particle's record, as its
+ * own process left it, into every process's store: the arrays some
+ * process's pass changed (in a bit of some particle), the others being
+ * the same on every process before and after. Every process holds
+ * the same store in the same order, so a rank's particles are sent in
+ * storage order and placed by their owner alone. */
+static int share(sph_sim *s, const uint64_t *first, sph_error *err) {
+  sph_particles *p = &s->p;
+  /* the arrays the pass changed on some process, no others */
+  const unsigned long long arrays = sph_procs_or(s->changed);
+  s->changed = 0;
+  const size_t rec = sph_particles_record_size_of(p, arrays);
+  size_t counts[64] = {0}, at[64];
+  for (size_t i = 0; i < p->n; i++) {
+    s->owner[i] = (unsigned char)sph_decomp_owner(first, s->ranks, s->keys[i]);
+    counts[s->owner[i]]++;
+  }
+  const size_t need = (p->n + counts[s->self]) * rec;
+  int rc = 0;
+  if (need > s->cap_records) {
+    unsigned char *b = realloc(s->records, need);
+    if (b)
+      s->records = b, s->cap_records = need;
+    else
+      rc = sph_error_set(err, "out of memory for the processes' exchange (%zu bytes)", need);
+  }
+  if (sph_procs_agree(rc, err)) return -1;
+  unsigned char *all = s->records, *mine = s->records + p->n * rec;
+  size_t k = 0;
+  for (size_t i = 0; i < p->n; i++)
+    if (s->owner[i] == s->self) sph_particles_pack_of(p, i, arrays, mine + rec * k++);
+  if (sph_procs_agree(sph_procs_gather_records(mine, counts, rec, all, err), err)) return -1;
+  s->fig_bytes += (double)(counts[s->self] * rec) * (double)(s->ranks - 1); /* to each other */
+  size_t sum = 0;
+  for (int q = 0; q < s->ranks; q++)
+    at[q] = sum, sum += counts[q];
+  for (size_t i = 0; i < p->n; i++) {
+    const int q = s->owner[i];
+    if (q != s->self) sph_particles_unpack_of(p, i, arrays, all + rec * at[q]);
+    at[q]++;
+  }
+  return 0;
+}
+
+/* The sums of every process's rank, in rank order (exact: any order gives
+ * the same bits). */
+static void combine(sph_sim *s, rank_sums *t) {
+  t->cs_max = sph_procs_max(t->cs_max);
+  t->surface = sph_procs_sum(t->surface);
+  if (!s->fp.ledger) return;
+  sph_ledger_sums *all = s->ledger_all;
+  sph_procs_gather(&t->ledger, sizeof t->ledger, all);
+  sph_ledger_sums_init(&t->ledger);
+  for (int q = 0; q < s->ranks; q++)
+    sph_ledger_sums_merge(&t->ledger, &all[q]);
+  if (s->rank_order_sums) /* test hook: each rank's sums rounded, then added in rank order */
+    for (int k = 0; k < SPH_LEDGER_SUMS; k++) {
+      double sum = 0.0;
+      for (int q = 0; q < s->ranks; q++)
+        sum += sph_xsum_round(&all[q].s[k]);
+      sph_xsum_init(&t->ledger.s[k]);
+      sph_xsum_add(&t->ledger.s[k], sum);
+    }
 }
 
 int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
   const sph_case *c = s->c;
   sph_particles *p = &s->p;
-  sph_sim *r = s->sub;
   /* the whole store sorted when its own pass would sort it */
   const int resort = s->resort || s->skin == 0.0;
   s->resort = 0;
@@ -89,49 +278,35 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
           : 0;
   const sph_decomp_grid g = {SPH_RANKS_CELL * reach, c->periodic ? 1 + c->periodic_axis : 0,
                              c->periodic ? c->periodic_range[0] : 0.0, cells > 0 ? cells : 1};
-  uint64_t first[64];
-  if (sph_decomp_keys(&g, p, s->keys, err) || sph_decomp_cut(s->keys, p->n, s->ranks, first, err))
-    return -1;
-  double cs_max = 0.0;
-  size_t surface = 0;
-  sph_ledger_sums ledger;
-  sph_ledger_sums_init(&ledger);
-  for (int rank = 0; rank < s->ranks; rank++) {
-    if (sph_decomp_halo(&g, p, s->keys, first, s->ranks, rank, SPH_RANKS_DEPTH, s->mark, err) < 0 ||
-        sph_particles_take(&r->p, p, s->mark, err))
-      return -1;
-    size_t k = 0;
+  /* The cut moves no bit (each rank's own rates are the whole store's), so
+   * it is made again only when the store was sorted or reordered: between
+   * sorts a particle's rank is that of its cell at the last cut, and its
+   * ghosts are found from where the particles are now. */
+  uint64_t *first = s->first;
+  if (resort || s->n_cut != p->n || s->order_cut != p->order) {
     for (size_t i = 0; i < p->n; i++)
-      if (s->mark[i]) {
-        if (s->mark[i] == 2) r->p.flags[k] |= SPH_FLAG_GHOST;
-        s->from[k++] = i;
-      }
-    r->t = s->t, r->t_walls = s->t_walls, r->t_saved = s->t_saved;
-    r->steps = s->steps, r->last_dt = s->last_dt, r->first_step = s->first_step;
-    r->resort = resort;
-    r->nl.valid = 0;
-    r->fp.loop = s->fp.loop;
-    r->hmax_all = c->variable_h ? hmax : 0.0;
-    if (sph_sim_pass(r, err)) return -1;
-    if (r->p.n != k)
-      return sph_error_set(err,
-                           "ranks: rank %d's store holds %zu particles after its pass, not %zu",
-                           rank, r->p.n, k);
-    if (r->own_cs_max > cs_max) cs_max = r->own_cs_max;
-    if (s->fp.ledger) sph_ledger_sums_merge(&ledger, &r->own_ledger);
-    for (size_t j = 0; j < k; j++) {
-      const size_t i = s->from[j];
-      if (r->p.id[j] != p->id[i])
-        return sph_error_set(err, "ranks: rank %d's pass reordered its store", rank);
-      if (s->mark[i] != 1) continue; /* a ghost: its own rank writes it */
-      sph_particles_copy_one(p, i, &r->p, j);
-      surface += (r->p.flags[j] & SPH_FLAG_FREE_SURFACE) != 0;
-    }
+      s->weight[i] = p->kind[i] == SPH_KIND_FLUID ? SPH_RANKS_FLUID_WEIGHT : SPH_RANKS_WALL_WEIGHT;
+    if (sph_decomp_keys(&g, p, s->keys, err) ||
+        sph_decomp_cut_weighted(s->keys, s->weight, p->n, s->ranks, first, err))
+      return -1;
+    s->n_cut = p->n, s->order_cut = p->order;
   }
-  s->work.cs_sigma_max = cs_max;
+  rank_sums t;
+  memset(&t, 0, sizeof t);
+  sph_ledger_sums_init(&t.ledger);
+  if (s->self < 0) { /* every rank, one after the other */
+    for (int rank = 0; rank < s->ranks; rank++)
+      if (rank_pass(s, &g, first, rank, resort, hmax, &t, err)) return -1;
+  } else { /* this process's rank, then what the others made */
+    if (sph_procs_agree(rank_pass(s, &g, first, s->self, resort, hmax, &t, err), err) ||
+        share(s, first, err))
+      return -1;
+    combine(s, &t);
+  }
+  s->work.cs_sigma_max = t.cs_max;
   s->dt_paper_b = sph_dt_paper_b(&s->work, c->h, c->dt_factor);
-  s->n_surface = s->detect ? surface : 0;
-  if (s->fp.ledger) sph_ledger_finish(&s->ledger, &ledger, c->gravity);
+  s->n_surface = s->detect ? t.surface : 0;
+  if (s->fp.ledger) sph_ledger_finish(&s->ledger, &t.ledger, c->gravity);
   s->step_pass = s->steps;
   /* the state the pass saw, as the whole store's pass packs it: the
    * leap-frog's last good state (sim.c) */
@@ -140,6 +315,20 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
     sph_force_hot *h = &s->work.hot[i];
     h->x = p->x[i], h->y = p->y[i], h->vx = p->vx[i], h->vy = p->vy[i], h->rho = p->rho[i];
     SPH_IF3(h->z = p->z[i], h->vz = p->vz[i];)
+  }
+  return 0;
+}
+
+int sph_sim_procs_figures(const sph_sim *s, sph_procs_figures *f) {
+  memset(f, 0, sizeof *f);
+  if (s->self < 0) return 0;
+  const double mine[4] = {(double)s->fig_passes, s->fig_own, s->fig_ghosts, s->fig_bytes};
+  double all[4 * 64];
+  sph_procs_gather(mine, sizeof mine, all);
+  f->processes = s->ranks;
+  for (int q = 0; q < s->ranks; q++) {
+    if (q == 0) f->passes = (long)all[0];
+    f->own += all[4 * q + 1], f->ghosts += all[4 * q + 2], f->bytes += all[4 * q + 3];
   }
   return 0;
 }

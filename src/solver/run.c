@@ -30,6 +30,7 @@
 #include "core/parallel.h"
 #include "io/csv.h"
 #include "io/snapshot.h"
+#include "solver/procs.h"
 #include "solver/sim_internal.h"
 
 typedef struct outputs {
@@ -163,10 +164,10 @@ static long first_multiple_after(double interval, double t) {
  * k counted in integers so that no row is merged or skipped), then the
  * next k. */
 static int probe_step(sph_sim *s, outputs *o, sph_error *err) {
-  if (!o->probes) return 0;
-  const double iv = sph_sim_case(s)->probe_interval, t = sph_sim_time(s);
-  if (iv > 0.0 && t < (double)o->probe_k * iv) return 0;
-  if (write_probes(s, o, err)) return -1;
+  const sph_case *c = sph_sim_case(s);
+  const double iv = c->probe_interval, t = sph_sim_time(s);
+  if (!c->n_probes || (iv > 0.0 && t < (double)o->probe_k * iv)) return 0;
+  if (o->probes && write_probes(s, o, err)) return -1;
   if (iv > 0.0) o->probe_k = first_multiple_after(iv, t);
   return 0;
 }
@@ -510,6 +511,10 @@ static int open_outputs(sph_sim *s, outputs *out, const sph_snapshot_restart_dat
   return 0;
 }
 
+/* The outputs are one process's to write (procs.h): whether they were
+ * written is every process's to know, so that all stop together. */
+static int agreed(int rc, sph_error *err) { return sph_procs_agree(rc, err); }
+
 int sph_run(sph_sim *s, const sph_run_options *o, sph_run_result *r, sph_error *err) {
   return sph_run_resume(s, o, NULL, r, err);
 }
@@ -524,11 +529,16 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
   out.row_ctx = o->row_ctx;
   int rc = 0;
   int need_row = 0;
-  if (out.dir && open_outputs(s, &out, rd, &need_row, err)) {
+  if (agreed(out.dir ? open_outputs(s, &out, rd, &need_row, err) : 0, err)) {
     r->status = SPH_RUN_ERROR;
     outputs_free(&out);
     return -1;
   }
+  /* a run without the file lands on the probes' row times too: its steps
+   * are those of the run that writes them (procs.h: a process that does
+   * not write follows the one that does) */
+  if (!out.probes && c->n_probes && c->probe_interval > 0.0)
+    out.probe_k = first_multiple_after(c->probe_interval, sph_sim_time(s));
   if (o->progress) o->progress(o->progress_ctx, s);
   if (!rd && sph_sim_check_state(s, err)) { /* the initial state is checked like any other */
     r->status = SPH_RUN_BLOWUP;
@@ -536,9 +546,9 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
     return -1;
   }
   if (!rd) {
-    if (write_output(s, &out, r, err)) goto io_error;
-    if (probe_step(s, &out, err)) goto io_error;
-  } else if (need_row && write_rows(s, &out, need_row, err)) {
+    if (agreed(write_output(s, &out, r, err), err)) goto io_error;
+    if (agreed(probe_step(s, &out, err), err)) goto io_error;
+  } else if (agreed(need_row ? write_rows(s, &out, need_row, err) : 0, err)) {
     goto io_error;
   }
   /* the next output times after the current time */
@@ -567,7 +577,7 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
     /* a probe row's time is landed on too, so that probes.csv's rows fall on
      * the interval (issue 39, D11); one closer than `same` to the output is it */
     double target = next;
-    if (out.probes && c->probe_interval > 0.0) {
+    if (c->n_probes && c->probe_interval > 0.0) {
       const double pt = (double)out.probe_k * c->probe_interval;
       if (pt > t && pt < next - same) target = pt;
     }
@@ -588,21 +598,21 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
       break;
     }
     if (st) goto io_error;
-    if (probe_step(s, &out, err)) goto io_error;
+    if (agreed(probe_step(s, &out, err), err)) goto io_error;
     const int at_output = sph_sim_time(s) == next;
     if (at_output) {
       if (c->output_interval > 0.0) k = first_multiple_after(c->output_interval, next + same);
       while (j < c->n_output_times && c->output_times[j] <= next + same)
         j++;
-      if (write_output(s, &out, r, err)) goto io_error;
+      if (agreed(write_output(s, &out, r, err), err)) goto io_error;
     }
     if (stop_condition(s)) {
-      if (!at_output && write_output(s, &out, r, err)) goto io_error;
+      if (agreed(!at_output ? write_output(s, &out, r, err) : 0, err)) goto io_error;
       r->status = SPH_RUN_STOPPED;
       break;
     }
-    if (o->interrupt && *o->interrupt) {
-      if (!at_output && write_output(s, &out, r, err)) goto io_error;
+    if (o->interrupt && sph_procs_any(*o->interrupt)) { /* on any process: all stop here */
+      if (agreed(!at_output ? write_output(s, &out, r, err) : 0, err)) goto io_error;
       r->status = SPH_RUN_INTERRUPTED;
       break;
     }

@@ -24,6 +24,7 @@
 #include "physics/eos.h"
 #include "physics/kernel.h"
 #include "solver/diffusion.h"
+#include "solver/procs.h"
 #include "solver/sim_internal.h"
 
 static double sph_skin_fraction(void) {
@@ -401,17 +402,27 @@ static int test_ranks(void) {
   return e && *e ? atoi(e) : 1;
 }
 
-static int create(const sph_case *c, sph_sim **out, int ranks, sph_error *err);
+static int create(const sph_case *c, sph_sim **out, int ranks, int self, sph_error *err);
 
+/* Under an MPI launcher (procs.h) the passes are cut into one rank per
+ * process, this process making its own. */
 int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
-  return create(c, out, test_ranks(), err);
+  const int procs = sph_procs_count();
+  if (procs == 1) return create(c, out, test_ranks(), -1, err);
+  *out = NULL;
+  if (test_ranks() > 1)
+    return sph_error_set(err,
+                         "SPH_TEST_RANKS emulates ranks in one process: unset it under "
+                         "mpirun (%d processes)",
+                         procs);
+  return create(c, out, procs, sph_procs_rank(), err);
 }
 
 int sph_sim_create_rank_store(const sph_case *c, sph_sim **out, sph_error *err) {
-  return create(c, out, 1, err);
+  return create(c, out, 1, -1, err);
 }
 
-static int create(const sph_case *c, sph_sim **out, int ranks, sph_error *err) {
+static int create(const sph_case *c, sph_sim **out, int ranks, int self, sph_error *err) {
   *out = NULL;
   /* resources bounded before any particle is made (issue 21, D3, D4) */
   if (sph_case_check_size(c, c->max_particles, err)) return -1;
@@ -546,7 +557,7 @@ static int create(const sph_case *c, sph_sim **out, int ranks, sph_error *err) {
     sph_sim_diag(s, &row);
     sph_ledger_start(&s->ledger, &s->p, &row);
   }
-  if (sph_sim_ranks_init(s, ranks, err)) goto fail;
+  if (sph_sim_ranks_init(s, ranks, self, err)) goto fail;
   *out = s;
   return 0;
 fail:

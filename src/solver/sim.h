@@ -52,6 +52,18 @@ long sph_sim_steps(const sph_sim *s);
  * cut short to land on an output time left out: the first, the smallest and the time t at which
  * the smallest began. Returns 0 (and leaves the outputs alone) before the first such step. */
 int sph_sim_step_range(const sph_sim *s, double *first, double *smallest, double *t);
+/* The processes' figures of a run under mpirun (solver/procs.h), summed
+ * over the processes since sph_sim_create: the passes each process made,
+ * the particles they owned and held as ghosts (summed over the passes),
+ * and the bytes each one sent. A collective step: every process calls it.
+ * 0 (the figures zero) on one process. */
+typedef struct sph_procs_figures {
+  int processes;
+  long passes;
+  double own, ghosts; /* ghosts / own: the halo's share of the work */
+  double bytes;       /* sent, all processes together */
+} sph_procs_figures;
+int sph_sim_procs_figures(const sph_sim *s, sph_procs_figures *f);
 const sph_case *sph_sim_case(const sph_sim *s);
 /* The particles (storage order changes at every step; use id for identity). */
 sph_particles *sph_sim_particles(sph_sim *s);

@@ -75,6 +75,25 @@ struct sph_sim {
   unsigned char *mark;
   size_t *from; /* the whole store's index of each particle of sub */
   size_t cap_ranks;
+  /* the rank this process makes (procs.h), or -1: every rank, one after
+   * the other (SPH_TEST_RANKS); then each particle's rank, and the records
+   * the processes share */
+  int self;
+  unsigned char *owner;
+  unsigned char *records;
+  size_t cap_records;
+  sph_ledger_sums *ledger_all; /* every process's sums, in rank order */
+  unsigned char *mark_last;    /* the marks of this process's last pass, */
+  size_t n_mark_last;          /* over this many particles, */
+  uint64_t order_last;         /* the store in this order (particles.h) */
+  uint32_t *weight;            /* each particle's weight in the cut */
+  unsigned long long changed;  /* the arrays this process's pass changed */
+  uint64_t first[64];          /* the cut: each rank's first key (neighbours/decomp.h), */
+  size_t n_cut;                /* made over this many particles */
+  int rank_order_sums;         /* the test hook SPH_TEST_RANK_ORDER_SUMS (ranks.c) */
+  long fig_passes;             /* this process's figures (sph_sim_procs_figures) */
+  double fig_own, fig_ghosts, fig_bytes;
+  uint64_t order_cut; /* in this order */
   /* a rank's store (it is some sim's sub): ghosts carry SPH_FLAG_GHOST, and
    * each pass leaves the reductions over the rank's own particles here */
   int rank_store;
@@ -82,9 +101,10 @@ struct sph_sim {
   sph_ledger_sums own_ledger;
 };
 
-/* The passes on `ranks` ranks (SPH_TEST_RANKS, doc/testing.md): 0, or -1
- * with err (ranks.c). */
-int sph_sim_ranks_init(sph_sim *s, int ranks, sph_error *err);
+/* The passes on `ranks` ranks (SPH_TEST_RANKS, doc/testing.md), this
+ * process making rank `self` of them (procs.h) or, with self -1, all of
+ * them: 0, or -1 with err (ranks.c). */
+int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err);
 void sph_sim_ranks_free(sph_sim *s);
 /* One pass of the whole store made as the ranks make it, hmax the store's
  * largest smoothing length (ranks.c). */

@@ -1,0 +1,189 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * procs.c - the processes of a run under an MPI launcher (procs.h).
+ *
+ * Every call is a collective of MPI_COMM_WORLD made by the main thread
+ * (MPI_THREAD_FUNNELED): the OpenMP threads of a process never talk to the
+ * others. Without SPH_MPI (the serial build) every function is the
+ * one-process answer.
+ */
+#include "config.h"
+
+#include "solver/procs.h"
+
+#include <limits.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef SPH_MPI
+#include <mpi.h>
+#endif
+
+static int rank = 0, count = 1;
+
+int sph_procs_built(void) {
+#ifdef SPH_MPI
+  return 1;
+#else
+  return 0;
+#endif
+}
+
+/* The first of the launcher variables that is set, as a number; -1 if none. */
+static int launched(const char *const *names) {
+  for (; *names; names++) {
+    const char *e = getenv(*names);
+    if (e && *e) return atoi(e);
+  }
+  return -1;
+}
+
+int sph_procs_launched_rank(void) {
+  static const char *const names[] = {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK", NULL};
+  const int r = launched(names);
+  return r > 0 ? r : 0;
+}
+
+int sph_procs_launched_count(void) {
+  static const char *const names[] = {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", NULL};
+  const int n = launched(names);
+  return n > 1 ? n : 1;
+}
+
+int sph_procs_rank(void) { return rank; }
+int sph_procs_count(void) { return count; }
+
+#ifdef SPH_MPI
+
+static int started = 0;
+
+int sph_procs_start(sph_error *err) {
+  if (started) return 0;
+  static const char *const names[] = {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", NULL};
+  if (launched(names) < 0) return 0; /* not under a launcher: one process, no MPI at all */
+  int provided = 0;
+  if (MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS)
+    return sph_error_set(err, "MPI_Init_thread failed");
+  started = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &count);
+  if (provided < MPI_THREAD_FUNNELED)
+    return sph_error_set(err,
+                         "the MPI library gives no thread support (%d); threads need "
+                         "MPI_THREAD_FUNNELED",
+                         provided);
+  return 0;
+}
+
+void sph_procs_end(void) {
+  if (started) MPI_Finalize();
+  started = 0;
+}
+
+int sph_procs_any(int flag) {
+  if (count == 1) return flag != 0;
+  int mine = flag != 0, any = 0;
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  return any;
+}
+
+int sph_procs_agree(int rc, sph_error *err) {
+  if (count == 1) return rc ? -1 : 0;
+  int mine = rc ? rank : count, first = count;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (first == count) return 0;
+  char msg[sizeof err->msg];
+  memcpy(msg, err->msg, sizeof msg);
+  MPI_Bcast(msg, (int)sizeof msg, MPI_CHAR, first, MPI_COMM_WORLD);
+  msg[sizeof msg - 1] = '\0';
+  if (first != rank) sph_error_set(err, "process %d of %d: %s", first, count, msg);
+  return -1;
+}
+
+double sph_procs_max(double x) {
+  if (count == 1) return x;
+  double m = x;
+  MPI_Allreduce(&x, &m, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  return m;
+}
+
+unsigned long long sph_procs_or(unsigned long long bits) {
+  if (count == 1) return bits;
+  unsigned long long all = 0;
+  MPI_Allreduce(&bits, &all, 1, MPI_UNSIGNED_LONG_LONG, MPI_BOR, MPI_COMM_WORLD);
+  return all;
+}
+
+size_t sph_procs_sum(size_t n) {
+  if (count == 1) return n;
+  uint64_t mine = n, all = 0;
+  MPI_Allreduce(&mine, &all, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+  return (size_t)all;
+}
+
+void sph_procs_gather(const void *mine, size_t len, void *all) {
+  if (count == 1) {
+    memcpy(all, mine, len);
+    return;
+  }
+  MPI_Allgather(mine, (int)len, MPI_BYTE, all, (int)len, MPI_BYTE, MPI_COMM_WORLD);
+}
+
+int sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec, void *all,
+                             sph_error *err) {
+  if (count == 1) {
+    memcpy(all, mine, counts[0] * rec);
+    return 0;
+  }
+  int *n = malloc(2 * (size_t)count * sizeof *n);
+  if (!n) return sph_error_set(err, "out of memory for the processes' exchange");
+  int *at = n + count;
+  size_t total = 0;
+  for (int r = 0; r < count; r++) {
+    if (counts[r] > INT_MAX || total > INT_MAX) {
+      free(n);
+      return sph_error_set(err, "the processes' exchange: more than %d particles", INT_MAX);
+    }
+    n[r] = (int)counts[r];
+    at[r] = (int)total;
+    total += counts[r];
+  }
+  MPI_Datatype t;
+  MPI_Type_contiguous((int)rec, MPI_BYTE, &t);
+  MPI_Type_commit(&t);
+  const int rc = MPI_Allgatherv(mine, n[rank], t, all, n, at, t, MPI_COMM_WORLD);
+  MPI_Type_free(&t);
+  free(n);
+  return rc == MPI_SUCCESS ? 0 : sph_error_set(err, "MPI_Allgatherv failed (%d)", rc);
+}
+
+void sph_procs_broadcast_int(int *x) {
+  if (count > 1) MPI_Bcast(x, 1, MPI_INT, 0, MPI_COMM_WORLD);
+}
+
+#else /* one process */
+
+int sph_procs_start(sph_error *err) {
+  (void)err;
+  return 0;
+}
+void sph_procs_end(void) {}
+int sph_procs_any(int flag) { return flag != 0; }
+int sph_procs_agree(int rc, sph_error *err) {
+  (void)err;
+  return rc ? -1 : 0;
+}
+double sph_procs_max(double x) { return x; }
+size_t sph_procs_sum(size_t n) { return n; }
+unsigned long long sph_procs_or(unsigned long long bits) { return bits; }
+void sph_procs_gather(const void *mine, size_t len, void *all) { memcpy(all, mine, len); }
+int sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec, void *all,
+                             sph_error *err) {
+  (void)err;
+  memcpy(all, mine, counts[0] * rec);
+  return 0;
+}
+void sph_procs_broadcast_int(int *x) { (void)x; }
+
+#endif

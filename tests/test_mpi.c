@@ -1,0 +1,268 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * test_mpi.c - `sph run` under mpirun (solver/procs.h, doc/parallel.md):
+ * every output file of a run on 1, 2, 3, 4 and 7 processes, each of 1 and
+ * 2 threads, is byte for byte the file of the same program run as one
+ * process without mpirun (the serial path: no MPI at all, the bytes the
+ * golden files hold):
+ *   - 2-D, the default scheme with its walls, pressure and level probes and
+ *     the energy ledger (every count and thread number);
+ *   - 2-D, a moving gate; a periodic axis; mdbc walls with particle shifting
+ *     and the ledger;
+ *   - 3-D, the default scheme with probes and the ledger (every count and
+ *     thread number), through `sph`'s hand-over to `sph-3d`;
+ *   - a run on 4 processes restarted from its snapshot on 3;
+ *   - the comparison sees a reduction summed in rank order
+ *     (SPH_TEST_RANK_ORDER_SUMS=1 rounds each rank's ledger sums and adds
+ *     them in rank order: the files must then differ);
+ *   - one process killed with SIGKILL ends the job (mpirun's report, well
+ *     within 30 s), and a restart from the last snapshot left gives the
+ *     uninterrupted run's bytes.
+ * Without --with-mpi the test says so and is skipped (exit 77).
+ */
+#include "config.h"
+
+#include <dirent.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/time.h>
+#include <unistd.h>
+
+#include "testutil.h"
+
+/* mpirun with the flags a test machine needs: more processes than cores,
+ * and root (a container's CI) allowed. */
+static const char *mpirun(void) {
+  static char cmd[1024];
+  const char *m = getenv("SPH_MPIRUN");
+  snprintf(cmd, sizeof cmd,
+           "'%s' --oversubscribe --mca mpi_yield_when_idle 1%s -x SPH_TEST_OMP_MIN -x "
+           "OMP_WAIT_POLICY",
+           m && *m ? m : "mpirun", geteuid() == 0 ? " --allow-run-as-root" : "");
+  return cmd;
+}
+
+/* Runs the case on `procs` processes (0: without mpirun) of `threads`
+ * threads, with `env` before the command, into a new directory. */
+static char *run(const char *prog, const char *case_rel, const char *sets, const char *env,
+                 int procs, int threads) {
+  char *d = sph_test_tmpdir(), cmd[8192], launch[1100] = "";
+  if (procs > 0) snprintf(launch, sizeof launch, "%s -n %d", mpirun(), procs);
+  snprintf(cmd, sizeof cmd,
+           "SPH_TEST_OMP_MIN=0 %s %s '%s' run --quiet --threads %d '%s' -o '%s' %s", env, launch,
+           sph_test_build(prog), threads, sph_test_src(case_rel), d, sets);
+  const int rc = sph_test_system(cmd);
+  if (rc) printf("\n  %s on %d processes: exit %d", case_rel, procs, rc);
+  CU_ASSERT_FATAL(rc == 0);
+  return d;
+}
+
+/* The case on each process count of procs[], with 1 and 2 threads (both,
+ * or in turn when `both` is 0), against the run without mpirun. */
+static void same_on_processes(const char *prog, const char *case_rel, const char *sets,
+                              const int *procs, int n_procs, int both) {
+  char *one = run(prog, case_rel, sets, "", 0, 1);
+  for (int k = 0; k < n_procs; k++)
+    for (int threads = 1; threads <= 2; threads++) {
+      if (!both && threads != 1 + k % 2) continue;
+      char *d = run(prog, case_rel, sets, "", procs[k], threads);
+      const int same = sph_test_same_dirs(one, d);
+      printf("\n  %s, %d processes of %d thread(s): %s", case_rel, procs[k], threads,
+             same ? "identical" : "DIFFERENT");
+      CU_ASSERT(same);
+      sph_test_rmtree(d);
+      free(d);
+    }
+  sph_test_rmtree(one);
+  free(one);
+}
+
+static const int all_counts[] = {1, 2, 3, 4, 7};
+static const int two_three[] = {2, 3};
+
+static void test_default_scheme_2d(void) {
+  same_on_processes("src/sph", "cases/lobovsky_h300.yaml",
+                    "--set numerics.dx=0.02 --set time.end=0.1 --set output.energy=true",
+                    all_counts, 5, 1);
+}
+
+static void test_gate_periodic_mdbc(void) {
+  same_on_processes("src/sph", "cases/wet_bed_dam_break.yaml",
+                    "--set numerics.dx=0.015 --set time.end=0.1", two_three, 2, 0);
+  same_on_processes("src/sph", "cases/inclined_plane.yaml",
+                    "--set time.end=0.1 --set time.output_interval=0.05", two_three, 2, 0);
+  same_on_processes("src/sph", "cases/martin_moyce_coarse.yaml",
+                    "--set time.end=0.05 --set time.stop=none --set 'geometry.tank={x: [0.0, "
+                    "0.2286], y: [0.0, 0.17145], boundary: mdbc, free_slip: true}' "
+                    "--set 'numerics.shifting={coefficient: 2}' --set output.energy=true",
+                    two_three, 2, 0);
+}
+
+static void test_default_scheme_3d(void) {
+  same_on_processes("src/sph", "cases/lobovsky_h300_3d.yaml",
+                    "--set numerics.dx=0.04 --set time.end=0.06 --set time.output_interval=0.02 "
+                    "--set output.energy=true",
+                    all_counts, 5, 1);
+}
+
+/* A run to t = 0.04 s on 4 processes, restarted from its snapshot at
+ * 0.02 s on 3 into a new directory: the snapshot at 0.04 s is the serial
+ * run's, byte for byte. */
+static void test_restart_on_other_count(void) {
+  const char *c = "cases/martin_moyce_coarse.yaml";
+  const char *sets = "--set time.end=0.04 --set time.output_interval=0.02 --set time.stop=none "
+                     "--set output.energy=true";
+  char *whole = run("src/sph", c, sets, "", 0, 1);
+  char *part = run("src/sph", c, sets, "", 4, 1), *again = sph_test_tmpdir();
+  char cmd[16384];
+  snprintf(
+      cmd, sizeof cmd,
+      "SPH_TEST_OMP_MIN=0 %s -n 3 '%s' run --quiet --restart '%s/snap_0001.h5' '%s' -o '%s' %s",
+      mpirun(), sph_test_build("src/sph"), part, sph_test_src(c), again, sets);
+  const int rc = sph_test_system(cmd);
+  CU_ASSERT(rc == 0);
+  snprintf(cmd, sizeof cmd, "cmp -s '%s/snap_0002.h5' '%s/snap_0002.h5'", whole, again);
+  const int same = rc == 0 && sph_test_system(cmd) == 0;
+  printf("\n  restarted on 3 processes from a 4-process run's snapshot: %s",
+         same ? "identical" : "DIFFERENT");
+  CU_ASSERT(same);
+  sph_test_rmtree(whole);
+  sph_test_rmtree(part);
+  sph_test_rmtree(again);
+  free(whole);
+  free(part);
+  free(again);
+}
+
+/* The ledger's sums rounded per rank and added in rank order: the files
+ * differ from the serial run's (the comparison above would fail). */
+static void test_rank_order_sums_are_seen(void) {
+  const char *c = "cases/lobovsky_h300.yaml";
+  const char *sets = "--set numerics.dx=0.02 --set time.end=0.2 --set output.energy=true";
+  char *one = run("src/sph", c, sets, "", 0, 1);
+  char *d = run("src/sph", c, sets, "SPH_TEST_RANK_ORDER_SUMS=1", 3, 1);
+  char a[4096], b[4096];
+  snprintf(a, sizeof a, "%s/diagnostics.csv", one);
+  snprintf(b, sizeof b, "%s/diagnostics.csv", d);
+  char cmd[9000];
+  snprintf(cmd, sizeof cmd, "cmp -s '%s' '%s'", a, b);
+  const int differ = sph_test_system(cmd) != 0;
+  printf("\n  the ledger summed in rank order on 3 processes: %s",
+         differ ? "seen (diagnostics.csv differs)" : "NOT SEEN");
+  CU_ASSERT(differ);
+  sph_test_rmtree(one);
+  sph_test_rmtree(d);
+  free(one);
+  free(d);
+}
+
+static double now(void) {
+  struct timeval tv;
+  gettimeofday(&tv, NULL);
+  return (double)tv.tv_sec + 1e-6 * (double)tv.tv_usec;
+}
+
+/* The pid of a process whose command line holds `a` and `b`, other than
+ * the shell that started it; 0 if none (read from /proc). */
+static long find_process(const char *a, const char *b) {
+  long found = 0;
+  DIR *proc = opendir("/proc");
+  if (!proc) return 0;
+  struct dirent *e;
+  while (!found && (e = readdir(proc))) {
+    char *end;
+    const long pid = strtol(e->d_name, &end, 10);
+    if (*end || pid <= 0) continue;
+    char path[300], line[8192];
+    snprintf(path, sizeof path, "/proc/%ld/cmdline", pid);
+    FILE *f = fopen(path, "rb");
+    if (!f) continue;
+    const size_t n = fread(line, 1, sizeof line - 1, f);
+    fclose(f);
+    for (size_t k = 0; k < n; k++)
+      if (!line[k]) line[k] = ' ';
+    line[n] = 0;
+    if (strstr(line, a) && strstr(line, b) && !strstr(line, "mpirun") && !strstr(line, "sh -c"))
+      found = pid;
+  }
+  closedir(proc);
+  return found;
+}
+
+/* One of 2 processes killed (SIGKILL) while the job runs: mpirun ends the
+ * job with its report within 30 s; the snapshots written are whole, and a
+ * restart from the last one (on 2 processes) gives the bytes of the
+ * uninterrupted serial run's next snapshot. */
+static void test_killed_process(void) {
+  const char *c = "cases/lobovsky_h300.yaml";
+  const double every = 0.05;
+  const char *sets = "--set numerics.dx=0.0075 --set time.output_interval=0.05";
+  char *d = sph_test_tmpdir(), cmd[16384], path[4096];
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && (%s -n 2 '%s' run --quiet --threads 1 '%s' -o '%s/out' %s "
+           "--set time.end=1.5 > job.txt 2>&1; echo $? > status.txt) &",
+           d, mpirun(), sph_test_build("src/sph"), sph_test_src(c), d, sets);
+  CU_ASSERT_FATAL(sph_test_system(cmd) == 0);
+  snprintf(path, sizeof path, "%s/out/snap_0002.h5", d);
+  for (int i = 0; i < 1200 && access(path, F_OK) != 0; i++)
+    usleep(100000);
+  char out[4200];
+  snprintf(out, sizeof out, "%s/out", d);
+  const long pid = find_process("run --quiet --threads 1", out);
+  printf("\n  killing process %ld of the job", pid);
+  CU_ASSERT_FATAL(pid > 0);
+  const double t0 = now();
+  CU_ASSERT_FATAL(kill((pid_t)pid, SIGKILL) == 0);
+  snprintf(path, sizeof path, "%s/status.txt", d);
+  double waited = 0.0;
+  while (access(path, F_OK) != 0 && waited < 60.0) {
+    usleep(100000);
+    waited = now() - t0;
+  }
+  printf("\n  a process killed: the job ended after %.1f s", waited);
+  CU_ASSERT(waited < 30.0);
+  snprintf(cmd, sizeof cmd, "grep -q 'exited on signal 9' '%s/job.txt'", d);
+  CU_ASSERT(sph_test_system(cmd) == 0);
+  /* the last whole snapshot, and the one after it from a restart */
+  int last = -1;
+  for (int k = 0; k < 10000; k++) {
+    snprintf(path, sizeof path, "%s/out/snap_%04d.h5", d, k);
+    if (access(path, F_OK) != 0) break;
+    last = k;
+  }
+  CU_ASSERT_FATAL(last >= 2);
+  const double end = (double)(last + 1) * every;
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && SPH_TEST_OMP_MIN=0 %s -n 2 '%s' run --quiet --restart out/snap_%04d.h5 '%s' "
+           "-o again %s "
+           "--set time.end=%.17g && "
+           "SPH_TEST_OMP_MIN=0 '%s' run --quiet '%s' -o whole %s --set time.end=%.17g && "
+           "cmp -s again/snap_%04d.h5 whole/snap_%04d.h5",
+           d, mpirun(), sph_test_build("src/sph"), last, sph_test_src(c), sets, end,
+           sph_test_build("src/sph"), sph_test_src(c), sets, end, last + 1, last + 1);
+  const int same = sph_test_system(cmd) == 0;
+  printf("\n  restarted on 2 processes from snap_%04d.h5, the last left: %s", last,
+         same ? "identical" : "DIFFERENT");
+  CU_ASSERT(same);
+  sph_test_rmtree(d);
+  free(d);
+}
+
+int main(void) {
+#ifndef SPH_MPI
+  printf("test_mpi: this build has no MPI; ./configure --with-mpi (Debian: apt-get install "
+         "libopenmpi-dev openmpi-bin) runs these tests\n");
+  return 77;
+#else
+  CU_TestInfo tests[] = {{"2-D, the default scheme, 1-7 processes", test_default_scheme_2d},
+                         {"2-D, a gate, a periodic axis, mdbc", test_gate_periodic_mdbc},
+                         {"3-D, the default scheme, 1-7 processes", test_default_scheme_3d},
+                         {"a restart on another process count", test_restart_on_other_count},
+                         {"a reduction in rank order is seen", test_rank_order_sums_are_seen},
+                         {"a killed process", test_killed_process},
+                         CU_TEST_INFO_NULL};
+  return sph_test_main("mpi", tests);
+#endif
+}
