@@ -44,6 +44,12 @@ static const char *mpirun(void) {
   return cmd;
 }
 
+static double now(void) {
+  struct timeval tv;
+  gettimeofday(&tv, NULL);
+  return (double)tv.tv_sec + 1e-6 * (double)tv.tv_usec;
+}
+
 /* Runs the case on `procs` processes (0: without mpirun) of `threads`
  * threads, with `env` before the command, into a new directory. */
 static char *run(const char *prog, const char *case_rel, const char *sets, const char *env,
@@ -67,10 +73,11 @@ static void same_on_processes(const char *prog, const char *case_rel, const char
   for (int k = 0; k < n_procs; k++)
     for (int threads = 1; threads <= 2; threads++) {
       if (!both && threads != 1 + k % 2) continue;
+      const double t0 = now();
       char *d = run(prog, case_rel, sets, "", procs[k], threads);
       const int same = sph_test_same_dirs(one, d);
-      printf("\n  %s, %d processes of %d thread(s): %s", case_rel, procs[k], threads,
-             same ? "identical" : "DIFFERENT");
+      printf("\n  %s, %d processes of %d thread(s): %s (%.1f s)", case_rel, procs[k], threads,
+             same ? "identical" : "DIFFERENT", now() - t0);
       CU_ASSERT(same);
       sph_test_rmtree(d);
       free(d);
@@ -156,12 +163,6 @@ static void test_rank_order_sums_are_seen(void) {
   sph_test_rmtree(d);
   free(one);
   free(d);
-}
-
-static double now(void) {
-  struct timeval tv;
-  gettimeofday(&tv, NULL);
-  return (double)tv.tv_sec + 1e-6 * (double)tv.tv_usec;
 }
 
 /* The pid of a process whose command line holds `a` and `b`, other than
