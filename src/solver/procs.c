@@ -158,10 +158,6 @@ int sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec,
   return rc == MPI_SUCCESS ? 0 : sph_error_set(err, "MPI_Allgatherv failed (%d)", rc);
 }
 
-void sph_procs_broadcast_int(int *x) {
-  if (count > 1) MPI_Bcast(x, 1, MPI_INT, 0, MPI_COMM_WORLD);
-}
-
 #else /* one process */
 
 int sph_procs_start(sph_error *err) {
@@ -184,6 +180,4 @@ int sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec,
   memcpy(all, mine, counts[0] * rec);
   return 0;
 }
-void sph_procs_broadcast_int(int *x) { (void)x; }
-
 #endif

@@ -72,9 +72,6 @@ void sph_procs_gather(const void *mine, size_t len, void *all);
 int sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec, void *all,
                              sph_error *err);
 
-/* rank 0's value of *x on every process. */
-void sph_procs_broadcast_int(int *x);
-
 #ifdef __cplusplus
 }
 #endif

@@ -201,17 +201,15 @@ static int rank_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *first
  * the same on every process before and after. Every process holds
  * the same store in the same order, so a rank's particles are sent in
  * storage order and placed by their owner alone. */
-static int share(sph_sim *s, const uint64_t *first, sph_error *err) {
+static int share(sph_sim *s, sph_error *err) {
   sph_particles *p = &s->p;
   /* the arrays the pass changed on some process, no others */
   const unsigned long long arrays = sph_procs_or(s->changed);
   s->changed = 0;
   const size_t rec = sph_particles_record_size_of(p, arrays);
   size_t counts[64] = {0}, at[64];
-  for (size_t i = 0; i < p->n; i++) {
-    s->owner[i] = (unsigned char)sph_decomp_owner(first, s->ranks, s->keys[i]);
+  for (size_t i = 0; i < p->n; i++)
     counts[s->owner[i]]++;
-  }
   const size_t need = (p->n + counts[s->self]) * rec;
   int rc = 0;
   if (need > s->cap_records) {
@@ -290,6 +288,9 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
         sph_decomp_cut_weighted(s->keys, s->weight, p->n, s->ranks, first, err))
       return -1;
     s->n_cut = p->n, s->order_cut = p->order;
+    if (s->self >= 0) /* each particle's process, for the sharing (share) */
+      for (size_t i = 0; i < p->n; i++)
+        s->owner[i] = (unsigned char)sph_decomp_owner(first, s->ranks, s->keys[i]);
   }
   rank_sums t;
   memset(&t, 0, sizeof t);
@@ -299,7 +300,7 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
       if (rank_pass(s, &g, first, rank, resort, hmax, &t, err)) return -1;
   } else { /* this process's rank, then what the others made */
     if (sph_procs_agree(rank_pass(s, &g, first, s->self, resort, hmax, &t, err), err) ||
-        share(s, first, err))
+        share(s, err))
       return -1;
     combine(s, &t);
   }
