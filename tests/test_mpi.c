@@ -17,7 +17,10 @@
  *     them in rank order: the files must then differ);
  *   - one process killed with SIGKILL ends the job (mpirun's report, well
  *     within 30 s), and a restart from the last snapshot left gives the
- *     uninterrupted run's bytes.
+ *     uninterrupted run's bytes;
+ *   - SIGTERM to mpirun: rank 0's message and a complete final snapshot,
+ *     from which a restart on 3 processes reaches the uninterrupted run's
+ *     state.
  * Without --with-mpi the test says so and is skipped (exit 77).
  */
 #include "config.h"
@@ -30,6 +33,7 @@
 #include <sys/time.h>
 #include <unistd.h>
 
+#include "snapcmp.h"
 #include "testutil.h"
 
 /* mpirun with the flags a test machine needs: more processes than cores,
@@ -37,10 +41,11 @@
 static const char *mpirun(void) {
   static char cmd[1024];
   const char *m = getenv("SPH_MPIRUN");
-  snprintf(cmd, sizeof cmd,
-           "'%s' --oversubscribe --mca mpi_yield_when_idle 1%s -x SPH_TEST_OMP_MIN -x "
-           "OMP_WAIT_POLICY",
-           m && *m ? m : "mpirun", geteuid() == 0 ? " --allow-run-as-root" : "");
+  snprintf(
+      cmd, sizeof cmd,
+      "'%s' --oversubscribe --bind-to none --mca mpi_yield_when_idle 1%s -x SPH_TEST_OMP_MIN -x "
+      "OMP_WAIT_POLICY",
+      m && *m ? m : "mpirun", geteuid() == 0 ? " --allow-run-as-root" : "");
   return cmd;
 }
 
@@ -165,9 +170,10 @@ static void test_rank_order_sums_are_seen(void) {
   free(d);
 }
 
-/* The pid of a process whose command line holds `a` and `b`, other than
- * the shell that started it; 0 if none (read from /proc). */
-static long find_process(const char *a, const char *b) {
+/* The pid of a process whose command line holds `a` and `b`: mpirun itself
+ * when `launcher` is 1, else one of the processes it started (not the
+ * shell that started it); 0 if none (read from /proc). */
+static long find_process(const char *a, const char *b, int launcher) {
   long found = 0;
   DIR *proc = opendir("/proc");
   if (!proc) return 0;
@@ -182,14 +188,62 @@ static long find_process(const char *a, const char *b) {
     if (!f) continue;
     const size_t n = fread(line, 1, sizeof line - 1, f);
     fclose(f);
+    line[n] = 0;
+    const int is_mpirun = strstr(line, "mpirun") != NULL; /* the program: the first string */
     for (size_t k = 0; k < n; k++)
       if (!line[k]) line[k] = ' ';
-    line[n] = 0;
-    if (strstr(line, a) && strstr(line, b) && !strstr(line, "mpirun") && !strstr(line, "sh -c"))
+    if (strstr(line, a) && strstr(line, b) && is_mpirun == launcher && !strstr(line, "sh -c"))
       found = pid;
   }
   closedir(proc);
   return found;
+}
+
+/* The long 2-D job of the signal tests, started on 2 processes in the
+ * background in d (its output in d/out, mpirun's in d/job.txt, its exit
+ * status in d/status.txt once it ends) with `quiet` flags; returns when its
+ * third snapshot exists: the pid of mpirun (launcher 1) or of one of its
+ * processes. */
+static const char *long_case = "cases/lobovsky_h300.yaml";
+static const char *long_sets = "--set numerics.dx=0.0075 --set time.output_interval=0.05";
+
+static long start_long_job(const char *d, const char *quiet, int launcher) {
+  char cmd[16384], path[4200], out[4200], what[64];
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && (%s -n 2 '%s' run %s--threads 1 '%s' -o '%s/out' %s "
+           "--set time.end=1.5 > job.txt 2>&1; echo $? > status.txt) &",
+           d, mpirun(), sph_test_build("src/sph"), quiet, sph_test_src(long_case), d, long_sets);
+  if (sph_test_system(cmd) != 0) return 0;
+  snprintf(path, sizeof path, "%s/out/snap_0002.h5", d);
+  for (int i = 0; i < 1200 && access(path, F_OK) != 0; i++)
+    usleep(100000);
+  snprintf(out, sizeof out, "%s/out", d);
+  snprintf(what, sizeof what, "run %s--threads 1", quiet);
+  return find_process(what, out, launcher);
+}
+
+/* Seconds from t0 until the job of start_long_job ended (at most 60). */
+static double wait_job(const char *d, double t0) {
+  char path[4200];
+  snprintf(path, sizeof path, "%s/status.txt", d);
+  double waited = 0.0;
+  while (access(path, F_OK) != 0 && waited < 60.0) {
+    usleep(100000);
+    waited = now() - t0;
+  }
+  return waited;
+}
+
+/* The last snapshot the job left in d/out; -1 if none. */
+static int last_snapshot(const char *d) {
+  char path[4200];
+  int last = -1;
+  for (int k = 0; k < 10000; k++) {
+    snprintf(path, sizeof path, "%s/out/snap_%04d.h5", d, k);
+    if (access(path, F_OK) != 0) break;
+    last = k;
+  }
+  return last;
 }
 
 /* One of 2 processes killed (SIGKILL) while the job runs: mpirun ends the
@@ -197,42 +251,20 @@ static long find_process(const char *a, const char *b) {
  * restart from the last one (on 2 processes) gives the bytes of the
  * uninterrupted serial run's next snapshot. */
 static void test_killed_process(void) {
-  const char *c = "cases/lobovsky_h300.yaml";
   const double every = 0.05;
-  const char *sets = "--set numerics.dx=0.0075 --set time.output_interval=0.05";
-  char *d = sph_test_tmpdir(), cmd[16384], path[4096];
-  snprintf(cmd, sizeof cmd,
-           "cd '%s' && (%s -n 2 '%s' run --quiet --threads 1 '%s' -o '%s/out' %s "
-           "--set time.end=1.5 > job.txt 2>&1; echo $? > status.txt) &",
-           d, mpirun(), sph_test_build("src/sph"), sph_test_src(c), d, sets);
-  CU_ASSERT_FATAL(sph_test_system(cmd) == 0);
-  snprintf(path, sizeof path, "%s/out/snap_0002.h5", d);
-  for (int i = 0; i < 1200 && access(path, F_OK) != 0; i++)
-    usleep(100000);
-  char out[4200];
-  snprintf(out, sizeof out, "%s/out", d);
-  const long pid = find_process("run --quiet --threads 1", out);
+  char *d = sph_test_tmpdir(), cmd[16384];
+  const long pid = start_long_job(d, "--quiet ", 0);
   printf("\n  killing process %ld of the job", pid);
   CU_ASSERT_FATAL(pid > 0);
   const double t0 = now();
   CU_ASSERT_FATAL(kill((pid_t)pid, SIGKILL) == 0);
-  snprintf(path, sizeof path, "%s/status.txt", d);
-  double waited = 0.0;
-  while (access(path, F_OK) != 0 && waited < 60.0) {
-    usleep(100000);
-    waited = now() - t0;
-  }
+  const double waited = wait_job(d, t0);
   printf("\n  a process killed: the job ended after %.1f s", waited);
   CU_ASSERT(waited < 30.0);
   snprintf(cmd, sizeof cmd, "grep -q 'exited on signal 9' '%s/job.txt'", d);
   CU_ASSERT(sph_test_system(cmd) == 0);
   /* the last whole snapshot, and the one after it from a restart */
-  int last = -1;
-  for (int k = 0; k < 10000; k++) {
-    snprintf(path, sizeof path, "%s/out/snap_%04d.h5", d, k);
-    if (access(path, F_OK) != 0) break;
-    last = k;
-  }
+  const int last = last_snapshot(d);
   CU_ASSERT_FATAL(last >= 2);
   const double end = (double)(last + 1) * every;
   snprintf(cmd, sizeof cmd,
@@ -241,11 +273,60 @@ static void test_killed_process(void) {
            "--set time.end=%.17g && "
            "SPH_TEST_OMP_MIN=0 '%s' run --quiet '%s' -o whole %s --set time.end=%.17g && "
            "cmp -s again/snap_%04d.h5 whole/snap_%04d.h5",
-           d, mpirun(), sph_test_build("src/sph"), last, sph_test_src(c), sets, end,
-           sph_test_build("src/sph"), sph_test_src(c), sets, end, last + 1, last + 1);
+           d, mpirun(), sph_test_build("src/sph"), last, sph_test_src(long_case), long_sets, end,
+           sph_test_build("src/sph"), sph_test_src(long_case), long_sets, end, last + 1, last + 1);
   const int same = sph_test_system(cmd) == 0;
   printf("\n  restarted on 2 processes from snap_%04d.h5, the last left: %s", last,
          same ? "identical" : "DIFFERENT");
+  CU_ASSERT(same);
+  sph_test_rmtree(d);
+  free(d);
+}
+
+/* SIGTERM to mpirun while 2 processes run (a batch system's time limit):
+ * Open MPI passes it on, the processes stop after the same step, rank 0
+ * says so and writes the final snapshot, complete; a restart from it on 3
+ * processes reaches an output time past it in the state of the
+ * uninterrupted serial run (compared field by field: the resumed run's
+ * snapshot has another index). */
+static void test_terminated_job(void) {
+  char *d = sph_test_tmpdir(), cmd[16384], path[4200];
+  const long pid = start_long_job(d, "", 1);
+  printf("\n  SIGTERM to mpirun (%ld)", pid);
+  CU_ASSERT_FATAL(pid > 0);
+  CU_ASSERT_FATAL(kill((pid_t)pid, SIGTERM) == 0);
+  const double waited = wait_job(d, now());
+  printf(": the job ended after %.1f s", waited);
+  CU_ASSERT_FATAL(waited < 60.0);
+  snprintf(cmd, sizeof cmd, "grep -q 'interrupted by SIGTERM' '%s/job.txt'", d);
+  const int said = sph_test_system(cmd) == 0;
+  if (!said) {
+    snprintf(cmd, sizeof cmd, "tail -5 '%s/job.txt'", d);
+    sph_test_system(cmd);
+  }
+  CU_ASSERT(said);
+  const int last = last_snapshot(d);
+  CU_ASSERT_FATAL(last >= 3);
+  snprintf(path, sizeof path, "%s/out/snap_%04d.h5", d, last);
+  size_t n = 0;
+  double ti = 0.0;
+  CU_ASSERT_FATAL(snapcmp_complete(path, &n, &ti));
+  /* the final snapshot is the interruption's: off the output grid */
+  CU_ASSERT(ti > 0.05 * (last - 1) && ti < 0.05 * last);
+  const double t2 = 0.05 * (last + 1);
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && SPH_TEST_OMP_MIN=0 %s -n 3 '%s' run --quiet --restart out/snap_%04d.h5 '%s' "
+           "-o again %s --set time.end=%.17g && "
+           "SPH_TEST_OMP_MIN=0 '%s' run --quiet '%s' -o whole %s --set time.end=%.17g",
+           d, mpirun(), sph_test_build("src/sph"), last, sph_test_src(long_case), long_sets, t2,
+           sph_test_build("src/sph"), sph_test_src(long_case), long_sets, t2);
+  CU_ASSERT_FATAL(sph_test_system(cmd) == 0);
+  char a[4300], b[4300];
+  snprintf(a, sizeof a, "%s/again/snap_%04d.h5", d, last + 2);
+  snprintf(b, sizeof b, "%s/whole/snap_%04d.h5", d, last + 1);
+  const int same = snapcmp("restart after SIGTERM", a, b, 1) == 0;
+  printf("\n  restarted on 3 processes from the final snapshot (t = %.4f s) to t = %.2f s: %s", ti,
+         t2, same ? "the uninterrupted run's state" : "DIFFERENT");
   CU_ASSERT(same);
   sph_test_rmtree(d);
   free(d);
@@ -263,6 +344,7 @@ int main(void) {
                          {"a restart on another process count", test_restart_on_other_count},
                          {"a reduction in rank order is seen", test_rank_order_sums_are_seen},
                          {"a killed process", test_killed_process},
+                         {"SIGTERM to mpirun", test_terminated_job},
                          CU_TEST_INFO_NULL};
   return sph_test_main("mpi", tests);
 #endif

@@ -88,38 +88,34 @@ int sph_procs_any(int flag) {
   return any;
 }
 
-int sph_procs_agree(int rc, sph_error *err) {
-  if (count == 1) return rc ? -1 : 0;
-  int mine = rc ? rank : count, first = count;
-  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-  if (first == count) return 0;
+/* The message of process `first` into err on every other process. */
+static void tell(int first, sph_error *err) {
   char msg[sizeof err->msg];
   memcpy(msg, err->msg, sizeof msg);
   MPI_Bcast(msg, (int)sizeof msg, MPI_CHAR, first, MPI_COMM_WORLD);
   msg[sizeof msg - 1] = '\0';
   if (first != rank) sph_error_set(err, "process %d of %d: %s", first, count, msg);
+}
+
+int sph_procs_agree(int rc, sph_error *err) {
+  int flag = 0;
+  return sph_procs_agree_any(rc, &flag, err);
+}
+
+int sph_procs_agree_any(int rc, int *flag, sph_error *err) {
+  if (count == 1) return rc ? -1 : 0;
+  /* one reduction: the lowest failing rank (as -rank's max) and the flag */
+  int mine[2] = {rc ? -rank : -count, *flag != 0}, all[2];
+  MPI_Allreduce(mine, all, 2, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  *flag = all[1];
+  if (-all[0] == count) return 0;
+  tell(-all[0], err);
   return -1;
 }
 
-double sph_procs_max(double x) {
-  if (count == 1) return x;
-  double m = x;
-  MPI_Allreduce(&x, &m, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-  return m;
-}
-
-unsigned long long sph_procs_or(unsigned long long bits) {
-  if (count == 1) return bits;
-  unsigned long long all = 0;
-  MPI_Allreduce(&bits, &all, 1, MPI_UNSIGNED_LONG_LONG, MPI_BOR, MPI_COMM_WORLD);
-  return all;
-}
-
-size_t sph_procs_sum(size_t n) {
-  if (count == 1) return n;
-  uint64_t mine = n, all = 0;
-  MPI_Allreduce(&mine, &all, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
-  return (size_t)all;
+int sph_procs_failed(int first, sph_error *err) {
+  if (count > 1) tell(first, err);
+  return -1;
 }
 
 void sph_procs_gather(const void *mine, size_t len, void *all) {
@@ -130,32 +126,31 @@ void sph_procs_gather(const void *mine, size_t len, void *all) {
   MPI_Allgather(mine, (int)len, MPI_BYTE, all, (int)len, MPI_BYTE, MPI_COMM_WORLD);
 }
 
-int sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec, void *all,
-                             sph_error *err) {
+int sph_procs_records_fit(const size_t *counts, size_t rec) {
+  if (count > SPH_PROCS_MAX || rec > INT_MAX) return 0;
+  size_t total = 0;
+  for (int r = 0; r < count; r++)
+    total += counts[r];
+  return total <= INT_MAX;
+}
+
+void sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec, void *all) {
   if (count == 1) {
     memcpy(all, mine, counts[0] * rec);
-    return 0;
+    return;
   }
-  int *n = malloc(2 * (size_t)count * sizeof *n);
-  if (!n) return sph_error_set(err, "out of memory for the processes' exchange");
-  int *at = n + count;
-  size_t total = 0;
+  int n[SPH_PROCS_MAX], at[SPH_PROCS_MAX], total = 0;
   for (int r = 0; r < count; r++) {
-    if (counts[r] > INT_MAX || total > INT_MAX) {
-      free(n);
-      return sph_error_set(err, "the processes' exchange: more than %d particles", INT_MAX);
-    }
     n[r] = (int)counts[r];
-    at[r] = (int)total;
-    total += counts[r];
+    at[r] = total;
+    total += n[r];
   }
   MPI_Datatype t;
   MPI_Type_contiguous((int)rec, MPI_BYTE, &t);
   MPI_Type_commit(&t);
-  const int rc = MPI_Allgatherv(mine, n[rank], t, all, n, at, t, MPI_COMM_WORLD);
+  /* an MPI error ends the job (MPI_ERRORS_ARE_FATAL, the default) */
+  MPI_Allgatherv(mine, n[rank], t, all, n, at, t, MPI_COMM_WORLD);
   MPI_Type_free(&t);
-  free(n);
-  return rc == MPI_SUCCESS ? 0 : sph_error_set(err, "MPI_Allgatherv failed (%d)", rc);
 }
 
 #else /* one process */
@@ -170,14 +165,19 @@ int sph_procs_agree(int rc, sph_error *err) {
   (void)err;
   return rc ? -1 : 0;
 }
-double sph_procs_max(double x) { return x; }
-size_t sph_procs_sum(size_t n) { return n; }
-unsigned long long sph_procs_or(unsigned long long bits) { return bits; }
+int sph_procs_agree_any(int rc, int *flag, sph_error *err) {
+  (void)flag, (void)err;
+  return rc ? -1 : 0;
+}
+int sph_procs_failed(int first, sph_error *err) {
+  (void)first, (void)err;
+  return -1;
+}
 void sph_procs_gather(const void *mine, size_t len, void *all) { memcpy(all, mine, len); }
-int sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec, void *all,
-                             sph_error *err) {
-  (void)err;
+int sph_procs_records_fit(const size_t *counts, size_t rec) {
+  return rec <= INT_MAX && counts[0] <= INT_MAX;
+}
+void sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec, void *all) {
   memcpy(all, mine, counts[0] * rec);
-  return 0;
 }
 #endif

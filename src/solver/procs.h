@@ -49,29 +49,31 @@ int sph_procs_count(void);
  * the same point of the run. */
 int sph_procs_any(int flag);
 
+/* At most this many processes (a run's cut names a particle's process in
+ * a byte). */
+#define SPH_PROCS_MAX 64
 /* After a step every process made: 0 when rc is 0 on every process, else
  * -1 on every one, err holding the message of the lowest rank that failed
  * (prefixed with its rank when it is not this process's own). */
 int sph_procs_agree(int rc, sph_error *err);
-
-/* Reductions over the processes, the same bits on every one: the largest
- * of each process's x, and the sum of each one's n. */
-double sph_procs_max(double x);
-size_t sph_procs_sum(size_t n);
-
-/* The bits set on any process. */
-unsigned long long sph_procs_or(unsigned long long bits);
-
+/* sph_procs_agree, and *flag set on every process to whether it was set
+ * on any: one collective step for both. */
+int sph_procs_agree_any(int rc, int *flag, sph_error *err);
+/* After a gather that showed every process that process `first` failed
+ * (the lowest rank that did): its message into err on every process
+ * (prefixed with its rank on the others). -1. A collective step. */
+int sph_procs_failed(int first, sph_error *err);
 /* Every process's `len` bytes at `mine`, in rank order, into all
  * (count x len bytes). */
 void sph_procs_gather(const void *mine, size_t len, void *all);
-
+/* Whether sph_procs_gather_records can carry these counts of rec-byte
+ * records (MPI counts are ints); local, no collective. */
+int sph_procs_records_fit(const size_t *counts, size_t rec);
 /* The records (rec bytes each) of every process's own items: process r
  * holds counts[r] of them at its `mine`; all receives every process's in
- * rank order. 0, or -1 with err. */
-int sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec, void *all,
-                             sph_error *err);
-
+ * rank order. The counts must fit (sph_procs_records_fit, checked and
+ * agreed before); an MPI failure ends the job. */
+void sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec, void *all);
 #ifdef __cplusplus
 }
 #endif

@@ -26,6 +26,7 @@
  */
 #include "config.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -53,13 +54,27 @@
 #define SPH_RANKS_FLUID_WEIGHT 16
 #define SPH_RANKS_WALL_WEIGHT 1
 
+/* What a rank's pass adds up over its own particles. */
+typedef struct rank_sums {
+  double cs_max;  /* the step rule's max of c + sigma */
+  size_t surface; /* free-surface particles */
+  sph_ledger_sums ledger;
+} rank_sums;
+
+/* What a process tells every other after its pass, in one gather. */
+typedef struct pass_report {
+  int64_t failed;            /* 1: its pass (or its exchange's buffer) failed */
+  unsigned long long arrays; /* the arrays its pass changed in a bit of some particle */
+  rank_sums sums;
+} pass_report;
+
 int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   const sph_case *c = s->c;
   s->self = -1;
   if (ranks < 2) return 0;
-  if (ranks > 64)
-    return sph_error_set(err, "%s: at most 64 ranks, got %d",
-                         self < 0 ? "SPH_TEST_RANKS" : "mpirun -n", ranks);
+  if (ranks > SPH_PROCS_MAX)
+    return sph_error_set(err, "%s: at most %d ranks, got %d",
+                         self < 0 ? "SPH_TEST_RANKS" : "mpirun -n", SPH_PROCS_MAX, ranks);
   if (sph_sim_create_rank_store(c, &s->sub, err)) return -1;
   s->sub->rank_store = 1;
   s->sub->work.keep_sigma = 1;
@@ -70,7 +85,7 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
    * way that depends on the rank count, for the test that must see it */
   const char *e = getenv("SPH_TEST_RANK_ORDER_SUMS");
   s->rank_order_sums = e && *e == '1';
-  if (self >= 0 && !(s->ledger_all = malloc((size_t)ranks * sizeof *s->ledger_all)))
+  if (self >= 0 && !(s->reports = malloc((size_t)ranks * sizeof(pass_report))))
     return sph_error_set(err, "out of memory for the ranks' sums");
   return 0;
 }
@@ -82,11 +97,11 @@ void sph_sim_ranks_free(sph_sim *s) {
   free(s->from);
   free(s->owner);
   free(s->records);
-  free(s->ledger_all);
+  free(s->reports);
   free(s->mark_last);
   free(s->weight);
   s->weight = NULL;
-  s->ledger_all = NULL, s->mark_last = NULL, s->n_mark_last = 0;
+  s->reports = NULL, s->mark_last = NULL, s->n_mark_last = 0;
   s->sub = NULL, s->keys = NULL, s->mark = NULL, s->from = NULL, s->cap_ranks = 0;
   s->owner = NULL, s->records = NULL, s->cap_records = 0;
 }
@@ -110,13 +125,6 @@ static int reserve(sph_sim *s, size_t n, sph_error *err) {
   s->cap_ranks = n;
   return 0;
 }
-
-/* What a rank's pass adds up over its own particles. */
-typedef struct rank_sums {
-  double cs_max;  /* the step rule's max of c + sigma */
-  size_t surface; /* free-surface particles */
-  sph_ledger_sums ledger;
-} rank_sums;
 
 /* A process's store (s->self) keeps the particles of its last pass while
  * they cover what it needs now (s->mark): the same own particles, every
@@ -195,67 +203,88 @@ static int rank_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *first
   return 0;
 }
 
-/* The processes' parts shared (procs.h): each particle's record, as its
- * own process left it, into every process's store: the arrays some
- * process's pass changed (in a bit of some particle), the others being
- * the same on every process before and after. Every process holds
- * the same store in the same order, so a rank's particles are sent in
- * storage order and placed by their owner alone. */
-static int share(sph_sim *s, sph_error *err) {
-  sph_particles *p = &s->p;
-  /* the arrays the pass changed on some process, no others */
-  const unsigned long long arrays = sph_procs_or(s->changed);
-  s->changed = 0;
-  const size_t rec = sph_particles_record_size_of(p, arrays);
-  size_t counts[64] = {0}, at[64];
+/* Each process's count of own particles; room for the records of the
+ * exchange, at the size of every array's record (the arrays a pass
+ * changed are known only after it), reserved before the pass so that its
+ * failure is told with the pass's. */
+static int reserve_records(sph_sim *s, size_t counts[SPH_PROCS_MAX], sph_error *err) {
+  const sph_particles *p = &s->p;
+  memset(counts, 0, SPH_PROCS_MAX * sizeof *counts);
   for (size_t i = 0; i < p->n; i++)
     counts[s->owner[i]]++;
-  const size_t need = (p->n + counts[s->self]) * rec;
-  int rc = 0;
-  if (need > s->cap_records) {
-    unsigned char *b = realloc(s->records, need);
-    if (b)
-      s->records = b, s->cap_records = need;
-    else
-      rc = sph_error_set(err, "out of memory for the processes' exchange (%zu bytes)", need);
+  const size_t rec = sph_particles_record_size(p), need = (p->n + counts[s->self]) * rec;
+  if (!sph_procs_records_fit(counts, rec))
+    return sph_error_set(err, "the processes' exchange: more than %d particles' records", INT_MAX);
+  if (need <= s->cap_records) return 0;
+  unsigned char *b = realloc(s->records, need);
+  if (!b) return sph_error_set(err, "out of memory for the processes' exchange (%zu bytes)", need);
+  s->records = b, s->cap_records = need;
+  return 0;
+}
+
+/* The reports combined, the same bits on every process: the step rule's
+ * max, the count, and the ledger's exact sums merged in rank order (exact:
+ * any order gives the same bits). */
+static void combine(sph_sim *s, const pass_report *all, rank_sums *t) {
+  memset(t, 0, sizeof *t);
+  sph_ledger_sums_init(&t->ledger);
+  for (int q = 0; q < s->ranks; q++) {
+    if (all[q].sums.cs_max > t->cs_max) t->cs_max = all[q].sums.cs_max;
+    t->surface += all[q].sums.surface;
+    if (s->fp.ledger) sph_ledger_sums_merge(&t->ledger, &all[q].sums.ledger);
   }
-  if (sph_procs_agree(rc, err)) return -1;
-  unsigned char *all = s->records, *mine = s->records + p->n * rec;
-  size_t k = 0;
+  if (s->fp.ledger &&
+      s->rank_order_sums) /* test hook: each rank's sums rounded, then added in rank order */
+    for (int k = 0; k < SPH_LEDGER_SUMS; k++) {
+      double sum = 0.0;
+      for (int q = 0; q < s->ranks; q++)
+        sum += sph_xsum_round(&all[q].sums.ledger.s[k]);
+      sph_xsum_init(&t->ledger.s[k]);
+      sph_xsum_add(&t->ledger.s[k], sum);
+    }
+}
+
+/* This process's rank's pass, then two collective steps (procs.h): every
+ * process's report (failure, the arrays changed, the reductions) to every
+ * other, and each particle's record, as its own process left it, into
+ * every process's store: the arrays some process's pass changed, the
+ * others being the same on every process before and after. Every process
+ * holds the same store in the same order, so a rank's particles are sent
+ * in storage order and placed by their owner alone. */
+static int process_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *first, int resort,
+                        double hmax, rank_sums *t, sph_error *err) {
+  sph_particles *p = &s->p;
+  size_t counts[SPH_PROCS_MAX];
+  pass_report mine;
+  memset(&mine, 0, sizeof mine);
+  sph_ledger_sums_init(&mine.sums.ledger);
+  mine.failed = reserve_records(s, counts, err) ||
+                rank_pass(s, g, first, s->self, resort, hmax, &mine.sums, err);
+  mine.arrays = s->changed;
+  s->changed = 0;
+  pass_report *all = s->reports;
+  sph_procs_gather(&mine, sizeof mine, all);
+  for (int q = 0; q < s->ranks; q++)
+    if (all[q].failed) return sph_procs_failed(q, err);
+  combine(s, all, t);
+  unsigned long long arrays = 0;
+  for (int q = 0; q < s->ranks; q++)
+    arrays |= all[q].arrays;
+  const size_t rec = sph_particles_record_size_of(p, arrays);
+  unsigned char *every = s->records, *own = s->records + p->n * rec;
+  size_t k = 0, at[SPH_PROCS_MAX], sum = 0;
   for (size_t i = 0; i < p->n; i++)
-    if (s->owner[i] == s->self) sph_particles_pack_of(p, i, arrays, mine + rec * k++);
-  if (sph_procs_agree(sph_procs_gather_records(mine, counts, rec, all, err), err)) return -1;
+    if (s->owner[i] == s->self) sph_particles_pack_of(p, i, arrays, own + rec * k++);
+  sph_procs_gather_records(own, counts, rec, every);
   s->fig_bytes += (double)(counts[s->self] * rec) * (double)(s->ranks - 1); /* to each other */
-  size_t sum = 0;
   for (int q = 0; q < s->ranks; q++)
     at[q] = sum, sum += counts[q];
   for (size_t i = 0; i < p->n; i++) {
     const int q = s->owner[i];
-    if (q != s->self) sph_particles_unpack_of(p, i, arrays, all + rec * at[q]);
+    if (q != s->self) sph_particles_unpack_of(p, i, arrays, every + rec * at[q]);
     at[q]++;
   }
   return 0;
-}
-
-/* The sums of every process's rank, in rank order (exact: any order gives
- * the same bits). */
-static void combine(sph_sim *s, rank_sums *t) {
-  t->cs_max = sph_procs_max(t->cs_max);
-  t->surface = sph_procs_sum(t->surface);
-  if (!s->fp.ledger) return;
-  sph_ledger_sums *all = s->ledger_all;
-  sph_procs_gather(&t->ledger, sizeof t->ledger, all);
-  sph_ledger_sums_init(&t->ledger);
-  for (int q = 0; q < s->ranks; q++)
-    sph_ledger_sums_merge(&t->ledger, &all[q]);
-  if (s->rank_order_sums) /* test hook: each rank's sums rounded, then added in rank order */
-    for (int k = 0; k < SPH_LEDGER_SUMS; k++) {
-      double sum = 0.0;
-      for (int q = 0; q < s->ranks; q++)
-        sum += sph_xsum_round(&all[q].s[k]);
-      sph_xsum_init(&t->ledger.s[k]);
-      sph_xsum_add(&t->ledger.s[k], sum);
-    }
 }
 
 int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
@@ -298,12 +327,8 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
   if (s->self < 0) { /* every rank, one after the other */
     for (int rank = 0; rank < s->ranks; rank++)
       if (rank_pass(s, &g, first, rank, resort, hmax, &t, err)) return -1;
-  } else { /* this process's rank, then what the others made */
-    if (sph_procs_agree(rank_pass(s, &g, first, s->self, resort, hmax, &t, err), err) ||
-        share(s, err))
-      return -1;
-    combine(s, &t);
-  }
+  } else if (process_pass(s, &g, first, resort, hmax, &t, err)) /* this process's rank */
+    return -1;
   s->work.cs_sigma_max = t.cs_max;
   s->dt_paper_b = sph_dt_paper_b(&s->work, c->h, c->dt_factor);
   s->n_surface = s->detect ? t.surface : 0;
@@ -324,7 +349,7 @@ int sph_sim_procs_figures(const sph_sim *s, sph_procs_figures *f) {
   memset(f, 0, sizeof *f);
   if (s->self < 0) return 0;
   const double mine[4] = {(double)s->fig_passes, s->fig_own, s->fig_ghosts, s->fig_bytes};
-  double all[4 * 64];
+  double all[4 * SPH_PROCS_MAX];
   sph_procs_gather(mine, sizeof mine, all);
   f->processes = s->ranks;
   for (int q = 0; q < s->ranks; q++) {

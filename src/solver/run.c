@@ -547,7 +547,10 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
   }
   if (!rd) {
     if (agreed(write_output(s, &out, r, err), err)) goto io_error;
-    if (agreed(probe_step(s, &out, err), err)) goto io_error;
+    /* the probes' row agreed, and an interrupt on any process seen by all,
+     * in one collective step: all stop after this step */
+    int interrupted = o->interrupt && *o->interrupt;
+    if (sph_procs_agree_any(probe_step(s, &out, err), &interrupted, err)) goto io_error;
   } else if (agreed(need_row ? write_rows(s, &out, need_row, err) : 0, err)) {
     goto io_error;
   }
@@ -598,7 +601,10 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
       break;
     }
     if (st) goto io_error;
-    if (agreed(probe_step(s, &out, err), err)) goto io_error;
+    /* the probes' row agreed, and an interrupt on any process seen by all,
+     * in one collective step: all stop after this step */
+    int interrupted = o->interrupt && *o->interrupt;
+    if (sph_procs_agree_any(probe_step(s, &out, err), &interrupted, err)) goto io_error;
     const int at_output = sph_sim_time(s) == next;
     if (at_output) {
       if (c->output_interval > 0.0) k = first_multiple_after(c->output_interval, next + same);
@@ -611,7 +617,7 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
       r->status = SPH_RUN_STOPPED;
       break;
     }
-    if (o->interrupt && sph_procs_any(*o->interrupt)) { /* on any process: all stop here */
+    if (interrupted) {
       if (agreed(!at_output ? write_output(s, &out, r, err) : 0, err)) goto io_error;
       r->status = SPH_RUN_INTERRUPTED;
       break;

@@ -82,16 +82,16 @@ struct sph_sim {
   unsigned char *owner;
   unsigned char *records;
   size_t cap_records;
-  sph_ledger_sums *ledger_all; /* every process's sums, in rank order */
-  unsigned char *mark_last;    /* the marks of this process's last pass, */
-  size_t n_mark_last;          /* over this many particles, */
-  uint64_t order_last;         /* the store in this order (particles.h) */
-  uint32_t *weight;            /* each particle's weight in the cut */
-  unsigned long long changed;  /* the arrays this process's pass changed */
-  uint64_t first[64];          /* the cut: each rank's first key (neighbours/decomp.h), */
-  size_t n_cut;                /* made over this many particles */
-  int rank_order_sums;         /* the test hook SPH_TEST_RANK_ORDER_SUMS (ranks.c) */
-  long fig_passes;             /* this process's figures (sph_sim_procs_figures) */
+  void *reports;              /* every process's report of its pass, in rank order (ranks.c) */
+  unsigned char *mark_last;   /* the marks of this process's last pass, */
+  size_t n_mark_last;         /* over this many particles, */
+  uint64_t order_last;        /* the store in this order (particles.h) */
+  uint32_t *weight;           /* each particle's weight in the cut */
+  unsigned long long changed; /* the arrays this process's pass changed */
+  uint64_t first[64];         /* the cut: each rank's first key (neighbours/decomp.h), */
+  size_t n_cut;               /* made over this many particles */
+  int rank_order_sums;        /* the test hook SPH_TEST_RANK_ORDER_SUMS (ranks.c) */
+  long fig_passes;            /* this process's figures (sph_sim_procs_figures) */
   double fig_own, fig_ghosts, fig_bytes;
   uint64_t order_cut; /* in this order */
   /* a rank's store (it is some sim's sub): ghosts carry SPH_FLAG_GHOST, and
