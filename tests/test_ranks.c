@@ -87,6 +87,16 @@ static void test_mirror_walls(void) {
                 two_three + 1, 1);
 }
 
+/* variable h with mdbc no-slip walls (their density written by the pass,
+ * read by the other ranks' ghosts; their velocity fit's cells fitting the
+ * whole store's 2 max h) under the stress tensor and SPS */
+static void test_variable_h_mdbc(void) {
+  same_on_ranks("src/sph", "cases/sps_dam_break_coarse.yaml",
+                "--set time.end=0.05 --set numerics.smoothing_length=variable --set "
+                "geometry.tank.boundary=mdbc",
+                two_three, 2);
+}
+
 static void test_sps_and_wavemaker(void) {
   same_on_ranks("src/sph", "cases/sps_dam_break_coarse.yaml", "--set time.end=0.05", two_three, 1);
   same_on_ranks("src/sph", "cases/linear_wave_coarse.yaml", "--set time.end=0.3", two_three + 1, 1);
@@ -143,6 +153,7 @@ int main(void) {
                          {"the periodic film with free-surface flags", test_periodic_film},
                          {"mirror walls and the MLS filter", test_mirror_walls},
                          {"SPS and the flap wavemaker", test_sps_and_wavemaker},
+                         {"variable h and mdbc walls", test_variable_h_mdbc},
                          {"3-D", test_3d},
                          {"a restart on another rank count", test_restart_on_other_ranks},
                          {"mdbc walls, particle shifting and the ledger", test_shifting_and_ledger},

@@ -92,6 +92,7 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
 
 void sph_sim_ranks_free(sph_sim *s) {
   if (s->sub) sph_sim_free(s->sub);
+  sph_particles_free(&s->before);
   free(s->keys);
   free(s->mark);
   free(s->from);
@@ -147,8 +148,9 @@ static int covered(sph_sim *s, int resort) {
 /* Rank `rank`'s part of the pass: its own particles and its ghosts into
  * sub, in the whole store's order; the pass; its own particles' results
  * back into the whole store, its reductions into t. */
-static int rank_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *first, int rank,
-                     int resort, double hmax, rank_sums *t, sph_error *err) {
+static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid *g,
+                     const uint64_t *first, int rank, int resort, double hmax, rank_sums *t,
+                     sph_error *err) {
   const sph_case *c = s->c;
   sph_particles *p = &s->p;
   sph_sim *r = s->sub;
@@ -164,7 +166,7 @@ static int rank_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *first
     memcpy(s->mark_last, s->mark, p->n);
     s->n_mark_last = p->n, s->order_last = p->order;
   }
-  if (sph_particles_take(&r->p, p, s->mark, err)) return -1;
+  if (sph_particles_take(&r->p, in, s->mark, err)) return -1;
   size_t k = 0;
   for (size_t i = 0; i < p->n; i++)
     if (s->mark[i]) {
@@ -259,7 +261,7 @@ static int process_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fi
   memset(&mine, 0, sizeof mine);
   sph_ledger_sums_init(&mine.sums.ledger);
   mine.failed = reserve_records(s, counts, err) ||
-                rank_pass(s, g, first, s->self, resort, hmax, &mine.sums, err);
+                rank_pass(s, p, g, first, s->self, resort, hmax, &mine.sums, err);
   mine.arrays = s->changed;
   s->changed = 0;
   pass_report *all = s->reports;
@@ -324,9 +326,11 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
   rank_sums t;
   memset(&t, 0, sizeof t);
   sph_ledger_sums_init(&t.ledger);
-  if (s->self < 0) { /* every rank, one after the other */
+  if (s->self < 0) { /* every rank, one after the other, each from the state before any */
+    memset(s->mark, 1, p->n);
+    if (sph_particles_take(&s->before, p, s->mark, err)) return -1;
     for (int rank = 0; rank < s->ranks; rank++)
-      if (rank_pass(s, &g, first, rank, resort, hmax, &t, err)) return -1;
+      if (rank_pass(s, &s->before, &g, first, rank, resort, hmax, &t, err)) return -1;
   } else if (process_pass(s, &g, first, resort, hmax, &t, err)) /* this process's rank */
     return -1;
   s->work.cs_sigma_max = t.cs_max;
