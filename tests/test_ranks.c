@@ -88,13 +88,20 @@ static void test_mirror_walls(void) {
 }
 
 /* variable h with mdbc no-slip walls (their density written by the pass,
- * read by the other ranks' ghosts; their velocity fit's cells fitting the
- * whole store's 2 max h) under the stress tensor and SPS */
+ * read by the other ranks' ghosts) under the stress tensor and SPS; the
+ * free-surface smoothing lengths with mdbc walls */
 static void test_variable_h_mdbc(void) {
   same_on_ranks("src/sph", "cases/sps_dam_break_coarse.yaml",
                 "--set time.end=0.05 --set numerics.smoothing_length=variable --set "
                 "geometry.tank.boundary=mdbc",
                 two_three, 2);
+  /* free-surface smoothing lengths with mdbc walls: the fluid a wall
+   * particle's mirror point fits over is flagged by its own neighbours
+   * (needs ghosts 3 cells deep here, where 2 were taken) */
+  same_on_ranks("src/sph", "cases/sps_dam_break.yaml",
+                "--set numerics.dx=0.02 --set time.end=0.03 --set time.output_interval=0.01 "
+                "--set geometry.tank.boundary=mdbc --set 'free_surface={h_factor: 1.3}'",
+                two_three + 1, 1);
 }
 
 static void test_sps_and_wavemaker(void) {
@@ -153,7 +160,7 @@ int main(void) {
                          {"the periodic film with free-surface flags", test_periodic_film},
                          {"mirror walls and the MLS filter", test_mirror_walls},
                          {"SPS and the flap wavemaker", test_sps_and_wavemaker},
-                         {"variable h and mdbc walls", test_variable_h_mdbc},
+                         {"variable and free-surface h with mdbc walls", test_variable_h_mdbc},
                          {"3-D", test_3d},
                          {"a restart on another rank count", test_restart_on_other_ranks},
                          {"mdbc walls, particle shifting and the ledger", test_shifting_and_ledger},

@@ -127,6 +127,24 @@ static int reserve(sph_sim *s, size_t n, sph_error *err) {
   return 0;
 }
 
+/* The ghosts' depth in cells of width `cell`: the two supports of a pass's
+ * chains, and beyond them the farthest mirror point of an mdbc or no-slip
+ * wall particle (its density and velocity are fits over the fluid around
+ * that point, and that fluid's smoothing lengths follow its free-surface
+ * flags: a chain two supports long from the point, not from the particle;
+ * free_surface.h_factor with mdbc walls needed 3 cells where 2 were taken). */
+static int ghost_depth(const sph_particles *p, double cell) {
+  double far = 0.0;
+  for (size_t i = 0; (p->live & SPH_ARRAYS_OFFSET) && i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_WALL && (p->flags[i] & (SPH_FLAG_MDBC | SPH_FLAG_NO_SLIP))) {
+      double m2 = 0.0;
+      for (int a = 0; a < SPH_DIM; a++)
+        m2 += p->mirror_offset[a][i] * p->mirror_offset[a][i];
+      if (m2 > far) far = m2;
+    }
+  return SPH_RANKS_DEPTH + (int)ceil(sqrt(far) / cell);
+}
+
 /* A process's store (s->self) keeps the particles of its last pass while
  * they cover what it needs now (s->mark): the same own particles, every
  * ghost it needs among them, the store in the same order (extra ghosts
@@ -154,14 +172,12 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
   const sph_case *c = s->c;
   sph_particles *p = &s->p;
   sph_sim *r = s->sub;
-  if (sph_decomp_halo(g, p, s->keys, first, s->ranks, rank, SPH_RANKS_DEPTH, s->mark, err) < 0)
-    return -1;
+  if (sph_decomp_halo(g, p, s->keys, first, s->ranks, rank, s->depth, s->mark, err) < 0) return -1;
   const int same = s->self >= 0 && covered(s, resort);
   if (s->self >= 0 && !same) {
     /* one cell more than it needs: a particle then crosses a whole cell
      * before the store must be taken anew */
-    if (sph_decomp_halo(g, p, s->keys, first, s->ranks, rank, SPH_RANKS_DEPTH + 1, s->mark, err) <
-        0)
+    if (sph_decomp_halo(g, p, s->keys, first, s->ranks, rank, s->depth + 1, s->mark, err) < 0)
       return -1;
     memcpy(s->mark_last, s->mark, p->n);
     s->n_mark_last = p->n, s->order_last = p->order;
@@ -319,6 +335,7 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
         sph_decomp_cut_weighted(s->keys, s->weight, p->n, s->ranks, first, err))
       return -1;
     s->n_cut = p->n, s->order_cut = p->order;
+    s->depth = ghost_depth(p, g.side);
     if (s->self >= 0) /* each particle's process, for the sharing (share) */
       for (size_t i = 0; i < p->n; i++)
         s->owner[i] = (unsigned char)sph_decomp_owner(first, s->ranks, s->keys[i]);

@@ -70,6 +70,7 @@ struct sph_sim {
    * own particles and its ghosts in `sub`; 1: the whole store's pass */
   int ranks;
   struct sph_sim *sub;
+  int depth;            /* the ghosts' depth in cells (ranks.c, ghost_depth) */
   sph_particles before; /* SPH_TEST_RANKS: the store before any rank's pass, which each takes
                          * from (a pass writes what other ranks' ghosts read: mdbc densities) */
   double hmax_all;      /* > 0: the largest h of the whole store (a rank's store's h_max) */
