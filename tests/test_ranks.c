@@ -102,6 +102,15 @@ static void test_variable_h_mdbc(void) {
                 "--set numerics.dx=0.02 --set time.end=0.03 --set time.output_interval=0.01 "
                 "--set geometry.tank.boundary=mdbc --set 'free_surface={h_factor: 1.3}'",
                 two_three + 1, 1);
+  /* variable h with no-slip (extrapolated) mdbc walls: the velocity fit's
+   * cells fit the whole store's 2 max h, not a rank's own (4 ranks at
+   * t = 0.2 s differed when they fitted a rank's) */
+  static const int four[] = {4};
+  same_on_ranks("src/sph", "cases/sps_dam_break.yaml",
+                "--set numerics.dx=0.01 --set time.end=0.2 --set time.output_interval=0.2 "
+                "--set numerics.smoothing_length=variable --set geometry.tank.boundary=mdbc "
+                "--set geometry.tank.extrapolated_velocity=true",
+                four, 1);
 }
 
 static void test_sps_and_wavemaker(void) {

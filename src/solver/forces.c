@@ -258,11 +258,16 @@ static double kernel_reach(const sph_particles *p, const sph_force_params *fp) {
   return SPH_CUBIC_SUPPORT * hmax;
 }
 
-/* The velocities the strain-rate pass reads, no-slip walls extrapolated. */
+/* The velocities the strain-rate pass reads, no-slip walls extrapolated:
+ * the fit's cells fit the whole store's 2 max h (fp->h_reach), so that a
+ * rank's store, which holds part of it, fits each point in the same order
+ * (walls/wall_velocity.c). */
 static int wall_ghosts(const sph_particles *p, const sph_force_params *fp, double *const *gv,
                        sph_wall_velocity_work *wv, sph_error *err) {
-  return sph_wall_velocity(p, kernel_reach(p, fp), fp->px0, fp->periodic ? fp->period : 0.0,
-                           fp->paxis, gv, wv, err);
+  const double reach =
+      fp->var_h && fp->h_reach > 0.0 ? SPH_CUBIC_SUPPORT * fp->h_reach : kernel_reach(p, fp);
+  return sph_wall_velocity(p, reach, fp->px0, fp->periodic ? fp->period : 0.0, fp->paxis, gv, wv,
+                           err);
 }
 
 /* The options of the strain-rate pass as fp asks for them, into w's arrays:

@@ -244,6 +244,7 @@ int sph_sim_pass(sph_sim *s, sph_error *err) {
   if (rc == 0 && s->detect) rc = free_surface(s, err);
   if (rc == 0 && s->walls.mdbc) rc = mdbc_walls(s, err);
   if (rc == 0 && s->walls.adami) rc = adami_walls(s, err);
+  s->fp.h_reach = s->fp.var_h ? h_max(s) : 0.0; /* the whole store's (a rank's too) */
   if (rc == 0) rc = sph_forces_evaluate(&s->p, &s->nl, &s->fp, &s->work, err);
   s->step_pass = s->steps; /* the state w->hot now holds */
   /* everything that reads the pass's per-particle work arrays, before
