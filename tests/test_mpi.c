@@ -133,13 +133,8 @@ static void test_restart_on_other_count(void) {
       cmd, sizeof cmd,
       "SPH_TEST_OMP_MIN=0 %s -n 3 '%s' run --quiet --restart '%s/snap_0001.h5' '%s' -o '%s' %s",
       mpirun(), sph_test_build("src/sph"), part, sph_test_src(c), again, sets);
-  const int rc = sph_test_system(cmd);
-  CU_ASSERT(rc == 0);
-  snprintf(cmd, sizeof cmd, "cmp -s '%s/snap_0002.h5' '%s/snap_0002.h5'", whole, again);
-  const int same = rc == 0 && sph_test_system(cmd) == 0;
-  printf("\n  restarted on 3 processes from a 4-process run's snapshot: %s",
-         same ? "identical" : "DIFFERENT");
-  CU_ASSERT(same);
+  CU_ASSERT(sph_test_restart_same(cmd, whole, again,
+                                  "restarted on 3 processes from a 4-process run's snapshot"));
   sph_test_rmtree(whole);
   sph_test_rmtree(part);
   sph_test_rmtree(again);

@@ -187,3 +187,13 @@ int sph_test_same_dirs(const char *a, const char *b) {
   snprintf(cmd, sizeof cmd, "diff -r '%s' '%s' >/dev/null", a, b);
   return sph_test_system(cmd) == 0;
 }
+
+int sph_test_restart_same(const char *cmd, const char *whole, const char *again, const char *what) {
+  const int rc = sph_test_system(cmd);
+  CU_ASSERT(rc == 0);
+  char cmp[8400];
+  snprintf(cmp, sizeof cmp, "cmp -s '%s/snap_0002.h5' '%s/snap_0002.h5'", whole, again);
+  const int same = rc == 0 && sph_test_system(cmp) == 0;
+  printf("\n  %s: %s", what, same ? "identical" : "DIFFERENT");
+  return same;
+}

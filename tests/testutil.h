@@ -32,6 +32,11 @@ void sph_test_rmtree(const char *dir);
 int sph_test_system(const char *cmd);
 /* Whether two directories hold the same files, byte for byte (diff -r). */
 int sph_test_same_dirs(const char *a, const char *b);
+/* A restart on another rank or process count: runs `cmd` (the restart,
+ * into `again`), asserts that it succeeds, and returns whether again's
+ * snap_0002.h5 is whole's byte for byte, printing "what: identical" (or
+ * DIFFERENT). */
+int sph_test_restart_same(const char *cmd, const char *whole, const char *again, const char *what);
 /* Runs the build tree's `sph ARGS` (ARGS shell-quoted by the caller) with
  * stdout and stderr captured in DIR/sph.log and returned in out (len
  * bytes, truncated, NUL-terminated); returns the exit status. */

@@ -19,7 +19,8 @@
  * Under mpirun (procs.h) each process makes its own rank's part, then the
  * processes share what their passes changed in their own particles and
  * combine the reductions (doc/parallel.md). With SPH_TEST_RANKS=R one
- * process makes every rank's part in turn: every output of a run must be
+ * process makes every rank's part in turn, each from the store as it was
+ * before any (as separate processes do): every output of a run must be
  * the same bytes as the run's on one rank (tests/test_ranks, and
  * tests/test_mpi under mpirun). Particle shifting runs on the whole store,
  * over a neighbour list of its own (sim.c).
@@ -38,11 +39,12 @@
 #include "solver/procs.h"
 #include "solver/sim_internal.h"
 
-/* Ghosts this many decomposition cells deep, the cells one support wide:
- * two supports, the reach of a pass's chains (a neighbour's value that
- * needs its own neighbours: the Adami walls' extrapolation, the strain
- * rate, the free-surface flags; tests/test_decomp measures the least depth
- * on every scheme, tests/test_ranks the bytes with these). */
+/* Ghosts at least this many decomposition cells deep, the cells one
+ * support wide: two supports, the reach of a pass's chains (a neighbour's
+ * value that needs its own neighbours: the Adami walls' extrapolation, the
+ * strain rate, the free-surface flags; tests/test_decomp measures the least
+ * depth on every scheme, tests/test_ranks the bytes with these); mirror
+ * points add their reach (ghost_depth). */
 #define SPH_RANKS_DEPTH 2
 #define SPH_RANKS_CELL 1.0
 
@@ -134,8 +136,9 @@ static int reserve(sph_sim *s, size_t n, sph_error *err) {
  * flags: a chain two supports long from the point, not from the particle;
  * free_surface.h_factor with mdbc walls needed 3 cells where 2 were taken). */
 static int ghost_depth(const sph_particles *p, double cell) {
+  if (!(p->live & SPH_ARRAYS_OFFSET)) return SPH_RANKS_DEPTH; /* no wall with a mirror point */
   double far = 0.0;
-  for (size_t i = 0; (p->live & SPH_ARRAYS_OFFSET) && i < p->n; i++)
+  for (size_t i = 0; i < p->n; i++)
     if (p->kind[i] == SPH_KIND_WALL && (p->flags[i] & (SPH_FLAG_MDBC | SPH_FLAG_NO_SLIP))) {
       double m2 = 0.0;
       for (int a = 0; a < SPH_DIM; a++)
@@ -336,7 +339,7 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
       return -1;
     s->n_cut = p->n, s->order_cut = p->order;
     s->depth = ghost_depth(p, g.side);
-    if (s->self >= 0) /* each particle's process, for the sharing (share) */
+    if (s->self >= 0) /* each particle's process, for the exchange (process_pass) */
       for (size_t i = 0; i < p->n; i++)
         s->owner[i] = (unsigned char)sph_decomp_owner(first, s->ranks, s->keys[i]);
   }
