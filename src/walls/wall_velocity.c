@@ -7,6 +7,8 @@
 
 #include "walls/wall_velocity.h"
 
+#include "core/kernel_shape.h"
+#include "core/lanes.h"
 #include "core/linsolve.h"
 #include "core/parallel.h"
 #include "neighbours/grid.h"
@@ -14,6 +16,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* The most fields one fit serves (velocity: SPH_DIM), and the unknowns of
  * a field's linear fit (its value and its gradient). */
@@ -139,6 +142,87 @@ static void solve_fit(const double A[FIT_N][FIT_N], const double b[SPH_FIT_MAX][
 #endif
 }
 
+/* The candidates of a cell one fit takes at a time (its stack arrays). */
+#define FIT_CHUNK 64
+
+/* Two lanes into out[0], out[1]. */
+static inline void store2(double *out, v2 a) { memcpy(out, &a, 2 * sizeof *out); }
+
+/* The cubic spline's W(r, h) in two lanes: lane for lane the operations of
+ * sph_cubic_w_dw (core/kernel_shape.h, sph_shape_cubic), so its bits. */
+static inline v2 cubic_w2(v2 r, v2 h) {
+  const v2 inv_h = v2_div(v2_all(1.0), h), q = v2_mul(r, inv_h);
+  v2 sigma = v2_mul(v2_mul(v2_all(sph_kernel_c(SPH_SHAPE_CUBIC_SPLINE)), inv_h), inv_h);
+  SPH_IF3(sigma = v2_mul(sigma, inv_h);)
+  const v2 near = v2_mul(sigma, v2_add(v2_sub(v2_all(1.0), v2_mul(v2_mul(v2_all(1.5), q), q)),
+                                       v2_mul(v2_mul(v2_mul(v2_all(0.75), q), q), q)));
+  const v2 t = v2_sub(v2_all(2.0), q);
+  const v2 far = v2_mul(v2_mul(v2_mul(v2_mul(sigma, v2_all(0.25)), t), t), t);
+  return v2_sel(v2_lt(q, v2_all(1.0)), near, v2_sel(v2_lt(q, v2_all(2.0)), far, v2_all(0.0)));
+}
+
+/* The separations x - x_j of the packed slots p0 and p1 along axis a, in
+ * two lanes: the nearest image over the period per[a] (per NULL: none
+ * taken; a period of 0 leaves them as they are, bit for bit). */
+static inline v2 sep2(const double x[SPH_DIM], const double *p0, const double *p1, int a,
+                      const double per[SPH_DIM]) {
+  const v2 d = v2_sub(v2_all(x[a]), v2_set(p0[a], p1[a]));
+  if (!per) return d;
+  const v2 vp = v2_all(per[a]), hp = v2_all(0.5 * per[a]), np = v2_all(-0.5 * per[a]);
+  return SPH_LANE_MIN_IMAGE(v2, d, vp, hp, np);
+}
+
+/* The candidates in the slots [q, qe) of w (at most FIT_CHUNK) within
+ * reach of x: their slots into qs[], in order; their count. Two at a time
+ * without a branch: within reach is r^2 < (2 h_j)^2. */
+static inline __attribute__((always_inline)) int within_reach(const sph_wall_velocity_work *w,
+                                                              const double x[SPH_DIM],
+                                                              const double per[SPH_DIM], size_t q,
+                                                              size_t qe, uint32_t *qs) {
+  int k = 0;
+  for (; q + 1 < qe; q += 2) {
+    const double *p0 = w->pack + PACK * q, *p1 = p0 + PACK;
+    const v2 dx = sep2(x, p0, p1, 0, per), dy = sep2(x, p0, p1, 1, per);
+    v2 r2 = v2_add(v2_mul(dx, dx), v2_mul(dy, dy));
+    SPH_IF3(const v2 dz = sep2(x, p0, p1, 2, per); r2 = v2_add(r2, v2_mul(dz, dz));)
+    const v2 h = v2_set(p0[SPH_DIM], p1[SPH_DIM]);
+    const unsigned in =
+        v2_bits2(v2_lt(r2, v2_mul(v2_mul(v2_all(SPH_CUBIC_SUPPORT * SPH_CUBIC_SUPPORT), h), h)));
+    qs[k] = (uint32_t)q;
+    k += (int)(in & 1u);
+    qs[k] = (uint32_t)(q + 1);
+    k += (int)(in >> 1);
+  }
+  if (q < qe) {
+    const double *p0 = w->pack + PACK * q;
+    double r2 = 0.0;
+    for (int a = 0; a < SPH_DIM; a++) {
+      const double d = per ? sph_grid_min_image(x[a] - p0[a], per[a]) : x[a] - p0[a];
+      r2 = a ? r2 + d * d : d * d;
+    }
+    qs[k] = (uint32_t)q;
+    k += r2 < SPH_CUBIC_SUPPORT * SPH_CUBIC_SUPPORT * p0[SPH_DIM] * p0[SPH_DIM];
+  }
+  return k;
+}
+
+/* The offsets x_j - x of the candidates in the slots qs[0..k) into e[a][],
+ * their weights W(x - x_j, h_j) into ws[], two at a time. */
+static inline __attribute__((always_inline)) void
+weights(const sph_wall_velocity_work *w, const double x[SPH_DIM], const double per[SPH_DIM],
+        const uint32_t *qs, int k, double e[SPH_DIM][FIT_CHUNK + 1], double *ws) {
+  for (int t = 0; t < k; t += 2) { /* (an odd count's last pair repeats its slot) */
+    const double *p0 = w->pack + PACK * qs[t], *p1 = w->pack + PACK * qs[t + 1 < k ? t + 1 : t];
+    v2 r2 = v2_all(0.0);
+    for (int a = 0; a < SPH_DIM; a++) {
+      const v2 d = sep2(x, p0, p1, a, per);
+      r2 = a ? v2_add(r2, v2_mul(d, d)) : v2_mul(d, d);
+      store2(e[a] + t, v2_neg(d));
+    }
+    store2(ws + t, cubic_w2(v2_sqrt(r2), v2_set(p0[SPH_DIM], p1[SPH_DIM])));
+  }
+}
+
 /* The linear moving-least-squares fit, at the point x, of nf fields f[k]
  * (per-particle arrays) over the fluid particles within reach of it:
  * f ~ c0 + c . (x_j - x), weights W(x - x_j, h_j) (exact for a linear
@@ -148,9 +232,16 @@ static void solve_fit(const double A[FIT_N][FIT_N], const double b[SPH_FIT_MAX][
  * Shepard average sum W f / sum W with a zero gradient. fmax (NULL, or nf
  * values set by the caller) is raised to the largest value of each field
  * among those particles. Returns 0 when no fluid particle reaches the
- * point, else 1. */
-static int fit_at(const layout *g, const sph_wall_velocity_work *w, const double x[SPH_DIM],
-                  const double *const *f, int nf, double *fit, double *fmax) {
+ * point, else 1.
+ *
+ * A cell's candidates go FIT_CHUNK at a time through within_reach and
+ * weights (two lanes, lane for lane the scalar operations), then into the
+ * sums one by one in their order: the bits of one scalar loop over them.
+ * Always inlined, so that each caller's nf is a constant and the sums
+ * stay in registers. */
+static inline __attribute__((always_inline)) int
+fit_at(const layout *g, const sph_wall_velocity_work *w, const double x[SPH_DIM],
+       const double *const *f, int nf, double *fit, double *fmax) {
   long cells[SPH_DIM][3];
   int nc[3] = {1, 1, 1};
   for (int a = SPH_DIM - 1; a >= 0; a--) /* (the order of 2-D's first reach test: y, then x) */
@@ -163,50 +254,50 @@ static int fit_at(const layout *g, const sph_wall_velocity_work *w, const double
     for (int k = 0; k < nc[a]; k++)
       gap2[a][k] = cell_gap2(g, a, x[a], cells[a][k]);
   const double s2 = g->support * g->support;
+  double per[SPH_DIM] = {0.0}; /* the period along each axis (0: none) */
+  per[g->paxis] = g->period;
   /* linear MLS moments: A = sum W e e^T, b = sum W f e, e = (1, x_j - x), in
-   * scalars (the 2-D loop's registers) */
+   * scalars (registers) */
   double sw = 0.0, a01 = 0.0, a02 = 0.0, a11 = 0.0, a12 = 0.0, a22 = 0.0;
   double sf[SPH_FIT_MAX] = {0.0}, b1[SPH_FIT_MAX] = {0.0}, b2[SPH_FIT_MAX] = {0.0};
-#if SPH_DIM == 3
-  double a03 = 0.0, a13 = 0.0, a23 = 0.0, a33 = 0.0, b3[SPH_FIT_MAX] = {0.0};
-  double per[3] = {0.0, 0.0, 0.0}; /* the period along each axis (0: none) */
-  per[g->paxis] = g->period;
-#endif
+  SPH_IF3(double a03 = 0.0, a13 = 0.0, a23 = 0.0, a33 = 0.0, b3[SPH_FIT_MAX] = {0.0};)
+  uint32_t qs[FIT_CHUNK + 1];
+  double e[SPH_DIM][FIT_CHUNK + 1], ws[FIT_CHUNK + 1];
   for (int kz = 0; kz < nc[2]; kz++)
     for (int ky = 0; ky < nc[1]; ky++)
       for (int kx = 0; kx < nc[0]; kx++) {
         if (gap2[0][kx] + gap2[1][ky] + gap2[2][kz] >= s2) continue;
         size_t cell = (size_t)(cells[1][ky] * g->n[0] + cells[0][kx]);
         SPH_IF3(cell += (size_t)(cells[2][kz] * g->n[0] * g->n[1]);)
-        for (size_t q = w->start[cell]; q < w->start[cell + 1]; q++) {
-          const double *pq = w->pack + PACK * q;
-#if SPH_DIM == 2 /* periodic along x only */
-          const double dx = sph_grid_min_image(x[0] - pq[0], g->period), dy = x[1] - pq[1];
-#else
-          const double dx = sph_grid_min_image(x[0] - pq[0], per[0]),
-                       dy = sph_grid_min_image(x[1] - pq[1], per[1]),
-                       dz = sph_grid_min_image(x[2] - pq[2], per[2]);
-#endif
-          const double r2 = SPH_NORM2(dx, dy, dz), hj = pq[SPH_DIM];
-          if (r2 >= SPH_CUBIC_SUPPORT * SPH_CUBIC_SUPPORT * hj * hj) continue;
-          const size_t j = w->idx[q];
-          double wj, dwj; /* (the derivative is not used: the compiler drops it) */
-          sph_cubic_w_dw(sqrt(r2), hj, &wj, &dwj);
-          const double ex = -dx, ey = -dy; /* x_j - x */
-          SPH_IF3(const double ez = -dz;)
-          sw += wj;
-          a01 += wj * ex;
-          a02 += wj * ey;
-          a11 += wj * ex * ex;
-          a12 += wj * ex * ey;
-          a22 += wj * ey * ey;
-          SPH_IF3(a03 += wj * ez; a13 += wj * ex * ez; a23 += wj * ey * ez; a33 += wj * ez * ez;)
-          for (int m = 0; m < nf; m++) {
-            if (fmax && f[m][j] > fmax[m]) fmax[m] = f[m][j];
-            sf[m] += wj * f[m][j];
-            b1[m] += wj * ex * f[m][j];
-            b2[m] += wj * ey * f[m][j];
-            SPH_IF3(b3[m] += wj * ez * f[m][j];)
+        for (size_t q = w->start[cell], end = w->start[cell + 1]; q < end; q += FIT_CHUNK) {
+          const size_t qe = end - q > FIT_CHUNK ? q + FIT_CHUNK : end;
+          int k;
+          if (g->period > 0.0) {
+            k = within_reach(w, x, per, q, qe, qs);
+            weights(w, x, per, qs, k, e, ws);
+          } else { /* (no nearest image to take) */
+            k = within_reach(w, x, NULL, q, qe, qs);
+            weights(w, x, NULL, qs, k, e, ws);
+          }
+          for (int t = 0; t < k; t++) {
+            const double wj = ws[t], ex = e[0][t], ey = e[1][t];
+            SPH_IF3(const double ez = e[2][t];)
+            sw += wj;
+            a01 += wj * ex;
+            a02 += wj * ey;
+            a11 += wj * ex * ex;
+            a12 += wj * ex * ey;
+            a22 += wj * ey * ey;
+            SPH_IF3(a03 += wj * ez; a13 += wj * ex * ez; a23 += wj * ey * ez; a33 += wj * ez * ez;)
+            const size_t j = w->idx[qs[t]];
+            for (int m = 0; m < nf; m++) {
+              const double fj = f[m][j];
+              if (fmax && fj > fmax[m]) fmax[m] = fj;
+              sf[m] += wj * fj;
+              b1[m] += wj * ex * fj;
+              b2[m] += wj * ey * fj;
+              SPH_IF3(b3[m] += wj * ez * fj;)
+            }
           }
         }
       }
