@@ -350,6 +350,54 @@ static void test_scheme_is_its_keys(void) {
  * 3-D build (sph-3d) with the same command line; its run writes 3-D
  * snapshots (z, v_z, XYZ) and 3-D diagnostics; sph info hands a 3-D
  * snapshot over the same way; without the 3-D program the run says so. */
+/* The last "progress: t = T / END s (P%)" line of out: 1 and T, END, P,
+ * or 0 when out has none. */
+static int last_progress(const char *out, double *t, double *end, double *pct) {
+  const char *at = NULL;
+  for (const char *p = strstr(out, "progress: t = "); p; p = strstr(p + 1, "progress: t = "))
+    at = p;
+  return at && sscanf(at, "progress: t = %lf / %lf s (%lf%%)", t, end, pct) == 3;
+}
+
+/* Progress in a log: with standard error not a terminal (here a file),
+ * one line every --progress seconds of wall time, none from a run shorter
+ * than the default minute, none under --quiet; the 3-D program takes the
+ * option through the hand-over; a bad value is refused by name. */
+static void test_progress_in_a_log(void) {
+  char out[65536], args[8192];
+  write_file("progress.yaml", GOOD);
+  double t, end, pct;
+  snprintf(args, sizeof args,
+           "run '%s/progress.yaml' -o '%s/prog' --set time.end=0.05 --progress 0.001", tmp, tmp);
+  CU_ASSERT_EQUAL_FATAL(sph_ok(args, out, sizeof out), 0);
+  CU_ASSERT(last_progress(out, &t, &end, &pct));
+  CU_ASSERT(t > 0.0 && t <= end && end == 0.05 && fabs(pct - 100.0 * t / end) < 0.051);
+  CU_ASSERT(strstr(out, " steps/s, ") != NULL && strstr(out, " elapsed, ETA ") != NULL);
+  CU_ASSERT(strchr(out, '\r') == NULL); /* no bar in a log */
+  /* the default: a line a minute, so none from this run; none when quiet */
+  snprintf(args, sizeof args, "run '%s/progress.yaml' -o '%s/prog' --set time.end=0.05", tmp, tmp);
+  CU_ASSERT_EQUAL(sph_ok(args, out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "progress:") == NULL);
+  snprintf(args, sizeof args, "run -q '%s/progress.yaml' -o '%s/prog' --progress 0.001", tmp, tmp);
+  CU_ASSERT_EQUAL(sph_ok(args, out, sizeof out), 0);
+  CU_ASSERT(strstr(out, "progress:") == NULL);
+  /* 3-D: through sph to sph-3d */
+  snprintf(args, sizeof args,
+           "run '%s' -o '%s/prog3' --set time.end=0.004 --set time.output_interval=0.004 "
+           "--set output.probe_interval=0.004 --progress 0.001",
+           sph_test_src("cases/hydrostatic_3d.yaml"), tmp);
+  CU_ASSERT_EQUAL(sph_ok(args, out, sizeof out), 0);
+  CU_ASSERT(last_progress(out, &t, &end, &pct) && end == 0.004);
+  /* bad values */
+  static const char *const bad[] = {"abc", "-1", "1e99", ""};
+  for (int k = 0; k < 4; k++) {
+    snprintf(args, sizeof args, "run '%s/progress.yaml' -o '%s/prog' --progress '%s'", tmp, tmp,
+             bad[k]);
+    CU_ASSERT_EQUAL(sph(args, out, sizeof out), 2);
+    CU_ASSERT(strstr(out, "sph run: --progress: expected seconds between progress lines") != NULL);
+  }
+}
+
 static void test_three_dimensions(void) {
   char out[65536], args[8192], path[4200];
   CU_ASSERT_EQUAL(sph("--version", out, sizeof out), 0);
@@ -733,6 +781,7 @@ int main(void) {
       {"a case far from the origin: the same particles; too far: refused", test_far_from_origin},
       {"3-D messages in three components", test_messages_3d},
       {"a signal during the hand-over to sph-3d is not lost", test_signal_in_hand_over},
+      {"progress in a log: a line every --progress seconds, 2-D and 3-D", test_progress_in_a_log},
       CU_TEST_INFO_NULL};
   int rc = sph_test_main("cli", tests);
   sph_test_rmtree(tmp);

@@ -73,6 +73,11 @@ int sph_cli_parse_threads(const char *cmd, const char *value, int *threads);
 /* --max-particles VALUE: a count from 1 to SPH_MAX_PARTICLES_HARD into
  * *max; 0, or -1 with the message "CMD: --max-particles: ..." printed. */
 int sph_cli_parse_max_particles(const char *cmd, const char *value, double *max);
+/* --progress SECONDS (a number from 0 to 1e9) into *seconds: 0, or -1 with
+ * the message printed (cmd first). */
+int sph_cli_parse_progress(const char *cmd, const char *value, double *seconds);
+/* The seconds between progress lines in a log when --progress is not given. */
+#define SPH_CLI_PROGRESS_DEFAULT 60.0
 /* Sets the OpenMP thread count (threads > 0; 0 keeps the default) and
  * returns the count in force; without OpenMP, 1 (with a note on stderr
  * when more were asked for and quiet is 0). */

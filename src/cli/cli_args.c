@@ -115,6 +115,18 @@ int sph_cli_parse_max_particles(const char *cmd, const char *value, double *max)
   return 0;
 }
 
+int sph_cli_parse_progress(const char *cmd, const char *value, double *seconds) {
+  char *end;
+  const double v = strtod(value, &end);
+  if (end == value || *end || !(v >= 0.0) || !(v <= 1e9)) {
+    fprintf(stderr, "%s: --progress: expected seconds between progress lines (0: none), got '%s'\n",
+            cmd, value);
+    return -1;
+  }
+  *seconds = v;
+  return 0;
+}
+
 int sph_cli_set_threads(int threads, int quiet) {
 #ifdef _OPENMP
   (void)quiet;

@@ -420,7 +420,7 @@ static int audit_run(const audit_args *a, int r, long got, double dx, audit_row 
     for (int i = 0; i < a->ntimes; i++)
       row->dev[i] = row->fdev[i] = row->work[i] = row->wall_heat[i] = NAN;
     sph_progress bar;
-    sph_progress_init(&bar, stderr, c.t_end, NULL, a->quiet);
+    sph_progress_init(&bar, stderr, c.t_end, NULL, a->quiet, 0.0); /* (a line per run instead) */
     sph_run_options opt = {dir, on_progress, &bar, NULL, on_row, &sink};
     sph_run_result res;
     const double w0 = sph_wall_seconds();

@@ -42,7 +42,7 @@ static void on_signal(int sig) {
 static void run_usage(FILE *f) {
   fprintf(f,
           "usage: sph run CASE [-o DIR] [--threads N] [--set key=value]... [--quiet]\n"
-          "               [--restart SNAPSHOT]\n"
+          "               [--restart SNAPSHOT] [--progress S]\n"
           "       sph run --restart SNAPSHOT [-o DIR] [--threads N] [--set time.end=T] [--quiet]\n"
           "\n"
           "Runs the case file CASE (YAML; every key: doc/case-files.md, man sph). CASE may\n"
@@ -62,7 +62,11 @@ static void run_usage(FILE *f) {
           "                     identical for any N\n"
           "  -s, --set K=V      override a case key, e.g. --set numerics.dx=0.001\n"
           "                     (V is YAML: --set physics.gravity=[0,-9.81]); repeatable\n"
-          "  -q, --quiet        no start-up listing and no progress bar\n"
+          "  -q, --quiet        no start-up listing and no progress bar or lines\n"
+          "      --progress S   when standard error is not a terminal (a log file, a\n"
+          "                     batch job): a progress line every S seconds of wall time\n"
+          "                     (default 60, so a shorter run writes none; 0: none); on a\n"
+          "                     terminal the progress bar instead\n"
           "      --max-particles N\n"
           "                     refuse a case whose geometry makes more than N particles\n"
           "                     (default: half this machine's memory at 1200 bytes each)\n"
@@ -91,6 +95,7 @@ typedef struct run_args {
   const char *case_path, *outdir, *restart;
   int threads, quiet;
   double max_particles; /* --max-particles; 0: the default bound */
+  double progress;      /* --progress: seconds between lines in a log */
   const char **sets;
   size_t n_set;
 } run_args;
@@ -99,8 +104,8 @@ typedef struct run_args {
  * error, message printed). */
 static int parse_run_args(int argc, char **argv, run_args *a) {
   static const char *const with_value[] = {
-      "-o",    "--output", "-t",        "--threads",       "-s",
-      "--set", "-r",       "--restart", "--max-particles", NULL};
+      "-o",        "--output",        "-t",         "--threads", "-s", "--set", "-r",
+      "--restart", "--max-particles", "--progress", NULL};
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
@@ -122,6 +127,8 @@ static int parse_run_args(int argc, char **argv, run_args *a) {
         if (sph_cli_parse_threads("sph run", v, &a->threads)) return 2;
       } else if (!strcmp(o, "--max-particles")) {
         if (sph_cli_parse_max_particles("sph run", v, &a->max_particles)) return 2;
+      } else if (!strcmp(o, "--progress")) {
+        if (sph_cli_parse_progress("sph run", v, &a->progress)) return 2;
       } else if (!strchr(v, '=')) {
         fprintf(stderr, "sph run: --set: expected key=value, got '%s'\n", v);
         return 2;
@@ -362,7 +369,7 @@ static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
                    sph_snapshot_restart_data *rd) {
   progress_ctx pc;
   sph_progress_init(&pc.bar, stderr, c->t_end, c->stop == SPH_STOP_FRONT_AT_WALL ? "front" : NULL,
-                    a->quiet);
+                    a->quiet, a->progress);
   /* under mpirun only rank 0 writes (procs.h); every process stops together */
   const int root = sph_procs_rank() == 0;
   sph_run_options opt = {
@@ -463,7 +470,7 @@ static int run_case(int argc, char **argv) {
   install_signals(); /* from the start: a signal during set-up is reported too */
   const int st = launched();
   if (st) return st;
-  run_args a = {0};
+  run_args a = {.progress = SPH_CLI_PROGRESS_DEFAULT};
   a.sets = calloc((size_t)argc, sizeof *a.sets);
   if (!a.sets) return 1;
   int status = parse_run_args(argc, argv, &a);

@@ -15,9 +15,13 @@ double sph_wall_seconds(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-void sph_progress_init(sph_progress *pg, FILE *out, double t_end, const char *measure, int quiet) {
+void sph_progress_init(sph_progress *pg, FILE *out, double t_end, const char *measure, int quiet,
+                       double log_every) {
   pg->out = out;
-  pg->enabled = !quiet && isatty(fileno(out));
+  const int tty = isatty(fileno(out));
+  pg->enabled = !quiet && tty;
+  pg->log_every = !quiet && !tty && log_every > 0.0 ? log_every : 0.0;
+  pg->next_log = pg->log_every;
   pg->t_end = t_end;
   pg->wall0 = sph_wall_seconds();
   pg->last_draw = -1.0;
@@ -58,12 +62,38 @@ static void fmt_duration(char *buf, size_t len, double s) {
     snprintf(buf, len, "%dh%02dm", (int)(s / 3600), ((int)s % 3600) / 60);
 }
 
+void sph_progress_line(const sph_progress *pg, double t, long step, double now, double stop,
+                       double elapsed, char *buf, size_t len) {
+  double ft, fs, left;
+  sph_progress_state(pg, t, step, now, stop, elapsed, &ft, &fs, &left);
+  char el[32], eta[32], cond[96] = "";
+  fmt_duration(el, sizeof el, elapsed);
+  fmt_duration(eta, sizeof eta, left);
+  if (fs >= 0.0)
+    snprintf(cond, sizeof cond, ", %s %.4g / %.4g m (%.0f%%)", pg->measure, now, stop, 100 * fs);
+  snprintf(buf, len,
+           "progress: t = %.4f / %.4f s (%.1f%%)%s, step %ld, %.0f steps/s, %s elapsed, ETA %s", t,
+           pg->t_end, 100 * ft, cond, step,
+           elapsed > 0 ? (double)(step - pg->step0) / elapsed : 0.0, el, eta);
+}
+
 void sph_progress_update(sph_progress *pg, double t, long step, double now, double stop) {
   if (!pg->started) {
     pg->started = 1;
     pg->t0 = t;
     pg->step0 = step;
     pg->m0 = now;
+  }
+  if (pg->log_every > 0.0) { /* a log: a line at each multiple of log_every */
+    const double el = sph_wall_seconds() - pg->wall0;
+    if (el < pg->next_log) return;
+    while (pg->next_log <= el)
+      pg->next_log += pg->log_every;
+    char line[256];
+    sph_progress_line(pg, t, step, now, stop, el, line, sizeof line);
+    fprintf(pg->out, "%s\n", line);
+    fflush(pg->out);
+    return;
   }
   if (!pg->enabled) return;
   const double wall = sph_wall_seconds();

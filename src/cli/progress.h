@@ -8,7 +8,11 @@
  * sooner of their estimates, each from the progress made since this
  * process started (so a restarted run estimates from its own pace). It
  * draws only when its stream is a terminal, at most a few times a second,
- * and erases itself when done. Output files never see it.
+ * and erases itself when done. When the stream is not a terminal (a log
+ * file, a batch system's output) it writes instead one line every
+ * log_every seconds of wall time (the first after log_every: a shorter run
+ * writes none): the simulated time, the step, the steps per second, the
+ * elapsed time and the time left. Output files never see either.
  */
 #ifndef SPH_PROGRESS_H
 #define SPH_PROGRESS_H
@@ -17,7 +21,9 @@
 
 typedef struct sph_progress {
   FILE *out;
-  int enabled;
+  int enabled;      /* the bar: out is a terminal */
+  double log_every; /* a line every log_every s when out is not a terminal (0: none) */
+  double next_log;  /* the elapsed seconds of the next line */
   double t_end;
   double wall0, last_draw; /* monotonic seconds */
   int drawn;
@@ -28,9 +34,11 @@ typedef struct sph_progress {
   const char *measure; /* what the stop condition measures ("front"), or NULL */
 } sph_progress;
 
-/* Enabled only when out is a terminal and quiet is 0. measure names what
- * the stop condition watches (NULL: the case has none). */
-void sph_progress_init(sph_progress *pg, FILE *out, double t_end, const char *measure, int quiet);
+/* The bar when out is a terminal, else a line every log_every seconds (0:
+ * none); nothing when quiet. measure names what the stop condition
+ * watches (NULL: the case has none). */
+void sph_progress_init(sph_progress *pg, FILE *out, double t_end, const char *measure, int quiet,
+                       double log_every);
 /* now, stop: the stop condition's measure and the value that ends the run
  * (ignored without a measure). */
 void sph_progress_update(sph_progress *pg, double t, long step, double now, double stop);
@@ -39,6 +47,9 @@ void sph_progress_update(sph_progress *pg, double t, long step, double now, doub
  * them after `elapsed` seconds. */
 void sph_progress_state(const sph_progress *pg, double t, long step, double now, double stop,
                         double elapsed, double *by_time, double *by_stop, double *left);
+/* The line written every log_every seconds into buf: "progress: t = ..." */
+void sph_progress_line(const sph_progress *pg, double t, long step, double now, double stop,
+                       double elapsed, char *buf, size_t len);
 /* Erases the bar. */
 void sph_progress_done(sph_progress *pg);
 /* Monotonic wall-clock seconds (for timing summaries). */
