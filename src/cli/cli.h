@@ -35,6 +35,10 @@ int sph_cli_hand_over(const char *cmd, const char *case_path, const char *text, 
                       const char *const *set, size_t n_set);
 /* The same for a snapshot file (its attribute "dimension"). */
 int sph_cli_hand_over_snapshot(const char *cmd, const char *path);
+/* A command that makes a case of dimension dim (sph new --dim): 0 when it
+ * is this build's; else the other build runs the command line (no
+ * return), or 1 with a message naming `name` when it cannot. */
+int sph_cli_hand_over_dim(const char *cmd, const char *name, int dim);
 
 int sph_cli_run(int argc, char **argv);
 int sph_cli_info(int argc, char **argv);

@@ -9,6 +9,9 @@
  * and its range. The case reader parses the text before it is written (the
  * name's rule is its). tests/check_new holds it to that: the file runs,
  * and every key the schema tables of doc/case-files.md list appears in it.
+ * `--dim 3` writes the same dam break in 3-D (a slab of the tank a wide,
+ * z up, dx = a/10): the template with its dimension's lines replaced
+ * (THREE_D), the rest shared.
  */
 #include "config.h"
 
@@ -167,27 +170,116 @@ static const char *const TEMPLATE =
     "      # wetted: false          # true: a wire gauge's wetted length, not the top particle\n"
     "  probe_interval: 0.001      # s, 0 (every step, default) to time.end\n";
 
+/* The lines of TEMPLATE that differ in 3-D: each `from` (a whole line, found
+ * exactly once) becomes `to` (one line or more). */
+static const struct {
+  const char *from, *to;
+} THREE_D[] = {
+    {"dimension: 2                 # 2 or 3 (default 2); 3-D cases: doc/case-files.md\n",
+     "dimension: 3                 # 2 or 3 (default 2); 3-D cases: doc/case-files.md\n"},
+    {"  gravity: [0, -9.81]        # m/s^2 (default [0, -9.81])\n",
+     "  gravity: [0, 0, -9.81]     # m/s^2, z up (2-D default [0, -9.81])\n"},
+    {"  # body_force: [0, -9.81]   # the same under its general name; not with gravity\n",
+     "  # body_force: [0, 0, -9.81]  # the same under its general name; not with gravity\n"},
+    {"  dx: 0.0028575              # m, > 0, smaller than every fluid block (required)\n",
+     "  dx: 0.005715               # m, > 0, smaller than every fluid block (required);\n"
+     "                             # a/10: 2000 fluid particles, a quick start\n"},
+    {"    y: [0, 0.2]              # the floor and the top of the walls (m), y0 < y1\n",
+     "    y: [0, 0.05715]          # its width (m), y0 < y1\n"
+     "    z: [0, 0.2]              # the floor and the top of the walls (m), z0 < z1\n"},
+    {"    # stagger: true          # layers dx/2 apart and staggered (default true; false for "
+     "mdbc and adami)\n",
+     "    # stagger: false         # 2-D only so far: 3-D layers are dx apart\n"},
+    {"      y: [0, 0.1143]\n", "      y: [0, 0.05715]\n      z: [0, 0.1143]\n"},
+    {"      velocity: [0, 0]       # m/s (default [0, 0])\n",
+     "      velocity: [0, 0, 0]    # m/s (default [0, 0, 0])\n"},
+    {"      surface: 0.1143        # the hydrostatic start's surface, >= y1 (default y1)\n",
+     "      surface: 0.1143        # the hydrostatic start's surface, >= z1 (default z1)\n"},
+    {"  #  - from: [0.06, 0]       # start point (m); the fluid is on the right, seen from it\n",
+     "  #  - from: [0.06, 0]       # [x, z] (m): a plate across the tank's y range; the fluid\n"
+     "  #                          # on its right, seen from it with x right and z up\n"},
+    {"  #    stagger: true\n", "  #    stagger: false      # 2-D only so far\n"},
+    {"  #      velocity: [0, 1.5]  # translate: m/s\n",
+     "  #      velocity: [0, 0, 1.5]  # translate: m/s\n"},
+    {"  #      # hinge: [0.06, 0]\n", "  #      # hinge: [0.06, 0]    # [x, z]: a line along y\n"},
+    {"  #   - {x: [0.3, 0.35], y: [0, 0.05], layers: 2, boundary: dynamic}\n",
+     "  #   - {x: [0.15, 0.2], y: [0, 0.05715], z: [0, 0.05], layers: 2, boundary: dynamic}\n"},
+    {"  #   y: [-0.1, 0.6]\n", "  #   y: [-0.1, 0.16]\n  #   z: [-0.1, 0.6]\n"},
+    {"  # gauges: [0.1]            # wave gauges at these x (m): gauges.csv\n",
+     "  # gauges: [[0.1, 0.028575]]  # wave gauges, vertical lines at these (x, y) (m)\n"},
+    {"      at: [0.2286, 0.003]    # the point (m); on the right wall's face here\n",
+     "      at: [0.2286, 0.028575, 0.003]  # the disc's centre (m), on the right wall's face\n"
+     "      normal: [-1, 0, 0]     # its face's normal, toward the water (3-D, required)\n"},
+    {"      along: y               # y (default; a wall sensor), x (a floor sensor)\n",
+     "      # along: y             # 2-D only (3-D: normal)\n"},
+    {"      # points: 5              # face points, 1..64 (pressure; default 5)\n",
+     "      # points: 5              # face points, 1 or 5 in 3-D (pressure; default 5)\n"},
+    {"      x: 0.1                 # a level gauge's x (m)\n",
+     "      at: [0.1, 0.028575]    # a level gauge's vertical line (x, y) (m)\n"},
+};
+
+/* TEMPLATE in 3-D (THREE_D's lines replaced) into a new string; NULL if
+ * out of memory or a line of THREE_D is not in TEMPLATE once (a defect,
+ * said on stderr). */
+static char *template_3d(void) {
+  const size_t n_sub = sizeof THREE_D / sizeof THREE_D[0];
+  size_t len = strlen(TEMPLATE) + 1;
+  for (size_t k = 0; k < n_sub; k++)
+    len += strlen(THREE_D[k].to);
+  char *out = malloc(len), *w = out;
+  if (!out) return NULL;
+  const char *r = TEMPLATE;
+  while (*r) {
+    const char *eol = strchr(r, '\n');
+    const size_t n = eol ? (size_t)(eol - r) + 1 : strlen(r);
+    const char *to = NULL;
+    for (size_t k = 0; k < n_sub && !to; k++)
+      if (strlen(THREE_D[k].from) == n && !strncmp(r, THREE_D[k].from, n)) to = THREE_D[k].to;
+    const size_t m = to ? strlen(to) : n;
+    memcpy(w, to ? to : r, m);
+    w += m, r += n;
+  }
+  *w = '\0';
+  for (size_t k = 0; k < n_sub; k++) {
+    const char *at = strstr(TEMPLATE, THREE_D[k].from);
+    if (!at || strstr(at + 1, THREE_D[k].from)) {
+      fprintf(stderr, "sph new: the 3-D template's line is not in the 2-D one once: %s",
+              THREE_D[k].from);
+      free(out);
+      return NULL;
+    }
+  }
+  return out;
+}
+
 static void new_usage(FILE *f) {
-  fprintf(f, "usage: sph new NAME [-o FILE]\n"
+  fprintf(f, "usage: sph new NAME [-o FILE] [--dim 2|3]\n"
              "\n"
              "Writes a case file to start from, NAME.yaml (or FILE): a small dam break\n"
              "that runs as written, with every key of a case file set or shown commented\n"
              "out with its default and range. It will not overwrite a file.\n"
              "\n"
-             "  -o, --output FILE  where to write it (default NAME.yaml)\n");
+             "  -o, --output FILE  where to write it (default NAME.yaml)\n"
+             "      --dim D        2 (default) or 3: the dam break in 3-D (z up, the tank\n"
+             "                     one column wide, dx = a/10), its keys in their 3-D form\n");
 }
 
-/* The case file for name: its name line, then TEMPLATE; NULL if out of
- * memory. */
-static char *case_text(const char *name) {
-  const size_t n = strlen("name: \n") + strlen(name) + strlen(TEMPLATE) + 1;
+/* The case file for name: its name line, then TEMPLATE (in 3-D when dim
+ * is 3); NULL if out of memory. */
+static char *case_text(const char *name, int dim) {
+  char *body = dim == 3 ? template_3d() : NULL;
+  if (dim == 3 && !body) return NULL;
+  const char *t = body ? body : TEMPLATE;
+  const size_t n = strlen("name: \n") + strlen(name) + strlen(t) + 1;
   char *text = malloc(n);
-  if (text) snprintf(text, n, "name: %s\n%s", name, TEMPLATE);
+  if (text) snprintf(text, n, "name: %s\n%s", name, t);
+  free(body);
   return text;
 }
 
 int sph_cli_new(int argc, char **argv) {
   const char *name = NULL, *out = NULL;
+  int dim = 2;
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
       new_usage(stdout);
@@ -199,6 +291,13 @@ int sph_cli_new(int argc, char **argv) {
         return 2;
       }
       out = argv[++i];
+    } else if (!strcmp(argv[i], "--dim")) {
+      if (i + 1 >= argc || (strcmp(argv[i + 1], "2") && strcmp(argv[i + 1], "3"))) {
+        fprintf(stderr, "sph new: --dim: expected 2 or 3, got '%s'\n",
+                i + 1 < argc ? argv[i + 1] : "");
+        return 2;
+      }
+      dim = argv[++i][0] - '0';
     } else if (argv[i][0] == '-' && argv[i][1]) {
       fprintf(stderr, "sph new: unknown option '%s'\n", argv[i]);
       new_usage(stderr);
@@ -214,13 +313,14 @@ int sph_cli_new(int argc, char **argv) {
     new_usage(stderr);
     return 2;
   }
+  if (dim != SPH_DIM) return sph_cli_hand_over_dim("new", name, dim); /* (twin.c) */
   char path[4200];
   if (!out) {
     snprintf(path, sizeof path, "%s.yaml", name);
     out = path;
   }
   /* the case reader checks what is written, the name's rule included */
-  char *text = case_text(name);
+  char *text = case_text(name, dim);
   if (!text) {
     fprintf(stderr, "sph new: out of memory\n");
     return 1;

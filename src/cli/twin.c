@@ -134,3 +134,7 @@ int sph_cli_hand_over_snapshot(const char *cmd, const char *path) {
   if (sph_snapshot_file_dimension(path, &dim, &err) || dim == SPH_DIM) return 0;
   return exec_twin(cmd, "snapshot", path, dim);
 }
+
+int sph_cli_hand_over_dim(const char *cmd, const char *name, int dim) {
+  return dim == SPH_DIM ? 0 : exec_twin(cmd, "case", name, dim);
+}
