@@ -6,6 +6,7 @@
 
 #include "cli/progress.h"
 
+#include <math.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -87,8 +88,7 @@ void sph_progress_update(sph_progress *pg, double t, long step, double now, doub
   if (pg->log_every > 0.0) { /* a log: a line at each multiple of log_every */
     const double el = sph_wall_seconds() - pg->wall0;
     if (el < pg->next_log) return;
-    while (pg->next_log <= el)
-      pg->next_log += pg->log_every;
+    pg->next_log = (floor(el / pg->log_every) + 1.0) * pg->log_every; /* the next multiple */
     char line[256];
     sph_progress_line(pg, t, step, now, stop, el, line, sizeof line);
     fprintf(pg->out, "%s\n", line);
