@@ -63,8 +63,9 @@ static void fmt_duration(char *buf, size_t len, double s) {
     snprintf(buf, len, "%dh%02dm", (int)(s / 3600), ((int)s % 3600) / 60);
 }
 
-void sph_progress_line(const sph_progress *pg, double t, long step, double now, double stop,
-                       double elapsed, char *buf, size_t len) {
+/* The line written every log_every seconds into buf: "progress: t = ..." */
+static void progress_line(const sph_progress *pg, double t, long step, double now, double stop,
+                          double elapsed, char *buf, size_t len) {
   double ft, fs, left;
   sph_progress_state(pg, t, step, now, stop, elapsed, &ft, &fs, &left);
   char el[32], eta[32], cond[96] = "";
@@ -90,7 +91,7 @@ void sph_progress_update(sph_progress *pg, double t, long step, double now, doub
     if (el < pg->next_log) return;
     pg->next_log = (floor(el / pg->log_every) + 1.0) * pg->log_every; /* the next multiple */
     char line[256];
-    sph_progress_line(pg, t, step, now, stop, el, line, sizeof line);
+    progress_line(pg, t, step, now, stop, el, line, sizeof line);
     fprintf(pg->out, "%s\n", line);
     fflush(pg->out);
     return;

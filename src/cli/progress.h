@@ -47,9 +47,6 @@ void sph_progress_update(sph_progress *pg, double t, long step, double now, doub
  * them after `elapsed` seconds. */
 void sph_progress_state(const sph_progress *pg, double t, long step, double now, double stop,
                         double elapsed, double *by_time, double *by_stop, double *left);
-/* The line written every log_every seconds into buf: "progress: t = ..." */
-void sph_progress_line(const sph_progress *pg, double t, long step, double now, double stop,
-                       double elapsed, char *buf, size_t len);
 /* Erases the bar. */
 void sph_progress_done(sph_progress *pg);
 /* Monotonic wall-clock seconds (for timing summaries). */

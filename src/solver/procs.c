@@ -126,16 +126,21 @@ void sph_procs_end(void) {
   started = 0;
 }
 
+/* all[k] = the largest mine[k] over the processes, k < n: one collective. */
+static void max_ints(int *mine, int *all, int n) {
+  MPI_Request r;
+  if (!crowded)
+    MPI_Allreduce(mine, all, n, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  else {
+    MPI_Iallreduce(mine, all, n, MPI_INT, MPI_MAX, MPI_COMM_WORLD, &r);
+    wait_for(&r);
+  }
+}
+
 int sph_procs_any(int flag) {
   if (count == 1) return flag != 0;
   int mine = flag != 0, any = 0;
-  MPI_Request r;
-  if (!crowded)
-    MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  else {
-    MPI_Iallreduce(&mine, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD, &r);
-    wait_for(&r);
-  }
+  max_ints(&mine, &any, 1);
   return any;
 }
 
@@ -163,13 +168,7 @@ int sph_procs_agree_any(int rc, int *flag, sph_error *err) {
   if (count == 1) return rc ? -1 : 0;
   /* one reduction: the lowest failing rank (as -rank's max) and the flag */
   int mine[2] = {rc ? -rank : -count, *flag != 0}, all[2];
-  MPI_Request r;
-  if (!crowded)
-    MPI_Allreduce(mine, all, 2, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  else {
-    MPI_Iallreduce(mine, all, 2, MPI_INT, MPI_MAX, MPI_COMM_WORLD, &r);
-    wait_for(&r);
-  }
+  max_ints(mine, all, 2);
   *flag = all[1];
   if (-all[0] == count) return 0;
   tell(-all[0], err);
