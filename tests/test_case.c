@@ -492,9 +492,10 @@ static void test_unknown_key(void) {
   expect_err(edit(MINIMAL, 3, "  sound_speed: 20\n  viscosty: 0.1\n"), want);
   snprintf(want, sizeof want, "t.yaml:13: foo: unknown key (valid top-level keys: %s)", TOP_KEYS);
   expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\nfoo: 1\n"), want);
-  expect_err(edit(MINIMAL, 12, "      y: [0, 0.5]\n      colour: blue\n"),
-             "t.yaml:13: geometry.fluid[0].colour: unknown key (valid keys in "
-             "'geometry.fluid[0]': x, y, velocity, hydrostatic, surface, jitter, seed)");
+  expect_err(
+      edit(MINIMAL, 12, "      y: [0, 0.5]\n      colour: blue\n"),
+      "t.yaml:13: geometry.fluid[0].colour: unknown key (valid keys in "
+      "'geometry.fluid[0]': x, y, polygon, circle, velocity, hydrostatic, surface, jitter, seed)");
 }
 
 static void test_wrong_type(void) {

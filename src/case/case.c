@@ -26,6 +26,7 @@
 #include "config.h"
 
 #include "case/case_read.h"
+#include "case/mesh.h"
 
 #include "case/choices.h"
 #include "case/presets.h"
@@ -828,6 +829,11 @@ void sph_case_free(sph_case *c) {
   free(c->text);
   free(c->overrides);
   free(c->scheme_kept);
+  for (size_t i = 0; c->fluid && i < c->n_fluid; i++) {
+    free(c->fluid[i].shape.vertex);
+    free(c->fluid[i].shape.file);
+    sph_mesh_free(c->fluid[i].shape.mesh);
+  }
   free(c->fluid);
   free(c->walls);
   free(c->obstacles);

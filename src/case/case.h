@@ -61,8 +61,34 @@ const char *sph_boundary_name(sph_boundary_kind b);
 const char *sph_stop_name(sph_stop_kind s);
 const char *sph_viscosity_name(sph_viscosity_kind v);
 
-/* A rectangle of fluid filled on the lattice of spacing dx: particle centres
- * at (x0 + (i + 1/2) dx, y0 + (j + 1/2) dx) inside [x0,x1] x [y0,y1]. */
+/* The shape of a fluid block (doc/case-files.md, Shapes): the box itself,
+ * or a shape whose inside keeps the box's lattice points (the box then
+ * its bounding box). A polygon's vertices are (x, y) in 2-D and (x, z) in
+ * 3-D, where it is a prism across the box's y range. */
+typedef enum {
+  SPH_SHAPE_BOX = 0,      /* the box lo..hi */
+  SPH_SHAPE_POLYGON = 1,  /* a simple polygon, vertices in order either way round */
+  SPH_SHAPE_BALL = 2,     /* a circle in 2-D, a sphere in 3-D: centre, radius */
+  SPH_SHAPE_CYLINDER = 3, /* 3-D: the axis from `centre` to `end`, radius */
+  SPH_SHAPE_MESH = 4      /* 3-D: a closed triangle surface read from a mesh file */
+} sph_shape_kind;
+typedef struct sph_mesh sph_mesh; /* a closed triangle surface (src/case/mesh.c) */
+typedef struct sph_shape {
+  sph_shape_kind kind;
+  size_t n;         /* polygon: vertices */
+  double *vertex;   /* polygon: 2n numbers (x, up), up y in 2-D, z in 3-D; owned by the case */
+  double centre[3]; /* ball: its centre; cylinder: one end of its axis */
+  double end[3];    /* cylinder: the other end of its axis */
+  double radius;    /* ball, cylinder */
+  sph_mesh *mesh;   /* mesh: the surface, owned by the case */
+  char *file;       /* mesh: the file as the case names it, owned by the case */
+  double scale;     /* mesh: each coordinate v of the file becomes scale v + offset */
+  double offset[3];
+} sph_shape;
+
+/* A block of fluid filled on the lattice of spacing dx: particle centres
+ * at (x0 + (i + 1/2) dx, y0 + (j + 1/2) dx) inside [x0,x1] x [y0,y1], and
+ * inside its shape. */
 typedef struct sph_fluid_block {
   SPH_COMPONENTS(double, lo, x0, y0, z0); /* lower corner (m; z up in 3-D, doc/dimensions.md) */
   SPH_COMPONENTS(double, hi, x1, y1, z1); /* upper corner (m) */
@@ -73,6 +99,8 @@ typedef struct sph_fluid_block {
   double jitter;   /* perturbed start: each particle moved by up to jitter*dx in x and in y
                       (uniform, seeded), in [0, 0.5); default 0 = on the lattice */
   int seed;        /* seed of the jitter, default 1 */
+  sph_shape shape; /* the box (default) or the shape that clips it */
+  size_t line;     /* the block's line in the case file (0: from --set) */
 } sph_fluid_block;
 
 const char *sph_probe_kind_name(sph_probe_kind k);
@@ -195,6 +223,12 @@ int sph_case_check_size(const sph_case *c, double max, sph_error *err);
  * rounding of hi - lo, relative to the coordinates (a block far from the
  * origin, x + 1e6 m, holds what it holds at the origin; issue 61, E8). */
 long sph_case_lattice_points(double lo, double hi, double dx);
+
+/* The fluid particles a block makes at spacing dx (its box's lattice
+ * points, those inside its shape), and its area (2-D) or volume (3-D):
+ * the box's or its shape's (doc/case-files.md, Shapes). */
+long sph_case_block_points(const sph_fluid_block *f, double dx);
+double sph_case_block_measure(const sph_fluid_block *f);
 
 /* The name of gauge g's column in gauges.csv ("eta_X", in 3-D "eta_X_Y"):
  * unique among the case's gauges (the reader refuses two with one name). */

@@ -89,6 +89,35 @@ static void sb_box(sbuf *b, const char *prefix, const double lo[SPH_DIM],
     sb_add(b, "%s.%c: [%.17g, %.17g]\n", prefix, "xyz"[a], lo[a], hi[a]);
 }
 
+/* A block's extent: its box, or its shape (a 3-D polygon with its y range). */
+static void describe_shape(sbuf *b, const char *k, const sph_fluid_block *f) {
+  const sph_shape *s = &f->shape;
+  switch (s->kind) {
+  case SPH_SHAPE_POLYGON:
+    sb_add(b, "%s.polygon: [", k);
+    for (size_t v = 0; v < s->n; v++)
+      sb_add(b, "%s[%.17g, %.17g]", v ? ", " : "", s->vertex[2 * v], s->vertex[2 * v + 1]);
+    sb_add(b, "]\n");
+    if (SPH_DIM == 3) sb_add(b, "%s.y: [%.17g, %.17g]\n", k, f->lo[1], f->hi[1]);
+    break;
+  case SPH_SHAPE_BALL:
+    sb_vector(b, k, SPH_DIM == 2 ? "circle.centre" : "sphere.centre", s->centre);
+    sb_add(b, "%s.%s.radius: %.17g\n", k, SPH_DIM == 2 ? "circle" : "sphere", s->radius);
+    break;
+  case SPH_SHAPE_CYLINDER:
+    sb_vector(b, k, "cylinder.from", s->centre);
+    sb_vector(b, k, "cylinder.to", s->end);
+    sb_add(b, "%s.cylinder.radius: %.17g\n", k, s->radius);
+    break;
+  case SPH_SHAPE_MESH:
+    sb_add(b, "%s.mesh.file: %s\n", k, s->file);
+    sb_add(b, "%s.mesh.scale: %.17g\n", k, s->scale);
+    sb_vector(b, k, "mesh.offset", s->offset);
+    break;
+  default: sb_box(b, k, f->lo, f->hi); break;
+  }
+}
+
 static void describe_geometry(sbuf *b, const sph_case *c) {
   char k[SPH_YAML_KEYLEN];
   if (c->tank.present) {
@@ -105,7 +134,7 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
   for (size_t i = 0; i < c->n_fluid; i++) {
     const sph_fluid_block *f = &c->fluid[i];
     sph_yaml_bprintf(k, sizeof k, "geometry.fluid[%zu]", i);
-    sb_box(b, k, f->lo, f->hi);
+    describe_shape(b, k, f);
     sb_vector(b, k, "velocity", f->v);
     sb_add(b, "%s.hydrostatic: %s\n", k, f->hydrostatic ? "true" : "false");
     sb_add(b, "%s.surface: %.17g\n", k, f->surface);

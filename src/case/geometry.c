@@ -14,6 +14,9 @@
 
 #include "case/case_read.h"
 #include "case/choices.h"
+#include "case/mesh.h"
+#include "case/presets.h"
+#include "case/shape.h"
 
 #include "walls/wavemaker.h"
 
@@ -33,8 +36,27 @@ static const char *const obstacle_keys[] = {"x", "y", SPH_IF3("z", ) "layers", "
 static const char *const tank_keys[] = {"x",         "y",       SPH_IF3("z", ) "layers",
                                         "boundary",  "stagger", "extrapolated_velocity",
                                         "free_slip", NULL};
-static const char *const fluid_keys[] = {
-    "x", "y", SPH_IF3("z", ) "velocity", "hydrostatic", "surface", "jitter", "seed", NULL};
+#if SPH_DIM == 2
+#define BALL_KEY "circle"
+#else
+#define BALL_KEY "sphere"
+#endif
+static const char *const fluid_keys[] = {"x",
+                                         "y",
+                                         SPH_IF3("z", ) "polygon",
+                                         BALL_KEY,
+                                         SPH_IF3("cylinder", "mesh", ) "velocity",
+                                         "hydrostatic",
+                                         "surface",
+                                         "jitter",
+                                         "seed",
+                                         NULL};
+/* a block's shapes (shape.h), each instead of the box's ranges */
+static const char *const shape_keys[] = {"polygon", BALL_KEY, SPH_IF3("cylinder", "mesh", ) NULL};
+static const char *const mesh_keys[] = {"file", "scale", "offset", NULL};
+static const char *const ball_keys[] = {"centre", "radius", NULL};
+static const char *const cylinder_keys[] = {"from", "to", "radius", NULL};
+#define SPH_POLYGON_MAX_VERTICES 10000 /* the simple-polygon check takes n^2 / 2 edge pairs */
 static const char *const wall_keys[] = {"from",
                                         "to",
                                         "layers",
@@ -175,9 +197,10 @@ static int read_tank(const ctx *x, const node *m, sph_case *c) {
   return check_layers(x, t, p, c->tank.boundary, &c->tank.layers);
 }
 
-/* The block must be wider and taller than dx, and inside the tank if any. */
-static int check_block(const ctx *x, const node *m, const char *p, const sph_case *c,
-                       const sph_fluid_block *f) {
+/* The block (its shape's bounding box) must be wider and taller than dx, and inside the tank if
+ * any; `at` is the node that gave its extent along each axis (its range, or its shape). */
+static int check_block(const ctx *x, const node *const at[SPH_DIM], const char *const key[SPH_DIM],
+                       const sph_case *c, const sph_fluid_block *f, const char *p) {
   double w = f->x1 - f->x0, h = f->y1 - f->y0;
   const sph_tank *k = &c->tank;
   char kp[SPH_YAML_KEYLEN], b[96];
@@ -196,27 +219,161 @@ static int check_block(const ctx *x, const node *m, const char *p, const sph_cas
                               sph_yaml_got(x->dx_node, b, sizeof b));
   for (int a = 0; a < SPH_DIM; a++)
     if (k->present && (f->lo[a] < k->lo[a] || f->hi[a] > k->hi[a])) {
-      sph_yaml_join(kp, sizeof kp, p, axis_key[a]);
-      return sph_yaml_fail_at(&x->t, sph_yaml_find(m, axis_key[a])->val, kp,
+      sph_yaml_join(kp, sizeof kp, p, key[a]);
+      if (f->shape.kind != SPH_SHAPE_BOX && strcmp(key[a], axis_key[a]))
+        return sph_yaml_fail_at(&x->t, at[a], kp,
+                                "expected a shape inside the tank's inner box, [%g, %g] along %s, "
+                                "got one reaching [%g, %g]",
+                                k->lo[a], k->hi[a], axis_key[a], f->lo[a], f->hi[a]);
+      return sph_yaml_fail_at(&x->t, at[a], kp,
                               "expected a range inside the tank's inner box [%g, %g], got [%g, %g]",
                               k->lo[a], k->hi[a], f->lo[a], f->hi[a]);
     }
   return 0;
 }
 
+/* A polygon: a list of 3..SPH_POLYGON_MAX_VERTICES points [x, y] ([x, z] in 3-D), simple. */
+static int read_polygon(const ctx *x, const node *t, const char *kp, sph_shape *s) {
+  char b[96], why[256];
+  if (t->kind != SPH_YAML_LIST || t->n < 3 || t->n > SPH_POLYGON_MAX_VERTICES)
+    return sph_yaml_fail_at(&x->t, t, kp,
+                            "expected a list of 3 to %d vertices [x, %c] in order around the "
+                            "polygon, got %s",
+                            SPH_POLYGON_MAX_VERTICES, SPH_DIM == 2 ? 'y' : 'z',
+                            t->kind == SPH_YAML_LIST
+                                ? (sph_yaml_bprintf(b, sizeof b, "%zu", t->n), b)
+                                : sph_yaml_got(t, b, sizeof b));
+  if (!(s->vertex = malloc(2 * t->n * sizeof *s->vertex))) return sph_yaml_oom(&x->t);
+  s->kind = SPH_SHAPE_POLYGON;
+  s->n = t->n;
+  for (size_t i = 0; i < t->n; i++) {
+    char ik[SPH_YAML_KEYLEN];
+    sph_yaml_bprintf(ik, sizeof ik, "%s[%zu]", kp, i);
+    if (sph_yaml_read_vector(&x->t, t->items[i], ik, 2, s->vertex + 2 * i)) return -1;
+  }
+  if (sph_polygon_defect(s->vertex, s->n, why, sizeof why))
+    return sph_yaml_fail_at(&x->t, t, kp, "expected a simple polygon, got one where %s", why);
+  return 0;
+}
+
+/* A circle (2-D) or a sphere (3-D): {centre, radius}; a cylinder (3-D): {from, to, radius}. */
+static int read_round(const ctx *x, const node *m, const char *p, const char *key, sph_shape *s) {
+  const node *t;
+  char kp[SPH_YAML_KEYLEN];
+  const int cyl = !strcmp(key, "cylinder");
+  if (sph_yaml_get_section(&x->t, m, p, key, 1, cyl ? cylinder_keys : ball_keys, &t) < 0) return -1;
+  sph_yaml_join(kp, sizeof kp, p, key);
+  s->kind = cyl ? SPH_SHAPE_CYLINDER : SPH_SHAPE_BALL;
+  if (sph_yaml_get_vector(&x->t, t, kp, cyl ? "from" : "centre", 1, SPH_DIM, s->centre) < 0)
+    return -1;
+  if (cyl) {
+    if (sph_yaml_get_vector(&x->t, t, kp, "to", 1, SPH_DIM, s->end) < 0) return -1;
+    int same = 1;
+    for (int a = 0; a < SPH_DIM; a++)
+      same &= s->centre[a] == s->end[a];
+    if (same) {
+      char tk[SPH_YAML_KEYLEN];
+      sph_yaml_join(tk, sizeof tk, kp, "to");
+      return sph_yaml_fail_at(&x->t, sph_yaml_find(t, "to")->val, tk,
+                              "expected an end of the axis other than 'from', got the same point");
+    }
+  }
+  return sph_yaml_get_number(&x->t, t, kp, "radius", 1, &SPH_YAML_POS, &s->radius) < 0 ? -1 : 0;
+}
+
+/* A closed surface from a mesh file: {file, scale (default 1), offset (default 0)}; the file
+ * relative to the case file's folder (mesh.h). */
+static int read_mesh(const ctx *x, const node *m, const char *p, sph_shape *s) {
+  const node *t;
+  char kp[SPH_YAML_KEYLEN], path[4096], why[600];
+  if (sph_yaml_get_section(&x->t, m, p, "mesh", 1, mesh_keys, &t) < 0) return -1;
+  sph_yaml_join(kp, sizeof kp, p, "mesh");
+  s->kind = SPH_SHAPE_MESH;
+  const node *fn;
+  char fk[SPH_YAML_KEYLEN], b[96];
+  if (sph_yaml_lookup(&x->t, t, kp, "file", 1, &fn, fk) < 0) return -1;
+  if (fn->kind != SPH_YAML_SCALAR || !*fn->text)
+    return sph_yaml_fail_at(&x->t, fn, fk, "expected a file name, got %s",
+                            sph_yaml_got(fn, b, sizeof b));
+  if (!(s->file = sph_yaml_dup(fn->text, strlen(fn->text)))) return sph_yaml_oom(&x->t);
+  s->scale = 1.0;
+  if (sph_yaml_get_number(&x->t, t, kp, "scale", 0, &SPH_YAML_POS, &s->scale) < 0) return -1;
+  if (sph_yaml_get_vector(&x->t, t, kp, "offset", 0, 3, s->offset) < 0) return -1;
+  const char *slash = strrchr(x->t.origin, '/');
+  if (s->file[0] == '/' || !slash)
+    snprintf(path, sizeof path, "%s", s->file);
+  else
+    snprintf(path, sizeof path, "%.*s/%s", (int)(slash - x->t.origin), x->t.origin, s->file);
+  if (sph_mesh_read(path, s->scale, s->offset, &s->mesh, why, sizeof why))
+    return sph_yaml_fail_at(&x->t, fn, fk, "expected a closed triangle surface, got %s%s%s", path,
+                            strstr(why, path) == why ? "" : ": ",
+                            strstr(why, path) == why ? why + strlen(path) : why);
+  return 0;
+}
+
+/* The block's extent: its box's ranges, or its shape (one of shape_keys, instead of the ranges;
+ * a 3-D polygon's y range is the box's, the tank's by default). at/key get the node and key that
+ * gave each axis. */
+static int read_extent(const ctx *x, const node *m, const char *p, const sph_case *c,
+                       sph_fluid_block *f, const node *at[SPH_DIM], const char *key[SPH_DIM]) {
+  char kp[SPH_YAML_KEYLEN], b[96];
+  const char *shape = NULL;
+  for (int k = 0; shape_keys[k]; k++) {
+    if (!sph_yaml_find(m, shape_keys[k])) continue;
+    if (shape) {
+      sph_yaml_join(kp, sizeof kp, p, shape_keys[k]);
+      return sph_yaml_fail_at(&x->t, sph_yaml_find(m, shape_keys[k])->val, kp,
+                              "expected one shape per block, got %s and %s", shape, shape_keys[k]);
+    }
+    shape = shape_keys[k];
+  }
+  const int prism = shape && !strcmp(shape, "polygon") && SPH_DIM == 3; /* its y is a range */
+  for (int a = 0; a < SPH_DIM; a++) {
+    double v[2] = {0, 0};
+    key[a] = shape && !(prism && a == 1) ? shape : axis_key[a];
+    if (shape && !(prism && a == 1)) {
+      const sph_yaml_entry *e = sph_yaml_find(m, axis_key[a]);
+      if (e) {
+        sph_yaml_join(kp, sizeof kp, p, axis_key[a]);
+        return sph_yaml_fail_at(&x->t, e->val, kp,
+                                "expected no %s range in a block with a %s (its shape gives its "
+                                "extent), got %s",
+                                axis_key[a], shape, sph_yaml_got(e->val, b, sizeof b));
+      }
+      continue;
+    }
+    const int required = !(prism && c->tank.present);
+    if (prism && !required) v[0] = c->tank.lo[1], v[1] = c->tank.hi[1];
+    if (sph_yaml_get_pair(&x->t, m, p, axis_key[a], required, "xyz"[a], v) < 0) return -1;
+    f->lo[a] = v[0];
+    f->hi[a] = v[1];
+    const sph_yaml_entry *e = sph_yaml_find(m, axis_key[a]);
+    at[a] = e ? e->val : m;
+  }
+  if (!shape) return 0;
+  const node *t = sph_yaml_find(m, shape)->val;
+  sph_yaml_join(kp, sizeof kp, p, shape);
+  if (!strcmp(shape, "polygon") ? read_polygon(x, t, kp, &f->shape)
+      : !strcmp(shape, "mesh")  ? read_mesh(x, m, p, &f->shape)
+                                : read_round(x, m, p, shape, &f->shape))
+    return -1;
+  sph_shape_bounds(&f->shape, f->lo, f->hi);
+  for (int a = 0; a < SPH_DIM; a++)
+    if (!(prism && a == 1)) at[a] = t;
+  return 0;
+}
+
 static int read_block(const ctx *x, const node *m, const char *p, const sph_case *c,
                       sph_fluid_block *f) {
   char what[96], b[96];
-  double v[2] = {0, 0};
   if (m->kind != SPH_YAML_MAP)
     return sph_yaml_fail_at(&x->t, m, p, "expected a mapping, got %s",
                             sph_yaml_got(m, b, sizeof b));
   if (sph_yaml_check_keys(&x->t, m, p, fluid_keys)) return -1;
-  for (int a = 0; a < SPH_DIM; a++) {
-    if (sph_yaml_get_pair(&x->t, m, p, axis_key[a], 1, "xyz"[a], v) < 0) return -1;
-    f->lo[a] = v[0];
-    f->hi[a] = v[1];
-  }
+  const node *at[SPH_DIM];
+  const char *key[SPH_DIM];
+  f->line = m->line;
+  if (read_extent(x, m, p, c, f, at, key)) return -1;
   for (int a = 0; a < SPH_DIM; a++)
     f->v[a] = 0.0;
   if (sph_yaml_get_vector(&x->t, m, p, "velocity", 0, SPH_DIM, f->v) < 0) return -1;
@@ -240,7 +397,7 @@ static int read_block(const ctx *x, const node *m, const char *p, const sph_case
                             "expected no seed without %s.jitter, got %s", p,
                             sph_yaml_got(sph_yaml_find(m, "seed")->val, b, sizeof b));
   }
-  return check_block(x, m, p, c, f);
+  return check_block(x, at, key, c, f, p);
 }
 
 static int read_fluid(const ctx *x, const node *m, sph_case *c) {
@@ -260,6 +417,8 @@ static int read_fluid(const ctx *x, const node *m, sph_case *c) {
     const sph_fluid_block *a = &c->fluid[i];
     for (size_t k = 0; k < i; k++) {
       const sph_fluid_block *o = &c->fluid[k];
+      if (a->shape.kind != SPH_SHAPE_BOX || o->shape.kind != SPH_SHAPE_BOX)
+        continue; /* shapes: their lattice points, when they are made (solver/setup.c) */
       int overlap = 1;
       for (int d = 0; d < SPH_DIM; d++)
         overlap &= fmin(a->hi[d], o->hi[d]) - fmax(a->lo[d], o->lo[d]) > 1e-9 * c->dx;
@@ -347,11 +506,24 @@ static int read_motion(const ctx *x, const node *m, const char *p, sph_wall_segm
   return sph_yaml_get_number(&x->t, t, kp, "stop", 0, &after, &w->motion.stop) < 0 ? -1 : 0;
 }
 
+/* A segment's wall model when it names none: the scheme's (its tank's default, presets.c), so
+ * that a wall drawn in a case of the default scheme holds the fluid as the tank does. */
+static int scheme_wall_model(const sph_case *c) {
+  size_t n;
+  const sph_preset *all = sph_presets(&n);
+  const sph_preset *ps = (size_t)c->scheme < n ? &all[c->scheme] : sph_preset_default();
+  for (size_t k = 0; k < SPH_PRESET_KEYS; k++)
+    if (!strcmp(ps->keys[k].key, "geometry.tank.boundary"))
+      for (int b = 0; boundary_names[b]; b++)
+        if (!strcmp(boundary_names[b], ps->keys[k].value)) return b;
+  return (int)SPH_BOUNDARY_DYNAMIC;
+}
+
 static int read_wall(const ctx *x, const node *m, const char *p, const sph_case *c,
                      sph_wall_segment *w) {
   char b[96];
   double from[2], to[2];
-  int bnd = (int)SPH_BOUNDARY_DYNAMIC;
+  int bnd = scheme_wall_model(c);
   if (m->kind != SPH_YAML_MAP)
     return sph_yaml_fail_at(&x->t, m, p, "expected a mapping, got %s",
                             sph_yaml_got(m, b, sizeof b));

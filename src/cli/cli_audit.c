@@ -96,14 +96,8 @@ static int parse_list(const char *s, double *v, int max) {
 /* Fluid particles the case's blocks hold at spacing dx (as sim.c fills them). */
 static long count_at(const sph_case *c, double dx) {
   long n = 0;
-  for (size_t b = 0; b < c->n_fluid; b++) {
-    const sph_fluid_block *f = &c->fluid[b];
-    long m = sph_case_lattice_points(f->x0, f->x1, dx) * sph_case_lattice_points(f->y0, f->y1, dx);
-#if SPH_DIM == 3
-    m *= sph_case_lattice_points(f->z0, f->z1, dx);
-#endif
-    n += m;
-  }
+  for (size_t b = 0; b < c->n_fluid; b++)
+    n += sph_case_block_points(&c->fluid[b], dx);
   return n;
 }
 
@@ -113,11 +107,7 @@ static long count_at(const sph_case *c, double dx) {
 static double dx_for(const sph_case *c, long want, long *got) {
   double area = 0.0;
   for (size_t b = 0; b < c->n_fluid; b++)
-    area += (c->fluid[b].x1 - c->fluid[b].x0) * (c->fluid[b].y1 - c->fluid[b].y0)
-#if SPH_DIM == 3
-            * (c->fluid[b].z1 - c->fluid[b].z0)
-#endif
-        ;
+    area += sph_case_block_measure(&c->fluid[b]);
   const double dx0 = pow(area / (double)want, 1.0 / SPH_DIM);
   double best = dx0;
   long bestn = count_at(c, dx0);

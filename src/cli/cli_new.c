@@ -105,7 +105,7 @@ static const char *const TEMPLATE =
     "    # extrapolated_velocity: false  # no slip on the face (stress_tensor or sps; not "
     "adami)\n"
     "    free_slip: false         # forces along the wall's normal only (default false)\n"
-    "  fluid:                     # rectangular blocks (at least one)\n"
+    "  fluid:                     # blocks: boxes or shapes (at least one)\n"
     "    - x: [0, 0.05715]\n"
     "      y: [0, 0.1143]\n"
     "      velocity: [0, 0]       # m/s (default [0, 0])\n"
@@ -113,10 +113,13 @@ static const char *const TEMPLATE =
     "      surface: 0.1143        # the hydrostatic start's surface, >= y1 (default y1)\n"
     "      jitter: 0              # a perturbed start, [0, 0.5) dx (default 0)\n"
     "      # seed: 1              # the jitter's seed, 0..2147483647 (default 1)\n"
+    "    # - polygon: [[0.1, 0], [0.2, 0], [0.1, 0.05]]  # instead of x, y: a simple polygon\n"
+    "    # - circle: {centre: [0.15, 0.15], radius: 0.02}  # instead of x, y: a disc of water\n"
+    "    #                        # (3-D: sphere:, cylinder:, mesh: {file: x.stl, scale, offset})\n"
     "  walls: []                  # extra straight walls (default none), e.g. a gate:\n"
     "  #  - from: [0.06, 0]       # start point (m); the fluid is on the right, seen from it\n"
     "  #    to: [0.06, 0.15]      # end point (m)\n"
-    "  #    boundary: dynamic     # as the tank's\n"
+    "  #    boundary: adami       # as the tank's (default the scheme's, as the tank's)\n"
     "  #    layers: 2\n"
     "  #    stagger: true\n"
     "  #    extrapolated_velocity: false\n"
@@ -195,6 +198,17 @@ static const struct {
      "      velocity: [0, 0, 0]    # m/s (default [0, 0, 0])\n"},
     {"      surface: 0.1143        # the hydrostatic start's surface, >= y1 (default y1)\n",
      "      surface: 0.1143        # the hydrostatic start's surface, >= z1 (default z1)\n"},
+    {"    # - polygon: [[0.1, 0], [0.2, 0], [0.1, 0.05]]  # instead of x, y: a simple polygon\n",
+     "    # - {polygon: [[0.1, 0], [0.2, 0], [0.1, 0.05]], y: [0, 0.05715]}  # instead of x, z:\n"
+     "    #                        # a prism, the polygon's [x, z] across y (the tank's)\n"},
+    {"    # - circle: {centre: [0.15, 0.15], radius: 0.02}  # instead of x, y: a disc of water\n",
+     "    # - sphere: {centre: [0.15, 0.028575, 0.15], radius: 0.02}  # instead of x, y, z\n"
+     "    # - cylinder: {from: [0.1, 0, 0.1], to: [0.1, 0.05715, 0.1], radius: 0.02}\n"
+     "    # - mesh: {file: water.stl, scale: 0.001, offset: [0, 0, 0]}  # a closed STL, OBJ or\n"
+     "    #                        # PLY surface, the file relative to this case's folder\n"},
+    {"    #                        # (3-D: sphere:, cylinder:, mesh: {file: x.stl, scale, "
+     "offset})\n",
+     ""},
     {"  #  - from: [0.06, 0]       # start point (m); the fluid is on the right, seen from it\n",
      "  #  - from: [0.06, 0]       # [x, z] (m): a plate across the tank's y range; the fluid\n"
      "  #                          # on its right, seen from it with x right and z up\n"},

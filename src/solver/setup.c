@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "case/domain.h"
+#include "case/shape.h"
 #include "physics/eos.h"
 #include "physics/kernel.h"
 #include "solver/diffusion.h"
@@ -136,6 +137,25 @@ static double gravity_down(const sph_case *c) {
   return -c->gravity[SPH_UP] > 0.0 ? -c->gravity[SPH_UP] : 0.0;
 }
 
+/* A shaped block's lattice point x inside an earlier block, or a box block's inside a later
+ * shaped one: the two would put particles in the same place (twice the mass there). The reader
+ * refuses boxes that overlap (geometry.c); shapes are seen here, point by point. */
+static int shaped_overlap(const sph_case *c, size_t b, const double x[SPH_DIM], sph_error *err) {
+  for (size_t k = 0; k < c->n_fluid; k++) {
+    if (k == b || !sph_shape_inside(&c->fluid[k], x)) continue;
+    const size_t first = k < b ? k : b, second = k < b ? b : k;
+    char line[32] = "";
+    if (c->fluid[second].line) snprintf(line, sizeof line, ":%zu", c->fluid[second].line);
+    return sph_error_set(err,
+                         "%s%s: geometry.fluid[%zu]: expected a block apart from "
+                         "geometry.fluid[%zu], got one that overlaps it at (%g, %g" SPH_IF3(
+                             ", %g") ") (their particles would overlap)",
+                         c->path ? c->path : "the case", line, second, first, x[0],
+                         x[1] SPH_IF3(, x[2]));
+  }
+  return 0;
+}
+
 static int add_fluid(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   const double dx = c->dx, mass = sph_lattice_mass(c->rho0, dx);
@@ -152,6 +172,18 @@ static int add_fluid(sph_sim *s, sph_error *err) {
           double x[SPH_DIM];
           for (int a = 0; a < SPH_DIM; a++)
             x[a] = fb->lo[a] + ((double)idx[a] + 0.5) * dx;
+          if (fb->shape.kind != SPH_SHAPE_BOX) {
+            const int wn = sph_shape_winding(fb, x);
+            if (wn == 0) continue;
+            if (wn != 1)
+              return sph_error_set(err,
+                                   "%s:%zu: geometry.fluid[%zu].mesh: expected a surface that does "
+                                   "not cross itself, got one that winds %d times around (%g, "
+                                   "%g" SPH_IF3(", %g") ") (it crosses or overlaps itself there)",
+                                   c->path ? c->path : "the case", fb->line, b, wn, x[0],
+                                   x[1] SPH_IF3(, x[2]));
+            if (shaped_overlap(c, b, x, err)) return -1;
+          }
           fluid_jitter(fb, b, i, j, k, dx, x); /* perturbed start, if asked for */
           double rho = c->rho0;
           if (fb->hydrostatic)

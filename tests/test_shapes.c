@@ -1,0 +1,604 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * test_shapes.c - fluid blocks of other shapes than boxes (src/case/shape.c,
+ * doc/case-files.md, Shapes), built twice: test_shapes (2-D: polygons and
+ * circles) and test_shapes_3d (-DSPH_DIM=3: polygon prisms, spheres,
+ * cylinders and closed surfaces from mesh files).
+ *
+ * 1. A polygon that is the box's rectangle (either way round) makes the
+ *    box's particles bit for bit (in 3-D the prism of that rectangle
+ *    across the box's y range).
+ * 2. The filled area or volume, N dx^d, against the shape's: a circle or
+ *    a sphere 20 particles across within 1 %, a tilted cylinder 20 across
+ *    and 40 long within 1 %; a polygon with edges on the lattice's cell
+ *    faces exactly.
+ * 3. Bad shapes are refused at their key with file, line and what was
+ *    expected: a polygon that crosses itself, has fewer than 3 vertices,
+ *    repeats a vertex or has no area; a shape beside a box range; two
+ *    shapes in one block; a shape outside the tank; a cylinder whose ends
+ *    are one point; two shaped blocks that overlap (refused when the
+ *    particles are made, naming both blocks and a point).
+ * 4. (2-D) Still water over a sloped beach, the water a polygon and the
+ *    beach a sloped wall of the default scheme's model (the shipped
+ *    cases/sloped_beach.yaml's flume at rest), at dx = 0.02 and 0.01 m:
+ *    after 0.5 s no particle is below the beach's surface and the largest
+ *    speed is below 10 % of sqrt(g d) (the lattice's staircase along the
+ *    1:4 slope settles onto it; a wall of 2 dynamic layers, the segments'
+ *    default before they took the scheme's model, let the water through
+ *    it at 98 %).
+ * 5. (3-D) Closed surfaces from mesh files (src/case/mesh.c, Assimp): a box
+ *    written as ASCII STL, binary STL, OBJ and PLY makes the box
+ *    primitive's particles bit for bit (dyadic corners and dx, exact in
+ *    the files' single precision; a square top whose diagonal lattice
+ *    columns run along); a sphere of 1280 triangles fills its mesh's
+ *    volume within 2 % at 20 dx across and 1 % at 40 (measured +0.95 %,
+ *    -0.20 %; read in millimetres with `scale` and `offset`, its lattice
+ *    moved by the single-precision corners: +1.72 %, -0.04 %: at 20
+ *    across the lattice's place decides about 1 %); an open surface, an inward one, one with a
+ * triangle turned, a missing file, a zero scale, and two boxes overlapping in one file (refused
+ * where the surface winds twice) are refused.
+ */
+#include "config.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "case/case.h"
+#include "core/particles.h"
+#include "solver/sim.h"
+#include "testutil.h"
+
+static const double pi = 3.14159265358979323846;
+
+/* The case text head: a tank (x 0..1, y/z 0..0.5; in 3-D y 0..0.3) and dx; blocks follow. */
+#if SPH_DIM == 2
+#define HEAD                                                                                       \
+  "name: shapes\n"                                                                                 \
+  "physics: {gravity: [0, -9.81], sound_speed: 20}\n"                                              \
+  "numerics: {dx: 0.01}\n"                                                                         \
+  "time: {end: 0.01, output_interval: 0.01}\n"                                                     \
+  "geometry:\n"                                                                                    \
+  "  tank: {x: [0, 1], y: [0, 0.5]}\n"                                                             \
+  "  fluid:\n"
+#else
+#define HEAD                                                                                       \
+  "name: shapes\n"                                                                                 \
+  "dimension: 3\n"                                                                                 \
+  "physics: {gravity: [0, 0, -9.81], sound_speed: 20}\n"                                           \
+  "numerics: {dx: 0.01}\n"                                                                         \
+  "time: {end: 0.01, output_interval: 0.01}\n"                                                     \
+  "geometry:\n"                                                                                    \
+  "  tank: {x: [0, 1], y: [0, 0.3], z: [0, 0.5]}\n"                                                \
+  "  fluid:\n"
+#endif
+
+/* Parses HEAD + blocks; 0 or the error in err. */
+static int parse(const char *blocks, const char *const *set, size_t n_set, sph_case *c,
+                 sph_error *err) {
+  char text[4096];
+  snprintf(text, sizeof text, "%s%s", HEAD, blocks);
+  return sph_case_parse(text, strlen(text), "shapes.yaml", set, n_set, c, err);
+}
+
+/* Opens the sim of HEAD + blocks (asserting it opens). */
+static sph_sim *open_sim(const char *blocks, sph_case *c) {
+  sph_error err;
+  const int rc = parse(blocks, NULL, 0, c, &err);
+  if (rc) printf("\n    %s", err.msg);
+  CU_ASSERT_FATAL(rc == 0);
+  sph_sim *s = NULL;
+  const int sc = sph_sim_create(c, &s, &err);
+  if (sc) printf("\n    %s", err.msg);
+  CU_ASSERT_FATAL(sc == 0);
+  return s;
+}
+
+/* Whether two sims made the same particles, bit for bit. */
+static int same_particles(sph_sim *a, sph_sim *b) {
+  const sph_particles *p = sph_sim_particles(a), *q = sph_sim_particles(b);
+  if (p->n != q->n) return 0;
+  for (int d = 0; d < SPH_DIM; d++)
+    if (memcmp(p->pos[d], q->pos[d], p->n * sizeof(double)) ||
+        memcmp(p->vel[d], q->vel[d], p->n * sizeof(double)))
+      return 0;
+  return !memcmp(p->rho, q->rho, p->n * sizeof(double)) &&
+         !memcmp(p->mass, q->mass, p->n * sizeof(double)) &&
+         !memcmp(p->kind, q->kind, p->n * sizeof *p->kind);
+}
+
+/* 1. The rectangle as a polygon, both ways round, is the box. */
+static void test_polygon_is_box(void) {
+#if SPH_DIM == 2
+  const char *box = "    - {x: [0.1, 0.5], y: [0.05, 0.25]}\n";
+  const char *ccw = "    - polygon: [[0.1, 0.05], [0.5, 0.05], [0.5, 0.25], [0.1, 0.25]]\n";
+  const char *cw = "    - polygon: [[0.1, 0.05], [0.1, 0.25], [0.5, 0.25], [0.5, 0.05]]\n";
+#else
+  const char *box = "    - {x: [0.1, 0.5], y: [0.05, 0.25], z: [0.05, 0.25]}\n";
+  const char *ccw =
+      "    - {polygon: [[0.1, 0.05], [0.5, 0.05], [0.5, 0.25], [0.1, 0.25]], y: [0.05, "
+      "0.25]}\n";
+  const char *cw =
+      "    - {polygon: [[0.1, 0.05], [0.1, 0.25], [0.5, 0.25], [0.5, 0.05]], y: [0.05, "
+      "0.25]}\n";
+#endif
+  sph_case c0, c1, c2;
+  sph_sim *s0 = open_sim(box, &c0), *s1 = open_sim(ccw, &c1), *s2 = open_sim(cw, &c2);
+  printf("\n  box %zu particles; the polygon (anticlockwise, clockwise) the same bits: %s, %s",
+         sph_sim_particles(s0)->n, same_particles(s0, s1) ? "yes" : "NO",
+         same_particles(s0, s2) ? "yes" : "NO");
+  CU_ASSERT(same_particles(s0, s1));
+  CU_ASSERT(same_particles(s0, s2));
+  sph_sim_free(s0), sph_sim_free(s1), sph_sim_free(s2);
+  sph_case_free(&c0), sph_case_free(&c1), sph_case_free(&c2);
+}
+
+/* The fluid particles block 0 of the blocks makes, and its measure. */
+static long fill(const char *blocks, double *measure) {
+  sph_case c;
+  sph_error err;
+  const int rc = parse(blocks, NULL, 0, &c, &err);
+  if (rc) printf("\n    %s", err.msg);
+  CU_ASSERT_FATAL(rc == 0);
+  const long n = sph_case_block_points(&c.fluid[0], c.dx);
+  *measure = sph_case_block_measure(&c.fluid[0]);
+  sph_case_free(&c);
+  return n;
+}
+
+static void report(const char *what, long n, double dx, double measure, double tol) {
+  const double filled = (double)n * pow(dx, SPH_DIM), e = (filled - measure) / measure;
+  printf("\n  %s: %ld particles, filled %.6g against %.6g: %+.3f %% (at most %.1f %%)", what, n,
+         filled, measure, 100 * e, 100 * tol);
+  CU_ASSERT(fabs(e) <= tol);
+}
+
+/* 2. Filled areas and volumes. */
+static void test_filled_measure(void) {
+  double m;
+  long n;
+#if SPH_DIM == 2
+  n = fill("    - circle: {centre: [0.5, 0.2], radius: 0.1}\n", &m);
+  CU_ASSERT_DOUBLE_EQUAL(m, pi * 0.01, 1e-15);
+  report("a circle 20 dx across", n, 0.01, m, 0.01);
+  n = fill("    - circle: {centre: [0.5037, 0.2011], radius: 0.1}\n", &m);
+  report("the same circle off the lattice", n, 0.01, m, 0.01);
+  /* a trapezoid with its slanted edge through cell corners: the cells it cuts in half are
+   * counted when their centre is inside, half of them */
+  n = fill("    - polygon: [[0, 0], [0.6, 0], [0.6, 0.1], [0, 0.3]]\n", &m);
+  CU_ASSERT_DOUBLE_EQUAL(m, 0.12, 1e-15);
+  report("a trapezoid (0.12 m2)", n, 0.01, m, 0.01);
+  n = fill("    - polygon: [[0.1, 0.1], [0.4, 0.1], [0.4, 0.2], [0.2, 0.2], [0.2, 0.4], [0.1, "
+           "0.4]]\n",
+           &m);
+  CU_ASSERT_EQUAL(n, 500); /* an L of 0.05 m2, its edges on cell faces */
+  report("an L on cell faces", n, 0.01, m, 1e-12);
+#else
+  n = fill("    - sphere: {centre: [0.5, 0.15, 0.2], radius: 0.1}\n", &m);
+  CU_ASSERT_DOUBLE_EQUAL(m, 4.0 / 3.0 * pi * 1e-3, 1e-15);
+  report("a sphere 20 dx across", n, 0.01, m, 0.01);
+  n = fill("    - sphere: {centre: [0.5037, 0.1511, 0.2023], radius: 0.1}\n", &m);
+  report("the same sphere off the lattice", n, 0.01, m, 0.01);
+  n = fill("    - cylinder: {from: [0.3, 0.15, 0.15], to: [0.6, 0.15, 0.35], radius: 0.1}\n", &m);
+  report("a tilted cylinder 20 dx across, 36 long", n, 0.01, m, 0.01);
+  n = fill("    - cylinder: {from: [0.3, 0.0, 0.2], to: [0.3, 0.3, 0.2], radius: 0.1}\n", &m);
+  report("a cylinder across the tank", n, 0.01, m, 0.01);
+#endif
+}
+
+/* Parses the blocks and asserts the error holds every one of the NULL-terminated words. */
+static void refused(const char *blocks, const char *const *words) {
+  sph_case c;
+  sph_error err;
+  const int rc = parse(blocks, NULL, 0, &c, &err);
+  CU_ASSERT(rc != 0);
+  if (rc == 0) {
+    printf("\n  NOT refused: %s", blocks);
+    sph_case_free(&c);
+    return;
+  }
+  printf("\n  %s", err.msg);
+  for (const char *const *w = words; *w; w++) {
+    const int has = strstr(err.msg, *w) != NULL;
+    if (!has) printf("\n    (the message lacks \"%s\")", *w);
+    CU_ASSERT(has);
+  }
+}
+
+/* 3. Bad shapes. */
+static void test_refusals(void) {
+  /* HEAD has 7 lines (8 in 3-D): the first block is on the next */
+  static const char *const crossing[] = {"shapes.yaml:", "geometry.fluid[0].polygon",
+                                         "edges 0-1 and 2-3 cross", NULL};
+  refused("    - polygon: [[0.1, 0.1], [0.4, 0.4], [0.4, 0.1], [0.1, 0.4]]\n", crossing);
+  static const char *const few[] = {"geometry.fluid[0].polygon", "3 to 10000 vertices", "got 2",
+                                    NULL};
+  refused("    - polygon: [[0.1, 0.1], [0.4, 0.4]]\n", few);
+  static const char *const same[] = {"vertices 1 and 2 are the same point", NULL};
+  refused("    - polygon: [[0.1, 0.1], [0.4, 0.1], [0.4, 0.1], [0.1, 0.4]]\n", same);
+  static const char *const flat[] = {"area is zero", NULL};
+  refused("    - polygon: [[0.1, 0.1], [0.2, 0.2], [0.3, 0.3]]\n", flat);
+  static const char *const both[] = {"geometry.fluid[0].x", "expected no x range in a block with a",
+                                     NULL};
+  refused("    - {x: [0.1, 0.2], polygon: [[0.1, 0.1], [0.4, 0.1], [0.1, 0.4]]}\n", both);
+  static const char *const outside[] = {"expected a shape inside the tank's inner box", NULL};
+  refused("    - polygon: [[0.1, 0.1], [1.4, 0.1], [0.1, 0.4]]\n", outside);
+#if SPH_DIM == 2
+  static const char *const two[] = {"expected one shape per block, got polygon and circle", NULL};
+  refused("    - polygon: [[0.1, 0.1], [0.4, 0.1], [0.1, 0.4]]\n"
+          "      circle: {centre: [0.5, 0.2], radius: 0.1}\n",
+          two);
+  static const char *const radius[] = {"geometry.fluid[0].circle.radius", NULL};
+  refused("    - circle: {centre: [0.5, 0.2], radius: -0.1}\n", radius);
+  static const char *const wrong_dim[] = {"geometry.fluid[0]", "sphere", NULL};
+  refused("    - sphere: {centre: [0.5, 0.2], radius: 0.1}\n", wrong_dim);
+  const char *overlap = "    - polygon: [[0.1, 0.1], [0.4, 0.1], [0.1, 0.4]]\n"
+                        "    - circle: {centre: [0.3, 0.25], radius: 0.1}\n";
+#else
+  static const char *const two[] = {"expected one shape per block, got sphere and cylinder", NULL};
+  refused("    - sphere: {centre: [0.5, 0.15, 0.2], radius: 0.1}\n"
+          "      cylinder: {from: [0.3, 0.15, 0.15], to: [0.6, 0.15, 0.35], radius: 0.1}\n",
+          two);
+  static const char *const ends[] = {"geometry.fluid[0].cylinder.to", "the same point", NULL};
+  refused("    - cylinder: {from: [0.3, 0.15, 0.15], to: [0.3, 0.15, 0.15], radius: 0.1}\n", ends);
+  static const char *const wrong_dim[] = {"geometry.fluid[0]", "circle", NULL};
+  refused("    - circle: {centre: [0.5, 0.15, 0.2], radius: 0.1}\n", wrong_dim);
+  const char *overlap = "    - sphere: {centre: [0.3, 0.15, 0.2], radius: 0.1}\n"
+                        "    - {x: [0.35, 0.6], y: [0, 0.3], z: [0, 0.3]}\n";
+#endif
+  /* overlapping shapes: refused when the particles are made */
+  sph_case c;
+  sph_error err;
+  CU_ASSERT_FATAL(parse(overlap, NULL, 0, &c, &err) == 0);
+  sph_sim *s = NULL;
+  const int rc = sph_sim_create(&c, &s, &err);
+  CU_ASSERT(rc != 0);
+  if (rc == 0)
+    sph_sim_free(s);
+  else {
+    printf("\n  %s", err.msg);
+    CU_ASSERT(strstr(err.msg, "geometry.fluid[1]: expected a block apart from geometry.fluid[0]") !=
+              NULL);
+    CU_ASSERT(strstr(err.msg, SPH_DIM == 2 ? "shapes.yaml:9:" : "shapes.yaml:10:") != NULL);
+  }
+  sph_case_free(&c);
+}
+
+#if SPH_DIM == 2
+/* 4. Still water over a sloped beach: cases/sloped_beach.yaml's flume without its paddle, at
+ * dx = 0.02 m and 0.01 m, run for 0.5 s: the largest speed and the lowest fluid particle above
+ * the beach's surface (the line of its first wall layer). */
+/* The lowest fluid particle over the 1:4 beach from x = 2.5 m: its height above the beach's
+ * surface (negative below it). */
+static double lowest_over_beach(const sph_particles *p) {
+  double lowest = INFINITY;
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_FLUID && p->pos[0][i] > 2.5)
+      lowest = fmin(lowest, p->pos[1][i] - 0.25 * (p->pos[0][i] - 2.5));
+  return lowest;
+}
+
+static void still_beach(const char *dx) {
+  char text[1024];
+  snprintf(text, sizeof text,
+           "name: still_beach\n"
+           "physics: {gravity: [0, -9.81], sound_speed: {factor: 10, height: 0.25}}\n"
+           "numerics: {dx: %s}\n"
+           "time: {end: 0.5, output_interval: 0.5}\n"
+           "geometry:\n"
+           "  tank: {x: [0, 4.1], y: [0, 0.6]}\n"
+           "  fluid:\n"
+           "    - polygon: [[0, 0], [2.5, 0], [3.5, 0.25], [0, 0.25]]\n"
+           "  walls:\n"
+           "    - {from: [4.1, 0.4], to: [2.5, 0.0]}\n",
+           dx);
+  sph_case c;
+  sph_error err;
+  const int rc = sph_case_parse(text, strlen(text), "still_beach", NULL, 0, &c, &err);
+  if (rc) printf("\n    %s", err.msg);
+  CU_ASSERT_FATAL(rc == 0);
+  CU_ASSERT_EQUAL(c.walls[0].boundary, SPH_BOUNDARY_ADAMI); /* the default scheme's walls */
+  sph_sim *s = NULL;
+  CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
+  const double lowest0 = lowest_over_beach(sph_sim_particles(s));
+  while (sph_sim_time(s) < c.t_end)
+    CU_ASSERT_FATAL(sph_sim_step(s, c.t_end, &err) == 0);
+  const sph_particles *p = sph_sim_particles(s);
+  double vmax = 0.0, v2 = 0.0;
+  size_t nf = 0;
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_FLUID) {
+      const double v = hypot(p->vel[0][i], p->vel[1][i]);
+      nf++;
+      vmax = fmax(vmax, v);
+      v2 += v * v;
+    }
+  const double lowest = lowest_over_beach(p), scale = sqrt(9.81 * 0.25);
+  printf("\n  still water over the beach, dx = %s m (%zu fluid particles), t = 0.5 s: largest "
+         "speed %.2f %% of sqrt(g d), RMS %.2f %%; the lowest particle over the beach %+.2f dx "
+         "from its surface (%+.2f dx at the start, in the wedge at its toe)",
+         dx, nf, 100 * vmax / scale, 100 * sqrt(v2 / (double)nf) / scale, lowest / c.dx,
+         lowest0 / c.dx);
+  CU_ASSERT(vmax < 0.1 * scale);
+  /* none went into the beach (at its toe, where the floor's particles stand in for its first
+   * layer's, the water fills the corner down to the floor) */
+  CU_ASSERT(lowest > -0.5 * c.dx);
+  sph_sim_free(s);
+  sph_case_free(&c);
+}
+
+static void test_still_beach(void) {
+  still_beach("0.02");
+  still_beach("0.01");
+}
+#endif
+
+#if SPH_DIM == 3
+/* ---- 5. closed surfaces from mesh files (3-D) ---- */
+
+static char *mesh_dir; /* the mesh files the tests write */
+
+/* The box [lo, hi] as 12 triangles, anticlockwise seen from outside (corner k: x from bit 0,
+ * y from bit 1, z from bit 2). */
+static const int box_tri[12][3] = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6},
+                                   {0, 1, 5}, {0, 5, 4}, {2, 6, 7}, {2, 7, 3},
+                                   {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+static void box_corner(const double lo[3], const double hi[3], int k, double x[3]) {
+  for (int a = 0; a < 3; a++)
+    x[a] = (k >> a) & 1 ? hi[a] : lo[a];
+}
+
+/* Writes n triangles (9 coordinates each) as format "stl" (ASCII), "stlb" (binary), "obj" or
+ * "ply" (ASCII) to mesh_dir/name; returns the path (static). */
+static const char *write_mesh(const char *name, const char *format, const double *tri, size_t n) {
+  static char path[4200];
+  snprintf(path, sizeof path, "%s/%s", mesh_dir, name);
+  FILE *f = fopen(path, "wb");
+  CU_ASSERT_FATAL(f != NULL);
+  if (!strcmp(format, "stl")) {
+    fprintf(f, "solid test\n");
+    for (size_t t = 0; t < n; t++) {
+      fprintf(f, " facet normal 0 0 0\n  outer loop\n");
+      for (int q = 0; q < 3; q++)
+        fprintf(f, "   vertex %.9g %.9g %.9g\n", tri[9 * t + 3 * q], tri[9 * t + 3 * q + 1],
+                tri[9 * t + 3 * q + 2]);
+      fprintf(f, "  endloop\n endfacet\n");
+    }
+    fprintf(f, "endsolid test\n");
+  } else if (!strcmp(format, "stlb")) {
+    char head[80] = "binary STL written by test_shapes";
+    fwrite(head, 1, sizeof head, f);
+    const uint32_t count = (uint32_t)n;
+    fwrite(&count, sizeof count, 1, f);
+    for (size_t t = 0; t < n; t++) {
+      float v[12] = {0, 0, 0};
+      for (int k = 0; k < 9; k++)
+        v[3 + k] = (float)tri[9 * t + k];
+      const uint16_t attr = 0;
+      fwrite(v, sizeof v, 1, f);
+      fwrite(&attr, sizeof attr, 1, f);
+    }
+  } else if (!strcmp(format, "obj")) {
+    for (size_t k = 0; k < 3 * n; k++)
+      fprintf(f, "v %.9g %.9g %.9g\n", tri[3 * k], tri[3 * k + 1], tri[3 * k + 2]);
+    for (size_t t = 0; t < n; t++)
+      fprintf(f, "f %zu %zu %zu\n", 3 * t + 1, 3 * t + 2, 3 * t + 3);
+  } else { /* ply */
+    fprintf(f,
+            "ply\nformat ascii 1.0\nelement vertex %zu\nproperty float x\nproperty float y\n"
+            "property float z\nelement face %zu\nproperty list uchar int vertex_indices\n"
+            "end_header\n",
+            3 * n, n);
+    for (size_t k = 0; k < 3 * n; k++)
+      fprintf(f, "%.9g %.9g %.9g\n", tri[3 * k], tri[3 * k + 1], tri[3 * k + 2]);
+    for (size_t t = 0; t < n; t++)
+      fprintf(f, "3 %zu %zu %zu\n", 3 * t, 3 * t + 1, 3 * t + 2);
+  }
+  fclose(f);
+  return path;
+}
+
+/* The box's triangles (flip: every one turned the other way; keep: how many). */
+static size_t box_mesh(const double lo[3], const double hi[3], int flip, double *tri) {
+  for (int t = 0; t < 12; t++)
+    for (int q = 0; q < 3; q++)
+      box_corner(lo, hi, box_tri[t][flip ? 2 - q : q], tri + 9 * t + 3 * q);
+  return 12;
+}
+
+/* The fluid block "mesh: {file: PATH...}" (extra: more keys of mesh, or "") as blocks text. */
+static const char *mesh_block(const char *path, const char *extra) {
+  static char b[4600];
+  snprintf(b, sizeof b, "    - mesh: {file: '%s'%s}\n", path, extra);
+  return b;
+}
+
+/* A box in each format is the box primitive, bit for bit: dyadic corners and spacing (exact in
+ * the files' single precision), a square top so that lattice columns run along its diagonal. */
+static void test_mesh_is_box(void) {
+  const double lo[3] = {0.125, 0.03125, 0.0625}, hi[3] = {0.375, 0.28125, 0.3125};
+  double tri[12 * 9];
+  const size_t n = box_mesh(lo, hi, 0, tri);
+  const char *dx[] = {"numerics.dx=0.015625"};
+  sph_case c0;
+  sph_error err;
+  CU_ASSERT_FATAL(parse("    - {x: [0.125, 0.375], y: [0.03125, 0.28125], z: [0.0625, 0.3125]}\n",
+                        dx, 1, &c0, &err) == 0);
+  sph_sim *s0 = NULL;
+  CU_ASSERT_FATAL(sph_sim_create(&c0, &s0, &err) == 0);
+  static const char *const formats[][2] = {
+      {"box.stl", "stl"}, {"box_binary.stl", "stlb"}, {"box.obj", "obj"}, {"box.ply", "ply"}};
+  for (int k = 0; k < 4; k++) {
+    const char *path = write_mesh(formats[k][0], formats[k][1], tri, n);
+    sph_case c;
+    const int rc = parse(mesh_block(path, ""), dx, 1, &c, &err);
+    if (rc) printf("\n    %s", err.msg);
+    CU_ASSERT_FATAL(rc == 0);
+    sph_sim *s = NULL;
+    CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
+    const int same = same_particles(s0, s);
+    printf("\n  %s (%s): %zu particles, the box's bits: %s", formats[k][0], formats[k][1],
+           sph_sim_particles(s)->n, same ? "yes" : "NO");
+    CU_ASSERT(same);
+    sph_sim_free(s);
+    sph_case_free(&c);
+  }
+  sph_sim_free(s0);
+  sph_case_free(&c0);
+}
+
+/* An icosahedron's triangles subdivided `levels` times onto the sphere (centre, r): 20 4^levels
+ * triangles, each with its own three corners (the reader welds them). */
+static size_t icosphere(const double centre[3], double r, int levels, double **out) {
+  const double g = (1.0 + sqrt(5.0)) / 2.0;
+  const double v[12][3] = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0},
+                           {0, -1, g}, {0, 1, g}, {0, -1, -g}, {0, 1, -g},
+                           {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  static const int f[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                               {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                               {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                               {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  size_t n = 20;
+  double *t = malloc(9 * n * sizeof *t);
+  for (size_t k = 0; k < n; k++)
+    for (int q = 0; q < 3; q++) {
+      const double *p = v[f[k][q]];
+      const double len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+      for (int a = 0; a < 3; a++)
+        t[9 * k + 3 * q + a] = p[a] / len;
+    }
+  for (int l = 0; l < levels; l++) { /* each triangle into four, the midpoints onto the sphere */
+    double *u = malloc(36 * n * sizeof *u);
+    for (size_t k = 0; k < n; k++) {
+      const double *a = t + 9 * k, *b = a + 3, *c = a + 6;
+      double m[3][3];
+      const double *pair[3][2] = {{a, b}, {b, c}, {c, a}};
+      for (int e = 0; e < 3; e++) {
+        double len = 0.0;
+        for (int d = 0; d < 3; d++) {
+          m[e][d] = pair[e][0][d] + pair[e][1][d];
+          len += m[e][d] * m[e][d];
+        }
+        for (int d = 0; d < 3; d++)
+          m[e][d] /= sqrt(len);
+      }
+      const double *tris[4][3] = {
+          {a, m[0], m[2]}, {m[0], b, m[1]}, {m[2], m[1], c}, {m[0], m[1], m[2]}};
+      for (int q = 0; q < 4; q++)
+        for (int w = 0; w < 3; w++)
+          memcpy(u + 36 * k + 9 * q + 3 * w, tris[q][w], 3 * sizeof(double));
+    }
+    free(t);
+    t = u;
+    n *= 4;
+  }
+  for (size_t k = 0; k < 3 * n; k++)
+    for (int a = 0; a < 3; a++)
+      t[3 * k + a] = centre[a] + r * t[3 * k + a];
+  *out = t;
+  return n;
+}
+
+/* A sphere of 1280 triangles: its filled volume against the mesh's own. */
+static void test_mesh_volume(void) {
+  const double centre[3] = {0.5, 0.15, 0.2};
+  double *tri;
+  const size_t n = icosphere(centre, 0.1, 3, &tri);
+  const char *path = write_mesh("sphere.obj", "obj", tri, n);
+  free(tri);
+  double m;
+  const long np = fill(mesh_block(path, ""), &m);
+  printf("\n  the icosphere: %zu triangles, volume %.6g m3 (the sphere's %.6g)", n, m,
+         4.0 / 3.0 * pi * 1e-3);
+  report("a mesh sphere 20 dx across", np, 0.01, m, 0.02);
+  const char *fine[] = {"numerics.dx=0.005"};
+  sph_case c;
+  sph_error err;
+  CU_ASSERT_FATAL(parse(mesh_block(path, ""), fine, 1, &c, &err) == 0);
+  report("the same 40 dx across", sph_case_block_points(&c.fluid[0], 0.005), 0.005, m, 0.01);
+  sph_case_free(&c);
+  /* scaled from millimetres and moved */
+  double *mm;
+  const double origin[3] = {0, 0, 0};
+  const size_t n2 = icosphere(origin, 100.0, 3, &mm);
+  path = write_mesh("sphere_mm.stl", "stlb", mm, n2);
+  free(mm);
+  const long np2 = fill(mesh_block(path, ", scale: 0.001, offset: [0.5, 0.15, 0.2]"), &m);
+  report("the same in millimetres, scale 0.001, moved by offset", np2, 0.01, m, 0.02);
+  CU_ASSERT_FATAL(
+      parse(mesh_block(path, ", scale: 0.001, offset: [0.5, 0.15, 0.2]"), fine, 1, &c, &err) == 0);
+  report("the same 40 dx across", sph_case_block_points(&c.fluid[0], 0.005), 0.005, m, 0.01);
+  sph_case_free(&c);
+}
+
+/* Bad surfaces. */
+static void test_mesh_refusals(void) {
+  const double lo[3] = {0.1, 0.05, 0.05}, hi[3] = {0.3, 0.25, 0.25};
+  double tri[24 * 9];
+  box_mesh(lo, hi, 0, tri);
+  static const char *const open[] = {"geometry.fluid[0].mesh.file", "belongs to one triangle only",
+                                     "expected a closed surface", NULL};
+  refused(mesh_block(write_mesh("open.stl", "stl", tri, 11), ""), open);
+  box_mesh(lo, hi, 1, tri);
+  static const char *const inward[] = {"turned inward", NULL};
+  refused(mesh_block(write_mesh("inward.stl", "stl", tri, 12), ""), inward);
+  box_mesh(lo, hi, 0, tri);
+  double t[9]; /* one triangle turned */
+  memcpy(t, tri + 9, sizeof t);
+  memcpy(tri + 9, t + 6, 3 * sizeof(double));
+  memcpy(tri + 15, t, 3 * sizeof(double));
+  static const char *const turned[] = {"joins two triangles turned opposite ways", NULL};
+  refused(mesh_block(write_mesh("turned.stl", "stl", tri, 12), ""), turned);
+  static const char *const missing[] = {"geometry.fluid[0].mesh.file", "cannot read", NULL};
+  refused(mesh_block("/nonexistent/box.stl", ""), missing);
+  static const char *const scale[] = {"geometry.fluid[0].mesh.scale", NULL};
+  refused(mesh_block(write_mesh("ok.stl", "stl", tri, 0), ", scale: 0"), scale);
+  /* two boxes that overlap, in one file: refused where it winds twice */
+  const double lo2[3] = {0.2, 0.1, 0.1}, hi2[3] = {0.4, 0.2, 0.2};
+  box_mesh(lo, hi, 0, tri);
+  box_mesh(lo2, hi2, 0, tri + 12 * 9);
+  sph_case c;
+  sph_error err;
+  CU_ASSERT_FATAL(parse(mesh_block(write_mesh("two.stl", "stl", tri, 24), ""), NULL, 0, &c, &err) ==
+                  0);
+  sph_sim *s = NULL;
+  const int rc = sph_sim_create(&c, &s, &err);
+  CU_ASSERT(rc != 0);
+  if (rc == 0)
+    sph_sim_free(s);
+  else {
+    printf("\n  %s", err.msg);
+    CU_ASSERT(strstr(err.msg, "geometry.fluid[0].mesh: expected a surface that does not cross "
+                              "itself, got one that winds 2 times") != NULL);
+  }
+  sph_case_free(&c);
+}
+#endif
+
+int main(void) {
+  CU_TestInfo tests[] = {
+    {"a rectangle as a polygon is the box, bit for bit", test_polygon_is_box},
+    {"filled areas and volumes against the shapes'", test_filled_measure},
+    {"bad shapes are refused at their key", test_refusals},
+#if SPH_DIM == 2
+    {"still water over a sloped beach stays still", test_still_beach},
+#else
+    {"a box from STL, binary STL, OBJ and PLY is the box, bit for bit", test_mesh_is_box},
+    {"a mesh sphere's filled volume", test_mesh_volume},
+    {"open, inward, mis-turned, missing and self-crossing surfaces are refused",
+     test_mesh_refusals},
+#endif
+    CU_TEST_INFO_NULL
+  };
+#if SPH_DIM == 3
+  mesh_dir = sph_test_tmpdir();
+#endif
+  const int rc = sph_test_main(SPH_DIM == 2 ? "shapes" : "shapes 3-D", tests);
+#if SPH_DIM == 3
+  sph_test_rmtree(mesh_dir);
+  free(mesh_dir);
+#endif
+  return rc;
+}
