@@ -718,7 +718,7 @@ static void test_cross_checks(void) {
   expect_err(
       edit(MINIMAL, 10, "  obstacles: [{x: [0.2, 0.4], y: [0, 0.1], z: [0, 1]}]\n  fluid:\n"),
       "t.yaml:10: geometry.obstacles[0].z: unknown key (valid keys in "
-      "'geometry.obstacles[0]': x, y, layers, boundary)");
+      "'geometry.obstacles[0]': x, y, polygon, circle, layers, boundary)");
   /* an obstacle inside the tank; its top may stand above the walls (issue 61, E11) */
   expect_err(edit(MINIMAL, 10,
                   "  tank: {x: [0, 1], y: [0, 1]}\n  obstacles: [{x: [1.2, 1.4], y: [0, 0.1]}]\n"

@@ -37,6 +37,13 @@
  *    across the lattice's place decides about 1 %); an open surface, an inward one, one with a
  * triangle turned, a missing file, a zero scale, and two boxes overlapping in one file (refused
  * where the surface winds twice) are refused.
+ * 6. Obstacles of a shape: a rectangle (a prism in 3-D) with adami walls
+ *    makes the box obstacle's wall particles bit for bit (in 2-D their
+ *    mirror offsets too, within 1e-12 dx); a circle (a cylinder standing
+ *    on the floor in 3-D) makes a shell of wall particles as deep as its
+ *    layers and hollow inside it, no fluid inside, every particle's mirror
+ *    offset pointing out of the shape with its midpoint on the surface;
+ *    mdbc walls on a shape are refused.
  */
 #include "config.h"
 
@@ -207,6 +214,27 @@ static void refused(const char *blocks, const char *const *words) {
   }
 }
 
+/* Parses the blocks (which must read) and asserts that making the particles fails with an
+ * error holding every one of the NULL-terminated words. */
+static void refused_at_start(const char *blocks, const char *const *words) {
+  sph_case c;
+  sph_error err;
+  CU_ASSERT_FATAL(parse(blocks, NULL, 0, &c, &err) == 0);
+  sph_sim *s = NULL;
+  const int rc = sph_sim_create(&c, &s, &err);
+  CU_ASSERT(rc != 0);
+  if (rc == 0)
+    sph_sim_free(s);
+  else
+    printf("\n  %s", err.msg);
+  for (const char *const *w = words; rc && *w; w++) {
+    const int has = strstr(err.msg, *w) != NULL;
+    if (!has) printf("\n    (the message lacks \"%s\")", *w);
+    CU_ASSERT(has);
+  }
+  sph_case_free(&c);
+}
+
 /* 3. Bad shapes. */
 static void test_refusals(void) {
   /* HEAD has 7 lines (8 in 3-D): the first block is on the next */
@@ -249,21 +277,10 @@ static void test_refusals(void) {
                         "    - {x: [0.35, 0.6], y: [0, 0.3], z: [0, 0.3]}\n";
 #endif
   /* overlapping shapes: refused when the particles are made */
-  sph_case c;
-  sph_error err;
-  CU_ASSERT_FATAL(parse(overlap, NULL, 0, &c, &err) == 0);
-  sph_sim *s = NULL;
-  const int rc = sph_sim_create(&c, &s, &err);
-  CU_ASSERT(rc != 0);
-  if (rc == 0)
-    sph_sim_free(s);
-  else {
-    printf("\n  %s", err.msg);
-    CU_ASSERT(strstr(err.msg, "geometry.fluid[1]: expected a block apart from geometry.fluid[0]") !=
-              NULL);
-    CU_ASSERT(strstr(err.msg, SPH_DIM == 2 ? "shapes.yaml:9:" : "shapes.yaml:10:") != NULL);
-  }
-  sph_case_free(&c);
+  static const char *const apart[] = {
+      "geometry.fluid[1]: expected a block apart from geometry.fluid[0]",
+      SPH_DIM == 2 ? "shapes.yaml:9:" : "shapes.yaml:10:", NULL};
+  refused_at_start(overlap, apart);
 }
 
 #if SPH_DIM == 2
@@ -334,6 +351,107 @@ static void test_still_beach(void) {
   still_beach("0.01");
 }
 #endif
+
+/* ---- 6. obstacles of a shape ---- */
+
+/* A rectangle (a prism in 3-D) as an obstacle makes the box obstacle's wall particles, bit for
+ * bit; a circle (a cylinder in 3-D) makes a shell `layers` deep with no fluid inside; mdbc walls
+ * on a shape are refused. */
+static void test_shaped_obstacles(void) {
+#if SPH_DIM == 2
+  const char *water = "    - {x: [0, 1], y: [0, 0.3]}\n  obstacles:\n";
+  const char *box = "    - {x: [0.4, 0.6], y: [0, 0.2], boundary: adami}\n";
+  const char *rect = "    - {polygon: [[0.4, 0], [0.6, 0], [0.6, 0.2], [0.4, 0.2]], boundary: "
+                     "adami}\n";
+  const char *round = "    - {circle: {centre: [0.5, 0.15], radius: 0.08}, boundary: adami}\n";
+  const char *mdbc = "    - {circle: {centre: [0.5, 0.15], radius: 0.08}, boundary: mdbc}\n";
+#else
+  const char *water = "    - {x: [0, 1], y: [0, 0.3], z: [0, 0.3]}\n  obstacles:\n";
+  const char *box = "    - {x: [0.4, 0.6], y: [0, 0.3], z: [0, 0.2], boundary: adami}\n";
+  const char *rect = "    - {polygon: [[0.4, 0], [0.6, 0], [0.6, 0.2], [0.4, 0.2]], boundary: "
+                     "adami}\n";
+  const char *round = "    - {cylinder: {from: [0.5, 0.15, 0], to: [0.5, 0.15, 0.25], radius: "
+                      "0.08}, boundary: adami}\n";
+  const char *mdbc = "    - {cylinder: {from: [0.5, 0.15, 0], to: [0.5, 0.15, 0.25], radius: "
+                     "0.08}, boundary: mdbc}\n";
+#endif
+  char text[1024];
+  sph_case c0, c1, c2;
+  snprintf(text, sizeof text, "%s%s", water, box);
+  sph_sim *s0 = open_sim(text, &c0);
+  snprintf(text, sizeof text, "%s%s", water, rect);
+  sph_sim *s1 = open_sim(text, &c1);
+  const int same = same_particles(s0, s1);
+  int same_offsets = 1; /* 2-D: out through the nearest faces, as the box's (to round-off: the
+                         * box's from lattice indices, the polygon's from coordinates) */
+  const sph_particles *b0 = sph_sim_particles(s0), *b1 = sph_sim_particles(s1);
+  for (size_t i = 0; i < b0->n && same && SPH_DIM == 2; i++)
+    for (int a = 0; a < SPH_DIM; a++)
+      if (fabs(b0->mirror_offset[a][i] - b1->mirror_offset[a][i]) > 1e-12 * 0.01) {
+        if (same_offsets)
+          printf("\n  the first other offset: particle %zu at (%g, %g): the box's (%g, %g), the "
+                 "polygon's (%g, %g)",
+                 i, b0->pos[0][i], b0->pos[1][i], b0->mirror_offset[0][i], b0->mirror_offset[1][i],
+                 b1->mirror_offset[0][i], b1->mirror_offset[1][i]);
+        same_offsets = 0;
+      }
+  printf("\n  the box obstacle: %zu particles; as a %s, the same bits: %s%s", b0->n,
+         SPH_DIM == 2 ? "polygon" : "polygon prism", same ? "yes" : "NO",
+         SPH_DIM == 3   ? ""
+         : same_offsets ? ", and its mirror offsets within 1e-12 dx"
+                        : ", OTHER OFFSETS");
+  CU_ASSERT(same);
+  if (SPH_DIM == 2) CU_ASSERT(same_offsets);
+  /* the round one: its wall particles in the shape within its layers (4, adami) of the side or
+   * the top, no fluid inside */
+  snprintf(text, sizeof text, "%s%s", water, round);
+  sph_sim *s2 = open_sim(text, &c2);
+  const sph_particles *p = sph_sim_particles(s2);
+  const double r = 0.08, dx = 0.01, L = c2.obstacles[0].layers;
+  size_t shell = 0, deep = 0, wet = 0, bad_offsets = 0;
+  double inner = INFINITY;
+  for (size_t i = 0; i < p->n; i++) {
+    const double d = hypot(p->pos[0][i] - 0.5, p->pos[1][i] - 0.15); /* from the axis */
+    const double up = SPH_DIM == 3 ? p->pos[SPH_UP][i] : 0.1;
+    const int in = d < r && up > 0.0 && up < 0.25;
+    if (p->kind[i] == SPH_KIND_FLUID) {
+      wet += in;
+      continue;
+    }
+    if (!in) continue; /* the tank's */
+    shell++;
+    /* its mirror offset (adami walls) out of the shape, halfway on its surface */
+    double out[SPH_DIM], half[SPH_DIM], mm = 0.0;
+    for (int a = 0; a < SPH_DIM; a++) {
+      out[a] = p->pos[a][i] + p->mirror_offset[a][i];
+      half[a] = p->pos[a][i] + 0.5 * p->mirror_offset[a][i];
+      mm += p->mirror_offset[a][i] * p->mirror_offset[a][i];
+    }
+    const double dh = hypot(half[0] - 0.5, half[1] - 0.15), uh = SPH_DIM == 3 ? half[SPH_UP] : 0.1;
+    const int on = fabs(dh - r) < 1e-12 || fabs(uh) < 1e-12 || fabs(uh - 0.25) < 1e-12;
+    bad_offsets += !(mm > 0.0) || c2.obstacles[0].inside(c2.obstacles[0].shape, out) || !on;
+    if (SPH_DIM == 2 || (up > (L + 1) * dx && up < 0.25 - (L + 1) * dx)) { /* by the side */
+      inner = fmin(inner, d);
+      deep += r - d > (L + 1) * dx * sqrt(2.0);
+    }
+  }
+  printf("\n  the %s obstacle: %zu wall particles in it, the innermost by the side %.2f dx from "
+         "its axis (%.0f layers), %zu deeper than the layers, %zu fluid particles in it",
+         SPH_DIM == 2 ? "circle" : "cylinder", shell, inner / dx, L, deep, wet);
+  CU_ASSERT(shell > 0);
+  CU_ASSERT(deep == 0);
+  CU_ASSERT(inner > r - (L + 1) * dx * sqrt(2.0));
+  CU_ASSERT(inner < r - (L - 1) * dx); /* a shell as deep as its layers, hollow inside it */
+  CU_ASSERT(wet == 0);
+  printf("; %zu mirror offsets not out to its surface", bad_offsets);
+  CU_ASSERT(bad_offsets == 0);
+  sph_sim_free(s0), sph_sim_free(s1), sph_sim_free(s2);
+  sph_case_free(&c0), sph_case_free(&c1), sph_case_free(&c2);
+  snprintf(text, sizeof text, "%s%s", water, mdbc);
+  static const char *const no_mdbc[] = {"geometry.obstacles[0].boundary",
+                                        "expected 'dynamic', 'fixed_layers' or 'adami'", NULL};
+  refused(text, no_mdbc);
+}
 
 #if SPH_DIM == 3
 /* ---- 5. closed surfaces from mesh files (3-D) ---- */
@@ -559,21 +677,10 @@ static void test_mesh_refusals(void) {
   const double lo2[3] = {0.2, 0.1, 0.1}, hi2[3] = {0.4, 0.2, 0.2};
   box_mesh(lo, hi, 0, tri);
   box_mesh(lo2, hi2, 0, tri + 12 * 9);
-  sph_case c;
-  sph_error err;
-  CU_ASSERT_FATAL(parse(mesh_block(write_mesh("two.stl", "stl", tri, 24), ""), NULL, 0, &c, &err) ==
-                  0);
-  sph_sim *s = NULL;
-  const int rc = sph_sim_create(&c, &s, &err);
-  CU_ASSERT(rc != 0);
-  if (rc == 0)
-    sph_sim_free(s);
-  else {
-    printf("\n  %s", err.msg);
-    CU_ASSERT(strstr(err.msg, "geometry.fluid[0].mesh: expected a surface that does not cross "
-                              "itself, got one that winds 2 times") != NULL);
-  }
-  sph_case_free(&c);
+  static const char *const twice[] = {"shapes.yaml:9: geometry.fluid[0].mesh: expected a surface "
+                                      "that does not cross itself, got one that winds 2 times",
+                                      NULL};
+  refused_at_start(mesh_block(write_mesh("two.stl", "stl", tri, 24), ""), twice);
 }
 #endif
 
@@ -582,6 +689,7 @@ int main(void) {
     {"a rectangle as a polygon is the box, bit for bit", test_polygon_is_box},
     {"filled areas and volumes against the shapes'", test_filled_measure},
     {"bad shapes are refused at their key", test_refusals},
+    {"obstacles of a shape: a rectangle is the box; a round one a shell", test_shaped_obstacles},
 #if SPH_DIM == 2
     {"still water over a sloped beach stays still", test_still_beach},
 #else

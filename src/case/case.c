@@ -836,6 +836,12 @@ void sph_case_free(sph_case *c) {
   }
   free(c->fluid);
   free(c->walls);
+  for (size_t i = 0; c->obstacle_shape && i < c->n_obstacles; i++) {
+    free(c->obstacle_shape[i].vertex);
+    free(c->obstacle_shape[i].file);
+    sph_mesh_free(c->obstacle_shape[i].mesh);
+  }
+  free(c->obstacle_shape);
   free(c->obstacles);
   free(c->output_times);
   free(c->gauges);

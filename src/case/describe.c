@@ -90,15 +90,15 @@ static void sb_box(sbuf *b, const char *prefix, const double lo[SPH_DIM],
 }
 
 /* A block's extent: its box, or its shape (a 3-D polygon with its y range). */
-static void describe_shape(sbuf *b, const char *k, const sph_fluid_block *f) {
-  const sph_shape *s = &f->shape;
+static void describe_shape(sbuf *b, const char *k, const sph_shape *s, const double *lo,
+                           const double *hi) {
   switch (s->kind) {
   case SPH_SHAPE_POLYGON:
     sb_add(b, "%s.polygon: [", k);
     for (size_t v = 0; v < s->n; v++)
       sb_add(b, "%s[%.17g, %.17g]", v ? ", " : "", s->vertex[2 * v], s->vertex[2 * v + 1]);
     sb_add(b, "]\n");
-    if (SPH_DIM == 3) sb_add(b, "%s.y: [%.17g, %.17g]\n", k, f->lo[1], f->hi[1]);
+    if (SPH_DIM == 3) sb_add(b, "%s.y: [%.17g, %.17g]\n", k, lo[1], hi[1]);
     break;
   case SPH_SHAPE_BALL:
     sb_vector(b, k, SPH_DIM == 2 ? "circle.centre" : "sphere.centre", s->centre);
@@ -114,7 +114,7 @@ static void describe_shape(sbuf *b, const char *k, const sph_fluid_block *f) {
     sb_add(b, "%s.mesh.scale: %.17g\n", k, s->scale);
     sb_vector(b, k, "mesh.offset", s->offset);
     break;
-  default: sb_box(b, k, f->lo, f->hi); break;
+  default: sb_box(b, k, lo, hi); break;
   }
 }
 
@@ -134,7 +134,7 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
   for (size_t i = 0; i < c->n_fluid; i++) {
     const sph_fluid_block *f = &c->fluid[i];
     sph_yaml_bprintf(k, sizeof k, "geometry.fluid[%zu]", i);
-    describe_shape(b, k, f);
+    describe_shape(b, k, &f->shape, f->lo, f->hi);
     sb_vector(b, k, "velocity", f->v);
     sb_add(b, "%s.hydrostatic: %s\n", k, f->hydrostatic ? "true" : "false");
     sb_add(b, "%s.surface: %.17g\n", k, f->surface);
@@ -144,7 +144,10 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
   for (size_t i = 0; i < c->n_obstacles; i++) { /* listed only when there are some */
     const sph_obstacle *o = &c->obstacles[i];
     sph_yaml_bprintf(k, sizeof k, "geometry.obstacles[%zu]", i);
-    sb_box(b, k, o->lo, o->hi);
+    if (o->inside)
+      describe_shape(b, k, o->shape, o->lo, o->hi);
+    else
+      sb_box(b, k, o->lo, o->hi);
     sb_add(b, "%s.layers: %d\n", k, o->layers);
     sb_add(b, "%s.boundary: %s\n", k, sph_boundary_name(o->boundary));
   }

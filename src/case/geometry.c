@@ -32,7 +32,6 @@ static const char *const geometry_keys[] = {"tank",       "fluid",      "walls",
                                             "periodic_x", "periodic_y", "periodic_z", "domain",
                                             "leaving",    NULL};
 static const char *const axis_key[3] = {"x", "y", "z"};
-static const char *const obstacle_keys[] = {"x", "y", SPH_IF3("z", ) "layers", "boundary", NULL};
 static const char *const tank_keys[] = {"x",         "y",       SPH_IF3("z", ) "layers",
                                         "boundary",  "stagger", "extrapolated_velocity",
                                         "free_slip", NULL};
@@ -52,6 +51,9 @@ static const char *const fluid_keys[] = {"x",
                                          "seed",
                                          NULL};
 /* a block's shapes (shape.h), each instead of the box's ranges */
+static const char *const obstacle_keys[] = {
+    "x",        "y", SPH_IF3("z", ) "polygon", BALL_KEY, SPH_IF3("cylinder", "mesh", ) "layers",
+    "boundary", NULL};
 static const char *const shape_keys[] = {"polygon", BALL_KEY, SPH_IF3("cylinder", "mesh", ) NULL};
 static const char *const mesh_keys[] = {"file", "scale", "offset", NULL};
 static const char *const ball_keys[] = {"centre", "radius", NULL};
@@ -669,13 +671,66 @@ static int read_periodic(const ctx *x, const node *m, sph_case *c) {
 
 /* geometry.obstacles[i]: {x, y (, z): ranges at least dx wide, layers (1-8, default 2; 1
  * for repulsive), boundary: dynamic (default), fixed_layers, mdbc or repulsive}. */
+/* A shaped obstacle: its shape (as a fluid block's, read_extent) inside the tank (its top may
+ * stand above it), its bounding box the obstacle's box; dynamic, fixed_layers or adami walls
+ * (mdbc's mirror points and repulsive walls' normals come from a box's faces so far). */
+static int read_shaped_obstacle(const ctx *x, const node *m, const char *p, const sph_case *c,
+                                sph_obstacle *o, sph_shape *shape) {
+  sph_fluid_block f;
+  const node *at[SPH_DIM];
+  const char *key[SPH_DIM];
+  char kp[SPH_YAML_KEYLEN];
+  memset(&f, 0, sizeof f);
+  const int rc = read_extent(x, m, p, c, &f, at, key);
+  *shape = f.shape; /* owned by the case from here, read or not */
+  if (rc) return -1;
+  const sph_tank *k = &c->tank;
+  for (int a = 0; a < SPH_DIM; a++) {
+    sph_yaml_join(kp, sizeof kp, p, key[a]);
+    if (c->dx > 0.0 && !(f.hi[a] - f.lo[a] >= c->dx))
+      return sph_yaml_fail_at(&x->t, at[a], kp,
+                              "expected a shape at least numerics.dx = %g m across along %s, got "
+                              "%g m",
+                              c->dx, axis_key[a], f.hi[a] - f.lo[a]);
+    const double tol = 1e-9 * c->dx;
+    if (k->present && (f.lo[a] < k->lo[a] - tol || (a != SPH_UP && f.hi[a] > k->hi[a] + tol)))
+      return sph_yaml_fail_at(&x->t, at[a], kp,
+                              "expected a shape inside the tank's inner box, [%g, %g] along %s%s, "
+                              "got one reaching [%g, %g]",
+                              k->lo[a], k->hi[a], axis_key[a],
+                              a == SPH_UP ? " (its top may stand above it)" : "", f.lo[a], f.hi[a]);
+    o->lo[a] = f.lo[a];
+    o->hi[a] = f.hi[a];
+  }
+  int bnd = SPH_BOUNDARY_DYNAMIC;
+  if (sph_yaml_get_choice(&x->t, m, p, "boundary", boundary_names, &bnd) < 0) return -1;
+  o->boundary = (sph_boundary_kind)bnd;
+  if (bnd != SPH_BOUNDARY_DYNAMIC && bnd != SPH_BOUNDARY_FIXED_LAYERS &&
+      bnd != SPH_BOUNDARY_ADAMI) {
+    sph_yaml_join(kp, sizeof kp, p, "boundary");
+    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "boundary")->val, kp,
+                            "expected 'dynamic', 'fixed_layers' or 'adami' for an obstacle of a "
+                            "shape (mdbc, repulsive and mirror walls need a box's faces so far), "
+                            "got '%s'",
+                            sph_boundary_name(o->boundary));
+  }
+  o->layers = o->boundary == SPH_BOUNDARY_ADAMI ? default_layers(o->boundary, c) : 2;
+  if (sph_yaml_get_int(&x->t, m, p, "layers", 1, 8, &o->layers) < 0) return -1;
+  o->inside = sph_shape_inside_of;
+  o->offset = sph_shape_offset_of;
+  o->shape = shape;
+  return 0;
+}
+
 static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_case *c,
-                         sph_obstacle *o) {
+                         sph_obstacle *o, sph_shape *shape) {
   char b[96], kp[SPH_YAML_KEYLEN];
   if (m->kind != SPH_YAML_MAP)
     return sph_yaml_fail_at(&x->t, m, p, "expected a mapping, got %s",
                             sph_yaml_got(m, b, sizeof b));
   if (sph_yaml_check_keys(&x->t, m, p, obstacle_keys)) return -1;
+  for (int k = 0; shape_keys[k]; k++)
+    if (sph_yaml_find(m, shape_keys[k])) return read_shaped_obstacle(x, m, p, c, o, shape);
   for (int a = 0; a < SPH_DIM; a++) {
     const char *const key = axis_key[a];
     double v[2];
@@ -727,11 +782,13 @@ static int read_obstacles(const ctx *x, const node *m, sph_case *c) {
     return sph_yaml_fail_at(&x->t, t, kp, "expected a list of mappings, got %s",
                             sph_yaml_got(t, b, sizeof b));
   if (t->n == 0) return 0;
-  if (!(c->obstacles = calloc(t->n, sizeof *c->obstacles))) return sph_yaml_oom(&x->t);
+  if (!(c->obstacles = calloc(t->n, sizeof *c->obstacles)) ||
+      !(c->obstacle_shape = calloc(t->n, sizeof *c->obstacle_shape)))
+    return sph_yaml_oom(&x->t);
   c->n_obstacles = t->n;
   for (size_t i = 0; i < t->n; i++) {
     sph_yaml_bprintf(kp, sizeof kp, "geometry.obstacles[%zu]", i);
-    if (read_obstacle(x, t->items[i], kp, c, &c->obstacles[i])) return -1;
+    if (read_obstacle(x, t->items[i], kp, c, &c->obstacles[i], &c->obstacle_shape[i])) return -1;
   }
   return 0;
 }

@@ -338,3 +338,82 @@ int sph_mesh_winding(const sph_mesh *m, const double x[3]) {
   }
   return wn;
 }
+
+/* The point of triangle (a, b, c) closest to p (Ericson 2005, Real-Time Collision Detection,
+ * 5.1.5: by the Voronoi regions of its vertices, edges and face). */
+static void closest_on_triangle(const double *p, const double *a, const double *b, const double *c,
+                                double q[3]) {
+  double ab[3], ac[3], ap[3], bp[3], cp[3];
+  for (int d = 0; d < 3; d++) {
+    ab[d] = b[d] - a[d], ac[d] = c[d] - a[d], ap[d] = p[d] - a[d];
+    bp[d] = p[d] - b[d], cp[d] = p[d] - c[d];
+  }
+#define DOT(u, v) ((u)[0] * (v)[0] + (u)[1] * (v)[1] + (u)[2] * (v)[2])
+  const double d1 = DOT(ab, ap), d2 = DOT(ac, ap), d3 = DOT(ab, bp), d4 = DOT(ac, bp);
+  const double d5 = DOT(ab, cp), d6 = DOT(ac, cp);
+#undef DOT
+  double v, w;
+  if (d1 <= 0.0 && d2 <= 0.0) {
+    memcpy(q, a, 3 * sizeof *q);
+    return;
+  }
+  if (d3 >= 0.0 && d4 <= d3) {
+    memcpy(q, b, 3 * sizeof *q);
+    return;
+  }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+    v = d1 / (d1 - d3);
+    for (int d = 0; d < 3; d++)
+      q[d] = a[d] + v * ab[d];
+    return;
+  }
+  if (d6 >= 0.0 && d5 <= d6) {
+    memcpy(q, c, 3 * sizeof *q);
+    return;
+  }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+    w = d2 / (d2 - d6);
+    for (int d = 0; d < 3; d++)
+      q[d] = a[d] + w * ac[d];
+    return;
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {
+    w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    for (int d = 0; d < 3; d++)
+      q[d] = b[d] + w * (c[d] - b[d]);
+    return;
+  }
+  const double den = 1.0 / (va + vb + vc);
+  v = vb * den, w = vc * den;
+  for (int d = 0; d < 3; d++)
+    q[d] = a[d] + ab[d] * v + ac[d] * w;
+}
+
+double sph_mesh_nearest(const sph_mesh *m, const double x[3], double floor, double c[3],
+                        double n[3]) {
+  double best = INFINITY;
+  for (size_t k = 0; k < m->nt; k++) {
+    const double *a = m->v + 3 * m->t[3 * k], *b = m->v + 3 * m->t[3 * k + 1],
+                 *cc = m->v + 3 * m->t[3 * k + 2];
+    if (a[2] <= floor && b[2] <= floor && cc[2] <= floor) continue; /* on the floor */
+    double q[3];
+    closest_on_triangle(x, a, b, cc, q);
+    const double d2 = (q[0] - x[0]) * (q[0] - x[0]) + (q[1] - x[1]) * (q[1] - x[1]) +
+                      (q[2] - x[2]) * (q[2] - x[2]);
+    if (!(d2 < best)) continue;
+    best = d2;
+    memcpy(c, q, 3 * sizeof *c);
+    const double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]},
+                 f[3] = {cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]};
+    n[0] = e[1] * f[2] - e[2] * f[1];
+    n[1] = e[2] * f[0] - e[0] * f[2];
+    n[2] = e[0] * f[1] - e[1] * f[0];
+    const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int d = 0; d < 3; d++)
+      n[d] = len > 0.0 ? n[d] / len : 0.0;
+  }
+  return sqrt(best);
+}

@@ -40,4 +40,10 @@ size_t sph_mesh_triangles(const sph_mesh *m);
  * for the rays of a lattice as well as between them. */
 int sph_mesh_winding(const sph_mesh *m, const double x[3]);
 
+/* The point c of the surface closest to x, the outward unit normal of its triangle there,
+ * and the distance, over the triangles not wholly at or below the height `floor`; every
+ * triangle looked at (a wall's few layers of particles per mesh). */
+double sph_mesh_nearest(const sph_mesh *m, const double x[3], double floor, double c[3],
+                        double n[3]);
+
 #endif

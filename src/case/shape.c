@@ -51,8 +51,16 @@ int sph_shape_winding(const sph_fluid_block *f, const double *x) {
   return sph_shape_inside(f, x);
 }
 
+/* Inside the shape s, or the box lo..hi for a box. */
+static int inside(const sph_shape *s, const double *lo, const double *hi, const double *x);
+
 int sph_shape_inside(const sph_fluid_block *f, const double *x) {
-  const sph_shape *s = &f->shape;
+  return inside(&f->shape, f->lo, f->hi, x);
+}
+
+int sph_shape_inside_of(const void *shape, const double *x) { return inside(shape, NULL, NULL, x); }
+
+static int inside(const sph_shape *s, const double *lo, const double *hi, const double *x) {
   switch (s->kind) {
   case SPH_SHAPE_MESH: return SPH_DIM == 3 && sph_mesh_winding(s->mesh, x) != 0;
   case SPH_SHAPE_POLYGON: return polygon_inside(s, x[0], x[SPH_UP]);
@@ -79,7 +87,7 @@ int sph_shape_inside(const sph_fluid_block *f, const double *x) {
   }
   default:
     for (int a = 0; a < SPH_DIM; a++)
-      if (!(x[a] > f->lo[a] && x[a] < f->hi[a])) return 0;
+      if (!(x[a] > lo[a] && x[a] < hi[a])) return 0;
     return 1;
   }
 }
@@ -237,4 +245,108 @@ long sph_case_block_points(const sph_fluid_block *f, double dx) {
         in += sph_shape_inside(f, x);
       }
   return in;
+}
+
+/* ---- the way out: the mirror offsets of a shaped obstacle's wall particles ---- */
+
+/* The closest point c to p on the segment a-b (2-D), and the squared distance. */
+static double closest_on_segment(const double *a, const double *b, double px, double py,
+                                 double c[2]) {
+  const double ex = b[0] - a[0], ey = b[1] - a[1], ee = ex * ex + ey * ey;
+  double t = ee > 0.0 ? ((px - a[0]) * ex + (py - a[1]) * ey) / ee : 0.0;
+  t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+  c[0] = a[0] + t * ex;
+  c[1] = a[1] + t * ey;
+  return (c[0] - px) * (c[0] - px) + (c[1] - py) * (c[1] - py);
+}
+
+/* Whether the polygon's edge i lies at or below the floor's height. */
+static int on_floor(const sph_shape *s, size_t i, double floor) {
+  return s->vertex[2 * i + 1] <= floor && s->vertex[2 * ((i + 1) % s->n) + 1] <= floor;
+}
+
+void sph_shape_offset_of(const void *shape, const double *x, double floor, double *m) {
+  const sph_shape *s = shape;
+  double n[SPH_DIM] = {0.0}, d = 0.0; /* the outward normal at the closest point, the distance */
+  switch (s->kind) {
+  case SPH_SHAPE_POLYGON: { /* out through the nearest edge, or the sum over the edges that
+                             * tie (diagonally out of a corner, as a box's offsets go) */
+    double best = INFINITY;
+    size_t e = 0;
+    for (size_t i = 0; i < s->n; i++) {
+      double ci[2];
+      if (on_floor(s, i, floor)) continue;
+      const double d2 = closest_on_segment(s->vertex + 2 * i, s->vertex + 2 * ((i + 1) % s->n),
+                                           x[0], x[SPH_UP], ci);
+      if (d2 < best) best = d2, e = i;
+    }
+    if (best > 0.0) {
+      double sum[2] = {0.0, 0.0};
+      for (size_t i = 0; i < s->n; i++) {
+        double ci[2];
+        if (!on_floor(s, i, floor) &&
+            closest_on_segment(s->vertex + 2 * i, s->vertex + 2 * ((i + 1) % s->n), x[0], x[SPH_UP],
+                               ci) <= best * (1.0 + 1e-9)) /* a tie to round-off */
+          sum[0] += ci[0] - x[0], sum[1] += ci[1] - x[SPH_UP];
+      }
+      m[0] = 2.0 * sum[0];
+      m[SPH_UP] = 2.0 * sum[1];
+      if (SPH_DIM == 3) m[1] = 0.0;
+      return;
+    }
+    const double *a = s->vertex + 2 * e, *b = s->vertex + 2 * ((e + 1) % s->n);
+    const double sign = polygon_area(s->vertex, s->n) > 0.0 ? 1.0 : -1.0; /* anticlockwise: right */
+    const double ex = b[0] - a[0], ey = b[1] - a[1], len = hypot(ex, ey);
+    n[0] = sign * ey / len;
+    n[SPH_UP] = -sign * ex / len;
+    break;
+  }
+  case SPH_SHAPE_BALL: {
+    double r2 = 0.0;
+    for (int a = 0; a < SPH_DIM; a++)
+      r2 += (x[a] - s->centre[a]) * (x[a] - s->centre[a]);
+    const double rho = sqrt(r2);
+    d = s->radius - rho;
+    for (int a = 0; a < SPH_DIM; a++)
+      n[a] = rho > 0.0 ? (x[a] - s->centre[a]) / rho : a == SPH_UP;
+    break;
+  }
+  case SPH_SHAPE_CYLINDER: {
+    double u[3] = {0.0, 0.0, 0.0}, w[3] = {0.0, 0.0, 0.0}, len = 0.0, t = 0.0, rho = 0.0;
+    for (int a = 0; a < SPH_DIM; a++) {
+      u[a] = s->end[a] - s->centre[a];
+      len += u[a] * u[a];
+    }
+    len = sqrt(len);
+    for (int a = 0; a < SPH_DIM; a++) {
+      u[a] /= len;
+      w[a] = x[a] - s->centre[a];
+      t += w[a] * u[a];
+    }
+    double q[3] = {0.0, 0.0, 0.0}; /* from the axis */
+    for (int a = 0; a < SPH_DIM; a++) {
+      q[a] = w[a] - t * u[a];
+      rho += q[a] * q[a];
+    }
+    rho = sqrt(rho);
+    /* an end whose centre is at or below the floor (a cylinder standing on it) is no way out */
+    const double side = s->radius - rho, lo = s->centre[SPH_UP] <= floor ? INFINITY : t,
+                 hi = s->end[SPH_UP] <= floor ? INFINITY : len - t;
+    d = fmin(side, fmin(lo, hi));
+    for (int a = 0; a < SPH_DIM; a++)
+      n[a] = d == side && rho > 0.0 ? q[a] / rho : d == lo ? -u[a] : u[a];
+    break;
+  }
+  case SPH_SHAPE_MESH:
+    if (SPH_DIM == 3) {
+      double c[3], nt[3];
+      d = sph_mesh_nearest(s->mesh, x, floor, c, nt);
+      for (int a = 0; a < SPH_DIM; a++)
+        n[a] = d > 0.0 ? (c[a] - x[a]) / d : nt[a];
+    }
+    break;
+  default: break;
+  }
+  for (int a = 0; a < SPH_DIM; a++)
+    m[a] = 2.0 * d * n[a];
 }

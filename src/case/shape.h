@@ -16,6 +16,15 @@
  * a point on an edge falls on one side by the same arithmetic every run).
  * A 3-D polygon is a prism: x and z are tested, y is the box's. */
 int sph_shape_inside(const sph_fluid_block *f, const double *x);
+/* The inside of a shape other than a box (a shaped obstacle's, sph_obstacle's `inside`). */
+int sph_shape_inside_of(const void *shape, const double *x);
+/* A shaped obstacle's wall particle at x: its mirror offset m, twice its distance to the
+ * shape's surface out along the surface's outward normal at the closest point (the normal
+ * there when x lies on the surface): the walls' way out (sph_obstacle's `offset`). The parts
+ * of the surface at or below `floor` (the height of the tank's first particles: a shape
+ * standing on the floor) are no way out, as a box's bottom on the floor is not. A prism's
+ * offsets point out through its side faces, never its two ends across y. */
+void sph_shape_offset_of(const void *shape, const double *x, double floor, double *m);
 /* The same as a winding number: 1 inside, 0 outside, and for a mesh any
  * other value where its surface crosses or overlaps itself. */
 int sph_shape_winding(const sph_fluid_block *f, const double *x);

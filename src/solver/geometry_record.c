@@ -43,12 +43,15 @@ int sph_sim_record_geometry(const sph_case *c, sph_snapshot_geometry *g, sph_err
     sph_snapshot_geometry_free(g);
     return sph_error_set(err, "out of memory for the snapshot's geometry");
   }
-  g->n_obstacles = no;
-  for (size_t k = 0; k < no; k++)
+  g->n_obstacles = 0; /* the boxes: a shaped obstacle is its wall particles only */
+  for (size_t k = 0; k < no; k++) {
+    if (c->obstacles[k].inside) continue;
     for (int a = 0; a < SPH_DIM; a++) {
-      g->obstacles[k][2 * a] = c->obstacles[k].lo[a];
-      g->obstacles[k][2 * a + 1] = c->obstacles[k].hi[a];
+      g->obstacles[g->n_obstacles][2 * a] = c->obstacles[k].lo[a];
+      g->obstacles[g->n_obstacles][2 * a + 1] = c->obstacles[k].hi[a];
     }
+    g->n_obstacles++;
+  }
   g->n_walls = nw;
   for (size_t k = 0; k < nw; k++)
     wall_corners(&c->walls[k], g->walls[k]);

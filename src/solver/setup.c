@@ -269,6 +269,7 @@ static int fluid_in_obstacle(const void *ctx, const sph_particles *p, size_t i) 
     int in = 1;
     for (int d = 0; d < SPH_DIM && in; d++)
       in = x[d] > o->lo[d] && x[d] < o->hi[d];
+    if (in && o->inside) in = o->inside(o->shape, x); /* a shape: inside it */
     if (in) return 1;
   }
   return 0;

@@ -12,6 +12,8 @@
 
 #include <limits.h>
 #include <math.h>
+#include <stdlib.h>
+#include <string.h>
 
 #if SPH_DIM == 2
 int sph_boundary_add_segment(sph_particles *p, double ax, double ay, double bx, double by,
@@ -115,6 +117,81 @@ static void box_offset(const long idx[3], const long n[3], int on_floor, double 
   }
 }
 
+/* A shaped obstacle (o->inside): the lattice points of its bounding box inside the shape with a
+ * point outside it (or beyond the box) within o->layers spacings along every axis at once: the
+ * shape's outside grown by a cube of side 2 layers + 1, one axis at a time. */
+static int add_shaped(sph_particles *p, const sph_obstacle *o, const long n[3], double floor_level,
+                      double dx, double rho, double mass, double h, uint8_t flags, sph_error *err) {
+  const long L = o->layers;
+  long m[3] = {1, 1, 1}; /* the grid with L points of outside around it */
+  for (int a = 0; a < SPH_DIM; a++)
+    m[a] = n[a] + 2 * L;
+  const size_t cells = (size_t)m[0] * (size_t)m[1] * (size_t)m[2];
+  unsigned char *out = malloc(cells), *grown = malloc(cells);
+  if (!out || !grown) {
+    free(out);
+    free(grown);
+    return sph_error_set(err, "out of memory for an obstacle of %ld x %ld x %ld points", n[0], n[1],
+                         n[2]);
+  }
+  const long pad[3] = {L, SPH_DIM > 1 ? L : 0, SPH_DIM > 2 ? L : 0};
+  for (long k = 0; k < m[2]; k++)
+    for (long j = 0; j < m[1]; j++)
+      for (long i = 0; i < m[0]; i++) {
+        const long idx[3] = {i - pad[0], j - pad[1], k - pad[2]};
+        int in = 1;
+        double x[SPH_DIM];
+        for (int a = 0; a < SPH_DIM; a++) {
+          in &= idx[a] >= 0 && idx[a] < n[a];
+          x[a] = o->lo[a] + ((double)idx[a] + 0.5) * dx;
+        }
+        out[((size_t)k * (size_t)m[1] + (size_t)j) * (size_t)m[0] + (size_t)i] =
+            !(in && o->inside(o->shape, x));
+      }
+  const size_t stride[3] = {1, (size_t)m[0], (size_t)m[0] * (size_t)m[1]};
+  for (int a = 0; a < SPH_DIM; a++) { /* grow the outside by L along axis a */
+    for (size_t c = 0; c < cells; c++) {
+      const long at = (long)(c / stride[a] % (size_t)m[a]);
+      unsigned char g = 0;
+      for (long d = -L; d <= L && !g; d++)
+        if (at + d >= 0 && at + d < m[a]) g = out[(size_t)((long)c + d * (long)stride[a])];
+      grown[c] = g;
+    }
+    memcpy(out, grown, cells);
+  }
+  const double v[SPH_DIM] = {0.0};
+  if (flags & SPH_WALL_NORMAL) sph_particles_use(p, SPH_ARRAYS_OFFSET);
+  const int offsets = (p->live & SPH_ARRAYS_OFFSET) != 0;
+  int rc = 0;
+  for (long k = 0; k < n[2] && !rc; k++)
+    for (long j = 0; j < n[1] && !rc; j++)
+      for (long i = 0; i < n[0] && !rc; i++) {
+        double x[SPH_DIM];
+        const long idx[3] = {i, j, k};
+        for (int a = 0; a < SPH_DIM; a++)
+          x[a] = o->lo[a] + ((double)idx[a] + 0.5) * dx;
+        const size_t c =
+            ((size_t)(k + pad[2]) * (size_t)m[1] + (size_t)(j + pad[1])) * (size_t)m[0] +
+            (size_t)(i + pad[0]);
+        if (!out[c] || !o->inside(o->shape, x)) continue; /* deep inside, or outside */
+        const long q = sph_particles_add_at(p, x, v, rho, mass, h, SPH_KIND_WALL, err);
+        if (q < 0) {
+          rc = -1;
+          continue;
+        }
+        p->flags[q] = flags;
+        if (offsets) { /* out to the surface along its normal */
+          double off[SPH_DIM];
+          o->offset(o->shape, x, floor_level, off);
+          for (int a = 0; a < SPH_DIM; a++)
+            p->mirror_offset[a][q] = off[a];
+        }
+      }
+  free(out);
+  free(grown);
+  return rc;
+}
+
 int sph_boundary_add_box(sph_particles *p, const sph_obstacle *o, double floor_level, double dx,
                          double rho, double mass, double h, uint8_t flags, sph_error *err) {
   const int on_floor = o->lo[SPH_UP] <= floor_level;
@@ -123,6 +200,7 @@ int sph_boundary_add_box(sph_particles *p, const sph_obstacle *o, double floor_l
     n[a] = (long)floor((o->hi[a] - o->lo[a]) / dx + 0.5);
     if (n[a] < 1) n[a] = 1;
   }
+  if (o->inside) return add_shaped(p, o, n, floor_level, dx, rho, mass, h, flags, err);
   /* the offsets' readers: mdbc, no-slip and free-slip walls */
   if (flags & SPH_WALL_NORMAL) sph_particles_use(p, SPH_ARRAYS_OFFSET);
   const int offsets = (p->live & SPH_ARRAYS_OFFSET) != 0;

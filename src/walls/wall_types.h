@@ -79,11 +79,19 @@ typedef struct sph_wall_segment {
 
 /* A box obstacle (geometry.obstacles): wall particles on the lattice lo[a] + (i + 1/2) dx
  * inside the box, so that its faces lie dx/2 outside the outermost particles as the tank's
- * do, `layers` deep behind every face (solid where the box is thinner). */
+ * do, `layers` deep behind every face (solid where the box is thinner). A shaped obstacle (a
+ * circle, sphere, cylinder, polygon or mesh of the case, src/case/shape.h) is the box of its
+ * bounding box with `inside` set: its particles are the lattice points inside the shape that
+ * have a point outside within `layers` spacings along every axis, and no guard keeps the
+ * fluid off it (walls.h) but the particles' own forces. */
 typedef struct sph_obstacle {
-  double lo[SPH_DIM], hi[SPH_DIM]; /* the box's faces */
-  int layers;                      /* default 2, as a 3-D tank's */
-  sph_boundary_kind boundary;      /* dynamic (default), fixed_layers or mdbc */
+  double lo[SPH_DIM], hi[SPH_DIM];                   /* the box's faces (a shape's bounding box) */
+  int layers;                                        /* default 2, as a 3-D tank's */
+  sph_boundary_kind boundary;                        /* dynamic (default), fixed_layers or mdbc */
+  int (*inside)(const void *shape, const double *x); /* a shaped obstacle's inside, or NULL */
+  void (*offset)(const void *shape, const double *x, double floor, double *m); /* its mirror
+                           offsets (the surface at or below the floor's height no way out) */
+  const void *shape;                                                           /* their argument */
 } sph_obstacle;
 
 #ifdef __cplusplus

@@ -234,8 +234,10 @@ static inline double box_guard(const sph_obstacle *o, double d_min) {
   return o->boundary == SPH_BOUNDARY_ADAMI ? 0.0 : d_min;
 }
 
-/* Whether particle i lies inside obstacle o grown by d_min. */
+/* Whether particle i lies inside obstacle o grown by d_min (a box; a shaped obstacle has no
+ * guard, sph_obstacle). */
 static inline int in_box(const sph_obstacle *o, const sph_particles *p, size_t i, double d_min) {
+  if (o->inside) return 0;
   for (int a = 0; a < SPH_DIM; a++)
     if (!(p->pos[a][i] > o->lo[a] - d_min && p->pos[a][i] < o->hi[a] + d_min)) return 0;
   return 1;
