@@ -44,6 +44,9 @@
  *    layers and hollow inside it, no fluid inside, every particle's mirror
  *    offset pointing out of the shape with its midpoint on the surface;
  *    mdbc walls on a shape are refused.
+ * 7. A wall written as `points` (a polyline) makes the particles of its
+ *    segments written one by one, bit for bit; one point, both from/to and
+ *    points, and a repeated point are refused at their key.
  */
 #include "config.h"
 
@@ -453,6 +456,47 @@ static void test_shaped_obstacles(void) {
   refused(text, no_mdbc);
 }
 
+/* ---- 7. walls along a polyline ---- */
+
+/* A wall written as `points` is its segments written one by one, bit for bit; bad polylines are
+ * refused at their key. */
+static void test_polyline_wall(void) {
+#if SPH_DIM == 2
+  const char *head = "    - {x: [0, 0.3], y: [0, 0.2]}\n  walls:\n";
+#else
+  const char *head = "    - {x: [0, 0.3], y: [0, 0.3], z: [0, 0.2]}\n  walls:\n";
+#endif
+  const char *line = "    - {points: [[0.5, 0], [0.7, 0.1], [0.9, 0.1], [0.95, 0.3]], layers: 2}\n";
+  const char *apart = "    - {from: [0.5, 0], to: [0.7, 0.1], layers: 2}\n"
+                      "    - {from: [0.7, 0.1], to: [0.9, 0.1], layers: 2}\n"
+                      "    - {from: [0.9, 0.1], to: [0.95, 0.3], layers: 2}\n";
+  char text[1024];
+  sph_case c0, c1;
+  snprintf(text, sizeof text, "%s%s", head, line);
+  sph_sim *s0 = open_sim(text, &c0);
+  snprintf(text, sizeof text, "%s%s", head, apart);
+  sph_sim *s1 = open_sim(text, &c1);
+  const int same = same_particles(s0, s1);
+  printf("\n  a polyline of 3 segments: %zu walls, %zu particles; the segments one by one: the "
+         "same bits: %s",
+         c0.n_walls, sph_sim_particles(s0)->n, same ? "yes" : "NO");
+  CU_ASSERT_EQUAL(c0.n_walls, 3);
+  CU_ASSERT(same);
+  sph_sim_free(s0), sph_sim_free(s1);
+  sph_case_free(&c0), sph_case_free(&c1);
+  static const char *const one[] = {"geometry.walls[0].points", "at least 2 points", NULL};
+  snprintf(text, sizeof text, "%s    - {points: [[0.5, 0]]}\n", head);
+  refused(text, one);
+  static const char *const both[] = {"geometry.walls[0].from", "either from and to or points",
+                                     NULL};
+  snprintf(text, sizeof text, "%s    - {from: [0.5, 0], points: [[0.5, 0], [0.6, 0]]}\n", head);
+  refused(text, both);
+  static const char *const same_point[] = {
+      "geometry.walls[0].points[2]", "expected a point different from the point before it", NULL};
+  snprintf(text, sizeof text, "%s    - {points: [[0.5, 0], [0.6, 0], [0.6, 0]]}\n", head);
+  refused(text, same_point);
+}
+
 #if SPH_DIM == 3
 /* ---- 5. closed surfaces from mesh files (3-D) ---- */
 
@@ -690,6 +734,7 @@ int main(void) {
     {"filled areas and volumes against the shapes'", test_filled_measure},
     {"bad shapes are refused at their key", test_refusals},
     {"obstacles of a shape: a rectangle is the box; a round one a shell", test_shaped_obstacles},
+    {"a wall along a polyline is its segments", test_polyline_wall},
 #if SPH_DIM == 2
     {"still water over a sloped beach stays still", test_still_beach},
 #else

@@ -59,15 +59,11 @@ static const char *const mesh_keys[] = {"file", "scale", "offset", NULL};
 static const char *const ball_keys[] = {"centre", "radius", NULL};
 static const char *const cylinder_keys[] = {"from", "to", "radius", NULL};
 #define SPH_POLYGON_MAX_VERTICES 10000 /* the simple-polygon check takes n^2 / 2 edge pairs */
-static const char *const wall_keys[] = {"from",
-                                        "to",
-                                        "layers",
-                                        "boundary",
-                                        "motion",
-                                        "stagger",
-                                        "extrapolated_velocity",
-                                        "free_slip",
-                                        SPH_IF3("y", ) NULL};
+static const char *const wall_keys[] = {"from",      "to",
+                                        "points",    "layers",
+                                        "boundary",  "motion",
+                                        "stagger",   "extrapolated_velocity",
+                                        "free_slip", SPH_IF3("y", ) NULL};
 static const char *const motion_keys[] = {"type",   "velocity", "start",       "stop",
                                           "period", "stroke",   "wave_height", "depth",
                                           "ramp",   "hinge",    NULL};
@@ -521,7 +517,66 @@ static int scheme_wall_model(const sph_case *c) {
   return (int)SPH_BOUNDARY_DYNAMIC;
 }
 
-static int read_wall(const ctx *x, const node *m, const char *p, const sph_case *c,
+/* A segment's end `to` (at the node t, key kp) after `from`: another point, at least dx away. */
+static int check_end(const ctx *x, const node *t, const char *kp, const sph_case *c,
+                     const double from[2], const double to[2], const char *what) {
+  if (from[0] == to[0] && from[1] == to[1])
+    return sph_yaml_fail_at(&x->t, t, kp, "expected a point different from %s, got [%g, %g]", what,
+                            to[0], to[1]);
+  const double len = hypot(to[0] - from[0], to[1] - from[1]);
+  if (c->dx > 0.0 && !(len >= c->dx)) /* issue 39, D7: particles on top of one another */
+    return sph_yaml_fail_at(&x->t, t, kp,
+                            "the wall from [%g, %g] is %g m long, shorter than numerics.dx = %g m: "
+                            "expected a wall at least dx long",
+                            from[0], from[1], len, c->dx);
+  return 0;
+}
+
+/* The points of a wall written as `points` (a polyline): at least two, each a pair; *n their
+ * count (0: the wall is from/to). */
+static int polyline_points(const ctx *x, const node *m, const char *p, size_t *n) {
+  char kp[SPH_YAML_KEYLEN], b[96];
+  *n = 0;
+  const sph_yaml_entry *e = m->kind == SPH_YAML_MAP ? sph_yaml_find(m, "points") : NULL;
+  if (!e) return 0;
+  sph_yaml_join(kp, sizeof kp, p, "points");
+  for (int k = 0; k < 2; k++)
+    if (sph_yaml_find(m, k ? "to" : "from")) {
+      char fk[SPH_YAML_KEYLEN];
+      sph_yaml_join(fk, sizeof fk, p, k ? "to" : "from");
+      return sph_yaml_fail_at(&x->t, sph_yaml_find(m, k ? "to" : "from")->val, fk,
+                              "expected either from and to or points, got both");
+    }
+  if (e->val->kind != SPH_YAML_LIST || e->val->n < 2)
+    return sph_yaml_fail_at(&x->t, e->val, kp,
+                            "expected a list of at least 2 points [x, %c] along the wall, got %s",
+                            SPH_DIM == 2 ? 'y' : 'z', sph_yaml_got(e->val, b, sizeof b));
+  *n = e->val->n;
+  return 0;
+}
+
+/* The wall's ends: from/to, or segment k of its `points`. */
+static int read_ends(const ctx *x, const node *m, const char *p, const sph_case *c, size_t k,
+                     double from[2], double to[2]) {
+  const sph_yaml_entry *e = sph_yaml_find(m, "points");
+  if (!e) {
+    if (sph_yaml_get_pair(&x->t, m, p, "from", 1, 0, from) < 0) return -1;
+    if (sph_yaml_get_pair(&x->t, m, p, "to", 1, 0, to) < 0) return -1;
+    char kp[SPH_YAML_KEYLEN];
+    sph_yaml_join(kp, sizeof kp, p, "to");
+    return check_end(x, sph_yaml_find(m, "to")->val, kp, c, from, to, "'from'");
+  }
+  char k0[SPH_YAML_KEYLEN], k1[SPH_YAML_KEYLEN];
+  sph_yaml_bprintf(k0, sizeof k0, "%s.points[%zu]", p, k);
+  sph_yaml_bprintf(k1, sizeof k1, "%s.points[%zu]", p, k + 1);
+  if (sph_yaml_read_vector(&x->t, e->val->items[k], k0, 2, from) ||
+      sph_yaml_read_vector(&x->t, e->val->items[k + 1], k1, 2, to))
+    return -1;
+  return check_end(x, e->val->items[k + 1], k1, c, from, to, "the point before it");
+}
+
+/* Segment k of the wall at m (k = 0 for a from/to wall). */
+static int read_wall(const ctx *x, const node *m, const char *p, const sph_case *c, size_t k,
                      sph_wall_segment *w) {
   char b[96];
   double from[2], to[2];
@@ -530,23 +585,7 @@ static int read_wall(const ctx *x, const node *m, const char *p, const sph_case 
     return sph_yaml_fail_at(&x->t, m, p, "expected a mapping, got %s",
                             sph_yaml_got(m, b, sizeof b));
   if (sph_yaml_check_keys(&x->t, m, p, wall_keys)) return -1;
-  if (sph_yaml_get_pair(&x->t, m, p, "from", 1, 0, from) < 0) return -1;
-  if (sph_yaml_get_pair(&x->t, m, p, "to", 1, 0, to) < 0) return -1;
-  if (from[0] == to[0] && from[1] == to[1]) {
-    char kp[SPH_YAML_KEYLEN];
-    sph_yaml_join(kp, sizeof kp, p, "to");
-    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "to")->val, kp,
-                            "expected a point different from 'from', got [%g, %g]", to[0], to[1]);
-  }
-  const double len = hypot(to[0] - from[0], to[1] - from[1]);
-  if (c->dx > 0.0 && !(len >= c->dx)) { /* issue 39, D7: particles on top of one another */
-    char kp[SPH_YAML_KEYLEN];
-    sph_yaml_join(kp, sizeof kp, p, "to");
-    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "to")->val, kp,
-                            "the wall from [%g, %g] is %g m long, shorter than numerics.dx = %g m: "
-                            "expected a wall at least dx long",
-                            from[0], from[1], len, c->dx);
-  }
+  if (read_ends(x, m, p, c, k, from, to)) return -1;
   w->x0 = from[0];
   *wall_up(w, 0) = from[1];
   w->x1 = to[0];
@@ -608,11 +647,22 @@ static int read_walls(const ctx *x, const node *m, sph_case *c) {
     return sph_yaml_fail_at(&x->t, t, kp, "expected a list of mappings, got %s",
                             sph_yaml_got(t, b, sizeof b));
   if (t->n == 0) return 0;
-  if (!(c->walls = calloc(t->n, sizeof *c->walls))) return sph_yaml_oom(&x->t);
-  c->n_walls = t->n;
+  size_t segments = 0; /* a polyline of n points is n - 1 segments, in order */
   for (size_t i = 0; i < t->n; i++) {
+    size_t n;
     sph_yaml_bprintf(kp, sizeof kp, "geometry.walls[%zu]", i);
-    if (read_wall(x, t->items[i], kp, c, &c->walls[i])) return -1;
+    if (polyline_points(x, t->items[i], kp, &n)) return -1;
+    segments += n ? n - 1 : 1;
+  }
+  if (!(c->walls = calloc(segments, sizeof *c->walls))) return sph_yaml_oom(&x->t);
+  c->n_walls = segments;
+  size_t w = 0;
+  for (size_t i = 0; i < t->n; i++) {
+    size_t n;
+    sph_yaml_bprintf(kp, sizeof kp, "geometry.walls[%zu]", i);
+    if (polyline_points(x, t->items[i], kp, &n)) return -1;
+    for (size_t k = 0; k < (n ? n - 1 : 1); k++)
+      if (read_wall(x, t->items[i], kp, c, k, &c->walls[w++])) return -1;
   }
   return 0;
 }

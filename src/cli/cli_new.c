@@ -119,6 +119,7 @@ static const char *const TEMPLATE =
     "  walls: []                  # extra straight walls (default none), e.g. a gate:\n"
     "  #  - from: [0.06, 0]       # start point (m); the fluid is on the right, seen from it\n"
     "  #    to: [0.06, 0.15]      # end point (m)\n"
+    "  #    # points: [[0.06, 0], [0.08, 0.05], [0.1, 0.05]]  # instead of from, to: a polyline\n"
     "  #    boundary: adami       # as the tank's (default the scheme's, as the tank's)\n"
     "  #    layers: 2\n"
     "  #    stagger: true\n"
