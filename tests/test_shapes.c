@@ -36,7 +36,7 @@
  *    moved by the single-precision corners: +1.72 %, -0.04 %: at 20
  *    across the lattice's place decides about 1 %); an open surface, an inward one, one with a
  * triangle turned, a missing file, a zero scale, and two boxes overlapping in one file (refused
- * where the surface winds twice) are refused.
+ * where the surface winds twice, as water and as an obstacle) are refused.
  * 6. Obstacles of a shape: a rectangle (a prism in 3-D) with adami walls
  *    makes the box obstacle's wall particles bit for bit (in 2-D their
  *    mirror offsets too, within 1e-12 dx); a circle (a cylinder standing
@@ -724,7 +724,17 @@ static void test_mesh_refusals(void) {
   static const char *const twice[] = {"shapes.yaml:9: geometry.fluid[0].mesh: expected a surface "
                                       "that does not cross itself, got one that winds 2 times",
                                       NULL};
-  refused_at_start(mesh_block(write_mesh("two.stl", "stl", tri, 24), ""), twice);
+  const char *two = write_mesh("two.stl", "stl", tri, 24);
+  refused_at_start(mesh_block(two, ""), twice);
+  /* the same as an obstacle */
+  char text[4800];
+  snprintf(
+      text, sizeof text,
+      "    - {x: [0.6, 0.9], y: [0, 0.3], z: [0, 0.2]}\n  obstacles:\n    - mesh: {file: '%s'}\n",
+      two);
+  static const char *const obstacle[] = {"an obstacle's surface winds 2 times",
+                                         "expected a surface that does not cross", NULL};
+  refused_at_start(text, obstacle);
 }
 #endif
 

@@ -58,7 +58,11 @@ int sph_shape_inside(const sph_fluid_block *f, const double *x) {
   return inside(&f->shape, f->lo, f->hi, x);
 }
 
-int sph_shape_inside_of(const void *shape, const double *x) { return inside(shape, NULL, NULL, x); }
+int sph_shape_inside_of(const void *shape, const double *x) {
+  const sph_shape *s = shape;
+  if (SPH_DIM == 3 && s->kind == SPH_SHAPE_MESH) return sph_mesh_winding(s->mesh, x);
+  return inside(s, NULL, NULL, x);
+}
 
 static int inside(const sph_shape *s, const double *lo, const double *hi, const double *x) {
   switch (s->kind) {

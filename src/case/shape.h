@@ -16,7 +16,8 @@
  * a point on an edge falls on one side by the same arithmetic every run).
  * A 3-D polygon is a prism: x and z are tested, y is the box's. */
 int sph_shape_inside(const sph_fluid_block *f, const double *x);
-/* The inside of a shape other than a box (a shaped obstacle's, sph_obstacle's `inside`). */
+/* The inside of a shape other than a box (a shaped obstacle's, sph_obstacle's `inside`): 1
+ * inside, 0 outside; a mesh's winding number (any other value where it crosses itself). */
 int sph_shape_inside_of(const void *shape, const double *x);
 /* A shaped obstacle's wall particle at x: its mirror offset m, twice its distance to the
  * shape's surface out along the surface's outward normal at the closest point (the normal

@@ -135,6 +135,8 @@ static int add_shaped(sph_particles *p, const sph_obstacle *o, const long n[3], 
                          n[2]);
   }
   const long pad[3] = {L, SPH_DIM > 1 ? L : 0, SPH_DIM > 2 ? L : 0};
+  int crossing = 0;
+  double where[SPH_DIM] = {0.0};
   for (long k = 0; k < m[2]; k++)
     for (long j = 0; j < m[1]; j++)
       for (long i = 0; i < m[0]; i++) {
@@ -145,9 +147,18 @@ static int add_shaped(sph_particles *p, const sph_obstacle *o, const long n[3], 
           in &= idx[a] >= 0 && idx[a] < n[a];
           x[a] = o->lo[a] + ((double)idx[a] + 0.5) * dx;
         }
-        out[((size_t)k * (size_t)m[1] + (size_t)j) * (size_t)m[0] + (size_t)i] =
-            !(in && o->inside(o->shape, x));
+        const int wn = in ? o->inside(o->shape, x) : 0;
+        if (wn != 0 && wn != 1 && !crossing) crossing = wn, memcpy(where, x, sizeof where);
+        out[((size_t)k * (size_t)m[1] + (size_t)j) * (size_t)m[0] + (size_t)i] = wn == 0;
       }
+  if (crossing) {
+    free(out);
+    free(grown);
+    return sph_error_set(err,
+                         "an obstacle's surface winds %d times around (%g, %g" SPH_IF3(
+                             ", %g") "): expected a surface that does not cross or overlap itself",
+                         crossing, where[0], where[1] SPH_IF3(, where[2]));
+  }
   const size_t stride[3] = {1, (size_t)m[0], (size_t)m[0] * (size_t)m[1]};
   for (int a = 0; a < SPH_DIM; a++) { /* grow the outside by L along axis a */
     for (size_t c = 0; c < cells; c++) {

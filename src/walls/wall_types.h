@@ -88,7 +88,8 @@ typedef struct sph_obstacle {
   double lo[SPH_DIM], hi[SPH_DIM];                   /* the box's faces (a shape's bounding box) */
   int layers;                                        /* default 2, as a 3-D tank's */
   sph_boundary_kind boundary;                        /* dynamic (default), fixed_layers or mdbc */
-  int (*inside)(const void *shape, const double *x); /* a shaped obstacle's inside, or NULL */
+  int (*inside)(const void *shape, const double *x); /* a shaped obstacle's inside (1; 0
+                                                        outside; other: crossing itself) */
   void (*offset)(const void *shape, const double *x, double floor, double *m); /* its mirror
                            offsets (the surface at or below the floor's height no way out) */
   const void *shape;                                                           /* their argument */
