@@ -752,7 +752,9 @@ int rsequence_run(const roptions *o, const char *prog, sph_error *err) {
   memcpy(li.view, view, sizeof li.view);
   li.scale = o->font_scale;
   li.bare = o->bare;
-  li.colorbar = o->colorbar;
+  /* a one-colour water surface with grey walls (or none) carries no field: no colour bar */
+  li.colorbar = o->colorbar && !(p.dim3 && o->surface == RSURFACE_WATER &&
+                                 !(o->walls_given && o->walls == RWALLS_FIELD));
   li.title = o->title != NULL;
   li.lo = p.style.lo;
   li.hi = p.style.hi;

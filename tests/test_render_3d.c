@@ -31,7 +31,8 @@
  *    one ignored) and the tank's; their faces a mesh of the boxes' volume
  *    (to 1e-6) wound along their outward normals.
  * 5. --surface: the water block as a mesh coloured by pressure, and as
- *    water on one and two workers (the same bytes) and on llvmpipe's one
+ *    water (one colour: no colour bar, where the field's frame has one) on
+ *    one and two workers (the same bytes) and on llvmpipe's one
  *    and four rasterising threads (LP_NUM_THREADS: the same bytes); the mesh mode writes
  *    a PLY file whose header counts match its size (28 bytes a vertex with
  *    the field, 13 a face), the same bytes twice, a directory of
@@ -410,6 +411,24 @@ static int ply_header(const char *name, size_t *nv, size_t *nf, const char *fiel
   return ok ? 0 : -1;
 }
 
+/* Pixels not white in the right tenth of the PNG at tmp/name, between a fifth from the top and
+ * a tenth from the bottom (-1 if unreadable). */
+static long right_strip_ink(const char *name) {
+  char path[4200];
+  snprintf(path, sizeof path, "%s/%s", tmp, name);
+  int w, h;
+  uint8_t *img = rtest_read_png(path, &w, &h);
+  if (!img) return -1;
+  long ink = 0;
+  for (int y = h / 5; y < h - h / 10; y++) /* below the case's name at the top right */
+    for (int x = w - w / 10; x < w; x++) {
+      const uint8_t *q = img + ((size_t)y * w + x) * 3;
+      ink += !(q[0] == 255 && q[1] == 255 && q[2] == 255);
+    }
+  free(img);
+  return ink;
+}
+
 static void test_surface(void) {
   CU_ASSERT_FATAL(made);
   /* the water block as a mesh coloured by pressure: drawn in the middle */
@@ -431,6 +450,14 @@ static void test_surface(void) {
   CU_ASSERT_EQUAL(render("--size 320x180 --jobs 2 --surface water run3 -o ms2"), 0);
   CU_ASSERT(same_file("ms1/frame_0000.png", "ms2/frame_0000.png"));
   CU_ASSERT(same_file("ms1/frame_0001.png", "ms2/frame_0001.png"));
+  /* one colour, no field: no colour bar in the right tenth of the frame (the field's has one) */
+  CU_ASSERT_EQUAL(render("--size 320x180 --jobs 1 --surface field run3/snap_0000.h5 -o mf.png"), 0);
+  const long bar_field = right_strip_ink("mf.png"),
+             bar_water = right_strip_ink("ms1/frame_0000.png");
+  printf("; ink in the right tenth: %ld pixels with the field's colour bar, %ld for water",
+         bar_field, bar_water);
+  CU_ASSERT(bar_field > 100);
+  CU_ASSERT(bar_water == 0);
   /* llvmpipe's rasteriser on one thread and on four: the same bytes */
   CU_ASSERT_EQUAL(render_env("LP_NUM_THREADS=1", "--size 320x180 --jobs 1 --surface field "
                                                  "run3/snap_0001.h5 -o lp1.png"),
