@@ -34,7 +34,7 @@ void rcli_usage(FILE *fp) {
         "       sph-render --panels CxR [OPTIONS] SNAPSHOT|RUN_DIR... -o FIGURE.png|.svg|.pdf\n"
         "       sph-render --compare [OPTIONS] RUN_DIR RUN_DIR... -o OUT\n"
         "       sph-render plot [OPTIONS] FILE.csv [--points FILE.csv]... -o PLOT.png|.svg|.pdf\n"
-        "       sph-render mesh [OPTIONS] SNAPSHOT|RUN_DIR... -o SURFACE.ply|DIR\n"
+        "       sph-render mesh [OPTIONS] SNAPSHOT|RUN_DIR... -o SURFACE.ply|SURFACE.vtk|DIR\n"
         "\n"
         "Renders SPH snapshots (HDF5, as written by `sph run`) to PNG images off screen.\n"
         "A directory stands for its snap_*.h5 files. OUT is a directory (one\n"
@@ -120,9 +120,10 @@ void rcli_usage(FILE *fp) {
         "  --font-scale, --samples, --compression, --backend\n"
         "\n"
         "Mesh options (after `mesh`; 3-D snapshots): writes each snapshot's free surface\n"
-        "(as --surface draws it) as a binary PLY file: vertices with outward normals and,\n"
-        "with --field, that field; OUT is one .ply file or a directory of surface_NNNN.ply\n"
-        "  --field NAME, --times T1,T2,..., --surface-cell M, -v\n"
+        "(as --surface draws it) as a binary PLY or legacy VTK file: vertices with outward\n"
+        "normals and, with --field, that field (ParaView keeps a field from .vtk only);\n"
+        "OUT is one .ply or .vtk file or a directory of surface_NNNN.ply (or .vtk)\n"
+        "  --field NAME, --times T1,T2,..., --surface-cell M, --format ply|vtk, -v\n"
         "\n"
         "  -h, --help, --version\n",
         fp);
@@ -357,9 +358,9 @@ static int check_output(const roptions *o, sph_error *err) {
   struct stat st;
   int is_dir = stat(o->output, &st) == 0 && S_ISDIR(st.st_mode);
   if (o->mode == RMODE_MESH) {
-    if (!ext[0] || is_dir || strcmp(ext, ".ply") == 0) return 0;
-    return sph_error_set(err, "-o %s: a surface is written as a .ply file or into a directory",
-                         o->output);
+    if (!ext[0] || is_dir || strcmp(ext, ".ply") == 0 || strcmp(ext, ".vtk") == 0) return 0;
+    return sph_error_set(
+        err, "-o %s: a surface is written as a .ply or .vtk file or into a directory", o->output);
   }
   if (o->mode == RMODE_PLOT) {
     if (rinputs_is_png(o->output) || rcanvas_vector_kind(o->output)) return 0;
@@ -390,8 +391,8 @@ static int check(const roptions *o, sph_error *err) {
 /* The options the mesh mode takes (the others draw images). */
 static int mesh_option(const char *name) {
   static const char *const names[] = {
-      "-o",     "--output",  "-v",      "--verbose",      "-h",
-      "--help", "--version", "--field", "--surface-cell", "--times"};
+      "-o",      "--output",       "-v",      "--verbose", "-h", "--help", "--version",
+      "--field", "--surface-cell", "--times", "--format"};
   for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
     if (strcmp(name, names[k]) == 0) return 1;
   return 0;
@@ -727,6 +728,13 @@ int rcli_parse(int argc, char **argv, roptions *o, sph_error *err) {
     }
     if (mesh && !mesh_option(a.name))
       return sph_error_set(err, "unknown option %s in mesh mode (see --help)", a.name);
+    if (mesh && strcmp(a.name, "--format") == 0) { /* the files of a directory */
+      const char *v = a.inline_value ? a.inline_value : a.i + 1 < argc ? argv[++a.i] : NULL;
+      if (!v || (strcmp(v, "ply") && strcmp(v, "vtk")))
+        return sph_error_set(err, "--format: expected ply or vtk, got %s", v ? v : "nothing");
+      o->mesh_vtk = strcmp(v, "vtk") == 0;
+      continue;
+    }
     int r = common_option(&a, o, err);
     if (r == 0) {
       r = plot ? plot_option(&a, o, &se, err) : snapshot_option(&a, o, &compare, &panels, err);

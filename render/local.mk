@@ -38,7 +38,7 @@ render_libsphrender_la_SOURCES = \
 	render/mesh_run.c render/mesh_run.h \
 	render/obstacles.c render/obstacles.h \
 	render/plot.c render/plot.h \
-	render/ply_out.c render/ply_out.h \
+	render/ply_out.c render/ply_out.h render/vtk_out.c render/vtk_out.h \
 	render/png_out.c render/png_out.h \
 	render/scene3d.c render/scene3d.h \
 	render/sequence.c render/sequence.h \

@@ -16,10 +16,18 @@
 #include "ply_out.h"
 #include "snapdata.h"
 #include "surface.h"
+#include "vtk_out.h"
 
-/* The output of snapshot path: OUT, or OUT/surface_NNNN.ply. */
+/* Whether path ends with ext. */
+static int ends_with(const char *path, const char *ext) {
+  const size_t n = strlen(path), e = strlen(ext);
+  return n > e && strcmp(path + n - e, ext) == 0;
+}
+
+/* The output of snapshot path: OUT, or OUT/surface_NNNN.ply (.vtk with --format vtk). */
 static char *output_of(const roptions *o, int single, const char *path) {
   if (single) return strdup(o->output);
+  const char *ext = o->mesh_vtk ? "vtk" : "ply";
   char num[256], stem[256];
   rinputs_number(path, num, sizeof num);
   rinputs_stem(path, stem, sizeof stem);
@@ -27,9 +35,9 @@ static char *output_of(const roptions *o, int single, const char *path) {
   char *out = malloc(len);
   if (!out) return NULL;
   if (num[0])
-    snprintf(out, len, "%s/surface_%s.ply", o->output, num);
+    snprintf(out, len, "%s/surface_%s.%s", o->output, num, ext);
   else
-    snprintf(out, len, "%s/%s.ply", o->output, stem);
+    snprintf(out, len, "%s/%s.%s", o->output, stem, ext);
   return out;
 }
 
@@ -53,7 +61,15 @@ static int one(const roptions *o, const char *path, const char *out, size_t *nt,
     snprintf(c[2], sizeof c[2], "time %.9g s", s.time);
     snprintf(c[3], sizeof c[3], "cell %.9g m", cell);
     const char *const comments[4] = {c[0], c[1], c[2], c[3]};
-    rc = rply_write(out, &m, o->field_given ? rsnap_canonical(o->field) : NULL, comments, 4, err);
+    const char *field = o->field_given ? rsnap_canonical(o->field) : NULL;
+    if (ends_with(out, ".vtk")) {
+      char title[256];
+      snprintf(title, sizeof title, "sph-render free surface, time %.9g s, cell %.9g m", s.time,
+               cell);
+      rc = rvtk_write(out, &m, field, title, err);
+    } else {
+      rc = rply_write(out, &m, field, comments, 4, err);
+    }
     *nt = m.nt;
   }
   rmesh_free(&m);
@@ -83,8 +99,7 @@ int rmesh_run(const roptions *o, const char *prog, sph_error *err) {
       dup |= pick[j] == k;
     if (!dup) pick[n++] = k;
   }
-  const size_t len = strlen(o->output);
-  const int single = len > 4 && strcmp(o->output + len - 4, ".ply") == 0;
+  const int single = ends_with(o->output, ".ply") || ends_with(o->output, ".vtk");
   if (single && n != 1) {
     sph_error_set(err, "-o %s names one file but there are %zu snapshots: give a directory",
                   o->output, n);

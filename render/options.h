@@ -87,6 +87,7 @@ typedef struct roptions {
   int ortho;           /* --ortho */
   int surface;         /* RSURFACE_* */
   double surface_cell; /* --surface-cell (m); 0: half the particle spacing */
+  int mesh_vtk;        /* mesh mode, --format vtk: a directory of legacy VTK files, not PLY */
   int field_given;     /* --field given (the mesh mode writes no field without it) */
   int have_slice;      /* --slice: 3-D snapshots cut by a plane, drawn as 2-D (slice.h) */
   rslice slice;

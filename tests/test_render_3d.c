@@ -35,7 +35,9 @@
  *    one and two workers (the same bytes) and on llvmpipe's one
  *    and four rasterising threads (LP_NUM_THREADS: the same bytes); the mesh mode writes
  *    a PLY file whose header counts match its size (28 bytes a vertex with
- *    the field, 13 a face), the same bytes twice, a directory of
+ *    the field, 13 a face), the same bytes twice, the same surface as a
+ *    legacy VTK file that meshio reads back as the PLY (points, triangles,
+ *    field; also a directory of them with --format vtk), a directory of
  *    surface_NNNN.ply; options that draw, a .obj output, one file for
  *    many snapshots and an unknown --surface are refused.
  * 6. --slice y=0.05 (the interpolated view with the outline): coloured
@@ -486,6 +488,30 @@ static void test_surface(void) {
   CU_ASSERT(nv > 10 && !has);
   CU_ASSERT_EQUAL(render("mesh --field pressure run3/snap_0000.h5 -o s2.ply"), 0);
   CU_ASSERT(same_file("s.ply", "s2.ply"));
+  /* the same surface as legacy VTK (an unstructured grid of triangles, the field as point data,
+   * which ParaView keeps): meshio reads the PLY's points, triangles and field from it */
+  CU_ASSERT_EQUAL(render("mesh --field pressure run3/snap_0000.h5 -o s.vtk"), 0);
+  CU_ASSERT_EQUAL(render("mesh --format vtk --surface-cell 0.02 run3 -o vtks"), 0);
+  snprintf(path, sizeof path, "%s/vtks/surface_0001.vtk", tmp);
+  FILE *vf = fopen(path, "rb");
+  CU_ASSERT(vf != NULL);
+  if (vf) fclose(vf);
+  char cmd[9000];
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && /usr/bin/python3 -c \"import meshio, numpy as n; v = meshio.read('s.vtk'); "
+           "q = meshio.read('s.ply'); "
+           "assert n.array_equal(v.points, q.points); "
+           "assert n.array_equal(v.cells_dict['triangle'], q.cells_dict['triangle']); "
+           "assert n.array_equal(v.point_data['p'].ravel(), q.point_data['p']); "
+           "assert v.point_data['Normals'].shape == (len(q.points), 3)\"",
+           tmp);
+  const int py = sph_test_system(cmd);
+  if (py != 0)
+    printf("\n    meshio could not read s.vtk as s.ply (needs /usr/bin/python3 with meshio: "
+           "apt-get install python3-meshio)");
+  else
+    printf("; s.vtk: the PLY's points, triangles and field (meshio)");
+  CU_ASSERT_EQUAL(py, 0);
   /* refusals */
   CU_ASSERT_NOT_EQUAL(render("mesh --size 100x100 run3 -o x"), 0);
   CU_ASSERT_PTR_NOT_NULL(strstr(last_err(), "unknown option --size in mesh mode"));
