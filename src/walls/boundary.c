@@ -127,8 +127,10 @@ static int add_shaped(sph_particles *p, const sph_obstacle *o, const long n[3], 
   for (int a = 0; a < SPH_DIM; a++)
     m[a] = n[a] + 2 * L;
   const size_t cells = (size_t)m[0] * (size_t)m[1] * (size_t)m[2];
-  unsigned char *out = malloc(cells), *grown = malloc(cells);
-  if (!out || !grown) {
+  /* outside0: the shape's outside; out: grown by the layers; grown: one axis's growth */
+  unsigned char *outside0 = malloc(cells), *out = malloc(cells), *grown = malloc(cells);
+  if (!outside0 || !out || !grown) {
+    free(outside0);
     free(out);
     free(grown);
     return sph_error_set(err, "out of memory for an obstacle of %ld x %ld x %ld points", n[0], n[1],
@@ -149,9 +151,10 @@ static int add_shaped(sph_particles *p, const sph_obstacle *o, const long n[3], 
         }
         const int wn = in ? o->inside(o->shape, x) : 0;
         if (wn != 0 && wn != 1 && !crossing) crossing = wn, memcpy(where, x, sizeof where);
-        out[((size_t)k * (size_t)m[1] + (size_t)j) * (size_t)m[0] + (size_t)i] = wn == 0;
+        outside0[((size_t)k * (size_t)m[1] + (size_t)j) * (size_t)m[0] + (size_t)i] = wn == 0;
       }
   if (crossing) {
+    free(outside0);
     free(out);
     free(grown);
     return sph_error_set(err,
@@ -159,6 +162,7 @@ static int add_shaped(sph_particles *p, const sph_obstacle *o, const long n[3], 
                              ", %g") "): expected a surface that does not cross or overlap itself",
                          crossing, where[0], where[1] SPH_IF3(, where[2]));
   }
+  memcpy(out, outside0, cells);
   const size_t stride[3] = {1, (size_t)m[0], (size_t)m[0] * (size_t)m[1]};
   for (int a = 0; a < SPH_DIM; a++) { /* grow the outside by L along axis a */
     for (size_t c = 0; c < cells; c++) {
@@ -184,7 +188,7 @@ static int add_shaped(sph_particles *p, const sph_obstacle *o, const long n[3], 
         const size_t c =
             ((size_t)(k + pad[2]) * (size_t)m[1] + (size_t)(j + pad[1])) * (size_t)m[0] +
             (size_t)(i + pad[0]);
-        if (!out[c] || !o->inside(o->shape, x)) continue; /* deep inside, or outside */
+        if (!out[c] || outside0[c]) continue; /* deep inside, or outside */
         const long q = sph_particles_add_at(p, x, v, rho, mass, h, SPH_KIND_WALL, err);
         if (q < 0) {
           rc = -1;
@@ -198,6 +202,7 @@ static int add_shaped(sph_particles *p, const sph_obstacle *o, const long n[3], 
             p->mirror_offset[a][q] = off[a];
         }
       }
+  free(outside0);
   free(out);
   free(grown);
   return rc;
