@@ -766,7 +766,7 @@ static int read_shaped_obstacle(const ctx *x, const node *m, const char *p, cons
   }
   o->layers = o->boundary == SPH_BOUNDARY_ADAMI ? default_layers(o->boundary, c) : 2;
   if (sph_yaml_get_int(&x->t, m, p, "layers", 1, 8, &o->layers) < 0) return -1;
-  o->inside = sph_shape_inside_of;
+  o->inside = sph_shape_winding_of;
   o->offset = sph_shape_offset_of;
   o->shape = shape;
   return 0;

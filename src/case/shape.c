@@ -46,11 +46,6 @@ static int polygon_inside(const sph_shape *s, double px, double py) {
   return wn != 0;
 }
 
-int sph_shape_winding(const sph_fluid_block *f, const double *x) {
-  if (SPH_DIM == 3 && f->shape.kind == SPH_SHAPE_MESH) return sph_mesh_winding(f->shape.mesh, x);
-  return sph_shape_inside(f, x);
-}
-
 /* Inside the shape s, or the box lo..hi for a box. */
 static int inside(const sph_shape *s, const double *lo, const double *hi, const double *x);
 
@@ -58,7 +53,7 @@ int sph_shape_inside(const sph_fluid_block *f, const double *x) {
   return inside(&f->shape, f->lo, f->hi, x);
 }
 
-int sph_shape_inside_of(const void *shape, const double *x) {
+int sph_shape_winding_of(const void *shape, const double *x) {
   const sph_shape *s = shape;
   if (SPH_DIM == 3 && s->kind == SPH_SHAPE_MESH) return sph_mesh_winding(s->mesh, x);
   return inside(s, NULL, NULL, x);

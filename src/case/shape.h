@@ -16,9 +16,10 @@
  * a point on an edge falls on one side by the same arithmetic every run).
  * A 3-D polygon is a prism: x and z are tested, y is the box's. */
 int sph_shape_inside(const sph_fluid_block *f, const double *x);
-/* The inside of a shape other than a box (a shaped obstacle's, sph_obstacle's `inside`): 1
- * inside, 0 outside; a mesh's winding number (any other value where it crosses itself). */
-int sph_shape_inside_of(const void *shape, const double *x);
+/* The winding number of a shape other than a box around x: 1 inside, 0 outside, and for a mesh
+ * any other value where its surface crosses or overlaps itself (a shaped block's fill; a shaped
+ * obstacle's, sph_obstacle's `inside`). */
+int sph_shape_winding_of(const void *shape, const double *x);
 /* A shaped obstacle's wall particle at x: its mirror offset m, twice its distance to the
  * shape's surface out along the surface's outward normal at the closest point (the normal
  * there when x lies on the surface): the walls' way out (sph_obstacle's `offset`). The parts
@@ -26,9 +27,6 @@ int sph_shape_inside_of(const void *shape, const double *x);
  * standing on the floor) are no way out, as a box's bottom on the floor is not. A prism's
  * offsets point out through its side faces, never its two ends across y. */
 void sph_shape_offset_of(const void *shape, const double *x, double floor, double *m);
-/* The same as a winding number: 1 inside, 0 outside, and for a mesh any
- * other value where its surface crosses or overlaps itself. */
-int sph_shape_winding(const sph_fluid_block *f, const double *x);
 
 /* The shape's bounding box along the axes it spans (a 3-D polygon: x and
  * z; lo[1], hi[1] are left as they are). */

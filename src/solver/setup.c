@@ -173,7 +173,7 @@ static int add_fluid(sph_sim *s, sph_error *err) {
           for (int a = 0; a < SPH_DIM; a++)
             x[a] = fb->lo[a] + ((double)idx[a] + 0.5) * dx;
           if (fb->shape.kind != SPH_SHAPE_BOX) {
-            const int wn = sph_shape_winding(fb, x);
+            const int wn = sph_shape_winding_of(&fb->shape, x);
             if (wn == 0) continue;
             if (wn != 1)
               return sph_error_set(err,
