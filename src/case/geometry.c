@@ -721,6 +721,33 @@ static int read_periodic(const ctx *x, const node *m, sph_case *c) {
 
 /* geometry.obstacles[i]: {x, y (, z): ranges at least dx wide, layers (1-8, default 2; 1
  * for repulsive), boundary: dynamic (default), fixed_layers, mdbc or repulsive}. */
+/* An obstacle's wall model and layers: any model but mirror walls for a box; dynamic,
+ * fixed_layers or adami for a shape (mdbc's mirror points and repulsive walls' normals come from
+ * a box's faces so far); layers 1..8, by default 2 (adami: ceil(2 h_factor)). */
+static int read_obstacle_model(const ctx *x, const node *m, const char *p, const sph_case *c,
+                               int shaped, sph_obstacle *o) {
+  char kp[SPH_YAML_KEYLEN];
+  int bnd = SPH_BOUNDARY_DYNAMIC;
+  if (sph_yaml_get_choice(&x->t, m, p, "boundary", boundary_names, &bnd) < 0) return -1;
+  o->boundary = (sph_boundary_kind)bnd;
+  const int refused = shaped ? bnd != SPH_BOUNDARY_DYNAMIC && bnd != SPH_BOUNDARY_FIXED_LAYERS &&
+                                   bnd != SPH_BOUNDARY_ADAMI
+                             : bnd == SPH_BOUNDARY_MIRROR;
+  if (refused) {
+    sph_yaml_join(kp, sizeof kp, p, "boundary");
+    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "boundary")->val, kp, "%s, got '%s'",
+                            shaped ? "expected 'dynamic', 'fixed_layers' or 'adami' for an "
+                                     "obstacle of a shape (mdbc, repulsive and mirror walls need "
+                                     "a box's faces so far)"
+                                   : "expected 'dynamic', 'fixed_layers', 'mdbc', 'adami' or "
+                                     "'repulsive' (an obstacle is a box of wall particles)",
+                            sph_boundary_name(o->boundary));
+  }
+  o->layers = o->boundary == SPH_BOUNDARY_ADAMI ? default_layers(o->boundary, c) : 2;
+  if (sph_yaml_get_int(&x->t, m, p, "layers", 1, 8, &o->layers) < 0) return -1;
+  return check_layers(x, m, p, o->boundary, &o->layers); /* (repulsive: exactly 1) */
+}
+
 /* A shaped obstacle: its shape (as a fluid block's, read_extent) inside the tank (its top may
  * stand above it), its bounding box the obstacle's box; dynamic, fixed_layers or adami walls
  * (mdbc's mirror points and repulsive walls' normals come from a box's faces so far). */
@@ -752,20 +779,7 @@ static int read_shaped_obstacle(const ctx *x, const node *m, const char *p, cons
     o->lo[a] = f.lo[a];
     o->hi[a] = f.hi[a];
   }
-  int bnd = SPH_BOUNDARY_DYNAMIC;
-  if (sph_yaml_get_choice(&x->t, m, p, "boundary", boundary_names, &bnd) < 0) return -1;
-  o->boundary = (sph_boundary_kind)bnd;
-  if (bnd != SPH_BOUNDARY_DYNAMIC && bnd != SPH_BOUNDARY_FIXED_LAYERS &&
-      bnd != SPH_BOUNDARY_ADAMI) {
-    sph_yaml_join(kp, sizeof kp, p, "boundary");
-    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "boundary")->val, kp,
-                            "expected 'dynamic', 'fixed_layers' or 'adami' for an obstacle of a "
-                            "shape (mdbc, repulsive and mirror walls need a box's faces so far), "
-                            "got '%s'",
-                            sph_boundary_name(o->boundary));
-  }
-  o->layers = o->boundary == SPH_BOUNDARY_ADAMI ? default_layers(o->boundary, c) : 2;
-  if (sph_yaml_get_int(&x->t, m, p, "layers", 1, 8, &o->layers) < 0) return -1;
+  if (read_obstacle_model(x, m, p, c, 1, o)) return -1;
   o->inside = sph_shape_winding_of;
   o->offset = sph_shape_offset_of;
   o->shape = shape;
@@ -807,20 +821,7 @@ static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_c
     o->lo[a] = v[0];
     o->hi[a] = v[1];
   }
-  int bnd = SPH_BOUNDARY_DYNAMIC;
-  if (sph_yaml_get_choice(&x->t, m, p, "boundary", boundary_names, &bnd) < 0) return -1;
-  o->boundary = (sph_boundary_kind)bnd;
-  if (bnd == SPH_BOUNDARY_MIRROR) {
-    sph_yaml_join(kp, sizeof kp, p, "boundary");
-    return sph_yaml_fail_at(
-        &x->t, sph_yaml_find(m, "boundary")->val, kp,
-        "expected 'dynamic', 'fixed_layers', 'mdbc', 'adami' or 'repulsive' (an "
-        "obstacle is a box of wall particles), got '%s'",
-        sph_boundary_name(o->boundary));
-  }
-  o->layers = o->boundary == SPH_BOUNDARY_ADAMI ? default_layers(o->boundary, c) : 2;
-  if (sph_yaml_get_int(&x->t, m, p, "layers", 1, 8, &o->layers) < 0) return -1;
-  return check_layers(x, m, p, o->boundary, &o->layers); /* (repulsive: exactly 1) */
+  return read_obstacle_model(x, m, p, c, 0, o);
 }
 
 static int read_obstacles(const ctx *x, const node *m, sph_case *c) {
