@@ -14,6 +14,7 @@
  *   solver/sim.h        a simulation: create, step, restart
  *   solver/run.h        the run loop with outputs, signals and progress
  *   solver/procs.h      the processes of a run under mpirun (--with-mpi)
+ *   solver/bindings.h   what a binding from another language needs (python/sph)
  *   solver/diag.h       the diagnostics row of a state (energy, momentum, front)
  *   analysis/analytic.h, analysis/wave_face.h
  *                       analytic profiles and the wave-face measure
@@ -31,6 +32,7 @@
 #include "core/version.h"
 #include "io/csv.h"
 #include "io/snapshot.h"
+#include "solver/bindings.h"
 #include "solver/diag.h"
 #include "solver/procs.h"
 #include "solver/run.h"

@@ -14,9 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "cli/cli.h"
 
@@ -128,14 +125,12 @@ int sph_cli_parse_progress(const char *cmd, const char *value, double *seconds) 
 }
 
 int sph_cli_set_threads(int threads, int quiet) {
-#ifdef _OPENMP
-  (void)quiet;
-  if (threads > 0) omp_set_num_threads(threads);
-  return omp_get_max_threads();
-#else
+#ifndef _OPENMP
   if (threads > 1 && !quiet) fprintf(stderr, "sph: built without OpenMP; running on 1 thread\n");
-  return 1;
+#else
+  (void)quiet;
 #endif
+  return sph_set_threads(threads);
 }
 
 /* Whether c ends a number token in a listing value. */
