@@ -96,6 +96,18 @@ void rcanvas_line(rcanvas *c, double x0, double y0, double x1, double y1, double
   c->ops->line(c, x0, y0, x1, y1, width, col);
 }
 
+void rcanvas_polyline(rcanvas *c, const double *xy, size_t n, int closed, double width,
+                      rcolor col) {
+  if (n < 2) return;
+  if (c->ops->polyline) {
+    c->ops->polyline(c, xy, n, closed, width, col);
+    return;
+  }
+  for (size_t k = 0; k + 1 < n; k++)
+    rcanvas_line(c, xy[2 * k], xy[2 * k + 1], xy[2 * k + 2], xy[2 * k + 3], width, col);
+  if (closed) rcanvas_line(c, xy[2 * n - 2], xy[2 * n - 1], xy[0], xy[1], width, col);
+}
+
 void rcanvas_triangle(rcanvas *c, double x0, double y0, double x1, double y1, double x2, double y2,
                       rcolor col) {
   const double p[3][2] = {{x0, y0}, {x1, y1}, {x2, y2}};

@@ -73,6 +73,9 @@ void rcanvas_border(rcanvas *c, rrect r, double width, rcolor col);
 void rcanvas_disc(rcanvas *c, double cx, double cy, double rad, rcolor col);
 /* A segment of the given width with anti-aliased long edges. */
 void rcanvas_line(rcanvas *c, double x0, double y0, double x1, double y1, double width, rcolor col);
+/* A line through n points (x, y pairs; closed: back to the first): one
+ * path on a vector canvas, its segments one by one on a raster one. */
+void rcanvas_polyline(rcanvas *c, const double *xy, size_t n, int closed, double width, rcolor col);
 void rcanvas_triangle(rcanvas *c, double x0, double y0, double x1, double y1, double x2, double y2,
                       rcolor col);
 /* An image of iw x ih RGBA pixels (top row first, straight alpha) drawn

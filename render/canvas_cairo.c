@@ -102,6 +102,24 @@ static void v_line(rcanvas *base, double x0, double y0, double x1, double y1, do
   cairo_stroke(c->cr);
 }
 
+/* One path through the points, round joins (and caps on an open line), so
+ * a curve sampled finely reads as a curve at any zoom. */
+static void v_polyline(rcanvas *base, const double *xy, size_t n, int closed, double width,
+                       rcolor col) {
+  vcanvas *c = (vcanvas *)base;
+  cairo_save(c->cr);
+  set_color(c->cr, col);
+  cairo_set_line_width(c->cr, width);
+  cairo_set_line_join(c->cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(c->cr, CAIRO_LINE_CAP_ROUND);
+  cairo_move_to(c->cr, xy[0], xy[1]);
+  for (size_t k = 1; k < n; k++)
+    cairo_line_to(c->cr, xy[2 * k], xy[2 * k + 1]);
+  if (closed) cairo_close_path(c->cr);
+  cairo_stroke(c->cr);
+  cairo_restore(c->cr);
+}
+
 static void v_triangle(rcanvas *base, const double p[3][2], rcolor col) {
   vcanvas *c = (vcanvas *)base;
   set_color(c->cr, col);
@@ -183,8 +201,8 @@ static int v_finish(rcanvas *base, sph_error *err) {
   return 0;
 }
 
-static const rcanvas_ops v_ops = {v_destroy,  v_clear, v_clip, v_rect, v_disc,  v_line,
-                                  v_triangle, v_image, v_text, NULL,   v_finish};
+static const rcanvas_ops v_ops = {v_destroy,  v_clear, v_clip, v_rect, v_disc,   v_line,
+                                  v_triangle, v_image, v_text, NULL,   v_finish, v_polyline};
 
 /* The PDF's creation date: SOURCE_DATE_EPOCH (reproducible builds) or a
  * fixed date, never the clock. */

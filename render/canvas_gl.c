@@ -379,4 +379,4 @@ static int gl_read_rgb(rcanvas *base, uint8_t *rgb, sph_error *err) {
 }
 
 static const rcanvas_ops gl_ops = {gl_destroy,  gl_clear, gl_clip, gl_rect,     gl_disc, gl_line,
-                                   gl_triangle, gl_image, gl_text, gl_read_rgb, NULL};
+                                   gl_triangle, gl_image, gl_text, gl_read_rgb, NULL,    NULL};

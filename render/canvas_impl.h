@@ -23,6 +23,8 @@ typedef struct rcanvas_ops {
   void (*text)(rcanvas *c, double x, double y, const char *s, int scale, rcolor col, int vertical);
   int (*read_rgb)(rcanvas *c, uint8_t *rgb, sph_error *err); /* NULL: vector */
   int (*finish)(rcanvas *c, sph_error *err);                 /* NULL: raster */
+  /* a polyline as one path; NULL: its segments one by one (rcanvas_polyline) */
+  void (*polyline)(rcanvas *c, const double *xy, size_t n, int closed, double width, rcolor col);
 } rcanvas_ops;
 
 /* The common head of both kinds. */

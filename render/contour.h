@@ -1,10 +1,13 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * contour.h - the level line phi = 0 of a function sampled on a grid, as
- * straight segments (marching squares), for the free-surface outline.
+ * straight segments (marching squares) or the polylines they join into,
+ * for the free-surface outline.
  */
 #ifndef SPH_RENDER_CONTOUR_H
 #define SPH_RENDER_CONTOUR_H
+
+#include <stddef.h>
 
 /* Receives one segment, in grid coordinates: point (i, j) of the grid is
  * at (i + 1/2, j + 1/2). */
@@ -18,5 +21,14 @@ typedef void (*rcontour_segment)(void *ctx, double x0, double y0, double x1, dou
  * split by the sign of the mean of its four corners. */
 void rcontour(const double *phi, const unsigned char *keep, int nx, int ny, rcontour_segment seg,
               void *ctx);
+
+/* Receives one polyline of n points (x, y pairs, grid coordinates);
+ * closed: the last point joins the first. */
+typedef void (*rcontour_polyline)(void *ctx, const double *xy, size_t n, int closed);
+/* The same line as rcontour's segments joined into polylines where they
+ * meet (an outline drawn as one path, not as pieces): 0, or -1 when out of
+ * memory. */
+int rcontour_lines(const double *phi, const unsigned char *keep, int nx, int ny,
+                   rcontour_polyline line, void *ctx);
 
 #endif

@@ -84,22 +84,34 @@ static void draw_discs(rcanvas *c, const rlayout *L, int k, const rfigure_style 
 
 typedef struct outline_ctx {
   rcanvas *c;
-  double x0, y0, width;
+  double x0, y0, per, width; /* the box's corner; grid samples per canvas unit */
   rcolor col;
 } outline_ctx;
 
-static void outline_segment(void *ctx, double x0, double y0, double x1, double y1) {
+/* A polyline of the outline from grid to canvas coordinates, drawn as one
+ * line (one path in a PDF or SVG). */
+static void outline_polyline(void *ctx, const double *xy, size_t n, int closed) {
   const outline_ctx *o = ctx;
-  rcanvas_line(o->c, o->x0 + x0, o->y0 + y0, o->x0 + x1, o->y0 + y1, o->width, o->col);
+  double *q = (double *)xy; /* rcontour_lines' own buffer, free to rewrite */
+  for (size_t k = 0; k < n; k++) {
+    q[2 * k] = o->x0 + xy[2 * k] / o->per;
+    q[2 * k + 1] = o->y0 + xy[2 * k + 1] / o->per;
+  }
+  rcanvas_polyline(o->c, q, n, closed, o->width, o->col);
 }
 
 /* The fluid of panel k as the SPH interpolation of the field at the
- * centres of the plot box's pixels (interp.h), blank outside the fluid,
- * and/or the free surface as a line: the level 1/2 of the kernel sum. */
+ * centres of a grid over the plot box (interp.h), blank outside the fluid,
+ * and/or the free surface as a line: the level 1/2 of the kernel sum. The
+ * grid has one point per pixel, or for a PDF or SVG st->raster per point
+ * (the --dpi of the page): the field as an image at that resolution, the
+ * outline traced on it and joined into polylines. */
 static int draw_smooth(rcanvas *c, const rlayout *L, int k, const rfigure_style *st, const rsnap *s,
                        sph_error *err) {
   const rrect *box = &L->panel[k].plot;
-  int nx = (int)(box->x1 - box->x0), ny = (int)(box->y1 - box->y0);
+  const double per = st->raster > 1.0 ? st->raster : 1.0;
+  int nx = (int)floor((box->x1 - box->x0) * per + 0.5),
+      ny = (int)floor((box->y1 - box->y0) * per + 0.5);
   if (nx < 2 || ny < 2) return 0;
   if (!s->h || !s->vol)
     return sph_error_set(err, "%s: the interpolated view needs the particle volumes", s->path);
@@ -116,7 +128,7 @@ static int draw_smooth(rcanvas *c, const rlayout *L, int k, const rfigure_style 
   rlayout_to_px(L, k, 0.0, 0.0, &cx, &cy);
   wx0 = (box->x0 - cx) / L->px_per_m;
   wy1 = (cy - box->y0) / L->px_per_m;
-  rinterp_grid g = {nx, ny, wx0, wy1, 1.0 / L->px_per_m};
+  rinterp_grid g = {nx, ny, wx0, wy1, (box->x1 - box->x0) / nx / L->px_per_m};
   if (!rc) rc = rinterp_field(&in, &g, f, sf, sw, err);
   for (size_t q = 0; !rc && q < np; q++) {
     int fluid = rinterp_is_fluid(sf[q]);
@@ -129,9 +141,11 @@ static int draw_smooth(rcanvas *c, const rlayout *L, int k, const rfigure_style 
   }
   if (!rc && st->smooth) rcanvas_image(c, *box, nx, ny, rgba);
   if (!rc && st->outline) {
-    outline_ctx o = {c, box->x0, box->y0, rlayout_line_width(L) > 1 ? rlayout_line_width(L) : 1.5,
-                     st->fg};
-    rcontour(phi, keep, nx, ny, outline_segment, &o);
+    /* 1.5 pixels (the line's rim antialiased); on a page the layout's line, 1 pt at 9 pt text */
+    const double lw = per > 1.0 || rlayout_line_width(L) > 1 ? rlayout_line_width(L) : 1.5;
+    outline_ctx o = {c, box->x0, box->y0, nx / (box->x1 - box->x0), lw, st->fg};
+    if (rcontour_lines(phi, keep, nx, ny, outline_polyline, &o) != 0)
+      rc = sph_error_set(err, "%s: out of memory for the outline", s->path);
   }
   free(f);
   free(sf);
@@ -280,7 +294,9 @@ int rfigure_draw(rcanvas *c, const rlayout *L, const rfigure_style *st, const rp
     }
     const rrect *b = &L->panel[k].plot;
     rcanvas_text(c, b->x0, L->panel[k].label_y, p[k].label, s, st->fg, RALIGN_LEFT, RALIGN_TOP, 0);
-    if (p[k].note[0])
+    /* the note (the case's name) where it fits beside the label, else none */
+    if (p[k].note[0] &&
+        rfont_width(p[k].label, s) + 4 * s + rfont_width(p[k].note, s) <= b->x1 - b->x0)
       rcanvas_text(c, b->x1, L->panel[k].label_y, p[k].note, s, st->fg, RALIGN_RIGHT, RALIGN_TOP,
                    0);
   }

@@ -40,6 +40,8 @@ typedef struct rfigure_style {
   int walls;             /* RWALLS_* */
   int smooth;            /* the fluid as its SPH interpolation on the pixels (interp.h) */
   int outline;           /* the free surface as a line; both need rsnap_load_volumes */
+  double raster;         /* samples of the interpolated field per canvas unit (0 or 1: one per
+                            pixel; a PDF or SVG at --dpi: dpi / 72 per point) */
   const roverlay *overlays;
   int n_overlays;
   double overlay_tol;        /* seconds */

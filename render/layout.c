@@ -25,6 +25,7 @@
 #include "layout.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "font.h"
@@ -38,6 +39,24 @@ static int ticks_width(const rticks *t, int s) {
     if (lw > w) w = lw;
   }
   return w;
+}
+
+/* The ticks of an axis len units long over [lo, hi]: about target of them
+ * (rticks_make), and where that leaves fewer than three, finer steps
+ * (1-2-5) towards three, as long as their labels stay apart: along x by
+ * the widest label and 3s, across (y, the colour bar) by the cap height
+ * and 2s, 9s. A journal-size panel (8.5 cm, 7 pt capitals) thus reads its
+ * scale off three labels where two or one fitted the coarser target. */
+static void axis_ticks(double lo, double hi, double len, int target, int along_x, int s,
+                       rticks *t) {
+  rticks_make(lo, hi, target < 2 ? 2 : target, t);
+  rticks c = *t;
+  for (int k = 0; k < 6 && t->n < 3 && hi > lo; k++) {
+    rticks_make_step(lo, hi, rticks_finer(c.step), &c);
+    const double gap = c.step / (hi - lo) * len;
+    if (gap < (along_x ? ticks_width(&c, s) + 3 * s : 9 * s)) break;
+    if (c.n > t->n) *t = c;
+  }
 }
 
 int rlayout_tick_len(const rlayout *L) { return 3 * L->scale; }
@@ -86,12 +105,13 @@ int rlayout_figure(const rlayout_in *in, rlayout *L, sph_error *err) {
   double W = in->width;
   double plot_w = 0.0, plot_h = 0.0, cell_w = 0.0, cell_h = 0.0, H = in->height;
   int yw = rfont_width("-0.00", s), xw = 0, bar_ticks = 5;
+  double bar_len = 0.0; /* the colour bar's length, once known (0: the target alone) */
   for (int pass = 0; pass < 4; pass++) {
     if (!in->bare) {
       left = L->no_axes ? 3 * s : 3 * s + 9 * s + 4 * s + yw + 2 * s + tick;
       right = L->no_axes ? 3 * s : xw / 2 > 6 * s ? xw / 2 : 6 * s;
       if (in->colorbar) {
-        rticks_make(in->lo, in->hi, bar_ticks, &L->bt);
+        axis_ticks(in->lo, in->hi, bar_len, bar_ticks, 0, s, &L->bt);
         bar_col = 10 * s + 10 * s + tick + 2 * s + ticks_width(&L->bt, s) + 4 * s + 9 * s + 4 * s;
       }
     }
@@ -114,25 +134,27 @@ int rlayout_figure(const rlayout_in *in, rlayout *L, sph_error *err) {
     plot_w = fmin(floor(vw * L->px_per_m + 0.5), floor(avail_w));
     plot_h = fmin(floor(vh * L->px_per_m + 0.5), floor(avail_h));
     if (in->bare) break;
+    /* the bar spans from the first plot's top to the last one's bottom */
+    const double bl = (in->rows - 1) * cell_h + plot_h;
+    int nb = (int)(bl / (60.0 * s)) + 1; /* a bar's labels one per 60s, as along x */
+    if (nb < 2) nb = 2;
     if (L->no_axes) { /* only the colour bar's ticks, from its height */
-      int nb = (int)(((in->rows - 1) * cell_h + plot_h) / (40.0 * s)) + 1;
-      if (nb < 2) nb = 2;
-      if (nb == bar_ticks) break;
+      if (nb == bar_ticks && bl == bar_len) break;
       bar_ticks = nb;
+      bar_len = bl;
       continue;
     }
     int tx = (int)(plot_w / (60.0 * s)) + 1, ty = (int)(plot_h / (40.0 * s)) + 1;
-    rticks_make(in->view[0], in->view[1], tx < 2 ? 2 : tx, &L->xt);
-    rticks_make(in->view[2], in->view[3], ty < 2 ? 2 : ty, &L->yt);
-    /* the bar spans from the first plot's top to the last one's bottom */
-    int nb = (int)(((in->rows - 1) * cell_h + plot_h) / (40.0 * s)) + 1;
+    axis_ticks(in->view[0], in->view[1], plot_w, tx, 1, s, &L->xt);
+    axis_ticks(in->view[2], in->view[3], plot_h, ty, 0, s, &L->yt);
     int ny = ticks_width(&L->yt, s), nx = ticks_width(&L->xt, s);
-    if (nb < 2) nb = 2;
-    if (ny == yw && nx == xw && nb == bar_ticks) break; /* the margins fit the labels */
+    if (ny == yw && nx == xw && nb == bar_ticks && bl == bar_len)
+      break; /* the margins fit the labels */
     /* after the first guess widths only grow, so the passes settle */
     yw = pass == 0 || ny > yw ? ny : yw;
     xw = pass == 0 || nx > xw ? nx : xw;
     bar_ticks = nb;
+    bar_len = bl;
   }
   L->width = in->width;
   L->height = (int)H;
@@ -168,4 +190,27 @@ void rlayout_to_px(const rlayout *L, int k, double wx, double wy, double *px, do
   double wcx = 0.5 * (L->view[0] + L->view[1]), wcy = 0.5 * (L->view[2] + L->view[3]);
   *px = cx + (wx - wcx) * L->px_per_m;
   *py = cy - (wy - wcy) * L->px_per_m;
+}
+
+/* "0, 0.5, 1" into buf (at most size bytes). */
+static void tick_list(const rticks *t, char *buf, size_t size) {
+  size_t used = 0;
+  buf[0] = '\0';
+  for (int i = 0; i < t->n && used < size; i++) {
+    char v[64];
+    rticks_label(t, t->v[i], v, sizeof v);
+    const int w = snprintf(buf + used, size - used, "%s%s", i ? ", " : "", v);
+    if (w < 0) break;
+    used += (size_t)w;
+  }
+}
+
+void rlayout_describe_ticks(const rlayout *L, char *buf, size_t size) {
+  char x[512] = "", y[512] = "", b[512] = "";
+  if (!L->no_axes && !L->bare) {
+    tick_list(&L->xt, x, sizeof x);
+    tick_list(&L->yt, y, sizeof y);
+  }
+  if (L->bar.x1 > L->bar.x0) tick_list(&L->bt, b, sizeof b);
+  snprintf(buf, size, "x ticks [%s], y ticks [%s], colour bar ticks [%s]", x, y, b);
 }

@@ -56,6 +56,10 @@ void rlayout_to_px(const rlayout *L, int k, double wx, double wy, double *px, do
 int rlayout_auto_scale(double width, double height);
 /* Sizes in pixels derived from the font scale. */
 int rlayout_tick_len(const rlayout *L);
+/* The tick labels of the layout's axes and colour bar, as
+ * "x ticks [0, 1, 2], y ticks [0.0, 0.1], colour bar ticks [0, 0.5, 1]"
+ * (empty brackets for what the figure does not have), for -v. */
+void rlayout_describe_ticks(const rlayout *L, char *buf, size_t size);
 int rlayout_line_width(const rlayout *L);
 
 #endif

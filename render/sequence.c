@@ -693,6 +693,8 @@ int rsequence_run(const roptions *o, const char *prog, sph_error *err) {
   p.style.title = o->title;
   p.style.smooth = o->smooth;
   p.style.outline = o->outline;
+  /* a PDF or SVG: the interpolated field and the outline at --dpi */
+  p.style.raster = o->output && rcanvas_vector_kind(o->output) ? o->dpi / 72.0 : 1.0;
   char units[32];
   if (rsnap_units(p.task[0].path[0], o->field, units, sizeof units, err) != 0) goto done;
   rlabel_with_units(o->field, units, p.bar_label, sizeof p.bar_label);
@@ -761,6 +763,20 @@ int rsequence_run(const roptions *o, const char *prog, sph_error *err) {
   li.no_axes = p.dim3;
   if (rlayout_figure(&li, &p.layout, err) != 0) goto done;
   if (p.dim3 && plan_camera(&p, err) != 0) goto done;
+  if (o->verbose) {
+    char ticks[1600];
+    rlayout_describe_ticks(&p.layout, ticks, sizeof ticks);
+    fprintf(stderr, "%s: %s\n", prog, ticks);
+  }
+  if (!li.bare && !li.no_axes && (p.layout.xt.n < 3 || p.layout.yt.n < 3)) {
+    const rrect *b = &p.layout.panel[0].plot;
+    const int vec = o->output && rcanvas_vector_kind(o->output);
+    fprintf(stderr,
+            "%s: note: each panel's plot is %.0f x %.0f %s, room for %d x and %d y tick labels; "
+            "for three on each axis: fewer panels across (--panels), a larger --size or a "
+            "smaller --view\n",
+            prog, b->x1 - b->x0, b->y1 - b->y0, vec ? "pt" : "px", p.layout.xt.n, p.layout.yt.n);
+  }
 
   if (p.outdir && rinputs_mkdirs(p.outdir, err) != 0) goto done;
   int jobs = o->jobs > 0 ? o->jobs : rjobs_cpus();

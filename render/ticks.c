@@ -54,9 +54,23 @@ void rticks_make(double lo, double hi, int target, rticks *t) {
     lo = hi;
     hi = s;
   }
+  rticks_make_step(lo, hi, step_for(lo, hi, target), t);
+}
+
+double rticks_finer(double step) {
+  const double p = pow(10.0, floor(log10(step) + 1e-9)), f = step / p;
+  return f > 3.5 ? 2.0 * p : f > 1.5 ? p : 0.5 * p;
+}
+
+void rticks_make_step(double lo, double hi, double step, rticks *t) {
+  if (hi < lo) {
+    double s = lo;
+    lo = hi;
+    hi = s;
+  }
   t->n = 0;
   t->log = 0;
-  t->step = step_for(lo, hi, target);
+  t->step = step;
   set_format(t, lo, hi);
   double k0 = ceil(lo / t->step - 1e-9), k1 = floor(hi / t->step + 1e-9);
   for (double k = k0; k <= k1 && t->n < RTICKS_MAX; k += 1.0) {

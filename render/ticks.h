@@ -21,6 +21,10 @@ typedef struct rticks {
 
 /* About `target` ticks inside [lo, hi]. lo == hi gives one tick. */
 void rticks_make(double lo, double hi, int target, rticks *t);
+/* The ticks at the multiples of step (a nice number) inside [lo, hi]. */
+void rticks_make_step(double lo, double hi, double step, rticks *t);
+/* The next nice number below a nice step: 5 -> 2 -> 1 -> 0.5 (x 10^k). */
+double rticks_finer(double step);
 /* The label of value v, formatted for the ticks t (same decimals for all). */
 void rticks_label(const rticks *t, double v, char *buf, size_t size);
 /* Widens [lo, hi] outward to multiples of the step rticks_make would use,

@@ -378,6 +378,61 @@ static double luminance(const uint8_t c[3]) {
   return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
 }
 
+/* The outline as polylines (rcontour_lines): a circle of radius 20 on a
+ * 60 x 60 grid is one closed line through as many points as marching
+ * squares has pieces, each point on an edge and within 0.05 of the
+ * circle, consecutive points a cell apart at most; a band cut off by the
+ * grid's border is open at both ends. Twice the same points, bit for bit. */
+typedef struct poly_stats {
+  int lines, closed;
+  size_t points;
+  double worst, step, first[2];
+} poly_stats;
+
+static void collect_poly(void *ctx, const double *xy, size_t n, int closed) {
+  poly_stats *st = ctx;
+  st->lines++;
+  st->closed += closed;
+  st->points += n;
+  if (st->lines == 1) st->first[0] = xy[0], st->first[1] = xy[1];
+  for (size_t k = 0; k < n; k++) {
+    const double r = hypot(xy[2 * k] - 30.5, xy[2 * k + 1] - 30.5);
+    st->worst = fmax(st->worst, fabs(r - 20.0));
+    const size_t q = (k + 1) % n;
+    if (k + 1 < n || closed)
+      st->step = fmax(st->step, hypot(xy[2 * q] - xy[2 * k], xy[2 * q + 1] - xy[2 * k + 1]));
+  }
+}
+
+static void count_segment(void *ctx, double x0, double y0, double x1, double y1) {
+  (void)x0, (void)y0, (void)x1, (void)y1;
+  (*(size_t *)ctx)++;
+}
+
+static void test_contour_lines(void) {
+  static double phi[60 * 60];
+  for (int j = 0; j < 60; j++)
+    for (int i = 0; i < 60; i++) /* point (i, j) at (i + 1/2, j + 1/2) */
+      phi[j * 60 + i] = 20.0 - hypot(i + 0.5 - 30.5, j + 0.5 - 30.5);
+  poly_stats a = {0}, b = {0};
+  size_t pieces = 0;
+  rcontour(phi, NULL, 60, 60, count_segment, &pieces);
+  CU_ASSERT_EQUAL(rcontour_lines(phi, NULL, 60, 60, collect_poly, &a), 0);
+  CU_ASSERT_EQUAL(rcontour_lines(phi, NULL, 60, 60, collect_poly, &b), 0);
+  CU_ASSERT_EQUAL(a.lines, 1);
+  CU_ASSERT_EQUAL(a.closed, 1);
+  CU_ASSERT_EQUAL(a.points, pieces); /* a closed line: one point per piece */
+  CU_ASSERT(a.worst < 0.05);
+  CU_ASSERT(a.step <= M_SQRT2 + 1e-12);
+  CU_ASSERT(a.first[0] == b.first[0] && a.first[1] == b.first[1] && a.points == b.points);
+  /* the circle's top half (rows 31 up): the grid's last row cuts it, open */
+  poly_stats h = {0};
+  CU_ASSERT_EQUAL(rcontour_lines(phi + 31 * 60, NULL, 60, 29, collect_poly, &h), 0);
+  CU_ASSERT_EQUAL(h.lines, 1);
+  CU_ASSERT_EQUAL(h.closed, 0);
+  printf("\n  circle: %zu pieces, one closed line within %.3f cells of r = 20", pieces, a.worst);
+}
+
 static void test_colormap(void) {
   rcolormap m;
   sph_error err;
@@ -595,6 +650,44 @@ static void test_layout(void) {
   CU_ASSERT(L.panel[5].plot.y1 <= L.height);
   in.view[1] = in.view[0];
   CU_ASSERT_NOT_EQUAL(rlayout_figure(&in, &L, &err), 0);
+  /* journal sizes in points (font scale 1, 7 pt capitals): at least three
+   * labelled ticks on every axis and on the colour bar, their labels apart
+   * (y, the bar: 9 pt between ticks; x: the widest label and 3 pt) -
+   * six panels of the wet-bed tank (2 x 0.3 m) down a 17 cm page, and
+   * one Martin & Moyce view (0.23 x 0.17 m) and three of the wet bed's
+   * first 1.4 m in an 8.5 cm column; a view too flat for three gets what
+   * fits (the renderer then says so) */
+  const struct {
+    int width, cols, rows;
+    double view[4], hi;
+  } journal[] = {{482, 1, 6, {-0.01, 2.01, -0.01, 0.3}, 1.7},
+                 {241, 1, 1, {-0.005, 0.232, -0.005, 0.172}, 1.4},
+                 {241, 1, 3, {0.0, 1.4, 0.0, 0.2}, 1.7}};
+  for (size_t k = 0; k < sizeof journal / sizeof journal[0]; k++) {
+    memset(&in, 0, sizeof in);
+    in.width = journal[k].width;
+    in.cols = journal[k].cols;
+    in.rows = journal[k].rows;
+    in.scale = 1;
+    memcpy(in.view, journal[k].view, sizeof in.view);
+    in.colorbar = 1;
+    in.hi = journal[k].hi;
+    CU_ASSERT_EQUAL_FATAL(rlayout_figure(&in, &L, &err), 0);
+    const rrect *b = &L.panel[0].plot;
+    CU_ASSERT(L.xt.n >= 3 && L.yt.n >= 3 && L.bt.n >= 3);
+    CU_ASSERT(L.yt.step / (in.view[3] - in.view[2]) * (b->y1 - b->y0) >= 9.0);
+    CU_ASSERT(L.bt.step / in.hi * (L.bar.y1 - L.bar.y0) >= 9.0);
+    char ticks[1600];
+    rlayout_describe_ticks(&L, ticks, sizeof ticks);
+    printf("\n  %d pt, %dx%d panels of %.0f x %.0f pt: %s", in.width, in.cols, in.rows,
+           b->x1 - b->x0, b->y1 - b->y0, ticks);
+  }
+  in.cols = 3; /* three across an 8.5 cm column: too flat for three y labels */
+  in.rows = 1;
+  memcpy(in.view, journal[0].view, sizeof in.view);
+  in.width = 482;
+  CU_ASSERT_EQUAL_FATAL(rlayout_figure(&in, &L, &err), 0);
+  CU_ASSERT(L.yt.n < 3 && L.yt.n >= 1);
 }
 
 /* ------------------------------------------------------ rendering checks */
@@ -1074,6 +1167,50 @@ static void test_vector_figures(void) {
   CU_ASSERT_TRUE(file_has(pdf, "/MediaBox [ 0 0 241 "));
   CU_ASSERT_TRUE(file_has(pdf, "%%EOF"));
   CU_ASSERT_TRUE(svg_parses(path_in(tmp, "panels0.svg")));
+  /* at 8.5 cm: three ticks or more on each axis and the colour bar (-v
+   * lists them), and the outline one path (the only round-joined stroke),
+   * traced at --dpi: a finer page has more points on it */
+  for (int dpi = 150; dpi <= 600; dpi *= 4) {
+    char a2[5120];
+    snprintf(a2, sizeof a2, "-v --jobs 1 --size 8.5cm --dpi %d run/snap_0001.h5 -o col%d.svg", dpi,
+             dpi);
+    CU_ASSERT_EQUAL_FATAL(render(a2), 0);
+    const char *e = last_err();
+    const char *axes[3] = {"x ticks [", "y ticks [", "colour bar ticks ["};
+    for (int a = 0; a < 3; a++) {
+      const char *q = strstr(e, axes[a]);
+      CU_ASSERT_PTR_NOT_NULL_FATAL(q);
+      int commas = 0;
+      for (q += strlen(axes[a]); *q && *q != ']'; q++)
+        commas += *q == ',';
+      CU_ASSERT(commas >= 2);
+    }
+    CU_ASSERT_PTR_NULL(strstr(e, "note:"));
+    char *col = sph_test_read_file(path_in(tmp, dpi == 150 ? "col150.svg" : "col600.svg"), NULL);
+    CU_ASSERT_PTR_NOT_NULL_FATAL(col);
+    int round = 0;
+    size_t longest = 0, all = 0;
+    for (const char *q = col; (q = strstr(q, "stroke-linejoin:round")); q++) {
+      const char *d = strstr(q, " d=\""), *end = d ? strchr(d + 4, '"') : NULL;
+      size_t pts = 1;
+      for (const char *r = d; r && r < end; r++)
+        pts += *r == 'L';
+      if (pts > longest) longest = pts;
+      all += pts;
+      round++;
+    }
+    /* the surface in one path, a few short pieces besides at most (where
+     * the fluid's kernel sum dips to 1/2 in a film along the floor) */
+    CU_ASSERT(round >= 1 && round <= 6 && longest > 0.5 * all);
+    printf("\n  8.5 cm at %d dpi: outline in %d path%s of %zu points, the longest %zu", dpi, round,
+           round == 1 ? "" : "s", all, longest);
+    static size_t at150;
+    if (dpi == 150)
+      at150 = longest;
+    else
+      CU_ASSERT(longest > 2 * at150);
+    free(col);
+  }
   /* a PNG of a physical size: pixels at --dpi */
   char args[5120]; /* the renderer's path, up to 4096 bytes */
   snprintf(args, sizeof args,
@@ -1234,6 +1371,7 @@ int main(void) {
       {"FreeType text", test_font},
       {"labels with units", test_labels},
       {"SPH interpolation and outline, exact", test_interp},
+      {"outline as polylines", test_contour_lines},
       {"colour maps", test_colormap},
       {"nice ticks", test_ticks},
       {"CSV reader", test_csv},
