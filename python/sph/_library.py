@@ -27,6 +27,9 @@ class CaseError(Error, ValueError):
     """A case the reader refused (file, line, key and what was expected)."""
 
 
+Error.__module__ = CaseError.__module__ = "sph"  # as the user names them: sph.CaseError
+
+
 def _directories():
     env = os.environ.get("SPH_LIBDIR")
     if env:

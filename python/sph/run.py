@@ -38,6 +38,8 @@ _STATUS = {0: "end", 1: "stopped", 2: "interrupted", 3: "blowup", 4: "error"}
 class BlowUpError(_library.Error):
     """The run blew up; .run is the sph.Run with what was written before."""
 
+    __module__ = "sph"
+
     def __init__(self, msg, run):
         super().__init__(msg)
         self.run = run

@@ -6,8 +6,9 @@ Each header cell is a name with its units in parentheses ("time (s)",
 "P1 (Pa)"; counts such as "step" have none). A Table maps the bare name to
 its column (float64; a column without units whose every value is whole,
 a count, as int64), and .units maps the name to its units ("" for none).
+NumPy is imported when a table is read, so `import sph` and a run need
+only the library.
 """
-import numpy as np
 
 
 class Table(dict):
@@ -46,6 +47,10 @@ def _split_header(cell):
 
 def read_table(path):
     """Reads one of the run's CSV files into an sph.Table."""
+    try:
+        import numpy as np
+    except ImportError as e:
+        raise ImportError("sph.read_table needs NumPy: apt-get install python3-numpy") from e
     with open(path, "r", encoding="utf-8") as f:
         header = f.readline().rstrip("\n")
         if not header:
