@@ -196,9 +196,11 @@ typedef struct sph_case {
   double max_particles;       /* the bound sph_sim_create enforces; 0: sph_case_default_max */
 
   int periodic_axis;  /* geometry.periodic_*: the axis that wraps, 0 (x), 1 (y), 2 (z) */
-  size_t n_obstacles; /* geometry.obstacles: boxes or shapes of wall particles */
+  size_t n_obstacles; /* geometry.obstacles (boxes or shapes of wall particles), then
+                         geometry.vessels (shapes holding the fluid) */
   sph_obstacle *obstacles;
   sph_shape *obstacle_shape; /* each obstacle's shape (SPH_SHAPE_BOX for a box) */
+  size_t n_vessels;          /* the last n_vessels of obstacles are geometry.vessels */
 } sph_case;
 
 /* Bytes per particle a run needs, as the bound reckons it: measured peak

@@ -141,9 +141,13 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
     sb_add(b, "%s.jitter: %.17g\n", k, f->jitter);
     sb_add(b, "%s.seed: %d\n", k, f->seed);
   }
-  for (size_t i = 0; i < c->n_obstacles; i++) { /* listed only when there are some */
+  const size_t n_boxes = c->n_obstacles - c->n_vessels; /* then the vessels */
+  for (size_t i = 0; i < c->n_obstacles; i++) {         /* listed only when there are some */
     const sph_obstacle *o = &c->obstacles[i];
-    sph_yaml_bprintf(k, sizeof k, "geometry.obstacles[%zu]", i);
+    if (i < n_boxes)
+      sph_yaml_bprintf(k, sizeof k, "geometry.obstacles[%zu]", i);
+    else
+      sph_yaml_bprintf(k, sizeof k, "geometry.vessels[%zu]", i - n_boxes);
     if (o->inside)
       describe_shape(b, k, o->shape, o->lo, o->hi);
     else

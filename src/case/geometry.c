@@ -28,9 +28,9 @@
 #include <string.h>
 #include <unistd.h>
 
-static const char *const geometry_keys[] = {"tank",       "fluid",      "walls",      "obstacles",
-                                            "periodic_x", "periodic_y", "periodic_z", "domain",
-                                            "leaving",    NULL};
+static const char *const geometry_keys[] = {"tank",    "fluid",      "walls",      "obstacles",
+                                            "vessels", "periodic_x", "periodic_y", "periodic_z",
+                                            "domain",  "leaving",    NULL};
 static const char *const axis_key[3] = {"x", "y", "z"};
 static const char *const tank_keys[] = {"x",         "y",       SPH_IF3("z", ) "layers",
                                         "boundary",  "stagger", "extrapolated_velocity",
@@ -54,6 +54,8 @@ static const char *const fluid_keys[] = {"x",
 static const char *const obstacle_keys[] = {
     "x",        "y", SPH_IF3("z", ) "polygon", BALL_KEY, SPH_IF3("cylinder", "mesh", ) "layers",
     "boundary", NULL};
+static const char *const vessel_keys[] = {
+    "polygon", BALL_KEY, SPH_IF3("y", "cylinder", "mesh", ) "layers", "boundary", NULL};
 static const char *const shape_keys[] = {"polygon", BALL_KEY, SPH_IF3("cylinder", "mesh", ) NULL};
 static const char *const mesh_keys[] = {"file", "scale", "offset", NULL};
 static const char *const ball_keys[] = {"centre", "radius", NULL};
@@ -727,7 +729,12 @@ static int read_periodic(const ctx *x, const node *m, sph_case *c) {
 static int read_obstacle_model(const ctx *x, const node *m, const char *p, const sph_case *c,
                                int shaped, sph_obstacle *o) {
   char kp[SPH_YAML_KEYLEN];
+  /* a vessel: the scheme's wall model where a shape takes it, as a wall segment's */
   int bnd = SPH_BOUNDARY_DYNAMIC;
+  if (o->vessel) {
+    const int b = scheme_wall_model(c);
+    if (b == SPH_BOUNDARY_FIXED_LAYERS || b == SPH_BOUNDARY_ADAMI) bnd = b;
+  }
   if (sph_yaml_get_choice(&x->t, m, p, "boundary", boundary_names, &bnd) < 0) return -1;
   o->boundary = (sph_boundary_kind)bnd;
   const int refused = shaped ? bnd != SPH_BOUNDARY_DYNAMIC && bnd != SPH_BOUNDARY_FIXED_LAYERS &&
@@ -736,9 +743,12 @@ static int read_obstacle_model(const ctx *x, const node *m, const char *p, const
   if (refused) {
     sph_yaml_join(kp, sizeof kp, p, "boundary");
     return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "boundary")->val, kp, "%s, got '%s'",
-                            shaped ? "expected 'dynamic', 'fixed_layers' or 'adami' for an "
-                                     "obstacle of a shape (mdbc, repulsive and mirror walls need "
-                                     "a box's faces so far)"
+                            shaped ? o->vessel ? "expected 'dynamic', 'fixed_layers' or 'adami' "
+                                                 "for a vessel (mdbc, repulsive and mirror walls "
+                                                 "need a box's faces so far)"
+                                               : "expected 'dynamic', 'fixed_layers' or 'adami' "
+                                                 "for an obstacle of a shape (mdbc, repulsive and "
+                                                 "mirror walls need a box's faces so far)"
                                    : "expected 'dynamic', 'fixed_layers', 'mdbc', 'adami' or "
                                      "'repulsive' (an obstacle is a box of wall particles)",
                             sph_boundary_name(o->boundary));
@@ -824,22 +834,54 @@ static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_c
   return read_obstacle_model(x, m, p, c, 0, o);
 }
 
+/* geometry.vessels[i]: a shape (as an obstacle's, no box ranges) holding the fluid: the wall
+ * particles a shell `layers` deep outside its surface, the fluid's points outside every vessel
+ * not made; dynamic, fixed_layers or adami walls, as a shaped obstacle's. */
+static int read_vessel(const ctx *x, const node *m, const char *p, const sph_case *c,
+                       sph_obstacle *o, sph_shape *shape) {
+  char b[96];
+  if (m->kind != SPH_YAML_MAP)
+    return sph_yaml_fail_at(&x->t, m, p, "expected a mapping, got %s",
+                            sph_yaml_got(m, b, sizeof b));
+  int shaped = 0;
+  for (int k = 0; shape_keys[k]; k++)
+    shaped |= sph_yaml_find(m, shape_keys[k]) != NULL;
+  if (!shaped)
+    return sph_yaml_fail_at(&x->t, m, p,
+                            "expected a shape (polygon, " BALL_KEY SPH_IF3(
+                                ", cylinder or mesh") "): a vessel is the surface that holds the "
+                                                      "water (a box is the tank)");
+  if (sph_yaml_check_keys(&x->t, m, p, vessel_keys)) return -1;
+  o->vessel = 1; /* (read_obstacle_model's default and messages) */
+  return read_shaped_obstacle(x, m, p, c, o, shape);
+}
+
+/* geometry.obstacles, then geometry.vessels, into c->obstacles. */
 static int read_obstacles(const ctx *x, const node *m, sph_case *c) {
-  const node *t;
-  char kp[SPH_YAML_KEYLEN], b[96];
-  int rc = sph_yaml_lookup(&x->t, m, "geometry", "obstacles", 0, &t, kp);
-  if (rc <= 0) return rc;
-  if (t->kind != SPH_YAML_LIST)
-    return sph_yaml_fail_at(&x->t, t, kp, "expected a list of mappings, got %s",
-                            sph_yaml_got(t, b, sizeof b));
-  if (t->n == 0) return 0;
-  if (!(c->obstacles = calloc(t->n, sizeof *c->obstacles)) ||
-      !(c->obstacle_shape = calloc(t->n, sizeof *c->obstacle_shape)))
+  const node *t[2] = {NULL, NULL};
+  static const char *const list[2] = {"obstacles", "vessels"};
+  char kp[2][SPH_YAML_KEYLEN], b[96];
+  for (int l = 0; l < 2; l++) {
+    const int rc = sph_yaml_lookup(&x->t, m, "geometry", list[l], 0, &t[l], kp[l]);
+    if (rc < 0) return rc;
+    if (rc == 0) t[l] = NULL;
+    if (t[l] && t[l]->kind != SPH_YAML_LIST)
+      return sph_yaml_fail_at(&x->t, t[l], kp[l], "expected a list of mappings, got %s",
+                              sph_yaml_got(t[l], b, sizeof b));
+  }
+  const size_t n0 = t[0] ? t[0]->n : 0, n1 = t[1] ? t[1]->n : 0;
+  if (n0 + n1 == 0) return 0;
+  if (!(c->obstacles = calloc(n0 + n1, sizeof *c->obstacles)) ||
+      !(c->obstacle_shape = calloc(n0 + n1, sizeof *c->obstacle_shape)))
     return sph_yaml_oom(&x->t);
-  c->n_obstacles = t->n;
-  for (size_t i = 0; i < t->n; i++) {
-    sph_yaml_bprintf(kp, sizeof kp, "geometry.obstacles[%zu]", i);
-    if (read_obstacle(x, t->items[i], kp, c, &c->obstacles[i], &c->obstacle_shape[i])) return -1;
+  for (size_t i = 0; i < n0 + n1; i++) {
+    const size_t k = i < n0 ? i : i - n0;
+    sph_yaml_bprintf(kp[0], sizeof kp[0], "geometry.%s[%zu]", list[i >= n0], k);
+    c->n_obstacles = i + 1; /* (what is read so far, for sph_case_free) */
+    c->n_vessels = i >= n0 ? k + 1 : 0;
+    if (i < n0 ? read_obstacle(x, t[0]->items[k], kp[0], c, &c->obstacles[i], &c->obstacle_shape[i])
+               : read_vessel(x, t[1]->items[k], kp[0], c, &c->obstacles[i], &c->obstacle_shape[i]))
+      return -1;
   }
   return 0;
 }
@@ -900,9 +942,10 @@ void sph_case_estimate_particles(sph_case *c) {
 #endif
   }
   for (size_t i = 0; i < c->n_obstacles; i++) { /* the whole box, from above */
+    const sph_obstacle *o = &c->obstacles[i];
     double box = 1.0;
-    for (int a = 0; a < SPH_DIM; a++)
-      box *= floor((c->obstacles[i].hi[a] - c->obstacles[i].lo[a]) / dx + 0.5) + 1.0;
+    for (int a = 0; a < SPH_DIM; a++) /* (a vessel's shell stands outside its box) */
+      box *= floor((o->hi[a] - o->lo[a]) / dx + 0.5) + 1.0 + (o->vessel ? 2.0 * o->layers : 0.0);
     wall += box;
   }
   int mirror = c->tank.present && c->tank.boundary == SPH_BOUNDARY_MIRROR;

@@ -292,8 +292,10 @@ static void print_banner(const run_args *a, const sph_case *c, sph_sim *s, int n
            "through the fluid)\n",
            sph_sim_fluid_removed(s));
   if (sph_sim_fluid_in_obstacles(s))
-    printf("  %zu fluid particles not made: inside an obstacle box (a fluid block drawn through "
-           "it)\n",
+    printf(c->n_vessels ? "  %zu fluid particles not made: inside an obstacle, or outside every "
+                          "vessel (a fluid block drawn through them)\n"
+                        : "  %zu fluid particles not made: inside an obstacle box (a fluid block "
+                          "drawn through it)\n",
            sph_sim_fluid_in_obstacles(s));
   if (sph_sim_walls_dropped(s))
     printf("  %zu wall particles not made: closer than dx/2 to an earlier wall's (walls that "

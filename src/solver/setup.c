@@ -264,15 +264,19 @@ static int fluid_in_obstacle(const void *ctx, const sph_particles *p, size_t i) 
   const sph_case *c = ctx;
   if (p->kind[i] != SPH_KIND_FLUID) return 0;
   const double x[SPH_DIM] = {SPH_XYZ(p->x[i], p->y[i], p->z[i])};
+  int held = c->n_vessels == 0; /* with vessels, a point inside none of them is not made */
   for (size_t k = 0; k < c->n_obstacles; k++) {
     const sph_obstacle *o = &c->obstacles[k];
     int in = 1;
     for (int d = 0; d < SPH_DIM && in; d++)
       in = x[d] > o->lo[d] && x[d] < o->hi[d];
-    if (in && o->inside) in = o->inside(o->shape, x); /* a shape: inside it */
-    if (in) return 1;
+    if (in && o->inside) in = o->inside(o->shape, x) == 1; /* a shape: inside it */
+    if (o->vessel)
+      held |= in;
+    else if (in)
+      return 1;
   }
-  return 0;
+  return !held;
 }
 
 static long remove_fluid_in_walls(sph_sim *s) {

@@ -123,6 +123,12 @@ static void box_offset(const long idx[3], const long n[3], int on_floor, double 
 static int add_shaped(sph_particles *p, const sph_obstacle *o, const long n[3], double floor_level,
                       double dx, double rho, double mass, double h, uint8_t flags, sph_error *err) {
   const long L = o->layers;
+  /* an obstacle's shell lies inside its surface, among the box's points; a
+   * vessel's outside it, among the points of the box grown by L: there
+   * "outside" below reads "inside", and the shell is the inside grown by L
+   * less the inside */
+  const int vessel = o->vessel;
+  const char *what = vessel ? "a vessel" : "an obstacle";
   long m[3] = {1, 1, 1}; /* the grid with L points of outside around it */
   for (int a = 0; a < SPH_DIM; a++)
     m[a] = n[a] + 2 * L;
@@ -133,7 +139,7 @@ static int add_shaped(sph_particles *p, const sph_obstacle *o, const long n[3], 
     free(outside0);
     free(out);
     free(grown);
-    return sph_error_set(err, "out of memory for an obstacle of %ld x %ld x %ld points", n[0], n[1],
+    return sph_error_set(err, "out of memory for %s of %ld x %ld x %ld points", what, n[0], n[1],
                          n[2]);
   }
   const long pad[3] = {L, SPH_DIM > 1 ? L : 0, SPH_DIM > 2 ? L : 0};
@@ -151,16 +157,17 @@ static int add_shaped(sph_particles *p, const sph_obstacle *o, const long n[3], 
         }
         const int wn = in ? o->inside(o->shape, x) : 0;
         if (wn != 0 && wn != 1 && !crossing) crossing = wn, memcpy(where, x, sizeof where);
-        outside0[((size_t)k * (size_t)m[1] + (size_t)j) * (size_t)m[0] + (size_t)i] = wn == 0;
+        outside0[((size_t)k * (size_t)m[1] + (size_t)j) * (size_t)m[0] + (size_t)i] =
+            vessel ? wn == 1 : wn == 0;
       }
   if (crossing) {
     free(outside0);
     free(out);
     free(grown);
     return sph_error_set(err,
-                         "an obstacle's surface winds %d times around (%g, %g" SPH_IF3(
+                         "%s's surface winds %d times around (%g, %g" SPH_IF3(
                              ", %g") "): expected a surface that does not cross or overlap itself",
-                         crossing, where[0], where[1] SPH_IF3(, where[2]));
+                         what, crossing, where[0], where[1] SPH_IF3(, where[2]));
   }
   memcpy(out, outside0, cells);
   const size_t stride[3] = {1, (size_t)m[0], (size_t)m[0] * (size_t)m[1]};
@@ -178,9 +185,10 @@ static int add_shaped(sph_particles *p, const sph_obstacle *o, const long n[3], 
   if (flags & SPH_WALL_NORMAL) sph_particles_use(p, SPH_ARRAYS_OFFSET);
   const int offsets = (p->live & SPH_ARRAYS_OFFSET) != 0;
   int rc = 0;
-  for (long k = 0; k < n[2] && !rc; k++)
-    for (long j = 0; j < n[1] && !rc; j++)
-      for (long i = 0; i < n[0] && !rc; i++) {
+  const long from = vessel ? -L : 0; /* a vessel's shell: the grown box's points */
+  for (long k = SPH_DIM > 2 ? from : 0; k < n[2] + (SPH_DIM > 2 ? -from : 0) && !rc; k++)
+    for (long j = from; j < n[1] - from && !rc; j++)
+      for (long i = from; i < n[0] - from && !rc; i++) {
         double x[SPH_DIM];
         const long idx[3] = {i, j, k};
         for (int a = 0; a < SPH_DIM; a++)
@@ -188,16 +196,16 @@ static int add_shaped(sph_particles *p, const sph_obstacle *o, const long n[3], 
         const size_t c =
             ((size_t)(k + pad[2]) * (size_t)m[1] + (size_t)(j + pad[1])) * (size_t)m[0] +
             (size_t)(i + pad[0]);
-        if (!out[c] || outside0[c]) continue; /* deep inside, or outside */
+        if (!out[c] || outside0[c]) continue; /* deep inside, or outside (a vessel: the reverse) */
         const long q = sph_particles_add_at(p, x, v, rho, mass, h, SPH_KIND_WALL, err);
         if (q < 0) {
           rc = -1;
           continue;
         }
         p->flags[q] = flags;
-        if (offsets) { /* out to the surface along its normal */
+        if (offsets) { /* out to the surface along its normal (a vessel: in to it) */
           double off[SPH_DIM];
-          o->offset(o->shape, x, floor_level, off);
+          o->offset(o->shape, x, vessel ? -INFINITY : floor_level, off);
           for (int a = 0; a < SPH_DIM; a++)
             p->mirror_offset[a][q] = off[a];
         }

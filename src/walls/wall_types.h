@@ -93,6 +93,7 @@ typedef struct sph_obstacle {
   void (*offset)(const void *shape, const double *x, double floor, double *m); /* its mirror
                            offsets (the surface at or below the floor's height no way out) */
   const void *shape;                                                           /* their argument */
+  int vessel; /* a vessel (geometry.vessels): the fluid inside the shape, the shell outside it */
 } sph_obstacle;
 
 #ifdef __cplusplus
