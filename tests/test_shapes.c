@@ -96,10 +96,10 @@ static int parse(const char *blocks, const char *const *set, size_t n_set, sph_c
   return sph_case_parse(text, strlen(text), "shapes.yaml", set, n_set, c, err);
 }
 
-/* Opens the sim of HEAD + blocks (asserting it opens). */
-static sph_sim *open_sim(const char *blocks, sph_case *c) {
+/* Opens the sim of a whole case text (asserting it opens). */
+static sph_sim *open_text(const char *text, sph_case *c) {
   sph_error err;
-  const int rc = parse(blocks, NULL, 0, c, &err);
+  const int rc = sph_case_parse(text, strlen(text), "shapes.yaml", NULL, 0, c, &err);
   if (rc) printf("\n    %s", err.msg);
   CU_ASSERT_FATAL(rc == 0);
   sph_sim *s = NULL;
@@ -107,6 +107,13 @@ static sph_sim *open_sim(const char *blocks, sph_case *c) {
   if (sc) printf("\n    %s", err.msg);
   CU_ASSERT_FATAL(sc == 0);
   return s;
+}
+
+/* Opens the sim of HEAD + blocks (asserting it opens). */
+static sph_sim *open_sim(const char *blocks, sph_case *c) {
+  static char text[8192];
+  snprintf(text, sizeof text, "%s%s", HEAD, blocks);
+  return open_text(text, c);
 }
 
 /* Whether two sims made the same particles, bit for bit. */
@@ -457,19 +464,6 @@ static void test_shaped_obstacles(void) {
   static const char *const no_mdbc[] = {"geometry.obstacles[0].boundary",
                                         "expected 'dynamic', 'fixed_layers' or 'adami'", NULL};
   refused(text, no_mdbc);
-}
-
-/* Opens the sim of a whole case text (asserting it opens). */
-static sph_sim *open_text(const char *text, sph_case *c) {
-  sph_error err;
-  const int rc = sph_case_parse(text, strlen(text), "vessel.yaml", NULL, 0, c, &err);
-  if (rc) printf("\n    %s", err.msg);
-  CU_ASSERT_FATAL(rc == 0);
-  sph_sim *s = NULL;
-  const int sc = sph_sim_create(c, &s, &err);
-  if (sc) printf("\n    %s", err.msg);
-  CU_ASSERT_FATAL(sc == 0);
-  return s;
 }
 
 static int by_position(const void *a, const void *b) {

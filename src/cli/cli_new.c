@@ -140,6 +140,8 @@ static const char *const TEMPLATE =
     "  #      # hinge: [0.06, 0]\n"
     "  # obstacles:               # boxes of wall particles (any wall model but mirror)\n"
     "  #   - {x: [0.3, 0.35], y: [0, 0.05], layers: 2, boundary: dynamic}\n"
+    "  # vessels:                 # shapes holding the water, a tank of any shape (the fluid\n"
+    "  #   - {circle: {centre: [0.5, 0.5], radius: 0.3}}   # blocks cut to them; no tank then)\n"
     "  # periodic_x: [0, 1]       # periodic in x (no tank then), x1 - x0 >= 6 h\n"
     "  # periodic_y: [0, 1]       # 3-D only, as periodic_z: one periodic axis per case\n"
     "  # domain:                  # a fluid particle leaving it: see leaving (default: the\n"
@@ -219,6 +221,9 @@ static const struct {
     {"  #      # hinge: [0.06, 0]\n", "  #      # hinge: [0.06, 0]    # [x, z]: a line along y\n"},
     {"  #   - {x: [0.3, 0.35], y: [0, 0.05], layers: 2, boundary: dynamic}\n",
      "  #   - {x: [0.15, 0.2], y: [0, 0.05715], z: [0, 0.05], layers: 2, boundary: dynamic}\n"},
+    {"  #   - {circle: {centre: [0.5, 0.5], radius: 0.3}}   # blocks cut to them; no tank then)\n",
+     "  #   - {sphere: {centre: [0.5, 0.5, 0.5], radius: 0.3}}  # or a cylinder, a polygon\n"
+     "  #                          # prism or a closed mesh; blocks cut to them; no tank then)\n"},
     {"  #   y: [-0.1, 0.6]\n", "  #   y: [-0.1, 0.16]\n  #   z: [-0.1, 0.6]\n"},
     {"  # gauges: [0.1]            # wave gauges at these x (m): gauges.csv\n",
      "  # gauges: [[0.1, 0.028575]]  # wave gauges, vertical lines at these (x, y) (m)\n"},
