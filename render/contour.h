@@ -27,7 +27,7 @@ void rcontour(const double *phi, const unsigned char *keep, int nx, int ny, rcon
 typedef void (*rcontour_polyline)(void *ctx, const double *xy, size_t n, int closed);
 /* The same line as rcontour's segments joined into polylines where they
  * meet (an outline drawn as one path, not as pieces): 0, or -1 when out of
- * memory. */
+ * memory. rcontour stays as the tests' oracle for it. */
 int rcontour_lines(const double *phi, const unsigned char *keep, int nx, int ny,
                    rcontour_polyline line, void *ctx);
 

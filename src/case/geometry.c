@@ -818,6 +818,13 @@ static int read_shaped_obstacle(const ctx *x, const node *m, const char *p, cons
   return 0;
 }
 
+/* Whether the mapping m names a shape (one of shape_keys). */
+static int has_shape(const node *m) {
+  for (int k = 0; shape_keys[k]; k++)
+    if (sph_yaml_find(m, shape_keys[k])) return 1;
+  return 0;
+}
+
 static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_case *c,
                          sph_obstacle *o, sph_shape *shape) {
   char b[96], kp[SPH_YAML_KEYLEN];
@@ -825,8 +832,7 @@ static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_c
     return sph_yaml_fail_at(&x->t, m, p, "expected a mapping, got %s",
                             sph_yaml_got(m, b, sizeof b));
   if (sph_yaml_check_keys(&x->t, m, p, obstacle_keys)) return -1;
-  for (int k = 0; shape_keys[k]; k++)
-    if (sph_yaml_find(m, shape_keys[k])) return read_shaped_obstacle(x, m, p, c, o, shape);
+  if (has_shape(m)) return read_shaped_obstacle(x, m, p, c, o, shape);
   for (int a = 0; a < SPH_DIM; a++) {
     const char *const key = axis_key[a];
     double v[2];
@@ -858,17 +864,14 @@ static int read_obstacle(const ctx *x, const node *m, const char *p, const sph_c
 
 /* geometry.vessels[i]: a shape (as an obstacle's, no box ranges) holding the fluid: the wall
  * particles a shell `layers` deep outside its surface, the fluid's points outside every vessel
- * not made; dynamic, fixed_layers or adami walls, as a shaped obstacle's. */
+ * not made; the wall models of a shaped obstacle (read_obstacle_model). */
 static int read_vessel(const ctx *x, const node *m, const char *p, const sph_case *c,
                        sph_obstacle *o, sph_shape *shape) {
   char b[96];
   if (m->kind != SPH_YAML_MAP)
     return sph_yaml_fail_at(&x->t, m, p, "expected a mapping, got %s",
                             sph_yaml_got(m, b, sizeof b));
-  int shaped = 0;
-  for (int k = 0; shape_keys[k]; k++)
-    shaped |= sph_yaml_find(m, shape_keys[k]) != NULL;
-  if (!shaped)
+  if (!has_shape(m))
     return sph_yaml_fail_at(&x->t, m, p,
                             "expected a shape (polygon, " BALL_KEY SPH_IF3(
                                 ", cylinder or mesh") "): a vessel is the surface that holds the "
