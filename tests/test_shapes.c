@@ -377,8 +377,7 @@ static void test_shaped_obstacles(void) {
   const char *rect = "    - {polygon: [[0.4, 0], [0.6, 0], [0.6, 0.2], [0.4, 0.2]], boundary: "
                      "adami}\n";
   const char *round = "    - {circle: {centre: [0.5, 0.15], radius: 0.08}, boundary: adami}\n";
-  const char *mdbc = "    - {circle: {centre: [0.5, 0.15], radius: 0.08}, boundary: mdbc, "
-                     "layers: 2}\n";
+  const char *mdbc = "    - {circle: {centre: [0.5, 0.15], radius: 0.08}, boundary: mdbc}\n";
 #else
   const char *water = "    - {x: [0, 1], y: [0, 0.3], z: [0, 0.3]}\n  obstacles:\n";
   const char *box = "    - {x: [0.4, 0.6], y: [0, 0.3], z: [0, 0.2], boundary: adami}\n";
@@ -387,7 +386,7 @@ static void test_shaped_obstacles(void) {
   const char *round = "    - {cylinder: {from: [0.5, 0.15, 0], to: [0.5, 0.15, 0.25], radius: "
                       "0.08}, boundary: adami}\n";
   const char *mdbc = "    - {cylinder: {from: [0.5, 0.15, 0], to: [0.5, 0.15, 0.25], radius: "
-                     "0.08}, boundary: mdbc, layers: 2}\n";
+                     "0.08}, boundary: mdbc}\n";
 #endif
   char text[1024];
   sph_case c0, c1, c2;
@@ -462,12 +461,9 @@ static void test_shaped_obstacles(void) {
   sph_sim_free(s0), sph_sim_free(s1), sph_sim_free(s2);
   sph_case_free(&c0), sph_case_free(&c1), sph_case_free(&c2);
   snprintf(text, sizeof text, "%s%s", water, mdbc);
-  static const char *const thin_mdbc[] = {
-      SPH_DIM == 2 ? "geometry.obstacles[0].layers" : "geometry.obstacles[0].boundary",
-      SPH_DIM == 2 ? "expected at least 4 for mdbc walls on a shape"
-                   : "mdbc walls on a shape are 2-D only so far",
-      NULL};
-  refused(text, thin_mdbc);
+  static const char *const no_mdbc[] = {"geometry.obstacles[0].boundary",
+                                        "expected 'dynamic', 'fixed_layers' or 'adami'", NULL};
+  refused(text, no_mdbc);
 }
 
 static int by_position(const void *a, const void *b) {
@@ -622,56 +618,48 @@ static void test_vessel(void) {
   char *at = strstr(text, "radius: 0.3}}\n");
   CU_ASSERT_FATAL(at != NULL);
   at += strlen("radius: 0.3");
-  snprintf(at, sizeof text - (size_t)(at - text), "}, boundary: repulsive}\n");
+  snprintf(at, sizeof text - (size_t)(at - text), "}, boundary: mdbc}\n");
   CU_ASSERT(sph_case_parse(text, strlen(text), "vessel.yaml", NULL, 0, &c, &err) != 0);
   printf("\n  %s", err.msg);
   CU_ASSERT(strstr(err.msg, "geometry.vessels[0].boundary") != NULL);
 }
 
 #if SPH_DIM == 2
-/* Still water round a submerged circle (the default scheme), 0.5 s, of adami walls and of mdbc
- * walls (their default layers, ceil(2 h_factor) = 4): no fluid particle into the circle, the
- * largest speed below 2 % of sqrt(g H) (measured 1.1 % and 1.1 %); mdbc with 2 layers is
- * refused (it let the water in within 0.3 s). */
+/* Still water round a submerged circle of adami walls (the default scheme's), 0.5 s: no fluid
+ * particle into the circle, the largest speed below 2 % of sqrt(g H). */
 static void test_still_round_obstacle(void) {
-  static const char *const model[2] = {"adami", "mdbc"};
-  for (int k = 0; k < 2; k++) {
-    char text[1024];
-    snprintf(text, sizeof text,
-             "name: still_circle\n"
-             "physics: {gravity: [0, -9.81], sound_speed: {factor: 10, height: 0.3}}\n"
-             "numerics: {dx: 0.01}\n"
-             "time: {end: 0.5, output_interval: 0.5}\n"
-             "geometry:\n"
-             "  tank: {x: [0, 1], y: [0, 0.5]}\n"
-             "  fluid:\n"
-             "    - {x: [0, 1], y: [0, 0.3]}\n"
-             "  obstacles:\n"
-             "    - {circle: {centre: [0.5, 0.15], radius: 0.08}, boundary: %s}\n",
-             model[k]);
-    sph_case c;
-    sph_error err;
-    CU_ASSERT_FATAL(sph_case_parse(text, strlen(text), "still_circle", NULL, 0, &c, &err) == 0);
-    sph_sim *s = NULL;
-    CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
-    while (sph_sim_time(s) < c.t_end)
-      CU_ASSERT_FATAL(sph_sim_step(s, c.t_end, &err) == 0);
-    const sph_particles *p = sph_sim_particles(s);
-    double vmax = 0.0, closest = INFINITY;
-    for (size_t i = 0; i < p->n; i++)
-      if (p->kind[i] == SPH_KIND_FLUID) {
-        vmax = fmax(vmax, hypot(p->vel[0][i], p->vel[1][i]));
-        closest = fmin(closest, hypot(p->pos[0][i] - 0.5, p->pos[1][i] - 0.15) - 0.08);
-      }
-    const double scale = sqrt(9.81 * 0.3);
-    printf("\n  still water round a circle of %s walls (%d layers), t = 0.5 s: largest speed "
-           "%.2f %% of sqrt(g H); the closest fluid particle %.2f dx outside the circle",
-           model[k], c.obstacles[0].layers, 100 * vmax / scale, closest / c.dx);
-    CU_ASSERT(vmax < 0.02 * scale);
-    CU_ASSERT(closest > 0.0);
-    sph_sim_free(s);
-    sph_case_free(&c);
-  }
+  const char *text = "name: still_circle\n"
+                     "physics: {gravity: [0, -9.81], sound_speed: {factor: 10, height: 0.3}}\n"
+                     "numerics: {dx: 0.01}\n"
+                     "time: {end: 0.5, output_interval: 0.5}\n"
+                     "geometry:\n"
+                     "  tank: {x: [0, 1], y: [0, 0.5]}\n"
+                     "  fluid:\n"
+                     "    - {x: [0, 1], y: [0, 0.3]}\n"
+                     "  obstacles:\n"
+                     "    - {circle: {centre: [0.5, 0.15], radius: 0.08}, boundary: adami}\n";
+  sph_case c;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_case_parse(text, strlen(text), "still_circle", NULL, 0, &c, &err) == 0);
+  sph_sim *s = NULL;
+  CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
+  while (sph_sim_time(s) < c.t_end)
+    CU_ASSERT_FATAL(sph_sim_step(s, c.t_end, &err) == 0);
+  const sph_particles *p = sph_sim_particles(s);
+  double vmax = 0.0, closest = INFINITY;
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_FLUID) {
+      vmax = fmax(vmax, hypot(p->vel[0][i], p->vel[1][i]));
+      closest = fmin(closest, hypot(p->pos[0][i] - 0.5, p->pos[1][i] - 0.15) - 0.08);
+    }
+  const double scale = sqrt(9.81 * 0.3);
+  printf("\n  still water round a circle of adami walls, t = 0.5 s: largest speed %.2f %% of "
+         "sqrt(g H); the closest fluid particle %.2f dx outside the circle",
+         100 * vmax / scale, closest / c.dx);
+  CU_ASSERT(vmax < 0.02 * scale);
+  CU_ASSERT(closest > 0.0);
+  sph_sim_free(s);
+  sph_case_free(&c);
 }
 #endif
 
