@@ -2,18 +2,18 @@
 /*
  * test_debug_run.c - short runs with every debug invariant on.
  *
- * This program links tests/libsph_debug.la: the library's own sources
+ * This program links tests/libsph_debug.la: the library's sources that hold
+ * the costly checks (the grid, the force pass, the ledger, the simulation)
  * compiled with SPH_DEBUG_CHECKS (what --enable-debug-checks gives a whole
- * build), so that every `make check` also runs the costly checks once: the
- * grid and the neighbour list after every build, finite rates after every
- * pass, the ledger's exact mass and finite totals at every row. A broken
- * invariant aborts with its file, line and condition, and the test fails.
- * The library compiles the run-time loops only (SPH_FEW_VARIANTS: the same
- * loop body, every term read at run time), so each case runs its term set
- * through them. The cases cover the loops' term sets: the coarse dam break (lanes, XSPH)
- * with the ledger (scalar), the wet bed with its moving gate and stress
- * tensor, the periodic inclined plane with h* = 2h (variable h), the SPS
- * dam break, and the hydrostatic tank with mirror walls and the MLS filter.
+ * build), the rest libsph's own objects, so that every `make check` also
+ * runs the costly checks once: the grid and the neighbour list after every
+ * build, finite rates after every pass, the ledger's exact mass and finite
+ * totals at every row. A broken invariant aborts with its file, line and
+ * condition, and the test fails. The cases cover the loops' term sets:
+ * the coarse dam break (lanes, XSPH) with the ledger (scalar), the wet bed
+ * with its moving gate and stress tensor, the periodic inclined plane with
+ * h* = 2h (variable h), the SPS dam break, and the hydrostatic tank with
+ * mirror walls and the MLS filter.
  */
 #include "config.h"
 

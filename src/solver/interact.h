@@ -88,8 +88,8 @@ _Static_assert(F_PERIODIC == SPH_ROW_PERIODIC, "row_walk.h's SEP reads F_PERIODI
  *                the run-time loop for per-particle h and for uniform h
  *   portable     on x86-64 the fallback of processors without AVX2: the
  *                run-time loop only; elsewhere as the lane loops
- * -DSPH_FEW_VARIANTS (the debug library of make check) compiles the run-time
- * loops only: the same body and the same results, in less build time. The
+ * -DSPH_FEW_VARIANTS (in CPPFLAGS) compiles the run-time loops only: the
+ * same body and the same results, in less build time. The
  * sanitized build (./configure --enable-sanitizers) compiles every loop, so
  * that the specialised loops run under the sanitizers too.
  * Each list entry is V(name, Fc). */
