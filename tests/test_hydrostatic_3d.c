@@ -25,8 +25,8 @@
  *   floor sensor (a disc 20 mm across) within 1 % of rho0 g H on average
  *   over 0.05-1 s, at every step from 0.3 s on and at 1 s (the issue's
  *   target; +0.52 %, without the correction +1.85 %). The water stays at
- *   rest (|v| < 2 % of sqrt(g H)); no particle is lost and the run is the
- *   same bits on one and two threads.
+ *   rest (|v| < 2 % of sqrt(g H)); no particle is lost, and its first
+ *   0.3 s are the same bits on one and two threads.
  * - A wave gauge within dx of a periodic seam reads the particles across it
  *   (sph_diag_gauge_level): at y = 0.98 and 0.02 of a period [0, 1] each
  *   line alone reads 0.35 m, across the seam 0.65 m; away from the seam,
@@ -256,9 +256,10 @@ static sph_probe floor_sensor(void) {
 /* The still-water run's scheme: the corrected gradient of tests/data/still_tank_3d.yaml. */
 static const char *const CORRECTED[1] = {"numerics.gradient_correction=true"};
 
-/* Runs CASE3 with the corrected gradient to t = 1 s; the particles' state by id into out (x, y,
- * z, vx, vy, vz, p: 7 per particle), their count into *n. */
-static void run(double **out, size_t *n) {
+/* Runs CASE3 with the corrected gradient to t = t_end (1 s: the floor sensor's statistics above
+ * are this run's); the particles' state by id into out (x, y, z, vx, vy, vz, p: 7 per particle),
+ * their count into *n. */
+static void run(double t_end, double **out, size_t *n) {
   sph_case c;
   sph_error err;
   CU_ASSERT_FATAL(parse(CASE3, CORRECTED, 1, &c, &err) == 0);
@@ -270,8 +271,8 @@ static void run(double **out, size_t *n) {
   double sum = 0.0;
   size_t count = 0;
   floor_start = floor_worst = 0.0;
-  while (sph_sim_time(s) < 1.0) {
-    const int rc = sph_sim_step(s, 1.0, &err);
+  while (sph_sim_time(s) < t_end) {
+    const int rc = sph_sim_step(s, t_end, &err);
     if (rc) printf("\n    step: %s", err.msg);
     CU_ASSERT_FATAL(rc == 0);
     const double t = sph_sim_time(s);
@@ -314,11 +315,7 @@ static void run(double **out, size_t *n) {
 static void test_still_water(void) {
   double *a, *b;
   size_t n, m;
-#ifdef _OPENMP
-  const int saved = omp_get_max_threads(); /* (make check runs tests on one thread) */
-  omp_set_num_threads(2);
-#endif
-  run(&a, &n);
+  run(1.0, &a, &n);
   const double rho0 = 1000.0, g = 9.81, H = 0.1, dx = 0.01;
   double sum = 0.0, want = 0.0, vmax = 0.0, top = -INFINITY, bottom = INFINITY;
   size_t fluid = 0, floor_n = 0;
@@ -383,15 +380,22 @@ static void test_still_water(void) {
   CU_ASSERT(fabs(probe_read[3][0] - H) < 0.01 * H);
   CU_ASSERT(fabs(probe_read[2][0]) + fabs(probe_read[2][1]) + fabs(probe_read[2][2]) <
             0.02 * sqrt(g * H));
+  free(a);
 #ifdef _OPENMP
+  /* the same bits on two threads and on one, through the start's acoustic transient (0.3 s):
+   * the run above is make check's one thread, and the whole second each way would double the
+   * test's time */
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(2);
+  run(0.3, &a, &n);
   omp_set_num_threads(1);
-  run(&b, &m);
+  run(0.3, &b, &m);
   omp_set_num_threads(saved);
   CU_ASSERT_EQUAL(m, n);
   CU_ASSERT(m == n && memcmp(a, b, 7 * n * sizeof *a) == 0);
+  free(a);
   free(b);
 #endif
-  free(a);
 }
 
 /* Steps s to t (the step reaching t exactly). */
