@@ -663,6 +663,60 @@ static void test_still_round_obstacle(void) {
 }
 #endif
 
+/* A shape whose bounding box is off the fluid's lattice (a circle, in 3-D a cylinder whose lower
+ * end floats 2.5 dx above the floor): its wall particles are put on the fluid's lattice, so that
+ * no fluid particle starts closer than dx to one of them. On its own box's lattice they stood
+ * half a spacing from fluid particles, and at dx = 0.02 m 16 particles got more than dx into
+ * such a floating cylinder of adami walls by 0.5 s (the largest speed 34 % of sqrt(g H)); on
+ * the fluid's lattice none (2.2 %, doc/case-files.md). */
+static void test_off_lattice(void) {
+#if SPH_DIM == 2
+  const char *blocks = "    - {x: [0, 1], y: [0, 0.3]}\n  obstacles:\n"
+                       "    - {circle: {centre: [0.503, 0.155], radius: 0.08}, boundary: adami}\n";
+#else
+  const char *blocks = "    - {x: [0, 1], y: [0, 0.3], z: [0, 0.3]}\n  obstacles:\n"
+                       "    - {cylinder: {from: [0.503, 0.15, 0.025], to: [0.503, 0.15, 0.225], "
+                       "radius: 0.08}, boundary: adami}\n";
+#endif
+  sph_case c;
+  sph_sim *s = open_sim(blocks, &c);
+  const sph_particles *p = sph_sim_particles(s);
+  const double dx = c.dx;
+  size_t walls = 0, off = 0, near = 0;
+  double closest = INFINITY;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->kind[i] != SPH_KIND_WALL) continue;
+    int obstacle = 1; /* inside the tank's inner box: the obstacle's */
+    for (int a = 0; a < SPH_DIM; a++)
+      obstacle &= p->pos[a][i] > c.tank.lo[a] && p->pos[a][i] < c.tank.hi[a];
+    if (!obstacle) continue;
+    walls++;
+    int on = 1; /* the fluid block's lattice (i + 1/2) dx from 0 */
+    for (int a = 0; a < SPH_DIM; a++) {
+      const double k = p->pos[a][i] / dx - 0.5;
+      on &= fabs(k - floor(k + 0.5)) < 1e-6;
+    }
+    off += !on;
+    for (size_t j = 0; j < p->n; j++) {
+      if (p->kind[j] != SPH_KIND_FLUID) continue;
+      double r2 = 0.0;
+      for (int a = 0; a < SPH_DIM; a++)
+        r2 += (p->pos[a][j] - p->pos[a][i]) * (p->pos[a][j] - p->pos[a][i]);
+      closest = fmin(closest, r2);
+      near += r2 < 0.999 * dx * dx;
+    }
+  }
+  closest = sqrt(closest) / dx;
+  printf("\n  %zu wall particles of the shape, %zu off the fluid's lattice; the closest fluid "
+         "particle %.3f dx from one (%zu pairs closer than dx)",
+         walls, off, closest, near);
+  CU_ASSERT(walls > 100);
+  CU_ASSERT(off == 0);
+  CU_ASSERT(closest > 0.999);
+  sph_sim_free(s);
+  sph_case_free(&c);
+}
+
 /* ---- 7. walls along a polyline ---- */
 
 /* A wall written as `points` is its segments written one by one, bit for bit; bad polylines are
@@ -951,6 +1005,7 @@ int main(void) {
     {"filled areas and volumes against the shapes'", test_filled_measure},
     {"bad shapes are refused at their key", test_refusals},
     {"obstacles of a shape: a rectangle is the box; a round one a shell", test_shaped_obstacles},
+    {"a shape off the fluid's lattice: its wall particles on it", test_off_lattice},
     {"a wall along a polyline is its segments", test_polyline_wall},
     {"a vessel: a rectangle is the tank, a round one holds the water inside", test_vessel},
 #if SPH_DIM == 2
