@@ -785,10 +785,10 @@ static int read_obstacle_model(const ctx *x, const node *m, const char *p, const
  * first fluid block whose box meets the shape's grown by its layers, else the tank's inner box),
  * so that its wall particles and the fluid's points are one lattice, as a tank's are, and no
  * fluid particle starts less than dx from a wall particle (on its own box's lattice a shape
- * off the fluid's had them as close as the offset: a 3-D cylinder 2.5 dx above the floor let
- * 24 particles in, adami walls). A corner on the lattice already stays as given (to the bit:
- * an STL box is the box obstacle's particles); the box grows to the lattice around it, and a
- * point between the two boxes is outside the shape. */
+ * off the fluid's had them as close as the offset: a 3-D cylinder of adami walls 2.5 dx above
+ * the floor let 16 particles more than dx into it by 0.5 s at dx = 0.02 m). A corner on the lattice
+ * already stays as given (to the bit: an STL box is the box obstacle's particles); the box grows to
+ * the lattice around it, and a point between the two boxes is outside the shape. */
 static void snap_to_fluid_lattice(const sph_case *c, sph_obstacle *o) {
   const double dx = c->dx, grow = (double)o->layers * dx;
   if (!(dx > 0.0)) return;

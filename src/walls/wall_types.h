@@ -85,9 +85,10 @@ typedef struct sph_wall_segment {
  * have a point outside within `layers` spacings along every axis, and no guard keeps the
  * fluid off it (walls.h) but the particles' own forces. */
 typedef struct sph_obstacle {
-  double lo[SPH_DIM], hi[SPH_DIM];                   /* the box's faces (a shape's bounding box) */
-  int layers;                                        /* default 2, as a 3-D tank's */
-  sph_boundary_kind boundary;                        /* dynamic (default), fixed_layers or mdbc */
+  double lo[SPH_DIM], hi[SPH_DIM]; /* the box's faces (a shape's bounding box, moved out to the
+                                      fluid's lattice: case/geometry.c) */
+  int layers;                      /* default 2, as a 3-D tank's */
+  sph_boundary_kind boundary;      /* dynamic (default), fixed_layers or mdbc */
   int (*inside)(const void *shape, const double *x); /* a shaped obstacle's inside (1; 0
                                                         outside; other: crossing itself) */
   void (*offset)(const void *shape, const double *x, double floor, double *m); /* its mirror
