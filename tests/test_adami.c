@@ -224,7 +224,7 @@ static void test_guard_at_face(void) {
                                         1000, 1, 0.026, SPH_KIND_FLUID, &err) == (long)k);
     const sph_boundary_kind b = adami ? SPH_BOUNDARY_ADAMI : SPH_BOUNDARY_DYNAMIC;
     sph_tank t = {.present = 1, .x1 = 1.0, .y1 = 1.0, .layers = 3, .boundary = b};
-    const sph_obstacle o = {{0.4, 0.0}, {0.6, 0.2}, 3, b};
+    const sph_obstacle o = {.lo = {0.4, 0.0}, .hi = {0.6, 0.2}, .layers = 3, .boundary = b};
     sph_walls w;
     CU_ASSERT_FATAL(sph_walls_create(&w, &p, &t, NULL, 0, &o, 1, 0.02, 1000, 0.026, 0.0, &err) ==
                     0);

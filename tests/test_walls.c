@@ -522,7 +522,8 @@ static void test_obstacle_impermeable(void) {
                 .layers = 2,
                 .boundary = SPH_BOUNDARY_DYNAMIC,
                 .stagger = 1};
-  const sph_obstacle o = {{0.4, 0.0}, {0.6, 0.2}, 2, SPH_BOUNDARY_MDBC};
+  const sph_obstacle o = {
+      .lo = {0.4, 0.0}, .hi = {0.6, 0.2}, .layers = 2, .boundary = SPH_BOUNDARY_MDBC};
   sph_walls w;
   CU_ASSERT_FATAL(sph_walls_create(&w, &p, &t, NULL, 0, &o, 1, 0.02, 1000, 0.026, 0.0, &err) == 0);
   /* the mdbc box's particles mirror out of it, through their nearest face */

@@ -123,7 +123,8 @@ static void test_obstacle_offsets(void) {
   sph_error err;
   CU_ASSERT_FATAL(sph_particles_init(&p, 256, &err) == 0);
   /* 6 x 5 x 4 lattice points, a shell two deep: its inside 2 x 1 x 0 points, so all of it */
-  const sph_obstacle o = {{0.2, 0.3, 0.0}, {0.26, 0.35, 0.04}, 2, SPH_BOUNDARY_MDBC};
+  const sph_obstacle o = {
+      .lo = {0.2, 0.3, 0.0}, .hi = {0.26, 0.35, 0.04}, .layers = 2, .boundary = SPH_BOUNDARY_MDBC};
   CU_ASSERT_FATAL(sph_boundary_add_box(&p, &o, -INFINITY, DX, RHO0, 1e-3, H, SPH_FLAG_MDBC, &err) ==
                   0);
   CU_ASSERT_EQUAL(p.n, 6 * 5 * 4);
@@ -261,7 +262,10 @@ static void test_keep_off(void) {
   }
   const sph_tank t = tank(1);
   /* the box x 0.06..0.08, y 0.02..0.04, z 0..0.02: on the floor */
-  const sph_obstacle o = {{0.06, 0.02, 0.0}, {0.08, 0.04, 0.02}, 2, SPH_BOUNDARY_DYNAMIC};
+  const sph_obstacle o = {.lo = {0.06, 0.02, 0.0},
+                          .hi = {0.08, 0.04, 0.02},
+                          .layers = 2,
+                          .boundary = SPH_BOUNDARY_DYNAMIC};
   sph_walls w;
   CU_ASSERT_FATAL(sph_walls_create(&w, &p, &t, NULL, 0, &o, 1, DX, RHO0, H, 0.0, &err) == 0);
   CU_ASSERT_EQUAL(w.n_plane, 3); /* floor, x0, x1 */
