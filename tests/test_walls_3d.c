@@ -28,6 +28,12 @@
  *    sphere of fluid. Periodic along y (the tank open along y, a field
  *    independent of y): the same, with the mirror points near the seam
  *    fitting across it.
+ *    A density falling upwards as hydrostatics has it (1010 - 50 z, every
+ *    fit's largest density that of its lowest particles): with the
+ *    density's hydrostatic gradient given (head = (0, 0, -50)) the floor's
+ *    particles take the field too, to 1e-10; without it (head 0) mdbc's
+ *    limit to the fit's largest density cuts them (by 50 kg/m^4 times the
+ *    height between the wall particle and the fit's lowest particle).
  * 3. Keeping off. sph_walls_keep_off on a tank (open along y) with a box
  *    obstacle standing on its floor: a fluid particle d in front of a face
  *    with d < d_min (or behind it, within the wall's thickness) ends
@@ -159,9 +165,11 @@ static void test_obstacle_offsets(void) {
 }
 
 /* The linear fields of part 2: density and velocity at x. The density
- * rises upwards only, so that no wall particle's lies above the fluid's
- * largest (where mdbc clips it) nor below rho0. */
-static double density_at(const double x[3]) { return 1010.0 + 50.0 * x[2]; }
+ * rises upwards (no wall particle's lies above the fluid's largest, where
+ * mdbc limits it, nor below rho0), or, hydrostatic, falls upwards. */
+static double density_at(const double x[3], int hydrostatic) {
+  return hydrostatic ? 1010.0 - 50.0 * x[2] : 1010.0 + 50.0 * x[2];
+}
 static double velocity_at(int d, const double x[3], int periodic) {
   static const double base[3] = {0.3, -0.2, 0.1},
                       grad[3][3] = {{1.5, -0.7, 2.0}, {0.4, 1.1, -0.9}, {-1.2, 0.6, 0.8}};
@@ -172,10 +180,12 @@ static double velocity_at(int d, const double x[3], int periodic) {
 }
 
 /* The tank (open along y when periodic) with mdbc no-slip walls, fluid on
- * its lattice up to z = 0.05 carrying the linear fields; fits both and
- * returns the largest error of the wall densities and of the ghost
- * velocities (relative to 10 kg/m3 and 0.1 m/s). */
-static void fit_tank(int periodic, double *err_rho, double *err_v) {
+ * its lattice up to z = 0.05 carrying the linear fields (the hydrostatic
+ * density or the rising one); fits both, mdbc's limit raised by the
+ * hydrostatic gradient head_z along z, and returns the largest error of
+ * the wall densities and of the ghost velocities (relative to 10 kg/m3 and
+ * 0.1 m/s). */
+static void fit_tank(int periodic, int hydrostatic, double head_z, double *err_rho, double *err_v) {
   sph_particles p;
   sph_error err;
   CU_ASSERT_FATAL(sph_particles_init(&p, 4096, &err) == 0);
@@ -186,7 +196,8 @@ static void fit_tank(int periodic, double *err_rho, double *err_v) {
         double v[3];
         for (int d = 0; d < 3; d++)
           v[d] = velocity_at(d, x, periodic);
-        const long q = sph_particles_add_at(&p, x, v, density_at(x), 1e-3, H, SPH_KIND_FLUID, &err);
+        const long q = sph_particles_add_at(&p, x, v, density_at(x, hydrostatic), 1e-3, H,
+                                            SPH_KIND_FLUID, &err);
         CU_ASSERT_FATAL(q >= 0);
       }
   const size_t nf = p.n;
@@ -199,25 +210,28 @@ static void fit_tank(int periodic, double *err_rho, double *err_v) {
   CU_ASSERT_FATAL(g != NULL);
   double *const gv[3] = {g, g + p.n, g + 2 * p.n};
   CU_ASSERT_FATAL(sph_wall_velocity(&p, 2.0 * H, 0.0, period, 1, gv, &w, &err) == 0);
-  CU_ASSERT_FATAL(sph_wall_mdbc_density(&p, 2.0 * H, 0.0, period, 1, RHO0, &w, &err) == 0);
+  const double head[3] = {0.0, 0.0, head_z};
+  CU_ASSERT_FATAL(sph_wall_mdbc_density(&p, 2.0 * H, 0.0, period, 1, RHO0, head, &w, &err) == 0);
   *err_rho = *err_v = 0.0;
   for (size_t i = 0; i < p.n; i++) {
     const double x[3] = {p.x[i], p.y[i], p.z[i]};
     if (i < nf) { /* the fluid keeps its own */
-      CU_ASSERT(p.rho[i] == density_at(x));
+      CU_ASSERT(p.rho[i] == density_at(x, hydrostatic));
       for (int d = 0; d < 3; d++)
         CU_ASSERT(gv[d][i] == p.vel[d][i]);
       continue;
     }
-    *err_rho = fmax(*err_rho, fabs(p.rho[i] - density_at(x)) / 10.0);
+    *err_rho = fmax(*err_rho, fabs(p.rho[i] - density_at(x, hydrostatic)) / 10.0);
     double m[3];
     for (int a = 0; a < 3; a++)
       m[a] = x[a] + p.mirror_offset[a][i];
     for (int d = 0; d < 3; d++) /* at rest: 2 * 0 - v(mirror point) */
       *err_v = fmax(*err_v, fabs(gv[d][i] + velocity_at(d, m, periodic)) / 0.1);
   }
-  printf("\n    %s: %zu wall particles, density off by %.1e, ghost velocity by %.1e (relative)",
-         periodic ? "periodic along y" : "closed tank", p.n - nf, *err_rho, *err_v);
+  printf("\n    %s, %s density%s: %zu wall particles, density off by %.1e, ghost velocity by "
+         "%.1e (relative)",
+         periodic ? "periodic along y" : "closed tank", hydrostatic ? "hydrostatic" : "rising",
+         hydrostatic && head_z == 0.0 ? " (no head)" : "", p.n - nf, *err_rho, *err_v);
   free(g);
   sph_wall_velocity_work_free(&w);
   sph_particles_free(&p);
@@ -226,10 +240,16 @@ static void fit_tank(int periodic, double *err_rho, double *err_v) {
 static void test_fit_linear(void) {
   for (int periodic = 0; periodic < 2; periodic++) {
     double er, ev;
-    fit_tank(periodic, &er, &ev);
+    fit_tank(periodic, 0, 0.0, &er, &ev);
+    CU_ASSERT(er < 1e-10);
+    CU_ASSERT(ev < 1e-10);
+    fit_tank(periodic, 1, -50.0, &er, &ev);
     CU_ASSERT(er < 1e-10);
     CU_ASSERT(ev < 1e-10);
   }
+  double er, ev; /* the limit without the weight of the fluid: the floor cut by 50 kg/m^4 x dx */
+  fit_tank(0, 1, 0.0, &er, &ev);
+  CU_ASSERT(er > 0.5 * 50.0 * DX / 10.0);
 }
 
 /* ---- 3. keeping off ------------------------------------------------------- */
@@ -513,7 +533,8 @@ int main(void) {
   CU_TestInfo tests[] = {
       {"3-D tank: mirror points through faces, edges and corners", test_tank_offsets},
       {"3-D box obstacle: mirror points out through the nearest faces", test_obstacle_offsets},
-      {"3-D linear fit: mdbc density and ghost velocity exact for linear fields", test_fit_linear},
+      {"3-D linear fit: mdbc density and ghost velocity exact for linear fields, also hydrostatic",
+       test_fit_linear},
       {"3-D keeping off: the tank's faces and a box obstacle", test_keep_off},
       {"3-D repulsive wall across a periodic seam along y", test_repulsion_periodic},
       {"3-D mirror planes: images through faces, edges and corners", test_mirror_planes},

@@ -724,30 +724,25 @@ static int read_periodic(const ctx *x, const node *m, sph_case *c) {
 /* geometry.obstacles[i]: {x, y (, z): ranges at least dx wide, layers (1-8, default 2; 1
  * for repulsive), boundary: dynamic (default), fixed_layers, mdbc or repulsive}. */
 /* An obstacle's (or a vessel's) wall model and layers: any model but mirror walls for a box;
- * dynamic, fixed_layers, adami or (2-D) mdbc for a shape (repulsive walls' normals come from a
- * box's faces so far); layers 1..8, by default 2 (adami, and mdbc on a shape: ceil(2 h_factor),
- * the layers that fill the kernel's support). mdbc on a shape takes no fewer: with 2 layers round
- * a circle 16 dx across still water ran into it within 0.3 s; with 4 (the default scheme's
- * h = 2 dx) a circle 16 and 8 dx across holds it (test_shapes). In 3-D mdbc on a shape is refused:
- * a submerged cylinder (r = 5 dx, on the fluid's lattice) of 4 layers let 4 particles more than
- * dx/2 into it by 0.5 s, at 7.5 % of sqrt(g H) (adami: none, 2.3 %). A vessel's model is by
- * default the scheme's where a shape takes it, as a wall segment's. */
+ * dynamic, fixed_layers, adami or mdbc for a shape (repulsive walls' normals come from a box's
+ * faces so far); layers 1..8, by default 2 (adami, and mdbc on a shape: ceil(2 h_factor), the
+ * layers that fill the kernel's support). mdbc on a shape takes no fewer: with 2 layers round a
+ * circle 16 dx across still water ran into it within 0.3 s; with 4 (the default scheme's
+ * h = 2 dx) a circle 16 and 8 dx across holds it, and a 3-D cylinder 10 dx across (test_shapes,
+ * test_shapes_3d). A vessel's model is by default the scheme's where a shape takes it, as a wall
+ * segment's. */
 static int read_obstacle_model(const ctx *x, const node *m, const char *p, const sph_case *c,
                                int shaped, sph_obstacle *o) {
   char kp[SPH_YAML_KEYLEN];
-  const int shape_mdbc = SPH_DIM == 2; /* mdbc on a shape */
   int bnd = SPH_BOUNDARY_DYNAMIC;
   if (o->vessel) {
     const int b = scheme_wall_model(c);
-    if (b == SPH_BOUNDARY_FIXED_LAYERS || b == SPH_BOUNDARY_ADAMI ||
-        (shape_mdbc && b == SPH_BOUNDARY_MDBC))
+    if (b == SPH_BOUNDARY_FIXED_LAYERS || b == SPH_BOUNDARY_ADAMI || b == SPH_BOUNDARY_MDBC)
       bnd = b;
   }
   if (sph_yaml_get_choice(&x->t, m, p, "boundary", boundary_names, &bnd) < 0) return -1;
   o->boundary = (sph_boundary_kind)bnd;
-  const int refused = shaped ? bnd == SPH_BOUNDARY_REPULSIVE || bnd == SPH_BOUNDARY_MIRROR ||
-                                   (!shape_mdbc && bnd == SPH_BOUNDARY_MDBC)
-                             : bnd == SPH_BOUNDARY_MIRROR;
+  const int refused = bnd == SPH_BOUNDARY_MIRROR || (shaped && bnd == SPH_BOUNDARY_REPULSIVE);
   if (refused) {
     sph_yaml_join(kp, sizeof kp, p, "boundary");
     const char *what = o->vessel ? "a vessel" : "an obstacle of a shape";
@@ -756,14 +751,10 @@ static int read_obstacle_model(const ctx *x, const node *m, const char *p, const
                               "expected 'dynamic', 'fixed_layers', 'mdbc', 'adami' or "
                               "'repulsive' (an obstacle is a box of wall particles), got '%s'",
                               sph_boundary_name(o->boundary));
-    return sph_yaml_fail_at(
-        &x->t, sph_yaml_find(m, "boundary")->val, kp,
-        shape_mdbc ? "expected 'dynamic', 'fixed_layers', 'adami' or 'mdbc' for %s (repulsive "
-                     "and mirror walls need a box's faces so far), got '%s'"
-                   : "expected 'dynamic', 'fixed_layers' or 'adami' for %s (mdbc walls on a "
-                     "shape are 2-D only so far; repulsive and mirror walls need a box's faces), "
-                     "got '%s'",
-        what, sph_boundary_name(o->boundary));
+    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "boundary")->val, kp,
+                            "expected 'dynamic', 'fixed_layers', 'adami' or 'mdbc' for %s "
+                            "(repulsive and mirror walls need a box's faces so far), got '%s'",
+                            what, sph_boundary_name(o->boundary));
   }
   const int fill = default_layers(SPH_BOUNDARY_ADAMI, c); /* ceil(2 h_factor) */
   const int mdbc = shaped && o->boundary == SPH_BOUNDARY_MDBC;

@@ -173,9 +173,12 @@ static int dbc_bound(sph_sim *s, sph_error *err) {
 static int mdbc_walls(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   sph_particles *p = &s->p;
+  double head[SPH_DIM]; /* the density's hydrostatic gradient, rho0 g / c0^2 */
+  for (int a = 0; a < SPH_DIM; a++)
+    head[a] = c->rho0 * c->gravity[a] / (s->fp.eos.c0 * s->fp.eos.c0);
   if (sph_wall_mdbc_density(p, SPH_CUBIC_SUPPORT * h_max(s), s->fp.px0,
-                            c->periodic ? s->fp.period : 0.0, s->fp.paxis, c->rho0, &s->mdbc_work,
-                            err))
+                            c->periodic ? s->fp.period : 0.0, s->fp.paxis, c->rho0, head,
+                            &s->mdbc_work, err))
     return -1;
   for (size_t i = 0; i < p->n; i++)
     if (p->flags[i] & SPH_FLAG_MDBC) p->p[i] = sph_eos_pressure(&s->fp.eos, p->rho[i]);

@@ -231,8 +231,10 @@ weights(const sph_wall_velocity_work *w, const double x[SPH_DIM], const double p
  * near singular (fewer than SPH_DIM + 1 independent neighbours) the
  * Shepard average sum W f / sum W with a zero gradient. fmax (NULL, or nf
  * values set by the caller) is raised to the largest value of each field
- * among those particles. Returns 0 when no fluid particle reaches the
- * point, else 1.
+ * among those particles, and top (with fmax) set to the offset x_j - x of
+ * the first particle in the sums' order that holds the first field's
+ * largest value. Returns 0 when no fluid particle reaches the point, else
+ * 1.
  *
  * A cell's candidates go FIT_CHUNK at a time through within_reach and
  * weights (two lanes, lane for lane the scalar operations), then into the
@@ -241,7 +243,7 @@ weights(const sph_wall_velocity_work *w, const double x[SPH_DIM], const double p
  * stay in registers. */
 static inline __attribute__((always_inline)) int
 fit_at(const layout *g, const sph_wall_velocity_work *w, const double x[SPH_DIM],
-       const double *const *f, int nf, double *fit, double *fmax) {
+       const double *const *f, int nf, double *fit, double *fmax, double top[SPH_DIM]) {
   long cells[SPH_DIM][3];
   int nc[3] = {1, 1, 1};
   for (int a = SPH_DIM - 1; a >= 0; a--) /* (the order of 2-D's first reach test: y, then x) */
@@ -292,7 +294,13 @@ fit_at(const layout *g, const sph_wall_velocity_work *w, const double x[SPH_DIM]
             const size_t j = w->idx[qs[t]];
             for (int m = 0; m < nf; m++) {
               const double fj = f[m][j];
-              if (fmax && fj > fmax[m]) fmax[m] = fj;
+              if (fmax && fj > fmax[m]) {
+                fmax[m] = fj;
+                if (m == 0) {
+                  top[0] = ex, top[1] = ey;
+                  SPH_IF3(top[2] = ez;)
+                }
+              }
               sf[m] += wj * fj;
               b1[m] += wj * ex * fj;
               b2[m] += wj * ey * fj;
@@ -435,7 +443,7 @@ int sph_wall_velocity(const sph_particles *p, double support, double px0, double
     if (!(p->flags[i] & SPH_FLAG_NO_SLIP) || p->kind[i] != SPH_KIND_WALL) continue;
     double fit[FIT_N * SPH_DIM], x[SPH_DIM];
     mirror_point(p, i, x);
-    if (fit_at(&g, w, x, fields, SPH_DIM, fit, NULL))
+    if (fit_at(&g, w, x, fields, SPH_DIM, fit, NULL, NULL))
       for (int a = 0; a < SPH_DIM; a++)
         gv[a][i] = 2.0 * p->vel[a][i] - fit[FIT_N * a];
   }
@@ -443,7 +451,8 @@ int sph_wall_velocity(const sph_particles *p, double support, double px0, double
 }
 
 int sph_wall_mdbc_density(sph_particles *p, double support, double px0, double period, int paxis,
-                          double rho0, sph_wall_velocity_work *w, sph_error *err) {
+                          double rho0, const double head[SPH_DIM], sph_wall_velocity_work *w,
+                          sph_error *err) {
   layout g;
   const int rc = bin_fluid(p, support, px0, period, paxis, &g, w, err);
   if (rc < 0) return -1;
@@ -453,16 +462,23 @@ int sph_wall_mdbc_density(sph_particles *p, double support, double px0, double p
   for (long li = 0; li < nl; li++) {
     const size_t i = (size_t)li;
     if (!(p->flags[i] & SPH_FLAG_MDBC) || p->kind[i] != SPH_KIND_WALL) continue;
-    double fit[FIT_N], x[SPH_DIM], top = -INFINITY, rho = rho0;
+    double fit[FIT_N], x[SPH_DIM], top = -INFINITY, at[SPH_DIM] = {0.0}, rho = rho0;
     mirror_point(p, i, x);
-    if (rc == 0 && fit_at(&g, w, x, fields, 1, fit, &top)) {
+    if (rc == 0 && fit_at(&g, w, x, fields, 1, fit, &top, at)) {
       /* the fit at the wall particle: rho_g - m . grad rho_g */
 #if SPH_DIM == 2
       rho = fit[0] - (fit[1] * p->mx[i] + fit[2] * p->my[i]);
 #else
       rho = fit[0] - (fit[1] * p->mx[i] + fit[2] * p->my[i] + fit[3] * p->mz[i]);
 #endif
-      if (rho > top) rho = top; /* no density the fluid around does not have */
+      /* no density the fluid around does not have, but for the weight of the fluid between
+       * its densest particle (x + at, x the mirror point) and the wall particle (x - m):
+       * head . ((x - m) - (x + at)) */
+      double lift = 0.0;
+      for (int a = 0; a < SPH_DIM; a++)
+        lift -= head[a] * (p->mirror_offset[a][i] + at[a]);
+      if (lift > 0.0) top += lift;
+      if (rho > top) rho = top;
     }
     p->rho[i] = rho > rho0 ? rho : rho0; /* a wall pushes, never pulls */
   }

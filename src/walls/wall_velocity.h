@@ -74,13 +74,24 @@ int sph_wall_velocity(const sph_particles *p, double support, double px0, double
  * x + m across the wall face: the linear MLS fit of the fluid density at
  * x + m (the same fit as the ghost velocity above), evaluated at the wall
  * particle, rho = rho_g - m . grad rho_g, limited to the largest density
- * among the fluid particles of the fit (the extrapolation over up to 2 dx
- * overshot at an impact: 1.3 rho0 in a corner of the coarse dam break).
+ * among the fluid particles of the fit plus the weight of the fluid
+ * between the particle that holds it, x_j, and the wall particle x:
+ * head . (x - x_j), where head = rho0 g / c0^2 is the density's
+ * hydrostatic gradient, so that a hydrostatic density passes the limit
+ * exactly. Without the limit the extrapolation over up to 2 dx overshot at
+ * an impact (1.3 rho0 in a corner of the coarse dam break) and an ill-posed
+ * fit fed on itself (1.9e14 kg/m^3 in the 3-D energy box); without the
+ * weight it cut every hydrostatic extrapolation to the fit's densest
+ * particle, and on a 3-D cylinder's top the walls over its axis, whose fits
+ * see only the water above, took the first row's density where those
+ * nearer its rim, whose fits reach the deeper water beside it, took the
+ * hydrostatic one: the water over the axis sank into the cylinder.
  * Where no fluid reaches the mirror point, rho0; and never below rho0, so
  * a wall pushes the fluid but never pulls it (a wall particle left with a negative pressure held
  * a film of fluid on the dam break's back wall). Sets p->rho of those
  * particles; the caller sets their pressure from the equation of state. */
 int sph_wall_mdbc_density(sph_particles *p, double support, double px0, double period, int paxis,
-                          double rho0, sph_wall_velocity_work *w, sph_error *err);
+                          double rho0, const double head[SPH_DIM], sph_wall_velocity_work *w,
+                          sph_error *err);
 
 #endif
