@@ -43,18 +43,6 @@ def _directories():
     yield Path(_paths.LIBDIR)
 
 
-def cases_directory():
-    """Where the example cases were installed (None in the build tree)."""
-    env = os.environ.get("SPH_CASES_DIR")
-    if env:
-        return Path(env)
-    try:
-        from . import _paths
-    except ImportError:
-        return None
-    return Path(_paths.CASES_DIR)
-
-
 def _find(dim):
     base = _NAMES[dim]
     tried = []
@@ -121,6 +109,7 @@ def _declare(lib):
         "sph_run_stop_measure": (I, [P, ctypes.POINTER(D), ctypes.POINTER(D)]),
         "sph_run": (I, [P, ctypes.POINTER(RunOptions), ctypes.POINTER(RunResult), P]),
         "sph_run_status_name": (C, [I]),
+        "sph_case_find": (P, [C, C, S, C, S]),
     }
     for name, (res, args) in sigs.items():
         f = getattr(lib, name)

@@ -11,7 +11,6 @@ written as YAML (JSON), e.g. {"numerics.dx": 0.001, "physics.gravity":
 import ctypes
 import json
 import os
-from pathlib import Path
 
 from . import _library
 
@@ -32,18 +31,17 @@ def _override_strings(overrides):
 
 
 def _find_case(name):
-    """A path as given if it names a file; a bare name in ./cases, then among
-    the installed example cases (as `sph run NAME` finds it)."""
-    p = Path(name)
-    if p.exists():
-        return str(name)
-    if "/" not in str(name):
-        file = name if str(name).endswith(".yaml") else str(name) + ".yaml"
-        for d in (Path("cases"), _library.cases_directory()):
-            if d is not None and (d / file).exists():
-                return str(d / file)
-    raise _library.CaseError("%s: no such case file" % (name,))
-
+    """The case file name names, as `sph run NAME` finds it (libsph's
+    sph_case_find): a path as given if it names a file; a bare name in
+    ./cases, then among the installed example cases."""
+    lib = _library.library(2)
+    arg = os.fsencode(name)
+    buf = ctypes.create_string_buffer(4096)
+    why = ctypes.create_string_buffer(8192)
+    found = lib.sph_case_find(arg, buf, len(buf), why, len(why))
+    if not found:
+        raise _library.CaseError(why.value.decode(errors="replace"))
+    return os.fsdecode(buf.value if found == ctypes.addressof(buf) else arg)
 
 def _parse_listing(text):
     """sph_case_describe's "dotted.key: value" lines as a dict; values read as

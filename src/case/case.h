@@ -271,6 +271,16 @@ int sph_case_needs_free_surface(const sph_case *c);
 /* Whether the tank or a wall segment has the boundary model b. */
 int sph_case_has_boundary(const sph_case *c, sph_boundary_kind b);
 
+/* The directory of installed example cases: $SPH_CASES_DIR, else
+ * <datadir>/sph/cases of the library's installation. */
+const char *sph_case_cases_dir(void);
+/* The case file a user names with arg: arg itself when it names a file,
+ * else for a bare name (no '/') cases/NAME.yaml here, then NAME.yaml among
+ * the installed cases (".yaml" may be given). Returns arg or buf (n bytes),
+ * or NULL with why (nw bytes) saying where it looked and which cases are
+ * installed. */
+const char *sph_case_find(const char *arg, char *buf, size_t n, char *why, size_t nw);
+
 #ifdef __cplusplus
 }
 #endif

@@ -114,12 +114,4 @@ int sph_cli_dir_busy(const char *cmd, const char *dir, long holder);
  * not (the exit status). */
 int sph_cli_dir_take(const char *cmd, const char *dir, sph_cli_lock *lk);
 
-/* The case CASE names on the command line (case_lookup.c): CASE itself if
- * it is a file; else, for a bare name (no '/'), NAME.yaml (or NAME) in the
- * directory of installed cases, written into buf (n bytes). NULL if
- * neither: why (nw bytes) then says so and lists the installed cases. */
-const char *sph_cli_find_case(const char *arg, char *buf, size_t n, char *why, size_t nw);
-/* The directory of installed cases: $SPH_CASES_DIR, else <datadir>/sph/cases. */
-const char *sph_cli_cases_dir(void);
-
 #endif

@@ -77,7 +77,7 @@ static void run_usage(FILE *f) {
           "set-up: nothing is written, exit 4); a second signal ends it at once.\n"
           "Exit status: 0 done, 1 bad input or I/O error, 2 usage error, 3 numerical blow-up\n"
           "(last good state in DIR/last_good.h5), 4 interrupted.\n",
-          sph_cli_cases_dir());
+          sph_case_cases_dir());
 }
 
 typedef struct progress_ctx {
@@ -191,7 +191,7 @@ static int load_run_case(run_args *a, sph_case *c, char *snapdir, size_t n) {
   if (a->case_path) {
     static char found[4096]; /* outlives the call: a->case_path points into it */
     char why[8192];
-    const char *path = sph_cli_find_case(a->case_path, found, sizeof found, why, sizeof why);
+    const char *path = sph_case_find(a->case_path, found, sizeof found, why, sizeof why);
     if (!path) {
       fprintf(stderr, "sph run: %s\n", why);
       return 1;

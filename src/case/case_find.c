@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
- * case_lookup.c - a case named on the command line: a file, or one of the
- * installed example cases by name (see cli.h, sph_cli_find_case).
+ * case_find.c - a case named by a user: a file, or one of the installed
+ * example cases by name (see case.h, sph_case_find; `sph run` and the
+ * Python module's sph.Case look cases up through it).
  *
  * `sph run martin_moyce` in a directory without such a file runs
  * ./cases/martin_moyce.yaml if there is one (the source tree), else
@@ -17,9 +18,9 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "cli/cli.h"
+#include "case/case.h"
 
-const char *sph_cli_cases_dir(void) {
+const char *sph_case_cases_dir(void) {
   const char *e = getenv("SPH_CASES_DIR");
   return e && *e ? e : SPH_CASES_DIR;
 }
@@ -64,9 +65,9 @@ static int in_dir(const char *dir, const char *arg, char *buf, size_t n) {
   return snprintf(buf, n, "%s/%s%s", dir, arg, has_ext ? "" : ".yaml") < (int)n && exists(buf);
 }
 
-const char *sph_cli_find_case(const char *arg, char *buf, size_t n, char *why, size_t nw) {
+const char *sph_case_find(const char *arg, char *buf, size_t n, char *why, size_t nw) {
   if (exists(arg)) return arg;
-  const char *dir = sph_cli_cases_dir();
+  const char *dir = sph_case_cases_dir();
   /* a bare name: ./cases (a source tree, or a project laid out like it),
    * then the installed cases */
   if (!strchr(arg, '/') && (in_dir("cases", arg, buf, n) || in_dir(dir, arg, buf, n))) return buf;
