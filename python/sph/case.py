@@ -43,6 +43,7 @@ def _find_case(name):
         raise _library.CaseError(why.value.decode(errors="replace"))
     return os.fsdecode(buf.value if found == ctypes.addressof(buf) else arg)
 
+
 def _parse_listing(text):
     """sph_case_describe's "dotted.key: value" lines as a dict; values read as
     YAML scalars/flow lists would be (numbers, lists of numbers, text)."""

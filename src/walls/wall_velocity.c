@@ -229,12 +229,11 @@ weights(const sph_wall_velocity_work *w, const double x[SPH_DIM], const double p
  * field, also where the kernel is cut by the wall or the surface). Fills
  * fit[FIT_N k ..] with (c0, c) per field; where the fit's moment matrix is
  * near singular (fewer than SPH_DIM + 1 independent neighbours) the
- * Shepard average sum W f / sum W with a zero gradient. fmax (NULL, or nf
- * values set by the caller) is raised to the largest value of each field
- * among those particles, and top (with fmax) set to the offset x_j - x of
- * the first particle in the sums' order that holds the first field's
- * largest value. Returns 0 when no fluid particle reaches the point, else
- * 1.
+ * Shepard average sum W f / sum W with a zero gradient. fmax (NULL, or a
+ * value set by the caller) is raised to the largest value of the first
+ * field among those particles, and top set to the offset x_j - x of the
+ * first particle in the sums' order that holds it. Returns 0 when no fluid
+ * particle reaches the point, else 1.
  *
  * A cell's candidates go FIT_CHUNK at a time through within_reach and
  * weights (two lanes, lane for lane the scalar operations), then into the
@@ -292,15 +291,13 @@ fit_at(const layout *g, const sph_wall_velocity_work *w, const double x[SPH_DIM]
             a22 += wj * ey * ey;
             SPH_IF3(a03 += wj * ez; a13 += wj * ex * ez; a23 += wj * ey * ez; a33 += wj * ez * ez;)
             const size_t j = w->idx[qs[t]];
+            if (fmax && f[0][j] > *fmax) {
+              *fmax = f[0][j];
+              top[0] = ex, top[1] = ey;
+              SPH_IF3(top[2] = ez;)
+            }
             for (int m = 0; m < nf; m++) {
               const double fj = f[m][j];
-              if (fmax && fj > fmax[m]) {
-                fmax[m] = fj;
-                if (m == 0) {
-                  top[0] = ex, top[1] = ey;
-                  SPH_IF3(top[2] = ez;)
-                }
-              }
               sf[m] += wj * fj;
               b1[m] += wj * ex * fj;
               b2[m] += wj * ey * fj;
