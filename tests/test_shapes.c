@@ -749,8 +749,8 @@ static void test_still_round_obstacle(void) {
  * they took the first row's density where those nearer the rim, whose fits reach the deeper
  * water beside the cylinder, took the hydrostatic one, and the water over the axis sank into
  * the top (11.8 %, a particle 1.18 dx inside, 0.52 dx from a wall particle; at 0.01 m 3.73 %,
- * 0.59 dx). The limit now grants the weight of the water across the mirror distance
- * (wall_velocity.h). */
+ * 0.59 dx). The limit now grants the weight of the water between the fit's densest particle and
+ * the wall particle (wall_velocity.h). */
 static void test_still_cylinder_mdbc(void) {
   const double dx = 0.02, R = 0.1, top = 0.12, cx = 0.16, cy = 0.16;
   const char *text =
