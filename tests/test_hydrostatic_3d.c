@@ -31,11 +31,11 @@
  *   (sph_diag_gauge_level): at y = 0.98 and 0.02 of a period [0, 1] each
  *   line alone reads 0.35 m, across the seam 0.65 m; away from the seam,
  *   or without a period, it is sph_diag_surface_at_xy's reading bit for bit.
- * - 3-D snapshots: a snapshot written at t = 0.5 s (leap-frog, so the
+ * - 3-D snapshots: a snapshot written at t = 0.2 s (leap-frog, so the
  *   restart record carries v_z's half step; the corrected gradient) holds z and v_z with its
  *   "dimension" 3, reads back bit for bit, its /vectors/position is n x 3
  *   and its XDMF index an XYZ geometry; a run restored from it ends at
- *   t = 0.6 s with the bits of the run that never stopped; the 2-D library
+ *   t = 0.3 s with the bits of the run that never stopped; the 2-D library
  *   refuses it (tests/test_snapshot: "a 3-D snapshot").
  */
 #include "config.h"
@@ -256,10 +256,23 @@ static sph_probe floor_sensor(void) {
 /* The still-water run's scheme: the corrected gradient of tests/data/still_tank_3d.yaml. */
 static const char *const CORRECTED[1] = {"numerics.gradient_correction=true"};
 
+/* The particles' state by id (x, y, z, vx, vy, vz, p: 7 per particle; p NaN for walls). */
+static double *state_by_id(const sph_particles *p) {
+  double *out = calloc(7 * p->n, sizeof *out);
+  CU_ASSERT_FATAL(out != NULL);
+  for (size_t i = 0; i < p->n; i++) {
+    double *o = out + 7 * (size_t)p->id[i];
+    for (int d = 0; d < 3; d++)
+      o[d] = p->pos[d][i], o[3 + d] = p->vel[d][i];
+    o[6] = p->kind[i] == SPH_KIND_FLUID ? p->p[i] : NAN;
+  }
+  return out;
+}
+
 /* Runs CASE3 with the corrected gradient to t = t_end (1 s: the floor sensor's statistics above
- * are this run's); the particles' state by id into out (x, y, z, vx, vy, vz, p: 7 per particle),
- * their count into *n. */
-static void run(double t_end, double **out, size_t *n) {
+ * are this run's), stepping to t_mid exactly on the way (where 0 < t_mid < t_end); the particles'
+ * state by id at t_end into out, at t_mid into mid (NULL: not wanted), their count into *n. */
+static void run(double t_end, double t_mid, double **out, double **mid, size_t *n) {
   sph_case c;
   sph_error err;
   CU_ASSERT_FATAL(parse(CASE3, CORRECTED, 1, &c, &err) == 0);
@@ -272,10 +285,12 @@ static void run(double t_end, double **out, size_t *n) {
   size_t count = 0;
   floor_start = floor_worst = 0.0;
   while (sph_sim_time(s) < t_end) {
-    const int rc = sph_sim_step(s, t_end, &err);
+    const double to = t_mid > 0.0 && sph_sim_time(s) < t_mid ? t_mid : t_end;
+    const int rc = sph_sim_step(s, to, &err);
     if (rc) printf("\n    step: %s", err.msg);
     CU_ASSERT_FATAL(rc == 0);
     const double t = sph_sim_time(s);
+    if (mid && t == t_mid) *mid = state_by_id(sph_sim_particles(s));
     if (t < 0.05) continue;
     double v;
     sph_probe_read(&fs, sph_sim_particles(s), c.kernel, c.h, c.dx, sph_sim_floor(s), c.gravity, &v);
@@ -290,13 +305,7 @@ static void run(double t_end, double **out, size_t *n) {
   floor_mean = sum / (double)count;
   sph_particles *p = sph_sim_particles(s);
   *n = p->n;
-  *out = calloc(7 * p->n, sizeof **out);
-  for (size_t i = 0; i < p->n; i++) {
-    double *o = *out + 7 * (size_t)p->id[i];
-    for (int d = 0; d < 3; d++)
-      o[d] = p->pos[d][i], o[3 + d] = p->vel[d][i];
-    o[6] = p->kind[i] == SPH_KIND_FLUID ? p->p[i] : NAN;
-  }
+  *out = state_by_id(p);
   printf("\n    %zu particles, %ld steps", p->n, sph_sim_steps(s));
   /* the 3-D probes on the final state: a floor sensor (normal up, 20 mm), a
    * level gauge at the centre, a velocity probe mid-depth */
@@ -313,9 +322,14 @@ static void run(double t_end, double **out, size_t *n) {
 }
 
 static void test_still_water(void) {
-  double *a, *b;
+  double *a, *b, *mid = NULL;
   size_t n, m;
-  run(1.0, &a, &n);
+#ifdef _OPENMP
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(1); /* (the state at 0.3 s is compared with two threads' below) */
+#endif
+  run(1.0, 0.3, &a, &mid, &n);
+  CU_ASSERT_FATAL(mid != NULL);
   const double rho0 = 1000.0, g = 9.81, H = 0.1, dx = 0.01;
   double sum = 0.0, want = 0.0, vmax = 0.0, top = -INFINITY, bottom = INFINITY;
   size_t fluid = 0, floor_n = 0;
@@ -382,20 +396,17 @@ static void test_still_water(void) {
             0.02 * sqrt(g * H));
   free(a);
 #ifdef _OPENMP
-  /* the same bits on two threads and on one, through the start's acoustic transient (0.3 s):
-   * the run above is make check's one thread, and the whole second each way would double the
-   * test's time */
-  const int saved = omp_get_max_threads();
+  /* the same bits on two threads as the run above on one (make check's), through the start's
+   * acoustic transient (0.3 s, where the run above stopped on its way): the whole second on two
+   * threads would add as much again to the test's time */
   omp_set_num_threads(2);
-  run(0.3, &a, &n);
-  omp_set_num_threads(1);
-  run(0.3, &b, &m);
+  run(0.3, 0.0, &b, NULL, &m);
   omp_set_num_threads(saved);
   CU_ASSERT_EQUAL(m, n);
-  CU_ASSERT(m == n && memcmp(a, b, 7 * n * sizeof *a) == 0);
-  free(a);
+  CU_ASSERT(m == n && memcmp(mid, b, 7 * n * sizeof *b) == 0);
   free(b);
 #endif
+  free(mid);
 }
 
 /* Steps s to t (the step reaching t exactly). */
@@ -504,7 +515,7 @@ static void test_snapshots(void) {
   CU_ASSERT_FATAL(parse(CASE3, lf, 2, &c, &err) == 0);
   sph_sim *s = NULL, *r = NULL;
   CU_ASSERT_FATAL(sph_sim_create(&c, &s, &err) == 0);
-  step_to(s, 0.5);
+  step_to(s, 0.2);
   char *dir = sph_test_tmpdir(), path[4200], xmf[4200];
   snprintf(path, sizeof path, "%s/snap_0001.h5", dir);
   snprintf(xmf, sizeof xmf, "%s/snapshots.xmf", dir);
@@ -529,7 +540,7 @@ static void test_snapshots(void) {
   sph_particles_free(&q);
   sph_snapshot_close(snap);
   const char *names[1] = {"snap_0001.h5"};
-  const double times[1] = {0.5};
+  const double times[1] = {0.2};
   const size_t np = sph_sim_particles(s)->n;
   CU_ASSERT_FATAL(sph_xdmf_write(xmf, 1, names, times, &np, 0, &err) == 0);
   char *text = sph_test_read_file(xmf, NULL), dims[64];
@@ -538,8 +549,8 @@ static void test_snapshots(void) {
   CU_ASSERT_PTR_NOT_NULL(text && strstr(text, dims));
   free(text);
   free(a);
-  /* continued, and restored from the snapshot: the same bits at 0.6 s */
-  step_to(s, 0.6);
+  /* continued, and restored from the snapshot: the same bits at 0.3 s */
+  step_to(s, 0.3);
   a = state(s);
   CU_ASSERT_FATAL(sph_sim_create(&c, &r, &err) == 0);
   sph_snapshot_restart_data rd;
@@ -549,11 +560,11 @@ static void test_snapshots(void) {
   /* its per-particle arrays, in the store by then, released before the pass */
   CU_ASSERT(rd.order == NULL && rd.vxh == NULL && rd.vzh == NULL && rd.rhoh == NULL);
   sph_snapshot_restart_free(&rd);
-  step_to(r, 0.6);
+  step_to(r, 0.3);
   double *b = state(r);
   const size_t n = sph_sim_particles(s)->n;
   CU_ASSERT(memcmp(a, b, 7 * n * sizeof *a) == 0);
-  printf("\n    restart at 0.5 s: %s at 0.6 s",
+  printf("\n    restart at 0.2 s: %s at 0.3 s",
          memcmp(a, b, 7 * n * sizeof *a) ? "differs" : "identical");
   free(a);
   free(b);
