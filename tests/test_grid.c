@@ -566,6 +566,88 @@ static void test_list_brute_force(void) {
   sph_particles_free(&p);
 }
 
+/* Rows left empty by id (grid.h, no_row: a rank's farther ghosts): those
+ * rows hold nothing, every other row is the row of the list built without
+ * it, and the empty rows' particles are still listed in the others. */
+static void test_list_no_row(void) {
+  sph_particles p;
+  random_store(&p, 900, 0.2);
+  unsigned char *no_row = calloc(p.n, 1);
+  CU_ASSERT_FATAL(no_row != NULL);
+  for (size_t k = 0; k < p.n; k += 3)
+    no_row[k] = 1;
+  sph_grid g;
+  sph_grid_init(&g);
+  sph_nlist a, b;
+  sph_nlist_init(&a);
+  sph_nlist_init(&b);
+  sph_error err;
+  CU_ASSERT_FATAL(sph_grid_build(&g, &p, 0.024, 1u << 24, &err) == 0);
+  CU_ASSERT_FATAL(sph_nlist_build(&a, &g, &p, 0.02, 0.004, 0.0, &err) == 0);
+  b.no_row = no_row, b.no_row_n = p.n;
+  CU_ASSERT_FATAL(sph_nlist_build(&b, &g, &p, 0.02, 0.004, 0.0, &err) == 0);
+  CU_ASSERT(sph_nlist_check(&b, &p, 0.02) == NULL);
+  size_t bad = 0, empty = 0, listed_empty = 0;
+  for (size_t i = 0; i < p.n; i++) {
+    size_t na, nb;
+    const uint32_t *ra = sph_nlist_row(&a, i, &na);
+    uint32_t row[4096];
+    CU_ASSERT_FATAL(na < 4096);
+    memcpy(row, ra, na * sizeof *row);
+    const uint32_t *rb = sph_nlist_row(&b, i, &nb);
+    if (no_row[p.id[i]]) {
+      empty++;
+      bad += nb != 0;
+      continue;
+    }
+    bad += nb != na || (na && memcmp(row, rb, na * sizeof *row) != 0);
+    for (size_t k = 0; k < nb; k++)
+      listed_empty += no_row[p.id[rb[k]]];
+  }
+  CU_ASSERT_EQUAL(bad, 0);
+  CU_ASSERT(empty == (p.n + 2) / 3);
+  CU_ASSERT(listed_empty > 0);
+  sph_nlist_free(&a);
+  sph_nlist_free(&b);
+  sph_grid_free(&g);
+  free(no_row);
+  sph_particles_free(&p);
+}
+
+/* The store's arrays by name, and a store gathered from another and put
+ * back array by array (solver/ranks.c): the arrays asked for, the others
+ * left as they were, and the arrays in which a value changed. */
+static void test_gather_put(void) {
+  const unsigned long long x = sph_particles_array_bits("x"), rho = sph_particles_array_bits("rho");
+  CU_ASSERT(x != 0 && rho != 0 && (x & rho) == 0);
+  CU_ASSERT((x & sph_particles_array_bits("x0 xsx xr")) == 0); /* whole words only */
+  CU_ASSERT(sph_particles_array_bits("x rho") == (x | rho));
+  CU_ASSERT(sph_particles_array_bits("no such array") == 0);
+  sph_particles p, q;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 4, &err) == 0);
+  CU_ASSERT_FATAL(sph_particles_init(&q, 4, &err) == 0);
+  for (int i = 0; i < 50; i++)
+    sph_particles_add(&p, i, -i, 2 * i, 3 * i, 1000 + i, 1, 0.5, SPH_KIND_FLUID, &err);
+  const size_t which[3] = {5, 17, 42}, at[3] = {0, 1, 2};
+  CU_ASSERT_FATAL(sph_particles_gather(&q, &p, which, 3, SPH_PARTICLES_ALL, &err) == 0);
+  CU_ASSERT(q.n == 3 && q.x[1] == 17 && q.vy[2] == 126 && q.id[0] == 5 && q.rho[2] == 1042);
+  q.vx[0] = -1.0; /* not gathered below: left as it is */
+  p.x[5] = 500.0, p.rho[5] = 7.0;
+  CU_ASSERT_FATAL(sph_particles_gather(&q, &p, which, 3, x, &err) == 0);
+  CU_ASSERT(q.x[0] == 500.0 && q.rho[0] == 1005.0 && q.vx[0] == -1.0);
+  /* back into p: only the arrays asked for, and which of them changed */
+  q.rho[1] = 9.0, q.vx[1] = 9.0;
+  CU_ASSERT(sph_particles_put(&p, which, &q, at, 3, rho | x, 1) == rho);
+  CU_ASSERT(p.rho[17] == 9.0 && p.vx[17] == 34.0 && p.rho[5] == 1005.0 && p.x[5] == 500.0);
+  CU_ASSERT(sph_particles_put(&p, which, &q, at, 3, rho | x, 1) == 0);
+  q.rho[2] = 1.0;
+  CU_ASSERT(sph_particles_put(&p, which, &q, at, 3, SPH_PARTICLES_ALL, 0) == 0);
+  CU_ASSERT(p.rho[42] == 1.0 && p.vx[17] == 9.0);
+  sph_particles_free(&p);
+  sph_particles_free(&q);
+}
+
 /* The counting sort on teams of 1 to 3 threads (one histogram per thread
  * when the store is above the serial threshold and has more particles
  * than cells): the same permutation and cell offsets, and each cell's
@@ -821,6 +903,8 @@ int main(void) {
       {"periodic grid, longer periods, against brute force", test_periodic_long},
       {"periodic grid refuses a period under 3 cells", test_periodic_too_short},
       {"neighbour list equals brute force (sorted, binned, periodic)", test_list_brute_force},
+      {"rows left empty by id: the others unchanged", test_list_no_row},
+      {"the store gathered and put back array by array", test_gather_put},
       {"neighbour list: fresh within skin/2, stale beyond or reordered", test_list_fresh},
       {"a run is byte-identical for any skin, the run-time loop and every lane flavour",
        test_run_any_skin},

@@ -145,22 +145,73 @@ void sph_particles_move(sph_particles *p, size_t to, size_t from) {
 
 int sph_particles_take(sph_particles *to, const sph_particles *from, const unsigned char *mark,
                        sph_error *err) {
+  size_t *which = malloc((from->n ? from->n : 1) * sizeof *which);
+  if (!which) return sph_error_set(err, "out of memory for a store's %zu indices", from->n);
+  size_t k = 0;
+  for (size_t i = 0; i < from->n; i++)
+    if (mark[i]) which[k++] = i;
+  const int rc = sph_particles_gather(to, from, which, k, SPH_PARTICLES_ALL, err);
+  free(which);
+  return rc;
+}
+
+int sph_particles_gather(sph_particles *to, const sph_particles *from, const size_t *which,
+                         size_t k, unsigned long long arrays, sph_error *err) {
   to->n = 0;
   to->live = from->live;
   to->order++;
-  if (to->cap < from->n && grow(to, from->n, err)) return -1;
-  size_t k = 0;
-  for (size_t i = 0; i < from->n; i++) {
-    if (!mark[i]) continue;
-#define TAKE(field, g)                                                                             \
-  if (live(from, g)) to->field[k] = from->field[i];
-    SPH_PARTICLE_DOUBLES(TAKE)
-    SPH_PARTICLE_OTHERS(TAKE)
-#undef TAKE
-    k++;
-  }
+  if (to->cap < k && grow(to, k, err)) return -1;
+  /* array by array: each a stream of reads and one of writes */
+  int b = 0;
+#define GATHER(field, g)                                                                           \
+  if (live(from, g) && (arrays >> b & 1))                                                          \
+    for (size_t q = 0; q < k; q++)                                                                 \
+      to->field[q] = from->field[which[q]];                                                        \
+  b++;
+  SPH_PARTICLE_DOUBLES(GATHER)
+  SPH_PARTICLE_OTHERS(GATHER)
+#undef GATHER
   to->n = k;
   return 0;
+}
+
+unsigned long long sph_particles_put(sph_particles *to, const size_t *at, const sph_particles *from,
+                                     const size_t *which, size_t k, unsigned long long arrays,
+                                     int compare) {
+  unsigned long long d = 0;
+  int b = 0;
+  /* array by array; a value differs if one of its bytes does */
+#define PUT(field, g)                                                                              \
+  if (live(from, g) && live(to, g) && (arrays >> b & 1)) {                                         \
+    int differ = 0;                                                                                \
+    for (size_t q = 0; q < k; q++) {                                                               \
+      if (compare && !differ)                                                                      \
+        differ = memcmp(&to->field[at[q]], &from->field[which[q]], sizeof *to->field) != 0;        \
+      to->field[at[q]] = from->field[which[q]];                                                    \
+    }                                                                                              \
+    if (differ) d |= 1ull << b;                                                                    \
+  }                                                                                                \
+  b++;
+  SPH_PARTICLE_DOUBLES(PUT)
+  SPH_PARTICLE_OTHERS(PUT)
+#undef PUT
+  return d;
+}
+
+unsigned long long sph_particles_array_bits(const char *names) {
+  unsigned long long d = 0;
+  int b = 0;
+  /* each name of the list that is a whole word of it */
+#define NAMED(field, g)                                                                            \
+  for (const char *at = strstr(names, #field); at; at = strstr(at + 1, #field)) {                  \
+    const char after = at[sizeof #field - 1];                                                      \
+    if ((at == names || at[-1] == ' ') && (after == ' ' || after == '\0')) d |= 1ull << b;         \
+  }                                                                                                \
+  b++;
+  SPH_PARTICLE_DOUBLES(NAMED)
+  SPH_PARTICLE_OTHERS(NAMED)
+#undef NAMED
+  return d;
 }
 
 void sph_particles_copy_one(sph_particles *to, size_t j, const sph_particles *from, size_t i) {

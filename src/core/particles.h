@@ -150,6 +150,24 @@ void sph_particles_move(sph_particles *p, size_t to, size_t from);
  * needed. 0, or -1 with err out of memory. */
 int sph_particles_take(sph_particles *to, const sph_particles *from, const unsigned char *mark,
                        sph_error *err);
+/* Makes `to` hold the k particles which[0..k) of `from`, in that order,
+ * with the arrays `from` has live (ids kept), array by array: of those in
+ * the set `arrays` (bits as sph_particles_array_bits gives them) their
+ * values, the others left as they were (stale); grows `to` if needed. 0,
+ * or -1 with err out of memory. */
+int sph_particles_gather(sph_particles *to, const sph_particles *from, const size_t *which,
+                         size_t k, unsigned long long arrays, sph_error *err);
+/* For q < k, particle which[q] of `from` into index at[q] of `to`: the
+ * arrays of the set `arrays` live in both, array by array. With compare,
+ * returns the arrays in which some particle's value was not the one it
+ * gets, byte for byte; else 0. */
+unsigned long long sph_particles_put(sph_particles *to, const size_t *at, const sph_particles *from,
+                                     const size_t *which, size_t k, unsigned long long arrays,
+                                     int compare);
+/* The set of the arrays named in `names` (field names of sph_particles
+ * separated by spaces: "x vx rho"), a bit each in the order of
+ * sph_particles_differ; names that are no array are ignored. */
+unsigned long long sph_particles_array_bits(const char *names);
 /* Copies particle i of `from` to index j of `to`: every array live in both. */
 void sph_particles_copy_one(sph_particles *to, size_t j, const sph_particles *from, size_t i);
 /* A particle as one record of bytes (every live array's entry, in the

@@ -208,22 +208,26 @@ static void dilate(const cellbox *b, int a, int wrap, int depth, const unsigned 
 }
 
 long sph_decomp_halo(const sph_decomp_grid *g, const sph_particles *p, const uint64_t *keys,
-                     const uint64_t *first, int ranks, int rank, int depth, unsigned char *mark,
-                     sph_error *err) {
+                     const uint64_t *first, int ranks, int rank, int depth, int row_depth,
+                     unsigned char *mark, sph_error *err) {
   const int64_t half = (int64_t)1 << (SPH_DECOMP_BITS - 1);
   cellbox b;
   int64_t hi[SPH_DIM];
   for (int a = 0; a < SPH_DIM; a++)
     b.lo[a] = INT64_MAX, hi[a] = INT64_MIN;
+  /* each particle's cell, found once */
+  uint32_t(*at)[SPH_DIM] = malloc((p->n ? p->n : 1) * sizeof *at);
+  if (!at) return sph_error_set(err, "decomposition: out of memory for the halo"), -1;
   for (size_t i = 0; i < p->n; i++) {
-    uint32_t c[SPH_DIM];
-    if (particle_cell(g, p, i, c))
+    if (particle_cell(g, p, i, at[i])) {
+      free(at);
       return sph_error_set(err, "decomposition: particle %lld is outside the curve's reach",
                            (long long)p->id[i]),
              -1;
+    }
     for (int a = 0; a < SPH_DIM; a++) {
-      if (c[a] < b.lo[a]) b.lo[a] = c[a];
-      if (c[a] > hi[a]) hi[a] = c[a];
+      if (at[i][a] < b.lo[a]) b.lo[a] = at[i][a];
+      if (at[i][a] > hi[a]) hi[a] = at[i][a];
     }
   }
   b.total = p->n ? 1 : 0;
@@ -232,31 +236,37 @@ long sph_decomp_halo(const sph_decomp_grid *g, const sph_particles *p, const uin
     b.n[a] = (size_t)(hi[a] - b.lo[a] + 1);
     b.total *= b.n[a];
   }
-  unsigned char *cells = calloc(2 * (b.total ? b.total : 1), 1);
-  if (!cells) return sph_error_set(err, "decomposition: out of memory for the halo"), -1;
-  unsigned char *other = cells + b.total;
+  if (row_depth > depth) row_depth = depth;
+  unsigned char *block = calloc(3 * (b.total ? b.total : 1), 1);
+  if (!block) {
+    free(at);
+    return sph_error_set(err, "decomposition: out of memory for the halo"), -1;
+  }
+  unsigned char *cells = block, *other = block + b.total, *rows = block + 2 * b.total;
   for (size_t i = 0; i < p->n; i++) {
     mark[i] = sph_decomp_owner(first, ranks, keys[i]) == rank;
-    if (!mark[i]) continue;
-    uint32_t c[SPH_DIM];
-    particle_cell(g, p, i, c);
-    cells[box_index(&b, c)] = 1;
+    if (mark[i]) cells[box_index(&b, at[i])] = 1;
   }
-  /* the 3^D block and beyond, within depth cells: one axis at a time (the
-   * box's edges hold no particle beyond its last cells, so clipping there
-   * loses none) */
-  for (int a = 0; a < SPH_DIM; a++) {
-    dilate(&b, a, g->periodic == 1 + a, depth, cells, other);
-    unsigned char *t = cells;
-    cells = other, other = t;
+  /* the 3^D block and beyond, within row_depth cells, then within depth:
+   * one axis at a time (the box's edges hold no particle beyond its last
+   * cells, so clipping there loses none; a dilation by r then by s is one
+   * by r + s) */
+  for (int step = 0; step < 2; step++) {
+    const int by = step == 0 ? row_depth : depth - row_depth;
+    for (int a = 0; a < SPH_DIM && by > 0; a++) {
+      dilate(&b, a, g->periodic == 1 + a, by, cells, other);
+      unsigned char *t = cells;
+      cells = other, other = t;
+    }
+    if (step == 0) memcpy(rows, cells, b.total);
   }
   long ghosts = 0;
   for (size_t i = 0; i < p->n; i++) {
     if (mark[i]) continue;
-    uint32_t c[SPH_DIM];
-    particle_cell(g, p, i, c);
-    if (cells[box_index(&b, c)]) mark[i] = 2, ghosts++;
+    const size_t k = box_index(&b, at[i]);
+    if (cells[k]) mark[i] = rows[k] ? 2 : 3, ghosts++;
   }
-  free(cells < other ? cells : other);
+  free(block);
+  free(at);
   return ghosts;
 }

@@ -365,8 +365,11 @@ void sph_nlist_free(sph_nlist *l) {
 
 void sph_nlist_release(sph_nlist *l) {
   const int fluid_only = l->wall_fluid_only;
+  const unsigned char *no_row = l->no_row;
+  const size_t no_row_n = l->no_row_n;
   sph_nlist_free(l);
   l->wall_fluid_only = fluid_only;
+  l->no_row = no_row, l->no_row_n = no_row_n;
 }
 
 /* The candidate ranges of particle i (sph_grid_ranges_all); with f (the fluid particles before
@@ -600,6 +603,13 @@ static inline int fluid_only_row(const sph_nlist *l, const sph_particles *p, siz
   return l->wall_fluid_only && p->kind[i] != SPH_KIND_FLUID;
 }
 
+/* Whether particle i's row is left empty (grid.h, no_row). */
+static inline int empty_row(const sph_nlist *l, const sph_particles *p, size_t i) {
+  if (!l->no_row) return 0;
+  const int64_t id = p->id[i];
+  return id >= 0 && (uint64_t)id < l->no_row_n && l->no_row[id];
+}
+
 /* Keeps the fluid particles among row's c entries, in order; returns how
  * many (the rows fluid_only_row names). */
 static inline uint32_t keep_fluid(uint32_t *restrict row, uint32_t c,
@@ -685,6 +695,7 @@ static int size_rows(sph_nlist *l, const sph_grid *g, const sph_particles *p,
     for (long li = 0; li < ln; li++) {
       if (!scratch) continue;
       /* (in 2-D only counted: four bytes an entry whatever their order) */
+      if (empty_row(l, p, (size_t)li)) continue;
       const int keep = fluid_only_row(l, p, (size_t)li);
       uint32_t c =
           fill_rows(g, x, (size_t)li, r2max, period, SPH_NLIST_RUNS || keep ? scratch : NULL,
@@ -789,7 +800,9 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
       size_t bytes = 0;
       for (size_t i = a; i < b && !oom; i++) {
         const int keep = fluid_only_row(l, p, i);
-        uint32_t c = fill_sorted(g, x, i, r2max, period, scratch, sorted, wide, keep ? f : NULL);
+        uint32_t c = empty_row(l, p, i) ? 0
+                                        : fill_sorted(g, x, i, r2max, period, scratch, sorted, wide,
+                                                      keep ? f : NULL);
         if (keep) c = keep_fluid(scratch, c, p->kind);
         const size_t sz = runs_size(scratch, c, 1);
         if (bytes + sz > cap) {
@@ -974,7 +987,7 @@ const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double s
       const double r2ij = SPH_NORM2(dx, dy, dz);
       while (k < l->count[i] && row[k] < j)
         k++;
-      if (j == i || !(r2ij < r2)) continue;
+      if (j == i || !(r2ij < r2) || empty_row(l, p, i)) continue;
       if (fluid_only_row(l, p, i) && p->kind[j] != SPH_KIND_FLUID)
         continue; /* a wall row's walls: not listed (wall_fluid_only) */
       if (k == l->count[i] || row[k] != j) {

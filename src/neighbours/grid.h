@@ -281,6 +281,11 @@ typedef struct sph_nlist {
                           fluid neighbours only (a fluid particle's every neighbour), for
                           schemes where a wall-wall pair adds +-0 to every sum of a wall row
                           (sim.c, wall_rows_fluid_only; doc/memory.md) */
+  const unsigned char *no_row; /* set by the caller before a build, or NULL: the particles of
+                                  id k < no_row_n with no_row[k] set get an empty row (a rank's
+                                  ghosts beyond the reach of its own particles' chains of
+                                  passes: solver/ranks.c); other rows list them as before */
+  size_t no_row_n;
   size_t cap_n, cap_rows;
   uint32_t *dec;     /* per thread a row written out (sph_nlist_row): dec_stride entries each */
   size_t dec_stride; /* maxcount + SPH_NLIST_SLACK */
@@ -293,8 +298,8 @@ typedef struct sph_nlist {
 
 void sph_nlist_init(sph_nlist *l);
 void sph_nlist_free(sph_nlist *l);
-/* Frees l's arrays and keeps what its caller set (wall_fluid_only): an
- * empty list that the next build fills as the first. */
+/* Frees l's arrays and keeps what its caller set (wall_fluid_only,
+ * no_row): an empty list that the next build fills as the first. */
 void sph_nlist_release(sph_nlist *l);
 
 /* Builds the list of p from g (built or binned on p's current positions

@@ -48,6 +48,20 @@
 #define SPH_RANKS_DEPTH 2
 #define SPH_RANKS_CELL 1.0
 
+int sph_sim_ranks_row_depth(const sph_sim *s, int depth) {
+  const sph_force_params *fp = &s->fp;
+  /* passes before the main one that write a value from a row (a dynamic
+   * wall's bounded density, an Adami wall's pressure, free-surface flags) */
+  const int writes = s->walls.dbc || s->walls.adami || s->detect;
+  /* passes before the main one that read a neighbour's such value in a row
+   * of their own (the strain rate's and the moments' volumes, Antuono's
+   * density gradient, the free-surface scan) */
+  const int reads = fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps ||
+                    fp->gradient_correction || fp->corrected_gradient ||
+                    fp->diffusion == SPH_DIFFUSION_ANTUONO || s->detect;
+  return writes && reads ? depth : 1;
+}
+
 /* The cut's weights of a fluid and a wall particle: a wall particle's rows
  * cost little beside a fluid one's (SPHERIC Test 2 in 3-D, dx = 0.02 m, 2
  * processes: weights 4 and 1 left their interaction loops at 4.9 and 6.0 s,
@@ -83,6 +97,12 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   s->sub->work.skip_ghosts = 1;
   s->ranks = ranks;
   s->self = self;
+  /* what a pass reads: all but the integrator's saved state and the rates; what it writes: the
+   * rates, the walls' densities and pressures (and a dynamic wall's half-step density), the
+   * smoothing lengths (from the free-surface flags) and the flags */
+  s->pass_in = SPH_PARTICLES_ALL & ~sph_particles_array_bits(
+                                       "x0 y0 z0 vx0 vy0 vz0 rho0 u0 ax ay az drho du xsx xsy xsz");
+  s->pass_out = sph_particles_array_bits("ax ay az drho du xsx xsy xsz rho p h rhoh flags");
   /* SPH_TEST_RANK_ORDER_SUMS=1 (doc/testing.md): the ledger's sums made the
    * way that depends on the rank count, for the test that must see it */
   const char *e = getenv("SPH_TEST_RANK_ORDER_SUMS");
@@ -98,18 +118,39 @@ void sph_sim_ranks_free(sph_sim *s) {
   free(s->keys);
   free(s->mark);
   free(s->from);
+  free(s->own_sub);
+  free(s->own_whole);
+  s->own_sub = s->own_whole = NULL;
   free(s->owner);
   free(s->records);
   free(s->reports);
   free(s->mark_last);
   free(s->weight);
+  free(s->no_row);
+  s->no_row = NULL, s->cap_no_row = 0;
   s->weight = NULL;
   s->reports = NULL, s->mark_last = NULL, s->n_mark_last = 0;
   s->sub = NULL, s->keys = NULL, s->mark = NULL, s->from = NULL, s->cap_ranks = 0;
   s->owner = NULL, s->records = NULL, s->cap_records = 0;
 }
 
+/* Room for the marks by id (s->no_row) of every particle of s's store. */
+static int reserve_no_row(sph_sim *s, sph_error *err) {
+  const sph_particles *p = &s->p;
+  int64_t top = -1;
+  for (size_t i = 0; i < p->n; i++)
+    if (p->id[i] > top) top = p->id[i];
+  const size_t need = (size_t)(top + 1);
+  if (need <= s->cap_no_row) return 0;
+  unsigned char *a = realloc(s->no_row, need);
+  if (!a) return sph_error_set(err, "out of memory for the ranks' rows");
+  memset(a + s->cap_no_row, 0, need - s->cap_no_row);
+  s->no_row = a, s->cap_no_row = need;
+  return 0;
+}
+
 static int reserve(sph_sim *s, size_t n, sph_error *err) {
+  if (reserve_no_row(s, err)) return -1;
   if (n <= s->cap_ranks) return 0;
   uint64_t *k = realloc(s->keys, n * sizeof *k);
   if (k) s->keys = k;
@@ -117,13 +158,17 @@ static int reserve(sph_sim *s, size_t n, sph_error *err) {
   if (m) s->mark = m;
   size_t *f = realloc(s->from, n * sizeof *f);
   if (f) s->from = f;
+  size_t *os = realloc(s->own_sub, n * sizeof *os);
+  if (os) s->own_sub = os;
+  size_t *ow = realloc(s->own_whole, n * sizeof *ow);
+  if (ow) s->own_whole = ow;
   unsigned char *o = s->self >= 0 ? realloc(s->owner, n) : s->owner;
   if (o) s->owner = o;
   unsigned char *l = s->self >= 0 ? realloc(s->mark_last, n) : s->mark_last;
   if (l) s->mark_last = l;
   uint32_t *w = realloc(s->weight, n * sizeof *w);
   if (w) s->weight = w;
-  if (!k || !m || !f || !w || (s->self >= 0 && (!o || !l)))
+  if (!k || !m || !f || !os || !ow || !w || (s->self >= 0 && (!o || !l)))
     return sph_error_set(err, "out of memory for the ranks' cut");
   s->cap_ranks = n;
   return 0;
@@ -159,8 +204,10 @@ static int covered(sph_sim *s, int resort) {
   const sph_particles *p = &s->p;
   int cover = !resort && s->n_mark_last == p->n && s->order_last == p->order;
   for (size_t i = 0; cover && i < p->n; i++) {
+    /* own the same; a ghost that needs a row had one, a ghost that is a
+     * neighbour only was there */
     const unsigned char now = s->mark[i], was = s->mark_last[i];
-    cover = (now == 1) == (was == 1) && (now != 2 || was != 0);
+    cover = (now == 1) == (was == 1) && (now != 2 || was == 2) && (now != 3 || was >= 2);
   }
   if (cover) memcpy(s->mark, s->mark_last, p->n);
   return cover;
@@ -175,23 +222,30 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
   const sph_case *c = s->c;
   sph_particles *p = &s->p;
   sph_sim *r = s->sub;
-  if (sph_decomp_halo(g, p, s->keys, first, s->ranks, rank, s->depth, s->mark, err) < 0) return -1;
+  const int rows = sph_sim_ranks_row_depth(s, s->depth);
+  if (sph_decomp_halo(g, p, s->keys, first, s->ranks, rank, s->depth, rows, s->mark, err) < 0)
+    return -1;
   const int same = s->self >= 0 && covered(s, resort);
   if (s->self >= 0 && !same) {
-    /* one cell more than it needs: a particle then crosses a whole cell
-     * before the store must be taken anew */
-    if (sph_decomp_halo(g, p, s->keys, first, s->ranks, rank, s->depth + 1, s->mark, err) < 0)
+    /* one cell more than it needs, of ghosts and of rows: a particle then
+     * crosses a whole cell before the store must be taken anew */
+    if (sph_decomp_halo(g, p, s->keys, first, s->ranks, rank, s->depth + 1, rows + 1, s->mark,
+                        err) < 0)
       return -1;
     memcpy(s->mark_last, s->mark, p->n);
     s->n_mark_last = p->n, s->order_last = p->order;
   }
-  if (sph_particles_take(&r->p, in, s->mark, err)) return -1;
-  size_t k = 0;
+  size_t k = 0, own = 0;
   for (size_t i = 0; i < p->n; i++)
     if (s->mark[i]) {
-      if (s->mark[i] == 2) r->p.flags[k] |= SPH_FLAG_GHOST;
+      s->no_row[p->id[i]] = s->mark[i] == 3;
+      if (s->mark[i] == 1) s->own_sub[own] = k, s->own_whole[own++] = i;
       s->from[k++] = i;
     }
+  if (sph_particles_gather(&r->p, in, s->from, k, s->pass_in, err)) return -1;
+  for (size_t j = 0; j < k; j++)
+    if (s->mark[s->from[j]] >= 2) r->p.flags[j] |= SPH_FLAG_GHOST;
+  r->nl.no_row = s->no_row, r->nl.no_row_n = s->cap_no_row;
   r->t = s->t, r->t_walls = s->t_walls, r->t_saved = s->t_saved;
   r->steps = s->steps, r->last_dt = s->last_dt, r->first_step = s->first_step;
   r->resort = resort;
@@ -205,19 +259,16 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
   if (r->p.n != k)
     return sph_error_set(err, "ranks: rank %d's store holds %zu particles after its pass, not %zu",
                          rank, r->p.n, k);
-  size_t own = 0;
   if (r->own_cs_max > t->cs_max) t->cs_max = r->own_cs_max;
   if (s->fp.ledger) sph_ledger_sums_merge(&t->ledger, &r->own_ledger);
-  for (size_t j = 0; j < k; j++) {
-    const size_t i = s->from[j];
-    if (r->p.id[j] != p->id[i])
+  for (size_t j = 0; j < k; j++)
+    if (r->p.id[j] != p->id[s->from[j]])
       return sph_error_set(err, "ranks: rank %d's pass reordered its store", rank);
-    if (s->mark[i] != 1) continue; /* a ghost: its own rank writes it */
-    own++;
-    if (s->self >= 0) s->changed |= sph_particles_differ(p, i, &r->p, j);
-    sph_particles_copy_one(p, i, &r->p, j);
-    t->surface += (r->p.flags[j] & SPH_FLAG_FREE_SURFACE) != 0;
-  }
+  /* its own particles back (a ghost's own rank writes it), array by array */
+  s->changed |=
+      sph_particles_put(p, s->own_whole, &r->p, s->own_sub, own, s->pass_out, s->self >= 0);
+  for (size_t q = 0; q < own; q++)
+    t->surface += (p->flags[s->own_whole[q]] & SPH_FLAG_FREE_SURFACE) != 0;
   s->fig_passes++;
   s->fig_own += (double)own;
   s->fig_ghosts += (double)(k - own);

@@ -76,8 +76,12 @@ struct sph_sim {
   double hmax_all;      /* > 0: the largest h of the whole store (a rank's store's h_max) */
   uint64_t *keys;
   unsigned char *mark;
-  size_t *from; /* the whole store's index of each particle of sub */
+  size_t *from;                /* the whole store's index of each particle of sub */
+  size_t *own_sub, *own_whole; /* the rank's own particles: their index in sub, in the store */
+  unsigned long long pass_in, pass_out; /* the arrays a pass reads, and those it may write */
   size_t cap_ranks;
+  unsigned char *no_row; /* by id: a ghost of sub's with an empty row (sub's list: grid.h) */
+  size_t cap_no_row;
   /* the rank this process makes (procs.h), or -1: every rank, one after
    * the other (SPH_TEST_RANKS); then each particle's rank, and the records
    * the processes share */
@@ -109,6 +113,18 @@ struct sph_sim {
  * them: 0, or -1 with err (ranks.c). */
 int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err);
 void sph_sim_ranks_free(sph_sim *s);
+/* How many cells deep a rank's ghosts get rows of their own in its
+ * neighbour list (ranks.c; the others, within `depth` cells, are there as
+ * neighbours only, their rows empty: grid.h, no_row). One cell (a support)
+ * reaches every ghost whose row's result a rank's own particles read (a
+ * wall's Adami pressure or bounded density, a free-surface flag, a strain
+ * rate, the moments of the corrected gradient); where a pass before the
+ * main one reads, in a row of its own, a value another such pass wrote
+ * from a row (the strain rate's volumes m/rho of dynamic walls whose
+ * density was bounded from their rows), a chain is a support longer, and
+ * every ghost gets its row. tests/test_decomp measures the least depth on
+ * every scheme it runs. */
+int sph_sim_ranks_row_depth(const sph_sim *s, int depth);
 /* One pass of the whole store made as the ranks make it, hmax the store's
  * largest smoothing length (ranks.c). */
 int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err);
