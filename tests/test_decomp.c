@@ -243,16 +243,16 @@ static void test_emulated_ranks(void) {
     int least = SPH_HALO_DEPTH;
     while (least > 0 && emulate(rel, set, least - 1, least - 1, 1) == 0)
       least--;
+    printf("\n  %s: the least depth with the same bits: %d cell(s)", rel, least);
+    CU_ASSERT(least > 0);
+    if (SPH_DIM == 3) continue; /* (the rows' search in 2-D: in 3-D it would take a minute) */
     int rows = given;
     while (rows > 0 && emulate(rel, set, SPH_HALO_DEPTH, rows - 1, 1) == 0)
       rows--;
-    printf("\n  %s: the least depth with the same bits: %d cell(s); rows %d cell(s) deep (the "
-           "solver's: %d)",
-           rel, least, rows, given);
-    CU_ASSERT(least > 0);
+    printf("; rows %d cell(s) deep (the solver's: %d)", rows, given);
     need_rows += rows > 0;
   }
-  CU_ASSERT(need_rows > 0);
+  CU_ASSERT(SPH_DIM == 3 || need_rows > 0);
 }
 
 int main(void) {
