@@ -978,6 +978,7 @@ const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double s
   }
   const size_t stride = n > 20000 ? n / 2000 : 1;
   for (size_t i = 0; i < n; i += stride) {
+    if (empty_row(l, p, i)) continue; /* (left empty by the caller: none to miss) */
     sph_nlist_decode(l, i, row);
     size_t k = 0;
     for (size_t j = 0; j < n; j++) {
@@ -987,7 +988,7 @@ const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double s
       const double r2ij = SPH_NORM2(dx, dy, dz);
       while (k < l->count[i] && row[k] < j)
         k++;
-      if (j == i || !(r2ij < r2) || empty_row(l, p, i)) continue;
+      if (j == i || !(r2ij < r2)) continue;
       if (fluid_only_row(l, p, i) && p->kind[j] != SPH_KIND_FLUID)
         continue; /* a wall row's walls: not listed (wall_fluid_only) */
       if (k == l->count[i] || row[k] != j) {

@@ -127,35 +127,21 @@ void sph_sim_ranks_free(sph_sim *s) {
   free(s->mark_last);
   free(s->weight);
   free(s->no_row);
-  s->no_row = NULL, s->cap_no_row = 0;
+  s->no_row = NULL;
   s->weight = NULL;
   s->reports = NULL, s->mark_last = NULL, s->n_mark_last = 0;
   s->sub = NULL, s->keys = NULL, s->mark = NULL, s->from = NULL, s->cap_ranks = 0;
   s->owner = NULL, s->records = NULL, s->cap_records = 0;
 }
 
-/* Room for the marks by id (s->no_row) of every particle of s's store. */
-static int reserve_no_row(sph_sim *s, sph_error *err) {
-  const sph_particles *p = &s->p;
-  int64_t top = -1;
-  for (size_t i = 0; i < p->n; i++)
-    if (p->id[i] > top) top = p->id[i];
-  const size_t need = (size_t)(top + 1);
-  if (need <= s->cap_no_row) return 0;
-  unsigned char *a = realloc(s->no_row, need);
-  if (!a) return sph_error_set(err, "out of memory for the ranks' rows");
-  memset(a + s->cap_no_row, 0, need - s->cap_no_row);
-  s->no_row = a, s->cap_no_row = need;
-  return 0;
-}
-
 static int reserve(sph_sim *s, size_t n, sph_error *err) {
-  if (reserve_no_row(s, err)) return -1;
   if (n <= s->cap_ranks) return 0;
   uint64_t *k = realloc(s->keys, n * sizeof *k);
   if (k) s->keys = k;
   unsigned char *m = realloc(s->mark, n);
   if (m) s->mark = m;
+  unsigned char *nr = realloc(s->no_row, n); /* by id: ids are 0..n-1 (particles.h) */
+  if (nr) s->no_row = nr;
   size_t *f = realloc(s->from, n * sizeof *f);
   if (f) s->from = f;
   size_t *os = realloc(s->own_sub, n * sizeof *os);
@@ -168,7 +154,7 @@ static int reserve(sph_sim *s, size_t n, sph_error *err) {
   if (l) s->mark_last = l;
   uint32_t *w = realloc(s->weight, n * sizeof *w);
   if (w) s->weight = w;
-  if (!k || !m || !f || !os || !ow || !w || (s->self >= 0 && (!o || !l)))
+  if (!k || !m || !nr || !f || !os || !ow || !w || (s->self >= 0 && (!o || !l)))
     return sph_error_set(err, "out of memory for the ranks' cut");
   s->cap_ranks = n;
   return 0;
@@ -245,7 +231,7 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
   if (sph_particles_gather(&r->p, in, s->from, k, s->pass_in, err)) return -1;
   for (size_t j = 0; j < k; j++)
     if (s->mark[s->from[j]] >= 2) r->p.flags[j] |= SPH_FLAG_GHOST;
-  r->nl.no_row = s->no_row, r->nl.no_row_n = s->cap_no_row;
+  r->nl.no_row = s->no_row, r->nl.no_row_n = p->n;
   r->t = s->t, r->t_walls = s->t_walls, r->t_saved = s->t_saved;
   r->steps = s->steps, r->last_dt = s->last_dt, r->first_step = s->first_step;
   r->resort = resort;

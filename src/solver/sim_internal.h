@@ -81,7 +81,6 @@ struct sph_sim {
   unsigned long long pass_in, pass_out; /* the arrays a pass reads, and those it may write */
   size_t cap_ranks;
   unsigned char *no_row; /* by id: a ghost of sub's with an empty row (sub's list: grid.h) */
-  size_t cap_no_row;
   /* the rank this process makes (procs.h), or -1: every rank, one after
    * the other (SPH_TEST_RANKS); then each particle's rank, and the records
    * the processes share */
