@@ -135,10 +135,13 @@ static int same_rates(const sph_particles *p, size_t j, const sph_particles *q, 
 
 /* Runs the case to a sorting step, then emulates each rank count with
  * ghosts `depth` cells deep, those within `rows` cells of the rank's own
- * with rows of their own in the neighbour list, the others with empty rows
- * (grid.h, no_row); returns the number of particles whose rates differ
- * from the whole set's (printing the first). */
-static long emulate(const char *rel, const char *set, int depth, int rows, int quiet) {
+ * and of a kind in `kinds` (bit 1 << SPH_KIND_*) with rows of their own in
+ * the neighbour list, the others with empty rows (grid.h, no_row); returns
+ * the number of particles whose rates differ from the whole set's
+ * (printing the first). */
+#define ALL_KINDS (1u << SPH_KIND_FLUID | 1u << SPH_KIND_WALL | 1u << SPH_KIND_MIRROR)
+static long emulate(const char *rel, const char *set, int depth, int rows, unsigned kinds,
+                    int quiet) {
   const long steps = 40; /* a step whose end-of-step pass sorts the store */
   sph_case cf;
   sph_sim *full = run_to(rel, set, steps, &cf);
@@ -169,7 +172,8 @@ static long emulate(const char *rel, const char *set, int depth, int rows, int q
     CU_ASSERT_FATAL(sph_decomp_cut(keys, n, ranks, first, &err) == 0);
     long owned_all = 0, ghosts_all = 0, bad = 0;
     for (int r = 0; r < ranks; r++) {
-      const long ghosts = sph_decomp_halo(&g, pf, keys, first, ranks, r, depth, rows, mark, &err);
+      const long ghosts =
+          sph_decomp_halo(&g, pf, keys, first, ranks, r, depth, rows, kinds, mark, &err);
       CU_ASSERT_FATAL(ghosts >= 0);
       sph_case cr;
       sph_sim *s = run_to(rel, set, steps, &cr);
@@ -204,9 +208,10 @@ static long emulate(const char *rel, const char *set, int depth, int rows, int q
       sph_case_free(&cr);
     }
     if (!quiet)
-      printf("\n  %s, %d ranks, ghosts %d cells deep (rows %d): %ld owned, %ld ghosts (%.2f a "
-             "particle), %s",
-             rel, ranks, depth, rows, owned_all, ghosts_all, (double)ghosts_all / (double)n,
+      printf("\n  %s, %d ranks, ghosts %d cells deep (rows %d%s): %ld owned, %ld ghosts (%.2f "
+             "a particle), %s",
+             rel, ranks, depth, rows, kinds == ALL_KINDS ? "" : ", some kinds", owned_all,
+             ghosts_all, (double)ghosts_all / (double)n,
              bad ? "DIFFERENT" : "every rate identical");
     CU_ASSERT(owned_all == (long)n);
     differ += bad;
@@ -222,37 +227,47 @@ static long emulate(const char *rel, const char *set, int depth, int rows, int q
 
 /* Ghosts SPH_HALO_DEPTH cells deep (cells 1.25 supports wide), rows for
  * those within the cells the solver gives them (sph_sim_ranks_row_depth:
- * one, or all of them where a chain of passes is a support longer): every
- * rate the same bits. The least depth that does it with rows for every
- * ghost, and the least row depth, are printed for each case; a rank
- * without ghosts, and one with rows for its own particles only, must
- * differ (the comparison can fail). */
+ * one, or all of them where a chain of passes is a support longer) and of
+ * the kinds it gives them to (sph_sim_ranks_row_kinds): every rate the same
+ * bits. The least depth that does it with rows for every ghost, and the
+ * least row depth, are printed for each case; a rank without ghosts, one
+ * with rows for its own particles only, and where the solver gives rows to
+ * the walls alone, one with rows for every kind but the walls, must differ
+ * (the comparison can fail). */
 #define SPH_HALO_DEPTH 3
 static void test_emulated_ranks(void) {
-  int need_rows = 0; /* cases whose ghosts need rows of their own */
+  int need_rows = 0, walls_only = 0; /* cases whose ghosts need rows; the walls' alone */
   for (size_t k = 0; k < sizeof ranks_cases / sizeof *ranks_cases; k++) {
     const char *rel = ranks_cases[k][0], *set = ranks_cases[k][1];
     sph_case c;
     sph_sim *s = run_to(rel, set, 0, &c);
     CU_ASSERT_FATAL(s != NULL);
     const int given = sph_sim_ranks_row_depth(s, SPH_HALO_DEPTH);
+    const unsigned kinds = sph_sim_ranks_row_kinds(s);
     sph_sim_free(s);
     sph_case_free(&c);
-    CU_ASSERT(emulate(rel, set, SPH_HALO_DEPTH, given, 0) == 0);
+    CU_ASSERT(emulate(rel, set, SPH_HALO_DEPTH, given, kinds, 0) == 0);
     if (SPH_DIM == 3 && k > 0) continue; /* (the searches on the first 3-D case: time) */
     int least = SPH_HALO_DEPTH;
-    while (least > 0 && emulate(rel, set, least - 1, least - 1, 1) == 0)
+    while (least > 0 && emulate(rel, set, least - 1, least - 1, ALL_KINDS, 1) == 0)
       least--;
     printf("\n  %s: the least depth with the same bits: %d cell(s)", rel, least);
     CU_ASSERT(least > 0);
     if (SPH_DIM == 3) continue; /* (the rows' search in 2-D: in 3-D it would take a minute) */
     int rows = given;
-    while (rows > 0 && emulate(rel, set, SPH_HALO_DEPTH, rows - 1, 1) == 0)
+    while (rows > 0 && emulate(rel, set, SPH_HALO_DEPTH, rows - 1, kinds, 1) == 0)
       rows--;
     printf("; rows %d cell(s) deep (the solver's: %d)", rows, given);
     need_rows += rows > 0;
+    if (kinds == 1u << SPH_KIND_WALL) { /* the walls' rows are what the fluid reads */
+      const long d =
+          emulate(rel, set, SPH_HALO_DEPTH, given, ALL_KINDS & ~(1u << SPH_KIND_WALL), 1);
+      printf("; rows for the walls alone (with every kind but the walls': %ld differ)", d);
+      CU_ASSERT(d > 0);
+      walls_only++;
+    }
   }
-  CU_ASSERT(SPH_DIM == 3 || need_rows > 0);
+  CU_ASSERT(SPH_DIM == 3 || (need_rows > 0 && walls_only > 0));
 }
 
 int main(void) {

@@ -209,7 +209,7 @@ static void dilate(const cellbox *b, int a, int wrap, int depth, const unsigned 
 
 long sph_decomp_halo(const sph_decomp_grid *g, const sph_particles *p, const uint64_t *keys,
                      const uint64_t *first, int ranks, int rank, int depth, int row_depth,
-                     unsigned char *mark, sph_error *err) {
+                     unsigned row_kinds, unsigned char *mark, sph_error *err) {
   const int64_t half = (int64_t)1 << (SPH_DECOMP_BITS - 1);
   cellbox b;
   int64_t hi[SPH_DIM];
@@ -264,7 +264,7 @@ long sph_decomp_halo(const sph_decomp_grid *g, const sph_particles *p, const uin
   for (size_t i = 0; i < p->n; i++) {
     if (mark[i]) continue;
     const size_t k = box_index(&b, at[i]);
-    if (cells[k]) mark[i] = rows[k] ? 2 : 3, ghosts++;
+    if (cells[k]) mark[i] = rows[k] && (row_kinds >> (unsigned)p->kind[i] & 1u) ? 2 : 3, ghosts++;
   }
   free(block);
   free(at);

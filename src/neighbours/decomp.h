@@ -83,16 +83,17 @@ int sph_decomp_cut_weighted(const uint64_t *keys, const uint32_t *w, size_t n, i
 int sph_decomp_owner(const uint64_t *first, int ranks, uint64_t k);
 
 /* The particles rank `rank` needs beside its own: mark[i] = 1 for its own
- * particles, 2 for its ghosts within row_depth cells of a cell it owns,
- * 3 for the others within depth cells, 0 for the rest. A pass needs the
- * rows (the neighbours) of its own particles and of the ghosts that a
- * chain of passes reads a row's result at (within one support, row_depth
- * 1: solver/ranks.c); the ghosts marked 3 are there as neighbours only.
- * A row_depth of depth or more marks every ghost 2. Returns the number of
- * ghosts, or -1 out of memory. */
+ * particles, 2 for its ghosts within row_depth cells of a cell it owns
+ * whose kind k is in row_kinds (bit 1 << k), 3 for the others within depth
+ * cells, 0 for the rest. A pass needs the rows (the neighbours) of its own
+ * particles and of the ghosts that a chain of passes reads a row's result
+ * at (within one support, row_depth 1, and only the kinds whose rows give
+ * a result: solver/ranks.c); the ghosts marked 3 are there as neighbours
+ * only. A row_depth of depth or more marks every ghost of those kinds 2.
+ * Returns the number of ghosts, or -1 out of memory. */
 long sph_decomp_halo(const sph_decomp_grid *g, const sph_particles *p, const uint64_t *keys,
                      const uint64_t *first, int ranks, int rank, int depth, int row_depth,
-                     unsigned char *mark, sph_error *err);
+                     unsigned row_kinds, unsigned char *mark, sph_error *err);
 
 #ifdef __cplusplus
 }

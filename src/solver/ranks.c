@@ -62,6 +62,20 @@ int sph_sim_ranks_row_depth(const sph_sim *s, int depth) {
   return writes && reads ? depth : 1;
 }
 
+unsigned sph_sim_ranks_row_kinds(const sph_sim *s) {
+  const sph_force_params *fp = &s->fp;
+  const unsigned all = 1u << SPH_KIND_FLUID | 1u << SPH_KIND_WALL | 1u << SPH_KIND_MIRROR;
+  /* a fluid row's result read by a neighbour: a free-surface flag (and the
+   * smoothing length it sets), a strain rate, the moments, Antuono's density
+   * gradient */
+  const int fluid = s->detect || fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps ||
+                    fp->gradient_correction || fp->corrected_gradient ||
+                    fp->diffusion == SPH_DIFFUSION_ANTUONO;
+  /* else only a wall's row gives one (a dynamic wall's bounded density, an
+   * Adami wall's pressure and velocity) */
+  return fluid || !(s->walls.dbc || s->walls.adami) ? all : 1u << SPH_KIND_WALL;
+}
+
 /* The cut's weights of a fluid and a wall particle: a wall particle's rows
  * cost little beside a fluid one's (SPHERIC Test 2 in 3-D, dx = 0.02 m, 2
  * processes: weights 4 and 1 left their interaction loops at 4.9 and 6.0 s,
@@ -103,6 +117,8 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   s->pass_in = SPH_PARTICLES_ALL & ~sph_particles_array_bits(
                                        "x0 y0 z0 vx0 vy0 vz0 rho0 u0 ax ay az drho du xsx xsy xsz");
   s->pass_out = sph_particles_array_bits("ax ay az drho du xsx xsy xsz rho p h rhoh flags");
+  /* what no step changes: a store kept from the last pass keeps them */
+  s->pass_static = sph_particles_array_bits("mass mx my mz xr yr zr kind body id");
   /* SPH_TEST_RANK_ORDER_SUMS=1 (doc/testing.md): the ledger's sums made the
    * way that depends on the rank count, for the test that must see it */
   const char *e = getenv("SPH_TEST_RANK_ORDER_SUMS");
@@ -125,6 +141,8 @@ void sph_sim_ranks_free(sph_sim *s) {
   free(s->records);
   free(s->reports);
   free(s->mark_last);
+  free(s->take_pos);
+  s->take_pos = NULL;
   free(s->weight);
   free(s->no_row);
   s->no_row = NULL;
@@ -152,9 +170,11 @@ static int reserve(sph_sim *s, size_t n, sph_error *err) {
   if (o) s->owner = o;
   unsigned char *l = s->self >= 0 ? realloc(s->mark_last, n) : s->mark_last;
   if (l) s->mark_last = l;
+  double *tp = s->self >= 0 ? realloc(s->take_pos, SPH_DIM * n * sizeof *tp) : s->take_pos;
+  if (tp) s->take_pos = tp;
   uint32_t *w = realloc(s->weight, n * sizeof *w);
   if (w) s->weight = w;
-  if (!k || !m || !nr || !f || !os || !ow || !w || (s->self >= 0 && (!o || !l)))
+  if (!k || !m || !nr || !f || !os || !ow || !w || (s->self >= 0 && (!o || !l || !tp)))
     return sph_error_set(err, "out of memory for the ranks' cut");
   s->cap_ranks = n;
   return 0;
@@ -199,6 +219,29 @@ static int covered(sph_sim *s, int resort) {
   return cover;
 }
 
+/* Whether the store this process took last still holds what its pass
+ * needs, without finding the ghosts again: the same cut over the store in
+ * the same order, cells no wider than then, and no particle of the whole
+ * store moved half a cell along any axis since. It was taken one cell
+ * deeper than it needs, in ghosts and in rows: two particles now within k
+ * cells' side of each other along every axis (a chain of k supports) were
+ * within k + 1 then, so every ghost needed now, and every row, is in it
+ * (the argument covered() makes cell by cell, made by distance, at the
+ * price of a subtraction a particle). */
+static int still_covered(const sph_sim *s, int resort, double side) {
+  const sph_particles *p = &s->p;
+  const size_t n = p->n;
+  if (resort || s->n_mark_last != n || s->order_last != p->order || !(side <= s->side_last))
+    return 0;
+  const double lim = 0.49 * s->side_last; /* half a cell, less a margin for the rounding */
+  for (int a = 0; a < SPH_DIM; a++) {
+    const double *x = p->pos[a], *x0 = s->take_pos + (size_t)a * n;
+    for (size_t i = 0; i < n; i++)
+      if (!(fabs(x[i] - x0[i]) < lim)) return 0;
+  }
+  return 1;
+}
+
 /* Rank `rank`'s part of the pass: its own particles and its ghosts into
  * sub, in the whole store's order; the pass; its own particles' results
  * back into the whole store, its reductions into t. */
@@ -209,17 +252,26 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
   sph_particles *p = &s->p;
   sph_sim *r = s->sub;
   const int rows = sph_sim_ranks_row_depth(s, s->depth);
-  if (sph_decomp_halo(g, p, s->keys, first, s->ranks, rank, s->depth, rows, s->mark, err) < 0)
-    return -1;
-  const int same = s->self >= 0 && covered(s, resort);
+  const unsigned kinds = sph_sim_ranks_row_kinds(s);
+  int same = s->self >= 0 && still_covered(s, resort, g->side);
+  if (same)
+    memcpy(s->mark, s->mark_last, p->n);
+  else {
+    if (sph_decomp_halo(g, p, s->keys, first, s->ranks, rank, s->depth, rows, kinds, s->mark, err) <
+        0)
+      return -1;
+    same = s->self >= 0 && covered(s, resort);
+  }
   if (s->self >= 0 && !same) {
     /* one cell more than it needs, of ghosts and of rows: a particle then
      * crosses a whole cell before the store must be taken anew */
-    if (sph_decomp_halo(g, p, s->keys, first, s->ranks, rank, s->depth + 1, rows + 1, s->mark,
-                        err) < 0)
+    if (sph_decomp_halo(g, p, s->keys, first, s->ranks, rank, s->depth + 1, rows + 1, kinds,
+                        s->mark, err) < 0)
       return -1;
     memcpy(s->mark_last, s->mark, p->n);
-    s->n_mark_last = p->n, s->order_last = p->order;
+    s->n_mark_last = p->n, s->order_last = p->order, s->side_last = g->side;
+    for (int a = 0; a < SPH_DIM; a++)
+      memcpy(s->take_pos + (size_t)a * p->n, p->pos[a], p->n * sizeof *s->take_pos);
   }
   size_t k = 0, own = 0;
   for (size_t i = 0; i < p->n; i++)
@@ -228,7 +280,9 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
       if (s->mark[i] == 1) s->own_sub[own] = k, s->own_whole[own++] = i;
       s->from[k++] = i;
     }
-  if (sph_particles_gather(&r->p, in, s->from, k, s->pass_in, err)) return -1;
+  if (sph_particles_gather(&r->p, in, s->from, k, same ? s->pass_in & ~s->pass_static : s->pass_in,
+                           err))
+    return -1;
   for (size_t j = 0; j < k; j++)
     if (s->mark[s->from[j]] >= 2) r->p.flags[j] |= SPH_FLAG_GHOST;
   r->nl.no_row = s->no_row, r->nl.no_row_n = p->n;

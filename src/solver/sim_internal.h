@@ -78,7 +78,8 @@ struct sph_sim {
   unsigned char *mark;
   size_t *from;                /* the whole store's index of each particle of sub */
   size_t *own_sub, *own_whole; /* the rank's own particles: their index in sub, in the store */
-  unsigned long long pass_in, pass_out; /* the arrays a pass reads, and those it may write */
+  unsigned long long pass_in, pass_out; /* the arrays a pass reads, and those it may write, */
+  unsigned long long pass_static;       /* and those no step changes */
   size_t cap_ranks;
   unsigned char *no_row; /* by id: a ghost of sub's with an empty row (sub's list: grid.h) */
   /* the rank this process makes (procs.h), or -1: every rank, one after
@@ -91,7 +92,9 @@ struct sph_sim {
   void *reports;              /* every process's report of its pass, in rank order (ranks.c) */
   unsigned char *mark_last;   /* the marks of this process's last pass, */
   size_t n_mark_last;         /* over this many particles, */
-  uint64_t order_last;        /* the store in this order (particles.h) */
+  uint64_t order_last;        /* the store in this order (particles.h), */
+  double *take_pos;           /* every particle's position then (SPH_DIM arrays of n_mark_last), */
+  double side_last;           /* and the cells' side */
   uint32_t *weight;           /* each particle's weight in the cut */
   unsigned long long changed; /* the arrays this process's pass changed */
   uint64_t first[64];         /* the cut: each rank's first key (neighbours/decomp.h), */
@@ -124,6 +127,14 @@ void sph_sim_ranks_free(sph_sim *s);
  * every ghost gets its row. tests/test_decomp measures the least depth on
  * every scheme it runs. */
 int sph_sim_ranks_row_depth(const sph_sim *s, int depth);
+/* The kinds (bit 1 << SPH_KIND_*) whose ghosts get those rows: every kind
+ * where a fluid row's result is read by a neighbour (free-surface flags,
+ * the strain rate, the moments, Antuono's density gradient) or where no
+ * wall's row gives one; else the walls alone (an Adami wall's pressure, a
+ * dynamic wall's bounded density: the fluid's ghosts are neighbours only,
+ * as the main loop gives a ghost no rates). tests/test_decomp and
+ * tests/test_ranks compare the bytes on every scheme (ranks.c). */
+unsigned sph_sim_ranks_row_kinds(const sph_sim *s);
 /* One pass of the whole store made as the ranks make it, hmax the store's
  * largest smoothing length (ranks.c). */
 int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err);
