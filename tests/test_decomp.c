@@ -84,6 +84,32 @@ static void test_cut_is_balanced_and_pure(void) {
   free(keys);
 }
 
+/* The wet walls of the cut's weights (sph_decomp_near_kind): a row of wall
+ * particles, fluid over its first cells; the walls within one cell of a
+ * fluid cell are marked, the others not, the fluid too. */
+static void test_walls_near_the_fluid(void) {
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 32, &err) == 0);
+  const double v[SPH_DIM] = {0.0};
+  for (int k = 0; k < 20; k++) { /* walls at x = 0.05 .. 1.95, cells 0 .. 9 */
+    const double x[SPH_DIM] = {SPH_XYZ(0.05 + 0.1 * k, 0.05, 0.05)};
+    CU_ASSERT_FATAL(sph_particles_add_at(&p, x, v, 1000.0, 1.0, 0.1, SPH_KIND_WALL, &err) >= 0);
+  }
+  for (int k = 0; k < 5; k++) { /* fluid at x = 0.05 .. 0.45: cells 0 .. 2 */
+    const double x[SPH_DIM] = {SPH_XYZ(0.05 + 0.1 * k, 0.15, 0.05)};
+    CU_ASSERT_FATAL(sph_particles_add_at(&p, x, v, 1000.0, 1.0, 0.1, SPH_KIND_FLUID, &err) >= 0);
+  }
+  const sph_decomp_grid g = {0.2, 0, 0.0, 1};
+  unsigned char near[25];
+  CU_ASSERT_FATAL(sph_decomp_near_kind(&g, &p, SPH_KIND_FLUID, near, &err) == 0);
+  for (int k = 0; k < 20; k++) /* within one cell of cells 0 .. 2: cells 0 .. 3, x < 0.8 */
+    CU_ASSERT_EQUAL(near[k], k <= 7);
+  for (int k = 20; k < 25; k++)
+    CU_ASSERT_EQUAL(near[k], 1);
+  sph_particles_free(&p);
+}
+
 /* ---- ranks emulated in one process ----------------------------------------- */
 
 static const char *const ranks_cases[][2] = {
@@ -274,6 +300,7 @@ int main(void) {
   CU_TestInfo tests[] = {
       {"the Hilbert curve visits every cell once", test_hilbert_visits_every_cell_once},
       {"the cut is balanced and pure", test_cut_is_balanced_and_pure},
+      {"the walls near the fluid are found", test_walls_near_the_fluid},
       {"ranks emulated in one process compute the same bits", test_emulated_ranks},
       CU_TEST_INFO_NULL};
   return sph_test_main(SPH_DIM == 2 ? "decomp" : "decomp_3d", tests);

@@ -207,9 +207,10 @@ static void dilate(const cellbox *b, int a, int wrap, int depth, const unsigned 
   }
 }
 
-long sph_decomp_halo(const sph_decomp_grid *g, const sph_particles *p, const uint64_t *keys,
-                     const uint64_t *first, int ranks, int rank, int depth, int row_depth,
-                     unsigned row_kinds, unsigned char *mark, sph_error *err) {
+/* The marks of sph_decomp_halo around the particles with mark[i] = 1 on
+ * entry (the others 0). */
+static long halo_marks(const sph_decomp_grid *g, const sph_particles *p, int depth, int row_depth,
+                       unsigned row_kinds, unsigned char *mark, sph_error *err) {
   const int64_t half = (int64_t)1 << (SPH_DECOMP_BITS - 1);
   cellbox b;
   int64_t hi[SPH_DIM];
@@ -243,10 +244,8 @@ long sph_decomp_halo(const sph_decomp_grid *g, const sph_particles *p, const uin
     return sph_error_set(err, "decomposition: out of memory for the halo"), -1;
   }
   unsigned char *cells = block, *other = block + b.total, *rows = block + 2 * b.total;
-  for (size_t i = 0; i < p->n; i++) {
-    mark[i] = sph_decomp_owner(first, ranks, keys[i]) == rank;
+  for (size_t i = 0; i < p->n; i++)
     if (mark[i]) cells[box_index(&b, at[i])] = 1;
-  }
   /* the 3^D block and beyond, within row_depth cells, then within depth:
    * one axis at a time (the box's edges hold no particle beyond its last
    * cells, so clipping there loses none; a dilation by r then by s is one
@@ -269,4 +268,22 @@ long sph_decomp_halo(const sph_decomp_grid *g, const sph_particles *p, const uin
   free(block);
   free(at);
   return ghosts;
+}
+
+long sph_decomp_halo(const sph_decomp_grid *g, const sph_particles *p, const uint64_t *keys,
+                     const uint64_t *first, int ranks, int rank, int depth, int row_depth,
+                     unsigned row_kinds, unsigned char *mark, sph_error *err) {
+  for (size_t i = 0; i < p->n; i++)
+    mark[i] = sph_decomp_owner(first, ranks, keys[i]) == rank;
+  return halo_marks(g, p, depth, row_depth, row_kinds, mark, err);
+}
+
+int sph_decomp_near_kind(const sph_decomp_grid *g, const sph_particles *p, int32_t kind,
+                         unsigned char *near, sph_error *err) {
+  for (size_t i = 0; i < p->n; i++)
+    near[i] = p->kind[i] == kind;
+  if (halo_marks(g, p, 1, 0, 0u, near, err) < 0) return -1;
+  for (size_t i = 0; i < p->n; i++)
+    near[i] = near[i] != 0;
+  return 0;
 }

@@ -95,6 +95,12 @@ long sph_decomp_halo(const sph_decomp_grid *g, const sph_particles *p, const uin
                      const uint64_t *first, int ranks, int rank, int depth, int row_depth,
                      unsigned row_kinds, unsigned char *mark, sph_error *err);
 
+/* near[i] = 1 for the particles of `kind` and those within one cell of a
+ * cell holding one (a wall particle with fluid within a support), else 0.
+ * 0, or -1 out of memory. */
+int sph_decomp_near_kind(const sph_decomp_grid *g, const sph_particles *p, int32_t kind,
+                         unsigned char *near, sph_error *err);
+
 #ifdef __cplusplus
 }
 #endif

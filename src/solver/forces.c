@@ -596,9 +596,13 @@ int sph_forces_fastest_loop(sph_particles *p, const sph_nlist *l, const sph_forc
       if (t < best[k]) best[k] = t;
     }
   *ratio = best[0] > 0.0 ? best[1] / best[0] : 1.0; /* AVX2 time over AVX-512 time */
-  /* the eight lanes unless the four are faster by a clear margin */
-  *loop = *ratio < 1.0 - SPH_FASTEST_MARGIN ? SPH_LOOP_LANES_AVX : SPH_LOOP_LANES_AVX512;
+  *loop = sph_forces_loop_for_ratio(*ratio);
   return 0;
+}
+
+sph_force_loop sph_forces_loop_for_ratio(double ratio) {
+  /* the eight lanes unless the four are faster by a clear margin */
+  return ratio < 1.0 - SPH_FASTEST_MARGIN ? SPH_LOOP_LANES_AVX : SPH_LOOP_LANES_AVX512;
 }
 
 /* Debug invariant: every rate of the pass is finite (a NaN here is a bug in

@@ -121,6 +121,9 @@ const char *sph_force_loop_name(const sph_force_params *fp);
  * walls). Non-zero if an evaluation failed. */
 int sph_forces_fastest_loop(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                             sph_force_work *w, sph_force_loop *loop, double *ratio, sph_error *err);
+/* The lane loop sph_forces_fastest_loop takes for a ratio of AVX2 time to
+ * AVX-512 time (the processes of a run agree on one: solver/ranks.c). */
+sph_force_loop sph_forces_loop_for_ratio(double ratio);
 
 /* The strain-rate tensor of paper A eq. (13)-(14) at every particle, for
  * tests and output: eps[SPH_XX], eps[SPH_XY], ... (each n values,

@@ -76,12 +76,16 @@ unsigned sph_sim_ranks_row_kinds(const sph_sim *s) {
   return fluid || !(s->walls.dbc || s->walls.adami) ? all : 1u << SPH_KIND_WALL;
 }
 
-/* The cut's weights of a fluid and a wall particle: a wall particle's rows
- * cost little beside a fluid one's (SPHERIC Test 2 in 3-D, dx = 0.02 m, 2
- * processes: weights 4 and 1 left their interaction loops at 4.9 and 6.0 s,
- * the fluid alone at 4.8 and 5.3 s); a wall's weight above 0 keeps a store of
- * walls alone cut. */
-#define SPH_RANKS_FLUID_WEIGHT 16
+/* The cut's weights: a particle's cost in a pass, in units of about 50 ns
+ * (SPHERIC Test 2 in 3-D, dx = 0.02 m, 2 processes of one thread, timed
+ * by perf): a fluid particle's row in the interaction loop and the list
+ * about 2.2 us; a wet wall particle's (fluid within a cell) Adami row and
+ * list row about 0.6 us; a dry wall particle only its share of taking the
+ * store and putting it back. A dry wall's weight above 0 keeps a store of
+ * walls alone cut. (Fluid 16 and every wall 1 left the fluid 40 500 and
+ * 43 600 and one process waiting 0.8 s of 18.4.) */
+#define SPH_RANKS_FLUID_WEIGHT 45
+#define SPH_RANKS_WET_WALL_WEIGHT 12
 #define SPH_RANKS_WALL_WEIGHT 1
 
 /* What a rank's pass adds up over its own particles. */
@@ -97,6 +101,26 @@ typedef struct pass_report {
   unsigned long long arrays; /* the arrays its pass changed in a bit of some particle */
   rank_sums sums;
 } pass_report;
+
+/* The processes' lane loop: each timed both on its own (setup.c), and a
+ * busy core can make one process take the slower loop (SPHERIC Test 2, 2
+ * processes: one took the AVX2 loop, its interaction loop 10 % slower, the
+ * other waited); where every process timed them, all take the loop for the
+ * mean of their ratios (the same bits on each: the same ratios in rank
+ * order). The loops give the same bits: only the time moves. */
+static void agree_on_loop(sph_sim *s) {
+  const sph_force_loop l = s->fp.loop;
+  const double mine[2] = {l == SPH_LOOP_LANES_AVX || l == SPH_LOOP_LANES_AVX512 ? 1.0 : 0.0,
+                          s->lane_ratio};
+  double all[2 * SPH_PROCS_MAX], sum = 0.0;
+  sph_procs_gather(mine, sizeof mine, all);
+  for (int q = 0; q < s->ranks; q++) {
+    if (!(all[2 * q] == 1.0) || !(all[2 * q + 1] != 1.0)) return; /* one did not choose */
+    sum += all[2 * q + 1];
+  }
+  s->lane_ratio = sum / s->ranks;
+  s->fp.loop = sph_forces_loop_for_ratio(s->lane_ratio);
+}
 
 int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   const sph_case *c = s->c;
@@ -125,6 +149,7 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   s->rank_order_sums = e && *e == '1';
   if (self >= 0 && !(s->reports = malloc((size_t)ranks * sizeof(pass_report))))
     return sph_error_set(err, "out of memory for the ranks' sums");
+  if (self >= 0) agree_on_loop(s);
   return 0;
 }
 
@@ -423,8 +448,11 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
    * ghosts are found from where the particles are now. */
   uint64_t *first = s->first;
   if (resort || s->n_cut != p->n || s->order_cut != p->order) {
+    if (sph_decomp_near_kind(&g, p, SPH_KIND_FLUID, s->mark, err)) return -1; /* (scratch) */
     for (size_t i = 0; i < p->n; i++)
-      s->weight[i] = p->kind[i] == SPH_KIND_FLUID ? SPH_RANKS_FLUID_WEIGHT : SPH_RANKS_WALL_WEIGHT;
+      s->weight[i] = p->kind[i] == SPH_KIND_FLUID ? SPH_RANKS_FLUID_WEIGHT
+                     : s->mark[i]                 ? SPH_RANKS_WET_WALL_WEIGHT
+                                                  : SPH_RANKS_WALL_WEIGHT;
     if (sph_decomp_keys(&g, p, s->keys, err) ||
         sph_decomp_cut_weighted(s->keys, s->weight, p->n, s->ranks, first, err))
       return -1;

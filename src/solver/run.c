@@ -45,6 +45,9 @@ typedef struct outputs {
   double *lp;    /* per probe: its low-pass output at the last row (probes.h) */
   double lp_t;   /* the time of the last probe row */
   int lp_rows;   /* probe rows the filters have seen */
+  double *share; /* a row's readings as this process reads them, then every process's
+                    (read_probes) */
+  int read;      /* some process writes probes.csv: every one reads its share of a row */
   size_t index;  /* number of the next snapshot file, snap_<index>.h5 */
   size_t n, cap; /* snapshots listed in the XDMF index */
   char **names;
@@ -58,6 +61,7 @@ static void outputs_free(outputs *o) {
   if (o->probes) fclose(o->probes);
   free(o->still);
   free(o->lp);
+  free(o->share);
   for (size_t i = 0; i < o->n; i++)
     free(o->names[i]);
   free(o->names);
@@ -110,26 +114,46 @@ static void low_pass_row(outputs *o, const sph_case *c, double t, const double *
   o->lp_rows++;
 }
 
-/* One row of probes.csv: time, then each probe's reading (probes.h), a
- * pressure probe's low-pass output after its raw reading. */
-static int write_probes(sph_sim *s, outputs *o, sph_error *err) {
+/* A row's readings: raw (a velocity's vx), then a velocity's vy (, vz), n
+ * probes each (raw may be NULL: a process that does not write). Each probe
+ * reads serially (probes.h): one probe to a thread, the same bits for any
+ * team. Shared (every process reading the row at once), with P processes,
+ * process q reads the probes k = q mod P and the readings are shared in one
+ * collective step: each probe read once on one process, the same bits as
+ * one process reading them all. */
+static void read_probes(sph_sim *s, outputs *o, int shared, double *raw, double *vy, double *vz) {
   const sph_case *c = sph_sim_case(s);
   const sph_particles *p = sph_sim_particles(s);
+  const long np = (long)c->n_probes, procs = shared ? sph_procs_count() : 1;
+  const long me = shared ? sph_procs_rank() : 0;
+  double *mine = o->share, *all = o->share + np * SPH_DIM;
+#pragma omp parallel for schedule(dynamic, 1) if (np > 1 && (long)p->n > SPH_OMP_MIN)
+  for (long k = 0; k < np; k++) {
+    if (k % procs != me) continue;
+    for (int d = 0; d < SPH_DIM; d++)
+      mine[k * SPH_DIM + d] = 0.0;
+    sph_probe_read(&c->probes[k], p, c->kernel, c->h, c->dx, sph_sim_floor(s), c->gravity,
+                   mine + k * SPH_DIM);
+  }
+  if (procs > 1) sph_procs_gather(mine, (size_t)np * SPH_DIM * sizeof *mine, all);
+  if (!raw) return;
+  for (long k = 0; k < np; k++) {
+    const double *v = (procs > 1 ? all + (k % procs) * np * SPH_DIM : mine) + k * SPH_DIM;
+    raw[k] = v[0];
+    vy[k] = v[1];
+    if (vz) vz[k] = v[SPH_DIM - 1];
+  }
+}
+
+/* One row of probes.csv: time, then each probe's reading (probes.h), a
+ * pressure probe's low-pass output after its raw reading. */
+static int write_probes(sph_sim *s, outputs *o, int shared, sph_error *err) {
+  const sph_case *c = sph_sim_case(s);
   const double t = sph_sim_time(s);
   /* this row's readings: raw (a velocity's vx), then a velocity's vy (, vz) */
   double *raw = o->lp + c->n_probes, *vy = raw + c->n_probes;
   SPH_IF3(double *vz = vy + c->n_probes;)
-  /* each probe reads serially (probes.h): one probe to a thread, the same
-   * bits for any team */
-  const long np = (long)c->n_probes;
-#pragma omp parallel for schedule(dynamic, 1) if (np > 1 && (long)p->n > SPH_OMP_MIN)
-  for (long k = 0; k < np; k++) {
-    double v[SPH_DIM] = {0.0};
-    sph_probe_read(&c->probes[k], p, c->kernel, c->h, c->dx, sph_sim_floor(s), c->gravity, v);
-    raw[k] = v[0];
-    vy[k] = v[1];
-    SPH_IF3(vz[k] = v[2];)
-  }
+  read_probes(s, o, shared, raw, vy, SPH_DIM == 3 ? vy + c->n_probes : NULL);
   low_pass_row(o, c, t, raw);
   if (fprintf(o->probes, "%.17g", t) < 0) goto fail;
   for (size_t k = 0; k < c->n_probes; k++) {
@@ -162,12 +186,16 @@ static long first_multiple_after(double interval, double t) {
 /* After a step: the probes' row when one is due (every step with interval
  * 0, else at the step that ends on k * interval, where the run lands one;
  * k counted in integers so that no row is merged or skipped), then the
- * next k. */
-static int probe_step(sph_sim *s, outputs *o, sph_error *err) {
+ * next k. Shared: every process makes this call at this step (the run's
+ * loop; a resumed run's missing row is the writer's alone). */
+static int probe_step(sph_sim *s, outputs *o, int shared, sph_error *err) {
   const sph_case *c = sph_sim_case(s);
   const double iv = c->probe_interval, t = sph_sim_time(s);
   if (!c->n_probes || (iv > 0.0 && t < (double)o->probe_k * iv)) return 0;
-  if (o->probes && write_probes(s, o, err)) return -1;
+  if (o->probes) {
+    if (write_probes(s, o, shared, err)) return -1;
+  } else if (shared && o->read && sph_procs_count() > 1) /* its share (read_probes) */
+    read_probes(s, o, 1, NULL, NULL, NULL);
   if (iv > 0.0) o->probe_k = first_multiple_after(iv, t);
   return 0;
 }
@@ -202,7 +230,7 @@ static int write_rows(sph_sim *s, outputs *o, int which, sph_error *err) {
       return sph_error_set(err, "%s/diagnostics.csv: write failed: %s", o->dir, strerror(errno));
   }
   if ((which & 2) && o->dir && write_gauges(s, o, err)) return -1;
-  return (which & 4) && o->probes ? probe_step(s, o, err) : 0;
+  return (which & 4) && o->probes ? probe_step(s, o, 0, err) : 0;
 }
 
 static int write_output(sph_sim *s, outputs *o, sph_run_result *r, sph_error *err) {
@@ -534,6 +562,18 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
     outputs_free(&out);
     return -1;
   }
+  /* room for a row's readings, on every process (read_probes), and whether
+   * any process writes them (one collective step) */
+  out.read = c->n_probes && sph_procs_any(out.probes != NULL);
+  const size_t share = c->n_probes * SPH_DIM * (1 + (size_t)sph_procs_count());
+  if (agreed(share && !(out.share = calloc(share, sizeof *out.share))
+                 ? sph_error_set(err, "out of memory for the probes' readings")
+                 : 0,
+             err)) {
+    r->status = SPH_RUN_ERROR;
+    outputs_free(&out);
+    return -1;
+  }
   /* a run without the file lands on the probes' row times too: its steps
    * are those of the run that writes them (procs.h: a process that does
    * not write follows the one that does) */
@@ -550,7 +590,7 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
     /* the probes' row agreed, and an interrupt on any process seen by all,
      * in one collective step: all stop after this step */
     int interrupted = o->interrupt && *o->interrupt;
-    if (sph_procs_agree_any(probe_step(s, &out, err), &interrupted, err)) goto io_error;
+    if (sph_procs_agree_any(probe_step(s, &out, 1, err), &interrupted, err)) goto io_error;
   } else if (agreed(need_row ? write_rows(s, &out, need_row, err) : 0, err)) {
     goto io_error;
   }
@@ -604,7 +644,7 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
     /* the probes' row agreed, and an interrupt on any process seen by all,
      * in one collective step: all stop after this step */
     int interrupted = o->interrupt && *o->interrupt;
-    if (sph_procs_agree_any(probe_step(s, &out, err), &interrupted, err)) goto io_error;
+    if (sph_procs_agree_any(probe_step(s, &out, 1, err), &interrupted, err)) goto io_error;
     const int at_output = sph_sim_time(s) == next;
     if (at_output) {
       if (c->output_interval > 0.0) k = first_multiple_after(c->output_interval, next + same);
