@@ -129,6 +129,8 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   if (ranks > SPH_PROCS_MAX)
     return sph_error_set(err, "%s: at most %d ranks, got %d",
                          self < 0 ? "SPH_TEST_RANKS" : "mpirun -n", SPH_PROCS_MAX, ranks);
+  s->ranks = ranks;
+  if (self >= 0) agree_on_loop(s); /* a collective step: before anything that may fail */
   if (sph_sim_create_rank_store(c, &s->sub, err)) return -1;
   s->sub->rank_store = 1;
   s->sub->work.keep_sigma = 1;
@@ -149,7 +151,6 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   s->rank_order_sums = e && *e == '1';
   if (self >= 0 && !(s->reports = malloc((size_t)ranks * sizeof(pass_report))))
     return sph_error_set(err, "out of memory for the ranks' sums");
-  if (self >= 0) agree_on_loop(s);
   return 0;
 }
 
