@@ -48,29 +48,33 @@
 #define SPH_RANKS_DEPTH 2
 #define SPH_RANKS_CELL 1.0
 
-int sph_sim_ranks_row_depth(const sph_sim *s, int depth) {
+/* Whether a pass before the main one makes a fluid row's result that a
+ * neighbour's row reads (the strain rate and the moments, with their
+ * volumes m/rho; Antuono's density gradient); the free-surface scan is the
+ * callers' to add. */
+static int fluid_rows_read(const sph_sim *s) {
   const sph_force_params *fp = &s->fp;
+  return fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps || fp->gradient_correction ||
+         fp->corrected_gradient || fp->diffusion == SPH_DIFFUSION_ANTUONO;
+}
+
+int sph_sim_ranks_row_depth(const sph_sim *s, int depth) {
   /* passes before the main one that write a value from a row (a dynamic
    * wall's bounded density, an Adami wall's pressure, free-surface flags) */
   const int writes = s->walls.dbc || s->walls.adami || s->detect;
   /* passes before the main one that read a neighbour's such value in a row
    * of their own (the strain rate's and the moments' volumes, Antuono's
    * density gradient, the free-surface scan) */
-  const int reads = fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps ||
-                    fp->gradient_correction || fp->corrected_gradient ||
-                    fp->diffusion == SPH_DIFFUSION_ANTUONO || s->detect;
+  const int reads = fluid_rows_read(s) || s->detect;
   return writes && reads ? depth : 1;
 }
 
 unsigned sph_sim_ranks_row_kinds(const sph_sim *s) {
-  const sph_force_params *fp = &s->fp;
   const unsigned all = 1u << SPH_KIND_FLUID | 1u << SPH_KIND_WALL | 1u << SPH_KIND_MIRROR;
   /* a fluid row's result read by a neighbour: a free-surface flag (and the
    * smoothing length it sets), a strain rate, the moments, Antuono's density
    * gradient */
-  const int fluid = s->detect || fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps ||
-                    fp->gradient_correction || fp->corrected_gradient ||
-                    fp->diffusion == SPH_DIFFUSION_ANTUONO;
+  const int fluid = s->detect || fluid_rows_read(s);
   /* else only a wall's row gives one (a dynamic wall's bounded density, an
    * Adami wall's pressure and velocity) */
   return fluid || !(s->walls.dbc || s->walls.adami) ? all : 1u << SPH_KIND_WALL;
@@ -135,7 +139,6 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   s->sub->rank_store = 1;
   s->sub->work.keep_sigma = 1;
   s->sub->work.skip_ghosts = 1;
-  s->ranks = ranks;
   s->self = self;
   /* what a pass reads: all but the integrator's saved state and the rates; what it writes: the
    * rates, the walls' densities and pressures (and a dynamic wall's half-step density), the
