@@ -603,13 +603,6 @@ static inline int fluid_only_row(const sph_nlist *l, const sph_particles *p, siz
   return l->wall_fluid_only && p->kind[i] != SPH_KIND_FLUID;
 }
 
-/* Whether particle i's row is left empty (grid.h, no_row). */
-static inline int empty_row(const sph_nlist *l, const sph_particles *p, size_t i) {
-  if (!l->no_row) return 0;
-  const int64_t id = p->id[i];
-  return id >= 0 && (uint64_t)id < l->no_row_n && l->no_row[id];
-}
-
 /* Keeps the fluid particles among row's c entries, in order; returns how
  * many (the rows fluid_only_row names). */
 static inline uint32_t keep_fluid(uint32_t *restrict row, uint32_t c,
@@ -695,7 +688,7 @@ static int size_rows(sph_nlist *l, const sph_grid *g, const sph_particles *p,
     for (long li = 0; li < ln; li++) {
       if (!scratch) continue;
       /* (in 2-D only counted: four bytes an entry whatever their order) */
-      if (empty_row(l, p, (size_t)li)) continue;
+      if (sph_nlist_empty_row(l, p, (size_t)li)) continue;
       const int keep = fluid_only_row(l, p, (size_t)li);
       uint32_t c =
           fill_rows(g, x, (size_t)li, r2max, period, SPH_NLIST_RUNS || keep ? scratch : NULL,
@@ -800,9 +793,9 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
       size_t bytes = 0;
       for (size_t i = a; i < b && !oom; i++) {
         const int keep = fluid_only_row(l, p, i);
-        uint32_t c = empty_row(l, p, i) ? 0
-                                        : fill_sorted(g, x, i, r2max, period, scratch, sorted, wide,
-                                                      keep ? f : NULL);
+        uint32_t c = sph_nlist_empty_row(l, p, i) ? 0
+                                                  : fill_sorted(g, x, i, r2max, period, scratch,
+                                                                sorted, wide, keep ? f : NULL);
         if (keep) c = keep_fluid(scratch, c, p->kind);
         const size_t sz = runs_size(scratch, c, 1);
         if (bytes + sz > cap) {
@@ -978,7 +971,7 @@ const char *sph_nlist_check(const sph_nlist *l, const sph_particles *p, double s
   }
   const size_t stride = n > 20000 ? n / 2000 : 1;
   for (size_t i = 0; i < n; i += stride) {
-    if (empty_row(l, p, i)) continue; /* (left empty by the caller: none to miss) */
+    if (sph_nlist_empty_row(l, p, i)) continue; /* (left empty by the caller: none to miss) */
     sph_nlist_decode(l, i, row);
     size_t k = 0;
     for (size_t j = 0; j < n; j++) {

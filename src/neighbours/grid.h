@@ -405,6 +405,14 @@ static inline uint32_t sph_nlist_decode(const sph_nlist *l, size_t i, uint32_t *
  * needed; the program stops with a message if there is no memory for it). */
 uint32_t *sph_nlist_spare_row(size_t entries);
 
+/* Whether particle i's row is left empty: its id is one the caller named
+ * in l->no_row. */
+static inline int sph_nlist_empty_row(const sph_nlist *l, const sph_particles *p, size_t i) {
+  if (!l->no_row) return 0;
+  const int64_t id = p->id[i];
+  return id >= 0 && (uint64_t)id < l->no_row_n && l->no_row[id];
+}
+
 /* Row i of l written out (sph_nlist_decode) into the calling thread's
  * buffer in l (in 2-D the row in place), its length in *cnt: valid until
  * the same thread's next call. A thread beyond those the list has buffers

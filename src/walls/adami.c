@@ -28,6 +28,18 @@ static void resulting_acceleration(const sph_particles *p, const sph_adami_param
     ga[d] -= a[d];
 }
 
+/* Whether a rank's ghost wall particle i is read by no row of the pass:
+ * a row that reads its p, rho or no-slip velocity pairs it within the
+ * support, so the list (complete, symmetric) names that row's particle in
+ * i's row; here every particle of i's row is a ghost with an empty row. */
+static int read_by_none(const sph_particles *p, const sph_nlist *l, size_t i, const uint32_t *row,
+                        size_t cnt) {
+  if (!l->no_row || !(p->flags[i] & SPH_FLAG_GHOST)) return 0;
+  for (size_t k = 0; k < cnt; k++)
+    if (!(p->flags[row[k]] & SPH_FLAG_GHOST) || !sph_nlist_empty_row(l, p, row[k])) return 0;
+  return 1;
+}
+
 size_t sph_wall_adami(sph_particles *p, const sph_nlist *l, const sph_adami_params *ap,
                       double *const *gv) {
   const long n = (long)p->n;
@@ -36,13 +48,19 @@ size_t sph_wall_adami(sph_particles *p, const sph_nlist *l, const sph_adami_para
   for (long li = 0; li < n; li++) {
     const size_t i = (size_t)li;
     if (p->kind[i] != SPH_KIND_WALL || !(p->flags[i] & SPH_FLAG_ADAMI)) continue;
+    size_t cnt;
+    const uint32_t *row = sph_nlist_row(l, i, &cnt);
+    if (read_by_none(p, l, i, row, cnt)) {
+      if (gv)
+        for (int d = 0; d < SPH_DIM; d++)
+          gv[d][i] = p->vel[d][i];
+      continue;
+    }
     double ga[SPH_DIM];
     resulting_acceleration(p, ap, i, ga);
     /* AHA12 eq. (27): sum_f (p_f + rho_f (g - a_w) . r_wf) W_wf and sum_f W_wf; eq. (24): sum_f
      * v_f W_wf */
     double sw = 0.0, sp = 0.0, sv[SPH_DIM] = {0.0};
-    size_t cnt;
-    const uint32_t *row = sph_nlist_row(l, i, &cnt);
     for (size_t k = 0; k < cnt; k++) {
       const size_t j = row[k];
       if (p->kind[j] != SPH_KIND_FLUID) continue;

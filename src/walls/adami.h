@@ -57,8 +57,11 @@ typedef struct sph_adami_params {
 /* Sets p->p and p->rho of every adami wall particle from its fluid
  * neighbours in the list l (complete for the support 2 h on p's
  * positions), and, unless gv is NULL, gv[axis][w] its no-slip velocity
- * (the other particles' entries are not touched). Returns how many wall
- * particles had fluid within reach. */
+ * (the other particles' entries are not touched). In a rank's store
+ * (solver/ranks.c: a list with empty rows, grid.h no_row) a ghost wall
+ * particle whose row lists only ghosts with empty rows is read by no row
+ * of the pass and is skipped: p and rho as they were, gv its own
+ * velocity. Returns how many wall particles had fluid within reach. */
 size_t sph_wall_adami(sph_particles *p, const sph_nlist *l, const sph_adami_params *ap,
                       double *const *gv);
 
