@@ -11,6 +11,9 @@
  *     and the ledger;
  *   - 3-D, the default scheme with probes and the ledger (every count and
  *     thread number), through `sph`'s hand-over to `sph-3d`;
+ *   - a blow-up (leap-frog, a step ten times too long) in 2-D and 3-D on 2
+ *     and 3 processes: exit status 3, last_good.h5 and every other file
+ *     the serial run's;
  *   - a run on 4 processes restarted from its snapshot on 3;
  *   - the comparison sees a reduction summed in rank order
  *     (SPH_TEST_RANK_ORDER_SUMS=1 rounds each rank's ledger sums and adds
@@ -60,18 +63,24 @@ static double now(void) {
 }
 
 /* Runs the case on `procs` processes (0: without mpirun) of `threads`
- * threads, with `env` before the command, into a new directory. */
-static char *run(const char *prog, const char *case_rel, const char *sets, const char *env,
-                 int procs, int threads) {
+ * threads, with `env` before the command, into a new directory; the run
+ * must exit with `status`. */
+static char *run_to(const char *prog, const char *case_rel, const char *sets, const char *env,
+                    int procs, int threads, int status) {
   char *d = sph_test_tmpdir(), cmd[8192], launch[1100] = "";
   if (procs > 0) snprintf(launch, sizeof launch, "%s -n %d", mpirun(), procs);
   snprintf(cmd, sizeof cmd,
            "SPH_TEST_OMP_MIN=0 %s %s '%s' run --quiet --threads %d '%s' -o '%s' %s", env, launch,
            sph_test_build(prog), threads, sph_test_src(case_rel), d, sets);
   const int rc = sph_test_system(cmd);
-  if (rc) printf("\n  %s on %d processes: exit %d", case_rel, procs, rc);
-  CU_ASSERT_FATAL(rc == 0);
+  if (rc != status) printf("\n  %s on %d processes: exit %d, not %d", case_rel, procs, rc, status);
+  CU_ASSERT_FATAL(rc == status);
   return d;
+}
+
+static char *run(const char *prog, const char *case_rel, const char *sets, const char *env,
+                 int procs, int threads) {
+  return run_to(prog, case_rel, sets, env, procs, threads, 0);
 }
 
 /* The case on each process count of procs[], with 1 and 2 threads (both,
@@ -121,6 +130,39 @@ static void test_default_scheme_3d(void) {
                     "--set numerics.dx=0.04 --set time.end=0.06 --set time.output_interval=0.02 "
                     "--set output.energy=true",
                     all_counts, 5, 1);
+}
+
+/* A blow-up (a fixed step some ten times the stable one) with the
+ * leap-frog, whose last good state each process keeps for its own
+ * particles in its rank store (solver/ranks.c) and gathers only then, in
+ * 2-D and 3-D on 2 and 3 processes: the exit status 3 and every file,
+ * last_good.h5 included, the run's on one process. */
+static void test_blow_up(void) {
+#define BLOW_UP_SETS                                                                               \
+  "--set numerics.integrator=leapfrog --set time.output_interval=0.02 --set "                      \
+  "'numerics.time_step={rule: fixed, dt: 0.004}'"
+  const char *sets = BLOW_UP_SETS, *sets3 = BLOW_UP_SETS " --set numerics.dx=0.04";
+  char *one[2] = {run_to("src/sph", "tests/data/stability_impact.yaml", sets, "", 0, 1, 3),
+                  run_to("src/sph", "cases/lobovsky_h300_3d.yaml", sets3, "", 0, 1, 3)};
+  char good[4200]; /* (this program reads 2-D snapshots) */
+  snprintf(good, sizeof good, "%s/last_good.h5", one[0]);
+  CU_ASSERT(snapcmp_complete(good, NULL, NULL));
+  for (int procs = 2; procs <= 3; procs++) {
+    char *d = run_to("src/sph", "tests/data/stability_impact.yaml", sets, "", procs, procs - 1, 3),
+         *e = run_to("src/sph", "cases/lobovsky_h300_3d.yaml", sets3, "", procs, 1, 3);
+    const int same = sph_test_same_dirs(one[0], d), same3 = sph_test_same_dirs(one[1], e);
+    printf("\n  a blow-up on %d processes: 2-D %s, 3-D %s", procs, same ? "identical" : "DIFFERENT",
+           same3 ? "identical" : "DIFFERENT");
+    CU_ASSERT(same && same3);
+    sph_test_rmtree(d);
+    sph_test_rmtree(e);
+    free(d);
+    free(e);
+  }
+  for (int k = 0; k < 2; k++) {
+    sph_test_rmtree(one[k]);
+    free(one[k]);
+  }
 }
 
 /* A run to t = 0.04 s on 4 processes, restarted from its snapshot at
@@ -342,6 +384,7 @@ int main(void) {
   CU_TestInfo tests[] = {{"2-D, the default scheme, 1-7 processes", test_default_scheme_2d},
                          {"2-D, a gate, a periodic axis, mdbc", test_gate_periodic_mdbc},
                          {"3-D, the default scheme, 1-7 processes", test_default_scheme_3d},
+                         {"a blow-up's last good state", test_blow_up},
                          {"a restart on another process count", test_restart_on_other_count},
                          {"a reduction in rank order is seen", test_rank_order_sums_are_seen},
                          {"a killed process", test_killed_process},

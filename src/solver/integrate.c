@@ -156,9 +156,8 @@ double sph_dt_cfl(const sph_particles *p, const sph_eos *eos, double h, double f
   double vmax = 0.0;
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : vmax)
   for (long i = 0; i < n; i++) {
-    const double v2 = SPH_NORM2(p->vx[i], p->vy[i], p->vz[i]);
-    const double v = sph_eos_sound_speed(eos, p->rho[i]) + sqrt(v2);
+    const double v = sph_cfl_speed(p, eos, (size_t)i);
     if (v > vmax) vmax = v;
   }
-  return factor * h / vmax;
+  return sph_dt_cfl_of(vmax, h, factor);
 }

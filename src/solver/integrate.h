@@ -16,6 +16,8 @@
 #ifndef SPH_INTEGRATE_H
 #define SPH_INTEGRATE_H
 
+#include <math.h>
+
 #include "core/particles.h"
 #include "physics/eos.h"
 #include "solver/forces.h"
@@ -50,5 +52,14 @@ void sph_leapfrog_step(sph_particles *p, double dt, double dt_prev, int first, i
 double sph_dt_paper_b(const sph_force_work *w, double h, double factor);
 /* Paper A eq. (20): dt = factor min h / max_a (c_a + |v_a|). */
 double sph_dt_cfl(const sph_particles *p, const sph_eos *eos, double h, double factor);
+/* c_a + |v_a| of particle i, what sph_dt_cfl takes the maximum of. */
+static inline double sph_cfl_speed(const sph_particles *p, const sph_eos *eos, size_t i) {
+  const double w2 = SPH_NORM2(p->vx[i], p->vy[i], p->vz[i]);
+  return sph_eos_sound_speed(eos, p->rho[i]) + sqrt(w2);
+}
+/* sph_dt_cfl from that maximum, vmax (a rank's pass finds it: solver/ranks.c). */
+static inline double sph_dt_cfl_of(double vmax, double h, double factor) {
+  return factor * h / vmax;
+}
 
 #endif

@@ -95,6 +95,7 @@ unsigned sph_sim_ranks_row_kinds(const sph_sim *s) {
 /* What a rank's pass adds up over its own particles. */
 typedef struct rank_sums {
   double cs_max;  /* the step rule's max of c + sigma */
+  double cfl_max; /* paper A's max of c + |v| (sph_dt_cfl) */
   size_t surface; /* free-surface particles */
   sph_ledger_sums ledger;
 } rank_sums;
@@ -140,14 +141,21 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   s->sub->work.keep_sigma = 1;
   s->sub->work.skip_ghosts = 1;
   s->self = self;
-  /* what a pass reads: all but the integrator's saved state and the rates; what it writes: the
-   * rates, the walls' densities and pressures (and a dynamic wall's half-step density), the
-   * smoothing lengths (from the free-surface flags) and the flags */
-  s->pass_in = SPH_PARTICLES_ALL & ~sph_particles_array_bits(
-                                       "x0 y0 z0 vx0 vy0 vz0 rho0 u0 ax ay az drho du xsx xsy xsz");
-  s->pass_out = sph_particles_array_bits("ax ay az drho du xsx xsy xsz rho p h rhoh flags");
-  /* what no step changes: a store kept from the last pass keeps them */
-  s->pass_static = sph_particles_array_bits("mass mx my mz xr yr zr kind body id");
+  /* what a pass reads: all but the integrator's saved state, the rates and the leap-frog's half
+   * step (a mirror particle's is made in the pass from its image's velocity), but for a dynamic
+   * wall's half-step density; what it writes: the rates, the walls' densities and pressures (and
+   * that half-step density), the smoothing lengths (from the free-surface flags) and the flags */
+  const unsigned long long half = s->walls.dbc ? 0 : sph_particles_array_bits("rhoh");
+  s->pass_in =
+      SPH_PARTICLES_ALL &
+      ~sph_particles_array_bits("x0 y0 z0 vx0 vy0 vz0 rho0 u0 ax ay az drho du xsx xsy xsz "
+                                "vxh vyh vzh uh") &
+      ~half;
+  s->pass_out = sph_particles_array_bits("ax ay az drho du xsx xsy xsz rho p h rhoh flags") & ~half;
+  /* what no step changes: a store kept from the last pass keeps them (the smoothing lengths
+   * without paper B's variable h or a free surface's h*) */
+  s->pass_static = sph_particles_array_bits("mass mx my mz xr yr zr kind body id") |
+                   (c->variable_h || s->fp.var_h ? 0 : sph_particles_array_bits("h"));
   /* SPH_TEST_RANK_ORDER_SUMS=1 (doc/testing.md): the ledger's sums made the
    * way that depends on the rank count, for the test that must see it */
   const char *e = getenv("SPH_TEST_RANK_ORDER_SUMS");
@@ -329,6 +337,7 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
     return sph_error_set(err, "ranks: rank %d's store holds %zu particles after its pass, not %zu",
                          rank, r->p.n, k);
   if (r->own_cs_max > t->cs_max) t->cs_max = r->own_cs_max;
+  if (r->own_cfl_max > t->cfl_max) t->cfl_max = r->own_cfl_max;
   if (s->fp.ledger) sph_ledger_sums_merge(&t->ledger, &r->own_ledger);
   for (size_t j = 0; j < k; j++)
     if (r->p.id[j] != p->id[s->from[j]])
@@ -338,6 +347,7 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
       sph_particles_put(p, s->own_whole, &r->p, s->own_sub, own, s->pass_out, s->self >= 0);
   for (size_t q = 0; q < own; q++)
     t->surface += (p->flags[s->own_whole[q]] & SPH_FLAG_FREE_SURFACE) != 0;
+  s->n_own = own;
   s->fig_passes++;
   s->fig_own += (double)own;
   s->fig_ghosts += (double)(k - own);
@@ -371,6 +381,7 @@ static void combine(sph_sim *s, const pass_report *all, rank_sums *t) {
   sph_ledger_sums_init(&t->ledger);
   for (int q = 0; q < s->ranks; q++) {
     if (all[q].sums.cs_max > t->cs_max) t->cs_max = all[q].sums.cs_max;
+    if (all[q].sums.cfl_max > t->cfl_max) t->cfl_max = all[q].sums.cfl_max;
     t->surface += all[q].sums.surface;
     if (s->fp.ledger) sph_ledger_sums_merge(&t->ledger, &all[q].sums.ledger);
   }
@@ -477,19 +488,65 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
   } else if (process_pass(s, &g, first, resort, hmax, &t, err)) /* this process's rank */
     return -1;
   s->work.cs_sigma_max = t.cs_max;
+  s->cfl_max = t.cfl_max;
   s->dt_paper_b = sph_dt_paper_b(&s->work, c->h, c->dt_factor);
   s->n_surface = s->detect ? t.surface : 0;
   if (s->fp.ledger) sph_ledger_finish(&s->ledger, &t.ledger, c->gravity);
   s->step_pass = s->steps;
   /* the state the pass saw, as the whole store's pass packs it: the
-   * leap-frog's last good state (sim.c) */
+   * leap-frog's last good state (sim.c); under mpirun each process's rank
+   * store holds it for its own particles, gathered only if a step blows up
+   * (room reserved now: that gather cannot fail on one process alone) */
   if (sph_force_work_reserve(&s->work, p->n, err)) return -1;
+  s->hot_in_sub = s->self >= 0;
+  if (s->hot_in_sub) return 0;
   for (size_t i = 0; i < p->n; i++) {
     sph_force_hot *h = &s->work.hot[i];
     h->x = p->x[i], h->y = p->y[i], h->vx = p->vx[i], h->vy = p->vy[i], h->rho = p->rho[i];
     SPH_IF3(h->z = p->z[i], h->vz = p->vz[i];)
   }
   return 0;
+}
+
+/* The state record of the leap-frog's last good state: the fields of a
+ * packed copy (sph_force_hot) that the pass read from the store. */
+enum { STATE_DOUBLES = 2 * SPH_DIM + 1 };
+
+static void state_pack(const sph_force_hot *h, double *d) {
+  d[0] = h->x, d[1] = h->y, d[2] = h->vx, d[3] = h->vy, d[4] = h->rho;
+  SPH_IF3(d[5] = h->z, d[6] = h->vz;)
+}
+
+static void state_unpack(const double *d, sph_force_hot *h) {
+  h->x = d[0], h->y = d[1], h->vx = d[2], h->vy = d[3], h->rho = d[4];
+  SPH_IF3(h->z = d[5], h->vz = d[6];)
+}
+
+void sph_sim_ranks_saved_state(sph_sim *s) {
+  if (!s->hot_in_sub) return;
+  const sph_particles *p = &s->p;
+  const sph_force_hot *hot = s->sub->work.hot;
+  const size_t rec = STATE_DOUBLES * sizeof(double);
+  size_t counts[SPH_PROCS_MAX] = {0}, at[SPH_PROCS_MAX], sum = 0;
+  for (size_t i = 0; i < p->n; i++)
+    counts[s->owner[i]]++;
+  /* the exchange's buffer holds every particle's whole record and this
+   * process's again (reserve_records): more than these */
+  unsigned char *every = s->records, *own = s->records + p->n * rec;
+  for (size_t q = 0; q < s->n_own; q++) {
+    double d[STATE_DOUBLES];
+    state_pack(&hot[s->own_sub[q]], d);
+    memcpy(own + q * rec, d, rec);
+  }
+  sph_procs_gather_records(own, counts, rec, every);
+  for (int q = 0; q < s->ranks; q++)
+    at[q] = sum, sum += counts[q];
+  for (size_t i = 0; i < p->n; i++) {
+    double d[STATE_DOUBLES];
+    memcpy(d, every + rec * at[s->owner[i]]++, rec);
+    state_unpack(d, &s->work.hot[i]);
+  }
+  s->hot_in_sub = 0;
 }
 
 int sph_sim_procs_figures(const sph_sim *s, sph_procs_figures *f) {

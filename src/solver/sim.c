@@ -212,14 +212,23 @@ void sph_sim_move_walls(sph_sim *s, double t) {
 
 /* A rank's store (ranks.c): the pass's reductions over the particles it
  * owns (and their mirror particles), before the mirror particles go: the
- * step rule's max of c + sigma, and the ledger's exact sums. */
+ * step rule's max of c + sigma, paper A's max of c + |v| over the store's
+ * particles (no mirror particle: sph_dt_cfl reads the whole store between
+ * passes), and the ledger's exact sums. */
 static void rank_reductions(sph_sim *s, int diffusion) {
   const sph_particles *p = &s->p;
-  double mx = 0.0;
-  for (size_t i = 0; i < p->n; i++)
-    if (!(p->flags[i] & SPH_FLAG_GHOST) && s->work.hot[i].cs + s->work.sigma[i] > mx)
-      mx = s->work.hot[i].cs + s->work.sigma[i];
+  const int cfl = s->c->dt_rule == SPH_DT_CFL;
+  double mx = 0.0, vmax = 0.0;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->flags[i] & SPH_FLAG_GHOST) continue;
+    if (s->work.hot[i].cs + s->work.sigma[i] > mx) mx = s->work.hot[i].cs + s->work.sigma[i];
+    if (cfl && p->kind[i] != SPH_KIND_MIRROR) {
+      const double v = sph_cfl_speed(p, &s->fp.eos, i);
+      if (v > vmax) vmax = v;
+    }
+  }
   s->own_cs_max = mx;
+  s->own_cfl_max = vmax;
   if (!s->fp.ledger) return;
   sph_ledger_sums_init(&s->own_ledger);
   sph_ledger_sums_add(&s->own_ledger, &s->ledger, p, &s->work, s->c->gravity, s->c->xsph != 0.0,
@@ -448,6 +457,7 @@ static int shift_particles(sph_sim *s, double dt, sph_error *err) {
  * build. */
 static int hot_is_state(const sph_sim *s) {
   const sph_particles *p = &s->p;
+  if (s->hot_in_sub) return 1; /* the processes' rank stores hold it (tests/test_mpi: a blow-up) */
   if (s->work.cap < p->n) return 0;
   for (size_t i = 0; i < p->n; i++) {
     const sph_force_hot *h = &s->work.hot[i];
@@ -499,7 +509,10 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   double dt; /* from the rates of the current state, computed by the last pass */
   switch (c->dt_rule) {
   case SPH_DT_FIXED: dt = c->dt_fixed; break;
-  case SPH_DT_CFL: dt = sph_dt_cfl(&s->p, &s->fp.eos, c->h, c->dt_factor); break;
+  case SPH_DT_CFL: /* the ranks' last pass found the max (ranks.c) */
+    dt = s->cfl_max > 0.0 ? sph_dt_cfl_of(s->cfl_max, c->h, c->dt_factor)
+                          : sph_dt_cfl(&s->p, &s->fp.eos, c->h, c->dt_factor);
+    break;
   case SPH_DT_PAPER_B:
   default: dt = s->dt_paper_b; break;
   }
@@ -553,6 +566,7 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
       apply_filter(s, err))
     return -1;
   const int st = sph_sim_check_state(s, err);
+  if (st == SPH_BLOWUP) sph_sim_ranks_saved_state(s); /* (a leap-frog's last good state) */
   if (st) return st;
   if (c->leaving == SPH_LEAVING_REMOVE &&
       sph_outflow_remove(&s->out, &s->p, s->domain, c->gravity, s->floor_y, err) < 0)

@@ -78,6 +78,7 @@ struct sph_sim {
   unsigned char *mark;
   size_t *from;                /* the whole store's index of each particle of sub */
   size_t *own_sub, *own_whole; /* the rank's own particles: their index in sub, in the store */
+  size_t n_own;                /* (how many, at this process's last pass) */
   unsigned long long pass_in, pass_out; /* the arrays a pass reads, and those it may write, */
   unsigned long long pass_static;       /* and those no step changes */
   size_t cap_ranks;
@@ -103,10 +104,14 @@ struct sph_sim {
   long fig_passes;            /* this process's figures (sph_sim_procs_figures) */
   double fig_own, fig_ghosts, fig_bytes;
   uint64_t order_cut; /* in this order */
+  double cfl_max;     /* the last pass's max of c + |v| (sph_dt_cfl) if the ranks made it (every
+                         pass after sph_sim_ranks_init's), else 0 */
+  int hot_in_sub;     /* the last pass's state is in each process's rank store, for its own
+                         particles, not in work.hot (sph_sim_ranks_saved_state) */
   /* a rank's store (it is some sim's sub): ghosts carry SPH_FLAG_GHOST, and
    * each pass leaves the reductions over the rank's own particles here */
   int rank_store;
-  double own_cs_max;
+  double own_cs_max, own_cfl_max;
   sph_ledger_sums own_ledger;
 };
 
@@ -138,6 +143,11 @@ unsigned sph_sim_ranks_row_kinds(const sph_sim *s);
 /* One pass of the whole store made as the ranks make it, hmax the store's
  * largest smoothing length (ranks.c). */
 int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err);
+/* Under mpirun, after a step whose state blew up (every process's at
+ * once: the store is the same on each): the last pass's state gathered
+ * from each process's rank store into work.hot, as a pass on one process
+ * leaves it; a collective step (ranks.c). */
+void sph_sim_ranks_saved_state(sph_sim *s);
 /* A sim of the case for one rank's store: sph_sim_create on one rank (setup.c). */
 int sph_sim_create_rank_store(const sph_case *c, sph_sim **out, sph_error *err);
 /* Sorts the store by cell and id as a sorting pass does (sim.c). */
