@@ -644,6 +644,22 @@ static void test_gather_put(void) {
   q.rho[2] = 1.0;
   CU_ASSERT(sph_particles_put(&p, which, &q, at, 3, SPH_PARTICLES_ALL, 0) == 0);
   CU_ASSERT(p.rho[42] == 1.0 && p.vx[17] == 9.0);
+  /* blocks of a set of arrays, array by array: the size of the records of
+   * those arrays, set back into other particles, the other arrays untouched */
+  const unsigned long long xr = x | rho;
+  unsigned char buf[3 * 2 * sizeof(double) + 1];
+  buf[sizeof buf - 1] = 0xA5;
+  CU_ASSERT(sph_particles_record_size_of(&p, xr) == 2 * sizeof(double));
+  sph_particles_pack_block(&p, which, 3, xr, buf);
+  CU_ASSERT(buf[sizeof buf - 1] == 0xA5); /* nothing past the block */
+  double first[2];
+  memcpy(first, buf, sizeof first); /* x of 5 and 17 first */
+  CU_ASSERT(first[0] == 500.0 && first[1] == 17.0);
+  const size_t to[3] = {0, 1, 2};
+  sph_particles_unpack_block(&p, to, 3, xr, buf);
+  CU_ASSERT(p.x[0] == 500.0 && p.x[1] == 17.0 && p.x[2] == 42.0);
+  CU_ASSERT(p.rho[0] == 1005.0 && p.rho[1] == 9.0 && p.rho[2] == 1.0);
+  CU_ASSERT(p.vx[0] == 0.0 && p.vx[2] == 4.0 && p.y[1] == -1.0);
   sph_particles_free(&p);
   sph_particles_free(&q);
 }

@@ -274,6 +274,36 @@ void sph_particles_unpack(sph_particles *p, size_t i, const unsigned char *rec) 
   sph_particles_unpack_of(p, i, SPH_PARTICLES_ALL, rec);
 }
 
+void sph_particles_pack_block(const sph_particles *p, const size_t *which, size_t k,
+                              unsigned long long arrays, unsigned char *buf) {
+  int b = 0;
+#define PACK_BLOCK(field, g)                                                                       \
+  if (live(p, g) && (arrays >> b & 1)) {                                                           \
+    for (size_t q = 0; q < k; q++)                                                                 \
+      memcpy(buf + q * sizeof *p->field, &p->field[which[q]], sizeof *p->field);                   \
+    buf += k * sizeof *p->field;                                                                   \
+  }                                                                                                \
+  b++;
+  SPH_PARTICLE_DOUBLES(PACK_BLOCK)
+  SPH_PARTICLE_OTHERS(PACK_BLOCK)
+#undef PACK_BLOCK
+}
+
+void sph_particles_unpack_block(sph_particles *p, const size_t *which, size_t k,
+                                unsigned long long arrays, const unsigned char *buf) {
+  int b = 0;
+#define UNPACK_BLOCK(field, g)                                                                     \
+  if (live(p, g) && (arrays >> b & 1)) {                                                           \
+    for (size_t q = 0; q < k; q++)                                                                 \
+      memcpy(&p->field[which[q]], buf + q * sizeof *p->field, sizeof *p->field);                   \
+    buf += k * sizeof *p->field;                                                                   \
+  }                                                                                                \
+  b++;
+  SPH_PARTICLE_DOUBLES(UNPACK_BLOCK)
+  SPH_PARTICLE_OTHERS(UNPACK_BLOCK)
+#undef UNPACK_BLOCK
+}
+
 unsigned long long sph_particles_differ(const sph_particles *a, size_t i, const sph_particles *b,
                                         size_t j) {
   unsigned long long d = 0;

@@ -188,6 +188,15 @@ void sph_particles_unpack_of(sph_particles *p, size_t i, unsigned long long arra
                              const unsigned char *rec);
 unsigned long long sph_particles_differ(const sph_particles *a, size_t i, const sph_particles *b,
                                         size_t j);
+/* The k particles which[0..k) of p in the arrays of `arrays`, array by
+ * array: each array's k entries in turn, in the store's order of arrays
+ * (sph_particles_record_size_of(p, arrays) * k bytes in buf); and set from
+ * such a block. What a process sends of its own particles (solver/ranks.c):
+ * a loop per array, not per particle. */
+void sph_particles_pack_block(const sph_particles *p, const size_t *which, size_t k,
+                              unsigned long long arrays, unsigned char *buf);
+void sph_particles_unpack_block(sph_particles *p, const size_t *which, size_t k,
+                                unsigned long long arrays, const unsigned char *buf);
 /* Removes the particles i >= first for which drop(ctx, p, i) is true; the
  * others move down in order (sph_particles_move), each id from `first` on
  * renumbered to its new index. drop sees particle i where it was made and

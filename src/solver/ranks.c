@@ -102,8 +102,9 @@ typedef struct rank_sums {
 
 /* What a process tells every other after its pass, in one gather. */
 typedef struct pass_report {
-  int64_t failed;            /* 1: its pass (or its exchange's buffer) failed */
-  unsigned long long arrays; /* the arrays its pass changed in a bit of some particle */
+  int64_t failed;               /* 1: its pass (or its exchange's buffer) failed */
+  unsigned long long arrays[2]; /* the arrays its pass changed in a bit of some particle: of
+                                   the fluid, of the walls */
   rank_sums sums;
 } pass_report;
 
@@ -175,6 +176,8 @@ void sph_sim_ranks_free(sph_sim *s) {
   free(s->own_whole);
   s->own_sub = s->own_whole = NULL;
   free(s->owner);
+  free(s->by_owner);
+  s->by_owner = NULL;
   free(s->records);
   free(s->reports);
   free(s->mark_last);
@@ -205,13 +208,15 @@ static int reserve(sph_sim *s, size_t n, sph_error *err) {
   if (ow) s->own_whole = ow;
   unsigned char *o = s->self >= 0 ? realloc(s->owner, n) : s->owner;
   if (o) s->owner = o;
+  size_t *bo = s->self >= 0 ? realloc(s->by_owner, n * sizeof *bo) : s->by_owner;
+  if (bo) s->by_owner = bo;
   unsigned char *l = s->self >= 0 ? realloc(s->mark_last, n) : s->mark_last;
   if (l) s->mark_last = l;
   double *tp = s->self >= 0 ? realloc(s->take_pos, SPH_DIM * n * sizeof *tp) : s->take_pos;
   if (tp) s->take_pos = tp;
   uint32_t *w = realloc(s->weight, n * sizeof *w);
   if (w) s->weight = w;
-  if (!k || !m || !nr || !f || !os || !ow || !w || (s->self >= 0 && (!o || !l || !tp)))
+  if (!k || !m || !nr || !f || !os || !ow || !w || (s->self >= 0 && (!o || !bo || !l || !tp)))
     return sph_error_set(err, "out of memory for the ranks' cut");
   s->cap_ranks = n;
   return 0;
@@ -311,12 +316,22 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
       memcpy(s->take_pos + (size_t)a * p->n, p->pos[a], p->n * sizeof *s->take_pos);
   }
   size_t k = 0, own = 0;
-  for (size_t i = 0; i < p->n; i++)
-    if (s->mark[i]) {
-      s->no_row[p->id[i]] = s->mark[i] == 3;
-      if (s->mark[i] == 1) s->own_sub[own] = k, s->own_whole[own++] = i;
-      s->from[k++] = i;
-    }
+  if (same) /* the last pass's particles: its indices hold */
+    k = s->n_from, own = s->n_own;
+  else {
+    for (size_t i = 0; i < p->n; i++)
+      if (s->mark[i]) {
+        s->no_row[p->id[i]] = s->mark[i] == 3;
+        if (s->mark[i] == 1 && p->kind[i] == SPH_KIND_FLUID)
+          s->own_sub[own] = k, s->own_whole[own++] = i;
+        s->from[k++] = i;
+      }
+    s->n_own_fluid = own;
+    for (size_t j = 0; j < k; j++) /* then the walls */
+      if (s->mark[s->from[j]] == 1 && p->kind[s->from[j]] != SPH_KIND_FLUID)
+        s->own_sub[own] = j, s->own_whole[own++] = s->from[j];
+  }
+  s->n_from = k;
   if (sph_particles_gather(&r->p, in, s->from, k, same ? s->pass_in & ~s->pass_static : s->pass_in,
                            err))
     return -1;
@@ -343,8 +358,11 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
     if (r->p.id[j] != p->id[s->from[j]])
       return sph_error_set(err, "ranks: rank %d's pass reordered its store", rank);
   /* its own particles back (a ghost's own rank writes it), array by array */
-  s->changed |=
-      sph_particles_put(p, s->own_whole, &r->p, s->own_sub, own, s->pass_out, s->self >= 0);
+  const size_t nf = s->n_own_fluid;
+  s->changed[0] |=
+      sph_particles_put(p, s->own_whole, &r->p, s->own_sub, nf, s->pass_out, s->self >= 0);
+  s->changed[1] |= sph_particles_put(p, s->own_whole + nf, &r->p, s->own_sub + nf, own - nf,
+                                     s->pass_out, s->self >= 0);
   for (size_t q = 0; q < own; q++)
     t->surface += (p->flags[s->own_whole[q]] & SPH_FLAG_FREE_SURFACE) != 0;
   s->n_own = own;
@@ -354,15 +372,30 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
   return 0;
 }
 
-/* Each process's count of own particles; room for the records of the
- * exchange, at the size of every array's record (the arrays a pass
- * changed are known only after it), reserved before the pass so that its
- * failure is told with the pass's. */
-static int reserve_records(sph_sim *s, size_t counts[SPH_PROCS_MAX], sph_error *err) {
+/* Each particle's process at the cut, and the store's indices by process
+ * (each process's in storage order, the order it sends them in). */
+static void own_by_process(sph_sim *s, const uint64_t *first) {
   const sph_particles *p = &s->p;
-  memset(counts, 0, SPH_PROCS_MAX * sizeof *counts);
+  size_t at[SPH_PROCS_MAX], wall[SPH_PROCS_MAX], sum = 0;
+  memset(s->owned, 0, sizeof s->owned);
+  memset(s->owned_fluid, 0, sizeof s->owned_fluid);
+  for (size_t i = 0; i < p->n; i++) {
+    s->owner[i] = (unsigned char)sph_decomp_owner(first, s->ranks, s->keys[i]);
+    s->owned[s->owner[i]]++;
+    s->owned_fluid[s->owner[i]] += p->kind[i] == SPH_KIND_FLUID;
+  }
+  for (int q = 0; q < s->ranks; q++)
+    at[q] = sum, wall[q] = sum + s->owned_fluid[q], sum += s->owned[q];
   for (size_t i = 0; i < p->n; i++)
-    counts[s->owner[i]]++;
+    s->by_owner[p->kind[i] == SPH_KIND_FLUID ? at[s->owner[i]]++ : wall[s->owner[i]]++] = i;
+}
+
+/* Room for the records of the exchange, at the size of every array's
+ * record (the arrays a pass changed are known only after it), reserved
+ * before the pass so that its failure is told with the pass's. */
+static int reserve_records(sph_sim *s, sph_error *err) {
+  const sph_particles *p = &s->p;
+  const size_t *counts = s->owned;
   const size_t rec = sph_particles_record_size(p), need = (p->n + counts[s->self]) * rec;
   if (!sph_procs_records_fit(counts, rec))
     return sph_error_set(err, "the processes' exchange: more than %d particles' records", INT_MAX);
@@ -396,46 +429,60 @@ static void combine(sph_sim *s, const pass_report *all, rank_sums *t) {
     }
 }
 
-/* This process's rank's pass, then two collective steps (procs.h): every
+/* Every process's own particles of one kind (0: the fluid, 1: the walls)
+ * into every process's store, in one collective step: of the arrays in
+ * `arrays`, a block of each array's values in turn (by_owner's order), in
+ * buf; returns the bytes of buf it took. */
+static size_t share_kind(sph_sim *s, int kind, unsigned long long arrays, unsigned char *buf) {
+  sph_particles *p = &s->p;
+  const size_t rec = sph_particles_record_size_of(p, arrays);
+  size_t counts[SPH_PROCS_MAX], first[SPH_PROCS_MAX], at[SPH_PROCS_MAX], sum = 0, whole = 0;
+  for (int q = 0; q < s->ranks; q++) {
+    counts[q] = kind ? s->owned[q] - s->owned_fluid[q] : s->owned_fluid[q];
+    first[q] = whole + (kind ? s->owned_fluid[q] : 0); /* in by_owner */
+    at[q] = sum, sum += counts[q], whole += s->owned[q];
+  }
+  if (!rec) return 0;
+  unsigned char *own = buf + sum * rec;
+  sph_particles_pack_block(p, s->by_owner + first[s->self], counts[s->self], arrays, own);
+  sph_procs_gather_records(own, counts, rec, buf);
+  s->fig_bytes += (double)(counts[s->self] * rec) * (double)(s->ranks - 1); /* to each other */
+  for (int q = 0; q < s->ranks; q++)
+    if (q != s->self)
+      sph_particles_unpack_block(p, s->by_owner + first[q], counts[q], arrays, buf + rec * at[q]);
+  return (sum + counts[s->self]) * rec;
+}
+
+/* This process's rank's pass, then collective steps (procs.h): every
  * process's report (failure, the arrays changed, the reductions) to every
  * other, and each particle's record, as its own process left it, into
- * every process's store: the arrays some process's pass changed, the
+ * every process's store: the arrays some process's pass changed in a
+ * particle of its kind (the fluid's rates, the walls' pressures), the
  * others being the same on every process before and after. Every process
  * holds the same store in the same order, so a rank's particles are sent
- * in storage order and placed by their owner alone. */
+ * in storage order, kind by kind, and placed by their owner alone. */
 static int process_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *first, int resort,
                         double hmax, rank_sums *t, sph_error *err) {
   sph_particles *p = &s->p;
-  size_t counts[SPH_PROCS_MAX];
   pass_report mine;
   memset(&mine, 0, sizeof mine);
   sph_ledger_sums_init(&mine.sums.ledger);
-  mine.failed = reserve_records(s, counts, err) ||
-                rank_pass(s, p, g, first, s->self, resort, hmax, &mine.sums, err);
-  mine.arrays = s->changed;
-  s->changed = 0;
+  mine.failed =
+      reserve_records(s, err) || rank_pass(s, p, g, first, s->self, resort, hmax, &mine.sums, err);
+  mine.arrays[0] = s->changed[0], mine.arrays[1] = s->changed[1];
+  s->changed[0] = s->changed[1] = 0;
   pass_report *all = s->reports;
   sph_procs_gather(&mine, sizeof mine, all);
   for (int q = 0; q < s->ranks; q++)
     if (all[q].failed) return sph_procs_failed(q, err);
   combine(s, all, t);
-  unsigned long long arrays = 0;
+  unsigned long long arrays[2] = {0, 0};
   for (int q = 0; q < s->ranks; q++)
-    arrays |= all[q].arrays;
-  const size_t rec = sph_particles_record_size_of(p, arrays);
-  unsigned char *every = s->records, *own = s->records + p->n * rec;
-  size_t k = 0, at[SPH_PROCS_MAX], sum = 0;
-  for (size_t i = 0; i < p->n; i++)
-    if (s->owner[i] == s->self) sph_particles_pack_of(p, i, arrays, own + rec * k++);
-  sph_procs_gather_records(own, counts, rec, every);
-  s->fig_bytes += (double)(counts[s->self] * rec) * (double)(s->ranks - 1); /* to each other */
-  for (int q = 0; q < s->ranks; q++)
-    at[q] = sum, sum += counts[q];
-  for (size_t i = 0; i < p->n; i++) {
-    const int q = s->owner[i];
-    if (q != s->self) sph_particles_unpack_of(p, i, arrays, every + rec * at[q]);
-    at[q]++;
-  }
+    arrays[0] |= all[q].arrays[0], arrays[1] |= all[q].arrays[1];
+  /* (the buffer holds every particle's whole record and this process's
+   * again: reserve_records) */
+  const size_t used = share_kind(s, 0, arrays[0], s->records);
+  share_kind(s, 1, arrays[1], s->records + used);
   return 0;
 }
 
@@ -473,9 +520,7 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
       return -1;
     s->n_cut = p->n, s->order_cut = p->order;
     s->depth = ghost_depth(p, g.side);
-    if (s->self >= 0) /* each particle's process, for the exchange (process_pass) */
-      for (size_t i = 0; i < p->n; i++)
-        s->owner[i] = (unsigned char)sph_decomp_owner(first, s->ranks, s->keys[i]);
+    if (s->self >= 0) own_by_process(s, first); /* for the exchange (process_pass) */
   }
   rank_sums t;
   memset(&t, 0, sizeof t);
@@ -527,24 +572,20 @@ void sph_sim_ranks_saved_state(sph_sim *s) {
   const sph_particles *p = &s->p;
   const sph_force_hot *hot = s->sub->work.hot;
   const size_t rec = STATE_DOUBLES * sizeof(double);
-  size_t counts[SPH_PROCS_MAX] = {0}, at[SPH_PROCS_MAX], sum = 0;
-  for (size_t i = 0; i < p->n; i++)
-    counts[s->owner[i]]++;
   /* the exchange's buffer holds every particle's whole record and this
-   * process's again (reserve_records): more than these */
+   * process's again (reserve_records): more than these; this process's
+   * own particles in storage order, as by_owner lists them */
   unsigned char *every = s->records, *own = s->records + p->n * rec;
   for (size_t q = 0; q < s->n_own; q++) {
     double d[STATE_DOUBLES];
     state_pack(&hot[s->own_sub[q]], d);
     memcpy(own + q * rec, d, rec);
   }
-  sph_procs_gather_records(own, counts, rec, every);
-  for (int q = 0; q < s->ranks; q++)
-    at[q] = sum, sum += counts[q];
-  for (size_t i = 0; i < p->n; i++) {
+  sph_procs_gather_records(own, s->owned, rec, every);
+  for (size_t k = 0; k < p->n; k++) { /* every process's in turn */
     double d[STATE_DOUBLES];
-    memcpy(d, every + rec * at[s->owner[i]]++, rec);
-    state_unpack(d, &s->work.hot[i]);
+    memcpy(d, every + rec * k, rec);
+    state_unpack(d, &s->work.hot[s->by_owner[k]]);
   }
   s->hot_in_sub = 0;
 }

@@ -77,8 +77,9 @@ struct sph_sim {
   uint64_t *keys;
   unsigned char *mark;
   size_t *from;                /* the whole store's index of each particle of sub */
-  size_t *own_sub, *own_whole; /* the rank's own particles: their index in sub, in the store */
-  size_t n_own;                /* (how many, at this process's last pass) */
+  size_t *own_sub, *own_whole; /* the rank's own particles, the fluid first (each kind in storage
+                                  order): their index in sub, in the store */
+  size_t n_own, n_own_fluid, n_from;    /* (how many, the fluid, and in sub, at the last pass) */
   unsigned long long pass_in, pass_out; /* the arrays a pass reads, and those it may write, */
   unsigned long long pass_static;       /* and those no step changes */
   size_t cap_ranks;
@@ -88,20 +89,23 @@ struct sph_sim {
    * the processes share */
   int self;
   unsigned char *owner;
+  size_t *by_owner; /* the store's indices by owner, each owner's fluid first (each kind in
+                       storage order), */
+  size_t owned[64], owned_fluid[64]; /* this many each, the fluid (SPH_PROCS_MAX), from the cut */
   unsigned char *records;
   size_t cap_records;
-  void *reports;              /* every process's report of its pass, in rank order (ranks.c) */
-  unsigned char *mark_last;   /* the marks of this process's last pass, */
-  size_t n_mark_last;         /* over this many particles, */
-  uint64_t order_last;        /* the store in this order (particles.h), */
-  double *take_pos;           /* every particle's position then (SPH_DIM arrays of n_mark_last), */
-  double side_last;           /* and the cells' side */
-  uint32_t *weight;           /* each particle's weight in the cut */
-  unsigned long long changed; /* the arrays this process's pass changed */
-  uint64_t first[64];         /* the cut: each rank's first key (neighbours/decomp.h), */
-  size_t n_cut;               /* made over this many particles */
-  int rank_order_sums;        /* the test hook SPH_TEST_RANK_ORDER_SUMS (ranks.c) */
-  long fig_passes;            /* this process's figures (sph_sim_procs_figures) */
+  void *reports;            /* every process's report of its pass, in rank order (ranks.c) */
+  unsigned char *mark_last; /* the marks of this process's last pass, */
+  size_t n_mark_last;       /* over this many particles, */
+  uint64_t order_last;      /* the store in this order (particles.h), */
+  double *take_pos;         /* every particle's position then (SPH_DIM arrays of n_mark_last), */
+  double side_last;         /* and the cells' side */
+  uint32_t *weight;         /* each particle's weight in the cut */
+  unsigned long long changed[2]; /* the arrays this process's pass changed: fluid, walls */
+  uint64_t first[64];            /* the cut: each rank's first key (neighbours/decomp.h), */
+  size_t n_cut;                  /* made over this many particles */
+  int rank_order_sums;           /* the test hook SPH_TEST_RANK_ORDER_SUMS (ranks.c) */
+  long fig_passes;               /* this process's figures (sph_sim_procs_figures) */
   double fig_own, fig_ghosts, fig_bytes;
   uint64_t order_cut; /* in this order */
   double cfl_max;     /* the last pass's max of c + |v| (sph_dt_cfl) if the ranks made it (every
