@@ -6,6 +6,8 @@
  *   - the cut balances the particles, and is the same for the keys in any
  *     order (a pure function of the state);
  *   - the halo holds every particle within `depth` cells of a rank's own;
+ *   - the particles in the cells around each, which the cut's weights
+ *     are made from, are counted right (a periodic axis too);
  *   - ranks emulated in one process: a rank that holds only its own
  *     particles and its ghosts computes its own particles' rates bit for bit
  *     as the whole set does, for 2, 3 and 7 ranks, on the schemes, walls and
@@ -84,30 +86,64 @@ static void test_cut_is_balanced_and_pure(void) {
   free(keys);
 }
 
-/* The wet walls of the cut's weights (sph_decomp_near_kind): a row of wall
- * particles, fluid over its first cells; the walls within one cell of a
- * fluid cell are marked, the others not, the fluid too. */
-static void test_walls_near_the_fluid(void) {
-  sph_particles p;
-  sph_error err;
-  CU_ASSERT_FATAL(sph_particles_init(&p, 32, &err) == 0);
-  const double v[SPH_DIM] = {0.0};
-  for (int k = 0; k < 20; k++) { /* walls at x = 0.05 .. 1.95, cells 0 .. 9 */
-    const double x[SPH_DIM] = {SPH_XYZ(0.05 + 0.1 * k, 0.05, 0.05)};
-    CU_ASSERT_FATAL(sph_particles_add_at(&p, x, v, 1000.0, 1.0, 0.1, SPH_KIND_WALL, &err) >= 0);
+/* The counts the cut's weights are made from (sph_decomp_block_counts):
+ * the particles in the 3^D cells around each, of every kind and of one,
+ * against counting them pair by pair: 400 particles at random (seeded),
+ * fluid and walls, in a box of cells and with a periodic axis of 1, 2 and
+ * 5 cells (each cell of the period counted once). */
+static void test_block_counts(void) {
+  const long periods[] = {0, 1, 2, 5};
+  for (int c = 0; c < 4; c++) {
+    const double side = 0.2;
+    const sph_decomp_grid g = {side, periods[c] ? 1 : 0, 0.0, periods[c] ? periods[c] : 1};
+    sph_particles p;
+    sph_error err;
+    CU_ASSERT_FATAL(sph_particles_init(&p, 400, &err) == 0);
+    unsigned long long r = 12345u + (unsigned)c;
+    const double v[SPH_DIM] = {0.0};
+    for (int k = 0; k < 400; k++) {
+      double x[SPH_DIM];
+      for (int a = 0; a < SPH_DIM; a++) {
+        r = r * 6364136223846793005ull + 1442695040888963407ull;
+        const double span = a == 0 && periods[c] ? side * (double)periods[c] : 1.3;
+        x[a] = (double)(r >> 11) / 9007199254740992.0 * span;
+      }
+      const int32_t kind = (r >> 7 & 3) ? SPH_KIND_FLUID : SPH_KIND_WALL;
+      CU_ASSERT_FATAL(sph_particles_add_at(&p, x, v, 1000.0, 1.0, 0.1, kind, &err) >= 0);
+    }
+    uint32_t *all = malloc(p.n * sizeof *all), *fluid = malloc(p.n * sizeof *fluid);
+    uint32_t(*cell)[SPH_DIM] = malloc(p.n * sizeof *cell);
+    CU_ASSERT_FATAL(all && fluid && cell);
+    CU_ASSERT_FATAL(sph_decomp_block_counts(&g, &p, SPH_KIND_FLUID, all, fluid, &err) == 0);
+    for (size_t i = 0; i < p.n; i++) {
+      double x[SPH_DIM];
+      for (int a = 0; a < SPH_DIM; a++)
+        x[a] = p.pos[a][i];
+      CU_ASSERT_FATAL(sph_decomp_cell(&g, x, cell[i]) == 0);
+    }
+    int bad = 0;
+    for (size_t i = 0; i < p.n; i++) {
+      uint32_t n_all = 0, n_fluid = 0;
+      for (size_t j = 0; j < p.n; j++) {
+        int near = 1;
+        for (int a = 0; a < SPH_DIM; a++) {
+          long d = labs((long)cell[i][a] - (long)cell[j][a]);
+          if (a == 0 && periods[c] && periods[c] - d < d)
+            d = periods[c] - d; /* around the period */
+          near = near && d <= 1;
+        }
+        n_all += (uint32_t)near;
+        n_fluid += (uint32_t)(near && p.kind[j] == SPH_KIND_FLUID);
+      }
+      bad += all[i] != n_all || fluid[i] != n_fluid;
+    }
+    if (bad) printf("\n  period of %ld cells: %d particles' counts wrong", periods[c], bad);
+    CU_ASSERT_EQUAL(bad, 0);
+    free(all);
+    free(fluid);
+    free(cell);
+    sph_particles_free(&p);
   }
-  for (int k = 0; k < 5; k++) { /* fluid at x = 0.05 .. 0.45: cells 0 .. 2 */
-    const double x[SPH_DIM] = {SPH_XYZ(0.05 + 0.1 * k, 0.15, 0.05)};
-    CU_ASSERT_FATAL(sph_particles_add_at(&p, x, v, 1000.0, 1.0, 0.1, SPH_KIND_FLUID, &err) >= 0);
-  }
-  const sph_decomp_grid g = {0.2, 0, 0.0, 1};
-  unsigned char near[25];
-  CU_ASSERT_FATAL(sph_decomp_near_kind(&g, &p, SPH_KIND_FLUID, near, &err) == 0);
-  for (int k = 0; k < 20; k++) /* within one cell of cells 0 .. 2: cells 0 .. 3, x < 0.8 */
-    CU_ASSERT_EQUAL(near[k], k <= 7);
-  for (int k = 20; k < 25; k++)
-    CU_ASSERT_EQUAL(near[k], 1);
-  sph_particles_free(&p);
 }
 
 /* ---- ranks emulated in one process ----------------------------------------- */
@@ -300,7 +336,7 @@ int main(void) {
   CU_TestInfo tests[] = {
       {"the Hilbert curve visits every cell once", test_hilbert_visits_every_cell_once},
       {"the cut is balanced and pure", test_cut_is_balanced_and_pure},
-      {"the walls near the fluid are found", test_walls_near_the_fluid},
+      {"the particles around each are counted", test_block_counts},
       {"ranks emulated in one process compute the same bits", test_emulated_ranks},
       CU_TEST_INFO_NULL};
   return sph_test_main(SPH_DIM == 2 ? "decomp" : "decomp_3d", tests);

@@ -14,6 +14,8 @@
  *   - a blow-up (leap-frog, a step ten times too long) in 2-D and 3-D on 2
  *     and 3 processes: exit status 3, last_good.h5 and every other file
  *     the serial run's;
+ *   - one process's pass failing (SPH_TEST_FAIL_PASS) stops every process
+ *     with its message, none left waiting, in 2-D and 3-D on 2 and 3;
  *   - a run on 4 processes restarted from its snapshot on 3;
  *   - the comparison sees a reduction summed in rank order
  *     (SPH_TEST_RANK_ORDER_SUMS=1 rounds each rank's ledger sums and adds
@@ -163,6 +165,36 @@ static void test_blow_up(void) {
     sph_test_rmtree(one[k]);
     free(one[k]);
   }
+}
+
+/* One process's pass fails (SPH_TEST_FAIL_PASS: process 1's fifth pass,
+ * before its walls' first stage on the default scheme): every process
+ * stops with that process's message, none left waiting in a collective
+ * step (the launch's bound would end it with 124), in 2-D and 3-D. */
+static void test_failed_pass(void) {
+  const char *cases[2][2] = {{"cases/lobovsky_h300.yaml", "--set numerics.dx=0.02"},
+                             {"cases/lobovsky_h300_3d.yaml", "--set numerics.dx=0.04"}};
+  for (int k = 0; k < 2; k++)
+    for (int procs = 2; procs <= 3; procs++) {
+      char *d = sph_test_tmpdir(), cmd[8192], log[4200];
+      snprintf(log, sizeof log, "%s/log", d);
+      snprintf(cmd, sizeof cmd,
+               "SPH_TEST_FAIL_PASS=1:5 %s -n %d '%s' run --quiet --threads 1 '%s' -o '%s/out' %s "
+               "--set time.end=0.1 > '%s' 2>&1",
+               mpirun(), procs, sph_test_build("src/sph"), sph_test_src(cases[k][0]), d,
+               cases[k][1], log);
+      const double t0 = now();
+      const int rc = sph_test_system(cmd);
+      char *out = sph_test_read_file(log, NULL);
+      const int told = out && strstr(out, "SPH_TEST_FAIL_PASS: pass 5 fails") != NULL;
+      free(out);
+      printf("\n  %s, process 1 of %d fails its fifth pass: exit %d, %s (%.1f s)", cases[k][0],
+             procs, rc, told ? "its message" : "NO MESSAGE", now() - t0);
+      CU_ASSERT(rc != 0 && rc != 124);
+      CU_ASSERT(told);
+      sph_test_rmtree(d);
+      free(d);
+    }
 }
 
 /* A run to t = 0.04 s on 4 processes, restarted from its snapshot at
@@ -385,6 +417,7 @@ int main(void) {
                          {"2-D, a gate, a periodic axis, mdbc", test_gate_periodic_mdbc},
                          {"3-D, the default scheme, 1-7 processes", test_default_scheme_3d},
                          {"a blow-up's last good state", test_blow_up},
+                         {"a failed pass stops every process", test_failed_pass},
                          {"a restart on another process count", test_restart_on_other_count},
                          {"a reduction in rank order is seen", test_rank_order_sums_are_seen},
                          {"a killed process", test_killed_process},

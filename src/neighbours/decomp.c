@@ -207,36 +207,45 @@ static void dilate(const cellbox *b, int a, int wrap, int depth, const unsigned 
   }
 }
 
+/* Each particle's cell (*at, n of them, the caller's to free) and the box
+ * of cells they fill (the periodic axis spanning its period's cells): 0,
+ * or -1 with err. */
+static int cells_of(const sph_decomp_grid *g, const sph_particles *p, cellbox *b,
+                    uint32_t (**at)[SPH_DIM], sph_error *err) {
+  const int64_t half = (int64_t)1 << (SPH_DECOMP_BITS - 1);
+  int64_t hi[SPH_DIM];
+  for (int a = 0; a < SPH_DIM; a++)
+    b->lo[a] = INT64_MAX, hi[a] = INT64_MIN;
+  uint32_t(*c)[SPH_DIM] = malloc((p->n ? p->n : 1) * sizeof *c);
+  if (!c) return sph_error_set(err, "decomposition: out of memory for the particles' cells");
+  for (size_t i = 0; i < p->n; i++) {
+    if (particle_cell(g, p, i, c[i])) {
+      free(c);
+      return sph_error_set(err, "decomposition: particle %lld is outside the curve's reach",
+                           (long long)p->id[i]);
+    }
+    for (int a = 0; a < SPH_DIM; a++) {
+      if (c[i][a] < b->lo[a]) b->lo[a] = c[i][a];
+      if (c[i][a] > hi[a]) hi[a] = c[i][a];
+    }
+  }
+  b->total = p->n ? 1 : 0;
+  for (int a = 0; a < SPH_DIM && p->n; a++) {
+    if (g->periodic == 1 + a) b->lo[a] = half, hi[a] = half + g->ncell_periodic - 1;
+    b->n[a] = (size_t)(hi[a] - b->lo[a] + 1);
+    b->total *= b->n[a];
+  }
+  *at = c;
+  return 0;
+}
+
 /* The marks of sph_decomp_halo around the particles with mark[i] = 1 on
  * entry (the others 0). */
 static long halo_marks(const sph_decomp_grid *g, const sph_particles *p, int depth, int row_depth,
                        unsigned row_kinds, unsigned char *mark, sph_error *err) {
-  const int64_t half = (int64_t)1 << (SPH_DECOMP_BITS - 1);
   cellbox b;
-  int64_t hi[SPH_DIM];
-  for (int a = 0; a < SPH_DIM; a++)
-    b.lo[a] = INT64_MAX, hi[a] = INT64_MIN;
-  /* each particle's cell, found once */
-  uint32_t(*at)[SPH_DIM] = malloc((p->n ? p->n : 1) * sizeof *at);
-  if (!at) return sph_error_set(err, "decomposition: out of memory for the halo"), -1;
-  for (size_t i = 0; i < p->n; i++) {
-    if (particle_cell(g, p, i, at[i])) {
-      free(at);
-      return sph_error_set(err, "decomposition: particle %lld is outside the curve's reach",
-                           (long long)p->id[i]),
-             -1;
-    }
-    for (int a = 0; a < SPH_DIM; a++) {
-      if (at[i][a] < b.lo[a]) b.lo[a] = at[i][a];
-      if (at[i][a] > hi[a]) hi[a] = at[i][a];
-    }
-  }
-  b.total = p->n ? 1 : 0;
-  for (int a = 0; a < SPH_DIM && p->n; a++) {
-    if (g->periodic == 1 + a) b.lo[a] = half, hi[a] = half + g->ncell_periodic - 1;
-    b.n[a] = (size_t)(hi[a] - b.lo[a] + 1);
-    b.total *= b.n[a];
-  }
+  uint32_t(*at)[SPH_DIM];
+  if (cells_of(g, p, &b, &at, err)) return -1;
   if (row_depth > depth) row_depth = depth;
   unsigned char *block = calloc(3 * (b.total ? b.total : 1), 1);
   if (!block) {
@@ -278,12 +287,57 @@ long sph_decomp_halo(const sph_decomp_grid *g, const sph_particles *p, const uin
   return halo_marks(g, p, depth, row_depth, row_kinds, mark, err);
 }
 
-int sph_decomp_near_kind(const sph_decomp_grid *g, const sph_particles *p, int32_t kind,
-                         unsigned char *near, sph_error *err) {
-  for (size_t i = 0; i < p->n; i++)
-    near[i] = p->kind[i] == kind;
-  if (halo_marks(g, p, 1, 0, 0u, near, err) < 0) return -1;
-  for (size_t i = 0; i < p->n; i++)
-    near[i] = near[i] != 0;
+/* One axis's sum over the 3 cells along it: out[c] = in[c - a] + in[c] +
+ * in[c + a] (wrapping on the periodic axis, each cell of its period once;
+ * clipped on the others). */
+static void sum3(const cellbox *b, int a, int wrap, const uint32_t *in, uint32_t *out) {
+  size_t stride = 1;
+  for (int q = 0; q < a; q++)
+    stride *= b->n[q];
+  const long n = (long)b->n[a];
+  for (size_t k = 0; k < b->total; k++) {
+    const long at = (long)((k / stride) % b->n[a]);
+    const size_t base = k - (size_t)at * stride;
+    uint32_t s = 0;
+    for (long d = -1; d <= 1; d++) {
+      long t = at + d;
+      if (wrap) {
+        if ((d != 0 && n == 1) || (d == 1 && n == 2)) continue;
+        t = ((t % n) + n) % n;
+      } else if (t < 0 || t >= n)
+        continue;
+      s += in[base + (size_t)t * stride];
+    }
+    out[k] = s;
+  }
+}
+
+int sph_decomp_block_counts(const sph_decomp_grid *g, const sph_particles *p, int32_t kind,
+                            uint32_t *all, uint32_t *of_kind, sph_error *err) {
+  cellbox b;
+  uint32_t(*at)[SPH_DIM];
+  if (cells_of(g, p, &b, &at, err)) return -1;
+  uint32_t *block = calloc(3 * (b.total ? b.total : 1), sizeof *block);
+  if (!block) {
+    free(at);
+    return sph_error_set(err, "decomposition: out of memory for the cells' counts");
+  }
+  uint32_t *cells[2] = {block, block + b.total}, *other = block + 2 * b.total;
+  for (size_t i = 0; i < p->n; i++) {
+    const size_t k = box_index(&b, at[i]);
+    cells[0][k]++;
+    cells[1][k] += p->kind[i] == kind;
+  }
+  for (int c = 0; c < 2; c++) /* the 3^D block of cells around each, one axis at a time */
+    for (int a = 0; a < SPH_DIM; a++) {
+      sum3(&b, a, g->periodic == 1 + a, cells[c], other);
+      memcpy(cells[c], other, b.total * sizeof *other);
+    }
+  for (size_t i = 0; i < p->n; i++) {
+    const size_t k = box_index(&b, at[i]);
+    all[i] = cells[0][k], of_kind[i] = cells[1][k];
+  }
+  free(block);
+  free(at);
   return 0;
 }

@@ -95,11 +95,13 @@ long sph_decomp_halo(const sph_decomp_grid *g, const sph_particles *p, const uin
                      const uint64_t *first, int ranks, int rank, int depth, int row_depth,
                      unsigned row_kinds, unsigned char *mark, sph_error *err);
 
-/* near[i] = 1 for the particles of `kind` and those within one cell of a
- * cell holding one (a wall particle with fluid within a support), else 0.
- * 0, or -1 out of memory. */
-int sph_decomp_near_kind(const sph_decomp_grid *g, const sph_particles *p, int32_t kind,
-                         unsigned char *near, sph_error *err);
+/* For each particle i, the particles in the 3^D cells around its cell (its
+ * own included; wrapping on the periodic axis, each cell once): all[i] of
+ * every kind, of_kind[i] of `kind`. With cells one support wide, what a
+ * particle's rows cost grows with them (the candidates of its neighbour
+ * row; solver/ranks.c weighs the cut by them). 0, or -1 out of memory. */
+int sph_decomp_block_counts(const sph_decomp_grid *g, const sph_particles *p, int32_t kind,
+                            uint32_t *all, uint32_t *of_kind, sph_error *err);
 
 #ifdef __cplusplus
 }

@@ -227,6 +227,30 @@ void sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec
   MPI_Type_free(&t);
 }
 
+/* The gather that sph_procs_gather_records_start left running. */
+static MPI_Request pending;
+static MPI_Datatype pending_type;
+
+void sph_procs_gather_records_start(const void *mine, const size_t *counts, size_t rec, void *all) {
+  int n[SPH_PROCS_MAX], at[SPH_PROCS_MAX], total = 0;
+  for (int r = 0; r < count; r++) {
+    n[r] = (int)counts[r];
+    at[r] = total;
+    total += n[r];
+  }
+  MPI_Type_contiguous((int)rec, MPI_BYTE, &pending_type);
+  MPI_Type_commit(&pending_type);
+  MPI_Iallgatherv(mine, n[rank], pending_type, all, n, at, pending_type, MPI_COMM_WORLD, &pending);
+}
+
+void sph_procs_gather_records_wait(void) {
+  if (!crowded)
+    MPI_Wait(&pending, MPI_STATUS_IGNORE);
+  else
+    wait_for(&pending);
+  MPI_Type_free(&pending_type);
+}
+
 #else /* one process */
 
 int sph_procs_start(sph_error *err) {
@@ -254,4 +278,8 @@ int sph_procs_records_fit(const size_t *counts, size_t rec) {
 void sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec, void *all) {
   memcpy(all, mine, counts[0] * rec);
 }
+void sph_procs_gather_records_start(const void *mine, const size_t *counts, size_t rec, void *all) {
+  memcpy(all, mine, counts[0] * rec);
+}
+void sph_procs_gather_records_wait(void) {}
 #endif

@@ -74,6 +74,11 @@ int sph_procs_records_fit(const size_t *counts, size_t rec);
  * rank order. The counts must fit (sph_procs_records_fit, checked and
  * agreed before); an MPI failure ends the job. */
 void sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec, void *all);
+/* The same started without waiting (one at a time): the caller works on
+ * and waits with sph_procs_gather_records_wait, touching neither mine nor
+ * all in between. */
+void sph_procs_gather_records_start(const void *mine, const size_t *counts, size_t rec, void *all);
+void sph_procs_gather_records_wait(void);
 #ifdef __cplusplus
 }
 #endif

@@ -29,6 +29,7 @@
 
 #include <limits.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -80,17 +81,38 @@ unsigned sph_sim_ranks_row_kinds(const sph_sim *s) {
   return fluid || !(s->walls.dbc || s->walls.adami) ? all : 1u << SPH_KIND_WALL;
 }
 
-/* The cut's weights: a particle's cost in a pass, in units of about 50 ns
- * (SPHERIC Test 2 in 3-D, dx = 0.02 m, 2 processes of one thread, timed
- * by perf): a fluid particle's row in the interaction loop and the list
- * about 2.2 us; a wet wall particle's (fluid within a cell) Adami row and
- * list row about 0.6 us; a dry wall particle only its share of taking the
- * store and putting it back. A dry wall's weight above 0 keeps a store of
- * walls alone cut. (Fluid 16 and every wall 1 left the fluid 40 500 and
- * 43 600 and one process waiting 0.8 s of 18.4.) */
-#define SPH_RANKS_FLUID_WEIGHT 45
-#define SPH_RANKS_WET_WALL_WEIGHT 12
-#define SPH_RANKS_WALL_WEIGHT 1
+/* The cut's weights: a particle's cost in a pass, in ns, from the pairs its
+ * rows make: a fluid particle's row in the interaction loop holds its every
+ * neighbour within the support, a wall particle's (its Adami, dynamic or
+ * mdbc row) its fluid ones; each estimated from the particles in the 3^D
+ * cells one support wide around it (decomp.h, sph_decomp_block_counts)
+ * times the support's ball over that block (SPH_RANKS_BALL). Per pair and
+ * per particle, timed with perf on SPHERIC Test 2 in 3-D (dx = 0.02 m, 2
+ * processes of one thread, each process's rows counted): the interaction
+ * loop and the list 4.4 + 0.5 ns a row entry, an Adami row 7 ns a fluid
+ * entry, and every particle about 50 ns (taking the store, putting it
+ * back, the step), which keeps a store of dry walls alone cut. (Weights of
+ * the kinds alone, a fluid particle 45, a wall with fluid within a cell
+ * 12, a dry one 1, left one process's fluid rows with 3 % more entries:
+ * its fluid more often beside the walls, the other's at the free surface;
+ * with the walls made in stages the other waited 0.6 s.) */
+#define SPH_RANKS_NS_PARTICLE 50.0
+#define SPH_RANKS_NS_FLUID_PAIR 4.9
+#define SPH_RANKS_NS_WALL_PAIR 7.0
+#if SPH_DIM == 2
+#define SPH_RANKS_BALL (3.14159265358979323846 / 9.0) /* the unit disc over 3 x 3 cells */
+#else
+#define SPH_RANKS_BALL (4.18879020478639098461 / 27.0) /* the unit ball over 3 x 3 x 3 cells */
+#endif
+
+/* A particle's weight in the cut (above) from its block's counts. */
+static uint32_t cut_weight(int32_t kind, uint32_t all, uint32_t fluid) {
+  const double pairs = SPH_RANKS_BALL * (kind == SPH_KIND_FLUID ? all : fluid);
+  const double ns =
+      SPH_RANKS_NS_PARTICLE +
+      (kind == SPH_KIND_FLUID ? SPH_RANKS_NS_FLUID_PAIR : SPH_RANKS_NS_WALL_PAIR) * pairs;
+  return ns < 4e9 ? (uint32_t)ns : 4000000000u;
+}
 
 /* What a rank's pass adds up over its own particles. */
 typedef struct rank_sums {
@@ -128,6 +150,23 @@ static void agree_on_loop(sph_sim *s) {
   s->fp.loop = sph_forces_loop_for_ratio(s->lane_ratio);
 }
 
+/* Whether the processes make their Adami walls in stages (stage_walls):
+ * where the Adami walls' pass is the only one before the main pass that
+ * makes a value from a row (no dynamic, mdbc or no-slip walls, no mirror
+ * walls, no free-surface flags, nothing that reads such a value in a row of
+ * its own; no moving walls: not tested with them), each process makes its
+ * own walls alone and its ghost walls
+ * get their own processes' values, instead of making them again from
+ * their rows (which stay: forces.c marks the Riemann rows that meet a wall
+ * from the walls' rows). */
+static int staged(const sph_sim *s) {
+  const sph_walls *w = &s->walls;
+  return s->self >= 0 && w->adami && !w->dbc && !w->mdbc && !w->no_slip && !w->n_mirror &&
+         !w->moving && !s->detect && !fluid_rows_read(s);
+}
+
+static int stage_walls(sph_sim *r, void *ctx, int rc, sph_error *err);
+
 int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   const sph_case *c = s->c;
   s->self = -1;
@@ -142,6 +181,8 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   s->sub->work.keep_sigma = 1;
   s->sub->work.skip_ghosts = 1;
   s->self = self;
+  s->staged = staged(s);
+  if (s->staged) s->sub->adami_stages = stage_walls, s->sub->adami_ctx = s;
   /* what a pass reads: all but the integrator's saved state, the rates and the leap-frog's half
    * step (a mirror particle's is made in the pass from its image's velocity), but for a dynamic
    * wall's half-step density; what it writes: the rates, the walls' densities and pressures (and
@@ -161,6 +202,10 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
    * way that depends on the rank count, for the test that must see it */
   const char *e = getenv("SPH_TEST_RANK_ORDER_SUMS");
   s->rank_order_sums = e && *e == '1';
+  /* SPH_TEST_FAIL_PASS=R:K (doc/testing.md): process R's K-th pass fails
+   * before it starts, for the test that the others are not left waiting */
+  const char *fe = getenv("SPH_TEST_FAIL_PASS");
+  if (fe && sscanf(fe, "%d:%ld", &s->fail_rank, &s->fail_pass) != 2) s->fail_pass = 0;
   if (self >= 0 && !(s->reports = malloc((size_t)ranks * sizeof(pass_report))))
     return sph_error_set(err, "out of memory for the ranks' sums");
   return 0;
@@ -178,12 +223,22 @@ void sph_sim_ranks_free(sph_sim *s) {
   free(s->owner);
   free(s->by_owner);
   s->by_owner = NULL;
+  free(s->send_whole);
+  free(s->send_sub);
+  free(s->to_sub);
+  free(s->made_first);
+  free(s->send_pos);
+  free(s->wall_buf);
+  s->send_whole = s->send_sub = s->to_sub = NULL, s->made_first = NULL, s->send_pos = NULL;
+  s->wall_buf = NULL, s->n_send = s->n_send_pos = s->cap_made_first = s->cap_wall_buf = 0;
   free(s->records);
   free(s->reports);
   free(s->mark_last);
   free(s->take_pos);
   s->take_pos = NULL;
   free(s->weight);
+  free(s->fluid_near);
+  s->fluid_near = NULL;
   free(s->no_row);
   s->no_row = NULL;
   s->weight = NULL;
@@ -216,7 +271,23 @@ static int reserve(sph_sim *s, size_t n, sph_error *err) {
   if (tp) s->take_pos = tp;
   uint32_t *w = realloc(s->weight, n * sizeof *w);
   if (w) s->weight = w;
-  if (!k || !m || !nr || !f || !os || !ow || !w || (s->self >= 0 && (!o || !bo || !l || !tp)))
+  uint32_t *fn = realloc(s->fluid_near, n * sizeof *fn);
+  if (fn) s->fluid_near = fn;
+  int staged_ok = 1;
+  if (s->staged) {
+    size_t *sw = realloc(s->send_whole, n * sizeof *sw);
+    if (sw) s->send_whole = sw;
+    size_t *ss = realloc(s->send_sub, n * sizeof *ss);
+    if (ss) s->send_sub = ss;
+    size_t *ts = realloc(s->to_sub, n * sizeof *ts);
+    if (ts) s->to_sub = ts;
+    double *sp = realloc(s->send_pos, SPH_DIM * n * sizeof *sp);
+    if (sp) s->send_pos = sp;
+    staged_ok = sw && ss && ts && sp;
+    s->n_send_pos = 0; /* (the walls to send chosen anew) */
+  }
+  if (!k || !m || !nr || !f || !os || !ow || !w || !fn || !staged_ok ||
+      (s->self >= 0 && (!o || !bo || !l || !tp)))
     return sph_error_set(err, "out of memory for the ranks' cut");
   s->cap_ranks = n;
   return 0;
@@ -261,6 +332,17 @@ static int covered(sph_sim *s, int resort) {
   return cover;
 }
 
+/* Whether no particle of p moved lim or more along any axis from where
+ * ref (SPH_DIM arrays of p->n) holds it. */
+static int moved_under(const sph_particles *p, const double *ref, double lim) {
+  for (int a = 0; a < SPH_DIM; a++) {
+    const double *x = p->pos[a], *x0 = ref + (size_t)a * p->n;
+    for (size_t i = 0; i < p->n; i++)
+      if (!(fabs(x[i] - x0[i]) < lim)) return 0;
+  }
+  return 1;
+}
+
 /* Whether the store this process took last still holds what its pass
  * needs, without finding the ghosts again: the same cut over the store in
  * the same order, cells no wider than then, and no particle of the whole
@@ -275,13 +357,7 @@ static int still_covered(const sph_sim *s, int resort, double side) {
   const size_t n = p->n;
   if (resort || s->n_mark_last != n || s->order_last != p->order || !(side <= s->side_last))
     return 0;
-  const double lim = 0.49 * s->side_last; /* half a cell, less a margin for the rounding */
-  for (int a = 0; a < SPH_DIM; a++) {
-    const double *x = p->pos[a], *x0 = s->take_pos + (size_t)a * n;
-    for (size_t i = 0; i < n; i++)
-      if (!(fabs(x[i] - x0[i]) < lim)) return 0;
-  }
-  return 1;
+  return moved_under(p, s->take_pos, 0.49 * s->side_last); /* half a cell, less a margin */
 }
 
 /* Rank `rank`'s part of the pass: its own particles and its ghosts into
@@ -293,6 +369,8 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
   const sph_case *c = s->c;
   sph_particles *p = &s->p;
   sph_sim *r = s->sub;
+  if (s->self >= 0 && s->self == s->fail_rank && s->fig_passes + 1 == s->fail_pass)
+    return sph_error_set(err, "SPH_TEST_FAIL_PASS: pass %ld fails (a test)", s->fail_pass);
   const int rows = sph_sim_ranks_row_depth(s, s->depth);
   const unsigned kinds = sph_sim_ranks_row_kinds(s);
   int same = s->self >= 0 && still_covered(s, resort, g->side);
@@ -330,8 +408,28 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
     for (size_t j = 0; j < k; j++) /* then the walls */
       if (s->mark[s->from[j]] == 1 && p->kind[s->from[j]] != SPH_KIND_FLUID)
         s->own_sub[own] = j, s->own_whole[own++] = s->from[j];
+    if (s->staged) {
+      memset(s->to_sub, 0xff, p->n * sizeof *s->to_sub); /* SIZE_MAX: not in sub */
+      for (size_t j = 0; j < k; j++)
+        s->to_sub[s->from[j]] = j;
+    }
   }
   s->n_from = k;
+  if (s->staged) { /* the walls sent, in sub; the walls sub does not make in the second stage:
+                     those and its ghosts (their own processes' values; their rows stay, for the
+                     Riemann rows that meet a wall, forces.c) */
+    if (k > s->cap_made_first) {
+      unsigned char *mf = realloc(s->made_first, k);
+      if (!mf) return sph_error_set(err, "out of memory for the walls' stages");
+      s->made_first = mf, s->cap_made_first = k;
+    }
+    for (size_t j = 0; j < k; j++)
+      s->made_first[j] = s->mark[s->from[j]] >= 2;
+    for (size_t m = 0; m < s->n_send; m++) {
+      s->send_sub[m] = s->to_sub[s->send_whole[m]];
+      s->made_first[s->send_sub[m]] = 1;
+    }
+  }
   if (sph_particles_gather(&r->p, in, s->from, k, same ? s->pass_in & ~s->pass_static : s->pass_in,
                            err))
     return -1;
@@ -429,6 +527,132 @@ static void combine(sph_sim *s, const pass_report *all, rank_sums *t) {
     }
 }
 
+/* ---- the Adami walls in stages (staged) ---- */
+
+/* An Adami wall's values after its row, as its own process sends them. */
+typedef struct wall_value {
+  int64_t at; /* its index in the store */
+  double p, rho, gv[SPH_DIM];
+} wall_value;
+
+/* Whether the walls chosen to send still cover what the other processes
+ * read: the same cut and store order, cells no wider, and no particle
+ * moved half a cell along any axis since (as still_covered: a wall within
+ * a support of another process's fluid now was within two cells then). */
+static int send_still_good(const sph_sim *s, double side) {
+  const sph_particles *p = &s->p;
+  const size_t n = p->n;
+  if (s->n_send_pos != n || n == 0 || s->order_send != p->order || s->cut_send != s->cuts ||
+      !(side <= s->side_send))
+    return 0;
+  return moved_under(p, s->send_pos, 0.49 * s->side_send);
+}
+
+/* The walls this process sends in each pass's first stage: its own Adami
+ * walls within two cells of another process's own particles (each such
+ * process's halo, sph_decomp_halo), chosen anew when send_still_good says
+ * so (at the same passes on every process: the same store and history);
+ * the processes then tell each other their counts, in one collective step,
+ * after making room for the exchange. 0, or -1 with err on every process. */
+static int choose_send(sph_sim *s, const sph_decomp_grid *g, const uint64_t *first,
+                       sph_error *err) {
+  sph_particles *p = &s->p;
+  const size_t n = p->n;
+  if (send_still_good(s, g->side)) return 0;
+  int64_t mine = 0, all[SPH_PROCS_MAX];
+  unsigned char *pick = calloc(n ? n : 1, 1);
+  const size_t room = 2 * (n ? n : 1) * sizeof(wall_value);
+  if (room > s->cap_wall_buf) {
+    void *b = realloc(s->wall_buf, room);
+    if (b) s->wall_buf = b, s->cap_wall_buf = room;
+  }
+  if (!pick || room > s->cap_wall_buf)
+    mine = -1, sph_error_set(err, "out of memory for the walls' stages");
+  for (int q = 0; q < s->ranks && mine >= 0; q++) {
+    if (q == s->self) continue;
+    if (sph_decomp_halo(g, p, s->keys, first, s->ranks, q, 2, 0, 0u, s->mark, err) < 0) {
+      mine = -1;
+      break;
+    }
+    for (size_t i = 0; i < n; i++)
+      if (s->mark[i] >= 2 && s->owner[i] == s->self && p->kind[i] == SPH_KIND_WALL &&
+          (p->flags[i] & SPH_FLAG_ADAMI))
+        pick[i] = 1;
+  }
+  size_t m = 0;
+  if (mine >= 0) {
+    for (size_t i = 0; i < n; i++)
+      if (pick[i]) s->send_whole[m++] = i;
+    mine = (int64_t)m;
+  }
+  free(pick);
+  sph_procs_gather(&mine, sizeof mine, all);
+  for (int q = 0; q < s->ranks; q++)
+    if (all[q] < 0) {
+      s->n_send_pos = 0;
+      return sph_procs_failed(q, err);
+    }
+  s->n_send = m;
+  for (int q = 0; q < s->ranks; q++)
+    s->send_counts[q] = (size_t)all[q];
+  for (int a = 0; a < SPH_DIM; a++)
+    memcpy(s->send_pos + (size_t)a * n, p->pos[a], n * sizeof *s->send_pos);
+  s->n_send_pos = n, s->order_send = p->order, s->cut_send = s->cuts, s->side_send = g->side;
+  return 0;
+}
+
+/* A process's rank store's Adami walls (sim.c's adami_stages), in two
+ * stages around one collective step: the walls other processes read
+ * (send_sub) first, their values sent without waiting; the rest of its
+ * own walls while they travel (its ghost walls have no rows and are left
+ * alone: adami.c); then the other processes' values into its ghost walls.
+ * A ghost wall then holds the bits its own process made from its whole
+ * row, which a row of its own here would give (tests/test_mpi). A pass
+ * that failed before (rc) still joins the step. Returns rc, or -1. */
+static int stage_walls(sph_sim *r, void *ctx, int rc, sph_error *err) {
+  sph_sim *s = ctx;
+  sph_particles *q = &r->p;
+  size_t total = 0;
+  for (int k = 0; k < s->ranks; k++)
+    total += s->send_counts[k];
+  wall_value *every = s->wall_buf, *mine = every + total;
+  sph_adami_params ap;
+  if (rc == 0 && sph_force_work_reserve(&r->work, q->n, err)) rc = -1;
+  if (rc == 0) {
+    sph_sim_adami_params(r, &ap);
+    sph_wall_adami_list(q, &r->nl, &ap, r->work.gv, s->send_sub, s->n_send);
+    for (size_t m = 0; m < s->n_send; m++) {
+      const size_t j = s->send_sub[m];
+      wall_value *v = &mine[m];
+      v->at = (int64_t)s->send_whole[m], v->p = q->p[j], v->rho = q->rho[j];
+      for (int d = 0; d < SPH_DIM; d++)
+        v->gv[d] = r->work.gv[d][j];
+    }
+  }
+  sph_procs_gather_records_start(mine, s->send_counts, sizeof *mine, every);
+  s->stage_joined = 1;
+  if (rc == 0) {
+    ap.skip = s->made_first;
+    sph_wall_adami(q, &r->nl, &ap, r->work.gv);
+  }
+  sph_procs_gather_records_wait();
+  if (rc) return rc;
+  size_t at = 0;
+  for (int k = 0; k < s->ranks; k++) {
+    if (k != s->self)
+      for (size_t m = at; m < at + s->send_counts[k]; m++) {
+        const wall_value *v = &every[m];
+        const size_t j = s->to_sub[v->at];
+        if (j == SIZE_MAX) continue; /* not in this process's store */
+        q->p[j] = v->p, q->rho[j] = v->rho;
+        for (int d = 0; d < SPH_DIM; d++)
+          r->work.gv[d][j] = v->gv[d];
+      }
+    at += s->send_counts[k];
+  }
+  return 0;
+}
+
 /* Every process's own particles of one kind (0: the fluid, 1: the walls)
  * into every process's store, in one collective step: of the arrays in
  * `arrays`, a block of each array's values in turn (by_owner's order), in
@@ -467,8 +691,18 @@ static int process_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fi
   pass_report mine;
   memset(&mine, 0, sizeof mine);
   sph_ledger_sums_init(&mine.sums.ledger);
+  if (s->staged && choose_send(s, g, first, err)) return -1;
+  s->stage_joined = 0;
   mine.failed =
       reserve_records(s, err) || rank_pass(s, p, g, first, s->self, resort, hmax, &mine.sums, err);
+  if (s->staged && !s->stage_joined) { /* it stopped before its walls: the others wait there */
+    size_t total = 0; /* (what it sends is not read: its report tells the failure) */
+    for (int q = 0; q < s->ranks; q++)
+      total += s->send_counts[q];
+    wall_value *every = s->wall_buf;
+    sph_procs_gather_records_start(every + total, s->send_counts, sizeof *every, every);
+    sph_procs_gather_records_wait();
+  }
   mine.arrays[0] = s->changed[0], mine.arrays[1] = s->changed[1];
   s->changed[0] = s->changed[1] = 0;
   pass_report *all = s->reports;
@@ -510,15 +744,13 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
    * ghosts are found from where the particles are now. */
   uint64_t *first = s->first;
   if (resort || s->n_cut != p->n || s->order_cut != p->order) {
-    if (sph_decomp_near_kind(&g, p, SPH_KIND_FLUID, s->mark, err)) return -1; /* (scratch) */
+    if (sph_decomp_block_counts(&g, p, SPH_KIND_FLUID, s->weight, s->fluid_near, err)) return -1;
     for (size_t i = 0; i < p->n; i++)
-      s->weight[i] = p->kind[i] == SPH_KIND_FLUID ? SPH_RANKS_FLUID_WEIGHT
-                     : s->mark[i]                 ? SPH_RANKS_WET_WALL_WEIGHT
-                                                  : SPH_RANKS_WALL_WEIGHT;
+      s->weight[i] = cut_weight(p->kind[i], s->weight[i], s->fluid_near[i]);
     if (sph_decomp_keys(&g, p, s->keys, err) ||
         sph_decomp_cut_weighted(s->keys, s->weight, p->n, s->ranks, first, err))
       return -1;
-    s->n_cut = p->n, s->order_cut = p->order;
+    s->n_cut = p->n, s->order_cut = p->order, s->cuts++;
     s->depth = ghost_depth(p, g.side);
     if (s->self >= 0) own_by_process(s, first); /* for the exchange (process_pass) */
   }
@@ -574,7 +806,7 @@ void sph_sim_ranks_saved_state(sph_sim *s) {
   const size_t rec = STATE_DOUBLES * sizeof(double);
   /* the exchange's buffer holds every particle's whole record and this
    * process's again (reserve_records): more than these; this process's
-   * own particles in storage order, as by_owner lists them */
+   * own particles in by_owner's order (own_sub's: the fluid first) */
   unsigned char *every = s->records, *own = s->records + p->n * rec;
   for (size_t q = 0; q < s->n_own; q++) {
     double d[STATE_DOUBLES];

@@ -189,17 +189,22 @@ static int mdbc_walls(sph_sim *s, sph_error *err) {
  * them, with the hydrostatic term and their walls' accelerations at the
  * time they stand at, and their no-slip velocity into the work's gv for
  * the viscous terms. */
-static int adami_walls(sph_sim *s, sph_error *err) {
+void sph_sim_adami_params(const sph_sim *s, sph_adami_params *ap) {
   const sph_case *c = s->c;
-  if (sph_force_work_reserve(&s->work, s->p.n, err)) return -1;
-  sph_adami_params ap = {.kernel = c->kernel,
-                         .h = c->h,
-                         .var_h = s->fp.var_h,
-                         .eos = s->fp.eos,
-                         .walls = s->walls.moving ? &s->walls : NULL,
-                         .t = s->t_walls};
+  *ap = (sph_adami_params){.kernel = c->kernel,
+                           .h = c->h,
+                           .var_h = s->fp.var_h,
+                           .eos = s->fp.eos,
+                           .walls = s->walls.moving ? &s->walls : NULL,
+                           .t = s->t_walls};
   for (int d = 0; d < SPH_DIM; d++)
-    ap.g[d] = c->gravity[d];
+    ap->g[d] = c->gravity[d];
+}
+
+static int adami_walls(sph_sim *s, sph_error *err) {
+  if (sph_force_work_reserve(&s->work, s->p.n, err)) return -1;
+  sph_adami_params ap;
+  sph_sim_adami_params(s, &ap);
   sph_wall_adami(&s->p, &s->nl, &ap, s->work.gv);
   return 0;
 }
@@ -255,7 +260,10 @@ int sph_sim_pass(sph_sim *s, sph_error *err) {
   if (rc == 0 && s->walls.dbc) rc = dbc_bound(s, err);
   if (rc == 0 && s->detect) rc = free_surface(s, err);
   if (rc == 0 && s->walls.mdbc) rc = mdbc_walls(s, err);
-  if (rc == 0 && s->walls.adami) rc = adami_walls(s, err);
+  if (s->adami_stages) /* a process's rank store: with the other processes (ranks.c) */
+    rc = s->adami_stages(s, s->adami_ctx, rc, err);
+  else if (rc == 0 && s->walls.adami)
+    rc = adami_walls(s, err);
   s->fp.h_reach = s->fp.var_h ? h_max(s) : 0.0; /* the whole store's (a rank's too) */
   if (rc == 0) rc = sph_forces_evaluate(&s->p, &s->nl, &s->fp, &s->work, err);
   s->step_pass = s->steps; /* the state w->hot now holds */

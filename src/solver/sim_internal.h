@@ -14,6 +14,7 @@
 #include "solver/ledger.h"
 #include "solver/outflow.h"
 #include "solver/sim.h"
+#include "walls/adami.h"
 #include "walls/wall_velocity.h"
 #include "walls/walls.h"
 
@@ -101,21 +102,46 @@ struct sph_sim {
   double *take_pos;         /* every particle's position then (SPH_DIM arrays of n_mark_last), */
   double side_last;         /* and the cells' side */
   uint32_t *weight;         /* each particle's weight in the cut */
+  uint32_t *fluid_near;     /* (the fluid in its cells' block, for the weight) */
   unsigned long long changed[2]; /* the arrays this process's pass changed: fluid, walls */
   uint64_t first[64];            /* the cut: each rank's first key (neighbours/decomp.h), */
   size_t n_cut;                  /* made over this many particles */
   int rank_order_sums;           /* the test hook SPH_TEST_RANK_ORDER_SUMS (ranks.c) */
+  int fail_rank;                 /* the test hook SPH_TEST_FAIL_PASS (ranks.c): this process's */
+  long fail_pass;                /* pass of this number fails; 0: none */
   long fig_passes;               /* this process's figures (sph_sim_procs_figures) */
   double fig_own, fig_ghosts, fig_bytes;
   uint64_t order_cut; /* in this order */
-  double cfl_max;     /* the last pass's max of c + |v| (sph_dt_cfl) if the ranks made it (every
-                         pass after sph_sim_ranks_init's), else 0 */
-  int hot_in_sub;     /* the last pass's state is in each process's rank store, for its own
-                         particles, not in work.hot (sph_sim_ranks_saved_state) */
+  long cuts;          /* cuts made */
+  /* the Adami walls in stages (ranks.c, staged): on; this process's own Adami walls that
+   * another process's halo holds (their indices in the store and in sub), n_send of them, and
+   * each process's count; each particle's index in sub (SIZE_MAX: not there), the walls sub
+   * made first; the store's positions, order, cells' side and cut when those walls were chosen */
+  int staged, stage_joined;
+  size_t *send_whole, *send_sub, n_send, send_counts[64];
+  size_t *to_sub;
+  unsigned char *made_first;
+  size_t cap_made_first;
+  double *send_pos, side_send;
+  size_t n_send_pos;
+  uint64_t order_send;
+  long cut_send;
+  void *wall_buf; /* the walls' values sent and received */
+  size_t cap_wall_buf;
+  double cfl_max; /* the last pass's max of c + |v| (sph_dt_cfl) if the ranks made it (every
+                     pass after sph_sim_ranks_init's), else 0 */
+  int hot_in_sub; /* the last pass's state is in each process's rank store, for its own
+                     particles, not in work.hot (sph_sim_ranks_saved_state) */
   /* a rank's store (it is some sim's sub): ghosts carry SPH_FLAG_GHOST, and
    * each pass leaves the reductions over the rank's own particles here */
   int rank_store;
   double own_cs_max, own_cfl_max;
+  /* or NULL: what makes a process's rank store's Adami walls instead of its
+   * own pass over them, with the other processes (ranks.c, staged walls);
+   * given the pass's status so far, which it returns (it joins the others
+   * even after a failure) */
+  int (*adami_stages)(struct sph_sim *s, void *ctx, int rc, sph_error *err);
+  void *adami_ctx;
   sph_ledger_sums own_ledger;
 };
 
@@ -156,6 +182,9 @@ void sph_sim_ranks_saved_state(sph_sim *s);
 int sph_sim_create_rank_store(const sph_case *c, sph_sim **out, sph_error *err);
 /* Sorts the store by cell and id as a sorting pass does (sim.c). */
 int sph_sim_sort(sph_sim *s, sph_error *err);
+
+/* The Adami walls' parameters of the sim's pass (sim.c). */
+void sph_sim_adami_params(const sph_sim *s, sph_adami_params *ap);
 
 /* The moving walls at time t, which a pass's adami walls read (sim.c). */
 void sph_sim_move_walls(sph_sim *s, double t);

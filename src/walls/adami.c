@@ -40,6 +40,57 @@ static int read_by_none(const sph_particles *p, const sph_nlist *l, size_t i, co
   return 1;
 }
 
+/* Wall particle i's pressure, density and no-slip velocity from its row;
+ * 1 if it had fluid within reach. */
+static int adami_one(sph_particles *p, const sph_nlist *l, const sph_adami_params *ap,
+                     double *const *gv, size_t i) {
+  size_t cnt;
+  const uint32_t *row = sph_nlist_row(l, i, &cnt);
+  if (read_by_none(p, l, i, row, cnt)) {
+    if (gv)
+      for (int d = 0; d < SPH_DIM; d++)
+        gv[d][i] = p->vel[d][i];
+    return 0;
+  }
+  double ga[SPH_DIM];
+  resulting_acceleration(p, ap, i, ga);
+  /* AHA12 eq. (27): sum_f (p_f + rho_f (g - a_w) . r_wf) W_wf and sum_f W_wf; eq. (24): sum_f
+   * v_f W_wf */
+  double sw = 0.0, sp = 0.0, sv[SPH_DIM] = {0.0};
+  for (size_t k = 0; k < cnt; k++) {
+    const size_t j = row[k];
+    if (p->kind[j] != SPH_KIND_FLUID) continue;
+    const double dx = sph_nlist_sep(l, 0, p->x[i], p->x[j]);
+    const double dy = sph_nlist_sep(l, 1, p->y[i], p->y[j]);
+    SPH_IF3(const double dz = sph_nlist_sep(l, 2, p->z[i], p->z[j]);)
+    const double r2 = SPH_NORM2(dx, dy, dz);
+    const double hij = ap->var_h ? 0.5 * (p->h[i] + p->h[j]) : ap->h;
+    if (r2 >= SPH_CUBIC_SUPPORT * SPH_CUBIC_SUPPORT * hij * hij || r2 == 0.0) continue;
+    double wij, dwij; /* the static inline form, as the interaction loops use (kernel.c) */
+    sph_kernel_w_dw(ap->kernel, sqrt(r2), hij, &wij, &dwij);
+#if SPH_DIM == 2
+    const double gr = ga[0] * dx + ga[1] * dy;
+#else
+    const double gr = ga[0] * dx + ga[1] * dy + ga[2] * dz;
+#endif
+    sw += wij;
+    sp += (p->p[j] + p->rho[j] * gr) * wij;
+    for (int d = 0; d < SPH_DIM; d++)
+      sv[d] += p->vel[d][j] * wij;
+  }
+  double pw = 0.0;
+  if (sw > 0.0) {
+    pw = sp / sw;
+    if (!(pw > 0.0)) pw = 0.0; /* a wall pushes, never pulls (adami.h) */
+  }
+  p->p[i] = pw;
+  p->rho[i] = pw > 0.0 ? sph_eos_density(&ap->eos, pw) : ap->eos.rho0; /* AHA12 eq. (28) */
+  if (gv)
+    for (int d = 0; d < SPH_DIM; d++)
+      gv[d][i] = sw > 0.0 ? 2.0 * p->vel[d][i] - sv[d] / sw : p->vel[d][i];
+  return sw > 0.0;
+}
+
 size_t sph_wall_adami(sph_particles *p, const sph_nlist *l, const sph_adami_params *ap,
                       double *const *gv) {
   const long n = (long)p->n;
@@ -48,51 +99,18 @@ size_t sph_wall_adami(sph_particles *p, const sph_nlist *l, const sph_adami_para
   for (long li = 0; li < n; li++) {
     const size_t i = (size_t)li;
     if (p->kind[i] != SPH_KIND_WALL || !(p->flags[i] & SPH_FLAG_ADAMI)) continue;
-    size_t cnt;
-    const uint32_t *row = sph_nlist_row(l, i, &cnt);
-    if (read_by_none(p, l, i, row, cnt)) {
-      if (gv)
-        for (int d = 0; d < SPH_DIM; d++)
-          gv[d][i] = p->vel[d][i];
-      continue;
-    }
-    double ga[SPH_DIM];
-    resulting_acceleration(p, ap, i, ga);
-    /* AHA12 eq. (27): sum_f (p_f + rho_f (g - a_w) . r_wf) W_wf and sum_f W_wf; eq. (24): sum_f
-     * v_f W_wf */
-    double sw = 0.0, sp = 0.0, sv[SPH_DIM] = {0.0};
-    for (size_t k = 0; k < cnt; k++) {
-      const size_t j = row[k];
-      if (p->kind[j] != SPH_KIND_FLUID) continue;
-      const double dx = sph_nlist_sep(l, 0, p->x[i], p->x[j]);
-      const double dy = sph_nlist_sep(l, 1, p->y[i], p->y[j]);
-      SPH_IF3(const double dz = sph_nlist_sep(l, 2, p->z[i], p->z[j]);)
-      const double r2 = SPH_NORM2(dx, dy, dz);
-      const double hij = ap->var_h ? 0.5 * (p->h[i] + p->h[j]) : ap->h;
-      if (r2 >= SPH_CUBIC_SUPPORT * SPH_CUBIC_SUPPORT * hij * hij || r2 == 0.0) continue;
-      double wij, dwij; /* the static inline form, as the interaction loops use (kernel.c) */
-      sph_kernel_w_dw(ap->kernel, sqrt(r2), hij, &wij, &dwij);
-#if SPH_DIM == 2
-      const double gr = ga[0] * dx + ga[1] * dy;
-#else
-      const double gr = ga[0] * dx + ga[1] * dy + ga[2] * dz;
-#endif
-      sw += wij;
-      sp += (p->p[j] + p->rho[j] * gr) * wij;
-      for (int d = 0; d < SPH_DIM; d++)
-        sv[d] += p->vel[d][j] * wij;
-    }
-    double pw = 0.0;
-    if (sw > 0.0) {
-      wet++;
-      pw = sp / sw;
-      if (!(pw > 0.0)) pw = 0.0; /* a wall pushes, never pulls (adami.h) */
-    }
-    p->p[i] = pw;
-    p->rho[i] = pw > 0.0 ? sph_eos_density(&ap->eos, pw) : ap->eos.rho0; /* AHA12 eq. (28) */
-    if (gv)
-      for (int d = 0; d < SPH_DIM; d++)
-        gv[d][i] = sw > 0.0 ? 2.0 * p->vel[d][i] - sv[d] / sw : p->vel[d][i];
+    if (ap->skip && ap->skip[i]) continue;
+    wet += (size_t)adami_one(p, l, ap, gv, i);
   }
+  return wet;
+}
+
+size_t sph_wall_adami_list(sph_particles *p, const sph_nlist *l, const sph_adami_params *ap,
+                           double *const *gv, const size_t *which, size_t k) {
+  const long n = (long)k;
+  size_t wet = 0;
+#pragma omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN) reduction(+ : wet)
+  for (long q = 0; q < n; q++)
+    wet += (size_t)adami_one(p, l, ap, gv, which[q]);
   return wet;
 }

@@ -45,13 +45,15 @@
 #include "walls/walls.h"
 
 typedef struct sph_adami_params {
-  sph_kernel_kind kernel; /* the fluid's kernel */
-  double h;               /* its smoothing length when uniform */
-  int var_h;              /* per-particle h: a pair's is the mean h_wf */
-  double g[SPH_DIM];      /* the body force per unit mass */
-  sph_eos eos;            /* the fluid's equation of state */
-  const sph_walls *walls; /* the moving walls' laws (a_w), or NULL: every wall at rest */
-  double t;               /* the time the walls stand at (their last sph_walls_move) */
+  sph_kernel_kind kernel;    /* the fluid's kernel */
+  double h;                  /* its smoothing length when uniform */
+  int var_h;                 /* per-particle h: a pair's is the mean h_wf */
+  double g[SPH_DIM];         /* the body force per unit mass */
+  sph_eos eos;               /* the fluid's equation of state */
+  const sph_walls *walls;    /* the moving walls' laws (a_w), or NULL: every wall at rest */
+  double t;                  /* the time the walls stand at (their last sph_walls_move) */
+  const unsigned char *skip; /* or NULL: the wall particles i with skip[i] set are left alone
+                                (a rank's walls made before: solver/ranks.c) */
 } sph_adami_params;
 
 /* Sets p->p and p->rho of every adami wall particle from its fluid
@@ -64,5 +66,8 @@ typedef struct sph_adami_params {
  * velocity. Returns how many wall particles had fluid within reach. */
 size_t sph_wall_adami(sph_particles *p, const sph_nlist *l, const sph_adami_params *ap,
                       double *const *gv);
+/* The same for the adami wall particles which[0..k) alone. */
+size_t sph_wall_adami_list(sph_particles *p, const sph_nlist *l, const sph_adami_params *ap,
+                           double *const *gv, const size_t *which, size_t k);
 
 #endif
