@@ -202,20 +202,27 @@ int sph_procs_records_fit(const size_t *counts, size_t rec) {
   return total <= INT_MAX;
 }
 
-void sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec, void *all) {
-  if (count == 1) {
-    memcpy(all, mine, counts[0] * rec);
-    return;
-  }
-  int n[SPH_PROCS_MAX], at[SPH_PROCS_MAX], total = 0;
+/* The counts and offsets of a gather of records (each process's counts[r]
+ * of rec bytes, in rank order) and their datatype, committed. */
+static void records_layout(const size_t *counts, size_t rec, int *n, int *at, MPI_Datatype *t) {
+  int total = 0;
   for (int r = 0; r < count; r++) {
     n[r] = (int)counts[r];
     at[r] = total;
     total += n[r];
   }
+  MPI_Type_contiguous((int)rec, MPI_BYTE, t);
+  MPI_Type_commit(t);
+}
+
+void sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec, void *all) {
+  if (count == 1) {
+    memcpy(all, mine, counts[0] * rec);
+    return;
+  }
+  int n[SPH_PROCS_MAX], at[SPH_PROCS_MAX];
   MPI_Datatype t;
-  MPI_Type_contiguous((int)rec, MPI_BYTE, &t);
-  MPI_Type_commit(&t);
+  records_layout(counts, rec, n, at, &t);
   /* an MPI error ends the job (MPI_ERRORS_ARE_FATAL, the default) */
   MPI_Request r;
   if (!crowded)
@@ -232,14 +239,8 @@ static MPI_Request pending;
 static MPI_Datatype pending_type;
 
 void sph_procs_gather_records_start(const void *mine, const size_t *counts, size_t rec, void *all) {
-  int n[SPH_PROCS_MAX], at[SPH_PROCS_MAX], total = 0;
-  for (int r = 0; r < count; r++) {
-    n[r] = (int)counts[r];
-    at[r] = total;
-    total += n[r];
-  }
-  MPI_Type_contiguous((int)rec, MPI_BYTE, &pending_type);
-  MPI_Type_commit(&pending_type);
+  int n[SPH_PROCS_MAX], at[SPH_PROCS_MAX];
+  records_layout(counts, rec, n, at, &pending_type);
   MPI_Iallgatherv(mine, n[rank], pending_type, all, n, at, pending_type, MPI_COMM_WORLD, &pending);
 }
 

@@ -155,10 +155,9 @@ static void agree_on_loop(sph_sim *s) {
  * makes a value from a row (no dynamic, mdbc or no-slip walls, no mirror
  * walls, no free-surface flags, nothing that reads such a value in a row of
  * its own; no moving walls: not tested with them), each process makes its
- * own walls alone and its ghost walls
- * get their own processes' values, instead of making them again from
- * their rows (which stay: forces.c marks the Riemann rows that meet a wall
- * from the walls' rows). */
+ * own walls alone and its ghost walls get their own processes' values,
+ * instead of making them again from their rows (which stay: forces.c marks
+ * the Riemann rows that meet a wall from the walls' rows). */
 static int staged(const sph_sim *s) {
   const sph_walls *w = &s->walls;
   return s->self >= 0 && w->adami && !w->dbc && !w->mdbc && !w->no_slip && !w->n_mirror &&
@@ -471,7 +470,8 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
 }
 
 /* Each particle's process at the cut, and the store's indices by process
- * (each process's in storage order, the order it sends them in). */
+ * (each process's fluid, then its walls, each in storage order: the order
+ * it sends them in). */
 static void own_by_process(sph_sim *s, const uint64_t *first) {
   const sph_particles *p = &s->p;
   size_t at[SPH_PROCS_MAX], wall[SPH_PROCS_MAX], sum = 0;
@@ -592,9 +592,9 @@ static int choose_send(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fir
       s->n_send_pos = 0;
       return sph_procs_failed(q, err);
     }
-  s->n_send = m;
+  s->n_send = m, s->send_total = 0;
   for (int q = 0; q < s->ranks; q++)
-    s->send_counts[q] = (size_t)all[q];
+    s->send_counts[q] = (size_t)all[q], s->send_total += s->send_counts[q];
   for (int a = 0; a < SPH_DIM; a++)
     memcpy(s->send_pos + (size_t)a * n, p->pos[a], n * sizeof *s->send_pos);
   s->n_send_pos = n, s->order_send = p->order, s->cut_send = s->cuts, s->side_send = g->side;
@@ -604,18 +604,15 @@ static int choose_send(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fir
 /* A process's rank store's Adami walls (sim.c's adami_stages), in two
  * stages around one collective step: the walls other processes read
  * (send_sub) first, their values sent without waiting; the rest of its
- * own walls while they travel (its ghost walls have no rows and are left
- * alone: adami.c); then the other processes' values into its ghost walls.
+ * own walls while they travel (made_first skips those and its ghost walls);
+ * then the other processes' values into its ghost walls.
  * A ghost wall then holds the bits its own process made from its whole
  * row, which a row of its own here would give (tests/test_mpi). A pass
  * that failed before (rc) still joins the step. Returns rc, or -1. */
 static int stage_walls(sph_sim *r, void *ctx, int rc, sph_error *err) {
   sph_sim *s = ctx;
   sph_particles *q = &r->p;
-  size_t total = 0;
-  for (int k = 0; k < s->ranks; k++)
-    total += s->send_counts[k];
-  wall_value *every = s->wall_buf, *mine = every + total;
+  wall_value *every = s->wall_buf, *mine = every + s->send_total;
   sph_adami_params ap;
   if (rc == 0 && sph_force_work_reserve(&r->work, q->n, err)) rc = -1;
   if (rc == 0) {
@@ -696,11 +693,8 @@ static int process_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fi
   mine.failed =
       reserve_records(s, err) || rank_pass(s, p, g, first, s->self, resort, hmax, &mine.sums, err);
   if (s->staged && !s->stage_joined) { /* it stopped before its walls: the others wait there */
-    size_t total = 0; /* (what it sends is not read: its report tells the failure) */
-    for (int q = 0; q < s->ranks; q++)
-      total += s->send_counts[q];
-    wall_value *every = s->wall_buf;
-    sph_procs_gather_records_start(every + total, s->send_counts, sizeof *every, every);
+    wall_value *every = s->wall_buf; /* (what it sends is not read: its report tells the failure) */
+    sph_procs_gather_records_start(every + s->send_total, s->send_counts, sizeof *every, every);
     sph_procs_gather_records_wait();
   }
   mine.arrays[0] = s->changed[0], mine.arrays[1] = s->changed[1];

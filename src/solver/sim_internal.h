@@ -118,7 +118,7 @@ struct sph_sim {
    * each process's count; each particle's index in sub (SIZE_MAX: not there), the walls sub
    * made first; the store's positions, order, cells' side and cut when those walls were chosen */
   int staged, stage_joined;
-  size_t *send_whole, *send_sub, n_send, send_counts[64];
+  size_t *send_whole, *send_sub, n_send, send_counts[64], send_total;
   size_t *to_sub;
   unsigned char *made_first;
   size_t cap_made_first;
