@@ -180,16 +180,19 @@ unsigned long long sph_particles_put(sph_particles *to, const size_t *at, const 
                                      int compare) {
   unsigned long long d = 0;
   int b = 0;
-  /* array by array; a value differs if one of its bytes does */
+  /* array by array; a value differs if one of its bytes does, and those
+   * before the first that differs are not written again (an array the
+   * pass left as it was is only read) */
 #define PUT(field, g)                                                                              \
   if (live(from, g) && live(to, g) && (arrays >> b & 1)) {                                         \
-    int differ = 0;                                                                                \
-    for (size_t q = 0; q < k; q++) {                                                               \
-      if (compare && !differ)                                                                      \
-        differ = memcmp(&to->field[at[q]], &from->field[which[q]], sizeof *to->field) != 0;        \
-      to->field[at[q]] = from->field[which[q]];                                                    \
+    size_t q = 0;                                                                                  \
+    if (compare) {                                                                                 \
+      while (q < k && memcmp(&to->field[at[q]], &from->field[which[q]], sizeof *to->field) == 0)   \
+        q++;                                                                                       \
+      if (q < k) d |= 1ull << b;                                                                   \
     }                                                                                              \
-    if (differ) d |= 1ull << b;                                                                    \
+    for (; q < k; q++)                                                                             \
+      to->field[at[q]] = from->field[which[q]];                                                    \
   }                                                                                                \
   b++;
   SPH_PARTICLE_DOUBLES(PUT)

@@ -136,18 +136,23 @@ typedef struct pass_report {
  * other waited); where every process timed them, all take the loop for the
  * mean of their ratios (the same bits on each: the same ratios in rank
  * order). The loops give the same bits: only the time moves. */
-static void agree_on_loop(sph_sim *s) {
+int sph_sim_ranks_agree_loop(sph_sim *s, int rc, sph_error *err) {
   const sph_force_loop l = s->fp.loop;
-  const double mine[2] = {l == SPH_LOOP_LANES_AVX || l == SPH_LOOP_LANES_AVX512 ? 1.0 : 0.0,
+  const double mine[3] = {rc ? 1.0 : 0.0,
+                          l == SPH_LOOP_LANES_AVX || l == SPH_LOOP_LANES_AVX512 ? 1.0 : 0.0,
                           s->lane_ratio};
-  double all[2 * SPH_PROCS_MAX], sum = 0.0;
+  double all[3 * SPH_PROCS_MAX], sum = 0.0;
+  int chose = 1;
   sph_procs_gather(mine, sizeof mine, all);
   for (int q = 0; q < s->ranks; q++) {
-    if (!(all[2 * q] == 1.0) || !(all[2 * q + 1] != 1.0)) return; /* one did not choose */
-    sum += all[2 * q + 1];
+    if (all[3 * q] != 0.0) return sph_procs_failed(q, err);
+    if (!(all[3 * q + 1] == 1.0) || !(all[3 * q + 2] != 1.0)) chose = 0; /* one did not choose */
+    sum += all[3 * q + 2];
   }
+  if (!chose) return 0;
   s->lane_ratio = sum / s->ranks;
   s->fp.loop = sph_forces_loop_for_ratio(s->lane_ratio);
+  return 0;
 }
 
 /* Whether the processes make their Adami walls in stages (stage_walls):
@@ -174,10 +179,8 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
     return sph_error_set(err, "%s: at most %d ranks, got %d",
                          self < 0 ? "SPH_TEST_RANKS" : "mpirun -n", SPH_PROCS_MAX, ranks);
   s->ranks = ranks;
-  if (self >= 0) agree_on_loop(s); /* a collective step: before anything that may fail */
   if (sph_sim_create_rank_store(c, &s->sub, err)) return -1;
   s->sub->rank_store = 1;
-  s->sub->work.keep_sigma = 1;
   s->sub->work.skip_ghosts = 1;
   s->self = self;
   s->staged = staged(s);
@@ -244,6 +247,15 @@ void sph_sim_ranks_free(sph_sim *s) {
   s->reports = NULL, s->mark_last = NULL, s->n_mark_last = 0;
   s->sub = NULL, s->keys = NULL, s->mark = NULL, s->from = NULL, s->cap_ranks = 0;
   s->owner = NULL, s->records = NULL, s->cap_records = 0;
+}
+
+void sph_sim_ranks_forget(sph_sim *s) {
+  if (!s->sub) return;
+  sph_nlist_release(&s->sub->nl);
+  sph_force_work_free(&s->sub->work);
+  s->sub->work.skip_ghosts = 1; /* (as sph_sim_ranks_init set it) */
+  s->hot_in_sub = 0;
+  s->n_mark_last = 0, s->n_send_pos = 0, s->n_cut = 0; /* taken, sent and cut anew */
 }
 
 static int reserve(sph_sim *s, size_t n, sph_error *err) {

@@ -215,6 +215,7 @@ int sph_sim_restore(sph_sim *s, const char *path, sph_snapshot_restart_data *rd,
    * particles comes in (the pass below makes them anew) */
   sph_nlist_release(&s->nl);
   sph_force_work_free(&s->work);
+  sph_sim_ranks_forget(s); /* (and those of a rank's store) */
   sph_particles q;
   int rc = sph_snapshot_read_particles(snap, &q, err);
   if (rc == 0) {

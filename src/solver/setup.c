@@ -439,27 +439,32 @@ static int test_ranks(void) {
   return e && *e ? atoi(e) : 1;
 }
 
-static int create(const sph_case *c, sph_sim **out, int ranks, int self, sph_error *err);
+static int create(const sph_case *c, sph_sim **out, int ranks, int self, int rank_store,
+                  sph_error *err);
 
 /* Under an MPI launcher (procs.h) the passes are cut into one rank per
  * process, this process making its own. */
 int sph_sim_create(const sph_case *c, sph_sim **out, sph_error *err) {
   const int procs = sph_procs_count();
-  if (procs == 1) return create(c, out, test_ranks(), -1, err);
+  if (procs == 1) return create(c, out, test_ranks(), -1, 0, err);
   *out = NULL;
   if (test_ranks() > 1)
     return sph_error_set(err,
                          "SPH_TEST_RANKS emulates ranks in one process: unset it under "
                          "mpirun (%d processes)",
                          procs);
-  return create(c, out, procs, sph_procs_rank(), err);
+  return create(c, out, procs, sph_procs_rank(), 0, err);
 }
 
 int sph_sim_create_rank_store(const sph_case *c, sph_sim **out, sph_error *err) {
-  return create(c, out, 1, -1, err);
+  return create(c, out, 1, -1, 1, err);
 }
 
-static int create(const sph_case *c, sph_sim **out, int ranks, int self, sph_error *err) {
+/* A sim of the case on `ranks` ranks, this process's `self` (-1: all of
+ * them); a rank store (rank_store) makes no pass of its own: its owner's
+ * passes fill it (ranks.c). */
+static int create(const sph_case *c, sph_sim **out, int ranks, int self, int rank_store,
+                  sph_error *err) {
   *out = NULL;
   /* resources bounded before any particle is made (issue 21, D3, D4) */
   if (sph_case_check_size(c, c->max_particles, err)) return -1;
@@ -582,19 +587,30 @@ static int create(const sph_case *c, sph_sim **out, int ranks, int self, sph_err
   if (shuffle_store(&s->p, err)) goto fail;
   sph_sim_move_walls(s, 0.0);
   s->resort = 1;
-  if (sph_sim_pass(s, err)) goto fail; /* rates and flags of the initial state */
-  /* the faster lane loop on this processor (the same bits; mirror walls
-   * run the scalar loop, and their particles are gone after the pass) */
-  s->lane_ratio = 1.0;
-  if (!s->walls.n_mirror &&
-      sph_forces_fastest_loop(&s->p, &s->nl, &s->fp, &s->work, &s->fp.loop, &s->lane_ratio, err))
-    goto fail;
+  /* the ranks before the first pass, which they then make as every later
+   * one (the processes agreeing that each could set them up) */
+  int rc = rank_store ? 0 : sph_sim_ranks_init(s, ranks, self, err);
+  if (self >= 0) rc = sph_procs_agree(rc, err);
+  if (rc) goto fail;
+  if (!rank_store) {
+    if (sph_sim_pass(s, err)) goto fail; /* rates and flags of the initial state */
+    /* the faster lane loop on this processor, timed on the store the
+     * passes run on (a rank's: the process's own rows); the same bits;
+     * mirror walls run the scalar loop, and their particles are gone after
+     * the pass */
+    sph_sim *on = s->sub ? s->sub : s;
+    s->lane_ratio = 1.0;
+    rc = s->walls.n_mirror ? 0
+                           : sph_forces_fastest_loop(&on->p, &on->nl, &on->fp, &on->work,
+                                                     &s->fp.loop, &s->lane_ratio, err);
+    if (self >= 0) rc = sph_sim_ranks_agree_loop(s, rc, err); /* every process's choice */
+    if (rc) goto fail;
+  }
   if (c->energy) {
     sph_diag_row row;
     sph_sim_diag(s, &row);
     sph_ledger_start(&s->ledger, &s->p, &row);
   }
-  if (sph_sim_ranks_init(s, ranks, self, err)) goto fail;
   *out = s;
   return 0;
 fail:

@@ -217,22 +217,20 @@ void sph_sim_move_walls(sph_sim *s, double t) {
 
 /* A rank's store (ranks.c): the pass's reductions over the particles it
  * owns (and their mirror particles), before the mirror particles go: the
- * step rule's max of c + sigma, paper A's max of c + |v| over the store's
- * particles (no mirror particle: sph_dt_cfl reads the whole store between
- * passes), and the ledger's exact sums. */
+ * step rule's max of c + sigma (the interaction loop's over the rows it
+ * made: it skips the ghosts, loops.h), paper A's max of c + |v| over the
+ * store's particles (no mirror particle: sph_dt_cfl reads the whole store
+ * between passes), and the ledger's exact sums. */
 static void rank_reductions(sph_sim *s, int diffusion) {
   const sph_particles *p = &s->p;
-  const int cfl = s->c->dt_rule == SPH_DT_CFL;
-  double mx = 0.0, vmax = 0.0;
-  for (size_t i = 0; i < p->n; i++) {
-    if (p->flags[i] & SPH_FLAG_GHOST) continue;
-    if (s->work.hot[i].cs + s->work.sigma[i] > mx) mx = s->work.hot[i].cs + s->work.sigma[i];
-    if (cfl && p->kind[i] != SPH_KIND_MIRROR) {
+  double vmax = 0.0;
+  if (s->c->dt_rule == SPH_DT_CFL)
+    for (size_t i = 0; i < p->n; i++) {
+      if ((p->flags[i] & SPH_FLAG_GHOST) || p->kind[i] == SPH_KIND_MIRROR) continue;
       const double v = sph_cfl_speed(p, &s->fp.eos, i);
       if (v > vmax) vmax = v;
     }
-  }
-  s->own_cs_max = mx;
+  s->own_cs_max = s->work.cs_sigma_max;
   s->own_cfl_max = vmax;
   if (!s->fp.ledger) return;
   sph_ledger_sums_init(&s->own_ledger);

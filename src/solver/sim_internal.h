@@ -150,6 +150,15 @@ struct sph_sim {
  * them: 0, or -1 with err (ranks.c). */
 int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err);
 void sph_sim_ranks_free(sph_sim *s);
+/* Before the store takes another state and order (a restart, restart.c):
+ * the rank store's list and work arrays released, and what the last pass
+ * kept (the store taken, the walls sent, the cut) forgotten (ranks.c). */
+void sph_sim_ranks_forget(sph_sim *s);
+/* Under mpirun, after each process timed the lane loops on its own rank
+ * (setup.c) or failed to (rc): the loop every process takes, from the mean
+ * of their ratios; 0, or -1 with err on every process if one failed; a
+ * collective step (ranks.c). */
+int sph_sim_ranks_agree_loop(sph_sim *s, int rc, sph_error *err);
 /* How many cells deep a rank's ghosts get rows of their own in its
  * neighbour list (ranks.c; the others, within `depth` cells, are there as
  * neighbours only, their rows empty: grid.h, no_row). One cell (a support)
