@@ -187,15 +187,20 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   if (s->staged) s->sub->adami_stages = stage_walls, s->sub->adami_ctx = s;
   /* what a pass reads: all but the integrator's saved state, the rates and the leap-frog's half
    * step (a mirror particle's is made in the pass from its image's velocity), but for a dynamic
-   * wall's half-step density; what it writes: the rates, the walls' densities and pressures (and
-   * that half-step density), the smoothing lengths (from the free-surface flags) and the flags */
+   * wall's half-step density; what it writes, kind by kind: the rates, the walls' densities and
+   * pressures (and that half-step density: dbc.h, adami.h, wall_velocity.h; no pass writes a
+   * fluid particle's), and with free-surface flags (freesurface.h) the flags and the smoothing
+   * lengths they set */
   const unsigned long long half = s->walls.dbc ? 0 : sph_particles_array_bits("rhoh");
   s->pass_in =
       SPH_PARTICLES_ALL &
       ~sph_particles_array_bits("x0 y0 z0 vx0 vy0 vz0 rho0 u0 ax ay az drho du xsx xsy xsz "
                                 "vxh vyh vzh uh") &
       ~half;
-  s->pass_out = sph_particles_array_bits("ax ay az drho du xsx xsy xsz rho p h rhoh flags") & ~half;
+  const unsigned long long flagged = s->detect ? sph_particles_array_bits("h flags") : 0;
+  s->pass_out[0] = sph_particles_array_bits("ax ay az drho du xsx xsy xsz") | flagged;
+  s->pass_out[1] =
+      (sph_particles_array_bits("ax ay az drho du xsx xsy xsz rho p rhoh") & ~half) | flagged;
   /* what no step changes: a store kept from the last pass keeps them (the smoothing lengths
    * without paper B's variable h or a free surface's h*) */
   s->pass_static = sph_particles_array_bits("mass mx my mz xr yr zr kind body id") |
@@ -469,9 +474,9 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
   /* its own particles back (a ghost's own rank writes it), array by array */
   const size_t nf = s->n_own_fluid;
   s->changed[0] |=
-      sph_particles_put(p, s->own_whole, &r->p, s->own_sub, nf, s->pass_out, s->self >= 0);
+      sph_particles_put(p, s->own_whole, &r->p, s->own_sub, nf, s->pass_out[0], s->self >= 0);
   s->changed[1] |= sph_particles_put(p, s->own_whole + nf, &r->p, s->own_sub + nf, own - nf,
-                                     s->pass_out, s->self >= 0);
+                                     s->pass_out[1], s->self >= 0);
   for (size_t q = 0; q < own; q++)
     t->surface += (p->flags[s->own_whole[q]] & SPH_FLAG_FREE_SURFACE) != 0;
   s->n_own = own;

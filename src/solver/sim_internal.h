@@ -80,9 +80,10 @@ struct sph_sim {
   size_t *from;                /* the whole store's index of each particle of sub */
   size_t *own_sub, *own_whole; /* the rank's own particles, the fluid first (each kind in storage
                                   order): their index in sub, in the store */
-  size_t n_own, n_own_fluid, n_from;    /* (how many, the fluid, and in sub, at the last pass) */
-  unsigned long long pass_in, pass_out; /* the arrays a pass reads, and those it may write, */
-  unsigned long long pass_static;       /* and those no step changes */
+  size_t n_own, n_own_fluid, n_from; /* (how many, the fluid, and in sub, at the last pass) */
+  unsigned long long pass_in;        /* the arrays a pass reads, */
+  unsigned long long pass_out[2];    /* those it may write in a fluid particle, in a wall, */
+  unsigned long long pass_static;    /* and those no step changes */
   size_t cap_ranks;
   unsigned char *no_row; /* by id: a ghost of sub's with an empty row (sub's list: grid.h) */
   /* the rank this process makes (procs.h), or -1: every rank, one after
