@@ -198,9 +198,15 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
                                 "vxh vyh vzh uh") &
       ~half;
   const unsigned long long flagged = s->detect ? sph_particles_array_bits("h flags") : 0;
-  s->pass_out[0] = sph_particles_array_bits("ax ay az drho du xsx xsy xsz") | flagged;
-  s->pass_out[1] =
-      (sph_particles_array_bits("ax ay az drho du xsx xsy xsz rho p rhoh") & ~half) | flagged;
+  const unsigned long long rates = sph_particles_array_bits("ax ay az drho du xsx xsy xsz");
+  s->pass_out[0] = rates | flagged;
+  /* (a wall's rates are zero at every pass where it is an Adami or a
+   * repulsive wall: interact_row.h) */
+  int rated = 0;
+  for (size_t i = 0; i < s->p.n && !rated; i++)
+    rated =
+        s->p.kind[i] == SPH_KIND_WALL && !(s->p.flags[i] & (SPH_FLAG_ADAMI | SPH_FLAG_REPULSIVE));
+  s->pass_out[1] = (rated ? rates : 0) | (sph_particles_array_bits("rho p rhoh") & ~half) | flagged;
   /* what no step changes: a store kept from the last pass keeps them (the smoothing lengths
    * without paper B's variable h or a free surface's h*) */
   s->pass_static = sph_particles_array_bits("mass mx my mz xr yr zr kind body id") |
@@ -349,12 +355,20 @@ static int covered(sph_sim *s, int resort) {
 }
 
 /* Whether no particle of p moved lim or more along any axis from where
- * ref (SPH_DIM arrays of p->n) holds it. */
+ * ref (SPH_DIM arrays of p->n) holds it (a NaN has moved), a block of
+ * particles at a time in lanes. */
 static int moved_under(const sph_particles *p, const double *ref, double lim) {
+  const size_t n = p->n, block = 4096;
   for (int a = 0; a < SPH_DIM; a++) {
-    const double *x = p->pos[a], *x0 = ref + (size_t)a * p->n;
-    for (size_t i = 0; i < p->n; i++)
-      if (!(fabs(x[i] - x0[i]) < lim)) return 0;
+    const double *x = p->pos[a], *x0 = ref + (size_t)a * n;
+    for (size_t lo = 0; lo < n; lo += block) {
+      const size_t hi = n - lo > block ? lo + block : n;
+      int far = 0;
+#pragma omp simd reduction(| : far)
+      for (size_t i = lo; i < hi; i++)
+        far |= !(fabs(x[i] - x0[i]) < lim);
+      if (far) return 0;
+    }
   }
   return 1;
 }
