@@ -13,7 +13,7 @@
  *     thread number), through `sph`'s hand-over to `sph-3d`;
  *   - a blow-up (leap-frog, a step ten times too long) in 2-D and 3-D on 2
  *     and 3 processes: exit status 3, last_good.h5 and every other file
- *     the serial run's;
+ *     the serial run's, and the message naming the same particle;
  *   - one process's pass failing (SPH_TEST_FAIL_PASS) stops every process
  *     with its message, none left waiting, in 2-D and 3-D on 2 and 3;
  *   - a run on 4 processes restarted from its snapshot on 3;
@@ -68,12 +68,13 @@ static double now(void) {
  * threads, with `env` before the command, into a new directory; the run
  * must exit with `status`. */
 static char *run_to(const char *prog, const char *case_rel, const char *sets, const char *env,
-                    int procs, int threads, int status) {
-  char *d = sph_test_tmpdir(), cmd[8192], launch[1100] = "";
+                    int procs, int threads, int status, int keep_err) {
+  char *d = sph_test_tmpdir(), cmd[8400], launch[1100] = "", err[4200] = "";
   if (procs > 0) snprintf(launch, sizeof launch, "%s -n %d", mpirun(), procs);
+  if (keep_err) snprintf(err, sizeof err, " 2>'%s.err'", d); /* (err_line) */
   snprintf(cmd, sizeof cmd,
-           "SPH_TEST_OMP_MIN=0 %s %s '%s' run --quiet --threads %d '%s' -o '%s' %s", env, launch,
-           sph_test_build(prog), threads, sph_test_src(case_rel), d, sets);
+           "SPH_TEST_OMP_MIN=0 %s %s '%s' run --quiet --threads %d '%s' -o '%s' %s%s", env, launch,
+           sph_test_build(prog), threads, sph_test_src(case_rel), d, sets, err);
   const int rc = sph_test_system(cmd);
   if (rc != status) printf("\n  %s on %d processes: exit %d, not %d", case_rel, procs, rc, status);
   CU_ASSERT_FATAL(rc == status);
@@ -82,7 +83,28 @@ static char *run_to(const char *prog, const char *case_rel, const char *sets, co
 
 static char *run(const char *prog, const char *case_rel, const char *sets, const char *env,
                  int procs, int threads) {
-  return run_to(prog, case_rel, sets, env, procs, threads, 0);
+  return run_to(prog, case_rel, sets, env, procs, threads, 0, 0);
+}
+
+/* The line of run_to's kept standard error (then removed) that holds
+ * `what`, from `what` up to `until` (or its end), into line; 1 if found. */
+static int err_line(const char *d, const char *what, const char *until, char *line, size_t n) {
+  char path[4200], buf[8192];
+  snprintf(path, sizeof path, "%s.err", d);
+  FILE *f = fopen(path, "r");
+  int found = 0;
+  while (f && !found && fgets(buf, sizeof buf, f)) {
+    char *at = strstr(buf, what);
+    if (!at) continue;
+    char *end = strstr(at, until);
+    if (end) *end = '\0';
+    at[strcspn(at, "\n")] = '\0';
+    snprintf(line, n, "%s", at);
+    found = 1;
+  }
+  if (f) fclose(f);
+  remove(path);
+  return found;
 }
 
 /* The case on each process count of procs[], with 1 and 2 threads (both,
@@ -144,15 +166,26 @@ static void test_blow_up(void) {
   "--set numerics.integrator=leapfrog --set time.output_interval=0.02 --set "                      \
   "'numerics.time_step={rule: fixed, dt: 0.004}'"
   const char *sets = BLOW_UP_SETS, *sets3 = BLOW_UP_SETS " --set numerics.dx=0.04";
-  char *one[2] = {run_to("src/sph", "tests/data/stability_impact.yaml", sets, "", 0, 1, 3),
-                  run_to("src/sph", "cases/lobovsky_h300_3d.yaml", sets3, "", 0, 1, 3)};
+  char *one[2] = {run_to("src/sph", "tests/data/stability_impact.yaml", sets, "", 0, 1, 3, 1),
+                  run_to("src/sph", "cases/lobovsky_h300_3d.yaml", sets3, "", 0, 1, 3, 1)};
+  /* the message, up to where the last good state went: the first offender
+   * in id order, its state, the stable step (each process checks a share
+   * of the store: sim.c) */
+  char msg[2][2048], got[2048];
+  for (int k = 0; k < 2; k++)
+    CU_ASSERT(err_line(one[k], "blow-up at step", "; last good state", msg[k], sizeof msg[k]));
   char good[4200]; /* (this program reads 2-D snapshots) */
   snprintf(good, sizeof good, "%s/last_good.h5", one[0]);
   CU_ASSERT(snapcmp_complete(good, NULL, NULL));
   for (int procs = 2; procs <= 3; procs++) {
-    char *d = run_to("src/sph", "tests/data/stability_impact.yaml", sets, "", procs, procs - 1, 3),
-         *e = run_to("src/sph", "cases/lobovsky_h300_3d.yaml", sets3, "", procs, 1, 3);
-    const int same = sph_test_same_dirs(one[0], d), same3 = sph_test_same_dirs(one[1], e);
+    char *d = run_to("src/sph", "tests/data/stability_impact.yaml", sets, "", procs, procs - 1, 3,
+                     1),
+         *e = run_to("src/sph", "cases/lobovsky_h300_3d.yaml", sets3, "", procs, 1, 3, 1);
+    int same = sph_test_same_dirs(one[0], d), same3 = sph_test_same_dirs(one[1], e);
+    same = err_line(d, "blow-up at step", "; last good state", got, sizeof got) &&
+           strcmp(got, msg[0]) == 0 && same;
+    same3 = err_line(e, "blow-up at step", "; last good state", got, sizeof got) &&
+            strcmp(got, msg[1]) == 0 && same3;
     printf("\n  a blow-up on %d processes: 2-D %s, 3-D %s", procs, same ? "identical" : "DIFFERENT",
            same3 ? "identical" : "DIFFERENT");
     CU_ASSERT(same && same3);

@@ -33,6 +33,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/check.h"
 #include "core/exact_sum.h"
 #include "neighbours/decomp.h"
 #include "physics/kernel.h"
@@ -482,7 +483,7 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
   if (r->own_cs_max > t->cs_max) t->cs_max = r->own_cs_max;
   if (r->own_cfl_max > t->cfl_max) t->cfl_max = r->own_cfl_max;
   if (s->fp.ledger) sph_ledger_sums_merge(&t->ledger, &r->own_ledger);
-  for (size_t j = 0; j < k; j++)
+  for (size_t j = 0; SPH_DEBUG && j < k; j++)
     if (r->p.id[j] != p->id[s->from[j]])
       return sph_error_set(err, "ranks: rank %d's pass reordered its store", rank);
   /* its own particles back (a ghost's own rank writes it), array by array */

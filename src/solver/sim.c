@@ -38,6 +38,7 @@
 #include "physics/shifting.h"
 #include "solver/forces.h"
 #include "solver/integrate.h"
+#include "solver/procs.h"
 #include "walls/adami.h"
 #include "walls/boundary.h"
 #include "walls/dbc.h"
@@ -359,8 +360,11 @@ static inline int surely_good(const sph_particles *p, size_t i, double rlo, doub
 }
 
 /* The blow-up check; the first offender in id order is named (a min
- * reduction over ids, exact in any order, then a serial look-up). */
-int sph_sim_check_state(sph_sim *s, sph_error *err) {
+ * reduction over ids, exact in any order, then a serial look-up). Shared
+ * (under mpirun, every process making this call at once: each holds the
+ * same store, sim_internal.h), each process checks its share of the store
+ * and the processes take the least id in one collective step. */
+static int check_state(sph_sim *s, int shared, sph_error *err) {
   const sph_particles *p = &s->p;
   const double lim = s->c->density_limit, rho0 = s->c->rho0;
   const double rlo = rho0 * (1.0 - lim) * (1.0 + 1e-9), rhi = rho0 * (1.0 + lim) * (1.0 - 1e-9);
@@ -369,14 +373,23 @@ int sph_sim_check_state(sph_sim *s, sph_error *err) {
                                                  INFINITY SPH_IF3(, -INFINITY, INFINITY)};
   const double *d = s->c->leaving == SPH_LEAVING_REMOVE ? everywhere : s->domain;
   const long n = (long)p->n;
+  /* this process's share: a range of the store */
+  const size_t from = shared ? p->n * (size_t)s->self / (size_t)s->ranks : 0,
+               to = shared ? p->n * (size_t)(s->self + 1) / (size_t)s->ranks : p->n;
   int64_t first = INT64_MAX;
 #pragma omp parallel if (n > SPH_OMP_MIN) reduction(min : first)
   {
     size_t lo, hi;
-    sph_slice(slices(s), p->n, &lo, &hi);
-    for (size_t i = lo; i < hi; i++)
+    sph_slice(shared ? NULL : slices(s), to - from, &lo, &hi);
+    for (size_t i = from + lo; i < from + hi; i++)
       if (!surely_good(p, i, rlo, rhi, d) && p->id[i] < first && bad_particle(p, i, lim, rho0, d))
         first = p->id[i];
+  }
+  if (shared) {
+    int64_t all[SPH_PROCS_MAX];
+    sph_procs_gather(&first, sizeof first, all);
+    for (int q = 0; q < s->ranks; q++)
+      if (all[q] < first) first = all[q];
   }
   if (first == INT64_MAX) return 0;
   long worst = -1;
@@ -414,6 +427,8 @@ int sph_sim_check_state(sph_sim *s, sph_error *err) {
                 box, hint);
   return SPH_BLOWUP;
 }
+
+int sph_sim_check_state(sph_sim *s, sph_error *err) { return check_state(s, 0, err); }
 
 /* Mirror lines and tank faces keep the fluid off (walls.h), and the
  * ledger books what that did to it. Only the step's result is kept off, not the mid-step
@@ -571,7 +586,7 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   if (c->density_filter != SPH_FILTER_NONE && s->steps % c->filter_every == 0 &&
       apply_filter(s, err))
     return -1;
-  const int st = sph_sim_check_state(s, err);
+  const int st = check_state(s, s->self >= 0, err);
   if (st == SPH_BLOWUP) sph_sim_ranks_saved_state(s); /* (a leap-frog's last good state) */
   if (st) return st;
   if (c->leaving == SPH_LEAVING_REMOVE &&
