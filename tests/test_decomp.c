@@ -4,7 +4,8 @@
  *   - the Hilbert curve visits every cell of a cube once, each step to a
  *     face neighbour;
  *   - the cut balances the particles, and is the same for the keys in any
- *     order (a pure function of the state);
+ *     order (a pure function of the state); the cut by weights is its
+ *     definition's, made plainly (every particle sorted);
  *   - the halo holds every particle within `depth` cells of a rank's own;
  *   - the particles in the cells around each, which the cut's weights
  *     are made from, are counted right (a periodic axis too);
@@ -84,6 +85,76 @@ static void test_cut_is_balanced_and_pure(void) {
     CU_ASSERT(memcmp(first, again, (size_t)ranks * sizeof *first) == 0);
   }
   free(keys);
+}
+
+/* The weighted cut (sph_decomp_cut_weighted) against its definition made
+ * plainly: every particle sorted by key, then weight, and rank r from the
+ * key of the first particle before which the weights reach r / ranks of
+ * the whole; on keys in runs (as a store sorted by cells gives them: a key
+ * merges several runs) and shuffled, with weights from 1 to 1000, for 1
+ * to 7 ranks; then the same cut for the particles in any order. */
+typedef struct key_weight {
+  uint64_t key;
+  uint32_t w;
+} key_weight;
+
+static int cmp_key_weight(const void *a, const void *b) {
+  const key_weight *x = a, *y = b;
+  if (x->key != y->key) return (x->key > y->key) - (x->key < y->key);
+  return (x->w > y->w) - (x->w < y->w);
+}
+
+static void plain_cut(const uint64_t *keys, const uint32_t *w, size_t n, int ranks,
+                      uint64_t *first) {
+  key_weight *s = malloc(n * sizeof *s);
+  uint64_t total = 0, sum = 0;
+  for (size_t i = 0; i < n; i++)
+    s[i] = (key_weight){keys[i], w[i]}, total += w[i];
+  qsort(s, n, sizeof *s, cmp_key_weight);
+  size_t p = 0;
+  first[0] = 0;
+  for (int r = 1; r < ranks; r++) {
+    while (p < n && sum * (uint64_t)ranks < (uint64_t)r * total)
+      sum += s[p++].w;
+    first[r] = p < n ? s[p].key : s[n - 1].key + 1;
+    if (first[r] < first[r - 1]) first[r] = first[r - 1];
+  }
+  free(s);
+}
+
+static void test_weighted_cut(void) {
+  enum { N = 5003 };
+  uint64_t *keys = malloc(N * sizeof *keys), first[7], plain[7];
+  uint32_t *w = malloc(N * sizeof *w);
+  CU_ASSERT_FATAL(keys && w);
+  unsigned long long seed = 4242;
+  for (int trial = 0; trial < 40; trial++) {
+    const double spread = trial % 2 ? 40.0 : 900.0; /* few keys (long runs) or many */
+    for (int i = 0; i < N;) {                       /* a run of 1 to 8 particles of one key */
+      const uint64_t k = (uint64_t)(sph_test_uniform(&seed) * spread);
+      const int run = 1 + (int)(sph_test_uniform(&seed) * 8.0);
+      for (int j = 0; j < run && i < N; j++, i++)
+        keys[i] = k, w[i] = 1 + (uint32_t)(sph_test_uniform(&seed) * (trial % 4 < 2 ? 999.0 : 2.0));
+    }
+    for (int ranks = 1; ranks <= 7; ranks++) {
+      sph_error err;
+      CU_ASSERT_FATAL(sph_decomp_cut_weighted(keys, w, N, ranks, first, &err) == 0);
+      plain_cut(keys, w, N, ranks, plain);
+      CU_ASSERT(memcmp(first, plain, (size_t)ranks * sizeof *first) == 0);
+    }
+    for (int i = N - 1; i > 0; i--) { /* shuffled: the same cut */
+      const int j = (int)(sph_test_uniform(&seed) * (i + 1));
+      const uint64_t t = keys[i];
+      const uint32_t tw = w[i];
+      keys[i] = keys[j], keys[j] = t, w[i] = w[j], w[j] = tw;
+    }
+    sph_error err;
+    CU_ASSERT_FATAL(sph_decomp_cut_weighted(keys, w, N, 5, first, &err) == 0);
+    plain_cut(keys, w, N, 5, plain);
+    CU_ASSERT(memcmp(first, plain, 5 * sizeof *first) == 0);
+  }
+  free(keys);
+  free(w);
 }
 
 /* The counts the cut's weights are made from (sph_decomp_block_counts):
@@ -336,6 +407,7 @@ int main(void) {
   CU_TestInfo tests[] = {
       {"the Hilbert curve visits every cell once", test_hilbert_visits_every_cell_once},
       {"the cut is balanced and pure", test_cut_is_balanced_and_pure},
+      {"the weighted cut is its definition's", test_weighted_cut},
       {"the particles around each are counted", test_block_counts},
       {"ranks emulated in one process compute the same bits", test_emulated_ranks},
       CU_TEST_INFO_NULL};

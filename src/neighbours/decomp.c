@@ -103,15 +103,15 @@ static int cmp_u64(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
+/* A key's particles: their weights' sum and the largest of them. */
 typedef struct weighted_key {
-  uint64_t key;
-  uint32_t w;
+  uint64_t key, w;
+  uint32_t w_max;
 } weighted_key;
 
 static int cmp_weighted(const void *a, const void *b) {
-  const weighted_key *x = a, *y = b;
-  if (x->key != y->key) return (x->key > y->key) - (x->key < y->key);
-  return (x->w > y->w) - (x->w < y->w);
+  const uint64_t x = ((const weighted_key *)a)->key, y = ((const weighted_key *)b)->key;
+  return (x > y) - (x < y);
 }
 
 int sph_decomp_cut_weighted(const uint64_t *keys, const uint32_t *w, size_t n, int ranks,
@@ -120,19 +120,38 @@ int sph_decomp_cut_weighted(const uint64_t *keys, const uint32_t *w, size_t n, i
   if (ranks < 2) return 0;
   weighted_key *s = malloc((n ? n : 1) * sizeof *s);
   if (!s) return sph_error_set(err, "decomposition: out of memory");
+  /* the runs of equal keys in the particles' order (a cell's particles are
+   * mostly together: the store is sorted by cells), sorted by key, then
+   * each key's runs merged */
   uint64_t total = 0;
-  for (size_t i = 0; i < n; i++)
-    s[i].key = keys[i], s[i].w = w[i], total += w[i];
-  qsort(s, n, sizeof *s, cmp_weighted);
-  /* rank r from the first key before which the weights reach r / ranks of
-   * the whole: the running sums at the ends of runs of equal keys (whole
-   * cells) do not depend on the order within a run, so neither does the cut */
+  size_t m = 0;
+  for (size_t i = 0; i < n; i++) {
+    total += w[i];
+    if (m && s[m - 1].key == keys[i]) {
+      s[m - 1].w += w[i];
+      if (w[i] > s[m - 1].w_max) s[m - 1].w_max = w[i];
+    } else
+      s[m++] = (weighted_key){keys[i], w[i], w[i]};
+  }
+  qsort(s, m, sizeof *s, cmp_weighted);
+  size_t g = 0;
+  for (size_t k = 0; k < m; k++)
+    if (g && s[g - 1].key == s[k].key) {
+      s[g - 1].w += s[k].w;
+      if (s[k].w_max > s[g - 1].w_max) s[g - 1].w_max = s[k].w_max;
+    } else
+      s[g++] = s[k];
+  /* rank r from the first particle, in the order of keys and, within a
+   * key, of weights, before which the weights reach r / ranks of the
+   * whole: the first key whose particles but its heaviest reach it with
+   * those of the keys before (the running sums at the ends of a key's
+   * particles do not depend on their order, so neither does the cut) */
   uint64_t sum = 0;
-  size_t p = 0;
+  size_t at = 0;
   for (int r = 1; r < ranks; r++) {
-    while (p < n && sum * (uint64_t)ranks < (uint64_t)r * total)
-      sum += s[p++].w;
-    first[r] = n ? (p < n ? s[p].key : s[n - 1].key + 1) : UINT64_MAX;
+    while (at < g && (sum + s[at].w - s[at].w_max) * (uint64_t)ranks < (uint64_t)r * total)
+      sum += s[at++].w;
+    first[r] = g ? (at < g ? s[at].key : s[g - 1].key + 1) : UINT64_MAX;
     if (first[r] < first[r - 1]) first[r] = first[r - 1];
   }
   free(s);
