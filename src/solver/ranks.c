@@ -208,6 +208,9 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
     rated =
         s->p.kind[i] == SPH_KIND_WALL && !(s->p.flags[i] & (SPH_FLAG_ADAMI | SPH_FLAG_REPULSIVE));
   s->pass_out[1] = (rated ? rates : 0) | (sph_particles_array_bits("rho p rhoh") & ~half) | flagged;
+  /* a wall's position and velocity, where no wall moves (walls.h; the fluid
+   * is kept off walls, shifted and integrated alone) */
+  s->wall_still = s->walls.moving ? 0 : sph_particles_array_bits("x y z vx vy vz");
   /* what no step changes: a store kept from the last pass keeps them (the smoothing lengths
    * without paper B's variable h or a free surface's h*) */
   s->pass_static = sph_particles_array_bits("mass mx my mz xr yr zr kind body id") |
@@ -234,6 +237,9 @@ void sph_sim_ranks_free(sph_sim *s) {
   free(s->own_sub);
   free(s->own_whole);
   s->own_sub = s->own_whole = NULL;
+  free(s->kind_sub);
+  free(s->kind_whole);
+  s->kind_sub = s->kind_whole = NULL;
   free(s->owner);
   free(s->by_owner);
   s->by_owner = NULL;
@@ -284,6 +290,10 @@ static int reserve(sph_sim *s, size_t n, sph_error *err) {
   if (os) s->own_sub = os;
   size_t *ow = realloc(s->own_whole, n * sizeof *ow);
   if (ow) s->own_whole = ow;
+  size_t *ks = s->self >= 0 ? realloc(s->kind_sub, n * sizeof *ks) : s->kind_sub;
+  if (ks) s->kind_sub = ks;
+  size_t *kw = s->self >= 0 ? realloc(s->kind_whole, n * sizeof *kw) : s->kind_whole;
+  if (kw) s->kind_whole = kw;
   unsigned char *o = s->self >= 0 ? realloc(s->owner, n) : s->owner;
   if (o) s->owner = o;
   size_t *bo = s->self >= 0 ? realloc(s->by_owner, n * sizeof *bo) : s->by_owner;
@@ -310,7 +320,7 @@ static int reserve(sph_sim *s, size_t n, sph_error *err) {
     s->n_send_pos = 0; /* (the walls to send chosen anew) */
   }
   if (!k || !m || !nr || !f || !os || !ow || !w || !fn || !staged_ok ||
-      (s->self >= 0 && (!o || !bo || !l || !tp)))
+      (s->self >= 0 && (!o || !bo || !l || !tp || !ks || !kw)))
     return sph_error_set(err, "out of memory for the ranks' cut");
   s->cap_ranks = n;
   return 0;
@@ -391,6 +401,18 @@ static int still_covered(const sph_sim *s, int resort, double side) {
   return moved_under(p, s->take_pos, 0.49 * s->side_last); /* half a cell, less a margin */
 }
 
+/* A process's store, kept from its last pass, takes the values a step
+ * changed: the fluid's, and the walls' but for their positions and
+ * velocities where no wall moves (wall_still). */
+static void take_by_kind(sph_sim *s, const sph_particles *in) {
+  sph_particles *q = &s->sub->p;
+  const unsigned long long arrays = s->pass_in & ~s->pass_static;
+  const size_t nf = s->n_kind_fluid;
+  sph_particles_put(q, s->kind_sub, in, s->kind_whole, nf, arrays, 0);
+  sph_particles_put(q, s->kind_sub + nf, in, s->kind_whole + nf, s->n_from - nf,
+                    arrays & ~s->wall_still, 0);
+}
+
 /* Rank `rank`'s part of the pass: its own particles and its ghosts into
  * sub, in the whole store's order; the pass; its own particles' results
  * back into the whole store, its reductions into t. */
@@ -439,6 +461,15 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
     for (size_t j = 0; j < k; j++) /* then the walls */
       if (s->mark[s->from[j]] == 1 && p->kind[s->from[j]] != SPH_KIND_FLUID)
         s->own_sub[own] = j, s->own_whole[own++] = s->from[j];
+    if (s->self >= 0) { /* all of sub by kind, the fluid first (take_by_kind) */
+      size_t m = 0;
+      for (int wall = 0; wall < 2; wall++) {
+        if (wall) s->n_kind_fluid = m;
+        for (size_t j = 0; j < k; j++)
+          if ((p->kind[s->from[j]] != SPH_KIND_FLUID) == wall)
+            s->kind_sub[m] = j, s->kind_whole[m++] = s->from[j];
+      }
+    }
     if (s->staged) {
       memset(s->to_sub, 0xff, p->n * sizeof *s->to_sub); /* SIZE_MAX: not in sub */
       for (size_t j = 0; j < k; j++)
@@ -461,8 +492,10 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
       s->made_first[s->send_sub[m]] = 1;
     }
   }
-  if (sph_particles_gather(&r->p, in, s->from, k, same ? s->pass_in & ~s->pass_static : s->pass_in,
-                           err))
+  if (same && s->wall_still) /* a wall's position and velocity kept from the last pass */
+    take_by_kind(s, in);
+  else if (sph_particles_gather(&r->p, in, s->from, k,
+                                same ? s->pass_in & ~s->pass_static : s->pass_in, err))
     return -1;
   for (size_t j = 0; j < k; j++)
     if (s->mark[s->from[j]] >= 2) r->p.flags[j] |= SPH_FLAG_GHOST;

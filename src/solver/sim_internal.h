@@ -81,9 +81,12 @@ struct sph_sim {
   size_t *own_sub, *own_whole; /* the rank's own particles, the fluid first (each kind in storage
                                   order): their index in sub, in the store */
   size_t n_own, n_own_fluid, n_from; /* (how many, the fluid, and in sub, at the last pass) */
-  unsigned long long pass_in;        /* the arrays a pass reads, */
-  unsigned long long pass_out[2];    /* those it may write in a fluid particle, in a wall, */
-  unsigned long long pass_static;    /* and those no step changes */
+  size_t *kind_sub, *kind_whole, n_kind_fluid; /* every particle of sub, the fluid first: its
+                                                  index in sub, in the store (a process's) */
+  unsigned long long wall_still;  /* the arrays a wall keeps from step to step (ranks.c) */
+  unsigned long long pass_in;     /* the arrays a pass reads, */
+  unsigned long long pass_out[2]; /* those it may write in a fluid particle, in a wall, */
+  unsigned long long pass_static; /* and those no step changes */
   size_t cap_ranks;
   unsigned char *no_row; /* by id: a ghost of sub's with an empty row (sub's list: grid.h) */
   /* the rank this process makes (procs.h), or -1: every rank, one after
