@@ -152,8 +152,18 @@ typedef struct sph_force_work {
   double cs_sigma_max; /* max over the particles of cs + sigma (the step rule) */
   int keep_sigma;      /* set by a caller that reads sigma per particle (the tests) */
   int skip_ghosts;     /* a rank's store: no rates for SPH_FLAG_GHOST (solver/ranks.c) */
-  unsigned terms;      /* the pass's term set (interact.h: the bits a loop tests at run time) */
-  uint32_t *rows;      /* per thread: a neighbour row cut to the support */
+  /* Or NULL: the interaction loop's rows in two phases, those with late[i] = 1, then, after
+   * late_hook(late_ctx) has given some particles their values (and their packed copies), those
+   * with late[i] = 2 (a process's rows that read its ghost walls, whose values another process
+   * sends: solver/ranks.c). The rows are independent: the same bits. */
+  const unsigned char *late;
+  void (*late_hook)(void *ctx);
+  void (*late_progress)(void *ctx); /* or NULL: called by the first phase's first thread every
+                                       few thousand rows (the values on their way: procs.h) */
+  void *late_ctx;
+  int phase;      /* the phase a loop makes (0: every row) */
+  unsigned terms; /* the pass's term set (interact.h: the bits a loop tests at run time) */
+  uint32_t *rows; /* per thread: a neighbour row cut to the support */
   size_t rows_stride, rows_cap;
   /* With the stress tensor in lanes: every particle's row cut by the
    * strain-rate pass, kept for the main pass of the same evaluation (row i

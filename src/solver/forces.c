@@ -424,6 +424,21 @@ static strain_fn strain_lanes(const sph_force_params *fp) {
   }
 }
 
+/* Particle i's packed state (w->hot). */
+static inline void pack_hot(const sph_particles *p, const sph_force_params *fp, sph_force_work *w,
+                            size_t i) {
+  const double rho = p->rho[i], cs = sph_eos_sound_speed(&fp->eos, rho);
+  w->hot[i] = (sph_force_hot){p->x[i],  p->y[i],
+                              p->vx[i], p->vy[i],
+                              rho,      p->p[i] / (rho * rho),
+                              cs,       p->mass[i] SPH_IF3(, p->z[i], p->vz[i])};
+}
+
+void sph_force_work_repack(const sph_particles *p, const sph_force_params *fp, sph_force_work *w,
+                           size_t i) {
+  pack_hot(p, fp, w, i);
+}
+
 /* Per pass: the packed state of every particle (w->hot), a cut-row
  * buffer per thread, and the interaction loop's slices (the list's, with
  * stealing). */
@@ -441,11 +456,7 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
     size_t lo, hi; /* the slices of the interaction loop */
     sph_slice(l->cost, p->n, &lo, &hi);
     for (size_t i = lo; i < hi; i++) {
-      const double rho = p->rho[i], cs = sph_eos_sound_speed(&fp->eos, rho);
-      w->hot[i] = (sph_force_hot){p->x[i],  p->y[i],
-                                  p->vx[i], p->vy[i],
-                                  rho,      p->p[i] / (rho * rho),
-                                  cs,       p->mass[i] SPH_IF3(, p->z[i], p->vz[i])};
+      pack_hot(p, fp, w, i);
       if (fm) w->fm[i] = p->kind[i] == SPH_KIND_FLUID ? p->mass[i] : 0.0;
       if (nwall) w->nwall[i] = 0;
     }
@@ -634,7 +645,21 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
   if ((F & F_STRESS) && stress_pass(p, l, fp, w, err)) return -1;
   if (F & F_DDIFF)
     sph_diffusion_prepare(p, l, fp, w, sph_diffusion_mass_is_fm(fp, (F & F_XSPH) != 0));
-  run(p, l, fp, w);
+  if (w->late) { /* the rows in two phases around late_hook (force_pass.h) */
+    w->phase = 1;
+    run(p, l, fp, w);
+    const double mx = w->cs_sigma_max;
+    w->late_hook(w->late_ctx);
+    w->phase = 2;
+    if (sph_steal_reset(&w->steal, l->cost, p->n, sph_team_size(p->n))) {
+      w->phase = 0;
+      return sph_error_set(err, "forces: out of memory for the thread slices");
+    }
+    run(p, l, fp, w);
+    w->phase = 0;
+    if (mx > w->cs_sigma_max) w->cs_sigma_max = mx;
+  } else
+    run(p, l, fp, w);
   if (SPH_DEBUG) check_rates(p, w, F);
   if (fp->repulsive) {
     const sph_repulsion_ledger lg = {w->wf, w->wpow, w->lj};

@@ -86,6 +86,11 @@ void sph_force_work_free(sph_force_work *w);
 /* Room in w for n particles (the contents carried over): for a caller
  * that fills one of its arrays before the pass (adami walls' gv). */
 int sph_force_work_reserve(sph_force_work *w, size_t n, sph_error *err);
+/* Particle i's packed copy made again from the store (after a pass's
+ * preparation gave it its own: a value that came later, force_pass.h's
+ * late rows). */
+void sph_force_work_repack(const sph_particles *p, const sph_force_params *fp, sph_force_work *w,
+                           size_t i);
 
 /* Sets p->p from the equation of state for every particle. */
 void sph_forces_pressure(sph_particles *p, const sph_eos *eos);

@@ -50,6 +50,8 @@ extern const sph_loop_table sph_loops_avx512;
 /* Rows per stolen chunk of the interaction loop: a few microseconds of
  * work, so a thread waits at most that long at the end of a pass. */
 #define SPH_STEAL_GRAIN 32
+/* Rows between two calls of a first phase's late_progress (force_pass.h). */
+#define SPH_PROGRESS_ROWS 2048
 
 /* The loop NAME of flavour FL (interact.h's interact_FL, one particle's
  * row) for the term set Fc, a literal inside its parallel region: each
@@ -62,15 +64,20 @@ extern const sph_loop_table sph_loops_avx512;
     const long n = (long)p->n;                                                                     \
     double mx = 0.0;                                                                               \
     _Pragma("omp parallel if (n > SPH_OMP_MIN) reduction(max : mx)") {                             \
-      size_t lo, hi; /* slices of equal cost, with stealing (parallel.h) */                        \
-      while (sph_steal_next(&w->steal, SPH_STEAL_GRAIN, &lo, &hi))                                 \
+      size_t lo, hi, since = 0; /* slices of equal cost, with stealing (parallel.h) */             \
+      const int progress = w->phase == 1 && w->late_progress && sph_thread() == 0;                 \
+      while (sph_steal_next(&w->steal, SPH_STEAL_GRAIN, &lo, &hi)) {                               \
+        if (progress && (since += hi - lo) >= SPH_PROGRESS_ROWS) /* (force_pass.h) */              \
+          since = 0, w->late_progress(w->late_ctx);                                                \
         for (size_t i = lo; i < hi; i++) {                                                         \
           if (w->skip_ghosts && (p->flags[i] & SPH_FLAG_GHOST)) continue; /* a rank's (ranks.c) */ \
+          if (w->phase && w->late[i] != w->phase) continue;               /* (force_pass.h) */     \
           const double sg = interact_##FL(p, l, fp, w, i, (Fc));                                   \
           if (w->keep_sigma) w->sigma[i] = sg; /* the tests' */                                    \
           const double c = w->hot[i].cs + sg;                                                      \
           if (c > mx) mx = c;                                                                      \
         }                                                                                          \
+      }                                                                                            \
     }                                                                                              \
     sph_steal_learn(&w->steal);                                                                    \
     w->cs_sigma_max = mx;                                                                          \

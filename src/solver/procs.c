@@ -244,6 +244,11 @@ void sph_procs_gather_records_start(const void *mine, const size_t *counts, size
   MPI_Iallgatherv(mine, n[rank], pending_type, all, n, at, pending_type, MPI_COMM_WORLD, &pending);
 }
 
+void sph_procs_gather_records_progress(void) {
+  int done;
+  MPI_Test(&pending, &done, MPI_STATUS_IGNORE);
+}
+
 void sph_procs_gather_records_wait(void) {
   if (!crowded)
     MPI_Wait(&pending, MPI_STATUS_IGNORE);
@@ -282,5 +287,6 @@ void sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec
 void sph_procs_gather_records_start(const void *mine, const size_t *counts, size_t rec, void *all) {
   memcpy(all, mine, counts[0] * rec);
 }
+void sph_procs_gather_records_progress(void) {}
 void sph_procs_gather_records_wait(void) {}
 #endif

@@ -78,6 +78,11 @@ void sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec
  * and waits with sph_procs_gather_records_wait, touching neither mine nor
  * all in between. */
 void sph_procs_gather_records_start(const void *mine, const size_t *counts, size_t rec, void *all);
+/* Moves the gather that sph_procs_gather_records_start left running
+ * (Open MPI moves a collective step only inside its calls; without them the
+ * others wait at theirs for this process's records): from the thread that
+ * calls MPI. */
+void sph_procs_gather_records_progress(void);
 void sph_procs_gather_records_wait(void);
 #ifdef __cplusplus
 }

@@ -171,6 +171,7 @@ static int staged(const sph_sim *s) {
 }
 
 static int stage_walls(sph_sim *r, void *ctx, int rc, sph_error *err);
+static void stages_end(sph_sim *r, void *ctx);
 
 int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   const sph_case *c = s->c;
@@ -185,7 +186,9 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   s->sub->work.skip_ghosts = 1;
   s->self = self;
   s->staged = staged(s);
-  if (s->staged) s->sub->adami_stages = stage_walls, s->sub->adami_ctx = s;
+  if (s->staged)
+    s->sub->adami_stages = stage_walls, s->sub->adami_stages_end = stages_end,
+    s->sub->adami_ctx = s;
   /* what a pass reads: all but the integrator's saved state, the rates and the leap-frog's half
    * step (a mirror particle's is made in the pass from its image's velocity), but for a dynamic
    * wall's half-step density; what it writes, kind by kind: the rates, the walls' densities and
@@ -256,6 +259,8 @@ void sph_sim_ranks_free(sph_sim *s) {
   free(s->mark_last);
   free(s->take_pos);
   s->take_pos = NULL;
+  free(s->late);
+  s->late = NULL, s->cap_late = 0;
   free(s->weight);
   free(s->fluid_near);
   s->fluid_near = NULL;
@@ -274,6 +279,7 @@ void sph_sim_ranks_forget(sph_sim *s) {
   s->sub->work.skip_ghosts = 1; /* (as sph_sim_ranks_init set it) */
   s->hot_in_sub = 0;
   s->n_mark_last = 0, s->n_send_pos = 0, s->n_cut = 0; /* taken, sent and cut anew */
+  s->late_n = 0;
 }
 
 static int reserve(sph_sim *s, size_t n, sph_error *err) {
@@ -666,14 +672,78 @@ static int choose_send(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fir
   return 0;
 }
 
+/* The rows of a process's rank store that read a ghost wall (late 2; the
+ * others 1): its own fluid particles in a ghost wall's row (the list is
+ * symmetric; a ghost wall within a support of an own particle has its row:
+ * sph_sim_ranks_row_depth), found again when the list was built again. */
+static int late_rows(sph_sim *s, sph_sim *r, sph_error *err) {
+  const sph_particles *q = &r->p;
+  if (s->late && r->nl.builds == s->late_builds && s->late_n == q->n) return 0;
+  if (q->n > s->cap_late) {
+    unsigned char *l = realloc(s->late, q->n);
+    if (!l) return sph_error_set(err, "out of memory for the late rows");
+    s->late = l, s->cap_late = q->n;
+  }
+  memset(s->late, 1, q->n);
+  for (size_t j = 0; j < q->n; j++) {
+    if (q->kind[j] != SPH_KIND_WALL || !(q->flags[j] & SPH_FLAG_GHOST)) continue;
+    size_t cnt;
+    const uint32_t *row = sph_nlist_row(&r->nl, j, &cnt);
+    for (size_t k = 0; k < cnt; k++)
+      if (q->kind[row[k]] == SPH_KIND_FLUID && !(q->flags[row[k]] & SPH_FLAG_GHOST))
+        s->late[row[k]] = 2;
+  }
+  s->late_builds = r->nl.builds, s->late_n = q->n;
+  return 0;
+}
+
+/* The second half of the walls' stages: the wait for the other processes'
+ * values, and (after a pass that has not failed) those values in this
+ * process's ghost walls, with their packed copies made again where the
+ * pass's preparation had made them (repack). Once a pass. */
+static void stage_finish(sph_sim *s, int repack) {
+  sph_sim *r = s->sub;
+  sph_particles *q = &r->p;
+  if (s->stage_waited) return;
+  sph_procs_gather_records_wait();
+  s->stage_waited = 1;
+  if (s->stage_failed) return;
+  const wall_value *every = s->wall_buf;
+  size_t at = 0;
+  for (int k = 0; k < s->ranks; k++) {
+    if (k != s->self)
+      for (size_t m = at; m < at + s->send_counts[k]; m++) {
+        const wall_value *v = &every[m];
+        const size_t j = s->to_sub[v->at];
+        if (j == SIZE_MAX) continue; /* not in this process's store */
+        q->p[j] = v->p, q->rho[j] = v->rho;
+        for (int d = 0; d < SPH_DIM; d++)
+          r->work.gv[d][j] = v->gv[d];
+        if (repack) sph_force_work_repack(q, &r->fp, &r->work, j);
+      }
+    at += s->send_counts[k];
+  }
+}
+
+static void stage_late(void *ctx) { stage_finish(ctx, 1); }
+static void stage_progress(void *ctx) {
+  (void)ctx;
+  sph_procs_gather_records_progress();
+}
+
 /* A process's rank store's Adami walls (sim.c's adami_stages), in two
  * stages around one collective step: the walls other processes read
  * (send_sub) first, their values sent without waiting; the rest of its
- * own walls while they travel (made_first skips those and its ghost walls);
- * then the other processes' values into its ghost walls.
- * A ghost wall then holds the bits its own process made from its whole
- * row, which a row of its own here would give (tests/test_mpi). A pass
- * that failed before (rc) still joins the step. Returns rc, or -1. */
+ * own walls while they travel (made_first skips those and its ghost walls).
+ * Where nothing before the interaction loop reads a ghost wall (no density
+ * diffusion: the pre-passes that read a neighbour's row value are not
+ * staged), the loop makes the rows that read no ghost wall first and only
+ * then waits and gives the ghost walls the other processes' values
+ * (late_rows, stage_late); else it waits now. A ghost wall then holds the
+ * bits its own process made from its whole row, which a row of its own
+ * here would give (tests/test_mpi). A pass that failed before (rc) still
+ * joins the step (sph_sim_pass ends it: sph_sim_ranks_stages_end). Returns
+ * rc, or -1. */
 static int stage_walls(sph_sim *r, void *ctx, int rc, sph_error *err) {
   sph_sim *s = ctx;
   sph_particles *q = &r->p;
@@ -692,27 +762,24 @@ static int stage_walls(sph_sim *r, void *ctx, int rc, sph_error *err) {
     }
   }
   sph_procs_gather_records_start(mine, s->send_counts, sizeof *mine, every);
-  s->stage_joined = 1;
+  s->stage_joined = 1, s->stage_waited = 0;
   if (rc == 0) {
     ap.skip = s->made_first;
     sph_wall_adami(q, &r->nl, &ap, r->work.gv);
   }
-  sph_procs_gather_records_wait();
-  if (rc) return rc;
-  size_t at = 0;
-  for (int k = 0; k < s->ranks; k++) {
-    if (k != s->self)
-      for (size_t m = at; m < at + s->send_counts[k]; m++) {
-        const wall_value *v = &every[m];
-        const size_t j = s->to_sub[v->at];
-        if (j == SIZE_MAX) continue; /* not in this process's store */
-        q->p[j] = v->p, q->rho[j] = v->rho;
-        for (int d = 0; d < SPH_DIM; d++)
-          r->work.gv[d][j] = v->gv[d];
-      }
-    at += s->send_counts[k];
-  }
-  return 0;
+  if (rc == 0 && r->fp.diffusion == SPH_DIFFUSION_NONE && late_rows(s, r, err)) rc = -1;
+  s->stage_failed = rc != 0;
+  if (rc == 0 && r->fp.diffusion == SPH_DIFFUSION_NONE)
+    r->work.late = s->late, r->work.late_hook = stage_late, r->work.late_progress = stage_progress,
+    r->work.late_ctx = s;
+  else
+    stage_finish(s, 0);
+  return rc;
+}
+
+static void stages_end(sph_sim *r, void *ctx) {
+  stage_finish(ctx, 0); /* (after a pass that made its late rows: nothing left) */
+  r->work.late = NULL, r->work.late_hook = NULL, r->work.late_progress = NULL;
 }
 
 /* Every process's own particles of one kind (0: the fluid, 1: the walls)

@@ -265,6 +265,7 @@ int sph_sim_pass(sph_sim *s, sph_error *err) {
     rc = adami_walls(s, err);
   s->fp.h_reach = s->fp.var_h ? h_max(s) : 0.0; /* the whole store's (a rank's too) */
   if (rc == 0) rc = sph_forces_evaluate(&s->p, &s->nl, &s->fp, &s->work, err);
+  if (s->adami_stages_end) s->adami_stages_end(s, s->adami_ctx);
   s->step_pass = s->steps; /* the state w->hot now holds */
   /* everything that reads the pass's per-particle work arrays, before
    * removing the mirror particles reorders the store under them */

@@ -121,7 +121,10 @@ struct sph_sim {
    * another process's halo holds (their indices in the store and in sub), n_send of them, and
    * each process's count; each particle's index in sub (SIZE_MAX: not there), the walls sub
    * made first; the store's positions, order, cells' side and cut when those walls were chosen */
-  int staged, stage_joined;
+  int staged, stage_joined, stage_waited, stage_failed;
+  unsigned char *late; /* the rank store's rows that read a ghost wall (ranks.c, late_rows) */
+  size_t cap_late, late_n;
+  long late_builds;
   size_t *send_whole, *send_sub, n_send, send_counts[64], send_total;
   size_t *to_sub;
   unsigned char *made_first;
@@ -145,6 +148,8 @@ struct sph_sim {
    * given the pass's status so far, which it returns (it joins the others
    * even after a failure) */
   int (*adami_stages)(struct sph_sim *s, void *ctx, int rc, sph_error *err);
+  void (*adami_stages_end)(struct sph_sim *s, void *ctx); /* after the interaction loop: what
+                                                             adami_stages left (its wait) */
   void *adami_ctx;
   sph_ledger_sums own_ledger;
 };
