@@ -79,22 +79,39 @@ static int particle_cell(const sph_decomp_grid *g, const sph_particles *p, size_
   return sph_decomp_cell(g, x, c);
 }
 
+/* Cells whose keys sph_decomp_keys keeps at hand: 2^SPH_DECOMP_KEY_BITS. */
+#define SPH_DECOMP_KEY_BITS 12
+#define SPH_DECOMP_KEY_CACHE ((size_t)1 << SPH_DECOMP_KEY_BITS)
+
 int sph_decomp_keys(const sph_decomp_grid *g, const sph_particles *p, uint64_t *keys,
                     sph_error *err) {
-  /* the store is sorted by cells: a particle's cell is often the last
-   * one's, whose key is known */
-  uint64_t last = 0, last_key = 0;
+  /* the store is sorted by cells, of another grid: a particle's cell is
+   * often one met a little before, whose key is kept in a table by the
+   * cell (the cell's coordinates packed: below 2^63, so UINT64_MAX marks a
+   * free place); without room for it, each key is made */
+  uint64_t(*seen)[2] = malloc(SPH_DECOMP_KEY_CACHE * sizeof *seen);
+  if (seen)
+    for (size_t k = 0; k < SPH_DECOMP_KEY_CACHE; k++)
+      seen[k][0] = UINT64_MAX;
   for (size_t i = 0; i < p->n; i++) {
     uint32_t c[SPH_DIM];
-    if (particle_cell(g, p, i, c))
+    if (particle_cell(g, p, i, c)) {
+      free(seen);
       return sph_error_set(err, "decomposition: particle %lld is outside the curve's reach",
                            (long long)p->id[i]);
+    }
     uint64_t v = 0;
     for (int a = 0; a < SPH_DIM; a++)
       v = v << SPH_DECOMP_BITS | c[a];
-    if (i == 0 || v != last) last = v, last_key = sph_decomp_hilbert(c, SPH_DECOMP_BITS);
-    keys[i] = last_key;
+    if (!seen) {
+      keys[i] = sph_decomp_hilbert(c, SPH_DECOMP_BITS);
+      continue;
+    }
+    uint64_t *at = seen[(v * 0x9E3779B97F4A7C15ull) >> (64 - SPH_DECOMP_KEY_BITS)];
+    if (at[0] != v) at[0] = v, at[1] = sph_decomp_hilbert(c, SPH_DECOMP_BITS);
+    keys[i] = at[1];
   }
+  free(seen);
   return 0;
 }
 

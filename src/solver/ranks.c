@@ -33,7 +33,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/check.h"
 #include "core/exact_sum.h"
 #include "neighbours/decomp.h"
 #include "physics/kernel.h"
@@ -211,9 +210,14 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
     rated =
         s->p.kind[i] == SPH_KIND_WALL && !(s->p.flags[i] & (SPH_FLAG_ADAMI | SPH_FLAG_REPULSIVE));
   s->pass_out[1] = (rated ? rates : 0) | (sph_particles_array_bits("rho p rhoh") & ~half) | flagged;
-  /* a wall's position and velocity, where no wall moves (walls.h; the fluid
-   * is kept off walls, shifted and integrated alone) */
-  s->wall_still = s->walls.moving ? 0 : sph_particles_array_bits("x y z vx vy vz");
+  /* what a kept store does not take again of a wall: its position and velocity where no wall
+   * moves (walls.h: the fluid alone is kept off walls, shifted and integrated), and with the
+   * walls in stages and a constant h its density and pressure (the pass makes its own walls'
+   * before any row reads them, and its rows read only those ghost walls whose values their own
+   * processes send: stage_walls; a variable h is made from them before) */
+  const int h_static = !c->variable_h && !s->fp.var_h;
+  s->wall_not_taken = (s->walls.moving ? 0 : sph_particles_array_bits("x y z vx vy vz")) |
+                      (s->staged && h_static ? sph_particles_array_bits("rho p") : 0);
   /* what no step changes: a store kept from the last pass keeps them (the smoothing lengths
    * without paper B's variable h or a free surface's h*) */
   s->pass_static = sph_particles_array_bits("mass mx my mz xr yr zr kind body id") |
@@ -371,23 +375,55 @@ static int covered(sph_sim *s, int resort) {
   return cover;
 }
 
-/* Whether no particle of p moved lim or more along any axis from where
- * ref (SPH_DIM arrays of p->n) holds it (a NaN has moved), a block of
- * particles at a time in lanes. */
-static int moved_under(const sph_particles *p, const double *ref, double lim) {
+/* Whether no particle of p moved lim[k] or more along any axis from where
+ * ref[k] (SPH_DIM arrays of p->n) holds it (a NaN has moved), for each
+ * k < refs (at most 2): bit k of the result. One reading of the positions,
+ * a block of particles at a time in lanes. */
+static unsigned moved_under(const sph_particles *p, const double *const *ref, const double *lim,
+                            int refs) {
   const size_t n = p->n, block = 4096;
+  unsigned ok = (1u << refs) - 1u;
   for (int a = 0; a < SPH_DIM; a++) {
-    const double *x = p->pos[a], *x0 = ref + (size_t)a * n;
+    const double *x = p->pos[a];
     for (size_t lo = 0; lo < n; lo += block) {
       const size_t hi = n - lo > block ? lo + block : n;
-      int far = 0;
+      for (int k = 0; k < refs; k++) {
+        if (!(ok >> k & 1u)) continue;
+        const double *x0 = ref[k] + (size_t)a * n, l = lim[k];
+        int far = 0;
 #pragma omp simd reduction(| : far)
-      for (size_t i = lo; i < hi; i++)
-        far |= !(fabs(x[i] - x0[i]) < lim);
-      if (far) return 0;
+        for (size_t i = lo; i < hi; i++)
+          far |= !(fabs(x[i] - x0[i]) < l);
+        if (far) ok &= ~(1u << k);
+      }
+      if (!ok) return 0;
     }
   }
-  return 1;
+  return ok;
+}
+
+/* The conditions of still_covered (below) but the particles' moves. */
+static int take_refs_good(const sph_sim *s, int resort, double side) {
+  const sph_particles *p = &s->p;
+  return !resort && s->n_mark_last == p->n && s->order_last == p->order && side <= s->side_last;
+}
+
+/* The conditions of send_still_good (below) but the particles' moves. */
+static int send_refs_good(const sph_sim *s, double side) {
+  const sph_particles *p = &s->p;
+  return s->n_send_pos == p->n && p->n > 0 && s->order_send == p->order && s->cut_send == s->cuts &&
+         side <= s->side_send;
+}
+
+/* Both checks of the particles' moves in one reading (process_pass), where
+ * both are to be made this pass: moved_known then holds their bits. */
+static void moved_both(sph_sim *s, int resort, double side) {
+  s->moved_known = 0;
+  if (!take_refs_good(s, resort, side) || !send_refs_good(s, side)) return;
+  const double *ref[2] = {s->take_pos, s->send_pos};
+  const double lim[2] = {0.49 * s->side_last, 0.49 * s->side_send};
+  s->moved_ok = moved_under(&s->p, ref, lim, 2);
+  s->moved_known = 1;
 }
 
 /* Whether the store this process took last still holds what its pass
@@ -400,23 +436,22 @@ static int moved_under(const sph_particles *p, const double *ref, double lim) {
  * (the argument covered() makes cell by cell, made by distance, at the
  * price of a subtraction a particle). */
 static int still_covered(const sph_sim *s, int resort, double side) {
-  const sph_particles *p = &s->p;
-  const size_t n = p->n;
-  if (resort || s->n_mark_last != n || s->order_last != p->order || !(side <= s->side_last))
-    return 0;
-  return moved_under(p, s->take_pos, 0.49 * s->side_last); /* half a cell, less a margin */
+  if (!take_refs_good(s, resort, side)) return 0;
+  if (s->moved_known) return s->moved_ok & 1u;
+  const double lim = 0.49 * s->side_last; /* half a cell, less a margin */
+  return moved_under(&s->p, (const double *const[]){s->take_pos}, &lim, 1) != 0;
 }
 
 /* A process's store, kept from its last pass, takes the values a step
- * changed: the fluid's, and the walls' but for their positions and
- * velocities where no wall moves (wall_still). */
+ * changed: the fluid's, and the walls' but those it does not need again
+ * (wall_not_taken). */
 static void take_by_kind(sph_sim *s, const sph_particles *in) {
   sph_particles *q = &s->sub->p;
   const unsigned long long arrays = s->pass_in & ~s->pass_static;
   const size_t nf = s->n_kind_fluid;
   sph_particles_put(q, s->kind_sub, in, s->kind_whole, nf, arrays, 0);
   sph_particles_put(q, s->kind_sub + nf, in, s->kind_whole + nf, s->n_from - nf,
-                    arrays & ~s->wall_still, 0);
+                    arrays & ~s->wall_not_taken, 0);
 }
 
 /* Rank `rank`'s part of the pass: its own particles and its ghosts into
@@ -498,7 +533,7 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
       s->made_first[s->send_sub[m]] = 1;
     }
   }
-  if (same && s->wall_still) /* a wall's position and velocity kept from the last pass */
+  if (same && s->wall_not_taken) /* (take_by_kind) */
     take_by_kind(s, in);
   else if (sph_particles_gather(&r->p, in, s->from, k,
                                 same ? s->pass_in & ~s->pass_static : s->pass_in, err))
@@ -522,7 +557,7 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
   if (r->own_cs_max > t->cs_max) t->cs_max = r->own_cs_max;
   if (r->own_cfl_max > t->cfl_max) t->cfl_max = r->own_cfl_max;
   if (s->fp.ledger) sph_ledger_sums_merge(&t->ledger, &r->own_ledger);
-  for (size_t j = 0; SPH_DEBUG && j < k; j++)
+  for (size_t j = 0; j < k; j++)
     if (r->p.id[j] != p->id[s->from[j]])
       return sph_error_set(err, "ranks: rank %d's pass reordered its store", rank);
   /* its own particles back (a ghost's own rank writes it), array by array */
@@ -611,12 +646,10 @@ typedef struct wall_value {
  * moved half a cell along any axis since (as still_covered: a wall within
  * a support of another process's fluid now was within two cells then). */
 static int send_still_good(const sph_sim *s, double side) {
-  const sph_particles *p = &s->p;
-  const size_t n = p->n;
-  if (s->n_send_pos != n || n == 0 || s->order_send != p->order || s->cut_send != s->cuts ||
-      !(side <= s->side_send))
-    return 0;
-  return moved_under(p, s->send_pos, 0.49 * s->side_send);
+  if (!send_refs_good(s, side)) return 0;
+  if (s->moved_known) return (s->moved_ok >> 1) & 1u;
+  const double lim = 0.49 * s->side_send;
+  return moved_under(&s->p, (const double *const[]){s->send_pos}, &lim, 1) != 0;
 }
 
 /* The walls this process sends in each pass's first stage: its own Adami
@@ -820,10 +853,12 @@ static int process_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fi
   pass_report mine;
   memset(&mine, 0, sizeof mine);
   sph_ledger_sums_init(&mine.sums.ledger);
+  if (s->staged) moved_both(s, resort, g->side);
   if (s->staged && choose_send(s, g, first, err)) return -1;
   s->stage_joined = 0;
   mine.failed =
       reserve_records(s, err) || rank_pass(s, p, g, first, s->self, resort, hmax, &mine.sums, err);
+  s->moved_known = 0;                  /* (the next step moves the particles) */
   if (s->staged && !s->stage_joined) { /* it stopped before its walls: the others wait there */
     wall_value *every = s->wall_buf; /* (what it sends is not read: its report tells the failure) */
     sph_procs_gather_records_start(every + s->send_total, s->send_counts, sizeof *every, every);

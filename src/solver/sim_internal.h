@@ -83,10 +83,11 @@ struct sph_sim {
   size_t n_own, n_own_fluid, n_from; /* (how many, the fluid, and in sub, at the last pass) */
   size_t *kind_sub, *kind_whole, n_kind_fluid; /* every particle of sub, the fluid first: its
                                                   index in sub, in the store (a process's) */
-  unsigned long long wall_still;  /* the arrays a wall keeps from step to step (ranks.c) */
-  unsigned long long pass_in;     /* the arrays a pass reads, */
-  unsigned long long pass_out[2]; /* those it may write in a fluid particle, in a wall, */
-  unsigned long long pass_static; /* and those no step changes */
+  unsigned long long wall_not_taken; /* the arrays a kept store does not take again of a wall
+                                        (ranks.c) */
+  unsigned long long pass_in;        /* the arrays a pass reads, */
+  unsigned long long pass_out[2];    /* those it may write in a fluid particle, in a wall, */
+  unsigned long long pass_static;    /* and those no step changes */
   size_t cap_ranks;
   unsigned char *no_row; /* by id: a ghost of sub's with an empty row (sub's list: grid.h) */
   /* the rank this process makes (procs.h), or -1: every rank, one after
@@ -122,6 +123,8 @@ struct sph_sim {
    * each process's count; each particle's index in sub (SIZE_MAX: not there), the walls sub
    * made first; the store's positions, order, cells' side and cut when those walls were chosen */
   int staged, stage_joined, stage_waited, stage_failed;
+  int moved_known;     /* this pass's two checks of the particles' moves made at once (ranks.c) */
+  unsigned moved_ok;   /* their bits: 1 the store taken, 2 the walls sent */
   unsigned char *late; /* the rank store's rows that read a ghost wall (ranks.c, late_rows) */
   size_t cap_late, late_n;
   long late_builds;
