@@ -6,7 +6,8 @@
  * process without mpirun (the serial path: no MPI at all, the bytes the
  * golden files hold):
  *   - 2-D, the default scheme with its walls, pressure and level probes and
- *     the energy ledger (every count and thread number);
+ *     the energy ledger (every count and thread number), and with a
+ *     variable h;
  *   - 2-D, a moving gate; a periodic axis; mdbc walls with particle shifting
  *     and the ledger;
  *   - 3-D, the default scheme with probes and the ledger (every count and
@@ -135,6 +136,12 @@ static void test_default_scheme_2d(void) {
   same_on_processes("src/sph", "cases/lobovsky_h300.yaml",
                     "--set numerics.dx=0.02 --set time.end=0.1 --set output.energy=true",
                     all_counts, 5, 1);
+  /* with paper B's variable h: the walls in stages and the late rows with a list made at every
+   * pass and smoothing lengths made from the walls' densities */
+  same_on_processes("src/sph", "cases/lobovsky_h300.yaml",
+                    "--set numerics.dx=0.02 --set time.end=0.1 "
+                    "--set numerics.smoothing_length=variable",
+                    two_three, 2, 0);
 }
 
 static void test_gate_periodic_mdbc(void) {
