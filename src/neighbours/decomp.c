@@ -131,6 +131,19 @@ static int cmp_weighted(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
+/* s[0..m) with each entry that follows one of its key merged into it (its
+ * weights added, the heavier particle kept); returns the entries left. */
+static size_t merge_equal_keys(weighted_key *s, size_t m) {
+  size_t g = 0;
+  for (size_t k = 0; k < m; k++)
+    if (g && s[g - 1].key == s[k].key) {
+      s[g - 1].w += s[k].w;
+      if (s[k].w_max > s[g - 1].w_max) s[g - 1].w_max = s[k].w_max;
+    } else
+      s[g++] = s[k];
+  return g;
+}
+
 int sph_decomp_cut_weighted(const uint64_t *keys, const uint32_t *w, size_t n, int ranks,
                             uint64_t *first, sph_error *err) {
   first[0] = 0;
@@ -141,23 +154,11 @@ int sph_decomp_cut_weighted(const uint64_t *keys, const uint32_t *w, size_t n, i
    * mostly together: the store is sorted by cells), sorted by key, then
    * each key's runs merged */
   uint64_t total = 0;
-  size_t m = 0;
-  for (size_t i = 0; i < n; i++) {
-    total += w[i];
-    if (m && s[m - 1].key == keys[i]) {
-      s[m - 1].w += w[i];
-      if (w[i] > s[m - 1].w_max) s[m - 1].w_max = w[i];
-    } else
-      s[m++] = (weighted_key){keys[i], w[i], w[i]};
-  }
+  for (size_t i = 0; i < n; i++)
+    s[i] = (weighted_key){keys[i], w[i], w[i]}, total += w[i];
+  const size_t m = merge_equal_keys(s, n);
   qsort(s, m, sizeof *s, cmp_weighted);
-  size_t g = 0;
-  for (size_t k = 0; k < m; k++)
-    if (g && s[g - 1].key == s[k].key) {
-      s[g - 1].w += s[k].w;
-      if (s[k].w_max > s[g - 1].w_max) s[g - 1].w_max = s[k].w_max;
-    } else
-      s[g++] = s[k];
+  const size_t g = merge_equal_keys(s, m);
   /* rank r from the first particle, in the order of keys and, within a
    * key, of weights, before which the weights reach r / ranks of the
    * whole: the first key whose particles but its heaviest reach it with

@@ -775,8 +775,8 @@ static void stage_progress(void *ctx) {
  * (late_rows, stage_late); else it waits now. A ghost wall then holds the
  * bits its own process made from its whole row, which a row of its own
  * here would give (tests/test_mpi). A pass that failed before (rc) still
- * joins the step (sph_sim_pass ends it: sph_sim_ranks_stages_end). Returns
- * rc, or -1. */
+ * joins the step (sph_sim_pass ends it: adami_stages_end, stages_end).
+ * Returns rc, or -1. */
 static int stage_walls(sph_sim *r, void *ctx, int rc, sph_error *err) {
   sph_sim *s = ctx;
   sph_particles *q = &r->p;
@@ -800,9 +800,10 @@ static int stage_walls(sph_sim *r, void *ctx, int rc, sph_error *err) {
     ap.skip = s->made_first;
     sph_wall_adami(q, &r->nl, &ap, r->work.gv);
   }
-  if (rc == 0 && r->fp.diffusion == SPH_DIFFUSION_NONE && late_rows(s, r, err)) rc = -1;
+  const int late = r->fp.diffusion == SPH_DIFFUSION_NONE; /* (no pre-pass reads the walls) */
+  if (rc == 0 && late && late_rows(s, r, err)) rc = -1;
   s->stage_failed = rc != 0;
-  if (rc == 0 && r->fp.diffusion == SPH_DIFFUSION_NONE)
+  if (rc == 0 && late)
     r->work.late = s->late, r->work.late_hook = stage_late, r->work.late_progress = stage_progress,
     r->work.late_ctx = s;
   else

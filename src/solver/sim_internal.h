@@ -123,11 +123,6 @@ struct sph_sim {
    * each process's count; each particle's index in sub (SIZE_MAX: not there), the walls sub
    * made first; the store's positions, order, cells' side and cut when those walls were chosen */
   int staged, stage_joined, stage_waited, stage_failed;
-  int moved_known;     /* this pass's two checks of the particles' moves made at once (ranks.c) */
-  unsigned moved_ok;   /* their bits: 1 the store taken, 2 the walls sent */
-  unsigned char *late; /* the rank store's rows that read a ghost wall (ranks.c, late_rows) */
-  size_t cap_late, late_n;
-  long late_builds;
   size_t *send_whole, *send_sub, n_send, send_counts[64], send_total;
   size_t *to_sub;
   unsigned char *made_first;
@@ -138,10 +133,15 @@ struct sph_sim {
   long cut_send;
   void *wall_buf; /* the walls' values sent and received */
   size_t cap_wall_buf;
-  double cfl_max; /* the last pass's max of c + |v| (sph_dt_cfl) if the ranks made it (every
-                     pass after sph_sim_ranks_init's), else 0 */
-  int hot_in_sub; /* the last pass's state is in each process's rank store, for its own
-                     particles, not in work.hot (sph_sim_ranks_saved_state) */
+  unsigned char *late; /* the rank store's rows that read a ghost wall (ranks.c, late_rows) */
+  size_t cap_late, late_n;
+  long late_builds;
+  int moved_known;   /* this pass's two checks of the particles' moves made at once (ranks.c) */
+  unsigned moved_ok; /* their bits: 1 the store taken, 2 the walls sent */
+  double cfl_max;    /* the last pass's max of c + |v| (sph_dt_cfl) if the ranks made it (every
+                        pass after sph_sim_ranks_init's), else 0 */
+  int hot_in_sub;    /* the last pass's state is in each process's rank store, for its own
+                        particles, not in work.hot (sph_sim_ranks_saved_state) */
   /* a rank's store (it is some sim's sub): ghosts carry SPH_FLAG_GHOST, and
    * each pass leaves the reductions over the rank's own particles here */
   int rank_store;
