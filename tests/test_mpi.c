@@ -12,6 +12,9 @@
  *     and the ledger;
  *   - 3-D, the default scheme with probes and the ledger (every count and
  *     thread number), through `sph`'s hand-over to `sph-3d`;
+ *   - snapshots of two HDF5 chunks, written by the processes together
+ *     (parallel HDF5), and of a case text too long for that (its first
+ *     process writes alone);
  *   - a blow-up (leap-frog, a step ten times too long) in 2-D and 3-D on 2
  *     and 3 processes: exit status 3, last_good.h5 and every other file
  *     the serial run's, and the message naming the same particle;
@@ -65,9 +68,10 @@ static double now(void) {
   return (double)tv.tv_sec + 1e-6 * (double)tv.tv_usec;
 }
 
-/* Runs the case on `procs` processes (0: without mpirun) of `threads`
- * threads, with `env` before the command, into a new directory; the run
- * must exit with `status`. */
+/* Runs the case (case_rel: in the source tree, or an absolute path) on
+ * `procs` processes (0: without mpirun) of `threads` threads, with `env`
+ * before the command, into a new directory; the run must exit with
+ * `status`. */
 static char *run_to(const char *prog, const char *case_rel, const char *sets, const char *env,
                     int procs, int threads, int status, int keep_err) {
   char *d = sph_test_tmpdir(), cmd[8400], launch[1100] = "", err[4200] = "";
@@ -75,7 +79,8 @@ static char *run_to(const char *prog, const char *case_rel, const char *sets, co
   if (keep_err) snprintf(err, sizeof err, " 2>'%s.err'", d); /* (err_line) */
   snprintf(cmd, sizeof cmd,
            "SPH_TEST_OMP_MIN=0 %s %s '%s' run --quiet --threads %d '%s' -o '%s' %s%s", env, launch,
-           sph_test_build(prog), threads, sph_test_src(case_rel), d, sets, err);
+           sph_test_build(prog), threads, case_rel[0] == '/' ? case_rel : sph_test_src(case_rel), d,
+           sets, err);
   const int rc = sph_test_system(cmd);
   if (rc != status) printf("\n  %s on %d processes: exit %d, not %d", case_rel, procs, rc, status);
   CU_ASSERT_FATAL(rc == status);
@@ -161,6 +166,35 @@ static void test_default_scheme_3d(void) {
                     "--set numerics.dx=0.04 --set time.end=0.06 --set time.output_interval=0.02 "
                     "--set output.energy=true",
                     all_counts, 5, 1);
+}
+
+/* The processes write each snapshot together through parallel HDF5, each
+ * its share of whole chunks of 65 536 rows (io/snapshot.c): with 87 524
+ * particles, two chunks, so on 2 processes each writes one and on 3 the
+ * first writes none; the files are the lone writer's bytes. A case text
+ * longer than an attribute in the root's header (here a 70 000-byte
+ * comment) has the first process write alone: the same bytes again. */
+static void test_snapshots_together(void) {
+  same_on_processes("src/sph", "cases/lobovsky_h300.yaml",
+                    "--set numerics.dx=0.0015 --set time.end=0.0004 "
+                    "--set time.output_interval=0.0002",
+                    two_three, 2, 0);
+  char *d = sph_test_tmpdir(), path[4200];
+  snprintf(path, sizeof path, "%s/long_text.yaml", d);
+  FILE *in = fopen(sph_test_src("cases/martin_moyce_coarse.yaml"), "r"), *out = fopen(path, "w");
+  CU_ASSERT_FATAL(in && out);
+  int ch;
+  while ((ch = fgetc(in)) != EOF)
+    fputc(ch, out);
+  fputs("# ", out);
+  for (int k = 0; k < 70000; k++)
+    fputc('x', out);
+  fputc('\n', out);
+  fclose(in);
+  CU_ASSERT_FATAL(fclose(out) == 0);
+  same_on_processes("src/sph", path, "--set time.end=0.02", two_three, 2, 0);
+  sph_test_rmtree(d);
+  free(d);
 }
 
 /* A blow-up (a fixed step some ten times the stable one) with the
@@ -450,12 +484,13 @@ static void test_terminated_job(void) {
 int main(void) {
 #ifndef SPH_MPI
   printf("test_mpi: this build has no MPI; ./configure --with-mpi (Debian: apt-get install "
-         "libopenmpi-dev openmpi-bin) runs these tests\n");
+         "libopenmpi-dev openmpi-bin libhdf5-openmpi-dev) runs these tests\n");
   return 77;
 #else
   CU_TestInfo tests[] = {{"2-D, the default scheme, 1-7 processes", test_default_scheme_2d},
                          {"2-D, a gate, a periodic axis, mdbc", test_gate_periodic_mdbc},
                          {"3-D, the default scheme, 1-7 processes", test_default_scheme_3d},
+                         {"snapshots written together", test_snapshots_together},
                          {"a blow-up's last good state", test_blow_up},
                          {"a failed pass stops every process", test_failed_pass},
                          {"a restart on another process count", test_restart_on_other_count},

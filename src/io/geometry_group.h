@@ -12,9 +12,11 @@
 #include "io/snapshot_geometry.h"
 
 /* Writes g as /geometry of file (every object without times, as the rest
- * of the snapshot); 0, or -1 with err naming path. */
+ * of the snapshot); the datasets' values only when `values` (a team's
+ * processes all make the objects, its first writes the values); 0, or -1
+ * with err naming path. */
 int sph_geometry_group_write(hid_t file, const sph_snapshot_geometry *g, const char *path,
-                             sph_error *err);
+                             int values, sph_error *err);
 /* Reads /geometry of file: 0, 1 when absent, -1 with err naming path. */
 int sph_geometry_group_read(hid_t file, sph_snapshot_geometry *g, const char *path, sph_error *err);
 /* The HDF5 file of an open snapshot (snapshot.c). */

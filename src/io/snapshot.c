@@ -11,13 +11,20 @@
  * nothing about the host, the date or the file name is stored (the bytes
  * may differ between HDF5 library versions, never between runs).
  *
- * Strings (root and dataset attributes) are scalar variable-length UTF-8
- * strings: they have no length limit (a case text can exceed the 64 KiB an
- * object header holds) and h5py reads them as str. The reader also accepts
- * fixed-length strings. /particles tracks and indexes link creation order,
- * so its datasets are listed in the order they were written (x y vx vy rho
- * p mass h u kind id [free_surface]); a file whose group lacks that index is
- * listed in name order.
+ * A team (the processes of an MPI run, sph_snapshot_write_team) writes one
+ * file together through parallel HDF5: each process its rows of every
+ * particle dataset, whole chunks in rank order, gathered into id order for
+ * those rows only; the file is the bytes a lone writer's serial library
+ * writes, because nothing in it depends on when the library places an
+ * object (chunks allocated when their dataset is made, attributes and
+ * links kept in their object's header; doc/parallel.md).
+ *
+ * Strings (root and dataset attributes) are scalar fixed-length UTF-8
+ * strings in the objects' checksummed headers (a case text longer than a
+ * header message holds goes to dense attribute storage). The reader also
+ * accepts variable-length strings (earlier files). /particles tracks and indexes link creation
+ * order, so its datasets are listed in the order they were written (x y vx vy rho p mass h u kind
+ * id [free_surface]); a file whose group lacks that index is listed in name order.
  *
  * The group /restart (snapshot.h) is written after /particles; its arrays
  * are in storage order, raw. The reader checks everything a restart will
@@ -161,17 +168,42 @@ typedef struct writer {
   const char *path; /* the final name, used in messages */
   hid_t file;
   sph_error *err;
+  /* with a team (sph_snapshot_write_team), this process's rows k0..k1 of
+   * every particle dataset and the collective transfer; alone, 0..n and
+   * the default transfer */
+  const sph_snapshot_team *team;
+  size_t k0, k1;
+  hid_t xfer;
+  void *buf; /* room for rows k0..k1 of any dataset */
 } writer;
 
-/* A creation property list of class cls that records no times. */
+/* Attributes and links an object keeps in its own header (compact) before
+ * it moves them to dense storage. Dense storage is a fractal heap, which
+ * the serial HDF5 library places in the file when it closes it and the
+ * parallel one when it makes the heap: the same objects at other
+ * addresses, so a team's file would not be a lone writer's bytes. No
+ * object of a snapshot has this many, and a text too long for a header
+ * (SPH_SNAPSHOT_TEXT_MAX) makes the team's first process write alone. */
+#define SPH_SNAPSHOT_COMPACT 64
+#define SPH_SNAPSHOT_TEXT_MAX (65536 - 1024)
+
+/* A creation property list of class cls that records no times and keeps
+ * its object's attributes (and a group's links) compact. */
 static hid_t timeless(hid_t cls) {
   hid_t pl = H5Pcreate(cls);
-  if (pl >= 0 && H5Pset_obj_track_times(pl, 0) < 0) {
+  if (pl >= 0 &&
+      (H5Pset_obj_track_times(pl, 0) < 0 ||
+       H5Pset_attr_phase_change(pl, SPH_SNAPSHOT_COMPACT, 0) < 0 ||
+       (cls != H5P_DATASET_CREATE && H5Pset_link_phase_change(pl, SPH_SNAPSHOT_COMPACT, 0) < 0))) {
     H5Pclose(pl);
     return -1;
   }
   return pl;
 }
+
+/* With a team, rc agreed in one collective step: 0 on every process, or
+ * -1 on every one with the message of the first that failed. Alone, rc. */
+static int agreed(const writer *w, int rc) { return w->team ? w->team->agree(rc, w->err) : rc; }
 
 /* A text attribute as a fixed-length, NUL-terminated UTF-8 string, which
  * HDF5 keeps in the object's (checksummed) header or dense attribute
@@ -271,73 +303,113 @@ static int id_positions(const sph_particles *p, const char *path, size_t **out, 
   return 0;
 }
 
-/* buf[k] = field f of the particle with id k. */
-static void gather(const sph_particles *p, const field_spec *f, const size_t *pos, void *buf) {
-  size_t n = p->n;
+/* buf[k - k0] = field f of the particle with id k, k = k0..k1. */
+static void gather(const sph_particles *p, const field_spec *f, const size_t *pos, size_t k0,
+                   size_t k1, void *buf) {
   const void *src = member_array(p, f);
   switch (f->type) {
   case FT_F64:
-    for (size_t k = 0; k < n; k++)
-      ((double *)buf)[k] = ((const double *)src)[pos[k]];
+    for (size_t k = k0; k < k1; k++)
+      ((double *)buf)[k - k0] = ((const double *)src)[pos[k]];
     break;
   case FT_I32:
-    for (size_t k = 0; k < n; k++)
-      ((int32_t *)buf)[k] = ((const int32_t *)src)[pos[k]];
+    for (size_t k = k0; k < k1; k++)
+      ((int32_t *)buf)[k - k0] = ((const int32_t *)src)[pos[k]];
     break;
   case FT_I64:
-    for (size_t k = 0; k < n; k++)
-      ((int64_t *)buf)[k] = ((const int64_t *)src)[pos[k]];
+    for (size_t k = k0; k < k1; k++)
+      ((int64_t *)buf)[k - k0] = ((const int64_t *)src)[pos[k]];
     break;
   case FT_U8: /* only free_surface: flags bit 0 */
-    for (size_t k = 0; k < n; k++)
-      ((uint8_t *)buf)[k] = ((const uint8_t *)src)[pos[k]] & 1u;
+    for (size_t k = k0; k < k1; k++)
+      ((uint8_t *)buf)[k - k0] = ((const uint8_t *)src)[pos[k]] & 1u;
     break;
   }
 }
 
-/* The creation properties of a dataset of n values: no times, and for
- * n > 0 chunked with HDF5's Fletcher-32 checksum, which every read checks,
- * so damage to the data is an error rather than a changed value (issue
- * 21, D9). Chunks of up to SPH_SNAPSHOT_CHUNK values. */
+/* The creation properties of a dataset of n rows of cols values (cols =
+ * 0: a 1-D dataset): no times, and for n > 0 chunked with HDF5's
+ * Fletcher-32 checksum, which every read checks, so damage to the data is
+ * an error rather than a changed value (issue 21, D9). Chunks of up to
+ * SPH_SNAPSHOT_CHUNK rows. The chunks' space is taken when the dataset is
+ * made (the parallel library's only way): a lone writer then places them
+ * where a team does. */
 #define SPH_SNAPSHOT_CHUNK 65536
-static hid_t data_properties(size_t n) {
+static hid_t data_properties(size_t n, size_t cols) {
   hid_t dcpl = timeless(H5P_DATASET_CREATE);
   if (dcpl < 0 || n == 0) return dcpl;
-  const hsize_t chunk[1] = {n < SPH_SNAPSHOT_CHUNK ? n : SPH_SNAPSHOT_CHUNK};
-  if (H5Pset_chunk(dcpl, 1, chunk) < 0 || H5Pset_fletcher32(dcpl) < 0) {
+  const hsize_t chunk[2] = {n < SPH_SNAPSHOT_CHUNK ? n : SPH_SNAPSHOT_CHUNK, cols};
+  if (H5Pset_chunk(dcpl, cols ? 2 : 1, chunk) < 0 || H5Pset_fletcher32(dcpl) < 0 ||
+      H5Pset_alloc_time(dcpl, H5D_ALLOC_TIME_EARLY) < 0) {
     H5Pclose(dcpl);
     return -1;
   }
   return dcpl;
 }
 
+/* Writes dataset dset (n rows of cols values, cols = 0 for a 1-D one)
+ * from buf, which holds this writer's rows k0..k1: alone all of them;
+ * with a team, each process its own rows in one collective step (a
+ * process without rows takes part with none). */
+static int write_rows(const writer *w, hid_t dset, hid_t mtype, const void *buf, size_t cols,
+                      const char *where) {
+  int rc = 0;
+  if (!w->team) {
+    if (H5Dwrite(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0)
+      rc = h5_fail(w->err, w->path, "cannot write dataset %s", where);
+    return rc;
+  }
+  const int dims = cols ? 2 : 1;
+  const hsize_t start[2] = {w->k0, 0}, count[2] = {w->k1 - w->k0, cols};
+  hid_t file_space = H5Dget_space(dset);
+  hid_t mem_space = H5Screate_simple(dims, count, NULL);
+  if (file_space < 0 || mem_space < 0 ||
+      (count[0] == 0
+           ? H5Sselect_none(file_space) < 0 || H5Sselect_none(mem_space) < 0
+           : H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start, NULL, count, NULL) < 0))
+    rc = h5_fail(w->err, w->path, "cannot select the rows of dataset %s", where);
+  if (agreed(w, rc) == 0 && H5Dwrite(dset, mtype, mem_space, file_space, w->xfer, buf) < 0)
+    rc = h5_fail(w->err, w->path, "cannot write dataset %s", where);
+  close_id(mem_space);
+  close_id(file_space);
+  return agreed(w, rc);
+}
+
+/* Makes dataset name of group (n rows of cols values of file type ftype;
+ * cols = 0: 1-D) and writes it from rows, this writer's rows k0..k1 in
+ * memory type mtype; *dset is the open dataset (the caller closes it) or
+ * -1. With a team each step is agreed: its processes go on or stop
+ * together, none left waiting in a collective step. */
+static int put_dataset(writer *w, hid_t group, const char *name, const char *where, hid_t ftype,
+                       hid_t mtype, const void *rows, size_t n, size_t cols, hid_t *dset) {
+  const hsize_t dims[2] = {n, cols};
+  hid_t dcpl = data_properties(n, cols);
+  hid_t space = dcpl < 0 ? -1 : H5Screate_simple(cols ? 2 : 1, dims, NULL);
+  *dset = space < 0 ? -1 : H5Dcreate2(group, name, ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  /* (HDF5's reason read before the next call clears it) */
+  int rc = *dset < 0 ? h5_fail(w->err, w->path, "cannot create dataset %s", where) : 0;
+  close_id(space);
+  close_id(dcpl);
+  if (agreed(w, rc)) return -1;
+  return n > 0 ? write_rows(w, *dset, mtype, rows, cols, where) : 0;
+}
+
 static int write_field(writer *w, hid_t group, const field_spec *f, const void *buf, size_t n) {
   char where[64];
   snprintf(where, sizeof where, "/particles/%s", f->name);
-  hsize_t dims[1] = {n};
-  hid_t dcpl = data_properties(n);
-  hid_t space = H5Screate_simple(1, dims, NULL);
-  hid_t dset = dcpl < 0 || space < 0 ? -1
-                                     : H5Dcreate2(group, f->name, file_type(f->type), space,
-                                                  H5P_DEFAULT, dcpl, H5P_DEFAULT);
-  int rc = 0;
-  if (dset < 0)
-    rc = h5_fail(w->err, w->path, "cannot create dataset %s", where);
-  else if (n > 0 && H5Dwrite(dset, mem_type(f->type), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0)
-    rc = h5_fail(w->err, w->path, "cannot write dataset %s", where);
-  else if (put_text(w, dset, where, "units", f->units) ||
-           put_text(w, dset, where, "description", f->description))
+  hid_t dset;
+  int rc = put_dataset(w, group, f->name, where, file_type(f->type), mem_type(f->type), buf, n, 0,
+                       &dset);
+  if (rc == 0 && (put_text(w, dset, where, "units", f->units) ||
+                  put_text(w, dset, where, "description", f->description)))
     rc = -1;
   close_id(dset);
-  close_id(space);
-  close_id(dcpl);
   return rc;
 }
 
 static int write_particles(writer *w, const sph_particles *p, int free_surface, const size_t *pos) {
-  size_t n = p->n;
-  void *buf = malloc((n ? n : 1) * sizeof(double)); /* the widest field type */
-  if (!buf) return sph_error_set(w->err, "%s: out of memory for %zu particles", w->path, n);
+  const size_t n = p->n;
+  void *buf = w->buf;
   /* links kept in the group's header (compact, up to 32), in creation order */
   hid_t gcpl = timeless(H5P_GROUP_CREATE);
   if (gcpl >= 0 &&
@@ -348,15 +420,15 @@ static int write_particles(writer *w, const sph_particles *p, int free_surface, 
   }
   hid_t group = gcpl < 0 ? -1 : H5Gcreate2(w->file, "particles", H5P_DEFAULT, gcpl, H5P_DEFAULT);
   int rc = 0;
-  if (group < 0) rc = h5_fail(w->err, w->path, "cannot create group /particles");
+  if (agreed(w, group < 0 ? h5_fail(w->err, w->path, "cannot create group /particles") : 0))
+    rc = -1;
   for (size_t i = 0; rc == 0 && i < N_FIELDS; i++) {
     if (i == FREE_SURFACE_FIELD && !free_surface) continue;
-    gather(p, &FIELDS[i], pos, buf);
+    gather(p, &FIELDS[i], pos, w->k0, w->k1, buf);
     rc = write_field(w, group, &FIELDS[i], buf, n);
   }
   close_id(group);
   close_id(gcpl);
-  free(buf);
   return rc;
 }
 
@@ -368,12 +440,11 @@ static int write_particles(writer *w, const sph_particles *p, int free_surface, 
  * one dataset per geometry). Chunked and checksummed like the fields. */
 static int write_vectors(writer *w, const sph_particles *p, const size_t *pos) {
   const size_t n = p->n;
-  double *buf = malloc((n ? n : 1) * 3 * sizeof *buf);
-  if (!buf) return sph_error_set(w->err, "%s: out of memory for %zu particles", w->path, n);
+  double *buf = w->buf;
   hid_t gcpl = timeless(H5P_GROUP_CREATE);
   hid_t g = gcpl < 0 ? -1 : H5Gcreate2(w->file, "vectors", H5P_DEFAULT, gcpl, H5P_DEFAULT);
   close_id(gcpl);
-  int rc = g < 0 ? h5_fail(w->err, w->path, "cannot create group /vectors") : 0;
+  int rc = agreed(w, g < 0 ? h5_fail(w->err, w->path, "cannot create group /vectors") : 0);
   static const char *const name[2] = {"position", "velocity"};
   static const char *const units[2] = {"m", "m/s"};
 #if SPH_DIM == 2
@@ -388,55 +459,32 @@ static int write_vectors(writer *w, const sph_particles *p, const size_t *pos) {
   for (int v = 0; rc == 0 && v < 2; v++) {
     const hsize_t cols = v == 0 ? SPH_DIM : 3;
     double *const *src = v == 0 ? p->pos : p->vel;
-    for (size_t k = 0; k < n; k++)
+    for (size_t k = w->k0; k < w->k1; k++)
       for (hsize_t d = 0; d < cols; d++)
-        buf[k * cols + d] = d < SPH_DIM ? src[d][pos[k]] : 0.0;
+        buf[(k - w->k0) * cols + d] = d < SPH_DIM ? src[d][pos[k]] : 0.0;
     char where[64];
     snprintf(where, sizeof where, "/vectors/%s", name[v]);
-    hsize_t dims[2] = {n, cols};
-    hid_t dcpl = timeless(H5P_DATASET_CREATE);
-    if (dcpl >= 0 && n > 0) {
-      const hsize_t chunk[2] = {n < SPH_SNAPSHOT_CHUNK ? n : SPH_SNAPSHOT_CHUNK, cols};
-      if (H5Pset_chunk(dcpl, 2, chunk) < 0 || H5Pset_fletcher32(dcpl) < 0) {
-        H5Pclose(dcpl);
-        dcpl = -1;
-      }
-    }
-    hid_t space = H5Screate_simple(2, dims, NULL);
-    hid_t dset = dcpl < 0 || space < 0 ? -1
-                                       : H5Dcreate2(g, name[v], H5T_IEEE_F64LE, space, H5P_DEFAULT,
-                                                    dcpl, H5P_DEFAULT);
-    if (dset < 0)
-      rc = h5_fail(w->err, w->path, "cannot create dataset %s", where);
-    else if (n > 0 && H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0)
-      rc = h5_fail(w->err, w->path, "cannot write dataset %s", where);
-    else if (put_text(w, dset, where, "units", units[v]) ||
-             put_text(w, dset, where, "description", what[v]))
+    hid_t dset;
+    rc = put_dataset(w, g, name[v], where, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, buf, n, cols, &dset);
+    if (rc == 0 && (put_text(w, dset, where, "units", units[v]) ||
+                    put_text(w, dset, where, "description", what[v])))
       rc = -1;
     close_id(dset);
-    close_id(space);
-    close_id(dcpl);
   }
   close_id(g);
-  free(buf);
   return rc;
 }
 
-/* A 1-D dataset of n raw values (storage order) in the /restart group. */
+/* A 1-D dataset of n raw values (storage order) in the /restart group,
+ * of size bytes each (this writer's rows of them: from k0 on). */
 static int write_raw(writer *w, hid_t group, const char *name, hid_t ftype, hid_t mtype,
-                     const void *values, size_t n) {
-  hsize_t dims[1] = {n};
-  hid_t dcpl = data_properties(n);
-  hid_t space = H5Screate_simple(1, dims, NULL);
-  hid_t dset = dcpl < 0 || space < 0
-                   ? -1
-                   : H5Dcreate2(group, name, ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
-  int rc = 0;
-  if (dset < 0 || (n > 0 && H5Dwrite(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, values) < 0))
-    rc = h5_fail(w->err, w->path, "cannot write dataset /restart/%s", name);
+                     const void *values, size_t size, size_t n) {
+  char where[64];
+  snprintf(where, sizeof where, "/restart/%s", name);
+  hid_t dset;
+  const int rc = put_dataset(w, group, name, where, ftype, mtype,
+                             (const char *)values + w->k0 * size, n, 0, &dset);
   close_id(dset);
-  close_id(space);
-  close_id(dcpl);
   return rc;
 }
 
@@ -445,7 +493,10 @@ static int write_restart(writer *w, const sph_snapshot_restart *r, size_t n) {
   hid_t gcpl = timeless(H5P_GROUP_CREATE);
   hid_t g = gcpl < 0 ? -1 : H5Gcreate2(w->file, "restart", H5P_DEFAULT, gcpl, H5P_DEFAULT);
   close_id(gcpl);
-  if (g < 0) return h5_fail(w->err, w->path, "cannot create group /restart");
+  if (agreed(w, g < 0 ? h5_fail(w->err, w->path, "cannot create group /restart") : 0)) {
+    close_id(g);
+    return -1;
+  }
   const int64_t format = 1;
   int rc = put_numbers(w, g, "/restart", "format", H5T_STD_I64LE, H5T_NATIVE_INT64, &format, 1) ||
            put_numbers(w, g, "/restart", "output_index", H5T_STD_I64LE, H5T_NATIVE_INT64,
@@ -469,15 +520,18 @@ static int write_restart(writer *w, const sph_snapshot_restart *r, size_t n) {
   if (rc == 0 && r->has_outflow)
     rc = put_numbers(w, g, "/restart", "outflow", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, r->outflow,
                      3 + SPH_DIM);
+  rc = agreed(w, rc);
   if (rc == 0 && r->origin)
-    rc = write_raw(w, g, "origin", H5T_STD_I64LE, H5T_NATIVE_INT64, r->origin, n);
+    rc = write_raw(w, g, "origin", H5T_STD_I64LE, H5T_NATIVE_INT64, r->origin, sizeof(int64_t), n);
   if (rc == 0 && !r->order)
     rc = sph_error_set(w->err, "%s: restart record without the storage order", w->path);
-  if (rc == 0) rc = write_raw(w, g, "order", H5T_STD_I64LE, H5T_NATIVE_INT64, r->order, n);
+  if (rc == 0)
+    rc = write_raw(w, g, "order", H5T_STD_I64LE, H5T_NATIVE_INT64, r->order, sizeof(int64_t), n);
   const char *names[] = {"vxh", "vyh", "rhoh", "uh", SPH_IF3("vzh")};
   const double *half[] = {r->vxh, r->vyh, r->rhoh, r->uh, SPH_IF3(r->vzh)};
   for (int k = 0; rc == 0 && k < (int)(sizeof half / sizeof half[0]); k++)
-    if (half[k]) rc = write_raw(w, g, names[k], H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, half[k], n);
+    if (half[k])
+      rc = write_raw(w, g, names[k], H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, half[k], sizeof(double), n);
   close_id(g);
   return rc ? -1 : 0;
 }
@@ -490,51 +544,98 @@ static int write_file(writer *w, const char *tmp, const sph_snapshot_meta *meta,
   /* the HDF5 1.10 file format: object headers, links and the chunk
    * indexes carry checksums of their own (readable by HDF5 1.10 and later:
    * Debian 12 ships 1.10.8) */
-  if (fcpl < 0 || fapl < 0 || H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG) < 0 ||
-      H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110) < 0) {
-    close_id(fcpl);
-    close_id(fapl);
-    return h5_fail(w->err, w->path, "cannot set up HDF5 property lists");
-  }
-  w->file = H5Fcreate(tmp, H5F_ACC_TRUNC, fcpl, fapl);
-  int rc = w->file < 0 ? h5_fail(w->err, w->path, "cannot create %s", tmp) : 0;
+  int rc = fcpl < 0 || fapl < 0 || H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG) < 0 ||
+                   H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110) < 0
+               ? h5_fail(w->err, w->path, "cannot set up HDF5 property lists")
+               : 0;
+#ifdef H5_HAVE_PARALLEL
+  /* a team: the file opened by all its processes through MPI-IO, and every
+   * particle dataset written by all of them at once */
+  if (rc == 0 && w->team &&
+      (H5Pset_fapl_mpio(fapl, MPI_COMM_WORLD, MPI_INFO_NULL) < 0 ||
+       (w->xfer = H5Pcreate(H5P_DATASET_XFER)) < 0 ||
+       H5Pset_dxpl_mpio(w->xfer, H5FD_MPIO_COLLECTIVE) < 0))
+    rc = h5_fail(w->err, w->path, "cannot set up the processes' HDF5 property lists");
+#endif
+  if (rc == 0) w->file = H5Fcreate(tmp, H5F_ACC_TRUNC, fcpl, fapl);
+  if (rc == 0 && w->file < 0) rc = h5_fail(w->err, w->path, "cannot create %s", tmp);
   close_id(fcpl);
   close_id(fapl);
-  if (rc) return rc;
-  rc = write_header(w, meta, p->n);
+  if (agreed(w, rc)) return -1;
+  rc = agreed(w, write_header(w, meta, p->n));
   if (rc == 0) rc = write_particles(w, p, meta->free_surface, pos);
   if (rc == 0) rc = write_vectors(w, p, pos);
   if (rc == 0 && meta->restart) rc = write_restart(w, meta->restart, p->n);
   if (rc == 0 && meta->geometry)
-    rc = sph_geometry_group_write(w->file, meta->geometry, w->path, w->err);
+    rc = agreed(w, sph_geometry_group_write(w->file, meta->geometry, w->path,
+                                            !w->team || w->team->rank == 0, w->err));
   if (H5Fclose(w->file) < 0 && rc == 0) rc = h5_fail(w->err, w->path, "cannot close %s", tmp);
-  return rc;
+  return agreed(w, rc);
+}
+
+/* Whether some root text is too long for an attribute in the root's
+ * header (SPH_SNAPSHOT_TEXT_MAX). */
+static int long_texts(const sph_snapshot_meta *meta) {
+  const char *texts[] = {meta->case_name, meta->case_text, meta->overrides, meta->parameters,
+                         meta->kernel};
+  for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++)
+    if (texts[i] && strlen(texts[i]) >= SPH_SNAPSHOT_TEXT_MAX) return 1;
+  return 0;
+}
+
+/* This process's rows of n with a team of count: the processes' shares
+ * of whole chunks (SPH_SNAPSHOT_CHUNK), in rank order. */
+static void team_rows(size_t n, int rank, int count, size_t *k0, size_t *k1) {
+  const size_t chunks = (n + SPH_SNAPSHOT_CHUNK - 1) / SPH_SNAPSHOT_CHUNK;
+  const size_t c0 = chunks * (size_t)rank / (size_t)count;
+  const size_t c1 = chunks * ((size_t)rank + 1) / (size_t)count;
+  *k0 = c0 * SPH_SNAPSHOT_CHUNK < n ? c0 * SPH_SNAPSHOT_CHUNK : n;
+  *k1 = c1 * SPH_SNAPSHOT_CHUNK < n ? c1 * SPH_SNAPSHOT_CHUNK : n;
 }
 
 int sph_snapshot_write(const char *path, const sph_snapshot_meta *meta, const sph_particles *p,
                        sph_error *err) {
+  return sph_snapshot_write_team(path, meta, p, NULL, err);
+}
+
+int sph_snapshot_write_team(const char *path, const sph_snapshot_meta *meta, const sph_particles *p,
+                            const sph_snapshot_team *team, sph_error *err) {
+  if (team && team->count <= 1) team = NULL;
+  /* the arguments are every process's same (the store is whole on each) */
   if (!path || !*path) return sph_error_set(err, "snapshot: empty file name");
   if (!p) return sph_error_set(err, "%s: no particles to write", path);
   if (!meta || !meta->case_name)
     return sph_error_set(err, "%s: snapshot metadata without a case name", path);
-  size_t len = strlen(path);
+  int lone = team && long_texts(meta); /* the team's first process writes alone */
+#ifndef H5_HAVE_PARALLEL
+  lone = team != NULL;
+#endif
+  if (lone && team->rank != 0) return 0;
+  if (lone) team = NULL;
+  writer w = {path, -1, err, team, 0, p->n, H5P_DEFAULT, NULL};
+  if (team) team_rows(p->n, team->rank, team->count, &w.k0, &w.k1);
+  const size_t len = strlen(path), rows = w.k1 - w.k0;
   char *tmp = malloc(len + 5);
-  if (!tmp) return sph_error_set(err, "%s: out of memory", path);
-  memcpy(tmp, path, len);
-  memcpy(tmp + len, ".tmp", 5);
   size_t *pos = NULL;
-  if (id_positions(p, path, &pos, err)) {
-    free(tmp);
-    return -1;
-  }
-  writer w = {path, -1, err};
-  h5_quiet q;
-  quiet_begin(&q);
-  int rc = write_file(&w, tmp, meta, p, pos);
-  quiet_end(&q);
-  if (rc == 0 && rename(tmp, path) != 0)
-    rc = sph_error_set(err, "%s: cannot rename %s to it: %s", path, tmp, strerror(errno));
-  if (rc != 0) remove(tmp);
+  int rc = tmp ? id_positions(p, path, &pos, err) : sph_error_set(err, "%s: out of memory", path);
+  /* room for this writer's rows of the widest dataset (a vector's 3 doubles) */
+  if (rc == 0 && !(w.buf = malloc((rows ? rows : 1) * 3 * sizeof(double))))
+    rc = sph_error_set(err, "%s: out of memory for %zu particles", path, rows);
+  if (agreed(&w, rc) == 0) {
+    memcpy(tmp, path, len);
+    memcpy(tmp + len, ".tmp", 5);
+    h5_quiet q;
+    quiet_begin(&q);
+    rc = write_file(&w, tmp, meta, p, pos);
+    if (w.xfer != H5P_DEFAULT) close_id(w.xfer);
+    quiet_end(&q);
+    const int first = !team || team->rank == 0; /* renames or removes the file */
+    if (first && rc == 0 && rename(tmp, path) != 0)
+      rc = sph_error_set(err, "%s: cannot rename %s to it: %s", path, tmp, strerror(errno));
+    if (first && rc != 0) remove(tmp);
+  } else
+    rc = -1;
+  free(w.buf);
   free(pos);
   free(tmp);
   return rc;

@@ -93,6 +93,28 @@ typedef struct sph_snapshot_restart {
 int sph_snapshot_write(const char *path, const sph_snapshot_meta *meta, const sph_particles *p,
                        sph_error *err);
 
+/* The processes of an MPI run that write a snapshot together
+ * (doc/parallel.md): every process of MPI_COMM_WORLD, this one's rank
+ * and their count, and their collective agreement on a result (0 on
+ * every process when rc is 0 on every one, else -1 on every one with the
+ * message of the first that failed: solver/procs.h's sph_procs_agree). */
+typedef struct sph_snapshot_team {
+  int rank, count;
+  int (*agree)(int rc, sph_error *err);
+} sph_snapshot_team;
+
+/* sph_snapshot_write by a team (NULL, or one process: alone), a
+ * collective step: every process calls it with the same arguments (the
+ * same meta, the same particles) and each writes its share of the
+ * particles' rows (whole HDF5 chunks) through parallel HDF5, the file the
+ * same bytes as a lone writer's. A build without parallel HDF5, or a text
+ * of meta too long for an attribute in the root's header (64 KiB less
+ * 1 KiB), has the first process write alone and the others return 0 at
+ * once. The result is the team's on every process, except a lone
+ * writer's (the caller agrees it). */
+int sph_snapshot_write_team(const char *path, const sph_snapshot_meta *meta, const sph_particles *p,
+                            const sph_snapshot_team *team, sph_error *err);
+
 /* Writes (atomically) an XDMF 3 file that describes a series of snapshots,
  * so ParaView and VisIt open the whole run: h5_names are the snapshot file
  * names relative to the XDMF file, times their times, n_particles their

@@ -33,14 +33,16 @@ static hid_t string_type(size_t size) {
 }
 
 /* rows x cols values of memory type mtype (file type ftype) as dataset
- * name of g; nothing for no rows. */
+ * name of g, the values written by this process when it writes them;
+ * nothing for no rows. */
 static int put_rows(hid_t g, const char *name, hid_t ftype, hid_t mtype, const void *data,
-                    size_t rows, size_t cols, hid_t dcpl) {
+                    size_t rows, size_t cols, hid_t dcpl, int values) {
   if (rows == 0) return 0;
   const hsize_t dims[2] = {rows, cols};
   hid_t space = H5Screate_simple(cols ? 2 : 1, dims, NULL);
   hid_t set = space < 0 ? -1 : H5Dcreate2(g, name, ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
-  const int rc = set < 0 || H5Dwrite(set, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0 ? -1 : 0;
+  const int rc =
+      set < 0 || (values && H5Dwrite(set, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) ? -1 : 0;
   close_id(set);
   close_id(space);
   return rc;
@@ -56,11 +58,12 @@ static double *packed(const double *rows, size_t n, size_t stride, size_t k) {
 }
 
 int sph_geometry_group_write(hid_t file, const sph_snapshot_geometry *g, const char *path,
-                             sph_error *err) {
+                             int values, sph_error *err) {
   const size_t dim = (size_t)g->dim, box = 2 * dim;
   hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE), dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  /* space taken when a dataset is made, as the parallel library does */
   if (gcpl < 0 || dcpl < 0 || H5Pset_obj_track_times(gcpl, 0) < 0 ||
-      H5Pset_obj_track_times(dcpl, 0) < 0) {
+      H5Pset_obj_track_times(dcpl, 0) < 0 || H5Pset_alloc_time(dcpl, H5D_ALLOC_TIME_EARLY) < 0) {
     close_id(gcpl);
     close_id(dcpl);
     return fail(err, path, "set up");
@@ -87,19 +90,20 @@ int sph_geometry_group_write(hid_t file, const sph_snapshot_geometry *g, const c
     if (!t || !o || !w || !q) rc = -1;
   }
   if (rc == 0 && g->has_tank)
-    rc = put_rows(grp, "tank", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, t, box, 0, dcpl);
+    rc = put_rows(grp, "tank", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, t, box, 0, dcpl, values);
+  if (rc == 0)
+    rc = put_rows(grp, "obstacles", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, o, g->n_obstacles, box, dcpl,
+                  values);
   if (rc == 0)
     rc =
-        put_rows(grp, "obstacles", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, o, g->n_obstacles, box, dcpl);
-  if (rc == 0)
-    rc = put_rows(grp, "walls", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, w, g->n_walls, box, dcpl);
+        put_rows(grp, "walls", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, w, g->n_walls, box, dcpl, values);
   if (rc == 0)
     rc = put_rows(grp, "probe_position", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, q, g->n_probes, dim,
-                  dcpl);
+                  dcpl, values);
   if (rc == 0)
-    rc = put_rows(grp, "probe_name", name_t, name_t, g->probe_name, g->n_probes, 0, dcpl);
+    rc = put_rows(grp, "probe_name", name_t, name_t, g->probe_name, g->n_probes, 0, dcpl, values);
   if (rc == 0)
-    rc = put_rows(grp, "probe_kind", kind_t, kind_t, g->probe_kind, g->n_probes, 0, dcpl);
+    rc = put_rows(grp, "probe_kind", kind_t, kind_t, g->probe_kind, g->n_probes, 0, dcpl, values);
   free(t);
   free(o);
   free(w);

@@ -194,6 +194,17 @@ void sph_procs_gather(const void *mine, size_t len, void *all) {
   }
 }
 
+void sph_procs_share(void *buf, size_t len) {
+  if (count == 1) return;
+  MPI_Request r;
+  if (!crowded)
+    MPI_Bcast(buf, (int)len, MPI_BYTE, 0, MPI_COMM_WORLD);
+  else {
+    MPI_Ibcast(buf, (int)len, MPI_BYTE, 0, MPI_COMM_WORLD, &r);
+    wait_for(&r);
+  }
+}
+
 int sph_procs_records_fit(const size_t *counts, size_t rec) {
   if (count > SPH_PROCS_MAX || rec > INT_MAX) return 0;
   size_t total = 0;
@@ -278,6 +289,7 @@ int sph_procs_failed(int first, sph_error *err) {
   return -1;
 }
 void sph_procs_gather(const void *mine, size_t len, void *all) { memcpy(all, mine, len); }
+void sph_procs_share(void *buf, size_t len) { (void)buf, (void)len; }
 int sph_procs_records_fit(const size_t *counts, size_t rec) {
   return rec <= INT_MAX && counts[0] <= INT_MAX;
 }

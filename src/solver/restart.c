@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "solver/procs.h"
 #include "solver/sim_internal.h"
 
 /* ---- restart (sph run --restart) -------------------------------------------
@@ -60,7 +61,9 @@ int sph_sim_write_run_snapshot(const sph_sim *s, const char *path, int64_t outpu
     r.uh = s->p.uh;
   }
   m.restart = &r;
-  return sph_snapshot_write(path, &m, &s->p, err);
+  /* under several processes, all of them write it (procs.h) */
+  const sph_snapshot_team team = {sph_procs_rank(), sph_procs_count(), sph_procs_agree};
+  return sph_snapshot_write_team(path, &m, &s->p, &team, err);
 }
 
 /* The first line of a that differs from b, ignoring time.end (a restart

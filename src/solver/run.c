@@ -48,6 +48,8 @@ typedef struct outputs {
   double *share; /* a row's readings as this process reads them, then every process's
                     (read_probes) */
   int read;      /* some process writes probes.csv: every one reads its share of a row */
+  int team;      /* the processes write each snapshot together (snapshot.h), the first's
+                    name and restart record */
   size_t index;  /* number of the next snapshot file, snap_<index>.h5 */
   size_t n, cap; /* snapshots listed in the XDMF index */
   char **names;
@@ -233,24 +235,37 @@ static int write_rows(sph_sim *s, outputs *o, int which, sph_error *err) {
   return (which & 4) && o->probes ? probe_step(s, o, 0, err) : 0;
 }
 
+/* Writes the rows of an output and its snapshot. With a team (every
+ * process of the run) a collective step: the first process's name for
+ * the file and its restart record's gauge levels and probe filters go to
+ * the others, and all write the file. */
 static int write_output(sph_sim *s, outputs *o, sph_run_result *r, sph_error *err) {
   r->outputs++;
   if (write_rows(s, o, 3, err)) return -1;
-  if (!o->dir) return 0;
+  if (!o->dir && !o->team) return 0;
   if (!sph_sim_case(s)->snapshots) return 0;
   char name[64], path[4096];
   snprintf(name, sizeof name, "snap_%04zu.h5", o->index);
-  snprintf(path, sizeof path, "%s/%s", o->dir, name);
+  if (o->dir) snprintf(path, sizeof path, "%s/%s", o->dir, name);
   /* the probes' filters: outputs, then the last row's time and whether there was one */
   const sph_case *c = sph_sim_case(s);
   const size_t nf = has_low_pass(c) ? c->n_probes + 2 : 0;
-  if (nf) {
+  if (nf && o->dir) {
     o->lp[c->n_probes] = o->lp_t;
     o->lp[c->n_probes + 1] = o->lp_rows ? 1.0 : 0.0;
+  }
+  if (o->team) {
+    int64_t index = (int64_t)o->index;
+    sph_procs_share(&index, sizeof index);
+    sph_procs_share(path, sizeof path);
+    if (c->n_gauges) sph_procs_share(o->still, c->n_gauges * sizeof *o->still);
+    if (nf) sph_procs_share(o->lp, nf * sizeof *o->lp);
+    o->index = (size_t)index;
   }
   if (sph_sim_write_run_snapshot(s, path, (int64_t)o->index, o->still, c->n_gauges, o->lp, nf, err))
     return -1;
   o->index++;
+  if (!o->dir) return 0; /* a team's other process: the list is the first's */
   if (list_snapshot(o, name, sph_sim_time(s), sph_sim_particles(s)->n, err)) return -1;
   snprintf(r->last_snapshot, sizeof r->last_snapshot, "%s", path);
   snprintf(path, sizeof path, "%s/snapshots.xmf", o->dir);
@@ -565,6 +580,19 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
   /* room for a row's readings, on every process (read_probes), and whether
    * any process writes them (one collective step) */
   out.read = c->n_probes && sph_procs_any(out.probes != NULL);
+  /* the processes write the snapshots together when one writes them: the
+   * others keep room for the restart record's levels and filters */
+  out.team = sph_procs_count() > 1 && c->snapshots && sph_procs_any(out.dir != NULL);
+  if (agreed(out.team && !out.dir &&
+                     ((c->n_gauges && !(out.still = calloc(c->n_gauges, sizeof *out.still))) ||
+                      (c->n_probes && !(out.lp = calloc(c->n_probes + 2, sizeof *out.lp))))
+                 ? sph_error_set(err, "out of memory for the snapshots' restart record")
+                 : 0,
+             err)) {
+    r->status = SPH_RUN_ERROR;
+    outputs_free(&out);
+    return -1;
+  }
   const size_t share = c->n_probes * SPH_DIM * (1 + (size_t)sph_procs_count());
   if (agreed(share && !(out.share = calloc(share, sizeof *out.share))
                  ? sph_error_set(err, "out of memory for the probes' readings")

@@ -104,7 +104,10 @@ int sph_sim_write_saved_snapshot(sph_sim *s, const char *path, sph_error *err);
  * current state like sph_sim_write_snapshot plus the restart record
  * (snapshot.h: the storage order, the leap-frog's half-step values, the
  * ledger's integrals, and the run's own output_index, gauge levels and
- * probe filters: n_filters values, none when 0).
+ * probe filters: n_filters values, none when 0). Under several processes
+ * (procs.h) it is a collective step: every process calls it with the same
+ * arguments and the processes write the file together (snapshot.h,
+ * sph_snapshot_write_team).
  * sph_sim_restore takes a sim freshly made by sph_sim_create from the same
  * case (only time.end may differ: the snapshot's "parameters" must match)
  * and puts it in the state of the snapshot at path, so that the steps that
