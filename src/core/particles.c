@@ -217,14 +217,6 @@ unsigned long long sph_particles_array_bits(const char *names) {
   return d;
 }
 
-void sph_particles_copy_one(sph_particles *to, size_t j, const sph_particles *from, size_t i) {
-#define COPY(field, g)                                                                             \
-  if (live(from, g) && live(to, g)) to->field[j] = from->field[i];
-  SPH_PARTICLE_DOUBLES(COPY)
-  SPH_PARTICLE_OTHERS(COPY)
-#undef COPY
-}
-
 size_t sph_particles_record_size_of(const sph_particles *p, unsigned long long arrays) {
   size_t n = 0;
   int k = 0;
@@ -239,42 +231,6 @@ size_t sph_particles_record_size_of(const sph_particles *p, unsigned long long a
 
 size_t sph_particles_record_size(const sph_particles *p) {
   return sph_particles_record_size_of(p, SPH_PARTICLES_ALL);
-}
-
-void sph_particles_pack_of(const sph_particles *p, size_t i, unsigned long long arrays,
-                           unsigned char *rec) {
-  int k = 0;
-#define PACK(field, g)                                                                             \
-  if (live(p, g) && (arrays >> k & 1)) {                                                           \
-    memcpy(rec, &p->field[i], sizeof *p->field);                                                   \
-    rec += sizeof *p->field;                                                                       \
-  }                                                                                                \
-  k++;
-  SPH_PARTICLE_DOUBLES(PACK)
-  SPH_PARTICLE_OTHERS(PACK)
-#undef PACK
-}
-
-void sph_particles_pack(const sph_particles *p, size_t i, unsigned char *rec) {
-  sph_particles_pack_of(p, i, SPH_PARTICLES_ALL, rec);
-}
-
-void sph_particles_unpack_of(sph_particles *p, size_t i, unsigned long long arrays,
-                             const unsigned char *rec) {
-  int k = 0;
-#define UNPACK(field, g)                                                                           \
-  if (live(p, g) && (arrays >> k & 1)) {                                                           \
-    memcpy(&p->field[i], rec, sizeof *p->field);                                                   \
-    rec += sizeof *p->field;                                                                       \
-  }                                                                                                \
-  k++;
-  SPH_PARTICLE_DOUBLES(UNPACK)
-  SPH_PARTICLE_OTHERS(UNPACK)
-#undef UNPACK
-}
-
-void sph_particles_unpack(sph_particles *p, size_t i, const unsigned char *rec) {
-  sph_particles_unpack_of(p, i, SPH_PARTICLES_ALL, rec);
 }
 
 void sph_particles_pack_block(const sph_particles *p, const size_t *which, size_t k,
@@ -305,20 +261,6 @@ void sph_particles_unpack_block(sph_particles *p, const size_t *which, size_t k,
   SPH_PARTICLE_DOUBLES(UNPACK_BLOCK)
   SPH_PARTICLE_OTHERS(UNPACK_BLOCK)
 #undef UNPACK_BLOCK
-}
-
-unsigned long long sph_particles_differ(const sph_particles *a, size_t i, const sph_particles *b,
-                                        size_t j) {
-  unsigned long long d = 0;
-  int k = 0;
-#define DIFFER(field, g)                                                                           \
-  if (live(a, g) && live(b, g) && memcmp(&a->field[i], &b->field[j], sizeof *a->field))            \
-    d |= 1ull << k;                                                                                \
-  k++;
-  SPH_PARTICLE_DOUBLES(DIFFER)
-  SPH_PARTICLE_OTHERS(DIFFER)
-#undef DIFFER
-  return d;
 }
 
 /* The store's arrays fit the bits of an array set. */

@@ -165,29 +165,16 @@ unsigned long long sph_particles_put(sph_particles *to, const size_t *at, const 
                                      const size_t *which, size_t k, unsigned long long arrays,
                                      int compare);
 /* The set of the arrays named in `names` (field names of sph_particles
- * separated by spaces: "x vx rho"), a bit each in the order of
- * sph_particles_differ; names that are no array are ignored. */
+ * separated by spaces: "x vx rho"), a bit each in the store's order of
+ * arrays; names that are no array are ignored. */
 unsigned long long sph_particles_array_bits(const char *names);
-/* Copies particle i of `from` to index j of `to`: every array live in both. */
-void sph_particles_copy_one(sph_particles *to, size_t j, const sph_particles *from, size_t i);
-/* A particle as one record of bytes (every live array's entry, in the
+/* The bytes of a particle's record (every live array's entry, in the
  * store's order of arrays), for a store that another process holds in the
- * same state (solver/procs.h): the record's size, and particle i packed
- * into rec or set from it. */
-size_t sph_particles_record_size(const sph_particles *p);
-void sph_particles_pack(const sph_particles *p, size_t i, unsigned char *rec);
-void sph_particles_unpack(sph_particles *p, size_t i, const unsigned char *rec);
-/* The same for the arrays in `arrays` alone (bit k: the store's k-th
- * array; SPH_PARTICLES_ALL for every one); and the arrays whose entry of
- * particle i of a and j of b differ in a bit (of those live in both). */
+ * same state (solver/procs.h); and of the arrays in `arrays` alone (bit k:
+ * the store's k-th array; SPH_PARTICLES_ALL for every one). */
 #define SPH_PARTICLES_ALL (~0ull)
+size_t sph_particles_record_size(const sph_particles *p);
 size_t sph_particles_record_size_of(const sph_particles *p, unsigned long long arrays);
-void sph_particles_pack_of(const sph_particles *p, size_t i, unsigned long long arrays,
-                           unsigned char *rec);
-void sph_particles_unpack_of(sph_particles *p, size_t i, unsigned long long arrays,
-                             const unsigned char *rec);
-unsigned long long sph_particles_differ(const sph_particles *a, size_t i, const sph_particles *b,
-                                        size_t j);
 /* The k particles which[0..k) of p in the arrays of `arrays`, array by
  * array: each array's k entries in turn, in the store's order of arrays
  * (sph_particles_record_size_of(p, arrays) * k bytes in buf); and set from
