@@ -14,7 +14,8 @@
  *     thread number), through `sph`'s hand-over to `sph-3d`;
  *   - snapshots of two HDF5 chunks, written by the processes together
  *     (parallel HDF5), and of a case text too long for that (its first
- *     process writes alone);
+ *     process writes alone); a snapshot that cannot be created stops every
+ *     process with HDF5's reason;
  *   - a blow-up (leap-frog, a step ten times too long) in 2-D and 3-D on 2
  *     and 3 processes: exit status 3, last_good.h5 and every other file
  *     the serial run's, and the message naming the same particle;
@@ -195,6 +196,37 @@ static void test_snapshots_together(void) {
   same_on_processes("src/sph", path, "--set time.end=0.02", two_three, 2, 0);
   sph_test_rmtree(d);
   free(d);
+}
+
+/* A snapshot the processes cannot create (its temporary name taken by a
+ * directory) stops all of them together after the earlier snapshots:
+ * exit 1 (not the bound's 124), HDF5's reason in the message, the
+ * earlier snapshots kept, on 2 and 3 processes. */
+static void test_failed_snapshot(void) {
+  for (int procs = 2; procs <= 3; procs++) {
+    char *d = sph_test_tmpdir(), cmd[8192], log[4200], path[4200];
+    snprintf(cmd, sizeof cmd, "mkdir -p '%s/out/snap_0002.h5.tmp'", d);
+    CU_ASSERT_FATAL(sph_test_system(cmd) == 0);
+    snprintf(log, sizeof log, "%s/log", d);
+    snprintf(cmd, sizeof cmd,
+             "%s -n %d '%s' run --quiet --threads 1 '%s' -o '%s/out' --set time.end=0.1 > '%s' "
+             "2>&1",
+             mpirun(), procs, sph_test_build("src/sph"),
+             sph_test_src("cases/martin_moyce_coarse.yaml"), d, log);
+    const int rc = sph_test_system(cmd);
+    char *out = sph_test_read_file(log, NULL);
+    const int told = out && strstr(out, "snap_0002.h5: cannot create") && strstr(out, "(HDF5: ");
+    free(out);
+    snprintf(path, sizeof path, "%s/out/snap_0001.h5", d);
+    const int kept = access(path, R_OK) == 0;
+    printf("\n  snap_0002.h5.tmp a directory, %d processes: exit %d, %s, snap_0001.h5 %s", procs,
+           rc, told ? "HDF5's reason" : "NO MESSAGE", kept ? "kept" : "MISSING");
+    CU_ASSERT(rc == 1);
+    CU_ASSERT(told);
+    CU_ASSERT(kept);
+    sph_test_rmtree(d);
+    free(d);
+  }
 }
 
 /* A blow-up (a fixed step some ten times the stable one) with the
@@ -491,6 +523,7 @@ int main(void) {
                          {"2-D, a gate, a periodic axis, mdbc", test_gate_periodic_mdbc},
                          {"3-D, the default scheme, 1-7 processes", test_default_scheme_3d},
                          {"snapshots written together", test_snapshots_together},
+                         {"a snapshot that cannot be made", test_failed_snapshot},
                          {"a blow-up's last good state", test_blow_up},
                          {"a failed pass stops every process", test_failed_pass},
                          {"a restart on another process count", test_restart_on_other_count},

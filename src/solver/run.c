@@ -244,7 +244,7 @@ static int write_output(sph_sim *s, outputs *o, sph_run_result *r, sph_error *er
   if (write_rows(s, o, 3, err)) return -1;
   if (!o->dir && !o->team) return 0;
   if (!sph_sim_case(s)->snapshots) return 0;
-  char name[64], path[4096];
+  char name[64], path[4096] = ""; /* (all of it sent to a team) */
   snprintf(name, sizeof name, "snap_%04zu.h5", o->index);
   if (o->dir) snprintf(path, sizeof path, "%s/%s", o->dir, name);
   /* the probes' filters: outputs, then the last row's time and whether there was one */
