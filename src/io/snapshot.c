@@ -22,9 +22,10 @@
  * Strings (root and dataset attributes) are scalar fixed-length UTF-8
  * strings in the objects' checksummed headers (a case text longer than a
  * header message holds goes to dense attribute storage). The reader also
- * accepts variable-length strings (earlier files). /particles tracks and indexes link creation
- * order, so its datasets are listed in the order they were written (x y vx vy rho p mass h u kind
- * id [free_surface]); a file whose group lacks that index is listed in name order.
+ * accepts variable-length strings (earlier files). /particles tracks and
+ * indexes link creation order, so its datasets are listed in the order
+ * they were written (x y vx vy rho p mass h u kind id [free_surface]); a
+ * file whose group lacks that index is listed in name order.
  *
  * The group /restart (snapshot.h) is written after /particles; its arrays
  * are in storage order, raw. The reader checks everything a restart will

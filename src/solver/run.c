@@ -583,21 +583,15 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
   /* the processes write the snapshots together when one writes them: the
    * others keep room for the restart record's levels and filters */
   out.team = sph_procs_count() > 1 && c->snapshots && sph_procs_any(out.dir != NULL);
-  if (agreed(out.team && !out.dir &&
-                     ((c->n_gauges && !(out.still = calloc(c->n_gauges, sizeof *out.still))) ||
-                      (c->n_probes && !(out.lp = calloc(c->n_probes + 2, sizeof *out.lp))))
-                 ? sph_error_set(err, "out of memory for the snapshots' restart record")
-                 : 0,
-             err)) {
-    r->status = SPH_RUN_ERROR;
-    outputs_free(&out);
-    return -1;
-  }
   const size_t share = c->n_probes * SPH_DIM * (1 + (size_t)sph_procs_count());
-  if (agreed(share && !(out.share = calloc(share, sizeof *out.share))
-                 ? sph_error_set(err, "out of memory for the probes' readings")
-                 : 0,
-             err)) {
+  int room = 0;
+  if (out.team && !out.dir &&
+      ((c->n_gauges && !(out.still = calloc(c->n_gauges, sizeof *out.still))) ||
+       (c->n_probes && !(out.lp = calloc(c->n_probes + 2, sizeof *out.lp)))))
+    room = sph_error_set(err, "out of memory for the snapshots' restart record");
+  else if (share && !(out.share = calloc(share, sizeof *out.share)))
+    room = sph_error_set(err, "out of memory for the probes' readings");
+  if (agreed(room, err)) {
     r->status = SPH_RUN_ERROR;
     outputs_free(&out);
     return -1;
