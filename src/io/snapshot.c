@@ -254,18 +254,25 @@ static int put_int64(writer *w, const char *name, int64_t v) {
 
 static const char *or_empty(const char *s) { return s ? s : ""; }
 
+/* The root's text attributes, in the order of TEXTS. */
+static void root_texts(const sph_snapshot_meta *meta, const char *texts[N_TEXTS]) {
+  const char *t[N_TEXTS] = {meta->case_name,
+                            or_empty(meta->case_text),
+                            or_empty(meta->overrides),
+                            or_empty(meta->parameters),
+                            sph_version(),
+                            sph_configure_args(),
+                            sph_compiler(),
+                            or_empty(meta->kernel)};
+  memcpy(texts, t, sizeof t);
+}
+
 static int write_header(writer *w, const sph_snapshot_meta *meta, size_t n) {
   if (put_double(w, "time", meta->time) || put_int64(w, "step", meta->step) ||
       put_double(w, "dt", meta->dt) || put_int64(w, "particle_count", (int64_t)n))
     return -1;
-  const char *texts[N_TEXTS] = {meta->case_name,
-                                or_empty(meta->case_text),
-                                or_empty(meta->overrides),
-                                or_empty(meta->parameters),
-                                sph_version(),
-                                sph_configure_args(),
-                                sph_compiler(),
-                                or_empty(meta->kernel)};
+  const char *texts[N_TEXTS];
+  root_texts(meta, texts);
   for (size_t i = 0; i < N_TEXTS; i++)
     if (put_text(w, w->file, "/", TEXTS[i], texts[i])) return -1;
   if (put_double(w, "dx", meta->dx) || put_double(w, "h", meta->h) ||
@@ -577,10 +584,10 @@ static int write_file(writer *w, const char *tmp, const sph_snapshot_meta *meta,
 /* Whether some root text is too long for an attribute in the root's
  * header (SPH_SNAPSHOT_TEXT_MAX). */
 static int long_texts(const sph_snapshot_meta *meta) {
-  const char *texts[] = {meta->case_name, meta->case_text, meta->overrides, meta->parameters,
-                         meta->kernel};
-  for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++)
-    if (texts[i] && strlen(texts[i]) >= SPH_SNAPSHOT_TEXT_MAX) return 1;
+  const char *texts[N_TEXTS];
+  root_texts(meta, texts);
+  for (size_t i = 0; i < N_TEXTS; i++)
+    if (strlen(texts[i]) >= SPH_SNAPSHOT_TEXT_MAX) return 1;
   return 0;
 }
 
