@@ -80,6 +80,8 @@ void rcli_usage(FILE *fp) {
         "  --outline               draw the free surface as a line (default with --smooth)\n"
         "  --discs                 particle discs instead (the default for free_surface, kind)\n"
         "  --walls grey|field|none how to draw wall particles (default grey; 3-D: none)\n"
+        "  --air                   a two-phase run's air too (by default the liquid alone,\n"
+        "                          its surface drawn as a one-phase run's)\n"
         "  --bare                  particles only: no axes, labels or colour bar\n"
         "  --no-colorbar           no colour bar\n"
         "  --title TEXT            a title line above the figure\n"
@@ -618,6 +620,8 @@ static int snapshot_option(args *a, roptions *o, int *compare, int *panels, sph_
   } else if (is(a, "--discs")) {
     o->smooth = 0;
     o->smooth_given = 1;
+  } else if (is(a, "--air")) {
+    o->air = 1;
   } else if (is(a, "--bare")) {
     o->bare = 1;
   } else if (is(a, "--no-colorbar")) {

@@ -44,7 +44,7 @@ static char *output_of(const roptions *o, int single, const char *path) {
 /* One snapshot's surface into out. */
 static int one(const roptions *o, const char *path, const char *out, size_t *nt, sph_error *err) {
   rsnap s;
-  if (rsnap_load(path, o->field_given ? o->field : NULL, &s, err) != 0) return -1;
+  if (rsnap_load_phases(path, o->field_given ? o->field : NULL, o->air, &s, err) != 0) return -1;
   int rc = 0;
   if (s.dim != 3)
     rc = sph_error_set(err, "%s is 2-D: the mesh mode writes the surfaces of 3-D snapshots", path);

@@ -78,6 +78,7 @@ typedef struct roptions {
   double overlay_tol;
   int walls_given;  /* --walls given (3-D draws no walls unless asked) */
   int smooth_given; /* --smooth, --outline or --discs given */
+  int air;          /* --air: a two-phase run's air drawn too (snapdata.h) */
 
   /* 3-D snapshots: the camera (camera.h) */
   const char *view3d; /* --view NAME (iso, front, side, top); NULL: iso */

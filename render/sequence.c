@@ -248,7 +248,7 @@ static int plan_range_and_view(plan *p, double view[4], sph_error *err) {
       }
       if (!need_range && (!isnan(view[0]) || o->have_view)) continue;
       rsnap s;
-      if (rsnap_load(path, o->field, &s, err) != 0) return -1;
+      if (rsnap_load_phases(path, o->field, o->air, &s, err) != 0) return -1;
       if (p->sliced && rslice_apply(&o->slice, &s, err) != 0) {
         rsnap_free(&s);
         return -1;
@@ -351,7 +351,7 @@ static int plan_camera(plan *p, sph_error *err) {
   c->fov = o->fov;
   c->ortho = o->ortho;
   rsnap s;
-  if (rsnap_load(p->task[0].path[0], NULL, &s, err) != 0) return -1;
+  if (rsnap_load_phases(p->task[0].path[0], NULL, o->air, &s, err) != 0) return -1;
   double lo[3], hi[3];
   for (int k = 0; k < 3; k++) {
     lo[k] = s.box[2 * k];
@@ -561,7 +561,7 @@ static int run_task(void *ctx, void *wp, size_t i, sph_error *err) {
   memset(panels, 0, sizeof panels);
   int loaded = 0, rc = 0;
   for (int k = 0; k < t->n; k++) {
-    if (rsnap_load(t->path[k], p->o->field, &snaps[k], err) != 0) {
+    if (rsnap_load_phases(t->path[k], p->o->field, p->o->air, &snaps[k], err) != 0) {
       rc = -1;
       break;
     }

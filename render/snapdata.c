@@ -75,10 +75,39 @@ static int missing_field(const sph_snapshot *ss, const char *path, const char *n
   return sph_error_set(err, "%s: no field '%s'%s (fields: %s)", path, name, why, list);
 }
 
-static int read_into(const sph_snapshot *ss, const char *path, const char *name, double *out,
+/* Field `name` of the snapshot's rows s keeps (s->rows; all of them when NULL) into out. */
+static int read_into(const sph_snapshot *ss, const rsnap *s, const char *name, double *out,
                      const char *why, sph_error *err) {
-  if (!sph_snapshot_has_field(ss, name)) return missing_field(ss, path, name, why, err);
-  return sph_snapshot_read_field(ss, name, out, err);
+  if (!sph_snapshot_has_field(ss, name)) return missing_field(ss, s->path, name, why, err);
+  if (!s->rows) return sph_snapshot_read_field(ss, name, out, err);
+  double *all = malloc((s->n_file ? s->n_file : 1) * sizeof *all);
+  if (!all) return sph_error_set(err, "%s: out of memory for %zu particles", s->path, s->n_file);
+  const int rc = sph_snapshot_read_field(ss, name, all, err);
+  for (size_t k = 0; rc == 0 && k < s->n; k++)
+    out[k] = all[s->rows[k]];
+  free(all);
+  return rc;
+}
+
+/* The rows of a two-phase run's snapshot (field `phase`) that the
+ * renderer shows: the liquid's and the walls' (phase 0), unless the air is
+ * asked for too (then, as in a one-phase file, every row: s->rows NULL). */
+static int select_rows(const sph_snapshot *ss, rsnap *s, int air, sph_error *err) {
+  s->n_file = s->n;
+  if (air || !sph_snapshot_has_field(ss, "phase")) return 0;
+  double *ph = malloc((s->n ? s->n : 1) * sizeof *ph);
+  s->rows = malloc((s->n ? s->n : 1) * sizeof *s->rows);
+  if (!ph || !s->rows) {
+    free(ph);
+    return sph_error_set(err, "%s: out of memory for %zu particles", s->path, s->n);
+  }
+  const int rc = sph_snapshot_read_field(ss, "phase", ph, err);
+  size_t k = 0;
+  for (size_t i = 0; rc == 0 && i < s->n_file; i++)
+    if (ph[i] == 0.0) s->rows[k++] = i;
+  free(ph);
+  s->n = k;
+  return rc;
 }
 
 int rsnap_peek(const char *path, double *time, double view[4], sph_error *err) {
@@ -92,10 +121,15 @@ int rsnap_peek(const char *path, double *time, double view[4], sph_error *err) {
 }
 
 int rsnap_load(const char *path, const char *field, rsnap *s, sph_error *err) {
+  return rsnap_load_phases(path, field, 0, s, err);
+}
+
+int rsnap_load_phases(const char *path, const char *field, int air, rsnap *s, sph_error *err) {
   memset(s, 0, sizeof *s);
   sph_snapshot *ss = NULL;
   if (sph_snapshot_open_any(path, &ss, err) != 0) return -1;
   int rc = 0;
+  double *tmp = NULL;
   s->path = strdup(path);
   s->time = sph_snapshot_time(ss);
   s->n = sph_snapshot_count(ss);
@@ -109,33 +143,38 @@ int rsnap_load(const char *path, const char *field, rsnap *s, sph_error *err) {
   const char *cn = sph_snapshot_text(ss, "case_name");
   snprintf(s->case_name, sizeof s->case_name, "%s", cn ? cn : "");
   if (field) sph_snapshot_field_units(ss, units_dataset(field), s->units, sizeof s->units);
+  if (!s->path) {
+    rc = sph_error_set(err, "%s: out of memory", path);
+    goto done;
+  }
+  if ((rc = select_rows(ss, s, air, err)) != 0) goto done;
   size_t n = s->n ? s->n : 1;
   s->x = malloc(n * sizeof *s->x);
   s->y = malloc(n * sizeof *s->y);
   if (s->dim == 3) s->z = malloc(n * sizeof *s->z);
   s->wall = malloc(n);
-  double *tmp = malloc(n * sizeof *tmp);
+  tmp = malloc(n * sizeof *tmp);
   if (field) s->val = malloc(n * sizeof *s->val);
   if (!s->path || !s->x || !s->y || (s->dim == 3 && !s->z) || !s->wall || !tmp ||
       (field && !s->val)) {
     rc = sph_error_set(err, "%s: out of memory for %zu particles", path, s->n);
     goto done;
   }
-  if ((rc = read_into(ss, path, "x", s->x, "", err)) != 0) goto done;
-  if ((rc = read_into(ss, path, "y", s->y, "", err)) != 0) goto done;
-  if (s->z && (rc = read_into(ss, path, "z", s->z, "", err)) != 0) goto done;
-  if ((rc = read_into(ss, path, "kind", tmp, "", err)) != 0) goto done;
+  if ((rc = read_into(ss, s, "x", s->x, "", err)) != 0) goto done;
+  if ((rc = read_into(ss, s, "y", s->y, "", err)) != 0) goto done;
+  if (s->z && (rc = read_into(ss, s, "z", s->z, "", err)) != 0) goto done;
+  if ((rc = read_into(ss, s, "kind", tmp, "", err)) != 0) goto done;
   for (size_t i = 0; i < s->n; i++)
     s->wall[i] = tmp[i] != 0.0;
   if (field) {
     if (strcmp(field, "speed") == 0) {
       const char *why = s->dim == 3 ? " (speed is computed from vx, vy and vz)"
                                     : " (speed is computed from vx and vy)";
-      if ((rc = read_into(ss, path, "vx", s->val, why, err)) != 0) goto done;
+      if ((rc = read_into(ss, s, "vx", s->val, why, err)) != 0) goto done;
       for (size_t i = 0; i < s->n; i++)
         s->val[i] *= s->val[i];
       for (int a = 1; a < s->dim; a++) {
-        if ((rc = read_into(ss, path, a == 1 ? "vy" : "vz", tmp, why, err)) != 0) goto done;
+        if ((rc = read_into(ss, s, a == 1 ? "vy" : "vz", tmp, why, err)) != 0) goto done;
         for (size_t i = 0; i < s->n; i++)
           s->val[i] += tmp[i] * tmp[i];
       }
@@ -145,7 +184,7 @@ int rsnap_load(const char *path, const char *field, rsnap *s, sph_error *err) {
       const char *ds = rsnap_canonical(field);
       char why[64] = "";
       if (strcmp(ds, field) != 0) snprintf(why, sizeof why, " (read for '%s')", field);
-      if ((rc = read_into(ss, path, ds, s->val, why, err)) != 0) goto done;
+      if ((rc = read_into(ss, s, ds, s->val, why, err)) != 0) goto done;
     }
   }
 done:
@@ -166,9 +205,9 @@ int rsnap_load_volumes(rsnap *s, sph_error *err) {
   int rc = 0;
   if (!rho || !s->h || !s->vol)
     rc = sph_error_set(err, "%s: out of memory for %zu particles", s->path, s->n);
-  if (!rc) rc = read_into(ss, s->path, "h", s->h, why, err);
-  if (!rc) rc = read_into(ss, s->path, "mass", s->vol, why, err);
-  if (!rc) rc = read_into(ss, s->path, "rho", rho, why, err);
+  if (!rc) rc = read_into(ss, s, "h", s->h, why, err);
+  if (!rc) rc = read_into(ss, s, "mass", s->vol, why, err);
+  if (!rc) rc = read_into(ss, s, "rho", rho, why, err);
   for (size_t i = 0; !rc && i < s->n; i++)
     s->vol[i] = rho[i] > 0.0 ? s->vol[i] / rho[i] : 0.0;
   if (!rc) s->kernel = rinterp_kernel_of(ss);
@@ -193,6 +232,7 @@ void rsnap_free(rsnap *s) {
   free(s->z);
   free(s->val);
   free(s->wall);
+  free(s->rows);
   memset(s, 0, sizeof *s);
 }
 

@@ -36,6 +36,9 @@ typedef struct rsnap {
   double *off;         /* a 3-D slice (slice.h): each particle's distance from the plane,
                           NULL otherwise */
   double slab;         /* with off: discs show the particles with |off| <= slab */
+  size_t *rows;        /* a two-phase run's file without its air: the file's row of each
+                          particle here (n of them); NULL: every row */
+  size_t n_file;       /* the file's particles */
 } rsnap;
 
 /* The dataset a field name reads ("pressure" -> "p"); "speed" stays. */
@@ -47,8 +50,12 @@ int rsnap_units(const char *path, const char *field, char *buf, size_t size, sph
 int rsnap_signed(const char *field);
 
 /* Loads path and, if field is not NULL, that field. Errors name the file
- * and the field (listing the fields the file has). */
+ * and the field (listing the fields the file has). A two-phase run's
+ * snapshot (field `phase`) loads without its air (phase 1): the liquid's
+ * particles and the walls, its surface drawn as a one-phase run's. */
 int rsnap_load(const char *path, const char *field, rsnap *s, sph_error *err);
+/* The same, with the air too where `air` (sph-render --air). */
+int rsnap_load_phases(const char *path, const char *field, int air, rsnap *s, sph_error *err);
 /* Reads only the time (and the view, NaN if absent) of a snapshot. */
 int rsnap_peek(const char *path, double *time, double view[4], sph_error *err);
 /* Adds each particle's smoothing length and volume and the case's kernel

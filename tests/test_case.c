@@ -92,7 +92,7 @@ static const char *const TOP_KEYS =
     "name, description, dimension, physics, numerics, time, geometry, free_surface, output";
 static const char *const PHYSICS_KEYS =
     "rho0, gravity, body_force, sound_speed, artificial_viscosity, viscosity, turbulence, "
-    "repulsion, xsph, riemann, negative_pressure";
+    "repulsion, xsph, riemann, negative_pressure, air";
 
 /* MINIMAL with line `line` (1-based) replaced by `repl` (which may hold
  * several lines, or be "" to delete it). Returns one of two static buffers. */

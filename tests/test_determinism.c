@@ -190,6 +190,12 @@ static void test_no_tension(void) {
  * the store's compaction and the booking, with the default scheme and the ledger */
 static void test_outflow(void) { same_on_threads("tests/data/restart_outflow.yaml", "", 3); }
 
+/* two phases (physics.air): the phases' laws, the impedance-weighted pairs and the walls'
+ * pressure for each phase, with the ledger, a probe and a gauge */
+static void test_air(void) {
+  same_on_threads("tests/data/restart_air.yaml", "--set time.end=0.1", 3);
+}
+
 /* the Wendland kernel in the pair loop, the strain-rate pass, the MLS
  * filter and the probes */
 static void test_wendland(void) {
@@ -262,6 +268,7 @@ int main(void) {
       {"leap-frog dam break on 1, 2 and 3 threads", test_three_threads},
       {"a fluid without tension, 1-3 threads", test_no_tension},
       {"fluid that leaves the domain taken out, 1-3 threads", test_outflow},
+      {"two phases (water under air), 1-3 threads", test_air},
       CU_TEST_INFO_NULL};
   return sph_test_main("determinism", tests);
 }

@@ -15,7 +15,8 @@
  * leap-frog with a step that changes, Adami walls), restart_no_tension the same with the
  * density floor of a fluid without tension, restart_outflow fluid taken out of the run as it
  * leaves the domain (which particles left, what they carried, the snapshots' own counts in
- * the XDMF index). Each is run
+ * the XDMF index), restart_air two phases (the air's particles, phases and laws, the walls'
+ * pressure for each phase: doc/method.md, Two phases). Each is run
  * uninterrupted; then
  *   - restarted from snap_0002 (restart_fs: snap_0003) into a fresh
  *     directory (1 thread; the uninterrupted run on 2): every
@@ -154,6 +155,7 @@ static void test_fs_fresh(void) { restart_fresh("restart_fs", 3); }
 static void test_adami_fresh(void) { restart_fresh("restart_adami", 2); }
 static void test_default_fresh(void) { restart_fresh("restart_default", 2); }
 static void test_no_tension_fresh(void) { restart_fresh("restart_no_tension", 2); }
+static void test_air_fresh(void) { restart_fresh("restart_air", 2); }
 
 /* Restart in a copy of the run's own directory (which holds the later
  * snapshots and rows already): the end result is byte for byte the
@@ -442,6 +444,7 @@ int main(void) {
       {"adami walls, a moving one, the ledger: restart is bitwise", test_adami_fresh},
       {"the default scheme (leap-frog, changing step): restart is bitwise", test_default_fresh},
       {"a fluid without tension: restart is bitwise", test_no_tension_fresh},
+      {"two phases (water under air): restart is bitwise", test_air_fresh},
       {"restart in the run's directory: CSV and XDMF as uninterrupted", test_pc_in_place},
       {"mirror, periodic: restart in place, headers of an earlier version", test_mirror_in_place},
       {"restart in place: CRLF line ends read, rows kept", test_crlf_in_place},

@@ -61,12 +61,12 @@ static double line_weight(sph_kernel_kind kernel, double rho, double h) {
 }
 
 /* A wire gauge's wetted length along the vertical line of a level probe:
- * sum_j V_j K(rho_j) over the fluid particles within 2h of the line, in storage order. */
+ * sum_j V_j K(rho_j) over the liquid's particles within 2h of the line, in storage order. */
 static double wetted_length(const sph_probe *q, const sph_particles *p, sph_kernel_kind kernel,
                             double h) {
   double sum = 0.0;
   for (size_t j = 0; j < p->n; j++) {
-    if (p->kind[j] != SPH_KIND_FLUID) continue;
+    if (!sph_particles_liquid(p, j)) continue; /* (not the air of two phases) */
 #if SPH_DIM == 2
     const double rho = fabs(p->x[j] - q->x);
 #else
@@ -211,7 +211,7 @@ void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind 
     double top = -INFINITY;
     const double *up = p->pos[SPH_UP];
     for (size_t j = 0; j < p->n; j++) {
-      if (p->kind[j] != SPH_KIND_FLUID) continue;
+      if (!sph_particles_liquid(p, j)) continue;
 #if SPH_DIM == 2
       const int near = fabs(p->x[j] - q->x) < dx;
 #else

@@ -18,7 +18,7 @@
 static double up(const sph_particles *p, size_t i) { return p->pos[SPH_DIM - 1][i]; }
 
 static int fluid_in(const sph_particles *p, size_t i, double x0, double x1) {
-  return p->kind[i] == SPH_KIND_FLUID && p->x[i] >= x0 && p->x[i] <= x1;
+  return sph_particles_liquid(p, i) && p->x[i] >= x0 && p->x[i] <= x1;
 }
 
 /* The highest fluid particle in [x0, x1] (ties: larger x); -1 if none. */

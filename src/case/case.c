@@ -126,7 +126,8 @@ static const char *const fs_keys[] = {"radius_factor", "h_factor", NULL};
 static const char *const laminar_keys[] = {"model", "mu", "gradient_correction", NULL};
 static const char *const physics_keys[] = {
     "rho0",       "gravity",   "body_force", "sound_speed", "artificial_viscosity", "viscosity",
-    "turbulence", "repulsion", "xsph",       "riemann",     "negative_pressure",    NULL};
+    "turbulence", "repulsion", "xsph",       "riemann",     "negative_pressure",    "air",
+    NULL};
 static const char *const c0_keys[] = {"factor", "height", "speed", NULL};
 static const char *const visc_keys[] = {"alpha", "beta", "eta", NULL};
 static const char *const riemann_keys[] = {"limiter", NULL};
@@ -238,6 +239,8 @@ static void set_defaults(sph_case *c) {
   c->negative_pressure = 1;
   c->riemann = 0;
   c->riemann_limiter = 3.0;
+  c->air_rho0 = 1.2;
+  c->air_exponent = 1;
   c->h_factor = 1.3;
   c->kernel = SPH_KERNEL_CUBIC_SPLINE;
   c->integrator = SPH_INTEGRATOR_PREDICTOR_CORRECTOR;
@@ -348,7 +351,7 @@ static const char *whose_default(const ctx *x, const node *mapping) {
   return buf;
 }
 
-static int read_physics(const ctx *x, const node *m, sph_case *c) {
+static int read_physics(ctx *x, const node *m, sph_case *c) {
   const char *p = "physics";
   const node *v;
   if (sph_yaml_get_number(&x->t, m, p, "rho0", 0, &SPH_YAML_POS, &c->rho0) < 0) return -1;
@@ -441,6 +444,7 @@ static int read_physics(const ctx *x, const node *m, sph_case *c) {
     }
   }
   if (sph_yaml_get_bool(&x->t, m, p, "negative_pressure", &c->negative_pressure) < 0) return -1;
+  if (sph_case_read_air(x, m, c)) return -1;
   return sph_yaml_get_number(&x->t, m, p, "xsph", 0, &SPH_YAML_UNIT, &c->xsph) < 0 ? -1 : 0;
 }
 
@@ -645,6 +649,7 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
         &x->t, x->shifting_node, "numerics.shifting",
         "needs wall particles to count the wall as full, and mirror walls have none "
         "(use boundary: mdbc)");
+  if (sph_case_check_air(x, c)) return -1;
   const char *cg_clash = corrected_gradient_clash(c);
   if (cg_clash)
     return sph_yaml_fail_at(&x->t, x->cgrad_node, "numerics.gradient_correction",
@@ -727,6 +732,7 @@ int sph_case_parse(const char *text, size_t len, const char *origin, const char 
            NULL,
            NULL,
            NULL,
+           NULL,
            NULL};
   memset(c, 0, sizeof *c);
   for (size_t i = 0; i < n_set; i++)
@@ -798,7 +804,7 @@ int sph_case_load(const char *path, const char *const *set, size_t n_set, sph_ca
 int sph_case_text_dimension(const char *text, size_t len, const char *origin,
                             const char *const *set, size_t n_set, int *dim, sph_error *err) {
   *dim = 2;
-  ctx x = {{origin, text, len, set, err, NULL}, NULL, NULL, NULL, NULL};
+  ctx x = {{origin, text, len, set, err, NULL}, NULL, NULL, NULL, NULL, NULL};
   node *root = NULL;
   int rc = sph_yaml_parse(&x.t, text, len, SPH_YAML_FROM_FILE, NULL, &root);
   if (rc == 0 && root->kind == SPH_YAML_MAP) { /* (not a mapping: 2, the full reader says why) */

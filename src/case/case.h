@@ -131,6 +131,10 @@ typedef struct sph_case {
   int gradient_correction; /* stress tensor: kernel-gradient correction (src/solver/forces.h) */
   double repulsion;        /* D of the Lennard-Jones wall force (m^2/s^2), paper A eq. (22);
                               default 5 |g| H, H the deepest fluid block */
+  int air;                 /* physics.air: the tank's free volume filled with air, a second
+                              phase (doc/method.md, Two phases); default 0 */
+  double air_rho0;         /* its reference density, default 1.2 kg/m^3 */
+  int air_exponent;        /* its law's exponent: 1 (p = c0^2 (rho - rho0), default) or 7 */
 
   /* numerics */
   sph_scheme_kind scheme; /* numerics.scheme, default riemann */

@@ -23,6 +23,7 @@ typedef struct ctx {
   const node *stop_node;     /* time.stop if given */
   const node *shifting_node; /* numerics.shifting if given */
   const node *cgrad_node;    /* numerics.gradient_correction if given */
+  const node *air_node;      /* physics.air if given */
 } ctx;
 
 /* names[k] of a NULL-terminated list of choices, "unknown" past its end. */
@@ -54,6 +55,10 @@ static inline double sph_case_block_top(const sph_fluid_block *f) {
 int sph_case_read_geometry(const ctx *x, const node *root, sph_case *c);
 void sph_case_estimate_particles(sph_case *c);
 
+/* air.c: physics.air of the physics mapping, and (after the geometry and
+ * the numerics) whether the two-phase terms cover the case. */
+int sph_case_read_air(ctx *x, const node *physics, sph_case *c);
+int sph_case_check_air(const ctx *x, const sph_case *c);
 /* output.c: the output section (geometry and time read before it). */
 int sph_case_read_output(const ctx *x, const node *root, sph_case *c);
 

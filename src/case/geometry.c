@@ -999,6 +999,12 @@ void sph_case_estimate_particles(sph_case *c) {
   int mirror = c->tank.present && c->tank.boundary == SPH_BOUNDARY_MIRROR;
   for (size_t i = 0; i < c->n_walls; i++)
     mirror |= c->walls[i].boundary == SPH_BOUNDARY_MIRROR;
+  if (c->air && c->tank.present) { /* the air: at most the tank's whole lattice */
+    double points = 1.0;
+    for (int a = 0; a < SPH_DIM; a++)
+      points *= (double)sph_case_lattice_points(c->tank.lo[a], c->tank.hi[a], dx);
+    fluid += points;
+  }
   c->est_fluid = fluid;
   c->est_wall = wall + (mirror ? fluid : 0.0); /* mirror images of the fluid, at most */
 }

@@ -30,12 +30,13 @@
 #define REST SPH_ARRAYS_REST
 #define OFFSET SPH_ARRAYS_OFFSET
 #define SAVED SPH_ARRAYS_SAVED
+#define PHASE SPH_ARRAYS_PHASE
 #define SPH_PARTICLE_DOUBLES(X) \
   X(x, 0) X(y, 0) X(vx, 0) X(vy, 0) X(rho, 0) X(p, 0) X(mass, 0) X(h, 0) X(u, HEAT) \
   X(x0, SAVED) X(y0, SAVED) X(vx0, SAVED) X(vy0, SAVED) X(rho0, SAVED) X(u0, HEAT) \
   X(ax, 0) X(ay, 0) X(drho, 0) X(du, HEAT) X(xsx, 0) X(xsy, 0) \
   X(vxh, HALF) X(vyh, HALF) X(rhoh, HALF) X(uh, HALF_HEAT) X(xr, REST) X(yr, REST) \
-  X(mx, OFFSET) X(my, OFFSET) SPH_PARTICLE_DOUBLES_Z(X)
+  X(mx, OFFSET) X(my, OFFSET) X(pa, PHASE) SPH_PARTICLE_DOUBLES_Z(X)
 #if SPH_DIM == 2
 #define SPH_PARTICLE_DOUBLES_Z(X)
 #else
@@ -43,7 +44,7 @@
   X(z, 0) X(vz, 0) X(z0, SAVED) X(vz0, SAVED) X(az, 0) X(xsz, 0) X(vzh, HALF) X(zr, REST) X(mz, OFFSET)
 #endif
 /* clang-format on */
-#define SPH_PARTICLE_OTHERS(X) X(kind, 0) X(body, 0) X(id, 0) X(flags, 0)
+#define SPH_PARTICLE_OTHERS(X) X(kind, 0) X(body, 0) X(id, 0) X(flags, 0) X(phase, PHASE)
 #define SPH_PARTICLE_ONE(f, g) +1
 enum {
   SPH_PARTICLE_ARRAYS =
@@ -75,7 +76,7 @@ static int grow(sph_particles *p, size_t cap, sph_error *err) {
 
 int sph_particles_init(sph_particles *p, size_t cap, sph_error *err) {
   memset(p, 0, sizeof *p);
-  p->live = SPH_ARRAYS_ALL;
+  p->live = SPH_ARRAYS_ALL & ~SPH_ARRAYS_PHASE; /* (phases change the physics: asked for) */
   if (cap < 16) cap = 16;
   if (grow(p, cap, err)) {
     sph_particles_free(p);
@@ -108,6 +109,7 @@ long sph_particles_add_at(sph_particles *p, const double x[SPH_DIM], const doubl
       p->mirror_offset[d][i] = 0.0;
   p->id[i] = (int64_t)i;
   p->flags[i] = 0;
+  if (p->live & SPH_ARRAYS_PHASE) p->phase[i] = 0;
   return (long)i;
 }
 

@@ -61,7 +61,10 @@ enum {
   SPH_ARRAYS_SAVED = 16,    /* x0, y0, vx0, vy0, rho0: the state at the start of the step (the
                                predictor-corrector's; the leap-frog keeps it in the pass's
                                packed copy instead, solver/sim.c) */
-  SPH_ARRAYS_ALL = 31
+  SPH_ARRAYS_PHASE = 32,    /* phase: each fluid particle's phase, an index into the case's
+                               materials (0 the liquid, 1 the air: physics.air); walls 0;
+                               pa: an adami wall particle's pressure as the air reads it */
+  SPH_ARRAYS_ALL = 63
 };
 
 /* The store's axes: a per-axis field is SPH_DIM arrays (core/dim.h), reachable
@@ -106,6 +109,9 @@ typedef struct sph_particles {
   int32_t *kind;             /* SPH_KIND_* */
   int64_t *id;               /* 0..n-1, fixed at creation */
   uint8_t *flags;            /* per-particle flags, SPH_FLAG_* (free surface, wall models) */
+  uint8_t *phase;            /* the particle's material (group PHASE; 0 without it) */
+  double *pa; /* two phases: an adami wall particle's pressure from the air near it, which the
+                 air's rows read (walls/adami.h); p is the liquid's (group PHASE) */
   /* state at the start of the step (predictor-corrector; group SAVED, u0
    * with HEAT), and rates */
   SPH_AXES(pos0, x0, y0, z0);
@@ -122,8 +128,22 @@ typedef struct sph_particles {
   SPH_AXES(mirror_offset, mx, my, mz);
 } sph_particles;
 
+/* The phase array where the store has phases (group PHASE), else NULL
+ * (every particle of phase 0; physics/eos.h, sph_eos_of). */
+static inline const uint8_t *sph_particles_phases(const sph_particles *p) {
+  return (p->live & SPH_ARRAYS_PHASE) ? p->phase : NULL;
+}
+
+/* Whether particle i is of the liquid: a fluid particle of phase 0 (the
+ * air of a two-phase run is fluid too, of phase 1). What the surface, the
+ * front and the level gauges read. */
+static inline int sph_particles_liquid(const sph_particles *p, size_t i) {
+  return p->kind[i] == SPH_KIND_FLUID && !((p->live & SPH_ARRAYS_PHASE) && p->phase[i]);
+}
+
 /* Allocates room for cap particles (all arrays zeroed); n = 0; every
- * group live. */
+ * group live but PHASE (every particle then of phase 0), which a store of
+ * two phases turns on (sph_particles_limit, sph_particles_use). */
 int sph_particles_init(sph_particles *p, size_t cap, sph_error *err);
 /* Declares, while the store is empty (n = 0), the only groups in use so
  * far; returns -1 (nothing changed) once particles exist. */

@@ -328,10 +328,12 @@ static void gather(const sph_particles *p, const field_spec *f, const size_t *po
     for (size_t k = k0; k < k1; k++)
       ((int64_t *)buf)[k - k0] = ((const int64_t *)src)[pos[k]];
     break;
-  case FT_U8: /* only free_surface: flags bit 0 */
+  case FT_U8: { /* free_surface: flags bit 0; phase as it is */
+    const uint8_t mask = f->member == offsetof(sph_particles, flags) ? 1u : 0xffu;
     for (size_t k = k0; k < k1; k++)
-      ((uint8_t *)buf)[k - k0] = ((const uint8_t *)src)[pos[k]] & 1u;
+      ((uint8_t *)buf)[k - k0] = ((const uint8_t *)src)[pos[k]] & mask;
     break;
+  }
   }
 }
 
@@ -415,7 +417,8 @@ static int write_field(writer *w, hid_t group, const field_spec *f, const void *
   return rc;
 }
 
-static int write_particles(writer *w, const sph_particles *p, int free_surface, const size_t *pos) {
+static int write_particles(writer *w, const sph_particles *p, int free_surface, int phase,
+                           const size_t *pos) {
   const size_t n = p->n;
   void *buf = w->buf;
   /* links kept in the group's header (compact, up to 32), in creation order */
@@ -431,7 +434,7 @@ static int write_particles(writer *w, const sph_particles *p, int free_surface, 
   if (agreed(w, group < 0 ? h5_fail(w->err, w->path, "cannot create group /particles") : 0))
     rc = -1;
   for (size_t i = 0; rc == 0 && i < N_FIELDS; i++) {
-    if (i == FREE_SURFACE_FIELD && !free_surface) continue;
+    if ((i == FREE_SURFACE_FIELD && !free_surface) || (i == PHASE_FIELD && !phase)) continue;
     gather(p, &FIELDS[i], pos, w->k0, w->k1, buf);
     rc = write_field(w, group, &FIELDS[i], buf, n);
   }
@@ -571,7 +574,8 @@ static int write_file(writer *w, const char *tmp, const sph_snapshot_meta *meta,
   close_id(fapl);
   if (agreed(w, rc)) return -1;
   rc = agreed(w, write_header(w, meta, p->n));
-  if (rc == 0) rc = write_particles(w, p, meta->free_surface, pos);
+  if (rc == 0)
+    rc = write_particles(w, p, meta->free_surface, (p->live & SPH_ARRAYS_PHASE) != 0, pos);
   if (rc == 0) rc = write_vectors(w, p, pos);
   if (rc == 0 && meta->restart) rc = write_restart(w, meta->restart, p->n);
   if (rc == 0 && meta->geometry)
@@ -1060,7 +1064,9 @@ int sph_snapshot_read_field(const sph_snapshot *s, const char *name, double *out
 static int read_store(const sph_snapshot *s, sph_particles *p, sph_error *err) {
   for (size_t i = 0; i < N_FIELDS; i++) {
     const field_spec *f = &FIELDS[i];
-    if (i == FREE_SURFACE_FIELD && !sph_snapshot_has_field(s, f->name)) continue;
+    if ((i == FREE_SURFACE_FIELD || i == PHASE_FIELD) && !sph_snapshot_has_field(s, f->name))
+      continue;
+    if (i == PHASE_FIELD) sph_particles_use(p, SPH_ARRAYS_PHASE);
     if (read_dataset(s, f->name, mem_type(f->type), member_array(p, f), err)) return -1;
   }
   for (size_t k = 0; k < p->n; k++) {

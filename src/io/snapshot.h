@@ -8,7 +8,8 @@
  *     view (4 doubles: x0, x1, y0, y1 of the region the case was set in);
  *   /particles/<field>: one 1-D dataset per field, particles in id order,
  *     each with string attributes "units" and "description".
- *   Fields: x y vx vy rho p mass h u (float64), kind (int32), id (int64), and
+ *   Fields: x y vx vy rho p mass h u (float64), kind (int32), id (int64),
+ *     phase (uint8) where the store has phases (physics.air), and
  *     free_surface (uint8) when the writer is asked for it;
  *   /restart: what `sph run --restart` needs beyond the fields (written when
  *     the meta has a restart record; see sph_snapshot_restart below).
@@ -118,10 +119,12 @@ int sph_snapshot_write_team(const char *path, const sph_snapshot_meta *meta, con
 /* Writes (atomically) an XDMF 3 file that describes a series of snapshots,
  * so ParaView and VisIt open the whole run: h5_names are the snapshot file
  * names relative to the XDMF file, times their times, n_particles their
- * particle counts. */
+ * particle counts; optional the fields they hold beyond the fixed ones
+ * (SPH_XDMF_*; 1 is the free-surface field alone). */
+#define SPH_XDMF_FREE_SURFACE 1
+#define SPH_XDMF_PHASE 2
 int sph_xdmf_write(const char *xmf_path, size_t n_snap, const char *const *h5_names,
-                   const double *times, const size_t *n_particles, int free_surface,
-                   sph_error *err);
+                   const double *times, const size_t *n_particles, int optional, sph_error *err);
 
 /* Reading. */
 typedef struct sph_snapshot sph_snapshot;

@@ -30,7 +30,8 @@ static inline int field_bytes(field_type t) {
   return t == FT_F64 || t == FT_I64 ? 8 : t == FT_I32 ? 4 : 1;
 }
 
-/* In writing order; free_surface (last) only when asked for. */
+/* In writing order; phase (two-phase runs) and free_surface (last) only
+ * when asked for. */
 static const field_spec FIELDS[] = {
     {"x", FT_F64, offsetof(sph_particles, x), "m", "position, x coordinate"},
 #if SPH_DIM == 2
@@ -51,11 +52,14 @@ static const field_spec FIELDS[] = {
     {"u", FT_F64, offsetof(sph_particles, u), "J/kg", "thermal energy per unit mass"},
     {"kind", FT_I32, offsetof(sph_particles, kind), "1", "particle kind: 0 fluid, 1 wall"},
     {"id", FT_I64, offsetof(sph_particles, id), "1", "particle id, 0..n-1 (the row index)"},
+    {"phase", FT_U8, offsetof(sph_particles, phase), "1",
+     "the particle's material: 0 the liquid, 1 the air (physics.air)"},
     {"free_surface", FT_U8, offsetof(sph_particles, flags), "1",
      "1 if the particle is on the free surface (flags bit 0), else 0"},
 };
 #define N_FIELDS (sizeof FIELDS / sizeof FIELDS[0])
 #define FREE_SURFACE_FIELD (N_FIELDS - 1)
+#define PHASE_FIELD (N_FIELDS - 2)
 
 #define ID_FIELD (SPH_DIM == 2 ? 10 : 12)
 

@@ -74,7 +74,7 @@ static void format_time(char *buf, size_t len, double t) {
     if (*c == ',') *c = '.';
 }
 
-static void put_grid(FILE *f, const char *h5, double time, size_t n, int free_surface) {
+static void put_grid(FILE *f, const char *h5, double time, size_t n, int optional) {
   char t[64];
   format_time(t, sizeof t, time);
   fputs("      <Grid Name=\"", f);
@@ -96,7 +96,9 @@ static void put_grid(FILE *f, const char *h5, double time, size_t n, int free_su
   put_vector(f, "          ", h5, "velocity", n, 3);
   fputs("        </Attribute>\n", f);
   for (size_t i = 0; i < N_FIELDS; i++) {
-    if (i == N_FIELDS - 1 && !free_surface) continue;
+    if ((i == FREE_SURFACE_FIELD && !(optional & SPH_XDMF_FREE_SURFACE)) ||
+        (i == PHASE_FIELD && !(optional & SPH_XDMF_PHASE)))
+      continue;
     fprintf(f, "        <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n",
             FIELDS[i].name);
     put_item(f, "          ", h5, &FIELDS[i], n);
@@ -106,13 +108,13 @@ static void put_grid(FILE *f, const char *h5, double time, size_t n, int free_su
 }
 
 static void put_document(FILE *f, size_t n_snap, const char *const *h5_names, const double *times,
-                         const size_t *n, int free_surface) {
+                         const size_t *n, int optional) {
   fputs("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n", f);
   fputs("<Xdmf Version=\"3.0\">\n", f);
   fputs("  <Domain>\n", f);
   fputs("    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", f);
   for (size_t i = 0; i < n_snap; i++)
-    put_grid(f, h5_names[i], times[i], n[i], free_surface);
+    put_grid(f, h5_names[i], times[i], n[i], optional);
   fputs("    </Grid>\n", f);
   fputs("  </Domain>\n", f);
   fputs("</Xdmf>\n", f);
@@ -137,8 +139,7 @@ static int check_inputs(const char *xmf_path, size_t n_snap, const char *const *
 }
 
 int sph_xdmf_write(const char *xmf_path, size_t n_snap, const char *const *h5_names,
-                   const double *times, const size_t *n_particles, int free_surface,
-                   sph_error *err) {
+                   const double *times, const size_t *n_particles, int optional, sph_error *err) {
   if (!xmf_path || !*xmf_path) return sph_error_set(err, "xdmf: empty file name");
   if (check_inputs(xmf_path, n_snap, h5_names, times, err)) return -1;
   size_t len = strlen(xmf_path);
@@ -153,7 +154,7 @@ int sph_xdmf_write(const char *xmf_path, size_t n_snap, const char *const *h5_na
     free(tmp);
     return rc;
   }
-  put_document(f, n_snap, h5_names, times, n_particles, free_surface);
+  put_document(f, n_snap, h5_names, times, n_particles, optional);
   int failed = ferror(f);
   if (fclose(f) != 0 || failed)
     rc = sph_error_set(err, "%s: cannot write %s: %s", xmf_path, tmp, strerror(errno));

@@ -206,6 +206,41 @@ PT_ATTR T PT(riemann_density)(T rhoi, T mj, T rhoj, T jump, T f, T r, T inv_z0) 
   return MUL(DIV(MUL(rhoi, mj), rhoj), MUL(MUL(jump, MUL(f, r)), inv_z0));
 }
 
+/* Two phases (physics.air; Rezavand, Zhang & Hu 2020, RZH20 in
+ * doc/method.md, Two phases): the acoustic Riemann problem between
+ * materials of impedances z_i = rho0_i c_i and z_j (a wall particle takes
+ * i's own). Its interface pressure and velocity are the impedance-weighted
+ * means p* = (z_j p_i + z_i p_j) / (z_i + z_j) and
+ * v* = (z_i v_i + z_j v_j) / (z_i + z_j), its dissipation acts with
+ * z_ij = 2 z_i z_j / (z_i + z_j): across the water's surface the air reads
+ * the water as a moving wall (v* ~ v_water) and the water reads the air's
+ * pressure (p* ~ p_air). Given z_i and z_j: wi = 2 z_j / (z_i + z_j),
+ * wj = 2 z_i / (z_i + z_j) (p* = (wi p_i + wj p_j) / 2), z_ij = wi z_i,
+ * and inv_zm = 2 / (z_i + z_j). One material: wi = wj = 1, z_ij = z_i. */
+PT_ATTR void PT(phase_weights)(T zi, T zj, T *wi, T *wj, T *zij, T *inv_zm) {
+  const T s = DIV(ALL(1.0), ADD(zi, zj));
+  *wi = MUL(ALL(2.0), MUL(zj, s));
+  *wj = MUL(ALL(2.0), MUL(zi, s));
+  *zij = MUL(*wi, zi);
+  *inv_zm = MUL(ALL(2.0), s);
+}
+
+/* riemann_pressure between two materials (phase_weights): the momentum's
+ * pair factor 2 p* / (rho_i rho_j) with p* = (wi p_i + wj p_j) / 2 +
+ * 1/2 beta z_ij dU. Symmetric in the pair, as riemann_pressure. */
+PT_ATTR T PT(riemann_pressure_phases)(T pi, T pj, T rhoi, T rhoj, T du, T wi, T wj, T zij, T kc) {
+  const T beta = MIN(MUL(kc, MAX(du, ALL(0.0))), ALL(1.0));
+  return DIV(ADD(ADD(MUL(wi, pi), MUL(wj, pj)), MUL(MUL(beta, zij), du)), MUL(rhoi, rhoj));
+}
+
+/* The continuity term's mass between two materials: RZH20's
+ * 2 rho_i V_j (v_i - v*) . grad_i W_ij = rho_i V_j wi v_ij . grad_i W_ij
+ * (V_j = m_j / rho_j, the volume form a density ratio of 1000 needs), as
+ * the m_j of continuity: rho_i (m_j / rho_j) wi. */
+PT_ATTR T PT(phase_continuity_mass)(T rhoi, T mj, T rhoj, T wi) {
+  return MUL(MUL(rhoi, DIV(mj, rhoj)), wi);
+}
+
 /* The pair's corrected kernel gradient, Bonet and Lok (1999) in their
  * symmetric form: L_ij grad_i W_ij with L_ij = (L_i + L_j) / 2, given each
  * particle's L = M^-1 (src/solver/forces.h). L_ij is the same for both

@@ -18,7 +18,8 @@ double sph_diag_front(const sph_particles *p, double floor_y, double band) {
   const long n = (long)p->n;
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : front)
   for (long i = 0; i < n; i++)
-    if (p->kind[i] == SPH_KIND_FLUID && up[i] < floor_y + band && p->x[i] > front) front = p->x[i];
+    if (sph_particles_liquid(p, (size_t)i) && up[i] < floor_y + band && p->x[i] > front)
+      front = p->x[i];
   return front;
 }
 
@@ -26,7 +27,7 @@ double sph_diag_surface_at(const sph_particles *p, double x, double half, double
   double top = -INFINITY;
   const double *up = p->pos[SPH_UP];
   for (size_t i = 0; i < p->n; i++)
-    if (p->kind[i] == SPH_KIND_FLUID && fabs(p->x[i] - x) < half && up[i] > top) top = up[i];
+    if (sph_particles_liquid(p, i) && fabs(p->x[i] - x) < half && up[i] > top) top = up[i];
   return top + 0.5 * dx;
 }
 
@@ -34,7 +35,7 @@ double sph_diag_surface_at(const sph_particles *p, double x, double half, double
 double sph_diag_surface_at_xy(const sph_particles *p, double x, double y, double half, double dx) {
   double top = -INFINITY;
   for (size_t i = 0; i < p->n; i++)
-    if (p->kind[i] == SPH_KIND_FLUID && fabs(p->x[i] - x) < half && fabs(p->y[i] - y) < half &&
+    if (sph_particles_liquid(p, i) && fabs(p->x[i] - x) < half && fabs(p->y[i] - y) < half &&
         p->z[i] > top)
       top = p->z[i];
   return top + 0.5 * dx;

@@ -120,9 +120,10 @@ int sph_force_work_reserve(sph_force_work *w, size_t n, sph_error *err) {
 
 void sph_forces_pressure(sph_particles *p, const sph_eos *eos) {
   const long n = (long)p->n;
+  const uint8_t *ph = sph_particles_phases(p);
 #pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN)
   for (long i = 0; i < n; i++)
-    p->p[i] = sph_eos_pressure(eos, p->rho[i]);
+    p->p[i] = sph_eos_pressure(sph_eos_of(eos, ph, (size_t)i), p->rho[i]);
 }
 
 /* The neighbour row of i in the list l: j = nb[0], ..., nb[cnt - 1]. */
@@ -427,7 +428,9 @@ static strain_fn strain_lanes(const sph_force_params *fp) {
 /* Particle i's packed state (w->hot). */
 static inline void pack_hot(const sph_particles *p, const sph_force_params *fp, sph_force_work *w,
                             size_t i) {
-  const double rho = p->rho[i], cs = sph_eos_sound_speed(&fp->eos, rho);
+  const uint8_t *ph = sph_particles_phases(p); /* (two phases: each particle's law) */
+  const double rho = p->rho[i],
+               cs = sph_eos_sound_speed(ph ? &fp->phase_eos[ph[i]] : &fp->eos, rho);
   w->hot[i] = (sph_force_hot){p->x[i],  p->y[i],
                               p->vx[i], p->vy[i],
                               rho,      p->p[i] / (rho * rho),

@@ -33,25 +33,27 @@ static inline __attribute__((always_inline)) void stage(sph_particles *p, double
   const long n = (long)p->n;
   const double hdt = 0.5 * dt;
   const int heat = (p->live & SPH_ARRAYS_HEAT) != 0; /* without the ledger u stays 0 */
+  const uint8_t *ph = sph_particles_phases(p);
 #pragma omp parallel if (n > SPH_OMP_MIN)
   {
     size_t lo, hi;
     sph_slice(cost, p->n, &lo, &hi);
     for (size_t i = lo; i < hi; i++) {
+      const sph_eos *e = sph_eos_of(eos, ph, i);
       if (save) {
         save_start(p, i);
         if (heat) p->u0[i] = p->u[i];
       }
       double rho = p->rho0[i] + hdt * p->drho[i];
       if (finish) rho = 2.0 * rho - p->rho0[i];
-      if (p->kind[i] == SPH_KIND_FLUID) rho = sph_eos_floor(eos, rho);
+      if (p->kind[i] == SPH_KIND_FLUID) rho = sph_eos_floor(e, rho);
       p->rho[i] = rho;
       if (heat) {
         double u = p->u0[i] + hdt * p->du[i];
         if (finish) u = 2.0 * u - p->u0[i];
         p->u[i] = u;
       }
-      p->p[i] = sph_eos_pressure(eos, rho);
+      p->p[i] = sph_eos_pressure(e, rho);
       if (p->kind[i] != SPH_KIND_FLUID) continue;
       double ux = p->vx[i], uy = p->vy[i]; /* dr/dt uses the velocity of the evaluated state */
       SPH_IF3(double uz = p->vz[i];)
@@ -97,6 +99,7 @@ void sph_leapfrog_step(sph_particles *p, double dt, double dt_prev, int first, i
   /* the saved state (the last good state after a blow-up), unless the
    * pass's packed copy holds it (solver/sim.c) */
   const int save = (p->live & SPH_ARRAYS_SAVED) != 0;
+  const uint8_t *ph = sph_particles_phases(p);
 #pragma omp parallel if (n > SPH_OMP_MIN)
   {
     size_t lo, hi;
@@ -113,10 +116,11 @@ void sph_leapfrog_step(sph_particles *p, double dt, double dt_prev, int first, i
         double rh = (first ? p->rho[i] : p->rhoh[i]) + kick * p->drho[i],
                rho = rh + hdt * p->drho[i];
         if (p->kind[i] == SPH_KIND_FLUID) /* the floor (eos.h), on both the state and its value */
-          rh = sph_eos_floor(eos, rh), rho = sph_eos_floor(eos, rho);
+          rh = sph_eos_floor(sph_eos_of(eos, ph, i), rh),
+          rho = sph_eos_floor(sph_eos_of(eos, ph, i), rho);
         p->rhoh[i] = rh;
         p->rho[i] = rho;
-        p->p[i] = sph_eos_pressure(eos, p->rho[i]);
+        p->p[i] = sph_eos_pressure(sph_eos_of(eos, ph, i), p->rho[i]);
       }
       if (heat) {
         p->u0[i] = p->u[i];

@@ -55,7 +55,7 @@ double sph_dt_cfl(const sph_particles *p, const sph_eos *eos, double h, double f
 /* c_a + |v_a| of particle i, what sph_dt_cfl takes the maximum of. */
 static inline double sph_cfl_speed(const sph_particles *p, const sph_eos *eos, size_t i) {
   const double w2 = SPH_NORM2(p->vx[i], p->vy[i], p->vz[i]);
-  return sph_eos_sound_speed(eos, p->rho[i]) + sqrt(w2);
+  return sph_eos_sound_speed(sph_eos_of(eos, sph_particles_phases(p), i), p->rho[i]) + sqrt(w2);
 }
 /* sph_dt_cfl from that maximum, vmax (a rank's pass finds it: solver/ranks.c). */
 static inline double sph_dt_cfl_of(double vmax, double h, double factor) {

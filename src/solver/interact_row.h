@@ -119,14 +119,18 @@ typedef struct LROW {
   const uint8_t *restrict flags;
   int fluid, wendland, passive, adami_v, slip, slip_i, rnorm, rnorm_i;
   int mdd_is_mx, diffuses, dd_uniform;
+  int phased;                    /* two phases (physics.air): pair_phases */
+  int air_row;                   /* with them, i of the air: its wall neighbours' p is pa */
+  const uint8_t *restrict phase; /* with them, each particle's */
+  double zi_s, r0i_s;            /* i's impedance rho0 c0 and reference density */
 #if LW == 1
   int mirror; /* mirror particles' no-slip velocity */
 #endif
   LT xi, yi, vxi, vyi, rhoi, pri, ci, hh, inv_h, one, zero, sigma, sigma_h;
   LT eta2, nalpha, beta, nu4, pi, rz0, rkc, rinv_z0, hgx, hgy, cxi, cyi, cxx, cyy;
-  LT per, hper, nper;
+  LT per, hper, nper, gx, gy;
 #if SPH_DIM == 3
-  LT zi, vzi, hgz, czi, czz, pery, hpery, npery, perz, hperz, nperz;
+  LT zi, vzi, hgz, gz, czi, czz, pery, hpery, npery, perz, hperz, nperz;
 #endif
 #if LW > 1
   LT lane, n;
@@ -144,6 +148,7 @@ typedef struct LSUMS {
 
 typedef struct LPAIR {
   LT dx, dy, r2, r, inv_r, inv_r2, hij, eta2_ij, wij, f, dvx, dvy, mj, vdotr;
+  LT wi, wj, zij, inv_zm, r0m; /* two phases: phase_weights, the mean rho0 (pair_phases) */
 #if SPH_DIM == 3
   LT dz, dvz;
 #endif
@@ -233,6 +238,14 @@ LOOP_ATTR void SPH_PT_XGLUE(row_begin, FL)(LROW *restrict o, sph_particles *rest
   o->hgx = LOP(all)(riem ? fp->eos.rho0 * fp->gx : 0.0);
   o->hgy = LOP(all)(riem ? fp->eos.rho0 * fp->gy : 0.0);
   SPH_IF3(o->hgz = LOP(all)(riem ? fp->eos.rho0 * fp->gz : 0.0);)
+  /* two phases: i's material (a wall particle's is phase 0's) */
+  o->phased = riem && fp->phases > 1;
+  o->phase = p->phase;
+  const sph_eos *ei = o->phased ? &fp->phase_eos[p->phase[i]] : &fp->eos;
+  o->zi_s = ei->rho0 * ei->c0, o->r0i_s = ei->rho0;
+  o->air_row = o->phased && kind[i] == SPH_KIND_FLUID && p->phase[i] != 0;
+  o->gx = LOP(all)(fp->gx), o->gy = LOP(all)(fp->gy);
+  SPH_IF3(o->gz = LOP(all)(fp->gz);)
 #if LW > 1
 #define E_LANE(q, a) ((double)(q))
   o->lane = LSET(E_LANE, 0), o->n = LOP(all)((double)cnt);
@@ -264,6 +277,27 @@ LOOP_ATTR void SPH_PT_XGLUE(row_begin, FL)(LROW *restrict o, sph_particles *rest
   SPH_IF3(o->czi = LOP(all)((F & F_DDIFF) ? (dd_uniform ? w->ddc0[2] : w->ddcz[i]) : 0.0);)
   o->cxx = LOP(add)(o->cxi, o->cxi), o->cyy = LOP(add)(o->cyi, o->cyi);
   SPH_IF3(o->czz = LOP(add)(o->czi, o->czi);)
+}
+
+/* Two phases (physics.air): the pair's weights between i's material and
+ * each neighbour's (phase_weights; a wall neighbour is of i's: it stands
+ * for the fluid beside it, walls/adami.h), and the mean of their
+ * reference densities (the Riemann continuity's hydrostatic jump). */
+LOOP_ATTR void SPH_PT_XGLUE(pair_phases, FL)(const LROW *restrict R, LPAIR *restrict G,
+                                             const uint32_t *restrict jk) {
+  const int32_t *restrict kind = R->kind;
+  const uint8_t *restrict ph = R->phase;
+  const sph_force_params *restrict fp = R->fp;
+#define E_PH(q, own) (kind[jk[q]] == SPH_KIND_FLUID ? E_PHV(ph[jk[q]]) : (own))
+#define E_PHV(k) fp->phase_z[k]
+  const LT zj = LSET(E_PH, R->zi_s);
+#undef E_PHV
+#define E_PHV(k) fp->phase_eos[k].rho0
+  const LT r0j = LSET(E_PH, R->r0i_s);
+#undef E_PHV
+#undef E_PH
+  LTERM(phase_weights)(LOP(all)(R->zi_s), zj, &G->wi, &G->wj, &G->zij, &G->inv_zm);
+  G->r0m = LOP(mul)(LOP(all)(0.5), LOP(add)(LOP(all)(R->r0i_s), r0j));
 }
 
 /* One iteration's pairs (i with the neighbours jk[0 .. LW-1], the k-th
@@ -349,13 +383,19 @@ LOOP_ATTR int SPH_PT_XGLUE(pair_density, FL)(const LROW *restrict R, LSUMS *rest
 #undef E_L
     cg = LTERM(corrected_gradient)(li, lj, gw);
   }
+  /* two phases: the volume form, weighted (pair_phases) */
+  if (R->phased)
+    SPH_PT_XGLUE(pair_phases, FL)(R, G, jk);
+  else /* (read only with two phases) */
+    G->wi = G->wj = G->zij = G->inv_zm = G->r0m = zero;
+  const LT mc = R->phased ? LTERM(phase_continuity_mass)(R->rhoi, mj, GATHER(rho), G->wi) : mj;
   if (fluid || !(R->fp->moving_walls || R->fp->mirror)) { /* walls at rest: their pairs add +-0 */
-    LACC(S->drho, LTERM(continuity)(mj, dv, cg));
+    LACC(S->drho, LTERM(continuity)(mc, dv, cg));
   } else { /* a wall particle's density follows its fluid neighbours only: the walls
             * next to it are the same body, or another wall moving past it (a flap
             * at its hinge compressed its own corner to 1.3 rho0) */
     const LMASK fj = LOP(lt)(zero, LSET(E_ARR, w->fm));
-    LACC(S->drho, LOP(and)(fj, LTERM(continuity)(mj, dv, cg)));
+    LACC(S->drho, LOP(and)(fj, LTERM(continuity)(mc, dv, cg)));
   }
 #if SPH_DIM == 2
   const LT vdotr = LOP(add)(LOP(mul)(dvx, dx), LOP(mul)(dvy, dy));
@@ -510,9 +550,20 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_momentum, FL)(const LROW *restrict R, const LPA
   if (F & F_RIEMANN) { /* the interface pressure; the closing speed from v_ij (a
                         * mirror's reflected velocity, a wall's normal part) */
     const LT rhoi = R->rhoi, pi = R->pi;
-    const LT rhoj = GATHER(rho), pj = LOP(mul)(LOP(mul)(GATHER(prho2), rhoj), rhoj);
+    const LT rhoj = GATHER(rho);
+    LT pj = LOP(mul)(LOP(mul)(GATHER(prho2), rhoj), rhoj);
+    if (R->air_row) { /* an adami wall's pressure as the air reads it (walls/adami.h) */
+      const sph_particles *restrict p = R->p;
+      const int32_t *restrict kind = R->kind;
+#define E_WALL(q, a) (kind[jk[q]] == SPH_KIND_WALL ? (a) : 0.0)
+      const LMASK wall = LOP(lt)(R->zero, LSET(E_WALL, 1.0));
+#undef E_WALL
+      pj = LOP(sel)(wall, LSET(E_ARR, p->pa), pj);
+    }
     const LT close = LOP(neg)(LOP(mul)(N->rvr, G->inv_r));
-    pij = LTERM(riemann_pressure)(pi, pj, rhoi, rhoj, close, R->rz0, R->rkc);
+    pij = R->phased ? LTERM(riemann_pressure_phases)(pi, pj, rhoi, rhoj, close, G->wi, G->wj,
+                                                     G->zij, R->rkc)
+                    : LTERM(riemann_pressure)(pi, pj, rhoi, rhoj, close, R->rz0, R->rkc);
   } else {
     pij = LOP(add)(R->pri, GATHER(prho2));
   }
@@ -571,13 +622,21 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_fluid_fluid, FL)(const LROW *restrict R, LSUMS 
     const LT rhoi = R->rhoi, pi = R->pi, hgx = R->hgx, hgy = R->hgy, dx = G->dx, dy = G->dy;
     const LT rhoj = GATHER(rho), pj = LOP(mul)(LOP(mul)(GATHER(prho2), rhoj), rhoj);
 #if SPH_DIM == 2
-    const LT jump = LOP(sub)(LOP(sub)(pi, pj), LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy)));
+    LT hg = LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy));
 #else
-    const LT hg = LOP(add)(LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy)), LOP(mul)(R->hgz, G->dz));
-    const LT jump = LOP(sub)(LOP(sub)(pi, pj), hg);
+    LT hg = LOP(add)(LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy)), LOP(mul)(R->hgz, G->dz));
 #endif
-    LACC(S->rd, LOP(and)(fluid_j,
-                         LTERM(riemann_density)(rhoi, G->mj, rhoj, jump, G->f, G->r, R->rinv_z0)));
+    LT inv_z = R->rinv_z0;
+    if (R->phased) { /* two phases: i's phase's rho0 g and impedance (the pairs of one phase) */
+      const LVEC gv = {{SPH_XYZ(R->gx, R->gy, R->gz)}};
+      hg = LOP(mul)(LOP(all)(R->r0i_s), LTERM(dot)(gv, G->rv));
+      inv_z = LOP(all)(1.0 / R->zi_s);
+    }
+    const LT jump = LOP(sub)(LOP(sub)(pi, pj), hg);
+    LT rd = LTERM(riemann_density)(rhoi, G->mj, rhoj, jump, G->f, G->r, inv_z);
+    if (R->phased) /* two phases: between particles of one phase alone (wi = 1) */
+      rd = LOP(and)(LOP(lt)(LOP(abs)(LOP(sub)(G->wi, R->one)), LOP(all)(0.5)), rd);
+    LACC(S->rd, LOP(and)(fluid_j, rd));
   }
   if (F & F_XSPH) {
     const LT inv_rb = LTERM(inv_rho_mean)(R->rhoi, GATHER(rho));

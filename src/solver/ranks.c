@@ -166,7 +166,7 @@ int sph_sim_ranks_agree_loop(sph_sim *s, int rc, sph_error *err) {
 static int staged(const sph_sim *s) {
   const sph_walls *w = &s->walls;
   return s->self >= 0 && w->adami && !w->dbc && !w->mdbc && !w->no_slip && !w->n_mirror &&
-         !w->moving && !s->detect && !fluid_rows_read(s);
+         !w->moving && !s->detect && !fluid_rows_read(s) && s->fp.phases < 2;
 }
 
 static int stage_walls(sph_sim *r, void *ctx, int rc, sph_error *err);
@@ -209,7 +209,9 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   for (size_t i = 0; i < s->p.n && !rated; i++)
     rated =
         s->p.kind[i] == SPH_KIND_WALL && !(s->p.flags[i] & (SPH_FLAG_ADAMI | SPH_FLAG_REPULSIVE));
-  s->pass_out[1] = (rated ? rates : 0) | (sph_particles_array_bits("rho p rhoh") & ~half) | flagged;
+  s->pass_out[1] = (rated ? rates : 0) | (sph_particles_array_bits("rho p rhoh") & ~half) |
+                   flagged |
+                   (s->fp.phases > 1 ? sph_particles_array_bits("pa") : 0); /* (adami.h) */
   /* what a kept store does not take again of a wall: its position and velocity where no wall
    * moves (walls.h: the fluid alone is kept off walls, shifted and integrated), and with the
    * walls in stages and a constant h its density and pressure (the pass makes its own walls'
@@ -220,7 +222,7 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
                       (s->staged && h_static ? sph_particles_array_bits("rho p") : 0);
   /* what no step changes: a store kept from the last pass keeps them (the smoothing lengths
    * without paper B's variable h or a free surface's h*) */
-  s->pass_static = sph_particles_array_bits("mass mx my mz xr yr zr kind body id") |
+  s->pass_static = sph_particles_array_bits("mass mx my mz xr yr zr kind body id phase") |
                    (c->variable_h || s->fp.var_h ? 0 : sph_particles_array_bits("h"));
   /* SPH_TEST_RANK_ORDER_SUMS=1 (doc/testing.md): the ledger's sums made the
    * way that depends on the rank count, for the test that must see it */

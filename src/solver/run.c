@@ -270,7 +270,9 @@ static int write_output(sph_sim *s, outputs *o, sph_run_result *r, sph_error *er
   snprintf(r->last_snapshot, sizeof r->last_snapshot, "%s", path);
   snprintf(path, sizeof path, "%s/snapshots.xmf", o->dir);
   return sph_xdmf_write(path, o->n, (const char *const *)o->names, o->times, o->counts,
-                        sph_case_needs_free_surface(sph_sim_case(s)), err);
+                        (sph_case_needs_free_surface(sph_sim_case(s)) ? SPH_XDMF_FREE_SURFACE : 0) |
+                            (sph_sim_case(s)->air ? SPH_XDMF_PHASE : 0),
+                        err);
 }
 
 int sph_run_stop_measure(const sph_sim *s, double *now, double *stop) {

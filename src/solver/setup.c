@@ -156,6 +156,12 @@ static int shaped_overlap(const sph_case *c, size_t b, const double x[SPH_DIM], 
   return 0;
 }
 
+/* The weight of the air over a block's surface (two phases, physics.air):
+ * the air filling the tank up to its top, at rest; 0 without air. */
+static double air_head(const sph_case *c, double surface) {
+  return c->air ? c->air_rho0 * gravity_down(c) * (c->tank.hi[SPH_UP] - surface) : 0.0;
+}
+
 static int add_fluid(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   const double dx = c->dx, mass = sph_lattice_mass(c->rho0, dx);
@@ -186,12 +192,49 @@ static int add_fluid(sph_sim *s, sph_error *err) {
           }
           fluid_jitter(fb, b, i, j, k, dx, x); /* perturbed start, if asked for */
           double rho = c->rho0;
-          if (fb->hydrostatic)
-            rho = sph_eos_density(&s->fp.eos, c->rho0 * gmag * (fb->surface - x[SPH_UP]));
+          if (fb->hydrostatic) {
+            double pw = c->rho0 * gmag * (fb->surface - x[SPH_UP]);
+            if (c->air) pw += air_head(c, fb->surface);
+            rho = sph_eos_density(&s->fp.eos, pw);
+          }
           if (sph_particles_add_at(&s->p, x, fb->v, rho, mass, c->h, SPH_KIND_FLUID, err) < 0)
             return -1;
         }
   }
+  return 0;
+}
+
+/* The air (two phases, physics.air; doc/case-files.md): a particle of
+ * phase 1 at every point of the tank's lattice (lo + (i + 1/2) dx inside
+ * the tank's inner box) that no fluid block holds (its box, or its shape),
+ * at rest and hydrostatic under the air above it up to the tank's top;
+ * the walls then clear it as they clear the liquid. */
+static int add_air(sph_sim *s, sph_error *err) {
+  const sph_case *c = s->c;
+  if (!c->air) return 0;
+  const sph_tank *t = &c->tank;
+  const double dx = c->dx, mass = sph_lattice_mass(c->air_rho0, dx), gmag = gravity_down(c);
+  const sph_eos *air = &s->fp.phase_eos[1];
+  const double v[SPH_DIM] = {0.0};
+  long n[3] = {1, 1, 1};
+  for (int a = 0; a < SPH_DIM; a++)
+    n[a] = sph_case_lattice_points(t->lo[a], t->hi[a], dx);
+  for (long k = 0; k < n[2]; k++)
+    for (long j = 0; j < n[1]; j++)
+      for (long i = 0; i < n[0]; i++) {
+        const long idx[3] = {i, j, k};
+        double x[SPH_DIM];
+        for (int a = 0; a < SPH_DIM; a++)
+          x[a] = t->lo[a] + ((double)idx[a] + 0.5) * dx;
+        int liquid = 0;
+        for (size_t b = 0; b < c->n_fluid && !liquid; b++)
+          liquid = sph_shape_inside(&c->fluid[b], x);
+        if (liquid) continue;
+        const double rho = sph_eos_density(air, c->air_rho0 * gmag * (t->hi[SPH_UP] - x[SPH_UP]));
+        const long at = sph_particles_add_at(&s->p, x, v, rho, mass, c->h, SPH_KIND_FLUID, err);
+        if (at < 0) return -1;
+        s->p.phase[at] = 1;
+      }
   return 0;
 }
 
@@ -463,6 +506,21 @@ int sph_sim_create_rank_store(const sph_case *c, sph_sim **out, sph_error *err) 
 /* A sim of the case on `ranks` ranks, this process's `self` (-1: all of
  * them); a rank store (rank_store) makes no pass of its own: its owner's
  * passes fill it (ranks.c). */
+/* The phases' laws and impedances (doc/method.md, Two phases): the liquid's (fp.eos), and with
+ * physics.air the air's, which has the liquid's sound speed and no floor: its gauge pressure may
+ * fall below 0, about its ambient one, so that it fills the room a moving liquid leaves, as a
+ * gas does. */
+static void set_phases(sph_sim *s) {
+  const sph_case *c = s->c;
+  s->fp.phases = c->air ? 2 : 1;
+  s->fp.phase_eos[0] = s->fp.eos;
+  if (c->air)
+    s->fp.phase_eos[1] = c->air_exponent == 1 ? sph_eos_linear(c->air_rho0, c->sound_speed)
+                                              : sph_eos_tait(c->air_rho0, c->sound_speed);
+  for (int k = 0; k < s->fp.phases; k++)
+    s->fp.phase_z[k] = s->fp.phase_eos[k].rho0 * s->fp.phase_eos[k].c0;
+}
+
 static int create(const sph_case *c, sph_sim **out, int ranks, int self, int rank_store,
                   sph_error *err) {
   *out = NULL;
@@ -479,6 +537,7 @@ static int create(const sph_case *c, sph_sim **out, int ranks, int self, int ran
   sph_nlist_init(&s->nl);
   s->fp.eos = sph_eos_tait(c->rho0, c->sound_speed);
   if (!c->negative_pressure) s->fp.eos.rho_min = c->rho0; /* a fluid without tension */
+  set_phases(s);
   s->fp.h = c->h;
   s->fp.alpha = c->alpha;
   s->fp.beta = c->beta;
@@ -523,8 +582,8 @@ static int create(const sph_case *c, sph_sim **out, int ranks, int self, int ran
    * density filter's grid; mirror particles, below) */
   const unsigned saved =
       !half || c->density_filter != SPH_FILTER_NONE ? (unsigned)SPH_ARRAYS_SAVED : 0u;
-  sph_particles_limit(&s->p, heat | half | saved);
-  if (add_fluid(s, err)) goto fail;
+  sph_particles_limit(&s->p, heat | half | saved | (c->air ? (unsigned)SPH_ARRAYS_PHASE : 0u));
+  if (add_fluid(s, err) || add_air(s, err)) goto fail;
   if (sph_walls_create(&s->walls, &s->p, &c->tank, c->walls, c->n_walls, c->obstacles,
                        c->n_obstacles, c->dx, c->rho0, c->h,
                        SPH_CUBIC_SUPPORT * c->h * (c->fs_h_factor > 1.0 ? c->fs_h_factor : 1.0),
@@ -574,7 +633,7 @@ static int create(const sph_case *c, sph_sim **out, int ranks, int self, int ran
     }
   }
   init_wall_density(s);
-  sph_forces_pressure(&s->p, &s->fp.eos);
+  sph_forces_pressure(&s->p, s->fp.phase_eos);
   set_boxes(s);
   s->parameters = sph_case_describe(c);
   if (!s->parameters) {

@@ -228,7 +228,7 @@ static void rank_reductions(sph_sim *s, int diffusion) {
   if (s->c->dt_rule == SPH_DT_CFL)
     for (size_t i = 0; i < p->n; i++) {
       if ((p->flags[i] & SPH_FLAG_GHOST) || p->kind[i] == SPH_KIND_MIRROR) continue;
-      const double v = sph_cfl_speed(p, &s->fp.eos, i);
+      const double v = sph_cfl_speed(p, s->fp.phase_eos, i);
       if (v > vmax) vmax = v;
     }
   s->own_cs_max = s->work.cs_sigma_max;
@@ -297,10 +297,11 @@ static int apply_filter(sph_sim *s, sph_error *err) {
     for (size_t i = 0; i < s->p.n; i++) {
       /* the floor (eos.h) holds for the filtered density too */
       if (floored && s->p.kind[i] == SPH_KIND_FLUID)
-        s->p.rho[i] = sph_eos_floor(&s->fp.eos, s->p.rho[i]);
+        s->p.rho[i] =
+            sph_eos_floor(sph_eos_of(s->fp.phase_eos, sph_particles_phases(&s->p), i), s->p.rho[i]);
       if (leapfrog) s->p.rhoh[i] = s->p.rho[i];
     }
-  sph_forces_pressure(&s->p, &s->fp.eos);
+  sph_forces_pressure(&s->p, s->fp.phase_eos);
   return 0;
 }
 
@@ -367,8 +368,14 @@ static inline int surely_good(const sph_particles *p, size_t i, double rlo, doub
  * and the processes take the least id in one collective step. */
 static int check_state(sph_sim *s, int shared, sph_error *err) {
   const sph_particles *p = &s->p;
-  const double lim = s->c->density_limit, rho0 = s->c->rho0;
-  const double rlo = rho0 * (1.0 - lim) * (1.0 + 1e-9), rhi = rho0 * (1.0 + lim) * (1.0 - 1e-9);
+  /* each phase's band about its own rho0 (two phases: physics.air) */
+  const double lim = s->c->density_limit;
+  const uint8_t *ph = sph_particles_phases(p);
+  double r0[SPH_PHASES_MAX], rlo[SPH_PHASES_MAX], rhi[SPH_PHASES_MAX];
+  for (int k = 0; k < s->fp.phases || k == 0; k++) {
+    r0[k] = k ? s->fp.phase_eos[k].rho0 : s->c->rho0;
+    rlo[k] = r0[k] * (1.0 - lim) * (1.0 + 1e-9), rhi[k] = r0[k] * (1.0 + lim) * (1.0 - 1e-9);
+  }
   /* with geometry.leaving: remove, a particle outside is taken out after the check */
   static const double everywhere[2 * SPH_DIM] = {-INFINITY, INFINITY, -INFINITY,
                                                  INFINITY SPH_IF3(, -INFINITY, INFINITY)};
@@ -383,7 +390,8 @@ static int check_state(sph_sim *s, int shared, sph_error *err) {
     size_t lo, hi;
     sph_slice(shared ? NULL : slices(s), to - from, &lo, &hi);
     for (size_t i = from + lo; i < from + hi; i++)
-      if (!surely_good(p, i, rlo, rhi, d) && p->id[i] < first && bad_particle(p, i, lim, rho0, d))
+      if (!surely_good(p, i, rlo[ph ? ph[i] : 0], rhi[ph ? ph[i] : 0], d) && p->id[i] < first &&
+          bad_particle(p, i, lim, r0[ph ? ph[i] : 0], d))
         first = p->id[i];
   }
   if (shared) {
@@ -398,6 +406,7 @@ static int check_state(sph_sim *s, int shared, sph_error *err) {
     if (p->id[i] == first) worst = i;
   if (worst < 0) return 0;
   const size_t i = (size_t)worst;
+  const double rho0 = r0[ph ? ph[i] : 0];
   const char *why = bad_particle(p, i, lim, rho0, d);
   /* with a fixed step, what the step rule would have allowed (the last
    * pass's state: the one the failed step started from) */
@@ -533,7 +542,7 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   case SPH_DT_FIXED: dt = c->dt_fixed; break;
   case SPH_DT_CFL: /* the ranks' last pass found the max (ranks.c) */
     dt = s->cfl_max > 0.0 ? sph_dt_cfl_of(s->cfl_max, c->h, c->dt_factor)
-                          : sph_dt_cfl(&s->p, &s->fp.eos, c->h, c->dt_factor);
+                          : sph_dt_cfl(&s->p, s->fp.phase_eos, c->h, c->dt_factor);
     break;
   case SPH_DT_PAPER_B:
   default: dt = s->dt_paper_b; break;
@@ -565,18 +574,18 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
                     s->t);
     /* the rates of t^n drive the whole step: so do the ledger's powers */
     sph_ledger_advance(&s->ledger, dt);
-    sph_leapfrog_step(&s->p, dt, s->last_dt, s->first_step, xsph, &s->fp.eos, slices(s));
+    sph_leapfrog_step(&s->p, dt, s->last_dt, s->first_step, xsph, s->fp.phase_eos, slices(s));
     s->first_step = 0;
     sph_sim_move_walls(s, t_new);
     keep_off_mirrors(s, 1);
   } else {
-    sph_pc_half(&s->p, dt, xsph, &s->fp.eos, slices(s));
+    sph_pc_half(&s->p, dt, xsph, s->fp.phase_eos, slices(s));
     sph_sim_move_walls(s, s->t + 0.5 * dt);
 
     if (sph_sim_pass(s, err)) return -1;
     /* X^{n+1} = X^n + dt F(X^{n+1/2}): the mid-step powers drive the step */
     sph_ledger_advance(&s->ledger, dt);
-    sph_pc_finish(&s->p, dt, xsph, &s->fp.eos, slices(s));
+    sph_pc_finish(&s->p, dt, xsph, s->fp.phase_eos, slices(s));
     sph_sim_move_walls(s, t_new);
     keep_off_mirrors(s, 0);
   }

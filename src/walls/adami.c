@@ -55,8 +55,9 @@ static int adami_one(sph_particles *p, const sph_nlist *l, const sph_adami_param
   double ga[SPH_DIM];
   resulting_acceleration(p, ap, i, ga);
   /* AHA12 eq. (27): sum_f (p_f + rho_f (g - a_w) . r_wf) W_wf and sum_f W_wf; eq. (24): sum_f
-   * v_f W_wf */
-  double sw = 0.0, sp = 0.0, sv[SPH_DIM] = {0.0};
+   * v_f W_wf; with two phases the air's sums apart (swa, spa) */
+  const uint8_t *ph = sph_particles_phases(p);
+  double sw = 0.0, sp = 0.0, sv[SPH_DIM] = {0.0}, swa = 0.0, spa = 0.0;
   for (size_t k = 0; k < cnt; k++) {
     const size_t j = row[k];
     if (p->kind[j] != SPH_KIND_FLUID) continue;
@@ -73,8 +74,10 @@ static int adami_one(sph_particles *p, const sph_nlist *l, const sph_adami_param
 #else
     const double gr = ga[0] * dx + ga[1] * dy + ga[2] * dz;
 #endif
-    sw += wij;
-    sp += (p->p[j] + p->rho[j] * gr) * wij;
+    if (ph && ph[j])
+      swa += wij, spa += (p->p[j] + p->rho[j] * gr) * wij;
+    else
+      sw += wij, sp += (p->p[j] + p->rho[j] * gr) * wij;
     for (int d = 0; d < SPH_DIM; d++)
       sv[d] += p->vel[d][j] * wij;
   }
@@ -82,6 +85,13 @@ static int adami_one(sph_particles *p, const sph_nlist *l, const sph_adami_param
   if (sw > 0.0) {
     pw = sp / sw;
     if (!(pw > 0.0)) pw = 0.0; /* a wall pushes, never pulls (adami.h) */
+  }
+  if (ph) { /* two phases: each phase's own extrapolation, the other's where it has none */
+    double pa = swa > 0.0 ? spa / swa : pw;
+    if (!(pa > 0.0)) pa = 0.0;
+    if (!(sw > 0.0)) pw = pa;
+    p->pa[i] = pa;
+    sw += swa;
   }
   p->p[i] = pw;
   p->rho[i] = pw > 0.0 ? sph_eos_density(&ap->eos, pw) : ap->eos.rho0; /* AHA12 eq. (28) */

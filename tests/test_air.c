@@ -1,0 +1,284 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * test_air.c - two phases: the air over the water (physics.air; doc/method.md, Two phases).
+ *
+ * 1. The key: true, a mapping {rho0, exponent} and false read; the listing names it; a value
+ *    that is neither, an exponent other than 1 or 7, and what the two-phase terms do not cover
+ *    (the papers' plain pressure, walls other than adami) refused, naming physics.air.
+ * 2. The fill: cases/still_water_air.yaml at H/20 makes an air particle of phase 1 at every
+ *    lattice point of the tank above the water (the walls' clearance aside), of mass
+ *    rho_air dx^2 and density hydrostatic under the air above it; the water keeps phase 0 and
+ *    carries the air's weight.
+ * 3. Still water under air, H/20 for 1 s: the interface (the level where the liquid's volume
+ *    fraction sum_liquid V W / sum_fluid V W is 1/2, on nine vertical lines) within dx/4 of
+ *    where it started at every output, and the largest speed of either phase below
+ *    1e-2 (gH)^1/2 (measured at the end: see the printout); the water's largest speed at most
+ *    twice that of the same tank without air (the air adds no current of its own).
+ * 4. Water thrown under air (tests/data/restart_air.yaml, 0.15 s): the ledger closes (energy
+ *    deviation below 5e-4 of E0, as the one-phase fixture's), the level gauge reads the water
+ *    alone (below the block's height, where the air would read the tank's), the snapshot holds
+ *    the phase field with the air's count, and sph-render draws it without the air by default
+ *    and with it under --air. Threads and restart: test_determinism and test_restart run the
+ *    same fixture.
+ */
+#include "config.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/snapshot.h"
+#include "physics/kernel.h"
+#include "testsim.h"
+#include "testutil.h"
+
+#define STILL "cases/still_water_air.yaml"
+
+/* Opens the still tank at H/20 with the overrides; 0 on success. */
+static int open_still(const char *const *set, size_t n, sph_case *c, sph_sim **s) {
+  const char *base[8] = {"numerics.dx=0.005"};
+  for (size_t k = 0; k < n && k < 7; k++)
+    base[1 + k] = set[k];
+  return sph_test_open_sim(STILL, base, 1 + n, c, s);
+}
+
+/* Whether `sph run` refuses the still case with the override, naming physics.air. */
+static int refused(const char *set) {
+  char *dir = sph_test_tmpdir(), args[8192], out[8192];
+  snprintf(args, sizeof args, "run -q '%s' -o '%s/run' --set '%s'", sph_test_src(STILL), dir, set);
+  const int rc = sph_test_sph(args, dir, out, sizeof out);
+  printf("\n  %s: %s", set, out);
+  sph_test_rmtree(dir);
+  free(dir);
+  return rc != 0 && strstr(out, "physics.air") != NULL;
+}
+
+static void test_key(void) {
+  sph_case c;
+  sph_sim *s;
+  CU_ASSERT_FATAL(open_still(NULL, 0, &c, &s) == 0);
+  CU_ASSERT_EQUAL(c.air, 1);
+  CU_ASSERT_EQUAL(c.air_rho0, 1.2);
+  CU_ASSERT_EQUAL(c.air_exponent, 1);
+  char *d = sph_case_describe(&c);
+  CU_ASSERT_FATAL(d != NULL);
+  CU_ASSERT(strstr(d, "physics.air: {rho0: 1.2, exponent: 1}\n") != NULL);
+  free(d);
+  sph_sim_free(s);
+  sph_case_free(&c);
+  const char *map[] = {"physics.air={rho0: 1.0, exponent: 7}"};
+  CU_ASSERT_FATAL(open_still(map, 1, &c, &s) == 0);
+  CU_ASSERT(c.air == 1 && c.air_rho0 == 1.0 && c.air_exponent == 7);
+  sph_sim_free(s);
+  sph_case_free(&c);
+  const char *off[] = {"physics.air=false"};
+  CU_ASSERT_FATAL(open_still(off, 1, &c, &s) == 0);
+  CU_ASSERT_EQUAL(c.air, 0);
+  CU_ASSERT(sph_particles_phases(sph_sim_particles(s)) == NULL); /* one phase: no array */
+  sph_sim_free(s);
+  sph_case_free(&c);
+  CU_ASSERT(refused("physics.air=maybe"));
+  CU_ASSERT(refused("physics.air={exponent: 3}"));
+  CU_ASSERT(refused("physics.air={density: 1}"));
+  CU_ASSERT(refused("numerics.scheme=paper_a"));
+  CU_ASSERT(refused("geometry.tank.boundary=mdbc"));
+}
+
+static void test_fill(void) {
+  sph_case c;
+  sph_sim *s;
+  CU_ASSERT_FATAL(open_still(NULL, 0, &c, &s) == 0);
+  const sph_particles *p = sph_sim_particles(s);
+  const uint8_t *ph = sph_particles_phases(p);
+  CU_ASSERT_FATAL(ph != NULL);
+  const double dx = c.dx, g = 9.81, top = c.tank.y1, c0 = c.sound_speed;
+  size_t water = 0, air = 0, bad = 0;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->kind[i] != SPH_KIND_FLUID) {
+      bad += ph[i] != 0;
+      continue;
+    }
+    if (ph[i] == 0) {
+      water++;
+      bad += p->y[i] > 0.1 || p->mass[i] != 1000.0 * dx * dx;
+    } else {
+      air++;
+      /* the linear law's hydrostatic density: rho_a (1 + rho_a g (top - y) / (rho_a c0^2)) */
+      const double rho = 1.2 * (1.0 + g * (top - p->y[i]) / (c0 * c0));
+      bad += ph[i] != 1 || p->y[i] < 0.1 || p->mass[i] != 1.2 * dx * dx ||
+             fabs(p->rho[i] - rho) > 1e-12 * rho;
+    }
+  }
+  /* 40 x 20 lattice points of water, 40 x 10 of air (the walls' clearance keeps them all) */
+  printf("\n  %zu water, %zu air particles, %zu out of place", water, air, bad);
+  CU_ASSERT_EQUAL(water, 800);
+  CU_ASSERT_EQUAL(air, 400);
+  CU_ASSERT_EQUAL(bad, 0);
+  sph_sim_free(s);
+  sph_case_free(&c);
+}
+
+/* The interface's height on the vertical line at x: where the liquid's volume fraction falls
+ * through 1/2, searched from y0 - 4 dx up in steps of dx/50 (NaN if it does not). */
+static double interface_at(const sph_particles *p, const sph_case *c, double x, double y0) {
+  const double dx = c->dx, reach = SPH_CUBIC_SUPPORT * c->h;
+  const uint8_t *ph = sph_particles_phases(p);
+  double last = 1.0;
+  for (double y = y0 - 4.0 * dx; y < y0 + 4.0 * dx; y += dx / 50.0) {
+    double all = 0.0, liquid = 0.0;
+    for (size_t j = 0; j < p->n; j++) {
+      if (p->kind[j] != SPH_KIND_FLUID) continue;
+      const double r = hypot(p->x[j] - x, p->y[j] - y);
+      if (r >= reach) continue;
+      const double w = sph_kernel_w(c->kernel, r, c->h) * p->mass[j] / p->rho[j];
+      all += w;
+      liquid += ph[j] == 0 ? w : 0.0;
+    }
+    const double frac = all > 0.0 ? liquid / all : 0.0;
+    if (last >= 0.5 && frac < 0.5) return y;
+    last = frac;
+  }
+  return NAN;
+}
+
+/* The largest speed of the fluid particles of phase `phase` (any with -1). */
+static double vmax_of(const sph_particles *p, int phase) {
+  const uint8_t *ph = sph_particles_phases(p);
+  double v = 0.0;
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_FLUID && (phase < 0 || (ph ? ph[i] : 0) == phase))
+      v = fmax(v, hypot(p->vx[i], p->vy[i]));
+  return v;
+}
+
+/* Runs the still tank at H/20 to t = 1 s (with or without air), checking the interface at
+ * every 0.1 s with air; returns the water's largest speed at the end, the air's in *vair. */
+static double run_still(int with_air, double *vair) {
+  const char *set[] = {"time.end=1", with_air ? "physics.air=true" : "physics.air=false"};
+  sph_case c;
+  sph_sim *s;
+  sph_error err;
+  CU_ASSERT_FATAL(open_still(set, 2, &c, &s) == 0);
+  const double dx = c.dx, y0 = 0.1;
+  double worst = 0.0;
+  for (int k = 1; k <= 10; k++) {
+    while (sph_sim_time(s) < 0.1 * k) {
+      const int rc = sph_sim_step(s, 0.1 * k, &err);
+      if (rc) printf("\n%s\n", err.msg);
+      CU_ASSERT_FATAL(rc == 0);
+    }
+    if (!with_air) continue;
+    for (int l = 1; l <= 9; l++) {
+      const double at = interface_at(sph_sim_particles(s), &c, 0.02 * l, y0);
+      worst = isnan(at) ? INFINITY : fmax(worst, fabs(at - y0));
+    }
+  }
+  const sph_particles *p = sph_sim_particles(s);
+  const double vw = vmax_of(p, 0);
+  *vair = with_air ? vmax_of(p, 1) : 0.0;
+  if (with_air) {
+    printf(
+        "\n  with air: interface at most %.3f dx from its start; largest speed %.2e m/s (water), "
+        "%.2e m/s (air)",
+        worst / dx, vw, *vair);
+    CU_ASSERT(worst <= 0.25 * dx);
+  } else {
+    printf("\n  without air: largest speed %.2e m/s", vw);
+  }
+  sph_sim_free(s);
+  sph_case_free(&c);
+  return vw;
+}
+
+static void test_still(void) {
+  const double scale = sqrt(9.81 * 0.1); /* (g H)^1/2 */
+  double vair, none;
+  const double vw = run_still(1, &vair), alone = run_still(0, &none);
+  CU_ASSERT(vw < 1e-2 * scale);
+  CU_ASSERT(vair < 1e-2 * scale);
+  CU_ASSERT(vw <= 2.0 * alone);
+}
+
+/* The rows' largest value of a column of a run's CSV file. */
+static double csv_max(const char *path, const char *name, long *rows) {
+  double *col[1] = {NULL};
+  *rows = sph_test_csv(path, name, col);
+  double m = -INFINITY;
+  for (long r = 0; r < *rows; r++)
+    m = fmax(m, col[0][r]);
+  free(col[0]);
+  return m;
+}
+
+static void test_thrown(void) {
+  char *dir = sph_test_tmpdir(), args[8192], out[8192], path[4400];
+  snprintf(args, sizeof args, "run -q '%s' -o '%s/run'",
+           sph_test_src("tests/data/restart_air.yaml"), dir);
+  CU_ASSERT_FATAL(sph_test_sph_ok(args, dir, out, sizeof out) == 0);
+  /* the balance */
+  snprintf(path, sizeof path, "%s/run/diagnostics.csv", dir);
+  double *col[1] = {NULL};
+  const long n = sph_test_csv(path, "energy_deviation", col);
+  CU_ASSERT_FATAL(n >= 7);
+  double worst = 0.0;
+  for (long r = 0; r < n; r++)
+    worst = fmax(worst, fabs(col[0][r]));
+  free(col[0]);
+  printf("\n  energy balance: largest deviation %.2e of E0 over %ld rows", worst, n);
+  CU_ASSERT(worst < 5e-4);
+  /* the gauge reads the water: at most the block's 0.08 m and its wave, never the tank's air */
+  snprintf(path, sizeof path, "%s/run/probes.csv", dir);
+  long rows;
+  const double h1 = csv_max(path, "H1", &rows);
+  printf("\n  level gauge: at most %.4f m over %ld rows", h1, rows);
+  CU_ASSERT(rows > 50);
+  CU_ASSERT(h1 > 0.05 && h1 < 0.11);
+  /* the snapshot's phase field */
+  snprintf(path, sizeof path, "%s/run/snap_0006.h5", dir);
+  sph_snapshot *snap;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_snapshot_open(path, &snap, &err) == 0);
+  CU_ASSERT_FATAL(sph_snapshot_has_field(snap, "phase"));
+  const size_t count = sph_snapshot_count(snap);
+  double *ph = malloc(count * sizeof *ph), *kind = malloc(count * sizeof *kind);
+  CU_ASSERT_FATAL(ph && kind);
+  CU_ASSERT_FATAL(sph_snapshot_read_field(snap, "phase", ph, &err) == 0);
+  CU_ASSERT_FATAL(sph_snapshot_read_field(snap, "kind", kind, &err) == 0);
+  size_t air = 0, water = 0;
+  for (size_t i = 0; i < count; i++)
+    air += ph[i] == 1.0, water += ph[i] == 0.0 && kind[i] == 0.0;
+  printf("\n  snapshot: %zu water, %zu air particles", water, air);
+  CU_ASSERT_EQUAL(water, 6 * 8);
+  CU_ASSERT(air > 200);
+  free(ph);
+  free(kind);
+  sph_snapshot_close(snap);
+  /* the renderer: without the air by default, with it under --air */
+  for (int with = 0; with < 2; with++) {
+    char cmd[9000];
+    snprintf(cmd, sizeof cmd,
+             "'%s' '%s' --field speed --discs %s -o '%s/frame%d.png' > '%s/r.log' 2>&1",
+             sph_test_build("render/sph-render"), path, with ? "--air" : "", dir, with, dir);
+    CU_ASSERT(sph_test_system(cmd) == 0);
+  }
+  size_t l0 = 0, l1 = 0;
+  char f0[4400], f1[4400];
+  snprintf(f0, sizeof f0, "%s/frame0.png", dir);
+  snprintf(f1, sizeof f1, "%s/frame1.png", dir);
+  char *b0 = sph_test_read_file(f0, &l0), *b1 = sph_test_read_file(f1, &l1);
+  CU_ASSERT(b0 && b1 && l0 > 1000 && l1 > 1000 && (l0 != l1 || memcmp(b0, b1, l0) != 0));
+  free(b0);
+  free(b1);
+  sph_test_rmtree(dir);
+  free(dir);
+}
+
+int main(void) {
+  CU_TestInfo tests[] = {{"physics.air: read, listed, refused", test_key},
+                         {"the tank's free volume filled with air", test_fill},
+                         {"still water under air: at rest, the interface in place", test_still},
+                         {"water thrown under air: balance, gauge, snapshot, frames", test_thrown},
+                         CU_TEST_INFO_NULL};
+  return sph_test_main("air", tests);
+}
