@@ -156,6 +156,18 @@ static int shaped_overlap(const sph_case *c, size_t b, const double x[SPH_DIM], 
   return 0;
 }
 
+/* The lattice points lo + (i + 1/2) dx of the box lo..hi along each axis (1 along an axis the
+ * dimension lacks), and the point of indices idx. */
+static void lattice_size(const double *lo, const double *hi, double dx, long n[3]) {
+  n[0] = n[1] = n[2] = 1;
+  for (int a = 0; a < SPH_DIM; a++)
+    n[a] = sph_case_lattice_points(lo[a], hi[a], dx);
+}
+static void lattice_at(const double *lo, const long idx[3], double dx, double x[SPH_DIM]) {
+  for (int a = 0; a < SPH_DIM; a++)
+    x[a] = lo[a] + ((double)idx[a] + 0.5) * dx;
+}
+
 /* The weight of the air over a block's surface (two phases, physics.air):
  * the air filling the tank up to its top, at rest; 0 without air. */
 static double air_head(const sph_case *c, double surface) {
@@ -168,16 +180,13 @@ static int add_fluid(sph_sim *s, sph_error *err) {
   const double gmag = gravity_down(c);
   for (size_t b = 0; b < c->n_fluid; b++) {
     const sph_fluid_block *fb = &c->fluid[b];
-    long n[3] = {1, 1, 1}; /* lattice points along each axis */
-    for (int a = 0; a < SPH_DIM; a++)
-      n[a] = sph_case_lattice_points(fb->lo[a], fb->hi[a], dx);
+    long n[3];
+    lattice_size(fb->lo, fb->hi, dx, n);
     for (long k = 0; k < n[2]; k++)
       for (long j = 0; j < n[1]; j++)
         for (long i = 0; i < n[0]; i++) {
-          const long idx[3] = {i, j, k};
           double x[SPH_DIM];
-          for (int a = 0; a < SPH_DIM; a++)
-            x[a] = fb->lo[a] + ((double)idx[a] + 0.5) * dx;
+          lattice_at(fb->lo, (const long[3]){i, j, k}, dx, x);
           if (fb->shape.kind != SPH_SHAPE_BOX) {
             const int wn = sph_shape_winding_of(&fb->shape, x);
             if (wn == 0) continue;
@@ -216,16 +225,13 @@ static int add_air(sph_sim *s, sph_error *err) {
   const double dx = c->dx, mass = sph_lattice_mass(c->air_rho0, dx), gmag = gravity_down(c);
   const sph_eos *air = &s->fp.phase_eos[1];
   const double v[SPH_DIM] = {0.0};
-  long n[3] = {1, 1, 1};
-  for (int a = 0; a < SPH_DIM; a++)
-    n[a] = sph_case_lattice_points(t->lo[a], t->hi[a], dx);
+  long n[3];
+  lattice_size(t->lo, t->hi, dx, n);
   for (long k = 0; k < n[2]; k++)
     for (long j = 0; j < n[1]; j++)
       for (long i = 0; i < n[0]; i++) {
-        const long idx[3] = {i, j, k};
         double x[SPH_DIM];
-        for (int a = 0; a < SPH_DIM; a++)
-          x[a] = t->lo[a] + ((double)idx[a] + 0.5) * dx;
+        lattice_at(t->lo, (const long[3]){i, j, k}, dx, x);
         int liquid = 0;
         for (size_t b = 0; b < c->n_fluid && !liquid; b++)
           liquid = sph_shape_inside(&c->fluid[b], x);
