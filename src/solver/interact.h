@@ -95,6 +95,10 @@ _Static_assert(F_PERIODIC == SPH_ROW_PERIODIC, "row_walk.h's SEP reads F_PERIODI
  * Each list entry is V(name, Fc). */
 #define F_RUNTIME 1024u    /* not a term: a loop that reads bits at run time */
 #define F_AXES_FIXED 2048u /* not a term: with F_RUNTIME, the axes are literals */
+/* Two phases (physics.air; interact_row.h, pair_phases): no compiled set has it (a literal
+ * loop takes it as 0, and its code is gone from it), so a two-phase pass runs its axes loop or
+ * the run-time loop, which read it at run time: one phase costs nothing for it. */
+#define F_PHASES 4096u
 #define F_AXES (F_AV | F_XSPH | F_STRESS | F_DDIFF)
 
 #define AXES_BITS(k)                                                                               \
@@ -135,7 +139,7 @@ _Static_assert(F_PERIODIC == SPH_ROW_PERIODIC, "row_walk.h's SEP reads F_PERIODI
 
 /* The bits a loop Fc takes as literals (above). */
 #define F_LITERAL(Fc)                                                                              \
-  (!((Fc)&F_RUNTIME)     ? F_TERMS                                                                 \
+  (!((Fc)&F_RUNTIME)     ? (F_TERMS | F_PHASES)                                                    \
    : ((Fc)&F_AXES_FIXED) ? (unsigned)(F_VARH | F_AXES)                                             \
                          : (unsigned)F_VARH)
 
@@ -156,6 +160,7 @@ static inline unsigned sph_interact_terms(const sph_force_params *fp) {
   if (fp->diffusion != SPH_DIFFUSION_NONE) F |= F_DDIFF;
   if (fp->riemann) F |= F_RIEMANN;
   if (fp->corrected_gradient) F |= F_CGRAD;
+  if (fp->riemann && fp->phases > 1) F |= F_PHASES;
   return F;
 }
 

@@ -239,7 +239,7 @@ LOOP_ATTR void SPH_PT_XGLUE(row_begin, FL)(LROW *restrict o, sph_particles *rest
   o->hgy = LOP(all)(riem ? fp->eos.rho0 * fp->gy : 0.0);
   SPH_IF3(o->hgz = LOP(all)(riem ? fp->eos.rho0 * fp->gz : 0.0);)
   /* two phases: i's material (a wall particle's is phase 0's) */
-  o->phased = riem && fp->phases > 1;
+  o->phased = riem && (F & F_PHASES); /* (0 in every compiled set: interact.h) */
   o->phase = p->phase;
   const sph_eos *ei = o->phased ? &fp->phase_eos[p->phase[i]] : &fp->eos;
   o->zi_s = ei->rho0 * ei->c0, o->r0i_s = ei->rho0;

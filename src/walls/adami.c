@@ -41,9 +41,12 @@ static int read_by_none(const sph_particles *p, const sph_nlist *l, size_t i, co
 }
 
 /* Wall particle i's pressure, density and no-slip velocity from its row;
- * 1 if it had fluid within reach. */
-static int adami_one(sph_particles *p, const sph_nlist *l, const sph_adami_params *ap,
-                     double *const *gv, size_t i) {
+ * 1 if it had fluid within reach. `phased` (a literal at each call: one
+ * phase pays no test per pair) says the store has phases. */
+static inline __attribute__((always_inline)) int adami_row(sph_particles *p, const sph_nlist *l,
+                                                           const sph_adami_params *ap,
+                                                           double *const *gv, size_t i,
+                                                           const int phased) {
   size_t cnt;
   const uint32_t *row = sph_nlist_row(l, i, &cnt);
   if (read_by_none(p, l, i, row, cnt)) {
@@ -56,7 +59,7 @@ static int adami_one(sph_particles *p, const sph_nlist *l, const sph_adami_param
   resulting_acceleration(p, ap, i, ga);
   /* AHA12 eq. (27): sum_f (p_f + rho_f (g - a_w) . r_wf) W_wf and sum_f W_wf; eq. (24): sum_f
    * v_f W_wf; with two phases the air's sums apart (swa, spa) */
-  const uint8_t *ph = sph_particles_phases(p);
+  const uint8_t *ph = phased ? p->phase : NULL;
   double sw = 0.0, sp = 0.0, sv[SPH_DIM] = {0.0}, swa = 0.0, spa = 0.0;
   for (size_t k = 0; k < cnt; k++) {
     const size_t j = row[k];
@@ -74,7 +77,7 @@ static int adami_one(sph_particles *p, const sph_nlist *l, const sph_adami_param
 #else
     const double gr = ga[0] * dx + ga[1] * dy + ga[2] * dz;
 #endif
-    if (ph && ph[j])
+    if (phased && ph[j])
       swa += wij, spa += (p->p[j] + p->rho[j] * gr) * wij;
     else
       sw += wij, sp += (p->p[j] + p->rho[j] * gr) * wij;
@@ -86,7 +89,7 @@ static int adami_one(sph_particles *p, const sph_nlist *l, const sph_adami_param
     pw = sp / sw;
     if (!(pw > 0.0)) pw = 0.0; /* a wall pushes, never pulls (adami.h) */
   }
-  if (ph) { /* two phases: each phase's own extrapolation, the other's where it has none */
+  if (phased) { /* two phases: each phase's own extrapolation, the other's where it has none */
     double pa = swa > 0.0 ? spa / swa : pw;
     if (!(pa > 0.0)) pa = 0.0;
     if (!(sw > 0.0)) pw = pa;
@@ -99,6 +102,11 @@ static int adami_one(sph_particles *p, const sph_nlist *l, const sph_adami_param
     for (int d = 0; d < SPH_DIM; d++)
       gv[d][i] = sw > 0.0 ? 2.0 * p->vel[d][i] - sv[d] / sw : p->vel[d][i];
   return sw > 0.0;
+}
+
+static int adami_one(sph_particles *p, const sph_nlist *l, const sph_adami_params *ap,
+                     double *const *gv, size_t i) {
+  return sph_particles_phases(p) ? adami_row(p, l, ap, gv, i, 1) : adami_row(p, l, ap, gv, i, 0);
 }
 
 size_t sph_wall_adami(sph_particles *p, const sph_nlist *l, const sph_adami_params *ap,
