@@ -162,6 +162,15 @@ static void test_gate_periodic_mdbc(void) {
                     two_three, 2, 0);
 }
 
+/* Probe rows on an interval (output.probe_interval > 0: the row at the start time is the
+ * writer's to count, and every process lands on the row times), and two phases (physics.air:
+ * the phase and the walls' air pressure in the exchange): a process that counted the rows
+ * alone skipped the start's row and left the writer waiting in its gather. */
+static void test_probe_interval_air(void) {
+  same_on_processes("src/sph", "tests/data/restart_air.yaml", "--set time.end=0.05", two_three, 2,
+                    0);
+}
+
 static void test_default_scheme_3d(void) {
   same_on_processes("src/sph", "cases/lobovsky_h300_3d.yaml",
                     "--set numerics.dx=0.04 --set time.end=0.06 --set time.output_interval=0.02 "
@@ -522,6 +531,7 @@ int main(void) {
   CU_TestInfo tests[] = {{"2-D, the default scheme, 1-7 processes", test_default_scheme_2d},
                          {"2-D, a gate, a periodic axis, mdbc", test_gate_periodic_mdbc},
                          {"3-D, the default scheme, 1-7 processes", test_default_scheme_3d},
+                         {"probe rows on an interval, two phases", test_probe_interval_air},
                          {"snapshots written together", test_snapshots_together},
                          {"a snapshot that cannot be made", test_failed_snapshot},
                          {"a blow-up's last good state", test_blow_up},

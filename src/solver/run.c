@@ -603,6 +603,9 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
    * not write follows the one that does) */
   if (!out.probes && c->n_probes && c->probe_interval > 0.0)
     out.probe_k = first_multiple_after(c->probe_interval, sph_sim_time(s));
+  /* and the writer's count (rank 0's: its row at the start time itself, a resumed file's kept
+   * rows), on every process, which a step that lands on a row time reads */
+  if (out.read && sph_procs_count() > 1) sph_procs_share(&out.probe_k, sizeof out.probe_k);
   if (o->progress) o->progress(o->progress_ctx, s);
   if (!rd && sph_sim_check_state(s, err)) { /* the initial state is checked like any other */
     r->status = SPH_RUN_BLOWUP;
