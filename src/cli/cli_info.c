@@ -100,7 +100,23 @@ static int print_counts(const sph_snapshot *s, double *buf, sph_error *err) {
   }
   printf(" (fluid %zu, wall %zu", fluid, wall);
   if (fluid + wall < n) printf(", other %zu", n - fluid - wall);
-  printf(")\n");
+  printf(")");
+  /* a two-phase run's (physics.air): its fluid by phase */
+  if (sph_snapshot_has_field(s, "phase")) {
+    double *ph = malloc((n ? n : 1) * sizeof *ph);
+    if (!ph) return sph_error_set(err, "out of memory for %zu particles", n);
+    if (sph_snapshot_read_field(s, "phase", ph, err)) {
+      free(ph);
+      printf("\n");
+      return -1;
+    }
+    size_t air = 0;
+    for (size_t i = 0; i < n; i++)
+      air += buf[i] == SPH_KIND_FLUID && ph[i] == 1.0;
+    free(ph);
+    printf(": liquid %zu, air %zu", fluid - air, air);
+  }
+  printf("\n");
   return 0;
 }
 
