@@ -527,20 +527,9 @@ static void set_phases(sph_sim *s) {
     s->fp.phase_z[k] = s->fp.phase_eos[k].rho0 * s->fp.phase_eos[k].c0;
 }
 
-static int create(const sph_case *c, sph_sim **out, int ranks, int self, int rank_store,
-                  sph_error *err) {
-  *out = NULL;
-  /* resources bounded before any particle is made (issue 21, D3, D4) */
-  if (sph_case_check_size(c, c->max_particles, err)) return -1;
-  sph_sim *s = calloc(1, sizeof *s);
-  if (!s) return sph_error_set(err, "out of memory");
-  s->c = c;
-  if (sph_sim_record_geometry(c, &s->geometry, err)) {
-    free(s);
-    return -1;
-  }
-  sph_grid_init(&s->grid);
-  sph_nlist_init(&s->nl);
+/* The interaction passes' parameters from the case (force_pass.h), the phases' laws among them. */
+static void force_params(sph_sim *s) {
+  const sph_case *c = s->c;
   s->fp.eos = sph_eos_tait(c->rho0, c->sound_speed);
   if (!c->negative_pressure) s->fp.eos.rho_min = c->rho0; /* a fluid without tension */
   set_phases(s);
@@ -564,8 +553,6 @@ static int create(const sph_case *c, sph_sim **out, int ranks, int self, int ran
   s->fp.var_h = c->fs_h_factor > 0.0;
   s->fp.lj_d = c->repulsion;
   s->fp.lj_r0 = c->dx;
-  s->first_step = 1;
-  s->detect = sph_case_needs_free_surface(c);
   s->fp.ledger = c->energy;
   s->fp.sps = c->sps;
   s->fp.sps_cs = c->sps_cs;
@@ -577,6 +564,25 @@ static int create(const sph_case *c, sph_sim **out, int ranks, int self, int ran
   if (c->variable_h) s->fp.var_h = 1;
   s->fp.loop = sph_test_loop();
   s->fp.runtime_terms = getenv("SPH_TEST_RUNTIME") != NULL; /* doc/testing.md */
+}
+
+static int create(const sph_case *c, sph_sim **out, int ranks, int self, int rank_store,
+                  sph_error *err) {
+  *out = NULL;
+  /* resources bounded before any particle is made (issue 21, D3, D4) */
+  if (sph_case_check_size(c, c->max_particles, err)) return -1;
+  sph_sim *s = calloc(1, sizeof *s);
+  if (!s) return sph_error_set(err, "out of memory");
+  s->c = c;
+  if (sph_sim_record_geometry(c, &s->geometry, err)) {
+    free(s);
+    return -1;
+  }
+  sph_grid_init(&s->grid);
+  sph_nlist_init(&s->nl);
+  force_params(s);
+  s->first_step = 1;
+  s->detect = sph_case_needs_free_surface(c);
   if (sph_particles_init(&s->p, 1024, err)) goto fail;
   /* the optional arrays the scheme needs from the start; the walls turn on
    * what theirs need (doc/memory.md) */
