@@ -148,7 +148,7 @@ typedef struct LSUMS {
 
 typedef struct LPAIR {
   LT dx, dy, r2, r, inv_r, inv_r2, hij, eta2_ij, wij, f, dvx, dvy, mj, vdotr;
-  LT wi, wj, zij, inv_zm, r0m; /* two phases: phase_weights, the mean rho0 (pair_phases) */
+  LT wi, wj, zij, inv_zm; /* two phases: phase_weights (pair_phases) */
 #if SPH_DIM == 3
   LT dz, dvz;
 #endif
@@ -281,23 +281,16 @@ LOOP_ATTR void SPH_PT_XGLUE(row_begin, FL)(LROW *restrict o, sph_particles *rest
 
 /* Two phases (physics.air): the pair's weights between i's material and
  * each neighbour's (phase_weights; a wall neighbour is of i's: it stands
- * for the fluid beside it, walls/adami.h), and the mean of their
- * reference densities (the Riemann continuity's hydrostatic jump). */
+ * for the fluid beside it, walls/adami.h). */
 LOOP_ATTR void SPH_PT_XGLUE(pair_phases, FL)(const LROW *restrict R, LPAIR *restrict G,
                                              const uint32_t *restrict jk) {
   const int32_t *restrict kind = R->kind;
   const uint8_t *restrict ph = R->phase;
-  const sph_force_params *restrict fp = R->fp;
-#define E_PH(q, own) (kind[jk[q]] == SPH_KIND_FLUID ? E_PHV(ph[jk[q]]) : (own))
-#define E_PHV(k) fp->phase_z[k]
+  const double *restrict z = R->fp->phase_z;
+#define E_PH(q, own) (kind[jk[q]] == SPH_KIND_FLUID ? z[ph[jk[q]]] : (own))
   const LT zj = LSET(E_PH, R->zi_s);
-#undef E_PHV
-#define E_PHV(k) fp->phase_eos[k].rho0
-  const LT r0j = LSET(E_PH, R->r0i_s);
-#undef E_PHV
 #undef E_PH
   LTERM(phase_weights)(LOP(all)(R->zi_s), zj, &G->wi, &G->wj, &G->zij, &G->inv_zm);
-  G->r0m = LOP(mul)(LOP(all)(0.5), LOP(add)(LOP(all)(R->r0i_s), r0j));
 }
 
 /* One iteration's pairs (i with the neighbours jk[0 .. LW-1], the k-th
@@ -387,7 +380,7 @@ LOOP_ATTR int SPH_PT_XGLUE(pair_density, FL)(const LROW *restrict R, LSUMS *rest
   if (R->phased)
     SPH_PT_XGLUE(pair_phases, FL)(R, G, jk);
   else /* (read only with two phases) */
-    G->wi = G->wj = G->zij = G->inv_zm = G->r0m = zero;
+    G->wi = G->wj = G->zij = G->inv_zm = zero;
   const LT mc = R->phased ? LTERM(phase_continuity_mass)(R->rhoi, mj, GATHER(rho), G->wi) : mj;
   if (fluid || !(R->fp->moving_walls || R->fp->mirror)) { /* walls at rest: their pairs add +-0 */
     LACC(S->drho, LTERM(continuity)(mc, dv, cg));
