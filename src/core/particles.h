@@ -138,7 +138,8 @@ static inline const uint8_t *sph_particles_phases(const sph_particles *p) {
  * air of a two-phase run is fluid too, of phase 1). What the surface, the
  * front and the level gauges read. */
 static inline int sph_particles_liquid(const sph_particles *p, size_t i) {
-  return p->kind[i] == SPH_KIND_FLUID && !((p->live & SPH_ARRAYS_PHASE) && p->phase[i]);
+  const uint8_t *ph = sph_particles_phases(p);
+  return p->kind[i] == SPH_KIND_FLUID && !(ph && ph[i]);
 }
 
 /* Allocates room for cap particles (all arrays zeroed); n = 0; every

@@ -24,7 +24,7 @@
  * header message holds goes to dense attribute storage). The reader also
  * accepts variable-length strings (earlier files). /particles tracks and
  * indexes link creation order, so its datasets are listed in the order
- * they were written (x y vx vy rho p mass h u kind id [free_surface]); a
+ * they were written (x y vx vy rho p mass h u kind id [phase] [free_surface]); a
  * file whose group lacks that index is listed in name order.
  *
  * The group /restart (snapshot.h) is written after /particles; its arrays

@@ -215,14 +215,13 @@ PT_ATTR T PT(riemann_density)(T rhoi, T mj, T rhoj, T jump, T f, T r, T inv_z0) 
  * z_ij = 2 z_i z_j / (z_i + z_j): across the water's surface the air reads
  * the water as a moving wall (v* ~ v_water) and the water reads the air's
  * pressure (p* ~ p_air). Given z_i and z_j: wi = 2 z_j / (z_i + z_j),
- * wj = 2 z_i / (z_i + z_j) (p* = (wi p_i + wj p_j) / 2), z_ij = wi z_i,
- * and inv_zm = 2 / (z_i + z_j). One material: wi = wj = 1, z_ij = z_i. */
-PT_ATTR void PT(phase_weights)(T zi, T zj, T *wi, T *wj, T *zij, T *inv_zm) {
+ * wj = 2 z_i / (z_i + z_j) (p* = (wi p_i + wj p_j) / 2) and z_ij = wi z_i.
+ * One material: wi = wj = 1, z_ij = z_i. */
+PT_ATTR void PT(phase_weights)(T zi, T zj, T *wi, T *wj, T *zij) {
   const T s = DIV(ALL(1.0), ADD(zi, zj));
   *wi = MUL(ALL(2.0), MUL(zj, s));
   *wj = MUL(ALL(2.0), MUL(zi, s));
   *zij = MUL(*wi, zi);
-  *inv_zm = MUL(ALL(2.0), s);
 }
 
 /* riemann_pressure between two materials (phase_weights): the momentum's

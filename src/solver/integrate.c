@@ -113,14 +113,14 @@ void sph_leapfrog_step(sph_particles *p, double dt, double dt_prev, int first, i
          * as a blow-up although the pass never used it */
         p->rhoh[i] = p->rho[i];
       } else {
+        const sph_eos *e = sph_eos_of(eos, ph, i);
         double rh = (first ? p->rho[i] : p->rhoh[i]) + kick * p->drho[i],
                rho = rh + hdt * p->drho[i];
         if (p->kind[i] == SPH_KIND_FLUID) /* the floor (eos.h), on both the state and its value */
-          rh = sph_eos_floor(sph_eos_of(eos, ph, i), rh),
-          rho = sph_eos_floor(sph_eos_of(eos, ph, i), rho);
+          rh = sph_eos_floor(e, rh), rho = sph_eos_floor(e, rho);
         p->rhoh[i] = rh;
         p->rho[i] = rho;
-        p->p[i] = sph_eos_pressure(sph_eos_of(eos, ph, i), p->rho[i]);
+        p->p[i] = sph_eos_pressure(e, p->rho[i]);
       }
       if (heat) {
         p->u0[i] = p->u[i];

@@ -122,15 +122,15 @@ typedef struct LROW {
   int phased;                    /* two phases (physics.air): pair_phases */
   int air_row;                   /* with them, i of the air: its wall neighbours' p is pa */
   const uint8_t *restrict phase; /* with them, each particle's */
-  double zi_s, r0i_s;            /* i's impedance rho0 c0 and reference density */
+  double zi_s;                   /* i's impedance rho0 c0 */
 #if LW == 1
   int mirror; /* mirror particles' no-slip velocity */
 #endif
   LT xi, yi, vxi, vyi, rhoi, pri, ci, hh, inv_h, one, zero, sigma, sigma_h;
   LT eta2, nalpha, beta, nu4, pi, rz0, rkc, rinv_z0, hgx, hgy, cxi, cyi, cxx, cyy;
-  LT per, hper, nper, gx, gy;
+  LT per, hper, nper;
 #if SPH_DIM == 3
-  LT zi, vzi, hgz, gz, czi, czz, pery, hpery, npery, perz, hperz, nperz;
+  LT zi, vzi, hgz, czi, czz, pery, hpery, npery, perz, hperz, nperz;
 #endif
 #if LW > 1
   LT lane, n;
@@ -148,7 +148,7 @@ typedef struct LSUMS {
 
 typedef struct LPAIR {
   LT dx, dy, r2, r, inv_r, inv_r2, hij, eta2_ij, wij, f, dvx, dvy, mj, vdotr;
-  LT wi, wj, zij, inv_zm; /* two phases: phase_weights (pair_phases) */
+  LT wi, wj, zij; /* two phases: phase_weights (pair_phases) */
 #if SPH_DIM == 3
   LT dz, dvz;
 #endif
@@ -229,23 +229,21 @@ LOOP_ATTR void SPH_PT_XGLUE(row_begin, FL)(LROW *restrict o, sph_particles *rest
   const double eta = fp->eta * h0;
   o->eta2 = LOP(all)(eta * eta), o->nalpha = LOP(all)(-fp->alpha), o->beta = LOP(all)(fp->beta);
   o->nu4 = LOP(all)(4.0 * fp->mu / fp->eos.rho0);
-  /* the Riemann pressure: p_i, rho0 c0 and eta / c0 */
+  /* the Riemann pressure: p_i, rho0 c0 and eta / c0, and the density term's rho0 g and
+   * 1 / (rho0 c0), of i's material (two phases: its phase's; a wall particle's is phase 0's) */
   const int riem = (F & F_RIEMANN) != 0; /* (the constants only where it is on) */
-  o->pi = LOP(all)(riem ? qi.prho2 * qi.rho * qi.rho : 0.0);
-  o->rz0 = LOP(all)(riem ? fp->eos.rho0 * fp->eos.c0 : 0.0);
-  o->rkc = LOP(all)(riem ? fp->riemann_limiter / fp->eos.c0 : 0.0);
-  o->rinv_z0 = LOP(all)(riem ? 1.0 / (fp->eos.rho0 * fp->eos.c0) : 0.0);
-  o->hgx = LOP(all)(riem ? fp->eos.rho0 * fp->gx : 0.0);
-  o->hgy = LOP(all)(riem ? fp->eos.rho0 * fp->gy : 0.0);
-  SPH_IF3(o->hgz = LOP(all)(riem ? fp->eos.rho0 * fp->gz : 0.0);)
-  /* two phases: i's material (a wall particle's is phase 0's) */
-  o->phased = riem && (F & F_PHASES); /* (0 in every compiled set: interact.h) */
+  o->phased = riem && (F & F_PHASES);    /* (0 in every compiled set: interact.h) */
   o->phase = p->phase;
-  const sph_eos *ei = o->phased ? &fp->phase_eos[p->phase[i]] : &fp->eos;
-  o->zi_s = ei->rho0 * ei->c0, o->r0i_s = ei->rho0;
   o->air_row = o->phased && kind[i] == SPH_KIND_FLUID && p->phase[i] != 0;
-  o->gx = LOP(all)(fp->gx), o->gy = LOP(all)(fp->gy);
-  SPH_IF3(o->gz = LOP(all)(fp->gz);)
+  const sph_eos *ei = o->phased ? &fp->phase_eos[p->phase[i]] : &fp->eos;
+  o->zi_s = ei->rho0 * ei->c0;
+  o->pi = LOP(all)(riem ? qi.prho2 * qi.rho * qi.rho : 0.0);
+  o->rz0 = LOP(all)(riem ? ei->rho0 * ei->c0 : 0.0);
+  o->rkc = LOP(all)(riem ? fp->riemann_limiter / fp->eos.c0 : 0.0);
+  o->rinv_z0 = LOP(all)(riem ? 1.0 / (ei->rho0 * ei->c0) : 0.0);
+  o->hgx = LOP(all)(riem ? ei->rho0 * fp->gx : 0.0);
+  o->hgy = LOP(all)(riem ? ei->rho0 * fp->gy : 0.0);
+  SPH_IF3(o->hgz = LOP(all)(riem ? ei->rho0 * fp->gz : 0.0);)
 #if LW > 1
 #define E_LANE(q, a) ((double)(q))
   o->lane = LSET(E_LANE, 0), o->n = LOP(all)((double)cnt);
@@ -290,7 +288,7 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_phases, FL)(const LROW *restrict R, LPAIR *rest
 #define E_PH(q, own) (kind[jk[q]] == SPH_KIND_FLUID ? z[ph[jk[q]]] : (own))
   const LT zj = LSET(E_PH, R->zi_s);
 #undef E_PH
-  LTERM(phase_weights)(LOP(all)(R->zi_s), zj, &G->wi, &G->wj, &G->zij, &G->inv_zm);
+  LTERM(phase_weights)(LOP(all)(R->zi_s), zj, &G->wi, &G->wj, &G->zij);
 }
 
 /* One iteration's pairs (i with the neighbours jk[0 .. LW-1], the k-th
@@ -380,7 +378,7 @@ LOOP_ATTR int SPH_PT_XGLUE(pair_density, FL)(const LROW *restrict R, LSUMS *rest
   if (R->phased)
     SPH_PT_XGLUE(pair_phases, FL)(R, G, jk);
   else /* (read only with two phases) */
-    G->wi = G->wj = G->zij = G->inv_zm = zero;
+    G->wi = G->wj = G->zij = zero;
   const LT mc = R->phased ? LTERM(phase_continuity_mass)(R->rhoi, mj, GATHER(rho), G->wi) : mj;
   if (fluid || !(R->fp->moving_walls || R->fp->mirror)) { /* walls at rest: their pairs add +-0 */
     LACC(S->drho, LTERM(continuity)(mc, dv, cg));
@@ -615,18 +613,12 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_fluid_fluid, FL)(const LROW *restrict R, LSUMS 
     const LT rhoi = R->rhoi, pi = R->pi, hgx = R->hgx, hgy = R->hgy, dx = G->dx, dy = G->dy;
     const LT rhoj = GATHER(rho), pj = LOP(mul)(LOP(mul)(GATHER(prho2), rhoj), rhoj);
 #if SPH_DIM == 2
-    LT hg = LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy));
+    const LT hg = LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy));
 #else
-    LT hg = LOP(add)(LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy)), LOP(mul)(R->hgz, G->dz));
+    const LT hg = LOP(add)(LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy)), LOP(mul)(R->hgz, G->dz));
 #endif
-    LT inv_z = R->rinv_z0;
-    if (R->phased) { /* two phases: i's phase's rho0 g and impedance (the pairs of one phase) */
-      const LVEC gv = {{SPH_XYZ(R->gx, R->gy, R->gz)}};
-      hg = LOP(mul)(LOP(all)(R->r0i_s), LTERM(dot)(gv, G->rv));
-      inv_z = LOP(all)(1.0 / R->zi_s);
-    }
     const LT jump = LOP(sub)(LOP(sub)(pi, pj), hg);
-    LT rd = LTERM(riemann_density)(rhoi, G->mj, rhoj, jump, G->f, G->r, inv_z);
+    LT rd = LTERM(riemann_density)(rhoi, G->mj, rhoj, jump, G->f, G->r, R->rinv_z0);
     if (R->phased) /* two phases: between particles of one phase alone (wi = 1) */
       rd = LOP(and)(LOP(lt)(LOP(abs)(LOP(sub)(G->wi, R->one)), LOP(all)(0.5)), rd);
     LACC(S->rd, LOP(and)(fluid_j, rd));

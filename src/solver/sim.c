@@ -372,8 +372,8 @@ static int check_state(sph_sim *s, int shared, sph_error *err) {
   const double lim = s->c->density_limit;
   const uint8_t *ph = sph_particles_phases(p);
   double r0[SPH_PHASES_MAX], rlo[SPH_PHASES_MAX], rhi[SPH_PHASES_MAX];
-  for (int k = 0; k < s->fp.phases || k == 0; k++) {
-    r0[k] = k ? s->fp.phase_eos[k].rho0 : s->c->rho0;
+  for (int k = 0; k < s->fp.phases; k++) {
+    r0[k] = s->fp.phase_eos[k].rho0; /* (phase 0's the case's rho0) */
     rlo[k] = r0[k] * (1.0 - lim) * (1.0 + 1e-9), rhi[k] = r0[k] * (1.0 + lim) * (1.0 - 1e-9);
   }
   /* with geometry.leaving: remove, a particle outside is taken out after the check */
