@@ -2,9 +2,10 @@
 /*
  * test_air.c - two phases: the air over the water (physics.air; doc/method.md, Two phases).
  *
- * 1. The key: true, a mapping {rho0, exponent} and false read; the listing names it; a value
- *    that is neither, an exponent other than 1 or 7, and what the two-phase terms do not cover
- *    (the papers' plain pressure, walls other than adami) refused, naming physics.air.
+ * 1. The key: true, a mapping {rho0, exponent, mu} and false read; the listing names it; a
+ *    value that is neither, an exponent other than 1 or 7, the air's mu without a viscosity,
+ *    and what the two-phase terms do not cover (the papers' plain pressure, walls other than
+ *    adami, the stress-tensor viscosity) refused, naming physics.air.
  * 2. The fill: cases/still_water_air.yaml at H/20 makes an air particle of phase 1 at every
  *    lattice point of the tank above the water (the walls' clearance aside), of mass
  *    rho_air dx^2 and density hydrostatic under the air above it; the water keeps phase 0 and
@@ -19,7 +20,17 @@
  *    alone (below the block's height, where the air would read the tank's), the snapshot holds
  *    the phase field with the air's count, and sph-render draws it without the air by default
  *    and with it under --air. Threads and restart: test_determinism and test_restart run the
- *    same fixture.
+ *    same fixture (with Morris' viscosity in both phases).
+ * 5. Two liquids, the Rayleigh-Taylor case (cases/rayleigh_taylor.yaml at dx = L/32, At = 0.5,
+ *    Re = 3000, against Fakhari et al. 2017, tests/data/fakhari2017_rt_*.csv): the fill tiles
+ *    the tank's lattice (the heavy polygon's points above the interface, the light phase's
+ *    below, none twice), the pressure at the start rises across the interface by between the
+ *    light and the heavy liquid's rho g dx from one particle to the next below it (the light
+ *    phase carries the heavy column's weight); to t* = 2 the bubble's tip within 0.05 L of the
+ *    reference (at L/32 it is within 0.02 L) and at a wall, where the reference's bubble rises
+ *    (a wall that extrapolated each phase's pressure from its own neighbours held it 0.2 L
+ *    back there, the tip rising beside the wall), and the spike's within 0.12 L (it trails by
+ *    up to 0.094 L at L/32; bench/rayleigh_taylor measures L/64 and L/128).
  */
 #include "config.h"
 
@@ -83,6 +94,19 @@ static void test_key(void) {
   CU_ASSERT(refused("physics.air={density: 1}"));
   CU_ASSERT(refused("numerics.scheme=paper_a"));
   CU_ASSERT(refused("geometry.tank.boundary=mdbc"));
+  CU_ASSERT(refused("physics.air={mu: 2.0e-5}"));
+  CU_ASSERT(refused("physics.viscosity={model: stress_tensor, mu: 1.0e-3}"));
+  const char *visc[] = {"physics.viscosity={model: morris, mu: 1.0e-3}",
+                        "physics.air={mu: 2.0e-5}"};
+  CU_ASSERT_FATAL(open_still(visc, 2, &c, &s) == 0);
+  CU_ASSERT(c.air == 1 && c.air_mu == 2.0e-5 && c.mu == 1.0e-3);
+  d = sph_case_describe(&c);
+  CU_ASSERT_FATAL(d != NULL);
+  CU_ASSERT(strstr(d, "physics.air: {rho0: 1.2, exponent: 1, mu: 2.0000000000000002e-05}\n") !=
+            NULL);
+  free(d);
+  sph_sim_free(s);
+  sph_case_free(&c);
 }
 
 static void test_fill(void) {
@@ -227,6 +251,29 @@ static void test_thrown(void) {
   free(col[0]);
   printf("\n  energy balance: largest deviation %.2e of E0 over %ld rows", worst, n);
   CU_ASSERT(worst < 5e-4);
+  { /* a viscous pair of liquids (mu 0.5 and 0.01 Pa s): the heat of Morris' two-phase term
+     * booked (a third of E0 ends as heat; without its heat the balance would miss it) */
+    char vdir[4400];
+    snprintf(vdir, sizeof vdir, "%s/visc", dir);
+    snprintf(args, sizeof args,
+             "run -q '%s' -o '%s' --set 'physics.viscosity={model: morris, mu: 0.5}' --set "
+             "'physics.air={mu: 0.01}'",
+             sph_test_src("tests/data/restart_air.yaml"), vdir);
+    CU_ASSERT_FATAL(sph_test_sph_ok(args, dir, out, sizeof out) == 0);
+    snprintf(path, sizeof path, "%s/visc/diagnostics.csv", dir);
+    double *v[3] = {NULL, NULL, NULL};
+    const long m = sph_test_csv(path, "energy_deviation,internal (J/m),total_energy (J/m)", v);
+    CU_ASSERT_FATAL(m >= 7);
+    double vworst = 0.0;
+    for (long r = 0; r < m; r++)
+      vworst = fmax(vworst, fabs(v[0][r]));
+    printf("\n  viscous: largest deviation %.2e of E0, heat %.2f of E0 at the end", vworst,
+           v[1][m - 1] / v[2][0]);
+    CU_ASSERT(vworst < 5e-4);
+    CU_ASSERT(v[1][m - 1] > 0.2 * v[2][0]);
+    for (int k = 0; k < 3; k++)
+      free(v[k]);
+  }
   /* the gauge reads the water: at most the block's 0.08 m and its wave, never the tank's air */
   snprintf(path, sizeof path, "%s/run/probes.csv", dir);
   long rows;
@@ -274,11 +321,119 @@ static void test_thrown(void) {
   free(dir);
 }
 
+/* The reference's position of `what` (bubble or spike) at t*, interpolated linearly. */
+static double reference_at(const char *what, double ts) {
+  char rel[96];
+  snprintf(rel, sizeof rel, "tests/data/fakhari2017_rt_%s.csv", what);
+  double *col[2] = {NULL, NULL};
+  const long n = sph_test_csv(sph_test_src(rel), "tstar,position", col);
+  double v = NAN;
+  for (long r = 0; r + 1 < n; r++)
+    if (col[0][r] <= ts && ts <= col[0][r + 1])
+      v = col[1][r] + (col[1][r + 1] - col[1][r]) * (ts - col[0][r]) / (col[0][r + 1] - col[0][r]);
+  free(col[0]);
+  free(col[1]);
+  return v;
+}
+
+static void test_rayleigh_taylor(void) {
+  const double L = 1.0, dx = L / 32, g = 9.81, rho_h = 1000.0, rho_l = 1000.0 / 3.0;
+  char lid[256];
+  snprintf(lid, sizeof lid,
+           "geometry.walls=[{from: [%.17g, %.17g], to: [%.17g, %.17g], boundary: adami, "
+           "free_slip: true}]",
+           -3.5 * dx, 4.0 + 0.5 * dx, 1.0 + 3.5 * dx, 4.0 + 0.5 * dx);
+  const char *set[] = {"numerics.dx=0.03125", lid};
+  sph_case c;
+  sph_sim *s;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_test_open_sim("cases/rayleigh_taylor.yaml", set, 2, &c, &s) == 0);
+  const sph_particles *p = sph_sim_particles(s);
+  const uint8_t *ph = sph_particles_phases(p);
+  CU_ASSERT_FATAL(ph != NULL);
+  /* the fill: every lattice point once, the heavy one above the interface (the polygon's chords
+   * lie within 1e-4 L of the cosine, no lattice point that close to it at L/32) */
+  const int nx = 32, ny = 128;
+  int *seen = calloc((size_t)(nx * ny), sizeof *seen);
+  CU_ASSERT_FATAL(seen != NULL);
+  size_t wrong = 0, fluid = 0;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->kind[i] != SPH_KIND_FLUID) continue;
+    fluid++;
+    const int a = (int)floor(p->x[i] / dx), b = (int)floor(p->y[i] / dx);
+    const double eta = 2.0 + 0.1 * cos(2.0 * SPH_PI * p->x[i]);
+    wrong += a < 0 || a >= nx || b < 0 || b >= ny || fabs(p->x[i] - (a + 0.5) * dx) > 1e-12 ||
+             fabs(p->y[i] - (b + 0.5) * dx) > 1e-12 || (ph[i] == 0) != (p->y[i] > eta);
+    if (a >= 0 && a < nx && b >= 0 && b < ny) seen[b * nx + a]++;
+  }
+  size_t once = 0;
+  for (int k = 0; k < nx * ny; k++)
+    once += seen[k] == 1;
+  free(seen);
+  /* the start's pressure across the interface, on every column: Tait's law of each phase */
+  const double c0 = c.sound_speed;
+  size_t jumps = 0, bad_jumps = 0;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->kind[i] != SPH_KIND_FLUID || ph[i] != 1) continue;
+    for (size_t j = 0; j < p->n; j++) /* the heavy particle right above it */
+      if (p->kind[j] == SPH_KIND_FLUID && ph[j] == 0 && fabs(p->x[j] - p->x[i]) < 1e-9 &&
+          fabs(p->y[j] - p->y[i] - dx) < 1e-9) {
+        const double pl = rho_l * c0 * c0 / 7.0 * (pow(p->rho[i] / rho_l, 7.0) - 1.0);
+        const double pu = rho_h * c0 * c0 / 7.0 * (pow(p->rho[j] / rho_h, 7.0) - 1.0);
+        const double rise = pl - pu;
+        jumps++;
+        bad_jumps += !(rise > 0.999 * rho_l * g * dx && rise < 1.001 * rho_h * g * dx);
+      }
+  }
+  printf("\n  %zu fluid particles (%zu lattice points once), %zu out of place; %zu columns, "
+         "%zu with a pressure rise across the interface outside [rho_L, rho_H] g dx",
+         fluid, once, wrong, jumps, bad_jumps);
+  CU_ASSERT_EQUAL(fluid, (size_t)(nx * ny));
+  CU_ASSERT_EQUAL(once, (size_t)(nx * ny));
+  CU_ASSERT_EQUAL(wrong, 0);
+  CU_ASSERT_EQUAL(jumps, (size_t)nx);
+  CU_ASSERT_EQUAL(bad_jumps, 0);
+  /* the tips against the reference, every 0.25 t* to t* = 2 */
+  const double tc = sqrt(L / (0.5 * g));
+  double worst_b = 0.0, worst_s = 0.0, wall_gap = 0.0;
+  for (int k = 1; k <= 8; k++) {
+    const double ts = 0.25 * k;
+    while (sph_sim_time(s) < ts * tc) {
+      const int rc = sph_sim_step(s, ts * tc, &err);
+      if (rc) printf("\n%s\n", err.msg);
+      CU_ASSERT_FATAL(rc == 0);
+    }
+    p = sph_sim_particles(s);
+    ph = sph_particles_phases(p);
+    double top = -INFINITY, top_x = 0.0, low = INFINITY;
+    for (size_t i = 0; i < p->n; i++) {
+      if (p->kind[i] != SPH_KIND_FLUID) continue;
+      if (ph[i] == 1 && p->y[i] > top) top = p->y[i], top_x = p->x[i];
+      if (ph[i] == 0) low = fmin(low, p->y[i]);
+    }
+    const double bubble = (top + 0.5 * dx - 2.0 * L) / L, spike = (low - 0.5 * dx - 2.0 * L) / L;
+    worst_b = fmax(worst_b, fabs(bubble - reference_at("bubble", ts)));
+    worst_s = fmax(worst_s, fabs(spike - reference_at("spike", ts)));
+    wall_gap = fmax(wall_gap, fmin(top_x, L - top_x));
+  }
+  printf("\n  to t* = 2: the bubble within %.3f L of the reference, its tip at most %.2f dx from "
+         "a wall; the spike within %.3f L",
+         worst_b, wall_gap / dx, worst_s);
+  CU_ASSERT(worst_b <= 0.05);
+  CU_ASSERT(wall_gap <= 2.0 * dx);
+  CU_ASSERT(worst_s <= 0.12);
+  sph_sim_free(s);
+  sph_case_free(&c);
+}
+
 int main(void) {
   CU_TestInfo tests[] = {{"physics.air: read, listed, refused", test_key},
                          {"the tank's free volume filled with air", test_fill},
                          {"still water under air: at rest, the interface in place", test_still},
                          {"water thrown under air: balance, gauge, snapshot, frames", test_thrown},
+                         {"two liquids, Rayleigh-Taylor: the fill, the start's pressure, the tips "
+                          "against Fakhari et al. (2017)",
+                          test_rayleigh_taylor},
                          CU_TEST_INFO_NULL};
   return sph_test_main("air", tests);
 }

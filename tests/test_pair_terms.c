@@ -984,6 +984,47 @@ static __attribute__((target("avx2"))) unsigned v4x_transpose_mismatches(void) {
 }
 #endif
 
+/* Two phases' Morris viscosity (physics.air with physics.viscosity): the
+ * harmonic mean of the materials' viscosities, and a pair force whose
+ * momentum m_i c_ij v_ij is the negative of m_j c_ji v_ji between materials
+ * 1000 apart in density; within one material Morris' (mu_i + mu_j) /
+ * (rho_i rho_j). */
+static void test_phase_viscosity(void) {
+  rng_state = 777;
+  const double mu_w = 1.0e-3, mu_a = 1.8e-5;
+  const double mu2 = phase_viscosity_v1(mu_w, mu_a);
+  CU_ASSERT(same(mu2, phase_viscosity_v1(mu_a, mu_w)));
+  CU_ASSERT(fabs(mu2 - 2.0 * (2.0 * mu_w * mu_a / (mu_w + mu_a))) <= 1e-15 * mu2);
+  CU_ASSERT(mu2 < 2.0 * (2.0 * mu_a)); /* the weaker material sets it: mu_ij < 2 mu_a */
+  CU_ASSERT(fabs(phase_viscosity_v1(mu_w, mu_w) - 2.0 * mu_w) <= 1e-15 * mu_w);
+  unsigned checked = 0;
+  for (int t = 0; t < 1000; t++) {
+    const double h = 2.0 * DX, vol = DX * DX;
+    const double rhoi = between(995, 1005), rhoj = between(1.19, 1.21); /* water, air */
+    const double mi = 1000.0 * vol, mj = 1.2 * vol;
+    const double dx = between(-1.9, 1.9) * h, dy = between(-1.9, 1.9) * h;
+    const double r2 = dx * dx + dy * dy;
+    if (!(r2 < 4 * h * h) || r2 == 0) continue;
+    const double r = sqrt(r2), inv_r = 1 / r, inv_h = 1 / h;
+    const double sigma = 10 / (7 * SPH_PI) * inv_h * inv_h;
+    double w, f;
+    cubic_w_f_v1(r, inv_r, inv_h, sigma, sigma * inv_h, &w, &f);
+    const double eta2 = 0.01 * h * h;
+    const double cij = morris_phases_factor_v1(mj, rhoj, mu2, f, r2, rhoi, eta2);
+    const double cji =
+        morris_phases_factor_v1(mi, rhoi, phase_viscosity_v1(mu_a, mu_w), f, r2, rhoj, eta2);
+    CU_ASSERT(cij < 0.0 || f == 0.0); /* dW/dr < 0: c v_ij drags i toward j's velocity */
+    CU_ASSERT(fabs(mi * cij - mj * cji) <= 1e-14 * fabs(mi * cij));
+    /* one material: Morris' m_j (mu_i + mu_j) F r^2 / (rho_i rho_j (r^2 + eta^2)) */
+    const double one =
+        morris_phases_factor_v1(mi, rhoj, phase_viscosity_v1(mu_w, mu_w), f, r2, rhoi, eta2);
+    const double want = mi * (2.0 * mu_w) * f * r2 / (rhoi * rhoj * (r2 + eta2));
+    CU_ASSERT(fabs(one - want) <= 1e-14 * fabs(want));
+    checked++;
+  }
+  CU_ASSERT(checked > 500);
+}
+
 static void test_v8z_operations(void) {
 #ifdef SPH_LANES_AVX
   if (sph_force_loop_available(SPH_LOOP_LANES_AVX)) {
@@ -1059,6 +1100,9 @@ int main(void) {
        test_strain_rate_lanes},
       {"each term antisymmetric or symmetric in the pair, and bitwise in every lane",
        test_pair_symmetry},
+      {"two phases' Morris viscosity: the harmonic mean, momentum across a density ratio of "
+       "1000, Morris' form within one material",
+       test_phase_viscosity},
       {"the AVX-512 operations bitwise v1 in every lane; the record transpose",
        test_v8z_operations},
       {"the start-up choice of lane loop: available, the same bits", test_fastest_loop},

@@ -3,8 +3,9 @@
  * air.c - physics.air: a second phase, the air over the liquid
  * (doc/case-files.md, physics.air; doc/method.md, Two phases).
  *
- * `air: true` or a mapping {rho0, exponent} fills the tank's free volume
- * with air particles on the case's lattice (solver/setup.c); `air: false`
+ * `air: true` or a mapping {rho0, exponent, mu} fills the tank's free volume
+ * with air particles on the case's lattice (solver/setup.c); `mu` is the
+ * air's dynamic viscosity where physics.viscosity (Morris') is on; `air: false`
  * (the default) leaves one phase. The air has the liquid's sound speed
  * (the same-sound-speed approach of Rezavand et al. 2020), so the time
  * step is the one-phase step. The two-phase pair terms are those of the
@@ -17,10 +18,11 @@
 
 #include "case/case_read.h"
 
-static const char *const air_keys[] = {"rho0", "exponent", NULL};
+static const char *const air_keys[] = {"rho0", "exponent", "mu", NULL};
 
 int sph_case_read_air(ctx *x, const node *physics, sph_case *c) {
   static const range rho = {1e-6, 1e6, '[', ']', NULL};
+  static const range mu = {0.0, 1e6, '(', ']', NULL};
   const entry *e = sph_yaml_find(physics, "air");
   if (!e) return 0;
   x->air_node = e->val;
@@ -29,7 +31,7 @@ int sph_case_read_air(ctx *x, const node *physics, sph_case *c) {
   if (e->val->kind != SPH_YAML_MAP) {
     char b[96];
     return sph_yaml_fail_at(&x->t, e->val, "physics.air",
-                            "expected true, false or a mapping {rho0, exponent}, got %s",
+                            "expected true, false or a mapping {rho0, exponent, mu}, got %s",
                             sph_yaml_got(e->val, b, sizeof b));
   }
   const node *m;
@@ -41,6 +43,9 @@ int sph_case_read_air(ctx *x, const node *physics, sph_case *c) {
   if (got && c->air_exponent != 1 && c->air_exponent != 7)
     return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "exponent")->val, "physics.air.exponent",
                             "expected 1 (the linear law) or 7 (Tait's), got %d", c->air_exponent);
+  const int got_mu = sph_yaml_get_number(&x->t, m, "physics.air", "mu", 0, &mu, &c->air_mu);
+  if (got_mu < 0) return -1;
+  if (got_mu) x->air_mu_node = sph_yaml_find(m, "mu")->val;
   return 0;
 }
 
@@ -53,7 +58,8 @@ static const char *air_clash(const sph_case *c) {
       return "walls other than boundary: adami (the two-phase terms take Adami walls)";
   if (c->n_obstacles) return "geometry.obstacles or geometry.vessels";
   if (c->diffusion != SPH_DIFFUSION_NONE) return "numerics.density_diffusion";
-  if (c->viscosity != SPH_VISCOSITY_NONE) return "physics.viscosity";
+  if (c->viscosity == SPH_VISCOSITY_STRESS_TENSOR)
+    return "physics.viscosity.model: stress_tensor (two phases take morris)";
   if (c->alpha > 0.0 || c->beta > 0.0) return "physics.artificial_viscosity";
   if (c->xsph != 0.0) return "physics.xsph";
   if (c->sps) return "physics.turbulence";
@@ -71,5 +77,8 @@ int sph_case_check_air(const ctx *x, const sph_case *c) {
   const char *why = air_clash(c);
   if (why)
     return sph_yaml_fail_at(&x->t, x->air_node, "physics.air", "cannot be combined with %s", why);
+  if (x->air_mu_node && c->viscosity == SPH_VISCOSITY_NONE)
+    return sph_yaml_fail_at(&x->t, x->air_mu_node, "physics.air.mu",
+                            "the air's viscosity needs physics.viscosity (model: morris)");
   return 0;
 }

@@ -241,6 +241,7 @@ static void set_defaults(sph_case *c) {
   c->riemann_limiter = 3.0;
   c->air_rho0 = 1.2;
   c->air_exponent = 1;
+  c->air_mu = 1.8e-5;
   c->h_factor = 1.3;
   c->kernel = SPH_KERNEL_CUBIC_SPLINE;
   c->integrator = SPH_INTEGRATOR_PREDICTOR_CORRECTOR;
@@ -733,6 +734,7 @@ int sph_case_parse(const char *text, size_t len, const char *origin, const char 
            NULL,
            NULL,
            NULL,
+           NULL,
            NULL};
   memset(c, 0, sizeof *c);
   for (size_t i = 0; i < n_set; i++)
@@ -804,7 +806,7 @@ int sph_case_load(const char *path, const char *const *set, size_t n_set, sph_ca
 int sph_case_text_dimension(const char *text, size_t len, const char *origin,
                             const char *const *set, size_t n_set, int *dim, sph_error *err) {
   *dim = 2;
-  ctx x = {{origin, text, len, set, err, NULL}, NULL, NULL, NULL, NULL, NULL};
+  ctx x = {{origin, text, len, set, err, NULL}, NULL, NULL, NULL, NULL, NULL, NULL};
   node *root = NULL;
   int rc = sph_yaml_parse(&x.t, text, len, SPH_YAML_FROM_FILE, NULL, &root);
   if (rc == 0 && root->kind == SPH_YAML_MAP) { /* (not a mapping: 2, the full reader says why) */

@@ -135,6 +135,8 @@ typedef struct sph_case {
                               phase (doc/method.md, Two phases); default 0 */
   double air_rho0;         /* its reference density, default 1.2 kg/m^3 */
   int air_exponent;        /* its law's exponent: 1 (p = c0^2 (rho - rho0), default) or 7 */
+  double air_mu;           /* its dynamic viscosity with physics.viscosity (morris), default
+                            * 1.8e-5 Pa s */
 
   /* numerics */
   sph_scheme_kind scheme; /* numerics.scheme, default riemann */

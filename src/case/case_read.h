@@ -24,6 +24,7 @@ typedef struct ctx {
   const node *shifting_node; /* numerics.shifting if given */
   const node *cgrad_node;    /* numerics.gradient_correction if given */
   const node *air_node;      /* physics.air if given */
+  const node *air_mu_node;   /* physics.air.mu if given */
 } ctx;
 
 /* names[k] of a NULL-terminated list of choices, "unknown" past its end. */

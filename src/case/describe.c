@@ -221,8 +221,11 @@ char *sph_case_describe(const sph_case *c) {
   sb_add(&b, "physics.xsph: %.17g\n", c->xsph);
   if (!c->negative_pressure) sb_add(&b, "physics.negative_pressure: false\n");
   if (c->riemann) sb_add(&b, "physics.riemann.limiter: %.17g\n", c->riemann_limiter);
-  if (c->air)
+  if (c->air && c->viscosity == SPH_VISCOSITY_NONE)
     sb_add(&b, "physics.air: {rho0: %.17g, exponent: %d}\n", c->air_rho0, c->air_exponent);
+  else if (c->air)
+    sb_add(&b, "physics.air: {rho0: %.17g, exponent: %d, mu: %.17g}\n", c->air_rho0,
+           c->air_exponent, c->air_mu);
   sb_add(&b, "physics.viscosity.model: %s\n", sph_viscosity_name(c->viscosity));
   if (c->viscosity != SPH_VISCOSITY_NONE) sb_add(&b, "physics.viscosity.mu: %.17g\n", c->mu);
   if (c->gradient_correction) sb_add(&b, "physics.viscosity.gradient_correction: true\n");

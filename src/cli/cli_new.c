@@ -63,6 +63,7 @@ static const char *const TEMPLATE =
     "  # air:                     # a second phase: the tank's free volume filled with air\n"
     "  #   rho0: 1.2              # its reference density (kg/m^3)\n"
     "  #   exponent: 1            # its law: 1 linear (default), 7 Tait's\n"
+    "  #   mu: 1.8e-5             # its viscosity (Pa s) with physics.viscosity (morris)\n"
     "\n"
     "numerics:\n"
     "  scheme: riemann            # the values of the keys marked (scheme) left out: riemann\n"

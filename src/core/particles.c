@@ -36,7 +36,7 @@
   X(x0, SAVED) X(y0, SAVED) X(vx0, SAVED) X(vy0, SAVED) X(rho0, SAVED) X(u0, HEAT) \
   X(ax, 0) X(ay, 0) X(drho, 0) X(du, HEAT) X(xsx, 0) X(xsy, 0) \
   X(vxh, HALF) X(vyh, HALF) X(rhoh, HALF) X(uh, HALF_HEAT) X(xr, REST) X(yr, REST) \
-  X(mx, OFFSET) X(my, OFFSET) X(pa, PHASE) SPH_PARTICLE_DOUBLES_Z(X)
+  X(mx, OFFSET) X(my, OFFSET) SPH_PARTICLE_DOUBLES_Z(X)
 #if SPH_DIM == 2
 #define SPH_PARTICLE_DOUBLES_Z(X)
 #else
@@ -44,7 +44,8 @@
   X(z, 0) X(vz, 0) X(z0, SAVED) X(vz0, SAVED) X(az, 0) X(xsz, 0) X(vzh, HALF) X(zr, REST) X(mz, OFFSET)
 #endif
 /* clang-format on */
-#define SPH_PARTICLE_OTHERS(X) X(kind, 0) X(body, 0) X(id, 0) X(flags, 0) X(phase, PHASE)
+#define SPH_PARTICLE_OTHERS(X)                                                                     \
+  X(kind, 0) X(body, 0) X(id, 0) X(flags, 0) X(phase, PHASE) X(wphase, PHASE)
 #define SPH_PARTICLE_ONE(f, g) +1
 enum {
   SPH_PARTICLE_ARRAYS =

@@ -63,7 +63,7 @@ enum {
                                packed copy instead, solver/sim.c) */
   SPH_ARRAYS_PHASE = 32,    /* phase: each fluid particle's phase, an index into the case's
                                materials (0 the liquid, 1 the air: physics.air); walls 0;
-                               pa: an adami wall particle's pressure as the air reads it */
+                               wphase: an adami wall particle's mirror phase */
   SPH_ARRAYS_ALL = 63
 };
 
@@ -110,8 +110,8 @@ typedef struct sph_particles {
   int64_t *id;               /* 0..n-1, fixed at creation */
   uint8_t *flags;            /* per-particle flags, SPH_FLAG_* (free surface, wall models) */
   uint8_t *phase;            /* the particle's material (group PHASE; 0 without it) */
-  double *pa; /* two phases: an adami wall particle's pressure from the air near it, which the
-                 air's rows read (walls/adami.h); p is the liquid's (group PHASE) */
+  uint8_t *wphase; /* two phases: an adami wall particle's phase, the fluid's beside it, whose
+                     pressure its p is and whose material it stands for (walls/adami.h) */
   /* state at the start of the step (predictor-corrector; group SAVED, u0
    * with HEAT), and rates */
   SPH_AXES(pos0, x0, y0, z0);

@@ -286,6 +286,26 @@ PT_ATTR T PT(morris_factor)(T mj, T nu4, T f, T r2, T rhoi, T rhoj, T eta2) {
   return DIV(MUL(MUL(mj, nu4), MUL(f, r2)), MUL(ADD(rhoi, rhoj), ADD(r2, eta2)));
 }
 
+/* Two phases (physics.air): the pair's 2 mu_ij with mu_ij the harmonic
+ * mean 2 mu_i mu_j / (mu_i + mu_j) of the two materials' dynamic
+ * viscosities (Hu & Adams 2006, HA06 in doc/method.md: the shear stress continuous across
+ * the interface, the weaker material setting it); mu_i within a material. */
+PT_ATTR T PT(phase_viscosity)(T mui, T muj) {
+  return DIV(MUL(ALL(4.0), MUL(mui, muj)), ADD(mui, muj));
+}
+
+/* Morris' viscosity between two materials, in the volume form of the
+ * two-phase terms: dv_i/dt += c v_ij with
+ *   c = (m_j / rho_j) 2 mu_ij F_ij r^2 / (rho_i (r^2 + eta^2)),
+ * paper B eq. (4) (Morris et al. 1997) with (mu_i + mu_j) / (rho_i rho_j) written
+ * m_j 2 mu_ij / (rho_i rho_j) = V_j 2 mu_ij / rho_i, so that a wall
+ * particle (whose mass and density are the liquid's) counts by its volume
+ * in an air row; given mu2 = 2 mu_ij (phase_viscosity). m_i c is symmetric
+ * in the pair (V_i V_j 2 mu_ij ...): the momentum is conserved. */
+PT_ATTR T PT(morris_phases_factor)(T mj, T rhoj, T mu2, T f, T r2, T rhoi, T eta2) {
+  return DIV(MUL(MUL(DIV(mj, rhoj), mu2), MUL(f, r2)), MUL(rhoi, ADD(r2, eta2)));
+}
+
 /* Its dissipation, subtracted from du_i/dt: 1/2 c |v_ij|^2. */
 PT_ATTR T PT(morris_heat)(T c, VEC dv) { return MUL(MUL(ALL(0.5), c), PT(dot)(dv, dv)); }
 

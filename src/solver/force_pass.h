@@ -48,10 +48,12 @@ typedef enum {
 typedef struct sph_force_params {
   sph_eos eos; /* the liquid's law (phase 0) */
   /* two phases (physics.air; doc/method.md, Two phases): phases 2, phase_eos[k] the law of
-   * phase k (phase_eos[0] = eos), phase_z[k] its impedance rho0 c0; one phase: phases 1 */
+   * phase k (phase_eos[0] = eos), phase_z[k] its impedance rho0 c0, phase_mu[k] its dynamic
+   * viscosity (Pa s; phase_mu[0] = mu); one phase: phases 1 */
   int phases;
   sph_eos phase_eos[SPH_PHASES_MAX];
   double phase_z[SPH_PHASES_MAX];
+  double phase_mu[SPH_PHASES_MAX];
   double h;           /* smoothing length when uniform */
   int var_h;          /* per-particle h (pair mean h_ij); the grid must fit 2 max h */
   double h_reach;     /* with var_h: the largest h of the whole store, whose 2 h the wall

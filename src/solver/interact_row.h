@@ -119,10 +119,11 @@ typedef struct LROW {
   const uint8_t *restrict flags;
   int fluid, wendland, passive, adami_v, slip, slip_i, rnorm, rnorm_i;
   int mdd_is_mx, diffuses, dd_uniform;
-  int phased;                    /* two phases (physics.air): pair_phases */
-  int air_row;                   /* with them, i of the air: its wall neighbours' p is pa */
-  const uint8_t *restrict phase; /* with them, each particle's */
-  double zi_s;                   /* i's impedance rho0 c0 */
+  int phased;                     /* two phases (physics.air): pair_phases */
+  const uint8_t *restrict phase;  /* with them, each fluid particle's */
+  const uint8_t *restrict wphase; /* and each adami wall particle's (walls/adami.h) */
+  double zi_s;                    /* i's impedance rho0 c0 */
+  double mui_s;                   /* and its dynamic viscosity */
 #if LW == 1
   int mirror; /* mirror particles' no-slip velocity */
 #endif
@@ -149,6 +150,7 @@ typedef struct LSUMS {
 typedef struct LPAIR {
   LT dx, dy, r2, r, inv_r, inv_r2, hij, eta2_ij, wij, f, dvx, dvy, mj, vdotr;
   LT wi, wj, zij; /* two phases: phase_weights (pair_phases) */
+  LT mu2;         /* and 2 mu_ij (phase_viscosity) with Morris' viscosity */
 #if SPH_DIM == 3
   LT dz, dvz;
 #endif
@@ -234,9 +236,10 @@ LOOP_ATTR void SPH_PT_XGLUE(row_begin, FL)(LROW *restrict o, sph_particles *rest
   const int riem = (F & F_RIEMANN) != 0; /* (the constants only where it is on) */
   o->phased = riem && (F & F_PHASES);    /* (0 in every compiled set: interact.h) */
   o->phase = p->phase;
-  o->air_row = o->phased && kind[i] == SPH_KIND_FLUID && p->phase[i] != 0;
+  o->wphase = p->wphase;
   const sph_eos *ei = o->phased ? &fp->phase_eos[p->phase[i]] : &fp->eos;
   o->zi_s = ei->rho0 * ei->c0;
+  o->mui_s = o->phased ? fp->phase_mu[p->phase[i]] : fp->mu;
   o->pi = LOP(all)(riem ? qi.prho2 * qi.rho * qi.rho : 0.0);
   o->rz0 = LOP(all)(riem ? ei->rho0 * ei->c0 : 0.0);
   o->rkc = LOP(all)(riem ? fp->riemann_limiter / fp->eos.c0 : 0.0);
@@ -278,17 +281,24 @@ LOOP_ATTR void SPH_PT_XGLUE(row_begin, FL)(LROW *restrict o, sph_particles *rest
 }
 
 /* Two phases (physics.air): the pair's weights between i's material and
- * each neighbour's (phase_weights; a wall neighbour is of i's: it stands
- * for the fluid beside it, walls/adami.h). */
+ * each neighbour's (phase_weights) and, with Morris' viscosity, its 2 mu_ij
+ * (phase_viscosity); a wall neighbour is of its mirror phase, the fluid's
+ * beside it, whose pressure it carries (walls/adami.h). */
 LOOP_ATTR void SPH_PT_XGLUE(pair_phases, FL)(const LROW *restrict R, LPAIR *restrict G,
                                              const uint32_t *restrict jk) {
   const int32_t *restrict kind = R->kind;
-  const uint8_t *restrict ph = R->phase;
+  const uint8_t *restrict ph = R->phase, *restrict wph = R->wphase;
   const double *restrict z = R->fp->phase_z;
-#define E_PH(q, own) (kind[jk[q]] == SPH_KIND_FLUID ? z[ph[jk[q]]] : (own))
-  const LT zj = LSET(E_PH, R->zi_s);
-#undef E_PH
+#define E_PH(q, tab) (kind[jk[q]] == SPH_KIND_FLUID ? tab[ph[jk[q]]] : tab[wph[jk[q]]])
+  const LT zj = LSET(E_PH, z);
   LTERM(phase_weights)(LOP(all)(R->zi_s), zj, &G->wi, &G->wj, &G->zij);
+  if (R->F & F_MORRIS) {
+    const double *restrict mu = R->fp->phase_mu;
+    G->mu2 = LTERM(phase_viscosity)(LOP(all)(R->mui_s), LSET(E_PH, mu));
+  } else {
+    G->mu2 = R->zero;
+  }
+#undef E_PH
 }
 
 /* One iteration's pairs (i with the neighbours jk[0 .. LW-1], the k-th
@@ -378,8 +388,16 @@ LOOP_ATTR int SPH_PT_XGLUE(pair_density, FL)(const LROW *restrict R, LSUMS *rest
   if (R->phased)
     SPH_PT_XGLUE(pair_phases, FL)(R, G, jk);
   else /* (read only with two phases) */
-    G->wi = G->wj = G->zij = zero;
-  const LT mc = R->phased ? LTERM(phase_continuity_mass)(R->rhoi, mj, GATHER(rho), G->wi) : mj;
+    G->wi = G->wj = G->zij = G->mu2 = zero;
+  /* with a wall particle the continuity keeps one phase's form (wi = 1): the wall's velocity
+   * is its own, not its mirror phase's (walls/adami.h) */
+  LT wc = G->wi;
+  if (R->phased) {
+#define E_FL(q, a) (kind[jk[q]] == SPH_KIND_FLUID ? 1.0 : 0.0)
+    wc = LOP(sel)(LOP(lt)(zero, LSET(E_FL, 0)), G->wi, R->one);
+#undef E_FL
+  }
+  const LT mc = R->phased ? LTERM(phase_continuity_mass)(R->rhoi, mj, GATHER(rho), wc) : mj;
   if (fluid || !(R->fp->moving_walls || R->fp->mirror)) { /* walls at rest: their pairs add +-0 */
     LACC(S->drho, LTERM(continuity)(mc, dv, cg));
   } else { /* a wall particle's density follows its fluid neighbours only: the walls
@@ -542,15 +560,7 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_momentum, FL)(const LROW *restrict R, const LPA
                         * mirror's reflected velocity, a wall's normal part) */
     const LT rhoi = R->rhoi, pi = R->pi;
     const LT rhoj = GATHER(rho);
-    LT pj = LOP(mul)(LOP(mul)(GATHER(prho2), rhoj), rhoj);
-    if (R->air_row) { /* an adami wall's pressure as the air reads it (walls/adami.h) */
-      const sph_particles *restrict p = R->p;
-      const int32_t *restrict kind = R->kind;
-#define E_WALL(q, a) (kind[jk[q]] == SPH_KIND_WALL ? (a) : 0.0)
-      const LMASK wall = LOP(lt)(R->zero, LSET(E_WALL, 1.0));
-#undef E_WALL
-      pj = LOP(sel)(wall, LSET(E_ARR, p->pa), pj);
-    }
+    const LT pj = LOP(mul)(LOP(mul)(GATHER(prho2), rhoj), rhoj);
     const LT close = LOP(neg)(LOP(mul)(N->rvr, G->inv_r));
     pij = R->phased ? LTERM(riemann_pressure_phases)(pi, pj, rhoi, rhoj, close, G->wi, G->wj,
                                                      G->zij, R->rkc)
@@ -592,7 +602,9 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_momentum, FL)(const LROW *restrict R, const LPA
     if (F & F_LEDGER) *heat = LOP(sub)(*heat, LTERM(stress_heat)(mj, t, G->dv, G->gw));
   }
   if (F & F_MORRIS) {
-    LT c = LTERM(morris_factor)(mj, R->nu4, f, G->r2, R->rhoi, GATHER(rho), G->eta2_ij);
+    LT c = R->phased
+               ? LTERM(morris_phases_factor)(mj, GATHER(rho), G->mu2, f, G->r2, R->rhoi, G->eta2_ij)
+               : LTERM(morris_factor)(mj, R->nu4, f, G->r2, R->rhoi, GATHER(rho), G->eta2_ij);
     if (R->adami_v) c = LOP(and)(V->vis, c);
     pa->c[0] = LOP(add)(pa->c[0], LOP(mul)(c, V->vvx));
     pa->c[1] = LOP(add)(pa->c[1], LOP(mul)(c, V->vvy));

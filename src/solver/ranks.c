@@ -211,7 +211,7 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
         s->p.kind[i] == SPH_KIND_WALL && !(s->p.flags[i] & (SPH_FLAG_ADAMI | SPH_FLAG_REPULSIVE));
   s->pass_out[1] = (rated ? rates : 0) | (sph_particles_array_bits("rho p rhoh") & ~half) |
                    flagged |
-                   (s->fp.phases > 1 ? sph_particles_array_bits("pa") : 0); /* (adami.h) */
+                   (s->fp.phases > 1 ? sph_particles_array_bits("wphase") : 0); /* (adami.h) */
   /* what a kept store does not take again of a wall: its position and velocity where no wall
    * moves (walls.h: the fluid alone is kept off walls, shifted and integrated), and with the
    * walls in stages and a constant h its density and pressure (the pass makes its own walls'

@@ -180,13 +180,24 @@ static int add_fluid(sph_sim *s, sph_error *err) {
   const double gmag = gravity_down(c);
   for (size_t b = 0; b < c->n_fluid; b++) {
     const sph_fluid_block *fb = &c->fluid[b];
-    long n[3];
+    long n[3], off[3] = {0, 0, 0};
+    const double *origin = fb->lo;
     lattice_size(fb->lo, fb->hi, dx, n);
+    if (c->air) { /* the tank's lattice, which the air fills around the liquid (add_air): the
+                   * points of it in the block's box and shape (a block whose box starts on it,
+                   * the block's own lattice) */
+      origin = c->tank.lo;
+      for (int a = 0; a < SPH_DIM; a++) {
+        off[a] = (long)ceil((fb->lo[a] - origin[a]) / dx - 0.5);
+        n[a] = (long)floor((fb->hi[a] - origin[a]) / dx - 0.5) - off[a] + 1;
+      }
+    }
     for (long k = 0; k < n[2]; k++)
       for (long j = 0; j < n[1]; j++)
         for (long i = 0; i < n[0]; i++) {
           double x[SPH_DIM];
-          lattice_at(fb->lo, (const long[3]){i, j, k}, dx, x);
+          lattice_at(origin, (const long[3]){off[0] + i, off[1] + j, off[2] + k}, dx, x);
+          if (c->air && fb->shape.kind == SPH_SHAPE_BOX && !sph_shape_inside(fb, x)) continue;
           if (fb->shape.kind != SPH_SHAPE_BOX) {
             const int wn = sph_shape_winding_of(&fb->shape, x);
             if (wn == 0) continue;
@@ -227,20 +238,47 @@ static int add_air(sph_sim *s, sph_error *err) {
   const double v[SPH_DIM] = {0.0};
   long n[3];
   lattice_size(t->lo, t->hi, dx, n);
+  /* which lattice points the liquid holds, so that each air point's column above it is known */
+  const size_t np = (size_t)n[0] * (size_t)n[1] * (size_t)n[2];
+  uint8_t *liquid = calloc(np ? np : 1, 1);
+  if (!liquid) return sph_error_set(err, "out of memory: the air's lattice (%zu points)", np), -1;
+#define AT(i, j, k) ((((size_t)(k) * (size_t)n[1]) + (size_t)(j)) * (size_t)n[0] + (size_t)(i))
   for (long k = 0; k < n[2]; k++)
     for (long j = 0; j < n[1]; j++)
       for (long i = 0; i < n[0]; i++) {
         double x[SPH_DIM];
         lattice_at(t->lo, (const long[3]){i, j, k}, dx, x);
-        int liquid = 0;
-        for (size_t b = 0; b < c->n_fluid && !liquid; b++)
-          liquid = sph_shape_inside(&c->fluid[b], x);
-        if (liquid) continue;
-        const double rho = sph_eos_density(air, c->air_rho0 * gmag * (t->hi[SPH_UP] - x[SPH_UP]));
-        const long at = sph_particles_add_at(&s->p, x, v, rho, mass, c->h, SPH_KIND_FLUID, err);
-        if (at < 0) return -1;
+        for (size_t b = 0; b < c->n_fluid && !liquid[AT(i, j, k)]; b++)
+          liquid[AT(i, j, k)] = (uint8_t)sph_shape_inside(&c->fluid[b], x);
+      }
+  /* hydrostatic: the air's own weight from the tank's top, and the liquid's where the column
+   * above a point holds liquid (air under water: a Rayleigh-Taylor case, a bubble) */
+  const int up = SPH_UP;
+  for (long k = 0; k < n[2]; k++)
+    for (long j = 0; j < n[1]; j++)
+      for (long i = 0; i < n[0]; i++) {
+        if (liquid[AT(i, j, k)]) continue;
+        const long ijk[3] = {i, j, k};
+        double x[SPH_DIM];
+        lattice_at(t->lo, ijk, dx, x);
+        long above = 0; /* the liquid's lattice points above this one in its column */
+        for (long q = ijk[up] + 1; q < n[up]; q++) {
+          long at[3] = {i, j, k};
+          at[up] = q;
+          above += liquid[AT(at[0], at[1], at[2])];
+        }
+        const double pw = (c->rho0 - c->air_rho0) * gmag * ((double)above * dx);
+        const double pa = c->air_rho0 * gmag * (t->hi[SPH_UP] - x[SPH_UP]) + pw;
+        const long at = sph_particles_add_at(&s->p, x, v, sph_eos_density(air, pa), mass, c->h,
+                                             SPH_KIND_FLUID, err);
+        if (at < 0) {
+          free(liquid);
+          return -1;
+        }
         s->p.phase[at] = 1;
       }
+#undef AT
+  free(liquid);
   return 0;
 }
 
@@ -525,6 +563,8 @@ static void set_phases(sph_sim *s) {
                                               : sph_eos_tait(c->air_rho0, c->sound_speed);
   for (int k = 0; k < s->fp.phases; k++)
     s->fp.phase_z[k] = s->fp.phase_eos[k].rho0 * s->fp.phase_eos[k].c0;
+  s->fp.phase_mu[0] = c->mu;
+  if (c->air) s->fp.phase_mu[1] = c->air_mu;
 }
 
 /* The interaction passes' parameters from the case (force_pass.h), the phases' laws among them. */

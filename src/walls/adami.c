@@ -58,9 +58,14 @@ static inline __attribute__((always_inline)) int adami_row(sph_particles *p, con
   double ga[SPH_DIM];
   resulting_acceleration(p, ap, i, ga);
   /* AHA12 eq. (27): sum_f (p_f + rho_f (g - a_w) . r_wf) W_wf and sum_f W_wf; eq. (24): sum_f
-   * v_f W_wf; with two phases the air's sums apart (swa, spa) */
+   * v_f W_wf; with two phases the air's sums apart (swa, spa), and the fluid particle nearest
+   * the wall particle's mirror point x_w + m_w (the first by id of equals): the wall takes its
+   * phase and that phase's extrapolation (adami.h) */
   const uint8_t *ph = phased ? p->phase : NULL;
   double sw = 0.0, sp = 0.0, sv[SPH_DIM] = {0.0}, swa = 0.0, spa = 0.0;
+  double near2 = INFINITY;
+  int64_t near_id = INT64_MAX;
+  int mirror_phase = 0;
   for (size_t k = 0; k < cnt; k++) {
     const size_t j = row[k];
     if (p->kind[j] != SPH_KIND_FLUID) continue;
@@ -77,6 +82,13 @@ static inline __attribute__((always_inline)) int adami_row(sph_particles *p, con
 #else
     const double gr = ga[0] * dx + ga[1] * dy + ga[2] * dz;
 #endif
+    if (phased) { /* (j - (x_w + m_w) = -(r_wf + m_w)) */
+      const double mx = dx + p->mx[i], my = dy + p->my[i];
+      SPH_IF3(const double mz = dz + p->mz[i];)
+      const double e2 = SPH_NORM2(mx, my, mz);
+      if (e2 < near2 || (e2 == near2 && p->id[j] < near_id))
+        near2 = e2, near_id = p->id[j], mirror_phase = ph[j];
+    }
     if (phased && ph[j])
       swa += wij, spa += (p->p[j] + p->rho[j] * gr) * wij;
     else
@@ -84,24 +96,22 @@ static inline __attribute__((always_inline)) int adami_row(sph_particles *p, con
     for (int d = 0; d < SPH_DIM; d++)
       sv[d] += p->vel[d][j] * wij;
   }
+  const double st = sw + swa; /* every fluid neighbour's weight: the no-slip velocity's */
+  if (phased) {               /* two phases: the mirror point's phase */
+    p->wphase[i] = (uint8_t)mirror_phase;
+    if (mirror_phase) sw = swa, sp = spa;
+  }
   double pw = 0.0;
   if (sw > 0.0) {
     pw = sp / sw;
     if (!(pw > 0.0)) pw = 0.0; /* a wall pushes, never pulls (adami.h) */
   }
-  if (phased) { /* two phases: each phase's own extrapolation, the other's where it has none */
-    double pa = swa > 0.0 ? spa / swa : pw;
-    if (!(pa > 0.0)) pa = 0.0;
-    if (!(sw > 0.0)) pw = pa;
-    p->pa[i] = pa;
-    sw += swa;
-  }
   p->p[i] = pw;
   p->rho[i] = pw > 0.0 ? sph_eos_density(&ap->eos, pw) : ap->eos.rho0; /* AHA12 eq. (28) */
   if (gv)
     for (int d = 0; d < SPH_DIM; d++)
-      gv[d][i] = sw > 0.0 ? 2.0 * p->vel[d][i] - sv[d] / sw : p->vel[d][i];
-  return sw > 0.0;
+      gv[d][i] = st > 0.0 ? 2.0 * p->vel[d][i] - sv[d] / st : p->vel[d][i];
+  return st > 0.0;
 }
 
 static int adami_one(sph_particles *p, const sph_nlist *l, const sph_adami_params *ap,
