@@ -150,6 +150,7 @@ typedef struct LSUMS {
 typedef struct LPAIR {
   LT dx, dy, r2, r, inv_r, inv_r2, hij, eta2_ij, wij, f, dvx, dvy, mj, vdotr;
   LT wi, wj, zij; /* two phases: phase_weights (pair_phases) */
+  LT wc;          /* and the continuity's weight: wi, 1 with a wall particle */
   LT mu2;         /* and 2 mu_ij (phase_viscosity) with Morris' viscosity */
 #if SPH_DIM == 3
   LT dz, dvz;
@@ -241,9 +242,9 @@ LOOP_ATTR void SPH_PT_XGLUE(row_begin, FL)(LROW *restrict o, sph_particles *rest
   o->zi_s = ei->rho0 * ei->c0;
   o->mui_s = o->phased ? fp->phase_mu[p->phase[i]] : fp->mu;
   o->pi = LOP(all)(riem ? qi.prho2 * qi.rho * qi.rho : 0.0);
-  o->rz0 = LOP(all)(riem ? ei->rho0 * ei->c0 : 0.0);
+  o->rz0 = LOP(all)(riem ? o->zi_s : 0.0);
   o->rkc = LOP(all)(riem ? fp->riemann_limiter / fp->eos.c0 : 0.0);
-  o->rinv_z0 = LOP(all)(riem ? 1.0 / (ei->rho0 * ei->c0) : 0.0);
+  o->rinv_z0 = LOP(all)(riem ? 1.0 / o->zi_s : 0.0);
   o->hgx = LOP(all)(riem ? ei->rho0 * fp->gx : 0.0);
   o->hgy = LOP(all)(riem ? ei->rho0 * fp->gy : 0.0);
   SPH_IF3(o->hgz = LOP(all)(riem ? ei->rho0 * fp->gz : 0.0);)
@@ -283,7 +284,9 @@ LOOP_ATTR void SPH_PT_XGLUE(row_begin, FL)(LROW *restrict o, sph_particles *rest
 /* Two phases (physics.air): the pair's weights between i's material and
  * each neighbour's (phase_weights) and, with Morris' viscosity, its 2 mu_ij
  * (phase_viscosity); a wall neighbour is of its mirror phase, the fluid's
- * beside it, whose pressure it carries (walls/adami.h). */
+ * beside it, whose pressure it carries (walls/adami.h). With a wall particle
+ * the continuity keeps one phase's form (wc = 1): the wall's velocity is its
+ * own, not its mirror phase's. */
 LOOP_ATTR void SPH_PT_XGLUE(pair_phases, FL)(const LROW *restrict R, LPAIR *restrict G,
                                              const uint32_t *restrict jk) {
   const int32_t *restrict kind = R->kind;
@@ -292,6 +295,9 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_phases, FL)(const LROW *restrict R, LPAIR *rest
 #define E_PH(q, tab) (kind[jk[q]] == SPH_KIND_FLUID ? tab[ph[jk[q]]] : tab[wph[jk[q]]])
   const LT zj = LSET(E_PH, z);
   LTERM(phase_weights)(LOP(all)(R->zi_s), zj, &G->wi, &G->wj, &G->zij);
+#define E_FL(q, a) (kind[jk[q]] == SPH_KIND_FLUID ? 1.0 : 0.0)
+  G->wc = LOP(sel)(LOP(lt)(R->zero, LSET(E_FL, 0)), G->wi, R->one);
+#undef E_FL
   if (R->F & F_MORRIS) {
     const double *restrict mu = R->fp->phase_mu;
     G->mu2 = LTERM(phase_viscosity)(LOP(all)(R->mui_s), LSET(E_PH, mu));
@@ -388,16 +394,8 @@ LOOP_ATTR int SPH_PT_XGLUE(pair_density, FL)(const LROW *restrict R, LSUMS *rest
   if (R->phased)
     SPH_PT_XGLUE(pair_phases, FL)(R, G, jk);
   else /* (read only with two phases) */
-    G->wi = G->wj = G->zij = G->mu2 = zero;
-  /* with a wall particle the continuity keeps one phase's form (wi = 1): the wall's velocity
-   * is its own, not its mirror phase's (walls/adami.h) */
-  LT wc = G->wi;
-  if (R->phased) {
-#define E_FL(q, a) (kind[jk[q]] == SPH_KIND_FLUID ? 1.0 : 0.0)
-    wc = LOP(sel)(LOP(lt)(zero, LSET(E_FL, 0)), G->wi, R->one);
-#undef E_FL
-  }
-  const LT mc = R->phased ? LTERM(phase_continuity_mass)(R->rhoi, mj, GATHER(rho), wc) : mj;
+    G->wi = G->wj = G->zij = G->wc = G->mu2 = zero;
+  const LT mc = R->phased ? LTERM(phase_continuity_mass)(R->rhoi, mj, GATHER(rho), G->wc) : mj;
   if (fluid || !(R->fp->moving_walls || R->fp->mirror)) { /* walls at rest: their pairs add +-0 */
     LACC(S->drho, LTERM(continuity)(mc, dv, cg));
   } else { /* a wall particle's density follows its fluid neighbours only: the walls

@@ -238,47 +238,56 @@ static int add_air(sph_sim *s, sph_error *err) {
   const double v[SPH_DIM] = {0.0};
   long n[3];
   lattice_size(t->lo, t->hi, dx, n);
-  /* which lattice points the liquid holds, so that each air point's column above it is known */
+  /* per lattice point: -1 where the liquid holds it, else how many of the liquid's points lie
+   * above it in its column (the liquid's weight on the air there) */
   const size_t np = (size_t)n[0] * (size_t)n[1] * (size_t)n[2];
-  uint8_t *liquid = calloc(np ? np : 1, 1);
-  if (!liquid) return sph_error_set(err, "out of memory: the air's lattice (%zu points)", np), -1;
+  long *above = malloc((np ? np : 1) * sizeof *above);
+  if (!above) return sph_error_set(err, "out of memory: the air's lattice (%zu points)", np), -1;
 #define AT(i, j, k) ((((size_t)(k) * (size_t)n[1]) + (size_t)(j)) * (size_t)n[0] + (size_t)(i))
   for (long k = 0; k < n[2]; k++)
     for (long j = 0; j < n[1]; j++)
       for (long i = 0; i < n[0]; i++) {
         double x[SPH_DIM];
         lattice_at(t->lo, (const long[3]){i, j, k}, dx, x);
-        for (size_t b = 0; b < c->n_fluid && !liquid[AT(i, j, k)]; b++)
-          liquid[AT(i, j, k)] = (uint8_t)sph_shape_inside(&c->fluid[b], x);
+        int liquid = 0;
+        for (size_t b = 0; b < c->n_fluid && !liquid; b++)
+          liquid = sph_shape_inside(&c->fluid[b], x);
+        above[AT(i, j, k)] = liquid ? -1 : 0;
       }
+  /* each column from the top down (up: the last axis), counting the liquid passed */
+  const int up = SPH_UP;
+  const long cols = n[0] * (up == 1 ? 1 : n[1]);
+  for (long col = 0; col < cols; col++) {
+    long held = 0;
+    for (long q = n[up] - 1; q >= 0; q--) {
+      const size_t a = up == 1 ? AT(col, q, 0) : AT(col % n[0], col / n[0], q);
+      if (above[a] < 0)
+        held++;
+      else
+        above[a] = held;
+    }
+  }
   /* hydrostatic: the air's own weight from the tank's top, and the liquid's where the column
    * above a point holds liquid (air under water: a Rayleigh-Taylor case, a bubble) */
-  const int up = SPH_UP;
   for (long k = 0; k < n[2]; k++)
     for (long j = 0; j < n[1]; j++)
       for (long i = 0; i < n[0]; i++) {
-        if (liquid[AT(i, j, k)]) continue;
-        const long ijk[3] = {i, j, k};
+        const long held = above[AT(i, j, k)];
+        if (held < 0) continue;
         double x[SPH_DIM];
-        lattice_at(t->lo, ijk, dx, x);
-        long above = 0; /* the liquid's lattice points above this one in its column */
-        for (long q = ijk[up] + 1; q < n[up]; q++) {
-          long at[3] = {i, j, k};
-          at[up] = q;
-          above += liquid[AT(at[0], at[1], at[2])];
-        }
-        const double pw = (c->rho0 - c->air_rho0) * gmag * ((double)above * dx);
+        lattice_at(t->lo, (const long[3]){i, j, k}, dx, x);
+        const double pw = (c->rho0 - c->air_rho0) * gmag * ((double)held * dx);
         const double pa = c->air_rho0 * gmag * (t->hi[SPH_UP] - x[SPH_UP]) + pw;
         const long at = sph_particles_add_at(&s->p, x, v, sph_eos_density(air, pa), mass, c->h,
                                              SPH_KIND_FLUID, err);
         if (at < 0) {
-          free(liquid);
+          free(above);
           return -1;
         }
         s->p.phase[at] = 1;
       }
 #undef AT
-  free(liquid);
+  free(above);
   return 0;
 }
 

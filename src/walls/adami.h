@@ -58,11 +58,11 @@ typedef struct sph_adami_params {
 
 /* Sets p->p and p->rho of every adami wall particle from its fluid
  * neighbours in the list l (complete for the support 2 h on p's
- * positions; with two phases from one phase's neighbours, the phase
- * with the larger share of the kernel's weight, which p->wphase names: the
- * wall stands for the mirror image of the fluid beside it, a particle of
- * that phase at that phase's pressure, in the other phase's rows as in its
- * own), and, unless gv is NULL,
+ * positions; with two phases from one phase's neighbours, the phase of
+ * the fluid particle nearest the wall particle's mirror point x_w + m_w,
+ * which p->wphase names: the wall stands for the mirror image of the fluid
+ * beside it, a particle of that phase at that phase's pressure, in the
+ * other phase's rows as in its own), and, unless gv is NULL,
  * gv[axis][w] its no-slip velocity (the other particles' entries are not touched). In a rank's
  * store (solver/ranks.c: a list with empty rows, grid.h no_row) a ghost wall particle whose row
  * lists only ghosts with empty rows is read by no row of the pass and is skipped: p and rho as they
