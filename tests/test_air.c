@@ -70,8 +70,8 @@ static void test_key(void) {
   sph_sim *s;
   CU_ASSERT_FATAL(open_still(NULL, 0, &c, &s) == 0);
   CU_ASSERT_EQUAL(c.air, 1);
-  CU_ASSERT_EQUAL(c.air_rho0, 1.2);
-  CU_ASSERT_EQUAL(c.air_exponent, 1);
+  CU_ASSERT_EQUAL(c.air_material.rho0, 1.2);
+  CU_ASSERT_EQUAL(c.air_material.exponent, 1);
   char *d = sph_case_describe(&c);
   CU_ASSERT_FATAL(d != NULL);
   CU_ASSERT(strstr(d, "physics.air: {rho0: 1.2, exponent: 1}\n") != NULL);
@@ -80,7 +80,7 @@ static void test_key(void) {
   sph_case_free(&c);
   const char *map[] = {"physics.air={rho0: 1.0, exponent: 7}"};
   CU_ASSERT_FATAL(open_still(map, 1, &c, &s) == 0);
-  CU_ASSERT(c.air == 1 && c.air_rho0 == 1.0 && c.air_exponent == 7);
+  CU_ASSERT(c.air == 1 && c.air_material.rho0 == 1.0 && c.air_material.exponent == 7);
   sph_sim_free(s);
   sph_case_free(&c);
   const char *off[] = {"physics.air=false"};
@@ -99,7 +99,7 @@ static void test_key(void) {
   const char *visc[] = {"physics.viscosity={model: morris, mu: 1.0e-3}",
                         "physics.air={mu: 2.0e-5}"};
   CU_ASSERT_FATAL(open_still(visc, 2, &c, &s) == 0);
-  CU_ASSERT(c.air == 1 && c.air_mu == 2.0e-5 && c.mu == 1.0e-3);
+  CU_ASSERT(c.air == 1 && c.air_material.mu == 2.0e-5 && c.mu == 1.0e-3);
   d = sph_case_describe(&c);
   CU_ASSERT_FATAL(d != NULL);
   CU_ASSERT(strstr(d, "physics.air: {rho0: 1.2, exponent: 1, mu: 2.0000000000000002e-05}\n") !=

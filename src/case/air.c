@@ -3,49 +3,141 @@
  * air.c - physics.air: a second phase, the air over the liquid
  * (doc/case-files.md, physics.air; doc/method.md, Two phases).
  *
- * `air: true` or a mapping {rho0, exponent, mu} fills the tank's free volume
- * with air particles on the case's lattice (solver/setup.c); `mu` is the
- * air's dynamic viscosity where physics.viscosity (Morris') is on; `air: false`
- * (the default) leaves one phase. The air has the liquid's sound speed
- * (the same-sound-speed approach of Rezavand et al. 2020), so the time
- * step is the one-phase step. The two-phase pair terms are those of the
- * Riemann-solver pressure with Adami walls (the default scheme), and the
- * reader refuses what they do not cover, naming the key.
+ * `air: true` or a mapping of the air's material keys fills the tank's
+ * free volume with air particles on the case's lattice (solver/setup.c);
+ * `air: false` (the default) leaves one phase. The air has the liquid's
+ * sound speed (the same-sound-speed approach of Rezavand et al. 2020), so
+ * the time step is the one-phase step. The two-phase pair terms are those
+ * of the Riemann-solver pressure with Adami walls (the default scheme), and
+ * the reader refuses what they do not cover, naming the key.
+ *
+ * The material's keys are one table (KEYS): each row a field of
+ * sph_material (physics/models.h) with its default, its range, and its
+ * line of `sph new`'s template; the reader, the defaults, the listing
+ * (sph_case_describe) and the template all walk it, so a new key is a
+ * field and a row.
  */
 #include "config.h"
 
+#include <stddef.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "case/case_read.h"
 
-static const char *const air_keys[] = {"rho0", "exponent", "mu", NULL};
+/* A key of the air's material: a number (double) or an integer (int) at
+ * `at` in sph_material; an integer takes one of `choices` (0-terminated)
+ * when given. `listed` (or NULL: always) says whether the listing shows
+ * it. `example` and `help` are its template line. */
+typedef struct air_key {
+  const char *name;
+  int integer;
+  size_t at;
+  double dflt;
+  range r;              /* a number's range */
+  const int *choices;   /* an integer's values */
+  const char *expected; /* an integer's message: "expected <this>, got N" */
+  int (*listed)(const sph_case *c);
+  const char *example, *help;
+} air_key;
+
+static int with_viscosity(const sph_case *c) { return c->viscosity != SPH_VISCOSITY_NONE; }
+
+static const int LAWS[] = {1, 7, 0};
+
+static const air_key KEYS[] = {
+    {.name = "rho0",
+     .at = offsetof(sph_material, rho0),
+     .dflt = 1.2,
+     .r = {1e-6, 1e6, '[', ']', NULL},
+     .example = "1.2",
+     .help = "its reference density (kg/m^3)"},
+    {.name = "exponent",
+     .integer = 1,
+     .at = offsetof(sph_material, exponent),
+     .dflt = 1,
+     .choices = LAWS,
+     .expected = "1 (the linear law) or 7 (Tait's)",
+     .example = "1",
+     .help = "its law: 1 linear (default), 7 Tait's"},
+    {.name = "mu",
+     .at = offsetof(sph_material, mu),
+     .dflt = 1.8e-5,
+     .r = {0.0, 1e6, '(', ']', NULL},
+     .listed = with_viscosity,
+     .example = "1.8e-5",
+     .help = "its viscosity (Pa s) with physics.viscosity (morris)"},
+};
+#define N_KEYS (sizeof KEYS / sizeof KEYS[0])
+
+static double *number_at(sph_material *m, const air_key *k) {
+  return (double *)(void *)((char *)m + k->at);
+}
+static int *integer_at(sph_material *m, const air_key *k) {
+  return (int *)(void *)((char *)m + k->at);
+}
+static double number_of(const sph_material *m, const air_key *k) {
+  return *(const double *)(const void *)((const char *)m + k->at);
+}
+static int integer_of(const sph_material *m, const air_key *k) {
+  return *(const int *)(const void *)((const char *)m + k->at);
+}
+
+void sph_case_air_defaults(sph_case *c) {
+  for (size_t k = 0; k < N_KEYS; k++) {
+    if (KEYS[k].integer)
+      *integer_at(&c->air_material, &KEYS[k]) = (int)KEYS[k].dflt;
+    else
+      *number_at(&c->air_material, &KEYS[k]) = KEYS[k].dflt;
+  }
+}
+
+/* Key k of the mapping m into c's material: 0 absent or read, -1 an error. */
+static int read_key(const ctx *x, const node *m, const air_key *k, sph_case *c) {
+  if (!k->integer)
+    return sph_yaml_get_number(&x->t, m, "physics.air", k->name, 0, &k->r,
+                               number_at(&c->air_material, k)) < 0
+               ? -1
+               : 0;
+  int lo = k->choices[0], hi = k->choices[0];
+  for (const int *v = k->choices; *v; v++)
+    lo = *v < lo ? *v : lo, hi = *v > hi ? *v : hi;
+  int *out = integer_at(&c->air_material, k);
+  const int got = sph_yaml_get_int(&x->t, m, "physics.air", k->name, lo, hi, out);
+  if (got <= 0) return got;
+  for (const int *v = k->choices; *v; v++)
+    if (*v == *out) return 0;
+  char path[64];
+  snprintf(path, sizeof path, "physics.air.%s", k->name);
+  return sph_yaml_fail_at(&x->t, sph_yaml_find(m, k->name)->val, path, "expected %s, got %d",
+                          k->expected, *out);
+}
 
 int sph_case_read_air(ctx *x, const node *physics, sph_case *c) {
-  static const range rho = {1e-6, 1e6, '[', ']', NULL};
-  static const range mu = {0.0, 1e6, '(', ']', NULL};
   const entry *e = sph_yaml_find(physics, "air");
   if (!e) return 0;
   x->air_node = e->val;
   if (e->val->kind == SPH_YAML_SCALAR) /* true or false */
     return sph_yaml_get_bool(&x->t, physics, "physics", "air", &c->air) < 0 ? -1 : 0;
+  const char *names[N_KEYS + 1];
+  char expected[160] = "true, false or a mapping {";
+  for (size_t k = 0; k < N_KEYS; k++) {
+    names[k] = KEYS[k].name;
+    snprintf(expected + strlen(expected), sizeof expected - strlen(expected), "%s%s", k ? ", " : "",
+             KEYS[k].name);
+  }
+  names[N_KEYS] = NULL;
   if (e->val->kind != SPH_YAML_MAP) {
     char b[96];
-    return sph_yaml_fail_at(&x->t, e->val, "physics.air",
-                            "expected true, false or a mapping {rho0, exponent, mu}, got %s",
+    return sph_yaml_fail_at(&x->t, e->val, "physics.air", "expected %s}, got %s", expected,
                             sph_yaml_got(e->val, b, sizeof b));
   }
   const node *m;
-  if (sph_yaml_get_section(&x->t, physics, "physics", "air", 0, air_keys, &m) < 0) return -1;
+  if (sph_yaml_get_section(&x->t, physics, "physics", "air", 0, names, &m) < 0) return -1;
   c->air = 1;
-  if (sph_yaml_get_number(&x->t, m, "physics.air", "rho0", 0, &rho, &c->air_rho0) < 0) return -1;
-  const int got = sph_yaml_get_int(&x->t, m, "physics.air", "exponent", 1, 7, &c->air_exponent);
-  if (got < 0) return -1;
-  if (got && c->air_exponent != 1 && c->air_exponent != 7)
-    return sph_yaml_fail_at(&x->t, sph_yaml_find(m, "exponent")->val, "physics.air.exponent",
-                            "expected 1 (the linear law) or 7 (Tait's), got %d", c->air_exponent);
-  const int got_mu = sph_yaml_get_number(&x->t, m, "physics.air", "mu", 0, &mu, &c->air_mu);
-  if (got_mu < 0) return -1;
-  if (got_mu) x->air_mu_node = sph_yaml_find(m, "mu")->val;
+  x->air_map = m;
+  for (size_t k = 0; k < N_KEYS; k++)
+    if (read_key(x, m, &KEYS[k], c)) return -1;
   return 0;
 }
 
@@ -77,8 +169,45 @@ int sph_case_check_air(const ctx *x, const sph_case *c) {
   const char *why = air_clash(c);
   if (why)
     return sph_yaml_fail_at(&x->t, x->air_node, "physics.air", "cannot be combined with %s", why);
-  if (x->air_mu_node && c->viscosity == SPH_VISCOSITY_NONE)
-    return sph_yaml_fail_at(&x->t, x->air_mu_node, "physics.air.mu",
+  const entry *mu = x->air_map ? sph_yaml_find(x->air_map, "mu") : NULL;
+  if (mu && c->viscosity == SPH_VISCOSITY_NONE)
+    return sph_yaml_fail_at(&x->t, mu->val, "physics.air.mu",
                             "the air's viscosity needs physics.viscosity (model: morris)");
   return 0;
+}
+
+/* One key's value as the listing and the template write it. */
+static int key_value(char *buf, size_t n, const sph_material *m, const air_key *k) {
+  return k->integer ? snprintf(buf, n, "%d", integer_of(m, k))
+                    : snprintf(buf, n, "%.17g", number_of(m, k));
+}
+
+int sph_case_air_listing(const sph_case *c, char *buf, size_t n) {
+  char out[512] = "{";
+  size_t len = 1;
+  for (size_t k = 0; k < N_KEYS; k++) {
+    if (KEYS[k].listed && !KEYS[k].listed(c)) continue;
+    char v[40];
+    key_value(v, sizeof v, &c->air_material, &KEYS[k]);
+    const int w =
+        snprintf(out + len, sizeof out - len, "%s%s: %s", len > 1 ? ", " : "", KEYS[k].name, v);
+    if (w < 0 || (size_t)w >= sizeof out - len) return -1;
+    len += (size_t)w;
+  }
+  return snprintf(buf, n, "%s}", out);
+}
+
+int sph_case_air_template(char *buf, size_t n) {
+  char out[2048];
+  int w = snprintf(out, sizeof out, "  # %-24s # %s\n",
+                   "air:", "a second phase: the tank's free volume filled with air");
+  size_t len = (size_t)w;
+  for (size_t k = 0; k < N_KEYS; k++) {
+    char kv[64];
+    snprintf(kv, sizeof kv, "%s: %s", KEYS[k].name, KEYS[k].example);
+    w = snprintf(out + len, sizeof out - len, "  #   %-22s # %s\n", kv, KEYS[k].help);
+    if (w < 0 || (size_t)w >= sizeof out - len) return -1;
+    len += (size_t)w;
+  }
+  return snprintf(buf, n, "%s", out);
 }

@@ -239,9 +239,7 @@ static void set_defaults(sph_case *c) {
   c->negative_pressure = 1;
   c->riemann = 0;
   c->riemann_limiter = 3.0;
-  c->air_rho0 = 1.2;
-  c->air_exponent = 1;
-  c->air_mu = 1.8e-5;
+  sph_case_air_defaults(c);
   c->h_factor = 1.3;
   c->kernel = SPH_KERNEL_CUBIC_SPLINE;
   c->integrator = SPH_INTEGRATOR_PREDICTOR_CORRECTOR;

@@ -128,15 +128,14 @@ typedef struct sph_case {
   double sps_cs, sps_ci;  /* Smagorinsky C_s = 0.12 and C_I = 0.00066; Delta = dx */
   sph_viscosity_kind viscosity; /* laminar viscosity model, default none */
   double mu;                    /* dynamic viscosity (Pa s), required unless viscosity is none */
-  int gradient_correction; /* stress tensor: kernel-gradient correction (src/solver/forces.h) */
-  double repulsion;        /* D of the Lennard-Jones wall force (m^2/s^2), paper A eq. (22);
-                              default 5 |g| H, H the deepest fluid block */
-  int air;                 /* physics.air: the tank's free volume filled with air, a second
-                              phase (doc/method.md, Two phases); default 0 */
-  double air_rho0;         /* its reference density, default 1.2 kg/m^3 */
-  int air_exponent;        /* its law's exponent: 1 (p = c0^2 (rho - rho0), default) or 7 */
-  double air_mu;           /* its dynamic viscosity with physics.viscosity (morris), default
-                            * 1.8e-5 Pa s */
+  int gradient_correction;   /* stress tensor: kernel-gradient correction (src/solver/forces.h) */
+  double repulsion;          /* D of the Lennard-Jones wall force (m^2/s^2), paper A eq. (22);
+                                default 5 |g| H, H the deepest fluid block */
+  int air;                   /* physics.air: the tank's free volume filled with air, a second
+                                phase (doc/method.md, Two phases); default 0 */
+  sph_material air_material; /* its material (physics/models.h), the keys of physics.air:
+                                rho0 1.2 kg/m^3, exponent 1, mu 1.8e-5 Pa s by default
+                                (src/case/air.c) */
 
   /* numerics */
   sph_scheme_kind scheme; /* numerics.scheme, default riemann */
@@ -271,6 +270,10 @@ void sph_case_free(sph_case *c);
  * the start-of-run listing and the snapshots' "parameters" attribute.
  * Numbers printed with %.17g so they read back exactly. malloc'ed; free it. */
 char *sph_case_describe(const sph_case *c);
+/* The commented physics.air block of `sph new`'s template: a line for the
+ * key and one for each key of the air's material, with its example value
+ * and what it is (src/case/air.c), into buf (snprintf's return). */
+int sph_case_air_template(char *buf, size_t n);
 /* Whether the case needs free-surface detection (the field is asked for
  * in the output, or h* is set). */
 int sph_case_needs_free_surface(const sph_case *c);

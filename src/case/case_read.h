@@ -24,7 +24,7 @@ typedef struct ctx {
   const node *shifting_node; /* numerics.shifting if given */
   const node *cgrad_node;    /* numerics.gradient_correction if given */
   const node *air_node;      /* physics.air if given */
-  const node *air_mu_node;   /* physics.air.mu if given */
+  const node *air_map;       /* physics.air's mapping if given */
 } ctx;
 
 /* names[k] of a NULL-terminated list of choices, "unknown" past its end. */
@@ -60,6 +60,10 @@ void sph_case_estimate_particles(sph_case *c);
  * the numerics) whether the two-phase terms cover the case. */
 int sph_case_read_air(ctx *x, const node *physics, sph_case *c);
 int sph_case_check_air(const ctx *x, const sph_case *c);
+/* The air's material keys at their defaults (set_defaults), and its
+ * listing "{rho0: ..., ...}" into buf (snprintf's return). */
+void sph_case_air_defaults(sph_case *c);
+int sph_case_air_listing(const sph_case *c, char *buf, size_t n);
 /* output.c: the output section (geometry and time read before it). */
 int sph_case_read_output(const ctx *x, const node *root, sph_case *c);
 

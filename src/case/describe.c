@@ -7,6 +7,7 @@
 #include "config.h"
 
 #include "case/case.h"
+#include "case/case_read.h"
 #include "case/choices.h"
 #include "case/yaml_tree.h"
 
@@ -221,11 +222,11 @@ char *sph_case_describe(const sph_case *c) {
   sb_add(&b, "physics.xsph: %.17g\n", c->xsph);
   if (!c->negative_pressure) sb_add(&b, "physics.negative_pressure: false\n");
   if (c->riemann) sb_add(&b, "physics.riemann.limiter: %.17g\n", c->riemann_limiter);
-  if (c->air && c->viscosity == SPH_VISCOSITY_NONE)
-    sb_add(&b, "physics.air: {rho0: %.17g, exponent: %d}\n", c->air_rho0, c->air_exponent);
-  else if (c->air)
-    sb_add(&b, "physics.air: {rho0: %.17g, exponent: %d, mu: %.17g}\n", c->air_rho0,
-           c->air_exponent, c->air_mu);
+  if (c->air) {
+    char air[512];
+    if (sph_case_air_listing(c, air, sizeof air) >= (int)sizeof air) b.failed = 1;
+    sb_add(&b, "physics.air: %s\n", air);
+  }
   sb_add(&b, "physics.viscosity.model: %s\n", sph_viscosity_name(c->viscosity));
   if (c->viscosity != SPH_VISCOSITY_NONE) sb_add(&b, "physics.viscosity.mu: %.17g\n", c->mu);
   if (c->gradient_correction) sb_add(&b, "physics.viscosity.gradient_correction: true\n");

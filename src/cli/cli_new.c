@@ -24,6 +24,10 @@
 
 #include "cli/cli.h"
 
+/* The line of TEMPLATE that the air's block (sph_case_air_template: a line
+ * for each key of the air's material, from the library's table) replaces. */
+#define AIR_BLOCK "  # air\n"
+
 /* The case after its name line (the name comes from the command line). */
 static const char *const TEMPLATE =
     "description: \"a dam break to start from: the column of Martin & Moyce (1952), a = 0.05715 "
@@ -59,12 +63,8 @@ static const char *const TEMPLATE =
     "  # xsph: 0                  # XSPH epsilon, [0, 1] (scheme: 0, off)\n"
     "  # riemann:                 # Riemann-solver pressure, Zhang et al. 2017, or off\n"
     "  #   limiter: 3             # (scheme: riemann on; the others off); >= 0 (default 3)\n"
-    "  # negative_pressure: false # no tension: density held >= rho0 (scheme: false; others true)\n"
-    "  # air:                     # a second phase: the tank's free volume filled with air\n"
-    "  #   rho0: 1.2              # its reference density (kg/m^3)\n"
-    "  #   exponent: 1            # its law: 1 linear (default), 7 Tait's\n"
-    "  #   mu: 1.8e-5             # its viscosity (Pa s) with physics.viscosity (morris)\n"
-    "\n"
+    "  # negative_pressure: false # no tension: density held >= rho0 (scheme: false; others "
+    "true)\n" AIR_BLOCK "\n"
     "numerics:\n"
     "  scheme: riemann            # the values of the keys marked (scheme) left out: riemann\n"
     "                             # (default), paper_a, paper_b, delta_sph (doc/method.md,\n"
@@ -242,17 +242,30 @@ static const struct {
      "      at: [0.1, 0.028575]    # a level gauge's vertical line (x, y) (m)\n"},
 };
 
-/* TEMPLATE in 3-D (THREE_D's lines replaced) into a new string; NULL if
- * out of memory or a line of THREE_D is not in TEMPLATE once (a defect,
+/* TEMPLATE with the air's block in place of AIR_BLOCK, into a new string;
+ * NULL if out of memory. */
+static char *template_2d(void) {
+  char air[2048];
+  const int n = sph_case_air_template(air, sizeof air);
+  const char *at = strstr(TEMPLATE, AIR_BLOCK);
+  if (n < 0 || n >= (int)sizeof air || !at) return NULL;
+  const size_t head = (size_t)(at - TEMPLATE), len = strlen(TEMPLATE) - strlen(AIR_BLOCK) + n + 1;
+  char *out = malloc(len);
+  if (out) snprintf(out, len, "%.*s%s%s", (int)head, TEMPLATE, air, at + strlen(AIR_BLOCK));
+  return out;
+}
+
+/* base (TEMPLATE's text) in 3-D (THREE_D's lines replaced) into a new string;
+ * NULL if out of memory or a line of THREE_D is not in base once (a defect,
  * said on stderr). */
-static char *template_3d(void) {
+static char *template_3d(const char *base) {
   const size_t n_sub = sizeof THREE_D / sizeof THREE_D[0];
-  size_t len = strlen(TEMPLATE) + 1;
+  size_t len = strlen(base) + 1;
   for (size_t k = 0; k < n_sub; k++)
     len += strlen(THREE_D[k].to);
   char *out = malloc(len), *w = out;
   if (!out) return NULL;
-  const char *r = TEMPLATE;
+  const char *r = base;
   while (*r) {
     const char *eol = strchr(r, '\n');
     const size_t n = eol ? (size_t)(eol - r) + 1 : strlen(r);
@@ -265,7 +278,7 @@ static char *template_3d(void) {
   }
   *w = '\0';
   for (size_t k = 0; k < n_sub; k++) {
-    const char *at = strstr(TEMPLATE, THREE_D[k].from);
+    const char *at = strstr(base, THREE_D[k].from);
     if (!at || strstr(at + 1, THREE_D[k].from)) {
       fprintf(stderr, "sph new: the 3-D template's line is not in the 2-D one once: %s",
               THREE_D[k].from);
@@ -291,12 +304,13 @@ static void new_usage(FILE *f) {
 /* The case file for name: its name line, then TEMPLATE (in 3-D when dim
  * is 3); NULL if out of memory. */
 static char *case_text(const char *name, int dim) {
-  char *body = dim == 3 ? template_3d() : NULL;
-  if (dim == 3 && !body) return NULL;
-  const char *t = body ? body : TEMPLATE;
-  const size_t n = strlen("name: \n") + strlen(name) + strlen(t) + 1;
+  char *base = template_2d();
+  char *body = base && dim == 3 ? template_3d(base) : base;
+  if (body != base) free(base);
+  if (!body) return NULL;
+  const size_t n = strlen("name: \n") + strlen(name) + strlen(body) + 1;
   char *text = malloc(n);
-  if (text) snprintf(text, n, "name: %s\n%s", name, t);
+  if (text) snprintf(text, n, "name: %s\n%s", name, body);
   free(body);
   return text;
 }

@@ -45,6 +45,19 @@ typedef enum sph_diffusion_kind {
   SPH_DIFFUSION_FOURTAKAS = 3 /* Fourtakas, Dominguez, Vacondio & Rogers 2019 */
 } sph_diffusion_kind;
 
+/* A phase's material (doc/method.md, Two phases): what the second phase's
+ * rows read, one field a key of physics.air. src/case/air.c reads, lists and
+ * writes them into `sph new`'s template from one table of keys; the solver
+ * takes the table whole (solver/force_pass.h, phase_mat), so that a term
+ * that reads a new field touches its field here, its key's row in air.c,
+ * the term and its call. Phase 0, the liquid, is made of physics.rho0,
+ * sound_speed and viscosity.mu, with Tait's law. */
+typedef struct sph_material {
+  double rho0;  /* reference density (kg/m^3) */
+  int exponent; /* equation of state: 1 the linear p = c0^2 (rho - rho0), 7 Tait's */
+  double mu;    /* dynamic viscosity (Pa s), read with Morris' viscosity */
+} sph_material;
+
 /* The names of the choices in enum order, NULL-terminated:
  * {"none", "mls", "shepard", NULL}. */
 extern const char *const sph_filter_kind_names[];

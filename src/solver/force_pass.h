@@ -47,10 +47,13 @@ typedef enum {
 
 typedef struct sph_force_params {
   sph_eos eos; /* the liquid's law (phase 0) */
-  /* two phases (physics.air; doc/method.md, Two phases): phases 2, phase_eos[k] the law of
-   * phase k (phase_eos[0] = eos), phase_z[k] its impedance rho0 c0, phase_mu[k] its dynamic
-   * viscosity (Pa s; phase_mu[0] = mu); one phase: phases 1 */
+  /* two phases (physics.air; doc/method.md, Two phases): phases 2, phase_mat[k] the material
+   * of phase k as the case gives it (physics/models.h: phase 0 the liquid's, phase 1
+   * physics.air's), and from it phase_eos[k] its law (phase_eos[0] = eos), phase_z[k] its
+   * impedance rho0 c0, phase_mu[k] its dynamic viscosity (Pa s; phase_mu[0] = mu), flat for
+   * the loops' gathers; one phase: phases 1 */
   int phases;
+  sph_material phase_mat[SPH_PHASES_MAX];
   sph_eos phase_eos[SPH_PHASES_MAX];
   double phase_z[SPH_PHASES_MAX];
   double phase_mu[SPH_PHASES_MAX];

@@ -171,7 +171,7 @@ static void lattice_at(const double *lo, const long idx[3], double dx, double x[
 /* The weight of the air over a block's surface (two phases, physics.air):
  * the air filling the tank up to its top, at rest; 0 without air. */
 static double air_head(const sph_case *c, double surface) {
-  return c->air ? c->air_rho0 * gravity_down(c) * (c->tank.hi[SPH_UP] - surface) : 0.0;
+  return c->air ? c->air_material.rho0 * gravity_down(c) * (c->tank.hi[SPH_UP] - surface) : 0.0;
 }
 
 static int add_fluid(sph_sim *s, sph_error *err) {
@@ -233,7 +233,8 @@ static int add_air(sph_sim *s, sph_error *err) {
   const sph_case *c = s->c;
   if (!c->air) return 0;
   const sph_tank *t = &c->tank;
-  const double dx = c->dx, mass = sph_lattice_mass(c->air_rho0, dx), gmag = gravity_down(c);
+  const double dx = c->dx, mass = sph_lattice_mass(c->air_material.rho0, dx),
+               gmag = gravity_down(c);
   const sph_eos *air = &s->fp.phase_eos[1];
   const double v[SPH_DIM] = {0.0};
   long n[3];
@@ -276,8 +277,8 @@ static int add_air(sph_sim *s, sph_error *err) {
         if (held < 0) continue;
         double x[SPH_DIM];
         lattice_at(t->lo, (const long[3]){i, j, k}, dx, x);
-        const double pw = (c->rho0 - c->air_rho0) * gmag * ((double)held * dx);
-        const double pa = c->air_rho0 * gmag * (t->hi[SPH_UP] - x[SPH_UP]) + pw;
+        const double pw = (c->rho0 - c->air_material.rho0) * gmag * ((double)held * dx);
+        const double pa = c->air_material.rho0 * gmag * (t->hi[SPH_UP] - x[SPH_UP]) + pw;
         const long at = sph_particles_add_at(&s->p, x, v, sph_eos_density(air, pa), mass, c->h,
                                              SPH_KIND_FLUID, err);
         if (at < 0) {
@@ -566,14 +567,17 @@ int sph_sim_create_rank_store(const sph_case *c, sph_sim **out, sph_error *err) 
 static void set_phases(sph_sim *s) {
   const sph_case *c = s->c;
   s->fp.phases = c->air ? 2 : 1;
+  s->fp.phase_mat[0] = (sph_material){.rho0 = c->rho0, .exponent = 7, .mu = c->mu};
+  if (c->air) s->fp.phase_mat[1] = c->air_material;
   s->fp.phase_eos[0] = s->fp.eos;
-  if (c->air)
-    s->fp.phase_eos[1] = c->air_exponent == 1 ? sph_eos_linear(c->air_rho0, c->sound_speed)
-                                              : sph_eos_tait(c->air_rho0, c->sound_speed);
-  for (int k = 0; k < s->fp.phases; k++)
+  for (int k = 0; k < s->fp.phases; k++) {
+    const sph_material *m = &s->fp.phase_mat[k];
+    if (k > 0)
+      s->fp.phase_eos[k] = m->exponent == 1 ? sph_eos_linear(m->rho0, c->sound_speed)
+                                            : sph_eos_tait(m->rho0, c->sound_speed);
     s->fp.phase_z[k] = s->fp.phase_eos[k].rho0 * s->fp.phase_eos[k].c0;
-  s->fp.phase_mu[0] = c->mu;
-  if (c->air) s->fp.phase_mu[1] = c->air_mu;
+    s->fp.phase_mu[k] = m->mu;
+  }
 }
 
 /* The interaction passes' parameters from the case (force_pass.h), the phases' laws among them. */
