@@ -74,13 +74,27 @@ static void test_key(void) {
   CU_ASSERT_EQUAL(c.air_material.exponent, 1);
   char *d = sph_case_describe(&c);
   CU_ASSERT_FATAL(d != NULL);
-  CU_ASSERT(strstr(d, "physics.air: {rho0: 1.2, exponent: 1}\n") != NULL);
+  /* the air's sound speed by default the liquid's (the same-sound-speed approach) */
+  CU_ASSERT_EQUAL(c.air_material.c0, c.sound_speed);
+  char want[160];
+  snprintf(want, sizeof want, "physics.air: {rho0: 1.2, exponent: 1, sound_speed: %.17g}\n",
+           c.sound_speed);
+  CU_ASSERT(strstr(d, want) != NULL);
   free(d);
   sph_sim_free(s);
   sph_case_free(&c);
   const char *map[] = {"physics.air={rho0: 1.0, exponent: 7}"};
   CU_ASSERT_FATAL(open_still(map, 1, &c, &s) == 0);
   CU_ASSERT(c.air == 1 && c.air_material.rho0 == 1.0 && c.air_material.exponent == 7);
+  sph_sim_free(s);
+  sph_case_free(&c);
+  const char *stiff[] = {"physics.air={sound_speed: 42}"};
+  CU_ASSERT_FATAL(open_still(stiff, 1, &c, &s) == 0);
+  CU_ASSERT(c.air == 1 && c.air_material.c0 == 42.0 && c.sound_speed != 42.0);
+  d = sph_case_describe(&c);
+  CU_ASSERT_FATAL(d != NULL);
+  CU_ASSERT(strstr(d, "physics.air: {rho0: 1.2, exponent: 1, sound_speed: 42}\n") != NULL);
+  free(d);
   sph_sim_free(s);
   sph_case_free(&c);
   const char *off[] = {"physics.air=false"};
@@ -92,6 +106,7 @@ static void test_key(void) {
   CU_ASSERT(refused("physics.air=maybe"));
   CU_ASSERT(refused("physics.air={exponent: 3}"));
   CU_ASSERT(refused("physics.air={density: 1}"));
+  CU_ASSERT(refused("physics.air={sound_speed: 0}"));
   CU_ASSERT(refused("numerics.scheme=paper_a"));
   CU_ASSERT(refused("geometry.tank.boundary=mdbc"));
   CU_ASSERT(refused("physics.air={mu: 2.0e-5}"));
@@ -102,21 +117,30 @@ static void test_key(void) {
   CU_ASSERT(c.air == 1 && c.air_material.mu == 2.0e-5 && c.mu == 1.0e-3);
   d = sph_case_describe(&c);
   CU_ASSERT_FATAL(d != NULL);
-  CU_ASSERT(strstr(d, "physics.air: {rho0: 1.2, exponent: 1, mu: 2.0000000000000002e-05}\n") !=
-            NULL);
+  snprintf(
+      want, sizeof want,
+      "physics.air: {rho0: 1.2, exponent: 1, sound_speed: %.17g, mu: 2.0000000000000002e-05}\n",
+      c.sound_speed);
+  CU_ASSERT(strstr(d, want) != NULL);
   free(d);
   sph_sim_free(s);
   sph_case_free(&c);
 }
 
-static void test_fill(void) {
+/* The fill with the air's sound speed c_a (0: the default, the liquid's): the air's
+ * hydrostatic density follows its own law; and the first step (*dt), which the fastest
+ * phase's sound sets. */
+static void fill_with(double ca, double *dt) {
   sph_case c;
   sph_sim *s;
-  CU_ASSERT_FATAL(open_still(NULL, 0, &c, &s) == 0);
+  char set[64];
+  snprintf(set, sizeof set, "physics.air={sound_speed: %.17g}", ca);
+  const char *sets[] = {set};
+  CU_ASSERT_FATAL(open_still(sets, ca > 0.0 ? 1 : 0, &c, &s) == 0);
   const sph_particles *p = sph_sim_particles(s);
   const uint8_t *ph = sph_particles_phases(p);
   CU_ASSERT_FATAL(ph != NULL);
-  const double dx = c.dx, g = 9.81, top = c.tank.y1, c0 = c.sound_speed;
+  const double dx = c.dx, g = 9.81, top = c.tank.y1, c0 = ca > 0.0 ? ca : c.sound_speed;
   size_t water = 0, air = 0, bad = 0;
   for (size_t i = 0; i < p->n; i++) {
     if (p->kind[i] != SPH_KIND_FLUID) {
@@ -128,19 +152,45 @@ static void test_fill(void) {
       bad += p->y[i] > 0.1 || p->mass[i] != 1000.0 * dx * dx;
     } else {
       air++;
-      /* the linear law's hydrostatic density: rho_a (1 + rho_a g (top - y) / (rho_a c0^2)) */
+      /* the linear law's hydrostatic density: rho_a (1 + rho_a g (top - y) / (rho_a c_a^2)) */
       const double rho = 1.2 * (1.0 + g * (top - p->y[i]) / (c0 * c0));
       bad += ph[i] != 1 || p->y[i] < 0.1 || p->mass[i] != 1.2 * dx * dx ||
              fabs(p->rho[i] - rho) > 1e-12 * rho;
     }
   }
   /* 40 x 20 lattice points of water, 40 x 10 of air (the walls' clearance keeps them all) */
-  printf("\n  %zu water, %zu air particles, %zu out of place", water, air, bad);
+  printf("\n  c_a %g m/s: %zu water, %zu air particles, %zu out of place", c0, water, air, bad);
   CU_ASSERT_EQUAL(water, 800);
   CU_ASSERT_EQUAL(air, 400);
   CU_ASSERT_EQUAL(bad, 0);
+  sph_error err;
+  CU_ASSERT_FATAL(sph_sim_step(s, 1.0, &err) == 0);
+  *dt = sph_sim_time(s);
+  /* at rest the first step is the acoustic rule's dt_factor h / c of the fastest sound: the
+   * air's linear law has c_a everywhere, the liquid's Tait law c0 (rho/rho0)^3, a little more
+   * at the floor (1.7 % under the tank's 0.1 m and the walls' depth) */
+  const double acoustic = c.dt_factor * c.h / c0;
+  printf("\n  first step %.9g s, dt_factor h / c_a %.9g s", *dt, acoustic);
+  const double step = *dt;
+  if (ca > 0.0) {
+    CU_ASSERT(fabs(step - acoustic) < 1e-9 * acoustic);
+  } else {
+    CU_ASSERT(step < acoustic && step > acoustic / 1.03);
+  }
   sph_sim_free(s);
   sph_case_free(&c);
+}
+
+static void test_fill(void) {
+  sph_case c;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_case_load(sph_test_src(STILL), NULL, 0, &c, &err) == 0);
+  const double cl = c.sound_speed;
+  sph_case_free(&c);
+  double dt_same, dt_stiff;
+  fill_with(0.0, &dt_same);
+  fill_with(3.0 * cl, &dt_stiff);
+  printf("\n  first steps: %.4f times shorter with c_a = 3 c", dt_same / dt_stiff);
 }
 
 /* The interface's height on the vertical line at x: where the liquid's volume fraction falls

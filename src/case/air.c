@@ -5,9 +5,11 @@
  *
  * `air: true` or a mapping of the air's material keys fills the tank's
  * free volume with air particles on the case's lattice (solver/setup.c);
- * `air: false` (the default) leaves one phase. The air has the liquid's
- * sound speed (the same-sound-speed approach of Rezavand et al. 2020), so
- * the time step is the one-phase step. The two-phase pair terms are those
+ * `air: false` (the default) leaves one phase. The air has by default the
+ * liquid's sound speed (the same-sound-speed approach of Rezavand et al.
+ * 2020), so the time step is the one-phase step; `sound_speed` gives it its
+ * own (a stiffer cushion; the step then follows the faster phase). The
+ * two-phase pair terms are those
  * of the Riemann-solver pressure with Adami walls (the default scheme), and
  * the reader refuses what they do not cover, naming the key.
  *
@@ -60,6 +62,11 @@ static const air_key KEYS[] = {
      .expected = "1 (the linear law) or 7 (Tait's)",
      .example = "1",
      .help = "its law: 1 linear (default), 7 Tait's"},
+    {.name = "sound_speed",
+     .at = offsetof(sph_material, c0),
+     .r = {0.0, 1e6, '(', ']', NULL},
+     .example = "50",
+     .help = "its c0 (m/s), default physics.sound_speed"},
     {.name = "mu",
      .at = offsetof(sph_material, mu),
      .dflt = 1.8e-5,
@@ -164,11 +171,13 @@ static const char *air_clash(const sph_case *c) {
   return NULL;
 }
 
-int sph_case_check_air(const ctx *x, const sph_case *c) {
+int sph_case_check_air(const ctx *x, sph_case *c) {
   if (!c->air) return 0;
   const char *why = air_clash(c);
   if (why)
     return sph_yaml_fail_at(&x->t, x->air_node, "physics.air", "cannot be combined with %s", why);
+  if (!(x->air_map && sph_yaml_find(x->air_map, "sound_speed")))
+    c->air_material.c0 = c->sound_speed; /* the same-sound-speed default */
   const entry *mu = x->air_map ? sph_yaml_find(x->air_map, "mu") : NULL;
   if (mu && c->viscosity == SPH_VISCOSITY_NONE)
     return sph_yaml_fail_at(&x->t, mu->val, "physics.air.mu",

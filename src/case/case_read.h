@@ -59,7 +59,7 @@ void sph_case_estimate_particles(sph_case *c);
 /* air.c: physics.air of the physics mapping, and (after the geometry and
  * the numerics) whether the two-phase terms cover the case. */
 int sph_case_read_air(ctx *x, const node *physics, sph_case *c);
-int sph_case_check_air(const ctx *x, const sph_case *c);
+int sph_case_check_air(const ctx *x, sph_case *c);
 /* The air's material keys at their defaults (set_defaults), and its
  * listing "{rho0: ..., ...}" into buf (snprintf's return). */
 void sph_case_air_defaults(sph_case *c);

@@ -55,6 +55,7 @@ typedef enum sph_diffusion_kind {
 typedef struct sph_material {
   double rho0;  /* reference density (kg/m^3) */
   int exponent; /* equation of state: 1 the linear p = c0^2 (rho - rho0), 7 Tait's */
+  double c0;    /* sound speed (m/s); physics.air's by default the liquid's */
   double mu;    /* dynamic viscosity (Pa s), read with Morris' viscosity */
 } sph_material;
 

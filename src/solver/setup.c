@@ -561,20 +561,21 @@ int sph_sim_create_rank_store(const sph_case *c, sph_sim **out, sph_error *err) 
  * them); a rank store (rank_store) makes no pass of its own: its owner's
  * passes fill it (ranks.c). */
 /* The phases' laws and impedances (doc/method.md, Two phases): the liquid's (fp.eos), and with
- * physics.air the air's, which has the liquid's sound speed and no floor: its gauge pressure may
- * fall below 0, about its ambient one, so that it fills the room a moving liquid leaves, as a
- * gas does. */
+ * physics.air the air's, of its own sound speed (by default the liquid's) and no floor: its gauge
+ * pressure may fall below 0, about its ambient one, so that it fills the room a moving liquid
+ * leaves, as a gas does. */
 static void set_phases(sph_sim *s) {
   const sph_case *c = s->c;
   s->fp.phases = c->air ? 2 : 1;
-  s->fp.phase_mat[0] = (sph_material){.rho0 = c->rho0, .exponent = 7, .mu = c->mu};
+  s->fp.phase_mat[0] =
+      (sph_material){.rho0 = c->rho0, .exponent = 7, .c0 = c->sound_speed, .mu = c->mu};
   if (c->air) s->fp.phase_mat[1] = c->air_material;
   s->fp.phase_eos[0] = s->fp.eos;
   for (int k = 0; k < s->fp.phases; k++) {
     const sph_material *m = &s->fp.phase_mat[k];
     if (k > 0)
-      s->fp.phase_eos[k] = m->exponent == 1 ? sph_eos_linear(m->rho0, c->sound_speed)
-                                            : sph_eos_tait(m->rho0, c->sound_speed);
+      s->fp.phase_eos[k] =
+          m->exponent == 1 ? sph_eos_linear(m->rho0, m->c0) : sph_eos_tait(m->rho0, m->c0);
     s->fp.phase_z[k] = s->fp.phase_eos[k].rho0 * s->fp.phase_eos[k].c0;
     s->fp.phase_mu[k] = m->mu;
   }
