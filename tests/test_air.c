@@ -285,6 +285,48 @@ static double csv_max(const char *path, const char *name, long *rows) {
   return m;
 }
 
+/* Air around an obstacle (a box on the floor through the water's surface into the air): no
+ * particle of either phase inside the box, and the tank at rest for 0.3 s: the interface in
+ * place on lines away from the box, both phases' speeds as small as without it. */
+static void test_obstacle(void) {
+  const char *set[] = {"time.end=0.3", "time.output_interval=0.1",
+                       "geometry.obstacles=[{x: [0.08, 0.12], y: [0.0, 0.13], boundary: adami}]"};
+  sph_case c;
+  sph_sim *s;
+  sph_error err;
+  CU_ASSERT_FATAL(open_still(set, 3, &c, &s) == 0);
+  const sph_particles *p = sph_sim_particles(s);
+  const uint8_t *ph = sph_particles_phases(p);
+  size_t inside = 0, water = 0, air = 0;
+  for (size_t i = 0; i < p->n; i++) {
+    if (p->kind[i] != SPH_KIND_FLUID) continue;
+    inside += p->x[i] > 0.08 && p->x[i] < 0.12 && p->y[i] < 0.13;
+    water += ph[i] == 0, air += ph[i] == 1;
+  }
+  printf("\n  around the box: %zu water, %zu air particles, %zu inside it", water, air, inside);
+  CU_ASSERT_EQUAL(inside, 0);
+  CU_ASSERT(water > 0 && air > 0);
+  while (sph_sim_time(s) < 0.3) {
+    const int rc = sph_sim_step(s, 0.3, &err);
+    if (rc) printf("\n%s\n", err.msg);
+    CU_ASSERT_FATAL(rc == 0);
+  }
+  double worst = 0.0;
+  const double lines[] = {0.02, 0.04, 0.16, 0.18};
+  for (int l = 0; l < 4; l++) {
+    const double at = interface_at(p, &c, lines[l], 0.1);
+    worst = isnan(at) ? INFINITY : fmax(worst, fabs(at - 0.1));
+  }
+  const double scale = sqrt(9.81 * 0.1), vw = vmax_of(p, 0), va = vmax_of(p, 1);
+  printf("\n  at 0.3 s: interface at most %.3f dx from its start, speeds %.2e (water), %.2e m/s "
+         "(air)",
+         worst / c.dx, vw, va);
+  CU_ASSERT(worst <= 0.25 * c.dx);
+  CU_ASSERT(vw < 1e-2 * scale && va < 1e-2 * scale);
+  sph_sim_free(s);
+  sph_case_free(&c);
+}
+
 static void test_thrown(void) {
   char *dir = sph_test_tmpdir(), args[8192], out[8192], path[4400];
   snprintf(args, sizeof args, "run -q '%s' -o '%s/run'",
@@ -480,6 +522,7 @@ int main(void) {
   CU_TestInfo tests[] = {{"physics.air: read, listed, refused", test_key},
                          {"the tank's free volume filled with air", test_fill},
                          {"still water under air: at rest, the interface in place", test_still},
+                         {"air around an obstacle: none inside, at rest", test_obstacle},
                          {"water thrown under air: balance, gauge, snapshot, frames", test_thrown},
                          {"two liquids, Rayleigh-Taylor: the fill, the start's pressure, the tips "
                           "against Fakhari et al. (2017)",

@@ -155,7 +155,7 @@ static const char *air_clash(const sph_case *c) {
   for (int b = 0; b <= SPH_BOUNDARY_MDBC; b++)
     if (sph_case_has_boundary(c, (sph_boundary_kind)b))
       return "walls other than boundary: adami (the two-phase terms take Adami walls)";
-  if (c->n_obstacles) return "geometry.obstacles or geometry.vessels";
+  if (c->n_vessels) return "geometry.vessels"; /* (obstacles: the air around them, setup.c) */
   if (c->diffusion != SPH_DIFFUSION_NONE) return "numerics.density_diffusion";
   if (c->viscosity == SPH_VISCOSITY_STRESS_TENSOR)
     return "physics.viscosity.model: stress_tensor (two phases take morris)";
