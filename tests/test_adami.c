@@ -205,6 +205,48 @@ static void test_extrapolation(void) {
  * stays (the guard of other walls at d_min = 0.01 would move it), one 0.004 behind the floor or
  * inside the box's left face is reflected to 0.004 in front of it, its normal velocity turned
  * into the water; and a dynamic tank with the same d_min moves the one in front too. */
+/* Two phases: a wall particle takes the phase of the fluid nearest its mirror point and that
+ * phase's extrapolation; the liquid's is held at 0 or above (a wall pushes the liquid, never
+ * pulls it), the air's is not: the air has no floor, its gauge pressure falls below 0 where it
+ * expands, and the wall that mirrors it carries that pressure (held at 0 it pushed air below
+ * ambient away from the wall harder than the air pushed back). A uniform field p0 < 0, no body
+ * force: the wet walls carry p0
+ * (to round-off) when the fluid is air, 0 when it is the liquid. */
+static void test_two_phases(void) {
+  sph_particles p;
+  lattice(&p);
+  sph_particles_use(&p, SPH_ARRAYS_PHASE | SPH_ARRAYS_OFFSET);
+  sph_grid g;
+  sph_nlist l;
+  build_list(&p, &g, &l);
+  const double p0 = -50.0;
+  sph_adami_params ap = {
+      .kernel = SPH_KERNEL_CUBIC_SPLINE, .h = 1.3 * DX, .eos = sph_eos_tait(RHO0, 20.0)};
+  for (int phase = 0; phase <= 1; phase++) {
+    for (size_t i = 0; i < p.n; i++) {
+      p.phase[i] = p.kind[i] == SPH_KIND_FLUID ? (uint8_t)phase : 0;
+      p.mx[i] = p.my[i] = 0.0;
+      p.p[i] = p.kind[i] == SPH_KIND_FLUID ? p0 : 123.0;
+    }
+    const size_t wet = sph_wall_adami(&p, &l, &ap, NULL);
+    size_t at_p0 = 0, off = 0;
+    for (size_t i = 0; i < p.n; i++) {
+      if (p.kind[i] != SPH_KIND_WALL) continue;
+      const int is_p0 = fabs(p.p[i] - p0) < 1e-12 * fabs(p0); /* (a weighted mean of p0) */
+      at_p0 += is_p0 && p.wphase[i] == 1;
+      off += phase ? !is_p0 && p.p[i] != 0.0 : p.p[i] != 0.0;
+    }
+    printf("\n  fluid of phase %d at %g Pa: %zu wall particles wet, %zu at %g Pa, %zu off", phase,
+           p0, wet, at_p0, p0, off);
+    CU_ASSERT(wet > 0);
+    CU_ASSERT_EQUAL(at_p0, phase ? wet : 0);
+    CU_ASSERT_EQUAL(off, 0);
+  }
+  sph_nlist_free(&l);
+  sph_grid_free(&g);
+  sph_particles_free(&p);
+}
+
 static void test_guard_at_face(void) {
   static const double cases[][6] = {
       /* x, y, vx, vy; x, y after */
@@ -382,6 +424,7 @@ static void test_still_water_3d(void) {
 int main(void) {
   CU_TestInfo tests[] = {
       {"the extrapolation: a linear field continued, at rest and moving", test_extrapolation},
+      {"two phases: the liquid's wall held at 0, the air's not", test_two_phases},
       {"the guard is the face itself", test_guard_at_face},
       {"still water: the wall carries the hydrostatic pressure", test_still_water},
       {"still water with the leap-frog", test_still_water_leapfrog},

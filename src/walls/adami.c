@@ -104,7 +104,9 @@ static inline __attribute__((always_inline)) int adami_row(sph_particles *p, con
   double pw = 0.0;
   if (sw > 0.0) {
     pw = sp / sw;
-    if (!(pw > 0.0)) pw = 0.0; /* a wall pushes, never pulls (adami.h) */
+    /* a wall pushes the liquid, never pulls it (adami.h); the air's gauge pressure may fall
+     * below 0 (it has no floor), and the wall that mirrors it takes it as it is */
+    if (!(pw > 0.0) && !(phased && p->wphase[i])) pw = 0.0;
   }
   p->p[i] = pw;
   p->rho[i] = pw > 0.0 ? sph_eos_density(&ap->eos, pw) : ap->eos.rho0; /* AHA12 eq. (28) */

@@ -15,8 +15,10 @@
  * fluid at rest in a tank presses on the wall particles exactly as the
  * hydrostatic field continued into the wall would; p_w is clipped at 0
  * (a wall pushes the fluid, never pulls it: as the mdbc walls here and
- * TrixiParticles' AdamiPressureExtrapolation do), and 0 where no fluid is
- * within reach. Its density is the equation of state's inverse of p_w
+ * TrixiParticles' AdamiPressureExtrapolation do) except where it stands
+ * for the air of two phases, whose gauge pressure has no floor (below 0
+ * the air is below its ambient pressure, not pulling), and 0 where no
+ * fluid is within reach. Its density is the equation of state's inverse of p_w
  * (AHA12 eq. 28), so the pair terms read rho_w and p_w as they read a
  * fluid particle's. The no-slip velocity of AHA12 eq. (23)-(24),
  *
