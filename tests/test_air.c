@@ -285,6 +285,47 @@ static double csv_max(const char *path, const char *name, long *rows) {
   return m;
 }
 
+/* A film of water one particle thick on the floor under air, at rest for 0.3 s: the walls below
+ * it (deeper than its own mirror image they mirror the air above it) press it with no less than
+ * its own column continued (pair_terms.h, wall_pressure_floor), so it keeps its place and its
+ * pressure stays within half again of the hydrostatic start's (36 Pa: its block's 6 mm and the
+ * air's column); held by its mirror image alone it sank toward the face and reached 110 Pa. */
+static void test_film(void) {
+  const char *set[] = {"time.end=0.3", "time.output_interval=0.1",
+                       "geometry.fluid=[{x: [0.0, 0.2], y: [0.0, 0.006], hydrostatic: true}]"};
+  sph_case c;
+  sph_sim *s;
+  sph_error err;
+  CU_ASSERT_FATAL(open_still(set, 3, &c, &s) == 0);
+  const sph_particles *p = sph_sim_particles(s);
+  const uint8_t *ph = sph_particles_phases(p);
+  const double dx = c.dx;
+  double start = 0.0, pmax = 0.0, ymin = INFINITY; /* start: the hydrostatic fill's */
+  for (size_t i = 0; i < p->n; i++)
+    if (p->kind[i] == SPH_KIND_FLUID && ph[i] == 0) start = fmax(start, p->p[i]);
+  size_t film = 0;
+  while (sph_sim_time(s) < 0.3) {
+    const int rc = sph_sim_step(s, 0.3, &err);
+    if (rc) printf("\n%s\n", err.msg);
+    CU_ASSERT_FATAL(rc == 0);
+    film = 0;
+    for (size_t i = 0; i < p->n; i++) {
+      if (p->kind[i] != SPH_KIND_FLUID || ph[i] != 0) continue;
+      film++;
+      pmax = fmax(pmax, p->p[i]);
+      ymin = fmin(ymin, p->y[i]);
+    }
+  }
+  printf("\n  a film of %zu particles: the lowest at %.3f dx, the largest pressure %.1f Pa (%.1f "
+         "at the start)",
+         film, ymin / dx, pmax, start);
+  CU_ASSERT_EQUAL(film, 40);
+  CU_ASSERT(ymin > 0.49 * dx);
+  CU_ASSERT(pmax < 1.5 * start);
+  sph_sim_free(s);
+  sph_case_free(&c);
+}
+
 /* Air around an obstacle (a box on the floor through the water's surface into the air): no
  * particle of either phase inside the box, and the tank at rest for 0.3 s: the interface in
  * place on lines away from the box, both phases' speeds as small as without it. */
@@ -522,6 +563,7 @@ int main(void) {
   CU_TestInfo tests[] = {{"physics.air: read, listed, refused", test_key},
                          {"the tank's free volume filled with air", test_fill},
                          {"still water under air: at rest, the interface in place", test_still},
+                         {"a film under air: held up by the floor", test_film},
                          {"air around an obstacle: none inside, at rest", test_obstacle},
                          {"water thrown under air: balance, gauge, snapshot, frames", test_thrown},
                          {"two liquids, Rayleigh-Taylor: the fill, the start's pressure, the tips "

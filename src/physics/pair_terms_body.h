@@ -232,6 +232,17 @@ PT_ATTR T PT(riemann_pressure_phases)(T pi, T pj, T rhoi, T rhoj, T du, T wi, T 
   return DIV(ADD(ADD(MUL(wi, pi), MUL(wj, pj)), MUL(MUL(beta, zij), du)), MUL(rhoi, rhoj));
 }
 
+/* Two phases: the pressure a wall particle j of the other phase presses
+ * fluid particle i with, at least i's own pressure continued to it through
+ * i's material at rest, p_i + rho0_i g . (x_j - x_i) (given hg =
+ * rho0_i g . r_ij, r_ij = x_i - x_j): the wall stands for the phase at its
+ * mirror point (walls/adami.h), and a layer deep under a film one particle
+ * thick stands for the air above the film, which held the film up by its
+ * own mirror image alone; it still pushes i no less than i's own column
+ * would (as Zhang, Hu and Adams' wall state takes p_i + rho_i g . r, the
+ * walls of SPHinXsys' two-phase cases). */
+PT_ATTR T PT(wall_pressure_floor)(T pj, T pi, T hg) { return MAX(pj, SUB(pi, hg)); }
+
 /* The continuity term's mass between two materials: RZH20's
  * 2 rho_i V_j (v_i - v*) . grad_i W_ij = rho_i V_j wi v_ij . grad_i W_ij
  * (V_j = m_j / rho_j, the volume form a density ratio of 1000 needs), as

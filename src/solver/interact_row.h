@@ -558,7 +558,23 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_momentum, FL)(const LROW *restrict R, const LPA
                         * mirror's reflected velocity, a wall's normal part) */
     const LT rhoi = R->rhoi, pi = R->pi;
     const LT rhoj = GATHER(rho);
-    const LT pj = LOP(mul)(LOP(mul)(GATHER(prho2), rhoj), rhoj);
+    LT pj = LOP(mul)(LOP(mul)(GATHER(prho2), rhoj), rhoj);
+    if (R->phased) { /* a wall of the other phase below i presses no less than i's column */
+#if SPH_DIM == 2
+      const LT hg = LOP(add)(LOP(mul)(R->hgx, G->dx), LOP(mul)(R->hgy, G->dy));
+#else
+      const LT hg = LOP(add)(LOP(add)(LOP(mul)(R->hgx, G->dx), LOP(mul)(R->hgy, G->dy)),
+                             LOP(mul)(R->hgz, G->dz));
+#endif
+      const int32_t *restrict kind = R->kind;
+      const uint8_t *restrict wph = R->wphase, phi = R->phase[i];
+#define E_OTHER(q, a) (kind[jk[q]] != SPH_KIND_FLUID && wph[jk[q]] != phi ? 1.0 : 0.0)
+      const LMASK other = LOP(lt)(R->zero, LSET(E_OTHER, 0));
+#undef E_OTHER
+      /* and below it: g . (x_j - x_i) > 0, hg < 0 */
+      const LMASK below = LOP(lt)(LOP(sel)(other, hg, R->zero), R->zero);
+      pj = LOP(sel)(below, LTERM(wall_pressure_floor)(pj, pi, hg), pj);
+    }
     const LT close = LOP(neg)(LOP(mul)(N->rvr, G->inv_r));
     pij = R->phased ? LTERM(riemann_pressure_phases)(pi, pj, rhoi, rhoj, close, G->wi, G->wj,
                                                      G->zij, R->rkc)
