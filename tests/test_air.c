@@ -285,18 +285,23 @@ static double csv_max(const char *path, const char *name, long *rows) {
   return m;
 }
 
+/* The still tank at H/20 to t = 0.3 s with one more override; 0 on success. */
+static int open_short(const char *override, sph_case *c, sph_sim **s) {
+  const char *set[] = {"time.end=0.3", "time.output_interval=0.1", override};
+  return open_still(set, 3, c, s);
+}
+
 /* A film of water one particle thick on the floor under air, at rest for 0.3 s: the walls below
  * it (deeper than its own mirror image they mirror the air above it) press it with no less than
  * its own column continued (pair_terms.h, wall_pressure_floor), so it keeps its place and its
  * pressure stays within half again of the hydrostatic start's (36 Pa: its block's 6 mm and the
  * air's column); held by its mirror image alone it sank toward the face and reached 110 Pa. */
 static void test_film(void) {
-  const char *set[] = {"time.end=0.3", "time.output_interval=0.1",
-                       "geometry.fluid=[{x: [0.0, 0.2], y: [0.0, 0.006], hydrostatic: true}]"};
   sph_case c;
   sph_sim *s;
   sph_error err;
-  CU_ASSERT_FATAL(open_still(set, 3, &c, &s) == 0);
+  CU_ASSERT_FATAL(open_short("geometry.fluid=[{x: [0.0, 0.2], y: [0.0, 0.006], hydrostatic: true}]",
+                             &c, &s) == 0);
   const sph_particles *p = sph_sim_particles(s);
   const uint8_t *ph = sph_particles_phases(p);
   const double dx = c.dx;
@@ -330,12 +335,12 @@ static void test_film(void) {
  * particle of either phase inside the box, and the tank at rest for 0.3 s: the interface in
  * place on lines away from the box, both phases' speeds as small as without it. */
 static void test_obstacle(void) {
-  const char *set[] = {"time.end=0.3", "time.output_interval=0.1",
-                       "geometry.obstacles=[{x: [0.08, 0.12], y: [0.0, 0.13], boundary: adami}]"};
   sph_case c;
   sph_sim *s;
   sph_error err;
-  CU_ASSERT_FATAL(open_still(set, 3, &c, &s) == 0);
+  CU_ASSERT_FATAL(
+      open_short("geometry.obstacles=[{x: [0.08, 0.12], y: [0.0, 0.13], boundary: adami}]", &c,
+                 &s) == 0);
   const sph_particles *p = sph_sim_particles(s);
   const uint8_t *ph = sph_particles_phases(p);
   size_t inside = 0, water = 0, air = 0;
