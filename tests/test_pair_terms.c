@@ -984,6 +984,19 @@ static __attribute__((target("avx2"))) unsigned v4x_transpose_mismatches(void) {
 }
 #endif
 
+/* Two phases' wall floor (wall_pressure_floor): a wall particle of the other phase below fluid
+ * particle i presses it with max(p_w, p_i + rho0_i g . (x_w - x_i)); in a column at rest,
+ * p_i = rho0 g (H - y_i), the floor is the column's pressure at the wall particle's height. */
+static void test_wall_pressure_floor(void) {
+  const double rho0 = 1000.0, g = 9.81, H = 0.3, yi = 0.0525, yw = -0.0075;
+  const double pi = rho0 * g * (H - yi), hg = rho0 * -g * (yi - yw); /* rho0 g . r_iw */
+  const double column = rho0 * g * (H - yw);
+  const double floor = wall_pressure_floor_v1(1.0, pi, hg); /* a wall reading the air: ~0 */
+  printf("\n  the floor %.6f Pa, the column at the wall %.6f Pa", floor, column);
+  CU_ASSERT(fabs(floor - column) <= 1e-12 * column);
+  CU_ASSERT(same(wall_pressure_floor_v1(2.0 * column, pi, hg), 2.0 * column)); /* above it */
+}
+
 /* Two phases' Morris viscosity (physics.air with physics.viscosity): the
  * harmonic mean of the materials' viscosities, and a pair force whose
  * momentum m_i c_ij v_ij is the negative of m_j c_ji v_ji between materials
@@ -1100,6 +1113,7 @@ int main(void) {
        test_strain_rate_lanes},
       {"each term antisymmetric or symmetric in the pair, and bitwise in every lane",
        test_pair_symmetry},
+      {"two phases' wall floor: the column at rest continued", test_wall_pressure_floor},
       {"two phases' Morris viscosity: the harmonic mean, momentum across a density ratio of "
        "1000, Morris' form within one material",
        test_phase_viscosity},
