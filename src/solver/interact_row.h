@@ -152,6 +152,7 @@ typedef struct LPAIR {
   LT wi, wj, zij; /* two phases: phase_weights (pair_phases) */
   LT wc;          /* and the continuity's weight: wi, 1 with a wall particle */
   LT mu2;         /* and 2 mu_ij (phase_viscosity) with Morris' viscosity */
+  LT ow;          /* and 1 where the neighbour is a wall particle of the other phase, else 0 */
 #if SPH_DIM == 3
   LT dz, dvz;
 #endif
@@ -298,6 +299,10 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_phases, FL)(const LROW *restrict R, LPAIR *rest
 #define E_FL(q, a) (kind[jk[q]] == SPH_KIND_FLUID ? 1.0 : 0.0)
   G->wc = LOP(sel)(LOP(lt)(R->zero, LSET(E_FL, 0)), G->wi, R->one);
 #undef E_FL
+  const uint8_t phi = ph[R->i];
+#define E_OW(q, a) (kind[jk[q]] != SPH_KIND_FLUID && wph[jk[q]] != phi ? 1.0 : 0.0)
+  G->ow = LSET(E_OW, 0);
+#undef E_OW
   if (R->F & F_MORRIS) {
     const double *restrict mu = R->fp->phase_mu;
     G->mu2 = LTERM(phase_viscosity)(LOP(all)(R->mui_s), LSET(E_PH, mu));
@@ -305,6 +310,18 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_phases, FL)(const LROW *restrict R, LPAIR *rest
     G->mu2 = R->zero;
   }
 #undef E_PH
+}
+
+/* The pair's hydrostatic jump rho0_i g . r_ij (r_ij = x_i - x_j, rho0 of
+ * i's material: row_begin's hgx, hgy, hgz), which the Riemann density term
+ * takes out of p_i - p_j and the two-phase wall floor adds to p_i. */
+LOOP_ATTR LT SPH_PT_XGLUE(pair_head, FL)(const LROW *restrict R, const LPAIR *restrict G) {
+#if SPH_DIM == 2
+  return LOP(add)(LOP(mul)(R->hgx, G->dx), LOP(mul)(R->hgy, G->dy));
+#else
+  return LOP(add)(LOP(add)(LOP(mul)(R->hgx, G->dx), LOP(mul)(R->hgy, G->dy)),
+                  LOP(mul)(R->hgz, G->dz));
+#endif
 }
 
 /* One iteration's pairs (i with the neighbours jk[0 .. LW-1], the k-th
@@ -394,7 +411,7 @@ LOOP_ATTR int SPH_PT_XGLUE(pair_density, FL)(const LROW *restrict R, LSUMS *rest
   if (R->phased)
     SPH_PT_XGLUE(pair_phases, FL)(R, G, jk);
   else /* (read only with two phases) */
-    G->wi = G->wj = G->zij = G->wc = G->mu2 = zero;
+    G->wi = G->wj = G->zij = G->wc = G->mu2 = G->ow = zero;
   const LT mc = R->phased ? LTERM(phase_continuity_mass)(R->rhoi, mj, GATHER(rho), G->wc) : mj;
   if (fluid || !(R->fp->moving_walls || R->fp->mirror)) { /* walls at rest: their pairs add +-0 */
     LACC(S->drho, LTERM(continuity)(mc, dv, cg));
@@ -559,20 +576,10 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_momentum, FL)(const LROW *restrict R, const LPA
     const LT rhoi = R->rhoi, pi = R->pi;
     const LT rhoj = GATHER(rho);
     LT pj = LOP(mul)(LOP(mul)(GATHER(prho2), rhoj), rhoj);
-    if (R->phased) { /* a wall of the other phase below i presses no less than i's column */
-#if SPH_DIM == 2
-      const LT hg = LOP(add)(LOP(mul)(R->hgx, G->dx), LOP(mul)(R->hgy, G->dy));
-#else
-      const LT hg = LOP(add)(LOP(add)(LOP(mul)(R->hgx, G->dx), LOP(mul)(R->hgy, G->dy)),
-                             LOP(mul)(R->hgz, G->dz));
-#endif
-      const int32_t *restrict kind = R->kind;
-      const uint8_t *restrict wph = R->wphase, phi = R->phase[i];
-#define E_OTHER(q, a) (kind[jk[q]] != SPH_KIND_FLUID && wph[jk[q]] != phi ? 1.0 : 0.0)
-      const LMASK other = LOP(lt)(R->zero, LSET(E_OTHER, 0));
-#undef E_OTHER
-      /* and below it: g . (x_j - x_i) > 0, hg < 0 */
-      const LMASK below = LOP(lt)(LOP(sel)(other, hg, R->zero), R->zero);
+    if (R->phased) { /* a wall of the other phase (pair_phases) below i, g . (x_j - x_i) > 0,
+                      * presses no less than i's column */
+      const LT hg = SPH_PT_XGLUE(pair_head, FL)(R, G);
+      const LMASK below = LOP(lt)(LOP(sel)(LOP(lt)(R->zero, G->ow), hg, R->zero), R->zero);
       pj = LOP(sel)(below, LTERM(wall_pressure_floor)(pj, pi, hg), pj);
     }
     const LT close = LOP(neg)(LOP(mul)(N->rvr, G->inv_r));
@@ -636,13 +643,9 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_fluid_fluid, FL)(const LROW *restrict R, LSUMS 
   const unsigned F = R->F;
   const sph_force_work *restrict w = R->w;
   if (F & F_RIEMANN) {
-    const LT rhoi = R->rhoi, pi = R->pi, hgx = R->hgx, hgy = R->hgy, dx = G->dx, dy = G->dy;
+    const LT rhoi = R->rhoi, pi = R->pi;
     const LT rhoj = GATHER(rho), pj = LOP(mul)(LOP(mul)(GATHER(prho2), rhoj), rhoj);
-#if SPH_DIM == 2
-    const LT hg = LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy));
-#else
-    const LT hg = LOP(add)(LOP(add)(LOP(mul)(hgx, dx), LOP(mul)(hgy, dy)), LOP(mul)(R->hgz, G->dz));
-#endif
+    const LT hg = SPH_PT_XGLUE(pair_head, FL)(R, G);
     const LT jump = LOP(sub)(LOP(sub)(pi, pj), hg);
     LT rd = LTERM(riemann_density)(rhoi, G->mj, rhoj, jump, G->f, G->r, R->rinv_z0);
     if (R->phased) /* two phases: between particles of one phase alone (wi = 1) */
