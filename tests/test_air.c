@@ -5,7 +5,9 @@
  * 1. The key: true, a mapping {rho0, exponent, mu} and false read; the listing names it; a
  *    value that is neither, an exponent other than 1 or 7, the air's mu without a viscosity,
  *    and what the two-phase terms do not cover (the papers' plain pressure, walls other than
- *    adami, the stress-tensor viscosity) refused, naming physics.air.
+ *    adami, the stress-tensor viscosity) refused, naming physics.air. The air's blow-up band
+ *    (air.density_limit): by default the liquid's and unlisted; its own where given, and a run
+ *    stops on an air particle outside it (and on a water particle outside the liquid's).
  * 2. The fill: cases/still_water_air.yaml at H/20 makes an air particle of phase 1 at every
  *    lattice point of the tank above the water (the walls' clearance aside), of mass
  *    rho_air dx^2 and density hydrostatic under the air above it; the water keeps phase 0 and
@@ -125,6 +127,47 @@ static void test_key(void) {
   free(d);
   sph_sim_free(s);
   sph_case_free(&c);
+}
+
+/* The air's blow-up band (physics.air.density_limit): by default the liquid's
+ * (numerics.density_limit), unlisted; its own where given. At 1e-3 the air's hydrostatic start
+ * (2.5e-3 of rho_a under the air's 0.05 m at c_a = 14 m/s) is already outside it, and the first
+ * step stops on an air particle, naming the air's band about rho_a, while the liquid keeps its
+ * 0.3; with the liquid's band at 1e-3 and the air's at 0.3 it stops on a water particle. */
+static void test_band(void) {
+  sph_case c;
+  sph_sim *s;
+  sph_error err;
+  CU_ASSERT_FATAL(open_still(NULL, 0, &c, &s) == 0);
+  CU_ASSERT_EQUAL(c.air_material.density_limit, c.density_limit);
+  char *d = sph_case_describe(&c);
+  CU_ASSERT_FATAL(d != NULL);
+  CU_ASSERT(strstr(d, "physics.air: {") != NULL && strstr(d, "density_limit: ") != NULL &&
+            strstr(strstr(d, "physics.air: {"), "density_limit") >
+                strchr(strstr(d, "physics.air: {"), '}')); /* (only numerics' line names it) */
+  free(d);
+  sph_sim_free(s);
+  sph_case_free(&c);
+  const char *own[] = {"physics.air={density_limit: 1.0e-3}"};
+  CU_ASSERT_FATAL(open_still(own, 1, &c, &s) == 0);
+  CU_ASSERT(c.air_material.density_limit == 1e-3 && c.density_limit == 0.3);
+  d = sph_case_describe(&c);
+  CU_ASSERT_FATAL(d != NULL);
+  CU_ASSERT(strstr(d, ", density_limit: 0.001}\n") != NULL);
+  free(d);
+  int rc = sph_sim_step(s, 1.0, &err);
+  printf("\n  the air's band 1e-3: %s", rc ? err.msg : "(no stop)");
+  CU_ASSERT(rc == SPH_BLOWUP && strstr(err.msg, "allowed rho in [1.1988, 1.2012]") != NULL);
+  sph_sim_free(s);
+  sph_case_free(&c);
+  const char *liquid[] = {"numerics.density_limit=1.0e-3", "physics.air={density_limit: 0.3}"};
+  CU_ASSERT_FATAL(open_still(liquid, 2, &c, &s) == 0);
+  rc = sph_sim_step(s, 1.0, &err);
+  printf("\n  the liquid's band 1e-3: %s", rc ? err.msg : "(no stop)");
+  CU_ASSERT(rc == SPH_BLOWUP && strstr(err.msg, "allowed rho in [999, 1001]") != NULL);
+  sph_sim_free(s);
+  sph_case_free(&c);
+  CU_ASSERT(refused("physics.air={density_limit: 1}"));
 }
 
 /* The fill with the air's sound speed c_a (0: the default, the liquid's): the air's
@@ -566,6 +609,7 @@ static void test_rayleigh_taylor(void) {
 
 int main(void) {
   CU_TestInfo tests[] = {{"physics.air: read, listed, refused", test_key},
+                         {"the air's own blow-up band", test_band},
                          {"the tank's free volume filled with air", test_fill},
                          {"still water under air: at rest, the interface in place", test_still},
                          {"a film under air: held up by the floor", test_film},

@@ -44,6 +44,8 @@ typedef struct air_key {
 } air_key;
 
 static int with_viscosity(const sph_case *c) { return c->viscosity != SPH_VISCOSITY_NONE; }
+/* (the air's band where it is not the liquid's, which it takes by default) */
+static int own_band(const sph_case *c) { return c->air_material.density_limit != c->density_limit; }
 
 static const int LAWS[] = {1, 7, 0};
 
@@ -74,6 +76,13 @@ static const air_key KEYS[] = {
      .listed = with_viscosity,
      .example = "1.8e-5",
      .help = "its viscosity (Pa s) with physics.viscosity (morris)"},
+    {.name = "density_limit",
+     .at = offsetof(sph_material, density_limit),
+     .dflt = 0.3, /* (numerics.density_limit's, which the case's replaces: sph_case_check_air) */
+     .r = {0.0, 1.0, '(', ')', NULL},
+     .listed = own_band,
+     .example = "0.3",
+     .help = "its blow-up band, default numerics.density_limit"},
 };
 #define N_KEYS (sizeof KEYS / sizeof KEYS[0])
 
@@ -178,6 +187,8 @@ int sph_case_check_air(const ctx *x, sph_case *c) {
     return sph_yaml_fail_at(&x->t, x->air_node, "physics.air", "cannot be combined with %s", why);
   if (!(x->air_map && sph_yaml_find(x->air_map, "sound_speed")))
     c->air_material.c0 = c->sound_speed; /* the same-sound-speed default */
+  if (!(x->air_map && sph_yaml_find(x->air_map, "density_limit")))
+    c->air_material.density_limit = c->density_limit; /* the liquid's band */
   const entry *mu = x->air_map ? sph_yaml_find(x->air_map, "mu") : NULL;
   if (mu && c->viscosity == SPH_VISCOSITY_NONE)
     return sph_yaml_fail_at(&x->t, mu->val, "physics.air.mu",

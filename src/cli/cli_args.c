@@ -134,7 +134,9 @@ int sph_cli_set_threads(int threads, int quiet) {
 }
 
 /* Whether c ends a number token in a listing value. */
-static int ends_token(char c) { return c == '\0' || c == '\n' || c == ',' || c == ']' || c == ' '; }
+static int ends_token(char c) {
+  return c == '\0' || c == '\n' || c == ',' || c == ']' || c == '}' || c == ' ';
+}
 
 void sph_cli_print_listing(FILE *f, const char *listing, const char *indent) {
   int at_line_start = 1, quoted = 0, after_colon = 0;

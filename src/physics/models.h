@@ -53,10 +53,12 @@ typedef enum sph_diffusion_kind {
  * the term and its call. Phase 0, the liquid, is made of physics.rho0,
  * sound_speed and viscosity.mu, with Tait's law. */
 typedef struct sph_material {
-  double rho0;  /* reference density (kg/m^3) */
-  int exponent; /* equation of state: 1 the linear p = c0^2 (rho - rho0), 7 Tait's */
-  double c0;    /* sound speed (m/s); physics.air's by default the liquid's */
-  double mu;    /* dynamic viscosity (Pa s), read with Morris' viscosity */
+  double rho0;          /* reference density (kg/m^3) */
+  int exponent;         /* equation of state: 1 the linear p = c0^2 (rho - rho0), 7 Tait's */
+  double c0;            /* sound speed (m/s); physics.air's by default the liquid's */
+  double mu;            /* dynamic viscosity (Pa s), read with Morris' viscosity */
+  double density_limit; /* the blow-up band: the run stops where |rho/rho0 - 1| exceeds it
+                         * (numerics.density_limit; physics.air's by default the same) */
 } sph_material;
 
 /* The names of the choices in enum order, NULL-terminated:

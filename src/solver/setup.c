@@ -567,8 +567,11 @@ int sph_sim_create_rank_store(const sph_case *c, sph_sim **out, sph_error *err) 
 static void set_phases(sph_sim *s) {
   const sph_case *c = s->c;
   s->fp.phases = c->air ? 2 : 1;
-  s->fp.phase_mat[0] =
-      (sph_material){.rho0 = c->rho0, .exponent = 7, .c0 = c->sound_speed, .mu = c->mu};
+  s->fp.phase_mat[0] = (sph_material){.rho0 = c->rho0,
+                                      .exponent = 7,
+                                      .c0 = c->sound_speed,
+                                      .mu = c->mu,
+                                      .density_limit = c->density_limit};
   if (c->air) s->fp.phase_mat[1] = c->air_material;
   s->fp.phase_eos[0] = s->fp.eos;
   for (int k = 0; k < s->fp.phases; k++) {

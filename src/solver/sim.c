@@ -368,13 +368,13 @@ static inline int surely_good(const sph_particles *p, size_t i, double rlo, doub
  * and the processes take the least id in one collective step. */
 static int check_state(sph_sim *s, int shared, sph_error *err) {
   const sph_particles *p = &s->p;
-  /* each phase's band about its own rho0 (two phases: physics.air) */
-  const double lim = s->c->density_limit;
+  /* each phase's band about its own rho0 (two phases: physics.air, whose band is its own) */
   const uint8_t *ph = sph_particles_phases(p);
-  double r0[SPH_PHASES_MAX], rlo[SPH_PHASES_MAX], rhi[SPH_PHASES_MAX];
+  double r0[SPH_PHASES_MAX], lim[SPH_PHASES_MAX], rlo[SPH_PHASES_MAX], rhi[SPH_PHASES_MAX];
   for (int k = 0; k < s->fp.phases; k++) {
     r0[k] = s->fp.phase_eos[k].rho0; /* (phase 0's the case's rho0) */
-    rlo[k] = r0[k] * (1.0 - lim) * (1.0 + 1e-9), rhi[k] = r0[k] * (1.0 + lim) * (1.0 - 1e-9);
+    lim[k] = s->fp.phase_mat[k].density_limit;
+    rlo[k] = r0[k] * (1.0 - lim[k]) * (1.0 + 1e-9), rhi[k] = r0[k] * (1.0 + lim[k]) * (1.0 - 1e-9);
   }
   /* with geometry.leaving: remove, a particle outside is taken out after the check */
   static const double everywhere[2 * SPH_DIM] = {-INFINITY, INFINITY, -INFINITY,
@@ -391,7 +391,7 @@ static int check_state(sph_sim *s, int shared, sph_error *err) {
     sph_slice(shared ? NULL : slices(s), to - from, &lo, &hi);
     for (size_t i = from + lo; i < from + hi; i++)
       if (!surely_good(p, i, rlo[ph ? ph[i] : 0], rhi[ph ? ph[i] : 0], d) && p->id[i] < first &&
-          bad_particle(p, i, lim, r0[ph ? ph[i] : 0], d))
+          bad_particle(p, i, lim[ph ? ph[i] : 0], r0[ph ? ph[i] : 0], d))
         first = p->id[i];
   }
   if (shared) {
@@ -406,8 +406,8 @@ static int check_state(sph_sim *s, int shared, sph_error *err) {
     if (p->id[i] == first) worst = i;
   if (worst < 0) return 0;
   const size_t i = (size_t)worst;
-  const double rho0 = r0[ph ? ph[i] : 0];
-  const char *why = bad_particle(p, i, lim, rho0, d);
+  const double rho0 = r0[ph ? ph[i] : 0], band = lim[ph ? ph[i] : 0];
+  const char *why = bad_particle(p, i, band, rho0, d);
   /* with a fixed step, what the step rule would have allowed (the last
    * pass's state: the one the failed step started from) */
   char hint[256] = "";
@@ -433,8 +433,8 @@ static int check_state(sph_sim *s, int shared, sph_error *err) {
                 "blow-up at step %ld, t = %.9g s: %s particle %lld: %s "
                 "(%s, rho = %.6g; allowed rho in [%.6g, %.6g], domain %s)%s",
                 s->steps, s->t, p->kind[i] == SPH_KIND_FLUID ? "fluid" : "wall",
-                (long long)p->id[i], why, state, p->rho[i], rho0 * (1.0 - lim), rho0 * (1.0 + lim),
-                box, hint);
+                (long long)p->id[i], why, state, p->rho[i], rho0 * (1.0 - band),
+                rho0 * (1.0 + band), box, hint);
   return SPH_BLOWUP;
 }
 
