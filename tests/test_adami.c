@@ -17,18 +17,24 @@
  *    obstacle's face stays, one that crossed it is reflected to as far in
  *    front as it was behind (other walls' guard moves both); one that
  *    crossed two faces into the tank's corner is kept off both.
+ * 1c. A 2-D tank's side walls lie on the fluid's rows (every particle at
+ *    y0 + (j + 1/2) dx, the top one on the tank's last row), for heights a
+ *    whole number of dx and not; the still water beside them is not pulled
+ *    toward them (lateral acceleration at mid-depth over the first step
+ *    below 0.01 m/s^2; measured 4e-4 and 1.2e-3; 0.92 while the side walls
+ *    ran to the tank's top, their rows 2.52 mm apart at dx = 2.5 mm).
  * 2. Still water (tests/data/still_tank.yaml, 0.5 s, both integrators):
  *    no fluid particle crosses a wall face; the largest speed stays under
- *    1 % of sqrt(g H) in the first 0.1 s and 0.5 % after (measured 0.55 /
- *    0.35 with either integrator: the lattice's free surface settling;
- *    mdbc walls 0.85 / 0.52); the floor's wall particles with fluid in
+ *    1 % of sqrt(g H) in the first 0.1 s and 0.5 % after (measured 0.41 /
+ *    0.24 with either integrator: the lattice's free surface settling;
+ *    0.55 / 0.35 with the side walls off the fluid's rows; mdbc walls
+ *    0.46 / 0.25); the floor's wall particles with fluid in
  *    reach carry the hydrostatic pressure continued to their depth within
- *    0.75 % of rho0 g H (measured 0.46 %, at the corners; 0.1 % in the
- *    middle), the side walls' within 2 %
- *    (measured 1.36 %, next to the corners, where the side walls'
- *    particles are off the fluid's lattice and the fluid's own pressure is
- *    off the hydrostatic); the first fluid row stands 0.5 +- 0.05 dx above
- *    the floor (measured 0.499 dx).
+ *    0.75 % of rho0 g H (measured 0.02 %; 0.46 % at the corners with the
+ *    side walls off the fluid's rows), the side walls' within 2 %
+ *    (measured 0.43 %, at the free surface's corner; 1.36 % with the side
+ *    walls off the rows); the first fluid row stands 0.5 +- 0.05 dx above
+ *    the floor (measured 0.500 dx).
  * 3. A wall pushed into still water (tests/data/piston.yaml with an adami
  *    tank and piston, 3 layers): its work within 3 % of the linear
  *    shallow-water estimate 0.2040 J (measured 0.2023 J), the closed
@@ -288,6 +294,56 @@ static void test_guard_at_face(void) {
   }
 }
 
+/* A 2-D tank's side walls on the fluid's rows: every side-wall particle at y0 + (j + 1/2) dx, dx
+ * from the next, the top one on the tank's last row (ny = H/dx rounded), for a height a whole
+ * number of dx (the still tank, 0.15 m at 2.5 mm; the Lobovsky tank, 0.6 m at 7.5 mm) and one
+ * that is not (0.151 m); and the still water beside them not pulled toward them: at mid-depth
+ * its lateral acceleration over the first step below 0.01 m/s^2 (with the side walls run to the
+ * tank's top, 59 spacings of 2.52 mm in place of 2.5, it was 0.92 m/s^2). */
+static void test_side_walls(void) {
+  const struct { double height, dx; } tanks[] = {{0.15, 0.0025}, {0.6, 0.0075}, {0.151, 0.0025}};
+  for (size_t t = 0; t < sizeof tanks / sizeof tanks[0]; t++) {
+    char tank[160], dx[64];
+    snprintf(tank, sizeof tank, "geometry.tank={x: [0.0, 0.2], y: [0.0, %.17g], boundary: adami}",
+             tanks[t].height);
+    snprintf(dx, sizeof dx, "numerics.dx=%.17g", tanks[t].dx);
+    const char *sets[] = {tank, dx, "physics.air=false", "time.end=0.01",
+                          "time.output_interval=0.01"};
+    sph_case c;
+    sph_sim *s;
+    sph_error err;
+    CU_ASSERT_FATAL(sph_test_open_sim("cases/still_water_air.yaml", sets, 5, &c, &s) == 0);
+    const sph_particles *p = sph_sim_particles(s);
+    const double h = c.dx, top = (floor(tanks[t].height / h + 0.5) - 0.5) * h;
+    double off = 0.0, high = -INFINITY;
+    size_t side = 0;
+    for (size_t i = 0; i < p->n; i++) {
+      if (p->kind[i] != SPH_KIND_WALL || p->y[i] < 0.0 || (p->x[i] > 0.0 && p->x[i] < 0.2))
+        continue; /* (the side walls above the floor's face) */
+      const double j = p->y[i] / h - 0.5;
+      off = fmax(off, fabs(j - floor(j + 0.5)) * h);
+      high = fmax(high, p->y[i]);
+      side++;
+    }
+    size_t mid = SIZE_MAX;
+    for (size_t i = 0; i < p->n; i++)
+      if (p->kind[i] == SPH_KIND_FLUID && fabs(p->x[i] - 0.5 * h) < 1e-9 &&
+          (mid == SIZE_MAX || fabs(p->y[i] - 0.05) < fabs(p->y[mid] - 0.05)))
+        mid = i;
+    CU_ASSERT_FATAL(mid != SIZE_MAX);
+    CU_ASSERT_FATAL(sph_sim_step(s, c.t_end, &err) == 0);
+    const double ax = p->vx[mid] / sph_sim_time(s);
+    printf("\n  tank %.3f m at dx %.4f m: %zu side-wall particles, at most %.1e m off the rows, "
+           "the top at %.6f m (row %.6f); mid-depth lateral acceleration %+.2e m/s^2",
+           tanks[t].height, h, side, off, high, top, ax);
+    CU_ASSERT(off < 1e-12);
+    CU_ASSERT(fabs(high - top) < 1e-12);
+    CU_ASSERT(fabs(ax) < 0.01);
+    sph_sim_free(s);
+    sph_case_free(&c);
+  }
+}
+
 /* Still water in the tank of tests/data/still_tank.yaml with adami walls (and `extra`). */
 static void still_water(const char *extra, double start_bound, double bound) {
   const char *sets[] = {"geometry.tank={x: [0.0, 0.2], y: [0.0, 0.15], boundary: adami}",
@@ -426,6 +482,7 @@ int main(void) {
       {"the extrapolation: a linear field continued, at rest and moving", test_extrapolation},
       {"two phases: the liquid's wall held at 0, the air's not", test_two_phases},
       {"the guard is the face itself", test_guard_at_face},
+      {"a 2-D tank's side walls on the fluid's rows", test_side_walls},
       {"still water: the wall carries the hydrostatic pressure", test_still_water},
       {"still water with the leap-frog", test_still_water_leapfrog},
       {"a piston's work and the closed ledger", test_piston},

@@ -9,8 +9,9 @@
  * dynamic and fixed_layers 4.6 / 0.48, repulsive 10.2 / 5.5, mirror
  * 0.31 / 0.025):
  *   dynamic, fixed_layers  6 % / 1 %;  repulsive  15 % / 8 %;  mirror  1 % / 0.1 %;
- *   mdbc  6 % / 1 % (measured 0.85 / 0.52, with its default 3 unstaggered
- *   layers; 3.3 / 1.45 with 2 staggered layers).
+ *   mdbc  6 % / 1 % (measured 0.46 / 0.25, with its default 3 unstaggered
+ *   layers, whose side walls lie on the fluid's rows; 0.85 / 0.52 while
+ *   they did not; 3.3 / 1.45 with 2 staggered layers).
  *
  * The load on the floor (issue 18, test c2): after 0.5 s of still water
  * the fluid's first row stands 0.5 dx +- 0.2 dx above the floor face and
