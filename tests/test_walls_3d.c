@@ -16,7 +16,8 @@
  *    of a 6 x 5 x 4 point box) mirror out of the box through their
  *    nearest face(s): the mirror point lies outside the box, as far from
  *    that face as the particle is behind it; standing on the floor, none
- *    through its bottom.
+ *    through its bottom. The same tank closed (lid: true): 3 layers of
+ *    16 x 12 over the top, each mirroring through it, and a sixth face.
  * 2. The fit. Fluid on the tank's lattice (600 particles) carrying a
  *    density and a velocity linear in x, y and z: every mdbc wall
  *    particle's density is the field at the particle (a field rising
@@ -89,6 +90,42 @@ static sph_tank tank(int open_y) {
   t.boundary = SPH_BOUNDARY_MDBC;
   t.open_along = open_y ? 2 : 0;
   return t;
+}
+
+/* A closed tank (geometry.tank.lid): the lid's layers over the whole top, the side walls' rims
+ * too (the tank's layers continued upward, a lattice of 3 x 16 x 12 over a 10 x 6 inside), each
+ * particle's mirror point inside the tank through the faces it lies behind (the lid's through
+ * its top); the keep-off planes gain the lid, which puts back a particle that crossed it. */
+static void test_lid(void) {
+  sph_particles p;
+  sph_error err;
+  CU_ASSERT_FATAL(sph_particles_init(&p, 1024, &err) == 0);
+  sph_tank t = tank(0);
+  t.lid = 1;
+  CU_ASSERT_FATAL(sph_boundary_add_tank(&p, &t, DX, RHO0, 1e-3, H, SPH_FLAG_MDBC, &err) == 0);
+  size_t over = 0;
+  double worst = 0.0;
+  for (size_t i = 0; i < p.n; i++) {
+    if (!(p.z[i] > t.z1)) continue;
+    over++;
+    const double want = 2.0 * t.z1 - p.z[i]; /* through the top */
+    worst = fmax(worst, fabs(p.z[i] + p.mirror_offset[2][i] - want));
+  }
+  sph_wall_plane planes[6];
+  const size_t n = sph_tank_planes(&t, 0.0, planes);
+  int lid_plane = 0;
+  for (size_t l = 0; l < n; l++)
+    lid_plane += planes[l].axis == 2 && planes[l].dir == -1 && planes[l].at == t.z1;
+  printf("\n    the lid: %zu particles over the top, mirror points off by at most %.1e m; %zu "
+         "planes",
+         over, worst, n);
+  CU_ASSERT_EQUAL(over, 3 * 16 * 12);
+  CU_ASSERT(worst < 1e-15);
+  CU_ASSERT_EQUAL(n, 6);
+  CU_ASSERT_EQUAL(lid_plane, 1);
+  t.lid = 0;
+  CU_ASSERT_EQUAL(sph_tank_planes(&t, 0.0, planes), 5);
+  sph_particles_free(&p);
 }
 
 static void test_tank_offsets(void) {
@@ -532,6 +569,7 @@ static void test_moving_plates(void) {
 int main(void) {
   CU_TestInfo tests[] = {
       {"3-D tank: mirror points through faces, edges and corners", test_tank_offsets},
+      {"3-D closed tank: the lid's layers, mirror points and face", test_lid},
       {"3-D box obstacle: mirror points out through the nearest faces", test_obstacle_offsets},
       {"3-D linear fit: mdbc density and ghost velocity exact for linear fields, also hydrostatic",
        test_fit_linear},

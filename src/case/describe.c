@@ -129,6 +129,7 @@ static void describe_geometry(sbuf *b, const sph_case *c) {
     if (!c->tank.stagger) sb_add(b, "geometry.tank.stagger: false\n");
     if (c->tank.extrapolated) sb_add(b, "geometry.tank.extrapolated_velocity: true\n");
     if (c->tank.free_slip) sb_add(b, "geometry.tank.free_slip: true\n");
+    if (c->tank.lid) sb_add(b, "geometry.tank.lid: true\n");
   } else {
     sb_add(b, "geometry.tank: none\n");
   }

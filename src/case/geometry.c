@@ -34,7 +34,7 @@ static const char *const geometry_keys[] = {"tank",    "fluid",      "walls",   
 static const char *const axis_key[3] = {"x", "y", "z"};
 static const char *const tank_keys[] = {"x",         "y",       SPH_IF3("z", ) "layers",
                                         "boundary",  "stagger", "extrapolated_velocity",
-                                        "free_slip", NULL};
+                                        "free_slip", "lid",     NULL};
 #if SPH_DIM == 2
 #define BALL_KEY "circle"
 #else
@@ -194,6 +194,11 @@ static int read_tank(const ctx *x, const node *m, sph_case *c) {
   if (read_layout(x, t, p, c, c->tank.boundary, &c->tank.stagger, &c->tank.extrapolated,
                   &c->tank.free_slip))
     return -1;
+  if ((rc = sph_yaml_get_bool(&x->t, t, p, "lid", &c->tank.lid)) < 0) return -1;
+  if (rc > 0 && c->tank.lid && c->tank.boundary == SPH_BOUNDARY_MIRROR)
+    return sph_yaml_fail_at(&x->t, sph_yaml_find(t, "lid")->val, "geometry.tank.lid",
+                            "expected false with boundary: mirror (a lid is a wall of particles: "
+                            "give the tank a particle wall model), got true");
   return check_layers(x, t, p, c->tank.boundary, &c->tank.layers);
 }
 

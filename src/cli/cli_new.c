@@ -109,6 +109,7 @@ static const char *const TEMPLATE =
     "    # extrapolated_velocity: false  # no slip on the face (stress_tensor or sps; not "
     "adami)\n"
     "    free_slip: false         # forces along the wall's normal only (default false)\n"
+    "    # lid: false             # a closed top: the walls' layers over it too (default false)\n"
     "  fluid:                     # blocks: boxes or shapes (at least one)\n"
     "    - x: [0, 0.05715]\n"
     "      y: [0, 0.1143]\n"

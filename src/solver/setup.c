@@ -516,7 +516,7 @@ static void set_boxes(sph_sim *s) {
       s->view[k] = face[k] - wall;
       s->view[k + 1] = face[k + 1] + wall;
     }
-    s->view[UP + 1] = face[UP + 1];
+    if (!c->tank.lid) s->view[UP + 1] = face[UP + 1]; /* (open: the view ends at its top) */
     s->floor_y = face[UP];
   } else {
     memcpy(s->view, bb, sizeof bb);

@@ -271,10 +271,10 @@ int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double
   if (flags & SPH_WALL_NORMAL) sph_particles_use(p, SPH_ARRAYS_OFFSET);
   const int offsets = (p->live & SPH_ARRAYS_OFFSET) != 0;
   const double lo[3] = {t->x0, t->y0, t->z0}, hi[3] = {t->x1, t->y1, t->z1};
-  for (long k = -L; k < nz; k++)
+  for (long k = -L; k < nz + (t->lid ? L : 0); k++) /* (the lid's layers over the top) */
     for (long j = -Ly; j < ny + Ly; j++)
       for (long i = -Lx; i < nx + Lx; i++) {
-        if (k >= 0 && j >= 0 && j < ny && i >= 0 && i < nx) continue; /* inside */
+        if (k >= 0 && k < nz && j >= 0 && j < ny && i >= 0 && i < nx) continue; /* inside */
         const double x[3] = {t->x0 + ((double)i + 0.5) * dx, t->y0 + ((double)j + 0.5) * dx,
                              t->z0 + ((double)k + 0.5) * dx};
         const long idx = sph_particles_add_at(p, x, v, rho, mass, h, SPH_KIND_WALL, err);
@@ -321,6 +321,11 @@ int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double
   if (sph_boundary_add_segment(p, t->x1 + e, top, t->x1 + e, t->y0 + e, L, st, 0, dx, rho, mass, h,
                                flags, err))
     return -1;
+  /* the lid, left to right (left normal points up, outwards), over the side walls' layers as
+   * the floor is under them; its first layer dx/2 over the top */
+  if (t->lid && sph_boundary_add_segment(p, t->x0 - e, t->y1 + e, t->x1 + e, t->y1 + e, L, st,
+                                         L - 1, dx, rho, mass, h, flags, err))
+    return -1;
   return 0;
 }
 #endif
@@ -328,12 +333,14 @@ int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double
 /* ---- mirror particles ------------------------------------------------------------ */
 
 /* Positions along a line are s = (r - P).t with the tangent t = (ny, -nx). */
-size_t sph_mirror_tank_lines(const sph_tank *t, double reach, sph_mirror_line out[3]) {
+size_t sph_mirror_tank_lines(const sph_tank *t, double reach, sph_mirror_line out[4]) {
   const double w = t->x1 - t->x0, hgt = t->y1 - t->y0;
   out[0] = (sph_mirror_line){t->x0, t->y0, 0.0, 1.0, -reach, w + reach};    /* floor, t = +x */
   out[1] = (sph_mirror_line){t->x0, t->y0, 1.0, 0.0, -hgt - reach, reach};  /* left, t = -y */
   out[2] = (sph_mirror_line){t->x1, t->y0, -1.0, 0.0, -reach, hgt + reach}; /* right, t = +y */
-  return 3;
+  if (!t->lid) return 3;
+  out[3] = (sph_mirror_line){t->x0, t->y1, 0.0, -1.0, -w - reach, reach}; /* lid, t = -x */
+  return 4;
 }
 
 sph_mirror_line sph_mirror_segment_line(double ax, double ay, double bx, double by) {
@@ -429,12 +436,12 @@ long sph_mirror_add(sph_particles *p, const sph_mirror_line *lines, size_t n_lin
 }
 
 #if SPH_DIM == 3
-size_t sph_tank_planes(const sph_tank *t, double reach, sph_wall_plane out[5]) {
+size_t sph_tank_planes(const sph_tank *t, double reach, sph_wall_plane out[6]) {
   const double lo[3] = {t->x0, t->y0, t->z0}, hi[3] = {t->x1, t->y1, t->z1};
   size_t n = 0;
   for (int a = 0; a < 3; a++) {
     if (t->open_along == 1 + a) continue;
-    for (int side = 0; side < (a == 2 ? 1 : 2); side++) { /* no lid */
+    for (int side = 0; side < (a == 2 && !t->lid ? 1 : 2); side++) { /* a lid if it has one */
       sph_wall_plane *f = &out[n++];
       f->axis = a;
       f->dir = side ? -1 : 1;

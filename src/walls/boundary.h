@@ -76,8 +76,9 @@ typedef struct sph_mirror_line {
   double px, py, nx, ny, t0, t1;
 } sph_mirror_line;
 
-/* The mirror lines of a tank (floor and both side walls, faces as given). */
-size_t sph_mirror_tank_lines(const sph_tank *t, double reach, sph_mirror_line out[3]);
+/* The mirror lines of a tank (floor and both side walls, and its lid if it has one; faces as
+ * given). */
+size_t sph_mirror_tank_lines(const sph_tank *t, double reach, sph_mirror_line out[4]);
 /* The mirror line of a wall segment: the fluid is on the right of A -> B,
  * as for a segment of wall particles. */
 sph_mirror_line sph_mirror_segment_line(double ax, double ay, double bx, double by);
@@ -116,7 +117,7 @@ typedef struct sph_wall_plane {
  * normal to the axis the tank is open along; each spans the tank's inner
  * box grown by `reach` along the other axes (0: the faces as they are).
  * Into out (room for 5); their number. */
-size_t sph_tank_planes(const sph_tank *t, double reach, sph_wall_plane out[5]);
+size_t sph_tank_planes(const sph_tank *t, double reach, sph_wall_plane out[6]);
 
 /* sph_mirror_add with mirror planes (a 3-D mirror tank): a fluid particle
  * closer than `reach` to a plane in front of it, within its span, gets its

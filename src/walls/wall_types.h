@@ -42,6 +42,7 @@ typedef struct sph_tank {
   int free_slip;    /* pressure and artificial viscosity along the faces' normals */
   int open_along;   /* 3-D: 0, or 1 + the axis (x or y) along which the tank has no
                        faces (the case's periodic axis) */
+  int lid;          /* a closed top: the walls' layers over it too (geometry.tank.lid) */
 } sph_tank;
 
 /* Prescribed motion of a wall (a gate): translation at a constant velocity

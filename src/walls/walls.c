@@ -91,19 +91,23 @@ static void corners(sph_walls *w, const sph_tank *tank) {
   const double r = w->face_reach;
 #if SPH_DIM == 2
   (void)tank;
-  /* sph_mirror_tank_lines: the floor (t = +x), the left wall (t = -y), the right (t = +y) */
+  /* sph_mirror_tank_lines: the floor (t = +x), the left wall (t = -y), the right (t = +y), the
+   * lid (t = -x) */
   if (w->n_face < 3) return;
   w->face[0].t0 -= r;
   w->face[0].t1 += r;
   w->face[1].t1 += r;
   w->face[2].t0 -= r;
+  if (w->n_face < 4) return;
+  w->face[1].t0 -= r, w->face[2].t1 += r; /* (the side walls up into the lid's corners) */
+  w->face[3].t0 -= r, w->face[3].t1 += r;
 #else
   for (size_t l = 0; l < w->n_plane; l++) {
     sph_wall_plane *f = &w->plane[l];
     for (int b = 0; b < 3; b++) {
       if (b == f->axis || tank->open_along == 1 + b) continue; /* (a periodic axis: no corner) */
       f->lo[b] -= r;
-      if (b != SPH_UP) f->hi[b] += r;
+      if (b != SPH_UP || tank->lid) f->hi[b] += r;
     }
   }
 #endif

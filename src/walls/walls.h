@@ -25,7 +25,7 @@ typedef struct sph_walls {
   sph_mirror_line mirror[SPH_MIRROR_MAX_LINES]; /* mirror walls */
   size_t n_mirror;
   double mirror_reach;     /* how far behind a mirror line particles are mirrored */
-  sph_mirror_line face[3]; /* a tank of wall particles: its inner faces (floor, sides) */
+  sph_mirror_line face[4]; /* a tank of wall particles: its inner faces (floor, sides, lid) */
   size_t n_face;
   double face_reach; /* the tank's wall thickness: how far behind a face a particle is put back */
   int moving;        /* some wall particles follow a prescribed motion */
@@ -39,7 +39,7 @@ typedef struct sph_walls {
   const sph_wall_segment *segments; /* the case's segments (their motions), not owned */
   size_t n_segments;
 #if SPH_DIM == 3
-  sph_wall_plane plane[5]; /* the tank's inner faces (floor, sides); a mirror tank's mirror
+  sph_wall_plane plane[6]; /* the tank's inner faces (floor, sides, lid); a mirror tank's mirror
                               planes (then n_mirror = n_plane) */
   size_t n_plane;
 #endif
