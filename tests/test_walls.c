@@ -31,7 +31,9 @@
  * default scheme's adami tank stays under the lid and reaches it (its
  * highest within 2 dx of the top; measured 0.1472 m of 0.15), the lid 4
  * layers over the side walls' too; without the lid the same water rises to
- * 0.26 m; a mirror tank's lid is refused, naming the key.
+ * 0.26 m; a mirror tank's lid is refused, naming the key. In a tank whose
+ * height is not a whole number of dx the lid's rows continue the side
+ * walls' (its first the row over their last, as in 3-D).
  *
  * Issue 18: the back wall of the coarse Martin & Moyce dam break drains
  * with dynamic and mdbc walls (no film; the height within 15 % of Martin &
@@ -176,6 +178,28 @@ static void test_lid(void) {
   CU_ASSERT(sph_case_load(sph_test_src("cases/still_water_air.yaml"), mirror, 1, &c, &err) != 0 &&
             strstr(err.msg, "geometry.tank.lid") != NULL);
   printf("\n  %s", err.msg);
+  /* a height not a whole number of dx (0.151 m at 2.5 mm: 60 rows): the lid's layers continue
+   * the side walls' rows, its first the row over their last (0.15125 m), as a 3-D tank's
+   * lattice does, not dx/2 over the top (0.15225 m, 1.4 dx over the side walls' last) */
+  sph_particles q;
+  CU_ASSERT_FATAL(sph_particles_init(&q, 1024, &err) == 0);
+  sph_tank t = {0};
+  t.present = 1, t.x0 = 0.0, t.x1 = 0.2, t.y0 = 0.0, t.y1 = 0.151, t.layers = 4, t.lid = 1;
+  t.boundary = SPH_BOUNDARY_ADAMI;
+  CU_ASSERT_FATAL(
+      sph_boundary_add_tank(&q, &t, 0.0025, 1000.0, 6.25e-3, 0.005, SPH_FLAG_ADAMI, &err) == 0);
+  double lowest = INFINITY, off = 0.0;
+  for (size_t i = 0; i < q.n; i++) {
+    if (!(q.y[i] > t.y1)) continue;
+    lowest = fmin(lowest, q.y[i]);
+    const double j = q.y[i] / 0.0025 - 0.5;
+    off = fmax(off, fabs(j - floor(j + 0.5)) * 0.0025);
+  }
+  printf("\n  tank 0.151 m at 2.5 mm: the lid's first row at %.6f m, its rows at most %.1e m off",
+         lowest, off);
+  CU_ASSERT(fabs(lowest - 0.15125) < 1e-12);
+  CU_ASSERT(off < 1e-12);
+  sph_particles_free(&q);
 }
 
 /* Wall particles boundary.c places for the case's tank (dx = 0.005 m, inner

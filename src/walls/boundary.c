@@ -312,6 +312,7 @@ int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double
    * mm) the rows dx apart moved the still water's largest speed after 0.1 s from 0.55 to 0.68 %
    * of (g H)^1/2 on dynamic walls and from 5.5 to 9.7 % on a repulsive one */
   const long ny = (long)floor((t->y1 - t->y0) / dx + 0.5);
+  /* (at least two rows: a side wall of one point has no direction) */
   const double top = st ? t->y1 : t->y0 + ((double)(ny > 1 ? ny : 2) - 0.5) * dx;
   /* left wall, upwards (left normal points to -x) */
   if (sph_boundary_add_segment(p, t->x0 - e, t->y0 + e, t->x0 - e, top, L, st, 0, dx, rho, mass, h,
@@ -322,9 +323,12 @@ int sph_boundary_add_tank(sph_particles *p, const sph_tank *t, double dx, double
                                flags, err))
     return -1;
   /* the lid, left to right (left normal points up, outwards), over the side walls' layers as
-   * the floor is under them; its first layer dx/2 over the top */
-  if (t->lid && sph_boundary_add_segment(p, t->x0 - e, t->y1 + e, t->x1 + e, t->y1 + e, L, st,
-                                         L - 1, dx, rho, mass, h, flags, err))
+   * the floor is under them; unstaggered its first layer the row over the side walls' last, as
+   * a 3-D tank's lattice continued (dx/2 over the top where the height is a whole number of dx),
+   * staggered dx/2 over the top */
+  const double lid = st ? t->y1 + e : top + dx;
+  if (t->lid && sph_boundary_add_segment(p, t->x0 - e, lid, t->x1 + e, lid, L, st, L - 1, dx, rho,
+                                         mass, h, flags, err))
     return -1;
   return 0;
 }
