@@ -24,7 +24,8 @@
  *   - a run on 4 processes restarted from its snapshot on 3;
  *   - the comparison sees a reduction summed in rank order
  *     (SPH_TEST_RANK_ORDER_SUMS=1 rounds each rank's ledger sums and adds
- *     them in rank order: the files must then differ);
+ *     them in rank order, =2 each process's share of the diagnostics' sums:
+ *     the files must then differ);
  *   - one process killed with SIGKILL ends the job (mpirun's report, well
  *     within 30 s), and a restart from the last snapshot left gives the
  *     uninterrupted run's bytes;
@@ -336,26 +337,34 @@ static void test_restart_on_other_count(void) {
   free(again);
 }
 
-/* The ledger's sums rounded per rank and added in rank order: the files
- * differ from the serial run's (the comparison above would fail). */
-static void test_rank_order_sums_are_seen(void) {
+/* The ledger's sums (hook 1), or the diagnostics' (hook 2), rounded per
+ * process and added in rank order: the files differ from the serial run's
+ * (the comparison above would fail). */
+static void rank_order_seen(const char *hook, const char *what) {
   const char *c = "cases/lobovsky_h300.yaml";
   const char *sets = "--set numerics.dx=0.02 --set time.end=0.2 --set output.energy=true";
   char *one = run("src/sph", c, sets, "", 0, 1);
-  char *d = run("src/sph", c, sets, "SPH_TEST_RANK_ORDER_SUMS=1", 3, 1);
+  char env[64];
+  snprintf(env, sizeof env, "SPH_TEST_RANK_ORDER_SUMS=%s", hook);
+  char *d = run("src/sph", c, sets, env, 3, 1);
   char a[4096], b[4096];
   snprintf(a, sizeof a, "%s/diagnostics.csv", one);
   snprintf(b, sizeof b, "%s/diagnostics.csv", d);
   char cmd[9000];
   snprintf(cmd, sizeof cmd, "cmp -s '%s' '%s'", a, b);
   const int differ = sph_test_system(cmd) != 0;
-  printf("\n  the ledger summed in rank order on 3 processes: %s",
+  printf("\n  %s summed in rank order on 3 processes: %s", what,
          differ ? "seen (diagnostics.csv differs)" : "NOT SEEN");
   CU_ASSERT(differ);
   sph_test_rmtree(one);
   sph_test_rmtree(d);
   free(one);
   free(d);
+}
+
+static void test_rank_order_sums_are_seen(void) {
+  rank_order_seen("1", "the ledger's rates");
+  rank_order_seen("2", "the diagnostics' sums");
 }
 
 /* The pid of a process whose command line holds `a` and `b`: mpirun itself

@@ -386,6 +386,8 @@ static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
   const int status = report_end(&r, s, &err, a->outdir);
   sph_procs_figures f; /* every process: a collective step */
   sph_sim_procs_figures(s, &f);
+  sph_diag_row end; /* every process: a collective step (each sums its share) */
+  sph_sim_diag(s, &end);
   if (!a->quiet && status != 1 && f.processes > 1 && f.passes > 0)
     printf("  %d processes: ghosts %.3g of the owned particles (each process's halo), %.3g MB "
            "sent per pass, all processes together\n",
@@ -396,8 +398,6 @@ static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
     if (sph_sim_step_range(s, &dt_first, &dt_min, &t_min))
       printf("  steps: the first %.3g s, the smallest %.3g s (%.3g of the first) at t = %.9g s\n",
              dt_first, dt_min, dt_min / dt_first, t_min);
-    sph_diag_row end;
-    sph_sim_diag(s, &end);
     if (end.n_removed)
       printf("  %zu fluid particles left the domain and were taken out (geometry.leaving: "
              "remove): %.3g %% of the fluid's mass\n",

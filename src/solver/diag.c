@@ -5,6 +5,7 @@
 #include "config.h"
 
 #include "solver/diag.h"
+#include "solver/diag_sums.h"
 
 #include "core/exact_sum.h"
 #include "core/parallel.h"
@@ -12,100 +13,131 @@
 
 #include <math.h>
 
-double sph_diag_front(const sph_particles *p, double floor_y, double band) {
-  double front = -INFINITY;          /* a maximum: exact in any order */
-  const double *up = p->pos[SPH_UP]; /* the vertical: y (z in 3-D) */
-  const long n = (long)p->n;
-#pragma omp parallel for schedule(static) if (n > SPH_OMP_MIN) reduction(max : front)
-  for (long i = 0; i < n; i++)
-    if (sph_particles_liquid(p, (size_t)i) && up[i] < floor_y + band && p->x[i] > front)
-      front = p->x[i];
-  return front;
+/* The highest fluid centre on the line at `at` among particles [from, to)
+ * (a maximum: exact in any order), -inf if none. */
+static double top_in(const sph_particles *p, size_t from, size_t to, const double at[SPH_DIM - 1],
+                     double half) {
+  double top = -INFINITY;
+  const double *up = p->pos[SPH_UP];
+  for (size_t i = from; i < to; i++)
+    if (sph_particles_liquid(p, i) && fabs(p->x[i] - at[0]) < half &&
+        SPH_IF3(fabs(p->y[i] - at[1]) < half &&) up[i] > top)
+      top = up[i];
+  return top;
 }
 
 double sph_diag_surface_at(const sph_particles *p, double x, double half, double dx) {
+#if SPH_DIM == 2
+  const double at[1] = {x};
+  return top_in(p, 0, p->n, at, half) + 0.5 * dx;
+#else /* every y */
   double top = -INFINITY;
-  const double *up = p->pos[SPH_UP];
   for (size_t i = 0; i < p->n; i++)
-    if (sph_particles_liquid(p, i) && fabs(p->x[i] - x) < half && up[i] > top) top = up[i];
+    if (sph_particles_liquid(p, i) && fabs(p->x[i] - x) < half && p->z[i] > top) top = p->z[i];
   return top + 0.5 * dx;
+#endif
 }
 
 #if SPH_DIM == 3
 double sph_diag_surface_at_xy(const sph_particles *p, double x, double y, double half, double dx) {
-  double top = -INFINITY;
-  for (size_t i = 0; i < p->n; i++)
-    if (sph_particles_liquid(p, i) && fabs(p->x[i] - x) < half && fabs(p->y[i] - y) < half &&
-        p->z[i] > top)
-      top = p->z[i];
-  return top + 0.5 * dx;
+  const double at[2] = {x, y};
+  return top_in(p, 0, p->n, at, half) + 0.5 * dx;
 }
 #endif
 
-/* The line's reading at `at`, its horizontal coordinates. */
-static double line_level(const sph_particles *p, const double at[SPH_DIM - 1], double half,
-                         double dx) {
-#if SPH_DIM == 2
-  return sph_diag_surface_at(p, at[0], half, dx);
-#else
-  return sph_diag_surface_at_xy(p, at[0], at[1], half, dx);
-#endif
-}
-
-double sph_diag_gauge_level(const sph_particles *p, const double at[SPH_DIM - 1], double half,
-                            double dx, int axis, const double range[2]) {
-  double level = line_level(p, at, half, dx);
-  if (axis < 0 || axis >= SPH_DIM - 1) return level; /* no horizontal period */
+double sph_diag_gauge_top(const sph_particles *p, size_t from, size_t to,
+                          const double at[SPH_DIM - 1], double half, int axis,
+                          const double range[2]) {
+  double top = top_in(p, from, to, at, half);
+  if (axis < 0 || axis >= SPH_DIM - 1) return top; /* no horizontal period */
   const double period = range[1] - range[0];
-  if (!(period > 0.0)) return level;
+  if (!(period > 0.0)) return top;
   double image[SPH_DIM - 1];
   for (int d = 0; d < SPH_DIM - 1; d++)
     image[d] = at[d];
   if (at[axis] - range[0] < half) { /* the seam at range[0]: the particles near range[1] */
     image[axis] = at[axis] + period;
-    level = fmax(level, line_level(p, image, half, dx));
+    top = fmax(top, top_in(p, from, to, image, half));
   }
   if (range[1] - at[axis] < half) { /* and the other way */
     image[axis] = at[axis] - period;
-    level = fmax(level, line_level(p, image, half, dx));
+    top = fmax(top, top_in(p, from, to, image, half));
   }
-  return level;
+  return top;
 }
 
-/* The sums of a row over the fluid particles, each exact (exact_sum.h):
- * the same bits in any order and for any split of the particles. */
-enum { D_MASS, D_MX, D_MY, D_KE, D_PE, D_MZ, D_SUMS };
+double sph_diag_gauge_level(const sph_particles *p, const double at[SPH_DIM - 1], double half,
+                            double dx, int axis, const double range[2]) {
+  return sph_diag_gauge_top(p, 0, p->n, at, half, axis, range) + 0.5 * dx;
+}
 
-void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[SPH_DIM],
-                      sph_diag_row *row) {
-  size_t n = 0;
-  sph_xsum sum[D_SUMS];
-  for (int k = 0; k < D_SUMS; k++)
-    sph_xsum_init(&sum[k]);
-  for (size_t i = 0; i < p->n; i++) {
+/* The largest x of the fluid with its vertical coordinate under floor_y
+ * + band among particles [from, to): a maximum, exact in any order. */
+static double front_in(const sph_particles *p, size_t from, size_t to, double floor_y,
+                       double band) {
+  double front = -INFINITY;
+  const double *up = p->pos[SPH_UP]; /* the vertical: y (z in 3-D) */
+  const long lo = (long)from, hi = (long)to;
+#pragma omp parallel for schedule(static) if (hi - lo > SPH_OMP_MIN) reduction(max : front)
+  for (long i = lo; i < hi; i++)
+    if (sph_particles_liquid(p, (size_t)i) && up[i] < floor_y + band && p->x[i] > front)
+      front = p->x[i];
+  return front;
+}
+
+double sph_diag_front(const sph_particles *p, double floor_y, double band) {
+  return front_in(p, 0, p->n, floor_y, band);
+}
+
+void sph_diag_sums_init(sph_diag_sums *t) {
+  for (int k = 0; k < SPH_DS_COUNT; k++)
+    sph_xsum_init(&t->s[k]);
+  t->n_fluid = 0;
+  t->front = -INFINITY;
+}
+
+void sph_diag_sums_add(sph_diag_sums *t, const sph_particles *p, size_t from, size_t to,
+                       double floor_y, double band, const double g[SPH_DIM], int heat) {
+  sph_xsum *sum = t->s;
+  for (size_t i = from; i < to; i++) {
+    if (heat) sph_xsum_add(&sum[SPH_DS_HEAT], p->mass[i] * p->u[i]);
     if (p->kind[i] != SPH_KIND_FLUID) continue;
     const double m = p->mass[i];
-    n++;
-    sph_xsum_add(&sum[D_MASS], m);
-    sph_xsum_add(&sum[D_MX], m * p->vx[i]);
-    sph_xsum_add(&sum[D_MY], m * p->vy[i]);
+    t->n_fluid++;
+    if (heat) sph_xsum_add(&sum[SPH_DS_HEAT_FLUID], m * p->u[i]);
+    sph_xsum_add(&sum[SPH_DS_MASS], m);
+    sph_xsum_add(&sum[SPH_DS_MX], m * p->vx[i]);
+    sph_xsum_add(&sum[SPH_DS_MY], m * p->vy[i]);
 #if SPH_DIM == 2
-    sph_xsum_add(&sum[D_KE], 0.5 * m * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]));
+    sph_xsum_add(&sum[SPH_DS_KE], 0.5 * m * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]));
 #else /* the floor along z, the vertical */
-    sph_xsum_add(&sum[D_MZ], m * p->vz[i]);
-    sph_xsum_add(&sum[D_KE],
+    sph_xsum_add(&sum[SPH_DS_MZ], m * p->vz[i]);
+    sph_xsum_add(&sum[SPH_DS_KE],
                  0.5 * m * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i] + p->vz[i] * p->vz[i]));
 #endif
-    sph_xsum_add(&sum[D_PE], -sph_diag_lift(p, i, g, floor_y));
+    sph_xsum_add(&sum[SPH_DS_PE], -sph_diag_lift(p, i, g, floor_y));
   }
-  SPH_IF3(row->momentum_z = sph_xsum_round(&sum[D_MZ]);)
-  row->n_fluid = n;
-  row->front_x = sph_diag_front(p, floor_y, band);
-  row->mass = sph_xsum_round(&sum[D_MASS]);
-  row->momentum_x = sph_xsum_round(&sum[D_MX]);
-  row->momentum_y = sph_xsum_round(&sum[D_MY]);
-  row->kinetic = sph_xsum_round(&sum[D_KE]);
-  row->potential = sph_xsum_round(&sum[D_PE]);
+  const double f = front_in(p, from, to, floor_y, band);
+  if (f > t->front) t->front = f;
+}
+
+void sph_diag_sums_merge(sph_diag_sums *t, const sph_diag_sums *u) {
+  for (int k = 0; k < SPH_DS_COUNT; k++)
+    sph_xsum_merge(&t->s[k], &u->s[k]);
+  t->n_fluid += u->n_fluid;
+  if (u->front > t->front) t->front = u->front;
+}
+
+void sph_diag_sums_row(const sph_diag_sums *t, sph_diag_row *row) {
+  const sph_xsum *sum = t->s;
+  SPH_IF3(row->momentum_z = sph_xsum_round(&sum[SPH_DS_MZ]);)
+  row->n_fluid = (size_t)t->n_fluid;
+  row->front_x = t->front;
+  row->mass = sph_xsum_round(&sum[SPH_DS_MASS]);
+  row->momentum_x = sph_xsum_round(&sum[SPH_DS_MX]);
+  row->momentum_y = sph_xsum_round(&sum[SPH_DS_MY]);
+  row->kinetic = sph_xsum_round(&sum[SPH_DS_KE]);
+  row->potential = sph_xsum_round(&sum[SPH_DS_PE]);
   row->n_surface = -1;
   row->ledger = 0;
   row->diffusion = 0;
@@ -114,6 +146,16 @@ void sph_diag_compute(const sph_particles *p, double floor_y, double band, const
   row->outflow = 0;
   row->n_removed = 0;
   row->mass_removed = row->energy_removed = 0.0;
+}
+
+/* Each sum exact (exact_sum.h): the same bits in any order and for any
+ * split of the particles. */
+void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[SPH_DIM],
+                      sph_diag_row *row) {
+  sph_diag_sums t;
+  sph_diag_sums_init(&t);
+  sph_diag_sums_add(&t, p, 0, p->n, floor_y, band, g, 0);
+  sph_diag_sums_row(&t, row);
 }
 
 int sph_diag_write_header(FILE *f, int free_surface, int ledger, int diffusion, int repulsion,

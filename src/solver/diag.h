@@ -107,6 +107,13 @@ double sph_diag_surface_at_xy(const sph_particles *p, double x, double y, double
  * above give. */
 double sph_diag_gauge_level(const sph_particles *p, const double at[SPH_DIM - 1], double half,
                             double dx, int axis, const double range[2]);
+/* The same reading among particles [from, to) of p, without the dx/2: the
+ * highest fluid centre, -inf if none (a maximum: the readings of a split
+ * of the store, the processes' shares under mpirun, give the whole store's
+ * as their largest, to which dx/2 is added). */
+double sph_diag_gauge_top(const sph_particles *p, size_t from, size_t to,
+                          const double at[SPH_DIM - 1], double half, int axis,
+                          const double range[2]);
 /* Fills every column but time, step and dt. */
 void sph_diag_compute(const sph_particles *p, double floor_y, double band, const double g[SPH_DIM],
                       sph_diag_row *row);

@@ -122,21 +122,10 @@ void sph_ledger_add_kick(sph_ledger *lg, const double kick[2 * SPH_DIM],
 }
 
 /* The particles' heat, sum m u (fluid only, or every particle), exact. */
-static double heat(const sph_particles *p, int fluid_only) {
-  sph_xsum u;
-  sph_xsum_init(&u);
-  for (size_t i = 0; i < p->n; i++)
-    if (!fluid_only || p->kind[i] == SPH_KIND_FLUID) sph_xsum_add(&u, p->mass[i] * p->u[i]);
-  return sph_xsum_round(&u);
-}
-
-double sph_ledger_fluid_internal(const sph_particles *p) { return heat(p, 1); }
-
-void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, const sph_outflow *out,
+void sph_ledger_fill(const sph_ledger *lg, double u, double u_fluid, const sph_outflow *out,
                      sph_diag_row *row) {
   static const sph_outflow none = {0};
   if (!out) out = &none;
-  const double u = heat(p, 0); /* every particle's: dynamic walls take half a pair's */
   row->ledger = 1;
   row->internal = u;
   row->boundary_work = lg->work_wall;
@@ -149,7 +138,7 @@ void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, const sph_out
   row->total = row->kinetic + row->potential + u + row->wall_potential - lg->work_wall -
                lg->drift_xsph - lg->drift_shifting + out->energy;
   row->deviation = lg->e0 != 0.0 ? (row->total - lg->e0) / lg->e0 : 0.0;
-  const double ef = row->kinetic + row->potential + sph_ledger_fluid_internal(p) + out->energy;
+  const double ef = row->kinetic + row->potential + u_fluid + out->energy;
   row->fluid_deviation = lg->e0_fluid != 0.0 ? (ef - lg->e0_fluid) / lg->e0_fluid : 0.0;
   row->momentum_residual_x = row->momentum_x + out->momentum[0] - lg->p0x - lg->impulse_x;
   row->momentum_residual_y = row->momentum_y + out->momentum[1] - lg->p0y - lg->impulse_y;
@@ -166,9 +155,9 @@ void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, const sph_out
                 "a ledger total is not finite at t = %.9g s", row->time);
 }
 
-void sph_ledger_start(sph_ledger *lg, const sph_particles *p, const sph_diag_row *row) {
+void sph_ledger_start(sph_ledger *lg, double u_fluid, const sph_diag_row *row) {
   lg->e0 = row->total;
-  lg->e0_fluid = row->kinetic + row->potential + sph_ledger_fluid_internal(p);
+  lg->e0_fluid = row->kinetic + row->potential + u_fluid;
   lg->p0x = row->momentum_x;
   lg->p0y = row->momentum_y;
   SPH_IF3(lg->p0z = row->momentum_z;)

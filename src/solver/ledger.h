@@ -115,19 +115,18 @@ void sph_ledger_add_kick(sph_ledger *lg, const double kick[2 * SPH_DIM],
 void sph_ledger_add_shift(sph_ledger *lg, const double moved[SPH_DIM],
                           const double gravity[SPH_DIM]);
 
-/* sum over fluid particles of m_i u_i */
-double sph_ledger_fluid_internal(const sph_particles *p);
-
 /* Completes a diagnostics row (row->kinetic, potential and momentum
- * already filled by sph_diag_compute) with the ledger's columns; out (or
+ * already filled by sph_diag_compute) with the ledger's columns, given the
+ * stored heat sum m_i u_i of every particle (u: dynamic walls take half a
+ * pair's) and of the fluid alone (u_fluid; diag_sums.h sums both); out (or
  * NULL) is the fluid that left the domain (outflow.h): its energy joins
  * the totals (the energy_removed column) and its momentum the balance. */
-void sph_ledger_fill(const sph_ledger *lg, const sph_particles *p, const sph_outflow *out,
+void sph_ledger_fill(const sph_ledger *lg, double u, double u_fluid, const sph_outflow *out,
                      sph_diag_row *row);
 
 /* Takes the initial totals from the first row (filled by
- * sph_ledger_fill with zero integrals). */
-void sph_ledger_start(sph_ledger *lg, const sph_particles *p, const sph_diag_row *row);
+ * sph_ledger_fill with zero integrals) and the fluid's stored heat. */
+void sph_ledger_start(sph_ledger *lg, double u_fluid, const sph_diag_row *row);
 
 /* The time integrals for a restart record, and back. */
 void sph_ledger_save(const sph_ledger *lg, double out[SPH_LEDGER_SAVED]);

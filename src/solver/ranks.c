@@ -36,6 +36,7 @@
 #include "core/exact_sum.h"
 #include "neighbours/decomp.h"
 #include "physics/kernel.h"
+#include "solver/diag_sums.h"
 #include "solver/integrate.h"
 #include "solver/procs.h"
 #include "solver/sim_internal.h"
@@ -225,14 +226,16 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   s->pass_static = sph_particles_array_bits("mass mx my mz xr yr zr kind body id phase") |
                    (c->variable_h || s->fp.var_h ? 0 : sph_particles_array_bits("h"));
   /* SPH_TEST_RANK_ORDER_SUMS=1 (doc/testing.md): the ledger's sums made the
-   * way that depends on the rank count, for the test that must see it */
+   * way that depends on the rank count, for the test that must see it; =2 the
+   * diagnostics' sums (sim.c) */
   const char *e = getenv("SPH_TEST_RANK_ORDER_SUMS");
-  s->rank_order_sums = e && *e == '1';
+  s->rank_order_sums = e && (*e == '1' || *e == '2') ? *e - '0' : 0;
   /* SPH_TEST_FAIL_PASS=R:K (doc/testing.md): process R's K-th pass fails
    * before it starts, for the test that the others are not left waiting */
   const char *fe = getenv("SPH_TEST_FAIL_PASS");
   if (fe && sscanf(fe, "%d:%ld", &s->fail_rank, &s->fail_pass) != 2) s->fail_pass = 0;
-  if (self >= 0 && !(s->reports = malloc((size_t)ranks * sizeof(pass_report))))
+  if (self >= 0 && (!(s->reports = malloc((size_t)ranks * sizeof(pass_report))) ||
+                    !(s->diag_all = malloc((size_t)ranks * sizeof(sph_diag_sums)))))
     return sph_error_set(err, "out of memory for the ranks' sums");
   return 0;
 }
@@ -262,6 +265,8 @@ void sph_sim_ranks_free(sph_sim *s) {
   s->wall_buf = NULL, s->n_send = s->n_send_pos = s->cap_made_first = s->cap_wall_buf = 0;
   free(s->records);
   free(s->reports);
+  free(s->diag_all);
+  s->diag_all = NULL;
   free(s->mark_last);
   free(s->take_pos);
   s->take_pos = NULL;
@@ -625,7 +630,7 @@ static void combine(sph_sim *s, const pass_report *all, rank_sums *t) {
     if (s->fp.ledger) sph_ledger_sums_merge(&t->ledger, &all[q].sums.ledger);
   }
   if (s->fp.ledger &&
-      s->rank_order_sums) /* test hook: each rank's sums rounded, then added in rank order */
+      s->rank_order_sums == 1) /* test hook: each rank's sums rounded, then added in rank order */
     for (int k = 0; k < SPH_LEDGER_SUMS; k++) {
       double sum = 0.0;
       for (int q = 0; q < s->ranks; q++)

@@ -48,6 +48,9 @@ typedef struct outputs {
   double *share; /* a row's readings as this process reads them, then every process's
                     (read_probes) */
   int read;      /* some process writes probes.csv: every one reads its share of a row */
+  int rows;      /* some process writes diagnostics rows: every one sums its share of a row */
+  int levels;    /* some process writes gauges.csv: every one reads its share of a row */
+  double *tops;  /* the gauges' readings of every process's share (sph_diag_gauge_top) */
   int team;      /* the processes write each snapshot together (snapshot.h), the first's
                     name and restart record */
   size_t index;  /* number of the next snapshot file, snap_<index>.h5 */
@@ -64,6 +67,7 @@ static void outputs_free(outputs *o) {
   free(o->still);
   free(o->lp);
   free(o->share);
+  free(o->tops);
   for (size_t i = 0; i < o->n; i++)
     free(o->names[i]);
   free(o->names);
@@ -79,11 +83,25 @@ static void outputs_free(outputs *o) {
 static int write_gauges(sph_sim *s, outputs *o, sph_error *err) {
   const sph_case *c = sph_sim_case(s);
   const sph_particles *p = sph_sim_particles(s);
+  if (!o->levels) return 0;
+  /* each gauge's highest fluid centre in this process's share of the store (sim_internal.h),
+   * then (under mpirun) the largest of every process's, in one collective step */
+  const size_t ng = c->n_gauges;
+  const int procs = sph_procs_count();
+  double *mine = o->tops + (size_t)procs * ng;
+  size_t from, to;
+  sph_sim_span(s, &from, &to);
+  for (size_t g = 0; g < ng; g++)
+    mine[g] = sph_diag_gauge_top(p, from, to, &c->gauges[(SPH_DIM - 1) * g], c->dx,
+                                 c->periodic ? c->periodic_axis : -1, c->periodic_range);
+  if (procs > 1) sph_procs_gather(mine, ng * sizeof *mine, o->tops);
   if (!o->gauges) return 0;
   if (fprintf(o->gauges, "%.17g", sph_sim_time(s)) < 0) goto fail;
-  for (size_t g = 0; g < c->n_gauges; g++) {
-    double level = sph_diag_gauge_level(p, &c->gauges[(SPH_DIM - 1) * g], c->dx, c->dx,
-                                        c->periodic ? c->periodic_axis : -1, c->periodic_range);
+  for (size_t g = 0; g < ng; g++) {
+    double top = mine[g];
+    for (int q = 0; q < procs && procs > 1; q++)
+      top = fmax(top, o->tops[(size_t)q * ng + g]);
+    double level = top + 0.5 * c->dx;
     if (!isfinite(level)) level = sph_sim_floor(s); /* dry */
     if (sph_sim_time(s) == 0.0) o->still[g] = level;
     if (fprintf(o->gauges, ",%.17g", level - o->still[g]) < 0) goto fail;
@@ -222,16 +240,21 @@ static int list_snapshot(outputs *o, const char *name, double t, size_t count, s
 }
 
 /* The diagnostics row of the current state (which & 1) and its gauges
- * row (which & 2). */
+ * row (which & 2); under mpirun every process makes this call at once
+ * (each sums its share of the rows) and the first writes them. */
 static int write_rows(sph_sim *s, outputs *o, int which, sph_error *err) {
-  if ((which & 1) && (o->diag || o->row)) {
+  int rc = 0;
+  if ((which & 1) && o->rows) {
     sph_diag_row row;
     sph_sim_diag(s, &row);
     if (o->row) o->row(o->row_ctx, &row);
     if (o->diag && (sph_diag_write_row(o->diag, &row) || fflush(o->diag)))
-      return sph_error_set(err, "%s/diagnostics.csv: write failed: %s", o->dir, strerror(errno));
+      rc = sph_error_set(err, "%s/diagnostics.csv: write failed: %s", o->dir, strerror(errno));
   }
-  if ((which & 2) && o->dir && write_gauges(s, o, err)) return -1;
+  /* (the gauges' collective step is made after a failed write too: the others make it) */
+  sph_error later;
+  if ((which & 2) && write_gauges(s, o, rc ? &later : err)) rc = -1;
+  if (rc) return -1;
   return (which & 4) && o->probes ? probe_step(s, o, 0, err) : 0;
 }
 
@@ -582,6 +605,9 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
   /* room for a row's readings, on every process (read_probes), and whether
    * any process writes them (one collective step) */
   out.read = c->n_probes && sph_procs_any(out.probes != NULL);
+  /* and the diagnostics' and the gauges' rows, which every process sums its share of */
+  out.rows = sph_procs_any(out.diag != NULL || out.row != NULL);
+  out.levels = c->n_gauges && sph_procs_any(out.gauges != NULL);
   /* the processes write the snapshots together when one writes them: the
    * others keep room for the restart record's levels and filters */
   out.team = sph_procs_count() > 1 && c->snapshots && sph_procs_any(out.dir != NULL);
@@ -593,6 +619,9 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
     room = sph_error_set(err, "out of memory for the snapshots' restart record");
   else if (share && !(out.share = calloc(share, sizeof *out.share)))
     room = sph_error_set(err, "out of memory for the probes' readings");
+  else if (out.levels &&
+           !(out.tops = calloc(c->n_gauges * (1 + (size_t)sph_procs_count()), sizeof *out.tops)))
+    room = sph_error_set(err, "out of memory for the gauges' readings");
   if (agreed(room, err)) {
     r->status = SPH_RUN_ERROR;
     outputs_free(&out);
@@ -618,8 +647,12 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
      * in one collective step: all stop after this step */
     int interrupted = o->interrupt && *o->interrupt;
     if (sph_procs_agree_any(probe_step(s, &out, 1, err), &interrupted, err)) goto io_error;
-  } else if (agreed(need_row ? write_rows(s, &out, need_row, err) : 0, err)) {
-    goto io_error;
+  } else {
+    /* the rows the first process's files lack (open_outputs), made by all */
+    int64_t need = need_row;
+    if (sph_procs_count() > 1) sph_procs_share(&need, sizeof need);
+    need_row = (int)need;
+    if (agreed(need_row ? write_rows(s, &out, need_row, err) : 0, err)) goto io_error;
   }
   /* the next output times after the current time */
   /* Output times closer than `same` to each other (or to the end) are one

@@ -734,11 +734,7 @@ static int create(const sph_case *c, sph_sim **out, int ranks, int self, int ran
     if (self >= 0) rc = sph_sim_ranks_agree_loop(s, rc, err); /* every process's choice */
     if (rc) goto fail;
   }
-  if (c->energy) {
-    sph_diag_row row;
-    sph_sim_diag(s, &row);
-    sph_ledger_start(&s->ledger, &s->p, &row);
-  }
+  if (c->energy) sph_sim_ledger_start(s);
   *out = s;
   return 0;
 fail:

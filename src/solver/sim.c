@@ -36,6 +36,7 @@
 #include "physics/freesurface.h"
 #include "physics/kernel.h"
 #include "physics/shifting.h"
+#include "solver/diag_sums.h"
 #include "solver/forces.h"
 #include "solver/integrate.h"
 #include "solver/procs.h"
@@ -382,8 +383,8 @@ static int check_state(sph_sim *s, int shared, sph_error *err) {
   const double *d = s->c->leaving == SPH_LEAVING_REMOVE ? everywhere : s->domain;
   const long n = (long)p->n;
   /* this process's share: a range of the store */
-  const size_t from = shared ? p->n * (size_t)s->self / (size_t)s->ranks : 0,
-               to = shared ? p->n * (size_t)(s->self + 1) / (size_t)s->ranks : p->n;
+  size_t from = 0, to = p->n;
+  if (shared) sph_sim_span(s, &from, &to);
   int64_t first = INT64_MAX;
 #pragma omp parallel if (n > SPH_OMP_MIN) reduction(min : first)
   {
@@ -636,8 +637,40 @@ void sph_sim_domain(const sph_sim *s, double box[2 * SPH_DIM]) {
   memcpy(box, s->domain, 2 * SPH_DIM * sizeof *box);
 }
 
-void sph_sim_diag(const sph_sim *s, sph_diag_row *row) {
-  sph_diag_compute(&s->p, s->floor_y, 2.0 * s->c->dx, s->c->gravity, row);
+/* Whether the sim is a process's under mpirun (a rank's own store is not:
+ * sph_sim_ranks_init sets self, ranks.c). */
+static int in_team(const sph_sim *s) { return s->self >= 0 && s->ranks > 1 && !s->rank_store; }
+
+void sph_sim_span(const sph_sim *s, size_t *from, size_t *to) {
+  const size_t n = s->p.n;
+  *from = in_team(s) ? n * (size_t)s->self / (size_t)s->ranks : 0;
+  *to = in_team(s) ? n * (size_t)(s->self + 1) / (size_t)s->ranks : n;
+}
+
+/* The diagnostics row and the fluid's stored heat (the ledger's start). */
+static void diag_row(const sph_sim *s, sph_diag_row *row, double *u_fluid) {
+  /* this process's share, then (under mpirun) every process's merged in
+   * rank order: exact sums, a count and a max, the bits of one sum */
+  size_t from, to;
+  sph_sim_span(s, &from, &to);
+  sph_diag_sums t;
+  sph_diag_sums_init(&t);
+  sph_diag_sums_add(&t, &s->p, from, to, s->floor_y, 2.0 * s->c->dx, s->c->gravity, s->c->energy);
+  if (in_team(s)) {
+    sph_procs_gather(&t, sizeof t, s->diag_all);
+    sph_diag_sums_init(&t);
+    for (int q = 0; q < s->ranks; q++)
+      sph_diag_sums_merge(&t, &s->diag_all[q]);
+    if (s->rank_order_sums == 2) /* test hook: each process's sums rounded, then added in order */
+      for (int k = 0; k < SPH_DS_COUNT; k++) {
+        double sum = 0.0;
+        for (int q = 0; q < s->ranks; q++)
+          sum += sph_xsum_round(&s->diag_all[q].s[k]);
+        sph_xsum_init(&t.s[k]);
+        sph_xsum_add(&t.s[k], sum);
+      }
+  }
+  sph_diag_sums_row(&t, row);
   row->n_surface = s->detect ? (long)s->n_surface : -1;
   if (s->c->leaving == SPH_LEAVING_REMOVE) {
     row->outflow = 1;
@@ -645,13 +678,26 @@ void sph_sim_diag(const sph_sim *s, sph_diag_row *row) {
     row->mass_removed = s->out.mass;
   }
   if (s->c->energy) {
-    sph_ledger_fill(&s->ledger, &s->p, &s->out, row);
+    *u_fluid = sph_xsum_round(&t.s[SPH_DS_HEAT_FLUID]);
+    sph_ledger_fill(&s->ledger, sph_xsum_round(&t.s[SPH_DS_HEAT]), *u_fluid, &s->out, row);
     row->diffusion = s->c->diffusion != SPH_DIFFUSION_NONE || s->c->riemann;
     row->shifting = s->c->shifting;
   }
   row->time = s->t;
   row->step = s->steps;
   row->dt = s->last_dt;
+}
+
+void sph_sim_diag(const sph_sim *s, sph_diag_row *row) {
+  double u_fluid = 0.0;
+  diag_row(s, row, &u_fluid);
+}
+
+void sph_sim_ledger_start(sph_sim *s) {
+  sph_diag_row row;
+  double u_fluid = 0.0;
+  diag_row(s, &row, &u_fluid);
+  sph_ledger_start(&s->ledger, u_fluid, &row);
 }
 
 void sph_sim_fill_meta(const sph_sim *s, sph_snapshot_meta *m, double t, long step) {

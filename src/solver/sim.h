@@ -92,7 +92,9 @@ void sph_sim_domain(const sph_sim *s, double box[2 * SPH_DIM]);
  * start-up, 1 where they were not both measured (forces.h). All give the
  * same results. */
 const char *sph_sim_loop(const sph_sim *s, double *ratio);
-/* Diagnostics of the current state. */
+/* Diagnostics of the current state. Under mpirun every process of the
+ * run calls it at once (a collective step: each sums its share of the
+ * store, and the exact sums merge into the bits of one process's). */
 void sph_sim_diag(const sph_sim *s, sph_diag_row *row);
 /* Writes the current state as a snapshot (atomically). */
 int sph_sim_write_snapshot(const sph_sim *s, const char *path, sph_error *err);

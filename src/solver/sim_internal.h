@@ -100,21 +100,23 @@ struct sph_sim {
   size_t owned[64], owned_fluid[64]; /* this many each, the fluid (SPH_PROCS_MAX), from the cut */
   unsigned char *records;
   size_t cap_records;
-  void *reports;            /* every process's report of its pass, in rank order (ranks.c) */
-  unsigned char *mark_last; /* the marks of this process's last pass, */
-  size_t n_mark_last;       /* over this many particles, */
-  uint64_t order_last;      /* the store in this order (particles.h), */
-  double *take_pos;         /* every particle's position then (SPH_DIM arrays of n_mark_last), */
-  double side_last;         /* and the cells' side */
-  uint32_t *weight;         /* each particle's weight in the cut */
-  uint32_t *fluid_near;     /* (the fluid in its cells' block, for the weight) */
+  void *reports;                  /* every process's report of its pass, in rank order (ranks.c) */
+  struct sph_diag_sums *diag_all; /* every process's diagnostics sums (sim.c, sph_sim_diag) */
+  unsigned char *mark_last;       /* the marks of this process's last pass, */
+  size_t n_mark_last;             /* over this many particles, */
+  uint64_t order_last;            /* the store in this order (particles.h), */
+  double *take_pos;     /* every particle's position then (SPH_DIM arrays of n_mark_last), */
+  double side_last;     /* and the cells' side */
+  uint32_t *weight;     /* each particle's weight in the cut */
+  uint32_t *fluid_near; /* (the fluid in its cells' block, for the weight) */
   unsigned long long changed[2]; /* the arrays this process's pass changed: fluid, walls */
   uint64_t first[64];            /* the cut: each rank's first key (neighbours/decomp.h), */
   size_t n_cut;                  /* made over this many particles */
-  int rank_order_sums;           /* the test hook SPH_TEST_RANK_ORDER_SUMS (ranks.c) */
-  int fail_rank;                 /* the test hook SPH_TEST_FAIL_PASS (ranks.c): this process's */
-  long fail_pass;                /* pass of this number fails; 0: none */
-  long fig_passes;               /* this process's figures (sph_sim_procs_figures) */
+  int rank_order_sums; /* the test hook SPH_TEST_RANK_ORDER_SUMS (ranks.c): 1 the ledger's, 2
+                          the diagnostics' sums */
+  int fail_rank;       /* the test hook SPH_TEST_FAIL_PASS (ranks.c): this process's */
+  long fail_pass;      /* pass of this number fails; 0: none */
+  long fig_passes;     /* this process's figures (sph_sim_procs_figures) */
   double fig_own, fig_ghosts, fig_bytes;
   uint64_t order_cut; /* in this order */
   long cuts;          /* cuts made */
@@ -201,6 +203,16 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err);
 void sph_sim_ranks_saved_state(sph_sim *s);
 /* A sim of the case for one rank's store: sph_sim_create on one rank (setup.c). */
 int sph_sim_create_rank_store(const sph_case *c, sph_sim **out, sph_error *err);
+/* The span [*from, *to) of the store whose particles this process counts
+ * in a reduction over the store (the diagnostics, the gauges, the blow-up
+ * check): under mpirun (self >= 0) its share, else the whole store; the
+ * shares of all processes cover the store once (sim.c). */
+void sph_sim_span(const sph_sim *s, size_t *from, size_t *to);
+
+/* The energy ledger's initial totals from the current state (a collective
+ * step under mpirun, as sph_sim_diag) (sim.c). */
+void sph_sim_ledger_start(sph_sim *s);
+
 /* Sorts the store by cell and id as a sorting pass does (sim.c). */
 int sph_sim_sort(sph_sim *s, sph_error *err);
 
