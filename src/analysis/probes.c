@@ -5,10 +5,12 @@
  */
 #include "config.h"
 
+#include "analysis/probe_terms.h"
 #include "analysis/probes.h"
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "core/kernel_shape.h"
 #include "physics/kernel.h"
@@ -60,12 +62,77 @@ static double line_weight(sph_kernel_kind kernel, double rho, double h) {
   return (2.0 * sum + 2.0 * w) * ds / 3.0;
 }
 
+/* A probe's sums, which its terms (sph_probe_term, probe_terms.h) add to
+ * in the store's order: a pressure or velocity probe's Shepard sums at each
+ * point (the kernel sum, then the weighted pressure and velocity), a wire
+ * gauge's wetted length, a level probe's highest fluid centre. */
+struct acc {
+  double s[SPH_PROBE_MAX_POINTS][2 + SPH_DIM];
+  double top;
+};
+
+static void acc_init(struct acc *a, int points) {
+  for (int k = 0; k < points; k++)
+    for (int m = 0; m < 2 + SPH_DIM; m++)
+      a->s[k][m] = 0.0;
+  a->top = -INFINITY;
+}
+
+/* One term: its point k and its values, added as the serial reading adds
+ * them (a level probe's top a maximum). */
+static inline void acc_add(struct acc *a, sph_probe_kind kind, int wetted,
+                           const sph_probe_term *t) {
+  if (kind == SPH_PROBE_LEVEL) {
+    if (wetted)
+      a->s[0][0] += t->v[0];
+    else if (t->v[0] > a->top)
+      a->top = t->v[0];
+    return;
+  }
+  double *sk = a->s[t->k];
+  for (int m = 0; m < 2 + SPH_DIM; m++)
+    sk[m] += t->v[m];
+}
+
+/* Where a probe's terms go: straight into its sums (one process reading
+ * the whole store), or appended to a list (a share of the store, whose
+ * lists the processes merge in storage order). */
+typedef struct sink {
+  struct acc *acc;
+  sph_probe_kind kind;
+  int wetted;
+  sph_probe_term *t; /* the list: n of cap */
+  size_t n, cap;
+  int failed; /* out of memory */
+} sink;
+
+static void emit(sink *o, int k, const double *v, int nv) {
+  sph_probe_term t = {k, {0.0}};
+  for (int m = 0; m < nv; m++)
+    t.v[m] = v[m];
+  if (o->acc) {
+    acc_add(o->acc, o->kind, o->wetted, &t);
+    return;
+  }
+  if (o->failed) return;
+  if (o->n == o->cap) {
+    const size_t cap = o->cap ? 2 * o->cap : 256;
+    sph_probe_term *g = realloc(o->t, cap * sizeof *g);
+    if (!g) {
+      o->failed = 1;
+      return;
+    }
+    o->t = g, o->cap = cap;
+  }
+  o->t[o->n++] = t;
+}
+
 /* A wire gauge's wetted length along the vertical line of a level probe:
- * sum_j V_j K(rho_j) over the liquid's particles within 2h of the line, in storage order. */
-static double wetted_length(const sph_probe *q, const sph_particles *p, sph_kernel_kind kernel,
-                            double h) {
-  double sum = 0.0;
-  for (size_t j = 0; j < p->n; j++) {
+ * sum_j V_j K(rho_j) over the liquid's particles within 2h of the line, in storage order (a term
+ * a particle: particles [from, to)). */
+static void wetted_length(const sph_probe *q, const sph_particles *p, size_t from, size_t to,
+                          sph_kernel_kind kernel, double h, sink *o) {
+  for (size_t j = from; j < to; j++) {
     if (!sph_particles_liquid(p, j)) continue; /* (not the air of two phases) */
 #if SPH_DIM == 2
     const double rho = fabs(p->x[j] - q->x);
@@ -76,9 +143,11 @@ static double wetted_length(const sph_probe *q, const sph_particles *p, sph_kern
     if (ex * ex + ey * ey >= 4.0 * h * h * (1.0 + 1e-9)) continue;
     const double rho = hypot(ex, ey);
 #endif
-    if (rho < 2.0 * h) sum += p->mass[j] / p->rho[j] * line_weight(kernel, rho, h);
+    if (rho < 2.0 * h) {
+      const double v = p->mass[j] / p->rho[j] * line_weight(kernel, rho, h);
+      emit(o, 0, &v, 1);
+    }
   }
-  return sum;
 }
 
 /* How a probe interpolates (probes.h): the defaults, or a pressure
@@ -100,24 +169,23 @@ static interp interp_of(const sph_probe *q, double h) {
   return o;
 }
 
-/* The Shepard-normalised pressure (carried along g) and velocity at each
- * of the n points x[k] (n <= SPH_PROBE_MAX_POINTS), in one pass over the
- * particles: out[k][0] the pressure, out[k][1 ..] the velocity; wet[k] 0
- * where dry (out[k] then unset). Each point's sums run over the particles
- * in storage order, as they would alone. */
-static void shepard_at(const sph_particles *p, sph_kernel_kind kernel, int n,
-                       const double x[][SPH_DIM], const interp *o, const double g[SPH_DIM],
-                       double out[][1 + SPH_DIM], int *wet) {
+/* The Shepard sums of the pressure (carried along g) and the velocity at
+ * each of the n points x[k] (n <= SPH_PROBE_MAX_POINTS), in one pass over
+ * particles [from, to): a term for each particle and point within reach,
+ * the kernel sum, then the weighted pressure and velocity. Each point's
+ * sums run over the particles in storage order, as they would alone. */
+static void shepard_terms(const sph_particles *p, size_t from, size_t to, sph_kernel_kind kernel,
+                          int n, const double x[][SPH_DIM], const interp *o,
+                          const double g[SPH_DIM], sink *out) {
   const double h = o->h, reach = 2.0 * h;
   double lo[SPH_DIM], hi[SPH_DIM]; /* the box every point's reach lies in */
-  double s[SPH_PROBE_MAX_POINTS][2 + SPH_DIM] = {{0.0}};
   for (int d = 0; d < SPH_DIM; d++) {
     lo[d] = hi[d] = x[0][d];
     for (int k = 1; k < n; k++)
       lo[d] = fmin(lo[d], x[k][d]), hi[d] = fmax(hi[d], x[k][d]);
     lo[d] -= 1.001 * reach, hi[d] += 1.001 * reach; /* never tighter than the test below */
   }
-  for (size_t j = 0; j < p->n; j++) {
+  for (size_t j = from; j < to; j++) {
     if (p->kind[j] != SPH_KIND_FLUID) continue;
     const double xj[SPH_DIM] = {SPH_XYZ(p->x[j], p->y[j], p->z[j])};
     int in = 1;
@@ -136,19 +204,23 @@ static void shepard_at(const sph_particles *p, sph_kernel_kind kernel, int n,
 #endif
       const double w = sph_kernel_w(kernel, r, h) * (p->mass[j] / p->rho[j]);
       const double pj = o->clip && !(p->p[j] > 0.0) ? 0.0 : p->p[j];
-      double *sk = s[k];
-      sk[0] += w;
-      sk[1] += w * (o->carry ? pj + p->rho[j] * gd : pj);
-      sk[2] += w * p->vx[j];
-      sk[3] += w * p->vy[j];
-      SPH_IF3(sk[4] += w * p->vz[j];)
+      const double v[2 + SPH_DIM] = {w, w * (o->carry ? pj + p->rho[j] * gd : pj), w * p->vx[j],
+                                     w * p->vy[j] SPH_IF3(, w * p->vz[j])};
+      emit(out, k, v, 2 + SPH_DIM);
     }
   }
+}
+
+/* The Shepard-normalised pressure and velocity at each point from its
+ * sums: out[k][0] the pressure, out[k][1 ..] the velocity; wet[k] 0 where
+ * dry (out[k] then unset). */
+static void shepard_of(const struct acc *a, int n, const interp *o, double out[][1 + SPH_DIM],
+                       int *wet) {
   for (int k = 0; k < n; k++) {
-    wet[k] = s[k][0] >= o->wet;
+    wet[k] = a->s[k][0] >= o->wet;
     if (!wet[k]) continue;
     for (int m = 0; m < 1 + SPH_DIM; m++)
-      out[k][m] = s[k][1 + m] / s[k][0];
+      out[k][m] = a->s[k][1 + m] / a->s[k][0];
   }
 }
 
@@ -186,17 +258,64 @@ static void face_point(const sph_probe *q, int k, int n, double x[SPH_DIM]) {
 #endif
 }
 
-void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind kernel, double h,
-                    double dx, double floor_y, const double g[SPH_DIM], double *out) {
-  switch (q->kind) {
-  case SPH_PROBE_PRESSURE: {
-    const int n = q->diameter > 0.0 ? (q->points > 0 ? q->points : SPH_PROBE_FACE_POINTS) : 1;
-    double at[SPH_PROBE_MAX_POINTS][SPH_DIM], v[SPH_PROBE_MAX_POINTS][1 + SPH_DIM];
-    int wet[SPH_PROBE_MAX_POINTS];
-    const interp o = interp_of(q, h);
+/* A pressure probe's points: its face's (probes.h), or its centre. */
+static int points_of(const sph_probe *q, double at[][SPH_DIM]) {
+  const int n = q->kind == SPH_PROBE_PRESSURE && q->diameter > 0.0
+                    ? (q->points > 0 ? q->points : SPH_PROBE_FACE_POINTS)
+                    : 1;
+  if (q->kind == SPH_PROBE_PRESSURE)
     for (int k = 0; k < n; k++)
       face_point(q, k, n, at[k]);
-    shepard_at(p, kernel, n, at, &o, g, v, wet);
+  else
+    for (int d = 0; d < SPH_DIM; d++)
+      at[0][d] = (double[]){SPH_XYZ(q->x, q->y, q->z)}[d];
+  return n;
+}
+
+/* Probe q's terms among particles [from, to) of p, into o. */
+static void terms_of(const sph_probe *q, const sph_particles *p, size_t from, size_t to,
+                     sph_kernel_kind kernel, double h, double dx, const double g[SPH_DIM],
+                     sink *o) {
+  switch (q->kind) {
+  case SPH_PROBE_PRESSURE:
+  case SPH_PROBE_VELOCITY: {
+    double at[SPH_PROBE_MAX_POINTS][SPH_DIM];
+    const int n = points_of(q, at);
+    const interp in = interp_of(q, h);
+    shepard_terms(p, from, to, kernel, n, at, &in, g, o);
+    break;
+  }
+  case SPH_PROBE_LEVEL: {
+    if (q->wetted) {
+      wetted_length(q, p, from, to, kernel, h, o);
+      break;
+    }
+    const double *up = p->pos[SPH_UP];
+    for (size_t j = from; j < to; j++) {
+      if (!sph_particles_liquid(p, j)) continue;
+#if SPH_DIM == 2
+      const int near = fabs(p->x[j] - q->x) < dx;
+#else
+      const double ex = p->x[j] - q->x, ey = p->y[j] - q->y;
+      const int near = ex * ex + ey * ey < dx * dx;
+#endif
+      if (near) emit(o, 0, &up[j], 1);
+    }
+    break;
+  }
+  }
+}
+
+/* The reading from its sums. */
+static void reading_of(const sph_probe *q, const struct acc *a, double h, double dx, double floor_y,
+                       double *out) {
+  switch (q->kind) {
+  case SPH_PROBE_PRESSURE: {
+    double at[SPH_PROBE_MAX_POINTS][SPH_DIM], v[SPH_PROBE_MAX_POINTS][1 + SPH_DIM];
+    int wet[SPH_PROBE_MAX_POINTS];
+    const int n = points_of(q, at);
+    const interp o = interp_of(q, h);
+    shepard_of(a, n, &o, v, wet);
     double sum = 0.0;
     for (int k = 0; k < n; k++)
       if (wet[k]) sum += v[k][0];
@@ -205,37 +324,54 @@ void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind 
   }
   case SPH_PROBE_LEVEL: {
     if (q->wetted) {
-      out[0] = wetted_length(q, p, kernel, h);
+      out[0] = a->s[0][0];
       break;
     }
-    double top = -INFINITY;
-    const double *up = p->pos[SPH_UP];
-    for (size_t j = 0; j < p->n; j++) {
-      if (!sph_particles_liquid(p, j)) continue;
-#if SPH_DIM == 2
-      const int near = fabs(p->x[j] - q->x) < dx;
-#else
-      const double ex = p->x[j] - q->x, ey = p->y[j] - q->y;
-      const int near = ex * ex + ey * ey < dx * dx;
-#endif
-      if (near && up[j] > top) top = up[j];
-    }
-    const double depth = top + 0.5 * dx - floor_y;
+    const double depth = a->top + 0.5 * dx - floor_y;
     out[0] = isfinite(depth) && depth > 0.0 ? depth : 0.0;
     break;
   }
   case SPH_PROBE_VELOCITY: {
-    const double c[1][SPH_DIM] = {{SPH_XYZ(q->x, q->y, q->z)}};
     double v[1][1 + SPH_DIM];
     int wet;
     const interp o = interp_of(q, h);
     for (int d = 0; d < SPH_DIM; d++)
       out[d] = 0.0;
-    shepard_at(p, kernel, 1, c, &o, g, v, &wet);
+    shepard_of(a, 1, &o, v, &wet);
     if (wet)
       for (int d = 0; d < SPH_DIM; d++)
         out[d] = v[0][1 + d];
     break;
   }
   }
+}
+
+void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind kernel, double h,
+                    double dx, double floor_y, const double g[SPH_DIM], double *out) {
+  double at[SPH_PROBE_MAX_POINTS][SPH_DIM];
+  struct acc a;
+  acc_init(&a, points_of(q, at));
+  sink o = {&a, q->kind, q->wetted, NULL, 0, 0, 0};
+  terms_of(q, p, 0, p->n, kernel, h, dx, g, &o);
+  reading_of(q, &a, h, dx, floor_y, out);
+}
+
+int sph_probe_terms(const sph_probe *q, const sph_particles *p, size_t from, size_t to,
+                    sph_kernel_kind kernel, double h, double dx, const double g[SPH_DIM],
+                    sph_probe_term **t, size_t *n, size_t *cap) {
+  sink o = {NULL, q->kind, q->wetted, *t, *n, *cap, 0};
+  terms_of(q, p, from, to, kernel, h, dx, g, &o);
+  *t = o.t, *n = o.n, *cap = o.cap;
+  return o.failed ? -1 : 0;
+}
+
+void sph_probe_fold(const sph_probe *q, const sph_probe_term *const *pieces, const size_t *counts,
+                    int n_pieces, double h, double dx, double floor_y, double *out) {
+  double at[SPH_PROBE_MAX_POINTS][SPH_DIM];
+  struct acc a;
+  acc_init(&a, points_of(q, at));
+  for (int r = 0; r < n_pieces; r++)
+    for (size_t i = 0; i < counts[r]; i++)
+      acc_add(&a, q->kind, q->wetted, &pieces[r][i]);
+  reading_of(q, &a, h, dx, floor_y, out);
 }

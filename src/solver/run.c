@@ -21,11 +21,13 @@
 #include "solver/run.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/probe_terms.h"
 #include "analysis/probes.h"
 #include "core/parallel.h"
 #include "io/csv.h"
@@ -45,16 +47,18 @@ typedef struct outputs {
   double *lp;    /* per probe: its low-pass output at the last row (probes.h) */
   double lp_t;   /* the time of the last probe row */
   int lp_rows;   /* probe rows the filters have seen */
-  double *share; /* a row's readings as this process reads them, then every process's
-                    (read_probes) */
+  double *share; /* a row's readings (read_probes) */
   int read;      /* some process writes probes.csv: every one reads its share of a row */
   int rows;      /* some process writes diagnostics rows: every one sums its share of a row */
   int levels;    /* some process writes gauges.csv: every one reads its share of a row */
   double *tops;  /* the gauges' readings of every process's share (sph_diag_gauge_top) */
-  int team;      /* the processes write each snapshot together (snapshot.h), the first's
-                    name and restart record */
-  size_t index;  /* number of the next snapshot file, snap_<index>.h5 */
-  size_t n, cap; /* snapshots listed in the XDMF index */
+  sph_probe_term *terms, *every; /* a row's probe terms of this process's share, of all */
+  size_t n_terms, cap_terms, cap_every;
+  int64_t *term_counts; /* each process's count of each probe's terms, and whether it failed */
+  int team;             /* the processes write each snapshot together (snapshot.h), the first's
+                           name and restart record */
+  size_t index;         /* number of the next snapshot file, snap_<index>.h5 */
+  size_t n, cap;        /* snapshots listed in the XDMF index */
   char **names;
   double *times;
   size_t *counts; /* each one's particles (fluid that leaves the domain may be taken out) */
@@ -68,6 +72,9 @@ static void outputs_free(outputs *o) {
   free(o->lp);
   free(o->share);
   free(o->tops);
+  free(o->terms);
+  free(o->every);
+  free(o->term_counts);
   for (size_t i = 0; i < o->n; i++)
     free(o->names[i]);
   free(o->names);
@@ -134,35 +141,103 @@ static void low_pass_row(outputs *o, const sph_case *c, double t, const double *
   o->lp_rows++;
 }
 
+/* A row's readings under mpirun, every process making this call at once:
+ * each lists the terms of every probe over its share of the store
+ * (probe_terms.h), and the lists of all are shared in two collective steps
+ * (the counts, then the terms), from which each probe's reading is folded
+ * in storage order: the bits of one process reading the whole store. The
+ * readings into `mine` (SPH_DIM a probe); 0, or -1 with err on every process. */
+static int read_probes_shared(sph_sim *s, outputs *o, double *mine, sph_error *err) {
+  const sph_case *c = sph_sim_case(s);
+  const sph_particles *p = sph_sim_particles(s);
+  const size_t np = c->n_probes;
+  const int procs = sph_procs_count();
+  size_t from, to;
+  sph_sim_span(s, &from, &to);
+  int64_t *mc = o->term_counts + (size_t)procs * (np + 1), *all = o->term_counts;
+  o->n_terms = 0;
+  int failed = 0;
+  for (size_t k = 0; k < np; k++) {
+    const size_t before = o->n_terms;
+    if (!failed && sph_probe_terms(&c->probes[k], p, from, to, c->kernel, c->h, c->dx, c->gravity,
+                                   &o->terms, &o->n_terms, &o->cap_terms))
+      failed = 1;
+    mc[k] = (int64_t)(o->n_terms - before);
+  }
+  mc[np] = failed;
+  sph_procs_gather(mc, (np + 1) * sizeof *mc, all);
+  size_t counts[SPH_PROCS_MAX], total = 0;
+  int first = -1;
+  for (int q = 0; q < procs; q++) {
+    const int64_t *aq = all + (size_t)q * (np + 1);
+    if (aq[np] && first < 0) first = q;
+    counts[q] = 0;
+    for (size_t k = 0; k < np; k++)
+      counts[q] += (size_t)aq[k];
+    total += counts[q];
+  }
+  if (first >= 0) {
+    if (first == sph_procs_rank()) sph_error_set(err, "out of memory for the probes' terms");
+    return sph_procs_failed(first, err);
+  }
+  int room = 0;
+  if (!sph_procs_records_fit(counts, sizeof *o->terms))
+    room = sph_error_set(err, "the probes' terms: more than %d of them", INT_MAX);
+  else if (total > o->cap_every) {
+    sph_probe_term *e = realloc(o->every, (total ? total : 1) * sizeof *e);
+    if (e)
+      o->every = e, o->cap_every = total;
+    else
+      room = sph_error_set(err, "out of memory for the probes' terms");
+  }
+  if (sph_procs_agree(room, err)) return -1;
+  sph_procs_gather_records(o->terms, counts, sizeof *o->terms, o->every);
+  const sph_probe_term *at[SPH_PROCS_MAX];
+  size_t off = 0;
+  for (int q = 0; q < procs; q++)
+    at[q] = o->every + off, off += counts[q];
+  for (size_t k = 0; k < np; k++) {
+    size_t ck[SPH_PROCS_MAX];
+    for (int q = 0; q < procs; q++)
+      ck[q] = (size_t)all[(size_t)q * (np + 1) + k];
+    sph_probe_fold(&c->probes[k], at, ck, procs, c->h, c->dx, sph_sim_floor(s), mine + k * SPH_DIM);
+    for (int q = 0; q < procs; q++)
+      at[q] += ck[q];
+  }
+  return 0;
+}
+
 /* A row's readings: raw (a velocity's vx), then a velocity's vy (, vz), n
  * probes each (raw may be NULL: a process that does not write). Each probe
  * reads serially (probes.h): one probe to a thread, the same bits for any
- * team. Shared (every process reading the row at once), with P processes,
- * process q reads the probes k = q mod P and the readings are shared in one
- * collective step: each probe read once on one process, the same bits as
- * one process reading them all. */
-static void read_probes(sph_sim *s, outputs *o, int shared, double *raw, double *vy, double *vz) {
+ * team. Shared (every process reading the row at once), with more than one
+ * process: read_probes_shared. 0, or -1 with err (on every process when
+ * shared). */
+static int read_probes(sph_sim *s, outputs *o, int shared, double *raw, double *vy, double *vz,
+                       sph_error *err) {
   const sph_case *c = sph_sim_case(s);
   const sph_particles *p = sph_sim_particles(s);
-  const long np = (long)c->n_probes, procs = shared ? sph_procs_count() : 1;
-  const long me = shared ? sph_procs_rank() : 0;
-  double *mine = o->share, *all = o->share + np * SPH_DIM;
+  const long np = (long)c->n_probes;
+  double *mine = o->share;
+  if (shared && sph_procs_count() > 1) {
+    if (read_probes_shared(s, o, mine, err)) return -1;
+  } else {
 #pragma omp parallel for schedule(dynamic, 1) if (np > 1 && (long)p->n > SPH_OMP_MIN)
-  for (long k = 0; k < np; k++) {
-    if (k % procs != me) continue;
-    for (int d = 0; d < SPH_DIM; d++)
-      mine[k * SPH_DIM + d] = 0.0;
-    sph_probe_read(&c->probes[k], p, c->kernel, c->h, c->dx, sph_sim_floor(s), c->gravity,
-                   mine + k * SPH_DIM);
+    for (long k = 0; k < np; k++) {
+      for (int d = 0; d < SPH_DIM; d++)
+        mine[k * SPH_DIM + d] = 0.0;
+      sph_probe_read(&c->probes[k], p, c->kernel, c->h, c->dx, sph_sim_floor(s), c->gravity,
+                     mine + k * SPH_DIM);
+    }
   }
-  if (procs > 1) sph_procs_gather(mine, (size_t)np * SPH_DIM * sizeof *mine, all);
-  if (!raw) return;
+  if (!raw) return 0;
   for (long k = 0; k < np; k++) {
-    const double *v = (procs > 1 ? all + (k % procs) * np * SPH_DIM : mine) + k * SPH_DIM;
+    const double *v = mine + k * SPH_DIM;
     raw[k] = v[0];
     vy[k] = v[1];
     if (vz) vz[k] = v[SPH_DIM - 1];
   }
+  return 0;
 }
 
 /* One row of probes.csv: time, then each probe's reading (probes.h), a
@@ -173,7 +248,7 @@ static int write_probes(sph_sim *s, outputs *o, int shared, sph_error *err) {
   /* this row's readings: raw (a velocity's vx), then a velocity's vy (, vz) */
   double *raw = o->lp + c->n_probes, *vy = raw + c->n_probes;
   SPH_IF3(double *vz = vy + c->n_probes;)
-  read_probes(s, o, shared, raw, vy, SPH_DIM == 3 ? vy + c->n_probes : NULL);
+  if (read_probes(s, o, shared, raw, vy, SPH_DIM == 3 ? vy + c->n_probes : NULL, err)) return -1;
   low_pass_row(o, c, t, raw);
   if (fprintf(o->probes, "%.17g", t) < 0) goto fail;
   for (size_t k = 0; k < c->n_probes; k++) {
@@ -214,8 +289,9 @@ static int probe_step(sph_sim *s, outputs *o, int shared, sph_error *err) {
   if (!c->n_probes || (iv > 0.0 && t < (double)o->probe_k * iv)) return 0;
   if (o->probes) {
     if (write_probes(s, o, shared, err)) return -1;
-  } else if (shared && o->read && sph_procs_count() > 1) /* its share (read_probes) */
-    read_probes(s, o, 1, NULL, NULL, NULL);
+  } else if (shared && o->read && sph_procs_count() > 1) { /* its share (read_probes) */
+    if (read_probes(s, o, 1, NULL, NULL, NULL, err)) return -1;
+  }
   if (iv > 0.0) o->probe_k = first_multiple_after(iv, t);
   return 0;
 }
@@ -255,7 +331,7 @@ static int write_rows(sph_sim *s, outputs *o, int which, sph_error *err) {
   sph_error later;
   if ((which & 2) && write_gauges(s, o, rc ? &later : err)) rc = -1;
   if (rc) return -1;
-  return (which & 4) && o->probes ? probe_step(s, o, 0, err) : 0;
+  return (which & 4) && o->read ? probe_step(s, o, 1, err) : 0;
 }
 
 /* Writes the rows of an output and its snapshot. With a team (every
@@ -611,13 +687,17 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
   /* the processes write the snapshots together when one writes them: the
    * others keep room for the restart record's levels and filters */
   out.team = sph_procs_count() > 1 && c->snapshots && sph_procs_any(out.dir != NULL);
-  const size_t share = c->n_probes * SPH_DIM * (1 + (size_t)sph_procs_count());
+  const size_t share = c->n_probes * SPH_DIM;
   int room = 0;
   if (out.team && !out.dir &&
       ((c->n_gauges && !(out.still = calloc(c->n_gauges, sizeof *out.still))) ||
        (c->n_probes && !(out.lp = calloc(c->n_probes + 2, sizeof *out.lp)))))
     room = sph_error_set(err, "out of memory for the snapshots' restart record");
   else if (share && !(out.share = calloc(share, sizeof *out.share)))
+    room = sph_error_set(err, "out of memory for the probes' readings");
+  else if (out.read && sph_procs_count() > 1 &&
+           !(out.term_counts = calloc((c->n_probes + 1) * (1 + (size_t)sph_procs_count()),
+                                      sizeof *out.term_counts)))
     room = sph_error_set(err, "out of memory for the probes' readings");
   else if (out.levels &&
            !(out.tops = calloc(c->n_gauges * (1 + (size_t)sph_procs_count()), sizeof *out.tops)))
