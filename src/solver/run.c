@@ -53,12 +53,15 @@ typedef struct outputs {
   int levels;    /* some process writes gauges.csv: every one reads its share of a row */
   double *tops;  /* the gauges' readings of every process's share (sph_diag_gauge_top) */
   sph_probe_term *terms, *every; /* a row's probe terms of this process's share, of all */
-  size_t n_terms, cap_terms, cap_every;
-  int64_t *term_counts; /* each process's count of each probe's terms, and whether it failed */
-  int team;             /* the processes write each snapshot together (snapshot.h), the first's
-                           name and restart record */
-  size_t index;         /* number of the next snapshot file, snap_<index>.h5 */
-  size_t n, cap;        /* snapshots listed in the XDMF index */
+  size_t n_terms, cap_terms;
+  size_t slot;            /* the terms of a process's record (read_probes_shared) */
+  unsigned char *records; /* every process's record of a row, then this process's */
+  int64_t *term_counts;   /* each probe's count of terms, and whether it failed: this process's,
+                             then every process's */
+  int team;               /* the processes write each snapshot together (snapshot.h), the first's
+                             name and restart record */
+  size_t index;           /* number of the next snapshot file, snap_<index>.h5 */
+  size_t n, cap;          /* snapshots listed in the XDMF index */
   char **names;
   double *times;
   size_t *counts; /* each one's particles (fluid that leaves the domain may be taken out) */
@@ -74,6 +77,7 @@ static void outputs_free(outputs *o) {
   free(o->tops);
   free(o->terms);
   free(o->every);
+  free(o->records);
   free(o->term_counts);
   for (size_t i = 0; i < o->n; i++)
     free(o->names[i]);
@@ -141,20 +145,39 @@ static void low_pass_row(outputs *o, const sph_case *c, double t, const double *
   o->lp_rows++;
 }
 
+/* The probe terms a process's record carries at first (read_probes_shared). */
+#define SPH_PROBE_SLOT 1024
+
+/* Room for the shared probe rows of `procs` processes: 0, or -1. */
+static int probe_records(outputs *o, const sph_case *c, int procs) {
+  const size_t np = c->n_probes, head = (np + 1) * sizeof(int64_t);
+  /* SPH_TEST_PROBE_SLOT=N (doc/testing.md): N terms at first, for the test of a longer list */
+  const char *e = getenv("SPH_TEST_PROBE_SLOT");
+  o->slot = e && atol(e) > 0 ? (size_t)atol(e) : SPH_PROBE_SLOT;
+  o->term_counts = calloc((np + 1) * (1 + (size_t)procs), sizeof *o->term_counts);
+  o->records = malloc((size_t)(procs + 1) * (head + o->slot * sizeof(sph_probe_term)));
+  o->every = malloc((size_t)procs * o->slot * sizeof(sph_probe_term));
+  return o->term_counts && o->records && o->every ? 0 : -1;
+}
+
 /* A row's readings under mpirun, every process making this call at once:
  * each lists the terms of every probe over its share of the store
- * (probe_terms.h), and the lists of all are shared in two collective steps
- * (the counts, then the terms), from which each probe's reading is folded
- * in storage order: the bits of one process reading the whole store. The
- * readings into `mine` (SPH_DIM a probe); 0, or -1 with err on every process. */
+ * (probe_terms.h), and the lists of all are shared, from which each
+ * probe's reading is folded in storage order: the bits of one process
+ * reading the whole store. One collective step: each process sends a
+ * record of a fixed size, its count of each probe's terms, whether it
+ * failed, and its first o->slot terms (the same slot on every process);
+ * where a list was longer, the rest follows in one more step and the slot
+ * grows (the same on all: from the counts every process has). The readings
+ * into `mine` (SPH_DIM a probe); 0, or -1 with err on every process. */
 static int read_probes_shared(sph_sim *s, outputs *o, double *mine, sph_error *err) {
   const sph_case *c = sph_sim_case(s);
   const sph_particles *p = sph_sim_particles(s);
-  const size_t np = c->n_probes;
-  const int procs = sph_procs_count();
+  const size_t np = c->n_probes, head = (np + 1) * sizeof(int64_t), tz = sizeof(sph_probe_term);
+  const int procs = sph_procs_count(), me = sph_procs_rank();
   size_t from, to;
   sph_sim_span(s, &from, &to);
-  int64_t *mc = o->term_counts + (size_t)procs * (np + 1), *all = o->term_counts;
+  int64_t *cnt = o->term_counts; /* (np + 1) a process: this one's, then each one's */
   o->n_terms = 0;
   int failed = 0;
   for (size_t k = 0; k < np; k++) {
@@ -162,44 +185,66 @@ static int read_probes_shared(sph_sim *s, outputs *o, double *mine, sph_error *e
     if (!failed && sph_probe_terms(&c->probes[k], p, from, to, c->kernel, c->h, c->dx, c->gravity,
                                    &o->terms, &o->n_terms, &o->cap_terms))
       failed = 1;
-    mc[k] = (int64_t)(o->n_terms - before);
+    cnt[k] = (int64_t)(o->n_terms - before);
   }
-  mc[np] = failed;
-  sph_procs_gather(mc, (np + 1) * sizeof *mc, all);
-  size_t counts[SPH_PROCS_MAX], total = 0;
+  cnt[np] = failed;
+  const size_t slot = o->slot, rec = head + slot * tz;
+  unsigned char *my = o->records + (size_t)procs * rec;
+  memcpy(my, cnt, head);
+  memcpy(my + head, o->terms, (o->n_terms < slot ? o->n_terms : slot) * tz);
+  sph_procs_gather(my, rec, o->records);
+  size_t counts[SPH_PROCS_MAX], over[SPH_PROCS_MAX], most = 0, extra = 0, total = 0;
   int first = -1;
   for (int q = 0; q < procs; q++) {
-    const int64_t *aq = all + (size_t)q * (np + 1);
-    if (aq[np] && first < 0) first = q;
+    int64_t *cq = cnt + (size_t)(1 + q) * (np + 1);
+    memcpy(cq, o->records + (size_t)q * rec, head);
+    if (cq[np] && first < 0) first = q;
     counts[q] = 0;
     for (size_t k = 0; k < np; k++)
-      counts[q] += (size_t)aq[k];
-    total += counts[q];
+      counts[q] += (size_t)cq[k];
+    over[q] = counts[q] > slot ? counts[q] - slot : 0;
+    extra += over[q], total += counts[q];
+    if (counts[q] > most) most = counts[q];
   }
   if (first >= 0) {
-    if (first == sph_procs_rank()) sph_error_set(err, "out of memory for the probes' terms");
+    if (first == me) sph_error_set(err, "out of memory for the probes' terms");
     return sph_procs_failed(first, err);
   }
-  int room = 0;
-  if (!sph_procs_records_fit(counts, sizeof *o->terms))
-    room = sph_error_set(err, "the probes' terms: more than %d of them", INT_MAX);
-  else if (total > o->cap_every) {
-    sph_probe_term *e = realloc(o->every, (total ? total : 1) * sizeof *e);
-    if (e)
-      o->every = e, o->cap_every = total;
-    else
-      room = sph_error_set(err, "out of memory for the probes' terms");
+  /* (o->every holds procs slots: room for every list when none is longer) */
+  unsigned char *rest = NULL; /* the terms past the slot, then this process's own again */
+  if (extra) {
+    /* the slot grows for the rows to come, the same on every process */
+    const size_t grown = 2 * most, every = total > procs * grown ? total : procs * grown;
+    int room = !sph_procs_records_fit(over, tz);
+    unsigned char *r = room ? NULL : realloc(o->records, (size_t)(procs + 1) * (head + grown * tz));
+    if (r) o->records = r;
+    sph_probe_term *e = r ? realloc(o->every, every * tz) : NULL;
+    if (e) o->every = e;
+    rest = e ? malloc((extra + over[me]) * tz) : NULL;
+    if (!rest) room = -1;
+    if (sph_procs_agree(room ? sph_error_set(err, "out of memory for the probes' terms") : 0,
+                        err)) {
+      free(rest);
+      return -1;
+    }
+    o->slot = grown;
+    if (over[me]) memcpy(rest + extra * tz, o->terms + slot, over[me] * tz);
+    sph_procs_gather_records(rest + extra * tz, over, tz, rest);
   }
-  if (sph_procs_agree(room, err)) return -1;
-  sph_procs_gather_records(o->terms, counts, sizeof *o->terms, o->every);
+  size_t off = 0, roff = 0;
   const sph_probe_term *at[SPH_PROCS_MAX];
-  size_t off = 0;
-  for (int q = 0; q < procs; q++)
-    at[q] = o->every + off, off += counts[q];
+  for (int q = 0; q < procs; q++) {
+    const size_t in_slot = counts[q] - over[q];
+    memcpy(o->every + off, o->records + (size_t)q * rec + head, in_slot * tz);
+    if (over[q]) memcpy(o->every + off + in_slot, rest + roff * tz, over[q] * tz);
+    at[q] = o->every + off;
+    off += counts[q], roff += over[q];
+  }
+  free(rest);
   for (size_t k = 0; k < np; k++) {
     size_t ck[SPH_PROCS_MAX];
     for (int q = 0; q < procs; q++)
-      ck[q] = (size_t)all[(size_t)q * (np + 1) + k];
+      ck[q] = (size_t)cnt[(size_t)(1 + q) * (np + 1) + k];
     sph_probe_fold(&c->probes[k], at, ck, procs, c->h, c->dx, sph_sim_floor(s), mine + k * SPH_DIM);
     for (int q = 0; q < procs; q++)
       at[q] += ck[q];
@@ -695,9 +740,7 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
     room = sph_error_set(err, "out of memory for the snapshots' restart record");
   else if (share && !(out.share = calloc(share, sizeof *out.share)))
     room = sph_error_set(err, "out of memory for the probes' readings");
-  else if (out.read && sph_procs_count() > 1 &&
-           !(out.term_counts = calloc((c->n_probes + 1) * (1 + (size_t)sph_procs_count()),
-                                      sizeof *out.term_counts)))
+  else if (out.read && sph_procs_count() > 1 && probe_records(&out, c, sph_procs_count()))
     room = sph_error_set(err, "out of memory for the probes' readings");
   else if (out.levels &&
            !(out.tops = calloc(c->n_gauges * (1 + (size_t)sph_procs_count()), sizeof *out.tops)))
