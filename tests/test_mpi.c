@@ -16,6 +16,7 @@
  *     (parallel HDF5), and of a case text too long for that (its first
  *     process writes alone); a snapshot that cannot be created stops every
  *     process with HDF5's reason;
+ *   - an initial state out of its band on 3 processes: the serial run's message;
  *   - a blow-up (leap-frog, a step ten times too long) in 2-D and 3-D on 2
  *     and 3 processes: exit status 3, last_good.h5 and every other file
  *     the serial run's, and the message naming the same particle;
@@ -289,6 +290,21 @@ static void test_blow_up(void) {
     sph_test_rmtree(one[k]);
     free(one[k]);
   }
+  /* the initial state out of its band (the hydrostatic start against a band of 1e-5): each
+   * process checks its share before the first step, the message the serial run's */
+  const char *tight = "--set numerics.dx=0.02 --set numerics.density_limit=0.00001";
+  char *a = run_to("src/sph", "cases/lobovsky_h300.yaml", tight, "", 0, 1, 3, 1),
+       *b = run_to("src/sph", "cases/lobovsky_h300.yaml", tight, "", 3, 1, 3, 1);
+  const int start = err_line(a, "blow-up at step 0", "; last", msg[0], sizeof msg[0]) &&
+                    err_line(b, "blow-up at step 0", "; last", got, sizeof got) &&
+                    strcmp(got, msg[0]) == 0;
+  printf("\n  the initial state out of its band on 3 processes: %s",
+         start ? "the same message" : "DIFFERENT");
+  CU_ASSERT(start);
+  sph_test_rmtree(a);
+  sph_test_rmtree(b);
+  free(a);
+  free(b);
 }
 
 /* One process's pass fails (SPH_TEST_FAIL_PASS: process 1's fifth pass,

@@ -325,6 +325,10 @@ static const size_t *slices(const sph_sim *s) {
   return s->nl.cost && s->nl.n == s->p.n ? s->nl.cost : NULL;
 }
 
+/* Whether the sim is a process's under mpirun (a rank's own store is not:
+ * sph_sim_ranks_init sets self, ranks.c). */
+static int in_team(const sph_sim *s) { return s->self >= 0 && s->ranks > 1 && !s->rank_store; }
+
 /* Why particle i fails the blow-up check, or NULL. */
 static inline const char *bad_particle(const sph_particles *p, size_t i, double lim, double rho0,
                                        const double *d) {
@@ -439,7 +443,7 @@ static int check_state(sph_sim *s, int shared, sph_error *err) {
   return SPH_BLOWUP;
 }
 
-int sph_sim_check_state(sph_sim *s, sph_error *err) { return check_state(s, 0, err); }
+int sph_sim_check_state(sph_sim *s, sph_error *err) { return check_state(s, in_team(s), err); }
 
 /* Mirror lines and tank faces keep the fluid off (walls.h), and the
  * ledger books what that did to it. Only the step's result is kept off, not the mid-step
@@ -636,10 +640,6 @@ size_t sph_sim_walls_dropped(const sph_sim *s) { return s->walls.n_dropped; }
 void sph_sim_domain(const sph_sim *s, double box[2 * SPH_DIM]) {
   memcpy(box, s->domain, 2 * SPH_DIM * sizeof *box);
 }
-
-/* Whether the sim is a process's under mpirun (a rank's own store is not:
- * sph_sim_ranks_init sets self, ranks.c). */
-static int in_team(const sph_sim *s) { return s->self >= 0 && s->ranks > 1 && !s->rank_store; }
 
 void sph_sim_span(const sph_sim *s, size_t *from, size_t *to) {
   const size_t n = s->p.n;

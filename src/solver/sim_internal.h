@@ -227,7 +227,8 @@ void sph_sim_move_walls(sph_sim *s, double t);
 int sph_sim_pass(sph_sim *s, sph_error *err);
 
 /* The blow-up check of the current state: SPH_BLOWUP with err naming the
- * first offender in id order, or 0 (sim.c). */
+ * first offender in id order, or 0 (sim.c). Under mpirun a collective step:
+ * each process checks its share (sph_sim_span) and all take the least id. */
 int sph_sim_check_state(sph_sim *s, sph_error *err);
 
 /* The case's geometry as snapshots record it: 0, or -1 with err (*g then
