@@ -13,6 +13,7 @@
 #define SPH_PROBE_TERMS_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "analysis/probes.h"
 

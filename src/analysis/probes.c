@@ -11,6 +11,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "core/kernel_shape.h"
 #include "physics/kernel.h"
@@ -107,7 +108,9 @@ typedef struct sink {
 } sink;
 
 static void emit(sink *o, int k, const double *v, int nv) {
-  sph_probe_term t = {k, {0.0}};
+  sph_probe_term t;
+  memset(&t, 0, sizeof t); /* (its padding too: the processes send terms as bytes) */
+  t.k = k;
   for (int m = 0; m < nv; m++)
     t.v[m] = v[m];
   if (o->acc) {
