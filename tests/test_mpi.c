@@ -17,6 +17,8 @@
  *     process writes alone); a snapshot that cannot be created stops every
  *     process with HDF5's reason;
  *   - an initial state out of its band on 3 processes: the serial run's message;
+ *   - a run that stops on its condition (the surge front at the wall) on 3
+ *     processes, each looking at its share: every file the serial run's;
  *   - a blow-up (leap-frog, a step ten times too long) in 2-D and 3-D on 2
  *     and 3 processes: exit status 3, last_good.h5 and every other file
  *     the serial run's, and the message naming the same particle;
@@ -158,6 +160,14 @@ static void test_default_scheme_2d(void) {
                         "--set numerics.dx=0.02 --set time.end=0.1 "
                         "--set numerics.smoothing_length=variable",
                         "SPH_TEST_PROBE_SLOT=1", two_three, 2, 0);
+}
+
+/* The stop condition (time.stop: front_at_wall), each process looking at its share of the
+ * store and all agreeing in the step's collective: the run stops at the serial run's step. */
+static const int three[] = {3};
+
+static void test_stop_condition(void) {
+  same_on_processes("src/sph", "cases/martin_moyce_coarse.yaml", "", three, 1, 0);
 }
 
 static void test_gate_periodic_mdbc(void) {
@@ -568,6 +578,7 @@ int main(void) {
                          {"snapshots written together", test_snapshots_together},
                          {"a snapshot that cannot be made", test_failed_snapshot},
                          {"a blow-up's last good state", test_blow_up},
+                         {"the stop condition", test_stop_condition},
                          {"a failed pass stops every process", test_failed_pass},
                          {"a restart on another process count", test_restart_on_other_count},
                          {"a reduction in rank order is seen", test_rank_order_sums_are_seen},

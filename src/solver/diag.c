@@ -89,6 +89,11 @@ double sph_diag_front(const sph_particles *p, double floor_y, double band) {
   return front_in(p, 0, p->n, floor_y, band);
 }
 
+double sph_diag_front_span(const sph_particles *p, size_t from, size_t to, double floor_y,
+                           double band) {
+  return front_in(p, from, to, floor_y, band);
+}
+
 void sph_diag_sums_init(sph_diag_sums *t) {
   for (int k = 0; k < SPH_DS_COUNT; k++)
     sph_xsum_init(&t->s[k]);

@@ -40,6 +40,10 @@ void sph_diag_sums_init(sph_diag_sums *t);
  * `band` of floor_y, and with heat != 0 the stored heat's two sums. */
 void sph_diag_sums_add(sph_diag_sums *t, const sph_particles *p, size_t from, size_t to,
                        double floor_y, double band, const double g[SPH_DIM], int heat);
+/* The surge front (sph_diag_front) among particles [from, to): a maximum,
+ * -inf if none there. */
+double sph_diag_front_span(const sph_particles *p, size_t from, size_t to, double floor_y,
+                           double band);
 /* Adds u's sums into t, exactly. */
 void sph_diag_sums_merge(sph_diag_sums *t, const sph_diag_sums *u);
 /* The row's columns the sums give (every one sph_diag_compute fills). */

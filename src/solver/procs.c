@@ -165,11 +165,19 @@ int sph_procs_agree(int rc, sph_error *err) {
 }
 
 int sph_procs_agree_any(int rc, int *flag, sph_error *err) {
+  return sph_procs_agree_flags(rc, flag, 1, err);
+}
+
+int sph_procs_agree_flags(int rc, int *flags, int n, sph_error *err) {
   if (count == 1) return rc ? -1 : 0;
-  /* one reduction: the lowest failing rank (as -rank's max) and the flag */
-  int mine[2] = {rc ? -rank : -count, *flag != 0}, all[2];
-  max_ints(mine, all, 2);
-  *flag = all[1];
+  /* one reduction: the lowest failing rank (as -rank's max) and the flags */
+  int mine[1 + SPH_PROCS_FLAGS], all[1 + SPH_PROCS_FLAGS];
+  mine[0] = rc ? -rank : -count;
+  for (int k = 0; k < n; k++)
+    mine[1 + k] = flags[k] != 0;
+  max_ints(mine, all, 1 + n);
+  for (int k = 0; k < n; k++)
+    flags[k] = all[1 + k];
   if (-all[0] == count) return 0;
   tell(-all[0], err);
   return -1;
@@ -282,6 +290,10 @@ int sph_procs_agree(int rc, sph_error *err) {
 }
 int sph_procs_agree_any(int rc, int *flag, sph_error *err) {
   (void)flag, (void)err;
+  return rc ? -1 : 0;
+}
+int sph_procs_agree_flags(int rc, int *flags, int n, sph_error *err) {
+  (void)flags, (void)n, (void)err;
   return rc ? -1 : 0;
 }
 int sph_procs_failed(int first, sph_error *err) {

@@ -59,6 +59,10 @@ int sph_procs_agree(int rc, sph_error *err);
 /* sph_procs_agree, and *flag set on every process to whether it was set
  * on any: one collective step for both. */
 int sph_procs_agree_any(int rc, int *flag, sph_error *err);
+/* The same with n flags (n <= SPH_PROCS_FLAGS), each set on every process
+ * to whether it was set on any: one collective step. */
+#define SPH_PROCS_FLAGS 4
+int sph_procs_agree_flags(int rc, int *flags, int n, sph_error *err);
 /* After a gather that showed every process that process `first` failed
  * (the lowest rank that did): its message into err on every process
  * (prefixed with its rank on the others). -1. A collective step. */

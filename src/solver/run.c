@@ -32,6 +32,7 @@
 #include "core/parallel.h"
 #include "io/csv.h"
 #include "io/snapshot.h"
+#include "solver/diag_sums.h"
 #include "solver/procs.h"
 #include "solver/sim_internal.h"
 
@@ -428,9 +429,17 @@ int sph_run_stop_measure(const sph_sim *s, double *now, double *stop) {
   return 1;
 }
 
-static int stop_condition(sph_sim *s) {
-  double now, stop;
-  return sph_run_stop_measure(s, &now, &stop) && now >= stop;
+/* Whether the stop condition holds in this process's share of the store
+ * (sim_internal.h): the front past its mark there; under mpirun the
+ * processes' answers are agreed, the front's maximum being past the mark
+ * where any share's is (the answer of sph_run_stop_measure's whole store). */
+static int stop_here(sph_sim *s) {
+  const sph_case *c = sph_sim_case(s);
+  if (c->stop != SPH_STOP_FRONT_AT_WALL) return 0;
+  size_t from, to;
+  sph_sim_span(s, &from, &to);
+  return sph_diag_front_span(sph_sim_particles(s), from, to, sph_sim_floor(s), 2.0 * c->dx) >=
+         c->tank.x1 - c->dx;
 }
 
 /* Whether two header lines name the same columns, the units after the
@@ -824,10 +833,12 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
       break;
     }
     if (st) goto io_error;
-    /* the probes' row agreed, and an interrupt on any process seen by all,
-     * in one collective step: all stop after this step */
-    int interrupted = o->interrupt && *o->interrupt;
-    if (sph_procs_agree_any(probe_step(s, &out, 1, err), &interrupted, err)) goto io_error;
+    /* the probes' row agreed, and an interrupt on any process and the stop
+     * condition in any process's share seen by all, in one collective step:
+     * all stop after this step */
+    int flags[2] = {o->interrupt && *o->interrupt, stop_here(s)};
+    if (sph_procs_agree_flags(probe_step(s, &out, 1, err), flags, 2, err)) goto io_error;
+    const int interrupted = flags[0], stopped = flags[1];
     const int at_output = sph_sim_time(s) == next;
     if (at_output) {
       if (c->output_interval > 0.0) k = first_multiple_after(c->output_interval, next + same);
@@ -835,7 +846,7 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
         j++;
       if (agreed(write_output(s, &out, r, err), err)) goto io_error;
     }
-    if (stop_condition(s)) {
+    if (stopped) {
       if (agreed(!at_output ? write_output(s, &out, r, err) : 0, err)) goto io_error;
       r->status = SPH_RUN_STOPPED;
       break;
