@@ -202,13 +202,15 @@ void sph_procs_gather(const void *mine, size_t len, void *all) {
   }
 }
 
-void sph_procs_share(void *buf, size_t len) {
+void sph_procs_share(void *buf, size_t len) { sph_procs_share_from(buf, len, 0); }
+
+void sph_procs_share_from(void *buf, size_t len, int root) {
   if (count == 1) return;
   MPI_Request r;
   if (!crowded)
-    MPI_Bcast(buf, (int)len, MPI_BYTE, 0, MPI_COMM_WORLD);
+    MPI_Bcast(buf, (int)len, MPI_BYTE, root, MPI_COMM_WORLD);
   else {
-    MPI_Ibcast(buf, (int)len, MPI_BYTE, 0, MPI_COMM_WORLD, &r);
+    MPI_Ibcast(buf, (int)len, MPI_BYTE, root, MPI_COMM_WORLD, &r);
     wait_for(&r);
   }
 }
@@ -302,6 +304,7 @@ int sph_procs_failed(int first, sph_error *err) {
 }
 void sph_procs_gather(const void *mine, size_t len, void *all) { memcpy(all, mine, len); }
 void sph_procs_share(void *buf, size_t len) { (void)buf, (void)len; }
+void sph_procs_share_from(void *buf, size_t len, int root) { (void)buf, (void)len, (void)root; }
 int sph_procs_records_fit(const size_t *counts, size_t rec) {
   return rec <= INT_MAX && counts[0] <= INT_MAX;
 }

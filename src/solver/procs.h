@@ -73,6 +73,8 @@ void sph_procs_gather(const void *mine, size_t len, void *all);
 /* Rank 0's `len` bytes at buf, into every process's buf (len fits an
  * int). A collective step. */
 void sph_procs_share(void *buf, size_t len);
+/* The same from process `root`'s buf. A collective step. */
+void sph_procs_share_from(void *buf, size_t len, int root);
 /* Whether sph_procs_gather_records can carry these counts of rec-byte
  * records (MPI counts are ints); local, no collective. */
 int sph_procs_records_fit(const size_t *counts, size_t rec);

@@ -399,17 +399,31 @@ static int check_state(sph_sim *s, int shared, sph_error *err) {
           bad_particle(p, i, lim[ph ? ph[i] : 0], r0[ph ? ph[i] : 0], d))
         first = p->id[i];
   }
+  /* shared: the process whose share holds the first offender makes the message, which the
+   * others take from it (the distributed store's way: no process need hold the particle) */
+  int maker = -1;
   if (shared) {
     int64_t all[SPH_PROCS_MAX];
     sph_procs_gather(&first, sizeof first, all);
     for (int q = 0; q < s->ranks; q++)
       if (all[q] < first) first = all[q];
+    for (int q = 0; q < s->ranks && maker < 0; q++)
+      if (all[q] == first) maker = q;
   }
   if (first == INT64_MAX) return 0;
+  if (shared && maker != s->self) {
+    sph_procs_share_from(err->msg, sizeof err->msg, maker);
+    return SPH_BLOWUP;
+  }
   long worst = -1;
-  for (long i = 0; i < n && worst < 0; i++)
-    if (p->id[i] == first) worst = i;
-  if (worst < 0) return 0;
+  for (size_t i = from; i < to && worst < 0; i++)
+    if (p->id[i] == first) worst = (long)i;
+  if (worst < 0) { /* (cannot be: the share found it) */
+    sph_error_set(err, "blow-up at step %ld, t = %.9g s: particle %lld", s->steps, s->t,
+                  (long long)first);
+    if (shared) sph_procs_share_from(err->msg, sizeof err->msg, maker);
+    return SPH_BLOWUP;
+  }
   const size_t i = (size_t)worst;
   const double rho0 = r0[ph ? ph[i] : 0], band = lim[ph ? ph[i] : 0];
   const char *why = bad_particle(p, i, band, rho0, d);
@@ -440,6 +454,7 @@ static int check_state(sph_sim *s, int shared, sph_error *err) {
                 s->steps, s->t, p->kind[i] == SPH_KIND_FLUID ? "fluid" : "wall",
                 (long long)p->id[i], why, state, p->rho[i], rho0 * (1.0 - band),
                 rho0 * (1.0 + band), box, hint);
+  if (shared) sph_procs_share_from(err->msg, sizeof err->msg, maker);
   return SPH_BLOWUP;
 }
 
