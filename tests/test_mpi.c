@@ -17,6 +17,8 @@
  *     process writes alone); a snapshot that cannot be created stops every
  *     process with HDF5's reason;
  *   - an initial state out of its band on 3 processes: the serial run's message;
+ *   - a step that collapses (a fixed step of 1e-300 s) on 3 processes: the
+ *     serial run's message, naming a particle of the second process's share;
  *   - a run that stops on its condition (the surge front at the wall) on 3
  *     processes, each looking at its share: every file the serial run's;
  *   - a blow-up (leap-frog, a step ten times too long) in 2-D and 3-D on 2
@@ -322,6 +324,28 @@ static void test_blow_up(void) {
   free(b);
 }
 
+/* A step that stays below its floor (a fixed step of 1e-300 s) stops the run with the fastest
+ * particle named: the wet bed's gate (a wall moving from the start), in the second of 3
+ * processes' shares (seen when this test was written), whose process makes the message for
+ * all: the serial run's message and files, last_good.h5 included. */
+static void test_collapse(void) {
+  const char *sets = "--set numerics.dx=0.015 --set time.end=1 "
+                     "--set 'numerics.time_step={rule: fixed, dt: 1e-300}'";
+  char *a = run_to("src/sph", "cases/wet_bed_dam_break.yaml", sets, "", 0, 1, 3, 1),
+       *b = run_to("src/sph", "cases/wet_bed_dam_break.yaml", sets, "", 3, 1, 3, 1);
+  char want[2048], got[2048];
+  int same = sph_test_same_dirs(a, b);
+  same = err_line(a, "time step collapse", "; last good state", want, sizeof want) &&
+         err_line(b, "time step collapse", "; last good state", got, sizeof got) &&
+         strcmp(got, want) == 0 && same;
+  printf("\n  a collapsed step on 3 processes: %s", same ? "identical" : "DIFFERENT");
+  CU_ASSERT(same);
+  sph_test_rmtree(a);
+  sph_test_rmtree(b);
+  free(a);
+  free(b);
+}
+
 /* One process's pass fails (SPH_TEST_FAIL_PASS: process 1's fifth pass,
  * before its walls' first stage on the default scheme): every process
  * stops with that process's message, none left waiting in a collective
@@ -584,6 +608,7 @@ int main(void) {
                          {"a snapshot that cannot be made", test_failed_snapshot},
                          {"a blow-up's last good state", test_blow_up},
                          {"the stop condition", test_stop_condition},
+                         {"a collapsed step", test_collapse},
                          {"a failed pass stops every process", test_failed_pass},
                          {"a restart on another process count", test_restart_on_other_count},
                          {"a reduction in rank order is seen", test_rank_order_sums_are_seen},

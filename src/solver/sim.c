@@ -535,11 +535,28 @@ static int step_collapse(const sph_sim *s, double dt, double acoustic, sph_error
   static const char *const rule[] = {"paper_b", "cfl", "fixed"};
   const sph_particles *p = &s->p;
   const sph_case *c = s->c;
-  size_t fast = 0;
+  size_t from, to, fast = 0;
+  sph_sim_span(s, &from, &to);
   double vmax = -1.0;
-  for (size_t i = 0; i < p->n; i++) { /* serial: the first of equals, any thread count */
+  for (size_t i = from; i < to; i++) { /* serial: the first of equals, any thread count */
     const double w2 = SPH_NORM2(p->vx[i], p->vy[i], p->vz[i]);
     if (w2 > vmax) vmax = w2, fast = i;
+  }
+  /* under mpirun each process looks at its share; the first process with the largest speed
+   * holds the first of equals in storage order (the shares are ranges in rank order), and it
+   * makes the message for all */
+  int maker = -1;
+  if (in_team(s)) {
+    double all[SPH_PROCS_MAX];
+    sph_procs_gather(&vmax, sizeof vmax, all);
+    double best = -1.0;
+    maker = 0; /* (a store with particles: some share holds one) */
+    for (int q = 0; q < s->ranks; q++)
+      if (all[q] > best) best = all[q], maker = q;
+    if (maker != s->self) {
+      sph_procs_share_from(err->msg, sizeof err->msg, maker);
+      return SPH_BLOWUP;
+    }
   }
   const int r = c->dt_rule == SPH_DT_CFL ? 1 : c->dt_rule == SPH_DT_FIXED ? 2 : 0;
   sph_error_set(err,
@@ -551,6 +568,7 @@ static int step_collapse(const sph_sim *s, double dt, double acoustic, sph_error
                 s->steps, s->t, rule[r], SPH_DT_FLOOR, acoustic, SPH_DT_FLOOR_STEPS, dt,
                 p->kind[fast] == SPH_KIND_FLUID ? "fluid" : "wall", (long long)p->id[fast],
                 vmax > 0.0 ? sqrt(vmax) : 0.0, c->sound_speed);
+  if (maker >= 0) sph_procs_share_from(err->msg, sizeof err->msg, maker);
   return SPH_BLOWUP;
 }
 
