@@ -72,10 +72,8 @@ struct acc {
   double top;
 };
 
-static void acc_init(struct acc *a, int points) {
-  for (int k = 0; k < points; k++)
-    for (int m = 0; m < 2 + SPH_DIM; m++)
-      a->s[k][m] = 0.0;
+static void acc_init(struct acc *a) {
+  memset(a->s, 0, sizeof a->s);
   a->top = -INFINITY;
 }
 
@@ -351,9 +349,8 @@ static void reading_of(const sph_probe *q, const struct acc *a, double h, double
 
 void sph_probe_read(const sph_probe *q, const sph_particles *p, sph_kernel_kind kernel, double h,
                     double dx, double floor_y, const double g[SPH_DIM], double *out) {
-  double at[SPH_PROBE_MAX_POINTS][SPH_DIM];
   struct acc a;
-  acc_init(&a, points_of(q, at));
+  acc_init(&a);
   sink o = {&a, q->kind, q->wetted, NULL, 0, 0, 0};
   terms_of(q, p, 0, p->n, kernel, h, dx, g, &o);
   reading_of(q, &a, h, dx, floor_y, out);
@@ -370,9 +367,8 @@ int sph_probe_terms(const sph_probe *q, const sph_particles *p, size_t from, siz
 
 void sph_probe_fold(const sph_probe *q, const sph_probe_term *const *pieces, const size_t *counts,
                     int n_pieces, double h, double dx, double floor_y, double *out) {
-  double at[SPH_PROBE_MAX_POINTS][SPH_DIM];
   struct acc a;
-  acc_init(&a, points_of(q, at));
+  acc_init(&a);
   for (int r = 0; r < n_pieces; r++)
     for (size_t i = 0; i < counts[r]; i++)
       acc_add(&a, q->kind, q->wetted, &pieces[r][i]);

@@ -71,10 +71,9 @@ double sph_diag_gauge_level(const sph_particles *p, const double at[SPH_DIM - 1]
   return sph_diag_gauge_top(p, 0, p->n, at, half, axis, range) + 0.5 * dx;
 }
 
-/* The largest x of the fluid with its vertical coordinate under floor_y
- * + band among particles [from, to): a maximum, exact in any order. */
-static double front_in(const sph_particles *p, size_t from, size_t to, double floor_y,
-                       double band) {
+/* A maximum, exact in any order (diag_sums.h). */
+double sph_diag_front_span(const sph_particles *p, size_t from, size_t to, double floor_y,
+                           double band) {
   double front = -INFINITY;
   const double *up = p->pos[SPH_UP]; /* the vertical: y (z in 3-D) */
   const long lo = (long)from, hi = (long)to;
@@ -86,12 +85,7 @@ static double front_in(const sph_particles *p, size_t from, size_t to, double fl
 }
 
 double sph_diag_front(const sph_particles *p, double floor_y, double band) {
-  return front_in(p, 0, p->n, floor_y, band);
-}
-
-double sph_diag_front_span(const sph_particles *p, size_t from, size_t to, double floor_y,
-                           double band) {
-  return front_in(p, from, to, floor_y, band);
+  return sph_diag_front_span(p, 0, p->n, floor_y, band);
 }
 
 void sph_diag_sums_init(sph_diag_sums *t) {
@@ -122,7 +116,7 @@ void sph_diag_sums_add(sph_diag_sums *t, const sph_particles *p, size_t from, si
 #endif
     sph_xsum_add(&sum[SPH_DS_PE], -sph_diag_lift(p, i, g, floor_y));
   }
-  const double f = front_in(p, from, to, floor_y, band);
+  const double f = sph_diag_front_span(p, from, to, floor_y, band);
   if (f > t->front) t->front = f;
 }
 

@@ -106,12 +106,12 @@ static int write_gauges(sph_sim *s, outputs *o, sph_error *err) {
   for (size_t g = 0; g < ng; g++)
     mine[g] = sph_diag_gauge_top(p, from, to, &c->gauges[(SPH_DIM - 1) * g], c->dx,
                                  c->periodic ? c->periodic_axis : -1, c->periodic_range);
-  if (procs > 1) sph_procs_gather(mine, ng * sizeof *mine, o->tops);
+  sph_procs_gather(mine, ng * sizeof *mine, o->tops); /* (one process: a copy) */
   if (!o->gauges) return 0;
   if (fprintf(o->gauges, "%.17g", sph_sim_time(s)) < 0) goto fail;
   for (size_t g = 0; g < ng; g++) {
-    double top = mine[g];
-    for (int q = 0; q < procs && procs > 1; q++)
+    double top = -INFINITY;
+    for (int q = 0; q < procs; q++)
       top = fmax(top, o->tops[(size_t)q * ng + g]);
     double level = top + 0.5 * c->dx;
     if (!isfinite(level)) level = sph_sim_floor(s); /* dry */

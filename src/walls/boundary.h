@@ -116,7 +116,7 @@ typedef struct sph_wall_plane {
 /* The inner faces of a 3-D tank: the floor and the sides, but for the two
  * normal to the axis the tank is open along; each spans the tank's inner
  * box grown by `reach` along the other axes (0: the faces as they are).
- * Into out (room for 5); their number. */
+ * Into out (room for 6); their number. */
 size_t sph_tank_planes(const sph_tank *t, double reach, sph_wall_plane out[6]);
 
 /* sph_mirror_add with mirror planes (a 3-D mirror tank): a fluid particle
