@@ -18,6 +18,7 @@
 
 #ifdef SPH_MPI
 #include <mpi.h>
+#include <sys/prctl.h>
 #include <time.h>
 #include <unistd.h>
 #ifdef _OPENMP
@@ -62,43 +63,48 @@ int sph_procs_count(void) { return count; }
 #ifdef SPH_MPI
 
 static int started = 0;
-/* whether this machine runs more of the job's threads than it has cores
- * (set at the start): then a process that waits for the others sleeps */
-static int crowded = 0;
+/* this job's processes on this machine (set at the start) */
+static int here = 1;
+/* whether some machine of the job runs more of its threads than it has
+ * cores: then a process that waits for the others naps (-1: not known
+ * yet, crowded() finds it at the first collective step) */
+static int crowded_job = -1;
 
-/* Whether the processes of this job on this machine, times their threads,
- * are more than its cores. */
-static int machine_crowded(void) {
-  MPI_Comm local;
-  int here = 1;
-  if (MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local) ==
-      MPI_SUCCESS) {
-    MPI_Comm_size(local, &here);
-    MPI_Comm_free(&local);
-  }
+/* Whether this machine's processes of the job, times their threads, are
+ * more than its cores, on any machine of the job: one answer for all, at
+ * the first collective step (all make it, after the threads are set:
+ * cli_run.c sets them before any), since a collective started without
+ * blocking does not match a blocking one. */
+static int crowded(void) {
+  if (crowded_job >= 0) return crowded_job;
   int threads = 1;
 #ifdef _OPENMP
   threads = omp_get_max_threads();
 #endif
   const long cores = sysconf(_SC_NPROCESSORS_ONLN);
-  return cores > 0 && (long)here * threads > cores;
+  int mine = cores > 0 && (long)here * threads > cores;
+  MPI_Allreduce(&mine, &crowded_job, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+#ifdef PR_SET_TIMERSLACK
+  /* a nap of 10 us, not Linux's default slack of 50 us more */
+  if (crowded_job) prctl(PR_SET_TIMERSLACK, 1000UL, 0UL, 0UL, 0UL);
+#endif
+  return crowded_job;
 }
 
 /* Waits for the collective r, started without blocking, on a crowded
- * machine: tests it and sleeps 50 us between tests, so that the processes
- * still at their pass get the cores that a polling wait (Open MPI's, with
- * mpi_yield_when_idle or without) takes from them. With another program
- * busy on one of 2 cores, test_mpi's runs (up to 7 processes of 2
- * threads) took 83 s instead of 164 s, and alone the same 50 s. On a
- * machine with a core for every thread the collectives block as MPI's
- * own. The results do not depend on how a process waits. */
+ * machine: tests it and naps between tests, 10 us at first and twice as
+ * long each time up to 160 us, so that the processes still at their pass
+ * get the cores that a polling wait (Open MPI's, with mpi_yield_when_idle
+ * or without) takes from them, while a collective of several rounds,
+ * which moves only inside MPI's calls, is not held a long nap a round.
+ * The results do not depend on how a process waits. */
 static void wait_for(MPI_Request *r) {
-  for (;;) {
-    int done = 0;
+  int done = 0;
+  MPI_Test(r, &done, MPI_STATUS_IGNORE);
+  for (long nap = 10000; !done; nap = nap < 160000 ? 2 * nap : nap) {
+    const struct timespec t = {0, nap};
+    nanosleep(&t, NULL);
     MPI_Test(r, &done, MPI_STATUS_IGNORE);
-    if (done) return;
-    const struct timespec nap = {0, 50000};
-    nanosleep(&nap, NULL);
   }
 }
 
@@ -112,7 +118,12 @@ int sph_procs_start(sph_error *err) {
   started = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &count);
-  crowded = machine_crowded();
+  MPI_Comm local;
+  if (MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local) ==
+      MPI_SUCCESS) {
+    MPI_Comm_size(local, &here);
+    MPI_Comm_free(&local);
+  }
   if (provided < MPI_THREAD_FUNNELED)
     return sph_error_set(err,
                          "the MPI library gives no thread support (%d); threads need "
@@ -129,7 +140,7 @@ void sph_procs_end(void) {
 /* all[k] = the largest mine[k] over the processes, k < n: one collective. */
 static void max_ints(int *mine, int *all, int n) {
   MPI_Request r;
-  if (!crowded)
+  if (!crowded())
     MPI_Allreduce(mine, all, n, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
   else {
     MPI_Iallreduce(mine, all, n, MPI_INT, MPI_MAX, MPI_COMM_WORLD, &r);
@@ -149,7 +160,7 @@ static void tell(int first, sph_error *err) {
   char msg[sizeof err->msg];
   memcpy(msg, err->msg, sizeof msg);
   MPI_Request r;
-  if (!crowded)
+  if (!crowded())
     MPI_Bcast(msg, (int)sizeof msg, MPI_CHAR, first, MPI_COMM_WORLD);
   else {
     MPI_Ibcast(msg, (int)sizeof msg, MPI_CHAR, first, MPI_COMM_WORLD, &r);
@@ -194,7 +205,7 @@ void sph_procs_gather(const void *mine, size_t len, void *all) {
     return;
   }
   MPI_Request r;
-  if (!crowded)
+  if (!crowded())
     MPI_Allgather(mine, (int)len, MPI_BYTE, all, (int)len, MPI_BYTE, MPI_COMM_WORLD);
   else {
     MPI_Iallgather(mine, (int)len, MPI_BYTE, all, (int)len, MPI_BYTE, MPI_COMM_WORLD, &r);
@@ -207,7 +218,7 @@ void sph_procs_share(void *buf, size_t len) { sph_procs_share_from(buf, len, 0);
 void sph_procs_share_from(void *buf, size_t len, int root) {
   if (count == 1) return;
   MPI_Request r;
-  if (!crowded)
+  if (!crowded())
     MPI_Bcast(buf, (int)len, MPI_BYTE, root, MPI_COMM_WORLD);
   else {
     MPI_Ibcast(buf, (int)len, MPI_BYTE, root, MPI_COMM_WORLD, &r);
@@ -246,7 +257,7 @@ void sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec
   records_layout(counts, rec, n, at, &t);
   /* an MPI error ends the job (MPI_ERRORS_ARE_FATAL, the default) */
   MPI_Request r;
-  if (!crowded)
+  if (!crowded())
     MPI_Allgatherv(mine, n[rank], t, all, n, at, t, MPI_COMM_WORLD);
   else {
     MPI_Iallgatherv(mine, n[rank], t, all, n, at, t, MPI_COMM_WORLD, &r);
@@ -271,7 +282,7 @@ void sph_procs_gather_records_progress(void) {
 }
 
 void sph_procs_gather_records_wait(void) {
-  if (!crowded)
+  if (!crowded())
     MPI_Wait(&pending, MPI_STATUS_IGNORE);
   else
     wait_for(&pending);
