@@ -36,7 +36,10 @@
  *     uninterrupted run's bytes;
  *   - SIGTERM to mpirun: rank 0's message and a complete final snapshot,
  *     from which a restart on 3 processes reaches the uninterrupted run's
- *     state.
+ *     state;
+ *   - how the processes wait, in the summary: blocking where the machine
+ *     has a core for each thread the run sets (--threads, not the
+ *     environment's count), napping where it has fewer.
  * Without --with-mpi the test says so and is skipped (exit 77).
  */
 #include "config.h"
@@ -598,6 +601,38 @@ static void test_terminated_job(void) {
   free(d);
 }
 
+/* How the processes wait (procs.c, the summary's line): blocking where this
+ * machine has a core for every process's threads as --threads sets them,
+ * napping where it has fewer; the environment's thread count
+ * (OMP_NUM_THREADS=4 here) is not the run's. */
+static void test_waits(void) {
+  const long cores = sysconf(_SC_NPROCESSORS_ONLN);
+  const int runs[2][2] = {{2, 1}, {3, 2}};
+  for (int k = 0; k < 2; k++) {
+    const int procs = runs[k][0], threads = runs[k][1];
+    char *d = sph_test_tmpdir(), cmd[8192], log[4200];
+    snprintf(log, sizeof log, "%s/log", d);
+    snprintf(cmd, sizeof cmd,
+             "OMP_NUM_THREADS=4 %s -x OMP_NUM_THREADS -n %d '%s' run --threads %d '%s' -o '%s/out' "
+             "--set numerics.dx=0.02 --set time.end=0.025 > '%s' 2>&1",
+             mpirun(), procs, sph_test_build("src/sph"), threads,
+             sph_test_src("cases/lobovsky_h300.yaml"), d, log);
+    const int rc = sph_test_system(cmd);
+    char *out = sph_test_read_file(log, NULL);
+    const int crowded = (long)procs * threads > cores;
+    const char *want = crowded ? "; waits napping (more threads than cores)"
+                               : "; waits blocking (a core for every thread)";
+    const int told = out && strstr(out, want) != NULL;
+    printf("\n  %d processes of %d thread(s) on %ld cores: exit %d, %s", procs, threads, cores, rc,
+           told ? want + 2 : "NOT TOLD");
+    CU_ASSERT(rc == 0);
+    CU_ASSERT(told);
+    free(out);
+    sph_test_rmtree(d);
+    free(d);
+  }
+}
+
 int main(void) {
 #ifndef SPH_MPI
   printf("test_mpi: this build has no MPI; ./configure --with-mpi (Debian: apt-get install "
@@ -618,6 +653,7 @@ int main(void) {
                          {"a reduction in rank order is seen", test_rank_order_sums_are_seen},
                          {"a killed process", test_killed_process},
                          {"SIGTERM to mpirun", test_terminated_job},
+                         {"how the processes wait", test_waits},
                          CU_TEST_INFO_NULL};
   return sph_test_main("mpi", tests);
 #endif

@@ -390,8 +390,10 @@ static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
   sph_sim_diag(s, &end);
   if (!a->quiet && status != 1 && f.processes > 1 && f.passes > 0)
     printf("  %d processes: ghosts %.3g of the owned particles (each process's halo), %.3g MB "
-           "sent per pass, all processes together\n",
-           f.processes, f.own > 0 ? f.ghosts / f.own : 0.0, f.bytes / (double)f.passes / 1e6);
+           "sent per pass, all processes together; %s\n",
+           f.processes, f.own > 0 ? f.ghosts / f.own : 0.0, f.bytes / (double)f.passes / 1e6,
+           f.crowded ? "waits napping (more threads than cores)"
+                     : "waits blocking (a core for every thread)");
   if (!a->quiet && status != 1) {
     /* the steps the rule chose (sph_sim_step_range), then the closing line */
     double dt_first, dt_min, t_min;

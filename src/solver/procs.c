@@ -18,7 +18,9 @@
 
 #ifdef SPH_MPI
 #include <mpi.h>
+#ifdef __linux__
 #include <sys/prctl.h>
+#endif
 #include <time.h>
 #include <unistd.h>
 #ifdef _OPENMP
@@ -107,6 +109,8 @@ static void wait_for(MPI_Request *r) {
     MPI_Test(r, &done, MPI_STATUS_IGNORE);
   }
 }
+
+int sph_procs_crowded(void) { return count > 1 && crowded(); }
 
 int sph_procs_start(sph_error *err) {
   if (started) return 0;
@@ -297,6 +301,7 @@ int sph_procs_start(sph_error *err) {
 }
 void sph_procs_end(void) {}
 int sph_procs_any(int flag) { return flag != 0; }
+int sph_procs_crowded(void) { return 0; }
 int sph_procs_agree(int rc, sph_error *err) {
   (void)err;
   return rc ? -1 : 0;

@@ -43,6 +43,12 @@ void sph_procs_end(void);
  * started). */
 int sph_procs_rank(void);
 int sph_procs_count(void);
+/* 1 when the processes nap between looks at each other while they wait
+ * (some machine of the job runs more of its processes' threads than it
+ * has cores, counted with the threads set now), 0 when they block in MPI's
+ * own waits (and on one process). The first call before any collective
+ * step is one: every process makes it. */
+int sph_procs_crowded(void);
 
 /* Whether flag is set on any process (the same answer on every one); the
  * flag itself on one process. A collective step: every process calls it at

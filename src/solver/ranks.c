@@ -998,6 +998,7 @@ int sph_sim_procs_figures(const sph_sim *s, sph_procs_figures *f) {
   double all[4 * SPH_PROCS_MAX];
   sph_procs_gather(mine, sizeof mine, all);
   f->processes = s->ranks;
+  f->crowded = sph_procs_crowded();
   for (int q = 0; q < s->ranks; q++) {
     if (q == 0) f->passes = (long)all[0];
     f->own += all[4 * q + 1], f->ghosts += all[4 * q + 2], f->bytes += all[4 * q + 3];

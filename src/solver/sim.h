@@ -62,6 +62,7 @@ typedef struct sph_procs_figures {
   long passes;
   double own, ghosts; /* ghosts / own: the halo's share of the work */
   double bytes;       /* sent, all processes together */
+  int crowded;        /* 1: the processes nap while they wait (sph_procs_crowded) */
 } sph_procs_figures;
 int sph_sim_procs_figures(const sph_sim *s, sph_procs_figures *f);
 const sph_case *sph_sim_case(const sph_sim *s);
