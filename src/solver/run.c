@@ -420,13 +420,21 @@ static int write_output(sph_sim *s, outputs *o, sph_run_result *r, sph_error *er
                         err);
 }
 
-int sph_run_stop_measure(const sph_sim *s, double *now, double *stop) {
+/* The stop condition (time.stop: front_at_wall) over particles [from,
+ * to): 1 with the surge front there (sph_diag_front_span, within 2 dx of
+ * the floor) in *now and its mark, dx short of the tank's far wall, in
+ * *stop; 0 where the case has no such condition. */
+static int stop_front(const sph_sim *s, size_t from, size_t to, double *now, double *stop) {
   const sph_case *c = sph_sim_case(s);
   if (c->stop != SPH_STOP_FRONT_AT_WALL) return 0;
   sph_sim *m = (sph_sim *)s; /* read only: the store is not changed */
-  *now = sph_diag_front(sph_sim_particles(m), sph_sim_floor(s), 2.0 * c->dx);
+  *now = sph_diag_front_span(sph_sim_particles(m), from, to, sph_sim_floor(s), 2.0 * c->dx);
   *stop = c->tank.x1 - c->dx;
   return 1;
+}
+
+int sph_run_stop_measure(const sph_sim *s, double *now, double *stop) {
+  return stop_front(s, 0, sph_sim_particles((sph_sim *)s)->n, now, stop);
 }
 
 /* Whether the stop condition holds in this process's share of the store
@@ -434,12 +442,10 @@ int sph_run_stop_measure(const sph_sim *s, double *now, double *stop) {
  * processes' answers are agreed, the front's maximum being past the mark
  * where any share's is (the answer of sph_run_stop_measure's whole store). */
 static int stop_here(sph_sim *s) {
-  const sph_case *c = sph_sim_case(s);
-  if (c->stop != SPH_STOP_FRONT_AT_WALL) return 0;
   size_t from, to;
+  double now, stop;
   sph_sim_span(s, &from, &to);
-  return sph_diag_front_span(sph_sim_particles(s), from, to, sph_sim_floor(s), 2.0 * c->dx) >=
-         c->tank.x1 - c->dx;
+  return stop_front(s, from, to, &now, &stop) && now >= stop;
 }
 
 /* Whether two header lines name the same columns, the units after the
