@@ -14,14 +14,18 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
-/* A ring of buffers, so that a few results can be used in one call. */
+/* A ring of buffers, so that a few results can be used in one call. The
+ * root is the environment's, else the directory the test started in (an
+ * absolute path: a test may run a program after a cd). */
 static const char *join(const char *env, const char *rel) {
-  static char ring[8][4096];
+  static char ring[8][8200], here[4096];
   static unsigned next;
   char *buf = ring[next++ % 8];
   const char *root = getenv(env);
-  if (!root || !*root) root = ".";
+  if ((!root || !*root) && !here[0] && !getcwd(here, sizeof here)) snprintf(here, sizeof here, ".");
+  if (!root || !*root) root = here;
   snprintf(buf, sizeof ring[0], "%s/%s", root, rel);
   return buf;
 }
