@@ -743,7 +743,7 @@ static void test_cross_checks(void) {
              "t.yaml:10: geometry.periodic_x: a periodic domain cannot have a tank (use "
              "geometry.walls for the bed)");
   expect_err(edit(MINIMAL, 10, "  periodic_x: [0, 0.05]\n  fluid:\n"),
-             "t.yaml:10: geometry.periodic_x: expected a period of at least 6 h = 0.12 m, got "
+             "t.yaml:10: geometry.periodic_x: expected a period of at least 4 h = 0.08 m, got "
              "0.05");
 }
 

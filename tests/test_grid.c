@@ -13,7 +13,7 @@
  * store and any subset of it sort into the whole set's order. On a grid periodic in x
  * (sph_grid_build_periodic + sph_grid_ranges_all) the neighbours at
  * minimum-image distance below the support equal brute force with the
- * minimum image, for a period of exactly 3 cells (whole rows) and longer
+ * minimum image, for a period of exactly 3 or 2 cells (whole rows) and longer
  * ones, with particles exactly at px0, within a cell of either side, and a
  * little outside the period (as between the two stages of a step).
  *
@@ -188,7 +188,7 @@ static size_t check_periodic(sph_particles *p, double support, double cell, doub
   if (rc) printf("\n%s\n", err.msg);
   CU_ASSERT_FATAL(rc == 0);
   CU_ASSERT(g.periodic);
-  CU_ASSERT(g.ncell[0] >= 3 && g.cellx >= cell);
+  CU_ASSERT(g.ncell[0] >= 2 && g.cellx >= cell);
   const double period = px1 - px0, s2 = support * support;
   int64_t *a = malloc(p->n * sizeof *a), *b = malloc(p->n * sizeof *b);
   unsigned char *seen = calloc(p->n, 1);
@@ -265,21 +265,23 @@ static void periodic_set(sph_particles *p, size_t n, double px0, double px1, dou
                     &err);
 }
 
-/* A period of exactly 3 cells: every row is one whole range, and each pair
- * is counted once although it lies in neighbouring columns both ways. */
+/* A period of exactly 3 cells, and of 2 (the shortest taken): every row is
+ * one whole range, and each pair is counted once although it lies in
+ * neighbouring columns both ways (with 2, through the seam and not). */
 static void test_periodic_three_cells(void) {
-  for (int trial = 0; trial < 4; trial++) {
+  for (int trial = 0; trial < 8; trial++) {
     sph_particles p;
     sph_error err;
     CU_ASSERT_FATAL(sph_particles_init(&p, 16, &err) == 0);
-    const double support = 0.25, cell = 0.25; /* binary fractions: the period is 3 cells exactly */
-    const double px0 = -0.5 + 0.25 * trial, px1 = px0 + 3 * cell;
-    periodic_set(&p, 300 + 100 * (size_t)trial, px0, px1, 1.0, 1.5, cell, support);
+    const int cols = 3 - trial / 4;
+    const double support = 0.25, cell = 0.25; /* binary fractions: the period is whole cells */
+    const double px0 = -0.5 + 0.25 * (trial % 4), px1 = px0 + cols * cell;
+    periodic_set(&p, 300 + 100 * (size_t)(trial % 4), px0, px1, 1.0, 1.5, cell, support);
     sph_grid g;
     sph_grid_init(&g);
     CU_ASSERT_FATAL(sph_grid_build_periodic(&g, &p, cell, SPH_AXIS_X, px0, px1, 1u << 20, &err) ==
                     0);
-    CU_ASSERT_EQUAL(g.ncell[0], 3);
+    CU_ASSERT_EQUAL(g.ncell[0], cols);
     CU_ASSERT_EQUAL(g.cellx, cell);
     sph_grid_free(&g);
     CU_ASSERT(check_periodic(&p, support, cell, px0, px1) > 0);
@@ -309,7 +311,8 @@ static void test_periodic_long(void) {
   }
 }
 
-/* A period shorter than 3 cells is refused with a message. */
+/* A period shorter than 2 cells is refused with a message; 2.8 cells make
+ * 2 columns. */
 static void test_periodic_too_short(void) {
   sph_particles p;
   sph_error err;
@@ -318,8 +321,11 @@ static void test_periodic_too_short(void) {
   sph_grid g;
   sph_grid_init(&g);
   err.msg[0] = 0;
-  CU_ASSERT(sph_grid_build_periodic(&g, &p, 0.25, SPH_AXIS_X, 0.0, 0.7, 1u << 20, &err) != 0);
-  CU_ASSERT(strstr(err.msg, "fewer than 3 cells") != NULL);
+  CU_ASSERT(sph_grid_build_periodic(&g, &p, 0.25, SPH_AXIS_X, 0.0, 0.45, 1u << 20, &err) != 0);
+  CU_ASSERT(strstr(err.msg, "fewer than 2 cells") != NULL);
+  CU_ASSERT(strstr(err.msg, "at least 0.5") != NULL);
+  CU_ASSERT(sph_grid_build_periodic(&g, &p, 0.25, SPH_AXIS_X, 0.0, 0.7, 1u << 20, &err) == 0);
+  CU_ASSERT_EQUAL(g.ncell[0], 2);
   sph_grid_free(&g);
   sph_particles_free(&p);
 }
@@ -917,9 +923,10 @@ int main(void) {
       {"permutation carries every field", test_permute_carries_fields},
       {"per-axis fields by name and by axis: the same arrays", test_fields_by_axis},
       {"arrays a store does not use stay zero and untouched", test_unused_groups_untouched},
-      {"periodic grid, period of exactly 3 cells, against brute force", test_periodic_three_cells},
+      {"periodic grid, period of exactly 3 and 2 cells, against brute force",
+       test_periodic_three_cells},
       {"periodic grid, longer periods, against brute force", test_periodic_long},
-      {"periodic grid refuses a period under 3 cells", test_periodic_too_short},
+      {"periodic grid refuses a period under 2 cells", test_periodic_too_short},
       {"neighbour list equals brute force (sorted, binned, periodic)", test_list_brute_force},
       {"rows left empty by id: the others unchanged", test_list_no_row},
       {"the store gathered and put back array by array", test_gather_put},

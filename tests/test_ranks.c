@@ -125,6 +125,41 @@ static void test_3d(void) {
                 "--set numerics.dx=0.06 --set time.end=0.1", two_three, 1);
 }
 
+/* Periods of two cells of the neighbour grid, the shortest it takes (every
+ * row walked whole; the decomposition's cells wrap onto themselves within
+ * a ghost layer): the film 6 dx wide with particle shifting and
+ * free-surface flags, 12 dx with h* = 2h (cells twice as wide), and the
+ * 3-D flap flume 6 dx (2.4 m) wide with its snapshots. */
+static const int three[] = {3};
+
+static void test_two_cell_periods(void) {
+  same_on_ranks(
+      "src/sph", "cases/inclined_plane.yaml",
+      "--set time.end=0.05 --set time.output_interval=0.01 "
+      "--set 'geometry.periodic_x=[0.0, 3.0e-4]' "
+      "--set 'geometry.fluid=[{x: [0.0, 3.0e-4], y: [0.0, 1.0e-3], hydrostatic: false}]' "
+      "--set 'geometry.walls=[{from: [2.75e-4, -2.5e-5], to: [2.5e-5, -2.5e-5], layers: 4, "
+      "stagger: false, extrapolated_velocity: true, boundary: fixed_layers}]' "
+      "--set output.free_surface=true --set 'numerics.shifting={coefficient: 2}'",
+      two_three, 2);
+  same_on_ranks(
+      "src/sph", "cases/inclined_plane.yaml",
+      "--set time.end=0.05 --set time.output_interval=0.01 "
+      "--set 'geometry.periodic_x=[0.0, 6.0e-4]' "
+      "--set 'geometry.fluid=[{x: [0.0, 6.0e-4], y: [0.0, 1.0e-3], hydrostatic: false}]' "
+      "--set 'geometry.walls=[{from: [5.75e-4, -2.5e-5], to: [2.5e-5, -2.5e-5], layers: 4, "
+      "stagger: false, extrapolated_velocity: true, boundary: fixed_layers}]' "
+      "--set output.free_surface=true --set 'free_surface={h_factor: 2}'",
+      three, 1);
+  same_on_ranks("src/sph-3d", "cases/linear_wave_flume_3d.yaml",
+                "--set time.end=0.3 --set time.output_interval=0.1 --set output.snapshots=true "
+                "--set 'geometry.tank={x: [-3.0, 70.0], y: [0.0, 2.4], z: [0.0, 7.0]}' "
+                "--set 'geometry.periodic_y=[0.0, 2.4]' "
+                "--set 'geometry.fluid=[{x: [0.0, 70.0], y: [0.0, 2.4], z: [0.0, 4.0]}]' "
+                "--set 'output.gauges=[[27.3, 1.2]]'",
+                three, 1);
+}
+
 /* A run to t = 0.04 s on 3 ranks, restarted from its snapshot at 0.02 s
  * on 2 ranks into a new directory: the snapshot at 0.04 s is the one-rank
  * run's, byte for byte. */
@@ -166,6 +201,7 @@ int main(void) {
                          {"SPS and the flap wavemaker", test_sps_and_wavemaker},
                          {"variable and free-surface h with mdbc walls", test_variable_h_mdbc},
                          {"3-D", test_3d},
+                         {"periods of two cells", test_two_cell_periods},
                          {"a restart on another rank count", test_restart_on_other_ranks},
                          {"mdbc walls, particle shifting and the ledger", test_shifting_and_ledger},
                          CU_TEST_INFO_NULL};

@@ -222,27 +222,27 @@ static void test_walls_count(void) {
   }
 }
 
-/* Periodic along y over 8 dx (three cells): every particle's sums are
- * those of the middle third of a block 24 dx long, to round-off. */
-static void test_periodic_y(void) {
+/* Periodic along y over `ny` dx: every particle's sums are those of the
+ * middle third of a block 3 ny dx long, to round-off. */
+static void periodic_y(int ny) {
   lattice P, B;
   const double v[3] = {1.0, 0.0, 0.0};
-  make(&P, 7, 8, 5, 2, 1, v);
-  make(&B, 7, 24, 5, 2, 0, v);
+  make(&P, 7, ny, 5, 2, 1, v);
+  make(&B, 7, 3 * ny, 5, 2, 0, v);
   for (size_t i = 0; i < P.p.n; i++) /* the same disorder in each period */
-    P.p.x[i] += 0.1 * DX * sin(3.1 * P.p.z[i] / DX + 2.0 * M_PI * P.p.y[i] / (8.0 * DX));
+    P.p.x[i] += 0.1 * DX * sin(3.1 * P.p.z[i] / DX + 2.0 * M_PI * P.p.y[i] / (ny * DX));
   for (size_t i = 0; i < B.p.n; i++)
-    B.p.x[i] += 0.1 * DX * sin(3.1 * B.p.z[i] / DX + 2.0 * M_PI * B.p.y[i] / (8.0 * DX));
+    B.p.x[i] += 0.1 * DX * sin(3.1 * B.p.z[i] / DX + 2.0 * M_PI * B.p.y[i] / (ny * DX));
   build(&P, 1);
   build(&B, 0);
   double worst = 0.0;
   size_t compared = 0;
   for (int k = 0; k < 5; k++)
-    for (int j = 0; j < 8; j++)
+    for (int j = 0; j < ny; j++)
       for (int i = 0; i < 7; i++) {
         sph_shifting_sums sp, sb;
         sph_shifting_sums_of(&P.p, &P.l, &P.sp, at(&P, id_of(&P, i, j, k)), &sp);
-        sph_shifting_sums_of(&B.p, &B.l, &B.sp, at(&B, id_of(&B, i, j + 8, k)), &sb);
+        sph_shifting_sums_of(&B.p, &B.l, &B.sp, at(&B, id_of(&B, i, j + ny, k)), &sb);
         for (int a = 0; a < 3; a++) {
           const double e = fabs(sp.tg[a] - sb.tg[a]) / share();
           if (e > worst) worst = e;
@@ -251,12 +251,21 @@ static void test_periodic_y(void) {
         if (e > worst) worst = e;
         compared++;
       }
-  printf("\n  periodic along y: %zu particles, largest difference %.1e (of a share; div r)",
-         compared, worst);
-  CU_ASSERT(compared == 280);
+  printf("\n  periodic along y over %d dx (%ld cells): %zu particles, largest difference %.1e (of "
+         "a share; div r)",
+         ny, P.g.ncell[0], compared, worst);
+  CU_ASSERT(compared == (size_t)(35 * ny));
+  CU_ASSERT(P.g.ncell[0] == (ny >= 8 ? 3 : 2));
   CU_ASSERT(worst <= 1e-12);
   drop(&P);
   drop(&B);
+}
+
+/* Over 8 dx (three cells of the grid) and over 6 dx (two: the shortest
+ * period the grid takes, every row walked whole). */
+static void test_periodic_y(void) {
+  periodic_y(8);
+  periodic_y(6);
 }
 
 static void test_fluid_only_threads(void) {

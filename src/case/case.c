@@ -670,12 +670,12 @@ static int read_case(ctx *x, const node *root, sph_case *c) {
     return sph_yaml_fail(&x->t, SPH_YAML_FROM_FILE, 0, "free_surface.h_factor",
                          "cannot be combined with numerics.smoothing_length: variable");
   if (c->periodic && c->fs_h_factor > 1.0 &&
-      !(c->periodic_range[1] - c->periodic_range[0] >= 6.0 * c->fs_h_factor * c->h))
+      !(c->periodic_range[1] - c->periodic_range[0] >= 4.0 * c->fs_h_factor * c->h))
     return sph_yaml_fail(
         &x->t, SPH_YAML_FROM_FILE, 0, "geometry.periodic_x",
-        "expected a period of at least 6 k h = %g m with free_surface.h_factor k = %g, "
+        "expected a period of at least 4 k h = %g m with free_surface.h_factor k = %g, "
         "got %g",
-        6.0 * c->fs_h_factor * c->h, c->fs_h_factor, c->periodic_range[1] - c->periodic_range[0]);
+        4.0 * c->fs_h_factor * c->h, c->fs_h_factor, c->periodic_range[1] - c->periodic_range[0]);
   rc = sph_case_read_output(x, root, c);
   if (rc >= 0) sph_case_estimate_particles(c);
   return rc < 0 ? -1 : 0;

@@ -699,9 +699,9 @@ static int read_periodic(const ctx *x, const node *m, sph_case *c) {
     c->periodic_range[0] = r[0];
     c->periodic_range[1] = r[1];
     const double L = r[1] - r[0];
-    if (!(L >= 6.0 * c->h))
-      return sph_yaml_fail_at(&x->t, v, kp, "expected a period of at least 6 h = %g m, got %g",
-                              6.0 * c->h, L);
+    if (!(L >= 4.0 * c->h))
+      return sph_yaml_fail_at(&x->t, v, kp, "expected a period of at least 4 h = %g m, got %g",
+                              4.0 * c->h, L);
     if (!c->tank.present) continue;
     if (SPH_DIM == 2)
       return sph_yaml_fail_at(

@@ -230,11 +230,11 @@ static int build(sph_grid *g, sph_particles *p, const sph_particles *q, double c
       return sph_error_set(err, "grid: a particle is more than a period outside [%g, %g)", px0,
                            px1);
     const double ncol = floor((px1 - px0) / cell);
-    if (ncol < 3)
+    if (ncol < 2)
       return sph_error_set(err,
-                           "grid: the period %g holds fewer than 3 cells of %g (the support, the "
+                           "grid: the period %g holds fewer than 2 cells of %g (the support, the "
                            "list's skin and a margin): expected a period of at least %g",
-                           px1 - px0, cell, 3.0 * cell);
+                           px1 - px0, cell, 2.0 * cell);
     cellx = (px1 - px0) / ncol;
     c0[0] = 0.0;
     f[0] = ncol;

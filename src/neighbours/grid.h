@@ -99,8 +99,10 @@ void sph_grid_orient(sph_grid *g, const sph_particles *p);
 int sph_grid_build(sph_grid *g, sph_particles *p, double cell, size_t max_cells, sph_error *err);
 /* The same for a domain periodic along store axis `axis` (SPH_AXIS_X; in
  * 3-D also Y or Z) over [px0, px1): columns are (px1 - px0)/nx >= cell wide
- * (nx >= 3); a particle outside [px0, px1) (by less than a period) is
- * binned in the column of its periodic image. */
+ * (nx >= 2: a pair within a cell of each other is then so through one image
+ * only, its minimum image; with nx <= 3 a row is walked whole, each column
+ * once); a particle outside [px0, px1) (by less than a period) is binned in
+ * the column of its periodic image. */
 int sph_grid_build_periodic(sph_grid *g, sph_particles *p, double cell, int axis, double px0,
                             double px1, size_t max_cells, sph_error *err);
 

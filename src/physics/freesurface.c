@@ -20,7 +20,7 @@
  * Invariants: the grid's cells are at least 2 max R, so every pair whose
  * discs overlap lies in neighbouring cells (across the seam of a periodic
  * grid too, where the pair is taken as its minimum image: a period holds
- * at least 3 cells, so only one image can overlap); each particle writes
+ * at least 2 cells, so only one image can overlap); each particle writes
  * only its own flag (gather form); the arc scratch is private to each
  * thread.
  */
