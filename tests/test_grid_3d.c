@@ -227,7 +227,11 @@ static void test_periodic(void) {
   sph_grid g;
   sph_grid_init(&g);
   sph_error err;
-  CU_ASSERT(sph_grid_build_periodic(&g, &p, 0.03, SPH_AXIS_X, -0.3, -0.22, 1u << 20, &err) != 0);
+  /* 0.05 is under 2 cells of 0.03: refused; 0.08 makes 2 columns */
+  CU_ASSERT(sph_grid_build_periodic(&g, &p, 0.03, SPH_AXIS_X, -0.3, -0.25, 1u << 20, &err) != 0);
+  CU_ASSERT(strstr(err.msg, "fewer than 2 cells") != NULL);
+  CU_ASSERT(sph_grid_build_periodic(&g, &p, 0.03, SPH_AXIS_X, -0.3, -0.22, 1u << 20, &err) == 0);
+  CU_ASSERT_EQUAL(g.ncell[0], 2);
   CU_ASSERT(sph_grid_build_periodic(&g, &p, 0.03, 3, -0.3, 0.0, 1u << 20, &err) != 0);
   CU_ASSERT(strstr(err.msg, "axis") != NULL);
   sph_grid_free(&g);
