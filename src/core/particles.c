@@ -163,9 +163,7 @@ int sph_particles_gather(sph_particles *to, const sph_particles *from, const siz
   to->n = 0;
   to->live = from->live;
   to->order++;
-  /* (an eighth more: a store gathered again and again, a rank's, grows
-   * seldom as its count creeps up) */
-  if (to->cap < k && grow(to, k + k / 8, err)) return -1;
+  if (to->cap < k && grow(to, k, err)) return -1;
   /* array by array: each a stream of reads and one of writes */
   int b = 0;
 #define GATHER(field, g)                                                                           \

@@ -173,22 +173,6 @@ static int staged(const sph_sim *s) {
 static int stage_walls(sph_sim *r, void *ctx, int rc, sph_error *err);
 static void stages_end(sph_sim *r, void *ctx);
 
-/* The rank store's set-up made every particle of the case (the walls'
- * flags, the scheme's arrays and the grid's directions come from it); each
- * pass gathers into it a rank's own particles and ghosts anew, and the
- * shifting runs on the whole store: its room for the whole case and its
- * shifting arrays go back (SPHERIC Test 2 at dx = 0.02 m on 2 processes:
- * 235 and 218 MB resident against 240 and 227; the set-up's peak stays). */
-static int release_store(sph_sim *r, sph_error *err) {
-  sph_particles_free(&r->p);
-  if (sph_particles_init(&r->p, 16, err)) return -1;
-  for (int a = 0; a < SPH_DIM; a++) {
-    free(r->shift[a]);
-    r->shift[a] = NULL;
-  }
-  return 0;
-}
-
 int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   const sph_case *c = s->c;
   s->self = -1;
@@ -197,7 +181,7 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
     return sph_error_set(err, "%s: at most %d ranks, got %d",
                          self < 0 ? "SPH_TEST_RANKS" : "mpirun -n", SPH_PROCS_MAX, ranks);
   s->ranks = ranks;
-  if (sph_sim_create_rank_store(c, &s->sub, err) || release_store(s->sub, err)) return -1;
+  if (sph_sim_create_rank_store(c, &s->sub, err)) return -1;
   s->sub->rank_store = 1;
   s->sub->work.skip_ghosts = 1;
   s->self = self;
