@@ -188,13 +188,8 @@ static void test_gate_periodic_mdbc(void) {
   /* the film 6 dx wide, its period two cells of the neighbour grid (the least: rows walked
    * whole), with particle shifting and free-surface flags */
   same_on_processes("src/sph", "cases/inclined_plane.yaml",
-                    "--set time.end=0.1 --set time.output_interval=0.05 "
-                    "--set 'geometry.periodic_x=[0.0, 3.0e-4]' "
-                    "--set 'geometry.fluid=[{x: [0.0, 3.0e-4], y: [0.0, 1.0e-3], hydrostatic: "
-                    "false}]' --set 'geometry.walls=[{from: [2.75e-4, -2.5e-5], to: [2.5e-5, "
-                    "-2.5e-5], layers: 4, stagger: false, extrapolated_velocity: true, boundary: "
-                    "fixed_layers}]' --set output.free_surface=true "
-                    "--set 'numerics.shifting={coefficient: 2}'",
+                    "--set time.end=0.1 --set time.output_interval=0.05 " SPH_TEST_FILM_6DX
+                    "--set output.free_surface=true --set 'numerics.shifting={coefficient: 2}'",
                     two_three, 2, 0);
   same_on_processes("src/sph", "cases/martin_moyce_coarse.yaml",
                     "--set time.end=0.05 --set time.stop=none --set 'geometry.tank={x: [0.0, "

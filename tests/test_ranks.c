@@ -133,15 +133,10 @@ static void test_3d(void) {
 static const int three[] = {3};
 
 static void test_two_cell_periods(void) {
-  same_on_ranks(
-      "src/sph", "cases/inclined_plane.yaml",
-      "--set time.end=0.05 --set time.output_interval=0.01 "
-      "--set 'geometry.periodic_x=[0.0, 3.0e-4]' "
-      "--set 'geometry.fluid=[{x: [0.0, 3.0e-4], y: [0.0, 1.0e-3], hydrostatic: false}]' "
-      "--set 'geometry.walls=[{from: [2.75e-4, -2.5e-5], to: [2.5e-5, -2.5e-5], layers: 4, "
-      "stagger: false, extrapolated_velocity: true, boundary: fixed_layers}]' "
-      "--set output.free_surface=true --set 'numerics.shifting={coefficient: 2}'",
-      two_three, 2);
+  same_on_ranks("src/sph", "cases/inclined_plane.yaml",
+                "--set time.end=0.05 --set time.output_interval=0.01 " SPH_TEST_FILM_6DX
+                "--set output.free_surface=true --set 'numerics.shifting={coefficient: 2}'",
+                two_three, 2);
   same_on_ranks(
       "src/sph", "cases/inclined_plane.yaml",
       "--set time.end=0.05 --set time.output_interval=0.01 "
@@ -152,11 +147,8 @@ static void test_two_cell_periods(void) {
       "--set output.free_surface=true --set 'free_surface={h_factor: 2}'",
       three, 1);
   same_on_ranks("src/sph-3d", "cases/linear_wave_flume_3d.yaml",
-                "--set time.end=0.3 --set time.output_interval=0.1 --set output.snapshots=true "
-                "--set 'geometry.tank={x: [-3.0, 70.0], y: [0.0, 2.4], z: [0.0, 7.0]}' "
-                "--set 'geometry.periodic_y=[0.0, 2.4]' "
-                "--set 'geometry.fluid=[{x: [0.0, 70.0], y: [0.0, 2.4], z: [0.0, 4.0]}]' "
-                "--set 'output.gauges=[[27.3, 1.2]]'",
+                "--set time.end=0.3 --set time.output_interval=0.1 --set "
+                "output.snapshots=true " SPH_TEST_FLUME_6DX,
                 three, 1);
 }
 

@@ -109,11 +109,7 @@ static void test_second_wave(void) {
 static void test_flume_3d(void) {
   char *dir3 = sph_test_tmpdir();
   char cmd[8192], path[4096];
-  snprintf(cmd, sizeof cmd,
-           "'%s' run --quiet '%s' -o '%s' --set time.end=13.4 --set 'geometry.tank={x: [-3.0, "
-           "70.0], y: [0.0, 2.4], z: [0.0, 7.0]}' --set 'geometry.periodic_y=[0.0, 2.4]' --set "
-           "'geometry.fluid=[{x: [0.0, 70.0], y: [0.0, 2.4], z: [0.0, 4.0]}]' --set "
-           "'output.gauges=[[27.3, 1.2]]'",
+  snprintf(cmd, sizeof cmd, "'%s' run --quiet '%s' -o '%s' --set time.end=13.4 " SPH_TEST_FLUME_6DX,
            sph_test_build("src/sph"), sph_test_src("cases/linear_wave_flume_3d.yaml"), dir3);
   const int ok = sph_test_system(cmd) == 0;
   CU_ASSERT_FATAL(ok);

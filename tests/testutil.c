@@ -24,8 +24,10 @@ static const char *join(const char *env, const char *rel) {
   static unsigned next;
   char *buf = ring[next++ % 8];
   const char *root = getenv(env);
-  if ((!root || !*root) && !here[0] && !getcwd(here, sizeof here)) snprintf(here, sizeof here, ".");
-  if (!root || !*root) root = here;
+  if (!root || !*root) {
+    if (!here[0] && !getcwd(here, sizeof here)) snprintf(here, sizeof here, ".");
+    root = here;
+  }
   snprintf(buf, sizeof ring[0], "%s/%s", root, rel);
   return buf;
 }

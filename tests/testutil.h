@@ -16,10 +16,10 @@
 /* Runs the suite; returns 0 if every assertion passed, 1 otherwise. */
 int sph_test_main(const char *suite, CU_TestInfo *tests);
 
-/* Absolute path of a file in the source tree (SPH_SRCDIR, or "." when
- * unset), e.g. sph_test_src("cases/martin_moyce_coarse.yaml"). The result
- * is one of 8 static buffers used in turn: copy it if it must outlive 7
- * more calls of these two functions. */
+/* Absolute path of a file in the source tree (SPH_SRCDIR, or the
+ * directory the test started in when unset), e.g. sph_test_src("cases/martin_moyce_coarse.yaml").
+ * The result is one of 8 static buffers used in turn: copy it if it must outlive 7 more calls of
+ * these two functions. */
 const char *sph_test_src(const char *rel);
 /* Same for the build tree (SPH_BUILDDIR), e.g. "src/sph". */
 const char *sph_test_build(const char *rel);
@@ -28,6 +28,22 @@ const char *sph_test_build(const char *rel);
 char *sph_test_tmpdir(void);
 /* Removes a directory tree made by sph_test_tmpdir. */
 void sph_test_rmtree(const char *dir);
+
+/* `sph run` settings of cases made narrow across their periodic axis: two
+ * cells of the neighbour grid, the least period it takes. The film of
+ * cases/inclined_plane.yaml 6 dx wide (its bed across that period); the
+ * 3-D flume of cases/linear_wave_flume_3d.yaml 6 dx (2.4 m) wide, its gauge
+ * on the middle line (27.3, 1.2). */
+#define SPH_TEST_FILM_6DX                                                                          \
+  "--set 'geometry.periodic_x=[0.0, 3.0e-4]' "                                                     \
+  "--set 'geometry.fluid=[{x: [0.0, 3.0e-4], y: [0.0, 1.0e-3], hydrostatic: false}]' "             \
+  "--set 'geometry.walls=[{from: [2.75e-4, -2.5e-5], to: [2.5e-5, -2.5e-5], layers: 4, "           \
+  "stagger: false, extrapolated_velocity: true, boundary: fixed_layers}]' "
+#define SPH_TEST_FLUME_6DX                                                                         \
+  "--set 'geometry.tank={x: [-3.0, 70.0], y: [0.0, 2.4], z: [0.0, 7.0]}' "                         \
+  "--set 'geometry.periodic_y=[0.0, 2.4]' "                                                        \
+  "--set 'geometry.fluid=[{x: [0.0, 70.0], y: [0.0, 2.4], z: [0.0, 4.0]}]' "                       \
+  "--set 'output.gauges=[[27.3, 1.2]]' "
 /* Runs a shell command, returns its exit status (or -1). */
 int sph_test_system(const char *cmd);
 /* Whether two directories hold the same files, byte for byte (diff -r). */
