@@ -92,7 +92,10 @@ static void test_cut_is_balanced_and_pure(void) {
  * key of the first particle before which the weights reach r / ranks of
  * the whole; on keys in runs (as a store sorted by cells gives them: a key
  * merges several runs) and shuffled, with weights from 1 to 1000, for 1
- * to 7 ranks; then the same cut for the particles in any order. */
+ * to 7 ranks; then the same cut for the particles in any order. The cut
+ * with uneven shares (sph_decomp_cut_shares) the same way: rank r from
+ * where the weights reach the shares of the ranks before it; shares of
+ * 0.1 and 0.9 leave the first rank a tenth of the weights. */
 typedef struct key_weight {
   uint64_t key;
   uint32_t w;
@@ -105,7 +108,7 @@ static int cmp_key_weight(const void *a, const void *b) {
 }
 
 static void plain_cut(const uint64_t *keys, const uint32_t *w, size_t n, int ranks,
-                      uint64_t *first) {
+                      const double *share, uint64_t *first) {
   key_weight *s = malloc(n * sizeof *s);
   uint64_t total = 0, sum = 0;
   for (size_t i = 0; i < n; i++)
@@ -113,8 +116,11 @@ static void plain_cut(const uint64_t *keys, const uint32_t *w, size_t n, int ran
   qsort(s, n, sizeof *s, cmp_key_weight);
   size_t p = 0;
   first[0] = 0;
+  double below = 0.0;
   for (int r = 1; r < ranks; r++) {
-    while (p < n && sum * (uint64_t)ranks < (uint64_t)r * total)
+    if (share) below += share[r - 1];
+    while (p < n && (share ? (double)sum < below * (double)total
+                           : sum * (uint64_t)ranks < (uint64_t)r * total))
       sum += s[p++].w;
     first[r] = p < n ? s[p].key : s[n - 1].key + 1;
     if (first[r] < first[r - 1]) first[r] = first[r - 1];
@@ -139,7 +145,16 @@ static void test_weighted_cut(void) {
     for (int ranks = 1; ranks <= 7; ranks++) {
       sph_error err;
       CU_ASSERT_FATAL(sph_decomp_cut_weighted(keys, w, N, ranks, first, &err) == 0);
-      plain_cut(keys, w, N, ranks, plain);
+      plain_cut(keys, w, N, ranks, NULL, plain);
+      CU_ASSERT(memcmp(first, plain, (size_t)ranks * sizeof *first) == 0);
+      /* uneven shares (the cut by measured work, solver/ranks.c) */
+      double share[7], all = 0.0;
+      for (int r = 0; r < ranks; r++)
+        all += share[r] = 0.2 + sph_test_uniform(&seed);
+      for (int r = 0; r < ranks; r++)
+        share[r] /= all;
+      CU_ASSERT_FATAL(sph_decomp_cut_shares(keys, w, N, ranks, share, first, &err) == 0);
+      plain_cut(keys, w, N, ranks, share, plain);
       CU_ASSERT(memcmp(first, plain, (size_t)ranks * sizeof *first) == 0);
     }
     for (int i = N - 1; i > 0; i--) { /* shuffled: the same cut */
@@ -150,8 +165,25 @@ static void test_weighted_cut(void) {
     }
     sph_error err;
     CU_ASSERT_FATAL(sph_decomp_cut_weighted(keys, w, N, 5, first, &err) == 0);
-    plain_cut(keys, w, N, 5, plain);
+    plain_cut(keys, w, N, 5, NULL, plain);
     CU_ASSERT(memcmp(first, plain, 5 * sizeof *first) == 0);
+    /* shares of 0.1 and 0.9: the first rank's keys weigh a tenth of the whole, to within the
+     * weight of the keys at the cut (pure: the same cut shuffled) */
+    const double tenth[2] = {0.1, 0.9};
+    CU_ASSERT_FATAL(sph_decomp_cut_shares(keys, w, N, 2, tenth, first, &err) == 0);
+    plain_cut(keys, w, N, 2, tenth, plain);
+    CU_ASSERT(memcmp(first, plain, 2 * sizeof *first) == 0);
+    uint64_t below = 0, total = 0, last = 0, at_first = 0, at_last = 0; /* the keys either side */
+    for (int i = 0; i < N; i++)
+      if (keys[i] < first[1] && keys[i] >= last) last = keys[i];
+    for (int i = 0; i < N; i++) {
+      total += w[i];
+      if (keys[i] < first[1]) below += w[i];
+      if (keys[i] == first[1]) at_first += w[i];
+      if (keys[i] == last) at_last += w[i];
+    }
+    CU_ASSERT(below > 0 && fabs((double)below - 0.1 * (double)total) <=
+                               (double)(at_first > at_last ? at_first : at_last));
   }
   free(keys);
   free(w);

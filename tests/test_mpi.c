@@ -648,6 +648,49 @@ static void test_waits(void) {
   }
 }
 
+/* The cut by measured work (solver/ranks.c, balance): with process 1 made three times slower
+ * (SPH_TEST_SLOW_PROCESS=1:2, a nap of twice its pass's time after each pass), 2 processes of
+ * one thread move their shares at the cuts (every 40 steps; 212 steps here), process 1's below
+ * 0.45 of the weight, and write the one-process run's bytes; with --balance weights the shares
+ * stay even (the cut a pure function of the state) and the bytes are the same too. */
+static void test_balance(void) {
+  const char *sets = "--set numerics.dx=0.02 --set time.end=0.1";
+  char *one = run("src/sph", "cases/lobovsky_h300.yaml", sets, "", 0, 1);
+  for (int weights = 0; weights < 2; weights++) {
+    char *d = sph_test_tmpdir(), cmd[8192], log[4200];
+    snprintf(log, sizeof log, "%s.log", d);
+    snprintf(cmd, sizeof cmd,
+             "SPH_TEST_SLOW_PROCESS=1:2 %s -x SPH_TEST_SLOW_PROCESS -n 2 '%s' run --threads 1 "
+             "'%s' -o '%s' %s%s > '%s' 2>&1",
+             mpirun(), sph_test_build("src/sph"), sph_test_src("cases/lobovsky_h300.yaml"), d, sets,
+             weights ? " --balance weights" : "", log);
+    const int rc = sph_test_system(cmd);
+    char *out = sph_test_read_file(log, NULL);
+    const char *at = out ? strstr(out, "the processes' shares of its weight ") : NULL;
+    double lo = -1.0, hi = -1.0;
+    long moved = -1;
+    if (at)
+      sscanf(at, "the processes' shares of its weight %lf to %lf (moved at %ld", &lo, &hi, &moved);
+    const int same = rc == 0 && sph_test_same_dirs(one, d);
+    printf("\n  --balance %s, process 1 three times slower: exit %d, shares %.3f to %.3f, moved at "
+           "%ld cuts, %s",
+           weights ? "weights" : "work", rc, lo, hi, moved, same ? "identical" : "DIFFERENT");
+    CU_ASSERT(rc == 0);
+    CU_ASSERT(same);
+    if (weights) {
+      CU_ASSERT(lo == 0.5 && hi == 0.5 && moved == 0);
+    } else {
+      CU_ASSERT(lo > 0.0 && lo < 0.45 && hi > 0.55 && moved >= 1);
+    }
+    free(out);
+    remove(log);
+    sph_test_rmtree(d);
+    free(d);
+  }
+  sph_test_rmtree(one);
+  free(one);
+}
+
 int main(void) {
 #ifndef SPH_MPI
   printf("test_mpi: this build has no MPI; ./configure --with-mpi (Debian: apt-get install "
@@ -669,6 +712,7 @@ int main(void) {
                          {"a killed process", test_killed_process},
                          {"SIGTERM to mpirun", test_terminated_job},
                          {"how the processes wait", test_waits},
+                         {"the cut follows a slower process", test_balance},
                          CU_TEST_INFO_NULL};
   return sph_test_main("mpi", tests);
 #endif

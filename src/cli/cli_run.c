@@ -42,7 +42,7 @@ static void on_signal(int sig) {
 static void run_usage(FILE *f) {
   fprintf(f,
           "usage: sph run CASE [-o DIR] [--threads N] [--set key=value]... [--quiet]\n"
-          "               [--restart SNAPSHOT] [--progress S]\n"
+          "               [--restart SNAPSHOT] [--progress S] [--balance MODE]\n"
           "       sph run --restart SNAPSHOT [-o DIR] [--threads N] [--set time.end=T] [--quiet]\n"
           "\n"
           "Runs the case file CASE (YAML; every key: doc/case-files.md, man sph). CASE may\n"
@@ -67,6 +67,11 @@ static void run_usage(FILE *f) {
           "                     batch job): a progress line every S seconds of wall time\n"
           "                     (default 60, so a shorter run writes none; 0: none); on a\n"
           "                     terminal the progress bar instead\n"
+          "      --balance MODE under mpirun: how the particles are cut among the\n"
+          "                     processes: 'work' (default) by their measured work, so that\n"
+          "                     a process on a slower core gets fewer; 'weights' by the\n"
+          "                     particles' estimated cost alone (the same cut every run).\n"
+          "                     The results are the same bits either way\n"
           "      --max-particles N\n"
           "                     refuse a case whose geometry makes more than N particles\n"
           "                     (default: half this machine's memory at 1200 bytes each)\n"
@@ -94,6 +99,7 @@ static void on_progress(void *ctx, const sph_sim *s) {
 typedef struct run_args {
   const char *case_path, *outdir, *restart;
   int threads, quiet;
+  int weights_only;     /* --balance weights */
   double max_particles; /* --max-particles; 0: the default bound */
   double progress;      /* --progress: seconds between lines in a log */
   const char **sets;
@@ -105,7 +111,7 @@ typedef struct run_args {
 static int parse_run_args(int argc, char **argv, run_args *a) {
   static const char *const with_value[] = {
       "-o",        "--output",        "-t",         "--threads", "-s", "--set", "-r",
-      "--restart", "--max-particles", "--progress", NULL};
+      "--restart", "--max-particles", "--progress", "--balance", NULL};
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
@@ -129,6 +135,12 @@ static int parse_run_args(int argc, char **argv, run_args *a) {
         if (sph_cli_parse_max_particles("sph run", v, &a->max_particles)) return 2;
       } else if (!strcmp(o, "--progress")) {
         if (sph_cli_parse_progress("sph run", v, &a->progress)) return 2;
+      } else if (!strcmp(o, "--balance")) {
+        if (strcmp(v, "work") && strcmp(v, "weights")) {
+          fprintf(stderr, "sph run: --balance: expected 'work' or 'weights', got '%s'\n", v);
+          return 2;
+        }
+        a->weights_only = !strcmp(v, "weights");
       } else if (!strchr(v, '=')) {
         fprintf(stderr, "sph run: --set: expected key=value, got '%s'\n", v);
         return 2;
@@ -394,6 +406,11 @@ static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
            f.processes, f.own > 0 ? f.ghosts / f.own : 0.0, f.bytes / (double)f.passes / 1e6,
            f.crowded ? "waits napping (more threads than cores)"
                      : "waits blocking (a core for every thread)");
+  if (!a->quiet && status != 1 && f.processes > 1 && f.passes > 0)
+    printf("  the cut: %s; the processes' shares of its weight %.3f to %.3f (moved at %ld "
+           "cut%s)\n",
+           f.balance ? "by measured work (--balance work)" : "by weights (--balance weights)",
+           f.share_min, f.share_max, f.balanced, f.balanced == 1 ? "" : "s");
   if (!a->quiet && status != 1) {
     /* the steps the rule chose (sph_sim_step_range), then the closing line */
     double dt_first, dt_min, t_min;
@@ -522,6 +539,7 @@ static int run_case(int argc, char **argv) {
     fprintf(stderr, "sph run: cannot create output directory %s: %s\n", a.outdir, strerror(errno));
     if (a.restart) sph_snapshot_restart_free(&rd);
   } else {
+    if (a.weights_only) sph_sim_set_balance(s, 0);
     if (!sph_procs_any(root && sph_cli_dir_take("sph run", a.outdir, &lock) != 0)) {
       if (!a.quiet) print_banner(&a, &c, s, nthreads);
       status = run_sim(&a, &c, s, &rd);

@@ -146,6 +146,11 @@ static size_t merge_equal_keys(weighted_key *s, size_t m) {
 
 int sph_decomp_cut_weighted(const uint64_t *keys, const uint32_t *w, size_t n, int ranks,
                             uint64_t *first, sph_error *err) {
+  return sph_decomp_cut_shares(keys, w, n, ranks, NULL, first, err);
+}
+
+int sph_decomp_cut_shares(const uint64_t *keys, const uint32_t *w, size_t n, int ranks,
+                          const double *share, uint64_t *first, sph_error *err) {
   first[0] = 0;
   if (ranks < 2) return 0;
   weighted_key *s = malloc((n ? n : 1) * sizeof *s);
@@ -166,8 +171,12 @@ int sph_decomp_cut_weighted(const uint64_t *keys, const uint32_t *w, size_t n, i
    * particles do not depend on their order, so neither does the cut) */
   uint64_t sum = 0;
   size_t at = 0;
+  double below = 0.0; /* with shares: the shares of the ranks before r */
   for (int r = 1; r < ranks; r++) {
-    while (at < g && (sum + s[at].w - s[at].w_max) * (uint64_t)ranks < (uint64_t)r * total)
+    if (share) below += share[r - 1];
+    while (at < g &&
+           (share ? (double)(sum + s[at].w - s[at].w_max) < below * (double)total
+                  : (sum + s[at].w - s[at].w_max) * (uint64_t)ranks < (uint64_t)r * total))
       sum += s[at++].w;
     first[r] = g ? (at < g ? s[at].key : s[g - 1].key + 1) : UINT64_MAX;
     if (first[r] < first[r - 1]) first[r] = first[r - 1];

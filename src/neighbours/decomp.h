@@ -79,6 +79,13 @@ int sph_decomp_cut(const uint64_t *keys, size_t n, int ranks, uint64_t *first, s
 int sph_decomp_cut_weighted(const uint64_t *keys, const uint32_t *w, size_t n, int ranks,
                             uint64_t *first, sph_error *err);
 
+/* The same cut with rank r's share of the whole weight share[r] (the
+ * shares sum to 1; NULL: 1 / ranks each, sph_decomp_cut_weighted's cut):
+ * rank r from the first key at which the weights below it reach the
+ * shares of the ranks before it. Pure in the keys, weights and shares. */
+int sph_decomp_cut_shares(const uint64_t *keys, const uint32_t *w, size_t n, int ranks,
+                          const double *share, uint64_t *first, sph_error *err);
+
 /* The rank that owns key k under the cut. */
 int sph_decomp_owner(const uint64_t *first, int ranks, uint64_t k);
 

@@ -50,6 +50,12 @@ int sph_procs_count(void);
  * step is one: every process makes it. */
 int sph_procs_crowded(void);
 
+/* Seconds of wall time this process has spent waiting in the collective
+ * steps so far (each blocking call and wait timed; 0 on one process): a
+ * process's work is the wall time less this (solver/ranks.c weighs the
+ * cut by it). */
+double sph_procs_waited(void);
+
 /* Whether flag is set on any process (the same answer on every one); the
  * flag itself on one process. A collective step: every process calls it at
  * the same point of the run. */

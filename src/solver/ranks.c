@@ -32,6 +32,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "core/exact_sum.h"
 #include "neighbours/decomp.h"
@@ -40,6 +41,13 @@
 #include "solver/integrate.h"
 #include "solver/procs.h"
 #include "solver/sim_internal.h"
+
+/* The monotonic clock in seconds (the cut by measured work: balance). */
+static double clock_seconds(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
 
 /* Ghosts at least this many decomposition cells deep, the cells one
  * support wide: two supports, the reach of a pass's chains (a neighbour's
@@ -125,7 +133,8 @@ typedef struct rank_sums {
 
 /* What a process tells every other after its pass, in one gather. */
 typedef struct pass_report {
-  int64_t failed;               /* 1: its pass (or its exchange's buffer) failed */
+  int64_t failed; /* 1: its pass (or its exchange's buffer) failed */
+  double work;    /* the process's seconds since its last report less its waits (-1: none yet) */
   unsigned long long arrays[2]; /* the arrays its pass changed in a bit of some particle: of
                                    the fluid, of the walls */
   rank_sums sums;
@@ -185,6 +194,9 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   s->sub->rank_store = 1;
   s->sub->work.skip_ghosts = 1;
   s->self = self;
+  s->balance = self >= 0;
+  for (int q = 0; q < ranks; q++)
+    s->share[q] = 1.0 / ranks;
   s->staged = staged(s);
   if (s->staged)
     s->sub->adami_stages = stage_walls, s->sub->adami_stages_end = stages_end,
@@ -234,6 +246,13 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
    * before it starts, for the test that the others are not left waiting */
   const char *fe = getenv("SPH_TEST_FAIL_PASS");
   if (fe && sscanf(fe, "%d:%ld", &s->fail_rank, &s->fail_pass) != 2) s->fail_pass = 0;
+  /* SPH_TEST_SLOW_PROCESS=R:F (doc/testing.md): process R naps F times its pass's time after
+   * each pass, a core 1 + F times slower, for the test of the cut by measured work */
+  const char *se = getenv("SPH_TEST_SLOW_PROCESS");
+  s->slow_rank = -1;
+  if (se && (sscanf(se, "%d:%lf", &s->slow_rank, &s->slow_factor) != 2 ||
+             !(s->slow_factor >= 0.0 && s->slow_factor <= 100.0)))
+    s->slow_rank = -1;
   if (self >= 0 && (!(s->reports = malloc((size_t)ranks * sizeof(pass_report))) ||
                     !(s->diag_all = malloc((size_t)ranks * sizeof(sph_diag_sums)))))
     return sph_error_set(err, "out of memory for the ranks' sums");
@@ -291,6 +310,9 @@ void sph_sim_ranks_forget(sph_sim *s) {
   s->hot_in_sub = 0;
   s->n_mark_last = 0, s->n_send_pos = 0, s->n_cut = 0; /* taken, sent and cut anew */
   s->late_n = 0;
+  s->work_clock = 0.0, s->work_passes = 0; /* (the restore's time is no pass's work) */
+  for (int q = 0; q < s->ranks; q++)
+    s->work_sum[q] = 0.0;
 }
 
 static int reserve(sph_sim *s, size_t n, sph_error *err) {
@@ -864,8 +886,14 @@ static int process_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fi
   if (s->staged) moved_both(s, resort, g->side);
   if (s->staged && choose_send(s, g, first, err)) return -1;
   s->stage_joined = 0;
+  const double t0 = clock_seconds();
   mine.failed =
       reserve_records(s, err) || rank_pass(s, p, g, first, s->self, resort, hmax, &mine.sums, err);
+  if (s->self == s->slow_rank && s->slow_factor > 0.0) { /* (the test hook) */
+    const double nap = s->slow_factor * (clock_seconds() - t0);
+    const struct timespec ts = {(time_t)nap, (long)(1e9 * (nap - floor(nap)))};
+    nanosleep(&ts, NULL);
+  }
   s->moved_known = 0;                  /* (the next step moves the particles) */
   if (s->staged && !s->stage_joined) { /* it stopped before its walls: the others wait there */
     wall_value *every = s->wall_buf; /* (what it sends is not read: its report tells the failure) */
@@ -874,10 +902,23 @@ static int process_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fi
   }
   mine.arrays[0] = s->changed[0], mine.arrays[1] = s->changed[1];
   s->changed[0] = s->changed[1] = 0;
+  /* its work since its last report: the wall time less its waits (balance) */
+  const double now = clock_seconds();
+  mine.work =
+      s->work_clock > 0.0 ? now - s->work_clock - (sph_procs_waited() - s->work_waited) : -1.0;
   pass_report *all = s->reports;
   sph_procs_gather(&mine, sizeof mine, all);
+  s->work_clock = clock_seconds(), s->work_waited = sph_procs_waited();
   for (int q = 0; q < s->ranks; q++)
     if (all[q].failed) return sph_procs_failed(q, err);
+  int timed = 1;
+  for (int q = 0; q < s->ranks; q++)
+    timed = timed && all[q].work >= 0.0;
+  if (timed) {
+    for (int q = 0; q < s->ranks; q++)
+      s->work_sum[q] += all[q].work;
+    s->work_passes++;
+  }
   combine(s, all, t);
   unsigned long long arrays[2] = {0, 0};
   for (int q = 0; q < s->ranks; q++)
@@ -887,6 +928,58 @@ static int process_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fi
   const size_t used = share_kind(s, 0, arrays[0], s->records);
   share_kind(s, 1, arrays[1], s->records + used);
   return 0;
+}
+
+/* The cut by measured work. A process's particles cost what the cut's
+ * weights say only on a core as fast as the others': a core shared with
+ * another job, or slowed by the machine's other tenants, takes longer
+ * (measured here: one of two cores 1.48 times slower for minutes), and the
+ * others wait for it at every pass. At each cut, when the processes' work
+ * since the last one (their wall time less their waits, gathered with the
+ * passes' reports: the same numbers on every process) differs by more than
+ * SPH_RANKS_BALANCE_SLACK, each process's share of the weights is scaled
+ * by the mean work over its own (by at most a factor of 2 either way): the
+ * step that evens out a work proportional to the share, and short of it
+ * when a part of the work (the whole store's) is the same on every
+ * process, so that it does not overshoot; no share falls below half of an
+ * even one (a process too slow for any share, its work mostly the whole
+ * store's, would otherwise be left none). Every process computes the same
+ * shares from the same numbers, and the cut moves no bit of the results
+ * (each rank's own rates are the whole store's, whatever the cut). */
+#define SPH_RANKS_BALANCE_SLACK 1.03
+#define SPH_RANKS_BALANCE_PASSES 8 /* the least passes measured for a move */
+
+static void balance(sph_sim *s) {
+  const int n = s->ranks;
+  double mean = 0.0, most = 0.0;
+  for (int q = 0; q < n; q++) {
+    mean += s->work_sum[q] / n;
+    if (s->work_sum[q] > most) most = s->work_sum[q];
+  }
+  if (s->work_passes >= SPH_RANKS_BALANCE_PASSES && mean > 0.0 &&
+      most > SPH_RANKS_BALANCE_SLACK * mean) {
+    double total = 0.0;
+    for (int q = 0; q < n; q++) {
+      const double f = s->work_sum[q] > 0.5 * mean ? mean / s->work_sum[q] : 2.0;
+      s->share[q] *= f > 0.5 ? f : 0.5;
+      total += s->share[q];
+    }
+    /* the shares summing to 1, none below half an even one (the others scaled to make room) */
+    double low = 0.0, rest = 0.0;
+    for (int q = 0; q < n; q++) {
+      s->share[q] /= total;
+      if (s->share[q] < 0.5 / n)
+        low += 0.5 / n;
+      else
+        rest += s->share[q];
+    }
+    for (int q = 0; q < n; q++)
+      s->share[q] = s->share[q] < 0.5 / n ? 0.5 / n : s->share[q] * (1.0 - low) / rest;
+    s->balanced++;
+  }
+  for (int q = 0; q < n; q++)
+    s->work_sum[q] = 0.0;
+  s->work_passes = 0;
 }
 
 int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
@@ -916,8 +1009,10 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
     if (sph_decomp_block_counts(&g, p, SPH_KIND_FLUID, s->weight, s->fluid_near, err)) return -1;
     for (size_t i = 0; i < p->n; i++)
       s->weight[i] = cut_weight(p->kind[i], s->weight[i], s->fluid_near[i]);
+    if (s->balance) balance(s);
     if (sph_decomp_keys(&g, p, s->keys, err) ||
-        sph_decomp_cut_weighted(s->keys, s->weight, p->n, s->ranks, first, err))
+        sph_decomp_cut_shares(s->keys, s->weight, p->n, s->ranks, s->balance ? s->share : NULL,
+                              first, err))
       return -1;
     s->n_cut = p->n, s->order_cut = p->order, s->cuts++;
     s->depth = ghost_depth(p, g.side);
@@ -991,6 +1086,13 @@ void sph_sim_ranks_saved_state(sph_sim *s) {
   s->hot_in_sub = 0;
 }
 
+void sph_sim_set_balance(sph_sim *s, int measured) {
+  if (s->self < 0) return;
+  s->balance = measured != 0;
+  for (int q = 0; q < s->ranks; q++)
+    s->share[q] = 1.0 / s->ranks;
+}
+
 int sph_sim_procs_figures(const sph_sim *s, sph_procs_figures *f) {
   memset(f, 0, sizeof *f);
   if (s->self < 0) return 0;
@@ -999,6 +1101,13 @@ int sph_sim_procs_figures(const sph_sim *s, sph_procs_figures *f) {
   sph_procs_gather(mine, sizeof mine, all);
   f->processes = s->ranks;
   f->crowded = sph_procs_crowded();
+  f->balance = s->balance;
+  f->balanced = s->balanced;
+  f->share_min = f->share_max = s->share[0];
+  for (int q = 1; q < s->ranks; q++) {
+    if (s->share[q] < f->share_min) f->share_min = s->share[q];
+    if (s->share[q] > f->share_max) f->share_max = s->share[q];
+  }
   for (int q = 0; q < s->ranks; q++) {
     if (q == 0) f->passes = (long)all[0];
     f->own += all[4 * q + 1], f->ghosts += all[4 * q + 2], f->bytes += all[4 * q + 3];

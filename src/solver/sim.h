@@ -63,8 +63,17 @@ typedef struct sph_procs_figures {
   double own, ghosts; /* ghosts / own: the halo's share of the work */
   double bytes;       /* sent, all processes together */
   int crowded;        /* 1: the processes nap while they wait (sph_procs_crowded) */
+  int balance;        /* 1: the cut follows the processes' measured work (sph_sim_set_balance) */
+  long balanced;      /* cuts whose processes' shares moved */
+  double share_min, share_max; /* the processes' shares of the cut's weight now */
 } sph_procs_figures;
 int sph_sim_procs_figures(const sph_sim *s, sph_procs_figures *f);
+/* Under mpirun: whether the cut follows the processes' measured work
+ * (1, the default: a process on a slower core gets fewer particles at the
+ * next cut) or the particles' weights alone (0: the cut a pure function of
+ * the state). The results are the same bits either way; only the time
+ * moves. Every process must set the same; nothing on one process. */
+void sph_sim_set_balance(sph_sim *s, int measured);
 const sph_case *sph_sim_case(const sph_sim *s);
 /* The particles (storage order changes at every step; use id for identity). */
 sph_particles *sph_sim_particles(sph_sim *s);

@@ -116,10 +116,21 @@ struct sph_sim {
                           the diagnostics' sums */
   int fail_rank;       /* the test hook SPH_TEST_FAIL_PASS (ranks.c): this process's */
   long fail_pass;      /* pass of this number fails; 0: none */
+  int slow_rank;       /* the test hook SPH_TEST_SLOW_PROCESS (ranks.c): this process (-1: none) */
+  double slow_factor;  /* naps this many times its pass's time after each pass */
   long fig_passes;     /* this process's figures (sph_sim_procs_figures) */
   double fig_own, fig_ghosts, fig_bytes;
   uint64_t order_cut; /* in this order */
   long cuts;          /* cuts made */
+  /* the cut by measured work (ranks.c, balance): on (processes only); each process's share of
+   * the cut's weight (SPH_PROCS_MAX); each process's work, in seconds, over the passes since the
+   * last cut, and those passes; this process's clock and waits at its last report; the cuts
+   * whose shares moved */
+  int balance;
+  double share[64], work_sum[64];
+  long work_passes;
+  double work_clock, work_waited;
+  long balanced;
   /* the Adami walls in stages (ranks.c, staged): on; this process's own Adami walls that
    * another process's halo holds (their indices in the store and in sub), n_send of them, and
    * each process's count; each particle's index in sub (SIZE_MAX: not there), the walls sub
