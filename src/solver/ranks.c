@@ -42,13 +42,6 @@
 #include "solver/procs.h"
 #include "solver/sim_internal.h"
 
-/* The monotonic clock in seconds (the cut by measured work: balance). */
-static double clock_seconds(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
 /* Ghosts at least this many decomposition cells deep, the cells one
  * support wide: two supports, the reach of a pass's chains (a neighbour's
  * value that needs its own neighbours: the Adami walls' extrapolation, the
@@ -886,11 +879,11 @@ static int process_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fi
   if (s->staged) moved_both(s, resort, g->side);
   if (s->staged && choose_send(s, g, first, err)) return -1;
   s->stage_joined = 0;
-  const double t0 = clock_seconds();
+  const double t0 = sph_procs_clock();
   mine.failed =
       reserve_records(s, err) || rank_pass(s, p, g, first, s->self, resort, hmax, &mine.sums, err);
   if (s->self == s->slow_rank && s->slow_factor > 0.0) { /* (the test hook) */
-    const double nap = s->slow_factor * (clock_seconds() - t0);
+    const double nap = s->slow_factor * (sph_procs_clock() - t0);
     const struct timespec ts = {(time_t)nap, (long)(1e9 * (nap - floor(nap)))};
     nanosleep(&ts, NULL);
   }
@@ -903,12 +896,12 @@ static int process_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fi
   mine.arrays[0] = s->changed[0], mine.arrays[1] = s->changed[1];
   s->changed[0] = s->changed[1] = 0;
   /* its work since its last report: the wall time less its waits (balance) */
-  const double now = clock_seconds();
+  const double now = sph_procs_clock();
   mine.work =
       s->work_clock > 0.0 ? now - s->work_clock - (sph_procs_waited() - s->work_waited) : -1.0;
   pass_report *all = s->reports;
   sph_procs_gather(&mine, sizeof mine, all);
-  s->work_clock = clock_seconds(), s->work_waited = sph_procs_waited();
+  s->work_clock = sph_procs_clock(), s->work_waited = sph_procs_waited();
   for (int q = 0; q < s->ranks; q++)
     if (all[q].failed) return sph_procs_failed(q, err);
   int timed = 1;
