@@ -9,6 +9,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 long sph_omp_min(void) {
   static long value = -1;
@@ -214,20 +215,30 @@ void sph_steal_learn(sph_steal *s) {
       balance[t] = 1.0 / parts;
     balance_parts = parts;
   }
-  /* the measured shares, raised to at least `least` each by scaling the
-   * rest of the way down (they still sum to 1): a convex step toward them
-   * keeps every share at least `least` */
-  const double least = 0.5 / parts;
-  double f[BALANCE_MAX], above = 0.0;
-  for (int t = 0; t < parts; t++) {
+  /* the measured shares, raised to at least half an even share each: a
+   * convex step toward them keeps every share at least that */
+  double f[BALANCE_MAX];
+  for (int t = 0; t < parts; t++)
     f[t] = (double)s->slot[t].done / total;
+  sph_shares_at_least_half(f, parts);
+  for (int t = 0; t < parts; t++)
+    balance[t] += BALANCE_RATE * (f[t] - balance[t]);
+}
+
+void sph_shares_at_least_half(double *f, int parts) {
+  const double least = 0.5 / parts;
+  double above = 0.0;
+  for (int t = 0; t < parts; t++)
     if (f[t] > least) above += f[t] - least;
-  }
   const double scale = above > 0.0 ? (1.0 - parts * least) / above : 0.0;
-  for (int t = 0; t < parts; t++) {
-    const double g = f[t] > least ? least + scale * (f[t] - least) : least;
-    balance[t] += BALANCE_RATE * (g - balance[t]);
-  }
+  for (int t = 0; t < parts; t++)
+    f[t] = f[t] > least ? least + scale * (f[t] - least) : least;
+}
+
+double sph_seconds(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
 void sph_steal_free(sph_steal *s) {

@@ -95,6 +95,16 @@ void sph_slice(const size_t *prefix, size_t n, size_t *lo, size_t *hi);
  * call sph_steal_learn from one thread, between regions. */
 void sph_balance_reset(void);
 
+/* Shares f[0..parts) (summing to 1) each raised to at least half an even
+ * share, 0.5 / parts, by scaling the rest of the way down: they still sum
+ * to 1 (the learned split above, and the processes' cut by measured work:
+ * solver/ranks.c). */
+void sph_shares_at_least_half(double *f, int parts);
+
+/* The monotonic clock, in seconds from some fixed point: what the library
+ * times itself with (the lane loops' trial, the processes' waits and work). */
+double sph_seconds(void);
+
 /* The learned share of part t of `parts` (1/parts when none is learned
  * for that team size). */
 double sph_balance_share(int t, int parts);

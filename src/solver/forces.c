@@ -43,7 +43,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "core/arrays.h"
 #include "core/check.h"
@@ -583,12 +582,6 @@ static int moment_pass(const sph_particles *p, const sph_nlist *l, const sph_for
   return strain_run(p, l, fp, w, &o, err);
 }
 
-static double seconds_now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 int sph_forces_fastest_loop(sph_particles *p, const sph_nlist *l, const sph_force_params *fp,
                             sph_force_work *w, sph_force_loop *loop, double *ratio,
                             sph_error *err) {
@@ -604,9 +597,9 @@ int sph_forces_fastest_loop(sph_particles *p, const sph_nlist *l, const sph_forc
   for (int round = 0; round < SPH_FASTEST_ROUNDS; round++) /* interleaved: A B A B ... */
     for (int k = 0; k < 2; k++) {
       q.loop = loops[k];
-      const double t0 = seconds_now();
+      const double t0 = sph_seconds();
       if (sph_forces_evaluate(p, l, &q, w, err)) return -1;
-      const double t = seconds_now() - t0;
+      const double t = sph_seconds() - t0;
       if (t < best[k]) best[k] = t;
     }
   *ratio = best[0] > 0.0 ? best[1] / best[0] : 1.0; /* AVX2 time over AVX-512 time */

@@ -15,13 +15,15 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
+
+#include "core/parallel.h"
 
 #ifdef SPH_MPI
 #include <mpi.h>
 #ifdef __linux__
 #include <sys/prctl.h>
 #endif
+#include <time.h>
 #include <unistd.h>
 #ifdef _OPENMP
 #include <omp.h>
@@ -29,12 +31,6 @@
 #endif
 
 static int rank = 0, count = 1;
-
-double sph_procs_clock(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 int sph_procs_built(void) {
 #ifdef SPH_MPI
@@ -100,7 +96,7 @@ static int crowded(void) {
 }
 
 /* Seconds this process has spent in the collectives' waits (sph_procs_waited):
- * each blocking call timed on sph_procs_clock. */
+ * each blocking call timed on sph_seconds, core/parallel.h). */
 static double waited = 0.0;
 
 /* Waits for the collective r, started without blocking, on a crowded
@@ -156,14 +152,14 @@ void sph_procs_end(void) {
 /* all[k] = the largest mine[k] over the processes, k < n: one collective. */
 static void max_ints(int *mine, int *all, int n) {
   MPI_Request r;
-  const double t0 = sph_procs_clock();
+  const double t0 = sph_seconds();
   if (!crowded())
     MPI_Allreduce(mine, all, n, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
   else {
     MPI_Iallreduce(mine, all, n, MPI_INT, MPI_MAX, MPI_COMM_WORLD, &r);
     wait_for(&r);
   }
-  waited += sph_procs_clock() - t0;
+  waited += sph_seconds() - t0;
 }
 
 int sph_procs_any(int flag) {
@@ -178,14 +174,14 @@ static void tell(int first, sph_error *err) {
   char msg[sizeof err->msg];
   memcpy(msg, err->msg, sizeof msg);
   MPI_Request r;
-  const double t0 = sph_procs_clock();
+  const double t0 = sph_seconds();
   if (!crowded())
     MPI_Bcast(msg, (int)sizeof msg, MPI_CHAR, first, MPI_COMM_WORLD);
   else {
     MPI_Ibcast(msg, (int)sizeof msg, MPI_CHAR, first, MPI_COMM_WORLD, &r);
     wait_for(&r);
   }
-  waited += sph_procs_clock() - t0;
+  waited += sph_seconds() - t0;
   msg[sizeof msg - 1] = '\0';
   if (first != rank) sph_error_set(err, "process %d of %d: %s", first, count, msg);
 }
@@ -225,14 +221,14 @@ void sph_procs_gather(const void *mine, size_t len, void *all) {
     return;
   }
   MPI_Request r;
-  const double t0 = sph_procs_clock();
+  const double t0 = sph_seconds();
   if (!crowded())
     MPI_Allgather(mine, (int)len, MPI_BYTE, all, (int)len, MPI_BYTE, MPI_COMM_WORLD);
   else {
     MPI_Iallgather(mine, (int)len, MPI_BYTE, all, (int)len, MPI_BYTE, MPI_COMM_WORLD, &r);
     wait_for(&r);
   }
-  waited += sph_procs_clock() - t0;
+  waited += sph_seconds() - t0;
 }
 
 void sph_procs_share(void *buf, size_t len) { sph_procs_share_from(buf, len, 0); }
@@ -240,14 +236,14 @@ void sph_procs_share(void *buf, size_t len) { sph_procs_share_from(buf, len, 0);
 void sph_procs_share_from(void *buf, size_t len, int root) {
   if (count == 1) return;
   MPI_Request r;
-  const double t0 = sph_procs_clock();
+  const double t0 = sph_seconds();
   if (!crowded())
     MPI_Bcast(buf, (int)len, MPI_BYTE, root, MPI_COMM_WORLD);
   else {
     MPI_Ibcast(buf, (int)len, MPI_BYTE, root, MPI_COMM_WORLD, &r);
     wait_for(&r);
   }
-  waited += sph_procs_clock() - t0;
+  waited += sph_seconds() - t0;
 }
 
 int sph_procs_records_fit(const size_t *counts, size_t rec) {
@@ -281,14 +277,14 @@ void sph_procs_gather_records(const void *mine, const size_t *counts, size_t rec
   records_layout(counts, rec, n, at, &t);
   /* an MPI error ends the job (MPI_ERRORS_ARE_FATAL, the default) */
   MPI_Request r;
-  const double t0 = sph_procs_clock();
+  const double t0 = sph_seconds();
   if (!crowded())
     MPI_Allgatherv(mine, n[rank], t, all, n, at, t, MPI_COMM_WORLD);
   else {
     MPI_Iallgatherv(mine, n[rank], t, all, n, at, t, MPI_COMM_WORLD, &r);
     wait_for(&r);
   }
-  waited += sph_procs_clock() - t0;
+  waited += sph_seconds() - t0;
   MPI_Type_free(&t);
 }
 
@@ -308,12 +304,12 @@ void sph_procs_gather_records_progress(void) {
 }
 
 void sph_procs_gather_records_wait(void) {
-  const double t0 = sph_procs_clock();
+  const double t0 = sph_seconds();
   if (!crowded())
     MPI_Wait(&pending, MPI_STATUS_IGNORE);
   else
     wait_for(&pending);
-  waited += sph_procs_clock() - t0;
+  waited += sph_seconds() - t0;
   MPI_Type_free(&pending_type);
 }
 

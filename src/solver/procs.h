@@ -50,12 +50,9 @@ int sph_procs_count(void);
  * step is one: every process makes it. */
 int sph_procs_crowded(void);
 
-/* The monotonic clock, in seconds from some fixed point: the clock
- * sph_procs_waited is measured on (serial builds too). */
-double sph_procs_clock(void);
-
 /* Seconds of wall time this process has spent waiting in the collective
- * steps so far (each blocking call and wait timed; 0 on one process): a
+ * steps so far (each blocking call and wait timed on the monotonic clock;
+ * 0 on one process): a
  * process's work is the wall time less this (solver/ranks.c weighs the
  * cut by it). */
 double sph_procs_waited(void);

@@ -35,6 +35,7 @@
 #include <time.h>
 
 #include "core/exact_sum.h"
+#include "core/parallel.h"
 #include "neighbours/decomp.h"
 #include "physics/kernel.h"
 #include "solver/diag_sums.h"
@@ -187,9 +188,7 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   s->sub->rank_store = 1;
   s->sub->work.skip_ghosts = 1;
   s->self = self;
-  s->balance = self >= 0;
-  for (int q = 0; q < ranks; q++)
-    s->share[q] = 1.0 / ranks;
+  sph_sim_set_balance(s, 1); /* (processes only: self >= 0) */
   s->staged = staged(s);
   if (s->staged)
     s->sub->adami_stages = stage_walls, s->sub->adami_stages_end = stages_end,
@@ -879,11 +878,11 @@ static int process_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fi
   if (s->staged) moved_both(s, resort, g->side);
   if (s->staged && choose_send(s, g, first, err)) return -1;
   s->stage_joined = 0;
-  const double t0 = sph_procs_clock();
+  const double t0 = sph_seconds();
   mine.failed =
       reserve_records(s, err) || rank_pass(s, p, g, first, s->self, resort, hmax, &mine.sums, err);
   if (s->self == s->slow_rank && s->slow_factor > 0.0) { /* (the test hook) */
-    const double nap = s->slow_factor * (sph_procs_clock() - t0);
+    const double nap = s->slow_factor * (sph_seconds() - t0);
     const struct timespec ts = {(time_t)nap, (long)(1e9 * (nap - floor(nap)))};
     nanosleep(&ts, NULL);
   }
@@ -896,12 +895,12 @@ static int process_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fi
   mine.arrays[0] = s->changed[0], mine.arrays[1] = s->changed[1];
   s->changed[0] = s->changed[1] = 0;
   /* its work since its last report: the wall time less its waits (balance) */
-  const double now = sph_procs_clock();
+  const double now = sph_seconds();
   mine.work =
       s->work_clock > 0.0 ? now - s->work_clock - (sph_procs_waited() - s->work_waited) : -1.0;
   pass_report *all = s->reports;
   sph_procs_gather(&mine, sizeof mine, all);
-  s->work_clock = sph_procs_clock(), s->work_waited = sph_procs_waited();
+  s->work_clock = sph_seconds(), s->work_waited = sph_procs_waited();
   for (int q = 0; q < s->ranks; q++)
     if (all[q].failed) return sph_procs_failed(q, err);
   int timed = 1;
@@ -957,17 +956,9 @@ static void balance(sph_sim *s) {
       s->share[q] *= f > 0.5 ? f : 0.5;
       total += s->share[q];
     }
-    /* the shares summing to 1, none below half an even one (the others scaled to make room) */
-    double low = 0.0, rest = 0.0;
-    for (int q = 0; q < n; q++) {
-      s->share[q] /= total;
-      if (s->share[q] < 0.5 / n)
-        low += 0.5 / n;
-      else
-        rest += s->share[q];
-    }
     for (int q = 0; q < n; q++)
-      s->share[q] = s->share[q] < 0.5 / n ? 0.5 / n : s->share[q] * (1.0 - low) / rest;
+      s->share[q] /= total;
+    sph_shares_at_least_half(s->share, n); /* (as the threads' learned split: core/parallel.h) */
     s->balanced++;
   }
   for (int q = 0; q < n; q++)
