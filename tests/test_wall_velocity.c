@@ -34,6 +34,7 @@
 
 #include "case/case.h"
 #include "core/particles.h"
+#include "fit_lanes.h"
 #include "testutil.h"
 #include "walls/boundary.h"
 #include "walls/wall_velocity.h"
@@ -293,6 +294,7 @@ int main(void) {
       {"ghost velocity of a linear field, walls at rest and moving", test_ghost_linear},
       {"ghost velocity across a periodic seam; shear continued", test_ghost_periodic},
       {"case keys: stagger, extrapolated_velocity, gradient_correction", test_case_keys},
+      {"the fits' eight lanes give the two lanes' bits (random cloud)", test_fit_lanes},
       CU_TEST_INFO_NULL};
   return sph_test_main("wall velocity", tests);
 }

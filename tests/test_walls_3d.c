@@ -65,6 +65,7 @@
 #include <string.h>
 
 #include "core/particles.h"
+#include "fit_lanes.h"
 #include "neighbours/grid.h"
 #include "testutil.h"
 #include "walls/boundary.h"
@@ -574,6 +575,7 @@ int main(void) {
       {"3-D linear fit: mdbc density and ghost velocity exact for linear fields, also hydrostatic",
        test_fit_linear},
       {"3-D keeping off: the tank's faces and a box obstacle", test_keep_off},
+      {"3-D fits: eight lanes give the two lanes' bits (random cloud)", test_fit_lanes},
       {"3-D repulsive wall across a periodic seam along y", test_repulsion_periodic},
       {"3-D mirror planes: images through faces, edges and corners", test_mirror_planes},
       {"3-D plates across the flume: lattice, layers and mirror points", test_plates},

@@ -178,6 +178,8 @@ static int mdbc_walls(sph_sim *s, sph_error *err) {
   double head[SPH_DIM]; /* the density's hydrostatic gradient, rho0 g / c0^2 */
   for (int a = 0; a < SPH_DIM; a++)
     head[a] = c->rho0 * c->gravity[a] / (s->fp.eos.c0 * s->fp.eos.c0);
+  /* the fits' candidates two at a time where the tests ask for the narrow lanes */
+  s->mdbc_work.narrow = s->fp.loop == SPH_LOOP_LANES || s->fp.loop == SPH_LOOP_SCALAR;
   if (sph_wall_mdbc_density(p, SPH_CUBIC_SUPPORT * h_max(s), s->fp.px0,
                             c->periodic ? s->fp.period : 0.0, s->fp.paxis, c->rho0, head,
                             &s->mdbc_work, err))

@@ -47,12 +47,12 @@ typedef struct layout {
 } layout;
 
 /* The unclamped cell along axis a of the coordinate x (not periodic). */
-static double cell_float(const layout *g, int a, double x) {
+SPH_LANE_INLINE double cell_float(const layout *g, int a, double x) {
   return floor(x / g->c[a]) - (double)g->k0[a];
 }
 
 /* The cell along axis a of the coordinate x, clamped to the grid. */
-static long cell_along(const layout *g, int a, double x) {
+SPH_LANE_INLINE long cell_along(const layout *g, int a, double x) {
   double f;
   if (a == g->paxis && g->period > 0.0) { /* into [0, period) */
     double u = fmod(x - g->o, g->period);
@@ -67,7 +67,7 @@ static long cell_along(const layout *g, int a, double x) {
 /* The cells along axis a within one cell of the coordinate x, in the
  * order the sums visit them, into cells[]; their count (0: none within
  * reach, the point is too far from the fluid). */
-static int cells_near(const layout *g, int a, double x, long cells[3]) {
+SPH_LANE_INLINE int cells_near(const layout *g, int a, double x, long cells[3]) {
   const long n = g->n[a];
   int nc = 0;
   if (a == g->paxis && g->period > 0.0) {
@@ -94,7 +94,7 @@ static int cells_near(const layout *g, int a, double x, long cells[3]) {
  * 1e-9 of a cell's width for round-off (a particle binned to a cell lies
  * inside it to round-off); 0 along the periodic axis, whose cells are
  * reached through the period. */
-static double cell_gap2(const layout *g, int a, double x, long c) {
+SPH_LANE_INLINE double cell_gap2(const layout *g, int a, double x, long c) {
   if (a == g->paxis && g->period > 0.0) return 0.0;
   const double lo = (double)(g->k0[a] + c) * g->c[a], hi = lo + g->c[a];
   double gap = x < lo ? lo - x : x > hi ? x - hi : 0.0;
@@ -142,50 +142,58 @@ static void solve_fit(const double A[FIT_N][FIT_N], const double b[SPH_FIT_MAX][
 #endif
 }
 
-/* The candidates of a cell one fit takes at a time (its stack arrays). */
+/* The candidates of a cell one fit takes at a time, and the slots of its
+ * stack arrays: room for a full last vector of the widest flavour. */
 #define FIT_CHUNK 64
+#define FIT_SLOTS (FIT_CHUNK + 8)
+
+/* The mirror point x + m of particle i. */
+static void mirror_point(const sph_particles *p, size_t i, double x[SPH_DIM]) {
+  for (int a = 0; a < SPH_DIM; a++)
+    x[a] = p->pos[a][i] + p->mirror_offset[a][i];
+}
+
+/* Each flavour FL has take_FL(w, x, per, q, qe, qs, e, ws): of the
+ * candidates in the slots [q, qe) of w (at most FIT_CHUNK), those within
+ * reach of x, r^2 < (2 h_j)^2 (the nearest image over per; NULL: none
+ * taken), their slots into qs[], in order, their offsets x_j - x into
+ * e[a][] and their weights W(x - x_j, h_j) into ws[]; their count. Lane for
+ * lane the same operations in every flavour (below the flavours' fit). */
+SPH_LANE_INLINE int take_v2(const sph_wall_velocity_work *w, const double x[SPH_DIM],
+                            const double per[SPH_DIM], size_t q, size_t qe, uint32_t *qs,
+                            double e[SPH_DIM][FIT_SLOTS], double *ws);
+#define FIT_FL v2
+#define FIT_ATTR SPH_LANE_INLINE
+#define FIT_ROWS static
+#include "walls/wall_fit_body.h"
+#undef FIT_FL
+#undef FIT_ATTR
+#undef FIT_ROWS
+
+/* The candidate slots' coordinates along axis a (a = SPH_DIM: their h):
+ * the packed arrays, one per value (bin_fluid). */
+static inline const double *packed(const sph_wall_velocity_work *w, int a) {
+  return w->pack + (size_t)a * w->cap_n;
+}
 
 /* Two lanes into out[0], out[1]. */
 static inline void store2(double *out, v2 a) { memcpy(out, &a, 2 * sizeof *out); }
 
-/* The cubic spline's W(r, h) in two lanes: lane for lane the operations of
- * sph_cubic_w_dw (core/kernel_shape.h, sph_shape_cubic), so its bits. */
-static inline v2 cubic_w2(v2 r, v2 h) {
-  const v2 inv_h = v2_div(v2_all(1.0), h), q = v2_mul(r, inv_h);
-  v2 sigma = v2_mul(v2_mul(v2_all(sph_kernel_c(SPH_SHAPE_CUBIC_SPLINE)), inv_h), inv_h);
-  SPH_IF3(sigma = v2_mul(sigma, inv_h);)
-  const v2 near = v2_mul(sigma, v2_add(v2_sub(v2_all(1.0), v2_mul(v2_mul(v2_all(1.5), q), q)),
-                                       v2_mul(v2_mul(v2_mul(v2_all(0.75), q), q), q)));
-  const v2 t = v2_sub(v2_all(2.0), q);
-  const v2 far = v2_mul(v2_mul(v2_mul(v2_mul(sigma, v2_all(0.25)), t), t), t);
-  return v2_sel(v2_lt(q, v2_all(1.0)), near, v2_sel(v2_lt(q, v2_all(2.0)), far, v2_all(0.0)));
-}
-
-/* The separations x - x_j of the packed slots p0 and p1 along axis a, in
- * two lanes: the nearest image over the period per[a] (per NULL: none
- * taken; a period of 0 leaves them as they are, bit for bit). */
-static inline v2 sep2(const double x[SPH_DIM], const double *p0, const double *p1, int a,
-                      const double per[SPH_DIM]) {
-  const v2 d = v2_sub(v2_all(x[a]), v2_set(p0[a], p1[a]));
-  if (!per) return d;
-  const v2 vp = v2_all(per[a]), hp = v2_all(0.5 * per[a]), np = v2_all(-0.5 * per[a]);
-  return SPH_LANE_MIN_IMAGE(v2, d, vp, hp, np);
-}
-
-/* The candidates in the slots [q, qe) of w (at most FIT_CHUNK) within
- * reach of x: their slots into qs[], in order; their count. Two at a time
- * without a branch: within reach is r^2 < (2 h_j)^2. */
-static inline __attribute__((always_inline)) int within_reach(const sph_wall_velocity_work *w,
-                                                              const double x[SPH_DIM],
-                                                              const double per[SPH_DIM], size_t q,
-                                                              size_t qe, uint32_t *qs) {
+/* Two candidates at a time: those within reach without a branch, then
+ * their weights (an odd count's last pair repeats its slot). */
+SPH_LANE_INLINE int take_v2(const sph_wall_velocity_work *w, const double x[SPH_DIM],
+                            const double per[SPH_DIM], size_t q, size_t qe, uint32_t *qs,
+                            double e[SPH_DIM][FIT_SLOTS], double *ws) {
+  const double *ph = packed(w, SPH_DIM);
   int k = 0;
   for (; q + 1 < qe; q += 2) {
-    const double *p0 = w->pack + PACK * q, *p1 = p0 + PACK;
-    const v2 dx = sep2(x, p0, p1, 0, per), dy = sep2(x, p0, p1, 1, per);
-    v2 r2 = v2_add(v2_mul(dx, dx), v2_mul(dy, dy));
-    SPH_IF3(const v2 dz = sep2(x, p0, p1, 2, per); r2 = v2_add(r2, v2_mul(dz, dz));)
-    const v2 h = v2_set(p0[SPH_DIM], p1[SPH_DIM]);
+    v2 r2 = v2_all(0.0);
+    for (int a = 0; a < SPH_DIM; a++) {
+      const double *pa = packed(w, a);
+      const v2 d = sep_v2(x[a], v2_set(pa[q], pa[q + 1]), per, a);
+      r2 = a ? v2_add(r2, v2_mul(d, d)) : v2_mul(d, d);
+    }
+    const v2 h = v2_set(ph[q], ph[q + 1]);
     const unsigned in =
         v2_bits2(v2_lt(r2, v2_mul(v2_mul(v2_all(SPH_CUBIC_SUPPORT * SPH_CUBIC_SUPPORT), h), h)));
     qs[k] = (uint32_t)q;
@@ -194,138 +202,82 @@ static inline __attribute__((always_inline)) int within_reach(const sph_wall_vel
     k += (int)(in >> 1);
   }
   if (q < qe) {
-    const double *p0 = w->pack + PACK * q;
     double r2 = 0.0;
     for (int a = 0; a < SPH_DIM; a++) {
-      const double d = per ? sph_grid_min_image(x[a] - p0[a], per[a]) : x[a] - p0[a];
+      const double xa = packed(w, a)[q];
+      const double d = per ? sph_grid_min_image(x[a] - xa, per[a]) : x[a] - xa;
       r2 = a ? r2 + d * d : d * d;
     }
     qs[k] = (uint32_t)q;
-    k += r2 < SPH_CUBIC_SUPPORT * SPH_CUBIC_SUPPORT * p0[SPH_DIM] * p0[SPH_DIM];
+    k += r2 < SPH_CUBIC_SUPPORT * SPH_CUBIC_SUPPORT * ph[q] * ph[q];
+  }
+  for (int t = 0; t < k; t += 2) {
+    const uint32_t q0 = qs[t], q1 = qs[t + 1 < k ? t + 1 : t];
+    v2 r2 = v2_all(0.0);
+    for (int a = 0; a < SPH_DIM; a++) {
+      const double *pa = packed(w, a);
+      const v2 d = sep_v2(x[a], v2_set(pa[q0], pa[q1]), per, a);
+      r2 = a ? v2_add(r2, v2_mul(d, d)) : v2_mul(d, d);
+      store2(e[a] + t, v2_neg(d));
+    }
+    store2(ws + t, cubic_w_v2(v2_sqrt(r2), v2_set(ph[q0], ph[q1])));
   }
   return k;
 }
 
-/* The offsets x_j - x of the candidates in the slots qs[0..k) into e[a][],
- * their weights W(x - x_j, h_j) into ws[], two at a time. */
-static inline __attribute__((always_inline)) void
-weights(const sph_wall_velocity_work *w, const double x[SPH_DIM], const double per[SPH_DIM],
-        const uint32_t *qs, int k, double e[SPH_DIM][FIT_CHUNK + 1], double *ws) {
-  for (int t = 0; t < k; t += 2) { /* (an odd count's last pair repeats its slot) */
-    const double *p0 = w->pack + PACK * qs[t], *p1 = w->pack + PACK * qs[t + 1 < k ? t + 1 : t];
-    v2 r2 = v2_all(0.0);
-    for (int a = 0; a < SPH_DIM; a++) {
-      const v2 d = sep2(x, p0, p1, a, per);
-      r2 = a ? v2_add(r2, v2_mul(d, d)) : v2_mul(d, d);
-      store2(e[a] + t, v2_neg(d));
-    }
-    store2(ws + t, cubic_w2(v2_sqrt(r2), v2_set(p0[SPH_DIM], p1[SPH_DIM])));
-  }
-}
+#ifdef SPH_LANES_AVX512
+SPH_AVX512 int take_v8z(const sph_wall_velocity_work *w, const double x[SPH_DIM],
+                        const double per[SPH_DIM], size_t q, size_t qe, uint32_t *qs,
+                        double e[SPH_DIM][FIT_SLOTS], double *ws);
+#define FIT_FL v8z
+#define FIT_ATTR SPH_AVX512
+#define FIT_ROWS static __attribute__((target("avx512f")))
+#include "walls/wall_fit_body.h"
+#undef FIT_FL
+#undef FIT_ATTR
+#undef FIT_ROWS
 
-/* The linear moving-least-squares fit, at the point x, of nf fields f[k]
- * (per-particle arrays) over the fluid particles within reach of it:
- * f ~ c0 + c . (x_j - x), weights W(x - x_j, h_j) (exact for a linear
- * field, also where the kernel is cut by the wall or the surface). Fills
- * fit[FIT_N k ..] with (c0, c) per field; where the fit's moment matrix is
- * near singular (fewer than SPH_DIM + 1 independent neighbours) the
- * Shepard average sum W f / sum W with a zero gradient. fmax (NULL, or a
- * value set by the caller) is raised to the largest value of the first
- * field among those particles, and top set to the offset x_j - x of the
- * first particle in the sums' order that holds it. Returns 0 when no fluid
- * particle reaches the point, else 1.
- *
- * A cell's candidates go FIT_CHUNK at a time through within_reach and
- * weights (two lanes, lane for lane the scalar operations), then into the
- * sums one by one in their order: the bits of one scalar loop over them.
- * Always inlined, so that each caller's nf is a constant and the sums
- * stay in registers. */
-static inline __attribute__((always_inline)) int
-fit_at(const layout *g, const sph_wall_velocity_work *w, const double x[SPH_DIM],
-       const double *const *f, int nf, double *fit, double *fmax, double top[SPH_DIM]) {
-  long cells[SPH_DIM][3];
-  int nc[3] = {1, 1, 1};
-  for (int a = SPH_DIM - 1; a >= 0; a--) /* (the order of 2-D's first reach test: y, then x) */
-    if ((nc[a] = cells_near(g, a, x[a], cells[a])) == 0) return 0;
-  /* the squared gap along each axis between x and each cell: a cell whose
-   * nearest point is beyond the support holds no particle the sums below
-   * would take, so it is not visited (the same sums, in the same order) */
-  double gap2[3][3] = {{0.0}};
-  for (int a = 0; a < SPH_DIM; a++)
-    for (int k = 0; k < nc[a]; k++)
-      gap2[a][k] = cell_gap2(g, a, x[a], cells[a][k]);
-  const double s2 = g->support * g->support;
-  double per[SPH_DIM] = {0.0}; /* the period along each axis (0: none) */
-  per[g->paxis] = g->period;
-  /* linear MLS moments: A = sum W e e^T, b = sum W f e, e = (1, x_j - x), in
-   * scalars (registers) */
-  double sw = 0.0, a01 = 0.0, a02 = 0.0, a11 = 0.0, a12 = 0.0, a22 = 0.0;
-  double sf[SPH_FIT_MAX] = {0.0}, b1[SPH_FIT_MAX] = {0.0}, b2[SPH_FIT_MAX] = {0.0};
-  SPH_IF3(double a03 = 0.0, a13 = 0.0, a23 = 0.0, a33 = 0.0, b3[SPH_FIT_MAX] = {0.0};)
-  uint32_t qs[FIT_CHUNK + 1];
-  double e[SPH_DIM][FIT_CHUNK + 1], ws[FIT_CHUNK + 1];
-  for (int kz = 0; kz < nc[2]; kz++)
-    for (int ky = 0; ky < nc[1]; ky++)
-      for (int kx = 0; kx < nc[0]; kx++) {
-        if (gap2[0][kx] + gap2[1][ky] + gap2[2][kz] >= s2) continue;
-        size_t cell = (size_t)(cells[1][ky] * g->n[0] + cells[0][kx]);
-        SPH_IF3(cell += (size_t)(cells[2][kz] * g->n[0] * g->n[1]);)
-        for (size_t q = w->start[cell], end = w->start[cell + 1]; q < end; q += FIT_CHUNK) {
-          const size_t qe = end - q > FIT_CHUNK ? q + FIT_CHUNK : end;
-          int k;
-          if (g->period > 0.0) {
-            k = within_reach(w, x, per, q, qe, qs);
-            weights(w, x, per, qs, k, e, ws);
-          } else { /* (no nearest image to take) */
-            k = within_reach(w, x, NULL, q, qe, qs);
-            weights(w, x, NULL, qs, k, e, ws);
-          }
-          for (int t = 0; t < k; t++) {
-            const double wj = ws[t], ex = e[0][t], ey = e[1][t];
-            SPH_IF3(const double ez = e[2][t];)
-            sw += wj;
-            a01 += wj * ex;
-            a02 += wj * ey;
-            a11 += wj * ex * ex;
-            a12 += wj * ex * ey;
-            a22 += wj * ey * ey;
-            SPH_IF3(a03 += wj * ez; a13 += wj * ex * ez; a23 += wj * ey * ez; a33 += wj * ez * ez;)
-            const size_t j = w->idx[qs[t]];
-            if (fmax && f[0][j] > *fmax) {
-              *fmax = f[0][j];
-              top[0] = ex, top[1] = ey;
-              SPH_IF3(top[2] = ez;)
-            }
-            for (int m = 0; m < nf; m++) {
-              const double fj = f[m][j];
-              sf[m] += wj * fj;
-              b1[m] += wj * ex * fj;
-              b2[m] += wj * ey * fj;
-              SPH_IF3(b3[m] += wj * ez * fj;)
-            }
-          }
-        }
-      }
-  if (!(sw > 0.0)) return 0;
-  for (int m = 0; m < nf; m++) {
-    fit[FIT_N * m] = sf[m] / sw;
-    for (int r = 1; r < FIT_N; r++)
-      fit[FIT_N * m + r] = 0.0;
+/* Eight candidates at a time, read in a row (no gather: slow on some
+ * processors), the last vector's lanes past qe masked off (not read; h 1
+ * there, so that no lane divides by zero): those within reach packed to
+ * the front (vcompresspd into a register, then stored whole: the arrays
+ * have room for it) with their r^2 and h, then weighed eight at a time. */
+SPH_AVX512 int take_v8z(const sph_wall_velocity_work *w, const double x[SPH_DIM],
+                        const double per[SPH_DIM], size_t q, size_t qe, uint32_t *qs,
+                        double e[SPH_DIM][FIT_SLOTS], double *ws) {
+  const double *ph = packed(w, SPH_DIM);
+  double r2s[FIT_SLOTS], hs[FIT_SLOTS];
+  int k = 0;
+  for (; q < qe; q += 8) {
+    const __mmask8 lanes = qe - q >= 8 ? (__mmask8)0xff : (__mmask8)((1u << (qe - q)) - 1u);
+    v8z d[SPH_DIM], r2 = v8z_all(0.0);
+    for (int a = 0; a < SPH_DIM; a++) {
+      d[a] = sep_v8z(x[a], _mm512_maskz_loadu_pd(lanes, packed(w, a) + q), per, a);
+      r2 = a ? v8z_add(r2, v8z_mul(d[a], d[a])) : v8z_mul(d[a], d[a]);
+    }
+    const v8z h = _mm512_mask_loadu_pd(v8z_all(1.0), lanes, ph + q);
+    const __mmask8 in =
+        lanes & v8z_lt(r2, v8z_mul(v8z_mul(v8z_all(SPH_CUBIC_SUPPORT * SPH_CUBIC_SUPPORT), h), h));
+    if (!in) continue;
+    for (int a = 0; a < SPH_DIM; a++)
+      _mm512_storeu_pd(e[a] + k, _mm512_maskz_compress_pd(in, v8z_neg(d[a])));
+    _mm512_storeu_pd(r2s + k, _mm512_maskz_compress_pd(in, r2));
+    _mm512_storeu_pd(hs + k, _mm512_mask_compress_pd(v8z_all(1.0), in, h));
+    for (unsigned b = in; b; b &= b - 1u)
+      qs[k++] = (uint32_t)(q + (size_t)__builtin_ctz(b));
   }
-#if SPH_DIM == 2
-  const double A[FIT_N][FIT_N] = {{sw, a01, a02}, {a01, a11, a12}, {a02, a12, a22}};
-#else
-  const double A[FIT_N][FIT_N] = {
-      {sw, a01, a02, a03}, {a01, a11, a12, a13}, {a02, a12, a22, a23}, {a03, a13, a23, a33}};
-#endif
-  double b[SPH_FIT_MAX][FIT_N];
-  for (int m = 0; m < nf; m++) {
-    b[m][0] = sf[m], b[m][1] = b1[m], b[m][2] = b2[m];
-    SPH_IF3(b[m][3] = b3[m];)
-  }
-  solve_fit(A, (const double(*)[FIT_N])b, nf, fit);
-  return 1;
+  for (int t = 0; t < k; t += 8) /* (past k: r^2 0 and h 1, not read) */
+    _mm512_storeu_pd(ws + t,
+                     cubic_w_v8z(v8z_sqrt(_mm512_loadu_pd(r2s + t)), _mm512_loadu_pd(hs + t)));
+  return k;
 }
+#endif
+
+#ifdef SPH_LANES_AVX512
+/* Whether this call's fits take eight lanes (AVX-512 here, and w not
+ * narrow). */
+static int wide(const sph_wall_velocity_work *w) { return !w->narrow && sph_cpu_has_avx512(); }
+#endif
 
 /* The fluid particles of p binned by cell into w (cells at least
  * `support` wide, and not many more than particles), the layout into *gp;
@@ -407,20 +359,14 @@ static int bin_fluid(const sph_particles *p, double support, double px0, double 
   for (size_t c = cells; c > 0; c--)
     w->start[c] = w->start[c - 1];
   w->start[0] = 0;
-  for (size_t q = 0; q < nf; q++) { /* the candidates' coordinates in the cells' order */
+  for (size_t q = 0; q < nf; q++) { /* the candidates' coordinates and h in the cells' order */
     const size_t j = w->idx[q];
     for (int a = 0; a < SPH_DIM; a++)
-      w->pack[PACK * q + a] = p->pos[a][j];
-    w->pack[PACK * q + SPH_DIM] = p->h[j];
+      w->pack[(size_t)a * w->cap_n + q] = p->pos[a][j];
+    w->pack[(size_t)SPH_DIM * w->cap_n + q] = p->h[j];
   }
   *gp = g;
   return 0;
-}
-
-/* The mirror point x + m of particle i. */
-static void mirror_point(const sph_particles *p, size_t i, double x[SPH_DIM]) {
-  for (int a = 0; a < SPH_DIM; a++)
-    x[a] = p->pos[a][i] + p->mirror_offset[a][i];
 }
 
 int sph_wall_velocity(const sph_particles *p, double support, double px0, double period, int paxis,
@@ -432,18 +378,13 @@ int sph_wall_velocity(const sph_particles *p, double support, double px0, double
   layout g;
   const int rc = bin_fluid(p, support, px0, period, paxis, &g, w, err);
   if (rc) return rc < 0 ? -1 : 0;
-  const double *const fields[SPH_DIM] = {SPH_XYZ(p->vx, p->vy, p->vz)};
-  const long nl = (long)n;
-#pragma omp parallel for schedule(dynamic, 256) if (nl > SPH_OMP_MIN)
-  for (long li = 0; li < nl; li++) {
-    const size_t i = (size_t)li;
-    if (!(p->flags[i] & SPH_FLAG_NO_SLIP) || p->kind[i] != SPH_KIND_WALL) continue;
-    double fit[FIT_N * SPH_DIM], x[SPH_DIM];
-    mirror_point(p, i, x);
-    if (fit_at(&g, w, x, fields, SPH_DIM, fit, NULL, NULL))
-      for (int a = 0; a < SPH_DIM; a++)
-        gv[a][i] = 2.0 * p->vel[a][i] - fit[FIT_N * a];
+#ifdef SPH_LANES_AVX512
+  if (wide(w)) {
+    velocity_rows_v8z(p, &g, w, gv);
+    return 0;
   }
+#endif
+  velocity_rows_v2(p, &g, w, gv);
   return 0;
 }
 
@@ -453,31 +394,12 @@ int sph_wall_mdbc_density(sph_particles *p, double support, double px0, double p
   layout g;
   const int rc = bin_fluid(p, support, px0, period, paxis, &g, w, err);
   if (rc < 0) return -1;
-  const double *const fields[1] = {p->rho};
-  const long nl = (long)p->n;
-#pragma omp parallel for schedule(dynamic, 256) if (nl > SPH_OMP_MIN)
-  for (long li = 0; li < nl; li++) {
-    const size_t i = (size_t)li;
-    if (!(p->flags[i] & SPH_FLAG_MDBC) || p->kind[i] != SPH_KIND_WALL) continue;
-    double fit[FIT_N], x[SPH_DIM], top = -INFINITY, at[SPH_DIM] = {0.0}, rho = rho0;
-    mirror_point(p, i, x);
-    if (rc == 0 && fit_at(&g, w, x, fields, 1, fit, &top, at)) {
-      /* the fit at the wall particle: rho_g - m . grad rho_g */
-#if SPH_DIM == 2
-      rho = fit[0] - (fit[1] * p->mx[i] + fit[2] * p->my[i]);
-#else
-      rho = fit[0] - (fit[1] * p->mx[i] + fit[2] * p->my[i] + fit[3] * p->mz[i]);
-#endif
-      /* no density the fluid around does not have, but for the weight of the fluid between
-       * its densest particle (x + at, x the mirror point) and the wall particle (x - m):
-       * head . ((x - m) - (x + at)) */
-      double lift = 0.0;
-      for (int a = 0; a < SPH_DIM; a++)
-        lift -= head[a] * (p->mirror_offset[a][i] + at[a]);
-      if (lift > 0.0) top += lift;
-      if (rho > top) rho = top;
-    }
-    p->rho[i] = rho > rho0 ? rho : rho0; /* a wall pushes, never pulls */
+#ifdef SPH_LANES_AVX512
+  if (wide(w)) {
+    mdbc_rows_v8z(p, &g, w, rc, rho0, head);
+    return 0;
   }
+#endif
+  mdbc_rows_v2(p, &g, w, rc, rho0, head);
   return 0;
 }

@@ -48,9 +48,14 @@ typedef struct sph_wall_velocity_work {
   size_t *start; /* cell offsets into idx */
   uint32_t *idx; /* fluid storage indices by cell, in storage order within a cell */
   size_t *key;   /* cell of each particle (scratch) */
-  double *pack;  /* per slot of idx: the particle's coordinates and h (SPH_DIM + 1 values), so
-                    that a fit reads its candidates in a row */
+  double *pack;  /* the coordinates and h of the particles of idx, slot by slot: SPH_DIM + 1
+                    arrays of cap_n, so that a fit reads its candidates in a row */
   size_t cap_cells, cap_n;
+  /* 1: the fits test and weigh their candidates two at a time even where
+   * the processor has AVX-512 (eight at a time, the default); the same
+   * bits either way (the sums take them one by one in the same order).
+   * The tests' SPH_TEST_LANES=portable or scalar sets it. */
+  int narrow;
 } sph_wall_velocity_work;
 
 void sph_wall_velocity_work_free(sph_wall_velocity_work *w);
