@@ -673,7 +673,6 @@ static void test_layout(void) {
     in.colorbar = 1;
     in.hi = journal[k].hi;
     CU_ASSERT_EQUAL_FATAL(rlayout_figure(&in, &L, &err), 0);
-    const rrect *b = &L.panel[0].plot;
     CU_ASSERT(L.xt.n >= 3 && L.yt.n >= 3 && L.bt.n >= 3);
     CU_ASSERT(L.yt.step / (in.view[3] - in.view[2]) * (b->y1 - b->y0) >= 9.0);
     CU_ASSERT(L.bt.step / in.hi * (L.bar.y1 - L.bar.y0) >= 9.0);
