@@ -671,12 +671,23 @@ static void test_balance(void) {
     long moved = -1;
     if (at)
       sscanf(at, "the processes' shares of its weight %lf to %lf (moved at %ld", &lo, &hi, &moved);
+    /* the waits: "; each waited A to B s for the others", the run's "outputs, W s wall" */
+    const char *wat = out ? strstr(out, "; each waited ") : NULL;
+    const char *wall_at = out ? strstr(out, " outputs, ") : NULL;
+    double wlo = -1.0, whi = -1.0, wall = -1.0;
+    if (wat) sscanf(wat, "; each waited %lf to %lf s for the others", &wlo, &whi);
+    if (wall_at) sscanf(wall_at, " outputs, %lf s wall", &wall);
     const int same = rc == 0 && sph_test_same_dirs(one, d);
     printf("\n  --balance %s, process 1 three times slower: exit %d, shares %.3f to %.3f, moved at "
-           "%ld cuts, %s",
-           weights ? "weights" : "work", rc, lo, hi, moved, same ? "identical" : "DIFFERENT");
+           "%ld cuts, waits %.3g to %.3g s of %.3g s, %s",
+           weights ? "weights" : "work", rc, lo, hi, moved, wlo, whi, wall,
+           same ? "identical" : "DIFFERENT");
     CU_ASSERT(rc == 0);
     CU_ASSERT(same);
+    CU_ASSERT(wlo >= 0.0 && wlo <= whi && whi <= wall);
+    /* with the cut by weights the other process waits out the slow one's naps (two thirds of
+     * each pass's time) */
+    if (weights) CU_ASSERT(whi > 0.3 * wall);
     if (weights) {
       CU_ASSERT(lo == 0.5 && hi == 0.5 && moved == 0);
     } else {

@@ -408,9 +408,11 @@ static int run_sim(const run_args *a, const sph_case *c, sph_sim *s,
                      : "waits blocking (a core for every thread)");
   if (!a->quiet && status != 1 && f.processes > 1 && f.passes > 0)
     printf("  the cut: %s; the processes' shares of its weight %.3f to %.3f (moved at %ld "
-           "cut%s)\n",
+           "cut%s); each waited %.3g to %.3g s for the others (%.2g to %.2g %% of the run)\n",
            f.balance ? "by measured work (--balance work)" : "by weights (--balance weights)",
-           f.share_min, f.share_max, f.balanced, f.balanced == 1 ? "" : "s");
+           f.share_min, f.share_max, f.balanced, f.balanced == 1 ? "" : "s", f.waited_min,
+           f.waited_max, wall > 0.0 ? 100.0 * f.waited_min / wall : 0.0,
+           wall > 0.0 ? 100.0 * f.waited_max / wall : 0.0);
   if (!a->quiet && status != 1) {
     /* the steps the rule chose (sph_sim_step_range), then the closing line */
     double dt_first, dt_min, t_min;

@@ -1080,8 +1080,9 @@ void sph_sim_set_balance(sph_sim *s, int measured) {
 int sph_sim_procs_figures(const sph_sim *s, sph_procs_figures *f) {
   memset(f, 0, sizeof *f);
   if (s->self < 0) return 0;
-  const double mine[4] = {(double)s->fig_passes, s->fig_own, s->fig_ghosts, s->fig_bytes};
-  double all[4 * SPH_PROCS_MAX];
+  const double mine[5] = {(double)s->fig_passes, s->fig_own, s->fig_ghosts, s->fig_bytes,
+                          sph_procs_waited() - s->fig_waited0};
+  double all[5 * SPH_PROCS_MAX];
   sph_procs_gather(mine, sizeof mine, all);
   f->processes = s->ranks;
   f->crowded = sph_procs_crowded();
@@ -1092,9 +1093,13 @@ int sph_sim_procs_figures(const sph_sim *s, sph_procs_figures *f) {
     if (s->share[q] < f->share_min) f->share_min = s->share[q];
     if (s->share[q] > f->share_max) f->share_max = s->share[q];
   }
+  f->waited_min = f->waited_max = all[4];
   for (int q = 0; q < s->ranks; q++) {
-    if (q == 0) f->passes = (long)all[0];
-    f->own += all[4 * q + 1], f->ghosts += all[4 * q + 2], f->bytes += all[4 * q + 3];
+    const double *a = all + 5 * q;
+    if (q == 0) f->passes = (long)a[0];
+    f->own += a[1], f->ghosts += a[2], f->bytes += a[3];
+    if (a[4] < f->waited_min) f->waited_min = a[4];
+    if (a[4] > f->waited_max) f->waited_max = a[4];
   }
   return 0;
 }

@@ -728,6 +728,7 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
   const sph_case *c = sph_sim_case(s);
   outputs out = {0};
   memset(r, 0, sizeof *r);
+  s->fig_waited0 = sph_procs_waited(); /* (the run's waits: sph_sim_procs_figures) */
   out.dir = o->outdir;
   out.row = o->row;
   out.row_ctx = o->row_ctx;

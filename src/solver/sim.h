@@ -65,7 +65,10 @@ typedef struct sph_procs_figures {
   int crowded;        /* 1: the processes nap while they wait (sph_procs_crowded) */
   int balance;        /* 1: the cut follows the processes' measured work (sph_sim_set_balance) */
   long balanced;      /* cuts whose processes' shares moved */
-  double share_min, share_max; /* the processes' shares of the cut's weight now */
+  double share_min, share_max;   /* the processes' shares of the cut's weight now */
+  double waited_min, waited_max; /* seconds a process waited for the others in the collective
+                                    steps since sph_run_resume began, the least and the most
+                                    (sph_procs_waited) */
 } sph_procs_figures;
 int sph_sim_procs_figures(const sph_sim *s, sph_procs_figures *f);
 /* Under mpirun: whether the cut follows the processes' measured work

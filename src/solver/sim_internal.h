@@ -120,6 +120,7 @@ struct sph_sim {
   double slow_factor;  /* naps this many times its pass's time after each pass */
   long fig_passes;     /* this process's figures (sph_sim_procs_figures) */
   double fig_own, fig_ghosts, fig_bytes;
+  double fig_waited0; /* sph_procs_waited when sph_run_resume began */
   uint64_t order_cut; /* in this order */
   long cuts;          /* cuts made */
   /* the cut by measured work (ranks.c, balance): on (processes only); each process's share of
