@@ -266,7 +266,7 @@ static int wall_ghosts(const sph_particles *p, const sph_force_params *fp, doubl
                        sph_wall_velocity_work *wv, sph_error *err) {
   const double reach =
       fp->var_h && fp->h_reach > 0.0 ? SPH_CUBIC_SUPPORT * fp->h_reach : kernel_reach(p, fp);
-  wv->narrow = fp->loop == SPH_LOOP_LANES || fp->loop == SPH_LOOP_SCALAR; /* (as mdbc_walls) */
+  wv->narrow = sph_force_loop_narrow(fp->loop);
   return sph_wall_velocity(p, reach, fp->px0, fp->periodic ? fp->period : 0.0, fp->paxis, gv, wv,
                            err);
 }

@@ -81,6 +81,14 @@
 /* Whether the loop can run on this build and processor. */
 int sph_force_loop_available(sph_force_loop loop);
 
+/* Whether the loop asked for is the portable lanes or the scalar loop: the
+ * passes beside the interaction loop (the free-surface scan, the walls'
+ * fits) then take no wider lanes either (the same bits whichever they take;
+ * SPH_TEST_LANES=portable or scalar asks for it). */
+static inline int sph_force_loop_narrow(sph_force_loop loop) {
+  return loop == SPH_LOOP_SCALAR || loop == SPH_LOOP_LANES;
+}
+
 void sph_force_work_free(sph_force_work *w);
 
 /* Room in w for n particles (the contents carried over): for a caller

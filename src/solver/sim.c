@@ -77,8 +77,7 @@ static int free_surface(sph_sim *s, sph_error *err) {
       .radius_factor = c->fs_radius_factor,
       .period = c->periodic ? c->periodic_range[1] - c->periodic_range[0] : 0.0,
       .exact_only = 0,
-      /* the portable and scalar loops: no AVX2 here either */
-      .scalar = s->fp.loop == SPH_LOOP_SCALAR || s->fp.loop == SPH_LOOP_LANES,
+      .scalar = sph_force_loop_narrow(s->fp.loop), /* (no AVX2 scan either) */
       .paxis = s->fp.paxis};
   const int hstar = c->fs_h_factor > 0.0;
   if (hstar) sph_freesurface_apply_h(&s->p, c->h, 1.0);
@@ -178,8 +177,7 @@ static int mdbc_walls(sph_sim *s, sph_error *err) {
   double head[SPH_DIM]; /* the density's hydrostatic gradient, rho0 g / c0^2 */
   for (int a = 0; a < SPH_DIM; a++)
     head[a] = c->rho0 * c->gravity[a] / (s->fp.eos.c0 * s->fp.eos.c0);
-  /* the fits' candidates two at a time where the tests ask for the narrow lanes */
-  s->mdbc_work.narrow = s->fp.loop == SPH_LOOP_LANES || s->fp.loop == SPH_LOOP_SCALAR;
+  s->mdbc_work.narrow = sph_force_loop_narrow(s->fp.loop);
   if (sph_wall_mdbc_density(p, SPH_CUBIC_SUPPORT * h_max(s), s->fp.px0,
                             c->periodic ? s->fp.period : 0.0, s->fp.paxis, c->rho0, head,
                             &s->mdbc_work, err))

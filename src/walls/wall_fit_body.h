@@ -9,7 +9,7 @@
  *   FIT_ROWS   the attributes of its row loops (static, and the flavour's
  *              target where it needs one)
  *
- * Defines cubic_w_FL, fit_at_FL, velocity_rows_FL and mdbc_rows_FL. The
+ * Defines cubic_w_FL, sep_FL, fit_at_FL, velocity_rows_FL and mdbc_rows_FL. The
  * flavours differ in how many candidates they test and weigh at once,
  * lane for lane the same operations; the sums then take them one by one
  * in the same order: every flavour gives the same bits.
@@ -60,8 +60,9 @@ FIT_ATTR FIT_FL FN(sep)(double x, FIT_FL xj, const double *per, int a) {
  *
  * A cell's candidates go FIT_CHUNK at a time through take (in the
  * flavour's lanes, lane for lane the scalar operations), then into the
- * sums one by one in their order: the bits of one scalar loop over them. Always inlined, so that
- * each caller's nf is a constant and the sums stay in registers. */
+ * sums one by one in their order: the bits of one scalar loop over them.
+ * Always inlined, so that each caller's nf is a constant and the sums
+ * stay in registers. */
 FIT_ATTR int FN(fit_at)(const layout *g, const sph_wall_velocity_work *w, const double x[SPH_DIM],
                         const double *const *f, int nf, double *fit, double *fmax,
                         double top[SPH_DIM]) {

@@ -266,7 +266,10 @@ SPH_AVX512 int take_v8z(const sph_wall_velocity_work *w, const double x[SPH_DIM]
     for (unsigned b = in; b; b &= b - 1u)
       qs[k++] = (uint32_t)(q + (size_t)__builtin_ctz(b));
   }
-  for (int t = 0; t < k; t += 8) /* (past k: r^2 0 and h 1, not read) */
+  /* the last vector's lanes past k: r^2 0 and h 1 (weighed, not read) */
+  _mm512_storeu_pd(r2s + k, v8z_all(0.0));
+  _mm512_storeu_pd(hs + k, v8z_all(1.0));
+  for (int t = 0; t < k; t += 8)
     _mm512_storeu_pd(ws + t,
                      cubic_w_v8z(v8z_sqrt(_mm512_loadu_pd(r2s + t)), _mm512_loadu_pd(hs + t)));
   return k;
