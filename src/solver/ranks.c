@@ -48,7 +48,8 @@
  * value that needs its own neighbours: the Adami walls' extrapolation, the
  * strain rate, the free-surface flags; tests/test_decomp measures the least
  * depth on every scheme, tests/test_ranks the bytes with these); mirror
- * points add their reach (ghost_depth). */
+ * points add their reach, and the walls made in stages leave one support
+ * (ghost_depth). */
 #define SPH_RANKS_DEPTH 2
 #define SPH_RANKS_CELL 1.0
 
@@ -357,13 +358,19 @@ static int reserve(sph_sim *s, size_t n, sph_error *err) {
   return 0;
 }
 
-/* The ghosts' depth in cells of width `cell`: the two supports of a pass's
- * chains, and beyond them the farthest mirror point of an mdbc or no-slip
- * wall particle (its density and velocity are fits over the fluid around
- * that point, and that fluid's smoothing lengths follow its free-surface
- * flags: a chain two supports long from the point, not from the particle;
- * free_surface.h_factor with mdbc walls needed 3 cells where 2 were taken). */
-static int ghost_depth(const sph_particles *p, double cell) {
+/* The ghosts' depth in cells of width `cell`: one support where the walls
+ * are made in stages; else the two supports of a pass's chains, and beyond
+ * them the farthest mirror point of an mdbc or no-slip wall particle (its
+ * density and velocity are fits over the fluid around that point, and that
+ * fluid's smoothing lengths follow its free-surface flags: a chain two
+ * supports long from the point, not from the particle; free_surface.h_factor
+ * with mdbc walls needed 3 cells where 2 were taken). */
+static int ghost_depth(const sph_sim *s, const sph_particles *p, double cell) {
+  /* the walls in stages (staged, above): a ghost wall takes its own process's values, and no
+   * other pass before the main one makes a value from a row, so a pass reads its ghosts' state
+   * alone, within one support of its own particles (without density diffusion, whose pass
+   * before the loop is not made in stages) */
+  if (s->staged && s->fp.diffusion == SPH_DIFFUSION_NONE) return 1;
   if (!(p->live & SPH_ARRAYS_OFFSET)) return SPH_RANKS_DEPTH; /* no wall with a mirror point */
   double far = 0.0;
   for (size_t i = 0; i < p->n; i++)
@@ -999,7 +1006,7 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
                               first, err))
       return -1;
     s->n_cut = p->n, s->order_cut = p->order, s->cuts++;
-    s->depth = ghost_depth(p, g.side);
+    s->depth = ghost_depth(s, p, g.side);
     if (s->self >= 0) own_by_process(s, first); /* for the exchange (process_pass) */
   }
   rank_sums t;
