@@ -418,11 +418,11 @@ static unsigned moved_under(const sph_particles *p, const double *const *ref, co
       for (int k = 0; k < refs; k++) {
         if (!(ok >> k & 1u)) continue;
         const double *x0 = ref[k] + (size_t)a * n, l = lim[k];
-        int far = 0;
-#pragma omp simd reduction(| : far)
+        double far = 0.0; /* (a count in doubles: the loop then runs in lanes) */
+#pragma omp simd reduction(+ : far)
         for (size_t i = lo; i < hi; i++)
-          far |= !(fabs(x[i] - x0[i]) < l);
-        if (far) ok &= ~(1u << k);
+          far += fabs(x[i] - x0[i]) < l ? 0.0 : 1.0;
+        if (far != 0.0) ok &= ~(1u << k);
       }
       if (!ok) return 0;
     }
