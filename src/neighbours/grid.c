@@ -863,6 +863,8 @@ int sph_nlist_build(sph_nlist *l, const sph_grid *g, const sph_particles *p, dou
   l->paxis = paxis;
   l->order = p->order;
   l->builds++;
+  static uint64_t serials; /* (every list's builds, counted together) */
+  l->serial = __atomic_add_fetch(&serials, 1, __ATOMIC_RELAXED);
   l->valid = 1;
   if (SPH_DEBUG) {
     const char *bad = sph_nlist_check(l, p, support);

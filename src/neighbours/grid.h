@@ -292,10 +292,12 @@ typedef struct sph_nlist {
   uint32_t *dec;     /* per thread a row written out (sph_nlist_row): dec_stride entries each */
   size_t dec_stride; /* maxcount + SPH_NLIST_SLACK */
   int dec_threads;   /* threads it has room for */
-  size_t *cost; /* n + 1: prefix sums of the particles' costs (SPH_NLIST_ROW_COST), the split of
-                   the loops over the store among threads (parallel.h) */
-  void *block;  /* the one allocation of off ... cost (arrays.h) */
-  long builds;  /* number of builds (statistics) */
+  size_t *cost;    /* n + 1: prefix sums of the particles' costs (SPH_NLIST_ROW_COST), the split of
+                      the loops over the store among threads (parallel.h) */
+  void *block;     /* the one allocation of off ... cost (arrays.h) */
+  long builds;     /* number of builds (statistics) */
+  uint64_t serial; /* a number no other build of any list has had (0: none yet): what a
+                      caller found from the rows holds while it is the same */
 } sph_nlist;
 
 void sph_nlist_init(sph_nlist *l);

@@ -461,10 +461,13 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
     for (size_t i = lo; i < hi; i++) {
       pack_hot(p, fp, w, i);
       if (fm) w->fm[i] = p->kind[i] == SPH_KIND_FLUID ? p->mass[i] : 0.0;
-      if (nwall) w->nwall[i] = 0;
     }
   }
-  if (nwall) /* from the walls' rows (the list is symmetric): few, and no two writers */
+  /* nwall from the walls' rows (the list is symmetric): few, and no two writers; found again
+   * only when the list was built again or the store changed (a wall's flags do not change) */
+  if (nwall && (w->nwall_serial != l->serial || l->serial == 0 || w->nwall_n != p->n ||
+                w->nwall_order != p->order || w->nwall_cap != w->cap)) {
+    memset(w->nwall, 0, p->n * sizeof *w->nwall);
     for (size_t i = 0; i < p->n; i++) {
       if (p->kind[i] != SPH_KIND_WALL || !(p->flags[i] & SPH_WALL_NORMAL)) continue;
       size_t cnt;
@@ -472,6 +475,9 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
       for (size_t k = 0; k < cnt; k++)
         w->nwall[row[k]] = 1;
     }
+    w->nwall_serial = l->serial, w->nwall_n = p->n, w->nwall_order = p->order;
+    w->nwall_cap = w->cap;
+  }
   const size_t stride = (size_t)l->maxcount + 8, /* + padding lanes */
       need = stride * (size_t)sph_max_threads();
   if (need > w->rows_cap) {
