@@ -213,9 +213,10 @@ static void test_wendland(void) {
  * that kept the old order within a cell would not. The default scheme's
  * walls and leap-frog, the ledger and a moving gate, a periodic axis with
  * the free surface, fluid leaving the domain, mirror walls, and 3-D. */
-static void same_shuffled(const char *case_rel, const char *sets) {
+static void same_with(const char *base, const char *hook, const char *what, const char *case_rel,
+                      const char *sets) {
   char *d[2], cmd[8192];
-  const char *env[2] = {"", "SPH_TEST_SHUFFLE=20261203"};
+  const char *env[2] = {base, hook};
   for (int k = 0; k < 2; k++) {
     d[k] = sph_test_tmpdir();
     snprintf(cmd, sizeof cmd, "%s SPH_TEST_OMP_MIN=0 '%s' run --quiet --threads 2 '%s' -o '%s' %s",
@@ -227,13 +228,17 @@ static void same_shuffled(const char *case_rel, const char *sets) {
   for (int k = 1; k < 2; k++) {
     snprintf(cmd, sizeof cmd, "diff -r '%s' '%s' >/dev/null", d[0], d[k]);
     const int same = sph_test_system(cmd) == 0;
-    printf("\n  %s, store shuffled (%s): %s", case_rel, env[k], same ? "identical" : "DIFFERENT");
+    printf("\n  %s, %s (%s): %s", case_rel, what, env[k], same ? "identical" : "DIFFERENT");
     CU_ASSERT(same);
   }
   for (int k = 0; k < 2; k++) {
     sph_test_rmtree(d[k]);
     free(d[k]);
   }
+}
+
+static void same_shuffled(const char *case_rel, const char *sets) {
+  same_with("", "SPH_TEST_SHUFFLE=20261203", "store shuffled", case_rel, sets);
 }
 
 static void test_storage_order(void) {
@@ -250,8 +255,25 @@ static void test_storage_order(void) {
   same_shuffled("cases/hydrostatic_3d.yaml", "--set time.end=0.02 --set time.output_interval=0.01");
 }
 
+/* The Riemann pressure's rows that meet a wall with a normal (forces.c,
+ * nwall), found once a list build: the same bits as found at every pass
+ * (SPH_TEST_NWALL=every) as the surge runs along the floor to the far wall
+ * and fluid comes within reach of more wall particles, with a skin so thin
+ * (SPH_TEST_SKIN) that lists are built again every few steps between the
+ * sorts; adami walls (the default scheme) and mdbc. */
+static void test_nwall_kept(void) {
+  const char *sets = "--set numerics.dx=0.015 --set time.end=0.45 --set time.output_interval=0.15";
+  char mdbc[512];
+  snprintf(mdbc, sizeof mdbc, "%s --set geometry.tank.boundary=mdbc", sets);
+  const char *each[2] = {sets, mdbc};
+  for (int k = 0; k < 2; k++)
+    same_with("SPH_TEST_SKIN=0.02", "SPH_TEST_SKIN=0.02 SPH_TEST_NWALL=every",
+              "the walls' rows read at every pass", "cases/lobovsky_h300.yaml", each[k]);
+}
+
 int main(void) {
   CU_TestInfo tests[] = {
+      {"the walls' rows met, found once a list build: the same bits", test_nwall_kept},
       {"the storage order shuffled: the same bits", test_storage_order},
       {"Wendland kernel, stress tensor, MLS filter, probes", test_wendland},
       {"density diffusion: antuono, fourtakas with the ledger", test_density_diffusion},

@@ -94,6 +94,9 @@ typedef struct sph_force_params {
   int runtime_terms;            /* the loop a term set falls back to (its axes loop or the
                                    run-time loop) even where it has its own (tests and
                                    benchmarks; interact.h, LANE_LOOPS) */
+  int nwall_every;              /* find the rows that meet a wall with a normal at every pass,
+                                   not once a list build (the test hook SPH_TEST_NWALL=every:
+                                   prepare_pass, forces.c) */
   sph_kernel_kind kernel;       /* the smoothing kernel; default (0) the cubic spline */
   sph_diffusion_kind diffusion; /* density diffusion (physics/density_diffusion.h); NONE = off */
   double diffusion_delta;       /* its delta */

@@ -465,8 +465,8 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
   }
   /* nwall from the walls' rows (the list is symmetric): few, and no two writers; found again
    * only when the list was built again or the store changed (a wall's flags do not change) */
-  if (nwall && (w->nwall_serial != l->serial || l->serial == 0 || w->nwall_n != p->n ||
-                w->nwall_order != p->order || w->nwall_cap != w->cap)) {
+  if (nwall && (fp->nwall_every || w->nwall_serial != l->serial || l->serial == 0 ||
+                w->nwall_n != p->n || w->nwall_order != p->order || w->nwall_cap != w->cap)) {
     memset(w->nwall, 0, p->n * sizeof *w->nwall);
     for (size_t i = 0; i < p->n; i++) {
       if (p->kind[i] != SPH_KIND_WALL || !(p->flags[i] & SPH_WALL_NORMAL)) continue;

@@ -621,6 +621,8 @@ static void force_params(sph_sim *s) {
   if (c->variable_h) s->fp.var_h = 1;
   s->fp.loop = sph_test_loop();
   s->fp.runtime_terms = getenv("SPH_TEST_RUNTIME") != NULL; /* doc/testing.md */
+  const char *nw = getenv("SPH_TEST_NWALL");
+  s->fp.nwall_every = nw && strcmp(nw, "every") == 0;
 }
 
 static int create(const sph_case *c, sph_sim **out, int ranks, int self, int rank_store,
