@@ -206,13 +206,9 @@ static void test_wendland(void) {
                           "--set 'output.probes=[{name: P, kind: pressure, at: [0.0, 0.01]}]'");
 }
 
-/* The summation order does not depend on the storage order: the store
- * shuffled before the first sort (SPH_TEST_SHUFFLE) gives every
- * output of the unshuffled run, byte for byte, on 2 threads. The first sort
- * puts each particle where its global cell and its id say (grid.h); a sort
- * that kept the old order within a cell would not. The default scheme's
- * walls and leap-frog, the ledger and a moving gate, a periodic axis with
- * the free surface, fluid leaving the domain, mirror walls, and 3-D. */
+/* Runs the case on 2 threads with the environment `base` and with `hook`
+ * (test hooks, doc/testing.md) and compares every output byte for byte;
+ * `what` names the hook in the report. */
 static void same_with(const char *base, const char *hook, const char *what, const char *case_rel,
                       const char *sets) {
   char *d[2], cmd[8192];
@@ -237,6 +233,13 @@ static void same_with(const char *base, const char *hook, const char *what, cons
   }
 }
 
+/* The summation order does not depend on the storage order: the store
+ * shuffled before the first sort (SPH_TEST_SHUFFLE) gives every
+ * output of the unshuffled run, byte for byte, on 2 threads. The first sort
+ * puts each particle where its global cell and its id say (grid.h); a sort
+ * that kept the old order within a cell would not. The default scheme's
+ * walls and leap-frog, the ledger and a moving gate, a periodic axis with
+ * the free surface, fluid leaving the domain, mirror walls, and 3-D. */
 static void same_shuffled(const char *case_rel, const char *sets) {
   same_with("", "SPH_TEST_SHUFFLE=20261203", "store shuffled", case_rel, sets);
 }
