@@ -161,10 +161,9 @@ typedef struct sph_force_work {
                       particle with a normal (SPH_WALL_NORMAL), else 0 (prepare_pass) */
   double *dd;      /* density diffusion D_i of the last pass (fluid; with the ledger) */
   double *lj;      /* repulsive walls' potential energy per unit mass (with the ledger) */
-  /* the list build (its serial), store and room nwall was found for (prepare_pass finds it
-   * again when any differs) */
-  uint64_t nwall_serial, nwall_order;
-  size_t nwall_n, nwall_cap;
+  /* the list build nwall was found for (sph_nlist.serial: the same rows on the same store;
+   * the contents outlive a regrowth) */
+  uint64_t nwall_serial;
   sph_wall_velocity_work wv;
   double cs_sigma_max; /* max over the particles of cs + sigma (the step rule) */
   int keep_sigma;      /* set by a caller that reads sigma per particle (the tests) */

@@ -464,9 +464,10 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
     }
   }
   /* nwall from the walls' rows (the list is symmetric): few, and no two writers; found again
-   * only when the list was built again or the store changed (a wall's flags do not change) */
-  if (nwall && (fp->nwall_every || w->nwall_serial != l->serial || l->serial == 0 ||
-                w->nwall_n != p->n || w->nwall_order != p->order || w->nwall_cap != w->cap)) {
+   * only when the list was built again (a list holds for one store in one order, whose walls'
+   * flags do not change; a rank's store taken again with the same particles keeps it:
+   * solver/ranks.c) */
+  if (nwall && (fp->nwall_every || w->nwall_serial != l->serial || l->serial == 0)) {
     memset(w->nwall, 0, p->n * sizeof *w->nwall);
     for (size_t i = 0; i < p->n; i++) {
       if (p->kind[i] != SPH_KIND_WALL || !(p->flags[i] & SPH_WALL_NORMAL)) continue;
@@ -475,8 +476,7 @@ static int prepare_pass(const sph_particles *p, const sph_nlist *l, const sph_fo
       for (size_t k = 0; k < cnt; k++)
         w->nwall[row[k]] = 1;
     }
-    w->nwall_serial = l->serial, w->nwall_n = p->n, w->nwall_order = p->order;
-    w->nwall_cap = w->cap;
+    w->nwall_serial = l->serial;
   }
   const size_t stride = (size_t)l->maxcount + 8, /* + padding lanes */
       need = stride * (size_t)sph_max_threads();
