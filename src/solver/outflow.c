@@ -28,13 +28,18 @@ static void compact(sph_particles *p, const int64_t *keep_as) {
   p->order++; /* n changed even where nothing moved */
 }
 
-long sph_outflow_remove(sph_outflow *o, sph_particles *p, const double domain[2 * SPH_DIM],
-                        const double g[SPH_DIM], double floor, sph_error *err) {
+long sph_outflow_count(const sph_particles *p, const double domain[2 * SPH_DIM]) {
   const long n = (long)p->n;
   long k = 0;
 #pragma omp parallel for reduction(+ : k) if (n > SPH_OMP_MIN)
   for (long i = 0; i < n; i++)
     k += sph_outflow_outside(p, (size_t)i, domain);
+  return k;
+}
+
+long sph_outflow_remove(sph_outflow *o, sph_particles *p, const double domain[2 * SPH_DIM],
+                        const double g[SPH_DIM], double floor, sph_error *err) {
+  const long n = (long)p->n, k = sph_outflow_count(p, domain);
   if (k == 0) return 0;
   int64_t *keep_as = calloc((size_t)n, sizeof *keep_as);
   int64_t *origin = malloc((size_t)(n - k > 0 ? n - k : 1) * sizeof *origin);

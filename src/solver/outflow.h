@@ -49,6 +49,9 @@ static inline int sph_outflow_outside(const sph_particles *p, size_t i, const do
           p->y[i] > d[3] SPH_IF3(|| p->z[i] < d[4] || p->z[i] > d[5]));
 }
 
+/* How many fluid particles of p are outside `domain` (sph_outflow_outside). */
+long sph_outflow_count(const sph_particles *p, const double domain[2 * SPH_DIM]);
+
 /* Takes the fluid particles outside `domain` out of p and books them in o
  * (g the gravity, floor the height potential energy is measured from).
  * Returns the number removed (0: p untouched), or -1 with err when out of

@@ -34,6 +34,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "core/check.h"
 #include "core/exact_sum.h"
 #include "core/parallel.h"
 #include "neighbours/decomp.h"
@@ -226,6 +227,15 @@ int sph_sim_ranks_init(sph_sim *s, int ranks, int self, sph_error *err) {
   const int h_static = !c->variable_h && !s->fp.var_h;
   s->wall_not_taken = (s->walls.moving ? 0 : sph_particles_array_bits("x y z vx vy vz")) |
                       (s->staged && h_static ? sph_particles_array_bits("rho p") : 0);
+  /* the walls' values kept by their own processes between the outputs (sph_sim_catch_up):
+   * where a pass writes only a wall's density and pressure, no other process's pass takes
+   * them from the store (above), and no step reads them but the blow-up check (each
+   * process checks its own walls, sim.c) and the leap-frog's copy of the density (its own
+   * walls' right, the others' shared with them); not with particle shifting or a density
+   * filter (their neighbours' volumes) */
+  s->lazy_walls = s->staged && h_static && !(s->pass_out[1] & ~sph_particles_array_bits("rho p")) &&
+                  !c->shifting && c->density_filter == SPH_FILTER_NONE;
+  s->walls_behind = 0;
   /* what no step changes: a store kept from the last pass keeps them (the smoothing lengths
    * without paper B's variable h or a free surface's h*) */
   s->pass_static = sph_particles_array_bits("mass mx my mz xr yr zr kind body id phase") |
@@ -302,6 +312,7 @@ void sph_sim_ranks_forget(sph_sim *s) {
   s->sub->work.skip_ghosts = 1; /* (as sph_sim_ranks_init set it) */
   s->hot_in_sub = 0;
   s->n_mark_last = 0, s->n_send_pos = 0, s->n_cut = 0; /* taken, sent and cut anew */
+  s->walls_behind = 0;                                 /* (the store is the whole state) */
   s->late_n = 0;
   s->work_clock = 0.0, s->work_passes = 0; /* (the restore's time is no pass's work) */
   for (int q = 0; q < s->ranks; q++)
@@ -384,15 +395,20 @@ static int ghost_depth(const sph_sim *s, const sph_particles *p, double cell) {
 }
 
 /* A process's store (s->self) keeps the particles of its last pass while
- * they cover what it needs now (s->mark): the same own particles, every
+ * they cover what it needs now (s->mark; never once the store was sorted
+ * or reordered since: may_cover): the same own particles, every
  * ghost it needs among them, the store in the same order (extra ghosts
  * change no own particle's bits: decomp.h, the depth). Its neighbour list
  * then still names them, and is kept while its skin allows (sim.c: every
  * sum depends on the state, the order and the step count alone, not on
  * when lists are built). 1 with s->mark the last pass's marks, else 0. */
+static int may_cover(const sph_sim *s, int resort) {
+  return !resort && s->n_mark_last == s->p.n && s->order_last == s->p.order;
+}
+
 static int covered(sph_sim *s, int resort) {
   const sph_particles *p = &s->p;
-  int cover = !resort && s->n_mark_last == p->n && s->order_last == p->order;
+  int cover = may_cover(s, resort);
   for (size_t i = 0; cover && i < p->n; i++) {
     /* own the same; a ghost that needs a row had one, a ghost that is a
      * neighbour only was there */
@@ -432,8 +448,7 @@ static unsigned moved_under(const sph_particles *p, const double *const *ref, co
 
 /* The conditions of still_covered (below) but the particles' moves. */
 static int take_refs_good(const sph_sim *s, int resort, double side) {
-  const sph_particles *p = &s->p;
-  return !resort && s->n_mark_last == p->n && s->order_last == p->order && side <= s->side_last;
+  return may_cover(s, resort) && side <= s->side_last;
 }
 
 /* The conditions of send_still_good (below) but the particles' moves. */
@@ -498,7 +513,7 @@ static int rank_pass(sph_sim *s, const sph_particles *in, const sph_decomp_grid 
   int same = s->self >= 0 && still_covered(s, resort, g->side);
   if (same)
     memcpy(s->mark, s->mark_last, p->n);
-  else {
+  else if (s->self < 0 || may_cover(s, resort)) { /* (else the deeper halo alone, below) */
     if (sph_decomp_halo(g, p, s->keys, first, s->ranks, rank, s->depth, rows, kinds, s->mark, err) <
         0)
       return -1;
@@ -925,8 +940,41 @@ static int process_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fi
   /* (the buffer holds every particle's whole record and this process's
    * again: reserve_records) */
   const size_t used = share_kind(s, 0, arrays[0], s->records);
-  share_kind(s, 1, arrays[1], s->records + used);
+  if (s->lazy_walls) /* (kept to their own processes until sph_sim_catch_up) */
+    s->walls_behind |= arrays[1];
+  else
+    share_kind(s, 1, arrays[1], s->records + used);
   return 0;
+}
+
+/* Every process's own walls' values into every process's store, where
+ * the passes left them with their own processes (lazy_walls): the arrays
+ * those passes changed, and the leap-frog's half-step density, which each
+ * process's steps copied from those values (integrate.c: an Adami wall's
+ * is its density at the step's start) and are right only in its own
+ * walls. One collective step, over the cut of those passes. */
+static void walls_catch_up(sph_sim *s) {
+  if (!s->walls_behind) return;
+  sph_particles *p = &s->p;
+  SPH_INVARIANT(s->n_cut == p->n && s->order_cut == p->order,
+                "ranks: the store reordered with the walls' values behind");
+  share_kind(s, 1, s->walls_behind | sph_particles_array_bits("rhoh"), s->records);
+  s->walls_behind = 0;
+}
+
+void sph_sim_catch_up(sph_sim *s) {
+  if (s->self >= 0 && s->ranks > 1 && !s->rank_store) walls_catch_up(s);
+}
+
+const size_t *sph_sim_ranks_own_walls(const sph_sim *s, size_t *n) {
+  if (!s->walls_behind) return NULL; /* (the whole store is the state: its ranges) */
+  SPH_INVARIANT(s->n_cut == s->p.n && s->order_cut == s->p.order,
+                "ranks: the store reordered with the walls' values behind");
+  size_t at = 0;
+  for (int q = 0; q < s->self; q++)
+    at += s->owned[q];
+  *n = s->owned[s->self] - s->owned_fluid[s->self];
+  return s->by_owner + at + s->owned_fluid[s->self];
 }
 
 /* The cut by measured work. A process's particles cost what the cut's
@@ -979,6 +1027,7 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err) {
   /* the whole store sorted when its own pass would sort it */
   const int resort = s->resort || s->skin == 0.0;
   s->resort = 0;
+  if (resort) walls_catch_up(s); /* (by the cut over this order, before the sort moves them) */
   if (resort && sph_sim_sort(s, err)) return -1;
   if (reserve(s, p->n, err)) return -1;
   const double reach = SPH_CUBIC_SUPPORT * hmax;
@@ -1055,6 +1104,7 @@ static void state_unpack(const double *d, sph_force_hot *h) {
 }
 
 void sph_sim_ranks_saved_state(sph_sim *s) {
+  walls_catch_up(s); /* (the walls' pressures of the last good state: the last pass's) */
   if (!s->hot_in_sub) return;
   const sph_particles *p = &s->p;
   const sph_force_hot *hot = s->sub->work.hot;

@@ -366,6 +366,7 @@ static int list_snapshot(outputs *o, const char *name, double t, size_t count, s
  * (each sums its share of the rows) and the first writes them. */
 static int write_rows(sph_sim *s, outputs *o, int which, sph_error *err) {
   int rc = 0;
+  sph_sim_catch_up(s); /* (the diagnostics and the snapshot read every process's walls) */
   if ((which & 1) && o->rows) {
     sph_diag_row row;
     sph_sim_diag(s, &row);
@@ -828,6 +829,7 @@ int sph_run_resume(sph_sim *s, const sph_run_options *o, const sph_snapshot_rest
     if (st == SPH_BLOWUP) {
       r->status = SPH_RUN_BLOWUP;
       rc = -1;
+      sph_sim_catch_up(s); /* (every process's at once: the step's verdict is all of theirs) */
       if (out.dir) {
         char path[4096];
         sph_error e2;

@@ -386,18 +386,28 @@ static int check_state(sph_sim *s, int shared, sph_error *err) {
                                                  INFINITY SPH_IF3(, -INFINITY, INFINITY)};
   const double *d = s->c->leaving == SPH_LEAVING_REMOVE ? everywhere : s->domain;
   const long n = (long)p->n;
-  /* this process's share: a range of the store */
-  size_t from = 0, to = p->n;
+  /* this process's share: a range of the store; where each process's walls' values are its
+   * own to hold (ranks.c, sph_sim_ranks_own_walls), the fluid of that range and its own walls */
+  size_t from = 0, to = p->n, n_walls = 0;
   if (shared) sph_sim_span(s, &from, &to);
+  const size_t *walls = shared ? sph_sim_ranks_own_walls(s, &n_walls) : NULL;
   int64_t first = INT64_MAX;
 #pragma omp parallel if (n > SPH_OMP_MIN) reduction(min : first)
   {
     size_t lo, hi;
     sph_slice(shared ? NULL : slices(s), to - from, &lo, &hi);
     for (size_t i = from + lo; i < from + hi; i++)
+      if (!(walls && p->kind[i] != SPH_KIND_FLUID) &&
+          !surely_good(p, i, rlo[ph ? ph[i] : 0], rhi[ph ? ph[i] : 0], d) && p->id[i] < first &&
+          bad_particle(p, i, lim[ph ? ph[i] : 0], r0[ph ? ph[i] : 0], d))
+        first = p->id[i];
+    sph_slice(NULL, n_walls, &lo, &hi);
+    for (size_t k = lo; k < hi; k++) {
+      const size_t i = walls[k];
       if (!surely_good(p, i, rlo[ph ? ph[i] : 0], rhi[ph ? ph[i] : 0], d) && p->id[i] < first &&
           bad_particle(p, i, lim[ph ? ph[i] : 0], r0[ph ? ph[i] : 0], d))
         first = p->id[i];
+    }
   }
   /* shared: the process whose share holds the first offender makes the message, which the
    * others take from it (the distributed store's way: no process need hold the particle) */
@@ -417,7 +427,9 @@ static int check_state(sph_sim *s, int shared, sph_error *err) {
   }
   long worst = -1;
   for (size_t i = from; i < to && worst < 0; i++)
-    if (p->id[i] == first) worst = (long)i;
+    if (p->id[i] == first && !(walls && p->kind[i] != SPH_KIND_FLUID)) worst = (long)i;
+  for (size_t k = 0; k < n_walls && worst < 0; k++)
+    if (p->id[walls[k]] == first) worst = (long)walls[k];
   if (worst < 0) { /* (cannot be: the share found it) */
     sph_error_set(err, "blow-up at step %ld, t = %.9g s: particle %lld", s->steps, s->t,
                   (long long)first);
@@ -637,9 +649,12 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   const int st = check_state(s, s->self >= 0, err);
   if (st == SPH_BLOWUP) sph_sim_ranks_saved_state(s); /* (a leap-frog's last good state) */
   if (st) return st;
-  if (c->leaving == SPH_LEAVING_REMOVE &&
-      sph_outflow_remove(&s->out, &s->p, s->domain, c->gravity, s->floor_y, err) < 0)
-    return -1;
+  if (c->leaving == SPH_LEAVING_REMOVE && sph_outflow_count(&s->p, s->domain) > 0) {
+    /* (the store reordered: first the walls' values the processes kept to themselves, every
+     * process's at once, the fluid being the same on each: ranks.c) */
+    sph_sim_catch_up(s);
+    if (sph_outflow_remove(&s->out, &s->p, s->domain, c->gravity, s->floor_y, err) < 0) return -1;
+  }
   /* rates (and flags) of the new state: the next step starts from them,
    * and a snapshot of this state carries flags that belong to it */
   s->resort = s->steps % SPH_RESORT_EVERY == 0;

@@ -137,6 +137,10 @@ struct sph_sim {
    * each process's count; each particle's index in sub (SIZE_MAX: not there), the walls sub
    * made first; the store's positions, order, cells' side and cut when those walls were chosen */
   int staged, stage_joined, stage_waited, stage_failed;
+  /* the walls' values kept by their own processes between outputs (ranks.c, lazy_walls): on,
+   * and the arrays the passes changed since they were last shared (sph_sim_catch_up) */
+  int lazy_walls;
+  unsigned long long walls_behind;
   size_t *send_whole, *send_sub, n_send, send_counts[64], send_total;
   size_t *to_sub;
   unsigned char *made_first;
@@ -213,6 +217,18 @@ int sph_sim_ranks_pass(sph_sim *s, double hmax, sph_error *err);
  * from each process's rank store into work.hot, as a pass on one process
  * leaves it; a collective step (ranks.c). */
 void sph_sim_ranks_saved_state(sph_sim *s);
+/* Under mpirun, where each process's passes keep its own walls' values to
+ * itself between outputs (ranks.c, lazy_walls): those values shared, so
+ * that every process's store is the whole state again (before anything
+ * reads other processes' walls: a diagnostics row, a snapshot, a sort, a
+ * blow-up's last good state); a collective step, nothing where none is
+ * behind (ranks.c). */
+void sph_sim_catch_up(sph_sim *s);
+/* While those walls' values are behind in the store (some process's pass
+ * changed them since they were shared): this process's own walls (the
+ * store's indices, *n of them, in storage order; the blow-up check's share
+ * of the walls, sim.c), else NULL (ranks.c). */
+const size_t *sph_sim_ranks_own_walls(const sph_sim *s, size_t *n);
 /* A sim of the case for one rank's store: sph_sim_create on one rank (setup.c). */
 int sph_sim_create_rank_store(const sph_case *c, sph_sim **out, sph_error *err);
 /* The span [*from, *to) of the store whose particles this process counts
