@@ -34,7 +34,6 @@
 #include <string.h>
 #include <time.h>
 
-#include "core/check.h"
 #include "core/exact_sum.h"
 #include "core/parallel.h"
 #include "neighbours/decomp.h"
@@ -955,9 +954,8 @@ static int process_pass(sph_sim *s, const sph_decomp_grid *g, const uint64_t *fi
  * walls. One collective step, over the cut of those passes. */
 static void walls_catch_up(sph_sim *s) {
   if (!s->walls_behind) return;
-  sph_particles *p = &s->p;
-  SPH_INVARIANT(s->n_cut == p->n && s->order_cut == p->order,
-                "ranks: the store reordered with the walls' values behind");
+  /* (what reorders the store, a sort or fluid taken out, comes here first: the cut is over
+   * this order, its owners those of the passes) */
   share_kind(s, 1, s->walls_behind | sph_particles_array_bits("rhoh"), s->records);
   s->walls_behind = 0;
 }
@@ -967,9 +965,9 @@ void sph_sim_catch_up(sph_sim *s) {
 }
 
 const size_t *sph_sim_ranks_own_walls(const sph_sim *s, size_t *n) {
-  if (!s->walls_behind) return NULL; /* (the whole store is the state: its ranges) */
-  SPH_INVARIANT(s->n_cut == s->p.n && s->order_cut == s->p.order,
-                "ranks: the store reordered with the walls' values behind");
+  /* (the whole store is the state: its ranges; a cut over another order names other
+   * particles, and the walls are never behind then: walls_catch_up) */
+  if (!s->walls_behind || s->n_cut != s->p.n || s->order_cut != s->p.order) return NULL;
   size_t at = 0;
   for (int q = 0; q < s->self; q++)
     at += s->owned[q];
