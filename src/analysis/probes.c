@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "core/kernel_shape.h"
+#include "core/lanes.h"
 #include "physics/kernel.h"
 
 int sph_probe_columns(const sph_probe *q) {
@@ -142,12 +143,42 @@ static inline size_t block_end(size_t b, size_t to) {
   return to - b > SPH_PROBE_BLOCK ? b + SPH_PROBE_BLOCK : to;
 }
 
-static inline int block_within(const double *x, size_t b, size_t e, double lo, double hi) {
-  double k = 0.0; /* (a count in doubles: the loop then runs in lanes) */
-#pragma omp simd reduction(+ : k)
-  for (size_t j = b; j < e; j++)
-    k += (x[j] > lo) & (x[j] < hi) ? 1.0 : 0.0;
-  return k != 0.0;
+/* How many of x[b, e) lie strictly between lo and hi: a count in doubles,
+ * so that the loop runs in lanes (four with AVX2, where the processor has
+ * it: the same count). */
+#define COUNT_WITHIN                                                                               \
+  double k = 0.0;                                                                                  \
+  _Pragma("omp simd reduction(+ : k)") for (size_t j = b; j < e; j++) k +=                         \
+      (x[j] > lo) & (x[j] < hi) ? 1.0 : 0.0;                                                       \
+  return k;
+
+static double count_within(const double *x, size_t b, size_t e, double lo, double hi) {
+  COUNT_WITHIN
+}
+
+#ifdef SPH_LANES_AVX
+__attribute__((target("avx2"))) static double count_within_avx2(const double *x, size_t b, size_t e,
+                                                                double lo, double hi) {
+  COUNT_WITHIN
+}
+#endif
+
+/* Whether the processor runs count_within_avx2. */
+static int wide(void) {
+#ifdef SPH_LANES_AVX
+  return sph_cpu_has_avx2();
+#else
+  return 0;
+#endif
+}
+
+static inline int block_within(const double *x, size_t b, size_t e, double lo, double hi,
+                               int avx2) {
+#ifdef SPH_LANES_AVX
+  if (avx2) return count_within_avx2(x, b, e, lo, hi) != 0.0;
+#endif
+  (void)avx2;
+  return count_within(x, b, e, lo, hi) != 0.0;
 }
 
 /* A wire gauge's wetted length along the vertical line of a level probe:
@@ -157,9 +188,10 @@ static void wetted_length(const sph_probe *q, const sph_particles *p, size_t fro
                           sph_kernel_kind kernel, double h, sink *o) {
   /* (past this along x, a particle is past the reach below: its square alone exceeds it) */
   const double far = 2.001 * h;
+  const int avx2 = wide();
   for (size_t b = from; b < to; b += SPH_PROBE_BLOCK) {
     const size_t e = block_end(b, to);
-    if (!block_within(p->x, b, e, q->x - 1.01 * far, q->x + 1.01 * far)) continue;
+    if (!block_within(p->x, b, e, q->x - 1.01 * far, q->x + 1.01 * far, avx2)) continue;
     for (size_t j = b; j < e; j++) {
       const double ex = p->x[j] - q->x;
       if (!(fabs(ex) < far) || !sph_particles_liquid(p, j)) continue; /* (not the air) */
@@ -216,9 +248,10 @@ static void shepard_terms(const sph_particles *p, size_t from, size_t to, sph_ke
     lo[d] -= 1.001 * reach, hi[d] += 1.001 * reach; /* never tighter than the test below */
   }
   const double *px = p->x;
+  const int avx2 = wide();
   for (size_t b = from; b < to; b += SPH_PROBE_BLOCK) {
     const size_t e = block_end(b, to);
-    if (!block_within(px, b, e, lo[0], hi[0])) continue;
+    if (!block_within(px, b, e, lo[0], hi[0], avx2)) continue;
     for (size_t j = b; j < e; j++) {
       /* the box along x, the other axes, then the kind */
       if (!(px[j] > lo[0] && px[j] < hi[0])) continue;
@@ -327,9 +360,10 @@ static void terms_of(const sph_probe *q, const sph_particles *p, size_t from, si
       break;
     }
     const double *up = p->pos[SPH_UP];
+    const int avx2 = wide();
     for (size_t b = from; b < to; b += SPH_PROBE_BLOCK) {
       const size_t e = block_end(b, to);
-      if (!block_within(p->x, b, e, q->x - 1.01 * dx, q->x + 1.01 * dx)) continue;
+      if (!block_within(p->x, b, e, q->x - 1.01 * dx, q->x + 1.01 * dx, avx2)) continue;
       for (size_t j = b; j < e; j++) {
         const double ex = p->x[j] - q->x;
         if (!(fabs(ex) < dx) || !sph_particles_liquid(p, j)) continue;

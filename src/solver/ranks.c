@@ -35,6 +35,7 @@
 #include <time.h>
 
 #include "core/exact_sum.h"
+#include "core/lanes.h"
 #include "core/parallel.h"
 #include "neighbours/decomp.h"
 #include "physics/kernel.h"
@@ -422,21 +423,46 @@ static int covered(sph_sim *s, int resort) {
  * ref[k] (SPH_DIM arrays of p->n) holds it (a NaN has moved), for each
  * k < refs (at most 2): bit k of the result. One reading of the positions,
  * a block of particles at a time in lanes. */
+/* How many of x[lo, hi) lie lim or more from x0 (a NaN does): a count in
+ * doubles, so that the loop runs in lanes (four with AVX2, where the
+ * processor has it: the same count). */
+#define COUNT_FAR                                                                                  \
+  double far = 0.0;                                                                                \
+  _Pragma("omp simd reduction(+ : far)") for (size_t i = lo; i < hi; i++) far +=                   \
+      fabs(x[i] - x0[i]) < l ? 0.0 : 1.0;                                                          \
+  return far;
+
+static double count_far(const double *x, const double *x0, size_t lo, size_t hi, double l) {
+  COUNT_FAR
+}
+
+#ifdef SPH_LANES_AVX
+__attribute__((target("avx2"))) static double count_far_avx2(const double *x, const double *x0,
+                                                             size_t lo, size_t hi, double l) {
+  COUNT_FAR
+}
+#endif
+
 static unsigned moved_under(const sph_particles *p, const double *const *ref, const double *lim,
                             int refs) {
   const size_t n = p->n, block = 4096;
   unsigned ok = (1u << refs) - 1u;
+#ifdef SPH_LANES_AVX
+  const int avx2 = sph_cpu_has_avx2();
+#endif
   for (int a = 0; a < SPH_DIM; a++) {
     const double *x = p->pos[a];
     for (size_t lo = 0; lo < n; lo += block) {
       const size_t hi = n - lo > block ? lo + block : n;
       for (int k = 0; k < refs; k++) {
         if (!(ok >> k & 1u)) continue;
-        const double *x0 = ref[k] + (size_t)a * n, l = lim[k];
-        double far = 0.0; /* (a count in doubles: the loop then runs in lanes) */
-#pragma omp simd reduction(+ : far)
-        for (size_t i = lo; i < hi; i++)
-          far += fabs(x[i] - x0[i]) < l ? 0.0 : 1.0;
+        const double *x0 = ref[k] + (size_t)a * n;
+#ifdef SPH_LANES_AVX
+        const double far =
+            avx2 ? count_far_avx2(x, x0, lo, hi, lim[k]) : count_far(x, x0, lo, hi, lim[k]);
+#else
+        const double far = count_far(x, x0, lo, hi, lim[k]);
+#endif
         if (far != 0.0) ok &= ~(1u << k);
       }
       if (!ok) return 0;
