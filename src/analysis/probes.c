@@ -163,22 +163,22 @@ __attribute__((target("avx2"))) static double count_within_avx2(const double *x,
 }
 #endif
 
-/* Whether the processor runs count_within_avx2. */
-static int wide(void) {
+/* The first block from particle b on (b, b + SPH_PROBE_BLOCK, ... up to
+ * to) with a particle strictly between lo and hi along x, or to. */
+static size_t next_block(const double *x, size_t b, size_t to, double lo, double hi) {
 #ifdef SPH_LANES_AVX
-  return sph_cpu_has_avx2();
+  const int avx2 = sph_cpu_has_avx2();
+#endif
+  for (; b < to; b += SPH_PROBE_BLOCK) {
+    const size_t e = block_end(b, to);
+#ifdef SPH_LANES_AVX
+    if (avx2 ? count_within_avx2(x, b, e, lo, hi) != 0.0 : count_within(x, b, e, lo, hi) != 0.0)
+      return b;
 #else
-  return 0;
+    if (count_within(x, b, e, lo, hi) != 0.0) return b;
 #endif
-}
-
-static inline int block_within(const double *x, size_t b, size_t e, double lo, double hi,
-                               int avx2) {
-#ifdef SPH_LANES_AVX
-  if (avx2) return count_within_avx2(x, b, e, lo, hi) != 0.0;
-#endif
-  (void)avx2;
-  return count_within(x, b, e, lo, hi) != 0.0;
+  }
+  return to;
 }
 
 /* A wire gauge's wetted length along the vertical line of a level probe:
@@ -187,12 +187,10 @@ static inline int block_within(const double *x, size_t b, size_t e, double lo, d
 static void wetted_length(const sph_probe *q, const sph_particles *p, size_t from, size_t to,
                           sph_kernel_kind kernel, double h, sink *o) {
   /* (past this along x, a particle is past the reach below: its square alone exceeds it) */
-  const double far = 2.001 * h;
-  const int avx2 = wide();
-  for (size_t b = from; b < to; b += SPH_PROBE_BLOCK) {
-    const size_t e = block_end(b, to);
-    if (!block_within(p->x, b, e, q->x - 1.01 * far, q->x + 1.01 * far, avx2)) continue;
-    for (size_t j = b; j < e; j++) {
+  const double far = 2.001 * h, lo = q->x - 1.01 * far, hi = q->x + 1.01 * far;
+  for (size_t b = next_block(p->x, from, to, lo, hi); b < to;
+       b = next_block(p->x, b + SPH_PROBE_BLOCK, to, lo, hi)) {
+    for (size_t j = b, e = block_end(b, to); j < e; j++) {
       const double ex = p->x[j] - q->x;
       if (!(fabs(ex) < far) || !sph_particles_liquid(p, j)) continue; /* (not the air) */
 #if SPH_DIM == 2
@@ -248,11 +246,9 @@ static void shepard_terms(const sph_particles *p, size_t from, size_t to, sph_ke
     lo[d] -= 1.001 * reach, hi[d] += 1.001 * reach; /* never tighter than the test below */
   }
   const double *px = p->x;
-  const int avx2 = wide();
-  for (size_t b = from; b < to; b += SPH_PROBE_BLOCK) {
-    const size_t e = block_end(b, to);
-    if (!block_within(px, b, e, lo[0], hi[0], avx2)) continue;
-    for (size_t j = b; j < e; j++) {
+  for (size_t b = next_block(px, from, to, lo[0], hi[0]); b < to;
+       b = next_block(px, b + SPH_PROBE_BLOCK, to, lo[0], hi[0])) {
+    for (size_t j = b, e = block_end(b, to); j < e; j++) {
       /* the box along x, the other axes, then the kind */
       if (!(px[j] > lo[0] && px[j] < hi[0])) continue;
       const double xj[SPH_DIM] = {SPH_XYZ(px[j], p->y[j], p->z[j])};
@@ -360,11 +356,10 @@ static void terms_of(const sph_probe *q, const sph_particles *p, size_t from, si
       break;
     }
     const double *up = p->pos[SPH_UP];
-    const int avx2 = wide();
-    for (size_t b = from; b < to; b += SPH_PROBE_BLOCK) {
-      const size_t e = block_end(b, to);
-      if (!block_within(p->x, b, e, q->x - 1.01 * dx, q->x + 1.01 * dx, avx2)) continue;
-      for (size_t j = b; j < e; j++) {
+    const double lo = q->x - 1.01 * dx, hi = q->x + 1.01 * dx;
+    for (size_t b = next_block(p->x, from, to, lo, hi); b < to;
+         b = next_block(p->x, b + SPH_PROBE_BLOCK, to, lo, hi)) {
+      for (size_t j = b, e = block_end(b, to); j < e; j++) {
         const double ex = p->x[j] - q->x;
         if (!(fabs(ex) < dx) || !sph_particles_liquid(p, j)) continue;
 #if SPH_DIM == 2

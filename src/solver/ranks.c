@@ -419,10 +419,6 @@ static int covered(sph_sim *s, int resort) {
   return cover;
 }
 
-/* Whether no particle of p moved lim[k] or more along any axis from where
- * ref[k] (SPH_DIM arrays of p->n) holds it (a NaN has moved), for each
- * k < refs (at most 2): bit k of the result. One reading of the positions,
- * a block of particles at a time in lanes. */
 /* How many of x[lo, hi) lie lim or more from x0 (a NaN does): a count in
  * doubles, so that the loop runs in lanes (four with AVX2, where the
  * processor has it: the same count). */
@@ -443,6 +439,10 @@ __attribute__((target("avx2"))) static double count_far_avx2(const double *x, co
 }
 #endif
 
+/* Whether no particle of p moved lim[k] or more along any axis from where
+ * ref[k] (SPH_DIM arrays of p->n) holds it (a NaN has moved), for each
+ * k < refs (at most 2): bit k of the result. One reading of the positions,
+ * a block of particles at a time in lanes. */
 static unsigned moved_under(const sph_particles *p, const double *const *ref, const double *lim,
                             int refs) {
   const size_t n = p->n, block = 4096;

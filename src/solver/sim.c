@@ -366,6 +366,18 @@ static inline int surely_good(const sph_particles *p, size_t i, double rlo, doub
          (p->kind[i] != SPH_KIND_FLUID || !(x < d[0] || x > d[1] || y < d[2] || y > d[3]));
 }
 
+/* Whether particle i fails the blow-up check and comes before `first` in id
+ * order: surely_good decides most particles, bad_particle the rest (each
+ * phase's band: the arrays by phase, ph NULL for one). */
+static inline __attribute__((always_inline)) int
+offends_before(const sph_particles *p, size_t i, int64_t first, const uint8_t *ph,
+               const double *rlo, const double *rhi, const double *lim, const double *r0,
+               const double *d) {
+  const int k = ph ? ph[i] : 0;
+  return !surely_good(p, i, rlo[k], rhi[k], d) && p->id[i] < first &&
+         bad_particle(p, i, lim[k], r0[k], d);
+}
+
 /* The blow-up check; the first offender in id order is named (a min
  * reduction over ids, exact in any order, then a serial look-up). Shared
  * (under mpirun, every process making this call at once: each holds the
@@ -398,16 +410,11 @@ static int check_state(sph_sim *s, int shared, sph_error *err) {
     sph_slice(shared ? NULL : slices(s), to - from, &lo, &hi);
     for (size_t i = from + lo; i < from + hi; i++)
       if (!(walls && p->kind[i] != SPH_KIND_FLUID) &&
-          !surely_good(p, i, rlo[ph ? ph[i] : 0], rhi[ph ? ph[i] : 0], d) && p->id[i] < first &&
-          bad_particle(p, i, lim[ph ? ph[i] : 0], r0[ph ? ph[i] : 0], d))
+          offends_before(p, i, first, ph, rlo, rhi, lim, r0, d))
         first = p->id[i];
     sph_slice(NULL, n_walls, &lo, &hi);
-    for (size_t k = lo; k < hi; k++) {
-      const size_t i = walls[k];
-      if (!surely_good(p, i, rlo[ph ? ph[i] : 0], rhi[ph ? ph[i] : 0], d) && p->id[i] < first &&
-          bad_particle(p, i, lim[ph ? ph[i] : 0], r0[ph ? ph[i] : 0], d))
-        first = p->id[i];
-    }
+    for (size_t k = lo; k < hi; k++)
+      if (offends_before(p, walls[k], first, ph, rlo, rhi, lim, r0, d)) first = p->id[walls[k]];
   }
   /* shared: the process whose share holds the first offender makes the message, which the
    * others take from it (the distributed store's way: no process need hold the particle) */
