@@ -24,3 +24,15 @@ int sph_test_open_sim(const char *rel, const char *const *set, size_t n_set, sph
   }
   return 0;
 }
+
+int sph_test_run_to(sph_sim *s, double t) {
+  sph_error err;
+  while (sph_sim_time(s) < t) {
+    const int rc = sph_sim_step(s, t, &err);
+    if (rc) {
+      printf("\n  %s\n", err.msg);
+      return rc;
+    }
+  }
+  return 0;
+}

@@ -17,4 +17,7 @@
 int sph_test_open_sim(const char *rel, const char *const *set, size_t n_set, sph_case *c,
                       sph_sim **s);
 
+/* Steps s to time t; 0, or the failing step's code with its message printed. */
+int sph_test_run_to(sph_sim *s, double t);
+
 #endif

@@ -47,6 +47,9 @@ static int with_viscosity(const sph_case *c) { return c->viscosity != SPH_VISCOS
 /* (the air's band where it is not the liquid's, which it takes by default) */
 static int own_band(const sph_case *c) { return c->air_material.density_limit != c->density_limit; }
 
+/* (the surface tension where there is one) */
+static int with_surface_tension(const sph_case *c) { return c->air_material.sigma > 0.0; }
+
 static const int LAWS[] = {1, 7, 0};
 
 static const air_key KEYS[] = {
@@ -83,6 +86,13 @@ static const air_key KEYS[] = {
      .listed = own_band,
      .example = "0.3",
      .help = "its blow-up band, default numerics.density_limit"},
+    {.name = "surface_tension",
+     .at = offsetof(sph_material, sigma),
+     .dflt = 0.0,
+     .r = {0.0, 1e6, '[', ']', NULL},
+     .listed = with_surface_tension,
+     .example = "0.072",
+     .help = "the interface's surface tension (N/m), default 0"},
 };
 #define N_KEYS (sizeof KEYS / sizeof KEYS[0])
 

@@ -59,6 +59,8 @@ typedef struct sph_material {
   double mu;            /* dynamic viscosity (Pa s), read with Morris' viscosity */
   double density_limit; /* the blow-up band: the run stops where |rho/rho0 - 1| exceeds it
                          * (numerics.density_limit; physics.air's by default the same) */
+  double sigma;         /* the surface tension between this phase and the liquid (N/m):
+                         * physics.air's surface_tension; 0 none (the liquid's own: 0) */
 } sph_material;
 
 /* The names of the choices in enum order, NULL-terminated:

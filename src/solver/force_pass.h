@@ -57,14 +57,15 @@ typedef struct sph_force_params {
   sph_eos phase_eos[SPH_PHASES_MAX];
   double phase_z[SPH_PHASES_MAX];
   double phase_mu[SPH_PHASES_MAX];
-  double h;           /* smoothing length when uniform */
-  int var_h;          /* per-particle h (pair mean h_ij); the grid must fit 2 max h */
-  double h_reach;     /* with var_h: the largest h of the whole store, whose 2 h the wall
-                       * velocity fit's cells fit (sim.c sets it per pass; a rank's store
-                       * holds the whole store's, not its own); 0: this store's own */
-  double alpha, beta; /* artificial viscosity; both 0 = off */
-  double eta;         /* eta = eta_f * h_ij */
-  double xsph;        /* XSPH epsilon; 0 = off */
+  double sigma;   /* two phases: the interface's surface tension (N/m; surface_tension.h), 0 none */
+  double h;       /* smoothing length when uniform */
+  int var_h;      /* per-particle h (pair mean h_ij); the grid must fit 2 max h */
+  double h_reach; /* with var_h: the largest h of the whole store, whose 2 h the wall
+                   * velocity fit's cells fit (sim.c sets it per pass; a rank's store
+                   * holds the whole store's, not its own); 0: this store's own */
+  double alpha, beta;                    /* artificial viscosity; both 0 = off */
+  double eta;                            /* eta = eta_f * h_ij */
+  double xsph;                           /* XSPH epsilon; 0 = off */
   SPH_COMPONENTS(double, g, gx, gy, gz); /* body force per unit mass */
   sph_viscosity_kind viscosity;
   double mu;               /* dynamic viscosity (Pa s) */

@@ -52,6 +52,7 @@
 #include "solver/diffusion.h"
 #include "solver/interact.h"
 #include "solver/loops.h"
+#include "solver/surface_tension.h"
 #include "walls/repulsion.h"
 
 void sph_force_work_free(sph_force_work *w) {
@@ -645,7 +646,10 @@ int sph_forces_evaluate(sph_particles *p, const sph_nlist *l, const sph_force_pa
   if ((F & F_CGRAD) && !((F & F_STRESS) && fp->gradient_correction) &&
       moment_pass(p, l, fp, w, err))
     return -1;
-  if ((F & F_STRESS) && stress_pass(p, l, fp, w, err)) return -1;
+  if ((F & F_STRESS) && fp->sigma > 0.0) /* (two phases: no viscous stress) */
+    sph_surface_stress(p, l, fp, w);
+  else if ((F & F_STRESS) && stress_pass(p, l, fp, w, err))
+    return -1;
   if (F & F_DDIFF)
     sph_diffusion_prepare(p, l, fp, w, sph_diffusion_mass_is_fm(fp, (F & F_XSPH) != 0));
   if (w->late) { /* the rows in two phases around late_hook (force_pass.h) */

@@ -41,7 +41,7 @@
 enum {
   F_AV = 1,        /* artificial viscosity */
   F_XSPH = 2,      /* XSPH velocity correction */
-  F_STRESS = 4,    /* viscous stress tensor (paper A) and SPS stress (paper B) */
+  F_STRESS = 4,    /* viscous stress tensor (paper A), SPS stress (paper B), surface tension */
   F_MORRIS = 8,    /* Morris laminar viscosity, paper B */
   F_PERIODIC = 16, /* minimum image along the periodic axis (row_walk.h's SEP) */
   F_VARH = 32,     /* per-particle smoothing length */
@@ -152,7 +152,7 @@ static inline unsigned sph_interact_terms(const sph_force_params *fp) {
   unsigned F = 0;
   if (fp->alpha != 0.0 || fp->beta != 0.0) F |= F_AV;
   if (fp->xsph != 0.0) F |= F_XSPH;
-  if (fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps) F |= F_STRESS;
+  if (fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps || fp->sigma > 0.0) F |= F_STRESS;
   if (fp->viscosity == SPH_VISCOSITY_MORRIS) F |= F_MORRIS;
   if (fp->periodic) F |= F_PERIODIC;
   if (fp->var_h) F |= F_VARH;

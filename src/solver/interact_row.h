@@ -601,18 +601,24 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_momentum, FL)(const LROW *restrict R, const LPA
   if (F & F_LEDGER) *heat = LTERM(pressure_heat)(mp, G->dv, pg);
   if (F & F_STRESS) {
 #define E_S(q, a) w->a[jk[q]]
-    const LT txx = LOP(add)(LOP(all)(w->sxx[i]), LSET(E_S, sxx));
-    const LT txy = LOP(add)(LOP(all)(w->sxy[i]), LSET(E_S, sxy));
-    const LT tyy = LOP(add)(LOP(all)(w->syy[i]), LSET(E_S, syy));
+    LT txx = LOP(add)(LOP(all)(w->sxx[i]), LSET(E_S, sxx));
+    LT txy = LOP(add)(LOP(all)(w->sxy[i]), LSET(E_S, sxy));
+    LT tyy = LOP(add)(LOP(all)(w->syy[i]), LSET(E_S, syy));
+    SPH_IF3(LT txz = LOP(add)(LOP(all)(w->sxz[i]), LSET(E_S, sxz));
+            LT tyz = LOP(add)(LOP(all)(w->syz[i]), LSET(E_S, syz));
+            LT tzz = LOP(add)(LOP(all)(w->szz[i]), LSET(E_S, szz));)
+#undef E_S
+    if (R->phased) { /* two phases: the capillary stress in the volume form (Pi_i + Pi_j) /
+                      * (rho_i rho_j) (surface_tension.c) */
+      const LT inv = LOP(div)(R->one, LOP(mul)(R->rhoi, GATHER(rho)));
+      txx = LOP(mul)(txx, inv), txy = LOP(mul)(txy, inv), tyy = LOP(mul)(tyy, inv);
+      SPH_IF3(txz = LOP(mul)(txz, inv), tyz = LOP(mul)(tyz, inv), tzz = LOP(mul)(tzz, inv);)
+    }
 #if SPH_DIM == 2
     const LSYM t = {{txx, txy, tyy}};
 #else
-    const LT txz = LOP(add)(LOP(all)(w->sxz[i]), LSET(E_S, sxz));
-    const LT tyz = LOP(add)(LOP(all)(w->syz[i]), LSET(E_S, syz));
-    const LT tzz = LOP(add)(LOP(all)(w->szz[i]), LSET(E_S, szz));
     const LSYM t = {{txx, txy, txz, tyy, tyz, tzz}};
 #endif
-#undef E_S
     LVEC sv = LTERM(stress_force)(mj, t, G->gw);
     if (R->adami_v)
       sv = (LVEC){{SPH_XYZ(LOP(and)(V->vis, sv.c[0]), LOP(and)(V->vis, sv.c[1]),
@@ -648,8 +654,14 @@ LOOP_ATTR void SPH_PT_XGLUE(pair_fluid_fluid, FL)(const LROW *restrict R, LSUMS 
     const LT hg = SPH_PT_XGLUE(pair_head, FL)(R, G);
     const LT jump = LOP(sub)(LOP(sub)(pi, pj), hg);
     LT rd = LTERM(riemann_density)(rhoi, G->mj, rhoj, jump, G->f, G->r, R->rinv_z0);
-    if (R->phased) /* two phases: between particles of one phase alone (wi = 1) */
-      rd = LOP(and)(LOP(lt)(LOP(abs)(LOP(sub)(G->wi, R->one)), LOP(all)(0.5)), rd);
+    if (R->phased) { /* two phases: between particles of one phase alone (of one impedance
+                      * too, a drop in a liquid of its own density) */
+      const uint8_t *restrict ph = R->phase;
+      const uint8_t phi = ph[R->i];
+#define E_SAME(q, a) (ph[jk[q]] == phi ? 1.0 : 0.0)
+      rd = LOP(and)(LOP(lt)(R->zero, LSET(E_SAME, 0)), rd);
+#undef E_SAME
+    }
     LACC(S->rd, LOP(and)(fluid_j, rd));
   }
   if (F & F_XSPH) {

@@ -55,13 +55,14 @@
 #define SPH_RANKS_CELL 1.0
 
 /* Whether a pass before the main one makes a fluid row's result that a
- * neighbour's row reads (the strain rate and the moments, with their
+ * neighbour's row reads (the strain rate, the capillary stress and the moments, with their
  * volumes m/rho; Antuono's density gradient); the free-surface scan is the
  * callers' to add. */
 static int fluid_rows_read(const sph_sim *s) {
   const sph_force_params *fp = &s->fp;
-  return fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps || fp->gradient_correction ||
-         fp->corrected_gradient || fp->diffusion == SPH_DIFFUSION_ANTUONO;
+  return fp->viscosity == SPH_VISCOSITY_STRESS_TENSOR || fp->sps || fp->sigma > 0.0 ||
+         fp->gradient_correction || fp->corrected_gradient ||
+         fp->diffusion == SPH_DIFFUSION_ANTUONO;
 }
 
 int sph_sim_ranks_row_depth(const sph_sim *s, int depth) {

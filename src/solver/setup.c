@@ -582,6 +582,7 @@ static void set_phases(sph_sim *s) {
     s->fp.phase_z[k] = s->fp.phase_eos[k].rho0 * s->fp.phase_eos[k].c0;
     s->fp.phase_mu[k] = m->mu;
   }
+  s->fp.sigma = c->air ? c->air_material.sigma : 0.0;
 }
 
 /* The interaction passes' parameters from the case (force_pass.h), the phases' laws among them. */

@@ -40,6 +40,7 @@
 #include "solver/forces.h"
 #include "solver/integrate.h"
 #include "solver/procs.h"
+#include "solver/surface_tension.h"
 #include "walls/adami.h"
 #include "walls/boundary.h"
 #include "walls/dbc.h"
@@ -604,6 +605,8 @@ int sph_sim_step(sph_sim *s, double t_target, sph_error *err) {
   case SPH_DT_PAPER_B:
   default: dt = s->dt_paper_b; break;
   }
+  if (s->fp.sigma > 0.0 && c->dt_rule != SPH_DT_FIXED) /* the capillary bound */
+    dt = fmin(dt, sph_surface_dt(&s->fp, c->h));
   if (!(dt > 0.0) || !isfinite(dt))
     return sph_error_set(err, "blow-up at step %ld, t = %.9g s: time step is %g", s->steps, s->t,
                          dt),
