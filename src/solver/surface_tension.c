@@ -40,6 +40,7 @@
 #include "solver/surface_tension.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "core/parallel.h"
 #include "core/tensor.h"
@@ -47,7 +48,7 @@
 #include "solver/row_walk.h"
 
 /* The colour of phase ph: 1 for the liquid, 0 for the other phase. */
-static inline double colour(const uint8_t *ph, size_t i) { return ph && ph[i] ? 0.0 : 1.0; }
+static inline double colour(const uint8_t *ph, size_t i) { return ph[i] ? 0.0 : 1.0; }
 
 static void surface_one(const sph_particles *restrict p, const sph_nlist *restrict l,
                         const sph_force_params *restrict fp, const uint8_t *restrict ph, size_t i,
@@ -64,12 +65,12 @@ static void surface_one(const sph_particles *restrict p, const sph_nlist *restri
   const double xi = x[i], yi = y[i], ci = colour(ph, i), h = fp->h;
   SPH_IF3(const double *restrict z = p->z; const double zi = z[i];)
   double g[SPH_DIM] = {0.0};
+  const uint8_t phi = ph[i];
   ROW(l, i, nb, cnt)
   for (size_t k = 0; k < cnt; k++) {
     const size_t j = nb[k];
-    if (p->kind[j] != SPH_KIND_FLUID) continue;
+    if (ph[j] == phi || p->kind[j] != SPH_KIND_FLUID) continue; /* (most pairs: one phase) */
     const double dc = colour(ph, j) - ci;
-    if (dc == 0.0) continue;
     const double dx = sep_x(xi, x[j], period, half, F), dy = SEP(fp, 1, yi, y[j], F);
     SPH_IF3(const double dz = SEP(fp, 2, zi, z[j], F);)
     const double r2 = SPH_NORM2(dx, dy, dz);
@@ -98,6 +99,11 @@ void sph_surface_stress(const sph_particles *p, const sph_nlist *l, const sph_fo
   const long n = (long)p->n;
   const uint8_t *ph = sph_particles_phases(p);
   double *const *s = w->s;
+  if (!ph) { /* (one phase: no interface) */
+    for (int k = 0; k < SPH_SYM; k++)
+      memset(s[k], 0, p->n * sizeof *s[k]);
+    return;
+  }
   if (fp->periodic) {
 #pragma omp parallel for schedule(dynamic, 256) if (n > SPH_OMP_MIN)
     for (long i = 0; i < n; i++)
