@@ -280,16 +280,11 @@ static double run_still(int with_air, double *vair) {
   const char *set[] = {"time.end=1", with_air ? "physics.air=true" : "physics.air=false"};
   sph_case c;
   sph_sim *s;
-  sph_error err;
   CU_ASSERT_FATAL(open_still(set, 2, &c, &s) == 0);
   const double dx = c.dx, y0 = 0.1;
   double worst = 0.0;
   for (int k = 1; k <= 10; k++) {
-    while (sph_sim_time(s) < 0.1 * k) {
-      const int rc = sph_sim_step(s, 0.1 * k, &err);
-      if (rc) printf("\n%s\n", err.msg);
-      CU_ASSERT_FATAL(rc == 0);
-    }
+    CU_ASSERT_FATAL(sph_test_run_to(s, 0.1 * k) == 0);
     if (!with_air) continue;
     for (int l = 1; l <= 9; l++) {
       const double at = interface_at(sph_sim_particles(s), &c, 0.02 * l, y0);
@@ -385,7 +380,6 @@ static void test_film(void) {
 static void test_obstacle(void) {
   sph_case c;
   sph_sim *s;
-  sph_error err;
   CU_ASSERT_FATAL(
       open_short("geometry.obstacles=[{x: [0.08, 0.12], y: [0.0, 0.13], boundary: adami}]", &c,
                  &s) == 0);
@@ -400,11 +394,7 @@ static void test_obstacle(void) {
   printf("\n  around the box: %zu water, %zu air particles, %zu inside it", water, air, inside);
   CU_ASSERT_EQUAL(inside, 0);
   CU_ASSERT(water > 0 && air > 0);
-  while (sph_sim_time(s) < 0.3) {
-    const int rc = sph_sim_step(s, 0.3, &err);
-    if (rc) printf("\n%s\n", err.msg);
-    CU_ASSERT_FATAL(rc == 0);
-  }
+  CU_ASSERT_FATAL(sph_test_run_to(s, 0.3) == 0);
   double worst = 0.0;
   const double lines[] = {0.02, 0.04, 0.16, 0.18};
   for (int l = 0; l < 4; l++) {
@@ -593,7 +583,6 @@ static void test_rayleigh_taylor(void) {
   const char *set[] = {"numerics.dx=0.03125", lid};
   sph_case c;
   sph_sim *s;
-  sph_error err;
   CU_ASSERT_FATAL(sph_test_open_sim("cases/rayleigh_taylor.yaml", set, 2, &c, &s) == 0);
   const sph_particles *p = sph_sim_particles(s);
   const uint8_t *ph = sph_particles_phases(p);
@@ -645,11 +634,7 @@ static void test_rayleigh_taylor(void) {
   double worst_b = 0.0, worst_s = 0.0, wall_gap = 0.0;
   for (int k = 1; k <= 8; k++) {
     const double ts = 0.25 * k;
-    while (sph_sim_time(s) < ts * tc) {
-      const int rc = sph_sim_step(s, ts * tc, &err);
-      if (rc) printf("\n%s\n", err.msg);
-      CU_ASSERT_FATAL(rc == 0);
-    }
+    CU_ASSERT_FATAL(sph_test_run_to(s, ts * tc) == 0);
     p = sph_sim_particles(s);
     ph = sph_particles_phases(p);
     double top = -INFINITY, top_x = 0.0, low = INFINITY;
