@@ -146,38 +146,19 @@ static inline size_t block_end(size_t b, size_t to) {
 /* How many of x[b, e) lie strictly between lo and hi: a count in doubles,
  * so that the loop runs in lanes (four with AVX2, where the processor has
  * it: the same count). */
-#define COUNT_WITHIN                                                                               \
-  double k = 0.0;                                                                                  \
-  _Pragma("omp simd reduction(+ : k)") for (size_t j = b; j < e; j++) k +=                         \
-      (x[j] > lo) & (x[j] < hi) ? 1.0 : 0.0;                                                       \
-  return k;
-
-static double count_within(const double *x, size_t b, size_t e, double lo, double hi) {
-  COUNT_WITHIN
-}
-
-#ifdef SPH_LANES_AVX
-__attribute__((target("avx2"))) static double count_within_avx2(const double *x, size_t b, size_t e,
-                                                                double lo, double hi) {
-  COUNT_WITHIN
-}
-#endif
+SPH_AVX2_TWIN(double, count_within, (const double *x, size_t b, size_t e, double lo, double hi),
+              (x, b, e, lo, hi), {
+                double k = 0.0;
+                _Pragma("omp simd reduction(+ : k)") for (size_t j = b; j < e; j++) k +=
+                    (x[j] > lo) & (x[j] < hi) ? 1.0 : 0.0;
+                return k;
+              })
 
 /* The first block from particle b on (b, b + SPH_PROBE_BLOCK, ... up to
  * to) with a particle strictly between lo and hi along x, or to. */
 static size_t next_block(const double *x, size_t b, size_t to, double lo, double hi) {
-#ifdef SPH_LANES_AVX
-  const int avx2 = sph_cpu_has_avx2();
-#endif
-  for (; b < to; b += SPH_PROBE_BLOCK) {
-    const size_t e = block_end(b, to);
-#ifdef SPH_LANES_AVX
-    if (avx2 ? count_within_avx2(x, b, e, lo, hi) != 0.0 : count_within(x, b, e, lo, hi) != 0.0)
-      return b;
-#else
-    if (count_within(x, b, e, lo, hi) != 0.0) return b;
-#endif
-  }
+  for (; b < to; b += SPH_PROBE_BLOCK)
+    if (count_within(x, b, block_end(b, to), lo, hi) != 0.0) return b;
   return to;
 }
 

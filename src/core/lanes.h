@@ -327,4 +327,21 @@ SPH_AVX512 void v8z_transpose8(const double *const r[8], v8z out[8]) {
 }
 #endif
 
+/* A static function `name` of the parameters `params` (a parenthesised list)
+ * with the body `...` (braces included), compiled twice where the
+ * processor may have AVX2: plainly and for AVX2, `name` calling the one
+ * the processor runs (sph_cpu_has_avx2) with `args`. A body whose loop
+ * the compiler vectorises (omp simd) then runs in four lanes there, the
+ * same operations in the same order: the same results. Elsewhere `name`
+ * is the plain function alone. */
+#ifdef SPH_LANES_AVX
+#define SPH_AVX2_TWIN(ret, name, params, args, ...)                                                \
+  static ret name##_plain params __VA_ARGS__ __attribute__((                                       \
+      target("avx2"))) static ret name##_avx2 params __VA_ARGS__ static inline ret name params {   \
+    return sph_cpu_has_avx2() ? name##_avx2 args : name##_plain args;                              \
+  }
+#else
+#define SPH_AVX2_TWIN(ret, name, params, args, ...) static ret name params __VA_ARGS__
+#endif
+
 #endif

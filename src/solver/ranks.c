@@ -420,25 +420,17 @@ static int covered(sph_sim *s, int resort) {
   return cover;
 }
 
-/* How many of x[lo, hi) lie lim or more from x0 (a NaN does): a count in
+/* How many of x[lo, hi) lie l or more from x0 (a NaN does): a count in
  * doubles, so that the loop runs in lanes (four with AVX2, where the
  * processor has it: the same count). */
-#define COUNT_FAR                                                                                  \
-  double far = 0.0;                                                                                \
-  _Pragma("omp simd reduction(+ : far)") for (size_t i = lo; i < hi; i++) far +=                   \
-      fabs(x[i] - x0[i]) < l ? 0.0 : 1.0;                                                          \
-  return far;
-
-static double count_far(const double *x, const double *x0, size_t lo, size_t hi, double l) {
-  COUNT_FAR
-}
-
-#ifdef SPH_LANES_AVX
-__attribute__((target("avx2"))) static double count_far_avx2(const double *x, const double *x0,
-                                                             size_t lo, size_t hi, double l) {
-  COUNT_FAR
-}
-#endif
+SPH_AVX2_TWIN(double, count_far,
+              (const double *x, const double *x0, size_t lo, size_t hi, double l),
+              (x, x0, lo, hi, l), {
+                double far = 0.0;
+                _Pragma("omp simd reduction(+ : far)") for (size_t i = lo; i < hi; i++) far +=
+                    fabs(x[i] - x0[i]) < l ? 0.0 : 1.0;
+                return far;
+              })
 
 /* Whether no particle of p moved lim[k] or more along any axis from where
  * ref[k] (SPH_DIM arrays of p->n) holds it (a NaN has moved), for each
@@ -448,23 +440,13 @@ static unsigned moved_under(const sph_particles *p, const double *const *ref, co
                             int refs) {
   const size_t n = p->n, block = 4096;
   unsigned ok = (1u << refs) - 1u;
-#ifdef SPH_LANES_AVX
-  const int avx2 = sph_cpu_has_avx2();
-#endif
   for (int a = 0; a < SPH_DIM; a++) {
     const double *x = p->pos[a];
     for (size_t lo = 0; lo < n; lo += block) {
       const size_t hi = n - lo > block ? lo + block : n;
       for (int k = 0; k < refs; k++) {
         if (!(ok >> k & 1u)) continue;
-        const double *x0 = ref[k] + (size_t)a * n;
-#ifdef SPH_LANES_AVX
-        const double far =
-            avx2 ? count_far_avx2(x, x0, lo, hi, lim[k]) : count_far(x, x0, lo, hi, lim[k]);
-#else
-        const double far = count_far(x, x0, lo, hi, lim[k]);
-#endif
-        if (far != 0.0) ok &= ~(1u << k);
+        if (count_far(x, ref[k] + (size_t)a * n, lo, hi, lim[k]) != 0.0) ok &= ~(1u << k);
       }
       if (!ok) return 0;
     }
