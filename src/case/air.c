@@ -184,7 +184,6 @@ static const char *air_clash(const sph_case *c) {
   if (c->shifting) return "numerics.shifting";
   if (c->density_filter != SPH_FILTER_NONE) return "numerics.density_filter";
   if (c->variable_h) return "numerics.smoothing_length: variable";
-  if (c->corrected_gradient) return "numerics.gradient_correction";
   if (sph_case_needs_free_surface(c)) return "free-surface flags (free_surface, the stop rule)";
   if (c->periodic) return "a periodic axis";
   return NULL;
