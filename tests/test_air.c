@@ -414,6 +414,21 @@ static void test_obstacle(void) {
   sph_case_free(&c);
 }
 
+/* Reads three columns of a run's diagnostics.csv into v (energy_deviation first, then the two
+ * of `more`, "a,b"); returns the rows (at least `rows`, or the test stops) and the largest
+ * |energy_deviation| over them in *worst. */
+static long read_balance(const char *path, const char *more, long rows, double *v[3],
+                         double *worst) {
+  char cols[256];
+  snprintf(cols, sizeof cols, "energy_deviation,%s", more);
+  const long m = sph_test_csv(path, cols, v);
+  CU_ASSERT_FATAL(m >= rows);
+  *worst = 0.0;
+  for (long r = 0; r < m; r++)
+    *worst = fmax(*worst, fabs(v[0][r]));
+  return m;
+}
+
 /* Runs the thrown block (tests/data/restart_air.yaml) into dir/sub with the extra arguments
  * `sets`; returns the largest |energy_deviation| over its rows, and the heat (the internal
  * energy) at the end over E0 in *heat. */
@@ -423,12 +438,8 @@ static double thrown_balance(const char *dir, const char *sub, const char *sets,
            sph_test_src("tests/data/restart_air.yaml"), dir, sub, sets);
   CU_ASSERT_FATAL(sph_test_sph_ok(args, dir, out, sizeof out) == 0);
   snprintf(path, sizeof path, "%s/%s/diagnostics.csv", dir, sub);
-  double *v[3] = {NULL, NULL, NULL};
-  const long m = sph_test_csv(path, "energy_deviation,internal (J/m),total_energy (J/m)", v);
-  CU_ASSERT_FATAL(m >= 7);
-  double worst = 0.0;
-  for (long r = 0; r < m; r++)
-    worst = fmax(worst, fabs(v[0][r]));
+  double *v[3] = {NULL, NULL, NULL}, worst;
+  const long m = read_balance(path, "internal (J/m),total_energy (J/m)", 7, v, &worst);
   *heat = v[1][m - 1] / v[2][0];
   for (int k = 0; k < 3; k++)
     free(v[k]);
@@ -564,12 +575,8 @@ static void test_three_d(void) {
     CU_ASSERT_FATAL(sph_test_system(cmd) == 0);
   }
   snprintf(path, sizeof path, "%s/t1/diagnostics.csv", dir);
-  double *v[3] = {NULL, NULL, NULL};
-  const long m = sph_test_csv(path, "energy_deviation,kinetic (J),n_fluid", v);
-  CU_ASSERT_FATAL(m >= 3);
-  double worst = 0.0;
-  for (long r = 0; r < m; r++)
-    worst = fmax(worst, fabs(v[0][r]));
+  double *v[3] = {NULL, NULL, NULL}, worst;
+  const long m = read_balance(path, "kinetic (J),n_fluid", 3, v, &worst);
   printf("\n  3-D, %.0f fluid particles: largest deviation %.2e of E0, kinetic %.3g J at the end",
          v[2][m - 1], worst, v[1][m - 1]);
   CU_ASSERT(worst < 5e-4);
