@@ -27,6 +27,8 @@
  *     own interpolation, on 1-3 threads;
  *   - a fluid without tension (the density floor) in the default scheme
  *     with the ledger and a probe, on 1-3 threads;
+ *   - two phases (physics.air) with surface tension and the corrected
+ *     kernel gradient, on 1-3 threads, and in 3-D on 1-2;
  *   - the store shuffled before the first sort (SPH_TEST_SHUFFLE): the
  *     same bits, the summation order independent of the storage order.
  * Every file of the two output directories (snapshots, XDMF index,
@@ -191,9 +193,10 @@ static void test_no_tension(void) {
 static void test_outflow(void) { same_on_threads("tests/data/restart_outflow.yaml", "", 3); }
 
 /* two phases (physics.air): the phases' laws, the impedance-weighted pairs and the walls'
- * pressure for each phase, with the ledger, a probe and a gauge */
+ * pressure for each phase, with the ledger, a probe and a gauge; and in 3-D */
 static void test_air(void) {
   same_on_threads("tests/data/restart_air.yaml", "--set time.end=0.1", 3);
+  same_on_threads("tests/data/air_3d.yaml", "", 2);
 }
 
 /* the Wendland kernel in the pair loop, the strain-rate pass, the MLS
@@ -293,7 +296,7 @@ int main(void) {
       {"leap-frog dam break on 1, 2 and 3 threads", test_three_threads},
       {"a fluid without tension, 1-3 threads", test_no_tension},
       {"fluid that leaves the domain taken out, 1-3 threads", test_outflow},
-      {"two phases (water under air), 1-3 threads", test_air},
+      {"two phases (water under air), 1-3 threads; in 3-D 1-2", test_air},
       CU_TEST_INFO_NULL};
   return sph_test_main("determinism", tests);
 }
